@@ -1,0 +1,181 @@
+//! State shared by the passes: the document, found diagnostics, which objects are referenced,
+//! and what earlier passes learned (buffer data, image headers, material needs).
+
+use super::{CheckOptions, Diagnostic};
+use crate::document::image_header::ImageInfo;
+use crate::document::json::escape_token;
+use crate::document::uri::ResourceLoader;
+use crate::document::Document;
+use serde_json::Value;
+use std::collections::{BTreeSet, HashSet};
+
+/// A resource as listed in the report's `info.resources`.
+#[derive(Debug, Clone, Default)]
+pub struct ResourceInfo {
+    pub pointer: String,
+    pub storage: &'static str,
+    pub mime_type: Option<String>,
+    pub byte_length: Option<usize>,
+    pub uri: Option<String>,
+    pub image: Option<ImageInfo>,
+}
+
+/// The report's `info` section.
+#[derive(Debug, Clone, Default)]
+pub struct AssetInfo {
+    pub version: Option<String>,
+    pub min_version: Option<String>,
+    pub generator: Option<String>,
+    pub extensions_used: Vec<String>,
+    pub extensions_required: Vec<String>,
+    pub resources: Vec<ResourceInfo>,
+    pub counts: Vec<(&'static str, u64)>,
+}
+
+/// What a material demands of the primitives that use it.
+#[derive(Debug, Clone, Default)]
+pub struct MaterialNeeds {
+    /// texCoord sets read by its textures.
+    pub texcoords: BTreeSet<u64>,
+    /// A normal, clearcoat-normal or anisotropy texture needs a tangent space.
+    pub needs_tangent: bool,
+    /// The material has a normal texture, from which a runtime can generate tangents.
+    pub can_generate_tangent: bool,
+    /// gltfmat: the material uses KHR_materials_anisotropy (with or without a texture).
+    pub anisotropy: bool,
+}
+
+pub struct Context<'a> {
+    pub root: &'a Value,
+    pub document: &'a Document,
+    pub loader: &'a dyn ResourceLoader,
+    pub options: &'a CheckOptions,
+    pub diagnostics: Vec<Diagnostic>,
+    used: HashSet<(&'static str, usize)>,
+    /// Bytes of each buffer, where they could be read.
+    pub buffers: Vec<Option<Vec<u8>>>,
+    /// Header of each image, where it could be read.
+    pub images: Vec<Option<ImageInfo>>,
+    pub material_needs: Vec<MaterialNeeds>,
+    pub resources: Vec<ResourceInfo>,
+}
+
+impl<'a> Context<'a> {
+    pub fn new(root: &'a Value, document: &'a Document, loader: &'a dyn ResourceLoader, options: &'a CheckOptions) -> Self {
+        Context {
+            root,
+            document,
+            loader,
+            options,
+            diagnostics: Vec::new(),
+            used: HashSet::new(),
+            buffers: Vec::new(),
+            images: Vec::new(),
+            material_needs: Vec::new(),
+            resources: Vec::new(),
+        }
+    }
+
+    pub fn emit(&mut self, code: &'static str, pointer: impl Into<String>, message: impl Into<String>) {
+        self.diagnostics.push(Diagnostic::at(code, pointer, message));
+    }
+
+    /// The elements of a top-level array, or nothing when it is missing or not an array.
+    pub fn items(&self, collection: &str) -> &'a [Value] {
+        self.root.get(collection).and_then(Value::as_array).map_or(&[], Vec::as_slice)
+    }
+
+    /// Object elements of a top-level array, with their index and pointer.
+    pub fn objects(&self, collection: &'static str) -> Vec<(usize, String, &'a Value)> {
+        self.items(collection)
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| v.is_object())
+            .map(|(i, v)| (i, format!("/{collection}/{i}"), v))
+            .collect()
+    }
+
+    /// Resolves `object[key]` as an index into `collection`, marking the target used.
+    /// A missing or mistyped member gives `None` silently (the schema pass reported it).
+    pub fn reference(&mut self, object: &Value, key: &str, pointer: &str, collection: &'static str) -> Option<usize> {
+        let value = object.get(key)?;
+        self.reference_value(value, &member(pointer, key), collection)
+    }
+
+    /// Resolves an index value at `pointer` into `collection`.
+    pub fn reference_value(&mut self, value: &Value, pointer: &str, collection: &'static str) -> Option<usize> {
+        let index = value.as_u64().or_else(|| value.as_f64().filter(|f| f.fract() == 0.0 && *f >= 0.0).map(|f| f as u64))?;
+        let len = self.items(collection).len() as u64;
+        if index >= len {
+            self.emit("UNRESOLVED_REFERENCE", pointer, format!("Unresolved reference: {index}."));
+            return None;
+        }
+        self.used.insert((collection, index as usize));
+        Some(index as usize)
+    }
+
+    pub fn mark_used(&mut self, collection: &'static str, index: usize) {
+        self.used.insert((collection, index));
+    }
+
+    pub fn is_used(&self, collection: &'static str, index: usize) -> bool {
+        self.used.contains(&(collection, index))
+    }
+
+    pub fn extensions_used(&self) -> Vec<&'a str> {
+        self.root
+            .get("extensionsUsed")
+            .and_then(Value::as_array)
+            .map(|a| a.iter().filter_map(Value::as_str).collect())
+            .unwrap_or_default()
+    }
+
+    pub fn is_khronos(&self) -> bool {
+        self.options.profile == super::Profile::Khronos
+    }
+
+    pub fn info(&self) -> AssetInfo {
+        let asset = self.root.get("asset");
+        let text = |key: &str| asset.and_then(|a| a.get(key)).and_then(Value::as_str).map(str::to_string);
+        let strings = |key: &str| {
+            self.root
+                .get(key)
+                .and_then(Value::as_array)
+                .map(|a| a.iter().filter_map(|v| v.as_str().map(str::to_string)).collect())
+                .unwrap_or_default()
+        };
+        let count = |key: &str| self.items(key).len() as u64;
+        AssetInfo {
+            version: text("version"),
+            min_version: text("minVersion"),
+            generator: text("generator"),
+            extensions_used: strings("extensionsUsed"),
+            extensions_required: strings("extensionsRequired"),
+            resources: self.resources.clone(),
+            counts: vec![
+                ("animationCount", count("animations")),
+                ("materialCount", count("materials")),
+                ("hasMorphTargets", 0),
+                ("hasSkins", u64::from(count("skins") > 0)),
+                ("hasTextures", u64::from(count("textures") > 0)),
+                ("hasDefaultScene", u64::from(self.root.get("scene").is_some())),
+            ],
+        }
+    }
+}
+
+/// `pointer/key`, with the key escaped.
+pub fn member(pointer: &str, key: &str) -> String {
+    format!("{pointer}/{}", escape_token(key))
+}
+
+/// A number member, falling back to `default` when missing or mistyped.
+pub fn number(object: &Value, key: &str, default: f64) -> f64 {
+    object.get(key).and_then(Value::as_f64).unwrap_or(default)
+}
+
+/// A non-negative integer member.
+pub fn unsigned(object: &Value, key: &str) -> Option<u64> {
+    let v = object.get(key)?;
+    v.as_u64().or_else(|| v.as_f64().filter(|f| f.fract() == 0.0 && *f >= 0.0).map(|f| f as u64))
+}

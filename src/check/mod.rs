@@ -1,0 +1,155 @@
+//! The validator: schema pass, link passes in the Khronos order, then gltfmat's own rules.
+
+pub mod codes;
+pub mod diagnostic;
+mod khronos_codes;
+pub mod rules;
+pub mod schema;
+
+pub mod context;
+mod extensions;
+mod materials;
+mod objects;
+mod resources;
+mod unused;
+
+pub use context::Context;
+pub use diagnostic::{Diagnostic, Location, Severity};
+
+use crate::document::uri::ResourceLoader;
+use crate::document::{self, Container, Document};
+use std::collections::HashMap;
+
+/// Which issues to report.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Profile {
+    /// Khronos codes plus gltfmat's rules; rules may supersede a Khronos code they correct.
+    #[default]
+    Default,
+    /// Exactly the issues the Khronos glTF-Validator reports (the drop-in mode).
+    Khronos,
+}
+
+#[derive(Debug, Clone, Default)]
+pub struct CheckOptions {
+    pub profile: Profile,
+    /// Codes never reported.
+    pub ignore: Vec<String>,
+    /// When not empty, the only codes reported.
+    pub only: Vec<String>,
+    pub severity_overrides: HashMap<String, Severity>,
+    /// Stop collecting after this many issues (0 = unlimited); sets `truncated`.
+    pub max_issues: usize,
+    /// Decode textures for the pixel rules.
+    pub deep: bool,
+    /// Skip rule groups by name (e.g. "plausibility").
+    pub disabled_groups: Vec<String>,
+}
+
+/// The result of checking one asset.
+#[derive(Debug)]
+pub struct Report {
+    pub uri: String,
+    pub document: Document,
+    pub diagnostics: Vec<Diagnostic>,
+    pub truncated: bool,
+    pub info: context::AssetInfo,
+}
+
+impl Report {
+    pub fn count(&self, severity: Severity) -> usize {
+        self.diagnostics.iter().filter(|d| d.severity == severity).count()
+    }
+
+    pub fn has_errors(&self) -> bool {
+        self.count(Severity::Error) > 0
+    }
+
+    pub fn mime_type(&self) -> &'static str {
+        self.document.container.mime_type()
+    }
+}
+
+/// Checks an asset given as bytes. `uri` names it in reports; external files come from `loader`.
+pub fn check_bytes(uri: &str, bytes: Vec<u8>, loader: &dyn ResourceLoader, options: &CheckOptions) -> Report {
+    let document = document::read(bytes);
+    let mut diagnostics = document.diagnostics.clone();
+    let mut info = context::AssetInfo::default();
+    if let Some(root) = &document.root {
+        if !root.is_object() {
+            diagnostics.push(Diagnostic::at(
+                "TYPE_MISMATCH",
+                "",
+                format!("Type mismatch. Property value {} is not a 'object'.", short(root)),
+            ));
+        } else {
+            let mut ctx = Context::new(root, &document, loader, options);
+            run_passes(&mut ctx);
+            info = ctx.info();
+            diagnostics.extend(ctx.diagnostics);
+        }
+    }
+    let (diagnostics, truncated) = apply_options(diagnostics, options);
+    Report {
+        uri: uri.to_string(),
+        document,
+        diagnostics,
+        truncated,
+        info,
+    }
+}
+
+fn short(value: &serde_json::Value) -> String {
+    let text = value.to_string();
+    text.chars().take(40).collect()
+}
+
+fn run_passes(ctx: &mut Context) {
+    let khronos = ctx.options.profile == Profile::Khronos;
+    let schema_diagnostics = schema::validate(ctx.root, khronos);
+    ctx.diagnostics.extend(schema_diagnostics);
+    if ctx.document.major_version() == Some(1) && !khronos {
+        rules::gltf1::check(ctx);
+    }
+    extensions::check(ctx);
+    objects::check_asset(ctx);
+    resources::check_buffers(ctx);
+    resources::check_buffer_views(ctx);
+    objects::check_accessors(ctx);
+    resources::check_images(ctx);
+    materials::check_textures(ctx);
+    materials::check_materials(ctx);
+    objects::check_meshes(ctx);
+    objects::check_nodes_and_scenes(ctx);
+    objects::check_skins_animations_cameras(ctx);
+    unused::check(ctx);
+    if !khronos {
+        rules::run_all(ctx);
+    }
+}
+
+/// Applies ignore/only/severity overrides and the issue limit.
+fn apply_options(diagnostics: Vec<Diagnostic>, options: &CheckOptions) -> (Vec<Diagnostic>, bool) {
+    let matches = |list: &[String], code: &str| list.iter().any(|c| c.eq_ignore_ascii_case(code));
+    let mut kept: Vec<Diagnostic> = diagnostics
+        .into_iter()
+        .filter(|d| !matches(&options.ignore, d.code))
+        .filter(|d| options.only.is_empty() || matches(&options.only, d.code))
+        .map(|mut d| {
+            if let Some((_, s)) = options.severity_overrides.iter().find(|(c, _)| c.eq_ignore_ascii_case(d.code)) {
+                d.severity = *s;
+            }
+            d
+        })
+        .collect();
+    let truncated = options.max_issues > 0 && kept.len() > options.max_issues;
+    if truncated {
+        kept.truncate(options.max_issues);
+    }
+    (kept, truncated)
+}
+
+/// Whether the container is binary (used by passes that treat GLB specially).
+pub(crate) fn is_glb(doc: &Document) -> bool {
+    doc.container == Container::Glb
+}

@@ -1,0 +1,15 @@
+pub const DOC: &str = "\
+## What it does
+Reports a buffer or image `uri` that is an absolute path, climbs out of the asset's folder with
+`..`, or reaches outside it through a symbolic link. The file is not read.
+
+## Why
+Assets come from strangers. A validator that follows `../../etc/passwd` or `/home/ci/.ssh/id_rsa`
+leaks files into reports and CI logs. glTF resources are relative to the asset, so nothing
+legitimate needs to leave its folder. (`--profile khronos` reports this as IO_ERROR.)
+
+## Example
+```json
+{\"buffers\": [{\"uri\": \"../secrets/key.bin\", \"byteLength\": 16}]}
+```
+";

@@ -1,0 +1,240 @@
+//! Schema pass: the document against gltfmat's own JSON Schemas (schema/), embedded in the
+//! binary and evaluated by the `jsonschema` crate with nothing fetched. Each schema error is
+//! mapped to the Khronos code and pointer for the same finding.
+
+use super::diagnostic::Diagnostic;
+use crate::document::json::escape_token;
+use jsonschema::error::{TypeKind, ValidationErrorKind};
+use jsonschema::Validator;
+use serde_json::Value;
+use std::sync::OnceLock;
+
+const CORE: &str = include_str!("../../schema/gltf.schema.json");
+
+/// Extension schemas, merged into the core schema's `$defs` under their name.
+const EXTENSIONS: &[(&str, &str)] = &[
+    ("KHR_materials_anisotropy", include_str!("../../schema/extensions/KHR_materials_anisotropy.schema.json")),
+    ("KHR_materials_clearcoat", include_str!("../../schema/extensions/KHR_materials_clearcoat.schema.json")),
+    ("KHR_materials_diffuse_transmission", include_str!("../../schema/extensions/KHR_materials_diffuse_transmission.schema.json")),
+    ("KHR_materials_dispersion", include_str!("../../schema/extensions/KHR_materials_dispersion.schema.json")),
+    ("KHR_materials_emissive_strength", include_str!("../../schema/extensions/KHR_materials_emissive_strength.schema.json")),
+    ("KHR_materials_ior", include_str!("../../schema/extensions/KHR_materials_ior.schema.json")),
+    ("KHR_materials_iridescence", include_str!("../../schema/extensions/KHR_materials_iridescence.schema.json")),
+    ("KHR_materials_pbrSpecularGlossiness", include_str!("../../schema/extensions/KHR_materials_pbrSpecularGlossiness.schema.json")),
+    ("KHR_materials_sheen", include_str!("../../schema/extensions/KHR_materials_sheen.schema.json")),
+    ("KHR_materials_specular", include_str!("../../schema/extensions/KHR_materials_specular.schema.json")),
+    ("KHR_materials_transmission", include_str!("../../schema/extensions/KHR_materials_transmission.schema.json")),
+    ("KHR_materials_unlit", include_str!("../../schema/extensions/KHR_materials_unlit.schema.json")),
+    ("KHR_materials_variants", include_str!("../../schema/extensions/KHR_materials_variants.schema.json")),
+    ("KHR_materials_variants_mapping", include_str!("../../schema/extensions/KHR_materials_variants_mapping.schema.json")),
+    ("KHR_materials_volume", include_str!("../../schema/extensions/KHR_materials_volume.schema.json")),
+    ("KHR_texture_transform", include_str!("../../schema/extensions/KHR_texture_transform.schema.json")),
+    ("EXT_texture_webp", include_str!("../../schema/extensions/EXT_texture_webp.schema.json")),
+];
+
+/// Extensions the Khronos validator does not implement: in its profile their objects are not
+/// validated (it reports UNSUPPORTED_EXTENSION instead).
+pub const NOT_IN_KHRONOS: &[&str] = &["KHR_materials_diffuse_transmission"];
+
+fn build(skip: &[&str]) -> Validator {
+    let mut root: Value = serde_json::from_str(CORE).expect("schema/gltf.schema.json is valid JSON");
+    let defs = root["$defs"].as_object_mut().expect("core schema has $defs");
+    for (name, text) in EXTENSIONS {
+        if skip.contains(name) {
+            // Leave the extension unvalidated: drop its entry from every host's map.
+            for def in defs.values_mut() {
+                if let Some(props) = def.get_mut("properties").and_then(Value::as_object_mut) {
+                    props.remove(*name);
+                }
+            }
+            continue;
+        }
+        let mut schema: Value = serde_json::from_str(text).expect("extension schema is valid JSON");
+        if let Some(map) = schema.as_object_mut() {
+            map.remove("$schema");
+        }
+        defs.insert((*name).to_string(), schema);
+    }
+    jsonschema::options()
+        .should_validate_formats(false)
+        .build(&root)
+        .expect("the embedded schemas compile")
+}
+
+fn validator(khronos: bool) -> &'static Validator {
+    static FULL: OnceLock<Validator> = OnceLock::new();
+    static KHRONOS: OnceLock<Validator> = OnceLock::new();
+    if khronos {
+        KHRONOS.get_or_init(|| build(NOT_IN_KHRONOS))
+    } else {
+        FULL.get_or_init(|| build(&[]))
+    }
+}
+
+/// Validates the document; returns Khronos-coded diagnostics.
+pub fn validate(doc: &Value, khronos: bool) -> Vec<Diagnostic> {
+    validator(khronos)
+        .iter_errors(doc)
+        .flat_map(|error| {
+            let pointer = error.instance_path().to_string();
+            let schema_path = error.schema_path().to_string();
+            map_error(error.kind(), error.instance(), &pointer, &schema_path)
+        })
+        .collect()
+}
+
+fn member(pointer: &str, key: &str) -> String {
+    format!("{pointer}/{}", escape_token(key))
+}
+
+fn type_name(kind: &TypeKind) -> String {
+    match kind {
+        TypeKind::Single(t) => t.to_string(),
+        TypeKind::Multiple(ts) => format!("{ts:?}"),
+    }
+}
+
+fn show(value: &Value) -> String {
+    let text = value.to_string();
+    if text.len() > 60 {
+        format!("{}…", &text[..text.char_indices().nth(57).map_or(text.len(), |c| c.0)])
+    } else {
+        text
+    }
+}
+
+fn map_error(kind: &ValidationErrorKind, instance: &Value, pointer: &str, schema_path: &str) -> Vec<Diagnostic> {
+    use ValidationErrorKind as K;
+    let one = |code: &'static str, at: String, message: String| vec![Diagnostic::at(code, at, message)];
+    match kind {
+        K::Type { kind } => one(
+            "TYPE_MISMATCH",
+            pointer.to_string(),
+            format!("Type mismatch. Property value {} is not a '{}'.", show(instance), type_name(kind)),
+        ),
+        K::AdditionalProperties { unexpected } => unexpected
+            .iter()
+            .map(|key| Diagnostic::at("UNEXPECTED_PROPERTY", member(pointer, key), "Unexpected property."))
+            .collect(),
+        K::Required { property } => {
+            let name = property.as_str().unwrap_or_default();
+            if let Some(dependent) = dependent_key(schema_path) {
+                return one(
+                    "UNSATISFIED_DEPENDENCY",
+                    member(pointer, &dependent),
+                    format!("Dependency failed. '{name}' must be defined."),
+                );
+            }
+            let at = if pointer.is_empty() { "/".to_string() } else { pointer.to_string() };
+            one("UNDEFINED_PROPERTY", at, format!("Property '{name}' must be defined."))
+        }
+        K::Minimum { .. } | K::Maximum { .. } | K::ExclusiveMinimum { .. } | K::ExclusiveMaximum { .. }
+            if schema_path.contains("glTFid") =>
+        {
+            one("INVALID_INDEX", pointer.to_string(), "Index must be a non-negative integer.".into())
+        }
+        K::Minimum { .. } | K::Maximum { .. } | K::ExclusiveMinimum { .. } | K::ExclusiveMaximum { .. } | K::AnyOf { .. } => {
+            one("VALUE_NOT_IN_RANGE", pointer.to_string(), format!("Value {} is out of range.", show(instance)))
+        }
+        K::Enum { options } => one(
+            "VALUE_NOT_IN_LIST",
+            pointer.to_string(),
+            format!("Invalid value {}. Valid values are {}.", show(instance), show(options)),
+        ),
+        K::MinItems { limit: 1 } | K::MinProperties { .. } => {
+            one("EMPTY_ENTITY", pointer.to_string(), "Entity cannot be empty.".into())
+        }
+        K::MinItems { limit } | K::MaxItems { limit } => one(
+            "ARRAY_LENGTH_NOT_IN_LIST",
+            pointer.to_string(),
+            format!(
+                "Invalid array length {}. Valid lengths are: {limit}.",
+                instance.as_array().map_or(0, Vec::len)
+            ),
+        ),
+        K::UniqueItems => duplicate_positions(instance)
+            .into_iter()
+            .map(|i| Diagnostic::at("DUPLICATE_ELEMENTS", format!("{pointer}/{i}"), "Duplicate element."))
+            .collect(),
+        K::MultipleOf { multiple_of, .. } => one(
+            "VALUE_MULTIPLE_OF",
+            pointer.to_string(),
+            format!("Value {} is not a multiple of {multiple_of}.", show(instance)),
+        ),
+        K::Pattern { pattern } => one(
+            "PATTERN_MISMATCH",
+            pointer.to_string(),
+            format!("Value {} does not match regexp pattern '{pattern}'.", show(instance)),
+        ),
+        K::OneOfNotValid { .. } | K::OneOfMultipleValid { .. } => one(
+            "ONE_OF_MISMATCH",
+            pointer.to_string(),
+            "Exactly one of ('uri', 'bufferView') properties must be defined.".into(),
+        ),
+        other => one("TYPE_MISMATCH", pointer.to_string(), format!("Schema violation: {other:?}")),
+    }
+}
+
+/// For a `dependentRequired` failure, the member whose presence demanded the missing one.
+fn dependent_key(schema_path: &str) -> Option<String> {
+    let mut parts = schema_path.split('/');
+    parts.by_ref().find(|p| *p == "dependentRequired")?;
+    parts.next().map(|p| p.replace("~1", "/").replace("~0", "~"))
+}
+
+/// Indices of array elements equal to an earlier element.
+fn duplicate_positions(instance: &Value) -> Vec<usize> {
+    let Some(items) = instance.as_array() else { return Vec::new() };
+    (0..items.len()).filter(|&i| items[..i].contains(&items[i])).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    fn codes(doc: Value) -> Vec<(String, String)> {
+        validate(&doc, true)
+            .into_iter()
+            .map(|d| (d.code.to_string(), d.pointer().unwrap().to_string()))
+            .collect()
+    }
+
+    #[test]
+    fn a_minimal_document_is_valid() {
+        assert!(codes(json!({"asset": {"version": "2.0"}})).is_empty());
+    }
+
+    #[test]
+    fn errors_map_to_khronos_codes_and_pointers() {
+        let found = codes(json!({
+            "asset": {"version": "2.0", "x": 1},
+            "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 2, 1]}}],
+            "bufferViews": [{}],
+            "samplers": [{"magFilter": 1}],
+            "extensionsRequired": ["A_b"]
+        }));
+        for expected in [
+            ("UNEXPECTED_PROPERTY", "/asset/x"),
+            ("VALUE_NOT_IN_RANGE", "/materials/0/pbrMetallicRoughness/baseColorFactor/2"),
+            ("UNDEFINED_PROPERTY", "/bufferViews/0"),
+            ("VALUE_NOT_IN_LIST", "/samplers/0/magFilter"),
+            ("UNSATISFIED_DEPENDENCY", "/extensionsRequired"),
+        ] {
+            assert!(
+                found.contains(&(expected.0.to_string(), expected.1.to_string())),
+                "{expected:?} not in {found:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn extension_objects_are_validated_on_their_host() {
+        let found = codes(json!({"asset": {"version": "2.0"}, "materials": [{"extensions": {
+            "KHR_materials_sheen": {"sheenRoughnessFactor": 2}}}]}));
+        assert_eq!(found, vec![(
+            "VALUE_NOT_IN_RANGE".to_string(),
+            "/materials/0/extensions/KHR_materials_sheen/sheenRoughnessFactor".to_string()
+        )]);
+    }
+}

@@ -1,0 +1,247 @@
+//! GLB container reader (binary glTF, version 2).
+//!
+//! Every failure is a diagnostic with a byte offset; nothing is allocated from a declared
+//! length: chunks are ranges into the input, and every sum is checked against the real size.
+//! The offsets and the order of checks follow the Khronos validator so reports are comparable.
+
+use crate::check::diagnostic::{Diagnostic, Location};
+use std::ops::Range;
+
+const MAGIC: &[u8; 4] = b"glTF";
+const HEADER_LEN: usize = 12;
+const CHUNK_HEADER_LEN: usize = 8;
+const CHUNK_JSON: u32 = 0x4E4F_534A;
+const CHUNK_BIN: u32 = 0x004E_4942;
+
+/// What a GLB holds: where its JSON and BIN chunks are, and what was wrong on the way.
+#[derive(Debug, Default)]
+pub struct GlbParts {
+    pub version: u32,
+    pub json: Option<Range<usize>>,
+    pub bin: Option<Range<usize>>,
+    pub diagnostics: Vec<Diagnostic>,
+    /// The JSON chunk was empty while another JSON chunk followed; the Khronos validator
+    /// then parses an empty document, so the caller reports INVALID_JSON.
+    pub json_expected_but_empty: bool,
+}
+
+fn at(code: &'static str, offset: usize, message: impl Into<String>) -> Diagnostic {
+    Diagnostic::new(code, Location::Offset(offset as u64), message)
+}
+
+fn read_u32(bytes: &[u8], pos: usize) -> u32 {
+    u32::from_le_bytes([bytes[pos], bytes[pos + 1], bytes[pos + 2], bytes[pos + 3]])
+}
+
+/// True when the bytes start like a GLB file (magic `glTF`).
+pub fn looks_like_glb(bytes: &[u8]) -> bool {
+    bytes.starts_with(MAGIC)
+}
+
+pub fn read(bytes: &[u8]) -> GlbParts {
+    let mut parts = GlbParts::default();
+    let diags = &mut parts.diagnostics;
+    if bytes.len() < HEADER_LEN {
+        diags.push(at(
+            "GLB_UNEXPECTED_END_OF_HEADER",
+            bytes.len(),
+            "Unexpected end of header.",
+        ));
+        return parts;
+    }
+    if &bytes[..4] != MAGIC {
+        diags.push(at("GLB_INVALID_MAGIC", 0, "Invalid GLB magic value."));
+        return parts;
+    }
+    parts.version = read_u32(bytes, 4);
+    if parts.version != 2 {
+        let hint = if parts.version == 1 {
+            " This is a glTF 1.0 binary (KHR_binary_glTF): run `gltfmat upgrade` to convert it."
+        } else {
+            ""
+        };
+        diags.push(at(
+            "GLB_INVALID_VERSION",
+            4,
+            format!("Invalid GLB version value {}.{hint}", parts.version),
+        ));
+        return parts;
+    }
+    let declared = read_u32(bytes, 8) as usize;
+    if declared <= HEADER_LEN {
+        diags.push(at(
+            "GLB_LENGTH_TOO_SMALL",
+            8,
+            format!("Declared GLB length ({declared}) is too small."),
+        ));
+    }
+    let mut pos = HEADER_LEN;
+    let mut index = 0usize;
+    let mut saw_empty_json = false;
+    while pos < declared && pos < bytes.len() {
+        if bytes.len() - pos < CHUNK_HEADER_LEN {
+            diags.push(at(
+                "GLB_UNEXPECTED_END_OF_CHUNK_HEADER",
+                bytes.len(),
+                "Unexpected end of chunk header.",
+            ));
+            return parts;
+        }
+        let start = pos;
+        let length = read_u32(bytes, pos) as usize;
+        let kind = read_u32(bytes, pos + 4);
+        let data_start = pos + CHUNK_HEADER_LEN;
+        if length % 4 != 0 {
+            diags.push(at(
+                "GLB_CHUNK_LENGTH_UNALIGNED",
+                start,
+                format!("Length of 0x{kind:08x} chunk is not aligned to 4-byte boundaries."),
+            ));
+        }
+        // `length` is at most 2^32 - 1, so this sum cannot overflow a 64-bit usize; on a 32-bit
+        // target checked_add keeps it honest.
+        let Some(data_end) = data_start.checked_add(length) else {
+            diags.push(at(
+                "GLB_CHUNK_TOO_BIG",
+                start,
+                "Chunk length exceeds the address space.",
+            ));
+            return parts;
+        };
+        if data_end > declared {
+            diags.push(at(
+                "GLB_CHUNK_TOO_BIG",
+                start,
+                format!(
+                    "Chunk (0x{kind:08x}) length ({length}) does not fit total GLB length."
+                ),
+            ));
+        }
+        if data_end > bytes.len() {
+            diags.push(at(
+                "GLB_UNEXPECTED_END_OF_CHUNK_DATA",
+                bytes.len(),
+                "Unexpected end of chunk data.",
+            ));
+            return parts;
+        }
+        if index == 0 && kind != CHUNK_JSON {
+            diags.push(at(
+                "GLB_UNEXPECTED_FIRST_CHUNK",
+                start,
+                format!("First chunk must be of JSON type. Found 0x{kind:08x} instead."),
+            ));
+        }
+        match kind {
+            CHUNK_JSON => {
+                if length == 0 {
+                    diags.push(at("GLB_EMPTY_CHUNK", start, "Chunk (JSON) cannot have zero length."));
+                }
+                if parts.json.is_some() || saw_empty_json {
+                    diags.push(at("GLB_DUPLICATE_CHUNK", start, "Chunk of type JSON has already been used."));
+                    parts.json_expected_but_empty = saw_empty_json && parts.json.is_none();
+                } else if length == 0 {
+                    saw_empty_json = true;
+                } else {
+                    parts.json = Some(data_start..data_end);
+                }
+            }
+            CHUNK_BIN => {
+                if length == 0 {
+                    diags.push(at("GLB_EMPTY_BIN_CHUNK", start, "Empty BIN chunk should be omitted."));
+                }
+                if parts.bin.is_some() {
+                    diags.push(at("GLB_DUPLICATE_CHUNK", start, "Chunk of type BIN has already been used."));
+                } else {
+                    if index > 1 {
+                        diags.push(at(
+                            "GLB_UNEXPECTED_BIN_CHUNK",
+                            start,
+                            "BIN chunk must be the second chunk.",
+                        ));
+                    }
+                    parts.bin = Some(data_start..data_end);
+                }
+            }
+            _ => diags.push(at(
+                "GLB_UNKNOWN_CHUNK_TYPE",
+                start,
+                format!("Unknown GLB chunk type: 0x{kind:08x}."),
+            )),
+        }
+        pos = data_end;
+        index += 1;
+    }
+    if pos != declared {
+        diags.push(at(
+            "GLB_LENGTH_MISMATCH",
+            pos,
+            format!("Declared length ({declared}) does not match GLB length ({pos})."),
+        ));
+    } else if bytes.len() > pos {
+        diags.push(at(
+            "GLB_EXTRA_DATA",
+            pos,
+            "Extra data after the end of GLB stream.",
+        ));
+    }
+    parts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn glb(chunks: &[(u32, &[u8])], declared: Option<u32>) -> Vec<u8> {
+        let mut body = Vec::new();
+        for (kind, data) in chunks {
+            body.extend_from_slice(&(data.len() as u32).to_le_bytes());
+            body.extend_from_slice(&kind.to_le_bytes());
+            body.extend_from_slice(data);
+        }
+        let mut out = b"glTF".to_vec();
+        out.extend_from_slice(&2u32.to_le_bytes());
+        let len = declared.unwrap_or((12 + body.len()) as u32);
+        out.extend_from_slice(&len.to_le_bytes());
+        out.extend(body);
+        out
+    }
+
+    fn codes(parts: &GlbParts) -> Vec<&str> {
+        parts.diagnostics.iter().map(|d| d.code).collect()
+    }
+
+    #[test]
+    fn a_valid_glb_has_json_and_bin_ranges() {
+        let bytes = glb(&[(CHUNK_JSON, b"{}  "), (CHUNK_BIN, &[1, 2, 3, 4])], None);
+        let parts = read(&bytes);
+        assert!(parts.diagnostics.is_empty());
+        assert_eq!(&bytes[parts.json.unwrap()], b"{}  ");
+        assert_eq!(&bytes[parts.bin.unwrap()], &[1, 2, 3, 4]);
+    }
+
+    #[test]
+    fn a_chunk_claiming_4_gib_is_reported_without_allocating() {
+        let mut bytes = glb(&[(CHUNK_JSON, b"{}  ")], Some(u32::MAX));
+        bytes[12..16].copy_from_slice(&u32::MAX.to_le_bytes());
+        let parts = read(&bytes);
+        assert_eq!(codes(&parts), vec!["GLB_CHUNK_LENGTH_UNALIGNED", "GLB_UNEXPECTED_END_OF_CHUNK_DATA"]);
+    }
+
+    #[test]
+    fn unknown_chunks_are_skipped_with_a_warning() {
+        let bytes = glb(&[(CHUNK_JSON, b"{}  "), (0x1234, b"abcd"), (CHUNK_BIN, b"wxyz")], None);
+        let parts = read(&bytes);
+        assert_eq!(codes(&parts), vec!["GLB_UNKNOWN_CHUNK_TYPE", "GLB_UNEXPECTED_BIN_CHUNK"]);
+        assert!(parts.bin.is_some());
+    }
+
+    #[test]
+    fn version_1_points_to_upgrade() {
+        let mut bytes = glb(&[(CHUNK_JSON, b"{}  ")], None);
+        bytes[4] = 1;
+        let parts = read(&bytes);
+        assert_eq!(codes(&parts), vec!["GLB_INVALID_VERSION"]);
+        assert!(parts.diagnostics[0].message.contains("gltfmat upgrade"));
+    }
+}

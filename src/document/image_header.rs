@@ -1,0 +1,307 @@
+//! Image headers (PNG, JPEG, WebP, KTX2) read without decoding pixels: format, size,
+//! channels, bit depth and colour tagging — what the channel and colour-space rules need.
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ImageFormat {
+    Png,
+    Jpeg,
+    Webp,
+    Ktx2,
+}
+
+impl ImageFormat {
+    pub fn mime_type(self) -> &'static str {
+        match self {
+            ImageFormat::Png => "image/png",
+            ImageFormat::Jpeg => "image/jpeg",
+            ImageFormat::Webp => "image/webp",
+            ImageFormat::Ktx2 => "image/ktx2",
+        }
+    }
+}
+
+/// Channel layout, named as in the Khronos report (`info.resources[].image.format`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Channels {
+    Luminance,
+    LuminanceAlpha,
+    Rgb,
+    Rgba,
+    Unknown,
+}
+
+impl Channels {
+    pub fn name(self) -> &'static str {
+        match self {
+            Channels::Luminance => "luminance",
+            Channels::LuminanceAlpha => "luminanceAlpha",
+            Channels::Rgb => "rgb",
+            Channels::Rgba => "rgba",
+            Channels::Unknown => "unknown",
+        }
+    }
+
+    pub fn has_alpha(self) -> bool {
+        matches!(self, Channels::LuminanceAlpha | Channels::Rgba)
+    }
+
+    pub fn is_grey(self) -> bool {
+        matches!(self, Channels::Luminance | Channels::LuminanceAlpha)
+    }
+}
+
+/// Transfer function the file declares, when it declares one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Transfer {
+    Srgb,
+    Linear,
+    /// A gAMA value that is neither sRGB-like nor linear, or an ICC profile.
+    Custom,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImageInfo {
+    pub format: ImageFormat,
+    pub width: u32,
+    pub height: u32,
+    pub channels: Channels,
+    pub bits: u8,
+    pub transfer: Option<Transfer>,
+    pub animated: bool,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum HeaderError {
+    Unrecognized,
+    UnexpectedEnd,
+    Invalid(String),
+}
+
+pub fn read(bytes: &[u8]) -> Result<ImageInfo, HeaderError> {
+    if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+        png(bytes)
+    } else if bytes.starts_with(&[0xFF, 0xD8]) {
+        jpeg(bytes)
+    } else if bytes.len() >= 12 && &bytes[..4] == b"RIFF" && &bytes[8..12] == b"WEBP" {
+        webp(bytes)
+    } else if bytes.starts_with(b"\xABKTX 20\xBB\r\n\x1A\n") {
+        ktx2(bytes)
+    } else {
+        Err(HeaderError::Unrecognized)
+    }
+}
+
+fn be32(b: &[u8], at: usize) -> Result<u32, HeaderError> {
+    b.get(at..at + 4)
+        .map(|s| u32::from_be_bytes([s[0], s[1], s[2], s[3]]))
+        .ok_or(HeaderError::UnexpectedEnd)
+}
+
+fn le32(b: &[u8], at: usize) -> Result<u32, HeaderError> {
+    b.get(at..at + 4)
+        .map(|s| u32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+        .ok_or(HeaderError::UnexpectedEnd)
+}
+
+fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
+    let mut pos = 8;
+    let mut info: Option<ImageInfo> = None;
+    let mut has_trns = false;
+    loop {
+        let length = be32(b, pos)? as usize;
+        let kind = b.get(pos + 4..pos + 8).ok_or(HeaderError::UnexpectedEnd)?;
+        let data_start = pos + 8;
+        let data = b
+            .get(data_start..data_start.saturating_add(length))
+            .ok_or(HeaderError::UnexpectedEnd)?;
+        match kind {
+            b"IHDR" => {
+                if length != 13 || info.is_some() {
+                    return Err(HeaderError::Invalid("invalid IHDR chunk".into()));
+                }
+                let channels = match data[9] {
+                    0 => Channels::Luminance,
+                    2 | 3 => Channels::Rgb,
+                    4 => Channels::LuminanceAlpha,
+                    6 => Channels::Rgba,
+                    other => return Err(HeaderError::Invalid(format!("invalid PNG colour type {other}"))),
+                };
+                info = Some(ImageInfo {
+                    format: ImageFormat::Png,
+                    width: be32(data, 0)?,
+                    height: be32(data, 4)?,
+                    channels,
+                    bits: data[8],
+                    transfer: None,
+                    animated: false,
+                });
+            }
+            _ if info.is_none() => return Err(HeaderError::Invalid("first PNG chunk is not IHDR".into())),
+            b"tRNS" => has_trns = true,
+            b"sRGB" => set_transfer(&mut info, Transfer::Srgb),
+            b"iCCP" => set_transfer(&mut info, Transfer::Custom),
+            b"acTL" => {
+                if let Some(i) = info.as_mut() {
+                    i.animated = true;
+                }
+            }
+            b"gAMA" if length == 4 => {
+                let gamma = be32(data, 0)?;
+                let already_srgb = info.as_ref().is_some_and(|i| i.transfer == Some(Transfer::Srgb));
+                if !already_srgb {
+                    let transfer = match gamma {
+                        45000..=46000 => Transfer::Srgb,
+                        100000 => Transfer::Linear,
+                        _ => Transfer::Custom,
+                    };
+                    set_transfer(&mut info, transfer);
+                }
+            }
+            b"IDAT" | b"IEND" => break,
+            _ => {}
+        }
+        pos = data_start + length + 4;
+    }
+    let mut info = info.ok_or(HeaderError::UnexpectedEnd)?;
+    if has_trns {
+        info.channels = match info.channels {
+            Channels::Luminance => Channels::LuminanceAlpha,
+            Channels::Rgb => Channels::Rgba,
+            other => other,
+        };
+    }
+    Ok(info)
+}
+
+fn set_transfer(info: &mut Option<ImageInfo>, transfer: Transfer) {
+    if let Some(i) = info.as_mut() {
+        i.transfer = Some(transfer);
+    }
+}
+
+fn jpeg(b: &[u8]) -> Result<ImageInfo, HeaderError> {
+    let mut pos = 2;
+    loop {
+        while b.get(pos) == Some(&0xFF) && b.get(pos + 1) == Some(&0xFF) {
+            pos += 1;
+        }
+        let marker = *b.get(pos + 1).ok_or(HeaderError::UnexpectedEnd)?;
+        if *b.get(pos).ok_or(HeaderError::UnexpectedEnd)? != 0xFF {
+            return Err(HeaderError::Invalid("invalid JPEG marker".into()));
+        }
+        if matches!(marker, 0xD0..=0xD9 | 0x01) {
+            pos += 2;
+            continue;
+        }
+        let len_bytes = b.get(pos + 2..pos + 4).ok_or(HeaderError::UnexpectedEnd)?;
+        let length = u16::from_be_bytes([len_bytes[0], len_bytes[1]]) as usize;
+        let is_sof = matches!(marker, 0xC0..=0xCF) && !matches!(marker, 0xC4 | 0xC8 | 0xCC);
+        if is_sof {
+            let s = b.get(pos + 4..pos + 10).ok_or(HeaderError::UnexpectedEnd)?;
+            let channels = match s[5] {
+                1 => Channels::Luminance,
+                3 => Channels::Rgb,
+                _ => Channels::Unknown,
+            };
+            return Ok(ImageInfo {
+                format: ImageFormat::Jpeg,
+                width: u16::from_be_bytes([s[3], s[4]]) as u32,
+                height: u16::from_be_bytes([s[1], s[2]]) as u32,
+                channels,
+                bits: s[0],
+                transfer: None,
+                animated: false,
+            });
+        }
+        if marker == 0xDA {
+            return Err(HeaderError::Invalid("no SOF marker before scan data".into()));
+        }
+        pos += 2 + length;
+    }
+}
+
+fn webp(b: &[u8]) -> Result<ImageInfo, HeaderError> {
+    let kind = b.get(12..16).ok_or(HeaderError::UnexpectedEnd)?;
+    let d = 20;
+    let (width, height, alpha, animated) = match kind {
+        b"VP8 " => {
+            let s = b.get(d + 6..d + 10).ok_or(HeaderError::UnexpectedEnd)?;
+            let w = u16::from_le_bytes([s[0], s[1]]) & 0x3FFF;
+            let h = u16::from_le_bytes([s[2], s[3]]) & 0x3FFF;
+            (w as u32, h as u32, false, false)
+        }
+        b"VP8L" => {
+            let bits = le32(b, d + 1)?;
+            ((bits & 0x3FFF) + 1, ((bits >> 14) & 0x3FFF) + 1, (bits >> 28) & 1 == 1, false)
+        }
+        b"VP8X" => {
+            let flags = *b.get(d).ok_or(HeaderError::UnexpectedEnd)?;
+            let s = b.get(d + 4..d + 10).ok_or(HeaderError::UnexpectedEnd)?;
+            let w = u32::from_le_bytes([s[0], s[1], s[2], 0]) + 1;
+            let h = u32::from_le_bytes([s[3], s[4], s[5], 0]) + 1;
+            (w, h, flags & 0x10 != 0, flags & 0x02 != 0)
+        }
+        _ => return Err(HeaderError::Invalid("unknown WebP chunk".into())),
+    };
+    Ok(ImageInfo {
+        format: ImageFormat::Webp,
+        width,
+        height,
+        channels: if alpha { Channels::Rgba } else { Channels::Rgb },
+        bits: 8,
+        transfer: None,
+        animated,
+    })
+}
+
+fn ktx2(b: &[u8]) -> Result<ImageInfo, HeaderError> {
+    Ok(ImageInfo {
+        format: ImageFormat::Ktx2,
+        width: le32(b, 20)?,
+        height: le32(b, 24)?,
+        channels: Channels::Unknown,
+        bits: 8,
+        transfer: None,
+        animated: false,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn png_bytes(colour_type: u8, extra: &[(&[u8; 4], &[u8])]) -> Vec<u8> {
+        let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
+        let mut chunk = |kind: &[u8; 4], data: &[u8]| {
+            out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+            out.extend_from_slice(kind);
+            out.extend_from_slice(data);
+            out.extend_from_slice(&[0; 4]);
+        };
+        let mut ihdr = Vec::new();
+        ihdr.extend_from_slice(&4u32.to_be_bytes());
+        ihdr.extend_from_slice(&2u32.to_be_bytes());
+        ihdr.extend_from_slice(&[8, colour_type, 0, 0, 0]);
+        chunk(b"IHDR", &ihdr);
+        for (k, d) in extra {
+            chunk(k, d);
+        }
+        chunk(b"IEND", &[]);
+        out
+    }
+
+    #[test]
+    fn png_channels_and_transfer_are_read() {
+        let info = read(&png_bytes(2, &[(b"gAMA", &100000u32.to_be_bytes())])).unwrap();
+        assert_eq!((info.width, info.height, info.channels), (4, 2, Channels::Rgb));
+        assert_eq!(info.transfer, Some(Transfer::Linear));
+        assert_eq!(read(&png_bytes(0, &[(b"tRNS", &[0, 0])])).unwrap().channels, Channels::LuminanceAlpha);
+    }
+
+    #[test]
+    fn truncated_and_unknown_data_are_errors() {
+        let bytes = png_bytes(6, &[]);
+        assert_eq!(read(&bytes[..20]), Err(HeaderError::UnexpectedEnd));
+        assert_eq!(read(b"GIF89a"), Err(HeaderError::Unrecognized));
+    }
+}

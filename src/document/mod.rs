@@ -1,0 +1,98 @@
+//! Bytes → document: container detection, GLB chunks, JSON, and external resources.
+
+pub mod glb;
+pub mod image_header;
+pub mod json;
+pub mod uri;
+
+use crate::check::diagnostic::Diagnostic;
+use serde_json::Value;
+use std::ops::Range;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Container {
+    Gltf,
+    Glb,
+}
+
+impl Container {
+    pub fn mime_type(self) -> &'static str {
+        match self {
+            Container::Gltf => "model/gltf+json",
+            Container::Glb => "model/gltf-binary",
+        }
+    }
+}
+
+/// A parsed asset. The bytes are kept so that diagnostics can be located and BIN data read
+/// without copies.
+#[derive(Debug)]
+pub struct Document {
+    pub bytes: Vec<u8>,
+    pub container: Container,
+    pub json_range: Range<usize>,
+    /// `None` when the JSON could not be parsed (the reason is in `diagnostics`).
+    pub root: Option<Value>,
+    pub bin: Option<Range<usize>>,
+    /// Problems found while reading the container and the JSON.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Document {
+    pub fn json_text(&self) -> &[u8] {
+        &self.bytes[self.json_range.clone()]
+    }
+
+    pub fn bin(&self) -> Option<&[u8]> {
+        self.bin.clone().map(|r| &self.bytes[r])
+    }
+
+    /// Major version declared by `asset.version`, if readable.
+    pub fn major_version(&self) -> Option<u64> {
+        let root = self.root.as_ref()?;
+        let version = root.get("asset")?.get("version")?.as_str()?;
+        version.split('.').next()?.parse().ok()
+    }
+}
+
+/// Reads a `.gltf` or `.glb` from its bytes (the container is recognised by its magic).
+pub fn read(bytes: Vec<u8>) -> Document {
+    let mut diagnostics = Vec::new();
+    let (container, json_range, bin, empty_json) = if glb::looks_like_glb(&bytes) {
+        let parts = glb::read(&bytes);
+        diagnostics.extend(parts.diagnostics);
+        (Container::Glb, parts.json, parts.bin, parts.json_expected_but_empty)
+    } else {
+        (Container::Gltf, Some(0..bytes.len()), None, false)
+    };
+    let root = match &json_range {
+        Some(range) => parse_json(&bytes[range.clone()], &mut diagnostics),
+        None if empty_json => parse_json(b"", &mut diagnostics),
+        None => None,
+    };
+    Document {
+        json_range: json_range.unwrap_or(0..0),
+        bytes,
+        container,
+        root,
+        bin,
+        diagnostics,
+    }
+}
+
+fn parse_json(text: &[u8], diagnostics: &mut Vec<Diagnostic>) -> Option<Value> {
+    match json::parse(text) {
+        Ok(value) => Some(value),
+        Err(error) => {
+            let (line, col) = json::line_col(text, error.offset);
+            let mut d = Diagnostic::at(
+                "INVALID_JSON",
+                "",
+                format!("Invalid JSON data. Parser output: {} (line {line}, column {col})", error.message),
+            );
+            d.span_hint = Some(error.offset);
+            diagnostics.push(d);
+            None
+        }
+    }
+}

@@ -1,0 +1,216 @@
+//! URIs in glTF: data URIs decoded in memory, relative references read from the asset's own
+//! folder only. Nothing is ever fetched from a network, and no path may leave the folder.
+
+use base64::Engine;
+use std::path::{Component, Path, PathBuf};
+
+/// What a `uri` string is.
+#[derive(Debug, PartialEq)]
+pub enum UriKind {
+    /// `data:[<media type>][;base64],<data>`
+    Data { media_type: String, bytes: Vec<u8> },
+    /// A relative reference, percent-decoded.
+    Relative(String),
+    /// Has a scheme (http, https, file, …): never read.
+    NonRelative,
+    /// An absolute path (`/x`, `C:\x`, `\\server\x`): never read.
+    AbsolutePath,
+}
+
+/// Classifies a URI; `Err` carries the parser's explanation for an invalid one.
+pub fn classify(uri: &str) -> Result<UriKind, String> {
+    if let Some(rest) = uri.strip_prefix("data:") {
+        return parse_data(rest);
+    }
+    if let Some(colon) = uri.find(':') {
+        let scheme = &uri[..colon];
+        let before_path = !uri[..colon].contains(['/', '?', '#']);
+        if before_path {
+            if scheme.is_empty() {
+                return Err("Invalid empty scheme".into());
+            }
+            if scheme.len() == 1 && scheme.chars().all(|c| c.is_ascii_alphabetic()) {
+                return Ok(UriKind::AbsolutePath);
+            }
+            if !scheme.starts_with(|c: char| c.is_ascii_alphabetic())
+                || !scheme.chars().all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c))
+            {
+                return Err(format!("Invalid scheme '{scheme}'"));
+            }
+            return Ok(UriKind::NonRelative);
+        }
+    }
+    if uri.starts_with('/') || uri.starts_with('\\') {
+        return Ok(UriKind::AbsolutePath);
+    }
+    let path = uri.split(['?', '#']).next().unwrap_or_default();
+    percent_decode(path).map(UriKind::Relative)
+}
+
+fn parse_data(rest: &str) -> Result<UriKind, String> {
+    let Some((header, payload)) = rest.split_once(',') else {
+        return Err("Expecting ','".into());
+    };
+    let mut params = header.split(';');
+    let media_type = params.next().unwrap_or_default().to_string();
+    let mut base64 = false;
+    for param in params {
+        if param == "base64" {
+            base64 = true;
+        } else if !param.contains('=') {
+            return Err("Expecting '='".into());
+        }
+    }
+    let bytes = if base64 {
+        base64::engine::general_purpose::STANDARD
+            .decode(payload.trim_end())
+            .map_err(|e| format!("Invalid base64: {e}"))?
+    } else {
+        percent_decode(payload)?.into_bytes()
+    };
+    Ok(UriKind::Data { media_type, bytes })
+}
+
+fn percent_decode(text: &str) -> Result<String, String> {
+    let bytes = text.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hex = text.get(i + 1..i + 3).ok_or("Truncated percent escape")?;
+            out.push(u8::from_str_radix(hex, 16).map_err(|_| format!("Invalid percent escape '%{hex}'"))?);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).map_err(|_| "Percent escapes do not form UTF-8".into())
+}
+
+/// Why an external resource could not be read.
+#[derive(Debug, PartialEq)]
+pub enum LoadError {
+    NotFound(String),
+    /// The path resolves outside the asset's folder (`..`, or a symlink leading out).
+    OutsideFolder(String),
+    /// Reading is not possible for this input (e.g. stdin with no folder).
+    NoFolder,
+    TooLarge(u64),
+    Io(String),
+}
+
+/// Where external files come from. The CLI confines reads to the asset's folder; library
+/// users can plug in their own store.
+pub trait ResourceLoader: Sync {
+    fn load(&self, relative_path: &str) -> Result<Vec<u8>, LoadError>;
+}
+
+/// No external resources (stdin, or in-memory checks).
+pub struct NoResources;
+
+impl ResourceLoader for NoResources {
+    fn load(&self, _: &str) -> Result<Vec<u8>, LoadError> {
+        Err(LoadError::NoFolder)
+    }
+}
+
+/// Reads files below one folder, refusing anything that resolves outside it.
+pub struct FolderResources {
+    folder: PathBuf,
+    /// Files larger than this are refused, so a hostile URI cannot exhaust memory.
+    pub max_bytes: u64,
+}
+
+impl FolderResources {
+    pub fn new(folder: impl Into<PathBuf>) -> Self {
+        FolderResources {
+            folder: folder.into(),
+            max_bytes: 4 << 30,
+        }
+    }
+
+    fn resolve(&self, relative: &str) -> Result<PathBuf, LoadError> {
+        let mut depth = 0i32;
+        for component in Path::new(relative).components() {
+            match component {
+                Component::ParentDir => depth -= 1,
+                Component::Normal(_) => depth += 1,
+                Component::CurDir => {}
+                Component::RootDir | Component::Prefix(_) => {
+                    return Err(LoadError::OutsideFolder(relative.to_string()))
+                }
+            }
+            if depth < 0 {
+                return Err(LoadError::OutsideFolder(relative.to_string()));
+            }
+        }
+        let path = self.folder.join(relative);
+        let real = path
+            .canonicalize()
+            .map_err(|_| LoadError::NotFound(relative.to_string()))?;
+        let base = self
+            .folder
+            .canonicalize()
+            .map_err(|e| LoadError::Io(e.to_string()))?;
+        if !real.starts_with(&base) {
+            return Err(LoadError::OutsideFolder(relative.to_string()));
+        }
+        Ok(real)
+    }
+}
+
+impl ResourceLoader for FolderResources {
+    fn load(&self, relative: &str) -> Result<Vec<u8>, LoadError> {
+        let path = self.resolve(relative)?;
+        let size = std::fs::metadata(&path)
+            .map_err(|e| LoadError::Io(e.to_string()))?
+            .len();
+        if size > self.max_bytes {
+            return Err(LoadError::TooLarge(size));
+        }
+        std::fs::read(&path).map_err(|e| LoadError::Io(e.to_string()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn data_uris_decode() {
+        assert_eq!(
+            classify("data:application/octet-stream;base64,AAEC").unwrap(),
+            UriKind::Data { media_type: "application/octet-stream".into(), bytes: vec![0, 1, 2] }
+        );
+        assert!(classify("data:application/octet-stream;;base64,AA==").is_err());
+        assert!(classify("data:").is_err());
+    }
+
+    #[test]
+    fn uris_are_classified() {
+        assert_eq!(classify("http://example.com/a.bin").unwrap(), UriKind::NonRelative);
+        assert_eq!(classify("/etc/passwd").unwrap(), UriKind::AbsolutePath);
+        assert_eq!(classify("C:\\x.bin").unwrap(), UriKind::AbsolutePath);
+        assert_eq!(classify("a%20b.bin").unwrap(), UriKind::Relative("a b.bin".into()));
+        assert!(classify(":").is_err());
+    }
+
+    #[test]
+    fn paths_cannot_leave_the_folder() {
+        let dir = std::env::temp_dir().join(format!("gltfmat-uri-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("sub")).unwrap();
+        std::fs::write(dir.join("sub/a.bin"), b"x").unwrap();
+        let loader = FolderResources::new(dir.join("sub"));
+        assert_eq!(loader.load("a.bin").unwrap(), b"x");
+        assert!(matches!(loader.load("../sub/a.bin"), Err(LoadError::OutsideFolder(_))));
+        assert!(matches!(loader.load("missing.bin"), Err(LoadError::NotFound(_))));
+        #[cfg(unix)]
+        {
+            std::fs::write(dir.join("secret"), b"s").unwrap();
+            let _ = std::os::unix::fs::symlink(dir.join("secret"), dir.join("sub/link"));
+            assert!(matches!(loader.load("link"), Err(LoadError::OutsideFolder(_))));
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -1,0 +1,178 @@
+//! Output formats. The checker knows nothing of terminals: each format renders a list of
+//! [`Report`]s to a string.
+
+mod human;
+mod sarif;
+
+use crate::check::{Diagnostic, Location, Report, Severity};
+use crate::document::json;
+use serde_json::{json, Map, Value};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// `path:line:col: severity[CODE]: message` with a source snippet.
+    Human,
+    /// Khronos validation report shape (an array for several inputs).
+    Json,
+    /// One Khronos-shaped report per line.
+    Jsonl,
+    /// SARIF 2.1.0.
+    Sarif,
+    /// GitHub Actions workflow commands (`::error file=…`).
+    Github,
+}
+
+pub struct RenderOptions {
+    pub colour: bool,
+}
+
+pub fn render(format: Format, reports: &[Report], options: &RenderOptions) -> String {
+    match format {
+        Format::Human => human::render(reports, options.colour),
+        Format::Json => {
+            let value = match reports {
+                [one] => khronos_report(one),
+                many => Value::Array(many.iter().map(khronos_report).collect()),
+            };
+            serde_json::to_string_pretty(&value).unwrap_or_default() + "\n"
+        }
+        Format::Jsonl => reports.iter().map(|r| khronos_report(r).to_string() + "\n").collect(),
+        Format::Sarif => sarif::render(reports),
+        Format::Github => reports.iter().flat_map(|r| r.diagnostics.iter().map(move |d| github_line(r, d))).collect(),
+    }
+}
+
+/// 1-based line and column of a diagnostic, when it can be located in the source.
+pub fn line_col(report: &Report, diagnostic: &Diagnostic) -> Option<(usize, usize)> {
+    let text = report.document.json_text();
+    let offset = span(report, diagnostic)?.start;
+    Some(json::line_col(text, offset))
+}
+
+/// Byte range in the JSON text that a diagnostic points at.
+pub fn span(report: &Report, diagnostic: &Diagnostic) -> Option<std::ops::Range<usize>> {
+    if let Some(offset) = diagnostic.span_hint {
+        return Some(offset..offset);
+    }
+    match &diagnostic.location {
+        Location::Pointer(pointer) if report.document.root.is_some() => {
+            json::locate(report.document.json_text(), pointer)
+        }
+        _ => None,
+    }
+}
+
+fn github_line(report: &Report, d: &Diagnostic) -> String {
+    let level = match d.severity {
+        Severity::Error => "error",
+        Severity::Warning => "warning",
+        Severity::Info | Severity::Hint => "notice",
+    };
+    let position = line_col(report, d).map_or(String::new(), |(l, c)| format!(",line={l},col={c}"));
+    let escape = |s: &str| s.replace('%', "%25").replace('\r', "%0D").replace('\n', "%0A");
+    format!(
+        "::{level} file={}{position},title={}::{}{}\n",
+        escape(&report.uri).replace(',', "%2C").replace(':', "%3A"),
+        d.code,
+        escape(&d.message),
+        location_suffix(d)
+    )
+}
+
+fn location_suffix(d: &Diagnostic) -> String {
+    match &d.location {
+        Location::Pointer(p) if !p.is_empty() => format!(" ({p})"),
+        Location::Pointer(_) => String::new(),
+        Location::Offset(o) => format!(" (byte {o})"),
+    }
+}
+
+/// A report in the Khronos `validation.schema.json` shape.
+pub fn khronos_report(report: &Report) -> Value {
+    let messages: Vec<Value> = report
+        .diagnostics
+        .iter()
+        .map(|d| {
+            let mut m = Map::new();
+            m.insert("code".into(), json!(d.code));
+            m.insert("message".into(), json!(d.message));
+            m.insert("severity".into(), json!(d.severity as u8));
+            match &d.location {
+                Location::Pointer(p) => m.insert("pointer".into(), json!(p)),
+                Location::Offset(o) => m.insert("offset".into(), json!(o)),
+            };
+            Value::Object(m)
+        })
+        .collect();
+    let info = &report.info;
+    let mut info_map = Map::new();
+    if let Some(v) = &info.version {
+        info_map.insert("version".into(), json!(v));
+    }
+    if let Some(v) = &info.min_version {
+        info_map.insert("minVersion".into(), json!(v));
+    }
+    if let Some(v) = &info.generator {
+        info_map.insert("generator".into(), json!(v));
+    }
+    if !info.extensions_used.is_empty() {
+        info_map.insert("extensionsUsed".into(), json!(info.extensions_used));
+    }
+    if !info.extensions_required.is_empty() {
+        info_map.insert("extensionsRequired".into(), json!(info.extensions_required));
+    }
+    if !info.resources.is_empty() {
+        let resources: Vec<Value> = info.resources.iter().map(resource_json).collect();
+        info_map.insert("resources".into(), Value::Array(resources));
+    }
+    for (key, value) in &info.counts {
+        let v = if key.starts_with("has") { json!(*value == 1) } else { json!(value) };
+        info_map.insert((*key).into(), v);
+    }
+    let mut root = Map::new();
+    root.insert("uri".into(), json!(report.uri));
+    root.insert("mimeType".into(), json!(report.mime_type()));
+    root.insert("validatorVersion".into(), json!(concat!("gltfmat ", env!("CARGO_PKG_VERSION"))));
+    root.insert(
+        "issues".into(),
+        json!({
+            "numErrors": report.count(Severity::Error),
+            "numWarnings": report.count(Severity::Warning),
+            "numInfos": report.count(Severity::Info),
+            "numHints": report.count(Severity::Hint),
+            "messages": messages,
+            "truncated": report.truncated,
+        }),
+    );
+    if report.document.root.is_some() {
+        root.insert("info".into(), Value::Object(info_map));
+    }
+    Value::Object(root)
+}
+
+fn resource_json(r: &crate::check::context::ResourceInfo) -> Value {
+    let mut m = Map::new();
+    m.insert("pointer".into(), json!(r.pointer));
+    m.insert("storage".into(), json!(r.storage));
+    if let Some(t) = &r.mime_type {
+        m.insert("mimeType".into(), json!(t));
+    }
+    if let Some(n) = r.byte_length {
+        m.insert("byteLength".into(), json!(n));
+    }
+    if let Some(u) = &r.uri {
+        m.insert("uri".into(), json!(u));
+    }
+    if let Some(i) = &r.image {
+        let transfer = match i.transfer {
+            Some(crate::document::image_header::Transfer::Linear) => "linear",
+            Some(crate::document::image_header::Transfer::Custom) => "custom",
+            _ => "srgb",
+        };
+        m.insert(
+            "image".into(),
+            json!({"width": i.width, "height": i.height, "format": i.channels.name(), "primaries": "srgb", "transfer": transfer, "bits": i.bits}),
+        );
+    }
+    Value::Object(m)
+}

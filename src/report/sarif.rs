@@ -1,0 +1,69 @@
+//! SARIF 2.1.0, with every registered code as a rule carrying its documentation.
+
+use super::{line_col, location_suffix};
+use crate::check::{codes, Location, Report, Severity};
+use serde_json::{json, Value};
+
+pub fn render(reports: &[Report]) -> String {
+    let rules: Vec<Value> = codes::all()
+        .map(|info| {
+            let help = if info.doc.is_empty() { info.summary } else { info.doc };
+            json!({
+                "id": info.code,
+                "shortDescription": {"text": info.summary},
+                "fullDescription": {"text": help},
+                "help": {"text": help, "markdown": help},
+                "defaultConfiguration": {"level": level(info.severity)},
+                "properties": {"group": info.group},
+            })
+        })
+        .collect();
+    let results: Vec<Value> = reports
+        .iter()
+        .flat_map(|report| report.diagnostics.iter().map(move |d| (report, d)))
+        .map(|(report, d)| {
+            let mut region = json!({});
+            if let Some((line, column)) = line_col(report, d) {
+                region = json!({"startLine": line, "startColumn": column});
+            } else if let Location::Offset(offset) = d.location {
+                region = json!({"byteOffset": offset});
+            }
+            let mut physical = json!({"artifactLocation": {"uri": report.uri}});
+            if region.as_object().is_some_and(|r| !r.is_empty()) {
+                physical["region"] = region;
+            }
+            let mut result = json!({
+                "ruleId": d.code,
+                "level": level(d.severity),
+                "message": {"text": format!("{}{}", d.message, location_suffix(d))},
+                "locations": [{"physicalLocation": physical}],
+            });
+            if let Location::Pointer(p) = &d.location {
+                result["locations"][0]["logicalLocations"] = json!([{"fullyQualifiedName": p, "kind": "member"}]);
+            }
+            result
+        })
+        .collect();
+    let log = json!({
+        "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
+        "version": "2.1.0",
+        "runs": [{
+            "tool": {"driver": {
+                "name": "gltfmat",
+                "version": env!("CARGO_PKG_VERSION"),
+                "informationUri": "https://github.com/gltfmat/gltfmat",
+                "rules": rules,
+            }},
+            "results": results,
+        }],
+    });
+    serde_json::to_string_pretty(&log).unwrap_or_default() + "\n"
+}
+
+fn level(severity: Severity) -> &'static str {
+    match severity {
+        Severity::Error => "error",
+        Severity::Warning => "warning",
+        Severity::Info | Severity::Hint => "note",
+    }
+}
