@@ -55,8 +55,11 @@ pub fn load(path: &Path) -> Result<Config, String> {
 }
 
 pub fn parse_severity(pair: &str) -> Result<(String, Severity), String> {
-    let (code, level) = pair.split_once('=').ok_or_else(|| format!("expected CODE=LEVEL, got '{pair}'"))?;
-    let level = Severity::parse(level).ok_or_else(|| format!("unknown severity '{level}' (error, warning, info, hint)"))?;
+    let (code, level) = pair
+        .split_once('=')
+        .ok_or_else(|| format!("expected CODE=LEVEL, got '{pair}'"))?;
+    let level = Severity::parse(level)
+        .ok_or_else(|| format!("unknown severity '{level}' (error, warning, info, hint)"))?;
     Ok((code.to_string(), level))
 }
 

@@ -11,7 +11,11 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "gltfmat", version, about = "glTF material checker, 1.0 upgrader and shading evaluator")]
+#[command(
+    name = "gltfmat",
+    version,
+    about = "glTF material checker, 1.0 upgrader and shading evaluator"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -73,15 +77,30 @@ fn main() -> ExitCode {
         Command::Rules => {
             let mut out = String::new();
             for info in codes::all() {
-                out.push_str(&format!("{:<58} {:<8} {}\n", info.code, info.severity.name(), info.summary));
+                out.push_str(&format!(
+                    "{:<58} {:<8} {}\n",
+                    info.code,
+                    info.severity.name(),
+                    info.summary
+                ));
             }
             print(&out);
             ExitCode::SUCCESS
         }
         Command::Explain { code } => match codes::find(&code) {
             Some(info) => {
-                let body = if info.doc.is_empty() { info.summary } else { info.doc };
-                print(&format!("# {} ({}, {})\n\n{}\n", info.code, info.severity.name(), info.group, body));
+                let body = if info.doc.is_empty() {
+                    info.summary
+                } else {
+                    info.doc
+                };
+                print(&format!(
+                    "# {} ({}, {})\n\n{}\n",
+                    info.code,
+                    info.severity.name(),
+                    info.group,
+                    body
+                ));
                 ExitCode::SUCCESS
             }
             None => {
@@ -126,7 +145,9 @@ fn run_check(args: CheckArgs) -> ExitCode {
             }
         }
     }
-    let colour = args.format == Format::Human && std::io::stdout().is_terminal() && std::env::var_os("NO_COLOR").is_none();
+    let colour = args.format == Format::Human
+        && std::io::stdout().is_terminal()
+        && std::env::var_os("NO_COLOR").is_none();
     print(&render(args.format, &reports, &RenderOptions { colour }));
     if unreadable {
         ExitCode::from(2)
@@ -140,14 +161,27 @@ fn run_check(args: CheckArgs) -> ExitCode {
 fn check_file(path: &Path, options: &CheckOptions) -> Result<Report, String> {
     if path.as_os_str() == "-" {
         let mut bytes = Vec::new();
-        std::io::stdin().read_to_end(&mut bytes).map_err(|e| e.to_string())?;
+        std::io::stdin()
+            .read_to_end(&mut bytes)
+            .map_err(|e| e.to_string())?;
         return Ok(check_bytes("-", bytes, &NoResources, options));
     }
     let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
-    let folder = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
-    let folder = if folder.as_os_str().is_empty() { PathBuf::from(".") } else { folder };
+    let folder = path
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let folder = if folder.as_os_str().is_empty() {
+        PathBuf::from(".")
+    } else {
+        folder
+    };
     let loader = FolderResources::new(folder);
-    Ok(check_bytes(&path.display().to_string(), bytes, &loader, options))
+    Ok(check_bytes(
+        &path.display().to_string(),
+        bytes,
+        &loader,
+        options,
+    ))
 }
 
 /// Every .gltf/.glb below a folder, sorted, without following symlinked folders.
@@ -155,13 +189,20 @@ fn collect_assets(folder: &Path, out: &mut Vec<PathBuf>) {
     let mut stack = vec![folder.to_path_buf()];
     let mut found = Vec::new();
     while let Some(dir) = stack.pop() {
-        let Ok(entries) = std::fs::read_dir(&dir) else { continue };
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
         for entry in entries.flatten() {
             let path = entry.path();
-            let Ok(kind) = entry.file_type() else { continue };
+            let Ok(kind) = entry.file_type() else {
+                continue;
+            };
             if kind.is_dir() {
                 stack.push(path);
-            } else if matches!(path.extension().and_then(|e| e.to_str()), Some("gltf" | "glb")) {
+            } else if matches!(
+                path.extension().and_then(|e| e.to_str()),
+                Some("gltf" | "glb")
+            ) {
                 found.push(path);
             }
         }
@@ -195,7 +236,12 @@ fn build_options(args: &CheckArgs) -> Result<CheckOptions, String> {
         options.max_issues = n;
     }
     options.deep |= args.deep;
-    for code in options.ignore.iter().chain(&options.only).chain(options.severity_overrides.keys()) {
+    for code in options
+        .ignore
+        .iter()
+        .chain(&options.only)
+        .chain(options.severity_overrides.keys())
+    {
         if codes::find(code).is_none() {
             return Err(format!("unknown code '{code}' (see `gltfmat rules`)"));
         }

@@ -39,7 +39,8 @@ const REQUIRED: &[&str] = &[
 ];
 
 fn corpus() -> PathBuf {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/conformance/khronos-glTF-Validator/test");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/conformance/khronos-glTF-Validator/test");
     assert!(
         path.is_dir(),
         "\n\n*** ../shared/conformance is MISSING ({}).\n*** The conformance test needs the Khronos corpus beside the checkout.\n",
@@ -70,34 +71,66 @@ type Key = (String, String, u64);
 fn expected(report: &Value) -> BTreeMap<Key, usize> {
     let mut map = BTreeMap::new();
     for m in report["issues"]["messages"].as_array().unwrap() {
-        let location = m.get("pointer").map_or_else(|| format!("@{}", m["offset"]), |p| p.as_str().unwrap().to_string());
-        *map.entry((m["code"].as_str().unwrap().to_string(), location, m["severity"].as_u64().unwrap())).or_insert(0) += 1;
+        let location = m.get("pointer").map_or_else(
+            || format!("@{}", m["offset"]),
+            |p| p.as_str().unwrap().to_string(),
+        );
+        *map.entry((
+            m["code"].as_str().unwrap().to_string(),
+            location,
+            m["severity"].as_u64().unwrap(),
+        ))
+        .or_insert(0) += 1;
     }
     map
 }
 
 /// Runs one case; returns a description of the difference, or None when it matches.
 fn run_case(report_path: &Path) -> Option<String> {
-    let asset = PathBuf::from(report_path.to_string_lossy().trim_end_matches(".report.json"));
-    let expected_report: Value = serde_json::from_slice(&std::fs::read(report_path).unwrap()).unwrap();
-    let options = CheckOptions { profile: Profile::Khronos, ..Default::default() };
+    let asset = PathBuf::from(
+        report_path
+            .to_string_lossy()
+            .trim_end_matches(".report.json"),
+    );
+    let expected_report: Value =
+        serde_json::from_slice(&std::fs::read(report_path).unwrap()).unwrap();
+    let options = CheckOptions {
+        profile: Profile::Khronos,
+        ..Default::default()
+    };
     let loader = FolderResources::new(asset.parent().unwrap());
-    let report = check_bytes("case", std::fs::read(&asset).unwrap(), &loader, &options);
+    let report = check_bytes(
+        &asset.to_string_lossy(),
+        std::fs::read(&asset).unwrap(),
+        &loader,
+        &options,
+    );
     let mut actual = BTreeMap::new();
     for d in &report.diagnostics {
         let location = match &d.location {
             Location::Pointer(p) => p.clone(),
             Location::Offset(o) => format!("@{o}"),
         };
-        *actual.entry((d.code.to_string(), location, d.severity as u64)).or_insert(0) += 1;
+        *actual
+            .entry((d.code.to_string(), location, d.severity as u64))
+            .or_insert(0) += 1;
     }
     let want = expected(&expected_report);
     if want == actual {
         return None;
     }
-    let missing: Vec<_> = want.iter().filter(|(k, n)| actual.get(*k) != Some(n)).collect();
-    let extra: Vec<_> = actual.iter().filter(|(k, n)| want.get(*k) != Some(n)).collect();
-    Some(format!("{}\n    missing {missing:?}\n    extra   {extra:?}", asset.display()))
+    let missing: Vec<_> = want
+        .iter()
+        .filter(|(k, n)| actual.get(*k) != Some(n))
+        .collect();
+    let extra: Vec<_> = actual
+        .iter()
+        .filter(|(k, n)| want.get(*k) != Some(n))
+        .collect();
+    Some(format!(
+        "{}\n    missing {missing:?}\n    extra   {extra:?}",
+        asset.display()
+    ))
 }
 
 #[test]
@@ -136,5 +169,9 @@ fn khronos_profile_matches_the_khronos_corpus() {
         println!("{folder:<45} {pass} passed, {fail} failed ({tag})");
     }
     println!("corpus total: {total_pass} passed, {total_fail} failed");
-    assert!(required_failures.is_empty(), "required conformance cases differ:\n{}", required_failures.join("\n"));
+    assert!(
+        required_failures.is_empty(),
+        "required conformance cases differ:\n{}",
+        required_failures.join("\n")
+    );
 }

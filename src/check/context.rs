@@ -61,7 +61,12 @@ pub struct Context<'a> {
 }
 
 impl<'a> Context<'a> {
-    pub fn new(root: &'a Value, document: &'a Document, loader: &'a dyn ResourceLoader, options: &'a CheckOptions) -> Self {
+    pub fn new(
+        root: &'a Value,
+        document: &'a Document,
+        loader: &'a dyn ResourceLoader,
+        options: &'a CheckOptions,
+    ) -> Self {
         Context {
             root,
             document,
@@ -76,13 +81,22 @@ impl<'a> Context<'a> {
         }
     }
 
-    pub fn emit(&mut self, code: &'static str, pointer: impl Into<String>, message: impl Into<String>) {
-        self.diagnostics.push(Diagnostic::at(code, pointer, message));
+    pub fn emit(
+        &mut self,
+        code: &'static str,
+        pointer: impl Into<String>,
+        message: impl Into<String>,
+    ) {
+        self.diagnostics
+            .push(Diagnostic::at(code, pointer, message));
     }
 
     /// The elements of a top-level array, or nothing when it is missing or not an array.
     pub fn items(&self, collection: &str) -> &'a [Value] {
-        self.root.get(collection).and_then(Value::as_array).map_or(&[], Vec::as_slice)
+        self.root
+            .get(collection)
+            .and_then(Value::as_array)
+            .map_or(&[], Vec::as_slice)
     }
 
     /// Object elements of a top-level array, with their index and pointer.
@@ -97,17 +111,37 @@ impl<'a> Context<'a> {
 
     /// Resolves `object[key]` as an index into `collection`, marking the target used.
     /// A missing or mistyped member gives `None` silently (the schema pass reported it).
-    pub fn reference(&mut self, object: &Value, key: &str, pointer: &str, collection: &'static str) -> Option<usize> {
+    pub fn reference(
+        &mut self,
+        object: &Value,
+        key: &str,
+        pointer: &str,
+        collection: &'static str,
+    ) -> Option<usize> {
         let value = object.get(key)?;
         self.reference_value(value, &member(pointer, key), collection)
     }
 
     /// Resolves an index value at `pointer` into `collection`.
-    pub fn reference_value(&mut self, value: &Value, pointer: &str, collection: &'static str) -> Option<usize> {
-        let index = value.as_u64().or_else(|| value.as_f64().filter(|f| f.fract() == 0.0 && *f >= 0.0).map(|f| f as u64))?;
+    pub fn reference_value(
+        &mut self,
+        value: &Value,
+        pointer: &str,
+        collection: &'static str,
+    ) -> Option<usize> {
+        let index = value.as_u64().or_else(|| {
+            value
+                .as_f64()
+                .filter(|f| f.fract() == 0.0 && *f >= 0.0)
+                .map(|f| f as u64)
+        })?;
         let len = self.items(collection).len() as u64;
         if index >= len {
-            self.emit("UNRESOLVED_REFERENCE", pointer, format!("Unresolved reference: {index}."));
+            self.emit(
+                "UNRESOLVED_REFERENCE",
+                pointer,
+                format!("Unresolved reference: {index}."),
+            );
             return None;
         }
         self.used.insert((collection, index as usize));
@@ -136,12 +170,21 @@ impl<'a> Context<'a> {
 
     pub fn info(&self) -> AssetInfo {
         let asset = self.root.get("asset");
-        let text = |key: &str| asset.and_then(|a| a.get(key)).and_then(Value::as_str).map(str::to_string);
+        let text = |key: &str| {
+            asset
+                .and_then(|a| a.get(key))
+                .and_then(Value::as_str)
+                .map(str::to_string)
+        };
         let strings = |key: &str| {
             self.root
                 .get(key)
                 .and_then(Value::as_array)
-                .map(|a| a.iter().filter_map(|v| v.as_str().map(str::to_string)).collect())
+                .map(|a| {
+                    a.iter()
+                        .filter_map(|v| v.as_str().map(str::to_string))
+                        .collect()
+                })
                 .unwrap_or_default()
         };
         let count = |key: &str| self.items(key).len() as u64;
@@ -158,7 +201,10 @@ impl<'a> Context<'a> {
                 ("hasMorphTargets", 0),
                 ("hasSkins", u64::from(count("skins") > 0)),
                 ("hasTextures", u64::from(count("textures") > 0)),
-                ("hasDefaultScene", u64::from(self.root.get("scene").is_some())),
+                (
+                    "hasDefaultScene",
+                    u64::from(self.root.get("scene").is_some()),
+                ),
             ],
         }
     }
@@ -177,5 +223,9 @@ pub fn number(object: &Value, key: &str, default: f64) -> f64 {
 /// A non-negative integer member.
 pub fn unsigned(object: &Value, key: &str) -> Option<u64> {
     let v = object.get(key)?;
-    v.as_u64().or_else(|| v.as_f64().filter(|f| f.fract() == 0.0 && *f >= 0.0).map(|f| f as u64))
+    v.as_u64().or_else(|| {
+        v.as_f64()
+            .filter(|f| f.fract() == 0.0 && *f >= 0.0)
+            .map(|f| f as u64)
+    })
 }

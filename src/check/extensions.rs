@@ -29,7 +29,8 @@ const KHRONOS_SUPPORTED: &[(&str, &[Host])] = &[
 ];
 
 /// Extensions gltfmat validates beyond the Khronos list (default profile only).
-const GLTFMAT_SUPPORTED: &[(&str, &[Host])] = &[("KHR_materials_diffuse_transmission", &[Host::Material])];
+const GLTFMAT_SUPPORTED: &[(&str, &[Host])] =
+    &[("KHR_materials_diffuse_transmission", &[Host::Material])];
 
 /// The kinds of object that can carry `extensions`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -86,7 +87,11 @@ pub fn check(ctx: &mut Context) {
 }
 
 fn supported(ctx: &Context, name: &str) -> Option<&'static [Host]> {
-    let gltfmat = if ctx.is_khronos() { &[][..] } else { GLTFMAT_SUPPORTED };
+    let gltfmat = if ctx.is_khronos() {
+        &[][..]
+    } else {
+        GLTFMAT_SUPPORTED
+    };
     KHRONOS_SUPPORTED
         .iter()
         .chain(gltfmat)
@@ -95,9 +100,13 @@ fn supported(ctx: &Context, name: &str) -> Option<&'static [Host]> {
 }
 
 fn valid_name(name: &str) -> bool {
-    let Some((prefix, rest)) = name.split_once('_') else { return false };
+    let Some((prefix, rest)) = name.split_once('_') else {
+        return false;
+    };
     !prefix.is_empty()
-        && prefix.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit())
+        && prefix
+            .chars()
+            .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit())
         && !rest.is_empty()
         && rest.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
@@ -108,7 +117,11 @@ fn check_declarations(ctx: &mut Context) {
         let Some(name) = value.as_str() else { continue };
         let pointer = format!("/extensionsUsed/{i}");
         if !valid_name(name) {
-            ctx.emit("INVALID_EXTENSION_NAME_FORMAT", pointer.clone(), "Extension name has invalid format.");
+            ctx.emit(
+                "INVALID_EXTENSION_NAME_FORMAT",
+                pointer.clone(),
+                "Extension name has invalid format.",
+            );
         }
         if supported(ctx, name).is_none() {
             ctx.emit(
@@ -131,15 +144,27 @@ fn check_declarations(ctx: &mut Context) {
 }
 
 fn visit(ctx: &mut Context, object: &Value, pointer: &str, host: Host) {
-    let Some(map) = object.as_object() else { return };
+    let Some(map) = object.as_object() else {
+        return;
+    };
     if let Some(extras) = map.get("extras") {
-        if !extras.is_object() {
-            ctx.emit("NON_OBJECT_EXTRAS", member(pointer, "extras"), "Prefer JSON Objects for extras.");
+        if !extras.is_object() && !extras.is_null() {
+            ctx.emit(
+                "NON_OBJECT_EXTRAS",
+                member(pointer, "extras"),
+                "Prefer JSON Objects for extras.",
+            );
         }
     }
     if let Some(extensions) = map.get("extensions").and_then(Value::as_object) {
         for (name, value) in extensions {
-            visit_extension(ctx, name, value, &member(&member(pointer, "extensions"), name), host);
+            visit_extension(
+                ctx,
+                name,
+                value,
+                &member(&member(pointer, "extensions"), name),
+                host,
+            );
         }
     }
     for (key, child_host, is_array) in children(host) {
@@ -159,7 +184,12 @@ fn visit(ctx: &mut Context, object: &Value, pointer: &str, host: Host) {
     if host == Host::Material {
         for slot in TEXTURE_SLOTS.iter().filter(|s| s.extension.is_none()) {
             if let Some(info) = slot.lookup(object) {
-                visit(ctx, info, &format!("{pointer}{}", slot.pointer()), Host::TextureInfo);
+                visit(
+                    ctx,
+                    info,
+                    &format!("{pointer}{}", slot.pointer()),
+                    Host::TextureInfo,
+                );
             }
         }
     }
@@ -171,7 +201,11 @@ fn visit_nested(ctx: &mut Context, collection: &str, item: &Value, pointer: &str
         match item.get(*key) {
             Some(Value::Array(items)) => {
                 for (i, child) in items.iter().enumerate() {
-                    let host = if *key == "primitives" { Host::Primitive } else { Host::Other };
+                    let host = if *key == "primitives" {
+                        Host::Primitive
+                    } else {
+                        Host::Other
+                    };
                     let p = format!("{child_pointer}/{i}");
                     visit(ctx, child, &p, host);
                     if *key == "channels" {
@@ -189,9 +223,15 @@ fn visit_nested(ctx: &mut Context, collection: &str, item: &Value, pointer: &str
 
 fn visit_extension(ctx: &mut Context, name: &str, value: &Value, pointer: &str, host: Host) {
     if !ctx.extensions_used().contains(&name) {
-        ctx.emit("UNDECLARED_EXTENSION", pointer, "Extension is not declared in extensionsUsed.");
+        ctx.emit(
+            "UNDECLARED_EXTENSION",
+            pointer,
+            "Extension is not declared in extensionsUsed.",
+        );
     }
-    let Some(hosts) = supported(ctx, name) else { return };
+    let Some(hosts) = supported(ctx, name) else {
+        return;
+    };
     if !hosts.contains(&host) {
         ctx.emit(
             "UNEXPECTED_EXTENSION_OBJECT",
@@ -201,7 +241,11 @@ fn visit_extension(ctx: &mut Context, name: &str, value: &Value, pointer: &str, 
         return;
     }
     if value.get("extras").is_some_and(|e| !e.is_object()) {
-        ctx.emit("NON_OBJECT_EXTRAS", member(pointer, "extras"), "Prefer JSON Objects for extras.");
+        ctx.emit(
+            "NON_OBJECT_EXTRAS",
+            member(pointer, "extras"),
+            "Prefer JSON Objects for extras.",
+        );
     }
     for slot in TEXTURE_SLOTS.iter().filter(|s| s.extension == Some(name)) {
         if let Some(info) = value.get(slot.key) {

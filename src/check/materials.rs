@@ -5,15 +5,6 @@ use super::context::{member, number, unsigned, Context, MaterialNeeds};
 use super::resources::declared_mime;
 use serde_json::Value;
 
-/// How a slot's texels are read, for the channel and colour-space rules.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ColourSpace {
-    Srgb,
-    Linear,
-    /// sRGB RGB with a linear alpha (specular-glossiness).
-    SrgbWithLinearAlpha,
-}
-
 /// Every texture slot a material can have: where it sits and how it is sampled.
 #[derive(Debug)]
 pub struct TextureSlot {
@@ -22,45 +13,80 @@ pub struct TextureSlot {
     pub in_pbr: bool,
     pub key: &'static str,
     pub is_normal: bool,
-    pub colour_space: ColourSpace,
-    /// Channels the slot reads ("RGB", "A", "G", ...).
-    pub reads: &'static str,
 }
 
-const fn slot(
-    extension: Option<&'static str>,
-    in_pbr: bool,
-    key: &'static str,
-    colour_space: ColourSpace,
-    reads: &'static str,
-) -> TextureSlot {
+const fn slot(extension: Option<&'static str>, in_pbr: bool, key: &'static str) -> TextureSlot {
     let is_normal = matches!(key.as_bytes(), b"normalTexture" | b"clearcoatNormalTexture");
-    TextureSlot { extension, in_pbr, key, is_normal, colour_space, reads }
+    TextureSlot {
+        extension,
+        in_pbr,
+        key,
+        is_normal,
+    }
 }
 
-use ColourSpace::{Linear, Srgb, SrgbWithLinearAlpha};
 pub static TEXTURE_SLOTS: &[TextureSlot] = &[
-    slot(None, true, "baseColorTexture", Srgb, "RGBA"),
-    slot(None, true, "metallicRoughnessTexture", Linear, "GB"),
-    slot(None, false, "normalTexture", Linear, "RGB"),
-    slot(None, false, "occlusionTexture", Linear, "R"),
-    slot(None, false, "emissiveTexture", Srgb, "RGB"),
-    slot(Some("KHR_materials_anisotropy"), false, "anisotropyTexture", Linear, "RGB"),
-    slot(Some("KHR_materials_clearcoat"), false, "clearcoatTexture", Linear, "R"),
-    slot(Some("KHR_materials_clearcoat"), false, "clearcoatRoughnessTexture", Linear, "G"),
-    slot(Some("KHR_materials_clearcoat"), false, "clearcoatNormalTexture", Linear, "RGB"),
-    slot(Some("KHR_materials_diffuse_transmission"), false, "diffuseTransmissionTexture", Linear, "A"),
-    slot(Some("KHR_materials_diffuse_transmission"), false, "diffuseTransmissionColorTexture", Srgb, "RGB"),
-    slot(Some("KHR_materials_iridescence"), false, "iridescenceTexture", Linear, "R"),
-    slot(Some("KHR_materials_iridescence"), false, "iridescenceThicknessTexture", Linear, "G"),
-    slot(Some("KHR_materials_pbrSpecularGlossiness"), false, "diffuseTexture", Srgb, "RGBA"),
-    slot(Some("KHR_materials_pbrSpecularGlossiness"), false, "specularGlossinessTexture", SrgbWithLinearAlpha, "RGBA"),
-    slot(Some("KHR_materials_sheen"), false, "sheenColorTexture", Srgb, "RGB"),
-    slot(Some("KHR_materials_sheen"), false, "sheenRoughnessTexture", Linear, "A"),
-    slot(Some("KHR_materials_specular"), false, "specularTexture", Linear, "A"),
-    slot(Some("KHR_materials_specular"), false, "specularColorTexture", Srgb, "RGB"),
-    slot(Some("KHR_materials_transmission"), false, "transmissionTexture", Linear, "R"),
-    slot(Some("KHR_materials_volume"), false, "thicknessTexture", Linear, "G"),
+    slot(None, true, "baseColorTexture"),
+    slot(None, true, "metallicRoughnessTexture"),
+    slot(None, false, "normalTexture"),
+    slot(None, false, "occlusionTexture"),
+    slot(None, false, "emissiveTexture"),
+    slot(Some("KHR_materials_anisotropy"), false, "anisotropyTexture"),
+    slot(Some("KHR_materials_clearcoat"), false, "clearcoatTexture"),
+    slot(
+        Some("KHR_materials_clearcoat"),
+        false,
+        "clearcoatRoughnessTexture",
+    ),
+    slot(
+        Some("KHR_materials_clearcoat"),
+        false,
+        "clearcoatNormalTexture",
+    ),
+    slot(
+        Some("KHR_materials_diffuse_transmission"),
+        false,
+        "diffuseTransmissionTexture",
+    ),
+    slot(
+        Some("KHR_materials_diffuse_transmission"),
+        false,
+        "diffuseTransmissionColorTexture",
+    ),
+    slot(
+        Some("KHR_materials_iridescence"),
+        false,
+        "iridescenceTexture",
+    ),
+    slot(
+        Some("KHR_materials_iridescence"),
+        false,
+        "iridescenceThicknessTexture",
+    ),
+    slot(
+        Some("KHR_materials_pbrSpecularGlossiness"),
+        false,
+        "diffuseTexture",
+    ),
+    slot(
+        Some("KHR_materials_pbrSpecularGlossiness"),
+        false,
+        "specularGlossinessTexture",
+    ),
+    slot(Some("KHR_materials_sheen"), false, "sheenColorTexture"),
+    slot(Some("KHR_materials_sheen"), false, "sheenRoughnessTexture"),
+    slot(Some("KHR_materials_specular"), false, "specularTexture"),
+    slot(
+        Some("KHR_materials_specular"),
+        false,
+        "specularColorTexture",
+    ),
+    slot(
+        Some("KHR_materials_transmission"),
+        false,
+        "transmissionTexture",
+    ),
+    slot(Some("KHR_materials_volume"), false, "thicknessTexture"),
 ];
 
 impl TextureSlot {
@@ -97,21 +123,36 @@ pub fn check_textures(ctx: &mut Context) {
     for (_, pointer, texture) in ctx.objects("textures") {
         ctx.reference(texture, "sampler", &pointer, "samplers");
         if let Some(image) = ctx.reference(texture, "source", &pointer, "images") {
-            check_texture_source_mime(ctx, image, &member(&pointer, "source"), &["image/jpeg", "image/png"]);
+            check_texture_source_mime(
+                ctx,
+                image,
+                &member(&pointer, "source"),
+                &["image/jpeg", "image/png"],
+            );
         }
-        let webp = texture.get("extensions").and_then(|e| e.get("EXT_texture_webp"));
+        let webp = texture
+            .get("extensions")
+            .and_then(|e| e.get("EXT_texture_webp"));
         if let Some(webp) = webp.filter(|w| w.is_object()) {
             let webp_pointer = format!("{pointer}/extensions/EXT_texture_webp");
             if let Some(image) = ctx.reference(webp, "source", &webp_pointer, "images") {
-                check_texture_source_mime(ctx, image, &member(&webp_pointer, "source"), &["image/webp"]);
+                check_texture_source_mime(
+                    ctx,
+                    image,
+                    &member(&webp_pointer, "source"),
+                    &["image/webp"],
+                );
             }
         }
     }
 }
 
 fn check_texture_source_mime(ctx: &mut Context, image: usize, pointer: &str, valid: &[&str]) {
-    let declared = declared_mime(&ctx.items("images")[image])
-        .or_else(|| ctx.images[image].as_ref().map(|i| i.format.mime_type().to_string()));
+    let declared = declared_mime(&ctx.items("images")[image]).or_else(|| {
+        ctx.images[image]
+            .as_ref()
+            .map(|i| i.format.mime_type().to_string())
+    });
     if let Some(mime) = declared.filter(|m| !valid.contains(&m.as_str())) {
         ctx.emit(
             "TEXTURE_INVALID_IMAGE_MIME_TYPE",
@@ -134,7 +175,9 @@ pub fn check_materials(ctx: &mut Context) {
 fn texture_needs(ctx: &mut Context, material: &Value, pointer: &str) -> MaterialNeeds {
     let mut needs = MaterialNeeds::default();
     for slot in TEXTURE_SLOTS {
-        let Some(info) = slot.lookup(material) else { continue };
+        let Some(info) = slot.lookup(material) else {
+            continue;
+        };
         let info_pointer = format!("{pointer}{}", slot.pointer());
         ctx.reference(info, "index", &info_pointer, "textures");
         needs.texcoords.insert(effective_texcoord(info));
@@ -148,11 +191,17 @@ fn texture_needs(ctx: &mut Context, material: &Value, pointer: &str) -> Material
 }
 
 fn extension<'v>(material: &'v Value, name: &str) -> Option<&'v Value> {
-    material.get("extensions")?.get(name).filter(|v| v.is_object())
+    material
+        .get("extensions")?
+        .get(name)
+        .filter(|v| v.is_object())
 }
 
 fn check_alpha_cutoff(ctx: &mut Context, material: &Value, pointer: &str) {
-    let mode = material.get("alphaMode").and_then(Value::as_str).unwrap_or("OPAQUE");
+    let mode = material
+        .get("alphaMode")
+        .and_then(Value::as_str)
+        .unwrap_or("OPAQUE");
     if material.get("alphaCutoff").is_some() && mode != "MASK" {
         ctx.emit(
             "MATERIAL_ALPHA_CUTOFF_INVALID_MODE",
@@ -164,7 +213,9 @@ fn check_alpha_cutoff(ctx: &mut Context, material: &Value, pointer: &str) {
 
 fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
     let ext_pointer = |name: &str| format!("{pointer}/extensions/{name}");
-    let Some(extensions) = material.get("extensions").and_then(Value::as_object) else { return };
+    let Some(extensions) = material.get("extensions").and_then(Value::as_object) else {
+        return;
+    };
     if extensions.len() > 1 {
         for standalone in ["KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit"] {
             if extensions.contains_key(standalone) {
@@ -176,7 +227,9 @@ fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
             }
         }
     }
-    if extension(material, "KHR_materials_emissive_strength").is_some() {
+    let strength = extension(material, "KHR_materials_emissive_strength")
+        .and_then(|e| e.get("emissiveStrength"));
+    if strength.and_then(Value::as_f64).is_some_and(|s| s >= 0.0) {
         let emissive = material.get("emissiveFactor").and_then(Value::as_array);
         let zero = emissive.is_none_or(|f| f.iter().all(|c| c.as_f64() == Some(0.0)));
         if zero {
@@ -187,10 +240,14 @@ fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
             );
         }
     }
-    if extension(material, "KHR_materials_volume").is_some() {
-        let transmits = ["KHR_materials_transmission", "KHR_materials_diffuse_transmission"]
-            .iter()
-            .any(|e| extensions.contains_key(*e));
+    if let Some(volume) = extension(material, "KHR_materials_volume") {
+        // An extension this validator does not know may well be the one that transmits.
+        let transmits = extensions.keys().any(|name| {
+            matches!(
+                name.as_str(),
+                "KHR_materials_transmission" | "KHR_materials_diffuse_transmission"
+            ) || !name.starts_with("KHR_materials_")
+        });
         if !transmits {
             ctx.emit(
                 "KHR_MATERIALS_VOLUME_NO_TRANSMISSION",
@@ -198,7 +255,8 @@ fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
                 "The volume extension needs to be combined with an extension that allows light to transmit through the surface.",
             );
         }
-        if material.get("doubleSided").and_then(Value::as_bool) == Some(true) {
+        let thick = number(volume, "thicknessFactor", 0.0) > 0.0;
+        if thick && material.get("doubleSided").and_then(Value::as_bool) == Some(true) {
             ctx.emit(
                 "KHR_MATERIALS_VOLUME_DOUBLE_SIDED",
                 ext_pointer("KHR_materials_volume"),
@@ -206,7 +264,9 @@ fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
             );
         }
     }
-    if extension(material, "KHR_materials_dispersion").is_some() && !extensions.contains_key("KHR_materials_volume") {
+    if extension(material, "KHR_materials_dispersion").is_some()
+        && !extensions.contains_key("KHR_materials_volume")
+    {
         ctx.emit(
             "KHR_MATERIALS_DISPERSION_NO_VOLUME",
             ext_pointer("KHR_materials_dispersion"),
@@ -240,7 +300,9 @@ fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
 /// validator compares the raw `texCoord`; gltfmat's default profile applies the
 /// KHR_texture_transform override, which is what a renderer samples.
 fn check_texcoord_pairs(ctx: &mut Context, material: &Value, pointer: &str) {
-    let Some(normal) = material.get("normalTexture").filter(|n| n.is_object()) else { return };
+    let Some(normal) = material.get("normalTexture").filter(|n| n.is_object()) else {
+        return;
+    };
     let khronos = ctx.is_khronos();
     let texcoord = |info: &Value| {
         if khronos {
@@ -250,12 +312,27 @@ fn check_texcoord_pairs(ctx: &mut Context, material: &Value, pointer: &str) {
         }
     };
     let pairs = [
-        ("KHR_materials_anisotropy", "anisotropyTexture", "KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD", "Normal and anisotropy textures should use the same texture coords."),
-        ("KHR_materials_clearcoat", "clearcoatNormalTexture", "KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD", "Normal and clearcoat normal textures should use the same texture coords."),
+        (
+            "KHR_materials_anisotropy",
+            "anisotropyTexture",
+            "KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD",
+            "Normal and anisotropy textures should use the same texture coords.",
+        ),
+        (
+            "KHR_materials_clearcoat",
+            "clearcoatNormalTexture",
+            "KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD",
+            "Normal and clearcoat normal textures should use the same texture coords.",
+        ),
     ];
     let normal_set = texcoord(normal);
     for (ext, key, code, message) in pairs {
-        let Some(info) = extension(material, ext).and_then(|e| e.get(key)).filter(|i| i.is_object()) else { continue };
+        let Some(info) = extension(material, ext)
+            .and_then(|e| e.get(key))
+            .filter(|i| i.is_object())
+        else {
+            continue;
+        };
         if texcoord(info) != normal_set {
             ctx.emit(code, format!("{pointer}/extensions/{ext}/{key}"), message);
         }

@@ -58,7 +58,10 @@ pub struct Report {
 
 impl Report {
     pub fn count(&self, severity: Severity) -> usize {
-        self.diagnostics.iter().filter(|d| d.severity == severity).count()
+        self.diagnostics
+            .iter()
+            .filter(|d| d.severity == severity)
+            .count()
     }
 
     pub fn has_errors(&self) -> bool {
@@ -71,8 +74,13 @@ impl Report {
 }
 
 /// Checks an asset given as bytes. `uri` names it in reports; external files come from `loader`.
-pub fn check_bytes(uri: &str, bytes: Vec<u8>, loader: &dyn ResourceLoader, options: &CheckOptions) -> Report {
-    let document = document::read(bytes);
+pub fn check_bytes(
+    uri: &str,
+    bytes: Vec<u8>,
+    loader: &dyn ResourceLoader,
+    options: &CheckOptions,
+) -> Report {
+    let document = document::read(bytes, uri);
     let mut diagnostics = document.diagnostics.clone();
     let mut info = context::AssetInfo::default();
     if let Some(root) = &document.root {
@@ -80,7 +88,10 @@ pub fn check_bytes(uri: &str, bytes: Vec<u8>, loader: &dyn ResourceLoader, optio
             diagnostics.push(Diagnostic::at(
                 "TYPE_MISMATCH",
                 "",
-                format!("Type mismatch. Property value {} is not a 'object'.", short(root)),
+                format!(
+                    "Type mismatch. Property value {} is not a 'object'.",
+                    short(root)
+                ),
             ));
         } else {
             let mut ctx = Context::new(root, &document, loader, options);
@@ -136,7 +147,11 @@ fn apply_options(diagnostics: Vec<Diagnostic>, options: &CheckOptions) -> (Vec<D
         .filter(|d| !matches(&options.ignore, d.code))
         .filter(|d| options.only.is_empty() || matches(&options.only, d.code))
         .map(|mut d| {
-            if let Some((_, s)) = options.severity_overrides.iter().find(|(c, _)| c.eq_ignore_ascii_case(d.code)) {
+            if let Some((_, s)) = options
+                .severity_overrides
+                .iter()
+                .find(|(c, _)| c.eq_ignore_ascii_case(d.code))
+            {
                 d.severity = *s;
             }
             d

@@ -10,15 +10,39 @@ fn version(text: &str) -> Option<(u64, u64)> {
 }
 
 pub fn check_asset(ctx: &mut Context) {
-    let Some(asset) = ctx.root.get("asset") else { return };
-    let Some((major, minor)) = asset.get("version").and_then(Value::as_str).and_then(version) else { return };
+    let Some(asset) = ctx.root.get("asset") else {
+        return;
+    };
+    let Some((major, minor)) = asset
+        .get("version")
+        .and_then(Value::as_str)
+        .and_then(version)
+    else {
+        return;
+    };
     if major != 2 {
-        let hint = if major == 1 && !ctx.is_khronos() { " Run `gltfmat upgrade` to convert it to glTF 2.0." } else { "" };
-        ctx.emit("UNKNOWN_ASSET_MAJOR_VERSION", "/asset/version", format!("Unknown glTF major asset version: {major}.{hint}"));
+        let hint = if major == 1 && !ctx.is_khronos() {
+            " Run `gltfmat upgrade` to convert it to glTF 2.0."
+        } else {
+            ""
+        };
+        ctx.emit(
+            "UNKNOWN_ASSET_MAJOR_VERSION",
+            "/asset/version",
+            format!("Unknown glTF major asset version: {major}.{hint}"),
+        );
     } else if minor > 0 {
-        ctx.emit("UNKNOWN_ASSET_MINOR_VERSION", "/asset/version", format!("Unknown glTF minor asset version: {minor}."));
+        ctx.emit(
+            "UNKNOWN_ASSET_MINOR_VERSION",
+            "/asset/version",
+            format!("Unknown glTF minor asset version: {minor}."),
+        );
     }
-    if let Some((min_major, min_minor)) = asset.get("minVersion").and_then(Value::as_str).and_then(version) {
+    if let Some((min_major, min_minor)) = asset
+        .get("minVersion")
+        .and_then(Value::as_str)
+        .and_then(version)
+    {
         if (min_major, min_minor) > (major, minor) {
             ctx.emit(
                 "ASSET_MIN_VERSION_GREATER_THAN_VERSION",
@@ -36,7 +60,12 @@ pub fn check_accessors(ctx: &mut Context) {
             let sparse_pointer = member(&pointer, "sparse");
             for key in ["indices", "values"] {
                 if let Some(part) = sparse.get(key) {
-                    ctx.reference(part, "bufferView", &member(&sparse_pointer, key), "bufferViews");
+                    ctx.reference(
+                        part,
+                        "bufferView",
+                        &member(&sparse_pointer, key),
+                        "bufferViews",
+                    );
                 }
             }
         }
@@ -52,7 +81,9 @@ pub fn check_meshes(ctx: &mut Context) {
         .and_then(Value::as_array)
         .map_or(0, Vec::len);
     for (_, pointer, mesh) in ctx.objects("meshes") {
-        let Some(primitives) = mesh.get("primitives").and_then(Value::as_array) else { continue };
+        let Some(primitives) = mesh.get("primitives").and_then(Value::as_array) else {
+            continue;
+        };
         for (j, primitive) in primitives.iter().enumerate().filter(|(_, p)| p.is_object()) {
             let p = format!("{pointer}/primitives/{j}");
             check_primitive(ctx, primitive, &p, variant_count);
@@ -64,7 +95,11 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
     let attributes = primitive.get("attributes").and_then(Value::as_object);
     if let Some(attributes) = attributes {
         for (name, value) in attributes {
-            ctx.reference_value(value, &member(&member(pointer, "attributes"), name), "accessors");
+            ctx.reference_value(
+                value,
+                &member(&member(pointer, "attributes"), name),
+                "accessors",
+            );
         }
     }
     if let Some(targets) = primitive.get("targets").and_then(Value::as_array) {
@@ -77,9 +112,17 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
     ctx.reference(primitive, "indices", pointer, "accessors");
     let has = |name: &str| attributes.is_some_and(|a| a.contains_key(name));
     if let Some(material) = ctx.reference(primitive, "material", pointer, "materials") {
-        let needs = ctx.material_needs.get(material).cloned().unwrap_or_default();
+        let needs = ctx
+            .material_needs
+            .get(material)
+            .cloned()
+            .unwrap_or_default();
         let material_pointer = member(pointer, "material");
-        if needs.texcoords.iter().any(|n| !has(&format!("TEXCOORD_{n}"))) {
+        if needs
+            .texcoords
+            .iter()
+            .any(|n| !has(&format!("TEXCOORD_{n}")))
+        {
             ctx.emit(
                 "MESH_PRIMITIVE_TOO_FEW_TEXCOORDS",
                 material_pointer.clone(),
@@ -129,23 +172,64 @@ fn unused_tangent(ctx: &mut Context, pointer: &str) {
     );
 }
 
-fn check_variant_mappings(ctx: &mut Context, primitive: &Value, pointer: &str, variant_count: usize) {
-    let Some(ext) = primitive.get("extensions").and_then(|e| e.get("KHR_materials_variants")) else { return };
-    let Some(mappings) = ext.get("mappings").and_then(Value::as_array) else { return };
+fn check_variant_mappings(
+    ctx: &mut Context,
+    primitive: &Value,
+    pointer: &str,
+    variant_count: usize,
+) {
+    let Some(ext) = primitive
+        .get("extensions")
+        .and_then(|e| e.get("KHR_materials_variants"))
+    else {
+        return;
+    };
+    let Some(mappings) = ext.get("mappings").and_then(Value::as_array) else {
+        return;
+    };
+    let root_declares_variants = ctx
+        .root
+        .get("extensions")
+        .and_then(|e| e.get("KHR_materials_variants"))
+        .is_some();
     let mut seen = Vec::new();
-    for (m, mapping) in mappings.iter().enumerate() {
+    for (m, mapping) in mappings.iter().enumerate().filter(|(_, m)| m.is_object()) {
         let mp = format!("{pointer}/extensions/KHR_materials_variants/mappings/{m}");
+        if !root_declares_variants {
+            ctx.emit(
+                "UNSATISFIED_DEPENDENCY",
+                mp,
+                "Dependency failed. The root KHR_materials_variants extension must define the variants.",
+            );
+            continue;
+        }
         ctx.reference(mapping, "material", &mp, "materials");
-        for (v, variant) in mapping.get("variants").and_then(Value::as_array).into_iter().flatten().enumerate() {
+        for (v, variant) in mapping
+            .get("variants")
+            .and_then(Value::as_array)
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
             let vp = format!("{mp}/variants/{v}");
-            let Some(index) = variant.as_u64() else { continue };
+            let Some(index) = variant.as_u64() else {
+                continue;
+            };
             if index as usize >= variant_count {
-                ctx.emit("UNRESOLVED_REFERENCE", vp, format!("Unresolved reference: {index}."));
+                ctx.emit(
+                    "UNRESOLVED_REFERENCE",
+                    vp,
+                    format!("Unresolved reference: {index}."),
+                );
                 continue;
             }
             ctx.mark_used("variants", index as usize);
             if seen.contains(&index) {
-                ctx.emit("KHR_MATERIALS_VARIANTS_NON_UNIQUE_VARIANT", vp, "This variant is used more than once for this mesh primitive.");
+                ctx.emit(
+                    "KHR_MATERIALS_VARIANTS_NON_UNIQUE_VARIANT",
+                    vp,
+                    "This variant is used more than once for this mesh primitive.",
+                );
             } else {
                 seen.push(index);
             }
@@ -159,19 +243,41 @@ pub fn check_nodes_and_scenes(ctx: &mut Context) {
         let camera = ctx.reference(node, "camera", &pointer, "cameras");
         let skin = ctx.reference(node, "skin", &pointer, "skins");
         let mut children = 0;
-        for (c, child) in node.get("children").and_then(Value::as_array).into_iter().flatten().enumerate() {
-            if ctx.reference_value(child, &format!("{pointer}/children/{c}"), "nodes").is_some() {
+        for (c, child) in node
+            .get("children")
+            .and_then(Value::as_array)
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
+            if ctx
+                .reference_value(child, &format!("{pointer}/children/{c}"), "nodes")
+                .is_some()
+            {
                 children += 1;
             }
         }
         let extras = node.get("extras").is_some_and(|e| !e.is_null());
-        let empty = mesh.is_none() && camera.is_none() && skin.is_none() && children == 0 && node.get("extensions").is_none() && !extras;
+        let named = node.get("name").is_some();
+        let empty = mesh.is_none()
+            && camera.is_none()
+            && skin.is_none()
+            && children == 0
+            && node.get("extensions").is_none()
+            && !extras
+            && !named;
         if empty {
             ctx.emit("NODE_EMPTY", pointer.clone(), "Empty node encountered.");
         }
     }
     for (_, pointer, scene) in ctx.objects("scenes") {
-        for (n, node) in scene.get("nodes").and_then(Value::as_array).into_iter().flatten().enumerate() {
+        for (n, node) in scene
+            .get("nodes")
+            .and_then(Value::as_array)
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
             ctx.reference_value(node, &format!("{pointer}/nodes/{n}"), "nodes");
         }
     }
@@ -184,25 +290,44 @@ pub fn check_skins_animations_cameras(ctx: &mut Context) {
     for (_, pointer, skin) in ctx.objects("skins") {
         ctx.reference(skin, "inverseBindMatrices", &pointer, "accessors");
         ctx.reference(skin, "skeleton", &pointer, "nodes");
-        for (j, joint) in skin.get("joints").and_then(Value::as_array).into_iter().flatten().enumerate() {
+        for (j, joint) in skin
+            .get("joints")
+            .and_then(Value::as_array)
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
             ctx.reference_value(joint, &format!("{pointer}/joints/{j}"), "nodes");
         }
     }
     for (_, pointer, animation) in ctx.objects("animations") {
-        let samplers = animation.get("samplers").and_then(Value::as_array).map_or(&[][..], Vec::as_slice);
+        let samplers = animation
+            .get("samplers")
+            .and_then(Value::as_array)
+            .map_or(&[][..], Vec::as_slice);
         let mut sampler_used = vec![false; samplers.len()];
         for (s, sampler) in samplers.iter().enumerate() {
             let sp = format!("{pointer}/samplers/{s}");
             ctx.reference(sampler, "input", &sp, "accessors");
             ctx.reference(sampler, "output", &sp, "accessors");
         }
-        for (c, channel) in animation.get("channels").and_then(Value::as_array).into_iter().flatten().enumerate() {
+        for (c, channel) in animation
+            .get("channels")
+            .and_then(Value::as_array)
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
             let cp = format!("{pointer}/channels/{c}");
             if let Some(s) = unsigned(channel, "sampler") {
                 if (s as usize) < samplers.len() {
                     sampler_used[s as usize] = true;
                 } else {
-                    ctx.emit("UNRESOLVED_REFERENCE", member(&cp, "sampler"), format!("Unresolved reference: {s}."));
+                    ctx.emit(
+                        "UNRESOLVED_REFERENCE",
+                        member(&cp, "sampler"),
+                        format!("Unresolved reference: {s}."),
+                    );
                 }
             }
             if let Some(target) = channel.get("target") {
@@ -211,7 +336,11 @@ pub fn check_skins_animations_cameras(ctx: &mut Context) {
         }
         for (s, used) in sampler_used.iter().enumerate() {
             if !used && samplers[s].is_object() {
-                ctx.emit("UNUSED_OBJECT", format!("{pointer}/samplers/{s}"), "This object may be unused.");
+                ctx.emit(
+                    "UNUSED_OBJECT",
+                    format!("{pointer}/samplers/{s}"),
+                    "This object may be unused.",
+                );
             }
         }
     }

@@ -10,24 +10,40 @@ const ELEMENT_ARRAY_BUFFER: u64 = 34963;
 
 /// Bytes behind a `uri`, with diagnostics for everything that stops us reading them.
 /// Returns the bytes and, for data URIs, the declared media type.
-fn load_uri(ctx: &mut Context, uri: &str, pointer: &str) -> (Option<Vec<u8>>, Option<String>, &'static str) {
+fn load_uri(
+    ctx: &mut Context,
+    uri: &str,
+    pointer: &str,
+) -> (Option<Vec<u8>>, Option<String>, &'static str) {
     let glb = super::is_glb(ctx.document);
     if glb {
         ctx.emit("URI_GLB", pointer, "URI is used in GLB container.");
     }
     match classify(uri) {
         Err(reason) => {
-            ctx.emit("INVALID_URI", pointer, format!("Invalid URI '{}'. Parser output: {reason}", shorten(uri)));
+            ctx.emit(
+                "INVALID_URI",
+                pointer,
+                format!("Invalid URI '{}'. Parser output: {reason}", shorten(uri)),
+            );
             (None, None, "data-uri")
         }
         Ok(UriKind::Data { media_type, bytes }) => {
             if glb {
-                ctx.emit("DATA_URI_GLB", pointer, "Data URI is used in GLB container.");
+                ctx.emit(
+                    "DATA_URI_GLB",
+                    pointer,
+                    "Data URI is used in GLB container.",
+                );
             }
             (Some(bytes), Some(media_type), "data-uri")
         }
         Ok(UriKind::NonRelative) => {
-            ctx.emit("NON_RELATIVE_URI", pointer, format!("Non-relative URI found: '{uri}'. It is not fetched."));
+            ctx.emit(
+                "NON_RELATIVE_URI",
+                pointer,
+                format!("Non-relative URI found: '{uri}'. It is not fetched."),
+            );
             (None, None, "external")
         }
         Ok(UriKind::AbsolutePath) => {
@@ -46,11 +62,19 @@ fn load_uri(ctx: &mut Context, uri: &str, pointer: &str) -> (Option<Vec<u8>>, Op
                 (None, None, "external")
             }
             Err(LoadError::TooLarge(size)) => {
-                ctx.emit("IO_ERROR", pointer, format!("Resource too large to read ({size} bytes)."));
+                ctx.emit(
+                    "IO_ERROR",
+                    pointer,
+                    format!("Resource too large to read ({size} bytes)."),
+                );
                 (None, None, "external")
             }
             Err(LoadError::Io(e)) => {
-                ctx.emit("IO_ERROR", pointer, format!("Could not read resource: {e}."));
+                ctx.emit(
+                    "IO_ERROR",
+                    pointer,
+                    format!("Could not read resource: {e}."),
+                );
                 (None, None, "external")
             }
         },
@@ -60,11 +84,18 @@ fn load_uri(ctx: &mut Context, uri: &str, pointer: &str) -> (Option<Vec<u8>>, Op
 /// Absolute paths and `..` escapes are never read. The Khronos profile words it as the
 /// IO_ERROR that validator gives for a file it cannot read.
 fn refuse_outside(ctx: &mut Context, pointer: &str, uri: &str) {
-    let code = if ctx.is_khronos() { "IO_ERROR" } else { "URI_OUTSIDE_ASSET_FOLDER" };
+    let code = if ctx.is_khronos() {
+        "IO_ERROR"
+    } else {
+        "URI_OUTSIDE_ASSET_FOLDER"
+    };
     ctx.emit(
         code,
         pointer,
-        format!("Refused to read '{}': it resolves outside the asset's folder.", shorten(uri)),
+        format!(
+            "Refused to read '{}': it resolves outside the asset's folder.",
+            shorten(uri)
+        ),
     );
 }
 
@@ -90,7 +121,8 @@ pub fn check_buffers(ctx: &mut Context) {
                 let uri_pointer = member(&pointer, "uri");
                 let (data, media_type, storage) = load_uri(ctx, uri, &uri_pointer);
                 if let Some(media) = media_type {
-                    if media != "application/octet-stream" && media != "application/gltf-buffer" {
+                    let lower = media.to_ascii_lowercase();
+                    if lower != "application/octet-stream" && lower != "application/gltf-buffer" {
                         ctx.emit(
                             "BUFFER_DATA_URI_MIME_TYPE_INVALID",
                             uri_pointer,
@@ -103,7 +135,11 @@ pub fn check_buffers(ctx: &mut Context) {
             }
             None if i == 0 && super::is_glb(ctx.document) => {
                 let Some(bin) = ctx.document.bin() else {
-                    ctx.emit("BUFFER_MISSING_GLB_DATA", pointer.clone(), "Buffer refers to an unresolved GLB binary chunk.");
+                    ctx.emit(
+                        "BUFFER_MISSING_GLB_DATA",
+                        pointer.clone(),
+                        "Buffer refers to an unresolved GLB binary chunk.",
+                    );
                     continue;
                 };
                 if let Some(length) = declared {
@@ -112,7 +148,10 @@ pub fn check_buffers(ctx: &mut Context) {
                         ctx.emit(
                             "BUFFER_GLB_CHUNK_TOO_BIG",
                             pointer.clone(),
-                            format!("GLB-stored BIN chunk contains {} extra padding byte(s).", bin.len() as u64 - padded),
+                            format!(
+                                "GLB-stored BIN chunk contains {} extra padding byte(s).",
+                                bin.len() as u64 - padded
+                            ),
                         );
                     }
                 }
@@ -149,11 +188,17 @@ pub fn check_buffer_views(ctx: &mut Context) {
         if let (Some(b), Some(length)) = (buffer, length) {
             if let Some(buffer_length) = unsigned(&ctx.items("buffers")[b], "byteLength") {
                 if offset.saturating_add(length) > buffer_length {
-                    let key = if offset >= buffer_length { "byteOffset" } else { "byteLength" };
+                    let key = if offset >= buffer_length {
+                        "byteOffset"
+                    } else {
+                        "byteLength"
+                    };
                     ctx.emit(
                         "BUFFER_VIEW_TOO_LONG",
                         member(&pointer, key),
-                        format!("BufferView does not fit buffer ({b}) byteLength ({buffer_length})."),
+                        format!(
+                            "BufferView does not fit buffer ({b}) byteLength ({buffer_length})."
+                        ),
                     );
                 }
             }
@@ -180,7 +225,10 @@ pub fn check_buffer_views(ctx: &mut Context) {
 /// The bytes of a buffer view, when its buffer was read and the range fits.
 pub fn view_bytes<'c>(ctx: &'c Context, view_index: usize) -> Option<&'c [u8]> {
     let view = ctx.items("bufferViews").get(view_index)?;
-    let buffer = ctx.buffers.get(unsigned(view, "buffer")? as usize)?.as_ref()?;
+    let buffer = ctx
+        .buffers
+        .get(unsigned(view, "buffer")? as usize)?
+        .as_ref()?;
     let start = usize::try_from(unsigned(view, "byteOffset").unwrap_or(0)).ok()?;
     let end = start.checked_add(usize::try_from(unsigned(view, "byteLength")?).ok()?)?;
     buffer.get(start..end)
@@ -202,7 +250,8 @@ pub fn check_images(ctx: &mut Context) {
     for (i, pointer, image) in ctx.objects("images") {
         let mime_type = image.get("mimeType").and_then(Value::as_str);
         if let Some(m) = mime_type {
-            let allowed = matches!(m, "image/png" | "image/jpeg") || (m == "image/webp" && webp_enabled);
+            let allowed =
+                matches!(m, "image/png" | "image/jpeg") || (m == "image/webp" && webp_enabled);
             if !allowed {
                 ctx.emit(
                     "VALUE_NOT_IN_LIST",
@@ -211,24 +260,31 @@ pub fn check_images(ctx: &mut Context) {
                 );
             }
         }
-        let (bytes, media_type, storage, uri, mime_pointer) = if let Some(uri) = image.get("uri").and_then(Value::as_str) {
-            let uri_pointer = member(&pointer, "uri");
-            let (bytes, media, storage) = load_uri(ctx, uri, &uri_pointer);
-            let uri = (storage == "external").then(|| uri.to_string());
-            (bytes, media, storage, uri, uri_pointer)
-        } else if let Some(view) = ctx.reference(image, "bufferView", &pointer, "bufferViews") {
-            if ctx.items("bufferViews")[view].get("byteStride").is_some() {
-                ctx.emit(
-                    "IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE",
-                    member(&pointer, "bufferView"),
-                    "Buffer view used by an image must not have byteStride.",
-                );
-            }
-            let bytes = view_bytes(ctx, view).map(<[u8]>::to_vec);
-            (bytes, None, "buffer-view", None, member(&pointer, "mimeType"))
-        } else {
-            continue;
-        };
+        let (bytes, media_type, storage, uri, mime_pointer) =
+            if let Some(uri) = image.get("uri").and_then(Value::as_str) {
+                let uri_pointer = member(&pointer, "uri");
+                let (bytes, media, storage) = load_uri(ctx, uri, &uri_pointer);
+                let uri = (storage == "external").then(|| uri.to_string());
+                (bytes, media, storage, uri, uri_pointer)
+            } else if let Some(view) = ctx.reference(image, "bufferView", &pointer, "bufferViews") {
+                if ctx.items("bufferViews")[view].get("byteStride").is_some() {
+                    ctx.emit(
+                        "IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE",
+                        member(&pointer, "bufferView"),
+                        "Buffer view used by an image must not have byteStride.",
+                    );
+                }
+                let bytes = view_bytes(ctx, view).map(<[u8]>::to_vec);
+                (
+                    bytes,
+                    None,
+                    "buffer-view",
+                    None,
+                    member(&pointer, "mimeType"),
+                )
+            } else {
+                continue;
+            };
         let mut resource = ResourceInfo {
             pointer: pointer.clone(),
             storage,
@@ -256,28 +312,43 @@ pub fn check_images(ctx: &mut Context) {
                         );
                     }
                     if info.format == ImageFormat::Webp && !webp_enabled {
-                        ctx.emit("IMAGE_NON_ENABLED_MIME_TYPE", pointer.clone(), "Image format 'image/webp' not enabled (declare EXT_texture_webp).");
+                        ctx.emit(
+                            "IMAGE_NON_ENABLED_MIME_TYPE",
+                            pointer.clone(),
+                            "Image format 'image/webp' not enabled (declare EXT_texture_webp).",
+                        );
                     }
-                    if info.format != ImageFormat::Ktx2 && (!info.width.is_power_of_two() || !info.height.is_power_of_two()) {
+                    if info.format != ImageFormat::Ktx2
+                        && (!info.width.is_power_of_two() || !info.height.is_power_of_two())
+                    {
                         ctx.emit(
                             "IMAGE_NPOT_DIMENSIONS",
                             pointer.clone(),
-                            format!("Image has non-power-of-two dimensions: {}x{}.", info.width, info.height),
+                            format!(
+                                "Image has non-power-of-two dimensions: {}x{}.",
+                                info.width, info.height
+                            ),
                         );
                     }
                     resource.mime_type = Some(found.to_string());
                     resource.image = Some(info.clone());
                     ctx.images[i] = Some(info);
                 }
-                Err(HeaderError::Unrecognized) => {
-                    ctx.emit("IMAGE_UNRECOGNIZED_FORMAT", pointer.clone(), "Image format not recognized.")
-                }
-                Err(HeaderError::UnexpectedEnd) => {
-                    ctx.emit("IMAGE_UNEXPECTED_EOS", pointer.clone(), "Unexpected end of image stream.")
-                }
-                Err(HeaderError::Invalid(why)) => {
-                    ctx.emit("IMAGE_DATA_INVALID", pointer.clone(), format!("Image data is invalid: {why}."))
-                }
+                Err(HeaderError::Unrecognized) => ctx.emit(
+                    "IMAGE_UNRECOGNIZED_FORMAT",
+                    pointer.clone(),
+                    "Image format not recognized.",
+                ),
+                Err(HeaderError::UnexpectedEnd) => ctx.emit(
+                    "IMAGE_UNEXPECTED_EOS",
+                    pointer.clone(),
+                    "Unexpected end of image stream.",
+                ),
+                Err(HeaderError::Invalid(why)) => ctx.emit(
+                    "IMAGE_DATA_INVALID",
+                    pointer.clone(),
+                    format!("Image data is invalid: {why}."),
+                ),
             }
         }
         ctx.resources.push(resource);

@@ -13,23 +13,74 @@ const CORE: &str = include_str!("../../schema/gltf.schema.json");
 
 /// Extension schemas, merged into the core schema's `$defs` under their name.
 const EXTENSIONS: &[(&str, &str)] = &[
-    ("KHR_materials_anisotropy", include_str!("../../schema/extensions/KHR_materials_anisotropy.schema.json")),
-    ("KHR_materials_clearcoat", include_str!("../../schema/extensions/KHR_materials_clearcoat.schema.json")),
-    ("KHR_materials_diffuse_transmission", include_str!("../../schema/extensions/KHR_materials_diffuse_transmission.schema.json")),
-    ("KHR_materials_dispersion", include_str!("../../schema/extensions/KHR_materials_dispersion.schema.json")),
-    ("KHR_materials_emissive_strength", include_str!("../../schema/extensions/KHR_materials_emissive_strength.schema.json")),
-    ("KHR_materials_ior", include_str!("../../schema/extensions/KHR_materials_ior.schema.json")),
-    ("KHR_materials_iridescence", include_str!("../../schema/extensions/KHR_materials_iridescence.schema.json")),
-    ("KHR_materials_pbrSpecularGlossiness", include_str!("../../schema/extensions/KHR_materials_pbrSpecularGlossiness.schema.json")),
-    ("KHR_materials_sheen", include_str!("../../schema/extensions/KHR_materials_sheen.schema.json")),
-    ("KHR_materials_specular", include_str!("../../schema/extensions/KHR_materials_specular.schema.json")),
-    ("KHR_materials_transmission", include_str!("../../schema/extensions/KHR_materials_transmission.schema.json")),
-    ("KHR_materials_unlit", include_str!("../../schema/extensions/KHR_materials_unlit.schema.json")),
-    ("KHR_materials_variants", include_str!("../../schema/extensions/KHR_materials_variants.schema.json")),
-    ("KHR_materials_variants_mapping", include_str!("../../schema/extensions/KHR_materials_variants_mapping.schema.json")),
-    ("KHR_materials_volume", include_str!("../../schema/extensions/KHR_materials_volume.schema.json")),
-    ("KHR_texture_transform", include_str!("../../schema/extensions/KHR_texture_transform.schema.json")),
-    ("EXT_texture_webp", include_str!("../../schema/extensions/EXT_texture_webp.schema.json")),
+    (
+        "KHR_materials_anisotropy",
+        include_str!("../../schema/extensions/KHR_materials_anisotropy.schema.json"),
+    ),
+    (
+        "KHR_materials_clearcoat",
+        include_str!("../../schema/extensions/KHR_materials_clearcoat.schema.json"),
+    ),
+    (
+        "KHR_materials_diffuse_transmission",
+        include_str!("../../schema/extensions/KHR_materials_diffuse_transmission.schema.json"),
+    ),
+    (
+        "KHR_materials_dispersion",
+        include_str!("../../schema/extensions/KHR_materials_dispersion.schema.json"),
+    ),
+    (
+        "KHR_materials_emissive_strength",
+        include_str!("../../schema/extensions/KHR_materials_emissive_strength.schema.json"),
+    ),
+    (
+        "KHR_materials_ior",
+        include_str!("../../schema/extensions/KHR_materials_ior.schema.json"),
+    ),
+    (
+        "KHR_materials_iridescence",
+        include_str!("../../schema/extensions/KHR_materials_iridescence.schema.json"),
+    ),
+    (
+        "KHR_materials_pbrSpecularGlossiness",
+        include_str!("../../schema/extensions/KHR_materials_pbrSpecularGlossiness.schema.json"),
+    ),
+    (
+        "KHR_materials_sheen",
+        include_str!("../../schema/extensions/KHR_materials_sheen.schema.json"),
+    ),
+    (
+        "KHR_materials_specular",
+        include_str!("../../schema/extensions/KHR_materials_specular.schema.json"),
+    ),
+    (
+        "KHR_materials_transmission",
+        include_str!("../../schema/extensions/KHR_materials_transmission.schema.json"),
+    ),
+    (
+        "KHR_materials_unlit",
+        include_str!("../../schema/extensions/KHR_materials_unlit.schema.json"),
+    ),
+    (
+        "KHR_materials_variants",
+        include_str!("../../schema/extensions/KHR_materials_variants.schema.json"),
+    ),
+    (
+        "KHR_materials_variants_mapping",
+        include_str!("../../schema/extensions/KHR_materials_variants_mapping.schema.json"),
+    ),
+    (
+        "KHR_materials_volume",
+        include_str!("../../schema/extensions/KHR_materials_volume.schema.json"),
+    ),
+    (
+        "KHR_texture_transform",
+        include_str!("../../schema/extensions/KHR_texture_transform.schema.json"),
+    ),
+    (
+        "EXT_texture_webp",
+        include_str!("../../schema/extensions/EXT_texture_webp.schema.json"),
+    ),
 ];
 
 /// Extensions the Khronos validator does not implement: in its profile their objects are not
@@ -37,8 +88,11 @@ const EXTENSIONS: &[(&str, &str)] = &[
 pub const NOT_IN_KHRONOS: &[&str] = &["KHR_materials_diffuse_transmission"];
 
 fn build(skip: &[&str]) -> Validator {
-    let mut root: Value = serde_json::from_str(CORE).expect("schema/gltf.schema.json is valid JSON");
-    let defs = root["$defs"].as_object_mut().expect("core schema has $defs");
+    let mut root: Value =
+        serde_json::from_str(CORE).expect("schema/gltf.schema.json is valid JSON");
+    let defs = root["$defs"]
+        .as_object_mut()
+        .expect("core schema has $defs");
     for (name, text) in EXTENSIONS {
         if skip.contains(name) {
             // Leave the extension unvalidated: drop its entry from every host's map.
@@ -97,53 +151,99 @@ fn type_name(kind: &TypeKind) -> String {
 fn show(value: &Value) -> String {
     let text = value.to_string();
     if text.len() > 60 {
-        format!("{}…", &text[..text.char_indices().nth(57).map_or(text.len(), |c| c.0)])
+        format!(
+            "{}…",
+            &text[..text.char_indices().nth(57).map_or(text.len(), |c| c.0)]
+        )
     } else {
         text
     }
 }
 
-fn map_error(kind: &ValidationErrorKind, instance: &Value, pointer: &str, schema_path: &str) -> Vec<Diagnostic> {
+fn map_error(
+    kind: &ValidationErrorKind,
+    instance: &Value,
+    pointer: &str,
+    schema_path: &str,
+) -> Vec<Diagnostic> {
     use ValidationErrorKind as K;
-    let one = |code: &'static str, at: String, message: String| vec![Diagnostic::at(code, at, message)];
+    let one =
+        |code: &'static str, at: String, message: String| vec![Diagnostic::at(code, at, message)];
     match kind {
         K::Type { kind } => one(
             "TYPE_MISMATCH",
             pointer.to_string(),
-            format!("Type mismatch. Property value {} is not a '{}'.", show(instance), type_name(kind)),
+            format!(
+                "Type mismatch. Property value {} is not a '{}'.",
+                show(instance),
+                type_name(kind)
+            ),
         ),
         K::AdditionalProperties { unexpected } => unexpected
             .iter()
-            .map(|key| Diagnostic::at("UNEXPECTED_PROPERTY", member(pointer, key), "Unexpected property."))
+            .map(|key| {
+                Diagnostic::at(
+                    "UNEXPECTED_PROPERTY",
+                    member(pointer, key),
+                    "Unexpected property.",
+                )
+            })
             .collect(),
         K::Required { property } => {
             let name = property.as_str().unwrap_or_default();
-            if let Some(dependent) = dependent_key(schema_path) {
+            if let Some(dependent) = dependent_key(schema_path, instance, name) {
                 return one(
                     "UNSATISFIED_DEPENDENCY",
                     member(pointer, &dependent),
                     format!("Dependency failed. '{name}' must be defined."),
                 );
             }
-            let at = if pointer.is_empty() { "/".to_string() } else { pointer.to_string() };
-            one("UNDEFINED_PROPERTY", at, format!("Property '{name}' must be defined."))
+            let at = if pointer.is_empty() {
+                "/".to_string()
+            } else {
+                pointer.to_string()
+            };
+            one(
+                "UNDEFINED_PROPERTY",
+                at,
+                format!("Property '{name}' must be defined."),
+            )
         }
-        K::Minimum { .. } | K::Maximum { .. } | K::ExclusiveMinimum { .. } | K::ExclusiveMaximum { .. }
+        K::Minimum { .. }
+        | K::Maximum { .. }
+        | K::ExclusiveMinimum { .. }
+        | K::ExclusiveMaximum { .. }
             if schema_path.contains("glTFid") =>
         {
-            one("INVALID_INDEX", pointer.to_string(), "Index must be a non-negative integer.".into())
+            one(
+                "INVALID_INDEX",
+                pointer.to_string(),
+                "Index must be a non-negative integer.".into(),
+            )
         }
-        K::Minimum { .. } | K::Maximum { .. } | K::ExclusiveMinimum { .. } | K::ExclusiveMaximum { .. } | K::AnyOf { .. } => {
-            one("VALUE_NOT_IN_RANGE", pointer.to_string(), format!("Value {} is out of range.", show(instance)))
-        }
+        K::Minimum { .. }
+        | K::Maximum { .. }
+        | K::ExclusiveMinimum { .. }
+        | K::ExclusiveMaximum { .. }
+        | K::AnyOf { .. } => one(
+            "VALUE_NOT_IN_RANGE",
+            pointer.to_string(),
+            format!("Value {} is out of range.", show(instance)),
+        ),
         K::Enum { options } => one(
             "VALUE_NOT_IN_LIST",
             pointer.to_string(),
-            format!("Invalid value {}. Valid values are {}.", show(instance), show(options)),
+            format!(
+                "Invalid value {}. Valid values are {}.",
+                show(instance),
+                show(options)
+            ),
         ),
-        K::MinItems { limit: 1 } | K::MinProperties { .. } => {
-            one("EMPTY_ENTITY", pointer.to_string(), "Entity cannot be empty.".into())
-        }
+        K::MinItems { limit: 1 } | K::MinProperties { .. } => one(
+            "EMPTY_ENTITY",
+            pointer.to_string(),
+            "Entity cannot be empty.".into(),
+        ),
         K::MinItems { limit } | K::MaxItems { limit } => one(
             "ARRAY_LENGTH_NOT_IN_LIST",
             pointer.to_string(),
@@ -154,38 +254,101 @@ fn map_error(kind: &ValidationErrorKind, instance: &Value, pointer: &str, schema
         ),
         K::UniqueItems => duplicate_positions(instance)
             .into_iter()
-            .map(|i| Diagnostic::at("DUPLICATE_ELEMENTS", format!("{pointer}/{i}"), "Duplicate element."))
+            .map(|i| {
+                Diagnostic::at(
+                    "DUPLICATE_ELEMENTS",
+                    format!("{pointer}/{i}"),
+                    "Duplicate element.",
+                )
+            })
             .collect(),
         K::MultipleOf { multiple_of, .. } => one(
             "VALUE_MULTIPLE_OF",
             pointer.to_string(),
-            format!("Value {} is not a multiple of {multiple_of}.", show(instance)),
+            format!(
+                "Value {} is not a multiple of {multiple_of}.",
+                show(instance)
+            ),
         ),
         K::Pattern { pattern } => one(
             "PATTERN_MISMATCH",
             pointer.to_string(),
-            format!("Value {} does not match regexp pattern '{pattern}'.", show(instance)),
+            format!(
+                "Value {} does not match regexp pattern '{pattern}'.",
+                show(instance)
+            ),
         ),
+        // A non-object was already reported as TYPE_MISMATCH.
+        K::OneOfNotValid { .. } | K::OneOfMultipleValid { .. } if !instance.is_object() => {
+            Vec::new()
+        }
         K::OneOfNotValid { .. } | K::OneOfMultipleValid { .. } => one(
             "ONE_OF_MISMATCH",
             pointer.to_string(),
             "Exactly one of ('uri', 'bufferView') properties must be defined.".into(),
         ),
-        other => one("TYPE_MISMATCH", pointer.to_string(), format!("Schema violation: {other:?}")),
+        other => one(
+            "TYPE_MISMATCH",
+            pointer.to_string(),
+            format!("Schema violation: {other:?}"),
+        ),
     }
 }
 
 /// For a `dependentRequired` failure, the member whose presence demanded the missing one.
-fn dependent_key(schema_path: &str) -> Option<String> {
-    let mut parts = schema_path.split('/');
-    parts.by_ref().find(|p| *p == "dependentRequired")?;
-    parts.next().map(|p| p.replace("~1", "/").replace("~0", "~"))
+/// The error does not name it, so it is found among the schemas' declared dependencies.
+fn dependent_key(schema_path: &str, instance: &Value, missing: &str) -> Option<String> {
+    if !schema_path.ends_with("dependentRequired") {
+        return None;
+    }
+    dependencies()
+        .iter()
+        .find(|(key, needs)| instance.get(key).is_some() && needs.iter().any(|n| n == missing))
+        .map(|(key, _)| key.clone())
+}
+
+/// Every `dependentRequired` entry of the embedded schemas: (member, members it needs).
+fn dependencies() -> &'static [(String, Vec<String>)] {
+    static DEPENDENCIES: OnceLock<Vec<(String, Vec<String>)>> = OnceLock::new();
+    DEPENDENCIES.get_or_init(|| {
+        let mut found = Vec::new();
+        let mut stack: Vec<Value> = std::iter::once(CORE)
+            .chain(EXTENSIONS.iter().map(|(_, text)| *text))
+            .filter_map(|text| serde_json::from_str(text).ok())
+            .collect();
+        while let Some(value) = stack.pop() {
+            match value {
+                Value::Object(map) => {
+                    if let Some(Value::Object(deps)) = map.get("dependentRequired") {
+                        for (key, needs) in deps {
+                            let needs = needs
+                                .as_array()
+                                .into_iter()
+                                .flatten()
+                                .filter_map(Value::as_str)
+                                .map(str::to_string)
+                                .collect();
+                            found.push((key.clone(), needs));
+                        }
+                    }
+                    stack.extend(map.into_iter().map(|(_, v)| v));
+                }
+                Value::Array(items) => stack.extend(items),
+                _ => {}
+            }
+        }
+        found
+    })
 }
 
 /// Indices of array elements equal to an earlier element.
 fn duplicate_positions(instance: &Value) -> Vec<usize> {
-    let Some(items) = instance.as_array() else { return Vec::new() };
-    (0..items.len()).filter(|&i| items[..i].contains(&items[i])).collect()
+    let Some(items) = instance.as_array() else {
+        return Vec::new();
+    };
+    (0..items.len())
+        .filter(|&i| items[..i].contains(&items[i]))
+        .collect()
 }
 
 #[cfg(test)]
@@ -216,7 +379,10 @@ mod tests {
         }));
         for expected in [
             ("UNEXPECTED_PROPERTY", "/asset/x"),
-            ("VALUE_NOT_IN_RANGE", "/materials/0/pbrMetallicRoughness/baseColorFactor/2"),
+            (
+                "VALUE_NOT_IN_RANGE",
+                "/materials/0/pbrMetallicRoughness/baseColorFactor/2",
+            ),
             ("UNDEFINED_PROPERTY", "/bufferViews/0"),
             ("VALUE_NOT_IN_LIST", "/samplers/0/magFilter"),
             ("UNSATISFIED_DEPENDENCY", "/extensionsRequired"),
@@ -230,11 +396,16 @@ mod tests {
 
     #[test]
     fn extension_objects_are_validated_on_their_host() {
-        let found = codes(json!({"asset": {"version": "2.0"}, "materials": [{"extensions": {
-            "KHR_materials_sheen": {"sheenRoughnessFactor": 2}}}]}));
-        assert_eq!(found, vec![(
-            "VALUE_NOT_IN_RANGE".to_string(),
-            "/materials/0/extensions/KHR_materials_sheen/sheenRoughnessFactor".to_string()
-        )]);
+        let found = codes(
+            json!({"asset": {"version": "2.0"}, "materials": [{"extensions": {
+            "KHR_materials_sheen": {"sheenRoughnessFactor": 2}}}]}),
+        );
+        assert_eq!(
+            found,
+            vec![(
+                "VALUE_NOT_IN_RANGE".to_string(),
+                "/materials/0/extensions/KHR_materials_sheen/sheenRoughnessFactor".to_string()
+            )]
+        );
     }
 }

@@ -34,7 +34,11 @@ pub fn check(ctx: &mut Context) {
         .map_or(0, Vec::len);
     for i in 0..variants {
         if !ctx.is_used("variants", i) {
-            ctx.emit("UNUSED_OBJECT", format!("/extensions/KHR_materials_variants/variants/{i}"), "This object may be unused.");
+            ctx.emit(
+                "UNUSED_OBJECT",
+                format!("/extensions/KHR_materials_variants/variants/{i}"),
+                "This object may be unused.",
+            );
         }
     }
 }

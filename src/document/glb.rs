@@ -112,9 +112,7 @@ pub fn read(bytes: &[u8]) -> GlbParts {
             diags.push(at(
                 "GLB_CHUNK_TOO_BIG",
                 start,
-                format!(
-                    "Chunk (0x{kind:08x}) length ({length}) does not fit total GLB length."
-                ),
+                format!("Chunk (0x{kind:08x}) length ({length}) does not fit total GLB length."),
             ));
         }
         if data_end > bytes.len() {
@@ -135,10 +133,18 @@ pub fn read(bytes: &[u8]) -> GlbParts {
         match kind {
             CHUNK_JSON => {
                 if length == 0 {
-                    diags.push(at("GLB_EMPTY_CHUNK", start, "Chunk (JSON) cannot have zero length."));
+                    diags.push(at(
+                        "GLB_EMPTY_CHUNK",
+                        start,
+                        "Chunk (JSON) cannot have zero length.",
+                    ));
                 }
                 if parts.json.is_some() || saw_empty_json {
-                    diags.push(at("GLB_DUPLICATE_CHUNK", start, "Chunk of type JSON has already been used."));
+                    diags.push(at(
+                        "GLB_DUPLICATE_CHUNK",
+                        start,
+                        "Chunk of type JSON has already been used.",
+                    ));
                     parts.json_expected_but_empty = saw_empty_json && parts.json.is_none();
                 } else if length == 0 {
                     saw_empty_json = true;
@@ -148,10 +154,18 @@ pub fn read(bytes: &[u8]) -> GlbParts {
             }
             CHUNK_BIN => {
                 if length == 0 {
-                    diags.push(at("GLB_EMPTY_BIN_CHUNK", start, "Empty BIN chunk should be omitted."));
+                    diags.push(at(
+                        "GLB_EMPTY_BIN_CHUNK",
+                        start,
+                        "Empty BIN chunk should be omitted.",
+                    ));
                 }
                 if parts.bin.is_some() {
-                    diags.push(at("GLB_DUPLICATE_CHUNK", start, "Chunk of type BIN has already been used."));
+                    diags.push(at(
+                        "GLB_DUPLICATE_CHUNK",
+                        start,
+                        "Chunk of type BIN has already been used.",
+                    ));
                 } else {
                     if index > 1 {
                         diags.push(at(
@@ -225,14 +239,31 @@ mod tests {
         let mut bytes = glb(&[(CHUNK_JSON, b"{}  ")], Some(u32::MAX));
         bytes[12..16].copy_from_slice(&u32::MAX.to_le_bytes());
         let parts = read(&bytes);
-        assert_eq!(codes(&parts), vec!["GLB_CHUNK_LENGTH_UNALIGNED", "GLB_UNEXPECTED_END_OF_CHUNK_DATA"]);
+        assert_eq!(
+            codes(&parts),
+            vec![
+                "GLB_CHUNK_LENGTH_UNALIGNED",
+                "GLB_CHUNK_TOO_BIG",
+                "GLB_UNEXPECTED_END_OF_CHUNK_DATA"
+            ]
+        );
     }
 
     #[test]
     fn unknown_chunks_are_skipped_with_a_warning() {
-        let bytes = glb(&[(CHUNK_JSON, b"{}  "), (0x1234, b"abcd"), (CHUNK_BIN, b"wxyz")], None);
+        let bytes = glb(
+            &[
+                (CHUNK_JSON, b"{}  "),
+                (0x1234, b"abcd"),
+                (CHUNK_BIN, b"wxyz"),
+            ],
+            None,
+        );
         let parts = read(&bytes);
-        assert_eq!(codes(&parts), vec!["GLB_UNKNOWN_CHUNK_TYPE", "GLB_UNEXPECTED_BIN_CHUNK"]);
+        assert_eq!(
+            codes(&parts),
+            vec!["GLB_UNKNOWN_CHUNK_TYPE", "GLB_UNEXPECTED_BIN_CHUNK"]
+        );
         assert!(parts.bin.is_some());
     }
 

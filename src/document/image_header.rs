@@ -124,7 +124,11 @@ fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
                     2 | 3 => Channels::Rgb,
                     4 => Channels::LuminanceAlpha,
                     6 => Channels::Rgba,
-                    other => return Err(HeaderError::Invalid(format!("invalid PNG colour type {other}"))),
+                    other => {
+                        return Err(HeaderError::Invalid(format!(
+                            "invalid PNG colour type {other}"
+                        )))
+                    }
                 };
                 info = Some(ImageInfo {
                     format: ImageFormat::Png,
@@ -136,7 +140,9 @@ fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
                     animated: false,
                 });
             }
-            _ if info.is_none() => return Err(HeaderError::Invalid("first PNG chunk is not IHDR".into())),
+            _ if info.is_none() => {
+                return Err(HeaderError::Invalid("first PNG chunk is not IHDR".into()))
+            }
             b"tRNS" => has_trns = true,
             b"sRGB" => set_transfer(&mut info, Transfer::Srgb),
             b"iCCP" => set_transfer(&mut info, Transfer::Custom),
@@ -147,7 +153,9 @@ fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
             }
             b"gAMA" if length == 4 => {
                 let gamma = be32(data, 0)?;
-                let already_srgb = info.as_ref().is_some_and(|i| i.transfer == Some(Transfer::Srgb));
+                let already_srgb = info
+                    .as_ref()
+                    .is_some_and(|i| i.transfer == Some(Transfer::Srgb));
                 if !already_srgb {
                     let transfer = match gamma {
                         45000..=46000 => Transfer::Srgb,
@@ -214,7 +222,9 @@ fn jpeg(b: &[u8]) -> Result<ImageInfo, HeaderError> {
             });
         }
         if marker == 0xDA {
-            return Err(HeaderError::Invalid("no SOF marker before scan data".into()));
+            return Err(HeaderError::Invalid(
+                "no SOF marker before scan data".into(),
+            ));
         }
         pos += 2 + length;
     }
@@ -232,7 +242,12 @@ fn webp(b: &[u8]) -> Result<ImageInfo, HeaderError> {
         }
         b"VP8L" => {
             let bits = le32(b, d + 1)?;
-            ((bits & 0x3FFF) + 1, ((bits >> 14) & 0x3FFF) + 1, (bits >> 28) & 1 == 1, false)
+            (
+                (bits & 0x3FFF) + 1,
+                ((bits >> 14) & 0x3FFF) + 1,
+                (bits >> 28) & 1 == 1,
+                false,
+            )
         }
         b"VP8X" => {
             let flags = *b.get(d).ok_or(HeaderError::UnexpectedEnd)?;
@@ -293,9 +308,15 @@ mod tests {
     #[test]
     fn png_channels_and_transfer_are_read() {
         let info = read(&png_bytes(2, &[(b"gAMA", &100000u32.to_be_bytes())])).unwrap();
-        assert_eq!((info.width, info.height, info.channels), (4, 2, Channels::Rgb));
+        assert_eq!(
+            (info.width, info.height, info.channels),
+            (4, 2, Channels::Rgb)
+        );
         assert_eq!(info.transfer, Some(Transfer::Linear));
-        assert_eq!(read(&png_bytes(0, &[(b"tRNS", &[0, 0])])).unwrap().channels, Channels::LuminanceAlpha);
+        assert_eq!(
+            read(&png_bytes(0, &[(b"tRNS", &[0, 0])])).unwrap().channels,
+            Channels::LuminanceAlpha
+        );
     }
 
     #[test]

@@ -51,8 +51,14 @@ pub fn line_col(text: &[u8], offset: usize) -> (usize, usize) {
     let offset = offset.min(text.len());
     let before = &text[..offset];
     let line = before.iter().filter(|b| **b == b'\n').count() + 1;
-    let line_start = before.iter().rposition(|b| *b == b'\n').map_or(0, |p| p + 1);
-    let column = String::from_utf8_lossy(&text[line_start..offset]).chars().count() + 1;
+    let line_start = before
+        .iter()
+        .rposition(|b| *b == b'\n')
+        .map_or(0, |p| p + 1);
+    let column = String::from_utf8_lossy(&text[line_start..offset])
+        .chars()
+        .count()
+        + 1;
     (line, column)
 }
 
@@ -101,40 +107,51 @@ pub fn locate(text: &[u8], pointer: &str) -> Option<std::ops::Range<usize>> {
 }
 
 /// Pointers (and key offsets) of object keys that occur more than once in their object.
+///
+/// Each open container keeps only its own token, so memory stays linear in the nesting depth;
+/// a pointer is built only for a duplicate.
 pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
-    let mut found = Vec::new();
-    // Each frame: the pointer of the container, its keys so far (objects) or next index.
-    enum Frame {
-        Object(String, Vec<String>),
-        Array(String, usize),
+    struct Frame {
+        /// The token naming this container inside its parent.
+        token: String,
+        /// Keys seen so far (objects), or `None` for arrays.
+        keys: Option<Vec<String>>,
+        /// Next element index (arrays).
+        next_index: usize,
     }
+    fn pointer(stack: &[Frame]) -> String {
+        stack
+            .iter()
+            .skip(1)
+            .map(|f| format!("/{}", escape_token(&f.token)))
+            .collect()
+    }
+    fn child_token(stack: &mut [Frame], pending: &mut Option<String>) -> String {
+        match stack.last_mut() {
+            Some(Frame { keys: Some(_), .. }) => pending.take().unwrap_or_default(),
+            Some(frame) => {
+                frame.next_index += 1;
+                (frame.next_index - 1).to_string()
+            }
+            None => String::new(),
+        }
+    }
+    let mut found = Vec::new();
     let mut stack: Vec<Frame> = Vec::new();
     let mut scanner = Scanner { text, pos: 0 };
     let mut pending_key: Option<String> = None;
     while scanner.pos < text.len() {
         scanner.skip_ws();
         let Some(b) = scanner.peek() else { break };
-        let child_pointer = |stack: &mut Vec<Frame>, pending: &mut Option<String>| -> String {
-            match stack.last_mut() {
-                Some(Frame::Object(p, _)) => {
-                    format!("{p}/{}", escape_token(&pending.take().unwrap_or_default()))
-                }
-                Some(Frame::Array(p, i)) => {
-                    *i += 1;
-                    format!("{p}/{}", *i - 1)
-                }
-                None => String::new(),
-            }
-        };
         match b {
-            b'{' => {
-                let p = child_pointer(&mut stack, &mut pending_key);
-                stack.push(Frame::Object(p, Vec::new()));
-                scanner.pos += 1;
-            }
-            b'[' => {
-                let p = child_pointer(&mut stack, &mut pending_key);
-                stack.push(Frame::Array(p, 0));
+            b'{' | b'[' => {
+                let token = child_token(&mut stack, &mut pending_key);
+                let keys = (b == b'{').then(Vec::new);
+                stack.push(Frame {
+                    token,
+                    keys,
+                    next_index: 0,
+                });
                 scanner.pos += 1;
             }
             b'}' | b']' => {
@@ -144,26 +161,28 @@ pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
             b',' | b':' => scanner.pos += 1,
             b'"' => {
                 let start = scanner.pos;
-                let Some(s) = scanner.read_string() else { break };
+                let Some(s) = scanner.read_string() else {
+                    break;
+                };
                 scanner.skip_ws();
-                let is_key = scanner.peek() == Some(b':')
-                    && matches!(stack.last(), Some(Frame::Object(..)))
-                    && pending_key.is_none();
-                if is_key {
-                    if let Some(Frame::Object(p, keys)) = stack.last_mut() {
-                        if keys.contains(&s) {
-                            found.push((format!("{p}/{}", escape_token(&s)), start));
-                        } else {
-                            keys.push(s.clone());
-                        }
+                let in_object = matches!(stack.last(), Some(Frame { keys: Some(_), .. }));
+                if scanner.peek() == Some(b':') && in_object && pending_key.is_none() {
+                    let duplicate = stack
+                        .last()
+                        .and_then(|f| f.keys.as_ref())
+                        .is_some_and(|k| k.contains(&s));
+                    if duplicate {
+                        found.push((format!("{}/{}", pointer(&stack), escape_token(&s)), start));
+                    } else if let Some(keys) = stack.last_mut().and_then(|f| f.keys.as_mut()) {
+                        keys.push(s.clone());
                     }
                     pending_key = Some(s);
                 } else {
-                    child_pointer(&mut stack, &mut pending_key);
+                    child_token(&mut stack, &mut pending_key);
                 }
             }
             _ => {
-                child_pointer(&mut stack, &mut pending_key);
+                child_token(&mut stack, &mut pending_key);
                 if scanner.skip_scalar().is_none() {
                     break;
                 }
@@ -311,7 +330,10 @@ mod tests {
     fn locate_finds_a_member_by_its_key() {
         let range = locate(TEXT, "/nodes/1/mesh").unwrap();
         assert_eq!(&TEXT[range], br#""mesh": 3"#);
-        assert_eq!(line_col(TEXT, locate(TEXT, "/nodes/1").unwrap().start), (3, 17));
+        assert_eq!(
+            line_col(TEXT, locate(TEXT, "/nodes/1").unwrap().start),
+            (3, 17)
+        );
     }
 
     #[test]

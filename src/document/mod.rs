@@ -55,13 +55,20 @@ impl Document {
     }
 }
 
-/// Reads a `.gltf` or `.glb` from its bytes (the container is recognised by its magic).
-pub fn read(bytes: Vec<u8>) -> Document {
+/// Reads a `.gltf` or `.glb` from its bytes. The container is recognised by its magic, or by
+/// the name's `.glb` ending (so a broken GLB is reported as one, not as invalid JSON).
+pub fn read(bytes: Vec<u8>, name: &str) -> Document {
     let mut diagnostics = Vec::new();
-    let (container, json_range, bin, empty_json) = if glb::looks_like_glb(&bytes) {
+    let named_glb = name.to_ascii_lowercase().ends_with(".glb");
+    let (container, json_range, bin, empty_json) = if glb::looks_like_glb(&bytes) || named_glb {
         let parts = glb::read(&bytes);
         diagnostics.extend(parts.diagnostics);
-        (Container::Glb, parts.json, parts.bin, parts.json_expected_but_empty)
+        (
+            Container::Glb,
+            parts.json,
+            parts.bin,
+            parts.json_expected_but_empty,
+        )
     } else {
         (Container::Gltf, Some(0..bytes.len()), None, false)
     };
@@ -88,7 +95,10 @@ fn parse_json(text: &[u8], diagnostics: &mut Vec<Diagnostic>) -> Option<Value> {
             let mut d = Diagnostic::at(
                 "INVALID_JSON",
                 "",
-                format!("Invalid JSON data. Parser output: {} (line {line}, column {col})", error.message),
+                format!(
+                    "Invalid JSON data. Parser output: {} (line {line}, column {col})",
+                    error.message
+                ),
             );
             d.span_hint = Some(error.offset);
             diagnostics.push(d);

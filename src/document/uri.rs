@@ -33,7 +33,9 @@ pub fn classify(uri: &str) -> Result<UriKind, String> {
                 return Ok(UriKind::AbsolutePath);
             }
             if !scheme.starts_with(|c: char| c.is_ascii_alphabetic())
-                || !scheme.chars().all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c))
+                || !scheme
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c))
             {
                 return Err(format!("Invalid scheme '{scheme}'"));
             }
@@ -78,7 +80,10 @@ fn percent_decode(text: &str) -> Result<String, String> {
     while i < bytes.len() {
         if bytes[i] == b'%' {
             let hex = text.get(i + 1..i + 3).ok_or("Truncated percent escape")?;
-            out.push(u8::from_str_radix(hex, 16).map_err(|_| format!("Invalid percent escape '%{hex}'"))?);
+            out.push(
+                u8::from_str_radix(hex, 16)
+                    .map_err(|_| format!("Invalid percent escape '%{hex}'"))?,
+            );
             i += 3;
         } else {
             out.push(bytes[i]);
@@ -181,7 +186,10 @@ mod tests {
     fn data_uris_decode() {
         assert_eq!(
             classify("data:application/octet-stream;base64,AAEC").unwrap(),
-            UriKind::Data { media_type: "application/octet-stream".into(), bytes: vec![0, 1, 2] }
+            UriKind::Data {
+                media_type: "application/octet-stream".into(),
+                bytes: vec![0, 1, 2]
+            }
         );
         assert!(classify("data:application/octet-stream;;base64,AA==").is_err());
         assert!(classify("data:").is_err());
@@ -189,10 +197,16 @@ mod tests {
 
     #[test]
     fn uris_are_classified() {
-        assert_eq!(classify("http://example.com/a.bin").unwrap(), UriKind::NonRelative);
+        assert_eq!(
+            classify("http://example.com/a.bin").unwrap(),
+            UriKind::NonRelative
+        );
         assert_eq!(classify("/etc/passwd").unwrap(), UriKind::AbsolutePath);
         assert_eq!(classify("C:\\x.bin").unwrap(), UriKind::AbsolutePath);
-        assert_eq!(classify("a%20b.bin").unwrap(), UriKind::Relative("a b.bin".into()));
+        assert_eq!(
+            classify("a%20b.bin").unwrap(),
+            UriKind::Relative("a b.bin".into())
+        );
         assert!(classify(":").is_err());
     }
 
@@ -203,13 +217,22 @@ mod tests {
         std::fs::write(dir.join("sub/a.bin"), b"x").unwrap();
         let loader = FolderResources::new(dir.join("sub"));
         assert_eq!(loader.load("a.bin").unwrap(), b"x");
-        assert!(matches!(loader.load("../sub/a.bin"), Err(LoadError::OutsideFolder(_))));
-        assert!(matches!(loader.load("missing.bin"), Err(LoadError::NotFound(_))));
+        assert!(matches!(
+            loader.load("../sub/a.bin"),
+            Err(LoadError::OutsideFolder(_))
+        ));
+        assert!(matches!(
+            loader.load("missing.bin"),
+            Err(LoadError::NotFound(_))
+        ));
         #[cfg(unix)]
         {
             std::fs::write(dir.join("secret"), b"s").unwrap();
             let _ = std::os::unix::fs::symlink(dir.join("secret"), dir.join("sub/link"));
-            assert!(matches!(loader.load("link"), Err(LoadError::OutsideFolder(_))));
+            assert!(matches!(
+                loader.load("link"),
+                Err(LoadError::OutsideFolder(_))
+            ));
         }
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -28,8 +28,16 @@ pub fn render(reports: &[Report], colour: bool) -> String {
                 Some((l, c)) => format!("{}:{l}:{c}", report.uri),
                 None => report.uri.clone(),
             };
-            let label = paint(&format!("{}[{}]", d.severity.name(), d.code), severity_colour(d.severity), colour);
-            out.push_str(&format!("{position}: {label}: {}{}\n", d.message, location_suffix(d)));
+            let label = paint(
+                &format!("{}[{}]", d.severity.name(), d.code),
+                severity_colour(d.severity),
+                colour,
+            );
+            out.push_str(&format!(
+                "{position}: {label}: {}{}\n",
+                d.message,
+                location_suffix(d)
+            ));
             if let Some(range) = span(report, d) {
                 out.push_str(&snippet(report.document.json_text(), range.start, colour));
             }
@@ -42,17 +50,30 @@ pub fn render(reports: &[Report], colour: bool) -> String {
 /// The source line holding `offset`, with a caret under the column.
 fn snippet(text: &[u8], offset: usize, colour: bool) -> String {
     let offset = offset.min(text.len());
-    let start = text[..offset].iter().rposition(|b| *b == b'\n').map_or(0, |p| p + 1);
-    let end = text[offset..].iter().position(|b| *b == b'\n').map_or(text.len(), |p| offset + p);
+    let start = text[..offset]
+        .iter()
+        .rposition(|b| *b == b'\n')
+        .map_or(0, |p| p + 1);
+    let end = text[offset..]
+        .iter()
+        .position(|b| *b == b'\n')
+        .map_or(text.len(), |p| offset + p);
     let line = String::from_utf8_lossy(&text[start..end]);
     if line.len() > 200 {
         return String::new();
     }
-    let column = String::from_utf8_lossy(&text[start..offset]).chars().count();
+    let column = String::from_utf8_lossy(&text[start..offset])
+        .chars()
+        .count();
     let (line_no, _) = crate::document::json::line_col(text, offset);
     let gutter = format!("{line_no:>5} | ");
     let pad: String = " ".repeat(gutter.len() - 2);
-    format!("{gutter}{}\n{pad}| {}{}\n", line.trim_end(), " ".repeat(column), paint("^", "1;31", colour))
+    format!(
+        "{gutter}{}\n{pad}| {}{}\n",
+        line.trim_end(),
+        " ".repeat(column),
+        paint("^", "1;31", colour)
+    )
 }
 
 fn summary(report: &Report) -> String {

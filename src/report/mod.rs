@@ -36,9 +36,15 @@ pub fn render(format: Format, reports: &[Report], options: &RenderOptions) -> St
             };
             serde_json::to_string_pretty(&value).unwrap_or_default() + "\n"
         }
-        Format::Jsonl => reports.iter().map(|r| khronos_report(r).to_string() + "\n").collect(),
+        Format::Jsonl => reports
+            .iter()
+            .map(|r| khronos_report(r).to_string() + "\n")
+            .collect(),
         Format::Sarif => sarif::render(reports),
-        Format::Github => reports.iter().flat_map(|r| r.diagnostics.iter().map(move |d| github_line(r, d))).collect(),
+        Format::Github => reports
+            .iter()
+            .flat_map(|r| r.diagnostics.iter().map(move |d| github_line(r, d)))
+            .collect(),
     }
 }
 
@@ -69,7 +75,11 @@ fn github_line(report: &Report, d: &Diagnostic) -> String {
         Severity::Info | Severity::Hint => "notice",
     };
     let position = line_col(report, d).map_or(String::new(), |(l, c)| format!(",line={l},col={c}"));
-    let escape = |s: &str| s.replace('%', "%25").replace('\r', "%0D").replace('\n', "%0A");
+    let escape = |s: &str| {
+        s.replace('%', "%25")
+            .replace('\r', "%0D")
+            .replace('\n', "%0A")
+    };
     format!(
         "::{level} file={}{position},title={}::{}{}\n",
         escape(&report.uri).replace(',', "%2C").replace(':', "%3A"),
@@ -126,13 +136,20 @@ pub fn khronos_report(report: &Report) -> Value {
         info_map.insert("resources".into(), Value::Array(resources));
     }
     for (key, value) in &info.counts {
-        let v = if key.starts_with("has") { json!(*value == 1) } else { json!(value) };
+        let v = if key.starts_with("has") {
+            json!(*value == 1)
+        } else {
+            json!(value)
+        };
         info_map.insert((*key).into(), v);
     }
     let mut root = Map::new();
     root.insert("uri".into(), json!(report.uri));
     root.insert("mimeType".into(), json!(report.mime_type()));
-    root.insert("validatorVersion".into(), json!(concat!("gltfmat ", env!("CARGO_PKG_VERSION"))));
+    root.insert(
+        "validatorVersion".into(),
+        json!(concat!("gltfmat ", env!("CARGO_PKG_VERSION"))),
+    );
     root.insert(
         "issues".into(),
         json!({

@@ -7,7 +7,11 @@ use serde_json::{json, Value};
 pub fn render(reports: &[Report]) -> String {
     let rules: Vec<Value> = codes::all()
         .map(|info| {
-            let help = if info.doc.is_empty() { info.summary } else { info.doc };
+            let help = if info.doc.is_empty() {
+                info.summary
+            } else {
+                info.doc
+            };
             json!({
                 "id": info.code,
                 "shortDescription": {"text": info.summary},
@@ -39,7 +43,8 @@ pub fn render(reports: &[Report]) -> String {
                 "locations": [{"physicalLocation": physical}],
             });
             if let Location::Pointer(p) = &d.location {
-                result["locations"][0]["logicalLocations"] = json!([{"fullyQualifiedName": p, "kind": "member"}]);
+                result["locations"][0]["logicalLocations"] =
+                    json!([{"fullyQualifiedName": p, "kind": "member"}]);
             }
             result
         })

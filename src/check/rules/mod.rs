@@ -23,7 +23,14 @@ const fn rule(
     run: Option<fn(&mut Context)>,
 ) -> Rule {
     Rule {
-        info: CodeInfo { code, severity, group, summary, doc, origin: Origin::Gltfmat },
+        info: CodeInfo {
+            code,
+            severity,
+            group,
+            summary,
+            doc,
+            origin: Origin::Gltfmat,
+        },
         run,
     }
 }
@@ -50,7 +57,12 @@ pub static RULES: &[Rule] = &[
 /// Runs every rule with a `run` function, unless its group is disabled.
 pub fn run_all(ctx: &mut Context) {
     for rule in RULES {
-        if ctx.options.disabled_groups.iter().any(|g| g == rule.info.group) {
+        if ctx
+            .options
+            .disabled_groups
+            .iter()
+            .any(|g| g == rule.info.group)
+        {
             continue;
         }
         if let Some(run) = rule.run {
