@@ -2,6 +2,7 @@
 //! (What it does / Why / Example) is the rule's documentation for `gltfmat rules`,
 //! `gltfmat explain` and SARIF.
 
+mod duplicate_key;
 pub mod gltf1;
 mod outside_folder;
 
@@ -36,6 +37,14 @@ const fn rule(
 }
 
 pub static RULES: &[Rule] = &[
+    rule(
+        "JSON_DUPLICATE_KEY",
+        Severity::Warning,
+        "json",
+        "A key appears twice in one JSON object; engines disagree on which value wins.",
+        duplicate_key::DOC,
+        Some(duplicate_key::check),
+    ),
     rule(
         "URI_OUTSIDE_ASSET_FOLDER",
         Severity::Error,

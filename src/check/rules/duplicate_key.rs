@@ -1,0 +1,29 @@
+//! Duplicate keys in one JSON object.
+
+use crate::check::context::Context;
+use crate::document::json;
+
+pub const DOC: &str = "\
+## What it does
+Reports an object key that appears twice in the same JSON object.
+
+## Why
+The glTF 2.0 spec says keys SHOULD be unique. JSON parsers disagree on which copy wins (most keep
+the last, some the first), so the same file loads differently in different engines. The
+Khronos validator does not detect it: its parser silently keeps the last value.
+
+## Example
+```json
+{\"materials\": [{\"name\": \"a\", \"doubleSided\": true, \"doubleSided\": false}]}
+```
+";
+
+pub fn check(ctx: &mut Context) {
+    for (pointer, _) in json::duplicate_keys(ctx.document.json_text()) {
+        ctx.emit(
+            "JSON_DUPLICATE_KEY",
+            pointer,
+            "Duplicate key: parsers disagree on which value wins (the last one was used).",
+        );
+    }
+}

@@ -1,0 +1,219 @@
+//! The `gltfmat` binary, end to end, on the bundled fixtures.
+
+use std::process::Command;
+
+fn gltfmat(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("gltfmat runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+    )
+}
+
+#[test]
+fn a_valid_asset_passes_in_both_containers() {
+    for file in [
+        "fixtures/valid/sheen-triangle.gltf",
+        "fixtures/valid/sheen-triangle.glb",
+    ] {
+        let (code, out) = gltfmat(&["check", file]);
+        assert_eq!(code, 0, "{file}: {out}");
+        assert!(out.contains("0 error(s), 0 warning(s)"), "{out}");
+    }
+}
+
+#[test]
+fn hostile_inputs_get_a_diagnostic_and_exit_1() {
+    let cases = [
+        (
+            "fixtures/broken/truncated.glb",
+            "GLB_UNEXPECTED_END_OF_CHUNK_DATA",
+        ),
+        ("fixtures/broken/claims-4gib.glb", "GLB_CHUNK_TOO_BIG"),
+        ("fixtures/broken/deep-nesting.gltf", "INVALID_JSON"),
+        (
+            "fixtures/broken/parent-dir-uri.gltf",
+            "URI_OUTSIDE_ASSET_FOLDER",
+        ),
+        (
+            "fixtures/broken/absolute-uri.gltf",
+            "URI_OUTSIDE_ASSET_FOLDER",
+        ),
+        ("fixtures/broken/bad-material.gltf", "VALUE_NOT_IN_RANGE"),
+    ];
+    for (file, expected) in cases {
+        let (code, out) = gltfmat(&["check", file]);
+        assert_eq!(code, 1, "{file}: {out}");
+        assert!(
+            out.contains(expected),
+            "{file} should report {expected}:\n{out}"
+        );
+    }
+}
+
+#[test]
+fn khronos_profile_words_a_refused_path_as_io_error() {
+    let (code, out) = gltfmat(&[
+        "check",
+        "--profile",
+        "khronos",
+        "fixtures/broken/parent-dir-uri.gltf",
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        out.contains("IO_ERROR") && !out.contains("URI_OUTSIDE_ASSET_FOLDER"),
+        "{out}"
+    );
+}
+
+#[test]
+fn human_output_has_line_col_and_a_snippet() {
+    let (code, out) = gltfmat(&["check", "fixtures/broken/duplicate-key.gltf"]);
+    assert_eq!(code, 0, "a duplicate key is a warning: {out}");
+    assert!(
+        out.contains("fixtures/broken/duplicate-key.gltf:41:7: warning[JSON_DUPLICATE_KEY]"),
+        "{out}"
+    );
+    assert!(
+        out.contains("\"doubleSided\": false"),
+        "snippet missing: {out}"
+    );
+}
+
+#[test]
+fn json_output_is_a_khronos_report() {
+    let (_, out) = gltfmat(&[
+        "check",
+        "--format",
+        "json",
+        "fixtures/broken/bad-material.gltf",
+    ]);
+    let report: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(report["mimeType"], "model/gltf+json");
+    assert_eq!(report["issues"]["numErrors"], 2);
+    let pointers: Vec<&str> = report["issues"]["messages"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|m| m["pointer"].as_str())
+        .collect();
+    assert!(
+        pointers.contains(&"/materials/0/extensions/KHR_materials_sheen/sheenRoughnessFactor"),
+        "{pointers:?}"
+    );
+}
+
+#[test]
+fn several_inputs_give_an_array_or_lines() {
+    let files = [
+        "fixtures/valid/sheen-triangle.gltf",
+        "fixtures/broken/truncated.glb",
+    ];
+    let (code, out) = gltfmat(&["check", "--format", "json", files[0], files[1]]);
+    assert_eq!(code, 1);
+    assert_eq!(
+        serde_json::from_str::<serde_json::Value>(&out)
+            .unwrap()
+            .as_array()
+            .unwrap()
+            .len(),
+        2
+    );
+    let (_, out) = gltfmat(&["check", "--format", "jsonl", files[0], files[1]]);
+    assert_eq!(out.lines().count(), 2);
+    assert!(out
+        .lines()
+        .all(|l| serde_json::from_str::<serde_json::Value>(l).is_ok()));
+}
+
+#[test]
+fn sarif_and_github_formats() {
+    let (_, out) = gltfmat(&[
+        "check",
+        "--format",
+        "sarif",
+        "fixtures/broken/bad-material.gltf",
+    ]);
+    let log: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(log["version"], "2.1.0");
+    let result = &log["runs"][0]["results"][0];
+    assert!(
+        result["locations"][0]["physicalLocation"]["region"]["startLine"]
+            .as_u64()
+            .is_some()
+    );
+    let (_, out) = gltfmat(&[
+        "check",
+        "--format",
+        "github",
+        "fixtures/broken/bad-material.gltf",
+    ]);
+    assert!(
+        out.lines()
+            .all(|l| l.starts_with("::error file=fixtures/broken/bad-material.gltf,line=")),
+        "{out}"
+    );
+}
+
+#[test]
+fn options_filter_and_override() {
+    let file = "fixtures/broken/bad-material.gltf";
+    let (code, out) = gltfmat(&[
+        "check",
+        "--ignore",
+        "UNRESOLVED_REFERENCE",
+        "--severity",
+        "VALUE_NOT_IN_RANGE=warning",
+        file,
+    ]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.contains("warning[VALUE_NOT_IN_RANGE]") && !out.contains("UNRESOLVED_REFERENCE"),
+        "{out}"
+    );
+    let (_, out) = gltfmat(&["check", "--format", "json", "--max-issues", "1", file]);
+    let report: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(report["issues"]["truncated"], true);
+    assert_eq!(report["issues"]["messages"].as_array().unwrap().len(), 1);
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    assert_eq!(gltfmat(&["check", "fixtures/no-such-file.gltf"]).0, 2);
+    assert_eq!(
+        gltfmat(&["check", "--ignore", "NOT_A_CODE", "fixtures/valid"]).0,
+        2
+    );
+}
+
+#[test]
+fn a_folder_is_walked_and_fails_on_one_broken_asset() {
+    let (code, out) = gltfmat(&["check", "fixtures"]);
+    assert_eq!(code, 1);
+    assert!(
+        out.contains("fixtures/valid/sheen-triangle.glb:")
+            && out.contains("fixtures/broken/truncated.glb:"),
+        "{out}"
+    );
+}
+
+#[test]
+fn rules_lists_every_code_once_and_explain_shows_docs() {
+    let (code, out) = gltfmat(&["rules"]);
+    assert_eq!(code, 0);
+    let codes: Vec<&str> = out
+        .lines()
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    let unique: std::collections::HashSet<_> = codes.iter().collect();
+    assert_eq!(codes.len(), unique.len());
+    assert!(codes.contains(&"JSON_DUPLICATE_KEY") && codes.contains(&"GLB_INVALID_MAGIC"));
+    let (code, out) = gltfmat(&["explain", "URI_OUTSIDE_ASSET_FOLDER"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("## Why"), "{out}");
+}
