@@ -129,12 +129,7 @@ impl<'a> Context<'a> {
         pointer: &str,
         collection: &'static str,
     ) -> Option<usize> {
-        let index = value.as_u64().or_else(|| {
-            value
-                .as_f64()
-                .filter(|f| f.fract() == 0.0 && *f >= 0.0)
-                .map(|f| f as u64)
-        })?;
+        let index = as_index(value)?;
         let len = self.items(collection).len() as u64;
         if index >= len {
             self.emit(
@@ -222,9 +217,14 @@ pub fn number(object: &Value, key: &str, default: f64) -> f64 {
 
 /// A non-negative integer member.
 pub fn unsigned(object: &Value, key: &str) -> Option<u64> {
-    let v = object.get(key)?;
-    v.as_u64().or_else(|| {
-        v.as_f64()
+    as_index(object.get(key)?)
+}
+
+/// A non-negative integer, also when written as a float (`1.0`), as glTF allows.
+fn as_index(value: &Value) -> Option<u64> {
+    value.as_u64().or_else(|| {
+        value
+            .as_f64()
             .filter(|f| f.fract() == 0.0 && *f >= 0.0)
             .map(|f| f as u64)
     })
