@@ -12,7 +12,9 @@
 //! ```
 
 pub mod check;
+pub mod color;
 pub mod document;
+pub mod legacy_pbr;
 pub mod report;
 
 pub use check::{check_bytes, CheckOptions, Profile, Report};

@@ -56,6 +56,8 @@ pub struct Context<'a> {
     pub buffers: Vec<Option<Vec<u8>>>,
     /// Header of each image, where it could be read.
     pub images: Vec<Option<ImageInfo>>,
+    /// Encoded bytes of each image, kept only with `--deep` for the pixel rules.
+    pub image_bytes: Vec<Option<Vec<u8>>>,
     pub material_needs: Vec<MaterialNeeds>,
     pub resources: Vec<ResourceInfo>,
 }
@@ -76,6 +78,7 @@ impl<'a> Context<'a> {
             used: HashSet::new(),
             buffers: Vec::new(),
             images: Vec::new(),
+            image_bytes: Vec::new(),
             material_needs: Vec::new(),
             resources: Vec::new(),
         }

@@ -246,6 +246,7 @@ pub fn declared_mime(image: &Value) -> Option<String> {
 
 pub fn check_images(ctx: &mut Context) {
     ctx.images = vec![None; ctx.items("images").len()];
+    ctx.image_bytes = vec![None; ctx.items("images").len()];
     let webp_enabled = ctx.extensions_used().contains(&"EXT_texture_webp");
     for (i, pointer, image) in ctx.objects("images") {
         let mime_type = image.get("mimeType").and_then(Value::as_str);
@@ -294,7 +295,8 @@ pub fn check_images(ctx: &mut Context) {
             image: None,
         };
         if let Some(bytes) = bytes {
-            match image_header::read(&bytes) {
+            let header = image_header::read(&bytes);
+            match header {
                 Ok(info) => {
                     let found = info.format.mime_type();
                     if let Some(media) = media_type.as_deref().filter(|m| *m != found) {
@@ -333,6 +335,9 @@ pub fn check_images(ctx: &mut Context) {
                     resource.mime_type = Some(found.to_string());
                     resource.image = Some(info.clone());
                     ctx.images[i] = Some(info);
+                    if ctx.options.deep {
+                        ctx.image_bytes[i] = Some(bytes);
+                    }
                 }
                 Err(HeaderError::Unrecognized) => ctx.emit(
                     "IMAGE_UNRECOGNIZED_FORMAT",

@@ -127,10 +127,28 @@ fn validator(khronos: bool) -> &'static Validator {
 
 /// Validates the document; returns Khronos-coded diagnostics.
 pub fn validate(doc: &Value, khronos: bool) -> Vec<Diagnostic> {
-    validator(khronos)
-        .iter_errors(doc)
+    diagnostics(validator(khronos), doc, "")
+}
+
+/// Validates a glTF 1.0 PBR material extension object found at `pointer`.
+pub fn validate_gltf1_pbr(extension: &Value, pointer: &str) -> Vec<Diagnostic> {
+    static PBR: OnceLock<Validator> = OnceLock::new();
+    let validator = PBR.get_or_init(|| {
+        let schema: Value = serde_json::from_str(GLTF1_PBR).expect("1.0 PBR schema is valid JSON");
+        jsonschema::options()
+            .build(&schema)
+            .expect("the 1.0 PBR schema compiles")
+    });
+    diagnostics(validator, extension, pointer)
+}
+
+const GLTF1_PBR: &str = include_str!("../../schema/gltf1/materials_pbr.schema.json");
+
+fn diagnostics(validator: &Validator, instance: &Value, prefix: &str) -> Vec<Diagnostic> {
+    validator
+        .iter_errors(instance)
         .flat_map(|error| {
-            let pointer = error.instance_path().to_string();
+            let pointer = format!("{prefix}{}", error.instance_path());
             let schema_path = error.schema_path().to_string();
             map_error(error.kind(), error.instance(), &pointer, &schema_path)
         })

@@ -1,9 +1,20 @@
 //! Duplicate keys in one JSON object.
 
+use super::{Rule, Run};
+use crate::check::codes::Severity;
 use crate::check::context::Context;
 use crate::document::json;
 
-pub const DOC: &str = "\
+pub const RULE: Rule = Rule::new(
+    "JSON_DUPLICATE_KEY",
+    Severity::Warning,
+    "json",
+    "A key appears twice in one JSON object; engines disagree on which value wins.",
+    DOC,
+    Run::document(check),
+);
+
+const DOC: &str = "\
 ## What it does
 Reports an object key that appears twice in the same JSON object.
 
@@ -18,7 +29,7 @@ Khronos validator does not detect it: its parser silently keeps the last value.
 ```
 ";
 
-pub fn check(ctx: &mut Context) {
+fn check(ctx: &mut Context) {
     for (pointer, _) in json::duplicate_keys(ctx.document.json_text()) {
         ctx.emit(
             "JSON_DUPLICATE_KEY",

@@ -1,81 +1,226 @@
-//! gltfmat's own rules, one per file, all registered in [`RULES`]. Each file's doc comment
-//! (What it does / Why / Example) is the rule's documentation for `gltfmat rules`,
-//! `gltfmat explain` and SARIF.
+//! gltfmat's own rules, one per file, all registered in [`RULES`]. Each file holds its rule's
+//! metadata and documentation (What it does / Why / Example), which `gltfmat rules`,
+//! `gltfmat explain` and SARIF read from this table.
 
+mod alpha_constant;
+mod alpha_missing;
+mod anisotropy_direction;
+mod anisotropy_tangent;
+mod anisotropy_zero_strength;
+mod base_color_range;
+mod colour_space_conflict;
+mod decode_limit;
 mod duplicate_key;
+pub mod exclusion;
 pub mod gltf1;
+mod greyscale_packed;
+mod linear_in_srgb;
+mod lossy_direction;
+mod metallic_mixed;
+mod normal_length;
 mod outside_folder;
+mod sheen_disabled;
+mod sheen_zero_roughness;
+mod specgloss_energy;
+mod specular_on_metal;
+mod srgb_in_linear;
+pub mod texels;
+mod undecodable;
+mod unlit_ignored;
 
 use super::codes::{CodeInfo, Origin, Severity};
 use super::context::Context;
+use super::materials::{slot_uses, SlotUse};
+use crate::document::image_header::ImageInfo;
+use texels::Texels;
 
 pub struct Rule {
     pub info: CodeInfo,
-    /// Runs the rule on a document; `None` for codes emitted by the core passes.
-    pub run: Option<fn(&mut Context)>,
+    pub run: Run,
 }
 
-const fn rule(
-    code: &'static str,
-    severity: Severity,
-    group: &'static str,
-    summary: &'static str,
-    doc: &'static str,
-    run: Option<fn(&mut Context)>,
-) -> Rule {
-    Rule {
-        info: CodeInfo {
-            code,
-            severity,
-            group,
-            summary,
-            doc,
-            origin: Origin::Gltfmat,
-        },
-        run,
+/// How a rule runs. A rule with neither part is emitted by a core pass (reading, resources).
+pub struct Run {
+    /// Reads the document.
+    pub document: Option<fn(&mut Context)>,
+    /// With `--deep`: inspects the decoded texels of each texture binding it applies to.
+    pub pixels: Option<PixelCheck>,
+}
+
+pub struct PixelCheck {
+    pub applies: fn(&SlotUse) -> bool,
+    pub inspect: fn(&mut Context, &SlotUse, &Texels),
+}
+
+impl Run {
+    pub const CORE: Run = Run {
+        document: None,
+        pixels: None,
+    };
+
+    pub const fn document(check: fn(&mut Context)) -> Run {
+        Run {
+            document: Some(check),
+            pixels: None,
+        }
+    }
+
+    pub const fn pixels(
+        applies: fn(&SlotUse) -> bool,
+        inspect: fn(&mut Context, &SlotUse, &Texels),
+    ) -> Run {
+        Run {
+            document: None,
+            pixels: Some(PixelCheck { applies, inspect }),
+        }
     }
 }
 
-pub static RULES: &[Rule] = &[
-    rule(
-        "JSON_DUPLICATE_KEY",
-        Severity::Warning,
-        "json",
-        "A key appears twice in one JSON object; engines disagree on which value wins.",
-        duplicate_key::DOC,
-        Some(duplicate_key::check),
+impl Rule {
+    pub const fn new(
+        code: &'static str,
+        severity: Severity,
+        group: &'static str,
+        summary: &'static str,
+        doc: &'static str,
+        run: Run,
+    ) -> Rule {
+        Rule {
+            info: CodeInfo {
+                code,
+                severity,
+                group,
+                summary,
+                doc,
+                origin: Origin::Gltfmat,
+            },
+            run,
+        }
+    }
+}
+
+pub static RULES: &[&Rule] = &[
+    &duplicate_key::RULE,
+    &outside_folder::RULE,
+    &gltf1::RULE,
+    &gltf1::PBR_RULE,
+    &exclusion::RULE,
+    &anisotropy_tangent::RULE,
+    &alpha_missing::RULE,
+    &greyscale_packed::RULE,
+    &lossy_direction::RULE,
+    &colour_space_conflict::RULE,
+    &linear_in_srgb::RULE,
+    &srgb_in_linear::RULE,
+    &sheen_disabled::RULE,
+    &sheen_zero_roughness::RULE,
+    &anisotropy_zero_strength::RULE,
+    &unlit_ignored::RULE,
+    &specular_on_metal::RULE,
+    &undecodable::RULE,
+    &decode_limit::RULE,
+    &anisotropy_direction::RULE,
+    &normal_length::RULE,
+    &alpha_constant::RULE,
+    &base_color_range::RULE,
+    &metallic_mixed::RULE,
+    &specgloss_energy::RULE,
+];
+
+/// Khronos codes that gltfmat's default profile reports differently, and why. The
+/// conformance test allows exactly these differences (plus gltfmat's own codes).
+pub static SUPERSESSIONS: &[(&str, &str)] = &[
+    (
+        "MULTIPLE_EXTENSIONS",
+        "Replaced by MATERIAL_EXTENSION_EXCLUDED for real exclusions and dropped for combinations the specs allow.",
     ),
-    rule(
-        "URI_OUTSIDE_ASSET_FOLDER",
-        Severity::Error,
-        "resources",
-        "A URI resolves outside the asset's folder (absolute path, `..` escape or symlink) and was not read.",
-        outside_folder::DOC,
-        None,
+    (
+        "UNUSED_MESH_TANGENT",
+        "Not reported on anisotropy materials: KHR_materials_anisotropy reads the tangent even without an anisotropyTexture.",
     ),
-    rule(
-        "GLTF_1_0_ASSET",
-        Severity::Error,
-        "gltf1",
-        "The asset is glTF 1.0: run `gltfmat upgrade` to convert it to glTF 2.0.",
-        gltf1::DOC,
-        None,
+    (
+        "KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD",
+        "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
+    ),
+    (
+        "KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD",
+        "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
+    ),
+    (
+        "IO_ERROR",
+        "A URI leaving the asset's folder is URI_OUTSIDE_ASSET_FOLDER, not a failed read.",
     ),
 ];
 
-/// Runs every rule with a `run` function, unless its group is disabled.
+fn enabled(ctx: &Context, rule: &Rule) -> bool {
+    !ctx.options
+        .disabled_groups
+        .iter()
+        .any(|g| g.eq_ignore_ascii_case(rule.info.group))
+}
+
+/// Runs every enabled document rule, then (with `--deep`) every enabled pixel rule.
 pub fn run_all(ctx: &mut Context) {
-    for rule in RULES {
-        if ctx
-            .options
-            .disabled_groups
+    let checks: Vec<_> = RULES
+        .iter()
+        .filter(|r| enabled(ctx, r))
+        .filter_map(|r| r.run.document)
+        .collect();
+    for check in checks {
+        check(ctx);
+    }
+    if ctx.options.deep {
+        run_pixel_rules(ctx);
+    }
+}
+
+fn run_pixel_rules(ctx: &mut Context) {
+    let pixel_rules: Vec<_> = RULES
+        .iter()
+        .filter(|r| enabled(ctx, r))
+        .filter_map(|rule| rule.run.pixels.as_ref())
+        .map(|check| (check.applies, check.inspect))
+        .collect();
+    let uses = slot_uses(ctx);
+    for image in 0..ctx.items("images").len() {
+        let wanted: Vec<_> = uses
             .iter()
-            .any(|g| g == rule.info.group)
-        {
+            .filter(|u| u.images.contains(&image))
+            .flat_map(|u| {
+                pixel_rules
+                    .iter()
+                    .filter(|(applies, _)| applies(u))
+                    .map(move |(_, inspect)| (u, *inspect))
+            })
+            .collect();
+        if wanted.is_empty() {
             continue;
         }
-        if let Some(run) = rule.run {
-            run(ctx);
+        // Decoded here and dropped at the end of the iteration: one image in memory at a time.
+        let Some(texels) = texels::decode(ctx, image) else {
+            continue;
+        };
+        for (slot_use, inspect) in wanted {
+            inspect(ctx, slot_use, &texels);
         }
     }
 }
+
+/// Each texture binding paired with each image it may sample whose header could be read.
+fn bound_images<'a>(ctx: &Context<'a>) -> Vec<(SlotUse<'a>, usize, ImageInfo)> {
+    let mut bound = Vec::new();
+    for slot_use in slot_uses(ctx) {
+        let headers: Vec<_> = slot_use
+            .images
+            .iter()
+            .filter_map(|&i| Some((i, ctx.images.get(i)?.clone()?)))
+            .collect();
+        for (image, info) in headers {
+            bound.push((slot_use.clone(), image, info));
+        }
+    }
+    bound
+}
+
+/// The share of texels above which a plausibility rule reports a texture ("large areas").
+const LARGE_AREA: f64 = 0.1;

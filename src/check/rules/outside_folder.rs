@@ -1,4 +1,18 @@
-pub const DOC: &str = "\
+//! URIs that leave the asset's folder (emitted by the resource pass).
+
+use super::{Rule, Run};
+use crate::check::codes::Severity;
+
+pub const RULE: Rule = Rule::new(
+    "URI_OUTSIDE_ASSET_FOLDER",
+    Severity::Error,
+    "resources",
+    "A URI resolves outside the asset's folder (absolute path, `..` escape or symlink) and was not read.",
+    DOC,
+    Run::CORE,
+);
+
+const DOC: &str = "\
 ## What it does
 Reports a buffer or image `uri` that is an absolute path, climbs out of the asset's folder with
 `..`, or reaches outside it through a symbolic link. The file is not read.

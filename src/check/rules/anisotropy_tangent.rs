@@ -1,0 +1,67 @@
+//! Anisotropy materials need a tangent space even without an anisotropy texture.
+
+use super::{Rule, Run};
+use crate::check::codes::Severity;
+use crate::check::context::{unsigned, Context};
+use serde_json::Value;
+
+pub const RULE: Rule = Rule::new(
+    "ANISOTROPY_NO_TANGENT_SPACE",
+    Severity::Error,
+    "materials",
+    "A primitive uses a KHR_materials_anisotropy material but has no NORMAL + TANGENT and its material no normal texture.",
+    DOC,
+    Run::document(check),
+);
+
+const DOC: &str = "\
+## What it does
+Reports a mesh primitive whose material uses `KHR_materials_anisotropy`, has no texture that
+already demands a tangent space (normal, clearcoat normal or anisotropy texture), and which
+provides no `NORMAL` + `TANGENT` attributes. The pointer is the primitive's `material`.
+
+## Why
+The anisotropy direction is defined in the tangent frame, with or without an
+`anisotropyTexture` (`anisotropyRotation` rotates the tangent). The spec says the material
+MUST have a defined tangent space. The Khronos validator derives the tangent requirement from
+textures only, so an untextured anisotropy material without tangents passes silently and
+each engine invents its own direction. When a texture demands tangents, the Khronos codes
+`MESH_PRIMITIVE_NO_TANGENT_SPACE` / `MESH_PRIMITIVE_GENERATED_TANGENT_SPACE` already apply
+and this rule stays silent.
+
+Spec: KHR_materials_anisotropy, \"Anisotropy\" (tangent space MUST be defined).
+
+## Example
+```json
+{\"materials\": [{\"extensions\": {\"KHR_materials_anisotropy\": {\"anisotropyStrength\": 0.6}}}],
+ \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0, \"NORMAL\": 1}, \"material\": 0}]}]}
+```
+";
+
+fn check(ctx: &mut Context) {
+    for (_, mesh_pointer, mesh) in ctx.objects("meshes") {
+        let Some(primitives) = mesh.get("primitives").and_then(Value::as_array) else {
+            continue;
+        };
+        for (p, primitive) in primitives.iter().enumerate() {
+            let Some(needs) =
+                unsigned(primitive, "material").and_then(|m| ctx.material_needs.get(m as usize))
+            else {
+                continue;
+            };
+            let has = |name: &str| {
+                primitive
+                    .get("attributes")
+                    .and_then(|a| a.get(name))
+                    .is_some()
+            };
+            if needs.anisotropy && !needs.needs_tangent && !(has("NORMAL") && has("TANGENT")) {
+                ctx.emit(
+                    "ANISOTROPY_NO_TANGENT_SPACE",
+                    format!("{mesh_pointer}/primitives/{p}/material"),
+                    "The anisotropy material needs a tangent space, but the primitive has no NORMAL + TANGENT and the material no normal texture to generate one from.",
+                );
+            }
+        }
+    }
+}

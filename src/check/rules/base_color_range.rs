@@ -1,0 +1,114 @@
+//! Dielectric base colours outside the plausible albedo range.
+
+use super::texels::Texels;
+use super::{Rule, Run, LARGE_AREA};
+use crate::check::codes::Severity;
+use crate::check::context::{number, Context};
+use crate::check::materials::SlotUse;
+use crate::color::{linear_to_srgb, luminance, srgb_to_linear};
+use serde_json::Value;
+
+pub const RULE: Rule = Rule::new(
+    "PBR_BASE_COLOR_RANGE",
+    Severity::Hint,
+    "plausibility",
+    "A dielectric base colour is darker than sRGB 30 or brighter than sRGB 240.",
+    DOC,
+    Run {
+        document: Some(check_factor),
+        pixels: Some(super::PixelCheck { applies, inspect }),
+    },
+);
+
+const DOC: &str = "\
+## What it does
+For dielectric materials (`metallicFactor` ≤ 0.1, so no texel can be more metallic), computes
+the base colour's luminance and encodes it as 8-bit sRGB. Reports values below 30 or above
+240: from `baseColorFactor` when there is no texture, and with `--deep` from the texture
+times the factor when more than 10% of its texels are out of range.
+
+## Why
+Real non-metals reflect between about 2% (charcoal) and 90% (fresh snow) of light. Darker
+albedos make surfaces look like holes under any lighting; brighter ones glow and break
+exposure. The range is the one Substance's PBR Validate and Khronos's asset auditor use.
+This is a plausibility hint, in its own group: `--disable-group plausibility` turns it off for
+stylised content.
+
+## Example
+```json
+{\"pbrMetallicRoughness\": {\"baseColorFactor\": [0.005, 0.005, 0.005, 1], \"metallicFactor\": 0}}
+```
+";
+
+const DARKEST: f64 = 30.0;
+const BRIGHTEST: f64 = 240.0;
+
+fn is_dielectric(material: &Value) -> bool {
+    let pbr = material.get("pbrMetallicRoughness");
+    pbr.map_or(1.0, |p| number(p, "metallicFactor", 1.0)) <= 0.1
+}
+
+fn factor(material: &Value) -> [f64; 3] {
+    let list = material
+        .get("pbrMetallicRoughness")
+        .and_then(|p| p.get("baseColorFactor"))
+        .and_then(Value::as_array);
+    let channel = |i: usize| {
+        list.and_then(|l| l.get(i))
+            .and_then(Value::as_f64)
+            .unwrap_or(1.0)
+    };
+    [channel(0), channel(1), channel(2)]
+}
+
+/// Luminance of a linear colour, as an 8-bit sRGB value.
+fn srgb_level(linear: [f64; 3]) -> f64 {
+    255.0 * linear_to_srgb(luminance(linear).clamp(0.0, 1.0))
+}
+
+fn implausible(level: f64) -> bool {
+    !(DARKEST..=BRIGHTEST).contains(&level)
+}
+
+fn check_factor(ctx: &mut Context) {
+    for (_, pointer, material) in ctx.objects("materials") {
+        let pbr = material.get("pbrMetallicRoughness");
+        let textured = pbr.is_some_and(|p| p.get("baseColorTexture").is_some());
+        let unlit = material
+            .get("extensions")
+            .is_some_and(|e| e.get("KHR_materials_unlit").is_some());
+        if textured || unlit || !is_dielectric(material) {
+            continue;
+        }
+        let level = srgb_level(factor(material));
+        if implausible(level) {
+            ctx.emit(
+                "PBR_BASE_COLOR_RANGE",
+                format!("{pointer}/pbrMetallicRoughness/baseColorFactor"),
+                format!("Dielectric base colour has sRGB luminance {level:.0}, outside the plausible {DARKEST}–{BRIGHTEST}."),
+            );
+        }
+    }
+}
+
+fn applies(slot_use: &SlotUse) -> bool {
+    slot_use.slot.key == "baseColorTexture" && is_dielectric(slot_use.material)
+}
+
+fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
+    let [fr, fg, fb] = factor(slot_use.material);
+    let tally = texels.tally(|[r, g, b, _]| {
+        let linear = |c: f32, f: f64| srgb_to_linear(f64::from(c)) * f;
+        implausible(srgb_level([linear(r, fr), linear(g, fg), linear(b, fb)]))
+    });
+    if tally.fraction() > LARGE_AREA {
+        ctx.emit(
+            "PBR_BASE_COLOR_RANGE",
+            slot_use.pointer.clone(),
+            format!(
+                "Dielectric base colour is outside sRGB luminance {DARKEST}–{BRIGHTEST} in {}.",
+                tally.describe()
+            ),
+        );
+    }
+}

@@ -1,0 +1,50 @@
+//! A PNG tagged as linear is read as sRGB colour.
+
+use super::{bound_images, Rule, Run};
+use crate::check::codes::Severity;
+use crate::check::context::Context;
+use crate::document::image_header::Transfer;
+
+pub const RULE: Rule = Rule::new(
+    "IMAGE_LINEAR_IN_SRGB_SLOT",
+    Severity::Warning,
+    "colour-space",
+    "An image tagged as linear (PNG gAMA 1.0) is bound to a slot that decodes it as sRGB.",
+    DOC,
+    Run::document(check),
+);
+
+const DOC: &str = "\
+## What it does
+Reports a colour slot (base colour, emissive, sheen colour, specular colour, diffuse,
+diffuse-transmission colour, specular-glossiness RGB) bound to a PNG whose `gAMA` chunk says
+its values are linear (gamma 1.0).
+
+## Why
+glTF decodes colour textures with the sRGB transfer function whatever the file says. A file
+tagged linear was most likely written from linear values (a bake or a render), and will look
+too dark and too saturated in every engine. Either re-encode the image as sRGB or remove the
+tag if it is wrong. Images with a custom ICC profile or an unusual gamma are the Khronos
+`IMAGE_FEATURES_UNSUPPORTED` concern and are not repeated here.
+
+Spec: glTF 2.0 §3.9.2 (\"baseColorTexture … MUST be encoded with the sRGB transfer function\").
+
+## Example
+A `baseColorTexture` pointing at a PNG with `gAMA` = 100000.
+";
+
+fn check(ctx: &mut Context) {
+    for (slot_use, image, info) in bound_images(ctx) {
+        let (srgb, _) = slot_use.reads();
+        if srgb != 0 && info.transfer == Some(Transfer::Linear) {
+            ctx.emit(
+                "IMAGE_LINEAR_IN_SRGB_SLOT",
+                slot_use.pointer,
+                format!(
+                    "{} decodes image {image} as sRGB, but the image is tagged linear (gAMA 1.0).",
+                    slot_use.slot.key
+                ),
+            );
+        }
+    }
+}

@@ -1,0 +1,80 @@
+//! Metallic values between metal and dielectric.
+
+use super::texels::Texels;
+use super::{Rule, Run, LARGE_AREA};
+use crate::check::codes::Severity;
+use crate::check::context::{number, Context};
+use crate::check::materials::SlotUse;
+use serde_json::Value;
+
+pub const RULE: Rule = Rule::new(
+    "PBR_METALLIC_MIXED",
+    Severity::Hint,
+    "plausibility",
+    "Metallic is between 0.1 and 0.9, a mix of metal and dielectric that few real surfaces have.",
+    DOC,
+    Run {
+        document: Some(check_factor),
+        pixels: Some(super::PixelCheck { applies, inspect }),
+    },
+);
+
+const DOC: &str = "\
+## What it does
+Reports a `metallicFactor` strictly between 0.1 and 0.9 on a material without a
+metallic-roughness texture, and with `--deep` a metallic-roughness texture whose metallic
+(B times the factor) lies in that range over more than 10% of its texels.
+
+## Why
+A surface is either a metal or not; intermediate values belong only to the anti-aliased
+transitions between the two (rust edges, dust). Large areas of half-metal usually mean a
+specular or gloss map was reused as metallic, and they shade as a physically impossible
+material that looks different under every environment. A plausibility hint, in its own group.
+
+## Example
+```json
+{\"pbrMetallicRoughness\": {\"metallicFactor\": 0.5}}
+```
+";
+
+const MIXED: std::ops::Range<f64> = 0.1..0.9;
+
+fn metallic_factor(material: &Value) -> f64 {
+    material
+        .get("pbrMetallicRoughness")
+        .map_or(1.0, |p| number(p, "metallicFactor", 1.0))
+}
+
+fn check_factor(ctx: &mut Context) {
+    for (_, pointer, material) in ctx.objects("materials") {
+        let pbr = material.get("pbrMetallicRoughness");
+        let textured = pbr.is_some_and(|p| p.get("metallicRoughnessTexture").is_some());
+        let metallic = metallic_factor(material);
+        if !textured && MIXED.contains(&metallic) && metallic != MIXED.start {
+            ctx.emit(
+                "PBR_METALLIC_MIXED",
+                format!("{pointer}/pbrMetallicRoughness/metallicFactor"),
+                format!("metallicFactor {metallic} is neither metal nor dielectric."),
+            );
+        }
+    }
+}
+
+fn applies(slot_use: &SlotUse) -> bool {
+    slot_use.slot.key == "metallicRoughnessTexture"
+}
+
+fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
+    let factor = metallic_factor(slot_use.material);
+    let tally = texels.tally(|[_, _, b, _]| {
+        let metallic = f64::from(b) * factor;
+        MIXED.contains(&metallic) && metallic != MIXED.start
+    });
+    if tally.fraction() > LARGE_AREA {
+        ctx.emit(
+            "PBR_METALLIC_MIXED",
+            slot_use.pointer.clone(),
+            format!("Metallic is between 0.1 and 0.9 in {}.", tally.describe()),
+        );
+    }
+}

@@ -1,0 +1,62 @@
+//! Sheen textures on a material whose sheen colour is zero.
+
+use super::{Rule, Run};
+use crate::check::codes::Severity;
+use crate::check::context::Context;
+use crate::check::materials::{extension, slot_uses};
+use serde_json::Value;
+
+pub const RULE: Rule = Rule::new(
+    "SHEEN_TEXTURE_DISABLED",
+    Severity::Warning,
+    "materials",
+    "A sheen texture is set while sheenColorFactor is zero (its default), which disables the sheen layer.",
+    DOC,
+    Run::document(check),
+);
+
+const DOC: &str = "\
+## What it does
+Reports `sheenColorTexture` and `sheenRoughnessTexture` on a material whose
+`sheenColorFactor` is [0, 0, 0] — which is also its default when the member is missing.
+
+## Why
+The sheen colour is the factor times the texture, so a zero factor turns the whole sheen layer
+off and the textures are downloaded and decoded for nothing. The usual cause is an exporter
+writing the textures but not the factor, expecting a default of 1 as for base colour.
+
+Spec: KHR_materials_sheen, \"sheenColorFactor … default [0, 0, 0]\"; \"If the sheenColorFactor
+is zero, the whole sheen layer is disabled.\"
+
+## Example
+```json
+{\"KHR_materials_sheen\": {\"sheenColorTexture\": {\"index\": 0}}}
+```
+";
+
+/// The sheen colour factor, [0, 0, 0] when missing.
+pub fn sheen_colour_is_zero(sheen: &Value) -> bool {
+    sheen
+        .get("sheenColorFactor")
+        .and_then(Value::as_array)
+        .is_none_or(|f| f.iter().all(|c| c.as_f64() == Some(0.0)))
+}
+
+fn check(ctx: &mut Context) {
+    for slot_use in slot_uses(ctx) {
+        if slot_use.slot.extension != Some("KHR_materials_sheen") {
+            continue;
+        }
+        let sheen = extension(slot_use.material, "KHR_materials_sheen");
+        if sheen.is_some_and(sheen_colour_is_zero) {
+            ctx.emit(
+                "SHEEN_TEXTURE_DISABLED",
+                slot_use.pointer,
+                format!(
+                    "{} has no effect: sheenColorFactor is zero (its default), which disables the sheen layer.",
+                    slot_use.slot.key
+                ),
+            );
+        }
+    }
+}

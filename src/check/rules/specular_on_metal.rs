@@ -1,0 +1,55 @@
+//! KHR_materials_ior / KHR_materials_specular on a fully metallic material.
+
+use super::{Rule, Run};
+use crate::check::codes::Severity;
+use crate::check::context::{number, Context};
+use crate::check::materials::extension;
+
+pub const RULE: Rule = Rule::new(
+    "SPECULAR_ON_METAL",
+    Severity::Warning,
+    "materials",
+    "KHR_materials_ior or KHR_materials_specular is set on a fully metallic material, where it has no effect.",
+    DOC,
+    Run::document(check),
+);
+
+const DOC: &str = "\
+## What it does
+Reports `KHR_materials_ior` and `KHR_materials_specular` on a material whose metallic value is
+1 everywhere: `metallicFactor` is 1 (its default when missing) and there is no
+`metallicRoughnessTexture` that could lower it.
+
+## Why
+Both extensions change only the dielectric Fresnel term; a metal's reflectance is its base
+colour. On a fully metallic material they do nothing. The common cause is forgetting
+`metallicFactor: 0`, whose default of 1 turns the intended dielectric into a metal.
+
+Spec: KHR_materials_ior and KHR_materials_specular (both modify `dielectric_brdf` only);
+glTF 2.0 §3.9.2 (metallicFactor default 1).
+
+## Example
+```json
+{\"extensions\": {\"KHR_materials_ior\": {\"ior\": 1.45}}}
+```
+";
+
+fn check(ctx: &mut Context) {
+    for (_, pointer, material) in ctx.objects("materials") {
+        let pbr = material.get("pbrMetallicRoughness");
+        let metallic = pbr.map_or(1.0, |p| number(p, "metallicFactor", 1.0));
+        let textured = pbr.is_some_and(|p| p.get("metallicRoughnessTexture").is_some());
+        if metallic < 1.0 || textured {
+            continue;
+        }
+        for name in ["KHR_materials_ior", "KHR_materials_specular"] {
+            if extension(material, name).is_some() {
+                ctx.emit(
+                    "SPECULAR_ON_METAL",
+                    format!("{pointer}/extensions/{name}"),
+                    format!("{name} has no effect: the material is fully metallic (metallicFactor is 1, its default, and no texture lowers it)."),
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,140 @@
+//! Decoding textures for the pixel rules (`--deep`), within fixed limits, and the counting
+//! helper those rules share.
+
+use crate::check::context::Context;
+use image::{DynamicImage, ImageReader, Limits};
+use std::io::Cursor;
+
+/// Largest width or height decoded.
+const MAX_DIMENSION: u32 = 16384;
+/// Largest decoder allocation: a 8192² RGBA16 image, whatever the header claims.
+const MAX_ALLOC: u64 = 512 * 1024 * 1024;
+
+/// A decoded image.
+pub struct Texels {
+    image: DynamicImage,
+}
+
+/// How many texels matched a predicate, with the first one as an example.
+pub struct Tally {
+    pub count: u64,
+    pub total: u64,
+    pub example: Option<(u32, u32, [f32; 4])>,
+}
+
+/// Decodes image `index`, reporting IMAGE_UNDECODABLE or IMAGE_DECODE_LIMIT on failure.
+pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
+    let bytes = ctx.image_bytes.get(index)?.as_deref()?;
+    let mut limits = Limits::default();
+    limits.max_image_width = Some(MAX_DIMENSION);
+    limits.max_image_height = Some(MAX_DIMENSION);
+    limits.max_alloc = Some(MAX_ALLOC);
+    let mut reader = ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .ok()?;
+    reader.limits(limits);
+    match reader.decode() {
+        Ok(image) => Some(Texels { image }),
+        Err(image::ImageError::Limits(_)) => {
+            ctx.emit(
+                "IMAGE_DECODE_LIMIT",
+                format!("/images/{index}"),
+                format!("Image is larger than the decoding limits ({MAX_DIMENSION}² texels, {} MiB); its pixel rules were skipped.", MAX_ALLOC >> 20),
+            );
+            None
+        }
+        Err(error) => {
+            ctx.emit(
+                "IMAGE_UNDECODABLE",
+                format!("/images/{index}"),
+                format!("Image data cannot be decoded: {error}."),
+            );
+            None
+        }
+    }
+}
+
+impl Texels {
+    #[cfg(test)]
+    pub fn from_image(image: DynamicImage) -> Texels {
+        Texels { image }
+    }
+
+    pub fn has_alpha(&self) -> bool {
+        self.image.color().has_alpha()
+    }
+
+    /// Calls `f(x, y, rgba)` for every texel, channels normalised to 0..1; greyscale is
+    /// expanded to RGB and a missing alpha reads 1, as a renderer samples it.
+    pub fn visit(&self, mut f: impl FnMut(u32, u32, [f32; 4])) {
+        let width = self.image.width().max(1);
+        let channels = usize::from(self.image.color().channel_count());
+        let mut emit = |i: usize, texel: &[f32]| {
+            let rgba = match *texel {
+                [l] => [l, l, l, 1.0],
+                [l, a] => [l, l, l, a],
+                [r, g, b] => [r, g, b, 1.0],
+                [r, g, b, a, ..] => [r, g, b, a],
+                [] => [0.0; 4],
+            };
+            f(i as u32 % width, i as u32 / width, rgba);
+        };
+        let mut buffer = [0f32; 4];
+        match &self.image {
+            DynamicImage::ImageLuma8(_)
+            | DynamicImage::ImageLumaA8(_)
+            | DynamicImage::ImageRgb8(_)
+            | DynamicImage::ImageRgba8(_) => {
+                for (i, texel) in self.image.as_bytes().chunks_exact(channels).enumerate() {
+                    for (out, &v) in buffer.iter_mut().zip(texel) {
+                        *out = f32::from(v) / 255.0;
+                    }
+                    emit(i, &buffer[..channels]);
+                }
+            }
+            _ => {
+                let wide = self.image.to_rgba32f();
+                for (i, texel) in wide.as_raw().chunks_exact(4).enumerate() {
+                    emit(i, texel);
+                }
+            }
+        }
+    }
+
+    /// Counts the texels for which `matches` holds.
+    pub fn tally(&self, mut matches: impl FnMut([f32; 4]) -> bool) -> Tally {
+        let mut tally = Tally {
+            count: 0,
+            total: 0,
+            example: None,
+        };
+        self.visit(|x, y, rgba| {
+            tally.total += 1;
+            if matches(rgba) {
+                tally.count += 1;
+                tally.example.get_or_insert((x, y, rgba));
+            }
+        });
+        tally
+    }
+}
+
+impl Tally {
+    pub fn fraction(&self) -> f64 {
+        self.count as f64 / self.total.max(1) as f64
+    }
+
+    /// "3 of 16 texels (18.8%), e.g. texel (2, 0) = RGBA 8-bit (128, 128, 255, 255)".
+    pub fn describe(&self) -> String {
+        let example = self.example.map_or(String::new(), |(x, y, rgba)| {
+            let [r, g, b, a] = rgba.map(|c| (c * 255.0).round() as u32);
+            format!(", e.g. texel ({x}, {y}) = RGBA 8-bit ({r}, {g}, {b}, {a})")
+        });
+        format!(
+            "{} of {} texels ({:.1}%){example}",
+            self.count,
+            self.total,
+            100.0 * self.fraction()
+        )
+    }
+}
