@@ -59,6 +59,9 @@ struct CheckArgs {
     /// Decode textures for the pixel rules.
     #[arg(long)]
     deep: bool,
+    /// Skip a rule group, e.g. `plausibility` (repeatable; groups are listed by `gltfmat rules`).
+    #[arg(long = "disable-group")]
+    disabled_groups: Vec<String>,
     /// No progress output.
     #[arg(long, short)]
     quiet: bool,
@@ -236,6 +239,9 @@ fn build_options(args: &CheckArgs) -> Result<CheckOptions, String> {
         options.max_issues = n;
     }
     options.deep |= args.deep;
+    options
+        .disabled_groups
+        .extend(args.disabled_groups.iter().cloned());
     for code in options
         .ignore
         .iter()

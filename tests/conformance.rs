@@ -4,6 +4,8 @@
 //!
 //! The check-core folders must pass every case; the other folders are printed, not required.
 
+use gltfmat::check::codes::{self, Origin};
+use gltfmat::check::rules::SUPERSESSIONS;
 use gltfmat::check::{check_bytes, CheckOptions, Location, Profile};
 use gltfmat::document::uri::FolderResources;
 use serde_json::Value;
@@ -85,36 +87,46 @@ fn expected(report: &Value) -> BTreeMap<Key, usize> {
     map
 }
 
-/// Runs one case; returns a description of the difference, or None when it matches.
-fn run_case(report_path: &Path) -> Option<String> {
-    let asset = PathBuf::from(
+fn asset_of(report_path: &Path) -> PathBuf {
+    PathBuf::from(
         report_path
             .to_string_lossy()
             .trim_end_matches(".report.json"),
-    );
-    let expected_report: Value =
-        serde_json::from_slice(&std::fs::read(report_path).unwrap()).unwrap();
+    )
+}
+
+/// The multiset of (code, location, severity) gltfmat reports for an asset.
+fn diagnose(asset: &Path, profile: Profile) -> BTreeMap<Key, usize> {
     let options = CheckOptions {
-        profile: Profile::Khronos,
+        profile,
         ..Default::default()
     };
     let loader = FolderResources::new(asset.parent().unwrap());
     let report = check_bytes(
         &asset.to_string_lossy(),
-        std::fs::read(&asset).unwrap(),
+        std::fs::read(asset).unwrap(),
         &loader,
         &options,
     );
-    let mut actual = BTreeMap::new();
+    let mut found = BTreeMap::new();
     for d in &report.diagnostics {
         let location = match &d.location {
             Location::Pointer(p) => p.clone(),
             Location::Offset(o) => format!("@{o}"),
         };
-        *actual
+        *found
             .entry((d.code.to_string(), location, d.severity as u64))
             .or_insert(0) += 1;
     }
+    found
+}
+
+/// Runs one case; returns a description of the difference, or None when it matches.
+fn run_case(report_path: &Path) -> Option<String> {
+    let asset = asset_of(report_path);
+    let expected_report: Value =
+        serde_json::from_slice(&std::fs::read(report_path).unwrap()).unwrap();
+    let actual = diagnose(&asset, Profile::Khronos);
     let want = expected(&expected_report);
     if want == actual {
         return None;
@@ -173,5 +185,87 @@ fn khronos_profile_matches_the_khronos_corpus() {
         required_failures.is_empty(),
         "required conformance cases differ:\n{}",
         required_failures.join("\n")
+    );
+}
+
+fn all_folders(root: &Path) -> Vec<PathBuf> {
+    ["base/data", "ext"]
+        .iter()
+        .flat_map(|group| std::fs::read_dir(root.join(group)).unwrap().flatten())
+        .map(|e| e.path())
+        .filter(|p| p.is_dir())
+        .collect()
+}
+
+/// The default profile differs from the Khronos profile only by gltfmat's own rules and by
+/// the documented supersessions; and on the corpus's valid assets (no expected error or
+/// warning) gltfmat's rules stay silent. Every difference is printed.
+#[test]
+fn default_profile_differs_only_by_documented_rules() {
+    let root = corpus();
+    let mut undocumented = Vec::new();
+    let mut noisy_on_valid = Vec::new();
+    let mut differences = 0;
+    for folder in all_folders(&root) {
+        for report_path in cases(&folder) {
+            let asset = asset_of(&report_path);
+            let khronos = diagnose(&asset, Profile::Khronos);
+            let default = diagnose(&asset, Profile::Default);
+            let expected_report: Value =
+                serde_json::from_slice(&std::fs::read(&report_path).unwrap()).unwrap();
+            let valid = ["numErrors", "numWarnings"]
+                .iter()
+                .all(|k| expected_report["issues"][k].as_u64() == Some(0));
+            let gltf1 = default.keys().any(|k| k.0 == "GLTF_1_0_ASSET");
+            let keys: std::collections::BTreeSet<_> =
+                khronos.keys().chain(default.keys()).collect();
+            for key in keys {
+                let (k, d) = (khronos.get(key), default.get(key));
+                if k == d {
+                    continue;
+                }
+                differences += 1;
+                let code = key.0.as_str();
+                let origin = codes::find(code).map(|i| i.origin);
+                let why = if origin == Some(Origin::Gltfmat) {
+                    if valid {
+                        noisy_on_valid.push(format!("{}: {key:?}", asset.display()));
+                    }
+                    "gltfmat rule".to_string()
+                } else if let Some((_, why)) = SUPERSESSIONS
+                    .iter()
+                    .find(|(c, _)| *c == code || (gltf1 && *c == "GLTF_1_0_ASSET"))
+                {
+                    format!("supersession: {why}")
+                } else {
+                    undocumented.push(format!(
+                        "{}: {key:?} khronos={k:?} default={d:?}",
+                        asset.display()
+                    ));
+                    "UNDOCUMENTED".to_string()
+                };
+                let rel = asset
+                    .strip_prefix(&root)
+                    .unwrap_or(&asset)
+                    .display()
+                    .to_string();
+                println!(
+                    "{rel}: {key:?} khronos×{} default×{} — {why}",
+                    k.unwrap_or(&0),
+                    d.unwrap_or(&0)
+                );
+            }
+        }
+    }
+    println!("{differences} difference(s) between the default and Khronos profiles");
+    assert!(
+        undocumented.is_empty(),
+        "undocumented differences:\n{}",
+        undocumented.join("\n")
+    );
+    assert!(
+        noisy_on_valid.is_empty(),
+        "gltfmat rules fire on valid corpus assets:\n{}",
+        noisy_on_valid.join("\n")
     );
 }

@@ -147,6 +147,10 @@ pub static SUPERSESSIONS: &[(&str, &str)] = &[
         "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
     ),
     (
+        "GLTF_1_0_ASSET",
+        "On a glTF 1.0 document the 2.0 passes do not run: every Khronos code is replaced by GLTF_1_0_ASSET and the 1.0 PBR checks.",
+    ),
+    (
         "IO_ERROR",
         "A URI leaving the asset's folder is URI_OUTSIDE_ASSET_FOLDER, not a failed read.",
     ),

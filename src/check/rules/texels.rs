@@ -67,35 +67,35 @@ impl Texels {
     /// Calls `f(x, y, rgba)` for every texel, channels normalised to 0..1; greyscale is
     /// expanded to RGB and a missing alpha reads 1, as a renderer samples it.
     pub fn visit(&self, mut f: impl FnMut(u32, u32, [f32; 4])) {
-        let width = self.image.width().max(1);
-        let channels = usize::from(self.image.color().channel_count());
-        let mut emit = |i: usize, texel: &[f32]| {
-            let rgba = match *texel {
-                [l] => [l, l, l, 1.0],
-                [l, a] => [l, l, l, a],
-                [r, g, b] => [r, g, b, 1.0],
-                [r, g, b, a, ..] => [r, g, b, a],
-                [] => [0.0; 4],
-            };
-            f(i as u32 % width, i as u32 / width, rgba);
-        };
-        let mut buffer = [0f32; 4];
+        let width = self.image.width() as usize;
+        if width == 0 {
+            return;
+        }
         match &self.image {
             DynamicImage::ImageLuma8(_)
             | DynamicImage::ImageLumaA8(_)
             | DynamicImage::ImageRgb8(_)
             | DynamicImage::ImageRgba8(_) => {
-                for (i, texel) in self.image.as_bytes().chunks_exact(channels).enumerate() {
-                    for (out, &v) in buffer.iter_mut().zip(texel) {
-                        *out = f32::from(v) / 255.0;
+                let channels = usize::from(self.image.color().channel_count());
+                let unit: [f32; 256] = std::array::from_fn(|v| v as f32 / 255.0);
+                let rows = self.image.as_bytes().chunks_exact(width * channels);
+                for (y, row) in rows.enumerate() {
+                    for (x, t) in row.chunks_exact(channels).enumerate() {
+                        let c = |i: usize| unit[usize::from(t[i])];
+                        let rgba = match channels {
+                            1 => [c(0), c(0), c(0), 1.0],
+                            2 => [c(0), c(0), c(0), c(1)],
+                            3 => [c(0), c(1), c(2), 1.0],
+                            _ => [c(0), c(1), c(2), c(3)],
+                        };
+                        f(x as u32, y as u32, rgba);
                     }
-                    emit(i, &buffer[..channels]);
                 }
             }
             _ => {
                 let wide = self.image.to_rgba32f();
-                for (i, texel) in wide.as_raw().chunks_exact(4).enumerate() {
-                    emit(i, texel);
+                for (x, y, texel) in wide.enumerate_pixels() {
+                    f(x, y, texel.0);
                 }
             }
         }

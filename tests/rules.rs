@@ -1,0 +1,601 @@
+//! gltfmat's material rules as a specification: each case is a fixture (a clean base asset
+//! changed by a JSON merge patch, with images generated here so that what they contain is
+//! visible in the test) and the complete list of issues it must produce. Near-misses list
+//! nothing: they must stay silent. Every rule has at least one firing case and one near-miss.
+
+use base64::Engine;
+use gltfmat::check::codes::{self, Origin};
+use gltfmat::check::rules::RULES;
+use gltfmat::check::{check_bytes, CheckOptions, Location};
+use gltfmat::document::uri::{FolderResources, NoResources};
+use image::{DynamicImage, GrayImage, ImageFormat, RgbImage, RgbaImage};
+use serde_json::{json, Value};
+use std::collections::BTreeSet;
+use std::io::Cursor;
+
+// ---------------------------------------------------------------- fixtures
+
+/// A one-triangle asset with NORMAL, TEXCOORD_0/1 (tangent data in the buffer, bound by `with_tangents`) and a plain dielectric material:
+/// it has no issue at all (checked by `the_base_fixture_is_clean`).
+fn base() -> Value {
+    asset(false)
+}
+
+fn asset(tangents: bool) -> Value {
+    let mut data = Vec::new();
+    let mut put = |values: &[f32]| values.iter().for_each(|v| data.extend(v.to_le_bytes()));
+    put(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]); // POSITION, 0
+    put(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0]); // NORMAL, 36
+    put(&[1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0]); // TANGENT, 72
+    put(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0]); // TEXCOORD, 120
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&data)
+    );
+    let accessor = |offset: usize, kind: &str| json!({"bufferView": 0, "byteOffset": offset, "componentType": 5126, "count": 3, "type": kind});
+    let mut position = accessor(0, "VEC3");
+    position["min"] = json!([0.0, 0.0, 0.0]);
+    position["max"] = json!([1.0, 1.0, 0.0]);
+    json!({
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": attributes(tangents), "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0}}],
+        "accessors": if tangents {
+            json!([position, accessor(36, "VEC3"), accessor(120, "VEC2"), accessor(72, "VEC4")])
+        } else {
+            json!([position, accessor(36, "VEC3"), accessor(120, "VEC2")])
+        },
+        "bufferViews": [{"buffer": 0, "byteLength": data.len(), "target": 34962}],
+        "buffers": [{"uri": uri, "byteLength": data.len()}]
+    })
+}
+
+fn attributes(tangents: bool) -> Value {
+    let mut attributes = json!({"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2, "TEXCOORD_1": 2});
+    if tangents {
+        attributes["TANGENT"] = json!(3);
+    }
+    attributes
+}
+
+/// The base asset with TANGENT on its primitive.
+fn with_tangents() -> Value {
+    let full = asset(true);
+    json!({"meshes": full["meshes"], "accessors": full["accessors"]})
+}
+
+/// RFC 7386 JSON merge patch.
+fn merge(target: &mut Value, patch: &Value) {
+    match (target, patch) {
+        (Value::Object(target), Value::Object(patch)) => {
+            for (key, value) in patch {
+                if value.is_null() {
+                    target.remove(key);
+                } else {
+                    merge(target.entry(key.clone()).or_insert(Value::Null), value);
+                }
+            }
+        }
+        (target, patch) => *target = patch.clone(),
+    }
+}
+
+/// Image bytes as a PNG data URI.
+fn data_uri(mime: &str, bytes: &[u8]) -> String {
+    format!(
+        "data:{mime};base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(bytes)
+    )
+}
+
+fn encode(image: DynamicImage, format: ImageFormat) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    image
+        .write_to(&mut Cursor::new(&mut bytes), format)
+        .expect("encodes");
+    bytes
+}
+
+fn png(image: impl Into<DynamicImage>) -> Vec<u8> {
+    encode(image.into(), ImageFormat::Png)
+}
+
+fn rgb(colour: [u8; 3]) -> Vec<u8> {
+    png(RgbImage::from_pixel(4, 4, image::Rgb(colour)))
+}
+
+fn rgba(colour: [u8; 4]) -> Vec<u8> {
+    png(RgbaImage::from_pixel(4, 4, image::Rgba(colour)))
+}
+
+fn grey(level: u8) -> Vec<u8> {
+    png(GrayImage::from_pixel(4, 4, image::Luma([level])))
+}
+
+/// A 4×4 RGBA image of `fill` with texel (1, 2) set to `odd`.
+fn rgba_with_one(fill: [u8; 4], odd: [u8; 4]) -> Vec<u8> {
+    png(RgbaImage::from_fn(4, 4, |x, y| {
+        image::Rgba(if (x, y) == (1, 2) { odd } else { fill })
+    }))
+}
+
+fn jpeg(colour: [u8; 3]) -> Vec<u8> {
+    encode(
+        RgbImage::from_pixel(4, 4, image::Rgb(colour)).into(),
+        ImageFormat::Jpeg,
+    )
+}
+
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &byte in bytes {
+        crc ^= u32::from(byte);
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+fn chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
+    let mut out = (data.len() as u32).to_be_bytes().to_vec();
+    let body: Vec<u8> = kind.iter().chain(data).copied().collect();
+    out.extend(&body);
+    out.extend(crc32(&body).to_be_bytes());
+    out
+}
+
+/// A PNG with an extra ancillary chunk right after IHDR.
+fn tagged(png: Vec<u8>, kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
+    let after_ihdr = 8 + 25;
+    let mut out = png[..after_ihdr].to_vec();
+    out.extend(chunk(kind, data));
+    out.extend(&png[after_ihdr..]);
+    out
+}
+
+fn linear_tagged(png: Vec<u8>) -> Vec<u8> {
+    tagged(png, b"gAMA", &100_000u32.to_be_bytes())
+}
+
+fn srgb_tagged(png: Vec<u8>) -> Vec<u8> {
+    tagged(png, b"sRGB", &[0])
+}
+
+/// A PNG whose compressed pixel data is damaged (the header is intact).
+fn corrupt_png() -> Vec<u8> {
+    let mut bytes = rgb([10, 20, 30]);
+    let idat = bytes.windows(4).position(|w| w == b"IDAT").expect("IDAT");
+    for byte in &mut bytes[idat + 4..idat + 12] {
+        *byte ^= 0xA5;
+    }
+    bytes
+}
+
+/// A valid PNG header claiming 32768 × 32768 RGBA texels, with no pixel data behind it.
+fn huge_png_header() -> Vec<u8> {
+    let mut ihdr = 32_768u32.to_be_bytes().to_vec();
+    ihdr.extend(32_768u32.to_be_bytes());
+    ihdr.extend([8, 6, 0, 0, 0]);
+    let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
+    out.extend(chunk(b"IHDR", &ihdr));
+    out.extend(chunk(b"IDAT", &[0x78, 0x9c]));
+    out.extend(chunk(b"IEND", &[]));
+    out
+}
+
+// ---------------------------------------------------------------- running
+
+struct Case {
+    name: &'static str,
+    /// For a near-miss: the rule it must not trigger.
+    silent_for: Option<&'static str>,
+    document: Value,
+    deep: bool,
+    expected: Vec<(&'static str, String)>,
+}
+
+/// A case on the base asset: `material` replaces material 0, `images[i]` becomes texture i.
+fn case(name: &'static str, material: Value, images: Vec<Vec<u8>>) -> Case {
+    let mut document = base();
+    document["materials"] = json!([material]);
+    if !images.is_empty() {
+        let mime = |bytes: &[u8]| {
+            if bytes.starts_with(&[0xFF, 0xD8]) {
+                "image/jpeg"
+            } else {
+                "image/png"
+            }
+        };
+        document["images"] = images
+            .iter()
+            .map(|bytes| json!({"uri": data_uri(mime(bytes), bytes)}))
+            .collect();
+        document["textures"] = (0..images.len()).map(|i| json!({"source": i})).collect();
+    }
+    Case {
+        name,
+        silent_for: None,
+        document,
+        deep: false,
+        expected: Vec::new(),
+    }
+}
+
+/// A case that looks like `code`'s fixture but must not trigger it.
+fn near_miss(
+    code: &'static str,
+    name: &'static str,
+    material: Value,
+    images: Vec<Vec<u8>>,
+) -> Case {
+    let mut near_miss = case(name, material, images);
+    near_miss.silent_for = Some(code);
+    near_miss
+}
+
+impl Case {
+    fn patch(mut self, patch: Value) -> Case {
+        merge(&mut self.document, &patch);
+        self
+    }
+
+    fn deep(mut self) -> Case {
+        self.deep = true;
+        self
+    }
+
+    fn expect(mut self, code: &'static str, pointer: &str) -> Case {
+        self.expected.push((code, pointer.to_string()));
+        self
+    }
+
+    /// Declares every extension the document uses, so that no case is about that.
+    fn declared(mut self) -> Value {
+        let mut names = BTreeSet::new();
+        collect_extension_names(&self.document, &mut names);
+        if !names.is_empty() {
+            self.document["extensionsUsed"] = json!(names);
+        }
+        self.document
+    }
+}
+
+fn collect_extension_names(value: &Value, names: &mut BTreeSet<String>) {
+    match value {
+        Value::Object(map) => {
+            for (key, child) in map {
+                if key == "extensions" {
+                    names.extend(
+                        child
+                            .as_object()
+                            .into_iter()
+                            .flat_map(|e| e.keys().cloned()),
+                    );
+                }
+                collect_extension_names(child, names);
+            }
+        }
+        Value::Array(items) => items.iter().for_each(|v| collect_extension_names(v, names)),
+        _ => {}
+    }
+}
+
+/// Every issue found, as (code, pointer), with each severity checked against the registry.
+fn issues(uri: &str, bytes: Vec<u8>, deep: bool, folder: Option<&str>) -> Vec<(String, String)> {
+    let options = CheckOptions {
+        deep,
+        ..CheckOptions::default()
+    };
+    let report = match folder {
+        Some(folder) => check_bytes(uri, bytes, &FolderResources::new(folder), &options),
+        None => check_bytes(uri, bytes, &NoResources, &options),
+    };
+    let mut found: Vec<_> = report
+        .diagnostics
+        .iter()
+        .map(|d| {
+            assert_eq!(
+                d.severity,
+                codes::default_severity(d.code),
+                "{uri}: {} has its registered severity",
+                d.code
+            );
+            let at = match &d.location {
+                Location::Pointer(p) => p.clone(),
+                Location::Offset(o) => format!("@{o}"),
+            };
+            (d.code.to_string(), at)
+        })
+        .collect();
+    found.sort();
+    found
+}
+
+fn run(case: Case) -> Vec<String> {
+    let (name, deep) = (case.name, case.deep);
+    let mut expected: Vec<_> = case
+        .expected
+        .iter()
+        .map(|(c, p)| (c.to_string(), p.clone()))
+        .collect();
+    expected.sort();
+    let text = serde_json::to_vec_pretty(&case.declared()).expect("serialises");
+    let found = issues(name, text, deep, None);
+    assert_eq!(found, expected, "case `{name}`");
+    expected.into_iter().map(|(code, _)| code).collect()
+}
+
+const M0: &str = "/materials/0";
+
+fn at(suffix: &str) -> String {
+    format!("{M0}{suffix}")
+}
+
+fn opaque_grey() -> Value {
+    json!({"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0})
+}
+
+fn material(extra: Value) -> Value {
+    let mut m = json!({"pbrMetallicRoughness": opaque_grey()});
+    merge(&mut m, &extra);
+    m
+}
+
+fn visible_sheen() -> Value {
+    json!({"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.5})
+}
+
+fn spec_gloss() -> Value {
+    json!({"diffuseFactor": [0.5, 0.5, 0.5, 1.0], "specularFactor": [0.04, 0.04, 0.04]})
+}
+
+// ---------------------------------------------------------------- the cases
+
+fn cases() -> Vec<Case> {
+    let ext = |name: &str, body: Value| json!({"extensions": {name: body}});
+    let sheen_p = "/extensions/KHR_materials_sheen";
+    vec![
+        // -- exclusions
+        case("specgloss + sheen", material(json!({"extensions": {
+            "KHR_materials_pbrSpecularGlossiness": spec_gloss(), "KHR_materials_sheen": visible_sheen()}})), vec![])
+            .expect("MATERIAL_EXTENSION_EXCLUDED", &at(sheen_p)),
+        case("unlit + emissive_strength", material(json!({"emissiveFactor": [1.0, 1.0, 1.0], "extensions": {
+            "KHR_materials_unlit": {}, "KHR_materials_emissive_strength": {"emissiveStrength": 2.0}}})), vec![])
+            .expect("MATERIAL_EXTENSION_EXCLUDED", &at("/extensions/KHR_materials_emissive_strength")),
+        near_miss("MATERIAL_EXTENSION_EXCLUDED", "specgloss + emissive_strength is allowed", material(json!({"emissiveFactor": [1.0, 1.0, 1.0], "extensions": {
+            "KHR_materials_pbrSpecularGlossiness": spec_gloss(), "KHR_materials_emissive_strength": {"emissiveStrength": 2.0}}})), vec![]),
+        near_miss("MATERIAL_EXTENSION_EXCLUDED", "sheen + clearcoat is allowed", material(json!({"extensions": {
+            "KHR_materials_sheen": visible_sheen(), "KHR_materials_clearcoat": {"clearcoatFactor": 1.0}}})), vec![]),
+        case("unknown vendor extension keeps the Khronos warning", material(json!({"extensions": {
+            "KHR_materials_unlit": {}, "VENDOR_materials_glow": {}}})), vec![])
+            .expect("MULTIPLE_EXTENSIONS", &at("/extensions/KHR_materials_unlit"))
+            .expect("UNSUPPORTED_EXTENSION", "/extensionsUsed/1"),
+        // -- tangent space
+        case("anisotropy without texture or tangents", material(ext("KHR_materials_anisotropy", json!({"anisotropyStrength": 0.5}))), vec![])
+            .expect("ANISOTROPY_NO_TANGENT_SPACE", "/meshes/0/primitives/0/material"),
+        near_miss("ANISOTROPY_NO_TANGENT_SPACE", "anisotropy with tangents (they are used)", material(ext("KHR_materials_anisotropy", json!({"anisotropyStrength": 0.5}))), vec![]).patch(with_tangents()),
+        near_miss("ANISOTROPY_NO_TANGENT_SPACE", "anisotropy with a normal texture is the Khronos warning", material(json!({"normalTexture": {"index": 0},
+            "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.5}}})), vec![rgb([128, 128, 255])])
+            .expect("MESH_PRIMITIVE_GENERATED_TANGENT_SPACE", "/meshes/0/primitives/0/material"),
+        case("anisotropy texCoord differs once the transform override applies", material(json!({"normalTexture": {"index": 0},
+            "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.5, "anisotropyTexture": {"index": 1,
+                "extensions": {"KHR_texture_transform": {"texCoord": 1}}}}}})), vec![rgb([128, 128, 255]), rgb([255, 128, 255])]).patch(with_tangents())
+            .expect("KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD", &at("/extensions/KHR_materials_anisotropy/anisotropyTexture")),
+        // -- channels
+        case("sheen roughness from an RGB image", material(ext("KHR_materials_sheen", json!({"sheenColorFactor": [1.0, 1.0, 1.0],
+            "sheenRoughnessFactor": 0.5, "sheenRoughnessTexture": {"index": 0}}))), vec![rgb([9, 9, 9])])
+            .expect("TEXTURE_ALPHA_MISSING", &at("/extensions/KHR_materials_sheen/sheenRoughnessTexture")),
+        near_miss("TEXTURE_ALPHA_MISSING", "sheen roughness from an RGBA image", material(ext("KHR_materials_sheen", json!({"sheenColorFactor": [1.0, 1.0, 1.0],
+            "sheenRoughnessFactor": 0.5, "sheenRoughnessTexture": {"index": 0}}))), vec![rgba_with_one([9, 9, 9, 128], [9, 9, 9, 64])]),
+        case("blended base colour from an RGB image", json!({"alphaMode": "BLEND",
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}), vec![rgb([128, 128, 128])])
+            .expect("TEXTURE_ALPHA_MISSING", &at("/pbrMetallicRoughness/baseColorTexture")),
+        near_miss("TEXTURE_ALPHA_MISSING", "opaque base colour from an RGB image", json!({
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}), vec![rgb([128, 128, 128])]),
+        case("metallic-roughness from a greyscale image", json!({
+            "pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 0}, "baseColorFactor": [0.5, 0.5, 0.5, 1.0]}}), vec![grey(200)])
+            .expect("TEXTURE_GREYSCALE_PACKED", &at("/pbrMetallicRoughness/metallicRoughnessTexture")),
+        near_miss("TEXTURE_GREYSCALE_PACKED", "a grey specular colour is an untinted specular", material(ext("KHR_materials_specular",
+            json!({"specularColorTexture": {"index": 0}}))), vec![grey(200)]),
+        case("normal map stored as JPEG", material(json!({"normalTexture": {"index": 0}})), vec![jpeg([128, 128, 255])]).patch(with_tangents())
+            .expect("TEXTURE_LOSSY_DIRECTION", &at("/normalTexture")),
+        near_miss("TEXTURE_LOSSY_DIRECTION", "base colour stored as JPEG", json!({
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}), vec![jpeg([128, 128, 128])]),
+        // -- colour space
+        case("one image as base colour and occlusion", json!({"occlusionTexture": {"index": 0},
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}), vec![rgb([128, 128, 128])])
+            .expect("IMAGE_COLOR_SPACE_CONFLICT", &at("/occlusionTexture")),
+        near_miss("IMAGE_COLOR_SPACE_CONFLICT", "base colour RGB and sheen roughness alpha share an image", json!({
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0},
+            "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.5,
+                "sheenRoughnessTexture": {"index": 0}}}}), vec![rgba_with_one([128, 128, 128, 100], [128, 128, 128, 90])]),
+        case("linear-tagged PNG as base colour", json!({
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}), vec![linear_tagged(rgb([128, 128, 128]))])
+            .expect("IMAGE_LINEAR_IN_SRGB_SLOT", &at("/pbrMetallicRoughness/baseColorTexture")),
+        near_miss("IMAGE_LINEAR_IN_SRGB_SLOT", "linear-tagged PNG as occlusion", material(json!({"occlusionTexture": {"index": 0}})),
+            vec![linear_tagged(rgb([128, 128, 128]))]),
+        case("sRGB-tagged PNG as occlusion", material(json!({"occlusionTexture": {"index": 0}})), vec![srgb_tagged(rgb([128, 128, 128]))])
+            .expect("IMAGE_SRGB_IN_LINEAR_SLOT", &at("/occlusionTexture")),
+        near_miss("IMAGE_SRGB_IN_LINEAR_SLOT", "sRGB-tagged PNG as base colour", json!({
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}), vec![srgb_tagged(rgb([128, 128, 128]))]),
+        // -- settings that do nothing
+        case("sheen texture with the default zero colour", material(ext("KHR_materials_sheen",
+            json!({"sheenRoughnessFactor": 0.5, "sheenColorTexture": {"index": 0}}))), vec![rgb([200, 200, 200])])
+            .expect("SHEEN_TEXTURE_DISABLED", &at("/extensions/KHR_materials_sheen/sheenColorTexture")),
+        near_miss("SHEEN_TEXTURE_DISABLED", "texture-only sheen object, the test-suite form", material(ext("KHR_materials_sheen",
+            json!({"sheenColorTexture": {"index": 0}}))), vec![rgb([200, 200, 200])]),
+        near_miss("SHEEN_TEXTURE_DISABLED", "sheen texture with a colour", material(ext("KHR_materials_sheen",
+            json!({"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.5, "sheenColorTexture": {"index": 0}}))), vec![rgb([200, 200, 200])]),
+        case("visible sheen with the default roughness", material(ext("KHR_materials_sheen", json!({"sheenColorFactor": [1.0, 1.0, 1.0]}))), vec![])
+            .expect("SHEEN_ZERO_ROUGHNESS", &at(sheen_p)),
+        case("visible sheen with roughness 0 written out", material(ext("KHR_materials_sheen",
+            json!({"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.0}))), vec![])
+            .expect("SHEEN_ZERO_ROUGHNESS", &at("/extensions/KHR_materials_sheen/sheenRoughnessFactor")),
+        near_miss("SHEEN_ZERO_ROUGHNESS", "invisible sheen with roughness 0", material(ext("KHR_materials_sheen", json!({"sheenRoughnessFactor": 0.0}))), vec![]),
+        case("anisotropy texture with the default zero strength", material(ext("KHR_materials_anisotropy",
+            json!({"anisotropyTexture": {"index": 0}}))), vec![rgb([255, 128, 255])]).patch(with_tangents())
+            .expect("ANISOTROPY_TEXTURE_ZERO_STRENGTH", &at("/extensions/KHR_materials_anisotropy/anisotropyTexture")),
+        near_miss("ANISOTROPY_TEXTURE_ZERO_STRENGTH", "anisotropy texture with a strength", material(ext("KHR_materials_anisotropy",
+            json!({"anisotropyStrength": 0.5, "anisotropyTexture": {"index": 0}}))), vec![rgb([255, 128, 255])]).patch(with_tangents()),
+        case("unlit material with a normal texture", material(json!({"normalTexture": {"index": 0},
+            "extensions": {"KHR_materials_unlit": {}}})), vec![rgb([128, 128, 255])]).patch(with_tangents())
+            .expect("UNLIT_IGNORED_TEXTURE", &at("/normalTexture")),
+        near_miss("UNLIT_IGNORED_TEXTURE", "unlit material with a base colour texture", json!({
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0},
+            "extensions": {"KHR_materials_unlit": {}}}), vec![rgb([128, 128, 128])]),
+        case("ior on a material left at the default metallic 1", json!({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0]},
+            "extensions": {"KHR_materials_ior": {"ior": 1.45}}}), vec![])
+            .expect("SPECULAR_ON_METAL", &at("/extensions/KHR_materials_ior")),
+        near_miss("SPECULAR_ON_METAL", "ior on a skeleton material (no pbrMetallicRoughness)",
+            json!({"extensions": {"KHR_materials_ior": {"ior": 1.45}}}), vec![]),
+        near_miss("SPECULAR_ON_METAL", "ior on a dielectric", material(ext("KHR_materials_ior", json!({"ior": 1.45}))), vec![]),
+        // -- pixels (--deep)
+        case("anisotropy texel with no direction", material(ext("KHR_materials_anisotropy",
+            json!({"anisotropyStrength": 0.5, "anisotropyTexture": {"index": 0}}))),
+            vec![rgba_with_one([255, 128, 255, 255], [128, 128, 255, 255])]).patch(with_tangents()).deep()
+            .expect("ANISOTROPY_DIRECTION_UNDEFINED", &at("/extensions/KHR_materials_anisotropy/anisotropyTexture")),
+        near_miss("ANISOTROPY_DIRECTION_UNDEFINED", "no direction where the strength is zero", material(ext("KHR_materials_anisotropy",
+            json!({"anisotropyStrength": 0.5, "anisotropyTexture": {"index": 0}}))),
+            vec![rgba_with_one([255, 128, 255, 255], [128, 128, 0, 255])]).patch(with_tangents()).deep(),
+        case("normal texel far from unit length", material(json!({"normalTexture": {"index": 0}})),
+            vec![rgba_with_one([128, 128, 255, 255], [128, 128, 128, 255])]).patch(with_tangents()).deep()
+            .expect("NORMAL_TEXEL_NOT_UNIT", &at("/normalTexture")),
+        near_miss("NORMAL_TEXEL_NOT_UNIT", "tilted unit normals", material(json!({"normalTexture": {"index": 0}})),
+            vec![rgba_with_one([128, 128, 255, 255], [218, 128, 218, 255])]).patch(with_tangents()).deep(),
+        case("constant alpha read as sheen roughness", material(ext("KHR_materials_sheen", json!({"sheenColorFactor": [1.0, 1.0, 1.0],
+            "sheenRoughnessFactor": 0.5, "sheenRoughnessTexture": {"index": 0}}))), vec![rgba([9, 9, 9, 200])]).deep()
+            .expect("TEXTURE_ALPHA_CONSTANT", &at("/extensions/KHR_materials_sheen/sheenRoughnessTexture")),
+        near_miss("TEXTURE_ALPHA_CONSTANT", "sheen roughness alpha that varies", material(ext("KHR_materials_sheen", json!({"sheenColorFactor": [1.0, 1.0, 1.0],
+            "sheenRoughnessFactor": 0.5, "sheenRoughnessTexture": {"index": 0}}))), vec![rgba_with_one([9, 9, 9, 200], [9, 9, 9, 199])]).deep(),
+        near_miss("PBR_BASE_COLOR_RANGE", "mid-grey base colour texture", json!({
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}), vec![rgb([128, 128, 128])]).deep(),
+        case("damaged PNG data", material(json!({"normalTexture": {"index": 0}})), vec![corrupt_png()]).patch(with_tangents()).deep()
+            .expect("IMAGE_UNDECODABLE", "/images/0"),
+        near_miss("IMAGE_UNDECODABLE", "damaged PNG data without --deep", material(json!({"normalTexture": {"index": 0}})), vec![corrupt_png()]).patch(with_tangents()),
+        case("PNG claiming 32768² texels", material(json!({"normalTexture": {"index": 0}})), vec![huge_png_header()]).patch(with_tangents()).deep()
+            .expect("IMAGE_DECODE_LIMIT", "/images/0"),
+        // -- plausibility
+        case("charcoal-black dielectric", json!({"pbrMetallicRoughness": {"baseColorFactor": [0.005, 0.005, 0.005, 1.0], "metallicFactor": 0.0}}), vec![])
+            .expect("PBR_BASE_COLOR_RANGE", &at("/pbrMetallicRoughness/baseColorFactor")),
+        near_miss("PBR_BASE_COLOR_RANGE", "black metal", json!({"pbrMetallicRoughness": {"baseColorFactor": [0.005, 0.005, 0.005, 1.0]}}), vec![]),
+        case("base colour texture mostly too dark", json!({
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}), vec![rgb([10, 10, 10])]).deep()
+            .expect("PBR_BASE_COLOR_RANGE", &at("/pbrMetallicRoughness/baseColorTexture")),
+        case("half-metal factor", json!({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.5}}), vec![])
+            .expect("PBR_METALLIC_MIXED", &at("/pbrMetallicRoughness/metallicFactor")),
+        case("half-metal texture", json!({"pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 0},
+            "baseColorFactor": [0.5, 0.5, 0.5, 1.0]}}), vec![rgb([0, 128, 128])]).deep()
+            .expect("PBR_METALLIC_MIXED", &at("/pbrMetallicRoughness/metallicRoughnessTexture")),
+        near_miss("PBR_METALLIC_MIXED", "metal/dielectric texture", json!({"pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 0},
+            "baseColorFactor": [0.5, 0.5, 0.5, 1.0]}}), vec![rgba_with_one([0, 128, 255, 255], [0, 128, 0, 255])]).deep(),
+        case("spec-gloss reflecting more than it receives", material(ext("KHR_materials_pbrSpecularGlossiness",
+            json!({"diffuseFactor": [0.9, 0.9, 0.9, 1.0], "specularFactor": [0.5, 0.5, 0.5]}))), vec![])
+            .expect("PBR_SPECGLOSS_ENERGY_GAIN", &at("/extensions/KHR_materials_pbrSpecularGlossiness")),
+        near_miss("PBR_SPECGLOSS_ENERGY_GAIN", "plausible spec-gloss", material(ext("KHR_materials_pbrSpecularGlossiness", spec_gloss())), vec![]),
+    ]
+}
+
+#[test]
+fn the_base_fixture_is_clean() {
+    let text = serde_json::to_vec(&base()).unwrap();
+    assert_eq!(issues("base", text, true, None), Vec::new());
+}
+
+#[test]
+fn every_rule_case_reports_exactly_its_issues() {
+    let failures: Vec<String> = cases()
+        .into_iter()
+        .filter_map(|case| {
+            let name = case.name;
+            std::panic::catch_unwind(|| run(case))
+                .err()
+                .map(|_| name.to_string())
+        })
+        .collect();
+    assert!(failures.is_empty(), "failing cases: {failures:#?}");
+}
+
+/// Cases kept as files: the ones about the document text or the file system.
+fn file_cases() -> Vec<(&'static str, Vec<(&'static str, &'static str)>)> {
+    vec![
+        (
+            "fixtures/broken/duplicate-key.gltf",
+            vec![("JSON_DUPLICATE_KEY", "/materials/0/doubleSided")],
+        ),
+        (
+            "fixtures/broken/parent-dir-uri.gltf",
+            vec![("URI_OUTSIDE_ASSET_FOLDER", "/buffers/0/uri")],
+        ),
+        (
+            "fixtures/gltf1/pbr-metal-rough-bad.gltf",
+            vec![
+                ("GLTF_1_0_ASSET", "/asset/version"),
+                (
+                    "VALUE_NOT_IN_RANGE",
+                    "/materials/gold/extensions/FRAUNHOFER_materials_pbr/values/metallicFactor",
+                ),
+                (
+                    "UNRESOLVED_REFERENCE",
+                    "/materials/gold/extensions/FRAUNHOFER_materials_pbr/values/baseColorTexture",
+                ),
+                (
+                    "GLTF_1_0_PBR_MATERIAL",
+                    "/materials/gold/extensions/FRAUNHOFER_materials_pbr",
+                ),
+            ],
+        ),
+    ]
+}
+
+#[test]
+fn file_fixtures_report_exactly_their_issues() {
+    for (path, expected) in file_cases() {
+        let full = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
+        let bytes = std::fs::read(&full).unwrap_or_else(|e| panic!("{path}: {e}"));
+        let folder = full.parent().unwrap().to_str().unwrap().to_string();
+        let found: Vec<_> = issues(path, bytes, false, Some(&folder))
+            .into_iter()
+            .filter(|(code, _)| {
+                codes::find(code).is_some_and(|i| i.origin == Origin::Gltfmat)
+                    || expected.iter().any(|(c, _)| c == code)
+            })
+            .collect();
+        let mut expected: Vec<_> = expected
+            .iter()
+            .map(|(c, p)| (c.to_string(), p.to_string()))
+            .collect();
+        expected.sort();
+        assert_eq!(found, expected, "{path}");
+    }
+}
+
+#[test]
+fn every_rule_has_a_firing_fixture_and_a_near_miss() {
+    let mut fired: BTreeSet<String> = cases().into_iter().flat_map(run).collect();
+    fired.extend(
+        file_cases()
+            .into_iter()
+            .flat_map(|(_, e)| e.into_iter().map(|(c, _)| c.to_string())),
+    );
+    let near_misses: BTreeSet<_> = cases().iter().filter_map(|c| c.silent_for).collect();
+    for rule in RULES {
+        let code = rule.info.code;
+        assert!(
+            fired.contains(code),
+            "{code} has no fixture that triggers it"
+        );
+        let has_logic = rule.run.document.is_some() || rule.run.pixels.is_some();
+        assert!(
+            !has_logic || near_misses.contains(code) || code == "JSON_DUPLICATE_KEY",
+            "{code} has no near-miss fixture"
+        );
+    }
+}
