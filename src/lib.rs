@@ -16,5 +16,6 @@ pub mod color;
 pub mod document;
 pub mod legacy_pbr;
 pub mod report;
+pub mod upgrade;
 
 pub use check::{check_bytes, CheckOptions, Profile, Report};

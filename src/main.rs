@@ -1,6 +1,7 @@
 //! The `gltfmat` command line.
 
 mod cli_config;
+mod cli_upgrade;
 
 use clap::{Parser, Subcommand};
 use gltfmat::check::{check_bytes, codes, CheckOptions, Profile, Report};
@@ -25,6 +26,8 @@ struct Cli {
 enum Command {
     /// Check .gltf/.glb files or folders (use `-` for stdin).
     Check(CheckArgs),
+    /// Convert a glTF 1.0 asset (with WEB3D/KHR/FRAUNHOFER/EXT PBR materials) to glTF 2.0.
+    Upgrade(cli_upgrade::UpgradeArgs),
     /// List every code gltfmat can report.
     Rules,
     /// Show the full documentation of one code.
@@ -77,6 +80,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Check(args) => run_check(args),
+        Command::Upgrade(args) => cli_upgrade::run(args),
         Command::Rules => {
             let mut out = String::new();
             for info in codes::all() {
@@ -170,15 +174,7 @@ fn check_file(path: &Path, options: &CheckOptions) -> Result<Report, String> {
         return Ok(check_bytes("-", bytes, &NoResources, options));
     }
     let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
-    let folder = path
-        .parent()
-        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
-    let folder = if folder.as_os_str().is_empty() {
-        PathBuf::from(".")
-    } else {
-        folder
-    };
-    let loader = FolderResources::new(folder);
+    let loader = FolderResources::new(cli_upgrade::folder_of(path));
     Ok(check_bytes(
         &path.display().to_string(),
         bytes,

@@ -120,6 +120,21 @@ impl ResourceLoader for NoResources {
     }
 }
 
+/// Files held in memory by relative path (an upgrade's output, checked before it is written).
+#[derive(Debug, Default)]
+pub struct MemoryResources {
+    pub files: std::collections::HashMap<String, Vec<u8>>,
+}
+
+impl ResourceLoader for MemoryResources {
+    fn load(&self, relative: &str) -> Result<Vec<u8>, LoadError> {
+        self.files
+            .get(relative)
+            .cloned()
+            .ok_or_else(|| LoadError::NotFound(relative.to_string()))
+    }
+}
+
 /// Reads files below one folder, refusing anything that resolves outside it.
 pub struct FolderResources {
     folder: PathBuf,

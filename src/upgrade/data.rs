@@ -1,0 +1,293 @@
+//! Accessor data: reading 1.0 accessors (any stride, any component type) and repacking them
+//! with the component types, alignment and min/max glTF 2.0 requires.
+
+use super::source::Source;
+use serde_json::Value;
+
+pub const BYTE: u64 = 5120;
+pub const UNSIGNED_BYTE: u64 = 5121;
+pub const SHORT: u64 = 5122;
+pub const UNSIGNED_SHORT: u64 = 5123;
+pub const UNSIGNED_INT: u64 = 5125;
+pub const FLOAT: u64 = 5126;
+
+fn component_size(component_type: u64) -> Option<usize> {
+    match component_type {
+        BYTE | UNSIGNED_BYTE => Some(1),
+        SHORT | UNSIGNED_SHORT => Some(2),
+        UNSIGNED_INT | FLOAT => Some(4),
+        _ => None,
+    }
+}
+
+pub fn component_count(kind: &str) -> Option<usize> {
+    match kind {
+        "SCALAR" => Some(1),
+        "VEC2" => Some(2),
+        "VEC3" => Some(3),
+        "VEC4" | "MAT2" => Some(4),
+        "MAT3" => Some(9),
+        "MAT4" => Some(16),
+        _ => None,
+    }
+}
+
+/// A 1.0 accessor resolved to its bytes.
+pub struct Accessor<'a> {
+    pub component_type: u64,
+    pub kind: String,
+    pub components: usize,
+    pub count: usize,
+    stride: usize,
+    bytes: &'a [u8],
+}
+
+/// What an accessor is used for, which decides its 2.0 component type and alignment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Role {
+    Indices,
+    /// POSITION, NORMAL, TANGENT: float only.
+    FloatAttribute,
+    /// TEXCOORD_n, COLOR_n: float (integer 1.0 data is converted, keeping its values).
+    TexcoordOrColour,
+    /// JOINTS_n: unsigned byte or short.
+    Joints,
+    /// WEIGHTS_n: float or normalized unsigned byte/short.
+    Weights,
+    /// Application-specific attributes: kept as they are, 4-byte aligned.
+    OtherAttribute,
+    /// Animation samplers, inverse bind matrices.
+    Data,
+}
+
+impl Role {
+    pub fn of_semantic(semantic: &str) -> Role {
+        let base = semantic.split('_').next().unwrap_or(semantic);
+        match base {
+            "POSITION" | "NORMAL" | "TANGENT" => Role::FloatAttribute,
+            "TEXCOORD" | "COLOR" => Role::TexcoordOrColour,
+            "JOINTS" => Role::Joints,
+            "WEIGHTS" => Role::Weights,
+            _ => Role::OtherAttribute,
+        }
+    }
+
+    fn is_vertex(self) -> bool {
+        !matches!(self, Role::Indices | Role::Data)
+    }
+}
+
+pub fn read<'a>(source: &'a Source, id: &str) -> Result<Accessor<'a>, String> {
+    let accessor = source
+        .object("accessors", id)
+        .ok_or_else(|| format!("accessor '{id}' does not exist"))?;
+    let number = |key: &str| accessor.get(key).and_then(Value::as_u64);
+    let component_type = number("componentType").unwrap_or(0);
+    let size = component_size(component_type)
+        .ok_or_else(|| format!("accessor '{id}': unknown componentType {component_type}"))?;
+    let kind = accessor.get("type").and_then(Value::as_str).unwrap_or("");
+    let components =
+        component_count(kind).ok_or_else(|| format!("accessor '{id}': unknown type '{kind}'"))?;
+    let count = number("count").unwrap_or(0) as usize;
+    let element = size * components;
+    let stride = match number("byteStride").unwrap_or(0) as usize {
+        0 => element,
+        s => s,
+    };
+    let view_id = accessor
+        .get("bufferView")
+        .and_then(Value::as_str)
+        .unwrap_or("");
+    let view = source.view(view_id)?;
+    let offset = number("byteOffset").unwrap_or(0) as usize;
+    let needed = match count {
+        0 => 0,
+        n => (n - 1)
+            .checked_mul(stride)
+            .and_then(|b| b.checked_add(element))
+            .ok_or_else(|| format!("accessor '{id}': size overflows"))?,
+    };
+    let bytes = offset
+        .checked_add(needed)
+        .and_then(|end| view.get(offset..end))
+        .ok_or_else(|| format!("accessor '{id}' runs past the end of bufferView '{view_id}'"))?;
+    Ok(Accessor {
+        component_type,
+        kind: kind.to_string(),
+        components,
+        count,
+        stride,
+        bytes,
+    })
+}
+
+impl Accessor<'_> {
+    /// Component `c` of element `i`, as stored (integers are not normalised).
+    pub fn get(&self, i: usize, c: usize) -> f64 {
+        let size = component_size(self.component_type).unwrap_or(4);
+        let at = i * self.stride + c * size;
+        let b = &self.bytes[at..at + size];
+        match self.component_type {
+            BYTE => f64::from(b[0] as i8),
+            UNSIGNED_BYTE => f64::from(b[0]),
+            SHORT => f64::from(i16::from_le_bytes([b[0], b[1]])),
+            UNSIGNED_SHORT => f64::from(u16::from_le_bytes([b[0], b[1]])),
+            UNSIGNED_INT => f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+            _ => f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+        }
+    }
+
+    /// Every element's components, in order.
+    pub fn values(&self) -> Vec<f64> {
+        let mut out = Vec::with_capacity(self.count * self.components);
+        for i in 0..self.count {
+            for c in 0..self.components {
+                out.push(self.get(i, c));
+            }
+        }
+        out
+    }
+}
+
+/// Repacked data, ready to become one bufferView + one accessor.
+pub struct Packed {
+    pub bytes: Vec<u8>,
+    pub component_type: u64,
+    pub normalized: bool,
+    /// Set when elements were padded to 4 bytes (vertex attributes).
+    pub byte_stride: Option<usize>,
+    pub min: Vec<f64>,
+    pub max: Vec<f64>,
+    /// The component type changed: say so in the report.
+    pub converted_from: Option<u64>,
+}
+
+fn output_type(role: Role, input: u64) -> (u64, bool) {
+    match (role, input) {
+        (Role::FloatAttribute | Role::TexcoordOrColour, _) => (FLOAT, false),
+        (Role::Joints, UNSIGNED_BYTE | UNSIGNED_SHORT) => (input, false),
+        (Role::Joints, _) => (UNSIGNED_SHORT, false),
+        (Role::Weights, UNSIGNED_BYTE | UNSIGNED_SHORT) => (input, true),
+        (Role::Weights, _) => (FLOAT, false),
+        (Role::Indices, UNSIGNED_BYTE | UNSIGNED_SHORT | UNSIGNED_INT) => (input, false),
+        (Role::Indices, _) => (UNSIGNED_INT, false),
+        _ => (input, false),
+    }
+}
+
+/// Repacks values (`components` per element) with the given component type.
+pub fn pack_values(
+    values: &[f64],
+    components: usize,
+    component_type: u64,
+    normalized: bool,
+    vertex: bool,
+) -> Packed {
+    let size = component_size(component_type).unwrap_or(4);
+    let element = size * components;
+    let stride = if vertex { element.div_ceil(4) * 4 } else { element };
+    let count = values.len() / components.max(1);
+    let mut bytes = Vec::with_capacity(count * stride);
+    let mut min = vec![f64::INFINITY; components];
+    let mut max = vec![f64::NEG_INFINITY; components];
+    for element_values in values.chunks_exact(components.max(1)) {
+        for (c, &v) in element_values.iter().enumerate() {
+            let stored = write_component(&mut bytes, component_type, v);
+            if !stored.is_nan() {
+                min[c] = min[c].min(stored);
+                max[c] = max[c].max(stored);
+            }
+        }
+        bytes.resize(bytes.len() + stride - element, 0);
+    }
+    if count == 0 {
+        min.clear();
+        max.clear();
+    }
+    Packed {
+        bytes,
+        component_type,
+        normalized,
+        byte_stride: (stride != element).then_some(stride),
+        min,
+        max,
+        converted_from: None,
+    }
+}
+
+/// Writes one component; returns the value as stored (for min/max).
+fn write_component(out: &mut Vec<u8>, component_type: u64, v: f64) -> f64 {
+    match component_type {
+        BYTE => {
+            let x = v.round().clamp(-128.0, 127.0) as i8;
+            out.push(x as u8);
+            f64::from(x)
+        }
+        UNSIGNED_BYTE => {
+            let x = v.round().clamp(0.0, 255.0) as u8;
+            out.push(x);
+            f64::from(x)
+        }
+        SHORT => {
+            let x = v.round().clamp(-32768.0, 32767.0) as i16;
+            out.extend(x.to_le_bytes());
+            f64::from(x)
+        }
+        UNSIGNED_SHORT => {
+            let x = v.round().clamp(0.0, 65535.0) as u16;
+            out.extend(x.to_le_bytes());
+            f64::from(x)
+        }
+        UNSIGNED_INT => {
+            let x = v.round().clamp(0.0, f64::from(u32::MAX)) as u32;
+            out.extend(x.to_le_bytes());
+            f64::from(x)
+        }
+        _ => {
+            let x = v as f32;
+            out.extend(x.to_le_bytes());
+            f64::from(x)
+        }
+    }
+}
+
+/// Repacks an accessor for its role.
+pub fn pack(accessor: &Accessor, role: Role) -> Packed {
+    let (component_type, normalized) = output_type(role, accessor.component_type);
+    let mut values = accessor.values();
+    if role == Role::Weights && normalized {
+        // Already normalized integers: stored as they are; `normalized` makes 2.0 read them
+        // as 0..1, as 1.0 shaders did when they divided by the type's maximum.
+    } else if role == Role::Weights && accessor.component_type != FLOAT {
+        let scale = if accessor.component_type == BYTE {
+            127.0
+        } else {
+            32767.0
+        };
+        values.iter_mut().for_each(|v| *v /= scale);
+    }
+    let mut packed = pack_values(
+        &values,
+        accessor.components,
+        component_type,
+        normalized,
+        role.is_vertex(),
+    );
+    packed.converted_from = (component_type != accessor.component_type).then_some(accessor.component_type);
+    packed
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn vertex_elements_are_padded_to_four_bytes_and_bounded() {
+        let packed = pack_values(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0], 3, UNSIGNED_BYTE, true, true);
+        assert_eq!(packed.byte_stride, Some(4));
+        assert_eq!(packed.bytes, vec![1, 2, 3, 0, 4, 5, 6, 0]);
+        assert_eq!((packed.min, packed.max), (vec![1.0, 2.0, 3.0], vec![4.0, 5.0, 6.0]));
+        let floats = pack_values(&[0.5, -1.0], 2, FLOAT, false, true);
+        assert_eq!(floats.byte_stride, None);
+    }
+}

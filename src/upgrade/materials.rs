@@ -1,0 +1,290 @@
+//! 1.0 materials → 2.0: the PBR drafts, KHR_materials_common, technique values, technique
+//! render states, and the 1.0 default material.
+
+use super::rebake;
+use super::structure::{pointer, Builder};
+use super::{NoteKind, SpecularGlossiness, UpgradeError};
+use crate::color::srgb_to_linear;
+use crate::legacy_pbr::{self, LegacyPbr, Model};
+use serde_json::{json, Map, Value};
+
+const BLEND: u64 = 3042;
+const CULL_FACE: u64 = 2884;
+
+pub fn convert(builder: &mut Builder, id: &str, material: &Value) -> Result<Value, UpgradeError> {
+    let at = pointer("materials", id);
+    let name = material.get("name").and_then(Value::as_str).unwrap_or(id);
+    let mut out = Map::new();
+    out.insert("name".into(), json!(name));
+    apply_technique_states(builder, material, &at, &mut out);
+    if let Some((extension, block)) = legacy_pbr::find(material) {
+        match legacy_pbr::parse(extension, block) {
+            Some(pbr) => convert_pbr(builder, &pbr, &at, &mut out)?,
+            None => builder.note(&at, NoteKind::Dropped, format!("{extension} names an unknown model; default material written.")),
+        }
+    } else if let Some(common) = material.get("extensions").and_then(|e| e.get("KHR_materials_common")) {
+        convert_common(builder, common, &at, &mut out);
+    } else if material.get("technique").is_some() {
+        convert_technique_values(builder, material, &at, &mut out);
+    } else {
+        // The 1.0 default material: constant emission of 50% grey.
+        out.insert("pbrMetallicRoughness".into(), json!({"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0}));
+        out.insert("extensions".into(), json!({"KHR_materials_unlit": {}}));
+        builder.note(&at, NoteKind::Decision, "no technique: the 1.0 default material (50% grey, unlit).");
+    }
+    Ok(Value::Object(out))
+}
+
+/// A technique's states decide blending and culling; with no technique the option decides.
+fn apply_technique_states(builder: &mut Builder, material: &Value, at: &str, out: &mut Map<String, Value>) {
+    let technique = material
+        .get("technique")
+        .and_then(Value::as_str)
+        .and_then(|t| builder.source.object("techniques", t));
+    let double_sided = match technique {
+        Some(technique) => {
+            let enabled: Vec<u64> = technique
+                .get("states")
+                .and_then(|s| s.get("enable"))
+                .and_then(Value::as_array)
+                .map(|a| a.iter().filter_map(Value::as_u64).collect())
+                .unwrap_or_default();
+            if enabled.contains(&BLEND) {
+                out.insert("alphaMode".into(), json!("BLEND"));
+            }
+            // 1.0 states default to nothing enabled: no CULL_FACE means no culling.
+            !enabled.contains(&CULL_FACE)
+        }
+        None => builder.options.double_sided_default,
+    };
+    if double_sided {
+        out.insert("doubleSided".into(), json!(true));
+        builder.note(at, NoteKind::Decision, "doubleSided: culling is not enabled.");
+    }
+}
+
+/// `{index}` for a 1.0 texture id, if it resolves.
+fn texture_info(builder: &Builder, id: Option<&str>) -> Option<Value> {
+    let index = builder.index_of("textures", id.map(|i| json!(i)).as_ref())?;
+    Some(json!({"index": index}))
+}
+
+fn texture_bytes(builder: &Builder, id: Option<&str>) -> Option<Vec<u8>> {
+    let index = builder.index_of("textures", id.map(|i| json!(i)).as_ref())?;
+    Some(builder.texture_image(index)?.bytes.clone())
+}
+
+/// Adds a rebaked PNG as a new image + texture sampled like 1.0 texture `like`.
+fn add_rebaked(builder: &mut Builder, bytes: Vec<u8>, like: Option<&str>, name: &str) -> Value {
+    let mut image = Map::new();
+    image.insert("name".into(), json!(name));
+    let image = builder.add_image(image, bytes, "image/png".into(), name);
+    let like = builder.index_of("textures", like.map(|i| json!(i)).as_ref());
+    let texture = builder.add_texture(image, like, name.to_string());
+    json!({"index": texture})
+}
+
+fn rebake_error(at: &str, reason: String) -> UpgradeError {
+    UpgradeError::Resource {
+        pointer: at.to_string(),
+        reason: format!("texture cannot be rebaked: {reason}"),
+    }
+}
+
+fn convert_pbr(builder: &mut Builder, pbr: &LegacyPbr, at: &str, out: &mut Map<String, Value>) -> Result<(), UpgradeError> {
+    let block = format!("{at}/extensions/{}", pbr.extension);
+    for key in &pbr.unknown_keys {
+        builder.note(&block, NoteKind::Dropped, format!("value '{key}' is not part of the {:?} model.", pbr.model));
+    }
+    if pbr.model_source == legacy_pbr::ModelSource::Inferred {
+        builder.note(&block, NoteKind::Decision, format!("no technique/materialModel: {:?} inferred from the value names.", pbr.model));
+    }
+    match (pbr.model, builder.options.specular_glossiness) {
+        (Model::MetalRoughness, _) => metal_rough(builder, pbr, &block, out)?,
+        (Model::SpecularGlossiness, SpecularGlossiness::MetalRough) => spec_gloss_as_metal_rough(builder, pbr, &block, out)?,
+        (Model::SpecularGlossiness, SpecularGlossiness::Extension) => spec_gloss_extension(builder, pbr, &block, out),
+    }
+    let translucent_texture = pbr.colour_texture.as_deref().and_then(|t| texture_bytes(builder, Some(t))).is_some_and(|b| rebake::has_translucent_texels(&b));
+    if pbr.colour[3] < 1.0 || translucent_texture {
+        out.insert("alphaMode".into(), json!("BLEND"));
+        builder.note(&block, NoteKind::Decision, "opacity below 1: alphaMode BLEND.");
+    }
+    Ok(())
+}
+
+fn metal_rough(builder: &mut Builder, pbr: &LegacyPbr, block: &str, out: &mut Map<String, Value>) -> Result<(), UpgradeError> {
+    let mut core = json!({
+        "baseColorFactor": pbr.colour,
+        "metallicFactor": pbr.metallic,
+        "roughnessFactor": pbr.roughness,
+    });
+    if let Some(info) = texture_info(builder, pbr.colour_texture.as_deref()) {
+        core["baseColorTexture"] = info;
+    }
+    if let Some(bytes) = texture_bytes(builder, pbr.data_texture.as_deref()) {
+        let rebaked = rebake::metal_rough_swizzle(&bytes).map_err(|e| rebake_error(block, e))?;
+        core["metallicRoughnessTexture"] = add_rebaked(builder, rebaked, pbr.data_texture.as_deref(), "metallicRoughness");
+        builder.note(block, NoteKind::Decision, "metallicRoughnessTexture rebaked: metallic moved from R (1.0 draft) to B (2.0); the original image is kept for its other uses.");
+    }
+    out.insert("pbrMetallicRoughness".into(), core);
+    Ok(())
+}
+
+fn spec_gloss_as_metal_rough(builder: &mut Builder, pbr: &LegacyPbr, block: &str, out: &mut Map<String, Value>) -> Result<(), UpgradeError> {
+    let max_specular = pbr.specular.iter().copied().fold(0.0, f64::max);
+    let diffuse = texture_bytes(builder, pbr.colour_texture.as_deref());
+    let specular = texture_bytes(builder, pbr.data_texture.as_deref());
+    let mut core = json!({"metallicFactor": 0.0, "roughnessFactor": 1.0 - pbr.glossiness});
+    if specular.is_some() {
+        // The specular texture varies per texel: base colour must be baked texel by texel.
+        let (rebaked, _) = rebake::spec_gloss_base_colour(diffuse.as_deref(), specular.as_deref(), pbr.colour, pbr.specular)
+            .map_err(|e| rebake_error(block, e))?;
+        let like = pbr.colour_texture.as_deref().or(pbr.data_texture.as_deref());
+        core["baseColorTexture"] = add_rebaked(builder, rebaked, like, "baseColor");
+        core["baseColorFactor"] = json!([1.0, 1.0, 1.0, 1.0]);
+        let roughness = rebake::gloss_to_roughness(specular.as_deref().unwrap_or_default(), pbr.glossiness).map_err(|e| rebake_error(block, e))?;
+        core["metallicRoughnessTexture"] = add_rebaked(builder, roughness, pbr.data_texture.as_deref(), "roughness");
+        core["roughnessFactor"] = json!(1.0);
+        builder.note(block, NoteKind::Decision, "baseColor = diffuse · (1 − max specular) and roughness = 1 − glossiness rebaked per texel into new textures.");
+    } else {
+        let keep = 1.0 - max_specular;
+        let [r, g, b, a] = pbr.colour;
+        core["baseColorFactor"] = json!([r * keep, g * keep, b * keep, a]);
+        if let Some(info) = texture_info(builder, pbr.colour_texture.as_deref()) {
+            core["baseColorTexture"] = info;
+        }
+        builder.note(block, NoteKind::Decision, format!("baseColorFactor = diffuse · (1 − max specular) = diffuse · {keep}."));
+    }
+    let mut specular_ext = json!({"specularColorFactor": pbr.specular});
+    if let Some(info) = texture_info(builder, pbr.data_texture.as_deref()) {
+        // Its RGB is the sRGB specular colour, exactly what specularColorTexture reads.
+        specular_ext["specularColorTexture"] = info;
+    }
+    out.insert("pbrMetallicRoughness".into(), core);
+    out.insert("extensions".into(), json!({"KHR_materials_specular": specular_ext, "KHR_materials_ior": {"ior": 0}}));
+    builder.note(block, NoteKind::Decision, "spec-gloss → metal-rough: metallic 0, F0 = specular via KHR_materials_specular (specularColor) and KHR_materials_ior (ior 0, infinite). Residual: exact for achromatic specular; a chromatic specular keeps a (1 − max F) vs (1 − F) difference in the diffuse weighting (converter-anchors §2.4).");
+    Ok(())
+}
+
+fn spec_gloss_extension(builder: &mut Builder, pbr: &LegacyPbr, block: &str, out: &mut Map<String, Value>) {
+    let mut ext = json!({
+        "diffuseFactor": pbr.colour,
+        "specularFactor": pbr.specular,
+        "glossinessFactor": pbr.glossiness,
+    });
+    let mut fallback = json!({"baseColorFactor": pbr.colour, "metallicFactor": 0.0, "roughnessFactor": 1.0 - pbr.glossiness});
+    if let Some(info) = texture_info(builder, pbr.colour_texture.as_deref()) {
+        ext["diffuseTexture"] = info.clone();
+        fallback["baseColorTexture"] = info;
+    }
+    if let Some(info) = texture_info(builder, pbr.data_texture.as_deref()) {
+        ext["specularGlossinessTexture"] = info;
+    }
+    out.insert("pbrMetallicRoughness".into(), fallback);
+    out.insert("extensions".into(), json!({"KHR_materials_pbrSpecularGlossiness": ext}));
+    builder.note(block, NoteKind::Decision, "spec-gloss written as KHR_materials_pbrSpecularGlossiness (exact rename) with a metal-rough fallback (diffuse as base colour, metallic 0).");
+}
+
+/// An sRGB colour value of a 1.0 shading model, made linear (1.0 shaders wrote it directly
+/// to an sRGB framebuffer).
+fn linear_colour(value: &Value) -> Option<[f64; 4]> {
+    let list = value.as_array()?;
+    let c = |i: usize, default: f64| list.get(i).and_then(Value::as_f64).unwrap_or(default);
+    Some([srgb_to_linear(c(0, 0.0)), srgb_to_linear(c(1, 0.0)), srgb_to_linear(c(2, 0.0)), c(3, 1.0)])
+}
+
+/// Blinn-Phong shininess n → roughness, through α = sqrt(2 / (n + 2)) and roughness = sqrt(α).
+fn roughness_from_shininess(shininess: f64) -> f64 {
+    (2.0 / (shininess.max(0.0) + 2.0)).sqrt().sqrt()
+}
+
+/// Shared by KHR_materials_common and technique values: diffuse (colour or texture),
+/// emission, shininess.
+fn lit_material(builder: &mut Builder, values: &Value, at: &str, out: &mut Map<String, Value>) {
+    let mut core = json!({"metallicFactor": 0.0});
+    let diffuse = values.get("diffuse").or_else(|| values.get("u_diffuse"));
+    match diffuse {
+        Some(Value::String(texture)) => {
+            if let Some(info) = texture_info(builder, Some(texture)) {
+                core["baseColorTexture"] = info;
+            }
+        }
+        Some(colour) => {
+            if let Some(c) = linear_colour(colour) {
+                core["baseColorFactor"] = json!(c);
+            }
+        }
+        None => {}
+    }
+    match values.get("emission") {
+        Some(Value::String(texture)) => {
+            if let Some(info) = texture_info(builder, Some(texture)) {
+                out.insert("emissiveTexture".into(), info);
+                out.insert("emissiveFactor".into(), json!([1.0, 1.0, 1.0]));
+            }
+        }
+        Some(colour) => {
+            if let Some([r, g, b, _]) = linear_colour(colour).filter(|c| c[..3].iter().any(|v| *v > 0.0)) {
+                out.insert("emissiveFactor".into(), json!([r, g, b]));
+            }
+        }
+        None => {}
+    }
+    let shininess = values.get("shininess").and_then(Value::as_f64);
+    core["roughnessFactor"] = json!(shininess.map_or(1.0, roughness_from_shininess));
+    out.insert("pbrMetallicRoughness".into(), core);
+    builder.note(at, NoteKind::Decision, "diffuse → base colour (linearised), emission → emissive (linearised), shininess → roughness sqrt(sqrt(2/(n+2))), metallic 0; specular and ambient are not carried over.");
+}
+
+fn convert_common(builder: &mut Builder, common: &Value, at: &str, out: &mut Map<String, Value>) {
+    let technique = common.get("technique").and_then(Value::as_str).unwrap_or("BLINN");
+    let values = common.get("values").cloned().unwrap_or_else(|| json!({}));
+    lit_material(builder, &values, at, out);
+    if technique == "CONSTANT" {
+        out.insert("extensions".into(), json!({"KHR_materials_unlit": {}}));
+        builder.note(at, NoteKind::Decision, "KHR_materials_common CONSTANT → KHR_materials_unlit.");
+    }
+    let transparency = values.get("transparency").and_then(Value::as_f64).unwrap_or(1.0);
+    let transparent = common.get("transparent").and_then(Value::as_bool).unwrap_or(false);
+    if transparent || transparency < 1.0 {
+        out.insert("alphaMode".into(), json!("BLEND"));
+        if let Some(factor) = out.get_mut("pbrMetallicRoughness").and_then(|p| p.get_mut("baseColorFactor")) {
+            factor[3] = json!(factor[3].as_f64().unwrap_or(1.0) * transparency);
+        } else if let Some(core) = out.get_mut("pbrMetallicRoughness") {
+            core["baseColorFactor"] = json!([1.0, 1.0, 1.0, transparency]);
+        }
+    }
+    if common.get("doubleSided").and_then(Value::as_bool) == Some(true) {
+        out.insert("doubleSided".into(), json!(true));
+    }
+}
+
+/// Technique values by name (material values over the technique's parameter defaults, which
+/// gltf-pipeline ignores).
+fn convert_technique_values(builder: &mut Builder, material: &Value, at: &str, out: &mut Map<String, Value>) {
+    let mut values = Map::new();
+    let technique = material.get("technique").and_then(Value::as_str).and_then(|t| builder.source.object("techniques", t));
+    if let Some(parameters) = technique.and_then(|t| t.get("parameters")).and_then(Value::as_object) {
+        for (name, parameter) in parameters {
+            if let Some(value) = parameter.get("value") {
+                values.insert(name.clone(), value.clone());
+            }
+        }
+    }
+    if let Some(own) = material.get("values").and_then(Value::as_object) {
+        values.extend(own.clone());
+    }
+    lit_material(builder, &Value::Object(values), at, out);
+}
+
+/// The KHR extensions the converted materials use.
+pub fn extensions_used(materials: &[Value]) -> Vec<String> {
+    let mut used: Vec<String> = materials
+        .iter()
+        .filter_map(|m| m.get("extensions")?.as_object())
+        .flat_map(|e| e.keys().cloned())
+        .collect();
+    used.sort();
+    used.dedup();
+    used
+}

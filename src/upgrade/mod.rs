@@ -1,0 +1,123 @@
+//! glTF 1.0 → glTF 2.0, including the WEB3D / KHR / FRAUNHOFER / EXT `_materials_pbr` drafts.
+//!
+//! The conversion reads the whole 1.0 asset ([`source`]), rebuilds every object in 2.0 form
+//! ([`structure`]: ids become indices, the old id becomes the name), converts materials
+//! ([`materials`], with texture rebaking in [`rebake`]) and assembles the output
+//! ([`output`]). Every decision and everything dropped is recorded in the conversion report.
+//!
+//! Vertex, index, animation and skin data are repacked: each accessor gets a bufferView of
+//! its own, tightly packed except where 2.0 demands 4-byte vertex alignment. That satisfies
+//! every 2.0 alignment and byteStride rule by construction and splits 1.0 views shared by
+//! accessors of different strides, at the price of de-interleaving interleaved vertices.
+
+mod data;
+mod materials;
+pub mod output;
+mod rebake;
+mod source;
+mod structure;
+
+use crate::document::uri::ResourceLoader;
+use serde_json::Value;
+
+/// How specular-glossiness materials are written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SpecularGlossiness {
+    /// Metal-roughness (metallic 0, roughness 1 − glossiness) with KHR_materials_specular
+    /// (specularColor = specular) and KHR_materials_ior (ior 0), base colour
+    /// diffuse · (1 − max specular); textures rebaked per texel.
+    #[default]
+    MetalRough,
+    /// KHR_materials_pbrSpecularGlossiness: an exact rename, for legacy viewers.
+    Extension,
+}
+
+#[derive(Debug, Clone, Default)]
+pub struct UpgradeOptions {
+    pub specular_glossiness: SpecularGlossiness,
+    /// `doubleSided` for materials whose 1.0 form says nothing about culling (PBR-extension
+    /// materials with no technique). Techniques decide for themselves: no CULL_FACE in
+    /// their states means double-sided.
+    pub double_sided_default: bool,
+}
+
+/// One line of the conversion report: what was decided or dropped, and where (a pointer
+/// into the 1.0 input).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Note {
+    pub pointer: String,
+    pub kind: NoteKind,
+    pub text: String,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoteKind {
+    /// A choice the converter made (a mapping, a default written out).
+    Decision,
+    /// Something of the input that has no place in the output.
+    Dropped,
+}
+
+/// A glTF 2.0 asset in memory: the JSON, the binary buffer, and the images (parallel to
+/// `json.images`, which carry neither `uri` nor `bufferView` until [`output`] places them).
+#[derive(Debug, Clone)]
+pub struct Upgraded {
+    pub json: Value,
+    pub binary: Vec<u8>,
+    pub images: Vec<EncodedImage>,
+    pub report: Vec<Note>,
+}
+
+#[derive(Debug, Clone)]
+pub struct EncodedImage {
+    pub bytes: Vec<u8>,
+    pub mime_type: String,
+    /// A file name for `.gltf` output (unique within the asset).
+    pub file_name: String,
+}
+
+/// Why an input could not be upgraded at all.
+#[derive(Debug, Clone, PartialEq)]
+pub enum UpgradeError {
+    /// Not a glTF 1.0 asset (a 2.0 asset, not JSON, a broken GLB).
+    NotGltf1(String),
+    /// A resource the asset needs could not be read or decoded.
+    Resource { pointer: String, reason: String },
+}
+
+impl std::fmt::Display for UpgradeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            UpgradeError::NotGltf1(why) => write!(f, "not a glTF 1.0 asset: {why}"),
+            UpgradeError::Resource { pointer, reason } => write!(f, "{pointer}: {reason}"),
+        }
+    }
+}
+
+/// Upgrades a glTF 1.0 asset (`.gltf` text or a KHR_binary_glTF GLB v1). External files are
+/// read through `loader` (the CLI confines it to the asset's folder).
+///
+/// ```
+/// use gltfmat::document::uri::NoResources;
+/// use gltfmat::upgrade::{upgrade, UpgradeOptions};
+///
+/// let gltf1 = br#"{"asset": {"version": "1.0"}, "scene": "s", "scenes": {"s": {"nodes": []}},
+///   "materials": {"gold": {"extensions": {"FRAUNHOFER_materials_pbr": {
+///     "materialModel": "PBR_metal_roughness",
+///     "values": {"baseColorFactor": [1.0, 0.77, 0.34, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.3}}}}}}"#;
+/// let upgraded = upgrade(gltf1, &NoResources, &UpgradeOptions::default()).unwrap();
+/// let gold = &upgraded.json["materials"][0];
+/// assert_eq!(gold["name"], "gold");
+/// assert_eq!(gold["pbrMetallicRoughness"]["roughnessFactor"], 0.3);
+/// assert_eq!(upgraded.json["asset"]["version"], "2.0");
+/// ```
+pub fn upgrade(
+    bytes: &[u8],
+    loader: &dyn ResourceLoader,
+    options: &UpgradeOptions,
+) -> Result<Upgraded, UpgradeError> {
+    let source = source::read(bytes, loader)?;
+    let mut build = structure::Builder::new(&source, options);
+    build.run()?;
+    Ok(build.finish())
+}

@@ -1,0 +1,171 @@
+//! Texture rebaking for material conversion: new PNG images computed texel by texel from
+//! the 1.0 textures. Original images are never modified or reused for a changed meaning.
+
+use crate::color::{linear_to_srgb, srgb_to_linear};
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{DynamicImage, ImageEncoder, ImageReader, Limits, Rgb32FImage, Rgba32FImage};
+use std::io::Cursor;
+
+/// Largest texture rebaked (per side) — the same bound as the checker's decoder.
+const MAX_DIMENSION: u32 = 16384;
+
+pub fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
+    let mut limits = Limits::default();
+    limits.max_image_width = Some(MAX_DIMENSION);
+    limits.max_image_height = Some(MAX_DIMENSION);
+    limits.max_alloc = Some(2 << 30);
+    let mut reader = ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| e.to_string())?;
+    reader.limits(limits);
+    reader.decode().map_err(|e| e.to_string())
+}
+
+/// Encodes linear-or-stored values (0..1) as an 8-bit RGB(A) PNG, or 16-bit when `wide`.
+fn encode(image: &Rgba32FImage, alpha: bool, wide: bool) -> Vec<u8> {
+    let dynamic = if alpha {
+        DynamicImage::ImageRgba32F(image.clone())
+    } else {
+        let rgb = Rgb32FImage::from_fn(image.width(), image.height(), |x, y| {
+            let p = image.get_pixel(x, y).0;
+            image::Rgb([p[0], p[1], p[2]])
+        });
+        DynamicImage::ImageRgb32F(rgb)
+    };
+    let converted = match (wide, alpha) {
+        (true, true) => DynamicImage::ImageRgba16(dynamic.to_rgba16()),
+        (true, false) => DynamicImage::ImageRgb16(dynamic.to_rgb16()),
+        (false, true) => DynamicImage::ImageRgba8(dynamic.to_rgba8()),
+        (false, false) => DynamicImage::ImageRgb8(dynamic.to_rgb8()),
+    };
+    let mut bytes = Vec::new();
+    let encoder = PngEncoder::new_with_quality(
+        Cursor::new(&mut bytes),
+        CompressionType::Fast,
+        FilterType::Adaptive,
+    );
+    encoder
+        .write_image(
+            converted.as_bytes(),
+            converted.width(),
+            converted.height(),
+            converted.color().into(),
+        )
+        .map(|()| bytes)
+        .unwrap_or_default()
+}
+
+fn is_wide(image: &DynamicImage) -> bool {
+    image.color().bytes_per_pixel() / image.color().channel_count() > 1
+}
+
+/// 1.0 metal-rough texture (R metallic, G roughness) → 2.0 (G roughness, B metallic).
+/// R is written as 1 (no occlusion) for engines that pack occlusion there.
+pub fn metal_rough_swizzle(bytes: &[u8]) -> Result<Vec<u8>, String> {
+    let source = decode(bytes)?;
+    let wide = is_wide(&source);
+    let texels = source.to_rgba32f();
+    let out = Rgba32FImage::from_fn(texels.width(), texels.height(), |x, y| {
+        let [r, g, _, _] = texels.get_pixel(x, y).0;
+        image::Rgba([1.0, g, r, 1.0])
+    });
+    Ok(encode(&out, false, wide))
+}
+
+/// Spec-gloss glossiness (A × factor) → a metal-rough texture: G = 1 − glossiness, B = 0
+/// (dielectric), R = 1.
+pub fn gloss_to_roughness(bytes: &[u8], glossiness_factor: f64) -> Result<Vec<u8>, String> {
+    let source = decode(bytes)?;
+    let wide = is_wide(&source);
+    let texels = source.to_rgba32f();
+    let out = Rgba32FImage::from_fn(texels.width(), texels.height(), |x, y| {
+        let gloss = f64::from(texels.get_pixel(x, y).0[3]) * glossiness_factor;
+        image::Rgba([1.0, (1.0 - gloss) as f32, 0.0, 1.0])
+    });
+    Ok(encode(&out, false, wide))
+}
+
+/// Spec-gloss base colour: diffuse · (1 − max(specular)) per texel, in linear space, alpha
+/// from the diffuse. Either texture may be missing (its factor alone is used); the output
+/// has the diffuse texture's size, or the specular one's, and the other is sampled at the
+/// nearest texel.
+pub fn spec_gloss_base_colour(
+    diffuse: Option<&[u8]>,
+    specular: Option<&[u8]>,
+    diffuse_factor: [f64; 4],
+    specular_factor: [f64; 3],
+) -> Result<(Vec<u8>, bool), String> {
+    let diffuse = diffuse.map(decode).transpose()?;
+    let specular = specular.map(decode).transpose()?;
+    let wide = diffuse.as_ref().or(specular.as_ref()).is_some_and(is_wide);
+    let alpha = diffuse.as_ref().is_some_and(|d| d.color().has_alpha()) || diffuse_factor[3] < 1.0;
+    let diffuse = diffuse.map(|d| d.to_rgba32f());
+    let specular = specular.map(|s| s.to_rgba32f());
+    let (width, height) = diffuse
+        .as_ref()
+        .or(specular.as_ref())
+        .map(|i| i.dimensions())
+        .ok_or("no texture to rebake")?;
+    let sample = |image: &Rgba32FImage, x: u32, y: u32| {
+        let sx = (u64::from(x) * u64::from(image.width()) / u64::from(width)) as u32;
+        let sy = (u64::from(y) * u64::from(image.height()) / u64::from(height)) as u32;
+        image.get_pixel(sx, sy).0
+    };
+    let out = Rgba32FImage::from_fn(width, height, |x, y| {
+        let d = diffuse.as_ref().map_or([1.0; 4], |i| sample(i, x, y));
+        let s = specular.as_ref().map_or([1.0; 4], |i| sample(i, x, y));
+        let max_specular = (0..3)
+            .map(|c| srgb_to_linear(f64::from(s[c])) * specular_factor[c])
+            .fold(0.0, f64::max);
+        let keep = (1.0 - max_specular).max(0.0);
+        let channel = |c: usize| {
+            let linear = srgb_to_linear(f64::from(d[c])) * diffuse_factor[c] * keep;
+            linear_to_srgb(linear.clamp(0.0, 1.0)) as f32
+        };
+        image::Rgba([channel(0), channel(1), channel(2), (f64::from(d[3]) * diffuse_factor[3]) as f32])
+    });
+    Ok((encode(&out, alpha, wide), alpha))
+}
+
+/// Whether any texel has alpha below 1 (the material then needs alpha blending).
+pub fn has_translucent_texels(bytes: &[u8]) -> bool {
+    match decode(bytes) {
+        Ok(image) if image.color().has_alpha() => {
+            image.to_rgba8().pixels().any(|p| p.0[3] < 255)
+        }
+        _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn png(image: image::RgbaImage) -> Vec<u8> {
+        let mut bytes = Vec::new();
+        DynamicImage::ImageRgba8(image)
+            .write_to(&mut Cursor::new(&mut bytes), image::ImageFormat::Png)
+            .unwrap();
+        bytes
+    }
+
+    #[test]
+    fn metallic_moves_from_red_to_blue_texel_for_texel() {
+        let source = image::RgbaImage::from_fn(3, 2, |x, y| image::Rgba([(x * 80) as u8, (y * 90 + 7) as u8, 33, 255]));
+        let out = decode(&metal_rough_swizzle(&png(source.clone())).unwrap()).unwrap().to_rgba8();
+        for (x, y, p) in source.enumerate_pixels() {
+            let q = out.get_pixel(x, y).0;
+            assert_eq!((q[1], q[2]), (p.0[1], p.0[0]), "texel ({x}, {y})");
+        }
+    }
+
+    #[test]
+    fn base_colour_keeps_what_the_specular_lobe_does_not_take() {
+        let diffuse = image::RgbaImage::from_pixel(1, 1, image::Rgba([188, 188, 188, 255])); // ≈ 0.5 linear
+        let (bytes, alpha) = spec_gloss_base_colour(Some(&png(diffuse)), None, [1.0; 4], [0.5, 0.2, 0.2]).unwrap();
+        let texel = decode(&bytes).unwrap().to_rgb8().get_pixel(0, 0).0;
+        let expected = linear_to_srgb(srgb_to_linear(188.0 / 255.0) * 0.5) * 255.0;
+        assert!((f64::from(texel[0]) - expected).abs() <= 0.5, "{texel:?} vs {expected}");
+        assert!(!alpha);
+    }
+}

@@ -1,0 +1,172 @@
+//! Reading a glTF 1.0 asset: JSON text or a KHR_binary_glTF GLB (version 1), its buffers, and
+//! its images on demand.
+
+use super::UpgradeError;
+use crate::document::uri::{classify, LoadError, ResourceLoader, UriKind};
+use serde_json::Value;
+use std::collections::HashMap;
+
+/// The buffer id KHR_binary_glTF gives the GLB body (and the older spelling some writers used).
+const BINARY_BUFFER_IDS: &[&str] = &["binary_glTF", "KHR_binary_glTF"];
+
+pub struct Source<'a> {
+    pub json: Value,
+    /// Bytes of every buffer that could be read, by id.
+    pub buffers: HashMap<String, Vec<u8>>,
+    /// Buffers that could not be read, with the reason (reported when something needs them).
+    pub unreadable: HashMap<String, String>,
+    pub loader: &'a dyn ResourceLoader,
+}
+
+pub fn read<'a>(bytes: &[u8], loader: &'a dyn ResourceLoader) -> Result<Source<'a>, UpgradeError> {
+    let (json_bytes, body) = if bytes.starts_with(b"glTF") {
+        split_glb_v1(bytes)?
+    } else {
+        (bytes, None)
+    };
+    let json: Value = serde_json::from_slice(json_bytes)
+        .map_err(|e| UpgradeError::NotGltf1(format!("invalid JSON: {e}")))?;
+    if !json.is_object() {
+        return Err(UpgradeError::NotGltf1("the root is not a JSON object".into()));
+    }
+    check_version(&json)?;
+    let mut source = Source {
+        json,
+        buffers: HashMap::new(),
+        unreadable: HashMap::new(),
+        loader,
+    };
+    source.load_buffers(body);
+    Ok(source)
+}
+
+/// Header: magic, version 1, total length, content length, content format 0 (JSON).
+fn split_glb_v1(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), UpgradeError> {
+    let word = |at: usize| -> Option<u32> {
+        Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
+    };
+    let broken = |why: &str| UpgradeError::NotGltf1(format!("GLB: {why}"));
+    let version = word(4).ok_or_else(|| broken("truncated header"))?;
+    if version != 1 {
+        return Err(broken(&format!(
+            "version {version}; only version 1 (KHR_binary_glTF) is upgraded"
+        )));
+    }
+    let (length, content_length, format) = (
+        word(8).ok_or_else(|| broken("truncated header"))? as usize,
+        word(12).ok_or_else(|| broken("truncated header"))? as usize,
+        word(16).ok_or_else(|| broken("truncated header"))?,
+    );
+    if format != 0 {
+        return Err(broken(&format!("content format {format} is not JSON (0)")));
+    }
+    let length = length.min(bytes.len());
+    let content_end = 20usize
+        .checked_add(content_length)
+        .filter(|end| *end <= length)
+        .ok_or_else(|| broken("content length runs past the end of the file"))?;
+    Ok((&bytes[20..content_end], Some(&bytes[content_end..length])))
+}
+
+fn check_version(json: &Value) -> Result<(), UpgradeError> {
+    let version = json
+        .get("asset")
+        .and_then(|a| a.get("version"))
+        .or_else(|| json.get("version"));
+    let major = match version {
+        None => return Ok(()), // 1.0 assets may omit it; 2.0 ones may not.
+        Some(Value::String(s)) => s.split('.').next().unwrap_or_default().to_string(),
+        Some(Value::Number(n)) => n.as_f64().map_or(String::new(), |v| (v as u64).to_string()),
+        Some(other) => other.to_string(),
+    };
+    match major.as_str() {
+        "0" | "1" => Ok(()),
+        "2" => Err(UpgradeError::NotGltf1(
+            "asset.version is 2.x: nothing to upgrade (use `gltfmat check`)".into(),
+        )),
+        other => Err(UpgradeError::NotGltf1(format!(
+            "unknown asset.version '{other}'"
+        ))),
+    }
+}
+
+impl Source<'_> {
+    fn load_buffers(&mut self, body: Option<&[u8]>) {
+        let Some(buffers) = self.json.get("buffers").and_then(Value::as_object) else {
+            return;
+        };
+        let mut loaded = HashMap::new();
+        let mut failed = HashMap::new();
+        for (id, buffer) in buffers {
+            let result = match (body, BINARY_BUFFER_IDS.contains(&id.as_str())) {
+                (Some(body), true) => Ok(body.to_vec()),
+                _ => match buffer.get("uri").and_then(Value::as_str) {
+                    Some(uri) => self.load_uri(uri),
+                    None => Err("the buffer has no uri".to_string()),
+                },
+            };
+            match result {
+                Ok(bytes) => {
+                    loaded.insert(id.clone(), bytes);
+                }
+                Err(why) => {
+                    failed.insert(id.clone(), why);
+                }
+            }
+        }
+        self.buffers = loaded;
+        self.unreadable = failed;
+    }
+
+    /// Reads a data URI or a file inside the asset's folder.
+    pub fn load_uri(&self, uri: &str) -> Result<Vec<u8>, String> {
+        match classify(uri)? {
+            UriKind::Data { bytes, .. } => Ok(bytes),
+            UriKind::Relative(path) => self.loader.load(&path).map_err(|e| match e {
+                LoadError::OutsideFolder(p) => format!("'{p}' is outside the asset's folder"),
+                LoadError::NotFound(p) => format!("'{p}' not found"),
+                LoadError::NoFolder => "external files cannot be read for this input".into(),
+                LoadError::TooLarge(n) => format!("file too large ({n} bytes)"),
+                LoadError::Io(e) => e,
+            }),
+            UriKind::NonRelative => Err(format!("'{uri}' is not a relative URI; not fetched")),
+            UriKind::AbsolutePath => Err(format!("'{uri}' is an absolute path; not read")),
+        }
+    }
+
+    /// A 1.0 dictionary (`accessors`, `nodes`, …) in document order.
+    pub fn dictionary(&self, name: &str) -> Vec<(&str, &Value)> {
+        self.json
+            .get(name)
+            .and_then(Value::as_object)
+            .map(|map| map.iter().map(|(k, v)| (k.as_str(), v)).collect())
+            .unwrap_or_default()
+    }
+
+    pub fn object(&self, collection: &str, id: &str) -> Option<&Value> {
+        self.json.get(collection)?.get(id)
+    }
+
+    /// The bytes of a bufferView.
+    pub fn view(&self, id: &str) -> Result<&[u8], String> {
+        let view = self
+            .object("bufferViews", id)
+            .ok_or_else(|| format!("bufferView '{id}' does not exist"))?;
+        let buffer_id = view.get("buffer").and_then(Value::as_str).unwrap_or("");
+        let buffer = self.buffers.get(buffer_id).ok_or_else(|| {
+            self.unreadable
+                .get(buffer_id)
+                .map_or_else(|| format!("buffer '{buffer_id}' does not exist"), Clone::clone)
+        })?;
+        let offset = view.get("byteOffset").and_then(Value::as_u64).unwrap_or(0);
+        let length = match view.get("byteLength").and_then(Value::as_u64) {
+            Some(n) => n,
+            None => (buffer.len() as u64).saturating_sub(offset),
+        };
+        let end = offset
+            .checked_add(length)
+            .filter(|end| *end <= buffer.len() as u64)
+            .ok_or_else(|| format!("bufferView '{id}' runs past the end of buffer '{buffer_id}'"))?;
+        Ok(&buffer[offset as usize..end as usize])
+    }
+}
