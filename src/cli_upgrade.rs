@@ -82,7 +82,12 @@ pub fn run(args: UpgradeArgs) -> ExitCode {
         return ExitCode::from(1);
     }
     let warnings = report.count(Severity::Warning);
-    if let Err(e) = output::write(&files, &folder_of(&args.output), Some(&args.input), args.force) {
+    if let Err(e) = output::write(
+        &files,
+        &folder_of(&args.output),
+        Some(&args.input),
+        args.force,
+    ) {
         return fail(e.to_string());
     }
     println!(

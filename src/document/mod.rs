@@ -47,11 +47,20 @@ impl Document {
         self.bin.clone().map(|r| &self.bytes[r])
     }
 
-    /// Major version declared by `asset.version`, if readable.
+    /// Major version declared by `asset.version`, if readable. 1.0 exporters also wrote it as
+    /// a number (`"version": 1`), and 1.0 objects are keyed by id, which gives them away when
+    /// the version is missing.
     pub fn major_version(&self) -> Option<u64> {
         let root = self.root.as_ref()?;
-        let version = root.get("asset")?.get("version")?.as_str()?;
-        version.split('.').next()?.parse().ok()
+        match root.get("asset").and_then(|a| a.get("version")) {
+            Some(serde_json::Value::String(v)) => v.split('.').next()?.parse().ok(),
+            Some(serde_json::Value::Number(n)) => n.as_f64().map(|v| v as u64),
+            Some(_) => None,
+            None => root
+                .get("scenes")
+                .is_some_and(serde_json::Value::is_object)
+                .then_some(1),
+        }
     }
 }
 

@@ -185,7 +185,11 @@ pub fn pack_values(
 ) -> Packed {
     let size = component_size(component_type).unwrap_or(4);
     let element = size * components;
-    let stride = if vertex { element.div_ceil(4) * 4 } else { element };
+    let stride = if vertex {
+        element.div_ceil(4) * 4
+    } else {
+        element
+    };
     let count = values.len() / components.max(1);
     let mut bytes = Vec::with_capacity(count * stride);
     let mut min = vec![f64::INFINITY; components];
@@ -273,7 +277,8 @@ pub fn pack(accessor: &Accessor, role: Role) -> Packed {
         normalized,
         role.is_vertex(),
     );
-    packed.converted_from = (component_type != accessor.component_type).then_some(accessor.component_type);
+    packed.converted_from =
+        (component_type != accessor.component_type).then_some(accessor.component_type);
     packed
 }
 
@@ -283,10 +288,19 @@ mod tests {
 
     #[test]
     fn vertex_elements_are_padded_to_four_bytes_and_bounded() {
-        let packed = pack_values(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0], 3, UNSIGNED_BYTE, true, true);
+        let packed = pack_values(
+            &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
+            3,
+            UNSIGNED_BYTE,
+            true,
+            true,
+        );
         assert_eq!(packed.byte_stride, Some(4));
         assert_eq!(packed.bytes, vec![1, 2, 3, 0, 4, 5, 6, 0]);
-        assert_eq!((packed.min, packed.max), (vec![1.0, 2.0, 3.0], vec![4.0, 5.0, 6.0]));
+        assert_eq!(
+            (packed.min, packed.max),
+            (vec![1.0, 2.0, 3.0], vec![4.0, 5.0, 6.0])
+        );
         let floats = pack_values(&[0.5, -1.0], 2, FLOAT, false, true);
         assert_eq!(floats.byte_stride, None);
     }

@@ -20,23 +20,42 @@ pub fn convert(builder: &mut Builder, id: &str, material: &Value) -> Result<Valu
     if let Some((extension, block)) = legacy_pbr::find(material) {
         match legacy_pbr::parse(extension, block) {
             Some(pbr) => convert_pbr(builder, &pbr, &at, &mut out)?,
-            None => builder.note(&at, NoteKind::Dropped, format!("{extension} names an unknown model; default material written.")),
+            None => builder.note(
+                &at,
+                NoteKind::Dropped,
+                format!("{extension} names an unknown model; default material written."),
+            ),
         }
-    } else if let Some(common) = material.get("extensions").and_then(|e| e.get("KHR_materials_common")) {
+    } else if let Some(common) = material
+        .get("extensions")
+        .and_then(|e| e.get("KHR_materials_common"))
+    {
         convert_common(builder, common, &at, &mut out);
     } else if material.get("technique").is_some() {
         convert_technique_values(builder, material, &at, &mut out);
     } else {
         // The 1.0 default material: constant emission of 50% grey.
-        out.insert("pbrMetallicRoughness".into(), json!({"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0}));
+        out.insert(
+            "pbrMetallicRoughness".into(),
+            json!({"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0}),
+        );
         out.insert("extensions".into(), json!({"KHR_materials_unlit": {}}));
-        builder.note(&at, NoteKind::Decision, "no technique: the 1.0 default material (50% grey, unlit).");
+        builder.note(
+            &at,
+            NoteKind::Decision,
+            "no technique: the 1.0 default material (50% grey, unlit).",
+        );
     }
     Ok(Value::Object(out))
 }
 
 /// A technique's states decide blending and culling; with no technique the option decides.
-fn apply_technique_states(builder: &mut Builder, material: &Value, at: &str, out: &mut Map<String, Value>) {
+fn apply_technique_states(
+    builder: &mut Builder,
+    material: &Value,
+    at: &str,
+    out: &mut Map<String, Value>,
+) {
     let technique = material
         .get("technique")
         .and_then(Value::as_str)
@@ -59,7 +78,11 @@ fn apply_technique_states(builder: &mut Builder, material: &Value, at: &str, out
     };
     if double_sided {
         out.insert("doubleSided".into(), json!(true));
-        builder.note(at, NoteKind::Decision, "doubleSided: culling is not enabled.");
+        builder.note(
+            at,
+            NoteKind::Decision,
+            "doubleSided: culling is not enabled.",
+        );
     }
 }
 
@@ -91,28 +114,61 @@ fn rebake_error(at: &str, reason: String) -> UpgradeError {
     }
 }
 
-fn convert_pbr(builder: &mut Builder, pbr: &LegacyPbr, at: &str, out: &mut Map<String, Value>) -> Result<(), UpgradeError> {
+fn convert_pbr(
+    builder: &mut Builder,
+    pbr: &LegacyPbr,
+    at: &str,
+    out: &mut Map<String, Value>,
+) -> Result<(), UpgradeError> {
     let block = format!("{at}/extensions/{}", pbr.extension);
     for key in &pbr.unknown_keys {
-        builder.note(&block, NoteKind::Dropped, format!("value '{key}' is not part of the {:?} model.", pbr.model));
+        builder.note(
+            &block,
+            NoteKind::Dropped,
+            format!("value '{key}' is not part of the {:?} model.", pbr.model),
+        );
     }
     if pbr.model_source == legacy_pbr::ModelSource::Inferred {
-        builder.note(&block, NoteKind::Decision, format!("no technique/materialModel: {:?} inferred from the value names.", pbr.model));
+        builder.note(
+            &block,
+            NoteKind::Decision,
+            format!(
+                "no technique/materialModel: {:?} inferred from the value names.",
+                pbr.model
+            ),
+        );
     }
     match (pbr.model, builder.options.specular_glossiness) {
         (Model::MetalRoughness, _) => metal_rough(builder, pbr, &block, out)?,
-        (Model::SpecularGlossiness, SpecularGlossiness::MetalRough) => spec_gloss_as_metal_rough(builder, pbr, &block, out)?,
-        (Model::SpecularGlossiness, SpecularGlossiness::Extension) => spec_gloss_extension(builder, pbr, &block, out),
+        (Model::SpecularGlossiness, SpecularGlossiness::MetalRough) => {
+            spec_gloss_as_metal_rough(builder, pbr, &block, out)?
+        }
+        (Model::SpecularGlossiness, SpecularGlossiness::Extension) => {
+            spec_gloss_extension(builder, pbr, &block, out)
+        }
     }
-    let translucent_texture = pbr.colour_texture.as_deref().and_then(|t| texture_bytes(builder, Some(t))).is_some_and(|b| rebake::has_translucent_texels(&b));
+    let translucent_texture = pbr
+        .colour_texture
+        .as_deref()
+        .and_then(|t| texture_bytes(builder, Some(t)))
+        .is_some_and(|b| rebake::has_translucent_texels(&b));
     if pbr.colour[3] < 1.0 || translucent_texture {
         out.insert("alphaMode".into(), json!("BLEND"));
-        builder.note(&block, NoteKind::Decision, "opacity below 1: alphaMode BLEND.");
+        builder.note(
+            &block,
+            NoteKind::Decision,
+            "opacity below 1: alphaMode BLEND.",
+        );
     }
     Ok(())
 }
 
-fn metal_rough(builder: &mut Builder, pbr: &LegacyPbr, block: &str, out: &mut Map<String, Value>) -> Result<(), UpgradeError> {
+fn metal_rough(
+    builder: &mut Builder,
+    pbr: &LegacyPbr,
+    block: &str,
+    out: &mut Map<String, Value>,
+) -> Result<(), UpgradeError> {
     let mut core = json!({
         "baseColorFactor": pbr.colour,
         "metallicFactor": pbr.metallic,
@@ -123,27 +179,48 @@ fn metal_rough(builder: &mut Builder, pbr: &LegacyPbr, block: &str, out: &mut Ma
     }
     if let Some(bytes) = texture_bytes(builder, pbr.data_texture.as_deref()) {
         let rebaked = rebake::metal_rough_swizzle(&bytes).map_err(|e| rebake_error(block, e))?;
-        core["metallicRoughnessTexture"] = add_rebaked(builder, rebaked, pbr.data_texture.as_deref(), "metallicRoughness");
+        core["metallicRoughnessTexture"] = add_rebaked(
+            builder,
+            rebaked,
+            pbr.data_texture.as_deref(),
+            "metallicRoughness",
+        );
         builder.note(block, NoteKind::Decision, "metallicRoughnessTexture rebaked: metallic moved from R (1.0 draft) to B (2.0); the original image is kept for its other uses.");
     }
     out.insert("pbrMetallicRoughness".into(), core);
     Ok(())
 }
 
-fn spec_gloss_as_metal_rough(builder: &mut Builder, pbr: &LegacyPbr, block: &str, out: &mut Map<String, Value>) -> Result<(), UpgradeError> {
+fn spec_gloss_as_metal_rough(
+    builder: &mut Builder,
+    pbr: &LegacyPbr,
+    block: &str,
+    out: &mut Map<String, Value>,
+) -> Result<(), UpgradeError> {
     let max_specular = pbr.specular.iter().copied().fold(0.0, f64::max);
     let diffuse = texture_bytes(builder, pbr.colour_texture.as_deref());
     let specular = texture_bytes(builder, pbr.data_texture.as_deref());
     let mut core = json!({"metallicFactor": 0.0, "roughnessFactor": 1.0 - pbr.glossiness});
     if specular.is_some() {
         // The specular texture varies per texel: base colour must be baked texel by texel.
-        let (rebaked, _) = rebake::spec_gloss_base_colour(diffuse.as_deref(), specular.as_deref(), pbr.colour, pbr.specular)
-            .map_err(|e| rebake_error(block, e))?;
-        let like = pbr.colour_texture.as_deref().or(pbr.data_texture.as_deref());
+        let (rebaked, _) = rebake::spec_gloss_base_colour(
+            diffuse.as_deref(),
+            specular.as_deref(),
+            pbr.colour,
+            pbr.specular,
+        )
+        .map_err(|e| rebake_error(block, e))?;
+        let like = pbr
+            .colour_texture
+            .as_deref()
+            .or(pbr.data_texture.as_deref());
         core["baseColorTexture"] = add_rebaked(builder, rebaked, like, "baseColor");
         core["baseColorFactor"] = json!([1.0, 1.0, 1.0, 1.0]);
-        let roughness = rebake::gloss_to_roughness(specular.as_deref().unwrap_or_default(), pbr.glossiness).map_err(|e| rebake_error(block, e))?;
-        core["metallicRoughnessTexture"] = add_rebaked(builder, roughness, pbr.data_texture.as_deref(), "roughness");
+        let roughness =
+            rebake::gloss_to_roughness(specular.as_deref().unwrap_or_default(), pbr.glossiness)
+                .map_err(|e| rebake_error(block, e))?;
+        core["metallicRoughnessTexture"] =
+            add_rebaked(builder, roughness, pbr.data_texture.as_deref(), "roughness");
         core["roughnessFactor"] = json!(1.0);
         builder.note(block, NoteKind::Decision, "baseColor = diffuse · (1 − max specular) and roughness = 1 − glossiness rebaked per texel into new textures.");
     } else {
@@ -153,7 +230,11 @@ fn spec_gloss_as_metal_rough(builder: &mut Builder, pbr: &LegacyPbr, block: &str
         if let Some(info) = texture_info(builder, pbr.colour_texture.as_deref()) {
             core["baseColorTexture"] = info;
         }
-        builder.note(block, NoteKind::Decision, format!("baseColorFactor = diffuse · (1 − max specular) = diffuse · {keep}."));
+        builder.note(
+            block,
+            NoteKind::Decision,
+            format!("baseColorFactor = diffuse · (1 − max specular) = diffuse · {keep}."),
+        );
     }
     let mut specular_ext = json!({"specularColorFactor": pbr.specular});
     if let Some(info) = texture_info(builder, pbr.data_texture.as_deref()) {
@@ -161,12 +242,20 @@ fn spec_gloss_as_metal_rough(builder: &mut Builder, pbr: &LegacyPbr, block: &str
         specular_ext["specularColorTexture"] = info;
     }
     out.insert("pbrMetallicRoughness".into(), core);
-    out.insert("extensions".into(), json!({"KHR_materials_specular": specular_ext, "KHR_materials_ior": {"ior": 0}}));
+    out.insert(
+        "extensions".into(),
+        json!({"KHR_materials_specular": specular_ext, "KHR_materials_ior": {"ior": 0}}),
+    );
     builder.note(block, NoteKind::Decision, "spec-gloss → metal-rough: metallic 0, F0 = specular via KHR_materials_specular (specularColor) and KHR_materials_ior (ior 0, infinite). Residual: exact for achromatic specular; a chromatic specular keeps a (1 − max F) vs (1 − F) difference in the diffuse weighting (converter-anchors §2.4).");
     Ok(())
 }
 
-fn spec_gloss_extension(builder: &mut Builder, pbr: &LegacyPbr, block: &str, out: &mut Map<String, Value>) {
+fn spec_gloss_extension(
+    builder: &mut Builder,
+    pbr: &LegacyPbr,
+    block: &str,
+    out: &mut Map<String, Value>,
+) {
     let mut ext = json!({
         "diffuseFactor": pbr.colour,
         "specularFactor": pbr.specular,
@@ -181,7 +270,10 @@ fn spec_gloss_extension(builder: &mut Builder, pbr: &LegacyPbr, block: &str, out
         ext["specularGlossinessTexture"] = info;
     }
     out.insert("pbrMetallicRoughness".into(), fallback);
-    out.insert("extensions".into(), json!({"KHR_materials_pbrSpecularGlossiness": ext}));
+    out.insert(
+        "extensions".into(),
+        json!({"KHR_materials_pbrSpecularGlossiness": ext}),
+    );
     builder.note(block, NoteKind::Decision, "spec-gloss written as KHR_materials_pbrSpecularGlossiness (exact rename) with a metal-rough fallback (diffuse as base colour, metallic 0).");
 }
 
@@ -190,7 +282,12 @@ fn spec_gloss_extension(builder: &mut Builder, pbr: &LegacyPbr, block: &str, out
 fn linear_colour(value: &Value) -> Option<[f64; 4]> {
     let list = value.as_array()?;
     let c = |i: usize, default: f64| list.get(i).and_then(Value::as_f64).unwrap_or(default);
-    Some([srgb_to_linear(c(0, 0.0)), srgb_to_linear(c(1, 0.0)), srgb_to_linear(c(2, 0.0)), c(3, 1.0)])
+    Some([
+        srgb_to_linear(c(0, 0.0)),
+        srgb_to_linear(c(1, 0.0)),
+        srgb_to_linear(c(2, 0.0)),
+        c(3, 1.0),
+    ])
 }
 
 /// Blinn-Phong shininess n → roughness, through α = sqrt(2 / (n + 2)) and roughness = sqrt(α).
@@ -224,7 +321,9 @@ fn lit_material(builder: &mut Builder, values: &Value, at: &str, out: &mut Map<S
             }
         }
         Some(colour) => {
-            if let Some([r, g, b, _]) = linear_colour(colour).filter(|c| c[..3].iter().any(|v| *v > 0.0)) {
+            if let Some([r, g, b, _]) =
+                linear_colour(colour).filter(|c| c[..3].iter().any(|v| *v > 0.0))
+            {
                 out.insert("emissiveFactor".into(), json!([r, g, b]));
             }
         }
@@ -237,18 +336,34 @@ fn lit_material(builder: &mut Builder, values: &Value, at: &str, out: &mut Map<S
 }
 
 fn convert_common(builder: &mut Builder, common: &Value, at: &str, out: &mut Map<String, Value>) {
-    let technique = common.get("technique").and_then(Value::as_str).unwrap_or("BLINN");
+    let technique = common
+        .get("technique")
+        .and_then(Value::as_str)
+        .unwrap_or("BLINN");
     let values = common.get("values").cloned().unwrap_or_else(|| json!({}));
     lit_material(builder, &values, at, out);
     if technique == "CONSTANT" {
         out.insert("extensions".into(), json!({"KHR_materials_unlit": {}}));
-        builder.note(at, NoteKind::Decision, "KHR_materials_common CONSTANT → KHR_materials_unlit.");
+        builder.note(
+            at,
+            NoteKind::Decision,
+            "KHR_materials_common CONSTANT → KHR_materials_unlit.",
+        );
     }
-    let transparency = values.get("transparency").and_then(Value::as_f64).unwrap_or(1.0);
-    let transparent = common.get("transparent").and_then(Value::as_bool).unwrap_or(false);
+    let transparency = values
+        .get("transparency")
+        .and_then(Value::as_f64)
+        .unwrap_or(1.0);
+    let transparent = common
+        .get("transparent")
+        .and_then(Value::as_bool)
+        .unwrap_or(false);
     if transparent || transparency < 1.0 {
         out.insert("alphaMode".into(), json!("BLEND"));
-        if let Some(factor) = out.get_mut("pbrMetallicRoughness").and_then(|p| p.get_mut("baseColorFactor")) {
+        if let Some(factor) = out
+            .get_mut("pbrMetallicRoughness")
+            .and_then(|p| p.get_mut("baseColorFactor"))
+        {
             factor[3] = json!(factor[3].as_f64().unwrap_or(1.0) * transparency);
         } else if let Some(core) = out.get_mut("pbrMetallicRoughness") {
             core["baseColorFactor"] = json!([1.0, 1.0, 1.0, transparency]);
@@ -261,10 +376,21 @@ fn convert_common(builder: &mut Builder, common: &Value, at: &str, out: &mut Map
 
 /// Technique values by name (material values over the technique's parameter defaults, which
 /// gltf-pipeline ignores).
-fn convert_technique_values(builder: &mut Builder, material: &Value, at: &str, out: &mut Map<String, Value>) {
+fn convert_technique_values(
+    builder: &mut Builder,
+    material: &Value,
+    at: &str,
+    out: &mut Map<String, Value>,
+) {
     let mut values = Map::new();
-    let technique = material.get("technique").and_then(Value::as_str).and_then(|t| builder.source.object("techniques", t));
-    if let Some(parameters) = technique.and_then(|t| t.get("parameters")).and_then(Value::as_object) {
+    let technique = material
+        .get("technique")
+        .and_then(Value::as_str)
+        .and_then(|t| builder.source.object("techniques", t));
+    if let Some(parameters) = technique
+        .and_then(|t| t.get("parameters"))
+        .and_then(Value::as_object)
+    {
         for (name, parameter) in parameters {
             if let Some(value) = parameter.get("value") {
                 values.insert(name.clone(), value.clone());

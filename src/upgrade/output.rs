@@ -33,7 +33,9 @@ fn glb(upgraded: &Upgraded) -> Vec<u8> {
     let mut views = json["bufferViews"].as_array().cloned().unwrap_or_default();
     for (i, image) in upgraded.images.iter().enumerate() {
         binary.resize(binary.len().div_ceil(4) * 4, 0);
-        views.push(json!({"buffer": 0, "byteOffset": binary.len(), "byteLength": image.bytes.len()}));
+        views.push(
+            json!({"buffer": 0, "byteOffset": binary.len(), "byteLength": image.bytes.len()}),
+        );
         binary.extend(&image.bytes);
         json["images"][i]["bufferView"] = json!(views.len() - 1);
         json["images"][i]["mimeType"] = json!(image.mime_type);
@@ -47,7 +49,13 @@ fn glb(upgraded: &Upgraded) -> Vec<u8> {
     let mut text = serde_json::to_vec(&json).unwrap_or_default();
     text.resize(text.len().div_ceil(4) * 4, b' ');
     binary.resize(binary.len().div_ceil(4) * 4, 0);
-    let chunks = 8 + text.len() + if binary.is_empty() { 0 } else { 8 + binary.len() };
+    let chunks = 8
+        + text.len()
+        + if binary.is_empty() {
+            0
+        } else {
+            8 + binary.len()
+        };
     let mut out = Vec::with_capacity(12 + chunks);
     out.extend(b"glTF");
     out.extend(2u32.to_le_bytes());
@@ -126,9 +134,15 @@ impl std::fmt::Display for WriteError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             WriteError::WouldOverwriteInput(p) => {
-                write!(f, "{} is the input: the input is never overwritten", p.display())
+                write!(
+                    f,
+                    "{} is the input: the input is never overwritten",
+                    p.display()
+                )
             }
-            WriteError::Exists(p) => write!(f, "{} exists (use --force to replace it)", p.display()),
+            WriteError::Exists(p) => {
+                write!(f, "{} exists (use --force to replace it)", p.display())
+            }
             WriteError::Io(p, e) => write!(f, "{}: {e}", p.display()),
         }
     }
@@ -137,7 +151,12 @@ impl std::fmt::Display for WriteError {
 /// Writes every file into `folder`: each goes to a temporary file first and is renamed into
 /// place only when all were written, so a failure leaves no half-written output. The input
 /// is never replaced, and existing files only with `force`.
-pub fn write(files: &Files, folder: &Path, input: Option<&Path>, force: bool) -> Result<(), WriteError> {
+pub fn write(
+    files: &Files,
+    folder: &Path,
+    input: Option<&Path>,
+    force: bool,
+) -> Result<(), WriteError> {
     let all: Vec<&(String, Vec<u8>)> = std::iter::once(&files.main).chain(&files.side).collect();
     let input = input.and_then(|p| p.canonicalize().ok());
     for (name, _) in &all {

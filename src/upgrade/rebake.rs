@@ -122,7 +122,12 @@ pub fn spec_gloss_base_colour(
             let linear = srgb_to_linear(f64::from(d[c])) * diffuse_factor[c] * keep;
             linear_to_srgb(linear.clamp(0.0, 1.0)) as f32
         };
-        image::Rgba([channel(0), channel(1), channel(2), (f64::from(d[3]) * diffuse_factor[3]) as f32])
+        image::Rgba([
+            channel(0),
+            channel(1),
+            channel(2),
+            (f64::from(d[3]) * diffuse_factor[3]) as f32,
+        ])
     });
     Ok((encode(&out, alpha, wide), alpha))
 }
@@ -130,9 +135,7 @@ pub fn spec_gloss_base_colour(
 /// Whether any texel has alpha below 1 (the material then needs alpha blending).
 pub fn has_translucent_texels(bytes: &[u8]) -> bool {
     match decode(bytes) {
-        Ok(image) if image.color().has_alpha() => {
-            image.to_rgba8().pixels().any(|p| p.0[3] < 255)
-        }
+        Ok(image) if image.color().has_alpha() => image.to_rgba8().pixels().any(|p| p.0[3] < 255),
         _ => false,
     }
 }
@@ -151,8 +154,12 @@ mod tests {
 
     #[test]
     fn metallic_moves_from_red_to_blue_texel_for_texel() {
-        let source = image::RgbaImage::from_fn(3, 2, |x, y| image::Rgba([(x * 80) as u8, (y * 90 + 7) as u8, 33, 255]));
-        let out = decode(&metal_rough_swizzle(&png(source.clone())).unwrap()).unwrap().to_rgba8();
+        let source = image::RgbaImage::from_fn(3, 2, |x, y| {
+            image::Rgba([(x * 80) as u8, (y * 90 + 7) as u8, 33, 255])
+        });
+        let out = decode(&metal_rough_swizzle(&png(source.clone())).unwrap())
+            .unwrap()
+            .to_rgba8();
         for (x, y, p) in source.enumerate_pixels() {
             let q = out.get_pixel(x, y).0;
             assert_eq!((q[1], q[2]), (p.0[1], p.0[0]), "texel ({x}, {y})");
@@ -162,10 +169,14 @@ mod tests {
     #[test]
     fn base_colour_keeps_what_the_specular_lobe_does_not_take() {
         let diffuse = image::RgbaImage::from_pixel(1, 1, image::Rgba([188, 188, 188, 255])); // ≈ 0.5 linear
-        let (bytes, alpha) = spec_gloss_base_colour(Some(&png(diffuse)), None, [1.0; 4], [0.5, 0.2, 0.2]).unwrap();
+        let (bytes, alpha) =
+            spec_gloss_base_colour(Some(&png(diffuse)), None, [1.0; 4], [0.5, 0.2, 0.2]).unwrap();
         let texel = decode(&bytes).unwrap().to_rgb8().get_pixel(0, 0).0;
         let expected = linear_to_srgb(srgb_to_linear(188.0 / 255.0) * 0.5) * 255.0;
-        assert!((f64::from(texel[0]) - expected).abs() <= 0.5, "{texel:?} vs {expected}");
+        assert!(
+            (f64::from(texel[0]) - expected).abs() <= 0.5,
+            "{texel:?} vs {expected}"
+        );
         assert!(!alpha);
     }
 }

@@ -27,7 +27,9 @@ pub fn read<'a>(bytes: &[u8], loader: &'a dyn ResourceLoader) -> Result<Source<'
     let json: Value = serde_json::from_slice(json_bytes)
         .map_err(|e| UpgradeError::NotGltf1(format!("invalid JSON: {e}")))?;
     if !json.is_object() {
-        return Err(UpgradeError::NotGltf1("the root is not a JSON object".into()));
+        return Err(UpgradeError::NotGltf1(
+            "the root is not a JSON object".into(),
+        ));
     }
     check_version(&json)?;
     let mut source = Source {
@@ -154,9 +156,10 @@ impl Source<'_> {
             .ok_or_else(|| format!("bufferView '{id}' does not exist"))?;
         let buffer_id = view.get("buffer").and_then(Value::as_str).unwrap_or("");
         let buffer = self.buffers.get(buffer_id).ok_or_else(|| {
-            self.unreadable
-                .get(buffer_id)
-                .map_or_else(|| format!("buffer '{buffer_id}' does not exist"), Clone::clone)
+            self.unreadable.get(buffer_id).map_or_else(
+                || format!("buffer '{buffer_id}' does not exist"),
+                Clone::clone,
+            )
         })?;
         let offset = view.get("byteOffset").and_then(Value::as_u64).unwrap_or(0);
         let length = match view.get("byteLength").and_then(Value::as_u64) {
@@ -166,7 +169,9 @@ impl Source<'_> {
         let end = offset
             .checked_add(length)
             .filter(|end| *end <= buffer.len() as u64)
-            .ok_or_else(|| format!("bufferView '{id}' runs past the end of buffer '{buffer_id}'"))?;
+            .ok_or_else(|| {
+                format!("bufferView '{id}' runs past the end of buffer '{buffer_id}'")
+            })?;
         Ok(&buffer[offset as usize..end as usize])
     }
 }

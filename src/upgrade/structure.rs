@@ -40,10 +40,7 @@ pub struct Builder<'s, 'a> {
 
 /// `/collection/id` with the id escaped as a JSON pointer token.
 pub fn pointer(collection: &str, id: &str) -> String {
-    format!(
-        "/{collection}/{}",
-        crate::document::json::escape_token(id)
-    )
+    format!("/{collection}/{}", crate::document::json::escape_token(id))
 }
 
 fn id_list(value: Option<&Value>) -> Vec<String> {
@@ -153,10 +150,12 @@ impl<'s, 'a> Builder<'s, 'a> {
     fn images(&mut self) -> Result<(), UpgradeError> {
         for (id, image) in self.source.dictionary("images") {
             let at = pointer("images", id);
-            let bytes = self.image_bytes(image).map_err(|reason| UpgradeError::Resource {
-                pointer: at.clone(),
-                reason,
-            })?;
+            let bytes = self
+                .image_bytes(image)
+                .map_err(|reason| UpgradeError::Resource {
+                    pointer: at.clone(),
+                    reason,
+                })?;
             let format = image_header::read(&bytes).map_err(|e| UpgradeError::Resource {
                 pointer: at.clone(),
                 reason: format!("not a readable image ({e:?})"),
@@ -175,10 +174,20 @@ impl<'s, 'a> Builder<'s, 'a> {
         mime_type: String,
         stem: &str,
     ) -> usize {
-        let extension = mime_type.rsplit('/').next().unwrap_or("bin").replace("jpeg", "jpg");
+        let extension = mime_type
+            .rsplit('/')
+            .next()
+            .unwrap_or("bin")
+            .replace("jpeg", "jpg");
         let safe: String = stem
             .chars()
-            .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
             .collect();
         let file_name = format!("{}-{safe}.{extension}", self.images.len());
         self.images.push(EncodedImage {
@@ -193,10 +202,16 @@ impl<'s, 'a> Builder<'s, 'a> {
         let binary = image
             .get("extensions")
             .and_then(|e| e.get("KHR_binary_glTF"));
-        if let Some(view) = binary.and_then(|b| b.get("bufferView")).and_then(Value::as_str) {
+        if let Some(view) = binary
+            .and_then(|b| b.get("bufferView"))
+            .and_then(Value::as_str)
+        {
             return self.source.view(view).map(<[u8]>::to_vec);
         }
-        let uri = image.get("uri").and_then(Value::as_str).ok_or("the image has no uri")?;
+        let uri = image
+            .get("uri")
+            .and_then(Value::as_str)
+            .ok_or("the image has no uri")?;
         self.source.load_uri(uri)
     }
 
@@ -209,7 +224,10 @@ impl<'s, 'a> Builder<'s, 'a> {
             if let Some(i) = self.index_of("images", texture.get("source")) {
                 out.insert("source".into(), json!(i));
             }
-            let format = texture.get("format").and_then(Value::as_u64).unwrap_or(6408);
+            let format = texture
+                .get("format")
+                .and_then(Value::as_u64)
+                .unwrap_or(6408);
             if !matches!(format, 6407 | 6408) {
                 self.note(
                     pointer("textures", id),
@@ -225,7 +243,8 @@ impl<'s, 'a> Builder<'s, 'a> {
     pub fn add_texture(&mut self, image: usize, like: Option<usize>, name: String) -> usize {
         let mut out = Map::new();
         out.insert("name".into(), json!(name));
-        let sampler = like.and_then(|t| self.arrays.get("textures")?.get(t)?.get("sampler").cloned());
+        let sampler =
+            like.and_then(|t| self.arrays.get("textures")?.get(t)?.get("sampler").cloned());
         if let Some(sampler) = sampler {
             out.insert("sampler".into(), sampler);
         }
@@ -235,7 +254,12 @@ impl<'s, 'a> Builder<'s, 'a> {
 
     /// The image a 2.0 texture reads.
     pub fn texture_image(&self, texture: usize) -> Option<&EncodedImage> {
-        let source = self.arrays.get("textures")?.get(texture)?.get("source")?.as_u64()?;
+        let source = self
+            .arrays
+            .get("textures")?
+            .get(texture)?
+            .get("source")?
+            .as_u64()?;
         self.images.get(source as usize)
     }
 
@@ -254,7 +278,10 @@ impl<'s, 'a> Builder<'s, 'a> {
             self.note(
                 &at,
                 NoteKind::Decision,
-                format!("componentType {from} → {} as glTF 2.0 requires for {role:?}.", packed.component_type),
+                format!(
+                    "componentType {from} → {} as glTF 2.0 requires for {role:?}.",
+                    packed.component_type
+                ),
             );
         }
         let (kind, count) = (input.kind.clone(), input.count);
@@ -273,7 +300,8 @@ impl<'s, 'a> Builder<'s, 'a> {
         name: Option<&str>,
     ) -> usize {
         self.binary.resize(self.binary.len().div_ceil(4) * 4, 0);
-        let mut view = json!({"buffer": 0, "byteOffset": self.binary.len(), "byteLength": packed.bytes.len()});
+        let mut view =
+            json!({"buffer": 0, "byteOffset": self.binary.len(), "byteLength": packed.bytes.len()});
         self.binary.extend(&packed.bytes);
         match role {
             Role::Indices => view["target"] = json!(ELEMENT_ARRAY_BUFFER),
@@ -322,7 +350,9 @@ impl<'s, 'a> Builder<'s, 'a> {
         let mut attributes = Map::new();
         let source_attributes = primitive.get("attributes").and_then(Value::as_object);
         for (semantic, accessor) in source_attributes.into_iter().flatten() {
-            let Some(accessor) = accessor.as_str() else { continue };
+            let Some(accessor) = accessor.as_str() else {
+                continue;
+            };
             let renamed = rename_semantic(semantic);
             if renamed != *semantic {
                 self.note(
@@ -337,7 +367,10 @@ impl<'s, 'a> Builder<'s, 'a> {
         let mut out = Map::new();
         out.insert("attributes".into(), Value::Object(attributes));
         if let Some(indices) = primitive.get("indices").and_then(Value::as_str) {
-            out.insert("indices".into(), json!(self.accessor(indices, Role::Indices)?));
+            out.insert(
+                "indices".into(),
+                json!(self.accessor(indices, Role::Indices)?),
+            );
         }
         if let Some(m) = self.index_of("materials", primitive.get("material")) {
             out.insert("material".into(), json!(m));
@@ -351,7 +384,10 @@ impl<'s, 'a> Builder<'s, 'a> {
     fn cameras(&mut self) {
         for (id, camera) in self.source.dictionary("cameras") {
             let mut out = Self::named(id, camera);
-            let kind = camera.get("type").and_then(Value::as_str).unwrap_or("perspective");
+            let kind = camera
+                .get("type")
+                .and_then(Value::as_str)
+                .unwrap_or("perspective");
             out.insert("type".into(), json!(kind));
             let mut projection = camera.get(kind).cloned().unwrap_or_else(|| json!({}));
             if kind == "perspective" {
@@ -368,16 +404,28 @@ impl<'s, 'a> Builder<'s, 'a> {
         let get = |projection: &Value, key: &str| projection.get(key).and_then(Value::as_f64);
         if get(projection, "aspectRatio").is_some_and(|a| a <= 0.0) {
             projection.as_object_mut().map(|p| p.remove("aspectRatio"));
-            self.note(&at, NoteKind::Dropped, "aspectRatio 0 removed (the viewport's ratio is used).");
+            self.note(
+                &at,
+                NoteKind::Dropped,
+                "aspectRatio 0 removed (the viewport's ratio is used).",
+            );
         }
         if get(projection, "yfov").is_none_or(|y| y <= 0.0) {
             projection["yfov"] = json!(1.0);
-            self.note(&at, NoteKind::Decision, "yfov 0 or missing set to 1.0 radian.");
+            self.note(
+                &at,
+                NoteKind::Decision,
+                "yfov 0 or missing set to 1.0 radian.",
+            );
         }
         if get(projection, "znear").is_none_or(|z| z <= 0.0) {
             let znear = get(projection, "zfar").map_or(0.01, |far| (far * 1e-4).max(1e-6));
             projection["znear"] = json!(znear);
-            self.note(&at, NoteKind::Decision, format!("znear 0 is invalid in 2.0; set to {znear} (zfar / 10000, or 0.01)."));
+            self.note(
+                &at,
+                NoteKind::Decision,
+                format!("znear 0 is invalid in 2.0; set to {znear} (zfar / 10000, or 0.01)."),
+            );
         }
     }
 
@@ -418,13 +466,25 @@ impl<'s, 'a> Builder<'s, 'a> {
                 extra_nodes.push(child);
             }
             if meshes.len() > 1 {
-                self.note(pointer("nodes", id), NoteKind::Decision, format!("{} meshes split into child nodes.", meshes.len()));
+                self.note(
+                    pointer("nodes", id),
+                    NoteKind::Decision,
+                    format!("{} meshes split into child nodes.", meshes.len()),
+                );
             }
             if !children.is_empty() {
                 out.insert("children".into(), json!(children));
             }
-            if node.get("extensions").and_then(|e| e.get("KHR_materials_common")).is_some() {
-                self.note(pointer("nodes", id), NoteKind::Dropped, "KHR_materials_common light dropped (no light conversion).");
+            if node
+                .get("extensions")
+                .and_then(|e| e.get("KHR_materials_common"))
+                .is_some()
+            {
+                self.note(
+                    pointer("nodes", id),
+                    NoteKind::Dropped,
+                    "KHR_materials_common light dropped (no light conversion).",
+                );
             }
             outputs.push(Value::Object(out));
         }
@@ -441,7 +501,11 @@ impl<'s, 'a> Builder<'s, 'a> {
             return Ok(None);
         };
         let Some(skin) = self.source.object("skins", skin_id) else {
-            self.note(pointer("nodes", id), NoteKind::Dropped, format!("skin '{skin_id}' does not exist."));
+            self.note(
+                pointer("nodes", id),
+                NoteKind::Dropped,
+                format!("skin '{skin_id}' does not exist."),
+            );
             return Ok(None);
         };
         let skeletons = id_list(node.get("skeletons"));
@@ -451,7 +515,10 @@ impl<'s, 'a> Builder<'s, 'a> {
             .collect();
         let mut out = Self::named(skin_id, skin);
         out.insert("joints".into(), json!(joints));
-        if let Some(root) = skeletons.first().and_then(|s| self.index_of("nodes", Some(&json!(s)))) {
+        if let Some(root) = skeletons
+            .first()
+            .and_then(|s| self.index_of("nodes", Some(&json!(s))))
+        {
             out.insert("skeleton".into(), json!(root));
         }
         let matrices = self.inverse_bind_matrices(skin_id, skin, joints.len())?;
@@ -463,7 +530,11 @@ impl<'s, 'a> Builder<'s, 'a> {
     /// joint names by them), or among all nodes when the instance names no skeleton.
     fn find_joint(&self, name: &str, skeletons: &[String]) -> Option<usize> {
         let mut stack: Vec<String> = if skeletons.is_empty() {
-            self.source.dictionary("nodes").iter().map(|(id, _)| id.to_string()).collect()
+            self.source
+                .dictionary("nodes")
+                .iter()
+                .map(|(id, _)| id.to_string())
+                .collect()
         } else {
             skeletons.to_vec()
         };
@@ -483,7 +554,12 @@ impl<'s, 'a> Builder<'s, 'a> {
 
     /// Inverse bind matrices with the bind shape matrix folded in: IBMᵢ · BSM, so that the
     /// 2.0 skinning (which has no bind shape matrix) deforms the vertices the same way.
-    fn inverse_bind_matrices(&mut self, skin_id: &str, skin: &Value, joints: usize) -> Result<usize, UpgradeError> {
+    fn inverse_bind_matrices(
+        &mut self,
+        skin_id: &str,
+        skin: &Value,
+        joints: usize,
+    ) -> Result<usize, UpgradeError> {
         let bind_shape = matrix(skin.get("bindShapeMatrix")).unwrap_or(IDENTITY);
         let source_matrices = match skin.get("inverseBindMatrices").and_then(Value::as_str) {
             Some(id) => data::read(self.source, id)
@@ -495,7 +571,11 @@ impl<'s, 'a> Builder<'s, 'a> {
             None => IDENTITY.repeat(joints),
         };
         if bind_shape != IDENTITY {
-            self.note(pointer("skins", skin_id), NoteKind::Decision, "bindShapeMatrix folded into inverseBindMatrices (IBM · BSM).");
+            self.note(
+                pointer("skins", skin_id),
+                NoteKind::Decision,
+                "bindShapeMatrix folded into inverseBindMatrices (IBM · BSM).",
+            );
         }
         let folded: Vec<f64> = source_matrices
             .chunks_exact(16)
@@ -519,24 +599,51 @@ impl<'s, 'a> Builder<'s, 'a> {
                     let parameter = sampler.get(key).and_then(Value::as_str)?;
                     parameters?.get(parameter)?.as_str().map(str::to_string)
                 };
-                let (Some(input), Some(output)) = (accessor_of("input"), accessor_of("output")) else {
-                    self.note(format!("{at}/samplers/{sampler_id}"), NoteKind::Dropped, "sampler whose parameters do not resolve dropped.");
+                let (Some(input), Some(output)) = (accessor_of("input"), accessor_of("output"))
+                else {
+                    self.note(
+                        format!("{at}/samplers/{sampler_id}"),
+                        NoteKind::Dropped,
+                        "sampler whose parameters do not resolve dropped.",
+                    );
                     continue;
                 };
-                let interpolation = sampler.get("interpolation").cloned().unwrap_or(json!("LINEAR"));
-                let (input, output) = (self.accessor(&input, Role::Data)?, self.accessor(&output, Role::Data)?);
+                let interpolation = sampler
+                    .get("interpolation")
+                    .cloned()
+                    .unwrap_or(json!("LINEAR"));
+                let (input, output) = (
+                    self.accessor(&input, Role::Data)?,
+                    self.accessor(&output, Role::Data)?,
+                );
                 sampler_index.insert(sampler_id.clone(), samplers.len());
-                samplers.push(json!({"input": input, "output": output, "interpolation": interpolation}));
+                samplers.push(
+                    json!({"input": input, "output": output, "interpolation": interpolation}),
+                );
             }
             let mut channels = Vec::new();
-            for channel in animation.get("channels").and_then(Value::as_array).into_iter().flatten() {
-                let sampler = channel.get("sampler").and_then(Value::as_str).and_then(|s| sampler_index.get(s));
+            for channel in animation
+                .get("channels")
+                .and_then(Value::as_array)
+                .into_iter()
+                .flatten()
+            {
+                let sampler = channel
+                    .get("sampler")
+                    .and_then(Value::as_str)
+                    .and_then(|s| sampler_index.get(s));
                 let target = channel.get("target");
                 let node = self.index_of("nodes", target.and_then(|t| t.get("id")));
                 let path = target.and_then(|t| t.get("path")).cloned();
                 match (sampler, node, path) {
-                    (Some(s), Some(n), Some(p)) => channels.push(json!({"sampler": s, "target": {"node": n, "path": p}})),
-                    _ => self.note(&at, NoteKind::Dropped, "channel with an unresolved sampler or target dropped."),
+                    (Some(s), Some(n), Some(p)) => {
+                        channels.push(json!({"sampler": s, "target": {"node": n, "path": p}}))
+                    }
+                    _ => self.note(
+                        &at,
+                        NoteKind::Dropped,
+                        "channel with an unresolved sampler or target dropped.",
+                    ),
                 }
             }
             out.insert("samplers".into(), json!(samplers));
@@ -579,7 +686,8 @@ impl<'s, 'a> Builder<'s, 'a> {
             asset["copyright"] = copyright.clone();
         }
         root.insert("asset".into(), asset);
-        let used = materials::extensions_used(self.arrays.get("materials").map_or(&[][..], Vec::as_slice));
+        let used =
+            materials::extensions_used(self.arrays.get("materials").map_or(&[][..], Vec::as_slice));
         if !used.is_empty() {
             root.insert("extensionsUsed".into(), json!(used));
         }
@@ -590,8 +698,19 @@ impl<'s, 'a> Builder<'s, 'a> {
             self.push("buffers", json!({"byteLength": self.binary.len()}));
         }
         for collection in [
-            "scenes", "nodes", "meshes", "materials", "textures", "images", "samplers", "skins",
-            "animations", "cameras", "accessors", "bufferViews", "buffers",
+            "scenes",
+            "nodes",
+            "meshes",
+            "materials",
+            "textures",
+            "images",
+            "samplers",
+            "skins",
+            "animations",
+            "cameras",
+            "accessors",
+            "bufferViews",
+            "buffers",
         ] {
             if let Some(items) = self.arrays.remove(collection).filter(|a| !a.is_empty()) {
                 root.insert(collection.into(), Value::Array(items));

@@ -1,0 +1,306 @@
+//! `gltfmat upgrade` and `gltfmat::upgrade`: every 1.0 asset converts to a 2.0 asset that
+//! passes gltfmat's check, materials convert as documented, and files are handled safely.
+
+use gltfmat::check::Severity;
+use gltfmat::color::{linear_to_srgb, srgb_to_linear};
+use gltfmat::document::uri::FolderResources;
+use gltfmat::upgrade::{output, upgrade, SpecularGlossiness, UpgradeOptions, Upgraded};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn repo(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
+}
+
+fn upgrade_file(path: &Path, options: &UpgradeOptions) -> Upgraded {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let loader = FolderResources::new(path.parent().unwrap());
+    upgrade(&bytes, &loader, options).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// Upgrades and checks the exact bytes that would be written, in both containers.
+fn assert_upgrades_cleanly(path: &Path) {
+    let upgraded = upgrade_file(path, &UpgradeOptions::default());
+    for name in ["out.glb", "out.gltf"] {
+        let report = output::verify(&output::layout(&upgraded, name));
+        assert_eq!(
+            report.count(Severity::Error),
+            0,
+            "{} → {name}: {:?}",
+            path.display(),
+            report.diagnostics
+        );
+    }
+}
+
+#[test]
+fn every_khronos_1_0_asset_upgrades_to_a_valid_2_0_asset() {
+    let folder = repo("../shared/conformance/gltf-1.0-assets");
+    assert!(
+        folder.is_dir(),
+        "\n\n*** ../shared/conformance/gltf-1.0-assets is MISSING: this test needs ../shared beside the checkout.\n"
+    );
+    let mut count = 0;
+    for entry in std::fs::read_dir(&folder).unwrap().flatten() {
+        for file in std::fs::read_dir(entry.path())
+            .into_iter()
+            .flatten()
+            .flatten()
+        {
+            let path = file.path();
+            if matches!(
+                path.extension().and_then(|e| e.to_str()),
+                Some("gltf" | "glb")
+            ) {
+                assert_upgrades_cleanly(&path);
+                count += 1;
+            }
+        }
+    }
+    assert_eq!(count, 7, "the seven Khronos 1.0 boxes");
+}
+
+#[test]
+fn every_pbr_fixture_upgrades_to_a_valid_2_0_asset() {
+    for name in [
+        "pbr-mr-web3d.gltf",
+        "pbr-sg-khr.gltf",
+        "pbr-mr-textured-fraunhofer.gltf",
+        "pbr-sg-textured-ext.gltf",
+        "pbr-mr-textured-ext.glb",
+        "pbr-sg-textured-fraunhofer.glb",
+    ] {
+        assert_upgrades_cleanly(&repo(&format!("fixtures/gltf1/{name}")));
+    }
+}
+
+fn material(upgraded: &Upgraded) -> &Value {
+    &upgraded.json["materials"][0]
+}
+
+fn texture_rgba(upgraded: &Upgraded, info: &Value) -> image::RgbaImage {
+    let texture = info["index"].as_u64().unwrap() as usize;
+    let image = upgraded.json["textures"][texture]["source"]
+        .as_u64()
+        .unwrap() as usize;
+    image::load_from_memory(&upgraded.images[image].bytes)
+        .unwrap()
+        .to_rgba8()
+}
+
+fn fixture_png(name: &str) -> image::RgbaImage {
+    image::open(repo(&format!("fixtures/gltf1/{name}")))
+        .unwrap()
+        .to_rgba8()
+}
+
+#[test]
+fn metal_rough_moves_metallic_from_red_to_blue_texel_for_texel() {
+    for fixture in ["pbr-mr-textured-fraunhofer.gltf", "pbr-mr-textured-ext.glb"] {
+        let upgraded = upgrade_file(
+            &repo(&format!("fixtures/gltf1/{fixture}")),
+            &UpgradeOptions::default(),
+        );
+        let pbr = &material(&upgraded)["pbrMetallicRoughness"];
+        assert_eq!(pbr["metallicFactor"], 0.7);
+        assert_eq!(pbr["roughnessFactor"], 0.35);
+        let rebaked = texture_rgba(&upgraded, &pbr["metallicRoughnessTexture"]);
+        let source = fixture_png("metal_rough.png");
+        for (x, y, texel) in source.enumerate_pixels() {
+            let out = rebaked.get_pixel(x, y).0;
+            assert_eq!(out[2], texel.0[0], "{fixture}: metallic at ({x}, {y})");
+            assert_eq!(out[1], texel.0[1], "{fixture}: roughness at ({x}, {y})");
+        }
+        // The base colour texture is the original image, untouched.
+        assert_eq!(
+            texture_rgba(&upgraded, &pbr["baseColorTexture"]),
+            fixture_png("diffuse.png")
+        );
+    }
+}
+
+#[test]
+fn spec_gloss_factors_follow_the_documented_mapping() {
+    let upgraded = upgrade_file(
+        &repo("fixtures/gltf1/pbr-sg-khr.gltf"),
+        &UpgradeOptions::default(),
+    );
+    let m = material(&upgraded);
+    let pbr = &m["pbrMetallicRoughness"];
+    let keep = 1.0 - 0.2;
+    let base: Vec<f64> = pbr["baseColorFactor"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    for (got, want) in base.iter().zip([0.6 * keep, 0.5 * keep, 0.4 * keep, 1.0]) {
+        assert!((got - want).abs() < 1e-12, "{base:?}");
+    }
+    assert_eq!(pbr["metallicFactor"], 0.0);
+    assert!((pbr["roughnessFactor"].as_f64().unwrap() - 0.25).abs() < 1e-12);
+    assert_eq!(
+        m["extensions"]["KHR_materials_specular"]["specularColorFactor"],
+        serde_json::json!([0.2, 0.2, 0.2])
+    );
+    assert_eq!(m["extensions"]["KHR_materials_ior"]["ior"], 0);
+    let used = upgraded.json["extensionsUsed"].as_array().unwrap();
+    assert!(
+        used.contains(&"KHR_materials_specular".into())
+            && used.contains(&"KHR_materials_ior".into())
+    );
+}
+
+#[test]
+fn spec_gloss_textures_are_rebaked_per_texel() {
+    let upgraded = upgrade_file(
+        &repo("fixtures/gltf1/pbr-sg-textured-ext.gltf"),
+        &UpgradeOptions::default(),
+    );
+    let m = material(&upgraded);
+    let pbr = &m["pbrMetallicRoughness"];
+    let base = texture_rgba(&upgraded, &pbr["baseColorTexture"]);
+    let roughness = texture_rgba(&upgraded, &pbr["metallicRoughnessTexture"]);
+    let (diffuse, spec_gloss) = (fixture_png("diffuse.png"), fixture_png("spec_gloss.png"));
+    for (x, y, d) in diffuse.enumerate_pixels() {
+        let s = spec_gloss.get_pixel(x, y).0;
+        let max_specular = (0..3)
+            .map(|c| srgb_to_linear(f64::from(s[c]) / 255.0) * 0.2)
+            .fold(0.0, f64::max);
+        for (c, factor) in [0.6, 0.5, 0.4].iter().enumerate() {
+            let linear = srgb_to_linear(f64::from(d.0[c]) / 255.0) * factor * (1.0 - max_specular);
+            let want = linear_to_srgb(linear) * 255.0;
+            let got = f64::from(base.get_pixel(x, y).0[c]);
+            assert!(
+                (got - want).abs() <= 0.51,
+                "base colour ({x}, {y}) channel {c}: {got} vs {want}"
+            );
+        }
+        let want_roughness = (1.0 - f64::from(s[3]) / 255.0 * 0.75) * 255.0;
+        let got = f64::from(roughness.get_pixel(x, y).0[1]);
+        assert!(
+            (got - want_roughness).abs() <= 0.51,
+            "roughness ({x}, {y}): {got} vs {want_roughness}"
+        );
+        assert_eq!(roughness.get_pixel(x, y).0[2], 0, "dielectric");
+    }
+    // The specular colour is the original spec-gloss texture (its RGB is the sRGB specular).
+    let specular = &m["extensions"]["KHR_materials_specular"];
+    assert_eq!(
+        texture_rgba(&upgraded, &specular["specularColorTexture"]),
+        spec_gloss
+    );
+}
+
+#[test]
+fn spec_gloss_extension_mode_is_an_exact_rename() {
+    let options = UpgradeOptions {
+        specular_glossiness: SpecularGlossiness::Extension,
+        ..UpgradeOptions::default()
+    };
+    let upgraded = upgrade_file(
+        &repo("fixtures/gltf1/pbr-sg-textured-fraunhofer.glb"),
+        &options,
+    );
+    let sg = &material(&upgraded)["extensions"]["KHR_materials_pbrSpecularGlossiness"];
+    assert_eq!(sg["diffuseFactor"], serde_json::json!([0.6, 0.5, 0.4, 1.0]));
+    assert_eq!(sg["specularFactor"], serde_json::json!([0.2, 0.2, 0.2]));
+    assert_eq!(sg["glossinessFactor"], 0.75);
+    assert_eq!(
+        texture_rgba(&upgraded, &sg["specularGlossinessTexture"]),
+        fixture_png("spec_gloss.png")
+    );
+}
+
+fn gltfmat(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("gltfmat runs");
+    let text =
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    (out.status.code().unwrap_or(-1), text)
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("gltfmat-upgrade-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn the_cli_writes_once_refuses_to_replace_and_never_touches_the_input() {
+    let dir = scratch("cli");
+    let input = dir.join("in.gltf");
+    std::fs::copy(repo("fixtures/gltf1/pbr-mr-web3d.gltf"), &input).unwrap();
+    let original = std::fs::read(&input).unwrap();
+    let out = dir.join("out.gltf");
+    let (code, text) = gltfmat(&[
+        "upgrade",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{text}");
+    assert!(out.is_file() && dir.join("out.bin").is_file(), "{text}");
+    let (code, text) = gltfmat(&[
+        "upgrade",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "an existing output needs --force: {text}");
+    assert!(text.contains("--force"), "{text}");
+    let (code, text) = gltfmat(&[
+        "upgrade",
+        input.to_str().unwrap(),
+        "-o",
+        input.to_str().unwrap(),
+        "--force",
+    ]);
+    assert_eq!(code, 2, "{text}");
+    assert_eq!(
+        std::fs::read(&input).unwrap(),
+        original,
+        "the input is never overwritten"
+    );
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "no temporary files are left behind");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn an_output_that_fails_the_check_is_not_written() {
+    let dir = scratch("refuse");
+    // A WebP image is legal in 1.0 files seen in the wild but needs EXT_texture_webp in 2.0:
+    // the converted asset fails the check, so nothing may be written.
+    let webp = b"RIFF\x1a\x00\x00\x00WEBPVP8L\x0d\x00\x00\x00\x2f\x00\x00\x00\x10\x07\x10\x11\x11\x88\x88\xfe\x07\x00";
+    let asset = serde_json::json!({
+        "asset": {"version": "1.0"},
+        "images": {"i": {"uri": "tex.webp"}},
+        "samplers": {"s": {}},
+        "textures": {"t": {"source": "i", "sampler": "s"}},
+        "materials": {"m": {"extensions": {"EXT_materials_pbr": {"materialModel": "PBR_metal_roughness", "values": {"baseColorTexture": "t"}}}}},
+        "scenes": {"s": {"nodes": []}}, "scene": "s"
+    });
+    std::fs::write(dir.join("in.gltf"), serde_json::to_vec(&asset).unwrap()).unwrap();
+    std::fs::write(dir.join("tex.webp"), webp).unwrap();
+    let out = dir.join("out.glb");
+    let (code, text) = gltfmat(&[
+        "upgrade",
+        dir.join("in.gltf").to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("nothing was written"), "{text}");
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
