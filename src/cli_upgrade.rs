@@ -74,8 +74,7 @@ pub fn run(args: UpgradeArgs) -> ExitCode {
     let Some(name) = args.output.file_name().and_then(|n| n.to_str()) else {
         return fail(format!("{}: not a file name", args.output.display()));
     };
-    let files = output::layout(&upgraded, name);
-    let report = output::verify(&files);
+    let (files, report) = output::verify(output::layout(&upgraded, name));
     if report.has_errors() {
         let shown = render(Format::Human, &[report], &RenderOptions { colour: false });
         eprintln!("{shown}gltfmat: the upgraded asset fails its own check; nothing was written.");

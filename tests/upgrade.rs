@@ -23,7 +23,7 @@ fn upgrade_file(path: &Path, options: &UpgradeOptions) -> Upgraded {
 fn assert_upgrades_cleanly(path: &Path) {
     let upgraded = upgrade_file(path, &UpgradeOptions::default());
     for name in ["out.glb", "out.gltf"] {
-        let report = output::verify(&output::layout(&upgraded, name));
+        let (_, report) = output::verify(output::layout(&upgraded, name));
         assert_eq!(
             report.count(Severity::Error),
             0,

@@ -7,6 +7,7 @@ use crate::document::json::escape_token;
 use crate::document::uri::ResourceLoader;
 use crate::document::Document;
 use serde_json::Value;
+use std::borrow::Cow;
 use std::collections::{BTreeSet, HashSet};
 
 /// A resource as listed in the report's `info.resources`.
@@ -52,8 +53,8 @@ pub struct Context<'a> {
     pub options: &'a CheckOptions,
     pub diagnostics: Vec<Diagnostic>,
     used: HashSet<(&'static str, usize)>,
-    /// Bytes of each buffer, where they could be read.
-    pub buffers: Vec<Option<Vec<u8>>>,
+    /// Bytes of each buffer, where they could be read (the GLB BIN chunk is borrowed).
+    pub buffers: Vec<Option<Cow<'a, [u8]>>>,
     /// Header of each image, where it could be read.
     pub images: Vec<Option<ImageInfo>>,
     /// Encoded bytes of each image, kept only with `--deep` for the pixel rules.

@@ -5,6 +5,7 @@ use super::context::{member, unsigned, Context, ResourceInfo};
 use crate::document::image_header::{self, HeaderError, ImageFormat};
 use crate::document::uri::{classify, LoadError, UriKind};
 use serde_json::Value;
+use std::borrow::Cow;
 
 const ELEMENT_ARRAY_BUFFER: u64 = 34963;
 
@@ -131,7 +132,7 @@ pub fn check_buffers(ctx: &mut Context) {
                     }
                 }
                 let uri = (storage == "external").then(|| uri.to_string());
-                (data, storage, uri)
+                (data.map(Cow::Owned), storage, uri)
             }
             None if i == 0 && super::is_glb(ctx.document) => {
                 let Some(bin) = ctx.document.bin() else {
@@ -155,7 +156,7 @@ pub fn check_buffers(ctx: &mut Context) {
                         );
                     }
                 }
-                (Some(bin.to_vec()), "glb", None)
+                (Some(Cow::Borrowed(bin)), "glb", None)
             }
             None => (None, "buffer", None),
         };
@@ -172,7 +173,7 @@ pub fn check_buffers(ctx: &mut Context) {
             pointer: pointer.clone(),
             storage,
             mime_type: Some("application/gltf-buffer".into()),
-            byte_length: data.as_ref().map(Vec::len),
+            byte_length: data.as_ref().map(|d| d.len()),
             uri,
             image: None,
         });

@@ -255,14 +255,93 @@ fn write_component(out: &mut Vec<u8>, component_type: u64, v: f64) -> f64 {
     }
 }
 
+/// Copies elements whose component type does not change, padding vertex elements to 4
+/// bytes, and computes min/max on the way: no per-value conversion for the common case.
+fn copy_elements(accessor: &Accessor, normalized: bool, vertex: bool) -> Packed {
+    let size = component_size(accessor.component_type).unwrap_or(4);
+    let element = size * accessor.components;
+    let stride = if vertex {
+        element.div_ceil(4) * 4
+    } else {
+        element
+    };
+    let mut bytes = Vec::with_capacity(accessor.count * stride);
+    for i in 0..accessor.count {
+        let at = i * accessor.stride;
+        bytes.extend_from_slice(&accessor.bytes[at..at + element]);
+        bytes.resize(bytes.len() + stride - element, 0);
+    }
+    let mut min = vec![f64::INFINITY; accessor.components];
+    let mut max = vec![f64::NEG_INFINITY; accessor.components];
+    let mut bound = |c: usize, v: f64| {
+        if !v.is_nan() {
+            min[c] = min[c].min(v);
+            max[c] = max[c].max(v);
+        }
+    };
+    match accessor.component_type {
+        FLOAT => typed_bounds(
+            &bytes,
+            stride,
+            accessor.components,
+            |b| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+            &mut bound,
+        ),
+        UNSIGNED_INT => typed_bounds(
+            &bytes,
+            stride,
+            accessor.components,
+            |b| f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+            &mut bound,
+        ),
+        _ => {
+            for i in 0..accessor.count {
+                for c in 0..accessor.components {
+                    bound(c, accessor.get(i, c));
+                }
+            }
+        }
+    }
+    if accessor.count == 0 {
+        min.clear();
+        max.clear();
+    }
+    Packed {
+        bytes,
+        component_type: accessor.component_type,
+        normalized,
+        byte_stride: (stride != element).then_some(stride),
+        min,
+        max,
+        converted_from: None,
+    }
+}
+
+/// min/max over 4-byte components laid out with `stride`.
+fn typed_bounds(
+    bytes: &[u8],
+    stride: usize,
+    components: usize,
+    read: impl Fn(&[u8]) -> f64,
+    bound: &mut impl FnMut(usize, f64),
+) {
+    for element in bytes.chunks_exact(stride) {
+        for c in 0..components {
+            bound(c, read(&element[c * 4..c * 4 + 4]));
+        }
+    }
+}
+
 /// Repacks an accessor for its role.
 pub fn pack(accessor: &Accessor, role: Role) -> Packed {
     let (component_type, normalized) = output_type(role, accessor.component_type);
+    if component_type == accessor.component_type {
+        return copy_elements(accessor, normalized, role.is_vertex());
+    }
     let mut values = accessor.values();
-    if role == Role::Weights && normalized {
-        // Already normalized integers: stored as they are; `normalized` makes 2.0 read them
-        // as 0..1, as 1.0 shaders did when they divided by the type's maximum.
-    } else if role == Role::Weights && accessor.component_type != FLOAT {
+    // Unsigned integer weights keep their type with `normalized` (see `output_type`); signed
+    // ones become floats, scaled as 1.0 shaders normalised them.
+    if role == Role::Weights && accessor.component_type != FLOAT {
         let scale = if accessor.component_type == BYTE {
             127.0
         } else {

@@ -29,33 +29,26 @@ pub fn layout(upgraded: &Upgraded, main_name: &str) -> Files {
 
 fn glb(upgraded: &Upgraded) -> Vec<u8> {
     let mut json = upgraded.json.clone();
-    let mut binary = upgraded.binary.clone();
+    // Images follow the geometry in the one binary chunk, each 4-byte aligned.
+    let mut length = upgraded.binary.len();
     let mut views = json["bufferViews"].as_array().cloned().unwrap_or_default();
     for (i, image) in upgraded.images.iter().enumerate() {
-        binary.resize(binary.len().div_ceil(4) * 4, 0);
-        views.push(
-            json!({"buffer": 0, "byteOffset": binary.len(), "byteLength": image.bytes.len()}),
-        );
-        binary.extend(&image.bytes);
+        length = length.div_ceil(4) * 4;
+        views.push(json!({"buffer": 0, "byteOffset": length, "byteLength": image.bytes.len()}));
+        length += image.bytes.len();
         json["images"][i]["bufferView"] = json!(views.len() - 1);
         json["images"][i]["mimeType"] = json!(image.mime_type);
     }
     if !views.is_empty() {
         json["bufferViews"] = Value::Array(views);
     }
-    if !binary.is_empty() {
-        json["buffers"] = json!([{"byteLength": binary.len()}]);
+    if length > 0 {
+        json["buffers"] = json!([{"byteLength": length}]);
     }
     let mut text = serde_json::to_vec(&json).unwrap_or_default();
     text.resize(text.len().div_ceil(4) * 4, b' ');
-    binary.resize(binary.len().div_ceil(4) * 4, 0);
-    let chunks = 8
-        + text.len()
-        + if binary.is_empty() {
-            0
-        } else {
-            8 + binary.len()
-        };
+    let padded = length.div_ceil(4) * 4;
+    let chunks = 8 + text.len() + if length == 0 { 0 } else { 8 + padded };
     let mut out = Vec::with_capacity(12 + chunks);
     out.extend(b"glTF");
     out.extend(2u32.to_le_bytes());
@@ -63,10 +56,16 @@ fn glb(upgraded: &Upgraded) -> Vec<u8> {
     out.extend((text.len() as u32).to_le_bytes());
     out.extend(b"JSON");
     out.extend(&text);
-    if !binary.is_empty() {
-        out.extend((binary.len() as u32).to_le_bytes());
+    if length > 0 {
+        out.extend((padded as u32).to_le_bytes());
         out.extend(b"BIN\0");
-        out.extend(&binary);
+        let start = out.len();
+        out.extend(&upgraded.binary);
+        for image in &upgraded.images {
+            out.resize(start + (out.len() - start).div_ceil(4) * 4, 0);
+            out.extend(&image.bytes);
+        }
+        out.resize(start + padded, 0);
     }
     out
 }
@@ -108,17 +107,18 @@ fn uri_escape(name: &str) -> String {
         .collect()
 }
 
-/// gltfmat's own check of the exact bytes that would be written.
-pub fn verify(files: &Files) -> Report {
+/// gltfmat's own check of the exact bytes that would be written. The files are lent to the
+/// checker and handed back, so a large asset is not copied for it.
+pub fn verify(mut files: Files) -> (Files, Report) {
     let resources = MemoryResources {
-        files: files.side.iter().cloned().collect(),
+        files: std::mem::take(&mut files.side).into_iter().collect(),
     };
-    check_bytes(
-        &files.main.0,
-        files.main.1.clone(),
-        &resources,
-        &CheckOptions::default(),
-    )
+    let main = std::mem::take(&mut files.main.1);
+    let mut report = check_bytes(&files.main.0, main, &resources, &CheckOptions::default());
+    files.main.1 = std::mem::take(&mut report.document.bytes);
+    files.side = resources.files.into_iter().collect();
+    files.side.sort();
+    (files, report)
 }
 
 #[derive(Debug)]

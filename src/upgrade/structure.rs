@@ -69,7 +69,8 @@ impl<'s, 'a> Builder<'s, 'a> {
             index,
             arrays: HashMap::new(),
             images: Vec::new(),
-            binary: Vec::new(),
+            // Repacked data is about the size of the input buffers: reserve it once.
+            binary: Vec::with_capacity(source.buffers.values().map(Vec::len).sum::<usize>() + 1024),
             packed_accessors: HashMap::new(),
             report: Vec::new(),
         }
