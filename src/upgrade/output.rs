@@ -108,14 +108,20 @@ fn uri_escape(name: &str) -> String {
 }
 
 /// gltfmat's own check of the exact bytes that would be written. The files are lent to the
-/// checker and handed back, so a large asset is not copied for it.
+/// checker and handed back, so a large asset is not copied for it; a report with errors keeps
+/// its copy (the document's bytes) for printing.
 pub fn verify(mut files: Files) -> (Files, Report) {
     let resources = MemoryResources {
         files: std::mem::take(&mut files.side).into_iter().collect(),
     };
     let main = std::mem::take(&mut files.main.1);
     let mut report = check_bytes(&files.main.0, main, &resources, &CheckOptions::default());
-    files.main.1 = std::mem::take(&mut report.document.bytes);
+    if report.has_errors() {
+        // Nothing will be written: the report keeps the bytes, to show where the errors are.
+        files.main.1 = report.document.bytes.clone();
+    } else {
+        files.main.1 = std::mem::take(&mut report.document.bytes);
+    }
     files.side = resources.files.into_iter().collect();
     files.side.sort();
     (files, report)
