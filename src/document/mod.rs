@@ -40,11 +40,12 @@ pub struct Document {
 
 impl Document {
     pub fn json_text(&self) -> &[u8] {
-        &self.bytes[self.json_range.clone()]
+        // Empty when the bytes were handed back to their owner (see `upgrade::output::verify`).
+        self.bytes.get(self.json_range.clone()).unwrap_or_default()
     }
 
     pub fn bin(&self) -> Option<&[u8]> {
-        self.bin.clone().map(|r| &self.bytes[r])
+        self.bin.clone().and_then(|r| self.bytes.get(r))
     }
 
     /// Major version declared by `asset.version`, if readable. 1.0 exporters also wrote it as
