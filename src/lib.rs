@@ -16,6 +16,7 @@ pub mod color;
 pub mod document;
 pub mod legacy_pbr;
 pub mod report;
+pub mod shade;
 pub mod upgrade;
 
 pub use check::{check_bytes, CheckOptions, Profile, Report};

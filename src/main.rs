@@ -1,6 +1,7 @@
 //! The `gltfmat` command line.
 
 mod cli_config;
+mod cli_lut;
 mod cli_upgrade;
 
 use clap::{Parser, Subcommand};
@@ -28,6 +29,8 @@ enum Command {
     Check(CheckArgs),
     /// Convert a glTF 1.0 asset (with WEB3D/KHR/FRAUNHOFER/EXT PBR materials) to glTF 2.0.
     Upgrade(cli_upgrade::UpgradeArgs),
+    /// Export a lookup table of the shading evaluator (the sheen albedo E).
+    Lut(cli_lut::LutArgs),
     /// List every code gltfmat can report.
     Rules,
     /// Show the full documentation of one code.
@@ -81,6 +84,7 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Check(args) => run_check(args),
         Command::Upgrade(args) => cli_upgrade::run(args),
+        Command::Lut(args) => cli_lut::run(args),
         Command::Rules => {
             let mut out = String::new();
             for info in codes::all() {

@@ -217,3 +217,30 @@ fn rules_lists_every_code_once_and_explain_shows_docs() {
     assert_eq!(code, 0);
     assert!(out.contains("## Why"), "{out}");
 }
+
+#[test]
+fn lut_sheen_writes_the_table_the_evaluator_uses() {
+    let (code, out) = gltfmat(&["lut", "sheen", "--size", "4", "--visibility", "ashikhmin"]);
+    assert_eq!(code, 0, "{out}");
+    let rows: Vec<Vec<f64>> = out
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 4);
+    for (i, row) in rows.iter().enumerate() {
+        assert_eq!(row.len(), 4);
+        for (j, value) in row.iter().enumerate() {
+            let (mu, roughness) = ((j as f64 + 0.5) / 4.0, (i as f64 + 0.5) / 4.0);
+            let exact = gltfmat::shade::sheen_table::albedo(
+                gltfmat::shade::brdf::SheenVisibility::Ashikhmin,
+                mu,
+                roughness,
+            );
+            assert!(
+                (value - exact).abs() < 1e-6,
+                "E({mu}, {roughness}) = {value} vs {exact}"
+            );
+        }
+    }
+}

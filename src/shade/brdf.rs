@@ -1,0 +1,250 @@
+//! The BRDF lobes, each written from its specification text (see shading-anchors.md §1):
+//! glTF 2.0 Appendix B, KHR_materials_specular / _ior / _sheen / _anisotropy. Directions are
+//! in the local shading frame: normal (0, 0, 1), tangent (1, 0, 0), bitangent (0, 1, 0).
+//! Every function returns a finite value for any unit input, including α = 0 and grazing
+//! angles (the smallest α evaluated is [`MIN_ALPHA`]).
+
+use std::f64::consts::PI;
+
+pub type V3 = [f64; 3];
+
+/// Appendix B forbids evaluating GGX at α = 0 (a Dirac lobe); below this α is clamped.
+pub const MIN_ALPHA: f64 = 1e-4;
+
+pub fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+pub fn normalize(a: V3) -> V3 {
+    let length = dot(a, a).sqrt();
+    if length == 0.0 {
+        [0.0, 0.0, 1.0]
+    } else {
+        a.map(|c| c / length)
+    }
+}
+
+/// The half vector of `v` and `l`.
+pub fn half(v: V3, l: V3) -> V3 {
+    normalize([v[0] + l[0], v[1] + l[1], v[2] + l[2]])
+}
+
+pub fn max3(c: V3) -> f64 {
+    c[0].max(c[1]).max(c[2])
+}
+
+/// Schlick's Fresnel, F = f0 + (f90 − f0)(1 − |VdotH|)⁵.
+pub fn schlick(f0: f64, f90: f64, v_dot_h: f64) -> f64 {
+    f0 + (f90 - f0) * (1.0 - v_dot_h.abs()).clamp(0.0, 1.0).powi(5)
+}
+
+/// f0 of a dielectric with index of refraction `ior` against air; ior 0 means infinite
+/// (KHR_materials_ior's compatibility mode), giving 1.
+pub fn f0_from_ior(ior: f64) -> f64 {
+    if ior == 0.0 {
+        1.0
+    } else {
+        ((ior - 1.0) / (ior + 1.0)).powi(2)
+    }
+}
+
+/// Isotropic GGX (Trowbridge-Reitz) distribution, α = roughness².
+pub fn ggx_d(alpha: f64, n_dot_h: f64) -> f64 {
+    if n_dot_h <= 0.0 {
+        return 0.0;
+    }
+    let a2 = alpha.max(MIN_ALPHA).powi(2);
+    let f = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
+    a2 / (PI * f * f)
+}
+
+/// Height-correlated Smith visibility V = G2 / (4 |NdotL| |NdotV|), Appendix B.
+pub fn smith_vis(alpha: f64, n_dot_l: f64, n_dot_v: f64) -> f64 {
+    let a2 = alpha.max(MIN_ALPHA).powi(2);
+    let (l, v) = (n_dot_l.abs(), n_dot_v.abs());
+    let ggx_v = l * (v * v * (1.0 - a2) + a2).sqrt();
+    let ggx_l = v * (l * l * (1.0 - a2) + a2).sqrt();
+    let denominator = ggx_v + ggx_l;
+    if denominator > 0.0 {
+        0.5 / denominator
+    } else {
+        0.0
+    }
+}
+
+/// Smith Λ for the isotropic GGX lobe, for the Λ-form cross-check and the furnace tests.
+pub fn smith_lambda(alpha: f64, n_dot_w: f64) -> f64 {
+    let c2 = n_dot_w * n_dot_w;
+    let tan2 = (1.0 - c2).max(0.0) / c2.max(1e-300);
+    (-1.0 + (1.0 + alpha.max(MIN_ALPHA).powi(2) * tan2).sqrt()) / 2.0
+}
+
+/// KHR_materials_anisotropy roughnesses: α_t = mix(α, 1, strength²), α_b = α.
+pub fn anisotropic_alphas(alpha: f64, strength: f64) -> (f64, f64) {
+    let s2 = strength.clamp(0.0, 1.0).powi(2);
+    let alpha = alpha.max(MIN_ALPHA);
+    (alpha + (1.0 - alpha) * s2, alpha)
+}
+
+/// Anisotropic GGX with (t, b) the anisotropy direction and its perpendicular in the
+/// tangent plane (an orthonormal frame with the normal).
+pub fn ggx_aniso_d(alpha_t: f64, alpha_b: f64, h: V3) -> f64 {
+    if h[2] <= 0.0 {
+        return 0.0;
+    }
+    let (at, ab) = (alpha_t.max(MIN_ALPHA), alpha_b.max(MIN_ALPHA));
+    let f = (h[0] / at).powi(2) + (h[1] / ab).powi(2) + h[2] * h[2];
+    1.0 / (PI * at * ab * f * f)
+}
+
+/// Anisotropic height-correlated visibility (KHR_materials_anisotropy).
+pub fn smith_vis_aniso(alpha_t: f64, alpha_b: f64, v: V3, l: V3) -> f64 {
+    let (at, ab) = (alpha_t.max(MIN_ALPHA), alpha_b.max(MIN_ALPHA));
+    let length = |w: V3| ((at * w[0]).powi(2) + (ab * w[1]).powi(2) + w[2] * w[2]).sqrt();
+    let denominator = l[2].abs() * length(v) + v[2].abs() * length(l);
+    if denominator > 0.0 {
+        0.5 / denominator
+    } else {
+        0.0
+    }
+}
+
+/// Which sheen visibility term is used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SheenVisibility {
+    /// Conty & Kulla 2017, with the Λ fit quoted by KHR_materials_sheen.
+    Charlie,
+    /// Ashikhmin / Neubelt: 1 / (4 (NdotL + NdotV − NdotL·NdotV)).
+    Ashikhmin,
+}
+
+/// The Charlie sheen distribution with r = sheenRoughness².
+pub fn charlie_d(sheen_roughness: f64, n_dot_h: f64) -> f64 {
+    let r = (sheen_roughness * sheen_roughness).max(1e-7);
+    let sin2 = (1.0 - n_dot_h * n_dot_h).max(0.0);
+    (2.0 + 1.0 / r) * sin2.powf(0.5 / r) / (2.0 * PI)
+}
+
+/// Conty-Kulla's fit of the Charlie Λ.
+pub fn charlie_lambda(sheen_roughness: f64, cos_theta: f64) -> f64 {
+    const P0: [f64; 5] = [25.3245, 3.32435, 0.16801, -1.27393, -4.85967];
+    const P1: [f64; 5] = [21.5473, 3.82987, 0.19823, -1.97760, -4.32054];
+    let r = sheen_roughness * sheen_roughness;
+    let t = (1.0 - r).powi(2);
+    let p: Vec<f64> = (0..5).map(|i| P1[i] * (1.0 - t) + P0[i] * t).collect();
+    let l = |x: f64| p[0] / (1.0 + p[1] * x.powf(p[2])) + p[3] * x + p[4];
+    let c = cos_theta.abs();
+    if c < 0.5 {
+        l(c).exp()
+    } else {
+        (2.0 * l(0.5) - l(1.0 - c)).exp()
+    }
+}
+
+/// Sheen visibility for the chosen term.
+pub fn sheen_vis(
+    visibility: SheenVisibility,
+    sheen_roughness: f64,
+    n_dot_l: f64,
+    n_dot_v: f64,
+) -> f64 {
+    let (l, v) = (n_dot_l.abs().max(1e-9), n_dot_v.abs().max(1e-9));
+    match visibility {
+        SheenVisibility::Charlie => {
+            let lambda = charlie_lambda(sheen_roughness, v) + charlie_lambda(sheen_roughness, l);
+            1.0 / ((1.0 + lambda) * 4.0 * l * v)
+        }
+        SheenVisibility::Ashikhmin => 1.0 / (4.0 * (l + v - l * v)),
+    }
+}
+
+/// The sheen lobe for a unit sheen colour: D_s · V_s.
+pub fn sheen_lobe(visibility: SheenVisibility, sheen_roughness: f64, v: V3, l: V3) -> f64 {
+    if v[2] <= 0.0 || l[2] <= 0.0 {
+        return 0.0;
+    }
+    let h = half(v, l);
+    charlie_d(sheen_roughness, h[2]) * sheen_vis(visibility, sheen_roughness, l[2], v[2])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f64, b: f64, tolerance: f64) -> bool {
+        (a - b).abs() <= tolerance * b.abs().max(1.0)
+    }
+
+    #[test]
+    fn spot_values_match_the_anchors() {
+        assert!(close(ggx_d(0.25, 1.0), 5.092958, 1e-6));
+        assert!(close(ggx_d(0.25, 0.9), 0.343596, 1e-6));
+        assert!(close(smith_vis(0.25, 0.8, 0.5), 0.593218, 1e-6));
+        for alpha in [0.01, 0.3, 1.0] {
+            assert!(close(smith_vis(alpha, 1.0, 1.0), 0.25, 1e-12));
+        }
+        let h = [0.3, 0.2, 0.87f64.sqrt()];
+        assert!(close(ggx_aniso_d(0.5, 0.1, h), 0.232743, 1e-6));
+        assert!(close(charlie_d(0.5, 0.5), 0.537148, 1e-6));
+        assert!(close(charlie_d(0.5, 0.0), 0.954930, 1e-6));
+        for (c, lambda) in [
+            (0.1, 10.117),
+            (0.3, 2.85613),
+            (0.5, 1.37883),
+            (0.8, 0.404351),
+        ] {
+            assert!(close(charlie_lambda(0.5, c), lambda, 1e-4), "Λ({c})");
+        }
+        assert!(close(
+            sheen_vis(SheenVisibility::Charlie, 0.5, 0.8, 0.5),
+            0.224564,
+            1e-5
+        ));
+        assert!(close(
+            sheen_vis(SheenVisibility::Ashikhmin, 0.5, 0.8, 0.5),
+            0.277778,
+            1e-6
+        ));
+        for (ior, f0) in [
+            (1.5, 0.04),
+            (1.33, 0.020059),
+            (1000.0, 0.996008),
+            (0.0, 1.0),
+        ] {
+            assert!(close(f0_from_ior(ior), f0, 1e-5), "ior {ior}");
+        }
+    }
+
+    #[test]
+    fn the_visibility_term_equals_the_lambda_form() {
+        for alpha in [0.05, 0.3, 0.9] {
+            for (l, v) in [(0.8, 0.5), (0.2, 0.9), (0.05, 0.6)] {
+                let g2 = 1.0 / (1.0 + smith_lambda(alpha, l) + smith_lambda(alpha, v));
+                assert!(close(smith_vis(alpha, l, v), g2 / (4.0 * l * v), 1e-12));
+            }
+        }
+    }
+
+    #[test]
+    fn zero_roughness_and_grazing_angles_stay_finite() {
+        let grazing = [1.0, 0.0, 0.0];
+        for value in [
+            ggx_d(0.0, 1.0),
+            smith_vis(0.0, 0.0, 0.0),
+            ggx_aniso_d(0.0, 0.0, [0.0, 0.0, 1.0]),
+            smith_vis_aniso(0.0, 0.0, grazing, grazing),
+            charlie_d(0.0, 1.0),
+            charlie_d(0.0, 0.0),
+            sheen_vis(SheenVisibility::Charlie, 0.0, 0.0, 0.0),
+            sheen_lobe(
+                SheenVisibility::Charlie,
+                0.0,
+                [0.0, 0.0, 1.0],
+                [0.0, 0.0, 1.0],
+            ),
+            schlick(0.04, 1.0, 0.0),
+        ] {
+            assert!(value.is_finite(), "{value}");
+        }
+    }
+}

@@ -1,0 +1,294 @@
+//! A material's BRDF at one point: glTF 2.0 metal-roughness with KHR_materials_specular,
+//! _ior, _sheen and _anisotropy; KHR_materials_pbrSpecularGlossiness; KHR_materials_unlit.
+//!
+//! Readings chosen where the texts leave room (each is a documented decision):
+//! - the dielectric is `F_d · specular + (1 − max3(F_d)) · diffuse` (KHR_materials_specular),
+//!   which equals Appendix B's `fresnel_mix` whenever F is grey;
+//! - sheen is layered with the reciprocal albedo scaling
+//!   `min(1 − c·E(NdotV), 1 − c·E(NdotL))`, c = max3(sheenColor), E from the table of the
+//!   same lobe;
+//! - spec-gloss follows its archived spec: c_diff = diffuse · (1 − max3(specular)),
+//!   F0 = specular, α = (1 − glossiness)², with the same Fresnel-weighted dielectric form;
+//! - the glTF 1.0 drafts are evaluated as their 2.0 counterparts (metal-rough as core,
+//!   spec-gloss as above, per the 2017 draft's `diffuse · (1 − max(specular))`).
+
+use super::brdf::{
+    anisotropic_alphas, f0_from_ior, ggx_aniso_d, ggx_d, half, max3, schlick, sheen_lobe,
+    smith_vis, smith_vis_aniso, SheenVisibility, V3,
+};
+use super::sheen_table::SheenTable;
+use std::f64::consts::PI;
+
+/// Every input of the BRDF at one surface point, linear values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Inputs {
+    pub base_color: V3,
+    pub metallic: f64,
+    pub roughness: f64,
+    pub ior: f64,
+    pub specular: f64,
+    pub specular_color: V3,
+    pub sheen_color: V3,
+    pub sheen_roughness: f64,
+    pub anisotropy_strength: f64,
+    /// Anisotropy direction angle in the tangent plane (texture direction + rotation).
+    pub anisotropy_angle: f64,
+    pub unlit: bool,
+}
+
+impl Default for Inputs {
+    fn default() -> Self {
+        Inputs {
+            base_color: [1.0; 3],
+            metallic: 1.0,
+            roughness: 1.0,
+            ior: 1.5,
+            specular: 1.0,
+            specular_color: [1.0; 3],
+            sheen_color: [0.0; 3],
+            sheen_roughness: 0.0,
+            anisotropy_strength: 0.0,
+            anisotropy_angle: 0.0,
+            unlit: false,
+        }
+    }
+}
+
+impl Inputs {
+    /// KHR_materials_pbrSpecularGlossiness in the evaluator's terms: a dielectric whose F0
+    /// is the specular colour (ior 0 makes f0_ior = 1) and whose diffuse is
+    /// diffuse · (1 − max3(specular)).
+    pub fn specular_glossiness(diffuse: V3, specular: V3, glossiness: f64) -> Inputs {
+        let keep = 1.0 - max3(specular);
+        Inputs {
+            base_color: diffuse.map(|d| d * keep),
+            metallic: 0.0,
+            roughness: 1.0 - glossiness,
+            ior: 0.0,
+            specular_color: specular,
+            ..Inputs::default()
+        }
+    }
+}
+
+/// Evaluates materials; holds the sheen albedo table for its visibility term.
+pub struct Shader {
+    pub sheen_table: SheenTable,
+}
+
+impl Shader {
+    pub fn new(sheen_table: SheenTable) -> Shader {
+        Shader { sheen_table }
+    }
+
+    pub fn visibility(&self) -> SheenVisibility {
+        self.sheen_table.visibility
+    }
+
+    /// The BRDF f(v, l) (not multiplied by NdotL), RGB, directions in the shading frame.
+    /// Unlit materials return their colour as radiance-like value: callers treat them apart.
+    pub fn brdf(&self, m: &Inputs, v: V3, l: V3) -> V3 {
+        if v[2] <= 0.0 || l[2] <= 0.0 {
+            return [0.0; 3];
+        }
+        let base = base_brdf(m, v, l);
+        let c = max3(m.sheen_color);
+        if c == 0.0 {
+            // A zero sheen colour disables the layer: the base, bit for bit.
+            return base;
+        }
+        let lobe = sheen_lobe(self.visibility(), m.sheen_roughness, v, l);
+        let e = |mu: f64| self.sheen_table.lookup(mu, m.sheen_roughness);
+        let scale = (1.0 - c * e(v[2])).min(1.0 - c * e(l[2]));
+        [0, 1, 2].map(|i| m.sheen_color[i] * lobe + base[i] * scale)
+    }
+}
+
+/// The metal-roughness BRDF with specular, ior and anisotropy, before sheen.
+pub fn base_brdf(m: &Inputs, v: V3, l: V3) -> V3 {
+    let h = half(v, l);
+    let alpha = m.roughness * m.roughness;
+    let specular = if m.anisotropy_strength > 0.0 {
+        let (alpha_t, alpha_b) = anisotropic_alphas(alpha, m.anisotropy_strength);
+        let (s, c) = m.anisotropy_angle.sin_cos();
+        // Into the anisotropy frame: t along the direction, b perpendicular, orthonormal.
+        let rotate = |w: V3| [c * w[0] + s * w[1], -s * w[0] + c * w[1], w[2]];
+        ggx_aniso_d(alpha_t, alpha_b, rotate(h))
+            * smith_vis_aniso(alpha_t, alpha_b, rotate(v), rotate(l))
+    } else {
+        ggx_d(alpha, h[2]) * smith_vis(alpha, l[2], v[2])
+    };
+    let v_dot_h = v[0] * h[0] + v[1] * h[1] + v[2] * h[2];
+    let f0_ior = f0_from_ior(m.ior);
+    let dielectric_f: V3 = [0, 1, 2].map(|i| {
+        schlick(
+            (f0_ior * m.specular_color[i]).min(1.0) * m.specular,
+            m.specular,
+            v_dot_h,
+        )
+    });
+    let diffuse_weight = 1.0 - max3(dielectric_f);
+    [0, 1, 2].map(|i| {
+        let dielectric = dielectric_f[i] * specular + diffuse_weight * m.base_color[i] / PI;
+        let metal = schlick(m.base_color[i], 1.0, v_dot_h) * specular;
+        dielectric * (1.0 - m.metallic) + metal * m.metallic
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shade::quadrature::hemisphere;
+
+    fn shader() -> Shader {
+        Shader::new(SheenTable::compute(8, SheenVisibility::Charlie))
+    }
+
+    fn direction(theta: f64, phi: f64) -> V3 {
+        [
+            theta.sin() * phi.cos(),
+            theta.sin() * phi.sin(),
+            theta.cos(),
+        ]
+    }
+
+    /// Appendix B exactly as written: fresnel_mix with the scalar Fresnel of ior 1.5.
+    fn appendix_b(m: &Inputs, v: V3, l: V3) -> V3 {
+        let h = half(v, l);
+        let alpha = m.roughness * m.roughness;
+        let specular = ggx_d(alpha, h[2]) * smith_vis(alpha, l[2], v[2]);
+        let v_dot_h = v[0] * h[0] + v[1] * h[1] + v[2] * h[2];
+        let f = schlick(0.04, 1.0, v_dot_h);
+        [0, 1, 2].map(|i| {
+            let dielectric = (1.0 - f) * m.base_color[i] / PI + f * specular;
+            let metal = schlick(m.base_color[i], 1.0, v_dot_h) * specular;
+            dielectric * (1.0 - m.metallic) + metal * m.metallic
+        })
+    }
+
+    fn pairs() -> Vec<(V3, V3)> {
+        let mut out = Vec::new();
+        for (tv, pv) in [(0.2, 0.0), (0.9, 1.0), (1.5, 2.5)] {
+            for (tl, pl) in [(0.1, 3.0), (0.7, 0.4), (1.4, 5.0)] {
+                out.push((direction(tv, pv), direction(tl, pl)));
+            }
+        }
+        out
+    }
+
+    fn material() -> Inputs {
+        Inputs {
+            base_color: [0.8, 0.4, 0.2],
+            metallic: 0.3,
+            roughness: 0.45,
+            ..Inputs::default()
+        }
+    }
+
+    #[test]
+    fn default_specular_and_ior_reduce_to_appendix_b() {
+        for (v, l) in pairs() {
+            let a = base_brdf(&material(), v, l);
+            let b = appendix_b(&material(), v, l);
+            for i in 0..3 {
+                assert!(
+                    (a[i] - b[i]).abs() <= 1e-12 * b[i].abs().max(1.0),
+                    "{a:?} vs {b:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn zero_anisotropy_strength_is_isotropic() {
+        let mut aniso = material();
+        aniso.anisotropy_angle = 0.7;
+        for (v, l) in pairs() {
+            let isotropic = base_brdf(&material(), v, l);
+            aniso.anisotropy_strength = 1e-300; // takes the anisotropic path with s² = 0
+            let anisotropic = base_brdf(&aniso, v, l);
+            for i in 0..3 {
+                assert!((isotropic[i] - anisotropic[i]).abs() <= 1e-12 * isotropic[i].max(1.0));
+            }
+        }
+    }
+
+    #[test]
+    fn zero_sheen_colour_returns_the_base_bit_for_bit() {
+        let s = shader();
+        let mut m = material();
+        m.sheen_roughness = 0.5;
+        for (v, l) in pairs() {
+            assert_eq!(s.brdf(&m, v, l), base_brdf(&m, v, l));
+        }
+    }
+
+    #[test]
+    fn every_lobe_is_reciprocal() {
+        let s = shader();
+        let mut m = material();
+        m.sheen_color = [0.9, 0.5, 0.3];
+        m.sheen_roughness = 0.6;
+        m.anisotropy_strength = 0.7;
+        m.anisotropy_angle = 0.3;
+        m.specular_color = [1.2, 0.8, 1.0];
+        m.ior = 1.7;
+        for (v, l) in pairs() {
+            let (a, b) = (s.brdf(&m, v, l), s.brdf(&m, l, v));
+            for i in 0..3 {
+                assert!(
+                    (a[i] - b[i]).abs() <= 1e-12 * a[i].abs().max(1.0),
+                    "{a:?} vs {b:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn ggx_and_charlie_are_normalised_and_pass_the_weak_furnace() {
+        for alpha in [0.1, 0.3, 0.7, 1.0] {
+            let d = hemisphere(2000, 256, |h| ggx_d(alpha, h[2]) * h[2]);
+            assert!((d - 1.0).abs() < 1e-6, "GGX α = {alpha}: {d}");
+        }
+        for (at, ab) in [(0.3, 0.3), (0.5, 0.1), (1.0, 0.2)] {
+            let d = hemisphere(2000, 512, |h| ggx_aniso_d(at, ab, h) * h[2]);
+            assert!((d - 1.0).abs() < 1e-5, "anisotropic ({at}, {ab}): {d}");
+        }
+        for r in [0.3, 0.7, 1.0] {
+            let d = hemisphere(2000, 64, |h| crate::shade::brdf::charlie_d(r, h[2]) * h[2]);
+            assert!((d - 1.0).abs() < 1e-6, "Charlie {r}: {d}");
+        }
+        // Heitz 2014: ∫ G1(v) D(h) max(0, v·h) dω_h = v·n.
+        for theta in [0.3f64, 1.2] {
+            let v = direction(theta, 0.0);
+            let alpha = 0.4;
+            let g1 = 1.0 / (1.0 + crate::shade::brdf::smith_lambda(alpha, v[2]));
+            let value = hemisphere(2000, 256, |h| {
+                g1 * ggx_d(alpha, h[2]) * (v[0] * h[0] + v[1] * h[1] + v[2] * h[2]).max(0.0)
+            });
+            assert!(
+                (value - v[2]).abs() < 1e-5,
+                "θ = {theta}: {value} vs {}",
+                v[2]
+            );
+        }
+    }
+
+    #[test]
+    fn spec_gloss_matches_metal_rough_with_specular_and_infinite_ior() {
+        let (diffuse, specular, gloss) = ([0.6, 0.5, 0.4], [0.2, 0.2, 0.2], 0.75);
+        let sg = Inputs::specular_glossiness(diffuse, specular, gloss);
+        let converted = Inputs {
+            base_color: diffuse.map(|d| d * 0.8),
+            metallic: 0.0,
+            roughness: 0.25,
+            ior: 0.0,
+            specular: 1.0,
+            specular_color: specular,
+            ..Inputs::default()
+        };
+        for (v, l) in pairs() {
+            assert_eq!(base_brdf(&sg, v, l), base_brdf(&converted, v, l));
+        }
+    }
+}

@@ -1,0 +1,8 @@
+//! The reference shading evaluator: f64 BRDFs written from the specification equations,
+//! sheen albedo tables computed by quadrature, and (in later work) renders and comparisons.
+
+pub mod brdf;
+pub mod delta_e;
+pub mod material;
+pub mod quadrature;
+pub mod sheen_table;

@@ -1,0 +1,145 @@
+//! The sheen albedo E(μ, sheenRoughness) = ∫ D_s V_s (n·l) dω_l for a unit sheen colour,
+//! computed in-process by deterministic quadrature for the exact lobe the evaluator uses,
+//! on a declared grid: row i ↔ sheenRoughness (i + ½)/N, column j ↔ μ = NdotV (j + ½)/N
+//! (texel centres), looked up bilinearly and clamped at the edges.
+
+use super::brdf::{sheen_lobe, SheenVisibility};
+use super::quadrature::hemisphere;
+
+/// Quadrature nodes in cos θ and φ: within 3e−4 of a 512 × 256 rule over the whole table
+/// (and within 1e−3 of the published Conty-Kulla values, see the tests).
+const NODES_MU: usize = 384;
+const NODES_PHI: usize = 64;
+
+/// The exact albedo of the sheen lobe at one (μ, sheenRoughness).
+pub fn albedo(visibility: SheenVisibility, mu: f64, sheen_roughness: f64) -> f64 {
+    let mu = mu.clamp(1e-4, 1.0);
+    let v = [(1.0 - mu * mu).sqrt(), 0.0, mu];
+    hemisphere(NODES_MU, NODES_PHI, |l| {
+        sheen_lobe(visibility, sheen_roughness, v, l) * l[2]
+    })
+}
+
+#[derive(Debug, Clone)]
+pub struct SheenTable {
+    pub size: usize,
+    pub visibility: SheenVisibility,
+    /// Row-major: `values[row * size + column]`, row = roughness, column = μ.
+    pub values: Vec<f64>,
+}
+
+impl SheenTable {
+    pub fn compute(size: usize, visibility: SheenVisibility) -> SheenTable {
+        let size = size.max(2);
+        let centre = |i: usize| (i as f64 + 0.5) / size as f64;
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let mut values = vec![0.0; size * size];
+        // Rows are independent: one chunk of rows per core.
+        let rows_per_chunk = size.div_ceil(threads);
+        std::thread::scope(|scope| {
+            for (chunk, out) in values.chunks_mut(rows_per_chunk * size).enumerate() {
+                scope.spawn(move || {
+                    for (k, value) in out.iter_mut().enumerate() {
+                        let k = chunk * rows_per_chunk * size + k;
+                        *value = albedo(visibility, centre(k % size), centre(k / size));
+                    }
+                });
+            }
+        });
+        SheenTable {
+            size,
+            visibility,
+            values,
+        }
+    }
+
+    /// Bilinear lookup between texel centres, clamped at the edges.
+    pub fn lookup(&self, mu: f64, sheen_roughness: f64) -> f64 {
+        let n = self.size;
+        let coordinate = |x: f64| {
+            let t = (x.clamp(0.0, 1.0) * n as f64 - 0.5).clamp(0.0, (n - 1) as f64);
+            let i = (t.floor() as usize).min(n - 2);
+            (i, t - i as f64)
+        };
+        let (j, fx) = coordinate(mu);
+        let (i, fy) = coordinate(sheen_roughness);
+        let at = |row: usize, column: usize| self.values[row * n + column];
+        let top = at(i, j) * (1.0 - fx) + at(i, j + 1) * fx;
+        let bottom = at(i + 1, j) * (1.0 - fx) + at(i + 1, j + 1) * fx;
+        top * (1.0 - fy) + bottom * fy
+    }
+
+    /// One row per roughness, one column per μ, with a header naming the grid.
+    pub fn to_csv(&self) -> String {
+        let n = self.size;
+        let mut out = format!(
+            "# sheen albedo E, {:?} visibility; row i: sheenRoughness = (i+0.5)/{n}; column j: NdotV = (j+0.5)/{n}\n",
+            self.visibility
+        );
+        for row in self.values.chunks(n) {
+            let cells: Vec<String> = row.iter().map(|v| format!("{v:.6}")).collect();
+            out.push_str(&cells.join(","));
+            out.push('\n');
+        }
+        out
+    }
+
+    /// 16-bit greyscale PNG, same layout (x = μ, y = roughness); values above 1 are clamped.
+    pub fn to_png(&self) -> Vec<u8> {
+        let n = self.size as u32;
+        let image = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_fn(n, n, |x, y| {
+            let v = self.values[(y * n + x) as usize].clamp(0.0, 1.0);
+            image::Luma([(v * 65535.0).round() as u16])
+        });
+        let mut bytes = Vec::new();
+        let _ = image::DynamicImage::ImageLuma16(image).write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        );
+        bytes
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn albedo_matches_the_conty_kulla_column() {
+        // shading-anchors.md §2.4, "E, Charlie V (CK17 Λ)" and "E, Ashikhmin V".
+        for (roughness, mu, charlie, ashikhmin) in [
+            (0.25, 0.5, 0.0599, 0.0989),
+            (0.5, 0.1, 0.5666, 0.6393),
+            (0.5, 0.5, 0.1879, 0.2296),
+            (0.75, 0.5, 0.2980, 0.2716),
+            (1.0, 0.1, 0.7205, 0.4940),
+            (1.0, 0.9, 0.1943, 0.1674),
+        ] {
+            let e = albedo(SheenVisibility::Charlie, mu, roughness);
+            assert!(
+                (e - charlie).abs() < 1e-3,
+                "Charlie E({mu}, {roughness}) = {e}"
+            );
+            let e = albedo(SheenVisibility::Ashikhmin, mu, roughness);
+            assert!(
+                (e - ashikhmin).abs() < 1e-3,
+                "Ashikhmin E({mu}, {roughness}) = {e}"
+            );
+        }
+    }
+
+    #[test]
+    fn lookup_returns_texel_centres_exactly_and_interpolates_between() {
+        let table = SheenTable {
+            size: 2,
+            visibility: SheenVisibility::Charlie,
+            values: vec![0.0, 1.0, 2.0, 3.0],
+        };
+        assert_eq!(table.lookup(0.25, 0.25), 0.0);
+        assert_eq!(table.lookup(0.75, 0.75), 3.0);
+        assert_eq!(table.lookup(0.5, 0.5), 1.5);
+        assert_eq!(table.lookup(0.0, 1.0), 2.0, "clamped at the edges");
+        let csv = table.to_csv();
+        assert_eq!(csv.lines().nth(1), Some("0.000000,1.000000"));
+    }
+}
