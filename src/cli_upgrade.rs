@@ -24,6 +24,13 @@ pub struct UpgradeArgs {
     /// Replace an existing output (never the input).
     #[arg(long)]
     force: bool,
+    /// Prove with the shading evaluator that each converted material renders like its 1.0
+    /// source (ΔE2000 ≤ --threshold); otherwise nothing is written.
+    #[arg(long)]
+    verify: bool,
+    /// ΔE2000 allowed by --verify.
+    #[arg(long, default_value_t = 1.0)]
+    threshold: f64,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -71,6 +78,12 @@ pub fn run(args: UpgradeArgs) -> ExitCode {
         };
         println!("{kind:<8} {} {}", note.pointer, note.text);
     }
+    if args.verify && !verified(&bytes, &args, &upgraded) {
+        eprintln!(
+            "gltfmat: a converted material does not render like its source; nothing was written."
+        );
+        return ExitCode::from(1);
+    }
     let Some(name) = args.output.file_name().and_then(|n| n.to_str()) else {
         return fail(format!("{}: not a file name", args.output.display()));
     };
@@ -95,4 +108,21 @@ pub fn run(args: UpgradeArgs) -> ExitCode {
         1 + files.side.len()
     );
     ExitCode::SUCCESS
+}
+
+/// Compares every 1.0 PBR material with its conversion; prints the results.
+fn verified(bytes: &[u8], args: &UpgradeArgs, upgraded: &gltfmat::upgrade::Upgraded) -> bool {
+    let loader = FolderResources::new(folder_of(&args.input));
+    let Ok(sources) = gltfmat::upgrade::legacy_materials(bytes, &loader) else {
+        return false;
+    };
+    let converted: Vec<crate::cli_compare::Named> = gltfmat::upgrade::converted_materials(upgraded)
+        .into_iter()
+        .zip(&sources)
+        .map(|(m, (name, _))| (name.clone(), Some(m)))
+        .collect();
+    let pairs: Vec<(usize, usize)> = (0..sources.len()).map(|i| (i, i)).collect();
+    let outcomes = crate::cli_compare::compare_pairs(&sources, &converted, &pairs, 0);
+    crate::cli_compare::print_human(&outcomes, args.threshold);
+    outcomes.iter().all(|o| o.result.max <= args.threshold)
 }

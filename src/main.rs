@@ -1,5 +1,6 @@
 //! The `gltfmat` command line.
 
+mod cli_compare;
 mod cli_config;
 mod cli_lut;
 mod cli_upgrade;
@@ -29,6 +30,8 @@ enum Command {
     Check(CheckArgs),
     /// Convert a glTF 1.0 asset (with WEB3D/KHR/FRAUNHOFER/EXT PBR materials) to glTF 2.0.
     Upgrade(cli_upgrade::UpgradeArgs),
+    /// Do two materials render the same? ΔE2000 over a UV grid and a set of directions.
+    Compare(cli_compare::CompareArgs),
     /// Export a lookup table of the shading evaluator (the sheen albedo E).
     Lut(cli_lut::LutArgs),
     /// List every code gltfmat can report.
@@ -85,6 +88,7 @@ fn main() -> ExitCode {
         Command::Check(args) => run_check(args),
         Command::Upgrade(args) => cli_upgrade::run(args),
         Command::Lut(args) => cli_lut::run(args),
+        Command::Compare(args) => cli_compare::run(args),
         Command::Rules => {
             let mut out = String::new();
             for info in codes::all() {

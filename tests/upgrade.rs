@@ -304,3 +304,85 @@ fn an_output_that_fails_the_check_is_not_written() {
     assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+mod verify {
+    use super::*;
+    use gltfmat::shade::brdf::SheenVisibility;
+    use gltfmat::shade::compare::compare;
+    use gltfmat::shade::material::Shader;
+    use gltfmat::shade::sheen_table::SheenTable;
+    use gltfmat::upgrade::{converted_materials, legacy_materials};
+
+    fn worst_delta_e(fixture: &str, corrupt: impl FnOnce(&mut Upgraded)) -> f64 {
+        let path = repo(&format!("fixtures/gltf1/{fixture}"));
+        let mut upgraded = upgrade_file(&path, &UpgradeOptions::default());
+        corrupt(&mut upgraded);
+        let bytes = std::fs::read(&path).unwrap();
+        let sources =
+            legacy_materials(&bytes, &FolderResources::new(path.parent().unwrap())).unwrap();
+        let source = sources[0].1.clone().expect("a PBR material");
+        let converted = converted_materials(&upgraded).remove(0);
+        let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
+        compare(&shader, &source, &converted, 0).max
+    }
+
+    #[test]
+    fn the_conversions_render_like_their_sources() {
+        assert_eq!(
+            worst_delta_e("pbr-mr-textured-fraunhofer.gltf", |_| {}),
+            0.0
+        );
+        assert!(
+            worst_delta_e("pbr-sg-textured-ext.gltf", |_| {}) < 1.0,
+            "8-bit rebaking stays under one JND"
+        );
+    }
+
+    #[test]
+    fn compare_catches_metallic_left_in_red() {
+        let wrong = worst_delta_e("pbr-mr-textured-fraunhofer.gltf", |upgraded| {
+            let pbr = &upgraded.json["materials"][0]["pbrMetallicRoughness"];
+            let texture = pbr["metallicRoughnessTexture"]["index"].as_u64().unwrap() as usize;
+            let image = upgraded.json["textures"][texture]["source"]
+                .as_u64()
+                .unwrap() as usize;
+            upgraded.images[image].bytes =
+                std::fs::read(repo("fixtures/gltf1/metal_rough.png")).unwrap();
+        });
+        assert!(
+            wrong > 1.0,
+            "the un-swizzled texture must be caught: ΔE {wrong}"
+        );
+    }
+
+    #[test]
+    fn the_cli_verifies_before_writing() {
+        let dir = scratch("verify");
+        let out = dir.join("out.glb");
+        let (code, text) = gltfmat(&[
+            "upgrade",
+            "fixtures/gltf1/pbr-sg-textured-ext.gltf",
+            "-o",
+            out.to_str().unwrap(),
+            "--verify",
+        ]);
+        assert_eq!(code, 0, "{text}");
+        assert!(text.contains("same: ΔE2000 max"), "{text}");
+        let (code, text) = gltfmat(&[
+            "compare",
+            "fixtures/gltf1/pbr-sg-textured-ext.gltf",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{text}");
+        let (code, text) = gltfmat(&[
+            "compare",
+            "fixtures/gltf1/pbr-sg-khr.gltf",
+            out.to_str().unwrap(),
+            "--format",
+            "json",
+        ]);
+        assert_eq!(code, 1, "a different material fails: {text}");
+        assert!(text.contains("\"pass\": false"), "{text}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

@@ -1,6 +1,7 @@
 //! Bytes → document: container detection, GLB chunks, JSON, and external resources.
 
 pub mod glb;
+pub mod image_decode;
 pub mod image_header;
 pub mod json;
 pub mod uri;

@@ -2,7 +2,10 @@
 //! sheen albedo tables computed by quadrature, and (in later work) renders and comparisons.
 
 pub mod brdf;
+pub mod compare;
 pub mod delta_e;
+pub mod load;
 pub mod material;
 pub mod quadrature;
+pub mod sample;
 pub mod sheen_table;

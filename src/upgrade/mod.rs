@@ -18,6 +18,8 @@ mod source;
 mod structure;
 
 use crate::document::uri::ResourceLoader;
+use crate::legacy_pbr;
+use crate::shade::sample::{self, MaterialSource, Texture};
 use serde_json::Value;
 
 /// How specular-glossiness materials are written.
@@ -120,4 +122,58 @@ pub fn upgrade(
     let mut build = structure::Builder::new(&source, options);
     build.run()?;
     Ok(build.finish())
+}
+
+/// The PBR-draft materials of a glTF 1.0 asset as the shading evaluator samples them (their
+/// own model), in material order, with their ids; `None` for materials without a PBR block.
+pub fn legacy_materials(
+    bytes: &[u8],
+    loader: &dyn ResourceLoader,
+) -> Result<Vec<(String, Option<MaterialSource>)>, UpgradeError> {
+    let source = source::read(bytes, loader)?;
+    let texture = |id: Option<&String>| -> Option<Texture> {
+        let texture = source.object("textures", id?)?;
+        let image = source.object("images", texture.get("source")?.as_str()?)?;
+        sample::decode(&source.image_bytes(image).ok()?)
+    };
+    Ok(source
+        .dictionary("materials")
+        .into_iter()
+        .map(|(id, material)| {
+            let parsed =
+                legacy_pbr::find(material).and_then(|(name, block)| legacy_pbr::parse(name, block));
+            let sampled = parsed.map(|pbr| MaterialSource::Legacy {
+                colour: texture(pbr.colour_texture.as_ref()),
+                data: texture(pbr.data_texture.as_ref()),
+                pbr,
+            });
+            (id.to_string(), sampled)
+        })
+        .collect())
+}
+
+/// The materials of an upgraded asset as the shading evaluator samples them.
+pub fn converted_materials(upgraded: &Upgraded) -> Vec<MaterialSource> {
+    let textures: Vec<Option<Texture>> = upgraded.json["textures"]
+        .as_array()
+        .map(|list| {
+            list.iter()
+                .map(|t| {
+                    let image = upgraded.images.get(t.get("source")?.as_u64()? as usize)?;
+                    sample::decode(&image.bytes)
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    upgraded.json["materials"]
+        .as_array()
+        .map(|list| {
+            list.iter()
+                .map(|material| MaterialSource::Gltf2 {
+                    material: material.clone(),
+                    textures: textures.clone(),
+                })
+                .collect()
+        })
+        .unwrap_or_default()
 }

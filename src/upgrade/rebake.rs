@@ -2,23 +2,13 @@
 //! the 1.0 textures. Original images are never modified or reused for a changed meaning.
 
 use crate::color::{linear_to_srgb, srgb_to_linear};
+use crate::document::image_decode;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-use image::{DynamicImage, ImageEncoder, ImageReader, Limits, Rgb32FImage, Rgba32FImage};
+use image::{DynamicImage, ImageEncoder, Rgb32FImage, Rgba32FImage};
 use std::io::Cursor;
 
-/// Largest texture rebaked (per side) — the same bound as the checker's decoder.
-const MAX_DIMENSION: u32 = 16384;
-
 pub fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
-    let mut limits = Limits::default();
-    limits.max_image_width = Some(MAX_DIMENSION);
-    limits.max_image_height = Some(MAX_DIMENSION);
-    limits.max_alloc = Some(2 << 30);
-    let mut reader = ImageReader::new(Cursor::new(bytes))
-        .with_guessed_format()
-        .map_err(|e| e.to_string())?;
-    reader.limits(limits);
-    reader.decode().map_err(|e| e.to_string())
+    image_decode::decode(bytes).map_err(|e| e.to_string())
 }
 
 /// Encodes linear-or-stored values (0..1) as an 8-bit RGB(A) PNG, or 16-bit when `wide`.

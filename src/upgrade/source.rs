@@ -174,4 +174,22 @@ impl Source<'_> {
             })?;
         Ok(&buffer[offset as usize..end as usize])
     }
+
+    /// The bytes of a 1.0 image: KHR_binary_glTF bufferView, data URI or file.
+    pub fn image_bytes(&self, image: &Value) -> Result<Vec<u8>, String> {
+        let binary = image
+            .get("extensions")
+            .and_then(|e| e.get("KHR_binary_glTF"));
+        if let Some(view) = binary
+            .and_then(|b| b.get("bufferView"))
+            .and_then(Value::as_str)
+        {
+            return self.view(view).map(<[u8]>::to_vec);
+        }
+        let uri = image
+            .get("uri")
+            .and_then(Value::as_str)
+            .ok_or("the image has no uri")?;
+        self.load_uri(uri)
+    }
 }

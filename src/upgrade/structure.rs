@@ -151,12 +151,13 @@ impl<'s, 'a> Builder<'s, 'a> {
     fn images(&mut self) -> Result<(), UpgradeError> {
         for (id, image) in self.source.dictionary("images") {
             let at = pointer("images", id);
-            let bytes = self
-                .image_bytes(image)
-                .map_err(|reason| UpgradeError::Resource {
-                    pointer: at.clone(),
-                    reason,
-                })?;
+            let bytes =
+                self.source
+                    .image_bytes(image)
+                    .map_err(|reason| UpgradeError::Resource {
+                        pointer: at.clone(),
+                        reason,
+                    })?;
             let format = image_header::read(&bytes).map_err(|e| UpgradeError::Resource {
                 pointer: at.clone(),
                 reason: format!("not a readable image ({e:?})"),
@@ -197,23 +198,6 @@ impl<'s, 'a> Builder<'s, 'a> {
             file_name,
         });
         self.push("images", Value::Object(json))
-    }
-
-    fn image_bytes(&self, image: &Value) -> Result<Vec<u8>, String> {
-        let binary = image
-            .get("extensions")
-            .and_then(|e| e.get("KHR_binary_glTF"));
-        if let Some(view) = binary
-            .and_then(|b| b.get("bufferView"))
-            .and_then(Value::as_str)
-        {
-            return self.source.view(view).map(<[u8]>::to_vec);
-        }
-        let uri = image
-            .get("uri")
-            .and_then(Value::as_str)
-            .ok_or("the image has no uri")?;
-        self.source.load_uri(uri)
     }
 
     fn textures(&mut self) {

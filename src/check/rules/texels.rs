@@ -2,13 +2,8 @@
 //! helper those rules share.
 
 use crate::check::context::Context;
-use image::{DynamicImage, ImageReader, Limits};
-use std::io::Cursor;
-
-/// Largest width or height decoded.
-const MAX_DIMENSION: u32 = 16384;
-/// Largest decoder allocation: a 8192² RGBA16 image, whatever the header claims.
-const MAX_ALLOC: u64 = 512 * 1024 * 1024;
+use crate::document::image_decode::{self, DecodeError};
+use image::DynamicImage;
 
 /// A decoded image.
 pub struct Texels {
@@ -25,21 +20,13 @@ pub struct Tally {
 /// Decodes image `index`, reporting IMAGE_UNDECODABLE or IMAGE_DECODE_LIMIT on failure.
 pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
     let bytes = ctx.image_bytes.get(index)?.as_deref()?;
-    let mut limits = Limits::default();
-    limits.max_image_width = Some(MAX_DIMENSION);
-    limits.max_image_height = Some(MAX_DIMENSION);
-    limits.max_alloc = Some(MAX_ALLOC);
-    let mut reader = ImageReader::new(Cursor::new(bytes))
-        .with_guessed_format()
-        .ok()?;
-    reader.limits(limits);
-    match reader.decode() {
+    match image_decode::decode(bytes) {
         Ok(image) => Some(Texels { image }),
-        Err(image::ImageError::Limits(_)) => {
+        Err(error @ DecodeError::Limit) => {
             ctx.emit(
                 "IMAGE_DECODE_LIMIT",
                 format!("/images/{index}"),
-                format!("Image is larger than the decoding limits ({MAX_DIMENSION}² texels, {} MiB); its pixel rules were skipped.", MAX_ALLOC >> 20),
+                format!("Image is {error}; its pixel rules were skipped."),
             );
             None
         }

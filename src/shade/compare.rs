@@ -1,0 +1,234 @@
+//! Do two materials render the same? Both are evaluated on a UV grid (at least as fine as
+//! their finest texture) for a fixed, stratified set of view/light directions including
+//! grazing ones; each result becomes a colour under the same exposure and the two colours
+//! are compared with CIEDE2000.
+//!
+//! Exposure: one directional light of irradiance π at normal incidence, so a white Lambertian
+//! surface lit head-on has radiance 1 (CIELAB L* = 100). Unlit materials emit their colour.
+
+use super::brdf::V3;
+use super::delta_e::{ciede2000, lab_from_linear_srgb};
+use super::material::{Inputs, Shader};
+use super::sample::MaterialSource;
+use std::f64::consts::PI;
+
+/// (θ_v, θ_l, φ between them), degrees: head-on, off-specular, mirror, crossed (anisotropy)
+/// and grazing configurations.
+pub const DIRECTIONS: [(f64, f64, f64); 8] = [
+    (0.0, 0.0, 0.0),
+    (0.0, 60.0, 0.0),
+    (45.0, 45.0, 180.0),
+    (45.0, 45.0, 90.0),
+    (60.0, 30.0, 0.0),
+    (75.0, 75.0, 180.0),
+    (85.0, 20.0, 90.0),
+    (88.0, 88.0, 180.0),
+];
+
+/// Histogram resolution for the percentile (ΔE up to 100 in steps of 0.001).
+const BINS: usize = 100_000;
+const BIN_WIDTH: f64 = 0.001;
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Worst {
+    pub delta_e: f64,
+    pub uv: [f64; 2],
+    /// (θ_v, θ_l, φ) in degrees.
+    pub directions: (f64, f64, f64),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Comparison {
+    pub max: f64,
+    pub p99: f64,
+    pub mean: f64,
+    pub worst: Worst,
+    /// Grid size per side and the number of (texel, direction) samples compared.
+    pub grid: u32,
+    pub samples: u64,
+}
+
+fn direction(theta: f64, phi: f64) -> V3 {
+    let (t, p) = (theta.to_radians(), phi.to_radians());
+    [t.sin() * p.cos(), t.sin() * p.sin(), t.cos()]
+}
+
+/// The colour (CIELAB) of a material for one view/light pair.
+fn lab(shader: &Shader, m: &Inputs, v: V3, l: V3) -> V3 {
+    if m.unlit {
+        return lab_from_linear_srgb(m.base_color);
+    }
+    let f = shader.brdf(m, v, l);
+    lab_from_linear_srgb(f.map(|c| c * l[2] * PI))
+}
+
+struct Partial {
+    sum: f64,
+    count: u64,
+    worst: Worst,
+    histogram: Vec<u32>,
+}
+
+/// Compares `a` with `b` on a `grid`² UV grid (texel centres); `grid` 0 picks the finest
+/// texture resolution of either (at least 16).
+pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u32) -> Comparison {
+    let grid = if grid == 0 {
+        a.max_resolution().max(b.max_resolution()).max(16)
+    } else {
+        grid
+    };
+    let pairs: Vec<(V3, V3, (f64, f64, f64))> = DIRECTIONS
+        .iter()
+        .map(|&(tv, tl, phi)| (direction(tv, 0.0), direction(tl, phi), (tv, tl, phi)))
+        .collect();
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u32;
+    let rows_per_thread = grid.div_ceil(threads);
+    let partials: Vec<Partial> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..threads)
+            .map(|t| {
+                let rows = (t * rows_per_thread)..((t + 1) * rows_per_thread).min(grid);
+                let pairs = &pairs;
+                scope.spawn(move || compare_rows(shader, a, b, grid, rows, pairs))
+            })
+            .collect();
+        handles.into_iter().filter_map(|h| h.join().ok()).collect()
+    });
+    merge(partials, grid)
+}
+
+fn compare_rows(
+    shader: &Shader,
+    a: &MaterialSource,
+    b: &MaterialSource,
+    grid: u32,
+    rows: std::ops::Range<u32>,
+    pairs: &[(V3, V3, (f64, f64, f64))],
+) -> Partial {
+    let mut partial = Partial {
+        sum: 0.0,
+        count: 0,
+        worst: Worst {
+            delta_e: -1.0,
+            uv: [0.0, 0.0],
+            directions: (0.0, 0.0, 0.0),
+        },
+        histogram: vec![0; BINS],
+    };
+    for y in rows {
+        for x in 0..grid {
+            let uv = [
+                (f64::from(x) + 0.5) / f64::from(grid),
+                (f64::from(y) + 0.5) / f64::from(grid),
+            ];
+            let uvs = [uv, uv];
+            let (ma, mb) = (a.inputs_at(&uvs), b.inputs_at(&uvs));
+            for &(v, l, angles) in pairs {
+                let delta = ciede2000(lab(shader, &ma, v, l), lab(shader, &mb, v, l));
+                let delta = if delta.is_finite() { delta } else { f64::MAX };
+                partial.sum += delta.min(1e6);
+                partial.count += 1;
+                let bin = ((delta / BIN_WIDTH) as usize).min(BINS - 1);
+                partial.histogram[bin] += 1;
+                if delta > partial.worst.delta_e {
+                    partial.worst = Worst {
+                        delta_e: delta,
+                        uv,
+                        directions: angles,
+                    };
+                }
+            }
+        }
+    }
+    partial
+}
+
+fn merge(partials: Vec<Partial>, grid: u32) -> Comparison {
+    let mut histogram = vec![0u64; BINS];
+    let (mut sum, mut count) = (0.0, 0u64);
+    let mut worst = Worst {
+        delta_e: 0.0,
+        uv: [0.0, 0.0],
+        directions: (0.0, 0.0, 0.0),
+    };
+    for p in partials {
+        sum += p.sum;
+        count += p.count;
+        for (total, n) in histogram.iter_mut().zip(&p.histogram) {
+            *total += u64::from(*n);
+        }
+        if p.worst.delta_e > worst.delta_e {
+            worst = p.worst;
+        }
+    }
+    let target = (count as f64 * 0.99).ceil() as u64;
+    let mut seen = 0;
+    let mut p99 = 0.0;
+    for (bin, n) in histogram.iter().enumerate() {
+        seen += n;
+        if seen >= target {
+            p99 = (bin + 1) as f64 * BIN_WIDTH;
+            break;
+        }
+    }
+    Comparison {
+        max: worst.delta_e,
+        p99: p99.min(worst.delta_e),
+        mean: sum / count.max(1) as f64,
+        worst,
+        grid,
+        samples: count,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shade::brdf::SheenVisibility;
+    use crate::shade::sheen_table::SheenTable;
+    use serde_json::json;
+
+    fn shader() -> Shader {
+        Shader::new(SheenTable::compute(4, SheenVisibility::Charlie))
+    }
+
+    fn gltf2(material: serde_json::Value) -> MaterialSource {
+        MaterialSource::Gltf2 {
+            material,
+            textures: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_material_compared_with_itself_differs_by_zero() {
+        let m = gltf2(
+            json!({"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.3, 0.2, 1.0], "metallicFactor": 0.2, "roughnessFactor": 0.4},
+            "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.5, 0.9], "sheenRoughnessFactor": 0.5}}}),
+        );
+        let result = compare(&shader(), &m, &m, 8);
+        assert_eq!((result.max, result.mean, result.p99), (0.0, 0.0, 0.0));
+        assert_eq!(result.samples, 64 * DIRECTIONS.len() as u64);
+    }
+
+    #[test]
+    fn spec_gloss_converted_by_the_documented_mapping_matches_and_a_naive_one_does_not() {
+        let source = gltf2(
+            json!({"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+            "diffuseFactor": [0.6, 0.5, 0.4, 1.0], "specularFactor": [0.2, 0.2, 0.2], "glossinessFactor": 0.75}}}),
+        );
+        let converted = gltf2(
+            json!({"pbrMetallicRoughness": {"baseColorFactor": [0.48, 0.4, 0.32, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.25},
+            "extensions": {"KHR_materials_specular": {"specularColorFactor": [0.2, 0.2, 0.2]}, "KHR_materials_ior": {"ior": 0}}}),
+        );
+        let naive = gltf2(
+            json!({"pbrMetallicRoughness": {"baseColorFactor": [0.6, 0.5, 0.4, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.25},
+            "extensions": {"KHR_materials_specular": {"specularColorFactor": [0.2, 0.2, 0.2]}, "KHR_materials_ior": {"ior": 0}}}),
+        );
+        let good = compare(&shader(), &source, &converted, 4);
+        assert!(good.max < 1e-6, "{good:?}");
+        let bad = compare(&shader(), &source, &naive, 4);
+        assert!(
+            bad.max > 1.0,
+            "baseColor = diffuse without (1 − max specular) must be caught: {bad:?}"
+        );
+    }
+}

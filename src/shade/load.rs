@@ -1,0 +1,90 @@
+//! Reading the materials of a glTF 2.0 file (`.gltf` or `.glb`) for the evaluator.
+
+use super::sample::{self, MaterialSource, Texture};
+use crate::document::uri::{classify, ResourceLoader, UriKind};
+use crate::document::{self, Container};
+use serde_json::Value;
+
+fn uri_bytes(uri: &str, loader: &dyn ResourceLoader) -> Option<Vec<u8>> {
+    match classify(uri).ok()? {
+        UriKind::Data { bytes, .. } => Some(bytes),
+        UriKind::Relative(path) => loader.load(&path).ok(),
+        _ => None,
+    }
+}
+
+/// Every material of a glTF 2.0 asset with its decoded textures, and the material names.
+pub fn gltf2_materials(
+    bytes: Vec<u8>,
+    name: &str,
+    loader: &dyn ResourceLoader,
+) -> Result<Vec<(String, MaterialSource)>, String> {
+    let doc = document::read(bytes, name);
+    let root = doc.root.as_ref().ok_or("not a readable glTF document")?;
+    let list = |key: &str| {
+        root.get(key)
+            .and_then(Value::as_array)
+            .cloned()
+            .unwrap_or_default()
+    };
+    let buffers: Vec<Option<Vec<u8>>> = list("buffers")
+        .iter()
+        .enumerate()
+        .map(
+            |(i, buffer)| match buffer.get("uri").and_then(Value::as_str) {
+                Some(uri) => uri_bytes(uri, loader),
+                None if i == 0 && doc.container == Container::Glb => doc.bin().map(<[u8]>::to_vec),
+                None => None,
+            },
+        )
+        .collect();
+    let views = list("bufferViews");
+    let view_bytes = |index: u64| -> Option<Vec<u8>> {
+        let view = views.get(index as usize)?;
+        let buffer = buffers
+            .get(view.get("buffer")?.as_u64()? as usize)?
+            .as_ref()?;
+        let start = view.get("byteOffset").and_then(Value::as_u64).unwrap_or(0) as usize;
+        let end = start.checked_add(view.get("byteLength")?.as_u64()? as usize)?;
+        buffer.get(start..end).map(<[u8]>::to_vec)
+    };
+    let images: Vec<Option<Texture>> = list("images")
+        .iter()
+        .map(|image| {
+            let bytes = match image.get("uri").and_then(Value::as_str) {
+                Some(uri) => uri_bytes(uri, loader),
+                None => view_bytes(image.get("bufferView")?.as_u64()?),
+            };
+            sample::decode(&bytes?)
+        })
+        .collect();
+    let textures: Vec<Option<Texture>> = list("textures")
+        .iter()
+        .map(|texture| {
+            let extension_source = texture
+                .get("extensions")
+                .and_then(Value::as_object)
+                .and_then(|e| e.values().find_map(|x| x.get("source")?.as_u64()));
+            let source = texture
+                .get("source")
+                .and_then(Value::as_u64)
+                .or(extension_source)?;
+            images.get(source as usize)?.clone()
+        })
+        .collect();
+    Ok(list("materials")
+        .into_iter()
+        .enumerate()
+        .map(|(i, material)| {
+            let name = material
+                .get("name")
+                .and_then(Value::as_str)
+                .map_or_else(|| i.to_string(), str::to_string);
+            let source = MaterialSource::Gltf2 {
+                material,
+                textures: textures.clone(),
+            };
+            (name, source)
+        })
+        .collect())
+}
