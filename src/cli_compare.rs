@@ -5,6 +5,7 @@ use gltfmat::shade::brdf::SheenVisibility;
 use gltfmat::shade::compare::{compare, Comparison, DIRECTIONS};
 use gltfmat::shade::load::gltf2_materials;
 use gltfmat::shade::material::Shader;
+use gltfmat::shade::render::heatmap;
 use gltfmat::shade::sample::MaterialSource;
 use gltfmat::shade::sheen_table::SheenTable;
 use gltfmat::upgrade::{legacy_materials, UpgradeError};
@@ -28,6 +29,10 @@ pub struct CompareArgs {
     grid: u32,
     #[arg(long, value_enum, default_value = "human")]
     format: CompareFormat,
+    /// Write a ΔE heat map per pair (black 0 → red at the threshold); `-N` is added before
+    /// the extension when several pairs are compared.
+    #[arg(long)]
+    heatmap: Option<PathBuf>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -151,6 +156,25 @@ pub fn run(args: CompareArgs) -> ExitCode {
         }
     };
     let outcomes = compare_pairs(&a, &b, &pairs, args.grid);
+    if let Some(path) = &args.heatmap {
+        for (k, o) in outcomes.iter().enumerate() {
+            let target = if outcomes.len() == 1 {
+                path.clone()
+            } else {
+                path.with_file_name(format!(
+                    "{}-{k}.png",
+                    path.file_stem()
+                        .and_then(|s| s.to_str())
+                        .unwrap_or("heatmap")
+                ))
+            };
+            let image = heatmap(&o.result.per_texel, o.result.grid, args.threshold);
+            if let Err(e) = image.save(&target) {
+                eprintln!("gltfmat: {}: {e}", target.display());
+                return ExitCode::from(2);
+            }
+        }
+    }
     if args.format == CompareFormat::Json {
         let list: Vec<_> = outcomes
             .iter()
@@ -178,5 +202,70 @@ pub fn run(args: CompareArgs) -> ExitCode {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
+    }
+}
+
+#[derive(clap::Args)]
+pub struct RenderArgs {
+    asset: PathBuf,
+    /// Material index or name (default: the first).
+    #[arg(long)]
+    material: Option<String>,
+    /// Every material on one contact sheet (their names are listed on standard output).
+    #[arg(long)]
+    all: bool,
+    #[arg(short, long, default_value = "material.png")]
+    output: PathBuf,
+    /// Pixels per side (per material with --all).
+    #[arg(long, default_value_t = 512)]
+    size: u32,
+}
+
+pub fn render(args: RenderArgs) -> ExitCode {
+    let materials = match load(&args.asset) {
+        Ok(m) => m,
+        Err(message) => {
+            eprintln!("gltfmat: {message}");
+            return ExitCode::from(2);
+        }
+    };
+    let chosen: Vec<(usize, &String, &MaterialSource)> = materials
+        .iter()
+        .enumerate()
+        .filter_map(|(i, (name, m))| Some((i, name, m.as_ref()?)))
+        .filter(|(i, name, _)| match (&args.material, args.all) {
+            (_, true) | (None, false) => true,
+            (Some(wanted), false) => wanted == *name || wanted.parse() == Ok(*i),
+        })
+        .take(if args.all { usize::MAX } else { 1 })
+        .collect();
+    if chosen.is_empty() {
+        eprintln!(
+            "gltfmat: {}: no such material to render",
+            args.asset.display()
+        );
+        return ExitCode::from(2);
+    }
+    let sources: Vec<&MaterialSource> = chosen.iter().map(|(_, _, m)| *m).collect();
+    let shader = shader_for(&sources);
+    let size = args.size.clamp(8, 4096);
+    let image = if args.all {
+        gltfmat::shade::render::contact_sheet(&shader, &sources, size)
+    } else {
+        gltfmat::shade::render::material_ball(&shader, sources[0], size)
+    };
+    for (k, (i, name, _)) in chosen.iter().enumerate() {
+        println!(
+            "cell {k} (row {}, column {}): material {i} '{name}'",
+            k / 4,
+            k % 4
+        );
+    }
+    match image.save(&args.output) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("gltfmat: {}: {e}", args.output.display());
+            ExitCode::from(2)
+        }
     }
 }

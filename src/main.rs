@@ -30,6 +30,8 @@ enum Command {
     Check(CheckArgs),
     /// Convert a glTF 1.0 asset (with WEB3D/KHR/FRAUNHOFER/EXT PBR materials) to glTF 2.0.
     Upgrade(cli_upgrade::UpgradeArgs),
+    /// Render a material ball (or --all materials) to PNG.
+    Render(cli_compare::RenderArgs),
     /// Do two materials render the same? ΔE2000 over a UV grid and a set of directions.
     Compare(cli_compare::CompareArgs),
     /// Export a lookup table of the shading evaluator (the sheen albedo E).
@@ -89,6 +91,7 @@ fn main() -> ExitCode {
         Command::Upgrade(args) => cli_upgrade::run(args),
         Command::Lut(args) => cli_lut::run(args),
         Command::Compare(args) => cli_compare::run(args),
+        Command::Render(args) => cli_compare::render(args),
         Command::Rules => {
             let mut out = String::new();
             for info in codes::all() {

@@ -46,6 +46,8 @@ pub struct Comparison {
     /// Grid size per side and the number of (texel, direction) samples compared.
     pub grid: u32,
     pub samples: u64,
+    /// The largest ΔE over the directions, per texel (row-major), for heat maps.
+    pub per_texel: Vec<f32>,
 }
 
 fn direction(theta: f64, phi: f64) -> V3 {
@@ -63,6 +65,7 @@ fn lab(shader: &Shader, m: &Inputs, v: V3, l: V3) -> V3 {
 }
 
 struct Partial {
+    per_texel: Vec<f32>,
     sum: f64,
     count: u64,
     worst: Worst,
@@ -105,6 +108,7 @@ fn compare_rows(
     pairs: &[(V3, V3, (f64, f64, f64))],
 ) -> Partial {
     let mut partial = Partial {
+        per_texel: Vec::with_capacity(rows.len() * grid as usize),
         sum: 0.0,
         count: 0,
         worst: Worst {
@@ -122,9 +126,11 @@ fn compare_rows(
             ];
             let uvs = [uv, uv];
             let (ma, mb) = (a.inputs_at(&uvs), b.inputs_at(&uvs));
+            let mut texel_max = 0f64;
             for &(v, l, angles) in pairs {
                 let delta = ciede2000(lab(shader, &ma, v, l), lab(shader, &mb, v, l));
                 let delta = if delta.is_finite() { delta } else { f64::MAX };
+                texel_max = texel_max.max(delta);
                 partial.sum += delta.min(1e6);
                 partial.count += 1;
                 let bin = ((delta / BIN_WIDTH) as usize).min(BINS - 1);
@@ -137,6 +143,7 @@ fn compare_rows(
                     };
                 }
             }
+            partial.per_texel.push(texel_max as f32);
         }
     }
     partial
@@ -144,13 +151,16 @@ fn compare_rows(
 
 fn merge(partials: Vec<Partial>, grid: u32) -> Comparison {
     let mut histogram = vec![0u64; BINS];
+    let mut per_texel = Vec::with_capacity((grid * grid) as usize);
     let (mut sum, mut count) = (0.0, 0u64);
     let mut worst = Worst {
         delta_e: 0.0,
         uv: [0.0, 0.0],
         directions: (0.0, 0.0, 0.0),
     };
+    // Partials come in row order: their texels concatenate into the grid.
     for p in partials {
+        per_texel.extend(&p.per_texel);
         sum += p.sum;
         count += p.count;
         for (total, n) in histogram.iter_mut().zip(&p.histogram) {
@@ -177,6 +187,7 @@ fn merge(partials: Vec<Partial>, grid: u32) -> Comparison {
         worst,
         grid,
         samples: count,
+        per_texel,
     }
 }
 

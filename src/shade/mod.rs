@@ -7,5 +7,6 @@ pub mod delta_e;
 pub mod load;
 pub mod material;
 pub mod quadrature;
+pub mod render;
 pub mod sample;
 pub mod sheen_table;

@@ -1,0 +1,215 @@
+//! Material previews: a material ball under a fixed studio rig, tone mapped with Khronos PBR
+//! Neutral and encoded as sRGB; and ΔE heat maps.
+//!
+//! The rig (documented, fixed so previews are comparable across runs and machines):
+//! an orthographic camera looking down −z at a unit sphere (y up); three directional lights
+//! — key from (−1, 1, 1) with irradiance 2.5, fill from (1, 0.3, 0.8) with 0.8, rim from
+//! (0.2, 0.8, −1) with 1.5 — and a uniform sky of radiance 0.3 integrated with 64 stratified
+//! cosine-weighted directions per pixel. The sphere's UVs are equirectangular
+//! (u = ½ + φ/2π, v = θ/π) with the analytic tangent along increasing u.
+
+use super::brdf::{dot, normalize, V3};
+use super::material::Shader;
+use super::sample::MaterialSource;
+use crate::color::linear_to_srgb;
+use image::{Rgb, RgbImage};
+use std::f64::consts::PI;
+
+const LIGHTS: [(V3, f64); 3] = [
+    ([-1.0, 1.0, 1.0], 2.5),
+    ([1.0, 0.3, 0.8], 0.8),
+    ([0.2, 0.8, -1.0], 1.5),
+];
+const SKY_RADIANCE: f64 = 0.3;
+const SKY_SAMPLES_PER_SIDE: usize = 8;
+const BACKGROUND: [u8; 3] = [46, 46, 50];
+
+/// Khronos PBR Neutral tone mapping (linear in, linear out, 0..1).
+pub fn pbr_neutral(colour: V3) -> V3 {
+    const START_COMPRESSION: f64 = 0.8 - 0.04;
+    const DESATURATION: f64 = 0.15;
+    let x = colour[0].min(colour[1]).min(colour[2]);
+    let offset = if x < 0.08 { x - 6.25 * x * x } else { 0.04 };
+    let mut c = colour.map(|v| v - offset);
+    let peak = c[0].max(c[1]).max(c[2]);
+    if peak < START_COMPRESSION {
+        return c;
+    }
+    let d = 1.0 - START_COMPRESSION;
+    let new_peak = 1.0 - d * d / (peak + d - START_COMPRESSION);
+    c = c.map(|v| v * new_peak / peak);
+    let g = 1.0 - 1.0 / (DESATURATION * (peak - new_peak) + 1.0);
+    c.map(|v| v * (1.0 - g) + new_peak * g)
+}
+
+fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Cosine-weighted stratified directions around +z (local frame).
+fn sky_directions() -> Vec<V3> {
+    let n = SKY_SAMPLES_PER_SIDE;
+    let mut out = Vec::with_capacity(n * n);
+    for i in 0..n {
+        for j in 0..n {
+            let (u1, u2) = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
+            let r = u1.sqrt();
+            let phi = 2.0 * PI * u2;
+            out.push([r * phi.cos(), r * phi.sin(), (1.0 - u1).sqrt()]);
+        }
+    }
+    out
+}
+
+/// Linear radiance of the ball at pixel (x, y) of a `size`² image, `None` off the sphere.
+fn shade_pixel(
+    shader: &Shader,
+    material: &MaterialSource,
+    sky: &[V3],
+    x: u32,
+    y: u32,
+    size: u32,
+) -> Option<V3> {
+    let px = (f64::from(x) + 0.5) / f64::from(size) * 2.0 - 1.0;
+    let py = 1.0 - (f64::from(y) + 0.5) / f64::from(size) * 2.0;
+    let r2 = px * px + py * py;
+    if r2 >= 1.0 {
+        return None;
+    }
+    let n = [px, py, (1.0 - r2).sqrt()];
+    let phi = n[0].atan2(n[2]);
+    let uv = [0.5 + phi / (2.0 * PI), n[1].clamp(-1.0, 1.0).acos() / PI];
+    let inputs = material.inputs_at(&[uv, uv]);
+    if inputs.unlit {
+        return Some(inputs.base_color);
+    }
+    let t = normalize([phi.cos(), 0.0, -phi.sin()]);
+    let b = cross(n, t);
+    let local = |w: V3| [dot(w, t), dot(w, b), dot(w, n)];
+    let v = local([0.0, 0.0, 1.0]);
+    let mut radiance = [0.0; 3];
+    let mut add = |l: V3, weight: f64| {
+        if l[2] > 0.0 {
+            let f = shader.brdf(&inputs, v, l);
+            for c in 0..3 {
+                radiance[c] += f[c] * weight;
+            }
+        }
+    };
+    for (direction, irradiance) in LIGHTS {
+        let l = local(normalize(direction));
+        add(l, irradiance * l[2]);
+    }
+    // Sky directions are already in the local frame (cosine-weighted: f · L · π / N).
+    let weight = SKY_RADIANCE * PI / sky.len() as f64;
+    for &l in sky {
+        add(l, weight);
+    }
+    Some(radiance)
+}
+
+fn encode(linear: V3) -> Rgb<u8> {
+    let mapped = pbr_neutral(linear.map(|c| c.max(0.0)));
+    Rgb(mapped.map(|c| (linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0).round() as u8))
+}
+
+/// Renders one material ball.
+pub fn material_ball(shader: &Shader, material: &MaterialSource, size: u32) -> RgbImage {
+    let sky = sky_directions();
+    let size = size.max(8);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u32;
+    let rows_per_thread = size.div_ceil(threads);
+    let mut image = RgbImage::from_pixel(size, size, Rgb(BACKGROUND));
+    let row_bytes = size as usize * 3;
+    std::thread::scope(|scope| {
+        for (chunk, rows) in image
+            .chunks_mut(rows_per_thread as usize * row_bytes)
+            .enumerate()
+        {
+            let sky = &sky;
+            scope.spawn(move || {
+                for (i, pixel) in rows.chunks_exact_mut(3).enumerate() {
+                    let x = (i % size as usize) as u32;
+                    let y = chunk as u32 * rows_per_thread + (i / size as usize) as u32;
+                    if let Some(radiance) = shade_pixel(shader, material, sky, x, y, size) {
+                        pixel.copy_from_slice(&encode(radiance).0);
+                    }
+                }
+            });
+        }
+    });
+    image
+}
+
+/// Every material's ball side by side, in rows of up to four, in material order.
+pub fn contact_sheet(shader: &Shader, materials: &[&MaterialSource], cell: u32) -> RgbImage {
+    let columns = (materials.len() as u32).clamp(1, 4);
+    let rows = (materials.len() as u32).div_ceil(columns).max(1);
+    let mut sheet = RgbImage::from_pixel(columns * cell, rows * cell, Rgb(BACKGROUND));
+    for (i, material) in materials.iter().enumerate() {
+        let ball = material_ball(shader, material, cell);
+        let (cx, cy) = ((i as u32 % columns) * cell, (i as u32 / columns) * cell);
+        for (x, y, p) in ball.enumerate_pixels() {
+            sheet.put_pixel(cx + x, cy + y, *p);
+        }
+    }
+    sheet
+}
+
+/// A ΔE heat map: black at 0, through blue and yellow, red at `threshold` and above.
+pub fn heatmap(per_texel: &[f32], grid: u32, threshold: f64) -> RgbImage {
+    RgbImage::from_fn(grid, grid, |x, y| {
+        let value = per_texel
+            .get((y * grid + x) as usize)
+            .map_or(0.0, |v| f64::from(*v));
+        let t = (value / threshold.max(1e-9)).clamp(0.0, 1.0);
+        let stops = [
+            [0.0, 0.0, 0.0],
+            [0.1, 0.2, 0.9],
+            [0.95, 0.85, 0.1],
+            [0.9, 0.05, 0.05],
+        ];
+        let scaled = t * 3.0;
+        let i = (scaled.floor() as usize).min(2);
+        let f = scaled - i as f64;
+        let c = [0, 1, 2].map(|k| stops[i][k] * (1.0 - f) + stops[i + 1][k] * f);
+        Rgb(c.map(|v| (v * 255.0).round() as u8))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shade::brdf::SheenVisibility;
+    use crate::shade::sheen_table::SheenTable;
+
+    #[test]
+    fn pbr_neutral_leaves_dark_colours_nearly_alone_and_compresses_highlights() {
+        let dark = pbr_neutral([0.3, 0.2, 0.1]);
+        assert!((dark[0] - (0.3 - 0.04)).abs() < 1e-12, "{dark:?}");
+        let bright = pbr_neutral([4.0, 4.0, 4.0]);
+        assert!(bright.iter().all(|c| *c < 1.0 && *c > 0.9), "{bright:?}");
+    }
+
+    #[test]
+    fn a_grey_ball_is_lit_from_the_upper_left() {
+        let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
+        let material = MaterialSource::Gltf2 {
+            material: serde_json::json!({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}}),
+            textures: Vec::new(),
+        };
+        let image = material_ball(&shader, &material, 32);
+        assert_eq!(
+            image.get_pixel(0, 0).0,
+            BACKGROUND,
+            "corners are background"
+        );
+        let upper_left = image.get_pixel(10, 10).0[0];
+        let lower_right = image.get_pixel(22, 22).0[0];
+        assert!(upper_left > lower_right, "{upper_left} vs {lower_right}");
+    }
+}
