@@ -61,9 +61,7 @@ pub fn load(path: &Path) -> Result<Vec<Named>, String> {
 /// A shader whose sheen table covers the materials (a 16² table only when one has sheen).
 pub fn shader_for(materials: &[&MaterialSource]) -> Shader {
     let sheen = materials.iter().any(|m| match m {
-        MaterialSource::Gltf2 { material, .. } => {
-            material.to_string().contains("KHR_materials_sheen")
-        }
+        MaterialSource::Gltf2(prepared) => prepared.has_sheen,
         MaterialSource::Legacy { .. } => false,
     });
     Shader::new(SheenTable::compute(

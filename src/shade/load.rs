@@ -80,10 +80,7 @@ pub fn gltf2_materials(
                 .get("name")
                 .and_then(Value::as_str)
                 .map_or_else(|| i.to_string(), str::to_string);
-            let source = MaterialSource::Gltf2 {
-                material,
-                textures: textures.clone(),
-            };
+            let source = MaterialSource::gltf2(&material, &textures);
             (name, source)
         })
         .collect())

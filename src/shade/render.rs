@@ -198,10 +198,10 @@ mod tests {
     #[test]
     fn a_grey_ball_is_lit_from_the_upper_left() {
         let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
-        let material = MaterialSource::Gltf2 {
-            material: serde_json::json!({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}}),
-            textures: Vec::new(),
-        };
+        let material = MaterialSource::gltf2(
+            &serde_json::json!({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}}),
+            &[],
+        );
         let image = material_ball(&shader, &material, 32);
         assert_eq!(
             image.get_pixel(0, 0).0,

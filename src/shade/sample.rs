@@ -93,17 +93,43 @@ fn transform_of(info: &Value) -> ([f64; 6], Option<u64>) {
 /// What a material is made of, ready to be sampled.
 #[derive(Clone)]
 pub enum MaterialSource {
-    /// A glTF 2.0 material with its textures (by texture index).
-    Gltf2 {
-        material: Value,
-        textures: Vec<Option<Texture>>,
-    },
+    /// A glTF 2.0 material, its JSON resolved once into factors and texture bindings.
+    Gltf2(Arc<Prepared>),
     /// A glTF 1.0 PBR-draft material with its two textures.
     Legacy {
         pbr: LegacyPbr,
         colour: Option<Texture>,
         data: Option<Texture>,
     },
+}
+
+/// A glTF 2.0 material with every member looked up once (sampling runs per texel).
+pub struct Prepared {
+    factors: Inputs,
+    spec_gloss: Option<SpecGloss>,
+    base_colour: Option<Binding>,
+    metallic_roughness: Option<Binding>,
+    specular: Option<Binding>,
+    specular_colour: Option<Binding>,
+    sheen_colour: Option<Binding>,
+    sheen_roughness: Option<Binding>,
+    anisotropy: Option<Binding>,
+    pub has_sheen: bool,
+}
+
+struct SpecGloss {
+    diffuse: V3,
+    specular: V3,
+    glossiness: f64,
+    diffuse_texture: Option<Binding>,
+    specular_glossiness_texture: Option<Binding>,
+}
+
+impl MaterialSource {
+    /// Prepares a glTF 2.0 material; `textures` are the document's, by texture index.
+    pub fn gltf2(material: &Value, textures: &[Option<Texture>]) -> MaterialSource {
+        MaterialSource::Gltf2(Arc::new(prepare(material, textures)))
+    }
 }
 
 fn colour3(value: Option<&Value>, default: V3) -> V3 {
@@ -119,15 +145,43 @@ fn number(object: Option<&Value>, key: &str, default: f64) -> f64 {
         .unwrap_or(default)
 }
 
+/// sRGB decode of sampled values; values that are exact 8-bit levels (most texels) use a
+/// table instead of `powf`.
 fn srgb3(t: [f64; 4]) -> V3 {
-    [t[0], t[1], t[2]].map(srgb_to_linear)
+    static TABLE: std::sync::OnceLock<[f64; 256]> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| std::array::from_fn(|i| srgb_to_linear(i as f64 / 255.0)));
+    [t[0], t[1], t[2]].map(|v| {
+        let level = (v * 255.0).round();
+        if (v * 255.0 - level).abs() < 1e-4 && (0.0..=255.0).contains(&level) {
+            table[level as usize]
+        } else {
+            srgb_to_linear(v)
+        }
+    })
 }
 
 impl MaterialSource {
     /// The highest texture resolution involved (for the comparison grid).
     pub fn max_resolution(&self) -> u32 {
         let textures: Vec<&Texture> = match self {
-            MaterialSource::Gltf2 { textures, .. } => textures.iter().flatten().collect(),
+            MaterialSource::Gltf2(p) => [
+                &p.base_colour,
+                &p.metallic_roughness,
+                &p.specular,
+                &p.specular_colour,
+                &p.sheen_colour,
+                &p.sheen_roughness,
+                &p.anisotropy,
+            ]
+            .into_iter()
+            .chain(
+                p.spec_gloss
+                    .iter()
+                    .flat_map(|s| [&s.diffuse_texture, &s.specular_glossiness_texture]),
+            )
+            .flatten()
+            .map(|b| &b.texture)
+            .collect(),
             MaterialSource::Legacy { colour, data, .. } => colour.iter().chain(data).collect(),
         };
         textures
@@ -140,7 +194,7 @@ impl MaterialSource {
     /// The BRDF inputs at texture coordinates `uvs` (one pair per TEXCOORD set).
     pub fn inputs_at(&self, uvs: &[[f64; 2]]) -> Inputs {
         match self {
-            MaterialSource::Gltf2 { material, textures } => gltf2_inputs(material, textures, uvs),
+            MaterialSource::Gltf2(prepared) => prepared.inputs_at(uvs),
             MaterialSource::Legacy { pbr, colour, data } => {
                 legacy_inputs(pbr, colour.as_deref(), data.as_deref(), uvs[0])
             }
@@ -148,7 +202,7 @@ impl MaterialSource {
     }
 }
 
-fn gltf2_inputs(material: &Value, textures: &[Option<Texture>], uvs: &[[f64; 2]]) -> Inputs {
+fn prepare(material: &Value, textures: &[Option<Texture>]) -> Prepared {
     let bind = |info: Option<&Value>| -> Option<Binding> {
         let info = info?;
         let texture = textures
@@ -162,72 +216,95 @@ fn gltf2_inputs(material: &Value, textures: &[Option<Texture>], uvs: &[[f64; 2]]
             transform,
         })
     };
-    let sample = |info: Option<&Value>| bind(info).map(|b| b.sample(uvs));
     let extension = |name: &str| material.get("extensions").and_then(|e| e.get(name));
-    let mut m = Inputs::default();
-    if let Some(sg) = extension("KHR_materials_pbrSpecularGlossiness") {
-        let mut diffuse = colour3(sg.get("diffuseFactor"), [1.0; 3]);
-        if let Some(t) = sample(sg.get("diffuseTexture")) {
-            let d = srgb3(t);
-            diffuse = [0, 1, 2].map(|i| diffuse[i] * d[i]);
-        }
-        let mut specular = colour3(sg.get("specularFactor"), [1.0; 3]);
-        let mut gloss = number(Some(sg), "glossinessFactor", 1.0);
-        if let Some(t) = sample(sg.get("specularGlossinessTexture")) {
-            let s = srgb3(t);
-            specular = [0, 1, 2].map(|i| specular[i] * s[i]);
-            gloss *= t[3];
-        }
-        return Inputs::specular_glossiness(diffuse, specular, gloss);
-    }
     let pbr = material.get("pbrMetallicRoughness");
-    m.base_color = colour3(pbr.and_then(|p| p.get("baseColorFactor")), [1.0; 3]);
-    if let Some(t) = sample(pbr.and_then(|p| p.get("baseColorTexture"))) {
-        let c = srgb3(t);
-        m.base_color = [0, 1, 2].map(|i| m.base_color[i] * c[i]);
+    let in_pbr = |key: &str| pbr.and_then(|p| p.get(key));
+    let specular = extension("KHR_materials_specular");
+    let sheen = extension("KHR_materials_sheen");
+    let anisotropy = extension("KHR_materials_anisotropy");
+    let factors = Inputs {
+        base_color: colour3(in_pbr("baseColorFactor"), [1.0; 3]),
+        metallic: number(pbr, "metallicFactor", 1.0),
+        roughness: number(pbr, "roughnessFactor", 1.0),
+        ior: number(extension("KHR_materials_ior"), "ior", 1.5),
+        specular: number(specular, "specularFactor", 1.0),
+        specular_color: colour3(
+            specular.and_then(|s| s.get("specularColorFactor")),
+            [1.0; 3],
+        ),
+        sheen_color: colour3(sheen.and_then(|s| s.get("sheenColorFactor")), [0.0; 3]),
+        sheen_roughness: number(sheen, "sheenRoughnessFactor", 0.0),
+        anisotropy_strength: number(anisotropy, "anisotropyStrength", 0.0),
+        anisotropy_angle: number(anisotropy, "anisotropyRotation", 0.0),
+        unlit: extension("KHR_materials_unlit").is_some(),
+    };
+    let spec_gloss = extension("KHR_materials_pbrSpecularGlossiness").map(|sg| SpecGloss {
+        diffuse: colour3(sg.get("diffuseFactor"), [1.0; 3]),
+        specular: colour3(sg.get("specularFactor"), [1.0; 3]),
+        glossiness: number(Some(sg), "glossinessFactor", 1.0),
+        diffuse_texture: bind(sg.get("diffuseTexture")),
+        specular_glossiness_texture: bind(sg.get("specularGlossinessTexture")),
+    });
+    Prepared {
+        factors,
+        spec_gloss,
+        base_colour: bind(in_pbr("baseColorTexture")),
+        metallic_roughness: bind(in_pbr("metallicRoughnessTexture")),
+        specular: bind(specular.and_then(|s| s.get("specularTexture"))),
+        specular_colour: bind(specular.and_then(|s| s.get("specularColorTexture"))),
+        sheen_colour: bind(sheen.and_then(|s| s.get("sheenColorTexture"))),
+        sheen_roughness: bind(sheen.and_then(|s| s.get("sheenRoughnessTexture"))),
+        anisotropy: bind(anisotropy.and_then(|a| a.get("anisotropyTexture"))),
+        has_sheen: sheen.is_some(),
     }
-    m.metallic = number(pbr, "metallicFactor", 1.0);
-    m.roughness = number(pbr, "roughnessFactor", 1.0);
-    if let Some(t) = sample(pbr.and_then(|p| p.get("metallicRoughnessTexture"))) {
-        m.roughness *= t[1];
-        m.metallic *= t[2];
-    }
-    m.unlit = extension("KHR_materials_unlit").is_some();
-    if let Some(ior) = extension("KHR_materials_ior") {
-        m.ior = number(Some(ior), "ior", 1.5);
-    }
-    if let Some(s) = extension("KHR_materials_specular") {
-        m.specular = number(Some(s), "specularFactor", 1.0);
-        if let Some(t) = sample(s.get("specularTexture")) {
+}
+
+fn times(a: V3, b: V3) -> V3 {
+    [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
+}
+
+impl Prepared {
+    fn inputs_at(&self, uvs: &[[f64; 2]]) -> Inputs {
+        let sample = |b: &Option<Binding>| b.as_ref().map(|b| b.sample(uvs));
+        if let Some(sg) = &self.spec_gloss {
+            let mut diffuse = sg.diffuse;
+            if let Some(t) = sample(&sg.diffuse_texture) {
+                diffuse = times(diffuse, srgb3(t));
+            }
+            let (mut specular, mut glossiness) = (sg.specular, sg.glossiness);
+            if let Some(t) = sample(&sg.specular_glossiness_texture) {
+                specular = times(specular, srgb3(t));
+                glossiness *= t[3];
+            }
+            return Inputs::specular_glossiness(diffuse, specular, glossiness);
+        }
+        let mut m = self.factors.clone();
+        if let Some(t) = sample(&self.base_colour) {
+            m.base_color = times(m.base_color, srgb3(t));
+        }
+        if let Some(t) = sample(&self.metallic_roughness) {
+            m.roughness *= t[1];
+            m.metallic *= t[2];
+        }
+        if let Some(t) = sample(&self.specular) {
             m.specular *= t[3];
         }
-        m.specular_color = colour3(s.get("specularColorFactor"), [1.0; 3]);
-        if let Some(t) = sample(s.get("specularColorTexture")) {
-            let c = srgb3(t);
-            m.specular_color = [0, 1, 2].map(|i| m.specular_color[i] * c[i]);
+        if let Some(t) = sample(&self.specular_colour) {
+            m.specular_color = times(m.specular_color, srgb3(t));
         }
-    }
-    if let Some(s) = extension("KHR_materials_sheen") {
-        m.sheen_color = colour3(s.get("sheenColorFactor"), [0.0; 3]);
-        if let Some(t) = sample(s.get("sheenColorTexture")) {
-            let c = srgb3(t);
-            m.sheen_color = [0, 1, 2].map(|i| m.sheen_color[i] * c[i]);
+        if let Some(t) = sample(&self.sheen_colour) {
+            m.sheen_color = times(m.sheen_color, srgb3(t));
         }
-        m.sheen_roughness = number(Some(s), "sheenRoughnessFactor", 0.0);
-        if let Some(t) = sample(s.get("sheenRoughnessTexture")) {
+        if let Some(t) = sample(&self.sheen_roughness) {
             m.sheen_roughness *= t[3];
         }
-    }
-    if let Some(a) = extension("KHR_materials_anisotropy") {
-        m.anisotropy_strength = number(Some(a), "anisotropyStrength", 0.0);
-        m.anisotropy_angle = number(Some(a), "anisotropyRotation", 0.0);
-        if let Some(t) = sample(a.get("anisotropyTexture")) {
+        if let Some(t) = sample(&self.anisotropy) {
             let (x, y) = (2.0 * t[0] - 1.0, 2.0 * t[1] - 1.0);
             m.anisotropy_angle += y.atan2(x);
             m.anisotropy_strength *= t[2];
         }
+        m
     }
-    m
 }
 
 /// The 1.0 drafts' own model: metal-rough with metallic in R and roughness in G of the data

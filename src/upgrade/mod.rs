@@ -169,10 +169,7 @@ pub fn converted_materials(upgraded: &Upgraded) -> Vec<MaterialSource> {
         .as_array()
         .map(|list| {
             list.iter()
-                .map(|material| MaterialSource::Gltf2 {
-                    material: material.clone(),
-                    textures: textures.clone(),
-                })
+                .map(|material| MaterialSource::gltf2(material, &textures))
                 .collect()
         })
         .unwrap_or_default()
