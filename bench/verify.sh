@@ -7,6 +7,7 @@ cd "$(dirname "$0")/.."
 size=${1:-2048}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+[ -n "${KEEP:-}" ] && trap - EXIT && echo "work: $work"
 cargo build --release -q
 python3 - "$work" "$size" "$(pwd)" <<'PY'
 import json, struct, sys, zlib, shutil, math

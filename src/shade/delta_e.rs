@@ -11,7 +11,7 @@ pub fn lab_from_linear_srgb(rgb: V3) -> V3 {
     let f = |t: f64| {
         let delta: f64 = 6.0 / 29.0;
         if t > delta.powi(3) {
-            t.cbrt()
+            cube_root(t)
         } else {
             t / (3.0 * delta * delta) + 4.0 / 29.0
         }
@@ -20,14 +20,27 @@ pub fn lab_from_linear_srgb(rgb: V3) -> V3 {
     [116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)]
 }
 
+/// Cube root of a positive number: a bit-level first guess refined by Halley's method,
+/// several times faster than the portable `cbrt` and within a few ulps (the comparison
+/// evaluates it six times per sample).
+fn cube_root(a: f64) -> f64 {
+    let mut x = f64::from_bits(a.to_bits() / 3 + 0x2A9F_7893_782D_A1CE);
+    for _ in 0..3 {
+        let x3 = x * x * x;
+        x *= (x3 + 2.0 * a) / (2.0 * x3 + a);
+    }
+    x
+}
+
 /// CIEDE2000 ΔE between two CIELAB colours (k_L = k_C = k_H = 1).
 pub fn ciede2000(lab1: V3, lab2: V3) -> f64 {
     let [l1, a1, b1] = lab1;
     let [l2, a2, b2] = lab2;
-    let c_bar = (a1.hypot(b1) + a2.hypot(b2)) / 2.0;
+    let length = |x: f64, y: f64| (x * x + y * y).sqrt();
+    let c_bar = (length(a1, b1) + length(a2, b2)) / 2.0;
     let g = 0.5 * (1.0 - (c_bar.powi(7) / (c_bar.powi(7) + 25f64.powi(7))).sqrt());
     let (a1p, a2p) = ((1.0 + g) * a1, (1.0 + g) * a2);
-    let (c1p, c2p) = (a1p.hypot(b1), a2p.hypot(b2));
+    let (c1p, c2p) = (length(a1p, b1), length(a2p, b2));
     let hue = |b: f64, a: f64| {
         if a == 0.0 && b == 0.0 {
             0.0
@@ -164,6 +177,18 @@ mod tests {
                 i + 1
             );
             assert!((ciede2000(*b, *a) - got).abs() < 1e-12, "symmetric");
+        }
+    }
+
+    #[test]
+    fn the_cube_root_is_exact_to_a_few_ulps() {
+        for a in [1e-6, 0.008856, 0.2, 0.5, 1.0, 3.7, 1234.5] {
+            let r = cube_root(a);
+            assert!(
+                (r - a.cbrt()).abs() <= 4.0 * f64::EPSILON * r,
+                "{a}: {r} vs {}",
+                a.cbrt()
+            );
         }
     }
 

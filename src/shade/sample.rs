@@ -30,20 +30,30 @@ pub fn bilinear(texture: &Rgba32FImage, [u, v]: [f64; 2]) -> [f64; 4] {
     let y = v * h as f64 - 0.5;
     let (x0, y0) = (x.floor(), y.floor());
     let (fx, fy) = (x - x0, y - y0);
-    let texel = |i: i64, j: i64| {
-        let p = texture
-            .get_pixel(i.rem_euclid(w) as u32, j.rem_euclid(h) as u32)
-            .0;
-        p.map(f64::from)
+    let raw = texture.as_raw();
+    let texel = |i: i64, j: i64| -> [f64; 4] {
+        let at = ((j.rem_euclid(h) * w + i.rem_euclid(w)) * 4) as usize;
+        match raw.get(at..at + 4) {
+            Some(p) => [p[0], p[1], p[2], p[3]].map(f64::from),
+            None => [0.0; 4],
+        }
     };
     let (x0, y0) = (x0 as i64, y0 as i64);
-    let mut out = [0.0; 4];
-    for (c, value) in out.iter_mut().enumerate() {
-        let top = texel(x0, y0)[c] * (1.0 - fx) + texel(x0 + 1, y0)[c] * fx;
-        let bottom = texel(x0, y0 + 1)[c] * (1.0 - fx) + texel(x0 + 1, y0 + 1)[c] * fx;
-        *value = top * (1.0 - fy) + bottom * fy;
+    if fx == 0.0 && fy == 0.0 {
+        // Exactly on a texel centre (the comparison grid at texture resolution).
+        return texel(x0, y0);
     }
-    out
+    let (a, b, c, d) = (
+        texel(x0, y0),
+        texel(x0 + 1, y0),
+        texel(x0, y0 + 1),
+        texel(x0 + 1, y0 + 1),
+    );
+    std::array::from_fn(|k| {
+        let top = a[k] * (1.0 - fx) + b[k] * fx;
+        let bottom = c[k] * (1.0 - fx) + d[k] * fx;
+        top * (1.0 - fy) + bottom * fy
+    })
 }
 
 /// A textureInfo of a 2.0 material: its texture and its UV transform.
