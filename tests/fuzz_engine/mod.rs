@@ -1,0 +1,201 @@
+//! The mutation fuzzer behind `examples/fuzz.rs` (long runs) and `tests/fuzz.rs` (a short
+//! bounded run in `cargo test`). It runs on the stable toolchain.
+//!
+//! Seeds are every file under `fixtures/` (glTF, GLB, 1.0 assets, PNG images). Each iteration
+//! picks a seed, applies a few random mutations (bit flips, byte overwrites with interesting
+//! values, range deletion/duplication, splices from another seed, JSON number swaps), and
+//! runs the checker (default profile with `--deep`, and the Khronos profile) and the
+//! converter on the result. Images are also embedded into a glTF as data URIs so the image
+//! decoders are reached. A panic is a failure: the input is saved to `target/fuzz-crashes/`
+//! and the process exits 1.
+
+use base64::Engine;
+use gltfmat::check::{check_bytes, CheckOptions, Profile};
+use gltfmat::document::uri::NoResources;
+use gltfmat::upgrade::{upgrade, UpgradeOptions};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
+
+/// xorshift64*: deterministic for a seed, so a failure can be replayed.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+const INTERESTING: &[&[u8]] = &[
+    b"0",
+    b"-1",
+    b"4294967295",
+    b"2147483648",
+    b"1e308",
+    b"-0",
+    b"NaN",
+    b"null",
+    b"[]",
+    b"{}",
+    b"\"\"",
+    b"\"../x\"",
+    b"\"/etc/passwd\"",
+    b"\"data:,\"",
+    b"true",
+    b"1.5",
+    &[0xFF, 0xFF, 0xFF, 0x7F],
+    &[0, 0, 0, 0x80],
+    &[0xFF; 4],
+];
+
+fn seeds(folder: &Path, out: &mut Vec<Vec<u8>>) {
+    let Ok(entries) = std::fs::read_dir(folder) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            seeds(&path, out);
+        } else if let Ok(bytes) = std::fs::read(&path) {
+            if bytes.len() < 4 << 20 {
+                out.push(bytes);
+            }
+        }
+    }
+}
+
+fn mutate(rng: &mut Rng, input: &mut Vec<u8>, corpus: &[Vec<u8>]) {
+    for _ in 0..1 + rng.below(4) {
+        let len = input.len();
+        match rng.below(7) {
+            0 if len > 0 => {
+                let at = rng.below(len);
+                input[at] ^= 1 << rng.below(8);
+            }
+            1 if len > 0 => {
+                let at = rng.below(len);
+                input[at] = rng.next() as u8;
+            }
+            2 if len > 0 => {
+                let value = INTERESTING[rng.below(INTERESTING.len())];
+                let at = rng.below(len);
+                let end = (at + value.len()).min(len);
+                input.splice(at..end, value.iter().copied());
+            }
+            3 if len > 1 => {
+                let start = rng.below(len);
+                let end = (start + 1 + rng.below(64)).min(len);
+                input.drain(start..end);
+            }
+            4 if len > 1 => {
+                let start = rng.below(len);
+                let end = (start + 1 + rng.below(64)).min(len);
+                let copy: Vec<u8> = input[start..end].to_vec();
+                let at = rng.below(len);
+                input.splice(at..at, copy);
+            }
+            5 => {
+                let other = &corpus[rng.below(corpus.len())];
+                if !other.is_empty() && len > 0 {
+                    let from = rng.below(other.len());
+                    let take = (1 + rng.below(256)).min(other.len() - from);
+                    let at = rng.below(len);
+                    input.splice(at..at, other[from..from + take].iter().copied());
+                }
+            }
+            _ => {
+                // A number in the JSON replaced by an extreme one.
+                let digits: Vec<usize> = (0..len).filter(|&i| input[i].is_ascii_digit()).collect();
+                if !digits.is_empty() {
+                    let at = digits[rng.below(digits.len())];
+                    let value = [&b"99999999999"[..], b"0", b"4294967296", b"1e400"][rng.below(4)];
+                    input.splice(at..at + 1, value.iter().copied());
+                }
+            }
+        }
+    }
+}
+
+/// Image bytes become a one-texture glTF, so mutated images reach the decoders.
+fn as_asset(input: &[u8]) -> Vec<u8> {
+    let is_image = input.starts_with(b"\x89PNG")
+        || input.starts_with(&[0xFF, 0xD8])
+        || input.starts_with(b"RIFF");
+    if !is_image {
+        return input.to_vec();
+    }
+    let uri = format!(
+        "data:image/png;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(input)
+    );
+    serde_json::to_vec(&serde_json::json!({
+        "asset": {"version": "2.0"}, "images": [{"uri": uri}], "textures": [{"source": 0}],
+        "materials": [{"normalTexture": {"index": 0}, "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0},
+            "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenRoughnessFactor": 0.5, "sheenRoughnessTexture": {"index": 0}}}}],
+        "extensionsUsed": ["KHR_materials_sheen"]
+    }))
+    .unwrap_or_default()
+}
+
+fn exercise(input: &[u8]) {
+    let asset = as_asset(input);
+    let deep = CheckOptions {
+        deep: true,
+        ..CheckOptions::default()
+    };
+    let khronos = CheckOptions {
+        profile: Profile::Khronos,
+        ..CheckOptions::default()
+    };
+    for options in [&deep, &khronos] {
+        let report = check_bytes("fuzz.gltf", asset.clone(), &NoResources, options);
+        let _ = gltfmat::report::render(
+            gltfmat::report::Format::Human,
+            &[report],
+            &gltfmat::report::RenderOptions { colour: false },
+        );
+    }
+    let _ = check_bytes("fuzz.glb", asset.clone(), &NoResources, &deep);
+    if let Ok(upgraded) = upgrade(&asset, &NoResources, &UpgradeOptions::default()) {
+        let _ = gltfmat::upgrade::output::verify(gltfmat::upgrade::output::layout(
+            &upgraded, "out.glb",
+        ));
+    }
+}
+
+/// Runs `iterations` mutated inputs; `Err` names the saved input of the first panic.
+pub fn run(iterations: u64, seed: u64) -> Result<usize, String> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let mut corpus = Vec::new();
+    seeds(&root.join("fixtures"), &mut corpus);
+    if corpus.is_empty() {
+        return Err("no seeds under fixtures/".into());
+    }
+    let previous_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let mut rng = Rng(seed | 1);
+    let mut failure = None;
+    for i in 0..iterations {
+        let mut input = corpus[rng.below(corpus.len())].clone();
+        mutate(&mut rng, &mut input, &corpus);
+        if catch_unwind(AssertUnwindSafe(|| exercise(&input))).is_err() {
+            let folder = root.join("target/fuzz-crashes");
+            let _ = std::fs::create_dir_all(&folder);
+            let path = folder.join(format!("crash-{seed:x}-{i}.bin"));
+            let _ = std::fs::write(&path, &input);
+            failure = Some(format!(
+                "panic at iteration {i}; input saved to {}",
+                path.display()
+            ));
+            break;
+        }
+    }
+    std::panic::set_hook(previous_hook);
+    failure.map_or(Ok(corpus.len()), Err)
+}
