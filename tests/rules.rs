@@ -3,7 +3,10 @@
 //! visible in the test) and the complete list of issues it must produce. Near-misses list
 //! nothing: they must stay silent. Every rule has at least one firing case and one near-miss.
 
+mod common;
+
 use base64::Engine;
+use common::chunk;
 use gltfmat::check::codes::{self, Origin};
 use gltfmat::check::rules::RULES;
 use gltfmat::check::{check_bytes, CheckOptions, Location};
@@ -127,29 +130,6 @@ fn jpeg(colour: [u8; 3]) -> Vec<u8> {
         RgbImage::from_pixel(4, 4, image::Rgb(colour)).into(),
         ImageFormat::Jpeg,
     )
-}
-
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &byte in bytes {
-        crc ^= u32::from(byte);
-        for _ in 0..8 {
-            crc = if crc & 1 != 0 {
-                (crc >> 1) ^ 0xEDB8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
-}
-
-fn chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
-    let mut out = (data.len() as u32).to_be_bytes().to_vec();
-    let body: Vec<u8> = kind.iter().chain(data).copied().collect();
-    out.extend(&body);
-    out.extend(crc32(&body).to_be_bytes());
-    out
 }
 
 /// A PNG with an extra ancillary chunk right after IHDR.

@@ -55,7 +55,9 @@ pub fn check_asset(ctx: &mut Context) {
 
 pub fn check_accessors(ctx: &mut Context) {
     for (_, pointer, accessor) in ctx.objects("accessors") {
-        ctx.reference(accessor, "bufferView", &pointer, "bufferViews");
+        if let Some(view) = ctx.reference(accessor, "bufferView", &pointer, "bufferViews") {
+            check_accessor_fits(ctx, accessor, view, &pointer);
+        }
         if let Some(sparse) = accessor.get("sparse").filter(|s| s.is_object()) {
             let sparse_pointer = member(&pointer, "sparse");
             for key in ["indices", "values"] {
@@ -69,6 +71,57 @@ pub fn check_accessors(ctx: &mut Context) {
                 }
             }
         }
+    }
+}
+
+/// ACCESSOR_TOO_LONG: the accessor's last element must end inside its bufferView. Computed
+/// with checked arithmetic, so a count of 2^31 or 2^64 − 1 is a finding, not an overflow.
+fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer: &str) {
+    let component_size = match unsigned(accessor, "componentType") {
+        Some(5120 | 5121) => 1u64,
+        Some(5122 | 5123) => 2,
+        Some(5125 | 5126) => 4,
+        _ => return,
+    };
+    let components = match accessor.get("type").and_then(Value::as_str) {
+        Some("SCALAR") => 1u64,
+        Some("VEC2") => 2,
+        Some("VEC3") => 3,
+        Some("VEC4" | "MAT2") => 4,
+        Some("MAT3") => 9,
+        Some("MAT4") => 16,
+        _ => return,
+    };
+    let (Some(count), Some(view_length)) = (
+        unsigned(accessor, "count").filter(|c| *c > 0),
+        unsigned(&ctx.items("bufferViews")[view], "byteLength"),
+    ) else {
+        return;
+    };
+    // Matrix columns start on 4-byte boundaries (glTF 2.0 §3.6.2.4): elements are padded,
+    // but the last element ends after its last column's data.
+    let is_mat2 = accessor.get("type").and_then(Value::as_str) == Some("MAT2");
+    let (element, last) = match (components, component_size) {
+        (4, 1) if is_mat2 => (8, 6),
+        (9, 1) => (12, 11),
+        (9, 2) => (24, 22),
+        _ => (components * component_size, components * component_size),
+    };
+    let stride = unsigned(&ctx.items("bufferViews")[view], "byteStride").unwrap_or(element);
+    let offset = unsigned(accessor, "byteOffset").unwrap_or(0);
+    let length = (count - 1)
+        .checked_mul(stride)
+        .and_then(|n| n.checked_add(last));
+    let fits = length
+        .and_then(|n| n.checked_add(offset))
+        .is_some_and(|end| end <= view_length);
+    if !fits {
+        let length = length.map_or_else(|| "more than 2^64".to_string(), |n| n.to_string());
+        ctx.emit(
+            "ACCESSOR_TOO_LONG",
+            pointer,
+            format!("Accessor (offset: {offset}, length: {length}) does not fit referenced bufferView [{view}] length {view_length}."),
+        );
     }
 }
 
