@@ -9,6 +9,7 @@ use clap::{Parser, Subcommand};
 use gltfmat::check::{check_bytes, codes, CheckOptions, Profile, Report};
 use gltfmat::document::uri::{FolderResources, NoResources};
 use gltfmat::report::{render, Format, RenderOptions};
+use rayon::prelude::*;
 use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -73,7 +74,7 @@ struct CheckArgs {
     /// Skip a rule group, e.g. `plausibility` (repeatable; groups are listed by `gltfmat rules`).
     #[arg(long = "disable-group")]
     disabled_groups: Vec<String>,
-    /// No progress output.
+    /// No progress bar (it is shown only on a terminal, on stderr).
     #[arg(long, short)]
     quiet: bool,
 }
@@ -153,9 +154,25 @@ fn run_check(args: CheckArgs) -> ExitCode {
             unreadable = true;
         }
     }
+    // Files are checked in parallel; reports keep the input order. The progress bar goes to
+    // stderr, only on a terminal and without --quiet.
+    let progress = if args.quiet || !std::io::stderr().is_terminal() || files.len() < 2 {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::new(files.len() as u64)
+    };
+    let results: Vec<Result<Report, String>> = files
+        .par_iter()
+        .map(|file| {
+            let result = check_file(file, &options);
+            progress.inc(1);
+            result
+        })
+        .collect();
+    progress.finish_and_clear();
     let mut reports = Vec::new();
-    for file in &files {
-        match check_file(file, &options) {
+    for (file, result) in files.iter().zip(results) {
+        match result {
             Ok(report) => reports.push(report),
             Err(message) => {
                 eprintln!("gltfmat: {}: {message}", file.display());

@@ -1,0 +1,39 @@
+#!/usr/bin/env python3
+"""Writes a large glTF 1.0 asset for the benchmarks: a vertex grid with NORMAL and TEXCOORD_0,
+32-bit indices, one FRAUNHOFER_materials_pbr material.
+    bench/gen_gltf1.py WORK_FOLDER VERTICES   → WORK_FOLDER/big.gltf + big.bin
+"""
+import array, json, sys, math
+work, n = sys.argv[1], int(sys.argv[2])
+side = int(math.isqrt(n))
+pos = array.array('f'); nrm = array.array('f'); uv = array.array('f')
+for y in range(side):
+    for x in range(side):
+        pos.extend((x / side, y / side, 0.0)); nrm.extend((0.0, 0.0, 1.0)); uv.extend((x / side, y / side))
+idx = array.array('I')
+for y in range(side - 1):
+    row = y * side
+    for x in range(side - 1):
+        a = row + x
+        idx.extend((a, a + 1, a + side, a + 1, a + side + 1, a + side))
+count = side * side
+blobs = [idx.tobytes(), pos.tobytes(), nrm.tobytes(), uv.tobytes()]
+offsets = [0]
+for b in blobs[:-1]:
+    offsets.append(offsets[-1] + len(b))
+with open(f"{work}/big.bin", "wb") as f:
+    for b in blobs: f.write(b)
+views = {f"v{i}": {"buffer": "b", "byteOffset": o, "byteLength": len(b), "target": 34963 if i == 0 else 34962} for i, (o, b) in enumerate(zip(offsets, blobs))}
+acc = {
+  "ind": {"bufferView": "v0", "byteOffset": 0, "componentType": 5125, "count": len(idx), "type": "SCALAR", "min": [0], "max": [count - 1]},
+  "pos": {"bufferView": "v1", "byteOffset": 0, "byteStride": 12, "componentType": 5126, "count": count, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+  "nrm": {"bufferView": "v2", "byteOffset": 0, "byteStride": 12, "componentType": 5126, "count": count, "type": "VEC3", "min": [0, 0, 1], "max": [0, 0, 1]},
+  "uv": {"bufferView": "v3", "byteOffset": 0, "byteStride": 8, "componentType": 5126, "count": count, "type": "VEC2", "min": [0, 0], "max": [1, 1]},
+}
+doc = {"asset": {"version": "1.0"}, "extensionsUsed": ["OES_element_index_uint", "FRAUNHOFER_materials_pbr"],
+  "buffers": {"b": {"uri": "big.bin", "byteLength": sum(map(len, blobs))}}, "bufferViews": views, "accessors": acc,
+  "materials": {"m": {"extensions": {"FRAUNHOFER_materials_pbr": {"materialModel": "PBR_metal_roughness", "values": {"baseColorFactor": [0.8, 0.2, 0.2, 1], "metallicFactor": 0, "roughnessFactor": 0.5}}}}},
+  "meshes": {"mesh": {"primitives": [{"attributes": {"POSITION": "pos", "NORMAL": "nrm", "TEXCOORD_0": "uv"}, "indices": "ind", "material": "m", "mode": 4}]}},
+  "nodes": {"n": {"meshes": ["mesh"]}}, "scenes": {"s": {"nodes": ["n"]}}, "scene": "s"}
+json.dump(doc, open(f"{work}/big.gltf", "w"))
+print(f"input: {count} vertices, {len(idx) // 3} triangles, {sum(map(len, blobs)) / 1e6:.0f} MB")

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Times `gltfmat check` against the npm Khronos glTF-Validator on a large generated GLB
+# (about 110 MB, 4 M triangles), in the same session; prints time and peak memory ratios.
+#   bench/large-glb.sh [vertices]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+vertices=${1:-2000000}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cargo build --release -q
+[ -d bench/node_modules/gltf-validator ] || npm install --prefix bench --no-save --silent gltf-validator >/dev/null
+python3 bench/gen_gltf1.py "$work" "$vertices"
+# The 2.0 GLB is the upgrade of the generated 1.0 asset.
+./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/big.glb" >/dev/null
+ls -l "$work/big.glb" | awk '{printf "input: %.0f MB GLB\n", $5 / 1e6}'
+cat > "$work/khronos.js" <<'JS'
+const v = require('gltf-validator'); const fs = require('fs');
+v.validateBytes(new Uint8Array(fs.readFileSync(process.argv[2])), { maxIssues: 0 })
+  .then((r) => console.log(`khronos: ${r.issues.numErrors} errors`));
+JS
+measure() { /usr/bin/time -f "%e %M" "$@" 2>&1 >/dev/null | tail -1; }
+read -r ours_s ours_kb < <(measure ./target/release/gltfmat check "$work/big.glb" --quiet)
+read -r theirs_s theirs_kb < <(NODE_PATH=bench/node_modules measure node "$work/khronos.js" "$work/big.glb")
+printf 'gltfmat %.2fs %d MB   khronos(npm) %.2fs %d MB   speed %.1fx   memory %.2f of theirs\n' \
+  "$ours_s" $((ours_kb / 1024)) "$theirs_s" $((theirs_kb / 1024)) \
+  "$(echo "$theirs_s / $ours_s" | bc -l)" "$(echo "$ours_kb / $theirs_kb" | bc -l)"
