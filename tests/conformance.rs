@@ -19,6 +19,7 @@ const REQUIRED: &[&str] = &[
     "base/data/root",
     "base/data/buffer",
     "base/data/buffer_view",
+    "base/data/accessor_data",
     "base/data/image",
     "base/data/texture",
     "base/data/sampler",

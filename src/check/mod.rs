@@ -6,6 +6,7 @@ mod khronos_codes;
 pub mod rules;
 pub mod schema;
 
+mod accessor_data;
 pub mod context;
 mod extensions;
 mod materials;
@@ -129,6 +130,7 @@ fn run_passes(ctx: &mut Context) {
     resources::check_buffers(ctx);
     resources::check_buffer_views(ctx);
     objects::check_accessors(ctx);
+    accessor_data::check(ctx);
     resources::check_images(ctx);
     materials::check_textures(ctx);
     materials::check_materials(ctx);

@@ -1,0 +1,187 @@
+//! Accessor data: one pass over each accessor's elements for non-finite floats and for
+//! `min` / `max` that do not match the data (the Khronos ACCESSOR_* data codes).
+
+use super::context::{unsigned, Context};
+use super::resources::view_bytes;
+use serde_json::Value;
+
+/// Decodes one component of a component type, as stored (integers not normalised).
+fn read(component_type: u64, b: &[u8]) -> f64 {
+    match component_type {
+        5120 => f64::from(b[0] as i8),
+        5121 => f64::from(b[0]),
+        5122 => f64::from(i16::from_le_bytes([b[0], b[1]])),
+        5123 => f64::from(u16::from_le_bytes([b[0], b[1]])),
+        5125 => f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+        _ => f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+    }
+}
+
+struct Layout {
+    component_type: u64,
+    size: usize,
+    components: usize,
+    stride: usize,
+    offset: usize,
+    count: usize,
+}
+
+fn layout(ctx: &Context, accessor: &Value, view: usize) -> Option<Layout> {
+    let component_type = unsigned(accessor, "componentType")?;
+    let size = match component_type {
+        5120 | 5121 => 1,
+        5122 | 5123 => 2,
+        5125 | 5126 => 4,
+        _ => return None,
+    };
+    let components = match accessor.get("type")?.as_str()? {
+        "SCALAR" => 1,
+        "VEC2" => 2,
+        "VEC3" => 3,
+        "VEC4" => 4,
+        // Float matrices are tightly packed; small-component matrices have padded columns,
+        // which this pass does not walk.
+        "MAT2" if size == 4 => 4,
+        "MAT3" if size == 4 => 9,
+        "MAT4" => 16,
+        _ => return None,
+    };
+    let element = size * components;
+    let stride = unsigned(&ctx.items("bufferViews")[view], "byteStride").unwrap_or(element as u64);
+    Some(Layout {
+        component_type,
+        size,
+        components,
+        stride: usize::try_from(stride).ok()?,
+        offset: usize::try_from(unsigned(accessor, "byteOffset").unwrap_or(0)).ok()?,
+        count: usize::try_from(unsigned(accessor, "count")?).ok()?,
+    })
+}
+
+fn show(component_type: u64, v: f64) -> String {
+    if component_type == 5126 {
+        format!("{v:?}")
+    } else {
+        format!("{v}")
+    }
+}
+
+pub fn check(ctx: &mut Context) {
+    for (_, pointer, accessor) in ctx.objects("accessors") {
+        if accessor.get("sparse").is_some() {
+            continue; // sparse substitution is not applied by this pass
+        }
+        let Some(view) = unsigned(accessor, "bufferView").map(|v| v as usize) else {
+            continue;
+        };
+        let Some(layout) = (view < ctx.items("bufferViews").len())
+            .then(|| layout(ctx, accessor, view))
+            .flatten()
+        else {
+            continue;
+        };
+        let Some(bytes) = view_bytes(ctx, view) else {
+            continue;
+        };
+        let needed = layout
+            .count
+            .checked_sub(1)
+            .and_then(|n| n.checked_mul(layout.stride))
+            .and_then(|n| n.checked_add(layout.size * layout.components + layout.offset));
+        if layout.count == 0 || needed.is_none_or(|n| n > bytes.len()) {
+            continue; // ACCESSOR_TOO_LONG was reported
+        }
+        let findings = scan(&layout, bytes, accessor);
+        for (code, suffix, message) in findings {
+            ctx.emit(code, format!("{pointer}{suffix}"), message);
+        }
+    }
+}
+
+/// Returns (code, pointer suffix, message) for every finding of one accessor.
+fn scan(layout: &Layout, bytes: &[u8], accessor: &Value) -> Vec<(&'static str, String, String)> {
+    let n = layout.components;
+    let mut actual_min = vec![f64::INFINITY; n];
+    let mut actual_max = vec![f64::NEG_INFINITY; n];
+    let declared = |key: &str| -> Option<Vec<f64>> {
+        let list = accessor.get(key)?.as_array()?;
+        (list.len() == n).then(|| {
+            list.iter()
+                .map(|v| v.as_f64().unwrap_or(f64::NAN))
+                .collect()
+        })
+    };
+    let is_float = layout.component_type == 5126;
+    // Declared bounds as the data's own precision sees them.
+    let as_stored = |v: f64| if is_float { f64::from(v as f32) } else { v };
+    let (declared_min, declared_max) = (declared("min"), declared("max"));
+    let mut below = vec![0u64; n];
+    let mut above = vec![0u64; n];
+    let mut findings = Vec::new();
+    for i in 0..layout.count {
+        let element = layout.offset + i * layout.stride;
+        for c in 0..n {
+            let at = element + c * layout.size;
+            let v = read(layout.component_type, &bytes[at..at + layout.size]);
+            if !v.is_finite() {
+                let what = if v.is_nan() {
+                    "NaN".into()
+                } else if v > 0.0 {
+                    "Infinity".into()
+                } else {
+                    "-Infinity".to_string()
+                };
+                findings.push((
+                    "ACCESSOR_INVALID_FLOAT",
+                    String::new(),
+                    format!("Accessor element at index {} is {what}.", i * n + c),
+                ));
+                continue;
+            }
+            actual_min[c] = actual_min[c].min(v);
+            actual_max[c] = actual_max[c].max(v);
+            if declared_min.as_ref().is_some_and(|m| v < as_stored(m[c])) {
+                below[c] += 1;
+            }
+            if declared_max.as_ref().is_some_and(|m| v > as_stored(m[c])) {
+                above[c] += 1;
+            }
+        }
+    }
+    let t = layout.component_type;
+    for c in 0..n {
+        if let Some(min) = &declared_min {
+            if actual_min[c].is_finite() && as_stored(min[c]) != actual_min[c] {
+                findings.push(("ACCESSOR_MIN_MISMATCH", format!("/min/{c}"), format!("Declared minimum value for this component ({}) does not match actual minimum ({}).", show(t, min[c]), show(t, actual_min[c]))));
+            }
+            if below[c] > 0 {
+                findings.push((
+                    "ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND",
+                    format!("/min/{c}"),
+                    format!(
+                        "Accessor contains {} element(s) less than declared minimum value {}.",
+                        below[c],
+                        show(t, min[c])
+                    ),
+                ));
+            }
+        }
+        if let Some(max) = &declared_max {
+            if actual_max[c].is_finite() && as_stored(max[c]) != actual_max[c] {
+                findings.push(("ACCESSOR_MAX_MISMATCH", format!("/max/{c}"), format!("Declared maximum value for this component ({}) does not match actual maximum ({}).", show(t, max[c]), show(t, actual_max[c]))));
+            }
+            if above[c] > 0 {
+                findings.push((
+                    "ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND",
+                    format!("/max/{c}"),
+                    format!(
+                        "Accessor contains {} element(s) greater than declared maximum value {}.",
+                        above[c],
+                        show(t, max[c])
+                    ),
+                ));
+            }
+        }
+    }
+    findings
+}
