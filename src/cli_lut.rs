@@ -32,6 +32,8 @@ enum TableArg {
 enum VisibilityArg {
     Charlie,
     Ashikhmin,
+    /// Charlie with Conty-Kulla terminator softening.
+    CharlieSoftened,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -49,6 +51,7 @@ pub fn run(args: LutArgs) -> ExitCode {
     let visibility = match args.visibility {
         VisibilityArg::Charlie => SheenVisibility::Charlie,
         VisibilityArg::Ashikhmin => SheenVisibility::Ashikhmin,
+        VisibilityArg::CharlieSoftened => SheenVisibility::CharlieSoftened,
     };
     let table = SheenTable::compute(args.size, visibility);
     let bytes = match args.format {

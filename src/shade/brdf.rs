@@ -116,6 +116,10 @@ pub enum SheenVisibility {
     Charlie,
     /// Ashikhmin / Neubelt: 1 / (4 (NdotL + NdotV − NdotL·NdotV)).
     Ashikhmin,
+    /// Charlie with Conty & Kulla's terminator softening on the light side,
+    /// Λ'(θ_l) = Λ(θ_l)^(1 + 2(1 − cos θ_l)⁸): their one deliberately non-physical (and
+    /// non-reciprocal) adjustment, for a softer light terminator.
+    CharlieSoftened,
 }
 
 /// The Charlie sheen distribution with r = sheenRoughness².
@@ -152,6 +156,11 @@ pub fn sheen_vis(
     match visibility {
         SheenVisibility::Charlie => {
             let lambda = charlie_lambda(sheen_roughness, v) + charlie_lambda(sheen_roughness, l);
+            1.0 / ((1.0 + lambda) * 4.0 * l * v)
+        }
+        SheenVisibility::CharlieSoftened => {
+            let light = charlie_lambda(sheen_roughness, l).powf(1.0 + 2.0 * (1.0 - l).powi(8));
+            let lambda = charlie_lambda(sheen_roughness, v) + light;
             1.0 / ((1.0 + lambda) * 4.0 * l * v)
         }
         SheenVisibility::Ashikhmin => 1.0 / (4.0 * (l + v - l * v)),
@@ -223,6 +232,27 @@ mod tests {
                 assert!(close(smith_vis(alpha, l, v), g2 / (4.0 * l * v), 1e-12));
             }
         }
+    }
+
+    #[test]
+    fn terminator_softening_changes_only_the_light_side_away_from_the_normal() {
+        let (charlie, soft) = (SheenVisibility::Charlie, SheenVisibility::CharlieSoftened);
+        // cos θ_l = 1: the exponent is 1, nothing changes.
+        assert_eq!(
+            sheen_vis(charlie, 0.6, 1.0, 0.4),
+            sheen_vis(soft, 0.6, 1.0, 0.4)
+        );
+        // Near the terminator the light-side Λ is raised to a power above 1.
+        let (a, b) = (
+            sheen_vis(charlie, 0.6, 0.05, 0.9),
+            sheen_vis(soft, 0.6, 0.05, 0.9),
+        );
+        assert!(a.is_finite() && b.is_finite() && a != b, "{a} {b}");
+        // Hence not reciprocal, as the paper says.
+        assert_ne!(
+            sheen_vis(soft, 0.6, 0.05, 0.9),
+            sheen_vis(soft, 0.6, 0.9, 0.05)
+        );
     }
 
     #[test]
