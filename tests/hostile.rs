@@ -43,32 +43,23 @@ fn an_accessor_claiming_two_to_the_31_elements_is_refused_not_allocated() {
         "asset": {"version": "2.0"},
         "buffers": [{"uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAA", "byteLength": 12}],
         "bufferViews": [{"buffer": 0, "byteLength": 12}],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 2_147_483_648u64, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 1, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]}],
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]
     });
-    let report = check_bytes(
-        "count.gltf",
-        serde_json::to_vec(&gltf2).unwrap(),
-        &NoResources,
-        &deep(),
-    );
-    assert!(
-        codes(&report).contains(&"ACCESSOR_TOO_LONG"),
-        "{:?}",
-        codes(&report)
-    );
-    gltf2["accessors"][0]["count"] = json!(u64::MAX);
-    let report = check_bytes(
-        "count.gltf",
-        serde_json::to_vec(&gltf2).unwrap(),
-        &NoResources,
-        &deep(),
-    );
-    assert!(
-        codes(&report).contains(&"ACCESSOR_TOO_LONG"),
-        "{:?}",
-        codes(&report)
-    );
+    for count in [2_147_483_648u64, u64::MAX] {
+        gltf2["accessors"][0]["count"] = json!(count);
+        let report = check_bytes(
+            "count.gltf",
+            serde_json::to_vec(&gltf2).unwrap(),
+            &NoResources,
+            &deep(),
+        );
+        let found = codes(&report);
+        assert!(
+            found.contains(&"ACCESSOR_TOO_LONG"),
+            "count {count}: {found:?}"
+        );
+    }
 }
 
 /// A PNG header claiming 60000 × 60000 RGBA (14 GB decoded) behind a tiny file.

@@ -149,35 +149,42 @@ fn scan(layout: &Layout, bytes: &[u8], accessor: &Value) -> Vec<(&'static str, S
         }
     }
     let t = layout.component_type;
-    for c in 0..n {
-        if let Some(min) = &declared_min {
-            if actual_min[c].is_finite() && as_stored(min[c]) != actual_min[c] {
-                findings.push(("ACCESSOR_MIN_MISMATCH", format!("/min/{c}"), format!("Declared minimum value for this component ({}) does not match actual minimum ({}).", show(t, min[c]), show(t, actual_min[c]))));
+    let bounds = [
+        (
+            "min",
+            "minimum",
+            "less than",
+            &declared_min,
+            &actual_min,
+            &below,
+            "ACCESSOR_MIN_MISMATCH",
+            "ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND",
+        ),
+        (
+            "max",
+            "maximum",
+            "greater than",
+            &declared_max,
+            &actual_max,
+            &above,
+            "ACCESSOR_MAX_MISMATCH",
+            "ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND",
+        ),
+    ];
+    for (key, word, relation, declared, actual, outside, mismatch, out_of_bound) in bounds {
+        let Some(declared) = declared else { continue };
+        for c in 0..n {
+            if actual[c].is_finite() && as_stored(declared[c]) != actual[c] {
+                findings.push((mismatch, format!("/{key}/{c}"), format!("Declared {word} value for this component ({}) does not match actual {word} ({}).", show(t, declared[c]), show(t, actual[c]))));
             }
-            if below[c] > 0 {
+            if outside[c] > 0 {
                 findings.push((
-                    "ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND",
-                    format!("/min/{c}"),
+                    out_of_bound,
+                    format!("/{key}/{c}"),
                     format!(
-                        "Accessor contains {} element(s) less than declared minimum value {}.",
-                        below[c],
-                        show(t, min[c])
-                    ),
-                ));
-            }
-        }
-        if let Some(max) = &declared_max {
-            if actual_max[c].is_finite() && as_stored(max[c]) != actual_max[c] {
-                findings.push(("ACCESSOR_MAX_MISMATCH", format!("/max/{c}"), format!("Declared maximum value for this component ({}) does not match actual maximum ({}).", show(t, max[c]), show(t, actual_max[c]))));
-            }
-            if above[c] > 0 {
-                findings.push((
-                    "ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND",
-                    format!("/max/{c}"),
-                    format!(
-                        "Accessor contains {} element(s) greater than declared maximum value {}.",
-                        above[c],
-                        show(t, max[c])
+                        "Accessor contains {} element(s) {relation} declared {word} value {}.",
+                        outside[c],
+                        show(t, declared[c])
                     ),
                 ));
             }

@@ -166,6 +166,15 @@ mod tests {
         })
     }
 
+    fn assert_close(a: V3, b: V3) {
+        for i in 0..3 {
+            assert!(
+                (a[i] - b[i]).abs() <= 1e-12 * b[i].abs().max(1.0),
+                "{a:?} vs {b:?}"
+            );
+        }
+    }
+
     fn pairs() -> Vec<(V3, V3)> {
         let mut out = Vec::new();
         for (tv, pv) in [(0.2, 0.0), (0.9, 1.0), (1.5, 2.5)] {
@@ -188,14 +197,7 @@ mod tests {
     #[test]
     fn default_specular_and_ior_reduce_to_appendix_b() {
         for (v, l) in pairs() {
-            let a = base_brdf(&material(), v, l);
-            let b = appendix_b(&material(), v, l);
-            for i in 0..3 {
-                assert!(
-                    (a[i] - b[i]).abs() <= 1e-12 * b[i].abs().max(1.0),
-                    "{a:?} vs {b:?}"
-                );
-            }
+            assert_close(base_brdf(&material(), v, l), appendix_b(&material(), v, l));
         }
     }
 
@@ -206,10 +208,7 @@ mod tests {
         for (v, l) in pairs() {
             let isotropic = base_brdf(&material(), v, l);
             aniso.anisotropy_strength = 1e-300; // takes the anisotropic path with s² = 0
-            let anisotropic = base_brdf(&aniso, v, l);
-            for i in 0..3 {
-                assert!((isotropic[i] - anisotropic[i]).abs() <= 1e-12 * isotropic[i].max(1.0));
-            }
+            assert_close(base_brdf(&aniso, v, l), isotropic);
         }
     }
 
@@ -234,13 +233,7 @@ mod tests {
         m.specular_color = [1.2, 0.8, 1.0];
         m.ior = 1.7;
         for (v, l) in pairs() {
-            let (a, b) = (s.brdf(&m, v, l), s.brdf(&m, l, v));
-            for i in 0..3 {
-                assert!(
-                    (a[i] - b[i]).abs() <= 1e-12 * a[i].abs().max(1.0),
-                    "{a:?} vs {b:?}"
-                );
-            }
+            assert_close(s.brdf(&m, v, l), s.brdf(&m, l, v));
         }
     }
 

@@ -14,10 +14,7 @@ pub const RULE: Rule = Rule::new(
     "plausibility",
     "A dielectric base colour is darker than sRGB 30 or brighter than sRGB 240.",
     DOC,
-    Run {
-        document: Some(check_factor),
-        pixels: Some(super::PixelCheck { applies, inspect }),
-    },
+    Run::both(check_factor, applies, inspect),
 );
 
 const DOC: &str = "\

@@ -13,10 +13,7 @@ pub const RULE: Rule = Rule::new(
     "plausibility",
     "Metallic is between 0.1 and 0.9, a mix of metal and dielectric that few real surfaces have.",
     DOC,
-    Run {
-        document: Some(check_factor),
-        pixels: Some(super::PixelCheck { applies, inspect }),
-    },
+    Run::both(check_factor, applies, inspect),
 );
 
 const DOC: &str = "\

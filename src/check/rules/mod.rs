@@ -74,6 +74,18 @@ impl Run {
             pixels: Some(PixelCheck { applies, inspect }),
         }
     }
+
+    /// A document check (factors) plus a pixel check (`--deep`, textures) under one code.
+    pub const fn both(
+        check: fn(&mut Context),
+        applies: fn(&SlotUse) -> bool,
+        inspect: fn(&mut Context, &SlotUse, &Texels),
+    ) -> Run {
+        Run {
+            document: Some(check),
+            pixels: Some(PixelCheck { applies, inspect }),
+        }
+    }
 }
 
 impl Rule {
