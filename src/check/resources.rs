@@ -321,6 +321,13 @@ pub fn check_images(ctx: &mut Context) {
                             "Image format 'image/webp' not enabled (declare EXT_texture_webp).",
                         );
                     }
+                    if info.has_unsupported_features() {
+                        ctx.emit(
+                            "IMAGE_FEATURES_UNSUPPORTED",
+                            pointer.clone(),
+                            "Image contains unsupported features like non-default colorspace information, non-square pixels, or animation.",
+                        );
+                    }
                     if info.format != ImageFormat::Ktx2
                         && (!info.width.is_power_of_two() || !info.height.is_power_of_two())
                     {

@@ -68,7 +68,41 @@ pub struct ImageInfo {
     pub bits: u8,
     pub transfer: Option<Transfer>,
     pub animated: bool,
+    /// Colour primaries other than sRGB's (PNG cHRM or iCCP, WebP ICC profile).
+    pub custom_primaries: bool,
+    /// PNG pHYs with different horizontal and vertical densities.
+    pub non_square_pixels: bool,
 }
+
+impl ImageInfo {
+    /// An image with no colour tagging, animation or pixel-aspect information.
+    fn plain(format: ImageFormat, width: u32, height: u32, channels: Channels, bits: u8) -> Self {
+        ImageInfo {
+            format,
+            width,
+            height,
+            channels,
+            bits,
+            transfer: None,
+            animated: false,
+            custom_primaries: false,
+            non_square_pixels: false,
+        }
+    }
+
+    /// What the Khronos validator calls unsupported features: custom colour information,
+    /// non-square pixels or animation (glTF ignores them all, so the image may not look as
+    /// its author saw it).
+    pub fn has_unsupported_features(&self) -> bool {
+        self.custom_primaries
+            || self.transfer == Some(Transfer::Custom)
+            || self.non_square_pixels
+            || self.animated
+    }
+}
+
+/// sRGB primaries as PNG cHRM stores them (x, y × 100000): white, red, green, blue.
+const SRGB_CHROMATICITIES: [u32; 8] = [31270, 32900, 64000, 33000, 30000, 60000, 15000, 6000];
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum HeaderError {
@@ -107,6 +141,8 @@ fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
     let mut pos = 8;
     let mut info: Option<ImageInfo> = None;
     let mut has_trns = false;
+    let mut colour_decided = false;
+    let mut chromaticities_seen = false;
     loop {
         let length = be32(b, pos)? as usize;
         let kind = b.get(pos + 4..pos + 8).ok_or(HeaderError::UnexpectedEnd)?;
@@ -130,22 +166,35 @@ fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
                         )))
                     }
                 };
-                info = Some(ImageInfo {
-                    format: ImageFormat::Png,
-                    width: be32(data, 0)?,
-                    height: be32(data, 4)?,
+                info = Some(ImageInfo::plain(
+                    ImageFormat::Png,
+                    be32(data, 0)?,
+                    be32(data, 4)?,
                     channels,
-                    bits: data[8],
-                    transfer: None,
-                    animated: false,
-                });
+                    data[8],
+                ));
             }
             _ if info.is_none() => {
                 return Err(HeaderError::Invalid("first PNG chunk is not IHDR".into()))
             }
             b"tRNS" => has_trns = true,
-            b"sRGB" => set_transfer(&mut info, Transfer::Srgb),
-            b"iCCP" => set_transfer(&mut info, Transfer::Custom),
+            // sRGB and iCCP decide both primaries and transfer; the last one seen wins, and
+            // either makes later cHRM / gAMA chunks irrelevant.
+            b"sRGB" => set_colour(&mut info, Transfer::Srgb, false, &mut colour_decided),
+            b"iCCP" => set_colour(&mut info, Transfer::Custom, true, &mut colour_decided),
+            b"cHRM" if length == 32 && !colour_decided && !chromaticities_seen => {
+                chromaticities_seen = true;
+                let values: Result<Vec<u32>, _> = (0..8).map(|i| be32(data, i * 4)).collect();
+                if let Some(i) = info.as_mut() {
+                    i.custom_primaries = values? != SRGB_CHROMATICITIES;
+                }
+            }
+            b"pHYs" if length == 9 => {
+                let (x, y) = (be32(data, 0)?, be32(data, 4)?);
+                if let Some(i) = info.as_mut() {
+                    i.non_square_pixels = x != y;
+                }
+            }
             b"acTL" => {
                 if let Some(i) = info.as_mut() {
                     i.animated = true;
@@ -153,12 +202,10 @@ fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
             }
             b"gAMA" if length == 4 => {
                 let gamma = be32(data, 0)?;
-                let already_srgb = info
-                    .as_ref()
-                    .is_some_and(|i| i.transfer == Some(Transfer::Srgb));
-                if !already_srgb {
+                let already = info.as_ref().is_some_and(|i| i.transfer.is_some());
+                if !already {
                     let transfer = match gamma {
-                        45000..=46000 => Transfer::Srgb,
+                        45455 => Transfer::Srgb,
                         100000 => Transfer::Linear,
                         _ => Transfer::Custom,
                     };
@@ -179,6 +226,14 @@ fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
         };
     }
     Ok(info)
+}
+
+fn set_colour(info: &mut Option<ImageInfo>, transfer: Transfer, custom: bool, decided: &mut bool) {
+    *decided = true;
+    if let Some(i) = info.as_mut() {
+        i.transfer = Some(transfer);
+        i.custom_primaries = custom;
+    }
 }
 
 fn set_transfer(info: &mut Option<ImageInfo>, transfer: Transfer) {
@@ -211,15 +266,13 @@ fn jpeg(b: &[u8]) -> Result<ImageInfo, HeaderError> {
                 3 => Channels::Rgb,
                 _ => Channels::Unknown,
             };
-            return Ok(ImageInfo {
-                format: ImageFormat::Jpeg,
-                width: u16::from_be_bytes([s[3], s[4]]) as u32,
-                height: u16::from_be_bytes([s[1], s[2]]) as u32,
+            return Ok(ImageInfo::plain(
+                ImageFormat::Jpeg,
+                u16::from_be_bytes([s[3], s[4]]) as u32,
+                u16::from_be_bytes([s[1], s[2]]) as u32,
                 channels,
-                bits: s[0],
-                transfer: None,
-                animated: false,
-            });
+                s[0],
+            ));
         }
         if marker == 0xDA {
             return Err(HeaderError::Invalid(
@@ -233,12 +286,12 @@ fn jpeg(b: &[u8]) -> Result<ImageInfo, HeaderError> {
 fn webp(b: &[u8]) -> Result<ImageInfo, HeaderError> {
     let kind = b.get(12..16).ok_or(HeaderError::UnexpectedEnd)?;
     let d = 20;
-    let (width, height, alpha, animated) = match kind {
+    let (width, height, alpha, animated, icc) = match kind {
         b"VP8 " => {
             let s = b.get(d + 6..d + 10).ok_or(HeaderError::UnexpectedEnd)?;
             let w = u16::from_le_bytes([s[0], s[1]]) & 0x3FFF;
             let h = u16::from_le_bytes([s[2], s[3]]) & 0x3FFF;
-            (w as u32, h as u32, false, false)
+            (w as u32, h as u32, false, false, false)
         }
         b"VP8L" => {
             let bits = le32(b, d + 1)?;
@@ -247,6 +300,7 @@ fn webp(b: &[u8]) -> Result<ImageInfo, HeaderError> {
                 ((bits >> 14) & 0x3FFF) + 1,
                 (bits >> 28) & 1 == 1,
                 false,
+                false,
             )
         }
         b"VP8X" => {
@@ -254,31 +308,34 @@ fn webp(b: &[u8]) -> Result<ImageInfo, HeaderError> {
             let s = b.get(d + 4..d + 10).ok_or(HeaderError::UnexpectedEnd)?;
             let w = u32::from_le_bytes([s[0], s[1], s[2], 0]) + 1;
             let h = u32::from_le_bytes([s[3], s[4], s[5], 0]) + 1;
-            (w, h, flags & 0x10 != 0, flags & 0x02 != 0)
+            (
+                w,
+                h,
+                flags & 0x10 != 0,
+                flags & 0x02 != 0,
+                flags & 0x20 != 0,
+            )
         }
         _ => return Err(HeaderError::Invalid("unknown WebP chunk".into())),
     };
-    Ok(ImageInfo {
-        format: ImageFormat::Webp,
-        width,
-        height,
-        channels: if alpha { Channels::Rgba } else { Channels::Rgb },
-        bits: 8,
-        transfer: None,
-        animated,
-    })
+    let channels = if alpha { Channels::Rgba } else { Channels::Rgb };
+    let mut info = ImageInfo::plain(ImageFormat::Webp, width, height, channels, 8);
+    info.animated = animated;
+    if icc {
+        info.custom_primaries = true;
+        info.transfer = Some(Transfer::Custom);
+    }
+    Ok(info)
 }
 
 fn ktx2(b: &[u8]) -> Result<ImageInfo, HeaderError> {
-    Ok(ImageInfo {
-        format: ImageFormat::Ktx2,
-        width: le32(b, 20)?,
-        height: le32(b, 24)?,
-        channels: Channels::Unknown,
-        bits: 8,
-        transfer: None,
-        animated: false,
-    })
+    Ok(ImageInfo::plain(
+        ImageFormat::Ktx2,
+        le32(b, 20)?,
+        le32(b, 24)?,
+        Channels::Unknown,
+        8,
+    ))
 }
 
 #[cfg(test)]
