@@ -214,6 +214,17 @@ pub fn member(pointer: &str, key: &str) -> String {
     format!("{pointer}/{}", escape_token(key))
 }
 
+/// The elements of an array member with their indices; nothing when missing or mistyped
+/// (the schema pass reports that).
+pub fn elements<'v>(object: &'v Value, key: &str) -> impl Iterator<Item = (usize, &'v Value)> {
+    object
+        .get(key)
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .enumerate()
+}
+
 /// A number member, falling back to `default` when missing or mistyped.
 pub fn number(object: &Value, key: &str, default: f64) -> f64 {
     object.get(key).and_then(Value::as_f64).unwrap_or(default)

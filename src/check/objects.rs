@@ -1,7 +1,7 @@
 //! Asset version, accessors, meshes, nodes, scenes, skins, animations and cameras: references
 //! and the structural rules a material checker depends on (texCoords, tangent space).
 
-use super::context::{member, unsigned, Context};
+use super::context::{elements, member, unsigned, Context};
 use serde_json::Value;
 
 fn version(text: &str) -> Option<(u64, u64)> {
@@ -257,13 +257,7 @@ fn check_variant_mappings(
             continue;
         }
         ctx.reference(mapping, "material", &mp, "materials");
-        for (v, variant) in mapping
-            .get("variants")
-            .and_then(Value::as_array)
-            .into_iter()
-            .flatten()
-            .enumerate()
-        {
+        for (v, variant) in elements(mapping, "variants") {
             let vp = format!("{mp}/variants/{v}");
             let Some(index) = variant.as_u64() else {
                 continue;
@@ -296,13 +290,7 @@ pub fn check_nodes_and_scenes(ctx: &mut Context) {
         let camera = ctx.reference(node, "camera", &pointer, "cameras");
         let skin = ctx.reference(node, "skin", &pointer, "skins");
         let mut children = 0;
-        for (c, child) in node
-            .get("children")
-            .and_then(Value::as_array)
-            .into_iter()
-            .flatten()
-            .enumerate()
-        {
+        for (c, child) in elements(node, "children") {
             if ctx
                 .reference_value(child, &format!("{pointer}/children/{c}"), "nodes")
                 .is_some()
@@ -324,13 +312,7 @@ pub fn check_nodes_and_scenes(ctx: &mut Context) {
         }
     }
     for (_, pointer, scene) in ctx.objects("scenes") {
-        for (n, node) in scene
-            .get("nodes")
-            .and_then(Value::as_array)
-            .into_iter()
-            .flatten()
-            .enumerate()
-        {
+        for (n, node) in elements(scene, "nodes") {
             ctx.reference_value(node, &format!("{pointer}/nodes/{n}"), "nodes");
         }
     }
@@ -343,13 +325,7 @@ pub fn check_skins_animations_cameras(ctx: &mut Context) {
     for (_, pointer, skin) in ctx.objects("skins") {
         ctx.reference(skin, "inverseBindMatrices", &pointer, "accessors");
         ctx.reference(skin, "skeleton", &pointer, "nodes");
-        for (j, joint) in skin
-            .get("joints")
-            .and_then(Value::as_array)
-            .into_iter()
-            .flatten()
-            .enumerate()
-        {
+        for (j, joint) in elements(skin, "joints") {
             ctx.reference_value(joint, &format!("{pointer}/joints/{j}"), "nodes");
         }
     }
@@ -364,13 +340,7 @@ pub fn check_skins_animations_cameras(ctx: &mut Context) {
             ctx.reference(sampler, "input", &sp, "accessors");
             ctx.reference(sampler, "output", &sp, "accessors");
         }
-        for (c, channel) in animation
-            .get("channels")
-            .and_then(Value::as_array)
-            .into_iter()
-            .flatten()
-            .enumerate()
-        {
+        for (c, channel) in elements(animation, "channels") {
             let cp = format!("{pointer}/channels/{c}");
             if let Some(s) = unsigned(channel, "sampler") {
                 if (s as usize) < samplers.len() {
