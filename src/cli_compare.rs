@@ -209,7 +209,7 @@ pub struct RenderArgs {
     /// Material index or name (default: the first).
     #[arg(long)]
     material: Option<String>,
-    /// Every material on one contact sheet (their names are listed on standard output).
+    /// Every material on one contact sheet, each with its name (also listed on stdout).
     #[arg(long)]
     all: bool,
     #[arg(short, long, default_value = "material.png")]
@@ -248,7 +248,11 @@ pub fn render(args: RenderArgs) -> ExitCode {
     let shader = shader_for(&sources);
     let size = args.size.clamp(8, 4096);
     let image = if args.all {
-        gltfmat::shade::render::contact_sheet(&shader, &sources, size)
+        let named: Vec<(&str, &MaterialSource)> = chosen
+            .iter()
+            .map(|(_, name, m)| (name.as_str(), *m))
+            .collect();
+        gltfmat::shade::render::contact_sheet(&shader, &named, size)
     } else {
         gltfmat::shade::render::material_ball(&shader, sources[0], size)
     };

@@ -4,6 +4,7 @@
 pub mod brdf;
 pub mod compare;
 pub mod delta_e;
+pub mod label;
 pub mod load;
 pub mod material;
 pub mod quadrature;

@@ -4,8 +4,9 @@
 //! The rig (documented, fixed so previews are comparable across runs and machines):
 //! an orthographic camera looking down −z at a unit sphere (y up); three directional lights
 //! — key from (−1, 1, 1) with irradiance 2.5, fill from (1, 0.3, 0.8) with 0.8, rim from
-//! (0.2, 0.8, −1) with 1.5 — and a uniform sky of radiance 0.3 integrated with 64 stratified
-//! cosine-weighted directions per pixel. The sphere's UVs are equirectangular
+//! (0.2, 0.8, −1) with 1.5 — and a uniform sky of radiance 0.3 integrated per pixel by multiple
+//! importance sampling of 64 stratified cosine-weighted and 64 GGX-distributed directions,
+//! the pattern turned about the normal by a fixed per-pixel angle. The sphere's UVs are equirectangular
 //! (u = ½ + φ/2π, v = θ/π) with the analytic tangent along increasing u.
 
 use super::brdf::{dot, normalize, V3};
@@ -50,26 +51,67 @@ fn cross(a: V3, b: V3) -> V3 {
     ]
 }
 
-/// Cosine-weighted stratified directions around +z (local frame).
-fn sky_directions() -> Vec<V3> {
+/// Stratified points of the unit square, shared by both sky sampling strategies.
+fn sky_directions() -> Vec<[f64; 2]> {
     let n = SKY_SAMPLES_PER_SIDE;
-    let mut out = Vec::with_capacity(n * n);
-    for i in 0..n {
-        for j in 0..n {
-            let (u1, u2) = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
-            let r = u1.sqrt();
-            let phi = 2.0 * PI * u2;
-            out.push([r * phi.cos(), r * phi.sin(), (1.0 - u1).sqrt()]);
+    (0..n * n)
+        .map(|k| {
+            [
+                ((k / n) as f64 + 0.5) / n as f64,
+                ((k % n) as f64 + 0.5) / n as f64,
+            ]
+        })
+        .collect()
+}
+
+/// The uniform sky by multiple importance sampling (balance heuristic): every point gives
+/// one cosine-weighted direction and one GGX-distributed reflection of `v` for the
+/// material's roughness, each weighted by 1 / (N·pdf_cos + N·pdf_ggx) at that direction.
+fn sky_radiance(
+    shader: &Shader,
+    inputs: &super::material::Inputs,
+    v: V3,
+    points: &[[f64; 2]],
+    turn: f64,
+) -> V3 {
+    let alpha = (inputs.roughness * inputs.roughness).max(1e-3);
+    let n = points.len() as f64;
+    let pdf_cos = |l: V3| l[2].max(0.0) / PI;
+    let pdf_ggx = |l: V3| {
+        let h = normalize([v[0] + l[0], v[1] + l[1], v[2] + l[2]]);
+        let v_dot_h = dot(v, h).abs().max(1e-9);
+        super::brdf::ggx_d(alpha, h[2]) * h[2] / (4.0 * v_dot_h)
+    };
+    let mut total = [0.0; 3];
+    for &[u1, u2] in points {
+        let phi = 2.0 * PI * u2 + turn;
+        let r = u1.sqrt();
+        let cosine = [r * phi.cos(), r * phi.sin(), (1.0 - u1).sqrt()];
+        let tan2 = alpha * alpha * u1 / (1.0 - u1).max(1e-12);
+        let cos_h = 1.0 / (1.0 + tan2).sqrt();
+        let sin_h = (1.0 - cos_h * cos_h).max(0.0).sqrt();
+        let h = [sin_h * phi.cos(), sin_h * phi.sin(), cos_h];
+        let v_dot_h = dot(v, h);
+        let reflected = [0, 1, 2].map(|i| 2.0 * v_dot_h * h[i] - v[i]);
+        for l in [cosine, reflected] {
+            if l[2] <= 0.0 {
+                continue;
+            }
+            let f = shader.brdf(inputs, v, l);
+            let weight = SKY_RADIANCE * l[2] / (n * pdf_cos(l) + n * pdf_ggx(l));
+            for c in 0..3 {
+                total[c] += f[c] * weight;
+            }
         }
     }
-    out
+    total
 }
 
 /// Linear radiance of the ball at pixel (x, y) of a `size`² image, `None` off the sphere.
 fn shade_pixel(
     shader: &Shader,
     material: &MaterialSource,
-    sky: &[V3],
+    sky: &[[f64; 2]],
     x: u32,
     y: u32,
     size: u32,
@@ -104,10 +146,13 @@ fn shade_pixel(
         let l = local(normalize(direction));
         add(l, irradiance * l[2]);
     }
-    // Sky directions are already in the local frame (cosine-weighted: f · L · π / N).
-    let weight = SKY_RADIANCE * PI / sky.len() as f64;
-    for &l in sky {
-        add(l, weight);
+    // The sampling pattern is turned by a fixed per-pixel angle (from a hash of the pixel,
+    // so renders are reproducible): fine noise instead of bands.
+    let turn =
+        f64::from((x.wrapping_mul(0x9E37_79B9) ^ y.wrapping_mul(0x85EB_CA6B)) % 6283) / 1000.0;
+    let sky_light = sky_radiance(shader, &inputs, v, sky, turn);
+    for c in 0..3 {
+        radiance[c] += sky_light[c];
     }
     Some(radiance)
 }
@@ -145,17 +190,31 @@ pub fn material_ball(shader: &Shader, material: &MaterialSource, size: u32) -> R
     image
 }
 
-/// Every material's ball side by side, in rows of up to four, in material order.
-pub fn contact_sheet(shader: &Shader, materials: &[&MaterialSource], cell: u32) -> RgbImage {
+/// Every material's ball side by side, in rows of up to four, in material order, each with
+/// its name written under it.
+pub fn contact_sheet(
+    shader: &Shader,
+    materials: &[(&str, &MaterialSource)],
+    cell: u32,
+) -> RgbImage {
     let columns = (materials.len() as u32).clamp(1, 4);
     let rows = (materials.len() as u32).div_ceil(columns).max(1);
     let mut sheet = RgbImage::from_pixel(columns * cell, rows * cell, Rgb(BACKGROUND));
-    for (i, material) in materials.iter().enumerate() {
+    let scale = (cell / 96).max(1);
+    for (i, (name, material)) in materials.iter().enumerate() {
         let ball = material_ball(shader, material, cell);
         let (cx, cy) = ((i as u32 % columns) * cell, (i as u32 / columns) * cell);
         for (x, y, p) in ball.enumerate_pixels() {
             sheet.put_pixel(cx + x, cy + y, *p);
         }
+        let baseline = cy + cell - 7 * scale;
+        super::label::draw(
+            &mut sheet,
+            name,
+            (cx + 2 * scale, baseline),
+            scale,
+            cell - 4 * scale,
+        );
     }
     sheet
 }
