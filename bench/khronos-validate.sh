@@ -4,7 +4,7 @@
 #   bench/khronos-validate.sh FILE...
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-[ -d "$here/node_modules/gltf-validator" ] || npm install --prefix "$here" --no-save --silent gltf-validator >/dev/null
+source "$here/oracles.sh"
 NODE_PATH="$here/node_modules" node - "$@" <<'JS'
 const v = require('gltf-validator'); const fs = require('fs'); const path = require('path');
 (async () => {

@@ -8,7 +8,7 @@ vertices=${1:-2000000}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cargo build --release -q
-[ -d bench/node_modules/gltf-validator ] || npm install --prefix bench --no-save --silent gltf-validator >/dev/null
+source bench/oracles.sh
 python3 bench/gen_gltf1.py "$work" "$vertices"
 # The 2.0 GLB is the upgrade of the generated 1.0 asset.
 ./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/big.glb" >/dev/null

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 corpus=${1:-../shared/conformance/khronos-glTF-Validator/test}
 cargo build --release -q
-[ -d bench/node_modules/gltf-validator ] || npm install --prefix bench --no-save --silent gltf-validator >/dev/null
+source bench/oracles.sh
 mapfile -t files < <(find "$corpus" -name '*.gltf' -o -name '*.glb' | sort)
 cat > bench/.khronos.js <<'JS'
 const v = require('gltf-validator'); const fs = require('fs'); const path = require('path');

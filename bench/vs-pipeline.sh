@@ -9,7 +9,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 [ -n "${KEEP:-}" ] && trap - EXIT && echo "work: $work"
 cargo build --release -q
-[ -d bench/node_modules/gltf-pipeline ] || npm install --prefix bench --no-save --silent gltf-pipeline >/dev/null
+source bench/oracles.sh
 python3 bench/gen_gltf1.py "$work" "$vertices"
 now() { date +%s.%N; }
 t0=$(now); ./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/ours.glb" >/dev/null; t1=$(now)

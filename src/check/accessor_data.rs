@@ -5,15 +5,37 @@ use super::context::{unsigned, Context};
 use super::resources::view_bytes;
 use serde_json::Value;
 
-/// Decodes one component of a component type, as stored (integers not normalised).
-fn read(component_type: u64, b: &[u8]) -> f64 {
-    match component_type {
-        5120 => f64::from(b[0] as i8),
-        5121 => f64::from(b[0]),
-        5122 => f64::from(i16::from_le_bytes([b[0], b[1]])),
-        5123 => f64::from(u16::from_le_bytes([b[0], b[1]])),
-        5125 => f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
-        _ => f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+/// Calls `f(element, component, value)` for every component, values as stored (integers
+/// not normalised). Dispatching on the component type once, outside the loop, keeps the
+/// inner loop a plain load: this pass runs over every byte of large assets.
+fn visit(layout: &Layout, bytes: &[u8], f: impl FnMut(usize, usize, f64)) {
+    match layout.component_type {
+        5120 => walk::<1>(layout, bytes, |b| f64::from(b[0] as i8), f),
+        5121 => walk::<1>(layout, bytes, |b| f64::from(b[0]), f),
+        5122 => walk::<2>(layout, bytes, |b| f64::from(i16::from_le_bytes(b)), f),
+        5123 => walk::<2>(layout, bytes, |b| f64::from(u16::from_le_bytes(b)), f),
+        5125 => walk::<4>(layout, bytes, |b| f64::from(u32::from_le_bytes(b)), f),
+        _ => walk::<4>(layout, bytes, |b| f64::from(f32::from_le_bytes(b)), f),
+    }
+}
+
+fn walk<const SIZE: usize>(
+    layout: &Layout,
+    bytes: &[u8],
+    decode: impl Fn([u8; SIZE]) -> f64,
+    mut f: impl FnMut(usize, usize, f64),
+) {
+    let element_size = SIZE * layout.components;
+    for i in 0..layout.count {
+        let start = layout.offset + i * layout.stride;
+        let Some(element) = bytes.get(start..start + element_size) else {
+            return;
+        };
+        for (c, raw) in element.chunks_exact(SIZE).enumerate() {
+            let mut word = [0u8; SIZE];
+            word.copy_from_slice(raw);
+            f(i, c, decode(word));
+        }
     }
 }
 
@@ -118,36 +140,35 @@ fn scan(layout: &Layout, bytes: &[u8], accessor: &Value) -> Vec<(&'static str, S
     let mut below = vec![0u64; n];
     let mut above = vec![0u64; n];
     let mut findings = Vec::new();
-    for i in 0..layout.count {
-        let element = layout.offset + i * layout.stride;
-        for c in 0..n {
-            let at = element + c * layout.size;
-            let v = read(layout.component_type, &bytes[at..at + layout.size]);
-            if !v.is_finite() {
-                let what = if v.is_nan() {
-                    "NaN".into()
-                } else if v > 0.0 {
-                    "Infinity".into()
-                } else {
-                    "-Infinity".to_string()
-                };
-                findings.push((
-                    "ACCESSOR_INVALID_FLOAT",
-                    String::new(),
-                    format!("Accessor element at index {} is {what}.", i * n + c),
-                ));
-                continue;
-            }
-            actual_min[c] = actual_min[c].min(v);
-            actual_max[c] = actual_max[c].max(v);
-            if declared_min.as_ref().is_some_and(|m| v < as_stored(m[c])) {
-                below[c] += 1;
-            }
-            if declared_max.as_ref().is_some_and(|m| v > as_stored(m[c])) {
-                above[c] += 1;
-            }
+    let lowest: Vec<f64> = declared_min
+        .as_ref()
+        .map_or(vec![f64::NEG_INFINITY; n], |m| {
+            m.iter().map(|v| as_stored(*v)).collect()
+        });
+    let highest: Vec<f64> = declared_max.as_ref().map_or(vec![f64::INFINITY; n], |m| {
+        m.iter().map(|v| as_stored(*v)).collect()
+    });
+    visit(layout, bytes, |i, c, v| {
+        if !v.is_finite() {
+            let what = if v.is_nan() {
+                "NaN"
+            } else if v > 0.0 {
+                "Infinity"
+            } else {
+                "-Infinity"
+            };
+            findings.push((
+                "ACCESSOR_INVALID_FLOAT",
+                String::new(),
+                format!("Accessor element at index {} is {what}.", i * n + c),
+            ));
+            return;
         }
-    }
+        actual_min[c] = actual_min[c].min(v);
+        actual_max[c] = actual_max[c].max(v);
+        below[c] += u64::from(v < lowest[c]);
+        above[c] += u64::from(v > highest[c]);
+    });
     let t = layout.component_type;
     let bounds = [
         (

@@ -266,10 +266,15 @@ fn copy_elements(accessor: &Accessor, normalized: bool, vertex: bool) -> Packed 
         element
     };
     let mut bytes = Vec::with_capacity(accessor.count * stride);
-    for i in 0..accessor.count {
-        let at = i * accessor.stride;
-        bytes.extend_from_slice(&accessor.bytes[at..at + element]);
-        bytes.resize(bytes.len() + stride - element, 0);
+    if accessor.stride == element && stride == element {
+        // Already tightly packed: one copy.
+        bytes.extend_from_slice(&accessor.bytes[..accessor.count * element]);
+    } else {
+        for i in 0..accessor.count {
+            let at = i * accessor.stride;
+            bytes.extend_from_slice(&accessor.bytes[at..at + element]);
+            bytes.resize(bytes.len() + stride - element, 0);
+        }
     }
     let mut min = vec![f64::INFINITY; accessor.components];
     let mut max = vec![f64::NEG_INFINITY; accessor.components];
