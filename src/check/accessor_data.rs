@@ -3,6 +3,7 @@
 
 use super::context::{unsigned, Context};
 use super::resources::view_bytes;
+use rayon::prelude::*;
 use serde_json::Value;
 
 /// Calls `f(element, component, value)` for every component, values as stored (integers
@@ -89,39 +90,51 @@ fn show(component_type: u64, v: f64) -> String {
 }
 
 pub fn check(ctx: &mut Context) {
-    for (_, pointer, accessor) in ctx.objects("accessors") {
-        if accessor.get("sparse").is_some() {
-            continue; // sparse substitution is not applied by this pass
-        }
-        let Some(view) = unsigned(accessor, "bufferView").map(|v| v as usize) else {
-            continue;
-        };
-        let Some(layout) = (view < ctx.items("bufferViews").len())
-            .then(|| layout(ctx, accessor, view))
-            .flatten()
-        else {
-            continue;
-        };
-        let Some(bytes) = view_bytes(ctx, view) else {
-            continue;
-        };
-        let needed = layout
-            .count
-            .checked_sub(1)
-            .and_then(|n| n.checked_mul(layout.stride))
-            .and_then(|n| n.checked_add(layout.size * layout.components + layout.offset));
-        if layout.count == 0 || needed.is_none_or(|n| n > bytes.len()) {
-            continue; // ACCESSOR_TOO_LONG was reported
-        }
-        let findings = scan(&layout, bytes, accessor);
-        for (code, suffix, message) in findings {
+    // Accessors are independent and read-only here: scanned in parallel, reported in order.
+    let work: Vec<(String, Layout, &[u8], &Value)> = ctx
+        .objects("accessors")
+        .into_iter()
+        .filter_map(|(_, pointer, accessor)| {
+            let (layout, bytes) = scannable(ctx, accessor)?;
+            Some((pointer, layout, bytes, accessor))
+        })
+        .collect();
+    let findings: Vec<Vec<Finding>> = work
+        .par_iter()
+        .map(|(_, layout, bytes, accessor)| scan(layout, bytes, accessor))
+        .collect();
+    let pointers: Vec<String> = work.into_iter().map(|(pointer, ..)| pointer).collect();
+    for (pointer, found) in pointers.iter().zip(findings) {
+        for (code, suffix, message) in found {
             ctx.emit(code, format!("{pointer}{suffix}"), message);
         }
     }
 }
 
+type Finding = (&'static str, String, String);
+
+/// The accessor's layout and its view's bytes, when it is plain (not sparse) data that fits
+/// its view (otherwise ACCESSOR_TOO_LONG or a schema code was reported).
+fn scannable<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])> {
+    if accessor.get("sparse").is_some() {
+        return None; // sparse substitution is not applied by this pass
+    }
+    let view = unsigned(accessor, "bufferView")? as usize;
+    if view >= ctx.items("bufferViews").len() {
+        return None;
+    }
+    let layout = layout(ctx, accessor, view)?;
+    let bytes = view_bytes(ctx, view)?;
+    let needed = layout
+        .count
+        .checked_sub(1)
+        .and_then(|n| n.checked_mul(layout.stride))
+        .and_then(|n| n.checked_add(layout.size * layout.components + layout.offset));
+    (layout.count > 0 && needed.is_some_and(|n| n <= bytes.len())).then_some((layout, bytes))
+}
+
 /// Returns (code, pointer suffix, message) for every finding of one accessor.
-fn scan(layout: &Layout, bytes: &[u8], accessor: &Value) -> Vec<(&'static str, String, String)> {
+fn scan(layout: &Layout, bytes: &[u8], accessor: &Value) -> Vec<Finding> {
     let n = layout.components;
     let mut actual_min = vec![f64::INFINITY; n];
     let mut actual_max = vec![f64::NEG_INFINITY; n];
