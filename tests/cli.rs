@@ -244,3 +244,41 @@ fn lut_sheen_writes_the_table_the_evaluator_uses() {
         }
     }
 }
+
+#[test]
+fn sarif_output_validates_against_the_sarif_2_1_0_schema() {
+    let schema: serde_json::Value = serde_json::from_slice(
+        &std::fs::read(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("fixtures/sarif/sarif-2.1.0.schema.json"),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let validator = jsonschema::options()
+        .should_validate_formats(true)
+        .build(&schema)
+        .expect("the SARIF schema compiles");
+    let (code, out) = gltfmat(&[
+        "check",
+        "--format",
+        "sarif",
+        "fixtures/broken/bad-material.gltf",
+        "fixtures/broken/duplicate-key.gltf",
+        "fixtures/valid/sheen-triangle.glb",
+    ]);
+    assert_eq!(code, 1, "{out}");
+    let sarif: serde_json::Value = serde_json::from_str(&out).expect("SARIF is JSON");
+    let errors: Vec<String> = validator
+        .iter_errors(&sarif)
+        .map(|e| format!("{} at {}", e, e.instance_path()))
+        .collect();
+    assert!(
+        errors.is_empty(),
+        "SARIF schema violations:\n{}",
+        errors.join("\n")
+    );
+    assert!(sarif["runs"][0]["results"]
+        .as_array()
+        .is_some_and(|r| !r.is_empty()));
+}
