@@ -175,14 +175,6 @@ impl LegacyPbr {
         }
         true
     }
-
-    /// Texture ids the block references, with the value key's canonical name.
-    pub fn texture_ids(&self) -> impl Iterator<Item = &str> {
-        self.colour_texture
-            .iter()
-            .chain(self.data_texture.iter())
-            .map(String::as_str)
-    }
 }
 
 /// Copies a numeric array into `target` (missing trailing components keep their default).

@@ -3,6 +3,7 @@
 
 use super::context::{unsigned, Context};
 use super::resources::view_bytes;
+use crate::document::accessor_types::{component_count, component_size};
 use rayon::prelude::*;
 use serde_json::Value;
 
@@ -51,24 +52,13 @@ struct Layout {
 
 fn layout(ctx: &Context, accessor: &Value, view: usize) -> Option<Layout> {
     let component_type = unsigned(accessor, "componentType")?;
-    let size = match component_type {
-        5120 | 5121 => 1,
-        5122 | 5123 => 2,
-        5125 | 5126 => 4,
-        _ => return None,
-    };
-    let components = match accessor.get("type")?.as_str()? {
-        "SCALAR" => 1,
-        "VEC2" => 2,
-        "VEC3" => 3,
-        "VEC4" => 4,
-        // Float matrices are tightly packed; small-component matrices have padded columns,
-        // which this pass does not walk.
-        "MAT2" if size == 4 => 4,
-        "MAT3" if size == 4 => 9,
-        "MAT4" => 16,
-        _ => return None,
-    };
+    let size = component_size(component_type)?;
+    let kind = accessor.get("type")?.as_str()?;
+    // Small-component matrices have padded columns, which this pass does not walk.
+    if kind.starts_with("MAT") && kind != "MAT4" && size < 4 {
+        return None;
+    }
+    let components = component_count(kind)?;
     let element = size * components;
     let stride = unsigned(&ctx.items("bufferViews")[view], "byteStride").unwrap_or(element as u64);
     Some(Layout {

@@ -2,6 +2,7 @@
 //! and the structural rules a material checker depends on (texCoords, tangent space).
 
 use super::context::{elements, member, unsigned, Context};
+use crate::document::accessor_types::{component_count, component_size};
 use serde_json::Value;
 
 fn version(text: &str) -> Option<(u64, u64)> {
@@ -77,20 +78,15 @@ pub fn check_accessors(ctx: &mut Context) {
 /// ACCESSOR_TOO_LONG: the accessor's last element must end inside its bufferView. Computed
 /// with checked arithmetic, so a count of 2^31 or 2^64 − 1 is a finding, not an overflow.
 fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer: &str) {
-    let component_size = match unsigned(accessor, "componentType") {
-        Some(5120 | 5121) => 1u64,
-        Some(5122 | 5123) => 2,
-        Some(5125 | 5126) => 4,
-        _ => return,
+    let Some(component_size) = unsigned(accessor, "componentType").and_then(component_size) else {
+        return;
     };
-    let components = match accessor.get("type").and_then(Value::as_str) {
-        Some("SCALAR") => 1u64,
-        Some("VEC2") => 2,
-        Some("VEC3") => 3,
-        Some("VEC4" | "MAT2") => 4,
-        Some("MAT3") => 9,
-        Some("MAT4") => 16,
-        _ => return,
+    let Some(components) = accessor
+        .get("type")
+        .and_then(Value::as_str)
+        .and_then(component_count)
+    else {
+        return;
     };
     let (Some(count), Some(view_length)) = (
         unsigned(accessor, "count").filter(|c| *c > 0),
@@ -101,11 +97,14 @@ fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer
     // Matrix columns start on 4-byte boundaries (glTF 2.0 §3.6.2.4): elements are padded,
     // but the last element ends after its last column's data.
     let is_mat2 = accessor.get("type").and_then(Value::as_str) == Some("MAT2");
-    let (element, last) = match (components, component_size) {
+    let (element, last): (u64, u64) = match (components, component_size) {
         (4, 1) if is_mat2 => (8, 6),
         (9, 1) => (12, 11),
         (9, 2) => (24, 22),
-        _ => (components * component_size, components * component_size),
+        _ => {
+            let size = (components * component_size) as u64;
+            (size, size)
+        }
     };
     let stride = unsigned(&ctx.items("bufferViews")[view], "byteStride").unwrap_or(element);
     let offset = unsigned(accessor, "byteOffset").unwrap_or(0);

@@ -1,5 +1,6 @@
 //! Bytes → document: container detection, GLB chunks, JSON, and external resources.
 
+pub mod accessor_types;
 pub mod glb;
 pub mod image_decode;
 pub mod image_header;

@@ -42,11 +42,6 @@ pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
 }
 
 impl Texels {
-    #[cfg(test)]
-    pub fn from_image(image: DynamicImage) -> Texels {
-        Texels { image }
-    }
-
     pub fn has_alpha(&self) -> bool {
         self.image.color().has_alpha()
     }
