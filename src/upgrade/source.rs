@@ -4,6 +4,7 @@
 use super::UpgradeError;
 use crate::document::uri::{classify, LoadError, ResourceLoader, UriKind};
 use serde_json::Value;
+use std::cell::OnceCell;
 use std::collections::HashMap;
 
 /// The buffer id KHR_binary_glTF gives the GLB body (and the older spelling some writers used).
@@ -11,14 +12,18 @@ const BINARY_BUFFER_IDS: &[&str] = &["binary_glTF", "KHR_binary_glTF"];
 
 pub struct Source<'a> {
     pub json: Value,
-    /// Bytes of every buffer that could be read, by id.
-    pub buffers: HashMap<String, Vec<u8>>,
-    /// Buffers that could not be read, with the reason (reported when something needs them).
-    pub unreadable: HashMap<String, String>,
+    /// The GLB v1 body, borrowed from the input.
+    body: Option<&'a [u8]>,
+    /// External and data-URI buffers, read on first use: reading only the materials (for
+    /// `--verify`) must not load the geometry.
+    buffers: HashMap<String, OnceCell<Result<Vec<u8>, String>>>,
     pub loader: &'a dyn ResourceLoader,
 }
 
-pub fn read<'a>(bytes: &[u8], loader: &'a dyn ResourceLoader) -> Result<Source<'a>, UpgradeError> {
+pub fn read<'a>(
+    bytes: &'a [u8],
+    loader: &'a dyn ResourceLoader,
+) -> Result<Source<'a>, UpgradeError> {
     let (json_bytes, body) = if bytes.starts_with(b"glTF") {
         split_glb_v1(bytes)?
     } else {
@@ -32,14 +37,17 @@ pub fn read<'a>(bytes: &[u8], loader: &'a dyn ResourceLoader) -> Result<Source<'
         ));
     }
     check_version(&json)?;
-    let mut source = Source {
+    let buffers = json
+        .get("buffers")
+        .and_then(Value::as_object)
+        .map(|b| b.keys().map(|id| (id.clone(), OnceCell::new())).collect())
+        .unwrap_or_default();
+    Ok(Source {
         json,
-        buffers: HashMap::new(),
-        unreadable: HashMap::new(),
+        body,
+        buffers,
         loader,
-    };
-    source.load_buffers(body);
-    Ok(source)
+    })
 }
 
 /// Header: magic, version 1, total length, content length, content format 0 (JSON).
@@ -93,31 +101,34 @@ fn check_version(json: &Value) -> Result<(), UpgradeError> {
 }
 
 impl Source<'_> {
-    fn load_buffers(&mut self, body: Option<&[u8]>) {
-        let Some(buffers) = self.json.get("buffers").and_then(Value::as_object) else {
-            return;
-        };
-        let mut loaded = HashMap::new();
-        let mut failed = HashMap::new();
-        for (id, buffer) in buffers {
-            let result = match (body, BINARY_BUFFER_IDS.contains(&id.as_str())) {
-                (Some(body), true) => Ok(body.to_vec()),
-                _ => match buffer.get("uri").and_then(Value::as_str) {
-                    Some(uri) => self.load_uri(uri),
-                    None => Err("the buffer has no uri".to_string()),
-                },
-            };
-            match result {
-                Ok(bytes) => {
-                    loaded.insert(id.clone(), bytes);
-                }
-                Err(why) => {
-                    failed.insert(id.clone(), why);
-                }
-            }
+    /// A buffer's bytes: the GLB body for KHR_binary_glTF's buffer, otherwise its `uri`, read
+    /// once.
+    fn buffer(&self, id: &str) -> Result<&[u8], String> {
+        if let Some(body) = self.body.filter(|_| BINARY_BUFFER_IDS.contains(&id)) {
+            return Ok(body);
         }
-        self.buffers = loaded;
-        self.unreadable = failed;
+        let cell = self
+            .buffers
+            .get(id)
+            .ok_or_else(|| format!("buffer '{id}' does not exist"))?;
+        let loaded = cell.get_or_init(|| {
+            let uri = self.json["buffers"][id].get("uri").and_then(Value::as_str);
+            uri.ok_or_else(|| "the buffer has no uri".to_string())
+                .and_then(|uri| self.load_uri(uri))
+        });
+        loaded.as_deref().map_err(Clone::clone)
+    }
+
+    /// The declared size of all buffers, to reserve the repacked output once. Declarations
+    /// can lie: the reservation is capped, and the output simply grows past it if needed.
+    pub fn declared_size(&self) -> usize {
+        const CAP: u64 = 256 << 20;
+        let total: u64 = self
+            .dictionary("buffers")
+            .iter()
+            .filter_map(|(_, b)| b.get("byteLength")?.as_u64())
+            .fold(0, |sum, n| sum.saturating_add(n));
+        total.min(CAP) as usize
     }
 
     /// Reads a data URI or a file inside the asset's folder.
@@ -155,12 +166,7 @@ impl Source<'_> {
             .object("bufferViews", id)
             .ok_or_else(|| format!("bufferView '{id}' does not exist"))?;
         let buffer_id = view.get("buffer").and_then(Value::as_str).unwrap_or("");
-        let buffer = self.buffers.get(buffer_id).ok_or_else(|| {
-            self.unreadable.get(buffer_id).map_or_else(
-                || format!("buffer '{buffer_id}' does not exist"),
-                Clone::clone,
-            )
-        })?;
+        let buffer = self.buffer(buffer_id)?;
         let offset = view.get("byteOffset").and_then(Value::as_u64).unwrap_or(0);
         let length = match view.get("byteLength").and_then(Value::as_u64) {
             Some(n) => n,

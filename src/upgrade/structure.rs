@@ -70,7 +70,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             arrays: HashMap::new(),
             images: Vec::new(),
             // Repacked data is about the size of the input buffers: reserve it once.
-            binary: Vec::with_capacity(source.buffers.values().map(Vec::len).sum::<usize>() + 1024),
+            binary: Vec::with_capacity(source.declared_size() + 1024),
             packed_accessors: HashMap::new(),
             report: Vec::new(),
         }
