@@ -159,11 +159,9 @@ fn merge(partials: Vec<Partial>, grid: u32) -> Comparison {
     let mut histogram = vec![0u64; BINS];
     let mut per_texel = Vec::with_capacity((grid * grid) as usize);
     let (mut sum, mut count) = (0.0, 0u64);
-    let mut worst = Worst {
-        delta_e: 0.0,
-        uv: [0.0, 0.0],
-        directions: (0.0, 0.0, 0.0),
-    };
+    // The first worst sample seen (in row order) wins ties, so a comparison with ΔE 0
+    // everywhere names a real texel.
+    let mut worst: Option<Worst> = None;
     // Partials come in row order: their texels concatenate into the grid.
     for p in partials {
         per_texel.extend(&p.per_texel);
@@ -172,10 +170,15 @@ fn merge(partials: Vec<Partial>, grid: u32) -> Comparison {
         for (total, n) in histogram.iter_mut().zip(&p.histogram) {
             *total += u64::from(*n);
         }
-        if p.worst.delta_e > worst.delta_e {
-            worst = p.worst;
+        if worst.as_ref().is_none_or(|w| p.worst.delta_e > w.delta_e) {
+            worst = Some(p.worst);
         }
     }
+    let worst = worst.unwrap_or(Worst {
+        delta_e: 0.0,
+        uv: [0.0, 0.0],
+        directions: (0.0, 0.0, 0.0),
+    });
     let target = (count as f64 * 0.99).ceil() as u64;
     let mut seen = 0;
     let mut p99 = 0.0;
@@ -220,6 +223,11 @@ mod tests {
         );
         let result = compare(&shader(), &m, &m, 8);
         assert_eq!((result.max, result.mean, result.p99), (0.0, 0.0, 0.0));
+        assert_eq!(
+            result.worst.uv,
+            [0.0625, 0.0625],
+            "the worst sample is a real texel centre"
+        );
         assert_eq!(result.samples, 64 * DIRECTIONS.len() as u64);
     }
 
