@@ -2,13 +2,8 @@
 # Times `gltfmat check` against the npm Khronos glTF-Validator on a large generated GLB
 # (about 110 MB, 4 M triangles), in the same session; prints time and peak memory ratios.
 #   bench/large-glb.sh [vertices]
-set -euo pipefail
-cd "$(dirname "$0")/.."
+source "$(dirname "$0")/common.sh"
 vertices=${1:-2000000}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cargo build --release -q
-source bench/oracles.sh
 python3 bench/gen_gltf1.py "$work" "$vertices"
 # The 2.0 GLB is the upgrade of the generated 1.0 asset.
 ./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/big.glb" >/dev/null

@@ -2,13 +2,8 @@
 # Times `gltfmat upgrade --verify` (upgrade + rebake + check + ΔE proof) on a generated glTF 1.0
 # asset with five 2048² textures (two metal-rough materials, one spec-gloss).
 #   bench/verify.sh [size]
-set -euo pipefail
-cd "$(dirname "$0")/.."
+source "$(dirname "$0")/common.sh"
 size=${1:-2048}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-[ -n "${KEEP:-}" ] && trap - EXIT && echo "work: $work"
-cargo build --release -q
 python3 - "$work" "$size" "$(pwd)" <<'PY'
 import json, struct, sys, zlib, shutil, math
 work, n, repo = sys.argv[1], int(sys.argv[2]), sys.argv[3]

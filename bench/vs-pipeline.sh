@@ -2,14 +2,8 @@
 # Times `gltfmat upgrade` against gltf-pipeline (npm; an oracle, never a dependency) on a
 # generated glTF 1.0 asset, in the same session, and prints the ratio.
 #   bench/vs-pipeline.sh [vertices]     (default 2 000 000 vertices, 4 000 000 triangles, ~110 MB)
-set -euo pipefail
-cd "$(dirname "$0")/.."
+source "$(dirname "$0")/common.sh"
 vertices=${1:-2000000}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-[ -n "${KEEP:-}" ] && trap - EXIT && echo "work: $work"
-cargo build --release -q
-source bench/oracles.sh
 python3 bench/gen_gltf1.py "$work" "$vertices"
 now() { date +%s.%N; }
 t0=$(now); ./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/ours.glb" >/dev/null; t1=$(now)
