@@ -60,6 +60,8 @@ pub struct Context<'a> {
     /// Encoded bytes of each image, kept only with `--deep` for the pixel rules.
     pub image_bytes: Vec<Option<Vec<u8>>>,
     pub material_needs: Vec<MaterialNeeds>,
+    /// Every texture binding, computed on first use (see `materials::slot_uses`).
+    pub slot_uses: std::sync::OnceLock<std::sync::Arc<[super::materials::SlotUse<'a>]>>,
     pub resources: Vec<ResourceInfo>,
 }
 
@@ -81,6 +83,7 @@ impl<'a> Context<'a> {
             images: Vec::new(),
             image_bytes: Vec::new(),
             material_needs: Vec::new(),
+            slot_uses: std::sync::OnceLock::new(),
             resources: Vec::new(),
         }
     }

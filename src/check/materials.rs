@@ -5,6 +5,7 @@ use super::context::{member, number, unsigned, Context, MaterialNeeds};
 use super::resources::declared_mime;
 use super::rules::exclusion::{combination, Combination};
 use serde_json::Value;
+use std::sync::Arc;
 
 /// Colour channels as a bit mask.
 pub type Channels = u8;
@@ -404,7 +405,14 @@ impl SlotUse<'_> {
 }
 
 /// Every resolvable texture binding in the document, in material and slot order.
-pub fn slot_uses<'a>(ctx: &Context<'a>) -> Vec<SlotUse<'a>> {
+/// Computed once per document (the rules share it); see [`collect_slot_uses`].
+pub fn slot_uses<'a>(ctx: &Context<'a>) -> Arc<[SlotUse<'a>]> {
+    ctx.slot_uses
+        .get_or_init(|| collect_slot_uses(ctx).into())
+        .clone()
+}
+
+fn collect_slot_uses<'a>(ctx: &Context<'a>) -> Vec<SlotUse<'a>> {
     let textures = ctx.items("textures");
     let image_count = ctx.items("images").len() as u64;
     let mut uses = Vec::new();

@@ -33,13 +33,13 @@ Spec: KHR_materials_anisotropy, \"anisotropyStrength … default 0\".
 ";
 
 fn check(ctx: &mut Context) {
-    for slot_use in slot_uses(ctx) {
+    for slot_use in slot_uses(ctx).iter() {
         if slot_use.slot.key == "anisotropyTexture"
             && slot_use.extension_number("anisotropyStrength", 0.0) == 0.0
         {
             ctx.emit(
                 "ANISOTROPY_TEXTURE_ZERO_STRENGTH",
-                slot_use.pointer,
+                slot_use.pointer.clone(),
                 "anisotropyTexture has no effect: anisotropyStrength is 0 (its default), which multiplies the texture's strength.",
             );
         }

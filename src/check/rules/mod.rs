@@ -225,7 +225,7 @@ fn run_pixel_rules(ctx: &mut Context) {
 /// Each texture binding paired with each image it may sample whose header could be read.
 fn bound_images<'a>(ctx: &Context<'a>) -> Vec<(SlotUse<'a>, usize, ImageInfo)> {
     let mut bound = Vec::new();
-    for slot_use in slot_uses(ctx) {
+    for slot_use in slot_uses(ctx).iter() {
         let headers: Vec<_> = slot_use
             .images
             .iter()

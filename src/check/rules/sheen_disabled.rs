@@ -54,7 +54,7 @@ fn writes_a_factor(sheen: &Value) -> bool {
 }
 
 fn check(ctx: &mut Context) {
-    for slot_use in slot_uses(ctx) {
+    for slot_use in slot_uses(ctx).iter() {
         if slot_use.slot.extension != Some("KHR_materials_sheen") {
             continue;
         }
@@ -62,7 +62,7 @@ fn check(ctx: &mut Context) {
         if sheen.is_some_and(|s| writes_a_factor(s) && sheen_colour_is_zero(s)) {
             ctx.emit(
                 "SHEEN_TEXTURE_DISABLED",
-                slot_use.pointer,
+                slot_use.pointer.clone(),
                 format!(
                     "{} has no effect: sheenColorFactor is zero (its default), which disables the sheen layer.",
                     slot_use.slot.key

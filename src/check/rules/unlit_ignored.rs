@@ -41,12 +41,12 @@ const LIGHTING_SLOTS: &[&str] = &[
 ];
 
 fn check(ctx: &mut Context) {
-    for slot_use in slot_uses(ctx) {
+    for slot_use in slot_uses(ctx).iter() {
         let unlit = extension(slot_use.material, "KHR_materials_unlit").is_some();
         if unlit && LIGHTING_SLOTS.contains(&slot_use.slot.key) {
             ctx.emit(
                 "UNLIT_IGNORED_TEXTURE",
-                slot_use.pointer,
+                slot_use.pointer.clone(),
                 format!(
                     "{} is ignored by unlit shading; only clients without KHR_materials_unlit would use it.",
                     slot_use.slot.key
