@@ -373,6 +373,10 @@ fn cases() -> Vec<Case> {
             "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.5, "anisotropyTexture": {"index": 1,
                 "extensions": {"KHR_texture_transform": {"texCoord": 1}}}}}})), vec![rgb([128, 128, 255]), rgb([255, 128, 255])]).patch(with_tangents())
             .expect("KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD", &at("/extensions/KHR_materials_anisotropy/anisotropyTexture")),
+        case("clearcoat normal texCoord differs once the transform override applies", material(json!({"normalTexture": {"index": 0},
+            "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0, "clearcoatNormalTexture": {"index": 0, "texCoord": 0,
+                "extensions": {"KHR_texture_transform": {"texCoord": 1}}}}}})), vec![rgb([128, 128, 255])]).patch(with_tangents())
+            .expect("KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD", &at("/extensions/KHR_materials_clearcoat/clearcoatNormalTexture")),
         // -- channels
         case("sheen roughness from an RGB image", material(ext("KHR_materials_sheen", json!({"sheenColorFactor": [1.0, 1.0, 1.0],
             "sheenRoughnessFactor": 0.5, "sheenRoughnessTexture": {"index": 0}}))), vec![rgb([9, 9, 9])])

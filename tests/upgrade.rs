@@ -386,3 +386,136 @@ mod verify {
         let _ = std::fs::remove_dir_all(&dir);
     }
 }
+
+mod structure {
+    use super::*;
+    use base64::Engine;
+    use gltfmat::document::uri::NoResources;
+    use serde_json::json;
+
+    /// A hand-written 1.0 asset exercising the structural conversions: a skinned node with
+    /// two meshes, a bind shape matrix, a camera with znear 0, a blending technique without
+    /// culling, and a KHR_materials_common CONSTANT material.
+    fn asset() -> serde_json::Value {
+        let mut data = Vec::new();
+        for v in [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0] {
+            data.extend(v.to_le_bytes()); // POSITION
+        }
+        for v in [
+            0.0f32, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+        ] {
+            data.extend(v.to_le_bytes()); // JOINT (3 × VEC4)
+        }
+        for v in [
+            1.0f32, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0,
+        ] {
+            data.extend(v.to_le_bytes()); // WEIGHT
+        }
+        let identity = [
+            1.0f32, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+        ];
+        identity.iter().for_each(|v| data.extend(v.to_le_bytes())); // inverse bind matrix
+        let uri = format!(
+            "data:application/octet-stream;base64,{}",
+            base64::engine::general_purpose::STANDARD.encode(&data)
+        );
+        let accessor = |offset: usize, count: usize, kind: &str| json!({"bufferView": "v", "byteOffset": offset, "componentType": 5126, "count": count, "type": kind, "min": [0], "max": [0]});
+        json!({
+            "asset": {"version": "1.0"},
+            "buffers": {"b": {"uri": uri, "byteLength": data.len()}},
+            "bufferViews": {"v": {"buffer": "b", "byteOffset": 0, "byteLength": data.len()}},
+            "accessors": {"pos": accessor(0, 3, "VEC3"), "joint": accessor(36, 3, "VEC4"), "weight": accessor(84, 3, "VEC4"), "ibm": accessor(132, 1, "MAT4")},
+            "techniques": {"t": {"states": {"enable": [3042, 2929]}}},
+            "materials": {
+                "blended": {"technique": "t", "values": {"diffuse": [1.0, 0.5, 0.25, 1.0]}},
+                "flat": {"extensions": {"KHR_materials_common": {"technique": "CONSTANT", "values": {"diffuse": [0.5, 0.5, 0.5, 1.0]}}}}
+            },
+            "meshes": {
+                "m1": {"primitives": [{"attributes": {"POSITION": "pos", "JOINT": "joint", "WEIGHT": "weight"}, "material": "blended"}]},
+                "m2": {"primitives": [{"attributes": {"POSITION": "pos", "JOINT": "joint", "WEIGHT": "weight"}, "material": "flat"}]}
+            },
+            "skins": {"s": {"bindShapeMatrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1], "inverseBindMatrices": "ibm", "jointNames": ["j"]}},
+            "cameras": {"c": {"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.0, "zfar": 100.0}}},
+            "nodes": {
+                "root": {"children": ["joint", "skinned"], "camera": "c"},
+                "joint": {"jointName": "j"},
+                "skinned": {"meshes": ["m1", "m2"], "skin": "s", "skeletons": ["joint"]}
+            },
+            "scenes": {"s": {"nodes": ["root"]}},
+            "scene": "s"
+        })
+    }
+
+    fn upgraded() -> Upgraded {
+        let bytes = serde_json::to_vec(&asset()).unwrap();
+        upgrade(&bytes, &NoResources, &UpgradeOptions::default()).unwrap()
+    }
+
+    #[test]
+    fn technique_states_become_blending_and_double_sidedness() {
+        let up = upgraded();
+        let blended = &up.json["materials"][0];
+        assert_eq!(blended["alphaMode"], "BLEND");
+        assert_eq!(blended["doubleSided"], true, "CULL_FACE is not enabled");
+        let flat = &up.json["materials"][1];
+        assert!(
+            flat["extensions"]["KHR_materials_unlit"].is_object(),
+            "CONSTANT → unlit"
+        );
+        assert!(
+            flat.get("doubleSided").is_none(),
+            "no technique: the option's default (false)"
+        );
+    }
+
+    #[test]
+    fn extra_meshes_become_skinned_children_and_the_bind_shape_is_folded() {
+        let up = upgraded();
+        let nodes = up.json["nodes"].as_array().unwrap();
+        let skinned = &nodes[2];
+        assert_eq!(skinned["mesh"], 0);
+        let child = skinned["children"][0].as_u64().unwrap() as usize;
+        assert_eq!(nodes[child]["mesh"], 1);
+        assert_eq!(
+            nodes[child]["skin"], skinned["skin"],
+            "the extra mesh keeps the skin"
+        );
+        let skin = &up.json["skins"][skinned["skin"].as_u64().unwrap() as usize];
+        assert_eq!(skin["joints"], json!([1]));
+        // IBM · BSM with IBM = identity is the bind shape matrix: translation x = 5.
+        let accessor =
+            &up.json["accessors"][skin["inverseBindMatrices"].as_u64().unwrap() as usize];
+        let view = &up.json["bufferViews"][accessor["bufferView"].as_u64().unwrap() as usize];
+        let start = view["byteOffset"].as_u64().unwrap() as usize;
+        let translation_x =
+            f32::from_le_bytes(up.binary[start + 48..start + 52].try_into().unwrap());
+        assert_eq!(translation_x, 5.0);
+        let mesh = &up.json["meshes"][0]["primitives"][0]["attributes"];
+        assert!(
+            mesh.get("JOINTS_0").is_some() && mesh.get("WEIGHTS_0").is_some(),
+            "{mesh}"
+        );
+    }
+
+    #[test]
+    fn a_zero_znear_is_made_valid() {
+        let up = upgraded();
+        let znear = up.json["cameras"][0]["perspective"]["znear"]
+            .as_f64()
+            .unwrap();
+        assert!(znear > 0.0 && znear < 1.0, "{znear}");
+        let (_, report) = output::verify(output::layout(&up, "out.glb"));
+        assert_eq!(report.count(Severity::Error), 0, "{:?}", report.diagnostics);
+    }
+
+    #[test]
+    fn the_double_sided_option_applies_to_materials_without_a_technique() {
+        let bytes = serde_json::to_vec(&asset()).unwrap();
+        let options = UpgradeOptions {
+            double_sided_default: true,
+            ..UpgradeOptions::default()
+        };
+        let up = upgrade(&bytes, &NoResources, &options).unwrap();
+        assert_eq!(up.json["materials"][1]["doubleSided"], true);
+    }
+}
