@@ -282,3 +282,45 @@ fn sarif_output_validates_against_the_sarif_2_1_0_schema() {
         .as_array()
         .is_some_and(|r| !r.is_empty()));
 }
+
+#[test]
+fn render_compare_heatmap_and_lut_png_write_readable_images() {
+    let dir = std::env::temp_dir().join(format!("gltfmat-cli-images-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = |name: &str| dir.join(name).to_string_lossy().into_owned();
+    let (code, out) = gltfmat(&[
+        "render",
+        "fixtures/valid/sheen-triangle.gltf",
+        "--size",
+        "64",
+        "-o",
+        &path("ball.png"),
+    ]);
+    assert_eq!(code, 0, "{out}");
+    let (code, out) = gltfmat(&[
+        "compare",
+        "fixtures/valid/sheen-triangle.gltf",
+        "fixtures/valid/sheen-triangle.glb",
+        "--grid",
+        "16",
+        "--heatmap",
+        &path("heat.png"),
+    ]);
+    assert_eq!(code, 0, "the same material in both containers: {out}");
+    let (code, out) = gltfmat(&[
+        "lut",
+        "sheen",
+        "--size",
+        "4",
+        "--format",
+        "png",
+        "-o",
+        &path("lut.png"),
+    ]);
+    assert_eq!(code, 0, "{out}");
+    for (name, size) in [("ball.png", 64), ("heat.png", 16), ("lut.png", 4)] {
+        let image = image::open(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!((image.width(), image.height()), (size, size), "{name}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
