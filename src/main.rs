@@ -201,7 +201,7 @@ fn check_file(path: &Path, options: &CheckOptions) -> Result<Report, String> {
             .map_err(|e| e.to_string())?;
         return Ok(check_bytes("-", bytes, &NoResources, options));
     }
-    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+    let bytes = gltfmat::document::Bytes::open(path).map_err(|e| e.to_string())?;
     let loader = FolderResources::new(cli_upgrade::folder_of(path));
     Ok(check_bytes(
         &path.display().to_string(),

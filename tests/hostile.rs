@@ -157,3 +157,51 @@ fn a_symlink_leaving_the_asset_folder_is_not_followed() {
     );
     let _ = std::fs::remove_dir_all(&root);
 }
+
+#[test]
+fn a_corrupt_index_buffer_gives_a_bounded_list_of_findings() {
+    // 100 000 indices, every one past the single vertex: one finding each would be 100 000
+    // diagnostics; the data pass keeps 1000 and says how many more there were.
+    let count = 100_000u32;
+    let mut bin = Vec::new();
+    bin.extend_from_slice(&[0u8; 12]); // one vertex at the origin
+    for i in 0..count {
+        bin.extend_from_slice(&(i % 60_000 + 1).to_le_bytes());
+    }
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&bin)
+    );
+    let gltf = json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": uri, "byteLength": bin.len()}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": 12, "target": 34962},
+            {"buffer": 0, "byteOffset": 12, "byteLength": count * 4, "target": 34963}
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 1, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]},
+            {"bufferView": 1, "componentType": 5125, "count": count, "type": "SCALAR"}
+        ],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "nodes": [{"mesh": 0}],
+        "scenes": [{"nodes": [0]}]
+    });
+    let report = check_bytes(
+        "oob.gltf",
+        serde_json::to_vec(&gltf).unwrap(),
+        &NoResources,
+        &CheckOptions::default(),
+    );
+    let oob: Vec<_> = report
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "ACCESSOR_INDEX_OOB")
+        .collect();
+    assert_eq!(oob.len(), 1000, "{:?}", codes(&report));
+    assert!(
+        oob[999].message.contains("99000 more findings"),
+        "{}",
+        oob[999].message
+    );
+}

@@ -1,53 +1,82 @@
-//! Accessor data: one pass over each accessor's elements for non-finite floats and for
-//! `min` / `max` that do not match the data (the Khronos ACCESSOR_* data codes).
+//! Accessor data: one pass over each accessor's elements for non-finite floats, for `min` /
+//! `max` that do not match the data, and for the checks its uses add (unit normals, index
+//! bounds, animation inputs…, see `accessor_usage`): the Khronos ACCESSOR_* data codes.
 
+use super::accessor_usage::{self, Checker, Finding, Findings};
 use super::context::{unsigned, Context};
 use super::resources::view_bytes;
 use crate::document::accessor_types::{component_count, component_size};
+use crate::document::Bytes;
 use rayon::prelude::*;
 use serde_json::Value;
 
-/// Calls `f(element, component, value)` for every component, values as stored (integers
-/// not normalised). Dispatching on the component type once, outside the loop, keeps the
-/// inner loop a plain load: this pass runs over every byte of large assets.
-fn visit(layout: &Layout, bytes: &[u8], f: impl FnMut(usize, usize, f64)) {
+/// The most components an element has (MAT4).
+pub(super) const MAX_COMPONENTS: usize = 16;
+/// Elements decoded per batch: small enough for L1, large enough that each check's
+/// dispatch is paid once per batch rather than once per element.
+const BATCH: usize = 256;
+
+/// Calls `f(first element index, values)` for consecutive batches of elements, `values`
+/// holding `components` numbers per element, as stored (integers not normalised).
+/// Dispatching on the component type once, outside the loop, keeps the inner loop a plain
+/// load: this pass runs over every byte of large assets.
+fn visit(layout: &Layout, bytes: &[u8], f: impl FnMut(usize, &[f64])) {
     match layout.component_type {
-        5120 => walk::<1>(layout, bytes, |b| f64::from(b[0] as i8), f),
-        5121 => walk::<1>(layout, bytes, |b| f64::from(b[0]), f),
-        5122 => walk::<2>(layout, bytes, |b| f64::from(i16::from_le_bytes(b)), f),
-        5123 => walk::<2>(layout, bytes, |b| f64::from(u16::from_le_bytes(b)), f),
-        5125 => walk::<4>(layout, bytes, |b| f64::from(u32::from_le_bytes(b)), f),
-        _ => walk::<4>(layout, bytes, |b| f64::from(f32::from_le_bytes(b)), f),
+        5120 => walk(layout, bytes, |[b]: [u8; 1]| f64::from(b as i8), f),
+        5121 => walk(layout, bytes, |[b]: [u8; 1]| f64::from(b), f),
+        5122 => walk(layout, bytes, |b| f64::from(i16::from_le_bytes(b)), f),
+        5123 => walk(layout, bytes, |b| f64::from(u16::from_le_bytes(b)), f),
+        5125 => walk(layout, bytes, |b| f64::from(u32::from_le_bytes(b)), f),
+        _ => walk(layout, bytes, |b| f64::from(f32::from_le_bytes(b)), f),
     }
+}
+
+/// Element `i`, as stored; the layout was checked to fit by `scannable`.
+pub(super) fn element(layout: &Layout, bytes: &[u8], i: usize) -> [f64; MAX_COMPONENTS] {
+    let mut value = [0.0; MAX_COMPONENTS];
+    let one = Layout {
+        offset: layout.offset + i * layout.stride,
+        count: 1,
+        ..*layout
+    };
+    visit(&one, bytes, |_, v| value[..v.len()].copy_from_slice(v));
+    value
 }
 
 fn walk<const SIZE: usize>(
     layout: &Layout,
     bytes: &[u8],
     decode: impl Fn([u8; SIZE]) -> f64,
-    mut f: impl FnMut(usize, usize, f64),
+    mut f: impl FnMut(usize, &[f64]),
 ) {
-    let element_size = SIZE * layout.components;
-    for i in 0..layout.count {
-        let start = layout.offset + i * layout.stride;
-        let Some(element) = bytes.get(start..start + element_size) else {
-            return;
-        };
-        for (c, raw) in element.chunks_exact(SIZE).enumerate() {
-            let mut word = [0u8; SIZE];
-            word.copy_from_slice(raw);
-            f(i, c, decode(word));
+    let n = layout.components.min(MAX_COMPONENTS);
+    let element_size = SIZE * n;
+    let mut values = [0.0; BATCH * MAX_COMPONENTS];
+    let mut first = 0;
+    while first < layout.count {
+        let k = BATCH.min(layout.count - first);
+        for (e, out) in values.chunks_exact_mut(n).take(k).enumerate() {
+            let start = layout.offset + (first + e) * layout.stride;
+            let Some(element) = bytes.get(start..start + element_size) else {
+                return;
+            };
+            for (value, raw) in out.iter_mut().zip(element.chunks_exact(SIZE)) {
+                *value = decode(raw.try_into().unwrap_or([0; SIZE]));
+            }
         }
+        f(first, &values[..k * n]);
+        first += k;
     }
 }
 
-struct Layout {
+#[derive(Clone, Copy)]
+pub(super) struct Layout {
     component_type: u64,
     size: usize,
-    components: usize,
+    pub components: usize,
     stride: usize,
     offset: usize,
-    count: usize,
+    pub count: usize,
 }
 
 fn layout(ctx: &Context, accessor: &Value, view: usize) -> Option<Layout> {
@@ -80,32 +109,42 @@ fn show(component_type: u64, v: f64) -> String {
 }
 
 pub fn check(ctx: &mut Context) {
+    let mut uses = accessor_usage::checkers(ctx);
     // Accessors are independent and read-only here: scanned in parallel, reported in order.
-    let work: Vec<(String, Layout, &[u8], &Value)> = ctx
+    let mut work: Vec<Work> = ctx
         .objects("accessors")
         .into_iter()
-        .filter_map(|(_, pointer, accessor)| {
+        .filter_map(|(index, pointer, accessor)| {
             let (layout, bytes) = scannable(ctx, accessor)?;
-            Some((pointer, layout, bytes, accessor))
+            let checkers = uses.remove(&index).unwrap_or_default();
+            Some(Work {
+                pointer,
+                layout,
+                bytes,
+                accessor,
+                checkers,
+            })
         })
         .collect();
-    let findings: Vec<Vec<Finding>> = work
-        .par_iter()
-        .map(|(_, layout, bytes, accessor)| scan(layout, bytes, accessor))
-        .collect();
-    let pointers: Vec<String> = work.into_iter().map(|(pointer, ..)| pointer).collect();
-    for (pointer, found) in pointers.iter().zip(findings) {
-        for (code, suffix, message) in found {
-            ctx.emit(code, format!("{pointer}{suffix}"), message);
-        }
+    let source = &ctx.document.bytes;
+    let findings: Vec<Vec<Finding>> = work.par_iter_mut().map(|w| scan(w, source)).collect();
+    for (code, pointer, message) in findings.into_iter().flatten() {
+        ctx.emit(code, pointer, message);
     }
 }
 
-type Finding = (&'static str, String, String);
+/// One accessor to scan, with the checks its uses add.
+struct Work<'c> {
+    pointer: String,
+    layout: Layout,
+    bytes: &'c [u8],
+    accessor: &'c Value,
+    checkers: Vec<Checker>,
+}
 
 /// The accessor's layout and its view's bytes, when it is plain (not sparse) data that fits
 /// its view (otherwise ACCESSOR_TOO_LONG or a schema code was reported).
-fn scannable<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])> {
+pub(super) fn scannable<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])> {
     if accessor.get("sparse").is_some() {
         return None; // sparse substitution is not applied by this pass
     }
@@ -123,96 +162,208 @@ fn scannable<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8]
     (layout.count > 0 && needed.is_some_and(|n| n <= bytes.len())).then_some((layout, bytes))
 }
 
-/// Returns (code, pointer suffix, message) for every finding of one accessor.
-fn scan(layout: &Layout, bytes: &[u8], accessor: &Value) -> Vec<Finding> {
+/// Bytes scanned between two releases of a mapped file's pages.
+const RELEASE_STEP: usize = 4 << 20;
+
+/// Every finding of one accessor, from a single walk over its elements. Pages of a mapped
+/// `source` are released behind the walk, so that peak memory stays far below the size of
+/// a large GLB.
+fn scan(work: &mut Work, source: &Bytes) -> Vec<Finding> {
+    let Work {
+        pointer,
+        layout,
+        bytes,
+        accessor,
+        checkers,
+    } = work;
     let n = layout.components;
-    let mut actual_min = vec![f64::INFINITY; n];
-    let mut actual_max = vec![f64::NEG_INFINITY; n];
-    let declared = |key: &str| -> Option<Vec<f64>> {
-        let list = accessor.get(key)?.as_array()?;
-        (list.len() == n).then(|| {
-            list.iter()
-                .map(|v| v.as_f64().unwrap_or(f64::NAN))
-                .collect()
-        })
-    };
-    let is_float = layout.component_type == 5126;
-    // Declared bounds as the data's own precision sees them.
-    let as_stored = |v: f64| if is_float { f64::from(v as f32) } else { v };
-    let (declared_min, declared_max) = (declared("min"), declared("max"));
-    let mut below = vec![0u64; n];
-    let mut above = vec![0u64; n];
-    let mut findings = Vec::new();
-    let lowest: Vec<f64> = declared_min
-        .as_ref()
-        .map_or(vec![f64::NEG_INFINITY; n], |m| {
-            m.iter().map(|v| as_stored(*v)).collect()
-        });
-    let highest: Vec<f64> = declared_max.as_ref().map_or(vec![f64::INFINITY; n], |m| {
-        m.iter().map(|v| as_stored(*v)).collect()
+    let unit = unit_scale(layout.component_type, accessor);
+    let mut findings = Findings::default();
+    let mut actual_min = [f64::INFINITY; MAX_COMPONENTS];
+    let mut actual_max = [f64::NEG_INFINITY; MAX_COMPONENTS];
+    let mut non_finite = false;
+    let mut released = layout.offset;
+    visit(layout, bytes, |first, values| {
+        for element in values.chunks_exact(n) {
+            for ((v, low), high) in element.iter().zip(&mut actual_min).zip(&mut actual_max) {
+                // min/max skip NaN by themselves; infinities are kept out by the slow path.
+                *low = low.min(*v);
+                *high = high.max(*v);
+            }
+        }
+        for checker in checkers.iter_mut() {
+            checker.feed(first * n, values, n, unit, &mut findings);
+        }
+        non_finite |= values.iter().any(|v| !v.is_finite());
+        let done = (layout.offset + (first + values.len() / n) * layout.stride).min(bytes.len());
+        if done - released >= RELEASE_STEP {
+            source.release(&bytes[released..done]);
+            released = done;
+        }
     });
-    visit(layout, bytes, |i, c, v| {
-        if !v.is_finite() {
+    source.release(&bytes[released..]);
+    if non_finite {
+        report_non_finite(
+            layout,
+            bytes,
+            pointer,
+            &mut actual_min,
+            &mut actual_max,
+            &mut findings,
+        );
+    }
+    let mut bounds = Bounds {
+        layout,
+        bytes,
+        pointer,
+        findings: &mut findings,
+    };
+    bounds.compare(accessor, &actual_min[..n], &actual_max[..n]);
+    for checker in checkers.iter() {
+        checker.finish(layout.count * n, &mut findings);
+    }
+    findings.into_vec()
+}
+
+/// The rare second walk of an accessor holding NaN or infinities: reports each and takes
+/// min/max over the finite values only.
+fn report_non_finite(
+    layout: &Layout,
+    bytes: &[u8],
+    pointer: &str,
+    actual_min: &mut [f64; MAX_COMPONENTS],
+    actual_max: &mut [f64; MAX_COMPONENTS],
+    findings: &mut Findings,
+) {
+    *actual_min = [f64::INFINITY; MAX_COMPONENTS];
+    *actual_max = [f64::NEG_INFINITY; MAX_COMPONENTS];
+    let n = layout.components;
+    visit(layout, bytes, |first, values| {
+        for (i, c, v) in components(first, values, n) {
+            if v.is_finite() {
+                actual_min[c] = actual_min[c].min(*v);
+                actual_max[c] = actual_max[c].max(*v);
+                continue;
+            }
             let what = if v.is_nan() {
                 "NaN"
-            } else if v > 0.0 {
+            } else if *v > 0.0 {
                 "Infinity"
             } else {
                 "-Infinity"
             };
             findings.push((
                 "ACCESSOR_INVALID_FLOAT",
-                String::new(),
+                pointer.to_string(),
                 format!("Accessor element at index {} is {what}.", i * n + c),
             ));
-            return;
         }
-        actual_min[c] = actual_min[c].min(v);
-        actual_max[c] = actual_max[c].max(v);
-        below[c] += u64::from(v < lowest[c]);
-        above[c] += u64::from(v > highest[c]);
     });
-    let t = layout.component_type;
-    let bounds = [
-        (
-            "min",
-            "minimum",
-            "less than",
-            &declared_min,
-            &actual_min,
-            &below,
-            "ACCESSOR_MIN_MISMATCH",
-            "ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND",
-        ),
-        (
-            "max",
-            "maximum",
-            "greater than",
-            &declared_max,
-            &actual_max,
-            &above,
-            "ACCESSOR_MAX_MISMATCH",
-            "ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND",
-        ),
-    ];
-    for (key, word, relation, declared, actual, outside, mismatch, out_of_bound) in bounds {
-        let Some(declared) = declared else { continue };
-        for c in 0..n {
-            if actual[c].is_finite() && as_stored(declared[c]) != actual[c] {
-                findings.push((mismatch, format!("/{key}/{c}"), format!("Declared {word} value for this component ({}) does not match actual {word} ({}).", show(t, declared[c]), show(t, actual[c]))));
-            }
-            if outside[c] > 0 {
-                findings.push((
-                    out_of_bound,
-                    format!("/{key}/{c}"),
-                    format!(
-                        "Accessor contains {} element(s) {relation} declared {word} value {}.",
-                        outside[c],
-                        show(t, declared[c])
-                    ),
-                ));
+}
+
+/// (element index, component, value) for each number of a batch starting at `first`.
+fn components(
+    first: usize,
+    values: &[f64],
+    n: usize,
+) -> impl Iterator<Item = (usize, usize, &f64)> {
+    values
+        .iter()
+        .enumerate()
+        .map(move |(k, v)| (first + k / n, k % n, v))
+}
+
+/// Declared `min` / `max` against the data.
+struct Bounds<'w> {
+    layout: &'w Layout,
+    bytes: &'w [u8],
+    pointer: &'w str,
+    findings: &'w mut Findings,
+}
+
+impl Bounds<'_> {
+    fn compare(&mut self, accessor: &Value, actual_min: &[f64], actual_max: &[f64]) {
+        let sides = [
+            ("min", "minimum", "less than", actual_min),
+            ("max", "maximum", "greater than", actual_max),
+        ];
+        for (key, word, relation, actual) in sides {
+            let Some(declared) = self.declared(accessor, key) else {
+                continue;
+            };
+            let is_min = key == "min";
+            let t = self.layout.component_type;
+            for (c, (&declared, &actual)) in declared.iter().zip(actual).enumerate() {
+                if !actual.is_finite() || self.as_stored(declared) == actual {
+                    continue;
+                }
+                let at = format!("{}/{key}/{c}", self.pointer);
+                let code = if is_min {
+                    "ACCESSOR_MIN_MISMATCH"
+                } else {
+                    "ACCESSOR_MAX_MISMATCH"
+                };
+                self.findings.push((code, at.clone(), format!("Declared {word} value for this component ({}) does not match actual {word} ({}).", show(t, declared), show(t, actual))));
+                let outside = self.count_outside(c, self.as_stored(declared), is_min);
+                if outside > 0 {
+                    let code = if is_min {
+                        "ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND"
+                    } else {
+                        "ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND"
+                    };
+                    let message = format!(
+                        "Accessor contains {outside} element(s) {relation} declared {word} value {}.",
+                        show(t, declared)
+                    );
+                    self.findings.push((code, at, message));
+                }
             }
         }
     }
-    findings
+
+    /// A declared bound with one number per component.
+    fn declared(&self, accessor: &Value, key: &str) -> Option<Vec<f64>> {
+        let list = accessor.get(key)?.as_array()?;
+        (list.len() == self.layout.components).then(|| {
+            list.iter()
+                .map(|v| v.as_f64().unwrap_or(f64::NAN))
+                .collect()
+        })
+    }
+
+    /// A declared bound as the data's own precision sees it.
+    fn as_stored(&self, v: f64) -> f64 {
+        if self.layout.component_type == 5126 {
+            f64::from(v as f32)
+        } else {
+            v
+        }
+    }
+
+    /// Counts the elements past a bound: a second walk, needed only when the bound is wrong.
+    fn count_outside(&self, c: usize, bound: f64, is_min: bool) -> u64 {
+        let mut outside = 0;
+        let n = self.layout.components;
+        visit(self.layout, self.bytes, |_, values| {
+            for v in values.iter().skip(c).step_by(n) {
+                outside += u64::from(if is_min { *v < bound } else { *v > bound });
+            }
+        });
+        outside
+    }
+}
+
+/// Maps a stored value to the value a shader sees (the glTF normalisation rules for
+/// `normalized` integers; floats and plain integers unchanged).
+pub(super) fn unit_scale(component_type: u64, accessor: &Value) -> fn(f64) -> f64 {
+    if accessor.get("normalized").and_then(Value::as_bool) != Some(true) {
+        return |v| v;
+    }
+    match component_type {
+        5120 => |v| (v / 127.0).max(-1.0),
+        5121 => |v| v / 255.0,
+        5122 => |v| (v / 32767.0).max(-1.0),
+        5123 => |v| v / 65535.0,
+        _ => |v| v,
+    }
 }

@@ -7,8 +7,10 @@ pub mod rules;
 pub mod schema;
 
 mod accessor_data;
+mod accessor_usage;
 pub mod context;
 mod extensions;
+mod influences;
 mod materials;
 mod objects;
 mod resources;
@@ -77,7 +79,7 @@ impl Report {
 /// Checks an asset given as bytes. `uri` names it in reports; external files come from `loader`.
 pub fn check_bytes(
     uri: &str,
-    bytes: Vec<u8>,
+    bytes: impl Into<document::Bytes>,
     loader: &dyn ResourceLoader,
     options: &CheckOptions,
 ) -> Report {
@@ -131,6 +133,7 @@ fn run_passes(ctx: &mut Context) {
     resources::check_buffer_views(ctx);
     objects::check_accessors(ctx);
     accessor_data::check(ctx);
+    influences::check(ctx);
     resources::check_images(ctx);
     materials::check_textures(ctx);
     materials::check_materials(ctx);

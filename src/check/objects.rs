@@ -4,6 +4,7 @@
 use super::context::{elements, member, unsigned, Context};
 use crate::document::accessor_types::{component_count, component_size};
 use serde_json::Value;
+use std::collections::HashSet;
 
 fn version(text: &str) -> Option<(u64, u64)> {
     let (major, minor) = text.split_once('.')?;
@@ -284,7 +285,13 @@ fn check_variant_mappings(
 }
 
 pub fn check_nodes_and_scenes(ctx: &mut Context) {
-    for (_, pointer, node) in ctx.objects("nodes") {
+    let joints: HashSet<u64> = ctx
+        .items("skins")
+        .iter()
+        .flat_map(|skin| elements(skin, "joints"))
+        .filter_map(|(_, joint)| joint.as_u64())
+        .collect();
+    for (index, pointer, node) in ctx.objects("nodes") {
         let mesh = ctx.reference(node, "mesh", &pointer, "meshes");
         let camera = ctx.reference(node, "camera", &pointer, "cameras");
         let skin = ctx.reference(node, "skin", &pointer, "skins");
@@ -299,7 +306,9 @@ pub fn check_nodes_and_scenes(ctx: &mut Context) {
         }
         let extras = node.get("extras").is_some_and(|e| !e.is_null());
         let named = node.get("name").is_some();
-        let empty = mesh.is_none()
+        // A joint is not empty: skinning reads its transform.
+        let empty = !joints.contains(&(index as u64))
+            && mesh.is_none()
             && camera.is_none()
             && skin.is_none()
             && children == 0

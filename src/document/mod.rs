@@ -1,6 +1,7 @@
 //! Bytes → document: container detection, GLB chunks, JSON, and external resources.
 
 pub mod accessor_types;
+pub mod bytes;
 pub mod glb;
 pub mod image_decode;
 pub mod image_header;
@@ -8,6 +9,7 @@ pub mod json;
 pub mod uri;
 
 use crate::check::diagnostic::Diagnostic;
+pub use bytes::Bytes;
 use serde_json::Value;
 use std::ops::Range;
 
@@ -30,7 +32,7 @@ impl Container {
 /// without copies.
 #[derive(Debug)]
 pub struct Document {
-    pub bytes: Vec<u8>,
+    pub bytes: Bytes,
     pub container: Container,
     pub json_range: Range<usize>,
     /// `None` when the JSON could not be parsed (the reason is in `diagnostics`).
@@ -69,7 +71,8 @@ impl Document {
 
 /// Reads a `.gltf` or `.glb` from its bytes. The container is recognised by its magic, or by
 /// the name's `.glb` ending (so a broken GLB is reported as one, not as invalid JSON).
-pub fn read(bytes: Vec<u8>, name: &str) -> Document {
+pub fn read(bytes: impl Into<Bytes>, name: &str) -> Document {
+    let bytes = bytes.into();
     let mut diagnostics = Vec::new();
     let named_glb = name.to_ascii_lowercase().ends_with(".glb");
     let (container, json_range, bin, empty_json) = if glb::looks_like_glb(&bytes) || named_glb {

@@ -118,9 +118,9 @@ pub fn verify(mut files: Files) -> (Files, Report) {
     let mut report = check_bytes(&files.main.0, main, &resources, &CheckOptions::default());
     if report.has_errors() {
         // Nothing will be written: the report keeps the bytes, to show where the errors are.
-        files.main.1 = report.document.bytes.clone();
+        files.main.1 = report.document.bytes.to_vec();
     } else {
-        files.main.1 = std::mem::take(&mut report.document.bytes);
+        files.main.1 = std::mem::take(&mut report.document.bytes).into_vec();
     }
     files.side = resources.files.into_iter().collect();
     files.side.sort();
