@@ -13,8 +13,9 @@ use serde_json::Value;
 /// The most components an element has (MAT4).
 pub(super) const MAX_COMPONENTS: usize = 16;
 /// Elements decoded per batch: small enough for L1, large enough that each check's
-/// dispatch is paid once per batch rather than once per element.
-const BATCH: usize = 256;
+/// dispatch is paid once per batch rather than once per element; a multiple of 3 so that
+/// triangles rarely straddle batches.
+const BATCH: usize = 240;
 
 /// Calls `f(first element index, values)` for consecutive batches of elements, `values`
 /// holding `components` numbers per element, as stored (integers not normalised).
@@ -55,6 +56,20 @@ fn walk<const SIZE: usize>(
     let mut first = 0;
     while first < layout.count {
         let k = BATCH.min(layout.count - first);
+        let start = layout.offset + first * layout.stride;
+        if layout.stride == element_size {
+            // Tightly packed: the batch is one run of bytes, decoded in a loop the compiler
+            // can vectorise.
+            let Some(run) = bytes.get(start..start + k * element_size) else {
+                return;
+            };
+            for (value, raw) in values.iter_mut().zip(run.chunks_exact(SIZE)) {
+                *value = decode(raw.try_into().unwrap_or([0; SIZE]));
+            }
+            f(first, &values[..k * n]);
+            first += k;
+            continue;
+        }
         for (e, out) in values.chunks_exact_mut(n).take(k).enumerate() {
             let start = layout.offset + (first + e) * layout.stride;
             let Some(element) = bytes.get(start..start + element_size) else {
@@ -184,11 +199,13 @@ fn scan(work: &mut Work, source: &Bytes) -> Vec<Finding> {
     let mut non_finite = false;
     let mut released = layout.offset;
     visit(layout, bytes, |first, values| {
-        for element in values.chunks_exact(n) {
-            for ((v, low), high) in element.iter().zip(&mut actual_min).zip(&mut actual_max) {
-                // min/max skip NaN by themselves; infinities are kept out by the slow path.
-                *low = low.min(*v);
-                *high = high.max(*v);
+        for c in 0..n {
+            // A comparison is false for NaN, so NaN never becomes a bound; infinities are
+            // taken out again by the slow path.
+            let (low, high) = (&mut actual_min[c], &mut actual_max[c]);
+            for &v in values[c..].iter().step_by(n) {
+                *low = if v < *low { v } else { *low };
+                *high = if v > *high { v } else { *high };
             }
         }
         for checker in checkers.iter_mut() {

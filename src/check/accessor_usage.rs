@@ -228,14 +228,31 @@ impl Checker {
 
     /// Counts triangles with a repeated vertex; a triangle may straddle two batches.
     fn count_degenerate(&mut self, values: &[f64]) {
-        for v in values {
-            self.triangle[self.slot] = *v;
-            self.slot += 1;
-            if self.slot == 3 {
-                self.slot = 0;
-                let [a, b, c] = self.triangle;
-                self.degenerate += u64::from(a == b || b == c || c == a);
-            }
+        let mut rest = values;
+        while self.slot != 0 {
+            let Some((v, after)) = rest.split_first() else {
+                return;
+            };
+            self.add_vertex(*v);
+            rest = after;
+        }
+        let whole = rest.chunks_exact(3);
+        let tail = whole.remainder();
+        self.degenerate += whole
+            .map(|t| u64::from(t[0] == t[1] || t[1] == t[2] || t[2] == t[0]))
+            .sum::<u64>();
+        for v in tail {
+            self.add_vertex(*v);
+        }
+    }
+
+    fn add_vertex(&mut self, v: f64) {
+        self.triangle[self.slot] = v;
+        self.slot += 1;
+        if self.slot == 3 {
+            self.slot = 0;
+            let [a, b, c] = self.triangle;
+            self.degenerate += u64::from(a == b || b == c || c == a);
         }
     }
 
