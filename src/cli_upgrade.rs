@@ -87,21 +87,23 @@ pub fn run(args: UpgradeArgs) -> ExitCode {
     let Some(name) = args.output.file_name().and_then(|n| n.to_str()) else {
         return fail(format!("{}: not a file name", args.output.display()));
     };
-    let (files, report) = output::verify(output::layout(&upgraded, name));
-    if report.has_errors() {
-        let shown = render(Format::Human, &[report], &RenderOptions { colour: false });
-        eprintln!("{shown}gltfmat: the upgraded asset fails its own check; nothing was written.");
-        return ExitCode::from(1);
-    }
-    let warnings = report.count(Severity::Warning);
-    if let Err(e) = output::write(
+    let files = output::layout(&upgraded, name);
+    let checked = match output::write_checked(
         &files,
         &folder_of(&args.output),
         Some(&args.input),
         args.force,
     ) {
-        return fail(e.to_string());
+        Ok(checked) => checked,
+        Err(e) => return fail(e.to_string()),
+    };
+    let report = checked.report;
+    if !checked.written {
+        let shown = render(Format::Human, &[report], &RenderOptions { colour: false });
+        eprintln!("{shown}gltfmat: the upgraded asset fails its own check; nothing was written.");
+        return ExitCode::from(1);
     }
+    let warnings = report.count(Severity::Warning);
     println!(
         "wrote {} ({} file(s)); check: 0 errors, {warnings} warning(s)",
         args.output.display(),

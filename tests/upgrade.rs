@@ -23,7 +23,7 @@ fn upgrade_file(path: &Path, options: &UpgradeOptions) -> Upgraded {
 fn assert_upgrades_cleanly(path: &Path) {
     let upgraded = upgrade_file(path, &UpgradeOptions::default());
     for name in ["out.glb", "out.gltf"] {
-        let (_, report) = output::verify(output::layout(&upgraded, name));
+        let report = output::verify(&output::layout(&upgraded, name));
         assert_eq!(
             report.count(Severity::Error),
             0,
@@ -504,7 +504,7 @@ mod structure {
             .as_f64()
             .unwrap();
         assert!(znear > 0.0 && znear < 1.0, "{znear}");
-        let (_, report) = output::verify(output::layout(&up, "out.glb"));
+        let report = output::verify(&output::layout(&up, "out.glb"));
         assert_eq!(report.count(Severity::Error), 0, "{:?}", report.diagnostics);
     }
 

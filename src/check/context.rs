@@ -5,9 +5,8 @@ use super::{CheckOptions, Diagnostic};
 use crate::document::image_header::ImageInfo;
 use crate::document::json::escape_token;
 use crate::document::uri::ResourceLoader;
-use crate::document::Document;
+use crate::document::{BufferData, Bytes, Document};
 use serde_json::Value;
-use std::borrow::Cow;
 use std::collections::{BTreeSet, HashSet};
 
 /// A resource as listed in the report's `info.resources`.
@@ -54,11 +53,11 @@ pub struct Context<'a> {
     pub diagnostics: Vec<Diagnostic>,
     used: HashSet<(&'static str, usize)>,
     /// Bytes of each buffer, where they could be read (the GLB BIN chunk is borrowed).
-    pub buffers: Vec<Option<Cow<'a, [u8]>>>,
+    pub buffers: Vec<Option<BufferData<'a>>>,
     /// Header of each image, where it could be read.
     pub images: Vec<Option<ImageInfo>>,
     /// Encoded bytes of each image, kept only with `--deep` for the pixel rules.
-    pub image_bytes: Vec<Option<Vec<u8>>>,
+    pub image_bytes: Vec<Option<Bytes>>,
     pub material_needs: Vec<MaterialNeeds>,
     /// Every texture binding, computed on first use (see `materials::slot_uses`).
     pub slot_uses: std::sync::OnceLock<std::sync::Arc<[super::materials::SlotUse<'a>]>>,

@@ -4,8 +4,8 @@
 use super::context::{member, unsigned, Context, ResourceInfo};
 use crate::document::image_header::{self, HeaderError, ImageFormat};
 use crate::document::uri::{classify, LoadError, UriKind};
+use crate::document::{BufferData, Bytes};
 use serde_json::Value;
-use std::borrow::Cow;
 
 const ELEMENT_ARRAY_BUFFER: u64 = 34963;
 
@@ -15,7 +15,7 @@ fn load_uri(
     ctx: &mut Context,
     uri: &str,
     pointer: &str,
-) -> (Option<Vec<u8>>, Option<String>, &'static str) {
+) -> (Option<Bytes>, Option<String>, &'static str) {
     let glb = super::is_glb(ctx.document);
     if glb {
         ctx.emit("URI_GLB", pointer, "URI is used in GLB container.");
@@ -37,7 +37,7 @@ fn load_uri(
                     "Data URI is used in GLB container.",
                 );
             }
-            (Some(bytes), Some(media_type), "data-uri")
+            (Some(bytes.into()), Some(media_type), "data-uri")
         }
         Ok(UriKind::NonRelative) => {
             ctx.emit(
@@ -114,7 +114,7 @@ fn align4(n: u64) -> u64 {
 
 pub fn check_buffers(ctx: &mut Context) {
     let buffers = ctx.items("buffers");
-    ctx.buffers = vec![None; buffers.len()];
+    ctx.buffers = buffers.iter().map(|_| None).collect();
     for (i, pointer, buffer) in ctx.objects("buffers") {
         let declared = unsigned(buffer, "byteLength");
         let (data, storage, uri) = match buffer.get("uri").and_then(Value::as_str) {
@@ -132,7 +132,7 @@ pub fn check_buffers(ctx: &mut Context) {
                     }
                 }
                 let uri = (storage == "external").then(|| uri.to_string());
-                (data.map(Cow::Owned), storage, uri)
+                (data.map(BufferData::Loaded), storage, uri)
             }
             None if i == 0 && super::is_glb(ctx.document) => {
                 let Some(bin) = ctx.document.bin() else {
@@ -156,7 +156,7 @@ pub fn check_buffers(ctx: &mut Context) {
                         );
                     }
                 }
-                (Some(Cow::Borrowed(bin)), "glb", None)
+                (Some(BufferData::Glb(bin)), "glb", None)
             }
             None => (None, "buffer", None),
         };
@@ -247,7 +247,7 @@ pub fn declared_mime(image: &Value) -> Option<String> {
 
 pub fn check_images(ctx: &mut Context) {
     ctx.images = vec![None; ctx.items("images").len()];
-    ctx.image_bytes = vec![None; ctx.items("images").len()];
+    ctx.image_bytes = ctx.items("images").iter().map(|_| None).collect();
     let webp_enabled = ctx.extensions_used().contains(&"EXT_texture_webp");
     for (i, pointer, image) in ctx.objects("images") {
         let mime_type = image.get("mimeType").and_then(Value::as_str);
@@ -276,7 +276,7 @@ pub fn check_images(ctx: &mut Context) {
                         "Buffer view used by an image must not have byteStride.",
                     );
                 }
-                let bytes = view_bytes(ctx, view).map(<[u8]>::to_vec);
+                let bytes = view_bytes(ctx, view).map(|b| Bytes::Owned(b.to_vec()));
                 (
                     bytes,
                     None,
@@ -291,7 +291,7 @@ pub fn check_images(ctx: &mut Context) {
             pointer: pointer.clone(),
             storage,
             mime_type: mime_type.map(str::to_string),
-            byte_length: bytes.as_ref().map(Vec::len),
+            byte_length: bytes.as_ref().map(|b| b.len()),
             uri,
             image: None,
         };

@@ -81,6 +81,23 @@ impl Deref for Bytes {
     }
 }
 
+/// A buffer's bytes: borrowed from the document (the GLB BIN chunk), or held (an external
+/// file or a data URI).
+pub enum BufferData<'a> {
+    Glb(&'a [u8]),
+    Loaded(Bytes),
+}
+
+impl Deref for BufferData<'_> {
+    type Target = [u8];
+    fn deref(&self) -> &[u8] {
+        match self {
+            BufferData::Glb(bytes) => bytes,
+            BufferData::Loaded(bytes) => bytes,
+        }
+    }
+}
+
 impl From<Vec<u8>> for Bytes {
     fn from(bytes: Vec<u8>) -> Self {
         Bytes::Owned(bytes)

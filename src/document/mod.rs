@@ -9,7 +9,7 @@ pub mod json;
 pub mod uri;
 
 use crate::check::diagnostic::Diagnostic;
-pub use bytes::Bytes;
+pub use bytes::{BufferData, Bytes};
 use serde_json::Value;
 use std::ops::Range;
 

@@ -3,6 +3,7 @@
 
 use base64::Engine;
 use std::path::{Component, Path, PathBuf};
+use super::Bytes;
 
 /// What a `uri` string is.
 #[derive(Debug, PartialEq)]
@@ -108,14 +109,14 @@ pub enum LoadError {
 /// Where external files come from. The CLI confines reads to the asset's folder; library
 /// users can plug in their own store.
 pub trait ResourceLoader: Sync {
-    fn load(&self, relative_path: &str) -> Result<Vec<u8>, LoadError>;
+    fn load(&self, relative_path: &str) -> Result<Bytes, LoadError>;
 }
 
 /// No external resources (stdin, or in-memory checks).
 pub struct NoResources;
 
 impl ResourceLoader for NoResources {
-    fn load(&self, _: &str) -> Result<Vec<u8>, LoadError> {
+    fn load(&self, _: &str) -> Result<Bytes, LoadError> {
         Err(LoadError::NoFolder)
     }
 }
@@ -127,10 +128,10 @@ pub struct MemoryResources {
 }
 
 impl ResourceLoader for MemoryResources {
-    fn load(&self, relative: &str) -> Result<Vec<u8>, LoadError> {
+    fn load(&self, relative: &str) -> Result<Bytes, LoadError> {
         self.files
             .get(relative)
-            .cloned()
+            .map(|bytes| Bytes::Owned(bytes.clone()))
             .ok_or_else(|| LoadError::NotFound(relative.to_string()))
     }
 }
@@ -181,7 +182,7 @@ impl FolderResources {
 }
 
 impl ResourceLoader for FolderResources {
-    fn load(&self, relative: &str) -> Result<Vec<u8>, LoadError> {
+    fn load(&self, relative: &str) -> Result<Bytes, LoadError> {
         let path = self.resolve(relative)?;
         let size = std::fs::metadata(&path)
             .map_err(|e| LoadError::Io(e.to_string()))?
@@ -189,7 +190,7 @@ impl ResourceLoader for FolderResources {
         if size > self.max_bytes {
             return Err(LoadError::TooLarge(size));
         }
-        std::fs::read(&path).map_err(|e| LoadError::Io(e.to_string()))
+        Bytes::open(&path).map_err(|e| LoadError::Io(e.to_string()))
     }
 }
 
@@ -231,7 +232,7 @@ mod tests {
         std::fs::create_dir_all(dir.join("sub")).unwrap();
         std::fs::write(dir.join("sub/a.bin"), b"x").unwrap();
         let loader = FolderResources::new(dir.join("sub"));
-        assert_eq!(loader.load("a.bin").unwrap(), b"x");
+        assert_eq!(&loader.load("a.bin").unwrap()[..], b"x");
         assert!(matches!(
             loader.load("../sub/a.bin"),
             Err(LoadError::OutsideFolder(_))

@@ -2,12 +2,12 @@
 
 use super::sample::{self, MaterialSource, Texture};
 use crate::document::uri::{classify, ResourceLoader, UriKind};
-use crate::document::{self, Container};
+use crate::document::{self, BufferData, Bytes, Container};
 use serde_json::Value;
 
-fn uri_bytes(uri: &str, loader: &dyn ResourceLoader) -> Option<Vec<u8>> {
+fn uri_bytes(uri: &str, loader: &dyn ResourceLoader) -> Option<Bytes> {
     match classify(uri).ok()? {
-        UriKind::Data { bytes, .. } => Some(bytes),
+        UriKind::Data { bytes, .. } => Some(bytes.into()),
         UriKind::Relative(path) => loader.load(&path).ok(),
         _ => None,
     }
@@ -27,35 +27,34 @@ pub fn gltf2_materials(
             .cloned()
             .unwrap_or_default()
     };
-    let buffers: Vec<Option<Vec<u8>>> = list("buffers")
+    let buffers: Vec<Option<BufferData>> = list("buffers")
         .iter()
         .enumerate()
         .map(
             |(i, buffer)| match buffer.get("uri").and_then(Value::as_str) {
-                Some(uri) => uri_bytes(uri, loader),
-                None if i == 0 && doc.container == Container::Glb => doc.bin().map(<[u8]>::to_vec),
+                Some(uri) => uri_bytes(uri, loader).map(BufferData::Loaded),
+                None if i == 0 && doc.container == Container::Glb => doc.bin().map(BufferData::Glb),
                 None => None,
             },
         )
         .collect();
     let views = list("bufferViews");
-    let view_bytes = |index: u64| -> Option<Vec<u8>> {
+    let view_bytes = |index: u64| -> Option<&[u8]> {
         let view = views.get(index as usize)?;
         let buffer = buffers
             .get(view.get("buffer")?.as_u64()? as usize)?
             .as_ref()?;
         let start = view.get("byteOffset").and_then(Value::as_u64).unwrap_or(0) as usize;
         let end = start.checked_add(view.get("byteLength")?.as_u64()? as usize)?;
-        buffer.get(start..end).map(<[u8]>::to_vec)
+        buffer.get(start..end)
     };
     let images: Vec<Option<Texture>> = list("images")
         .iter()
         .map(|image| {
-            let bytes = match image.get("uri").and_then(Value::as_str) {
-                Some(uri) => uri_bytes(uri, loader),
-                None => view_bytes(image.get("bufferView")?.as_u64()?),
-            };
-            sample::decode(&bytes?)
+            match image.get("uri").and_then(Value::as_str) {
+                Some(uri) => sample::decode(&uri_bytes(uri, loader)?),
+                None => sample::decode(view_bytes(image.get("bufferView")?.as_u64()?)?),
+            }
         })
         .collect();
     let textures: Vec<Option<Texture>> = list("textures")

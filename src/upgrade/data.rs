@@ -125,9 +125,12 @@ impl Accessor<'_> {
     }
 }
 
-/// Repacked data, ready to become one bufferView + one accessor.
+/// Repacked data, appended to the output binary, ready to become one bufferView + one
+/// accessor.
 pub struct Packed {
-    pub bytes: Vec<u8>,
+    /// Where the data starts in the output binary (4-byte aligned).
+    pub offset: usize,
+    pub length: usize,
     pub component_type: u64,
     pub normalized: bool,
     /// Set when elements were padded to 4 bytes (vertex attributes).
@@ -151,14 +154,16 @@ fn output_type(role: Role, input: u64) -> (u64, bool) {
     }
 }
 
-/// Repacks values (`components` per element) with the given component type.
+/// Appends values (`components` per element) to `out` with the given component type.
 pub fn pack_values(
     values: &[f64],
     components: usize,
     component_type: u64,
     normalized: bool,
     vertex: bool,
+    out: &mut Vec<u8>,
 ) -> Packed {
+    let offset = align(out);
     let size = component_size(component_type).unwrap_or(4);
     let element = size * components;
     let stride = if vertex {
@@ -167,25 +172,26 @@ pub fn pack_values(
         element
     };
     let count = values.len() / components.max(1);
-    let mut bytes = Vec::with_capacity(count * stride);
+    out.reserve(count * stride);
     let mut min = vec![f64::INFINITY; components];
     let mut max = vec![f64::NEG_INFINITY; components];
     for element_values in values.chunks_exact(components.max(1)) {
         for (c, &v) in element_values.iter().enumerate() {
-            let stored = write_component(&mut bytes, component_type, v);
+            let stored = write_component(out, component_type, v);
             if !stored.is_nan() {
                 min[c] = min[c].min(stored);
                 max[c] = max[c].max(stored);
             }
         }
-        bytes.resize(bytes.len() + stride - element, 0);
+        out.resize(out.len() + stride - element, 0);
     }
     if count == 0 {
         min.clear();
         max.clear();
     }
     Packed {
-        bytes,
+        offset,
+        length: out.len() - offset,
         component_type,
         normalized,
         byte_stride: (stride != element).then_some(stride),
@@ -231,9 +237,16 @@ fn write_component(out: &mut Vec<u8>, component_type: u64, v: f64) -> f64 {
     }
 }
 
+/// Pads `out` to a multiple of 4 bytes; returns its new length.
+fn align(out: &mut Vec<u8>) -> usize {
+    out.resize(out.len().div_ceil(4) * 4, 0);
+    out.len()
+}
+
 /// Copies elements whose component type does not change, padding vertex elements to 4
 /// bytes, and computes min/max on the way: no per-value conversion for the common case.
-fn copy_elements(accessor: &Accessor, normalized: bool, vertex: bool) -> Packed {
+fn copy_elements(accessor: &Accessor, normalized: bool, vertex: bool, out: &mut Vec<u8>) -> Packed {
+    let offset = align(out);
     let size = component_size(accessor.component_type).unwrap_or(4);
     let element = size * accessor.components;
     let stride = if vertex {
@@ -241,17 +254,18 @@ fn copy_elements(accessor: &Accessor, normalized: bool, vertex: bool) -> Packed 
     } else {
         element
     };
-    let mut bytes = Vec::with_capacity(accessor.count * stride);
+    out.reserve(accessor.count * stride);
     if accessor.stride == element && stride == element {
         // Already tightly packed: one copy.
-        bytes.extend_from_slice(&accessor.bytes[..accessor.count * element]);
+        out.extend_from_slice(&accessor.bytes[..accessor.count * element]);
     } else {
         for i in 0..accessor.count {
             let at = i * accessor.stride;
-            bytes.extend_from_slice(&accessor.bytes[at..at + element]);
-            bytes.resize(bytes.len() + stride - element, 0);
+            out.extend_from_slice(&accessor.bytes[at..at + element]);
+            out.resize(out.len() + stride - element, 0);
         }
     }
+    let bytes = &out[offset..];
     let mut min = vec![f64::INFINITY; accessor.components];
     let mut max = vec![f64::NEG_INFINITY; accessor.components];
     let mut bound = |c: usize, v: f64| {
@@ -262,14 +276,14 @@ fn copy_elements(accessor: &Accessor, normalized: bool, vertex: bool) -> Packed 
     };
     match accessor.component_type {
         FLOAT => typed_bounds(
-            &bytes,
+            bytes,
             stride,
             accessor.components,
             |b| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
             &mut bound,
         ),
         UNSIGNED_INT => typed_bounds(
-            &bytes,
+            bytes,
             stride,
             accessor.components,
             |b| f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
@@ -288,7 +302,8 @@ fn copy_elements(accessor: &Accessor, normalized: bool, vertex: bool) -> Packed 
         max.clear();
     }
     Packed {
-        bytes,
+        offset,
+        length: out.len() - offset,
         component_type: accessor.component_type,
         normalized,
         byte_stride: (stride != element).then_some(stride),
@@ -313,11 +328,11 @@ fn typed_bounds(
     }
 }
 
-/// Repacks an accessor for its role.
-pub fn pack(accessor: &Accessor, role: Role) -> Packed {
+/// Appends an accessor's data to `out`, repacked for its role.
+pub fn pack(accessor: &Accessor, role: Role, out: &mut Vec<u8>) -> Packed {
     let (component_type, normalized) = output_type(role, accessor.component_type);
     if component_type == accessor.component_type {
-        return copy_elements(accessor, normalized, role.is_vertex());
+        return copy_elements(accessor, normalized, role.is_vertex(), out);
     }
     let mut values = accessor.values();
     // Unsigned integer weights keep their type with `normalized` (see `output_type`); signed
@@ -336,6 +351,7 @@ pub fn pack(accessor: &Accessor, role: Role) -> Packed {
         component_type,
         normalized,
         role.is_vertex(),
+        out,
     );
     packed.converted_from =
         (component_type != accessor.component_type).then_some(accessor.component_type);
@@ -348,20 +364,23 @@ mod tests {
 
     #[test]
     fn vertex_elements_are_padded_to_four_bytes_and_bounded() {
+        let mut out = vec![9];
         let packed = pack_values(
             &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
             3,
             UNSIGNED_BYTE,
             true,
             true,
+            &mut out,
         );
         assert_eq!(packed.byte_stride, Some(4));
-        assert_eq!(packed.bytes, vec![1, 2, 3, 0, 4, 5, 6, 0]);
+        assert_eq!((packed.offset, packed.length), (4, 8));
+        assert_eq!(out, vec![9, 0, 0, 0, 1, 2, 3, 0, 4, 5, 6, 0]);
         assert_eq!(
             (packed.min, packed.max),
             (vec![1.0, 2.0, 3.0], vec![4.0, 5.0, 6.0])
         );
-        let floats = pack_values(&[0.5, -1.0], 2, FLOAT, false, true);
+        let floats = pack_values(&[0.5, -1.0], 2, FLOAT, false, true, &mut out);
         assert_eq!(floats.byte_stride, None);
     }
 }

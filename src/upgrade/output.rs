@@ -3,23 +3,49 @@
 
 use super::Upgraded;
 use crate::check::{check_bytes, CheckOptions, Report};
-use crate::document::uri::MemoryResources;
+use crate::document::uri::{LoadError, MemoryResources, ResourceLoader};
+use crate::document::Bytes;
 use serde_json::{json, Value};
+use std::borrow::Cow;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// The files of an output asset: the main one first, named relative to its folder.
+/// One output file: its name (relative to the output folder) and its bytes in pieces,
+/// written one after the other. Headers and padding are owned; geometry and images are
+/// borrowed from the upgrade, so laying out a large asset copies nothing.
 #[derive(Debug, Clone)]
-pub struct Files {
-    pub main: (String, Vec<u8>),
-    pub side: Vec<(String, Vec<u8>)>,
+pub struct File<'u> {
+    pub name: String,
+    pub parts: Vec<Cow<'u, [u8]>>,
+}
+
+impl File<'_> {
+    fn whole(name: String, bytes: Vec<u8>) -> Self {
+        File {
+            name,
+            parts: vec![Cow::Owned(bytes)],
+        }
+    }
+
+    /// The file's bytes in one piece (a copy).
+    pub fn bytes(&self) -> Vec<u8> {
+        self.parts.concat()
+    }
+}
+
+/// The files of an output asset: the main one, and those its URIs name.
+#[derive(Debug, Clone)]
+pub struct Files<'u> {
+    pub main: File<'u>,
+    pub side: Vec<File<'u>>,
 }
 
 /// Lays the asset out as files named after `main_name` (`x.glb`, or `x.gltf` + `x.bin` +
 /// `x-<n>-<image>.png`).
-pub fn layout(upgraded: &Upgraded, main_name: &str) -> Files {
+pub fn layout<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
     if main_name.to_ascii_lowercase().ends_with(".glb") {
         Files {
-            main: (main_name.to_string(), glb(upgraded)),
+            main: glb(upgraded, main_name),
             side: Vec::new(),
         }
     } else {
@@ -27,15 +53,18 @@ pub fn layout(upgraded: &Upgraded, main_name: &str) -> Files {
     }
 }
 
-fn glb(upgraded: &Upgraded) -> Vec<u8> {
+fn glb<'u>(upgraded: &'u Upgraded, name: &str) -> File<'u> {
     let mut json = upgraded.json.clone();
     // Images follow the geometry in the one binary chunk, each 4-byte aligned.
     let mut length = upgraded.binary.len();
     let mut views = json["bufferViews"].as_array().cloned().unwrap_or_default();
+    let mut body: Vec<Cow<[u8]>> = vec![Cow::Borrowed(&upgraded.binary)];
     for (i, image) in upgraded.images.iter().enumerate() {
-        length = length.div_ceil(4) * 4;
-        views.push(json!({"buffer": 0, "byteOffset": length, "byteLength": image.bytes.len()}));
-        length += image.bytes.len();
+        let aligned = length.div_ceil(4) * 4;
+        body.push(Cow::Owned(vec![0; aligned - length]));
+        body.push(Cow::Borrowed(&image.bytes));
+        views.push(json!({"buffer": 0, "byteOffset": aligned, "byteLength": image.bytes.len()}));
+        length = aligned + image.bytes.len();
         json["images"][i]["bufferView"] = json!(views.len() - 1);
         json["images"][i]["mimeType"] = json!(image.mime_type);
     }
@@ -49,28 +78,28 @@ fn glb(upgraded: &Upgraded) -> Vec<u8> {
     text.resize(text.len().div_ceil(4) * 4, b' ');
     let padded = length.div_ceil(4) * 4;
     let chunks = 8 + text.len() + if length == 0 { 0 } else { 8 + padded };
-    let mut out = Vec::with_capacity(12 + chunks);
-    out.extend(b"glTF");
-    out.extend(2u32.to_le_bytes());
-    out.extend(((12 + chunks) as u32).to_le_bytes());
-    out.extend((text.len() as u32).to_le_bytes());
-    out.extend(b"JSON");
-    out.extend(&text);
+    let mut head = Vec::with_capacity(28 + text.len());
+    head.extend(b"glTF");
+    head.extend(2u32.to_le_bytes());
+    head.extend(((12 + chunks) as u32).to_le_bytes());
+    head.extend((text.len() as u32).to_le_bytes());
+    head.extend(b"JSON");
+    head.extend(&text);
+    let mut parts = vec![Cow::Owned(head)];
     if length > 0 {
-        out.extend((padded as u32).to_le_bytes());
-        out.extend(b"BIN\0");
-        let start = out.len();
-        out.extend(&upgraded.binary);
-        for image in &upgraded.images {
-            out.resize(start + (out.len() - start).div_ceil(4) * 4, 0);
-            out.extend(&image.bytes);
-        }
-        out.resize(start + padded, 0);
+        let mut bin_header = (padded as u32).to_le_bytes().to_vec();
+        bin_header.extend(b"BIN\0");
+        parts.push(Cow::Owned(bin_header));
+        parts.extend(body);
+        parts.push(Cow::Owned(vec![0; padded - length]));
     }
-    out
+    File {
+        name: name.to_string(),
+        parts,
+    }
 }
 
-fn separate(upgraded: &Upgraded, main_name: &str) -> Files {
+fn separate<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
     let stem = main_name
         .rsplit_once('.')
         .map_or(main_name, |(stem, _)| stem)
@@ -80,17 +109,23 @@ fn separate(upgraded: &Upgraded, main_name: &str) -> Files {
     if !upgraded.binary.is_empty() {
         let name = format!("{stem}.bin");
         json["buffers"][0]["uri"] = json!(uri_escape(&name));
-        side.push((name, upgraded.binary.clone()));
+        side.push(File {
+            name,
+            parts: vec![Cow::Borrowed(&upgraded.binary)],
+        });
     }
     for (i, image) in upgraded.images.iter().enumerate() {
         let name = format!("{stem}-{}", image.file_name);
         json["images"][i]["uri"] = json!(uri_escape(&name));
-        side.push((name, image.bytes.clone()));
+        side.push(File {
+            name,
+            parts: vec![Cow::Borrowed(&image.bytes)],
+        });
     }
     let mut text = serde_json::to_vec_pretty(&json).unwrap_or_default();
     text.push(b'\n');
     Files {
-        main: (main_name.to_string(), text),
+        main: File::whole(main_name.to_string(), text),
         side,
     }
 }
@@ -107,24 +142,18 @@ fn uri_escape(name: &str) -> String {
         .collect()
 }
 
-/// gltfmat's own check of the exact bytes that would be written. The files are lent to the
-/// checker and handed back, so a large asset is not copied for it; a report with errors keeps
-/// its copy (the document's bytes) for printing.
-pub fn verify(mut files: Files) -> (Files, Report) {
+/// gltfmat's own check of the files, in memory (each file joined into one buffer).
+/// `write_checked` checks the files as written instead.
+pub fn verify(files: &Files) -> Report {
     let resources = MemoryResources {
-        files: std::mem::take(&mut files.side).into_iter().collect(),
+        files: files.side.iter().map(|f| (f.name.clone(), f.bytes())).collect(),
     };
-    let main = std::mem::take(&mut files.main.1);
-    let mut report = check_bytes(&files.main.0, main, &resources, &CheckOptions::default());
-    if report.has_errors() {
-        // Nothing will be written: the report keeps the bytes, to show where the errors are.
-        files.main.1 = report.document.bytes.to_vec();
-    } else {
-        files.main.1 = std::mem::take(&mut report.document.bytes).into_vec();
-    }
-    files.side = resources.files.into_iter().collect();
-    files.side.sort();
-    (files, report)
+    check_bytes(
+        &files.main.name,
+        files.main.bytes(),
+        &resources,
+        &CheckOptions::default(),
+    )
 }
 
 #[derive(Debug)]
@@ -154,19 +183,27 @@ impl std::fmt::Display for WriteError {
     }
 }
 
-/// Writes every file into `folder`: each goes to a temporary file first and is renamed into
-/// place only when all were written, so a failure leaves no half-written output. The input
-/// is never replaced, and existing files only with `force`.
-pub fn write(
+/// The outcome of `write_checked`: the check of the files, and whether they were kept.
+pub struct Checked {
+    pub report: Report,
+    /// False when the check found an error: then nothing was written.
+    pub written: bool,
+}
+
+/// Writes every file into `folder` under a temporary name, checks those exact bytes as they
+/// lie on disk, and renames them into place only when the check finds no error and every
+/// file was written; otherwise the temporaries are removed and nothing is left behind. The
+/// input is never replaced, and existing files only with `force`.
+pub fn write_checked(
     files: &Files,
     folder: &Path,
     input: Option<&Path>,
     force: bool,
-) -> Result<(), WriteError> {
-    let all: Vec<&(String, Vec<u8>)> = std::iter::once(&files.main).chain(&files.side).collect();
+) -> Result<Checked, WriteError> {
+    let all: Vec<&File> = std::iter::once(&files.main).chain(&files.side).collect();
     let input = input.and_then(|p| p.canonicalize().ok());
-    for (name, _) in &all {
-        let target = folder.join(name);
+    for file in &all {
+        let target = folder.join(&file.name);
         if let (Some(input), Ok(existing)) = (&input, target.canonicalize()) {
             if *input == existing {
                 return Err(WriteError::WouldOverwriteInput(target));
@@ -176,20 +213,66 @@ pub fn write(
             return Err(WriteError::Exists(target));
         }
     }
-    let mut written = Vec::new();
-    for (name, bytes) in &all {
-        let temporary = folder.join(format!(".{name}.gltfmat-{}.tmp", std::process::id()));
-        if let Err(e) = std::fs::write(&temporary, bytes) {
-            written.iter().for_each(|(t, _): &(PathBuf, PathBuf)| {
-                let _ = std::fs::remove_file(t);
-            });
-            let _ = std::fs::remove_file(&temporary);
-            return Err(WriteError::Io(temporary, e));
-        }
-        written.push((temporary, folder.join(name)));
+    let mut temporaries = Temporaries(Vec::new());
+    for file in &all {
+        let temporary = folder.join(format!(".{}.gltfmat-{}.tmp", file.name, std::process::id()));
+        temporaries.0.push((file.name.clone(), temporary.clone()));
+        write_parts(&temporary, &file.parts).map_err(|e| WriteError::Io(temporary, e))?;
     }
-    for (temporary, target) in &written {
-        std::fs::rename(temporary, target).map_err(|e| WriteError::Io(target.clone(), e))?;
+    let main = &temporaries.0[0].1;
+    let bytes = Bytes::open(main).map_err(|e| WriteError::Io(main.clone(), e))?;
+    let mut report = check_bytes(&files.main.name, bytes, &temporaries, &CheckOptions::default());
+    if report.has_errors() {
+        // The report outlives the temporary it was read from: it keeps its own copy.
+        report.document.bytes = Bytes::Owned(report.document.bytes.to_vec());
+        return Ok(Checked {
+            report,
+            written: false,
+        });
+    }
+    // Renamed one by one; on failure, the ones not yet renamed are removed by the drop.
+    while !temporaries.0.is_empty() {
+        let (name, temporary) = temporaries.0.remove(0);
+        let target = folder.join(name);
+        if let Err(e) = std::fs::rename(&temporary, &target) {
+            let _ = std::fs::remove_file(&temporary);
+            return Err(WriteError::Io(target, e));
+        }
+    }
+    Ok(Checked {
+        report,
+        written: true,
+    })
+}
+
+fn write_parts(path: &Path, parts: &[Cow<[u8]>]) -> std::io::Result<()> {
+    let mut file = std::fs::File::create(path)?;
+    for part in parts {
+        file.write_all(part)?;
     }
     Ok(())
+}
+
+/// The temporaries written so far, by final name: the check reads side files through it,
+/// and whatever was not renamed into place is removed when it is dropped.
+struct Temporaries(Vec<(String, PathBuf)>);
+
+impl ResourceLoader for Temporaries {
+    fn load(&self, relative: &str) -> Result<Bytes, LoadError> {
+        let (_, path) = self
+            .0
+            .iter()
+            .skip(1) // the main file is not a resource of itself
+            .find(|(name, _)| name == relative)
+            .ok_or_else(|| LoadError::NotFound(relative.to_string()))?;
+        Bytes::open(path).map_err(|e| LoadError::Io(e.to_string()))
+    }
+}
+
+impl Drop for Temporaries {
+    fn drop(&mut self) {
+        for (_, temporary) in &self.0 {
+            let _ = std::fs::remove_file(temporary);
+        }
+    }
 }

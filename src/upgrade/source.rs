@@ -3,6 +3,7 @@
 
 use super::UpgradeError;
 use crate::document::uri::{classify, LoadError, ResourceLoader, UriKind};
+use crate::document::Bytes;
 use serde_json::Value;
 use std::cell::OnceCell;
 use std::collections::HashMap;
@@ -16,7 +17,7 @@ pub struct Source<'a> {
     body: Option<&'a [u8]>,
     /// External and data-URI buffers, read on first use: reading only the materials (for
     /// `--verify`) must not load the geometry.
-    buffers: HashMap<String, OnceCell<Result<Vec<u8>, String>>>,
+    buffers: HashMap<String, OnceCell<Result<Bytes, String>>>,
     pub loader: &'a dyn ResourceLoader,
 }
 
@@ -132,9 +133,9 @@ impl Source<'_> {
     }
 
     /// Reads a data URI or a file inside the asset's folder.
-    pub fn load_uri(&self, uri: &str) -> Result<Vec<u8>, String> {
+    pub fn load_uri(&self, uri: &str) -> Result<Bytes, String> {
         match classify(uri)? {
-            UriKind::Data { bytes, .. } => Ok(bytes),
+            UriKind::Data { bytes, .. } => Ok(bytes.into()),
             UriKind::Relative(path) => self.loader.load(&path).map_err(|e| match e {
                 LoadError::OutsideFolder(p) => format!("'{p}' is outside the asset's folder"),
                 LoadError::NotFound(p) => format!("'{p}' not found"),
@@ -196,6 +197,6 @@ impl Source<'_> {
             .get("uri")
             .and_then(Value::as_str)
             .ok_or("the image has no uri")?;
-        self.load_uri(uri)
+        self.load_uri(uri).map(Bytes::into_vec)
     }
 }

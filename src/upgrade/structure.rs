@@ -258,7 +258,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             pointer: at.clone(),
             reason,
         })?;
-        let packed = data::pack(&input, role);
+        let packed = data::pack(&input, role, &mut self.binary);
         if let Some(from) = packed.converted_from {
             self.note(
                 &at,
@@ -275,7 +275,7 @@ impl<'s, 'a> Builder<'s, 'a> {
         Ok(index)
     }
 
-    /// Adds packed data as one bufferView and one accessor.
+    /// Adds packed data (already in the binary) as one bufferView and one accessor.
     fn add_accessor(
         &mut self,
         packed: data::Packed,
@@ -284,10 +284,8 @@ impl<'s, 'a> Builder<'s, 'a> {
         role: Role,
         name: Option<&str>,
     ) -> usize {
-        self.binary.resize(self.binary.len().div_ceil(4) * 4, 0);
         let mut view =
-            json!({"buffer": 0, "byteOffset": self.binary.len(), "byteLength": packed.bytes.len()});
-        self.binary.extend(&packed.bytes);
+            json!({"buffer": 0, "byteOffset": packed.offset, "byteLength": packed.length});
         match role {
             Role::Indices => view["target"] = json!(ELEMENT_ARRAY_BUFFER),
             Role::Data => {}
@@ -567,7 +565,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             .flat_map(|m| multiply(m, &bind_shape))
             .collect();
         let count = folded.len() / 16;
-        let packed = data::pack_values(&folded, 16, data::FLOAT, false, false);
+        let packed = data::pack_values(&folded, 16, data::FLOAT, false, false, &mut self.binary);
         Ok(self.add_accessor(packed, "MAT4", count, Role::Data, Some(skin_id)))
     }
 

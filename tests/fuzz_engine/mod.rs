@@ -163,7 +163,7 @@ fn exercise(input: &[u8]) {
     }
     let _ = check_bytes("fuzz.glb", asset.clone(), &NoResources, &deep);
     if let Ok(upgraded) = upgrade(&asset, &NoResources, &UpgradeOptions::default()) {
-        let _ = gltfmat::upgrade::output::verify(gltfmat::upgrade::output::layout(
+        let _ = gltfmat::upgrade::output::verify(&gltfmat::upgrade::output::layout(
             &upgraded, "out.glb",
         ));
     }
