@@ -1,9 +1,9 @@
 //! URIs in glTF: data URIs decoded in memory, relative references read from the asset's own
 //! folder only. Nothing is ever fetched from a network, and no path may leave the folder.
 
+use super::Bytes;
 use base64::Engine;
 use std::path::{Component, Path, PathBuf};
-use super::Bytes;
 
 /// What a `uri` string is.
 #[derive(Debug, PartialEq)]

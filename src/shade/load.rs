@@ -50,11 +50,9 @@ pub fn gltf2_materials(
     };
     let images: Vec<Option<Texture>> = list("images")
         .iter()
-        .map(|image| {
-            match image.get("uri").and_then(Value::as_str) {
-                Some(uri) => sample::decode(&uri_bytes(uri, loader)?),
-                None => sample::decode(view_bytes(image.get("bufferView")?.as_u64()?)?),
-            }
+        .map(|image| match image.get("uri").and_then(Value::as_str) {
+            Some(uri) => sample::decode(&uri_bytes(uri, loader)?),
+            None => sample::decode(view_bytes(image.get("bufferView")?.as_u64()?)?),
         })
         .collect();
     let textures: Vec<Option<Texture>> = list("textures")

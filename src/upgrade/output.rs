@@ -146,7 +146,11 @@ fn uri_escape(name: &str) -> String {
 /// `write_checked` checks the files as written instead.
 pub fn verify(files: &Files) -> Report {
     let resources = MemoryResources {
-        files: files.side.iter().map(|f| (f.name.clone(), f.bytes())).collect(),
+        files: files
+            .side
+            .iter()
+            .map(|f| (f.name.clone(), f.bytes()))
+            .collect(),
     };
     check_bytes(
         &files.main.name,
@@ -221,7 +225,12 @@ pub fn write_checked(
     }
     let main = &temporaries.0[0].1;
     let bytes = Bytes::open(main).map_err(|e| WriteError::Io(main.clone(), e))?;
-    let mut report = check_bytes(&files.main.name, bytes, &temporaries, &CheckOptions::default());
+    let mut report = check_bytes(
+        &files.main.name,
+        bytes,
+        &temporaries,
+        &CheckOptions::default(),
+    );
     if report.has_errors() {
         // The report outlives the temporary it was read from: it keeps its own copy.
         report.document.bytes = Bytes::Owned(report.document.bytes.to_vec());
