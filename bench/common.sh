@@ -10,3 +10,19 @@ if [ ! -d "$bench_dir/node_modules/gltf-validator" ] || [ ! -d "$bench_dir/node_
 fi
 work=$(mktemp -d)
 if [ -n "${KEEP:-}" ]; then echo "work: $work"; else trap 'rm -rf "$work"' EXIT; fi
+
+# `best_of 3 cmd…`: runs a command N times (output discarded) and prints the fastest run's
+# wall time in seconds and that run's peak memory in KB. Best-of-N keeps page-cache writeback
+# and other machine noise out of the ratios, for both tools alike.
+best_of() {
+  local runs=$1 best_s="" best_kb="" t0 t1 s kb
+  shift
+  for _ in $(seq "$runs"); do
+    t0=$(date +%s.%N)
+    /usr/bin/time -f %M -o "$work/.mem" "$@" >/dev/null 2>&1 || true
+    t1=$(date +%s.%N)
+    s=$(echo "$t1 - $t0" | bc -l); kb=$(tail -1 "$work/.mem")
+    if [ -z "$best_s" ] || [ "$(echo "$s < $best_s" | bc -l)" = 1 ]; then best_s=$s; best_kb=$kb; fi
+  done
+  echo "$best_s $best_kb"
+}

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Writes a large glTF 1.0 asset for the benchmarks: a vertex grid with NORMAL and TEXCOORD_0,
-32-bit indices, one FRAUNHOFER_materials_pbr material.
-    bench/gen_gltf1.py WORK_FOLDER VERTICES   → WORK_FOLDER/big.gltf + big.bin
+32-bit indices, one FRAUNHOFER_materials_pbr material with a 2048² base colour texture.
+    bench/gen_gltf1.py WORK_FOLDER VERTICES   → WORK_FOLDER/big.gltf + big.bin + base.png
 """
-import array, json, sys, math
+import array, json, sys, math, struct, zlib
 work, n = sys.argv[1], int(sys.argv[2])
 side = int(math.isqrt(n))
 pos = array.array('f'); nrm = array.array('f'); uv = array.array('f')
@@ -23,6 +23,14 @@ for b in blobs[:-1]:
     offsets.append(offsets[-1] + len(b))
 with open(f"{work}/big.bin", "wb") as f:
     for b in blobs: f.write(b)
+def png(path, n):
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    rows = b"".join(b"\x00" + bytes(((x * 3 + y) & 255, (x ^ y) & 255, (y * 5) & 255)[k] for x in range(n) for k in range(3)) for y in range(n))
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", n, n, 8, 2, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(rows, 1)) + chunk(b"IEND", b""))
+png(f"{work}/base.png", 2048)
 views = {f"v{i}": {"buffer": "b", "byteOffset": o, "byteLength": len(b), "target": 34963 if i == 0 else 34962} for i, (o, b) in enumerate(zip(offsets, blobs))}
 acc = {
   "ind": {"bufferView": "v0", "byteOffset": 0, "componentType": 5125, "count": len(idx), "type": "SCALAR", "min": [0], "max": [count - 1]},
@@ -32,8 +40,10 @@ acc = {
 }
 doc = {"asset": {"version": "1.0"}, "extensionsUsed": ["OES_element_index_uint", "FRAUNHOFER_materials_pbr"],
   "buffers": {"b": {"uri": "big.bin", "byteLength": sum(map(len, blobs))}}, "bufferViews": views, "accessors": acc,
-  "materials": {"m": {"extensions": {"FRAUNHOFER_materials_pbr": {"materialModel": "PBR_metal_roughness", "values": {"baseColorFactor": [0.8, 0.2, 0.2, 1], "metallicFactor": 0, "roughnessFactor": 0.5}}}}},
+  "materials": {"m": {"extensions": {"FRAUNHOFER_materials_pbr": {"materialModel": "PBR_metal_roughness", "values": {"baseColorFactor": [0.8, 0.2, 0.2, 1], "baseColorTexture": "t", "metallicFactor": 0, "roughnessFactor": 0.5}}}}},
+  "textures": {"t": {"source": "img", "sampler": "s"}}, "images": {"img": {"uri": "base.png"}},
+  "samplers": {"s": {"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}},
   "meshes": {"mesh": {"primitives": [{"attributes": {"POSITION": "pos", "NORMAL": "nrm", "TEXCOORD_0": "uv"}, "indices": "ind", "material": "m", "mode": 4}]}},
   "nodes": {"n": {"meshes": ["mesh"]}}, "scenes": {"s": {"nodes": ["n"]}}, "scene": "s"}
 json.dump(doc, open(f"{work}/big.gltf", "w"))
-print(f"input: {count} vertices, {len(idx) // 3} triangles, {sum(map(len, blobs)) / 1e6:.0f} MB")
+print(f"input: {count} vertices, {len(idx) // 3} triangles, {sum(map(len, blobs)) / 1e6:.0f} MB, one 2048² PNG texture")

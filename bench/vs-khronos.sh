@@ -5,8 +5,6 @@
 source "$(dirname "$0")/common.sh"
 corpus=${1:-../shared/conformance/khronos-glTF-Validator/test}
 mapfile -t files < <(find "$corpus" -name '*.gltf' -o -name '*.glb' | sort)
-now() { date +%s.%N; }
-t0=$(now); ./target/release/gltfmat check --profile khronos --format jsonl --quiet "${files[@]}" >/dev/null || true; t1=$(now)
-bench/khronos-validate.sh "${files[@]}" >/dev/null || true; t2=$(now)
-ours=$(echo "$t1 - $t0" | bc -l); theirs=$(echo "$t2 - $t1" | bc -l)
+read -r ours _ < <(best_of 3 ./target/release/gltfmat check --profile khronos --format jsonl --quiet "${files[@]}")
+read -r theirs _ < <(best_of 3 bench/khronos-validate.sh "${files[@]}")
 printf 'corpus: %d files  gltfmat %.3fs  khronos(npm) %.3fs  ratio %.1fx\n' "${#files[@]}" "$ours" "$theirs" "$(echo "$theirs / $ours" | bc -l)"

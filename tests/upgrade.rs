@@ -487,8 +487,11 @@ mod structure {
             &up.json["accessors"][skin["inverseBindMatrices"].as_u64().unwrap() as usize];
         let view = &up.json["bufferViews"][accessor["bufferView"].as_u64().unwrap() as usize];
         let start = view["byteOffset"].as_u64().unwrap() as usize;
-        let translation_x =
-            f32::from_le_bytes(up.binary[start + 48..start + 52].try_into().unwrap());
+        let translation_x = f32::from_le_bytes(
+            up.binary.to_vec()[start + 48..start + 52]
+                .try_into()
+                .unwrap(),
+        );
         assert_eq!(translation_x, 5.0);
         let mesh = &up.json["meshes"][0]["primitives"][0]["attributes"];
         assert!(

@@ -56,12 +56,22 @@ fn direction(theta: f64, phi: f64) -> V3 {
 }
 
 /// The colour (CIELAB) of a material for one view/light pair.
-fn lab(shader: &Shader, m: &Inputs, v: V3, l: V3) -> V3 {
+/// The linear colour a material reflects towards `v` from a unit light along `l`.
+fn colour(shader: &Shader, m: &Inputs, v: V3, l: V3) -> V3 {
     if m.unlit {
-        return lab_from_linear_srgb(m.base_color);
+        return m.base_color;
     }
-    let f = shader.brdf(m, v, l);
-    lab_from_linear_srgb(f.map(|c| c * l[2] * PI))
+    shader.brdf(m, v, l).map(|c| c * l[2] * PI)
+}
+
+/// ΔE2000 between two materials for one direction pair; equal colours are 0 without the
+/// conversion to Lab.
+fn delta_e(shader: &Shader, a: &Inputs, b: &Inputs, v: V3, l: V3) -> f64 {
+    let (ca, cb) = (colour(shader, a, v, l), colour(shader, b, v, l));
+    if ca == cb {
+        return 0.0;
+    }
+    ciede2000(lab_from_linear_srgb(ca), lab_from_linear_srgb(cb))
 }
 
 struct Partial {
@@ -133,7 +143,7 @@ fn compare_rows(
                 let delta = if identical {
                     0.0
                 } else {
-                    ciede2000(lab(shader, &ma, v, l), lab(shader, &mb, v, l))
+                    delta_e(shader, &ma, &mb, v, l)
                 };
                 let delta = if delta.is_finite() { delta } else { f64::MAX };
                 texel_max = texel_max.max(delta);

@@ -34,6 +34,9 @@ fn cube_root(a: f64) -> f64 {
 
 /// CIEDE2000 ΔE between two CIELAB colours (k_L = k_C = k_H = 1).
 pub fn ciede2000(lab1: V3, lab2: V3) -> f64 {
+    if lab1 == lab2 {
+        return 0.0; // what the formula gives, without its transcendental functions
+    }
     let [l1, a1, b1] = lab1;
     let [l2, a2, b2] = lab2;
     let length = |x: f64, y: f64| (x * x + y * y).sqrt();
@@ -72,10 +75,7 @@ pub fn ciede2000(lab1: V3, lab2: V3) -> f64 {
     } else {
         (h1p + h2p - 360.0) / 2.0
     };
-    let t = 1.0 - 0.17 * (h_bar - 30.0).to_radians().cos()
-        + 0.24 * (2.0 * h_bar).to_radians().cos()
-        + 0.32 * (3.0 * h_bar + 6.0).to_radians().cos()
-        - 0.20 * (4.0 * h_bar - 63.0).to_radians().cos();
+    let t = hue_weight(h_bar);
     let d_theta = 30.0 * (-((h_bar - 275.0) / 25.0).powi(2)).exp();
     let rc = 2.0 * (c_bar_p.powi(7) / (c_bar_p.powi(7) + 25f64.powi(7))).sqrt();
     let sl = 1.0 + 0.015 * (l_bar - 50.0).powi(2) / (20.0 + (l_bar - 50.0).powi(2)).sqrt();
@@ -83,6 +83,21 @@ pub fn ciede2000(lab1: V3, lab2: V3) -> f64 {
     let sh = 1.0 + 0.015 * c_bar_p * t;
     let rt = -(2.0 * d_theta).to_radians().sin() * rc;
     ((dl / sl).powi(2) + (dc / sc).powi(2) + (dh / sh).powi(2) + rt * (dc / sc) * (dh / sh)).sqrt()
+}
+
+/// T(h̄) = 1 − 0.17 cos(h̄ − 30°) + 0.24 cos 2h̄ + 0.32 cos(3h̄ + 6°) − 0.20 cos(4h̄ − 63°),
+/// from one sine and cosine of h̄ by the multiple-angle and angle-sum identities (four
+/// cosines were a fifth of the comparison's time).
+fn hue_weight(h_bar: f64) -> f64 {
+    let (s1, c1) = h_bar.to_radians().sin_cos();
+    let (s2, c2) = (2.0 * s1 * c1, 2.0 * c1 * c1 - 1.0);
+    let (s3, c3) = (s1 * c2 + c1 * s2, c1 * c2 - s1 * s2);
+    let (s4, c4) = (2.0 * s2 * c2, 2.0 * c2 * c2 - 1.0);
+    let (s30, c30) = 30f64.to_radians().sin_cos();
+    let (s6, c6) = 6f64.to_radians().sin_cos();
+    let (s63, c63) = 63f64.to_radians().sin_cos();
+    1.0 - 0.17 * (c1 * c30 + s1 * s30) + 0.24 * c2 + 0.32 * (c3 * c6 - s3 * s6)
+        - 0.20 * (c4 * c63 + s4 * s63)
 }
 
 #[cfg(test)]
@@ -177,6 +192,18 @@ mod tests {
                 i + 1
             );
             assert!((ciede2000(*b, *a) - got).abs() < 1e-12, "symmetric");
+        }
+    }
+
+    #[test]
+    fn the_hue_weight_equals_its_four_cosine_definition() {
+        for step in 0..=720 {
+            let h = f64::from(step) * 0.5;
+            let cos = |degrees: f64| degrees.to_radians().cos();
+            let direct =
+                1.0 - 0.17 * cos(h - 30.0) + 0.24 * cos(2.0 * h) + 0.32 * cos(3.0 * h + 6.0)
+                    - 0.20 * cos(4.0 * h - 63.0);
+            assert!((hue_weight(h) - direct).abs() < 1e-14, "h̄ = {h}");
         }
     }
 

@@ -1,6 +1,7 @@
 //! Accessor data: reading 1.0 accessors (any stride, any component type) and repacking them
 //! with the component types, alignment and min/max glTF 2.0 requires.
 
+use super::binary::Binary;
 use super::source::Source;
 pub use crate::document::accessor_types::FLOAT;
 use crate::document::accessor_types::{
@@ -16,6 +17,7 @@ pub struct Accessor<'a> {
     pub count: usize,
     stride: usize,
     bytes: &'a [u8],
+    source: &'a Source<'a>,
 }
 
 /// What an accessor is used for, which decides its 2.0 component type and alignment.
@@ -94,6 +96,7 @@ pub fn read<'a>(source: &'a Source, id: &str) -> Result<Accessor<'a>, String> {
         count,
         stride,
         bytes,
+        source,
     })
 }
 
@@ -161,9 +164,10 @@ pub fn pack_values(
     component_type: u64,
     normalized: bool,
     vertex: bool,
-    out: &mut Vec<u8>,
+    binary: &mut Binary,
 ) -> Packed {
-    let offset = align(out);
+    let offset = binary.align();
+    let out = binary.owned();
     let size = component_size(component_type).unwrap_or(4);
     let element = size * components;
     let stride = if vertex {
@@ -191,7 +195,7 @@ pub fn pack_values(
     }
     Packed {
         offset,
-        length: out.len() - offset,
+        length: binary.len() - offset,
         component_type,
         normalized,
         byte_stride: (stride != element).then_some(stride),
@@ -237,16 +241,16 @@ fn write_component(out: &mut Vec<u8>, component_type: u64, v: f64) -> f64 {
     }
 }
 
-/// Pads `out` to a multiple of 4 bytes; returns its new length.
-fn align(out: &mut Vec<u8>) -> usize {
-    out.resize(out.len().div_ceil(4) * 4, 0);
-    out.len()
-}
-
 /// Copies elements whose component type does not change, padding vertex elements to 4
 /// bytes, and computes min/max on the way: no per-value conversion for the common case.
-fn copy_elements(accessor: &Accessor, normalized: bool, vertex: bool, out: &mut Vec<u8>) -> Packed {
-    let offset = align(out);
+/// Tightly packed data from a loaded buffer is not copied at all but referenced.
+fn copy_elements(
+    accessor: &Accessor,
+    normalized: bool,
+    vertex: bool,
+    binary: &mut Binary,
+) -> Packed {
+    let offset = binary.align();
     let size = component_size(accessor.component_type).unwrap_or(4);
     let element = size * accessor.components;
     let stride = if vertex {
@@ -254,56 +258,52 @@ fn copy_elements(accessor: &Accessor, normalized: bool, vertex: bool, out: &mut 
     } else {
         element
     };
-    out.reserve(accessor.count * stride);
-    if accessor.stride == element && stride == element {
-        // Already tightly packed: one copy.
-        out.extend_from_slice(&accessor.bytes[..accessor.count * element]);
-    } else {
-        for i in 0..accessor.count {
-            let at = i * accessor.stride;
-            out.extend_from_slice(&accessor.bytes[at..at + element]);
-            out.resize(out.len() + stride - element, 0);
+    let packed = accessor.stride == element && stride == element;
+    let run = &accessor.bytes[..if packed { accessor.count * element } else { 0 }];
+    let bytes: &[u8] = match accessor.source.shared(run).filter(|_| packed) {
+        Some((buffer, range)) => {
+            binary.share(&buffer, range);
+            run
         }
-    }
-    let bytes = &out[offset..];
-    let mut min = vec![f64::INFINITY; accessor.components];
-    let mut max = vec![f64::NEG_INFINITY; accessor.components];
-    let mut bound = |c: usize, v: f64| {
-        if !v.is_nan() {
-            min[c] = min[c].min(v);
-            max[c] = max[c].max(v);
-        }
-    };
-    match accessor.component_type {
-        FLOAT => typed_bounds(
-            bytes,
-            stride,
-            accessor.components,
-            |b| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
-            &mut bound,
-        ),
-        UNSIGNED_INT => typed_bounds(
-            bytes,
-            stride,
-            accessor.components,
-            |b| f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
-            &mut bound,
-        ),
-        _ => {
-            for i in 0..accessor.count {
-                for c in 0..accessor.components {
-                    bound(c, accessor.get(i, c));
+        None => {
+            let out = binary.owned();
+            let start = out.len();
+            if packed {
+                out.extend_from_slice(run);
+            } else {
+                out.reserve(accessor.count * stride);
+                for i in 0..accessor.count {
+                    let at = i * accessor.stride;
+                    out.extend_from_slice(&accessor.bytes[at..at + element]);
+                    out.resize(out.len() + stride - element, 0);
                 }
             }
+            &binary.owned()[start..]
         }
-    }
+    };
+    let n = accessor.components;
+    let (mut min, mut max) = match accessor.component_type {
+        FLOAT => bounds_of(bytes, stride, n, |b| f64::from(f32::from_le_bytes(b))),
+        UNSIGNED_INT => bounds_of(bytes, stride, n, |b| f64::from(u32::from_le_bytes(b))),
+        _ => {
+            let (mut min, mut max) = (vec![f64::INFINITY; n], vec![f64::NEG_INFINITY; n]);
+            for i in 0..accessor.count {
+                for c in 0..n {
+                    let v = accessor.get(i, c);
+                    min[c] = if v < min[c] { v } else { min[c] };
+                    max[c] = if v > max[c] { v } else { max[c] };
+                }
+            }
+            (min, max)
+        }
+    };
     if accessor.count == 0 {
         min.clear();
         max.clear();
     }
     Packed {
         offset,
-        length: out.len() - offset,
+        length: binary.len() - offset,
         component_type: accessor.component_type,
         normalized,
         byte_stride: (stride != element).then_some(stride),
@@ -313,23 +313,30 @@ fn copy_elements(accessor: &Accessor, normalized: bool, vertex: bool, out: &mut 
     }
 }
 
-/// min/max over 4-byte components laid out with `stride`.
-fn typed_bounds(
+/// min/max per component over 4-byte components laid out with `stride`. A comparison is
+/// false for NaN, so NaN never becomes a bound; compare-and-select on local accumulators
+/// keeps this at memory speed.
+fn bounds_of(
     bytes: &[u8],
     stride: usize,
     components: usize,
-    read: impl Fn(&[u8]) -> f64,
-    bound: &mut impl FnMut(usize, f64),
-) {
+    read: impl Fn([u8; 4]) -> f64,
+) -> (Vec<f64>, Vec<f64>) {
+    const MOST: usize = 16;
+    let n = components.min(MOST);
+    let (mut low, mut high) = ([f64::INFINITY; MOST], [f64::NEG_INFINITY; MOST]);
     for element in bytes.chunks_exact(stride) {
-        for c in 0..components {
-            bound(c, read(&element[c * 4..c * 4 + 4]));
+        for (c, word) in element.chunks_exact(4).take(n).enumerate() {
+            let v = read(word.try_into().unwrap_or_default());
+            low[c] = if v < low[c] { v } else { low[c] };
+            high[c] = if v > high[c] { v } else { high[c] };
         }
     }
+    (low[..n].to_vec(), high[..n].to_vec())
 }
 
 /// Appends an accessor's data to `out`, repacked for its role.
-pub fn pack(accessor: &Accessor, role: Role, out: &mut Vec<u8>) -> Packed {
+pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
     let (component_type, normalized) = output_type(role, accessor.component_type);
     if component_type == accessor.component_type {
         return copy_elements(accessor, normalized, role.is_vertex(), out);
@@ -364,7 +371,8 @@ mod tests {
 
     #[test]
     fn vertex_elements_are_padded_to_four_bytes_and_bounded() {
-        let mut out = vec![9];
+        let mut out = Binary::default();
+        out.owned().push(9);
         let packed = pack_values(
             &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
             3,
@@ -375,7 +383,7 @@ mod tests {
         );
         assert_eq!(packed.byte_stride, Some(4));
         assert_eq!((packed.offset, packed.length), (4, 8));
-        assert_eq!(out, vec![9, 0, 0, 0, 1, 2, 3, 0, 4, 5, 6, 0]);
+        assert_eq!(out.to_vec(), vec![9, 0, 0, 0, 1, 2, 3, 0, 4, 5, 6, 0]);
         assert_eq!(
             (packed.min, packed.max),
             (vec![1.0, 2.0, 3.0], vec![4.0, 5.0, 6.0])

@@ -10,6 +10,7 @@
 //! every 2.0 alignment and byteStride rule by construction and splits 1.0 views shared by
 //! accessors of different strides, at the price of de-interleaving interleaved vertices.
 
+pub mod binary;
 mod data;
 mod materials;
 pub mod output;
@@ -20,6 +21,7 @@ mod structure;
 use crate::document::uri::ResourceLoader;
 use crate::legacy_pbr;
 use crate::shade::sample::{self, MaterialSource, Texture};
+pub use binary::Binary;
 use serde_json::Value;
 
 /// How specular-glossiness materials are written.
@@ -65,7 +67,7 @@ pub enum NoteKind {
 #[derive(Debug, Clone)]
 pub struct Upgraded {
     pub json: Value,
-    pub binary: Vec<u8>,
+    pub binary: Binary,
     pub images: Vec<EncodedImage>,
     pub report: Vec<Note>,
 }

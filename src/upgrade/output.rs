@@ -58,7 +58,7 @@ fn glb<'u>(upgraded: &'u Upgraded, name: &str) -> File<'u> {
     // Images follow the geometry in the one binary chunk, each 4-byte aligned.
     let mut length = upgraded.binary.len();
     let mut views = json["bufferViews"].as_array().cloned().unwrap_or_default();
-    let mut body: Vec<Cow<[u8]>> = vec![Cow::Borrowed(&upgraded.binary)];
+    let mut body: Vec<Cow<[u8]>> = upgraded.binary.runs().map(Cow::Borrowed).collect();
     for (i, image) in upgraded.images.iter().enumerate() {
         let aligned = length.div_ceil(4) * 4;
         body.push(Cow::Owned(vec![0; aligned - length]));
@@ -111,7 +111,7 @@ fn separate<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
         json["buffers"][0]["uri"] = json!(uri_escape(&name));
         side.push(File {
             name,
-            parts: vec![Cow::Borrowed(&upgraded.binary)],
+            parts: upgraded.binary.runs().map(Cow::Borrowed).collect(),
         });
     }
     for (i, image) in upgraded.images.iter().enumerate() {

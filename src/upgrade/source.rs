@@ -7,6 +7,8 @@ use crate::document::Bytes;
 use serde_json::Value;
 use std::cell::OnceCell;
 use std::collections::HashMap;
+use std::ops::Range;
+use std::sync::Arc;
 
 /// The buffer id KHR_binary_glTF gives the GLB body (and the older spelling some writers used).
 const BINARY_BUFFER_IDS: &[&str] = &["binary_glTF", "KHR_binary_glTF"];
@@ -17,7 +19,7 @@ pub struct Source<'a> {
     body: Option<&'a [u8]>,
     /// External and data-URI buffers, read on first use: reading only the materials (for
     /// `--verify`) must not load the geometry.
-    buffers: HashMap<String, OnceCell<Result<Bytes, String>>>,
+    buffers: HashMap<String, OnceCell<Result<Arc<Bytes>, String>>>,
     pub loader: &'a dyn ResourceLoader,
 }
 
@@ -116,20 +118,21 @@ impl Source<'_> {
             let uri = self.json["buffers"][id].get("uri").and_then(Value::as_str);
             uri.ok_or_else(|| "the buffer has no uri".to_string())
                 .and_then(|uri| self.load_uri(uri))
+                .map(Arc::new)
         });
-        loaded.as_deref().map_err(Clone::clone)
+        loaded.as_deref().map(|b| &b[..]).map_err(Clone::clone)
     }
 
-    /// The declared size of all buffers, to reserve the repacked output once. Declarations
-    /// can lie: the reservation is capped, and the output simply grows past it if needed.
-    pub fn declared_size(&self) -> usize {
-        const CAP: u64 = 256 << 20;
-        let total: u64 = self
-            .dictionary("buffers")
-            .iter()
-            .filter_map(|(_, b)| b.get("byteLength")?.as_u64())
-            .fold(0, |sum, n| sum.saturating_add(n));
-        total.min(CAP) as usize
+    /// The loaded buffer that holds `part`, and where: such bytes can go to the output by
+    /// reference. None for the GLB v1 body (borrowed from the caller) and foreign slices.
+    pub fn shared(&self, part: &[u8]) -> Option<(Arc<Bytes>, Range<usize>)> {
+        let start = part.as_ptr() as usize;
+        self.buffers.values().find_map(|cell| {
+            let buffer = cell.get()?.as_ref().ok()?;
+            let base = buffer.as_ptr() as usize;
+            let inside = start >= base && start + part.len() <= base + buffer.len();
+            inside.then(|| (Arc::clone(buffer), start - base..start - base + part.len()))
+        })
     }
 
     /// Reads a data URI or a file inside the asset's folder.

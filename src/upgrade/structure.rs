@@ -1,6 +1,7 @@
 //! Rebuilding every 1.0 object in 2.0 form: ids become indices (the id becomes the name when
 //! there is none), data is repacked, nodes, skins, animations and cameras are fixed up.
 
+use super::binary::Binary;
 use super::data::{self, Role};
 use super::source::Source;
 use super::{materials, EncodedImage, Note, NoteKind, UpgradeError, UpgradeOptions, Upgraded};
@@ -33,7 +34,7 @@ pub struct Builder<'s, 'a> {
     index: HashMap<(&'static str, String), usize>,
     arrays: HashMap<&'static str, Vec<Value>>,
     pub images: Vec<EncodedImage>,
-    binary: Vec<u8>,
+    binary: Binary,
     packed_accessors: HashMap<(String, Role), usize>,
     pub report: Vec<Note>,
 }
@@ -70,7 +71,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             arrays: HashMap::new(),
             images: Vec::new(),
             // Repacked data is about the size of the input buffers: reserve it once.
-            binary: Vec::with_capacity(source.declared_size() + 1024),
+            binary: Binary::default(),
             packed_accessors: HashMap::new(),
             report: Vec::new(),
         }
