@@ -2,6 +2,7 @@
 //! `max` that do not match the data, and for the checks its uses add (unit normals, index
 //! bounds, animation inputs…, see `accessor_usage`): the Khronos ACCESSOR_* data codes.
 
+use super::accessor_fast;
 use super::accessor_usage::{self, Checker, Finding, Findings};
 use super::context::{unsigned, Context};
 use super::resources::view_bytes;
@@ -86,11 +87,11 @@ fn walk<const SIZE: usize>(
 
 #[derive(Clone, Copy)]
 pub(super) struct Layout {
-    component_type: u64,
-    size: usize,
+    pub component_type: u64,
+    pub size: usize,
     pub components: usize,
-    stride: usize,
-    offset: usize,
+    pub stride: usize,
+    pub offset: usize,
     pub count: usize,
 }
 
@@ -191,9 +192,23 @@ fn scan(work: &mut Work, source: &Bytes) -> Vec<Finding> {
         accessor,
         checkers,
     } = work;
+    let mut findings = Findings::default();
+    if let Some((min, max)) = accessor_fast::bounds(layout, bytes, checkers, |b| source.release(b))
+    {
+        Bounds {
+            layout,
+            bytes,
+            pointer,
+            findings: &mut findings,
+        }
+        .compare(accessor, &min, &max);
+        for checker in checkers.iter() {
+            checker.finish(layout.count, &mut findings);
+        }
+        return findings.into_vec();
+    }
     let n = layout.components;
     let unit = unit_scale(layout.component_type, accessor);
-    let mut findings = Findings::default();
     let mut actual_min = [f64::INFINITY; MAX_COMPONENTS];
     let mut actual_max = [f64::NEG_INFINITY; MAX_COMPONENTS];
     let mut non_finite = false;

@@ -273,6 +273,28 @@ impl Checker {
         self.last = value;
     }
 
+    /// Takes the summary of an index buffer whose elements were not fed one by one: its
+    /// largest value and its degenerate triangles. False when that value needs the
+    /// element-by-element report (out of range, or the restart value) or this checker is not
+    /// an index check: the caller then feeds every element instead.
+    pub(super) fn accept_index_summary(&mut self, largest: f64, degenerate: u64) -> bool {
+        let Kind::Indices {
+            max_vertex,
+            restart,
+            triangles,
+        } = self.kind
+        else {
+            return false;
+        };
+        if largest > max_vertex as f64 || largest == restart {
+            return false;
+        }
+        if triangles {
+            self.degenerate = degenerate;
+        }
+        true
+    }
+
     /// Reports what is only known after the last element.
     pub(super) fn finish(&self, elements: usize, out: &mut Findings) {
         if self.degenerate > 0 {

@@ -7,6 +7,7 @@ pub mod rules;
 pub mod schema;
 
 mod accessor_data;
+mod accessor_fast;
 mod accessor_usage;
 pub mod context;
 mod extensions;

@@ -283,7 +283,20 @@ fn copy_elements(
     };
     let n = accessor.components;
     let (mut min, mut max) = match accessor.component_type {
+        FLOAT if stride == 4 * n && n <= 4 => match n {
+            1 => float_bounds::<1>(bytes),
+            2 => float_bounds::<2>(bytes),
+            3 => float_bounds::<3>(bytes),
+            _ => float_bounds::<4>(bytes),
+        },
         FLOAT => bounds_of(bytes, stride, n, |b| f64::from(f32::from_le_bytes(b))),
+        UNSIGNED_INT if stride == 4 && n == 1 => {
+            let words = bytes
+                .chunks_exact(4)
+                .map(|w| u32::from_le_bytes(w.try_into().unwrap_or_default()));
+            let (low, high) = words.fold((u32::MAX, 0), |(l, h), v| (l.min(v), h.max(v)));
+            (vec![f64::from(low)], vec![f64::from(high)])
+        }
         UNSIGNED_INT => bounds_of(bytes, stride, n, |b| f64::from(u32::from_le_bytes(b))),
         _ => {
             let (mut min, mut max) = (vec![f64::INFINITY; n], vec![f64::NEG_INFINITY; n]);
@@ -311,6 +324,20 @@ fn copy_elements(
         max,
         converted_from: None,
     }
+}
+
+/// min/max per component of tightly packed float elements of `N` components, compared as
+/// `f32` (exact: every `f32` is an `f64`); NaN never wins a comparison.
+fn float_bounds<const N: usize>(bytes: &[u8]) -> (Vec<f64>, Vec<f64>) {
+    let (mut low, mut high) = ([f32::INFINITY; N], [f32::NEG_INFINITY; N]);
+    for element in bytes.chunks_exact(4 * N) {
+        for (c, word) in element.chunks_exact(4).enumerate() {
+            let v = f32::from_le_bytes(word.try_into().unwrap_or_default());
+            low[c] = if v < low[c] { v } else { low[c] };
+            high[c] = if v > high[c] { v } else { high[c] };
+        }
+    }
+    (low.map(f64::from).to_vec(), high.map(f64::from).to_vec())
 }
 
 /// min/max per component over 4-byte components laid out with `stride`. A comparison is

@@ -3,6 +3,7 @@
 
 use crate::color::{linear_to_srgb, srgb_to_linear};
 use crate::document::image_decode;
+use crate::document::image_header::{self, Channels};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{DynamicImage, ImageEncoder, Rgb32FImage, Rgba32FImage};
 use std::io::Cursor;
@@ -122,8 +123,13 @@ pub fn spec_gloss_base_colour(
     Ok((encode(&out, alpha, wide), alpha))
 }
 
-/// Whether any texel has alpha below 1 (the material then needs alpha blending).
+/// Whether any texel has alpha below 1 (the material then needs alpha blending). An image
+/// whose header declares no alpha (tRNS included) is not decoded.
 pub fn has_translucent_texels(bytes: &[u8]) -> bool {
+    let header = image_header::read(bytes).map(|info| info.channels);
+    if matches!(header, Ok(Channels::Rgb | Channels::Luminance)) {
+        return false;
+    }
     match decode(bytes) {
         Ok(image) if image.color().has_alpha() => image.to_rgba8().pixels().any(|p| p.0[3] < 255),
         _ => false,
@@ -168,5 +174,23 @@ mod tests {
             "{texel:?} vs {expected}"
         );
         assert!(alpha, "an RGBA diffuse keeps its alpha channel");
+    }
+
+    #[test]
+    fn only_texels_below_full_alpha_make_a_texture_translucent() {
+        let with_alpha = |a| {
+            png(image::RgbaImage::from_pixel(
+                2,
+                2,
+                image::Rgba([9, 9, 9, a]),
+            ))
+        };
+        assert!(has_translucent_texels(&with_alpha(128)));
+        assert!(!has_translucent_texels(&with_alpha(255)));
+        let mut rgb = Vec::new();
+        DynamicImage::ImageRgb8(image::RgbImage::new(2, 2))
+            .write_to(&mut Cursor::new(&mut rgb), image::ImageFormat::Png)
+            .unwrap();
+        assert!(!has_translucent_texels(&rgb));
     }
 }
