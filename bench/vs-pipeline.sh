@@ -5,7 +5,7 @@
 source "$(dirname "$0")/common.sh"
 vertices=${1:-2000000}
 python3 bench/gen_gltf1.py "$work" "$vertices"
-read -r ours ours_kb < <(best_of 3 ./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/out-ours-RUN.glb")
-read -r theirs theirs_kb < <(best_of 3 node bench/node_modules/gltf-pipeline/bin/gltf-pipeline.js -i "$work/big.gltf" -o "$work/out-theirs-RUN.glb")
+read -r ours ours_kb < <(best_of 5 ./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/out-ours-RUN.glb")
+read -r theirs theirs_kb < <(best_of 5 node bench/node_modules/gltf-pipeline/bin/gltf-pipeline.js -i "$work/big.gltf" -o "$work/out-theirs-RUN.glb")
 printf 'upgrade: gltfmat %.2fs %d MB (incl. checking its output)  gltf-pipeline %.2fs %d MB  ratio %.1fx\n' \
   "$ours" $((ours_kb / 1024)) "$theirs" $((theirs_kb / 1024)) "$(echo "$theirs / $ours" | bc -l)"

@@ -6,7 +6,7 @@
 //! runs and reports it.
 
 use super::accessor_data::Layout;
-use super::accessor_usage::Checker;
+use super::accessor_usage::{is_unit_length, Checker};
 
 /// Bytes processed between two calls of `release`.
 const STEP: usize = 4 << 20;
@@ -29,6 +29,9 @@ pub(super) fn bounds(
     let run = STEP / (3 * element) * (3 * element);
     match (layout.component_type, layout.components) {
         (5126, n @ 1..=4) if checkers.is_empty() => floats(n, data, run, &release),
+        (5126, 3) if checkers.iter().all(Checker::wants_unit_vectors_only) => {
+            float_bounds::<3>(data, run, &release, unit_vector)
+        }
         (5121, 1) => indices::<1>(data, run, checkers, &release),
         (5123, 1) => indices::<2>(data, run, checkers, &release),
         (5125, 1) => indices::<4>(data, run, checkers, &release),
@@ -43,35 +46,46 @@ fn floats(
     release: &impl Fn(&[u8]),
 ) -> Option<(Vec<f64>, Vec<f64>)> {
     match n {
-        1 => float_bounds::<1>(data, run, release),
-        2 => float_bounds::<2>(data, run, release),
-        3 => float_bounds::<3>(data, run, release),
-        _ => float_bounds::<4>(data, run, release),
+        1 => float_bounds::<1>(data, run, release, |_| true),
+        2 => float_bounds::<2>(data, run, release, |_| true),
+        3 => float_bounds::<3>(data, run, release, |_| true),
+        _ => float_bounds::<4>(data, run, release, |_| true),
     }
 }
 
+fn unit_vector(v: &[f32; 3]) -> bool {
+    let [x, y, z] = v.map(f64::from);
+    is_unit_length((x * x + y * y + z * z).sqrt())
+}
+
 /// min/max of `N`-component float elements, compared as `f32` (exact: every `f32` is an
-/// `f64`). Declines on NaN or an infinity.
+/// `f64`). Declines on NaN, an infinity, or an element that `valid` rejects.
 fn float_bounds<const N: usize>(
     data: &[u8],
     run: usize,
     release: &impl Fn(&[u8]),
+    valid: impl Fn(&[f32; N]) -> bool,
 ) -> Option<(Vec<f64>, Vec<f64>)> {
     let (mut low, mut high) = ([f32::INFINITY; N], [f32::NEG_INFINITY; N]);
-    let mut nan = false;
+    let (mut nan, mut rejected) = (false, false);
     for part in data.chunks(run) {
         for element in part.chunks_exact(4 * N) {
-            for (c, word) in element.chunks_exact(4).enumerate() {
-                let v = f32::from_le_bytes(word.try_into().unwrap_or_default());
-                low[c] = if v < low[c] { v } else { low[c] };
-                high[c] = if v > high[c] { v } else { high[c] };
-                nan |= v.is_nan();
+            let mut v = [0f32; N];
+            for (value, word) in v.iter_mut().zip(element.chunks_exact(4)) {
+                *value = f32::from_le_bytes(word.try_into().unwrap_or_default());
             }
+            for c in 0..N {
+                low[c] = if v[c] < low[c] { v[c] } else { low[c] };
+                high[c] = if v[c] > high[c] { v[c] } else { high[c] };
+                nan |= v[c].is_nan();
+            }
+            rejected |= !valid(&v);
         }
         release(part);
     }
     let finite = low.iter().chain(&high).all(|v| v.is_finite());
-    (finite && !nan).then(|| (low.map(f64::from).to_vec(), high.map(f64::from).to_vec()))
+    (finite && !nan && !rejected)
+        .then(|| (low.map(f64::from).to_vec(), high.map(f64::from).to_vec()))
 }
 
 /// min/max of a scalar unsigned index buffer and its degenerate triangles, handed to its

@@ -201,7 +201,7 @@ impl Checker {
             .map(|v| unit(*v).powi(2))
             .sum::<f64>()
             .sqrt();
-        if (length - 1.0).abs() > UNIT_TOLERANCE_VEC3 {
+        if !is_unit_length(length) {
             self.report(
                 out,
                 "ACCESSOR_VECTOR3_NON_UNIT",
@@ -295,6 +295,12 @@ impl Checker {
         true
     }
 
+    /// Whether this checker only asks that (float) elements be unit vectors, which the fast
+    /// path can test on its own.
+    pub(super) fn wants_unit_vectors_only(&self) -> bool {
+        matches!(self.kind, Kind::UnitVector)
+    }
+
     /// Reports what is only known after the last element.
     pub(super) fn finish(&self, elements: usize, out: &mut Findings) {
         if self.degenerate > 0 {
@@ -313,6 +319,11 @@ impl Checker {
     fn report(&self, out: &mut Findings, code: &'static str, message: String) {
         out.push((code, self.pointer.clone(), message));
     }
+}
+
+/// Whether a normal or tangent of this length counts as unit length.
+pub(super) fn is_unit_length(length: f64) -> bool {
+    (length - 1.0).abs() <= UNIT_TOLERANCE_VEC3
 }
 
 /// The checkers of every accessor, keyed by accessor index.
