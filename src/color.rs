@@ -9,6 +9,19 @@ pub fn srgb_to_linear(encoded: f64) -> f64 {
     }
 }
 
+/// `srgb_to_linear` for sampled texture values: an exact 8-bit level (most texels) is
+/// looked up in a table of the same function instead of calling `powf`.
+pub fn srgb_texel_to_linear(encoded: f64) -> f64 {
+    static TABLE: std::sync::OnceLock<[f64; 256]> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| std::array::from_fn(|i| srgb_to_linear(i as f64 / 255.0)));
+    let level = (encoded * 255.0).round();
+    if (encoded * 255.0 - level).abs() < 1e-4 && (0.0..=255.0).contains(&level) {
+        table[level as usize]
+    } else {
+        srgb_to_linear(encoded)
+    }
+}
+
 /// Linear value (0..1) to sRGB-encoded, IEC 61966-2-1.
 pub fn linear_to_srgb(linear: f64) -> f64 {
     if linear <= 0.0031308 {
@@ -34,5 +47,17 @@ mod tests {
             assert!((linear_to_srgb(srgb_to_linear(encoded)) - encoded).abs() < 1e-12);
         }
         assert!((srgb_to_linear(0.5) - 0.214_041_140_5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn texel_decoding_matches_the_transfer_function() {
+        for i in 0..=255 {
+            let level = f64::from(i) / 255.0;
+            // Also as an `f32` texel would carry it.
+            let stored = f64::from(level as f32);
+            assert!((srgb_texel_to_linear(stored) - srgb_to_linear(level)).abs() < 1e-6);
+        }
+        let between = 100.5 / 255.0;
+        assert_eq!(srgb_texel_to_linear(between), srgb_to_linear(between));
     }
 }

@@ -5,7 +5,7 @@
 
 use super::brdf::V3;
 use super::material::Inputs;
-use crate::color::srgb_to_linear;
+use crate::color::srgb_texel_to_linear;
 use crate::legacy_pbr::{LegacyPbr, Model};
 use image::Rgba32FImage;
 use serde_json::Value;
@@ -155,19 +155,9 @@ fn number(object: Option<&Value>, key: &str, default: f64) -> f64 {
         .unwrap_or(default)
 }
 
-/// sRGB decode of sampled values; values that are exact 8-bit levels (most texels) use a
-/// table instead of `powf`.
+/// sRGB decode of sampled values.
 fn srgb3(t: [f64; 4]) -> V3 {
-    static TABLE: std::sync::OnceLock<[f64; 256]> = std::sync::OnceLock::new();
-    let table = TABLE.get_or_init(|| std::array::from_fn(|i| srgb_to_linear(i as f64 / 255.0)));
-    [t[0], t[1], t[2]].map(|v| {
-        let level = (v * 255.0).round();
-        if (v * 255.0 - level).abs() < 1e-4 && (0.0..=255.0).contains(&level) {
-            table[level as usize]
-        } else {
-            srgb_to_linear(v)
-        }
-    })
+    [t[0], t[1], t[2]].map(srgb_texel_to_linear)
 }
 
 impl MaterialSource {

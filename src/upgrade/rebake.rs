@@ -1,7 +1,7 @@
 //! Texture rebaking for material conversion: new PNG images computed texel by texel from
 //! the 1.0 textures. Original images are never modified or reused for a changed meaning.
 
-use crate::color::{linear_to_srgb, srgb_to_linear};
+use crate::color::{linear_to_srgb, srgb_texel_to_linear};
 use crate::document::image_decode;
 use crate::document::image_header::{self, Channels};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
@@ -106,11 +106,11 @@ pub fn spec_gloss_base_colour(
         let d = diffuse.as_ref().map_or([1.0; 4], |i| sample(i, x, y));
         let s = specular.as_ref().map_or([1.0; 4], |i| sample(i, x, y));
         let max_specular = (0..3)
-            .map(|c| srgb_to_linear(f64::from(s[c])) * specular_factor[c])
+            .map(|c| srgb_texel_to_linear(f64::from(s[c])) * specular_factor[c])
             .fold(0.0, f64::max);
         let keep = (1.0 - max_specular).max(0.0);
         let channel = |c: usize| {
-            let linear = srgb_to_linear(f64::from(d[c])) * diffuse_factor[c] * keep;
+            let linear = srgb_texel_to_linear(f64::from(d[c])) * diffuse_factor[c] * keep;
             linear_to_srgb(linear.clamp(0.0, 1.0)) as f32
         };
         image::Rgba([
@@ -168,7 +168,7 @@ mod tests {
         let (bytes, alpha) =
             spec_gloss_base_colour(Some(&png(diffuse)), None, [1.0; 4], [0.5, 0.2, 0.2]).unwrap();
         let texel = decode(&bytes).unwrap().to_rgb8().get_pixel(0, 0).0;
-        let expected = linear_to_srgb(srgb_to_linear(188.0 / 255.0) * 0.5) * 255.0;
+        let expected = linear_to_srgb(crate::color::srgb_to_linear(188.0 / 255.0) * 0.5) * 255.0;
         assert!(
             (f64::from(texel[0]) - expected).abs() <= 0.5,
             "{texel:?} vs {expected}"
