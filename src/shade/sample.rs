@@ -7,21 +7,65 @@ use super::brdf::V3;
 use super::material::Inputs;
 use crate::color::srgb_texel_to_linear;
 use crate::legacy_pbr::{LegacyPbr, Model};
-use image::Rgba32FImage;
 use serde_json::Value;
 use std::sync::Arc;
 
-/// A decoded texture (stored values, 0..1; transfer functions are applied per slot).
-pub type Texture = Arc<Rgba32FImage>;
+/// A decoded texture, shared by the materials that bind it.
+pub type Texture = Arc<TextureImage>;
+
+/// RGBA texels in their stored precision, read as values 0..1 (transfer functions are
+/// applied per slot). 8-bit images stay 8-bit: a quarter of the memory of floats, and no
+/// conversion pass over every texel.
+pub struct TextureImage {
+    width: u32,
+    height: u32,
+    texels: Texels,
+}
+
+enum Texels {
+    Unorm8(Vec<u8>),
+    Float(Vec<f32>),
+}
+
+impl TextureImage {
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The texel starting at component index `at`, or transparent black past the end.
+    fn texel(&self, at: usize) -> [f64; 4] {
+        match &self.texels {
+            Texels::Unorm8(raw) => raw.get(at..at + 4).map_or([0.0; 4], |p| {
+                [p[0], p[1], p[2], p[3]].map(|b| f64::from(b) / 255.0)
+            }),
+            Texels::Float(raw) => raw
+                .get(at..at + 4)
+                .map_or([0.0; 4], |p| [p[0], p[1], p[2], p[3]].map(f64::from)),
+        }
+    }
+}
 
 pub fn decode(bytes: &[u8]) -> Option<Texture> {
-    crate::document::image_decode::decode(bytes)
-        .ok()
-        .map(|i| Arc::new(i.to_rgba32f()))
+    let image = crate::document::image_decode::decode(bytes).ok()?;
+    let eight_bit = image.color().bytes_per_pixel() == image.color().channel_count();
+    let texels = if eight_bit {
+        Texels::Unorm8(image.to_rgba8().into_raw())
+    } else {
+        Texels::Float(image.to_rgba32f().into_raw())
+    };
+    Some(Arc::new(TextureImage {
+        width: image.width(),
+        height: image.height(),
+        texels,
+    }))
 }
 
 /// Bilinear sample with repeat wrapping, texel centres at (i + ½) / size.
-pub fn bilinear(texture: &Rgba32FImage, [u, v]: [f64; 2]) -> [f64; 4] {
+pub fn bilinear(texture: &TextureImage, [u, v]: [f64; 2]) -> [f64; 4] {
     let (w, h) = (
         texture.width().max(1) as i64,
         texture.height().max(1) as i64,
@@ -30,14 +74,8 @@ pub fn bilinear(texture: &Rgba32FImage, [u, v]: [f64; 2]) -> [f64; 4] {
     let y = v * h as f64 - 0.5;
     let (x0, y0) = (x.floor(), y.floor());
     let (fx, fy) = (x - x0, y - y0);
-    let raw = texture.as_raw();
-    let texel = |i: i64, j: i64| -> [f64; 4] {
-        let at = ((j.rem_euclid(h) * w + i.rem_euclid(w)) * 4) as usize;
-        match raw.get(at..at + 4) {
-            Some(p) => [p[0], p[1], p[2], p[3]].map(f64::from),
-            None => [0.0; 4],
-        }
-    };
+    let texel =
+        |i: i64, j: i64| texture.texel(((j.rem_euclid(h) * w + i.rem_euclid(w)) * 4) as usize);
     let (x0, y0) = (x0 as i64, y0 as i64);
     if fx == 0.0 && fy == 0.0 {
         // Exactly on a texel centre (the comparison grid at texture resolution).
@@ -311,8 +349,8 @@ impl Prepared {
 /// texture; spec-gloss with sRGB diffuse and specular, glossiness in A (2017 draft).
 fn legacy_inputs(
     pbr: &LegacyPbr,
-    colour: Option<&Rgba32FImage>,
-    data: Option<&Rgba32FImage>,
+    colour: Option<&TextureImage>,
+    data: Option<&TextureImage>,
     uv: [f64; 2],
 ) -> Inputs {
     let colour_texel = colour.map(|t| bilinear(t, uv));
