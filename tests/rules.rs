@@ -35,7 +35,15 @@ fn asset(tangents: bool) -> Value {
         "data:application/octet-stream;base64,{}",
         base64::engine::general_purpose::STANDARD.encode(&data)
     );
-    let accessor = |offset: usize, kind: &str| json!({"bufferView": 0, "byteOffset": offset, "componentType": 5126, "count": 3, "type": kind});
+    // One bufferView per accessor: tightly packed attributes may not share a view.
+    // (offset, length) of POSITION, NORMAL, TEXCOORD and TANGENT, which only some cases use.
+    let spans = [(0, 36), (36, 36), (120, 24), (72, 48)];
+    let views: Vec<Value> = spans[..if tangents { 4 } else { 3 }]
+        .iter()
+        .map(|(offset, length)| json!({"buffer": 0, "byteOffset": offset, "byteLength": length, "target": 34962}))
+        .collect();
+    let view_at = |offset: usize| spans.iter().position(|(o, _)| *o == offset).unwrap();
+    let accessor = |offset: usize, kind: &str| json!({"bufferView": view_at(offset), "componentType": 5126, "count": 3, "type": kind});
     let mut position = accessor(0, "VEC3");
     position["min"] = json!([0.0, 0.0, 0.0]);
     position["max"] = json!([1.0, 1.0, 0.0]);
@@ -51,7 +59,7 @@ fn asset(tangents: bool) -> Value {
         } else {
             json!([position, accessor(36, "VEC3"), accessor(120, "VEC2")])
         },
-        "bufferViews": [{"buffer": 0, "byteLength": data.len(), "target": 34962}],
+        "bufferViews": views,
         "buffers": [{"uri": uri, "byteLength": data.len()}]
     })
 }
@@ -67,7 +75,7 @@ fn attributes(tangents: bool) -> Value {
 /// The base asset with TANGENT on its primitive.
 fn with_tangents() -> Value {
     let full = asset(true);
-    json!({"meshes": full["meshes"], "accessors": full["accessors"]})
+    json!({"meshes": full["meshes"], "accessors": full["accessors"], "bufferViews": full["bufferViews"]})
 }
 
 /// RFC 7386 JSON merge patch.
@@ -278,9 +286,16 @@ fn issues(uri: &str, bytes: Vec<u8>, deep: bool, folder: Option<&str>) -> Vec<(S
         Some(folder) => check_bytes(uri, bytes, &FolderResources::new(folder), &options),
         None => check_bytes(uri, bytes, &NoResources, &options),
     };
+    // The base primitive carries two UV sets for the cases that need them; which of them a
+    // case leaves unused is not what these tests are about.
+    let unused_uv_set = |d: &&gltfmat::check::Diagnostic| {
+        d.code == "UNUSED_OBJECT"
+            && matches!(&d.location, Location::Pointer(p) if p.contains("/attributes/TEXCOORD_"))
+    };
     let mut found: Vec<_> = report
         .diagnostics
         .iter()
+        .filter(|d| !unused_uv_set(d))
         .map(|d| {
             assert_eq!(
                 d.severity,

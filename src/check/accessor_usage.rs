@@ -6,6 +6,7 @@
 //! the same single walk over the accessor's elements that computes min/max.
 
 use super::context::{elements, unsigned, Context};
+use super::primitives::Format;
 use crate::document::accessor_types::component_count;
 use serde_json::Value;
 use std::collections::HashMap;
@@ -330,6 +331,7 @@ pub(super) fn is_unit_length(length: f64) -> bool {
 pub(super) fn checkers(ctx: &Context) -> HashMap<usize, Vec<Checker>> {
     let mut found = Uses {
         accessors: ctx.items("accessors"),
+        quantized: ctx.extensions_used().contains(&"KHR_mesh_quantization"),
         map: HashMap::new(),
     };
     for (_, pointer, mesh) in ctx.objects("meshes") {
@@ -354,11 +356,10 @@ pub(super) fn checkers(ctx: &Context) -> HashMap<usize, Vec<Checker>> {
 
 struct Uses<'a> {
     accessors: &'a [Value],
+    /// KHR_mesh_quantization widens the attribute formats.
+    quantized: bool,
     map: HashMap<usize, Vec<Checker>>,
 }
-
-/// Float, or the normalised signed types KHR_mesh_quantization allows for directions.
-const DIRECTION_TYPES: &[u64] = &[5126, 5120, 5122];
 
 impl Uses<'_> {
     fn add(&mut self, accessor: usize, pointer: String, kind: Kind) {
@@ -382,19 +383,29 @@ impl Uses<'_> {
         format_ok.then_some(index)
     }
 
+    /// A vertex attribute's accessor index, when its format is one the semantic allows
+    /// (others are reported by the format check and not read here).
+    fn attribute(&self, attributes: &Value, semantic: &str) -> Option<(usize, Format<'_>)> {
+        let index = unsigned(attributes, semantic)? as usize;
+        let format = Format::of(self.accessors.get(index)?)?;
+        format
+            .allowed_for(semantic, false, self.quantized)?
+            .then_some((index, format))
+    }
+
     fn primitive(&mut self, primitive: &Value, pointer: &str) {
         let Some(attributes) = primitive.get("attributes").filter(|a| a.is_object()) else {
             return;
         };
         let attribute = |name: &str| format!("{pointer}/attributes/{name}");
-        if let Some(a) = self.accessor(attributes, "NORMAL", "VEC3", DIRECTION_TYPES) {
+        if let Some((a, _)) = self.attribute(attributes, "NORMAL") {
             self.add(a, attribute("NORMAL"), Kind::UnitVector);
         }
-        if let Some(a) = self.accessor(attributes, "TANGENT", "VEC4", DIRECTION_TYPES) {
+        if let Some((a, _)) = self.attribute(attributes, "TANGENT") {
             self.add(a, attribute("TANGENT"), Kind::UnitVectorWithSign);
         }
-        for kind in ["VEC3", "VEC4"] {
-            if let Some(a) = self.accessor(attributes, "COLOR_0", kind, &[5126]) {
+        if let Some((a, format)) = self.attribute(attributes, "COLOR_0") {
+            if format.is_float() {
                 self.add(a, attribute("COLOR_0"), Kind::Clamped);
             }
         }

@@ -7,7 +7,7 @@ use crate::document::json::escape_token;
 use crate::document::uri::ResourceLoader;
 use crate::document::{BufferData, Bytes, Document};
 use serde_json::Value;
-use std::collections::{BTreeSet, HashSet};
+use std::collections::HashSet;
 
 /// A resource as listed in the report's `info.resources`.
 #[derive(Debug, Clone, Default)]
@@ -35,8 +35,8 @@ pub struct AssetInfo {
 /// What a material demands of the primitives that use it.
 #[derive(Debug, Clone, Default)]
 pub struct MaterialNeeds {
-    /// texCoord sets read by its textures.
-    pub texcoords: BTreeSet<u64>,
+    /// Each texture binding (its pointer) with the texCoord set it reads.
+    pub texcoords: Vec<(String, u64)>,
     /// A normal, clearcoat-normal or anisotropy texture needs a tangent space.
     pub needs_tangent: bool,
     /// The material has a normal texture, from which a runtime can generate tangents.

@@ -139,11 +139,15 @@ impl TextureSlot {
 
 /// The texCoord a textureInfo reads, with KHR_texture_transform's override applied.
 pub fn effective_texcoord(info: &Value) -> u64 {
-    info.get("extensions")
-        .and_then(|e| e.get("KHR_texture_transform"))
-        .and_then(|t| unsigned(t, "texCoord"))
+    transform_texcoord(info)
         .or_else(|| unsigned(info, "texCoord"))
         .unwrap_or(0)
+}
+
+/// The texCoord override of a KHR_texture_transform on a textureInfo.
+fn transform_texcoord(info: &Value) -> Option<u64> {
+    let transform = info.get("extensions")?.get("KHR_texture_transform")?;
+    unsigned(transform, "texCoord")
 }
 
 pub fn check_textures(ctx: &mut Context) {
@@ -207,7 +211,14 @@ fn texture_needs(ctx: &mut Context, material: &Value, pointer: &str) -> Material
         };
         let info_pointer = format!("{pointer}{}", slot.pointer());
         ctx.reference(info, "index", &info_pointer, "textures");
-        needs.texcoords.insert(effective_texcoord(info));
+        // The Khronos validator checks both the binding's own set and a
+        // KHR_texture_transform override, each under its own pointer.
+        let own = unsigned(info, "texCoord").unwrap_or(0);
+        needs.texcoords.push((info_pointer.clone(), own));
+        if let Some(set) = transform_texcoord(info) {
+            let at = format!("{info_pointer}/extensions/KHR_texture_transform");
+            needs.texcoords.push((at, set));
+        }
         if slot.is_normal() || slot.key == "anisotropyTexture" {
             needs.needs_tangent = true;
         }

@@ -14,6 +14,7 @@ mod extensions;
 mod influences;
 mod materials;
 mod objects;
+mod primitives;
 mod resources;
 mod unused;
 
@@ -139,6 +140,7 @@ fn run_passes(ctx: &mut Context) {
     materials::check_textures(ctx);
     materials::check_materials(ctx);
     objects::check_meshes(ctx);
+    primitives::check(ctx);
     objects::check_nodes_and_scenes(ctx);
     objects::check_skins_animations_cameras(ctx);
     unused::check(ctx);

@@ -1,10 +1,11 @@
 //! Asset version, accessors, meshes, nodes, scenes, skins, animations and cameras: references
 //! and the structural rules a material checker depends on (texCoords, tangent space).
 
-use super::context::{elements, member, unsigned, Context};
+use super::context::{elements, member, unsigned, Context, MaterialNeeds};
+use super::primitives::semantic_index;
 use crate::document::accessor_types::{component_count, component_size};
 use serde_json::Value;
-use std::collections::HashSet;
+use std::collections::{BTreeSet, HashSet};
 
 fn version(text: &str) -> Option<(u64, u64)> {
     let (major, minor) = text.split_once('.')?;
@@ -164,6 +165,8 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
     }
     ctx.reference(primitive, "indices", pointer, "accessors");
     let has = |name: &str| attributes.is_some_and(|a| a.contains_key(name));
+    let texcoord_sets = texcoord_sets(attributes);
+    let mut texcoords_used = BTreeSet::new();
     if let Some(material) = ctx.reference(primitive, "material", pointer, "materials") {
         let needs = ctx
             .material_needs
@@ -171,17 +174,13 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
             .cloned()
             .unwrap_or_default();
         let material_pointer = member(pointer, "material");
-        if needs
-            .texcoords
-            .iter()
-            .any(|n| !has(&format!("TEXCOORD_{n}")))
-        {
-            ctx.emit(
-                "MESH_PRIMITIVE_TOO_FEW_TEXCOORDS",
-                material_pointer.clone(),
-                "Material is incompatible with mesh primitive: a texture reads a TEXCOORD set the primitive does not have.",
-            );
-        }
+        read_texcoords(
+            ctx,
+            &needs,
+            &material_pointer,
+            texcoord_sets,
+            &mut texcoords_used,
+        );
         let has_tangent_space = has("NORMAL") && has("TANGENT");
         if needs.needs_tangent && !has_tangent_space {
             if needs.can_generate_tangent {
@@ -207,6 +206,22 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
     } else if has("TANGENT") && primitive.get("material").is_none() {
         unused_tangent(ctx, pointer);
     }
+    let mapped = check_variant_mappings(ctx, primitive, pointer, variant_count);
+    for (material, at) in mapped {
+        let needs = ctx
+            .material_needs
+            .get(material)
+            .cloned()
+            .unwrap_or_default();
+        read_texcoords(ctx, &needs, &at, texcoord_sets, &mut texcoords_used);
+    }
+    for set in (0..texcoord_sets).filter(|s| !texcoords_used.contains(s)) {
+        ctx.emit(
+            "UNUSED_OBJECT",
+            format!("{pointer}/attributes/TEXCOORD_{set}"),
+            "This object may be unused.",
+        );
+    }
     if has("TANGENT") && !has("NORMAL") {
         ctx.emit(
             "MESH_PRIMITIVE_TANGENT_WITHOUT_NORMAL",
@@ -214,7 +229,48 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
             "TANGENT attribute without NORMAL found.",
         );
     }
-    check_variant_mappings(ctx, primitive, pointer, variant_count);
+}
+
+/// Marks the texCoord sets a material's bindings read as used, and reports each binding that
+/// reads a set the primitive does not have (at `at`, the pointer to the material reference).
+fn read_texcoords(
+    ctx: &mut Context,
+    needs: &MaterialNeeds,
+    at: &str,
+    sets: u64,
+    used: &mut BTreeSet<u64>,
+) {
+    for (binding, set) in &needs.texcoords {
+        if *set < sets {
+            used.insert(*set);
+        } else {
+            ctx.emit(
+                "MESH_PRIMITIVE_TOO_FEW_TEXCOORDS",
+                at,
+                format!("Material is incompatible with mesh primitive: Texture binding '{binding}' needs 'TEXCOORD_{set}' attribute."),
+            );
+        }
+    }
+}
+
+/// How many TEXCOORD_n sets a primitive has: n = 0, 1, … without gaps, or 0 when they have
+/// gaps (the Khronos validator then ignores them all).
+fn texcoord_sets(attributes: Option<&serde_json::Map<String, Value>>) -> u64 {
+    let sets: Vec<u64> = attributes
+        .into_iter()
+        .flat_map(|a| a.keys())
+        .filter_map(|k| k.strip_prefix("TEXCOORD_"))
+        .filter_map(semantic_index)
+        .collect();
+    let continuous = sets
+        .iter()
+        .max()
+        .is_some_and(|m| m + 1 == sets.len() as u64);
+    if continuous {
+        sets.len() as u64
+    } else {
+        0
+    }
 }
 
 fn unused_tangent(ctx: &mut Context, pointer: &str) {
@@ -225,20 +281,23 @@ fn unused_tangent(ctx: &mut Context, pointer: &str) {
     );
 }
 
+/// Checks the KHR_materials_variants mappings; returns each mapped material with the
+/// pointer to its reference.
 fn check_variant_mappings(
     ctx: &mut Context,
     primitive: &Value,
     pointer: &str,
     variant_count: usize,
-) {
+) -> Vec<(usize, String)> {
+    let mut mapped = Vec::new();
     let Some(ext) = primitive
         .get("extensions")
         .and_then(|e| e.get("KHR_materials_variants"))
     else {
-        return;
+        return mapped;
     };
     let Some(mappings) = ext.get("mappings").and_then(Value::as_array) else {
-        return;
+        return mapped;
     };
     let root_declares_variants = ctx
         .root
@@ -256,7 +315,9 @@ fn check_variant_mappings(
             );
             continue;
         }
-        ctx.reference(mapping, "material", &mp, "materials");
+        if let Some(material) = ctx.reference(mapping, "material", &mp, "materials") {
+            mapped.push((material, member(&mp, "material")));
+        }
         for (v, variant) in elements(mapping, "variants") {
             let vp = format!("{mp}/variants/{v}");
             let Some(index) = variant.as_u64() else {
@@ -282,6 +343,7 @@ fn check_variant_mappings(
             }
         }
     }
+    mapped
 }
 
 pub fn check_nodes_and_scenes(ctx: &mut Context) {
