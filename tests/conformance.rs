@@ -23,6 +23,7 @@ const REQUIRED: &[&str] = &[
     "base/data/mesh_data",
     "base/data/animation_data",
     "base/data/skin_data",
+    "base/data/mesh",
     "base/data/image",
     "base/data/texture",
     "base/data/sampler",

@@ -17,6 +17,7 @@ mod objects;
 mod primitives;
 mod resources;
 mod unused;
+mod view_usage;
 
 pub use context::Context;
 pub use diagnostic::{Diagnostic, Location, Severity};
@@ -141,6 +142,7 @@ fn run_passes(ctx: &mut Context) {
     materials::check_materials(ctx);
     objects::check_meshes(ctx);
     primitives::check(ctx);
+    view_usage::check(ctx);
     objects::check_nodes_and_scenes(ctx);
     objects::check_skins_animations_cameras(ctx);
     unused::check(ctx);

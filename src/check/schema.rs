@@ -145,14 +145,27 @@ pub fn validate_gltf1_pbr(extension: &Value, pointer: &str) -> Vec<Diagnostic> {
 const GLTF1_PBR: &str = include_str!("../../schema/gltf1/materials_pbr.schema.json");
 
 fn diagnostics(validator: &Validator, instance: &Value, prefix: &str) -> Vec<Diagnostic> {
-    validator
+    let mut found: Vec<Diagnostic> = validator
         .iter_errors(instance)
         .flat_map(|error| {
             let pointer = format!("{prefix}{}", error.instance_path());
             let schema_path = error.schema_path().to_string();
             map_error(error.kind(), error.instance(), &pointer, &schema_path)
         })
-        .collect()
+        .collect();
+    // An array reports its first wrongly typed element only.
+    let mut arrays = std::collections::HashSet::new();
+    found.retain(|d| d.code != "ARRAY_TYPE_MISMATCH" || arrays.insert(d.location.clone()));
+    found
+}
+
+/// The array holding the element at `pointer`, when that array is a property inside an
+/// object (`/meshes/0/primitives/3` → `/meshes/0/primitives`). Elements of the top-level
+/// arrays are objects in their own right and are reported where they are.
+fn nested_array_of(pointer: &str) -> Option<&str> {
+    let (parent, last) = pointer.rsplit_once('/')?;
+    let nested = parent.matches('/').count() >= 2;
+    (nested && !last.is_empty() && last.bytes().all(|b| b.is_ascii_digit())).then_some(parent)
 }
 
 fn member(pointer: &str, key: &str) -> String {
@@ -188,6 +201,16 @@ fn map_error(
     let one =
         |code: &'static str, at: String, message: String| vec![Diagnostic::at(code, at, message)];
     match kind {
+        K::Type { kind } if type_name(kind) == "object" && nested_array_of(pointer).is_some() => {
+            one(
+                "ARRAY_TYPE_MISMATCH",
+                nested_array_of(pointer).unwrap_or_default().to_string(),
+                format!(
+                    "Type mismatch. Array element {} is not a 'object'.",
+                    show(instance)
+                ),
+            )
+        }
         K::Type { kind } => one(
             "TYPE_MISMATCH",
             pointer.to_string(),
