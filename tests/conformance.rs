@@ -24,6 +24,7 @@ const REQUIRED: &[&str] = &[
     "base/data/animation_data",
     "base/data/skin_data",
     "base/data/mesh",
+    "base/data/scene",
     "base/data/image",
     "base/data/texture",
     "base/data/sampler",

@@ -13,6 +13,7 @@ pub mod context;
 mod extensions;
 mod influences;
 mod materials;
+mod nodes;
 mod objects;
 mod primitives;
 mod resources;
@@ -144,6 +145,7 @@ fn run_passes(ctx: &mut Context) {
     primitives::check(ctx);
     view_usage::check(ctx);
     objects::check_nodes_and_scenes(ctx);
+    nodes::check(ctx);
     objects::check_skins_animations_cameras(ctx);
     unused::check(ctx);
     if !khronos {

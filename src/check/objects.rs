@@ -2,7 +2,7 @@
 //! and the structural rules a material checker depends on (texCoords, tangent space).
 
 use super::context::{elements, member, unsigned, Context, MaterialNeeds};
-use super::primitives::semantic_index;
+use super::primitives::indexed_sets;
 use crate::document::accessor_types::{component_count, component_size};
 use serde_json::Value;
 use std::collections::{BTreeSet, HashSet};
@@ -165,7 +165,7 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
     }
     ctx.reference(primitive, "indices", pointer, "accessors");
     let has = |name: &str| attributes.is_some_and(|a| a.contains_key(name));
-    let texcoord_sets = texcoord_sets(attributes);
+    let texcoord_sets = attributes.map_or(0, |a| indexed_sets(a, "TEXCOORD"));
     let mut texcoords_used = BTreeSet::new();
     if let Some(material) = ctx.reference(primitive, "material", pointer, "materials") {
         let needs = ctx
@@ -253,26 +253,6 @@ fn read_texcoords(
     }
 }
 
-/// How many TEXCOORD_n sets a primitive has: n = 0, 1, … without gaps, or 0 when they have
-/// gaps (the Khronos validator then ignores them all).
-fn texcoord_sets(attributes: Option<&serde_json::Map<String, Value>>) -> u64 {
-    let sets: Vec<u64> = attributes
-        .into_iter()
-        .flat_map(|a| a.keys())
-        .filter_map(|k| k.strip_prefix("TEXCOORD_"))
-        .filter_map(semantic_index)
-        .collect();
-    let continuous = sets
-        .iter()
-        .max()
-        .is_some_and(|m| m + 1 == sets.len() as u64);
-    if continuous {
-        sets.len() as u64
-    } else {
-        0
-    }
-}
-
 fn unused_tangent(ctx: &mut Context, pointer: &str) {
     ctx.emit(
         "UNUSED_MESH_TANGENT",
@@ -356,24 +336,23 @@ pub fn check_nodes_and_scenes(ctx: &mut Context) {
     for (index, pointer, node) in ctx.objects("nodes") {
         let mesh = ctx.reference(node, "mesh", &pointer, "meshes");
         let camera = ctx.reference(node, "camera", &pointer, "cameras");
-        let skin = ctx.reference(node, "skin", &pointer, "skins");
-        let mut children = 0;
+        ctx.reference(node, "skin", &pointer, "skins");
         for (c, child) in elements(node, "children") {
-            if ctx
-                .reference_value(child, &format!("{pointer}/children/{c}"), "nodes")
-                .is_some()
-            {
-                children += 1;
-            }
+            ctx.reference_value(child, &format!("{pointer}/children/{c}"), "nodes");
         }
+        // As the Khronos validator sees it: a skin alone leaves a node empty; children,
+        // even unresolved ones, do not.
+        let has_children = node
+            .get("children")
+            .and_then(Value::as_array)
+            .is_some_and(|c| !c.is_empty());
         let extras = node.get("extras").is_some_and(|e| !e.is_null());
         let named = node.get("name").is_some();
         // A joint is not empty: skinning reads its transform.
         let empty = !joints.contains(&(index as u64))
             && mesh.is_none()
             && camera.is_none()
-            && skin.is_none()
-            && children == 0
+            && !has_children
             && node.get("extensions").is_none()
             && !extras
             && !named;

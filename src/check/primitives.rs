@@ -87,7 +87,7 @@ fn morph_targets(primitive: &Value) -> Option<&[Value]> {
 }
 
 /// The index of an indexed semantic (`TEXCOORD_1` → 1): digits only, no leading zero.
-pub(super) fn semantic_index(digits: &str) -> Option<u64> {
+fn semantic_index(digits: &str) -> Option<u64> {
     let valid = !digits.is_empty()
         && digits.bytes().all(|b| b.is_ascii_digit())
         && !(digits.len() > 1 && digits.starts_with('0'));
@@ -110,6 +110,39 @@ fn classify(semantic: &str, morph: bool) -> Result<Option<(&str, u64)>, ()> {
             semantic_index(digits).map(|i| Some((family, i))).ok_or(())
         }
         _ => Err(()),
+    }
+}
+
+/// Per indexed family (COLOR, JOINTS, TEXCOORD, WEIGHTS): how many validly named sets a
+/// primitive has, and the largest index.
+fn indexed_families(attributes: &Map<String, Value>) -> HashMap<&str, (u64, u64)> {
+    let mut families: HashMap<&str, (u64, u64)> = HashMap::new();
+    for semantic in attributes.keys() {
+        if let Ok(Some((family, index))) = classify(semantic, false) {
+            let entry = families.entry(family).or_insert((0, 0));
+            entry.0 += 1;
+            entry.1 = entry.1.max(index);
+        }
+    }
+    families
+}
+
+/// How many sets of an indexed family a renderer reads: all of them when they are numbered
+/// 0, 1, … without gaps, none otherwise (as the Khronos validator counts them).
+pub(super) fn indexed_sets(attributes: &Map<String, Value>, family: &str) -> u64 {
+    match indexed_families(attributes).get(family) {
+        Some(&(count, largest)) if largest + 1 == count => count,
+        _ => 0,
+    }
+}
+
+/// The skinning sets a primitive has: JOINTS_n and WEIGHTS_n in equal number, else none.
+pub(super) fn joint_sets(attributes: &Map<String, Value>) -> u64 {
+    let joints = indexed_sets(attributes, "JOINTS");
+    if joints == indexed_sets(attributes, "WEIGHTS") {
+        joints
+    } else {
+        0
     }
 }
 
@@ -186,16 +219,9 @@ impl<'a> Walk<'_, 'a> {
 
     /// Semantic names, their numbering, and the sets every primitive needs.
     fn names(&mut self, attributes: &Map<String, Value>, at: &str) {
-        let mut families: HashMap<&str, (u64, u64)> = HashMap::new(); // count, largest index
         for semantic in attributes.keys() {
-            match classify(semantic, false) {
-                Ok(Some((family, index))) => {
-                    let entry = families.entry(family).or_insert((0, 0));
-                    entry.0 += 1;
-                    entry.1 = entry.1.max(index);
-                }
-                Ok(None) => {}
-                Err(()) => self.invalid_name(&member(at, semantic)),
+            if classify(semantic, false).is_err() {
+                self.invalid_name(&member(at, semantic));
             }
         }
         if !attributes.contains_key("POSITION") {
@@ -205,7 +231,7 @@ impl<'a> Walk<'_, 'a> {
                 "No POSITION attribute found.",
             );
         }
-        let mut counts: HashMap<&str, u64> = HashMap::new();
+        let families = indexed_families(attributes);
         for family in ["COLOR", "JOINTS", "TEXCOORD", "WEIGHTS"] {
             let (count, largest) = families.get(family).copied().unwrap_or((0, 0));
             if count > 0 && largest + 1 != count {
@@ -214,13 +240,11 @@ impl<'a> Walk<'_, 'a> {
                     at,
                     format!("Indices for indexed attribute semantic '{family}' must start with 0 and be continuous. Total expected indices: {}, total provided indices: {count}.", largest + 1),
                 );
-                continue;
             }
-            counts.insert(family, count);
         }
         let (joints, weights) = (
-            counts.get("JOINTS").copied().unwrap_or(0),
-            counts.get("WEIGHTS").copied().unwrap_or(0),
+            indexed_sets(attributes, "JOINTS"),
+            indexed_sets(attributes, "WEIGHTS"),
         );
         if joints != weights {
             self.ctx.emit(
