@@ -9,6 +9,8 @@ pub mod schema;
 mod accessor_data;
 mod accessor_fast;
 mod accessor_usage;
+mod animations;
+mod cameras;
 pub mod context;
 mod extensions;
 mod influences;
@@ -17,6 +19,7 @@ mod nodes;
 mod objects;
 mod primitives;
 mod resources;
+mod skins;
 mod unused;
 mod view_usage;
 
@@ -146,6 +149,9 @@ fn run_passes(ctx: &mut Context) {
     view_usage::check(ctx);
     objects::check_nodes_and_scenes(ctx);
     nodes::check(ctx);
+    cameras::check(ctx);
+    animations::check(ctx);
+    skins::check(ctx);
     objects::check_skins_animations_cameras(ctx);
     unused::check(ctx);
     if !khronos {

@@ -45,11 +45,15 @@ pub fn check(ctx: &mut Context) {
     unused_mesh_weights(ctx, nodes);
 }
 
-/// Each node's parent; a node listed as a child twice keeps its first parent, and the
-/// second listing is NODE_PARENT_OVERRIDE.
-fn parents(ctx: &mut Context, nodes: &[Value]) -> Vec<Option<usize>> {
+/// Each node's parent, walking `children` in node order; a node listed as a child more than
+/// once gets the last parent that lists it. Calls `relisted(parent, k, child)` for each
+/// listing after the first.
+fn walk_parents(
+    nodes: &[Value],
+    mut relisted: impl FnMut(usize, usize, usize),
+) -> Vec<Option<usize>> {
     let mut parent = vec![None; nodes.len()];
-    for (i, pointer, node) in ctx.objects("nodes") {
+    for (i, node) in nodes.iter().enumerate() {
         for (k, child) in elements(node, "children") {
             let Some(c) = child
                 .as_u64()
@@ -59,14 +63,29 @@ fn parents(ctx: &mut Context, nodes: &[Value]) -> Vec<Option<usize>> {
                 continue;
             };
             if parent[c].is_some() {
-                ctx.emit(
-                    "NODE_PARENT_OVERRIDE",
-                    format!("{pointer}/children/{k}"),
-                    format!("Value overrides parent of node {c}."),
-                );
+                relisted(i, k, c);
             }
             parent[c] = Some(i);
         }
+    }
+    parent
+}
+
+/// Each node's parent (see `walk_parents`).
+pub(super) fn parent_map(nodes: &[Value]) -> Vec<Option<usize>> {
+    walk_parents(nodes, |_, _, _| {})
+}
+
+/// Each node's parent; a second listing as a child is NODE_PARENT_OVERRIDE.
+fn parents(ctx: &mut Context, nodes: &[Value]) -> Vec<Option<usize>> {
+    let mut overrides = Vec::new();
+    let parent = walk_parents(nodes, |i, k, c| overrides.push((i, k, c)));
+    for (i, k, c) in overrides {
+        ctx.emit(
+            "NODE_PARENT_OVERRIDE",
+            format!("/nodes/{i}/children/{k}"),
+            format!("Value overrides parent of node {c}."),
+        );
     }
     parent
 }

@@ -36,6 +36,30 @@ impl<'a> Format<'a> {
         self.component_type == FLOAT
     }
 
+    pub(super) fn is(self, kind: &str) -> bool {
+        self.kind == kind
+    }
+
+    pub(super) fn normalized(self) -> bool {
+        self.normalized
+    }
+
+    /// Whether this format may hold animation output for a channel `path`; None for paths
+    /// with no format rule.
+    pub(super) fn allowed_for_animation(self, path: &str) -> Option<bool> {
+        let t = self.component_type;
+        let float = t == FLOAT && !self.normalized;
+        let normalized_int =
+            self.normalized && matches!(t, BYTE | UNSIGNED_BYTE | SHORT | UNSIGNED_SHORT);
+        let allowed = match path {
+            "translation" | "scale" => self.kind == "VEC3" && float,
+            "rotation" => self.kind == "VEC4" && (float || normalized_int),
+            "weights" => self.kind == "SCALAR" && (float || normalized_int),
+            _ => return None,
+        };
+        Some(allowed)
+    }
+
     /// Whether this format may hold the attribute `semantic` (of a morph target when
     /// `morph`); None when the semantic has no format rule (custom or invalid names).
     pub(super) fn allowed_for(self, semantic: &str, morph: bool, quantized: bool) -> Option<bool> {
