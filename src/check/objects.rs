@@ -58,6 +58,7 @@ pub fn check_asset(ctx: &mut Context) {
 
 pub fn check_accessors(ctx: &mut Context) {
     for (_, pointer, accessor) in ctx.objects("accessors") {
+        check_accessor_format(ctx, accessor, &pointer);
         if let Some(view) = ctx.reference(accessor, "bufferView", &pointer, "bufferViews") {
             check_accessor_fits(ctx, accessor, view, &pointer);
         }
@@ -77,8 +78,40 @@ pub fn check_accessors(ctx: &mut Context) {
     }
 }
 
-/// ACCESSOR_TOO_LONG: the accessor's last element must end inside its bufferView. Computed
-/// with checked arithmetic, so a count of 2^31 or 2^64 − 1 is a finding, not an overflow.
+/// What an accessor's own members must agree on, whatever its bufferView.
+fn check_accessor_format(ctx: &mut Context, accessor: &Value, pointer: &str) {
+    if accessor.get("bufferView").is_none() && accessor.get("byteOffset").is_some() {
+        ctx.emit(
+            "UNSATISFIED_DEPENDENCY",
+            member(pointer, "byteOffset"),
+            "Dependency failed. 'bufferView' must be defined.",
+        );
+    }
+    let component_type = unsigned(accessor, "componentType");
+    let normalized = accessor.get("normalized").and_then(Value::as_bool) == Some(true);
+    if normalized && matches!(component_type, Some(5126 | 5125)) {
+        ctx.emit(
+            "ACCESSOR_NORMALIZED_INVALID",
+            member(pointer, "normalized"),
+            "Only (u)byte and (u)short accessors can be normalized.",
+        );
+    }
+    let is_matrix = accessor
+        .get("type")
+        .and_then(Value::as_str)
+        .is_some_and(|t| t.starts_with("MAT"));
+    if is_matrix && unsigned(accessor, "byteOffset").is_some_and(|o| o % 4 != 0) {
+        ctx.emit(
+            "ACCESSOR_MATRIX_ALIGNMENT",
+            member(pointer, "byteOffset"),
+            "Matrix accessors must be aligned to 4-byte boundaries.",
+        );
+    }
+}
+
+/// The accessor inside its bufferView: stride, alignment of its own and total offset, and
+/// ACCESSOR_TOO_LONG, the last element ending inside the view. Computed with checked
+/// arithmetic, so a count of 2^31 or 2^64 − 1 is a finding, not an overflow.
 fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer: &str) {
     let Some(component_size) = unsigned(accessor, "componentType").and_then(component_size) else {
         return;
@@ -108,8 +141,35 @@ fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer
             (size, size)
         }
     };
-    let stride = unsigned(&ctx.items("bufferViews")[view], "byteStride").unwrap_or(element);
+    let view_object = &ctx.items("bufferViews")[view];
+    let declared_stride = unsigned(view_object, "byteStride");
+    if declared_stride.is_some_and(|s| s < element) {
+        ctx.emit(
+            "ACCESSOR_SMALL_BYTESTRIDE",
+            pointer,
+            format!("Referenced bufferView's byteStride value {} is less than accessor element's length {element}.", declared_stride.unwrap_or_default()),
+        );
+    }
+    let stride = declared_stride.unwrap_or(element);
     let offset = unsigned(accessor, "byteOffset").unwrap_or(0);
+    let size = component_size as u64;
+    if offset % size != 0 {
+        ctx.emit(
+            "ACCESSOR_OFFSET_ALIGNMENT",
+            member(pointer, "byteOffset"),
+            format!("Offset {offset} is not a multiple of componentType length {size}."),
+        );
+    }
+    let total = unsigned(view_object, "byteOffset")
+        .unwrap_or(0)
+        .saturating_add(offset);
+    if total % size != 0 {
+        ctx.emit(
+            "ACCESSOR_TOTAL_OFFSET_ALIGNMENT",
+            pointer,
+            format!("Accessor's total byteOffset {total} isn't a multiple of componentType length {size}."),
+        );
+    }
     let length = (count - 1)
         .checked_mul(stride)
         .and_then(|n| n.checked_add(last));
@@ -118,9 +178,14 @@ fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer
         .is_some_and(|end| end <= view_length);
     if !fits {
         let length = length.map_or_else(|| "more than 2^64".to_string(), |n| n.to_string());
+        let at = if offset > view_length {
+            member(pointer, "byteOffset")
+        } else {
+            pointer.to_string()
+        };
         ctx.emit(
             "ACCESSOR_TOO_LONG",
-            pointer,
+            at,
             format!("Accessor (offset: {offset}, length: {length}) does not fit referenced bufferView [{view}] length {view_length}."),
         );
     }

@@ -16,7 +16,12 @@ pub fn check(ctx: &mut Context) {
             .filter_map(|(_, j)| j.as_u64().map(|j| j as usize).filter(|j| *j < nodes.len()))
             .collect();
         inverse_binds(ctx, skin, &pointer);
-        if skin.get("joints").is_none() {
+        // An empty list is a schema error; the hierarchy is then not checked.
+        let listed = skin
+            .get("joints")
+            .and_then(Value::as_array)
+            .is_some_and(|j| !j.is_empty());
+        if !listed {
             continue;
         }
         let roots = common_roots(&parents, &joints);
