@@ -2,7 +2,9 @@
 //! `--profile khronos` must give the same multiset of (code, pointer or offset, severity) and
 //! the same per-severity counts as the expected `.report.json`.
 //!
-//! The check-core folders must pass every case; the other folders are printed, not required.
+//! Every case must match, except the known differences listed below with their reason;
+//! each case listed by name must still differ, so that the list shrinks as gltfmat catches
+//! up (in a listed folder, cases that already match are counted as passing).
 
 use gltfmat::check::codes::{self, Origin};
 use gltfmat::check::rules::SUPERSESSIONS;
@@ -12,39 +14,61 @@ use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-const REQUIRED: &[&str] = &[
-    "base/data/json",
-    "base/data/glb",
-    "base/data/asset",
-    "base/data/root",
-    "base/data/buffer",
-    "base/data/buffer_view",
-    "base/data/accessor_data",
-    "base/data/mesh_data",
-    "base/data/animation_data",
-    "base/data/skin_data",
-    "base/data/mesh",
-    "base/data/scene",
-    "base/data/image",
-    "base/data/texture",
-    "base/data/sampler",
-    "base/data/material",
-    "ext/KHR_materials_anisotropy",
-    "ext/KHR_materials_clearcoat",
-    "ext/KHR_materials_dispersion",
-    "ext/KHR_materials_emissive_strength",
-    "ext/KHR_materials_ior",
-    "ext/KHR_materials_iridescence",
-    "ext/KHR_materials_pbrSpecularGlossiness",
-    "ext/KHR_materials_sheen",
-    "ext/KHR_materials_specular",
-    "ext/KHR_materials_transmission",
-    "ext/KHR_materials_unlit",
-    "ext/KHR_materials_variants",
-    "ext/KHR_materials_volume",
-    "ext/KHR_texture_transform",
-    "ext/EXT_texture_webp",
+/// Cases (or whole folders) where gltfmat's report still differs from the Khronos one, and why.
+const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
+    (
+        "ext/KHR_lights_punctual/",
+        "KHR_lights_punctual is not checked beyond its schema yet",
+    ),
+    (
+        "ext/KHR_animation_pointer/",
+        "KHR_animation_pointer is not checked beyond its schema yet",
+    ),
+    (
+        "base/data/node/infinite_transform.gltf",
+        "numbers beyond f64 (1e400) are INVALID_JSON here, VALUE_NOT_IN_RANGE in Khronos",
+    ),
+    (
+        "base/data/camera/infinite_znear.gltf",
+        "numbers beyond f64 (1e400) are INVALID_JSON here, VALUE_NOT_IN_RANGE in Khronos",
+    ),
+    (
+        "base/data/accessor/invalid_sparse_count_and_stride.gltf",
+        "sparse accessor counts and views are not checked yet",
+    ),
+    (
+        "base/data/animation/empty_objects.gltf",
+        "Khronos reports an unused sampler at a pointer that does not exist",
+    ),
+    (
+        "base/data/skin/no_joints_in_scene.gltf",
+        "NODE_SKIN_NO_SCENE is not checked yet",
+    ),
+    (
+        "base/data/skin/skeleton_invalid.gltf",
+        "nodes used only as skin joints outside scenes are not reported unused yet",
+    ),
+    (
+        "base/data/skin/valid.gltf",
+        "nodes used only as skin joints outside scenes are not reported unused yet",
+    ),
+    (
+        "ext/KHR_mesh_quantization/data/primitive/non_required.gltf",
+        "NON_REQUIRED_EXTENSION is not checked yet",
+    ),
+    (
+        "ext/KHR_node_visibility/data/node/custom_property.gltf",
+        "KHR_node_visibility has no schema here yet",
+    ),
 ];
+
+/// The listing a case falls under (its own name, or its folder's) and the reason.
+fn known_difference(case: &str) -> Option<(&'static str, &'static str)> {
+    KNOWN_DIFFERENCES
+        .iter()
+        .find(|(prefix, _)| case.starts_with(prefix))
+        .copied()
+}
 
 fn corpus() -> PathBuf {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -165,36 +189,49 @@ fn khronos_profile_matches_the_khronos_corpus() {
         names.sort();
         folders.extend(names);
     }
-    // CONFORMANCE_SHOW=base/data/mesh prints the differences of one report-only folder.
-    let show_folder = std::env::var("CONFORMANCE_SHOW").ok();
-    let mut required_failures = Vec::new();
+    let mut unexpected = Vec::new();
+    let mut known_but_matching = Vec::new();
     let (mut total_pass, mut total_fail) = (0, 0);
     for folder in &folders {
-        let required = REQUIRED.contains(&folder.as_str());
         let (mut pass, mut fail) = (0, 0);
         for case in cases(&root.join(folder)) {
-            match run_case(&case) {
-                None => pass += 1,
-                Some(diff) => {
-                    fail += 1;
-                    if required {
-                        required_failures.push(diff);
-                    } else if show_folder.as_deref() == Some(folder.as_str()) {
-                        println!("{diff}");
+            let name = case
+                .strip_prefix(&root)
+                .unwrap_or(&case)
+                .to_string_lossy()
+                .trim_end_matches(".report.json")
+                .to_string();
+            match (run_case(&case), known_difference(&name)) {
+                (None, None) => pass += 1,
+                (None, Some((listed, _))) => {
+                    pass += 1;
+                    if !listed.ends_with('/') {
+                        known_but_matching.push(name);
                     }
+                }
+                (Some(_), Some((_, why))) => {
+                    fail += 1;
+                    println!("known difference: {name} ({why})");
+                }
+                (Some(diff), None) => {
+                    fail += 1;
+                    unexpected.push(diff);
                 }
             }
         }
         total_pass += pass;
         total_fail += fail;
-        let tag = if required { "required" } else { "report only" };
-        println!("{folder:<45} {pass} passed, {fail} failed ({tag})");
+        println!("{folder:<45} {pass} passed, {fail} known differences");
     }
-    println!("corpus total: {total_pass} passed, {total_fail} failed");
+    println!("corpus total: {total_pass} passed, {total_fail} known differences");
     assert!(
-        required_failures.is_empty(),
-        "required conformance cases differ:\n{}",
-        required_failures.join("\n")
+        unexpected.is_empty(),
+        "conformance cases differ:\n{}",
+        unexpected.join("\n")
+    );
+    assert!(
+        known_but_matching.is_empty(),
+        "these cases now match: take them off KNOWN_DIFFERENCES: {known_but_matching:?}"
     );
 }
 

@@ -15,7 +15,7 @@ use std::collections::HashMap;
 /// which admits 8-bit quantised unit vectors.
 const UNIT_TOLERANCE_VEC3: f64 = 0.00674;
 /// The same for quaternions.
-const UNIT_TOLERANCE_VEC4: f64 = 0.00769;
+pub(super) const UNIT_TOLERANCE_VEC4: f64 = 0.00769;
 
 /// (code, pointer, message)
 pub(super) type Finding = (&'static str, String, String);

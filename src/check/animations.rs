@@ -3,7 +3,7 @@
 //! (matrix or skinned nodes, morph weights without targets, duplicates).
 
 use super::context::{unsigned, Context};
-use super::primitives::Format;
+use super::primitives::{mesh_morph_targets, Format};
 use serde_json::Value;
 
 pub fn check(ctx: &mut Context) {
@@ -98,11 +98,9 @@ fn sampler_accessors(ctx: &mut Context, sampler: &Value, at: &str) {
     }
 }
 
-/// The mesh of the node a channel targets, as `primitives[0].targets` length.
+/// The morph target count of the mesh a channel's node draws.
 fn morph_target_count(ctx: &Context, node: &Value) -> Option<usize> {
-    let mesh = ctx.items("meshes").get(unsigned(node, "mesh")? as usize)?;
-    let first = mesh.get("primitives")?.as_array()?.first()?;
-    Some(first.get("targets")?.as_array()?.len())
+    mesh_morph_targets(ctx.items("meshes").get(unsigned(node, "mesh")? as usize)?)
 }
 
 fn target(ctx: &mut Context, channel: &Value, at: &str) {

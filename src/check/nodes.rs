@@ -3,13 +3,12 @@
 //! the hierarchy (a second parent, loops, scene roots that are children) and skinned meshes
 //! under transformed parents.
 
+use super::accessor_usage::UNIT_TOLERANCE_VEC4;
 use super::context::{elements, member, unsigned, Context};
-use super::primitives::joint_sets;
+use super::primitives::{joint_sets, mesh_morph_targets};
 use serde_json::Value;
 use std::collections::HashSet;
 
-/// How far from 1 a rotation quaternion's length may be (the Khronos tolerance).
-const UNIT_TOLERANCE_VEC4: f64 = 0.00769;
 /// How far a matrix may be from its TRS recomposition.
 const TRS_TOLERANCE: f64 = 0.00005;
 
@@ -269,10 +268,7 @@ fn dependencies(ctx: &mut Context, node: &Value, pointer: &str) {
         return;
     };
     if let Some(weights) = node.get("weights").and_then(Value::as_array) {
-        let targets = primitives
-            .first()
-            .and_then(|p| p.get("targets")?.as_array())
-            .map(Vec::len);
+        let targets = mesh.and_then(mesh_morph_targets);
         if targets != Some(weights.len()) {
             ctx.emit(
                 "NODE_WEIGHTS_INVALID",

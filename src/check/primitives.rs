@@ -99,6 +99,13 @@ impl<'a> Format<'a> {
     }
 }
 
+/// How many morph targets a mesh has, as its first primitive lists them (None when it lists
+/// none): what node weights and weight animations are counted against.
+pub(super) fn mesh_morph_targets(mesh: &Value) -> Option<usize> {
+    let first = mesh.get("primitives")?.as_array()?.first()?;
+    Some(first.get("targets")?.as_array()?.len())
+}
+
 /// A primitive's morph targets when they are a non-empty list of non-empty objects; any
 /// other form is a schema error, and the list is then ignored, as the Khronos validator does.
 fn morph_targets(primitive: &Value) -> Option<&[Value]> {
