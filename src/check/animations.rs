@@ -59,9 +59,7 @@ fn sampler_accessors(ctx: &mut Context, sampler: &Value, at: &str) {
         let Some(data) = accessor(ctx, sampler, key) else {
             continue;
         };
-        let view =
-            unsigned(data, "bufferView").and_then(|v| ctx.items("bufferViews").get(v as usize));
-        if view.is_some_and(|v| v.get("byteStride").is_some()) {
+        if ctx.has_strided_view(data) {
             ctx.emit(
                 "ANIMATION_SAMPLER_ACCESSOR_WITH_BYTESTRIDE",
                 format!("{at}/{key}"),

@@ -105,6 +105,13 @@ impl<'a> Context<'a> {
             .map_or(&[], Vec::as_slice)
     }
 
+    /// Whether an accessor's bufferView declares a byteStride (false when it has no view).
+    pub fn has_strided_view(&self, accessor: &Value) -> bool {
+        unsigned(accessor, "bufferView")
+            .and_then(|v| self.items("bufferViews").get(v as usize))
+            .is_some_and(|v| v.get("byteStride").is_some())
+    }
+
     /// Object elements of a top-level array, with their index and pointer.
     pub fn objects(&self, collection: &'static str) -> Vec<(usize, String, &'a Value)> {
         self.items(collection)

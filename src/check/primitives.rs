@@ -359,8 +359,8 @@ impl<'a> Walk<'_, 'a> {
             _ => {}
         }
         let view = unsigned(accessor, "bufferView")
-            .and_then(|v| Some((v, self.ctx.items("bufferViews").get(v as usize)?)));
-        let strided = view.is_some_and(|(_, v)| v.get("byteStride").is_some());
+            .filter(|v| (*v as usize) < self.ctx.items("bufferViews").len());
+        let strided = self.ctx.has_strided_view(accessor);
         let element =
             format.and_then(|f| Some(component_size(f.component_type)? * component_count(f.kind)?));
         let offset = unsigned(accessor, "byteOffset").unwrap_or(0);
@@ -372,7 +372,7 @@ impl<'a> Walk<'_, 'a> {
                 "Vertex attribute data must be aligned to 4-byte boundaries.",
             );
         }
-        if let (Some((view, _)), false) = (view, strided) {
+        if let (Some(view), false) = (view, strided) {
             let seen = self.view_accessors.entry(view).or_default();
             if seen.insert(index.as_u64().unwrap_or(u64::MAX)) && seen.len() > 1 {
                 self.ctx.emit(
@@ -389,9 +389,7 @@ impl<'a> Walk<'_, 'a> {
         let value = primitive.get("indices")?;
         let accessor = self.accessor(value)?;
         let at = member(pointer, "indices");
-        let view = unsigned(accessor, "bufferView")
-            .and_then(|v| self.ctx.items("bufferViews").get(v as usize));
-        if view.is_some_and(|v| v.get("byteStride").is_some()) {
+        if self.ctx.has_strided_view(accessor) {
             self.ctx.emit(
                 "MESH_PRIMITIVE_INDICES_ACCESSOR_WITH_BYTESTRIDE",
                 at.clone(),

@@ -67,9 +67,7 @@ fn inverse_binds(ctx: &mut Context, skin: &Value, pointer: &str) {
         return;
     };
     let at = member(pointer, "inverseBindMatrices");
-    let view =
-        unsigned(accessor, "bufferView").and_then(|v| ctx.items("bufferViews").get(v as usize));
-    if view.is_some_and(|v| v.get("byteStride").is_some()) {
+    if ctx.has_strided_view(accessor) {
         ctx.emit(
             "SKIN_IBM_ACCESSOR_WITH_BYTESTRIDE",
             at.clone(),
