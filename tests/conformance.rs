@@ -52,14 +52,6 @@ const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
         "base/data/skin/valid.gltf",
         "nodes used only as skin joints outside scenes are not reported unused yet",
     ),
-    (
-        "ext/KHR_mesh_quantization/data/primitive/non_required.gltf",
-        "NON_REQUIRED_EXTENSION is not checked yet",
-    ),
-    (
-        "ext/KHR_node_visibility/data/node/custom_property.gltf",
-        "KHR_node_visibility has no schema here yet",
-    ),
 ];
 
 /// The listing a case falls under (its own name, or its folder's) and the reason.

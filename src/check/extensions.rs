@@ -111,8 +111,16 @@ fn valid_name(name: &str) -> bool {
         && rest.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
+/// Extensions a loader cannot ignore: using one without requiring it is an error.
+const MUST_BE_REQUIRED: &[&str] = &["KHR_mesh_quantization"];
+
 fn check_declarations(ctx: &mut Context) {
     let used = ctx.extensions_used();
+    let required: Vec<&str> = ctx
+        .items("extensionsRequired")
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
     for (i, value) in ctx.items("extensionsUsed").iter().enumerate() {
         let Some(name) = value.as_str() else { continue };
         let pointer = format!("/extensionsUsed/{i}");
@@ -126,8 +134,15 @@ fn check_declarations(ctx: &mut Context) {
         if supported(ctx, name).is_none() {
             ctx.emit(
                 "UNSUPPORTED_EXTENSION",
-                pointer,
+                pointer.clone(),
                 format!("Cannot validate an extension as it is not supported by the validator: '{name}'."),
+            );
+        }
+        if MUST_BE_REQUIRED.contains(&name) && !required.contains(&name) {
+            ctx.emit(
+                "NON_REQUIRED_EXTENSION",
+                pointer,
+                format!("Extension '{name}' cannot be optional."),
             );
         }
     }

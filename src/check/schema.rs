@@ -81,6 +81,10 @@ const EXTENSIONS: &[(&str, &str)] = &[
         "EXT_texture_webp",
         include_str!("../../schema/extensions/EXT_texture_webp.schema.json"),
     ),
+    (
+        "KHR_node_visibility",
+        include_str!("../../schema/extensions/KHR_node_visibility.schema.json"),
+    ),
 ];
 
 /// Extensions the Khronos validator does not implement: in its profile their objects are not
