@@ -17,10 +17,6 @@ use std::path::{Path, PathBuf};
 /// Cases (or whole folders) where gltfmat's report still differs from the Khronos one, and why.
 const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
     (
-        "ext/KHR_lights_punctual/",
-        "KHR_lights_punctual is not checked beyond its schema yet",
-    ),
-    (
         "ext/KHR_animation_pointer/",
         "KHR_animation_pointer is not checked beyond its schema yet",
     ),

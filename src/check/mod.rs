@@ -14,6 +14,7 @@ mod cameras;
 pub mod context;
 mod extensions;
 mod influences;
+mod lights;
 mod materials;
 mod nodes;
 mod objects;
@@ -152,6 +153,7 @@ fn run_passes(ctx: &mut Context) {
     cameras::check(ctx);
     animations::check(ctx);
     skins::check(ctx);
+    lights::check(ctx);
     objects::check_skins_animations_cameras(ctx);
     unused::check(ctx);
     if !khronos {

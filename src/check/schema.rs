@@ -85,6 +85,18 @@ const EXTENSIONS: &[(&str, &str)] = &[
         "KHR_node_visibility",
         include_str!("../../schema/extensions/KHR_node_visibility.schema.json"),
     ),
+    (
+        "KHR_lights_punctual",
+        include_str!("../../schema/extensions/KHR_lights_punctual.schema.json"),
+    ),
+    (
+        "KHR_lights_punctual_light",
+        include_str!("../../schema/extensions/KHR_lights_punctual_light.schema.json"),
+    ),
+    (
+        "KHR_lights_punctual_node",
+        include_str!("../../schema/extensions/KHR_lights_punctual_node.schema.json"),
+    ),
 ];
 
 /// Extensions the Khronos validator does not implement: in its profile their objects are not
