@@ -2,12 +2,17 @@
 //! output accessors (format, bounds, byteStride, key frame counts) and channel targets
 //! (matrix or skinned nodes, morph weights without targets, duplicates).
 
-use super::context::{unsigned, Context};
+use super::context::{elements, unsigned, Context};
 use super::primitives::{mesh_morph_targets, Format};
 use serde_json::Value;
 
 pub fn check(ctx: &mut Context) {
+    let pointer_paths = ctx.extensions_used().contains(&"KHR_animation_pointer");
     for (_, pointer, animation) in ctx.objects("animations") {
+        for (c, channel) in elements(animation, "channels") {
+            let at = format!("{pointer}/channels/{c}/target");
+            animation_pointer(ctx, channel, &at, pointer_paths);
+        }
         let samplers = animation.get("samplers").and_then(Value::as_array);
         let channels = animation.get("channels").and_then(Value::as_array);
         let (Some(samplers), Some(channels)) = (samplers, channels) else {
@@ -34,6 +39,51 @@ pub fn check(ctx: &mut Context) {
                 }
             }
         }
+    }
+}
+
+/// The target path `pointer` exists only with KHR_animation_pointer, which then owns the
+/// target: no node, and that path.
+fn animation_pointer(ctx: &mut Context, channel: &Value, at: &str, declared: bool) {
+    let Some(target) = channel.get("target") else {
+        return;
+    };
+    let path = target.get("path").and_then(Value::as_str);
+    if path == Some("pointer") && !declared {
+        ctx.emit(
+            "VALUE_NOT_IN_LIST",
+            format!("{at}/path"),
+            "Invalid value 'pointer'. Valid values are ('translation', 'rotation', 'scale', 'weights').",
+        );
+    }
+    let Some(extension) = target
+        .get("extensions")
+        .and_then(|e| e.get("KHR_animation_pointer"))
+    else {
+        return;
+    };
+    let here = format!("{at}/extensions/KHR_animation_pointer");
+    if !extension.is_object() {
+        return;
+    }
+    ctx.emit(
+        "INCOMPLETE_EXTENSION_SUPPORT",
+        here.clone(),
+        "Validation support for this extension is incomplete; the asset may have undetected issues.",
+    );
+    if target.get("node").is_some() {
+        ctx.emit(
+            "KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_NODE",
+            here.clone(),
+            "This extension requires the animation channel target node to be undefined.",
+        );
+    }
+    if let Some(other) = path.filter(|p| *p != "pointer") {
+        ctx.emit(
+            "KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_PATH",
+            here,
+            format!("This extension requires the animation channel target path to be 'pointer'. Found '{other}' instead."),
+        );
     }
 }
 

@@ -86,6 +86,10 @@ const EXTENSIONS: &[(&str, &str)] = &[
         include_str!("../../schema/extensions/KHR_node_visibility.schema.json"),
     ),
     (
+        "KHR_animation_pointer",
+        include_str!("../../schema/extensions/KHR_animation_pointer.schema.json"),
+    ),
+    (
         "KHR_lights_punctual",
         include_str!("../../schema/extensions/KHR_lights_punctual.schema.json"),
     ),
