@@ -121,9 +121,7 @@ fn sampler_accessors(ctx: &mut Context, sampler: &Value, at: &str) {
         return;
     };
     let at = format!("{at}/input");
-    let scalar_float =
-        Format::of(input).is_some_and(|f| f.is("SCALAR") && f.is_float() && !f.normalized());
-    if !scalar_float {
+    if !Format::of(input).is_some_and(|f| f.is_plain_float("SCALAR")) {
         ctx.emit(
             "ANIMATION_SAMPLER_INPUT_ACCESSOR_INVALID_FORMAT",
             at.clone(),

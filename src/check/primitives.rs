@@ -36,12 +36,9 @@ impl<'a> Format<'a> {
         self.component_type == FLOAT
     }
 
-    pub(super) fn is(self, kind: &str) -> bool {
-        self.kind == kind
-    }
-
-    pub(super) fn normalized(self) -> bool {
-        self.normalized
+    /// Whether this is `kind` with non-normalised float components.
+    pub(super) fn is_plain_float(self, kind: &str) -> bool {
+        self.kind == kind && self.component_type == FLOAT && !self.normalized
     }
 
     /// Whether this format may hold animation output for a channel `path`; None for paths

@@ -74,9 +74,7 @@ fn inverse_binds(ctx: &mut Context, skin: &Value, pointer: &str) {
             "bufferView.byteStride must not be defined for buffer views used by inverse bind matrices accessors.",
         );
     }
-    let mat4_float =
-        Format::of(accessor).is_some_and(|f| f.is("MAT4") && f.is_float() && !f.normalized());
-    if !mat4_float {
+    if !Format::of(accessor).is_some_and(|f| f.is_plain_float("MAT4")) {
         ctx.emit(
             "SKIN_IBM_INVALID_FORMAT",
             at.clone(),
