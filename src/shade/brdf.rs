@@ -3,7 +3,12 @@
 //! in the local shading frame: normal (0, 0, 1), tangent (1, 0, 0), bitangent (0, 1, 0).
 //! Every function returns a finite value for any unit input, including α = 0 and grazing
 //! angles (the smallest α evaluated is [`MIN_ALPHA`]).
+//!
+//! The lobes are generic over [`Real`]: material parameters are plain `f64`, the directions
+//! are one pair (`f64`) or several evaluated together ([`Lanes`]), and the results agree bit
+//! for bit. Conditions on the directions are selects, not branches.
 
+use super::lanes::{Lanes, Mask, Real};
 use std::f64::consts::PI;
 
 pub type V3 = [f64; 3];
@@ -29,13 +34,64 @@ pub fn half(v: V3, l: V3) -> V3 {
     normalize([v[0] + l[0], v[1] + l[1], v[2] + l[2]])
 }
 
-pub fn max3(c: V3) -> f64 {
-    c[0].max(c[1]).max(c[2])
+pub fn max3<R: Real>([a, b, c]: [R; 3]) -> R {
+    a.max(b).max(c)
+}
+
+/// A view/light pair and what every lobe derives from it, computed once per pair.
+#[derive(Debug, Clone, Copy)]
+pub struct Geometry<R: Real> {
+    pub v: [R; 3],
+    pub l: [R; 3],
+    pub h: [R; 3],
+    /// Both directions are above the surface; the BRDF is 0 otherwise.
+    pub above: R::Mask,
+    /// Schlick's (1 − |VdotH|)⁵.
+    pub fresnel_weight: R,
+}
+
+impl Geometry<f64> {
+    pub fn new(v: V3, l: V3) -> Geometry<f64> {
+        let h = half(v, l);
+        Geometry {
+            v,
+            l,
+            h,
+            above: v[2] > 0.0 && l[2] > 0.0,
+            fresnel_weight: schlick_weight(dot(v, h)),
+        }
+    }
+}
+
+impl<const N: usize> Geometry<Lanes<N>> {
+    /// N pairs, one per lane.
+    pub fn lanes(pairs: &[Geometry<f64>; N]) -> Geometry<Lanes<N>> {
+        let lanes = |f: &dyn Fn(&Geometry<f64>) -> f64| Lanes(pairs.each_ref().map(f));
+        let vector = |f: &dyn Fn(&Geometry<f64>) -> V3| [0, 1, 2].map(|i| lanes(&|g| f(g)[i]));
+        Geometry {
+            v: vector(&|g| g.v),
+            l: vector(&|g| g.l),
+            h: vector(&|g| g.h),
+            above: Mask(pairs.each_ref().map(|g| g.above)),
+            fresnel_weight: lanes(&|g| g.fresnel_weight),
+        }
+    }
+}
+
+/// Schlick's (1 − |VdotH|)⁵, clamped to 0..1.
+pub fn schlick_weight(v_dot_h: f64) -> f64 {
+    (1.0 - v_dot_h.abs()).clamp(0.0, 1.0).powi(5)
+}
+
+/// Schlick's Fresnel from its weight: F = f0 + (f90 − f0)·weight.
+#[inline(always)]
+pub fn fresnel<R: Real>(f0: f64, f90: f64, weight: R) -> R {
+    weight * (f90 - f0) + f0
 }
 
 /// Schlick's Fresnel, F = f0 + (f90 − f0)(1 − |VdotH|)⁵.
 pub fn schlick(f0: f64, f90: f64, v_dot_h: f64) -> f64 {
-    f0 + (f90 - f0) * (1.0 - v_dot_h.abs()).clamp(0.0, 1.0).powi(5)
+    fresnel(f0, f90, schlick_weight(v_dot_h))
 }
 
 /// f0 of a dielectric with index of refraction `ior` against air; ior 0 means infinite
@@ -49,27 +105,24 @@ pub fn f0_from_ior(ior: f64) -> f64 {
 }
 
 /// Isotropic GGX (Trowbridge-Reitz) distribution, α = roughness².
-pub fn ggx_d(alpha: f64, n_dot_h: f64) -> f64 {
-    if n_dot_h <= 0.0 {
-        return 0.0;
-    }
+#[inline(always)]
+pub fn ggx_d<R: Real>(alpha: f64, n_dot_h: R) -> R {
     let a2 = alpha.max(MIN_ALPHA).powi(2);
     let f = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
-    a2 / (PI * f * f)
+    let d = R::splat(a2) / (f * f * PI);
+    R::select(n_dot_h.gt(R::splat(0.0)), d, R::splat(0.0))
 }
 
 /// Height-correlated Smith visibility V = G2 / (4 |NdotL| |NdotV|), Appendix B.
-pub fn smith_vis(alpha: f64, n_dot_l: f64, n_dot_v: f64) -> f64 {
+#[inline(always)]
+pub fn smith_vis<R: Real>(alpha: f64, n_dot_l: R, n_dot_v: R) -> R {
     let a2 = alpha.max(MIN_ALPHA).powi(2);
     let (l, v) = (n_dot_l.abs(), n_dot_v.abs());
     let ggx_v = l * (v * v * (1.0 - a2) + a2).sqrt();
     let ggx_l = v * (l * l * (1.0 - a2) + a2).sqrt();
     let denominator = ggx_v + ggx_l;
-    if denominator > 0.0 {
-        0.5 / denominator
-    } else {
-        0.0
-    }
+    let zero = R::splat(0.0);
+    R::select(denominator.gt(zero), R::splat(0.5) / denominator, zero)
 }
 
 /// Smith Λ for the isotropic GGX lobe, for the Λ-form cross-check and the furnace tests.
@@ -88,25 +141,24 @@ pub fn anisotropic_alphas(alpha: f64, strength: f64) -> (f64, f64) {
 
 /// Anisotropic GGX with (t, b) the anisotropy direction and its perpendicular in the
 /// tangent plane (an orthonormal frame with the normal).
-pub fn ggx_aniso_d(alpha_t: f64, alpha_b: f64, h: V3) -> f64 {
-    if h[2] <= 0.0 {
-        return 0.0;
-    }
+pub fn ggx_aniso_d<R: Real>(alpha_t: f64, alpha_b: f64, h: [R; 3]) -> R {
     let (at, ab) = (alpha_t.max(MIN_ALPHA), alpha_b.max(MIN_ALPHA));
-    let f = (h[0] / at).powi(2) + (h[1] / ab).powi(2) + h[2] * h[2];
-    1.0 / (PI * at * ab * f * f)
+    let (x, y) = (h[0] / at, h[1] / ab);
+    let f = x * x + y * y + h[2] * h[2];
+    let d = R::splat(1.0) / (f * f * (PI * at * ab));
+    R::select(h[2].gt(R::splat(0.0)), d, R::splat(0.0))
 }
 
 /// Anisotropic height-correlated visibility (KHR_materials_anisotropy).
-pub fn smith_vis_aniso(alpha_t: f64, alpha_b: f64, v: V3, l: V3) -> f64 {
+pub fn smith_vis_aniso<R: Real>(alpha_t: f64, alpha_b: f64, v: [R; 3], l: [R; 3]) -> R {
     let (at, ab) = (alpha_t.max(MIN_ALPHA), alpha_b.max(MIN_ALPHA));
-    let length = |w: V3| ((at * w[0]).powi(2) + (ab * w[1]).powi(2) + w[2] * w[2]).sqrt();
+    let length = |w: [R; 3]| {
+        let (x, y) = (w[0] * at, w[1] * ab);
+        (x * x + y * y + w[2] * w[2]).sqrt()
+    };
     let denominator = l[2].abs() * length(v) + v[2].abs() * length(l);
-    if denominator > 0.0 {
-        0.5 / denominator
-    } else {
-        0.0
-    }
+    let zero = R::splat(0.0);
+    R::select(denominator.gt(zero), R::splat(0.5) / denominator, zero)
 }
 
 /// Which sheen visibility term is used.
@@ -123,10 +175,10 @@ pub enum SheenVisibility {
 }
 
 /// The Charlie sheen distribution with r = sheenRoughness².
-pub fn charlie_d(sheen_roughness: f64, n_dot_h: f64) -> f64 {
+pub fn charlie_d<R: Real>(sheen_roughness: f64, n_dot_h: R) -> R {
     let r = (sheen_roughness * sheen_roughness).max(1e-7);
-    let sin2 = (1.0 - n_dot_h * n_dot_h).max(0.0);
-    (2.0 + 1.0 / r) * sin2.powf(0.5 / r) / (2.0 * PI)
+    let sin2 = (-(n_dot_h * n_dot_h) + 1.0).max(R::splat(0.0));
+    sin2.map(|s| s.powf(0.5 / r)) * ((2.0 + 1.0 / r) / (2.0 * PI))
 }
 
 /// Conty-Kulla's fit of the Charlie Λ.
@@ -135,7 +187,7 @@ pub fn charlie_lambda(sheen_roughness: f64, cos_theta: f64) -> f64 {
     const P1: [f64; 5] = [21.5473, 3.82987, 0.19823, -1.97760, -4.32054];
     let r = sheen_roughness * sheen_roughness;
     let t = (1.0 - r).powi(2);
-    let p: Vec<f64> = (0..5).map(|i| P1[i] * (1.0 - t) + P0[i] * t).collect();
+    let p: [f64; 5] = std::array::from_fn(|i| P1[i] * (1.0 - t) + P0[i] * t);
     let l = |x: f64| p[0] / (1.0 + p[1] * x.powf(p[2])) + p[3] * x + p[4];
     let c = cos_theta.abs();
     if c < 0.5 {
@@ -146,34 +198,34 @@ pub fn charlie_lambda(sheen_roughness: f64, cos_theta: f64) -> f64 {
 }
 
 /// Sheen visibility for the chosen term.
-pub fn sheen_vis(
+pub fn sheen_vis<R: Real>(
     visibility: SheenVisibility,
     sheen_roughness: f64,
-    n_dot_l: f64,
-    n_dot_v: f64,
-) -> f64 {
-    let (l, v) = (n_dot_l.abs().max(1e-9), n_dot_v.abs().max(1e-9));
+    n_dot_l: R,
+    n_dot_v: R,
+) -> R {
+    let floor = R::splat(1e-9);
+    let (l, v) = (n_dot_l.abs().max(floor), n_dot_v.abs().max(floor));
+    let lambda = |c: R| c.map(|c| charlie_lambda(sheen_roughness, c));
+    let charlie = |light_lambda: R| R::splat(1.0) / ((lambda(v) + light_lambda + 1.0) * 4.0 * l * v);
     match visibility {
-        SheenVisibility::Charlie => {
-            let lambda = charlie_lambda(sheen_roughness, v) + charlie_lambda(sheen_roughness, l);
-            1.0 / ((1.0 + lambda) * 4.0 * l * v)
-        }
-        SheenVisibility::CharlieSoftened => {
-            let light = charlie_lambda(sheen_roughness, l).powf(1.0 + 2.0 * (1.0 - l).powi(8));
-            let lambda = charlie_lambda(sheen_roughness, v) + light;
-            1.0 / ((1.0 + lambda) * 4.0 * l * v)
-        }
-        SheenVisibility::Ashikhmin => 1.0 / (4.0 * (l + v - l * v)),
+        SheenVisibility::Charlie => charlie(lambda(l)),
+        SheenVisibility::CharlieSoftened => charlie(
+            l.map(|l| charlie_lambda(sheen_roughness, l).powf(1.0 + 2.0 * (1.0 - l).powi(8))),
+        ),
+        SheenVisibility::Ashikhmin => R::splat(1.0) / ((l + v - l * v) * 4.0),
     }
 }
 
-/// The sheen lobe for a unit sheen colour: D_s · V_s.
-pub fn sheen_lobe(visibility: SheenVisibility, sheen_roughness: f64, v: V3, l: V3) -> f64 {
-    if v[2] <= 0.0 || l[2] <= 0.0 {
-        return 0.0;
-    }
-    let h = half(v, l);
-    charlie_d(sheen_roughness, h[2]) * sheen_vis(visibility, sheen_roughness, l[2], v[2])
+/// The sheen lobe for a unit sheen colour: D_s · V_s (0 below the horizon).
+pub fn sheen_lobe<R: Real>(
+    visibility: SheenVisibility,
+    sheen_roughness: f64,
+    g: &Geometry<R>,
+) -> R {
+    let lobe = charlie_d(sheen_roughness, g.h[2])
+        * sheen_vis(visibility, sheen_roughness, g.l[2], g.v[2]);
+    R::select(g.above, lobe, R::splat(0.0))
 }
 
 #[cfg(test)]
@@ -269,8 +321,7 @@ mod tests {
             sheen_lobe(
                 SheenVisibility::Charlie,
                 0.0,
-                [0.0, 0.0, 1.0],
-                [0.0, 0.0, 1.0],
+                &Geometry::new([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]),
             ),
             schlick(0.04, 1.0, 0.0),
         ] {

@@ -6,15 +6,18 @@
 //! Exposure: one directional light of irradiance π at normal incidence, so a white Lambertian
 //! surface lit head-on has radiance 1 (CIELAB L* = 100). Unlit materials emit their colour.
 
-use super::brdf::V3;
+use super::brdf::{Geometry, V3};
 use super::delta_e::{ciede2000, lab_from_linear_srgb};
+use super::lanes::{Lanes, Real};
 use super::material::{Inputs, Shader};
 use super::sample::MaterialSource;
 use std::f64::consts::PI;
 
+const DIRECTION_COUNT: usize = 8;
+
 /// (θ_v, θ_l, φ between them), degrees: head-on, off-specular, mirror, crossed (anisotropy)
 /// and grazing configurations.
-pub const DIRECTIONS: [(f64, f64, f64); 8] = [
+pub const DIRECTIONS: [(f64, f64, f64); DIRECTION_COUNT] = [
     (0.0, 0.0, 0.0),
     (0.0, 60.0, 0.0),
     (45.0, 45.0, 180.0),
@@ -55,23 +58,45 @@ fn direction(theta: f64, phi: f64) -> V3 {
     [t.sin() * p.cos(), t.sin() * p.sin(), t.cos()]
 }
 
-/// The colour (CIELAB) of a material for one view/light pair.
-/// The linear colour a material reflects towards `v` from a unit light along `l`.
-fn colour(shader: &Shader, m: &Inputs, v: V3, l: V3) -> V3 {
-    if m.unlit {
-        return m.base_color;
-    }
-    shader.brdf(m, v, l).map(|c| c * l[2] * PI)
+/// One texel's colours for every direction pair, channel by channel, direction per lane.
+type Colours = [Lanes<DIRECTION_COUNT>; 3];
+
+/// The fixed direction pairs, evaluated together (one per lane).
+struct Directions {
+    geometry: Geometry<Lanes<DIRECTION_COUNT>>,
+    /// π · NdotL: the exposure's light scaled by the cosine.
+    irradiance: Lanes<DIRECTION_COUNT>,
+    /// (θ_v, θ_l, φ) for reports.
+    angles: [(f64, f64, f64); DIRECTION_COUNT],
 }
 
-/// ΔE2000 between two materials for one direction pair; equal colours are 0 without the
-/// conversion to Lab.
-fn delta_e(shader: &Shader, a: &Inputs, b: &Inputs, v: V3, l: V3) -> f64 {
-    let (ca, cb) = (colour(shader, a, v, l), colour(shader, b, v, l));
-    if ca == cb {
-        return 0.0;
+impl Directions {
+    fn new() -> Directions {
+        let pairs =
+            DIRECTIONS.map(|(tv, tl, phi)| Geometry::new(direction(tv, 0.0), direction(tl, phi)));
+        Directions {
+            geometry: Geometry::lanes(&pairs),
+            irradiance: Lanes(pairs.map(|g| g.l[2] * PI)),
+            angles: DIRECTIONS,
+        }
     }
-    ciede2000(lab_from_linear_srgb(ca), lab_from_linear_srgb(cb))
+
+    /// The linear colour a material reflects towards each view from a unit light.
+    #[inline(always)]
+    fn colours(&self, shader: &Shader, m: &Inputs) -> Colours {
+        if m.unlit {
+            return m.base_color.map(Lanes::splat);
+        }
+        shader
+            .brdf(m, &self.geometry)
+            .map(|c| c * self.irradiance)
+    }
+}
+
+/// ΔE2000 for every direction pair at once.
+#[inline(always)]
+fn delta_e(a: Colours, b: Colours) -> [f64; DIRECTION_COUNT] {
+    ciede2000(lab_from_linear_srgb(a), lab_from_linear_srgb(b)).0
 }
 
 struct Partial {
@@ -90,18 +115,15 @@ pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u3
     } else {
         grid
     };
-    let pairs: Vec<(V3, V3, (f64, f64, f64))> = DIRECTIONS
-        .iter()
-        .map(|&(tv, tl, phi)| (direction(tv, 0.0), direction(tl, phi), (tv, tl, phi)))
-        .collect();
+    let directions = Directions::new();
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u32;
     let rows_per_thread = grid.div_ceil(threads);
     let partials: Vec<Partial> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
                 let rows = (t * rows_per_thread)..((t + 1) * rows_per_thread).min(grid);
-                let pairs = &pairs;
-                scope.spawn(move || compare_rows(shader, a, b, grid, rows, pairs))
+                let directions = &directions;
+                scope.spawn(move || compare_rows(shader, a, b, grid, rows, directions))
             })
             .collect();
         handles.into_iter().filter_map(|h| h.join().ok()).collect()
@@ -115,7 +137,7 @@ fn compare_rows(
     b: &MaterialSource,
     grid: u32,
     rows: std::ops::Range<u32>,
-    pairs: &[(V3, V3, (f64, f64, f64))],
+    directions: &Directions,
 ) -> Partial {
     let mut partial = Partial {
         per_texel: Vec::with_capacity(rows.len() * grid as usize),
@@ -137,14 +159,16 @@ fn compare_rows(
             let uvs = [uv, uv];
             let (ma, mb) = (a.inputs_at(&uvs), b.inputs_at(&uvs));
             // Identical inputs give identical colours in every direction: ΔE is exactly 0.
-            let identical = ma == mb;
+            let deltas = if ma == mb {
+                [0.0; DIRECTION_COUNT]
+            } else {
+                delta_e(
+                    directions.colours(shader, &ma),
+                    directions.colours(shader, &mb),
+                )
+            };
             let mut texel_max = 0f64;
-            for &(v, l, angles) in pairs {
-                let delta = if identical {
-                    0.0
-                } else {
-                    delta_e(shader, &ma, &mb, v, l)
-                };
+            for (&delta, &angles) in deltas.iter().zip(&directions.angles) {
                 let delta = if delta.is_finite() { delta } else { f64::MAX };
                 texel_max = texel_max.max(delta);
                 partial.sum += delta.min(1e6);

@@ -13,9 +13,10 @@
 //!   spec-gloss as above, per the 2017 draft's `diffuse · (1 − max(specular))`).
 
 use super::brdf::{
-    anisotropic_alphas, f0_from_ior, ggx_aniso_d, ggx_d, half, max3, schlick, sheen_lobe,
-    smith_vis, smith_vis_aniso, SheenVisibility, V3,
+    anisotropic_alphas, f0_from_ior, fresnel, ggx_aniso_d, ggx_d, max3, sheen_lobe, smith_vis,
+    smith_vis_aniso, Geometry, SheenVisibility, V3,
 };
+use super::lanes::Real;
 use super::sheen_table::SheenTable;
 use std::f64::consts::PI;
 
@@ -87,50 +88,50 @@ impl Shader {
 
     /// The BRDF f(v, l) (not multiplied by NdotL), RGB, directions in the shading frame.
     /// Unlit materials return their colour as radiance-like value: callers treat them apart.
-    pub fn brdf(&self, m: &Inputs, v: V3, l: V3) -> V3 {
-        if v[2] <= 0.0 || l[2] <= 0.0 {
-            return [0.0; 3];
-        }
-        let base = base_brdf(m, v, l);
+    #[inline(always)]
+    pub fn brdf<R: Real>(&self, m: &Inputs, g: &Geometry<R>) -> [R; 3] {
+        let base = base_brdf(m, g);
         let c = max3(m.sheen_color);
-        if c == 0.0 {
+        let layered = if c == 0.0 {
             // A zero sheen colour disables the layer: the base, bit for bit.
-            return base;
-        }
-        let lobe = sheen_lobe(self.visibility(), m.sheen_roughness, v, l);
-        let e = |mu: f64| self.sheen_table.lookup(mu, m.sheen_roughness);
-        let scale = (1.0 - c * e(v[2])).min(1.0 - c * e(l[2]));
-        [0, 1, 2].map(|i| m.sheen_color[i] * lobe + base[i] * scale)
+            base
+        } else {
+            let lobe = sheen_lobe(self.visibility(), m.sheen_roughness, g);
+            let e = |mu: R| mu.map(|mu| self.sheen_table.lookup(mu, m.sheen_roughness));
+            let scale = (-(e(g.v[2]) * c) + 1.0).min(-(e(g.l[2]) * c) + 1.0);
+            [0, 1, 2].map(|i| lobe * m.sheen_color[i] + base[i] * scale)
+        };
+        let zero = R::splat(0.0);
+        layered.map(|f| R::select(g.above, f, zero))
     }
 }
 
 /// The metal-roughness BRDF with specular, ior and anisotropy, before sheen.
-pub fn base_brdf(m: &Inputs, v: V3, l: V3) -> V3 {
-    let h = half(v, l);
+#[inline(always)]
+pub fn base_brdf<R: Real>(m: &Inputs, g: &Geometry<R>) -> [R; 3] {
     let alpha = m.roughness * m.roughness;
     let specular = if m.anisotropy_strength > 0.0 {
         let (alpha_t, alpha_b) = anisotropic_alphas(alpha, m.anisotropy_strength);
         let (s, c) = m.anisotropy_angle.sin_cos();
         // Into the anisotropy frame: t along the direction, b perpendicular, orthonormal.
-        let rotate = |w: V3| [c * w[0] + s * w[1], -s * w[0] + c * w[1], w[2]];
-        ggx_aniso_d(alpha_t, alpha_b, rotate(h))
-            * smith_vis_aniso(alpha_t, alpha_b, rotate(v), rotate(l))
+        let rotate = |w: [R; 3]| [w[0] * c + w[1] * s, w[1] * c - w[0] * s, w[2]];
+        ggx_aniso_d(alpha_t, alpha_b, rotate(g.h))
+            * smith_vis_aniso(alpha_t, alpha_b, rotate(g.v), rotate(g.l))
     } else {
-        ggx_d(alpha, h[2]) * smith_vis(alpha, l[2], v[2])
+        ggx_d(alpha, g.h[2]) * smith_vis(alpha, g.l[2], g.v[2])
     };
-    let v_dot_h = v[0] * h[0] + v[1] * h[1] + v[2] * h[2];
     let f0_ior = f0_from_ior(m.ior);
-    let dielectric_f: V3 = [0, 1, 2].map(|i| {
-        schlick(
+    let dielectric_f: [R; 3] = [0, 1, 2].map(|i| {
+        fresnel(
             (f0_ior * m.specular_color[i]).min(1.0) * m.specular,
             m.specular,
-            v_dot_h,
+            g.fresnel_weight,
         )
     });
-    let diffuse_weight = 1.0 - max3(dielectric_f);
+    let diffuse_weight = -max3(dielectric_f) + 1.0;
     [0, 1, 2].map(|i| {
-        let dielectric = dielectric_f[i] * specular + diffuse_weight * m.base_color[i] / PI;
-        let metal = schlick(m.base_color[i], 1.0, v_dot_h) * specular;
+        let dielectric = dielectric_f[i] * specular + diffuse_weight * (m.base_color[i] / PI);
+        let metal = fresnel(m.base_color[i], 1.0, g.fresnel_weight) * specular;
         dielectric * (1.0 - m.metallic) + metal * m.metallic
     })
 }
@@ -138,6 +139,7 @@ pub fn base_brdf(m: &Inputs, v: V3, l: V3) -> V3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shade::brdf::{half, schlick};
     use crate::shade::quadrature::hemisphere;
 
     fn shader() -> Shader {
@@ -197,7 +199,7 @@ mod tests {
     #[test]
     fn default_specular_and_ior_reduce_to_appendix_b() {
         for (v, l) in pairs() {
-            assert_close(base_brdf(&material(), v, l), appendix_b(&material(), v, l));
+            assert_close(base_brdf(&material(), &Geometry::new(v, l)), appendix_b(&material(), v, l));
         }
     }
 
@@ -206,9 +208,9 @@ mod tests {
         let mut aniso = material();
         aniso.anisotropy_angle = 0.7;
         for (v, l) in pairs() {
-            let isotropic = base_brdf(&material(), v, l);
+            let isotropic = base_brdf(&material(), &Geometry::new(v, l));
             aniso.anisotropy_strength = 1e-300; // takes the anisotropic path with s² = 0
-            assert_close(base_brdf(&aniso, v, l), isotropic);
+            assert_close(base_brdf(&aniso, &Geometry::new(v, l)), isotropic);
         }
     }
 
@@ -218,7 +220,7 @@ mod tests {
         let mut m = material();
         m.sheen_roughness = 0.5;
         for (v, l) in pairs() {
-            assert_eq!(s.brdf(&m, v, l), base_brdf(&m, v, l));
+            assert_eq!(s.brdf(&m, &Geometry::new(v, l)), base_brdf(&m, &Geometry::new(v, l)));
         }
     }
 
@@ -233,7 +235,7 @@ mod tests {
         m.specular_color = [1.2, 0.8, 1.0];
         m.ior = 1.7;
         for (v, l) in pairs() {
-            assert_close(s.brdf(&m, v, l), s.brdf(&m, l, v));
+            assert_close(s.brdf(&m, &Geometry::new(v, l)), s.brdf(&m, &Geometry::new(l, v)));
         }
     }
 
@@ -281,7 +283,7 @@ mod tests {
             ..Inputs::default()
         };
         for (v, l) in pairs() {
-            assert_eq!(base_brdf(&sg, v, l), base_brdf(&converted, v, l));
+            assert_eq!(base_brdf(&sg, &Geometry::new(v, l)), base_brdf(&converted, &Geometry::new(v, l)));
         }
     }
 }

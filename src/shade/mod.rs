@@ -4,6 +4,8 @@
 pub mod brdf;
 pub mod compare;
 pub mod delta_e;
+pub mod elementary;
+pub mod lanes;
 pub mod label;
 pub mod load;
 pub mod material;

@@ -9,7 +9,7 @@
 //! the pattern turned about the normal by a fixed per-pixel angle. The sphere's UVs are equirectangular
 //! (u = ½ + φ/2π, v = θ/π) with the analytic tangent along increasing u.
 
-use super::brdf::{dot, normalize, V3};
+use super::brdf::{dot, normalize, Geometry, V3};
 use super::material::Shader;
 use super::sample::MaterialSource;
 use crate::color::linear_to_srgb;
@@ -97,7 +97,7 @@ fn sky_radiance(
             if l[2] <= 0.0 {
                 continue;
             }
-            let f = shader.brdf(inputs, v, l);
+            let f = shader.brdf(inputs, &Geometry::new(v, l));
             let weight = SKY_RADIANCE * l[2] / (n * pdf_cos(l) + n * pdf_ggx(l));
             for c in 0..3 {
                 total[c] += f[c] * weight;
@@ -136,7 +136,7 @@ fn shade_pixel(
     let mut radiance = [0.0; 3];
     let mut add = |l: V3, weight: f64| {
         if l[2] > 0.0 {
-            let f = shader.brdf(&inputs, v, l);
+            let f = shader.brdf(&inputs, &Geometry::new(v, l));
             for c in 0..3 {
                 radiance[c] += f[c] * weight;
             }

@@ -3,7 +3,7 @@
 //! on a declared grid: row i ↔ sheenRoughness (i + ½)/N, column j ↔ μ = NdotV (j + ½)/N
 //! (texel centres), looked up bilinearly and clamped at the edges.
 
-use super::brdf::{sheen_lobe, SheenVisibility};
+use super::brdf::{sheen_lobe, Geometry, SheenVisibility};
 use super::quadrature::hemisphere;
 
 /// Quadrature nodes in cos θ and φ: within 3e−4 of a 512 × 256 rule over the whole table
@@ -16,7 +16,7 @@ pub fn albedo(visibility: SheenVisibility, mu: f64, sheen_roughness: f64) -> f64
     let mu = mu.clamp(1e-4, 1.0);
     let v = [(1.0 - mu * mu).sqrt(), 0.0, mu];
     hemisphere(NODES_MU, NODES_PHI, |l| {
-        sheen_lobe(visibility, sheen_roughness, v, l) * l[2]
+        sheen_lobe(visibility, sheen_roughness, &Geometry::new(v, l)) * l[2]
     })
 }
 
