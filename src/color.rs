@@ -11,14 +11,17 @@ pub fn srgb_to_linear(encoded: f64) -> f64 {
 
 /// `srgb_to_linear` for sampled texture values: an exact 8-bit level (most texels) is
 /// looked up in a table of the same function instead of calling `powf`.
+#[inline]
 pub fn srgb_texel_to_linear(encoded: f64) -> f64 {
     static TABLE: std::sync::OnceLock<[f64; 256]> = std::sync::OnceLock::new();
     let table = TABLE.get_or_init(|| std::array::from_fn(|i| srgb_to_linear(i as f64 / 255.0)));
-    let level = (encoded * 255.0).round();
-    if (encoded * 255.0 - level).abs() < 1e-4 && (0.0..=255.0).contains(&level) {
-        table[level as usize]
-    } else {
-        srgb_to_linear(encoded)
+    let scaled = encoded * 255.0;
+    // Rounds to the nearest level for scaled ≥ −0.5 (a cast, where `round` is a library
+    // call on baseline x86-64); anything else fails the closeness test below.
+    let level = (scaled + 0.5) as usize;
+    match table.get(level) {
+        Some(&linear) if (scaled - level as f64).abs() < 1e-4 => linear,
+        _ => srgb_to_linear(encoded),
     }
 }
 

@@ -81,6 +81,12 @@ impl Deref for Bytes {
     }
 }
 
+impl AsRef<[u8]> for Bytes {
+    fn as_ref(&self) -> &[u8] {
+        self
+    }
+}
+
 /// A buffer's bytes: borrowed from the document (the GLB BIN chunk), or held (an external
 /// file or a data URI).
 pub enum BufferData<'a> {

@@ -207,7 +207,8 @@ pub fn sheen_vis<R: Real>(
     let floor = R::splat(1e-9);
     let (l, v) = (n_dot_l.abs().max(floor), n_dot_v.abs().max(floor));
     let lambda = |c: R| c.map(|c| charlie_lambda(sheen_roughness, c));
-    let charlie = |light_lambda: R| R::splat(1.0) / ((lambda(v) + light_lambda + 1.0) * 4.0 * l * v);
+    let charlie =
+        |light_lambda: R| R::splat(1.0) / ((lambda(v) + light_lambda + 1.0) * 4.0 * l * v);
     match visibility {
         SheenVisibility::Charlie => charlie(lambda(l)),
         SheenVisibility::CharlieSoftened => charlie(
@@ -223,8 +224,8 @@ pub fn sheen_lobe<R: Real>(
     sheen_roughness: f64,
     g: &Geometry<R>,
 ) -> R {
-    let lobe = charlie_d(sheen_roughness, g.h[2])
-        * sheen_vis(visibility, sheen_roughness, g.l[2], g.v[2]);
+    let lobe =
+        charlie_d(sheen_roughness, g.h[2]) * sheen_vis(visibility, sheen_roughness, g.l[2], g.v[2]);
     R::select(g.above, lobe, R::splat(0.0))
 }
 

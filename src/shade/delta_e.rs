@@ -12,13 +12,16 @@ pub fn lab_from_linear_srgb<R: Real>([r, g, b]: [R; 3]) -> [R; 3] {
     let x = r * 0.412_456_4 + g * 0.357_576_1 + b * 0.180_437_5;
     let y = r * 0.212_672_9 + g * 0.715_152_2 + b * 0.072_175_0;
     let z = r * 0.019_333_9 + g * 0.119_192_0 + b * 0.950_304_1;
-    let f = |t: R| {
-        const DELTA: f64 = 6.0 / 29.0;
-        let linear = t / (3.0 * DELTA * DELTA) + 4.0 / 29.0;
-        R::select(t.gt(R::splat(DELTA * DELTA * DELTA)), cube_root(t), linear)
-    };
-    let (fx, fy, fz) = (f(x / 0.950_47), f(y), f(z / 1.088_83));
+    let (fx, fy, fz) = (lab_f(x / 0.950_47), lab_f(y), lab_f(z / 1.088_83));
     [fy * 116.0 - 16.0, (fx - fy) * 500.0, (fy - fz) * 200.0]
+}
+
+/// CIELAB's f(t): a cube root, linear near black.
+#[inline(always)]
+fn lab_f<R: Real>(t: R) -> R {
+    const DELTA: f64 = 6.0 / 29.0;
+    let linear = t / (3.0 * DELTA * DELTA) + 4.0 / 29.0;
+    R::select(t.gt(R::splat(DELTA * DELTA * DELTA)), cube_root(t), linear)
 }
 
 /// Cube root of a positive normal number: a first guess from the exponent bits (a third
@@ -289,7 +292,8 @@ mod tests {
             (h1p + h2p - 360.0) / 2.0
         };
         let cos = |degrees: f64| degrees.to_radians().cos();
-        let t = 1.0 - 0.17 * cos(h_bar - 30.0) + 0.24 * cos(2.0 * h_bar)
+        let t = 1.0 - 0.17 * cos(h_bar - 30.0)
+            + 0.24 * cos(2.0 * h_bar)
             + 0.32 * cos(3.0 * h_bar + 6.0)
             - 0.20 * cos(4.0 * h_bar - 63.0);
         let d_theta = 30.0 * (-((h_bar - 275.0) / 25.0).powi(2)).exp();
@@ -309,12 +313,18 @@ mod tests {
         // usual case), with exactly opposite hues, and with neutral colours.
         let mut state = 0x9E37_79B9_7F4A_7C15u64;
         let mut next = || {
-            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1);
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
         let mut pairs = Vec::new();
         for _ in 0..100_000 {
-            let a: V3 = [100.0 * next(), 200.0 * next() - 100.0, 200.0 * next() - 100.0];
+            let a: V3 = [
+                100.0 * next(),
+                200.0 * next() - 100.0,
+                200.0 * next() - 100.0,
+            ];
             let scale = [50.0, 1.0, 1e-3][pairs.len() % 3];
             let b = a.map(|c| c + scale * (2.0 * next() - 1.0));
             pairs.push((a, b));

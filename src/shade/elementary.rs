@@ -87,7 +87,7 @@ const EXP_SERIES: [f64; 15] = {
 
 /// ln 2 = LN_2_HIGH + LN_2_LOW to twice double precision; LN_2_HIGH has its low 21 bits
 /// zero, so k · LN_2_HIGH is exact for every k exp's range reduction meets.
-const LN_2_HIGH: f64 = 6.931_471_803_691_238_2e-1;
+const LN_2_HIGH: f64 = 0.693_147_180_369_123_8;
 const LN_2_LOW: f64 = 1.908_214_929_270_587_7e-10;
 
 /// e^x for x in [−700, 700] (clamped there).

@@ -13,6 +13,21 @@ fn uri_bytes(uri: &str, loader: &dyn ResourceLoader) -> Option<Bytes> {
     }
 }
 
+/// An image's encoded bytes: its own file or data URI, or a buffer view of the document.
+enum Encoded<'a> {
+    Loaded(Bytes),
+    View(&'a [u8]),
+}
+
+impl AsRef<[u8]> for Encoded<'_> {
+    fn as_ref(&self) -> &[u8] {
+        match self {
+            Encoded::Loaded(bytes) => bytes,
+            Encoded::View(view) => view,
+        }
+    }
+}
+
 /// Every material of a glTF 2.0 asset with its decoded textures, and the material names.
 pub fn gltf2_materials(
     bytes: Vec<u8>,
@@ -48,13 +63,14 @@ pub fn gltf2_materials(
         let end = start.checked_add(view.get("byteLength")?.as_u64()? as usize)?;
         buffer.get(start..end)
     };
-    let images: Vec<Option<Texture>> = list("images")
+    let encoded: Vec<Option<Encoded>> = list("images")
         .iter()
         .map(|image| match image.get("uri").and_then(Value::as_str) {
-            Some(uri) => sample::decode(&uri_bytes(uri, loader)?),
-            None => sample::decode(view_bytes(image.get("bufferView")?.as_u64()?)?),
+            Some(uri) => uri_bytes(uri, loader).map(Encoded::Loaded),
+            None => view_bytes(image.get("bufferView")?.as_u64()?).map(Encoded::View),
         })
         .collect();
+    let images = sample::decode_all(&encoded);
     let textures: Vec<Option<Texture>> = list("textures")
         .iter()
         .map(|texture| {

@@ -199,7 +199,10 @@ mod tests {
     #[test]
     fn default_specular_and_ior_reduce_to_appendix_b() {
         for (v, l) in pairs() {
-            assert_close(base_brdf(&material(), &Geometry::new(v, l)), appendix_b(&material(), v, l));
+            assert_close(
+                base_brdf(&material(), &Geometry::new(v, l)),
+                appendix_b(&material(), v, l),
+            );
         }
     }
 
@@ -220,7 +223,10 @@ mod tests {
         let mut m = material();
         m.sheen_roughness = 0.5;
         for (v, l) in pairs() {
-            assert_eq!(s.brdf(&m, &Geometry::new(v, l)), base_brdf(&m, &Geometry::new(v, l)));
+            assert_eq!(
+                s.brdf(&m, &Geometry::new(v, l)),
+                base_brdf(&m, &Geometry::new(v, l))
+            );
         }
     }
 
@@ -235,7 +241,10 @@ mod tests {
         m.specular_color = [1.2, 0.8, 1.0];
         m.ior = 1.7;
         for (v, l) in pairs() {
-            assert_close(s.brdf(&m, &Geometry::new(v, l)), s.brdf(&m, &Geometry::new(l, v)));
+            assert_close(
+                s.brdf(&m, &Geometry::new(v, l)),
+                s.brdf(&m, &Geometry::new(l, v)),
+            );
         }
     }
 
@@ -283,7 +292,10 @@ mod tests {
             ..Inputs::default()
         };
         for (v, l) in pairs() {
-            assert_eq!(base_brdf(&sg, &Geometry::new(v, l)), base_brdf(&converted, &Geometry::new(v, l)));
+            assert_eq!(
+                base_brdf(&sg, &Geometry::new(v, l)),
+                base_brdf(&converted, &Geometry::new(v, l))
+            );
         }
     }
 }

@@ -133,20 +133,46 @@ pub fn legacy_materials(
     loader: &dyn ResourceLoader,
 ) -> Result<Vec<(String, Option<MaterialSource>)>, UpgradeError> {
     let source = source::read(bytes, loader)?;
-    let texture = |id: Option<&String>| -> Option<Texture> {
-        let texture = source.object("textures", id?)?;
-        let image = source.object("images", texture.get("source")?.as_str()?)?;
-        sample::decode(&source.image_bytes(image).ok()?)
-    };
-    Ok(source
+    let parsed: Vec<(&str, Option<legacy_pbr::LegacyPbr>)> = source
         .dictionary("materials")
         .into_iter()
         .map(|(id, material)| {
-            let parsed =
+            let pbr =
                 legacy_pbr::find(material).and_then(|(name, block)| legacy_pbr::parse(name, block));
-            let sampled = parsed.map(|pbr| MaterialSource::Legacy {
-                colour: texture(pbr.colour_texture.as_ref()),
-                data: texture(pbr.data_texture.as_ref()),
+            (id, pbr)
+        })
+        .collect();
+    // Every texture the materials use, decoded once and all together.
+    let texture_ids: Vec<String> = parsed
+        .iter()
+        .filter_map(|(_, pbr)| pbr.as_ref())
+        .flat_map(|pbr| [&pbr.colour_texture, &pbr.data_texture])
+        .flatten()
+        .cloned()
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
+    let encoded: Vec<Option<_>> = texture_ids
+        .iter()
+        .map(|id| {
+            let texture = source.object("textures", id)?;
+            let image = source.object("images", texture.get("source")?.as_str()?)?;
+            source.image_bytes(image).ok()
+        })
+        .collect();
+    let decoded = sample::decode_all(&encoded);
+    let texture = |id: &Option<String>| -> Option<Texture> {
+        let at = texture_ids
+            .iter()
+            .position(|known| Some(known) == id.as_ref())?;
+        decoded[at].clone()
+    };
+    Ok(parsed
+        .into_iter()
+        .map(|(id, pbr)| {
+            let sampled = pbr.map(|pbr| MaterialSource::Legacy {
+                colour: texture(&pbr.colour_texture),
+                data: texture(&pbr.data_texture),
                 pbr,
             });
             (id.to_string(), sampled)
@@ -156,14 +182,17 @@ pub fn legacy_materials(
 
 /// The materials of an upgraded asset as the shading evaluator samples them.
 pub fn converted_materials(upgraded: &Upgraded) -> Vec<MaterialSource> {
+    let encoded: Vec<Option<&[u8]>> = upgraded
+        .images
+        .iter()
+        .map(|image| Some(&image.bytes[..]))
+        .collect();
+    let images = sample::decode_all(&encoded);
     let textures: Vec<Option<Texture>> = upgraded.json["textures"]
         .as_array()
         .map(|list| {
             list.iter()
-                .map(|t| {
-                    let image = upgraded.images.get(t.get("source")?.as_u64()? as usize)?;
-                    sample::decode(&image.bytes)
-                })
+                .map(|t| images.get(t.get("source")?.as_u64()? as usize)?.clone())
                 .collect()
         })
         .unwrap_or_default();
