@@ -55,15 +55,20 @@ pub fn atan2_degrees<R: Real>(y: R, x: R) -> R {
     let zero = R::splat(0.0);
     let (ax, ay) = (x.abs(), y.abs());
     let (small, large) = (ax.min(ay), ax.max(ay));
-    let t = R::select(large.eq(zero), zero, small / large);
-    // atan(t) = jπ/16 + atan(r), r = (t − c_j)/(1 + t·c_j), |r| ≤ tan(π/32).
+    // atan(t), t = small/large in [0, 1], is jπ/16 + atan(r) with c_j the nearest centre
+    // and r = (t − c_j)/(1 + t·c_j) = (small − c_j·large)/(large + c_j·small), |r| ≤
+    // tan(π/32): one division where forming t first would take two.
     let (mut centre, mut sixteenths) = (zero, zero);
     for (j, &threshold) in ATAN_THRESHOLDS.iter().enumerate() {
-        let above = t.gt(R::splat(threshold));
+        let above = small.gt(large * threshold);
         centre = R::select(above, R::splat(ATAN_CENTRES[j + 1]), centre);
         sixteenths = R::select(above, R::splat((j + 1) as f64), sixteenths);
     }
-    let r = (t - centre) / (t * centre + 1.0);
+    let r = R::select(
+        large.eq(zero),
+        zero,
+        (small - centre * large) / (large + centre * small),
+    );
     let within_octant =
         sixteenths * 11.25 + r * polynomial(&ATAN_SERIES, r * r) * DEGREES_PER_RADIAN;
     let first_quadrant = R::select(ay.gt(ax), -within_octant + 90.0, within_octant);
