@@ -153,7 +153,7 @@ fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer
     let stride = declared_stride.unwrap_or(element);
     let offset = unsigned(accessor, "byteOffset").unwrap_or(0);
     let size = component_size as u64;
-    if offset % size != 0 {
+    if !offset.is_multiple_of(size) {
         ctx.emit(
             "ACCESSOR_OFFSET_ALIGNMENT",
             member(pointer, "byteOffset"),
@@ -163,7 +163,7 @@ fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer
     let total = unsigned(view_object, "byteOffset")
         .unwrap_or(0)
         .saturating_add(offset);
-    if total % size != 0 {
+    if !total.is_multiple_of(size) {
         ctx.emit(
             "ACCESSOR_TOTAL_OFFSET_ALIGNMENT",
             pointer,

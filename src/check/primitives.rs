@@ -362,7 +362,7 @@ impl<'a> Walk<'_, 'a> {
             format.and_then(|f| Some(component_size(f.component_type)? * component_count(f.kind)?));
         let offset = unsigned(accessor, "byteOffset").unwrap_or(0);
         let unpadded = element.is_some_and(|e| e % 4 != 0) && view.is_some() && !strided;
-        if offset % 4 != 0 || unpadded {
+        if !offset.is_multiple_of(4) || unpadded {
             self.ctx.emit(
                 "MESH_PRIMITIVE_ACCESSOR_UNALIGNED",
                 at,

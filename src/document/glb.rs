@@ -91,7 +91,7 @@ pub fn read(bytes: &[u8]) -> GlbParts {
         let length = read_u32(bytes, pos) as usize;
         let kind = read_u32(bytes, pos + 4);
         let data_start = pos + CHUNK_HEADER_LEN;
-        if length % 4 != 0 {
+        if !length.is_multiple_of(4) {
             diags.push(at(
                 "GLB_CHUNK_LENGTH_UNALIGNED",
                 start,

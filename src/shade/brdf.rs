@@ -72,7 +72,7 @@ impl<const N: usize> Geometry<Lanes<N>> {
             v: vector(&|g| g.v),
             l: vector(&|g| g.l),
             h: vector(&|g| g.h),
-            above: Mask(pairs.each_ref().map(|g| g.above)),
+            above: Mask::from_bools(pairs.each_ref().map(|g| g.above)),
             fresnel_weight: lanes(&|g| g.fresnel_weight),
         }
     }

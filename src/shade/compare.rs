@@ -8,7 +8,7 @@
 
 use super::brdf::{Geometry, V3};
 use super::delta_e::{ciede2000, lab_from_linear_srgb};
-use super::lanes::{Lanes, Real};
+use super::lanes::{channels, Lanes, Real};
 use super::material::{Inputs, Shader};
 use super::sample::MaterialSource;
 use std::f64::consts::PI;
@@ -85,16 +85,43 @@ impl Directions {
     #[inline(always)]
     fn colours(&self, shader: &Shader, m: &Inputs) -> Colours {
         if m.unlit {
-            return m.base_color.map(Lanes::splat);
+            return channels(|i| Lanes::splat(m.base_color[i]));
         }
-        shader.brdf(m, &self.geometry).map(|c| c * self.irradiance)
+        let f = shader.brdf(m, &self.geometry);
+        channels(|i| f[i] * self.irradiance)
     }
 }
 
-/// ΔE2000 for every direction pair at once.
-#[inline(always)]
-fn delta_e(a: Colours, b: Colours) -> [f64; DIRECTION_COUNT] {
-    ciede2000(lab_from_linear_srgb(a), lab_from_linear_srgb(b)).0
+/// Texels whose samples are converted to ΔE together.
+const BATCH_TEXELS: usize = 8;
+const BATCH: usize = BATCH_TEXELS * DIRECTION_COUNT;
+
+/// A batch's colours, channel by channel, sample by sample (texel-major).
+struct Batch {
+    a: [[f64; BATCH]; 3],
+    b: [[f64; BATCH]; 3],
+}
+
+impl Batch {
+    fn put(colours: &mut [[f64; BATCH]; 3], texel: usize, c: Colours) {
+        let at = texel * DIRECTION_COUNT;
+        for (channel, lanes) in colours.iter_mut().zip(c) {
+            channel[at..at + DIRECTION_COUNT].copy_from_slice(&lanes.0);
+        }
+    }
+
+    /// ΔE2000 of every sample: one scalar formula in a loop over independent samples, which
+    /// the compiler turns into vector code (its long dependency chains then overlap).
+    #[inline(always)]
+    fn delta_e(&self) -> [f64; BATCH] {
+        let mut out = [0.0; BATCH];
+        for (i, delta) in out.iter_mut().enumerate() {
+            let a = [self.a[0][i], self.a[1][i], self.a[2][i]];
+            let b = [self.b[0][i], self.b[1][i], self.b[2][i]];
+            *delta = ciede2000(lab_from_linear_srgb(a), lab_from_linear_srgb(b));
+        }
+        out
+    }
 }
 
 struct Partial {
@@ -130,8 +157,8 @@ pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u3
 }
 
 /// The rows' samples, with the widest vector instructions the CPU has: the texel loop is
-/// generic lane arithmetic, so compiling it for AVX2 changes its speed, not its results
-/// (no fused multiply-adds are formed; each lane still rounds exactly as `f64` does).
+/// plain arithmetic, so compiling it for AVX-512 or AVX2 changes its speed, not its results
+/// (no fused multiply-adds are formed; each lane rounds exactly as scalar `f64` does).
 fn compare_rows(
     shader: &Shader,
     a: &MaterialSource,
@@ -141,10 +168,32 @@ fn compare_rows(
     directions: &Directions,
 ) -> Partial {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has just been found to support AVX2.
-        return unsafe { compare_rows_avx2(shader, a, b, grid, rows, directions) };
+    {
+        use std::arch::is_x86_feature_detected as has;
+        if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
+            // SAFETY: the CPU has just been found to support these features.
+            return unsafe { compare_rows_avx512(shader, a, b, grid, rows, directions) };
+        }
+        if has!("avx2") {
+            // SAFETY: as above.
+            return unsafe { compare_rows_avx2(shader, a, b, grid, rows, directions) };
+        }
     }
+    compare_rows_inline(shader, a, b, grid, rows, directions)
+}
+
+/// # Safety
+/// The CPU must support AVX-512 F, DQ and VL.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512dq,avx512vl")]
+unsafe fn compare_rows_avx512(
+    shader: &Shader,
+    a: &MaterialSource,
+    b: &MaterialSource,
+    grid: u32,
+    rows: std::ops::Range<u32>,
+    directions: &Directions,
+) -> Partial {
     compare_rows_inline(shader, a, b, grid, rows, directions)
 }
 
@@ -183,43 +232,67 @@ fn compare_rows_inline(
         },
         histogram: vec![0; BINS],
     };
+    let mut batch = Batch {
+        a: [[0.0; BATCH]; 3],
+        b: [[0.0; BATCH]; 3],
+    };
+    let texel_uv = |x: u32, y: u32| {
+        [
+            (f64::from(x) + 0.5) / f64::from(grid),
+            (f64::from(y) + 0.5) / f64::from(grid),
+        ]
+    };
     for y in rows {
-        for x in 0..grid {
-            let uv = [
-                (f64::from(x) + 0.5) / f64::from(grid),
-                (f64::from(y) + 0.5) / f64::from(grid),
-            ];
-            let uvs = [uv, uv];
-            let (ma, mb) = (a.inputs_at(&uvs), b.inputs_at(&uvs));
-            // Identical inputs give identical colours in every direction: ΔE is exactly 0.
-            let deltas = if ma == mb {
-                [0.0; DIRECTION_COUNT]
-            } else {
-                delta_e(
-                    directions.colours(shader, &ma),
-                    directions.colours(shader, &mb),
-                )
-            };
-            let mut texel_max = 0f64;
-            for (&delta, &angles) in deltas.iter().zip(&directions.angles) {
-                let delta = if delta.is_finite() { delta } else { f64::MAX };
-                texel_max = texel_max.max(delta);
-                partial.sum += delta.min(1e6);
-                partial.count += 1;
-                let bin = ((delta / BIN_WIDTH) as usize).min(BINS - 1);
-                partial.histogram[bin] += 1;
-                if delta > partial.worst.delta_e {
-                    partial.worst = Worst {
-                        delta_e: delta,
-                        uv,
-                        directions: angles,
-                    };
-                }
+        for first in (0..grid).step_by(BATCH_TEXELS) {
+            let texels = first..(first + BATCH_TEXELS as u32).min(grid);
+            let mut differing = false;
+            for (k, x) in texels.clone().enumerate() {
+                let uv = texel_uv(x, y);
+                let (ma, mb) = (a.inputs_at(&[uv, uv]), b.inputs_at(&[uv, uv]));
+                let colours_a = directions.colours(shader, &ma);
+                // Identical inputs give identical colours, whose ΔE is exactly 0.
+                let colours_b = if ma == mb {
+                    colours_a
+                } else {
+                    differing = true;
+                    directions.colours(shader, &mb)
+                };
+                Batch::put(&mut batch.a, k, colours_a);
+                Batch::put(&mut batch.b, k, colours_b);
             }
-            partial.per_texel.push(texel_max as f32);
+            let deltas = if differing {
+                batch.delta_e()
+            } else {
+                [0.0; BATCH]
+            };
+            for (x, samples) in texels.zip(deltas.chunks_exact(DIRECTION_COUNT)) {
+                partial.add_texel(texel_uv(x, y), samples, &directions.angles);
+            }
         }
     }
     partial
+}
+
+impl Partial {
+    fn add_texel(&mut self, uv: [f64; 2], deltas: &[f64], angles: &[(f64, f64, f64)]) {
+        let mut texel_max = 0f64;
+        for (&delta, &angles) in deltas.iter().zip(angles) {
+            let delta = if delta.is_finite() { delta } else { f64::MAX };
+            texel_max = texel_max.max(delta);
+            self.sum += delta.min(1e6);
+            self.count += 1;
+            let bin = ((delta / BIN_WIDTH) as usize).min(BINS - 1);
+            self.histogram[bin] += 1;
+            if delta > self.worst.delta_e {
+                self.worst = Worst {
+                    delta_e: delta,
+                    uv,
+                    directions: angles,
+                };
+            }
+        }
+        self.per_texel.push(texel_max as f32);
+    }
 }
 
 fn merge(partials: Vec<Partial>, grid: u32) -> Comparison {
@@ -300,11 +373,8 @@ mod tests {
 
     #[cfg(target_arch = "x86_64")]
     #[test]
-    fn the_vector_instruction_path_gives_the_portable_results_bit_for_bit() {
-        if !std::arch::is_x86_feature_detected!("avx2") {
-            eprintln!("no AVX2 on this CPU: only the portable path runs here");
-            return;
-        }
+    fn the_vector_instruction_paths_give_the_portable_results_bit_for_bit() {
+        use std::arch::is_x86_feature_detected as has;
         let sheen = gltf2(
             json!({"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.3, 0.2, 1.0], "metallicFactor": 0.2, "roughnessFactor": 0.4},
             "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.5, 0.9], "sheenRoughnessFactor": 0.5},
@@ -314,14 +384,30 @@ mod tests {
             json!({"pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.6, 0.9, 1.0], "metallicFactor": 0.7, "roughnessFactor": 0.05}}),
         );
         let (shader, directions) = (shader(), Directions::new());
+        let mut checked = 0;
         for (a, b) in [(&sheen, &plain), (&plain, &sheen)] {
-            let portable = compare_rows_inline(&shader, a, b, 4, 0..4, &directions);
-            // SAFETY: AVX2 support was checked above.
-            let vector = unsafe { compare_rows_avx2(&shader, a, b, 4, 0..4, &directions) };
+            // 20 texels per row: two full batches and a partial one.
+            let portable = compare_rows_inline(&shader, a, b, 20, 0..3, &directions);
             assert!(portable.sum > 1.0, "the materials differ: {}", portable.sum);
-            assert_eq!(portable.sum.to_bits(), vector.sum.to_bits());
-            assert_eq!(portable.per_texel, vector.per_texel);
-            assert_eq!(portable.worst, vector.worst);
+            let mut vector = Vec::new();
+            if has!("avx2") {
+                // SAFETY: AVX2 support was checked.
+                vector.push(unsafe { compare_rows_avx2(&shader, a, b, 20, 0..3, &directions) });
+            }
+            if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
+                // SAFETY: AVX-512 support was checked.
+                vector.push(unsafe { compare_rows_avx512(&shader, a, b, 20, 0..3, &directions) });
+            }
+            for v in &vector {
+                assert_eq!(portable.sum.to_bits(), v.sum.to_bits());
+                assert_eq!(portable.per_texel, v.per_texel);
+                assert_eq!(portable.histogram, v.histogram);
+                assert_eq!(portable.worst, v.worst);
+            }
+            checked += vector.len();
+        }
+        if checked == 0 {
+            eprintln!("neither AVX2 nor AVX-512 on this CPU: only the portable path ran");
         }
     }
 

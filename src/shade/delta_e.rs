@@ -31,9 +31,10 @@ const RGB_TO_XYZ_OVER_WHITE: [[f64; 3]; 3] = {
 /// CIELAB of a linear sRGB colour (D65 white, Y of white = 1).
 #[inline(always)]
 pub fn lab_from_linear_srgb<R: Real>([r, g, b]: [R; 3]) -> [R; 3] {
-    let f = |[mr, mg, mb]: [f64; 3]| lab_f(r * mr + g * mg + b * mb);
     let [x, y, z] = RGB_TO_XYZ_OVER_WHITE;
-    let (fx, fy, fz) = (f(x), f(y), f(z));
+    let fx = lab_f(r * x[0] + g * x[1] + b * x[2]);
+    let fy = lab_f(r * y[0] + g * y[1] + b * y[2]);
+    let fz = lab_f(r * z[0] + g * z[1] + b * z[2]);
     [fy * 116.0 - 16.0, (fx - fy) * 500.0, (fy - fz) * 200.0]
 }
 
@@ -45,26 +46,25 @@ fn lab_f<R: Real>(t: R) -> R {
     R::select(t.gt(R::splat(DELTA * DELTA * DELTA)), cube_root(t), linear)
 }
 
-/// Cube root of a positive normal number: a first guess from the exponent bits (a third
-/// of the high word plus fdlibm's bias, good to 5 bits), refined by Halley's method, which
-/// triples the correct digits each step. Several times faster than the portable `cbrt` and
-/// within a few ulps of it; the high-word form needs only a 32-bit division by 3, done as a
-/// multiplication, which vectorises. (A division-free Newton iteration on a^(−1/3) was
-/// measured slower: its multiplications queue behind the rest of the sample's arithmetic,
-/// while Halley's divisions run in their own unit.)
+/// Cube root of a positive normal number, without a division (the comparison takes six
+/// per sample, and vector divisions are slow): y = a^(−1/3) from a first guess on the
+/// exponent bits (good to 3.4%; the constant is tuned for the smallest worst case), four
+/// Newton steps y ← y·(4 − a·y³)/3 (each squares the error), then ∛a = a·y². Within a few
+/// ulps of `cbrt`, several times faster, and the high-word guess needs only a 32-bit
+/// division by 3, done as a multiplication, which vectorises. (Halley's method on ∛a, three
+/// divisions, measured 10–20% slower for the whole comparison.)
 #[inline(always)]
 fn cube_root<R: Real>(a: R) -> R {
-    const BIAS: u64 = 715_094_163;
-    let mut x = a.map_bits(|bits| {
+    const MAGIC: u64 = 0x553E_F0F0;
+    let mut y = a.map_bits(|bits| {
         let high = (bits >> 32) & 0x7FFF_FFFF;
         let third = (high * 0xAAAA_AAAB) >> 33; // high / 3 for any 32-bit high
-        (third + BIAS) << 32
+        (MAGIC - third) << 32
     });
-    for _ in 0..3 {
-        let x3 = x * x * x;
-        x = x * ((x3 + a * 2.0) / (x3 * 2.0 + a));
+    for _ in 0..4 {
+        y = y * (-(a * y * y * y) + 4.0) * (1.0 / 3.0);
     }
-    x
+    a * y * y
 }
 
 /// CIEDE2000 ΔE between two CIELAB colours (k_L = k_C = k_H = 1).

@@ -13,10 +13,12 @@ use std::f64::consts::LOG2_E;
 /// Horner evaluation of Σ cᵢ xⁱ.
 #[inline(always)]
 fn polynomial<R: Real, const N: usize>(coefficients: &[f64; N], x: R) -> R {
-    coefficients
-        .iter()
-        .rev()
-        .fold(R::splat(0.0), |sum, &c| sum * x + c)
+    // An indexed loop: the iterator form left a call per polynomial in the vector code.
+    let mut sum = R::splat(0.0);
+    for i in (0..N).rev() {
+        sum = sum * x + coefficients[i];
+    }
+    sum
 }
 
 /// (−1)ⁿ / (2n + 1): atan's Taylor coefficients in r².

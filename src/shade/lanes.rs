@@ -101,19 +101,51 @@ impl Real for f64 {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Lanes<const N: usize>(pub [f64; N]);
 
-/// Per-lane truth values of a comparison.
+/// Per-lane truth values of a comparison, all ones or all zeros per lane as vector compare
+/// instructions produce them (a `bool` per lane kept the optimiser from vectorising
+/// selects).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Mask<const N: usize>(pub [bool; N]);
+pub struct Mask<const N: usize>([u64; N]);
+
+impl<const N: usize> Mask<N> {
+    #[inline(always)]
+    pub fn from_bools(truth: [bool; N]) -> Self {
+        Mask(each(|i| if truth[i] { u64::MAX } else { 0 }))
+    }
+}
+
+/// `[f(0), …, f(N − 1)]` as a plain loop: `array::map` and `array::from_fn` go through
+/// helpers the optimiser does not always inline, which would leave a call per operation.
+#[inline(always)]
+pub fn each<T: Copy + Default, const N: usize>(f: impl Fn(usize) -> T) -> [T; N] {
+    let mut out = [T::default(); N];
+    for (i, slot) in out.iter_mut().enumerate() {
+        *slot = f(i);
+    }
+    out
+}
+
+/// `[f(0), f(1), f(2)]`, written out, for the colour channels (see [`each`]).
+#[inline(always)]
+pub fn channels<T>(f: impl Fn(usize) -> T) -> [T; 3] {
+    [f(0), f(1), f(2)]
+}
 
 impl<const N: usize> Lanes<N> {
     #[inline(always)]
     fn zip(self, other: Self, f: impl Fn(f64, f64) -> f64) -> Self {
-        Lanes(std::array::from_fn(|i| f(self.0[i], other.0[i])))
+        Lanes(each(|i| f(self.0[i], other.0[i])))
     }
 
     #[inline(always)]
     fn compare(self, other: Self, f: impl Fn(f64, f64) -> bool) -> Mask<N> {
-        Mask(std::array::from_fn(|i| f(self.0[i], other.0[i])))
+        Mask(each(|i| {
+            if f(self.0[i], other.0[i]) {
+                u64::MAX
+            } else {
+                0
+            }
+        }))
     }
 }
 
@@ -155,7 +187,7 @@ macro_rules! mask_operator {
             type Output = Self;
             #[inline(always)]
             fn $method(self, other: Self) -> Self {
-                Mask(std::array::from_fn(|i| self.0[i] $op other.0[i]))
+                Mask(each(|i| self.0[i] $op other.0[i]))
             }
         }
     };
@@ -168,7 +200,7 @@ impl<const N: usize> Not for Mask<N> {
     type Output = Self;
     #[inline(always)]
     fn not(self) -> Self {
-        Mask(self.0.map(|m| !m))
+        Mask(each(|i| !self.0[i]))
     }
 }
 
@@ -212,17 +244,14 @@ impl<const N: usize> Real for Lanes<N> {
     }
     #[inline(always)]
     fn select(mask: Mask<N>, yes: Self, no: Self) -> Self {
-        Lanes(std::array::from_fn(|i| {
-            if mask.0[i] {
-                yes.0[i]
-            } else {
-                no.0[i]
-            }
+        Lanes(each(|i| {
+            let m = mask.0[i];
+            f64::from_bits((yes.0[i].to_bits() & m) | (no.0[i].to_bits() & !m))
         }))
     }
     #[inline(always)]
     fn map(self, f: impl Fn(f64) -> f64) -> Self {
-        Lanes(self.0.map(f))
+        Lanes(each(|i| f(self.0[i])))
     }
     #[inline(always)]
     fn map_bits(self, f: impl Fn(u64) -> u64) -> Self {

@@ -16,7 +16,7 @@ use super::brdf::{
     anisotropic_alphas, f0_from_ior, fresnel, ggx_aniso_d, ggx_d, max3, sheen_lobe, smith_vis,
     smith_vis_aniso, Geometry, SheenVisibility, V3,
 };
-use super::lanes::Real;
+use super::lanes::{channels, Real};
 use super::sheen_table::SheenTable;
 use std::f64::consts::PI;
 
@@ -99,10 +99,10 @@ impl Shader {
             let lobe = sheen_lobe(self.visibility(), m.sheen_roughness, g);
             let e = |mu: R| mu.map(|mu| self.sheen_table.lookup(mu, m.sheen_roughness));
             let scale = (-(e(g.v[2]) * c) + 1.0).min(-(e(g.l[2]) * c) + 1.0);
-            [0, 1, 2].map(|i| lobe * m.sheen_color[i] + base[i] * scale)
+            channels(|i| lobe * m.sheen_color[i] + base[i] * scale)
         };
         let zero = R::splat(0.0);
-        layered.map(|f| R::select(g.above, f, zero))
+        channels(|i| R::select(g.above, layered[i], zero))
     }
 }
 
@@ -121,7 +121,7 @@ pub fn base_brdf<R: Real>(m: &Inputs, g: &Geometry<R>) -> [R; 3] {
         ggx_d(alpha, g.h[2]) * smith_vis(alpha, g.l[2], g.v[2])
     };
     let f0_ior = f0_from_ior(m.ior);
-    let dielectric_f: [R; 3] = [0, 1, 2].map(|i| {
+    let dielectric_f: [R; 3] = channels(|i| {
         fresnel(
             (f0_ior * m.specular_color[i]).min(1.0) * m.specular,
             m.specular,
@@ -129,7 +129,7 @@ pub fn base_brdf<R: Real>(m: &Inputs, g: &Geometry<R>) -> [R; 3] {
         )
     });
     let diffuse_weight = -max3(dielectric_f) + 1.0;
-    [0, 1, 2].map(|i| {
+    channels(|i| {
         let dielectric = dielectric_f[i] * specular + diffuse_weight * (m.base_color[i] / PI);
         let metal = fresnel(m.base_color[i], 1.0, g.fresnel_weight) * specular;
         dielectric * (1.0 - m.metallic) + metal * m.metallic

@@ -36,18 +36,27 @@ impl TextureImage {
         self.height
     }
 
-    /// The texel starting at component index `at`, or transparent black past the end.
+    /// The texel at column `x`, row `y` (inside the image), or transparent black if the
+    /// texel data is short.
     #[inline]
-    fn texel(&self, at: usize) -> [f64; 4] {
+    fn texel(&self, x: i64, y: i64) -> [f64; 4] {
+        let at = ((y * i64::from(self.width) + x) * 4) as usize;
         match &self.texels {
             Texels::Unorm8(raw) => raw.get(at..at + 4).map_or([0.0; 4], |p| {
-                [p[0], p[1], p[2], p[3]].map(|b| f64::from(b) / 255.0)
+                let unorm = unorm8_table();
+                [p[0], p[1], p[2], p[3]].map(|b| unorm[usize::from(b)])
             }),
             Texels::Float(raw) => raw
                 .get(at..at + 4)
                 .map_or([0.0; 4], |p| [p[0], p[1], p[2], p[3]].map(f64::from)),
         }
     }
+}
+
+/// b / 255 for every byte: a lookup where sampling would divide four times per texel.
+fn unorm8_table() -> &'static [f64; 256] {
+    static TABLE: std::sync::OnceLock<[f64; 256]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| std::array::from_fn(|b| b as f64 / 255.0))
 }
 
 pub fn decode(bytes: &[u8]) -> Option<Texture> {
@@ -111,7 +120,7 @@ pub fn bilinear(texture: &TextureImage, [u, v]: [f64; 2]) -> [f64; 4] {
     let y = v * h as f64 - 0.5;
     let (x0, y0) = (floor(x), floor(y));
     let (fx, fy) = (x - x0 as f64, y - y0 as f64);
-    let texel = |i: i64, j: i64| texture.texel(((wrap(j, h) * w + wrap(i, w)) * 4) as usize);
+    let texel = |i: i64, j: i64| texture.texel(wrap(i, w), wrap(j, h));
     if fx == 0.0 && fy == 0.0 {
         // Exactly on a texel centre (the comparison grid at texture resolution).
         return texel(x0, y0);
