@@ -34,6 +34,17 @@ pub fn linear_to_srgb(linear: f64) -> f64 {
     }
 }
 
+/// `round(255 · linear_to_srgb(linear))` for linear values clamped to 0..1, by searching
+/// the 255 linear values where the rounded level changes (a table of the inverse
+/// function) instead of calling `powf`: rebaking and rendering encode millions of texels.
+pub fn linear_to_srgb8(linear: f64) -> u8 {
+    static THRESHOLDS: std::sync::OnceLock<[f64; 255]> = std::sync::OnceLock::new();
+    let thresholds = THRESHOLDS
+        .get_or_init(|| std::array::from_fn(|k| srgb_to_linear((k as f64 + 0.5) / 255.0)));
+    // Levels whose lower threshold the value reaches; NaN reaches none.
+    thresholds.partition_point(|&t| linear >= t) as u8
+}
+
 /// Relative luminance of linear Rec.709 / sRGB primaries.
 pub fn luminance([r, g, b]: [f64; 3]) -> f64 {
     0.2126 * r + 0.7152 * g + 0.0722 * b
@@ -50,6 +61,27 @@ mod tests {
             assert!((linear_to_srgb(srgb_to_linear(encoded)) - encoded).abs() < 1e-12);
         }
         assert!((srgb_to_linear(0.5) - 0.214_041_140_5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn eight_bit_encoding_rounds_the_transfer_function() {
+        for step in 0..=1_000_000 {
+            let linear = f64::from(step) / 1_000_000.0;
+            let expected = (linear_to_srgb(linear) * 255.0).round() as u8;
+            assert_eq!(linear_to_srgb8(linear), expected, "{linear}");
+        }
+        for i in 0..=255u8 {
+            let level = srgb_to_linear(f64::from(i) / 255.0);
+            assert_eq!(linear_to_srgb8(level), i, "the level's own linear value");
+        }
+        assert_eq!(
+            (
+                linear_to_srgb8(-1.0),
+                linear_to_srgb8(2.0),
+                linear_to_srgb8(f64::NAN)
+            ),
+            (0, 255, 0)
+        );
     }
 
     #[test]

@@ -12,7 +12,7 @@
 use super::brdf::{dot, normalize, Geometry, V3};
 use super::material::Shader;
 use super::sample::MaterialSource;
-use crate::color::linear_to_srgb;
+use crate::color::linear_to_srgb8;
 use image::{Rgb, RgbImage};
 use std::f64::consts::PI;
 
@@ -159,7 +159,7 @@ fn shade_pixel(
 
 fn encode(linear: V3) -> Rgb<u8> {
     let mapped = pbr_neutral(linear.map(|c| c.max(0.0)));
-    Rgb(mapped.map(|c| (linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0).round() as u8))
+    Rgb(mapped.map(linear_to_srgb8))
 }
 
 /// Renders one material ball.

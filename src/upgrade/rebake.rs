@@ -1,7 +1,7 @@
 //! Texture rebaking for material conversion: new PNG images computed texel by texel from
 //! the 1.0 textures. Original images are never modified or reused for a changed meaning.
 
-use crate::color::{linear_to_srgb, srgb_texel_to_linear};
+use crate::color::{linear_to_srgb, linear_to_srgb8, srgb_texel_to_linear};
 use crate::document::image_decode;
 use crate::document::image_header::{self, Channels};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
@@ -111,7 +111,12 @@ pub fn spec_gloss_base_colour(
         let keep = (1.0 - max_specular).max(0.0);
         let channel = |c: usize| {
             let linear = srgb_texel_to_linear(f64::from(d[c])) * diffuse_factor[c] * keep;
-            linear_to_srgb(linear.clamp(0.0, 1.0)) as f32
+            if wide {
+                linear_to_srgb(linear.clamp(0.0, 1.0)) as f32
+            } else {
+                // Exactly the 8-bit level the encoder would round the value to.
+                f32::from(linear_to_srgb8(linear)) / 255.0
+            }
         };
         image::Rgba([
             channel(0),
