@@ -11,7 +11,7 @@ pub fn srgb_to_linear(encoded: f64) -> f64 {
 
 /// `srgb_to_linear` for sampled texture values: an exact 8-bit level (most texels) is
 /// looked up in a table of the same function instead of calling `powf`.
-#[inline]
+#[inline(always)]
 pub fn srgb_texel_to_linear(encoded: f64) -> f64 {
     static TABLE: std::sync::OnceLock<[f64; 256]> = std::sync::OnceLock::new();
     let table = TABLE.get_or_init(|| std::array::from_fn(|i| srgb_to_linear(i as f64 / 255.0)));

@@ -38,7 +38,7 @@ impl TextureImage {
 
     /// The texel at column `x`, row `y` (inside the image), or transparent black if the
     /// texel data is short.
-    #[inline]
+    #[inline(always)]
     fn texel(&self, x: i64, y: i64) -> [f64; 4] {
         let at = ((y * i64::from(self.width) + x) * 4) as usize;
         match &self.texels {
@@ -110,7 +110,7 @@ pub fn decode_all<B: AsRef<[u8]> + Sync>(sources: &[Option<B>]) -> Vec<Option<Te
 }
 
 /// Bilinear sample with repeat wrapping, texel centres at (i + ½) / size.
-#[inline]
+#[inline(always)]
 pub fn bilinear(texture: &TextureImage, [u, v]: [f64; 2]) -> [f64; 4] {
     let (w, h) = (
         texture.width().max(1) as i64,
@@ -140,7 +140,7 @@ pub fn bilinear(texture: &TextureImage, [u, v]: [f64; 2]) -> [f64; 4] {
 
 /// ⌊x⌋ as an integer (saturating), by a cast: `f64::floor` is a library call on baseline
 /// x86-64, and sampling floors two coordinates per texture per texel.
-#[inline]
+#[inline(always)]
 fn floor(x: f64) -> i64 {
     let truncated = x as i64;
     if (truncated as f64) > x {
@@ -151,7 +151,7 @@ fn floor(x: f64) -> i64 {
 }
 
 /// Repeat wrapping; the division only for coordinates outside the texture.
-#[inline]
+#[inline(always)]
 fn wrap(i: i64, size: i64) -> i64 {
     if (0..size).contains(&i) {
         i
@@ -170,6 +170,7 @@ struct Binding {
 }
 
 impl Binding {
+    #[inline(always)]
     fn sample(&self, uvs: &[[f64; 2]]) -> [f64; 4] {
         let [u, v] = uvs
             .get(self.texcoord as usize)
@@ -260,7 +261,7 @@ fn number(object: Option<&Value>, key: &str, default: f64) -> f64 {
 }
 
 /// sRGB decode of sampled values.
-#[inline]
+#[inline(always)]
 fn srgb3(t: [f64; 4]) -> V3 {
     [t[0], t[1], t[2]].map(srgb_texel_to_linear)
 }
@@ -296,7 +297,9 @@ impl MaterialSource {
             .unwrap_or(1)
     }
 
-    /// The BRDF inputs at texture coordinates `uvs` (one pair per TEXCOORD set).
+    /// The BRDF inputs at texture coordinates `uvs` (one pair per TEXCOORD set). Inlined
+    /// into the comparison's texel loop, which is compiled for the CPU's vector width.
+    #[inline(always)]
     pub fn inputs_at(&self, uvs: &[[f64; 2]]) -> Inputs {
         match self {
             MaterialSource::Gltf2(prepared) => prepared.inputs_at(uvs),
@@ -364,11 +367,13 @@ fn prepare(material: &Value, textures: &[Option<Texture>]) -> Prepared {
     }
 }
 
+#[inline(always)]
 fn times(a: V3, b: V3) -> V3 {
     [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
 }
 
 impl Prepared {
+    #[inline(always)]
     fn inputs_at(&self, uvs: &[[f64; 2]]) -> Inputs {
         let sample = |b: &Option<Binding>| b.as_ref().map(|b| b.sample(uvs));
         if let Some(sg) = &self.spec_gloss {
@@ -414,6 +419,7 @@ impl Prepared {
 
 /// The 1.0 drafts' own model: metal-rough with metallic in R and roughness in G of the data
 /// texture; spec-gloss with sRGB diffuse and specular, glossiness in A (2017 draft).
+#[inline(always)]
 fn legacy_inputs(
     pbr: &LegacyPbr,
     colour: Option<&TextureImage>,
