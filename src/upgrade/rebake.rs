@@ -5,7 +5,7 @@ use crate::color::{linear_to_srgb, linear_to_srgb8, srgb_texel_to_linear};
 use crate::document::image_decode;
 use crate::document::image_header::{self, Channels};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-use image::{DynamicImage, ImageEncoder, Rgb32FImage, Rgba32FImage};
+use image::{DynamicImage, ExtendedColorType, ImageEncoder, Rgba32FImage};
 use std::io::Cursor;
 
 pub fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
@@ -14,35 +14,43 @@ pub fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
 
 /// Encodes linear-or-stored values (0..1) as an 8-bit RGB(A) PNG, or 16-bit when `wide`.
 fn encode(image: &Rgba32FImage, alpha: bool, wide: bool) -> Vec<u8> {
-    let dynamic = if alpha {
-        DynamicImage::ImageRgba32F(image.clone())
+    let (width, height) = image.dimensions();
+    let channels = if alpha { 4 } else { 3 };
+    let values = || {
+        image
+            .pixels()
+            .flat_map(move |p| p.0.into_iter().take(channels))
+    };
+    // The image crate's float → integer rule: clamp to 0..1, scale, round.
+    let quantise = |v: f32, max: f32| (v.clamp(0.0, 1.0) * max).round();
+    let (bytes, color) = if wide {
+        let samples: Vec<u8> = values()
+            .flat_map(|v| (quantise(v, 65535.0) as u16).to_ne_bytes())
+            .collect();
+        let color = if alpha {
+            ExtendedColorType::Rgba16
+        } else {
+            ExtendedColorType::Rgb16
+        };
+        (samples, color)
     } else {
-        let rgb = Rgb32FImage::from_fn(image.width(), image.height(), |x, y| {
-            let p = image.get_pixel(x, y).0;
-            image::Rgb([p[0], p[1], p[2]])
-        });
-        DynamicImage::ImageRgb32F(rgb)
+        let samples: Vec<u8> = values().map(|v| quantise(v, 255.0) as u8).collect();
+        let color = if alpha {
+            ExtendedColorType::Rgba8
+        } else {
+            ExtendedColorType::Rgb8
+        };
+        (samples, color)
     };
-    let converted = match (wide, alpha) {
-        (true, true) => DynamicImage::ImageRgba16(dynamic.to_rgba16()),
-        (true, false) => DynamicImage::ImageRgb16(dynamic.to_rgb16()),
-        (false, true) => DynamicImage::ImageRgba8(dynamic.to_rgba8()),
-        (false, false) => DynamicImage::ImageRgb8(dynamic.to_rgb8()),
-    };
-    let mut bytes = Vec::new();
+    let mut png = Vec::new();
     let encoder = PngEncoder::new_with_quality(
-        Cursor::new(&mut bytes),
+        Cursor::new(&mut png),
         CompressionType::Fast,
         FilterType::Adaptive,
     );
     encoder
-        .write_image(
-            converted.as_bytes(),
-            converted.width(),
-            converted.height(),
-            converted.color().into(),
-        )
-        .map(|()| bytes)
+        .write_image(&bytes, width, height, color)
+        .map(|()| png)
         .unwrap_or_default()
 }
 
