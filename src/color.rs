@@ -34,15 +34,34 @@ pub fn linear_to_srgb(linear: f64) -> f64 {
     }
 }
 
-/// `round(255 · linear_to_srgb(linear))` for linear values clamped to 0..1, by searching
-/// the 255 linear values where the rounded level changes (a table of the inverse
-/// function) instead of calling `powf`: rebaking and rendering encode millions of texels.
+/// `round(255 · linear_to_srgb(linear))` for linear values clamped to 0..1, without
+/// `powf` (rebaking and rendering encode millions of texels): the level is the number of
+/// level boundaries (linear values where the rounded level changes) at or below the value,
+/// counted from a bucket table that starts within two levels of the answer.
 pub fn linear_to_srgb8(linear: f64) -> u8 {
-    static THRESHOLDS: std::sync::OnceLock<[f64; 255]> = std::sync::OnceLock::new();
-    let thresholds = THRESHOLDS
-        .get_or_init(|| std::array::from_fn(|k| srgb_to_linear((k as f64 + 0.5) / 255.0)));
-    // Levels whose lower threshold the value reaches; NaN reaches none.
-    thresholds.partition_point(|&t| linear >= t) as u8
+    const BUCKETS: usize = 4096;
+    struct Tables {
+        boundaries: [f64; 255],
+        /// The level of each bucket's lower end.
+        bucket_start: [u8; BUCKETS],
+    }
+    static TABLES: std::sync::OnceLock<Tables> = std::sync::OnceLock::new();
+    let tables = TABLES.get_or_init(|| {
+        let boundaries: [f64; 255] =
+            std::array::from_fn(|k| srgb_to_linear((k as f64 + 0.5) / 255.0));
+        let count = |v: f64| boundaries.partition_point(|&b| v >= b) as u8;
+        Tables {
+            bucket_start: std::array::from_fn(|i| count(i as f64 / (BUCKETS - 1) as f64)),
+            boundaries,
+        }
+    });
+    // NaN and negatives land in bucket 0 and pass no boundary: level 0.
+    let bucket = (linear.clamp(0.0, 1.0) * (BUCKETS - 1) as f64) as usize;
+    let mut level = tables.bucket_start[bucket.min(BUCKETS - 1)];
+    while level < 255 && linear >= tables.boundaries[usize::from(level)] {
+        level += 1;
+    }
+    level
 }
 
 /// Relative luminance of linear Rec.709 / sRGB primaries.

@@ -105,14 +105,11 @@ pub fn spec_gloss_base_colour(
         .or(specular.as_ref())
         .map(|i| i.dimensions())
         .ok_or("no texture to rebake")?;
-    let sample = |image: &Rgba32FImage, x: u32, y: u32| {
-        let sx = (u64::from(x) * u64::from(image.width()) / u64::from(width)) as u32;
-        let sy = (u64::from(y) * u64::from(image.height()) / u64::from(height)) as u32;
-        image.get_pixel(sx, sy).0
-    };
+    let diffuse = diffuse.map(|image| Nearest::new(image, width, height));
+    let specular = specular.map(|image| Nearest::new(image, width, height));
     let out = Rgba32FImage::from_fn(width, height, |x, y| {
-        let d = diffuse.as_ref().map_or([1.0; 4], |i| sample(i, x, y));
-        let s = specular.as_ref().map_or([1.0; 4], |i| sample(i, x, y));
+        let d = diffuse.as_ref().map_or([1.0; 4], |i| i.at(x, y));
+        let s = specular.as_ref().map_or([1.0; 4], |i| i.at(x, y));
         let max_specular = (0..3)
             .map(|c| srgb_texel_to_linear(f64::from(s[c])) * specular_factor[c])
             .fold(0.0, f64::max);
@@ -134,6 +131,36 @@ pub fn spec_gloss_base_colour(
         ])
     });
     Ok((encode(&out, alpha, wide), alpha))
+}
+
+/// An image sampled at the nearest texel on an output grid of another size, with the
+/// source column and row of every output column and row worked out once (a division per
+/// texel was a third of the rebake's time).
+struct Nearest {
+    image: Rgba32FImage,
+    columns: Vec<u32>,
+    rows: Vec<u32>,
+}
+
+impl Nearest {
+    fn new(image: Rgba32FImage, width: u32, height: u32) -> Nearest {
+        let scale = |to: u32, from: u32| -> Vec<u32> {
+            (0..to)
+                .map(|i| (u64::from(i) * u64::from(from) / u64::from(to)) as u32)
+                .collect()
+        };
+        Nearest {
+            columns: scale(width, image.width()),
+            rows: scale(height, image.height()),
+            image,
+        }
+    }
+
+    fn at(&self, x: u32, y: u32) -> [f32; 4] {
+        self.image
+            .get_pixel(self.columns[x as usize], self.rows[y as usize])
+            .0
+    }
 }
 
 /// Whether any texel has alpha below 1 (the material then needs alpha blending). An image
