@@ -249,13 +249,17 @@ fn compare_rows_inline(
             for (k, x) in texels.clone().enumerate() {
                 let uv = texel_uv(x, y);
                 let (ma, mb) = (a.inputs_at(&[uv, uv]), b.inputs_at(&[uv, uv]));
-                let colours_a = directions.colours(shader, &ma);
-                // Identical inputs give identical colours, whose ΔE is exactly 0.
-                let colours_b = if ma == mb {
-                    colours_a
+                // Identical inputs give identical colours, whose ΔE is exactly 0: any equal
+                // pair stands in for them.
+                let (colours_a, colours_b) = if ma == mb {
+                    let black = [Lanes::splat(0.0); 3];
+                    (black, black)
                 } else {
                     differing = true;
-                    directions.colours(shader, &mb)
+                    (
+                        directions.colours(shader, &ma),
+                        directions.colours(shader, &mb),
+                    )
                 };
                 Batch::put(&mut batch.a, k, colours_a);
                 Batch::put(&mut batch.b, k, colours_b);
