@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Times `gltfmat upgrade --verify` (upgrade + rebake + check + ΔE proof) on a generated glTF 1.0
-# asset with five 2048² textures (two metal-rough materials, one spec-gloss).
+# Times `gltfmat upgrade --verify` (upgrade + rebake + check + ΔE proof) and `gltfmat compare`
+# (source against its upgrade) on a generated glTF 1.0 asset with five 2048² textures (two
+# metal-rough materials, one spec-gloss), best of 5 runs each (this machine's timings vary by
+# a third from run to run).
 #   bench/verify.sh [size]
 source "$(dirname "$0")/common.sh"
 size=${1:-2048}
@@ -38,6 +40,8 @@ box["materials"] = {
 }
 json.dump(box, open(f"{work}/big.gltf", "w"))
 PY
-now() { date +%s.%N; }
-t0=$(now); ./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/out.glb" --verify | grep -E "material|wrote"; t1=$(now)
-printf 'upgrade --verify, five %d² textures: %.2fs\n' "$size" "$(echo "$t1 - $t0" | bc -l)"
+./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/upgraded.glb" --verify | grep -E "^material|wrote"
+read -r verify_s verify_kb < <(best_of 5 ./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/out-RUN.glb" --verify)
+read -r compare_s compare_kb < <(best_of 5 ./target/release/gltfmat compare "$work/big.gltf" "$work/upgraded.glb")
+printf 'five %d² textures, best of 5: upgrade --verify %.2fs (%d MB), compare %.2fs (%d MB)\n' \
+  "$size" "$verify_s" "$((verify_kb / 1024))" "$compare_s" "$((compare_kb / 1024))"

@@ -28,6 +28,44 @@ impl AsRef<[u8]> for Encoded<'_> {
     }
 }
 
+/// The images the materials sample (through their textureInfo objects, the only objects
+/// in a material with an `index`): the others, such as originals a converter kept, are not
+/// decoded.
+pub fn used_images(materials: &[Value], textures: &[Value]) -> std::collections::BTreeSet<usize> {
+    fn texture_indices(value: &Value, out: &mut Vec<u64>) {
+        match value {
+            Value::Object(object) => {
+                out.extend(object.get("index").and_then(Value::as_u64));
+                object.values().for_each(|v| texture_indices(v, out));
+            }
+            Value::Array(items) => items.iter().for_each(|v| texture_indices(v, out)),
+            _ => {}
+        }
+    }
+    let mut indices = Vec::new();
+    materials
+        .iter()
+        .for_each(|m| texture_indices(m, &mut indices));
+    indices
+        .into_iter()
+        .filter_map(|t| textures.get(t as usize))
+        .filter_map(texture_source)
+        .map(|source| source as usize)
+        .collect()
+}
+
+/// A texture's image: `source`, or the first extension's (KHR_texture_basisu, EXT_texture_webp…).
+pub fn texture_source(texture: &Value) -> Option<u64> {
+    let extension_source = texture
+        .get("extensions")
+        .and_then(Value::as_object)
+        .and_then(|e| e.values().find_map(|x| x.get("source")?.as_u64()));
+    texture
+        .get("source")
+        .and_then(Value::as_u64)
+        .or(extension_source)
+}
+
 /// Every material of a glTF 2.0 asset with its decoded textures, and the material names.
 pub fn gltf2_materials(
     bytes: Vec<u8>,
@@ -63,27 +101,24 @@ pub fn gltf2_materials(
         let end = start.checked_add(view.get("byteLength")?.as_u64()? as usize)?;
         buffer.get(start..end)
     };
+    let needed = used_images(&list("materials"), &list("textures"));
     let encoded: Vec<Option<Encoded>> = list("images")
         .iter()
-        .map(|image| match image.get("uri").and_then(Value::as_str) {
-            Some(uri) => uri_bytes(uri, loader).map(Encoded::Loaded),
-            None => view_bytes(image.get("bufferView")?.as_u64()?).map(Encoded::View),
+        .enumerate()
+        .map(|(i, image)| (i, image.get("uri").and_then(Value::as_str)))
+        .map(|(i, uri)| match (needed.contains(&i), uri) {
+            (false, _) => None,
+            (true, Some(uri)) => uri_bytes(uri, loader).map(Encoded::Loaded),
+            (true, None) => {
+                let view = list("images")[i].get("bufferView")?.as_u64()?;
+                view_bytes(view).map(Encoded::View)
+            }
         })
         .collect();
     let images = sample::decode_all(&encoded);
     let textures: Vec<Option<Texture>> = list("textures")
         .iter()
-        .map(|texture| {
-            let extension_source = texture
-                .get("extensions")
-                .and_then(Value::as_object)
-                .and_then(|e| e.values().find_map(|x| x.get("source")?.as_u64()));
-            let source = texture
-                .get("source")
-                .and_then(Value::as_u64)
-                .or(extension_source)?;
-            images.get(source as usize)?.clone()
-        })
+        .map(|texture| images.get(texture_source(texture)? as usize)?.clone())
         .collect();
     Ok(list("materials")
         .into_iter()

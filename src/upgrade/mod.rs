@@ -182,10 +182,13 @@ pub fn legacy_materials(
 
 /// The materials of an upgraded asset as the shading evaluator samples them.
 pub fn converted_materials(upgraded: &Upgraded) -> Vec<MaterialSource> {
+    let list = |key: &str| upgraded.json[key].as_array().cloned().unwrap_or_default();
+    let needed = crate::shade::load::used_images(&list("materials"), &list("textures"));
     let encoded: Vec<Option<&[u8]>> = upgraded
         .images
         .iter()
-        .map(|image| Some(&image.bytes[..]))
+        .enumerate()
+        .map(|(i, image)| needed.contains(&i).then_some(&image.bytes[..]))
         .collect();
     let images = sample::decode_all(&encoded);
     let textures: Vec<Option<Texture>> = upgraded.json["textures"]
