@@ -62,7 +62,7 @@ impl Inputs {
     pub fn specular_glossiness(diffuse: V3, specular: V3, glossiness: f64) -> Inputs {
         let keep = 1.0 - max3(specular);
         Inputs {
-            base_color: diffuse.map(|d| d * keep),
+            base_color: channels(|i| diffuse[i] * keep),
             metallic: 0.0,
             roughness: 1.0 - glossiness,
             ior: 0.0,

@@ -4,6 +4,7 @@
 //! PBR-draft materials (their own model) are sampled.
 
 use super::brdf::V3;
+use super::lanes::channels;
 use super::material::Inputs;
 use crate::color::srgb_texel_to_linear;
 use crate::legacy_pbr::{LegacyPbr, Model};
@@ -44,7 +45,8 @@ impl TextureImage {
         match &self.texels {
             Texels::Unorm8(raw) => raw.get(at..at + 4).map_or([0.0; 4], |p| {
                 let unorm = unorm8_table();
-                [p[0], p[1], p[2], p[3]].map(|b| unorm[usize::from(b)])
+                let level = |i: usize| unorm[usize::from(p[i])];
+                [level(0), level(1), level(2), level(3)]
             }),
             Texels::Float(raw) => raw
                 .get(at..at + 4)
@@ -263,7 +265,7 @@ fn number(object: Option<&Value>, key: &str, default: f64) -> f64 {
 /// sRGB decode of sampled values.
 #[inline(always)]
 fn srgb3(t: [f64; 4]) -> V3 {
-    [t[0], t[1], t[2]].map(srgb_texel_to_linear)
+    channels(|i| srgb_texel_to_linear(t[i]))
 }
 
 impl MaterialSource {
@@ -431,7 +433,7 @@ fn legacy_inputs(
     let mut rgb = [pbr.colour[0], pbr.colour[1], pbr.colour[2]];
     if let Some(t) = colour_texel {
         let c = srgb3(t);
-        rgb = [0, 1, 2].map(|i| rgb[i] * c[i]);
+        rgb = times(rgb, c);
     }
     match pbr.model {
         Model::MetalRoughness => {
@@ -451,7 +453,7 @@ fn legacy_inputs(
             let (mut specular, mut gloss) = (pbr.specular, pbr.glossiness);
             if let Some(t) = data_texel {
                 let s = srgb3(t);
-                specular = [0, 1, 2].map(|i| specular[i] * s[i]);
+                specular = times(specular, s);
                 gloss *= t[3];
             }
             Inputs::specular_glossiness(rgb, specular, gloss)
