@@ -1,7 +1,8 @@
 //! Colour difference: linear sRGB → CIELAB (D65) and CIEDE2000 (Sharma, Wu & Dalal 2005).
 //!
-//! Generic over [`Real`]: the comparison evaluates a texel's direction pairs together as
-//! [`Lanes`](super::lanes::Lanes), one colour pair is plain `f64`. Both are branch-free.
+//! Branch-free and generic over [`Real`]. The comparison evaluates it as plain `f64` in a
+//! loop over a batch of samples, which the compiler vectorises whole: measured faster than
+//! [`Lanes`](super::lanes::Lanes), whose element-wise form it vectorises only in part.
 
 use super::elementary;
 use super::lanes::Real;

@@ -1,8 +1,9 @@
-//! One formula, one value or several at once. The colour-difference formulas are written
-//! once, generic over [`Real`]: `f64` evaluates one colour pair, [`Lanes`] evaluates a
-//! texel's eight direction pairs together, element by element, in straight-line code the
-//! compiler turns into vector instructions. Each lane computes exactly what `f64` would:
-//! the same operations in the same order, so the two agree bit for bit.
+//! One formula, one value or several at once. The BRDF lobes (and the colour difference)
+//! are written once, generic over [`Real`]: `f64` evaluates one view/light pair (the
+//! renderer), [`Lanes`] evaluates a texel's eight direction pairs together (the
+//! comparison), element by element, in straight-line code the compiler turns into vector
+//! instructions. Each lane computes exactly what `f64` would: the same operations in the
+//! same order, so the two agree bit for bit (tested in `material.rs`).
 
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 

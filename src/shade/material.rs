@@ -231,6 +231,33 @@ mod tests {
     }
 
     #[test]
+    fn lanes_evaluate_each_pair_exactly_as_a_single_pair_does() {
+        let s = shader();
+        let mut sheen = material();
+        sheen.sheen_color = [0.9, 0.5, 0.3];
+        sheen.sheen_roughness = 0.6;
+        sheen.anisotropy_strength = 0.7;
+        sheen.anisotropy_angle = 0.3;
+        let below = (direction(1.8, 0.0), direction(0.4, 1.0)); // view under the horizon
+        let mut pairs: Vec<(V3, V3)> = pairs();
+        pairs.truncate(7);
+        pairs.push(below);
+        let singles: [Geometry<f64>; 8] =
+            std::array::from_fn(|i| Geometry::new(pairs[i].0, pairs[i].1));
+        let lanes = Geometry::lanes(&singles);
+        for m in [material(), sheen] {
+            let together = s.brdf(&m, &lanes);
+            for (i, single) in singles.iter().enumerate() {
+                let alone = s.brdf(&m, single);
+                for c in 0..3 {
+                    assert_eq!(together[c].0[i].to_bits(), alone[c].to_bits(), "pair {i}");
+                }
+            }
+            assert_eq!(together[0].0[7], 0.0, "below the horizon");
+        }
+    }
+
+    #[test]
     fn every_lobe_is_reciprocal() {
         let s = shader();
         let mut m = material();
