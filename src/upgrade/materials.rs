@@ -203,22 +203,31 @@ fn spec_gloss_as_metal_rough(
     let mut core = json!({"metallicFactor": 0.0, "roughnessFactor": 1.0 - pbr.glossiness});
     if specular.is_some() {
         // The specular texture varies per texel: base colour must be baked texel by texel.
-        let (rebaked, _) = rebake::spec_gloss_base_colour(
-            diffuse.as_deref(),
-            specular.as_deref(),
-            pbr.colour,
-            pbr.specular,
-        )
-        .map_err(|e| rebake_error(block, e))?;
+        // The two rebakes are independent: the roughness one runs on a second thread.
+        let (base_colour, roughness) = std::thread::scope(|scope| {
+            let roughness = scope.spawn(|| {
+                let source = specular.as_deref().unwrap_or_default();
+                rebake::gloss_to_roughness(source, pbr.glossiness)
+            });
+            let base_colour = rebake::spec_gloss_base_colour(
+                diffuse.as_deref(),
+                specular.as_deref(),
+                pbr.colour,
+                pbr.specular,
+            );
+            let roughness = roughness
+                .join()
+                .unwrap_or_else(|_| Err("the roughness rebake failed".to_string()));
+            (base_colour, roughness)
+        });
+        let (rebaked, _) = base_colour.map_err(|e| rebake_error(block, e))?;
         let like = pbr
             .colour_texture
             .as_deref()
             .or(pbr.data_texture.as_deref());
         core["baseColorTexture"] = add_rebaked(builder, rebaked, like, "baseColor");
         core["baseColorFactor"] = json!([1.0, 1.0, 1.0, 1.0]);
-        let roughness =
-            rebake::gloss_to_roughness(specular.as_deref().unwrap_or_default(), pbr.glossiness)
-                .map_err(|e| rebake_error(block, e))?;
+        let roughness = roughness.map_err(|e| rebake_error(block, e))?;
         core["metallicRoughnessTexture"] =
             add_rebaked(builder, roughness, pbr.data_texture.as_deref(), "roughness");
         core["roughnessFactor"] = json!(1.0);
