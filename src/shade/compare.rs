@@ -124,6 +124,15 @@ impl Batch {
     }
 }
 
+/// One comparison: the two materials, the grid size and the direction pairs.
+struct Job<'a> {
+    shader: &'a Shader,
+    a: &'a MaterialSource,
+    b: &'a MaterialSource,
+    grid: u32,
+    directions: Directions,
+}
+
 struct Partial {
     per_texel: Vec<f32>,
     sum: f64,
@@ -140,15 +149,21 @@ pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u3
     } else {
         grid
     };
-    let directions = Directions::new();
+    let job = Job {
+        shader,
+        a,
+        b,
+        grid,
+        directions: Directions::new(),
+    };
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u32;
     let rows_per_thread = grid.div_ceil(threads);
     let partials: Vec<Partial> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
                 let rows = (t * rows_per_thread)..((t + 1) * rows_per_thread).min(grid);
-                let directions = &directions;
-                scope.spawn(move || compare_rows(shader, a, b, grid, rows, directions))
+                let job = &job;
+                scope.spawn(move || compare_rows(job, rows))
             })
             .collect();
         handles.into_iter().filter_map(|h| h.join().ok()).collect()
@@ -159,68 +174,47 @@ pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u3
 /// The rows' samples, with the widest vector instructions the CPU has: the texel loop is
 /// plain arithmetic, so compiling it for AVX-512 or AVX2 changes its speed, not its results
 /// (no fused multiply-adds are formed; each lane rounds exactly as scalar `f64` does).
-fn compare_rows(
-    shader: &Shader,
-    a: &MaterialSource,
-    b: &MaterialSource,
-    grid: u32,
-    rows: std::ops::Range<u32>,
-    directions: &Directions,
-) -> Partial {
+fn compare_rows(job: &Job, rows: std::ops::Range<u32>) -> Partial {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::is_x86_feature_detected as has;
         if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
             // SAFETY: the CPU has just been found to support these features.
-            return unsafe { compare_rows_avx512(shader, a, b, grid, rows, directions) };
+            return unsafe { compare_rows_avx512(job, rows) };
         }
         if has!("avx2") {
             // SAFETY: as above.
-            return unsafe { compare_rows_avx2(shader, a, b, grid, rows, directions) };
+            return unsafe { compare_rows_avx2(job, rows) };
         }
     }
-    compare_rows_inline(shader, a, b, grid, rows, directions)
+    compare_rows_inline(job, rows)
 }
 
 /// # Safety
 /// The CPU must support AVX-512 F, DQ and VL.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512dq,avx512vl")]
-unsafe fn compare_rows_avx512(
-    shader: &Shader,
-    a: &MaterialSource,
-    b: &MaterialSource,
-    grid: u32,
-    rows: std::ops::Range<u32>,
-    directions: &Directions,
-) -> Partial {
-    compare_rows_inline(shader, a, b, grid, rows, directions)
+unsafe fn compare_rows_avx512(job: &Job, rows: std::ops::Range<u32>) -> Partial {
+    compare_rows_inline(job, rows)
 }
 
 /// # Safety
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn compare_rows_avx2(
-    shader: &Shader,
-    a: &MaterialSource,
-    b: &MaterialSource,
-    grid: u32,
-    rows: std::ops::Range<u32>,
-    directions: &Directions,
-) -> Partial {
-    compare_rows_inline(shader, a, b, grid, rows, directions)
+unsafe fn compare_rows_avx2(job: &Job, rows: std::ops::Range<u32>) -> Partial {
+    compare_rows_inline(job, rows)
 }
 
 #[inline(always)]
-fn compare_rows_inline(
-    shader: &Shader,
-    a: &MaterialSource,
-    b: &MaterialSource,
-    grid: u32,
-    rows: std::ops::Range<u32>,
-    directions: &Directions,
-) -> Partial {
+fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Partial {
+    let Job {
+        shader,
+        a,
+        b,
+        grid,
+        ref directions,
+    } = *job;
     let mut partial = Partial {
         per_texel: Vec::with_capacity(rows.len() * grid as usize),
         sum: 0.0,
@@ -387,20 +381,27 @@ mod tests {
         let plain = gltf2(
             json!({"pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.6, 0.9, 1.0], "metallicFactor": 0.7, "roughnessFactor": 0.05}}),
         );
-        let (shader, directions) = (shader(), Directions::new());
+        let shader = shader();
         let mut checked = 0;
         for (a, b) in [(&sheen, &plain), (&plain, &sheen)] {
+            let job = Job {
+                shader: &shader,
+                a,
+                b,
+                grid: 20,
+                directions: Directions::new(),
+            };
             // 20 texels per row: two full batches and a partial one.
-            let portable = compare_rows_inline(&shader, a, b, 20, 0..3, &directions);
+            let portable = compare_rows_inline(&job, 0..3);
             assert!(portable.sum > 1.0, "the materials differ: {}", portable.sum);
             let mut vector = Vec::new();
             if has!("avx2") {
                 // SAFETY: AVX2 support was checked.
-                vector.push(unsafe { compare_rows_avx2(&shader, a, b, 20, 0..3, &directions) });
+                vector.push(unsafe { compare_rows_avx2(&job, 0..3) });
             }
             if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
                 // SAFETY: AVX-512 support was checked.
-                vector.push(unsafe { compare_rows_avx512(&shader, a, b, 20, 0..3, &directions) });
+                vector.push(unsafe { compare_rows_avx512(&job, 0..3) });
             }
             for v in &vector {
                 assert_eq!(portable.sum.to_bits(), v.sum.to_bits());
