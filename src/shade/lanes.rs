@@ -118,7 +118,7 @@ impl<const N: usize> Mask<N> {
 /// `[f(0), …, f(N − 1)]` as a plain loop: `array::map` and `array::from_fn` go through
 /// helpers the optimiser does not always inline, which would leave a call per operation.
 #[inline(always)]
-pub fn each<T: Copy + Default, const N: usize>(f: impl Fn(usize) -> T) -> [T; N] {
+fn each<T: Copy + Default, const N: usize>(f: impl Fn(usize) -> T) -> [T; N] {
     let mut out = [T::default(); N];
     for (i, slot) in out.iter_mut().enumerate() {
         *slot = f(i);
