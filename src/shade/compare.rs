@@ -30,7 +30,8 @@ pub const DIRECTIONS: [(f64, f64, f64); DIRECTION_COUNT] = [
 
 /// Histogram resolution for the percentile (ΔE up to 100 in steps of 0.001).
 const BINS: usize = 100_000;
-const BIN_WIDTH: f64 = 0.001;
+/// Bins per unit of ΔE: a multiplication per sample where a width of 0.001 would divide.
+const BINS_PER_UNIT: f64 = 1000.0;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Worst {
@@ -279,7 +280,7 @@ impl Partial {
             texel_max = texel_max.max(delta);
             self.sum += delta.min(1e6);
             self.count += 1;
-            let bin = ((delta / BIN_WIDTH) as usize).min(BINS - 1);
+            let bin = ((delta * BINS_PER_UNIT) as usize).min(BINS - 1);
             self.histogram[bin] += 1;
             if delta > self.worst.delta_e {
                 self.worst = Worst {
@@ -323,7 +324,7 @@ fn merge(partials: Vec<Partial>, grid: u32) -> Comparison {
     for (bin, n) in histogram.iter().enumerate() {
         seen += n;
         if seen >= target {
-            p99 = (bin + 1) as f64 * BIN_WIDTH;
+            p99 = (bin + 1) as f64 / BINS_PER_UNIT;
             break;
         }
     }
