@@ -196,6 +196,19 @@ mod tests {
         }
     }
 
+    /// Sheen, anisotropy, a chromatic specular colour and a non-default ior together.
+    fn every_extension() -> Inputs {
+        Inputs {
+            sheen_color: [0.9, 0.5, 0.3],
+            sheen_roughness: 0.6,
+            anisotropy_strength: 0.7,
+            anisotropy_angle: 0.3,
+            specular_color: [1.2, 0.8, 1.0],
+            ior: 1.7,
+            ..material()
+        }
+    }
+
     #[test]
     fn default_specular_and_ior_reduce_to_appendix_b() {
         for (v, l) in pairs() {
@@ -233,11 +246,6 @@ mod tests {
     #[test]
     fn lanes_evaluate_each_pair_exactly_as_a_single_pair_does() {
         let s = shader();
-        let mut sheen = material();
-        sheen.sheen_color = [0.9, 0.5, 0.3];
-        sheen.sheen_roughness = 0.6;
-        sheen.anisotropy_strength = 0.7;
-        sheen.anisotropy_angle = 0.3;
         let below = (direction(1.8, 0.0), direction(0.4, 1.0)); // view under the horizon
         let mut pairs: Vec<(V3, V3)> = pairs();
         pairs.truncate(7);
@@ -245,7 +253,7 @@ mod tests {
         let singles: [Geometry<f64>; 8] =
             std::array::from_fn(|i| Geometry::new(pairs[i].0, pairs[i].1));
         let lanes = Geometry::lanes(&singles);
-        for m in [material(), sheen] {
+        for m in [material(), every_extension()] {
             let together = s.brdf(&m, &lanes);
             for (i, single) in singles.iter().enumerate() {
                 let alone = s.brdf(&m, single);
@@ -260,13 +268,7 @@ mod tests {
     #[test]
     fn every_lobe_is_reciprocal() {
         let s = shader();
-        let mut m = material();
-        m.sheen_color = [0.9, 0.5, 0.3];
-        m.sheen_roughness = 0.6;
-        m.anisotropy_strength = 0.7;
-        m.anisotropy_angle = 0.3;
-        m.specular_color = [1.2, 0.8, 1.0];
-        m.ior = 1.7;
+        let m = every_extension();
         for (v, l) in pairs() {
             assert_close(
                 s.brdf(&m, &Geometry::new(v, l)),

@@ -61,7 +61,7 @@ fn unorm8_table() -> &'static [f64; 256] {
     TABLE.get_or_init(|| std::array::from_fn(|b| b as f64 / 255.0))
 }
 
-pub fn decode(bytes: &[u8]) -> Option<Texture> {
+fn decode(bytes: &[u8]) -> Option<Texture> {
     let image = crate::document::image_decode::decode(bytes).ok()?;
     let eight_bit = image.color().bytes_per_pixel() == image.color().channel_count();
     let texels = if eight_bit {

@@ -195,7 +195,11 @@ pub fn converted_materials(upgraded: &Upgraded) -> Vec<MaterialSource> {
         .as_array()
         .map(|list| {
             list.iter()
-                .map(|t| images.get(t.get("source")?.as_u64()? as usize)?.clone())
+                .map(|t| {
+                    images
+                        .get(crate::shade::load::texture_source(t)? as usize)?
+                        .clone()
+                })
                 .collect()
         })
         .unwrap_or_default();
