@@ -1,22 +1,43 @@
 //! gltfmat: checks glTF 2.0 / GLB assets and their materials, upgrades glTF 1.0, and evaluates
 //! materials with a reference shading model.
 //!
+//! The façade is this page: [`check_path`] / [`check_bytes`], [`upgrade()`], [`compare`] and
+//! [`render`], their options, [`Report`] and [`Error`]. Data flows one way: bytes →
+//! [`document`] → check / upgrade / shade → [`report`].
+//!
+//! Check a file (its external `.bin` and images are read from its folder):
 //! ```
-//! use gltfmat::check::{check_bytes, CheckOptions};
-//! use gltfmat::document::uri::NoResources;
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let report = gltfmat::check_path("fixtures/valid/sheen-triangle.gltf", &gltfmat::CheckOptions::default())?;
+//! assert!(!report.has_errors());
+//! # Ok(()) }
+//! ```
+//!
+//! Check bytes in memory:
+//! ```
+//! use gltfmat::{check_bytes, diagnostic::khronos, CheckOptions, NoResources};
 //!
 //! let json = br#"{"asset": {"version": "2.0"}, "materials": [{"alphaCutoff": 0.5}]}"#;
 //! let report = check_bytes("inline.gltf", json.to_vec(), &NoResources, &CheckOptions::default());
-//! assert!(report.diagnostics.iter().any(|d| d.code == "MATERIAL_ALPHA_CUTOFF_INVALID_MODE"));
+//! assert!(report.diagnostics.iter().any(|d| d.code == khronos::MATERIAL_ALPHA_CUTOFF_INVALID_MODE));
 //! assert!(!report.has_errors());
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod check;
-pub mod color;
+pub mod diagnostic;
 pub mod document;
-pub mod legacy_pbr;
+mod error;
+pub(crate) mod gltf;
+pub(crate) mod legacy;
 pub mod report;
 pub mod shade;
 pub mod upgrade;
 
-pub use check::{check_bytes, CheckOptions, Profile, Report};
+pub use check::{check_bytes, check_path, CheckOptions, Profile, Report};
+pub use diagnostic::{Code, Diagnostic, Location, Severity};
+pub use document::uri::{FolderResources, MemoryResources, NoResources, ResourceLoader};
+pub use error::Error;
+pub use shade::pairing::{compare, render, CompareOptions, Outcome, RenderOptions};
+pub use upgrade::{upgrade, UpgradeError, UpgradeOptions, Upgraded};

@@ -6,7 +6,7 @@
 //! each case listed by name must still differ, so that the list shrinks as gltfmat catches
 //! up (in a listed folder, cases that already match are counted as passing).
 
-use gltfmat::check::codes::{self, Origin};
+use gltfmat::check::registry::{self, Origin};
 use gltfmat::check::rules::SUPERSESSIONS;
 use gltfmat::check::{check_bytes, CheckOptions, Location, Profile};
 use gltfmat::document::uri::FolderResources;
@@ -257,7 +257,7 @@ fn default_profile_differs_only_by_documented_rules() {
                 }
                 differences += 1;
                 let code = key.0.as_str();
-                let origin = codes::find(code).map(|i| i.origin);
+                let origin = registry::find(code).map(|i| i.origin);
                 let why = if origin == Some(Origin::Gltfmat) {
                     if valid {
                         noisy_on_valid.push(format!("{}: {key:?}", asset.display()));

@@ -11,7 +11,7 @@ use gltfmat::upgrade::{upgrade, UpgradeOptions};
 use serde_json::json;
 
 fn codes(report: &Report) -> Vec<&'static str> {
-    report.diagnostics.iter().map(|d| d.code).collect()
+    report.diagnostics.iter().map(|d| d.code.name()).collect()
 }
 
 fn deep() -> CheckOptions {

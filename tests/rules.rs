@@ -7,7 +7,7 @@ mod common;
 
 use base64::Engine;
 use common::chunk;
-use gltfmat::check::codes::{self, Origin};
+use gltfmat::check::registry::{self, Origin};
 use gltfmat::check::rules::RULES;
 use gltfmat::check::{check_bytes, CheckOptions, Location};
 use gltfmat::document::uri::{FolderResources, NoResources};
@@ -299,7 +299,7 @@ fn issues(uri: &str, bytes: Vec<u8>, deep: bool, folder: Option<&str>) -> Vec<(S
         .map(|d| {
             assert_eq!(
                 d.severity,
-                codes::default_severity(d.code),
+                d.code.default_severity(),
                 "{uri}: {} has its registered severity",
                 d.code
             );
@@ -567,7 +567,7 @@ fn file_fixtures_report_exactly_their_issues() {
         let found: Vec<_> = issues(path, bytes, false, Some(&folder))
             .into_iter()
             .filter(|(code, _)| {
-                codes::find(code).is_some_and(|i| i.origin == Origin::Gltfmat)
+                registry::find(code).is_some_and(|i| i.origin == Origin::Gltfmat)
                     || expected.iter().any(|(c, _)| c == code)
             })
             .collect();
@@ -590,7 +590,7 @@ fn every_rule_has_a_firing_fixture_and_a_near_miss() {
     );
     let near_misses: BTreeSet<_> = cases().iter().filter_map(|c| c.silent_for).collect();
     for rule in RULES {
-        let code = rule.info.code;
+        let code = rule.code().name();
         assert!(
             fired.contains(code),
             "{code} has no fixture that triggers it"

@@ -2,7 +2,6 @@
 //! passes gltfmat's check, materials convert as documented, and files are handled safely.
 
 use gltfmat::check::Severity;
-use gltfmat::color::{linear_to_srgb, srgb_to_linear};
 use gltfmat::document::uri::FolderResources;
 use gltfmat::upgrade::{output, upgrade, SpecularGlossiness, UpgradeOptions, Upgraded};
 use serde_json::Value;
@@ -520,5 +519,24 @@ mod structure {
         };
         let up = upgrade(&bytes, &NoResources, &options).unwrap();
         assert_eq!(up.json["materials"][1]["doubleSided"], true);
+    }
+}
+
+/// IEC 61966-2-1 decoding, written here from the standard so the test does not reuse the
+/// converter's own code.
+fn srgb_to_linear(encoded: f64) -> f64 {
+    if encoded <= 0.04045 {
+        encoded / 12.92
+    } else {
+        ((encoded + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// IEC 61966-2-1 encoding.
+fn linear_to_srgb(linear: f64) -> f64 {
+    if linear <= 0.0031308 {
+        linear * 12.92
+    } else {
+        1.055 * linear.powf(1.0 / 2.4) - 0.055
     }
 }

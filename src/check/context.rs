@@ -2,6 +2,7 @@
 //! and what earlier passes learned (buffer data, image headers, material needs).
 
 use super::{CheckOptions, Diagnostic};
+use crate::diagnostic::{khronos, Code};
 use crate::document::image_header::ImageInfo;
 use crate::document::json::escape_token;
 use crate::document::uri::ResourceLoader;
@@ -60,7 +61,7 @@ pub struct Context<'a> {
     pub image_bytes: Vec<Option<Bytes>>,
     pub material_needs: Vec<MaterialNeeds>,
     /// Every texture binding, computed on first use (see `materials::slot_uses`).
-    pub slot_uses: std::sync::OnceLock<std::sync::Arc<[super::materials::SlotUse<'a>]>>,
+    pub slot_uses: std::sync::OnceLock<std::sync::Arc<[super::khronos::materials::SlotUse<'a>]>>,
     pub resources: Vec<ResourceInfo>,
 }
 
@@ -87,12 +88,7 @@ impl<'a> Context<'a> {
         }
     }
 
-    pub fn emit(
-        &mut self,
-        code: &'static str,
-        pointer: impl Into<String>,
-        message: impl Into<String>,
-    ) {
+    pub fn emit(&mut self, code: Code, pointer: impl Into<String>, message: impl Into<String>) {
         self.diagnostics
             .push(Diagnostic::at(code, pointer, message));
     }
@@ -146,7 +142,7 @@ impl<'a> Context<'a> {
         let len = self.items(collection).len() as u64;
         if index >= len {
             self.emit(
-                "UNRESOLVED_REFERENCE",
+                khronos::UNRESOLVED_REFERENCE,
                 pointer,
                 format!("Unresolved reference: {index}."),
             );
@@ -239,17 +235,4 @@ pub fn number(object: &Value, key: &str, default: f64) -> f64 {
     object.get(key).and_then(Value::as_f64).unwrap_or(default)
 }
 
-/// A non-negative integer member.
-pub fn unsigned(object: &Value, key: &str) -> Option<u64> {
-    as_index(object.get(key)?)
-}
-
-/// A non-negative integer, also when written as a float (`1.0`), as glTF allows.
-fn as_index(value: &Value) -> Option<u64> {
-    value.as_u64().or_else(|| {
-        value
-            .as_f64()
-            .filter(|f| f.fract() == 0.0 && *f >= 0.0)
-            .map(|f| f as u64)
-    })
-}
+pub use crate::gltf::{as_index, unsigned};

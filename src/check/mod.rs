@@ -1,35 +1,20 @@
 //! The validator: schema pass, link passes in the Khronos order, then gltfmat's own rules.
 
-pub mod codes;
-pub mod diagnostic;
-mod khronos_codes;
+pub mod registry;
+
 pub mod rules;
 pub mod schema;
 
-mod accessor_data;
-mod accessor_fast;
-mod accessor_usage;
-mod animations;
-mod cameras;
 pub mod context;
-mod extensions;
-mod influences;
-mod lights;
-mod materials;
-mod nodes;
-mod objects;
-mod primitives;
-mod resources;
-mod skins;
-mod unused;
-mod view_usage;
+mod khronos;
 
+pub use crate::diagnostic::{Code, Diagnostic, Location, Severity};
 pub use context::Context;
-pub use diagnostic::{Diagnostic, Location, Severity};
 
-use crate::document::uri::ResourceLoader;
+use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::document::{self, Container, Document};
 use std::collections::HashMap;
+use std::path::Path;
 
 /// Which issues to report.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -84,6 +69,23 @@ impl Report {
     }
 }
 
+/// Checks the asset at `path`, reading its external files from its folder (never outside it).
+/// An unreadable file is an [`Error`](crate::Error); problems in the asset are diagnostics.
+pub fn check_path(path: impl AsRef<Path>, options: &CheckOptions) -> Result<Report, crate::Error> {
+    let path = path.as_ref();
+    let bytes = document::Bytes::open(path).map_err(|source| crate::Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let loader = FolderResources::beside(path);
+    Ok(check_bytes(
+        &path.display().to_string(),
+        bytes,
+        &loader,
+        options,
+    ))
+}
+
 /// Checks an asset given as bytes. `uri` names it in reports; external files come from `loader`.
 pub fn check_bytes(
     uri: &str,
@@ -97,7 +99,7 @@ pub fn check_bytes(
     if let Some(root) = &document.root {
         if !root.is_object() {
             diagnostics.push(Diagnostic::at(
-                "TYPE_MISMATCH",
+                crate::diagnostic::khronos::TYPE_MISMATCH,
                 "",
                 format!(
                     "Type mismatch. Property value {} is not a 'object'.",
@@ -135,27 +137,9 @@ fn run_passes(ctx: &mut Context) {
     }
     let schema_diagnostics = schema::validate(ctx.root, khronos);
     ctx.diagnostics.extend(schema_diagnostics);
-    extensions::check(ctx);
-    objects::check_asset(ctx);
-    resources::check_buffers(ctx);
-    resources::check_buffer_views(ctx);
-    objects::check_accessors(ctx);
-    accessor_data::check(ctx);
-    influences::check(ctx);
-    resources::check_images(ctx);
-    materials::check_textures(ctx);
-    materials::check_materials(ctx);
-    objects::check_meshes(ctx);
-    primitives::check(ctx);
-    view_usage::check(ctx);
-    objects::check_nodes_and_scenes(ctx);
-    nodes::check(ctx);
-    cameras::check(ctx);
-    animations::check(ctx);
-    skins::check(ctx);
-    lights::check(ctx);
-    objects::check_skins_animations_cameras(ctx);
-    unused::check(ctx);
+    for (_, pass) in khronos::PASSES {
+        pass(ctx);
+    }
     if !khronos {
         rules::run_all(ctx);
     }
@@ -166,13 +150,13 @@ fn apply_options(diagnostics: Vec<Diagnostic>, options: &CheckOptions) -> (Vec<D
     let matches = |list: &[String], code: &str| list.iter().any(|c| c.eq_ignore_ascii_case(code));
     let mut kept: Vec<Diagnostic> = diagnostics
         .into_iter()
-        .filter(|d| !matches(&options.ignore, d.code))
-        .filter(|d| options.only.is_empty() || matches(&options.only, d.code))
+        .filter(|d| !matches(&options.ignore, d.code.name()))
+        .filter(|d| options.only.is_empty() || matches(&options.only, d.code.name()))
         .map(|mut d| {
             if let Some((_, s)) = options
                 .severity_overrides
                 .iter()
-                .find(|(c, _)| c.eq_ignore_ascii_case(d.code))
+                .find(|(c, _)| c.eq_ignore_ascii_case(d.code.name()))
             {
                 d.severity = *s;
             }

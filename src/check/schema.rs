@@ -2,7 +2,7 @@
 //! binary and evaluated by the `jsonschema` crate with nothing fetched. Each schema error is
 //! mapped to the Khronos code and pointer for the same finding.
 
-use super::diagnostic::Diagnostic;
+use crate::diagnostic::{khronos, Code, Diagnostic};
 use crate::document::json::escape_token;
 use jsonschema::error::{TypeKind, ValidationErrorKind};
 use jsonschema::Validator;
@@ -175,7 +175,7 @@ fn diagnostics(validator: &Validator, instance: &Value, prefix: &str) -> Vec<Dia
         .collect();
     // An array reports its first wrongly typed element only.
     let mut arrays = std::collections::HashSet::new();
-    found.retain(|d| d.code != "ARRAY_TYPE_MISMATCH" || arrays.insert(d.location.clone()));
+    found.retain(|d| d.code != khronos::ARRAY_TYPE_MISMATCH || arrays.insert(d.location.clone()));
     found
 }
 
@@ -218,12 +218,11 @@ fn map_error(
     schema_path: &str,
 ) -> Vec<Diagnostic> {
     use ValidationErrorKind as K;
-    let one =
-        |code: &'static str, at: String, message: String| vec![Diagnostic::at(code, at, message)];
+    let one = |code: Code, at: String, message: String| vec![Diagnostic::at(code, at, message)];
     match kind {
         K::Type { kind } if type_name(kind) == "object" && nested_array_of(pointer).is_some() => {
             one(
-                "ARRAY_TYPE_MISMATCH",
+                khronos::ARRAY_TYPE_MISMATCH,
                 nested_array_of(pointer).unwrap_or_default().to_string(),
                 format!(
                     "Type mismatch. Array element {} is not a 'object'.",
@@ -232,7 +231,7 @@ fn map_error(
             )
         }
         K::Type { kind } => one(
-            "TYPE_MISMATCH",
+            khronos::TYPE_MISMATCH,
             pointer.to_string(),
             format!(
                 "Type mismatch. Property value {} is not a '{}'.",
@@ -244,7 +243,7 @@ fn map_error(
             .iter()
             .map(|key| {
                 Diagnostic::at(
-                    "UNEXPECTED_PROPERTY",
+                    khronos::UNEXPECTED_PROPERTY,
                     member(pointer, key),
                     "Unexpected property.",
                 )
@@ -254,7 +253,7 @@ fn map_error(
             let name = property.as_str().unwrap_or_default();
             if let Some(dependent) = dependent_key(schema_path, instance, name) {
                 return one(
-                    "UNSATISFIED_DEPENDENCY",
+                    khronos::UNSATISFIED_DEPENDENCY,
                     member(pointer, &dependent),
                     format!("Dependency failed. '{name}' must be defined."),
                 );
@@ -265,7 +264,7 @@ fn map_error(
                 pointer.to_string()
             };
             one(
-                "UNDEFINED_PROPERTY",
+                khronos::UNDEFINED_PROPERTY,
                 at,
                 format!("Property '{name}' must be defined."),
             )
@@ -277,7 +276,7 @@ fn map_error(
             if schema_path.contains("glTFid") =>
         {
             one(
-                "INVALID_INDEX",
+                khronos::INVALID_INDEX,
                 pointer.to_string(),
                 "Index must be a non-negative integer.".into(),
             )
@@ -287,12 +286,12 @@ fn map_error(
         | K::ExclusiveMinimum { .. }
         | K::ExclusiveMaximum { .. }
         | K::AnyOf { .. } => one(
-            "VALUE_NOT_IN_RANGE",
+            khronos::VALUE_NOT_IN_RANGE,
             pointer.to_string(),
             format!("Value {} is out of range.", show(instance)),
         ),
         K::Enum { options } => one(
-            "VALUE_NOT_IN_LIST",
+            khronos::VALUE_NOT_IN_LIST,
             pointer.to_string(),
             format!(
                 "Invalid value {}. Valid values are {}.",
@@ -301,12 +300,12 @@ fn map_error(
             ),
         ),
         K::MinItems { limit: 1 } | K::MinProperties { .. } => one(
-            "EMPTY_ENTITY",
+            khronos::EMPTY_ENTITY,
             pointer.to_string(),
             "Entity cannot be empty.".into(),
         ),
         K::MinItems { limit } | K::MaxItems { limit } => one(
-            "ARRAY_LENGTH_NOT_IN_LIST",
+            khronos::ARRAY_LENGTH_NOT_IN_LIST,
             pointer.to_string(),
             format!(
                 "Invalid array length {}. Valid lengths are: {limit}.",
@@ -317,14 +316,14 @@ fn map_error(
             .into_iter()
             .map(|i| {
                 Diagnostic::at(
-                    "DUPLICATE_ELEMENTS",
+                    khronos::DUPLICATE_ELEMENTS,
                     format!("{pointer}/{i}"),
                     "Duplicate element.",
                 )
             })
             .collect(),
         K::MultipleOf { multiple_of, .. } => one(
-            "VALUE_MULTIPLE_OF",
+            khronos::VALUE_MULTIPLE_OF,
             pointer.to_string(),
             format!(
                 "Value {} is not a multiple of {multiple_of}.",
@@ -332,7 +331,7 @@ fn map_error(
             ),
         ),
         K::Pattern { pattern } => one(
-            "PATTERN_MISMATCH",
+            khronos::PATTERN_MISMATCH,
             pointer.to_string(),
             format!(
                 "Value {} does not match regexp pattern '{pattern}'.",
@@ -344,12 +343,12 @@ fn map_error(
             Vec::new()
         }
         K::OneOfNotValid { .. } | K::OneOfMultipleValid { .. } => one(
-            "ONE_OF_MISMATCH",
+            khronos::ONE_OF_MISMATCH,
             pointer.to_string(),
             "Exactly one of ('uri', 'bufferView') properties must be defined.".into(),
         ),
         other => one(
-            "TYPE_MISMATCH",
+            khronos::TYPE_MISMATCH,
             pointer.to_string(),
             format!("Schema violation: {other:?}"),
         ),
@@ -439,14 +438,14 @@ mod tests {
             "extensionsRequired": ["A_b"]
         }));
         for expected in [
-            ("UNEXPECTED_PROPERTY", "/asset/x"),
+            (khronos::UNEXPECTED_PROPERTY, "/asset/x"),
             (
-                "VALUE_NOT_IN_RANGE",
+                khronos::VALUE_NOT_IN_RANGE,
                 "/materials/0/pbrMetallicRoughness/baseColorFactor/2",
             ),
-            ("UNDEFINED_PROPERTY", "/bufferViews/0"),
-            ("VALUE_NOT_IN_LIST", "/samplers/0/magFilter"),
-            ("UNSATISFIED_DEPENDENCY", "/extensionsRequired"),
+            (khronos::UNDEFINED_PROPERTY, "/bufferViews/0"),
+            (khronos::VALUE_NOT_IN_LIST, "/samplers/0/magFilter"),
+            (khronos::UNSATISFIED_DEPENDENCY, "/extensionsRequired"),
         ] {
             assert!(
                 found.contains(&(expected.0.to_string(), expected.1.to_string())),
@@ -464,7 +463,7 @@ mod tests {
         assert_eq!(
             found,
             vec![(
-                "VALUE_NOT_IN_RANGE".to_string(),
+                khronos::VALUE_NOT_IN_RANGE.to_string(),
                 "/materials/0/extensions/KHR_materials_sheen/sheenRoughnessFactor".to_string()
             )]
         );

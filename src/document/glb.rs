@@ -4,7 +4,7 @@
 //! length: chunks are ranges into the input, and every sum is checked against the real size.
 //! The offsets and the order of checks follow the Khronos validator so reports are comparable.
 
-use crate::check::diagnostic::{Diagnostic, Location};
+use crate::diagnostic::{khronos, Code, Diagnostic, Location};
 use std::ops::Range;
 
 const MAGIC: &[u8; 4] = b"glTF";
@@ -25,7 +25,7 @@ pub struct GlbParts {
     pub json_expected_but_empty: bool,
 }
 
-fn at(code: &'static str, offset: usize, message: impl Into<String>) -> Diagnostic {
+fn at(code: Code, offset: usize, message: impl Into<String>) -> Diagnostic {
     Diagnostic::new(code, Location::Offset(offset as u64), message)
 }
 
@@ -43,14 +43,18 @@ pub fn read(bytes: &[u8]) -> GlbParts {
     let diags = &mut parts.diagnostics;
     if bytes.len() < HEADER_LEN {
         diags.push(at(
-            "GLB_UNEXPECTED_END_OF_HEADER",
+            khronos::GLB_UNEXPECTED_END_OF_HEADER,
             bytes.len(),
             "Unexpected end of header.",
         ));
         return parts;
     }
     if &bytes[..4] != MAGIC {
-        diags.push(at("GLB_INVALID_MAGIC", 0, "Invalid GLB magic value."));
+        diags.push(at(
+            khronos::GLB_INVALID_MAGIC,
+            0,
+            "Invalid GLB magic value.",
+        ));
         return parts;
     }
     parts.version = read_u32(bytes, 4);
@@ -61,7 +65,7 @@ pub fn read(bytes: &[u8]) -> GlbParts {
             ""
         };
         diags.push(at(
-            "GLB_INVALID_VERSION",
+            khronos::GLB_INVALID_VERSION,
             4,
             format!("Invalid GLB version value {}.{hint}", parts.version),
         ));
@@ -70,7 +74,7 @@ pub fn read(bytes: &[u8]) -> GlbParts {
     let declared = read_u32(bytes, 8) as usize;
     if declared <= HEADER_LEN {
         diags.push(at(
-            "GLB_LENGTH_TOO_SMALL",
+            khronos::GLB_LENGTH_TOO_SMALL,
             8,
             format!("Declared GLB length ({declared}) is too small."),
         ));
@@ -81,7 +85,7 @@ pub fn read(bytes: &[u8]) -> GlbParts {
     while pos < declared && pos < bytes.len() {
         if bytes.len() - pos < CHUNK_HEADER_LEN {
             diags.push(at(
-                "GLB_UNEXPECTED_END_OF_CHUNK_HEADER",
+                khronos::GLB_UNEXPECTED_END_OF_CHUNK_HEADER,
                 bytes.len(),
                 "Unexpected end of chunk header.",
             ));
@@ -93,7 +97,7 @@ pub fn read(bytes: &[u8]) -> GlbParts {
         let data_start = pos + CHUNK_HEADER_LEN;
         if !length.is_multiple_of(4) {
             diags.push(at(
-                "GLB_CHUNK_LENGTH_UNALIGNED",
+                khronos::GLB_CHUNK_LENGTH_UNALIGNED,
                 start,
                 format!("Length of 0x{kind:08x} chunk is not aligned to 4-byte boundaries."),
             ));
@@ -102,7 +106,7 @@ pub fn read(bytes: &[u8]) -> GlbParts {
         // target checked_add keeps it honest.
         let Some(data_end) = data_start.checked_add(length) else {
             diags.push(at(
-                "GLB_CHUNK_TOO_BIG",
+                khronos::GLB_CHUNK_TOO_BIG,
                 start,
                 "Chunk length exceeds the address space.",
             ));
@@ -110,14 +114,14 @@ pub fn read(bytes: &[u8]) -> GlbParts {
         };
         if data_end > declared {
             diags.push(at(
-                "GLB_CHUNK_TOO_BIG",
+                khronos::GLB_CHUNK_TOO_BIG,
                 start,
                 format!("Chunk (0x{kind:08x}) length ({length}) does not fit total GLB length."),
             ));
         }
         if data_end > bytes.len() {
             diags.push(at(
-                "GLB_UNEXPECTED_END_OF_CHUNK_DATA",
+                khronos::GLB_UNEXPECTED_END_OF_CHUNK_DATA,
                 bytes.len(),
                 "Unexpected end of chunk data.",
             ));
@@ -125,7 +129,7 @@ pub fn read(bytes: &[u8]) -> GlbParts {
         }
         if index == 0 && kind != CHUNK_JSON {
             diags.push(at(
-                "GLB_UNEXPECTED_FIRST_CHUNK",
+                khronos::GLB_UNEXPECTED_FIRST_CHUNK,
                 start,
                 format!("First chunk must be of JSON type. Found 0x{kind:08x} instead."),
             ));
@@ -134,14 +138,14 @@ pub fn read(bytes: &[u8]) -> GlbParts {
             CHUNK_JSON => {
                 if length == 0 {
                     diags.push(at(
-                        "GLB_EMPTY_CHUNK",
+                        khronos::GLB_EMPTY_CHUNK,
                         start,
                         "Chunk (JSON) cannot have zero length.",
                     ));
                 }
                 if parts.json.is_some() || saw_empty_json {
                     diags.push(at(
-                        "GLB_DUPLICATE_CHUNK",
+                        khronos::GLB_DUPLICATE_CHUNK,
                         start,
                         "Chunk of type JSON has already been used.",
                     ));
@@ -155,21 +159,21 @@ pub fn read(bytes: &[u8]) -> GlbParts {
             CHUNK_BIN => {
                 if length == 0 {
                     diags.push(at(
-                        "GLB_EMPTY_BIN_CHUNK",
+                        khronos::GLB_EMPTY_BIN_CHUNK,
                         start,
                         "Empty BIN chunk should be omitted.",
                     ));
                 }
                 if parts.bin.is_some() {
                     diags.push(at(
-                        "GLB_DUPLICATE_CHUNK",
+                        khronos::GLB_DUPLICATE_CHUNK,
                         start,
                         "Chunk of type BIN has already been used.",
                     ));
                 } else {
                     if index > 1 {
                         diags.push(at(
-                            "GLB_UNEXPECTED_BIN_CHUNK",
+                            khronos::GLB_UNEXPECTED_BIN_CHUNK,
                             start,
                             "BIN chunk must be the second chunk.",
                         ));
@@ -178,7 +182,7 @@ pub fn read(bytes: &[u8]) -> GlbParts {
                 }
             }
             _ => diags.push(at(
-                "GLB_UNKNOWN_CHUNK_TYPE",
+                khronos::GLB_UNKNOWN_CHUNK_TYPE,
                 start,
                 format!("Unknown GLB chunk type: 0x{kind:08x}."),
             )),
@@ -188,13 +192,13 @@ pub fn read(bytes: &[u8]) -> GlbParts {
     }
     if pos != declared {
         diags.push(at(
-            "GLB_LENGTH_MISMATCH",
+            khronos::GLB_LENGTH_MISMATCH,
             pos,
             format!("Declared length ({declared}) does not match GLB length ({pos})."),
         ));
     } else if bytes.len() > pos {
         diags.push(at(
-            "GLB_EXTRA_DATA",
+            khronos::GLB_EXTRA_DATA,
             pos,
             "Extra data after the end of GLB stream.",
         ));
@@ -221,7 +225,7 @@ mod tests {
         out
     }
 
-    fn codes(parts: &GlbParts) -> Vec<&str> {
+    fn codes(parts: &GlbParts) -> Vec<Code> {
         parts.diagnostics.iter().map(|d| d.code).collect()
     }
 
@@ -242,9 +246,9 @@ mod tests {
         assert_eq!(
             codes(&parts),
             vec![
-                "GLB_CHUNK_LENGTH_UNALIGNED",
-                "GLB_CHUNK_TOO_BIG",
-                "GLB_UNEXPECTED_END_OF_CHUNK_DATA"
+                khronos::GLB_CHUNK_LENGTH_UNALIGNED,
+                khronos::GLB_CHUNK_TOO_BIG,
+                khronos::GLB_UNEXPECTED_END_OF_CHUNK_DATA
             ]
         );
     }
@@ -262,7 +266,10 @@ mod tests {
         let parts = read(&bytes);
         assert_eq!(
             codes(&parts),
-            vec!["GLB_UNKNOWN_CHUNK_TYPE", "GLB_UNEXPECTED_BIN_CHUNK"]
+            vec![
+                khronos::GLB_UNKNOWN_CHUNK_TYPE,
+                khronos::GLB_UNEXPECTED_BIN_CHUNK
+            ]
         );
         assert!(parts.bin.is_some());
     }
@@ -272,7 +279,7 @@ mod tests {
         let mut bytes = glb(&[(CHUNK_JSON, b"{}  ")], None);
         bytes[4] = 1;
         let parts = read(&bytes);
-        assert_eq!(codes(&parts), vec!["GLB_INVALID_VERSION"]);
+        assert_eq!(codes(&parts), vec![khronos::GLB_INVALID_VERSION]);
         assert!(parts.diagnostics[0].message.contains("gltfmat upgrade"));
     }
 }

@@ -9,25 +9,15 @@ pub const MAX_DIMENSION: u32 = 16384;
 /// Largest decoder allocation: an 8192² RGBA16 image.
 pub const MAX_ALLOC: u64 = 512 * 1024 * 1024;
 
-#[derive(Debug, Clone, PartialEq)]
+/// Why an image was not decoded.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DecodeError {
     /// Larger than the limits above.
+    #[error("larger than the decoding limits ({MAX_DIMENSION}² texels, {} MiB)", MAX_ALLOC >> 20)]
     Limit,
     /// Not decodable: the reason.
+    #[error("{0}")]
     Invalid(String),
-}
-
-impl std::fmt::Display for DecodeError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            DecodeError::Limit => write!(
-                f,
-                "larger than the decoding limits ({MAX_DIMENSION}² texels, {} MiB)",
-                MAX_ALLOC >> 20
-            ),
-            DecodeError::Invalid(why) => write!(f, "{why}"),
-        }
-    }
 }
 
 pub fn decode(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {

@@ -1,6 +1,6 @@
 //! Bytes → document: container detection, GLB chunks, JSON, and external resources.
 
-pub mod accessor_types;
+use crate::diagnostic::khronos;
 pub mod bytes;
 pub mod glb;
 pub mod image_decode;
@@ -8,7 +8,7 @@ pub mod image_header;
 pub mod json;
 pub mod uri;
 
-use crate::check::diagnostic::Diagnostic;
+use crate::diagnostic::Diagnostic;
 pub use bytes::{BufferData, Bytes};
 use serde_json::Value;
 use std::ops::Range;
@@ -108,7 +108,7 @@ fn parse_json(text: &[u8], diagnostics: &mut Vec<Diagnostic>) -> Option<Value> {
         Err(error) => {
             let (line, col) = json::line_col(text, error.offset);
             let mut d = Diagnostic::at(
-                "INVALID_JSON",
+                khronos::INVALID_JSON,
                 "",
                 format!(
                     "Invalid JSON data. Parser output: {} (line {line}, column {col})",

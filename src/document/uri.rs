@@ -95,14 +95,23 @@ fn percent_decode(text: &str) -> Result<String, String> {
 }
 
 /// Why an external resource could not be read.
-#[derive(Debug, PartialEq)]
+#[derive(Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum LoadError {
+    /// No such file.
+    #[error("{0}: no such file")]
     NotFound(String),
     /// The path resolves outside the asset's folder (`..`, or a symlink leading out).
+    #[error("{0}: outside the asset's folder")]
     OutsideFolder(String),
     /// Reading is not possible for this input (e.g. stdin with no folder).
+    #[error("external resources cannot be read for this input")]
     NoFolder,
+    /// Larger than a resource may be (bytes).
+    #[error("too large ({0} bytes)")]
     TooLarge(u64),
+    /// Reading failed.
+    #[error("{0}")]
     Io(String),
 }
 
@@ -136,6 +145,14 @@ impl ResourceLoader for MemoryResources {
     }
 }
 
+/// The folder external files of the asset at `path` are read from.
+pub fn folder_of(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(folder) if !folder.as_os_str().is_empty() => folder.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
 /// Reads files below one folder, refusing anything that resolves outside it.
 pub struct FolderResources {
     folder: PathBuf,
@@ -144,6 +161,12 @@ pub struct FolderResources {
 }
 
 impl FolderResources {
+    /// Resources of the asset at `asset`: the files of its folder.
+    pub fn beside(asset: &Path) -> Self {
+        Self::new(folder_of(asset))
+    }
+
+    /// Resources below `folder`.
     pub fn new(folder: impl Into<PathBuf>) -> Self {
         FolderResources {
             folder: folder.into(),

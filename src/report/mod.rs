@@ -8,7 +8,9 @@ use crate::check::{Diagnostic, Location, Report, Severity};
 use crate::document::json;
 use serde_json::{json, Map, Value};
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+/// An output format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Format {
     /// `path:line:col: severity[CODE]: message` with a source snippet.
     Human,
@@ -22,11 +24,22 @@ pub enum Format {
     Github,
 }
 
-pub struct RenderOptions {
+/// How the human format looks.
+#[derive(Debug, Clone, Copy, Default)]
+#[non_exhaustive]
+pub struct Style {
+    /// ANSI colours.
     pub colour: bool,
 }
 
-pub fn render(format: Format, reports: &[Report], options: &RenderOptions) -> String {
+impl Style {
+    /// Plain text, or coloured.
+    pub fn new(colour: bool) -> Style {
+        Style { colour }
+    }
+}
+
+pub fn render(format: Format, reports: &[Report], options: &Style) -> String {
     match format {
         Format::Human => human::render(reports, options.colour),
         Format::Json => {

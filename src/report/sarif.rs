@@ -1,11 +1,11 @@
 //! SARIF 2.1.0, with every registered code as a rule carrying its documentation.
 
 use super::{line_col, location_suffix};
-use crate::check::{codes, Location, Report, Severity};
+use crate::check::{registry, Location, Report, Severity};
 use serde_json::{json, Value};
 
 pub fn render(reports: &[Report]) -> String {
-    let rules: Vec<Value> = codes::all()
+    let rules: Vec<Value> = registry::all()
         .map(|info| {
             let help = if info.doc.is_empty() {
                 info.summary
@@ -17,7 +17,7 @@ pub fn render(reports: &[Report]) -> String {
                 "shortDescription": {"text": info.summary},
                 "fullDescription": {"text": help},
                 "help": {"text": help, "markdown": help},
-                "defaultConfiguration": {"level": level(info.severity)},
+                "defaultConfiguration": {"level": level(info.severity())},
                 "properties": {"group": info.group},
             })
         })

@@ -3,6 +3,7 @@
 use super::sample::{self, MaterialSource, Texture};
 use crate::document::uri::{classify, ResourceLoader, UriKind};
 use crate::document::{self, BufferData, Bytes, Container};
+use crate::gltf::material::texture_images;
 use serde_json::Value;
 
 fn uri_bytes(uri: &str, loader: &dyn ResourceLoader) -> Option<Bytes> {
@@ -54,16 +55,9 @@ pub fn used_images(materials: &[Value], textures: &[Value]) -> std::collections:
         .collect()
 }
 
-/// A texture's image: `source`, or the first extension's (KHR_texture_basisu, EXT_texture_webp…).
+/// A texture's image: the first it may sample (see [`texture_images`]).
 pub fn texture_source(texture: &Value) -> Option<u64> {
-    let extension_source = texture
-        .get("extensions")
-        .and_then(Value::as_object)
-        .and_then(|e| e.values().find_map(|x| x.get("source")?.as_u64()));
-    texture
-        .get("source")
-        .and_then(Value::as_u64)
-        .or(extension_source)
+    texture_images(texture).next()
 }
 
 /// Every material of a glTF 2.0 asset with its decoded textures, and the material names.

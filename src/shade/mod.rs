@@ -9,6 +9,7 @@ pub mod label;
 pub mod lanes;
 pub mod load;
 pub mod material;
+pub mod pairing;
 pub mod quadrature;
 pub mod render;
 pub mod sample;

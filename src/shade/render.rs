@@ -12,7 +12,7 @@
 use super::brdf::{dot, normalize, Geometry, V3};
 use super::material::Shader;
 use super::sample::MaterialSource;
-use crate::color::linear_to_srgb8;
+use crate::gltf::color::linear_to_srgb8;
 use image::{Rgb, RgbImage};
 use std::f64::consts::PI;
 

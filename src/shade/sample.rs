@@ -6,8 +6,9 @@
 use super::brdf::V3;
 use super::lanes::channels;
 use super::material::Inputs;
-use crate::color::srgb_texel_to_linear;
-use crate::legacy_pbr::{LegacyPbr, Model};
+use crate::gltf::color::srgb_texel_to_linear;
+use crate::gltf::material::{effective_texcoord, texture_transform};
+use crate::legacy::pbr::{LegacyPbr, Model};
 use serde_json::Value;
 use std::sync::Arc;
 
@@ -186,12 +187,10 @@ impl Binding {
     }
 }
 
-fn transform_of(info: &Value) -> ([f64; 6], Option<u64>) {
-    let Some(t) = info
-        .get("extensions")
-        .and_then(|e| e.get("KHR_texture_transform"))
-    else {
-        return ([1.0, 0.0, 0.0, 0.0, 1.0, 0.0], None);
+/// KHR_texture_transform's UV matrix (identity without the extension).
+fn transform_of(info: &Value) -> [f64; 6] {
+    let Some(t) = texture_transform(info) else {
+        return [1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
     };
     let pair = |key: &str, default: [f64; 2]| {
         t.get(key).and_then(Value::as_array).map_or(default, |a| {
@@ -203,8 +202,7 @@ fn transform_of(info: &Value) -> ([f64; 6], Option<u64>) {
     let r = t.get("rotation").and_then(Value::as_f64).unwrap_or(0.0);
     let (s, c) = r.sin_cos();
     // T · R · S as in the KHR_texture_transform README.
-    let matrix = [c * sx, s * sy, ox, -s * sx, c * sy, oy];
-    (matrix, t.get("texCoord").and_then(Value::as_u64))
+    [c * sx, s * sy, ox, -s * sx, c * sy, oy]
 }
 
 /// What a material is made of, ready to be sampled.
@@ -318,12 +316,10 @@ fn prepare(material: &Value, textures: &[Option<Texture>]) -> Prepared {
         let texture = textures
             .get(info.get("index")?.as_u64()? as usize)?
             .clone()?;
-        let (transform, override_set) = transform_of(info);
-        let texcoord = override_set.or_else(|| info.get("texCoord").and_then(Value::as_u64));
         Some(Binding {
             texture,
-            texcoord: texcoord.unwrap_or(0),
-            transform,
+            texcoord: effective_texcoord(info),
+            transform: transform_of(info),
         })
     };
     let extension = |name: &str| material.get("extensions").and_then(|e| e.get(name));

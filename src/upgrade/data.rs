@@ -3,9 +3,10 @@
 
 use super::binary::Binary;
 use super::source::Source;
-pub use crate::document::accessor_types::FLOAT;
-use crate::document::accessor_types::{
-    component_count, component_size, BYTE, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
+pub use crate::gltf::accessor::FLOAT;
+use crate::gltf::accessor::{
+    component_count, component_size, decode_component, BYTE, SHORT, UNSIGNED_BYTE, UNSIGNED_INT,
+    UNSIGNED_SHORT,
 };
 use serde_json::Value;
 
@@ -105,15 +106,7 @@ impl Accessor<'_> {
     pub fn get(&self, i: usize, c: usize) -> f64 {
         let size = component_size(self.component_type).unwrap_or(4);
         let at = i * self.stride + c * size;
-        let b = &self.bytes[at..at + size];
-        match self.component_type {
-            BYTE => f64::from(b[0] as i8),
-            UNSIGNED_BYTE => f64::from(b[0]),
-            SHORT => f64::from(i16::from_le_bytes([b[0], b[1]])),
-            UNSIGNED_SHORT => f64::from(u16::from_le_bytes([b[0], b[1]])),
-            UNSIGNED_INT => f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
-            _ => f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
-        }
+        decode_component(self.component_type, &self.bytes[at..at + size])
     }
 
     /// Every element's components, in order.

@@ -4,12 +4,10 @@
 use super::rebake;
 use super::structure::{pointer, Builder};
 use super::{NoteKind, SpecularGlossiness, UpgradeError};
-use crate::color::srgb_to_linear;
-use crate::legacy_pbr::{self, LegacyPbr, Model};
+use crate::gltf::color::srgb_to_linear;
+use crate::gltf::gl::{BLEND, CULL_FACE};
+use crate::legacy::pbr::{self, LegacyPbr, Model};
 use serde_json::{json, Map, Value};
-
-const BLEND: u64 = 3042;
-const CULL_FACE: u64 = 2884;
 
 pub fn convert(builder: &mut Builder, id: &str, material: &Value) -> Result<Value, UpgradeError> {
     let at = pointer("materials", id);
@@ -17,8 +15,8 @@ pub fn convert(builder: &mut Builder, id: &str, material: &Value) -> Result<Valu
     let mut out = Map::new();
     out.insert("name".into(), json!(name));
     apply_technique_states(builder, material, &at, &mut out);
-    if let Some((extension, block)) = legacy_pbr::find(material) {
-        match legacy_pbr::parse(extension, block) {
+    if let Some((extension, block)) = pbr::find(material) {
+        match pbr::parse(extension, block) {
             Some(pbr) => convert_pbr(builder, &pbr, &at, &mut out)?,
             None => builder.note(
                 &at,
@@ -128,7 +126,7 @@ fn convert_pbr(
             format!("value '{key}' is not part of the {:?} model.", pbr.model),
         );
     }
-    if pbr.model_source == legacy_pbr::ModelSource::Inferred {
+    if pbr.model_source == pbr::ModelSource::Inferred {
         builder.note(
             &block,
             NoteKind::Decision,

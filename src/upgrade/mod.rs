@@ -19,7 +19,7 @@ mod source;
 mod structure;
 
 use crate::document::uri::ResourceLoader;
-use crate::legacy_pbr;
+use crate::legacy::pbr;
 use crate::shade::sample::{self, MaterialSource, Texture};
 pub use binary::Binary;
 use serde_json::Value;
@@ -81,21 +81,21 @@ pub struct EncodedImage {
 }
 
 /// Why an input could not be upgraded at all.
-#[derive(Debug, Clone, PartialEq)]
+/// Why an asset could not be upgraded.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum UpgradeError {
     /// Not a glTF 1.0 asset (a 2.0 asset, not JSON, a broken GLB).
+    #[error("not a glTF 1.0 asset: {0}")]
     NotGltf1(String),
     /// A resource the asset needs could not be read or decoded.
-    Resource { pointer: String, reason: String },
-}
-
-impl std::fmt::Display for UpgradeError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            UpgradeError::NotGltf1(why) => write!(f, "not a glTF 1.0 asset: {why}"),
-            UpgradeError::Resource { pointer, reason } => write!(f, "{pointer}: {reason}"),
-        }
-    }
+    #[error("{pointer}: {reason}")]
+    Resource {
+        /// Where the resource is named.
+        pointer: String,
+        /// Why it could not be used.
+        reason: String,
+    },
 }
 
 /// Upgrades a glTF 1.0 asset (`.gltf` text or a KHR_binary_glTF GLB v1). External files are
@@ -133,12 +133,11 @@ pub fn legacy_materials(
     loader: &dyn ResourceLoader,
 ) -> Result<Vec<(String, Option<MaterialSource>)>, UpgradeError> {
     let source = source::read(bytes, loader)?;
-    let parsed: Vec<(&str, Option<legacy_pbr::LegacyPbr>)> = source
+    let parsed: Vec<(&str, Option<pbr::LegacyPbr>)> = source
         .dictionary("materials")
         .into_iter()
         .map(|(id, material)| {
-            let pbr =
-                legacy_pbr::find(material).and_then(|(name, block)| legacy_pbr::parse(name, block));
+            let pbr = pbr::find(material).and_then(|(name, block)| pbr::parse(name, block));
             (id, pbr)
         })
         .collect();

@@ -160,31 +160,19 @@ pub fn verify(files: &Files) -> Report {
     )
 }
 
-#[derive(Debug)]
+/// Why the output was not written.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum WriteError {
     /// The output would replace the input.
+    #[error("{} is the input: the input is never overwritten", .0.display())]
     WouldOverwriteInput(PathBuf),
     /// A file exists and `force` was not given.
+    #[error("{} exists (use --force to replace it)", .0.display())]
     Exists(PathBuf),
-    Io(PathBuf, std::io::Error),
-}
-
-impl std::fmt::Display for WriteError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            WriteError::WouldOverwriteInput(p) => {
-                write!(
-                    f,
-                    "{} is the input: the input is never overwritten",
-                    p.display()
-                )
-            }
-            WriteError::Exists(p) => {
-                write!(f, "{} exists (use --force to replace it)", p.display())
-            }
-            WriteError::Io(p, e) => write!(f, "{}: {e}", p.display()),
-        }
-    }
+    /// Writing failed.
+    #[error("{}: {}", .0.display(), .1)]
+    Io(PathBuf, #[source] std::io::Error),
 }
 
 /// The outcome of `write_checked`: the check of the files, and whether they were kept.

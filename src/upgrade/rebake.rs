@@ -1,9 +1,9 @@
 //! Texture rebaking for material conversion: new PNG images computed texel by texel from
 //! the 1.0 textures. Original images are never modified or reused for a changed meaning.
 
-use crate::color::{linear_to_srgb, linear_to_srgb8, srgb_texel_to_linear};
 use crate::document::image_decode;
 use crate::document::image_header::{self, Channels};
+use crate::gltf::color::{linear_to_srgb, linear_to_srgb8, srgb_texel_to_linear};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{DynamicImage, ExtendedColorType, ImageEncoder, Rgba32FImage};
 use std::io::Cursor;
@@ -208,7 +208,8 @@ mod tests {
         let (bytes, alpha) =
             spec_gloss_base_colour(Some(&png(diffuse)), None, [1.0; 4], [0.5, 0.2, 0.2]).unwrap();
         let texel = decode(&bytes).unwrap().to_rgb8().get_pixel(0, 0).0;
-        let expected = linear_to_srgb(crate::color::srgb_to_linear(188.0 / 255.0) * 0.5) * 255.0;
+        let expected =
+            linear_to_srgb(crate::gltf::color::srgb_to_linear(188.0 / 255.0) * 0.5) * 255.0;
         assert!(
             (f64::from(texel[0]) - expected).abs() <= 0.5,
             "{texel:?} vs {expected}"

@@ -6,11 +6,10 @@ use super::data::{self, Role};
 use super::source::Source;
 use super::{materials, EncodedImage, Note, NoteKind, UpgradeError, UpgradeOptions, Upgraded};
 use crate::document::image_header;
+use crate::gltf::gl::{self, ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
 use serde_json::{json, Map, Value};
 use std::collections::HashMap;
 
-const ARRAY_BUFFER: u64 = 34962;
-const ELEMENT_ARRAY_BUFFER: u64 = 34963;
 const IDENTITY: [f64; 16] = [
     1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
 ];
@@ -130,10 +129,10 @@ impl<'s, 'a> Builder<'s, 'a> {
             let mut out = Self::named(id, sampler);
             // 1.0 defaults, written out: 2.0 leaves missing filters to the implementation.
             for (key, default) in [
-                ("magFilter", 9729),
-                ("minFilter", 9986),
-                ("wrapS", 10497),
-                ("wrapT", 10497),
+                ("magFilter", gl::LINEAR),
+                ("minFilter", gl::NEAREST_MIPMAP_LINEAR),
+                ("wrapS", gl::REPEAT),
+                ("wrapT", gl::REPEAT),
             ] {
                 let value = sampler.get(key).and_then(Value::as_u64).unwrap_or(default);
                 out.insert(key.into(), json!(value));

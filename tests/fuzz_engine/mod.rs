@@ -158,7 +158,7 @@ fn exercise(input: &[u8]) {
         let _ = gltfmat::report::render(
             gltfmat::report::Format::Human,
             &[report],
-            &gltfmat::report::RenderOptions { colour: false },
+            &gltfmat::report::Style::new(false),
         );
     }
     let _ = check_bytes("fuzz.glb", asset.clone(), &NoResources, &deep);

@@ -2,9 +2,9 @@
 
 use super::texels::Texels;
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
-use crate::check::materials::{SlotUse, A};
+use crate::check::khronos::materials::{SlotUse, A};
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "TEXTURE_ALPHA_CONSTANT",
@@ -48,7 +48,7 @@ fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
     });
     if let Some((_, high)) = range.filter(|(low, high)| low == high) {
         ctx.emit(
-            "TEXTURE_ALPHA_CONSTANT",
+            RULE.code(),
             slot_use.pointer.clone(),
             format!(
                 "{} reads alpha, but every texel's alpha is {high:.4} (8-bit {}): the factor alone would do.",

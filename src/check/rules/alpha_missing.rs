@@ -1,9 +1,9 @@
 //! A slot reads alpha from an image that has none.
 
 use super::{bound_images, Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
-use crate::check::materials::A;
+use crate::check::khronos::materials::A;
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "TEXTURE_ALPHA_MISSING",
@@ -40,7 +40,7 @@ fn check(ctx: &mut Context) {
         let known = info.channels != crate::document::image_header::Channels::Unknown;
         if linear & A != 0 && known && !info.channels.has_alpha() {
             ctx.emit(
-                "TEXTURE_ALPHA_MISSING",
+                RULE.code(),
                 slot_use.pointer,
                 format!(
                     "{} reads the alpha channel, but image {image} ({}) has none, so it samples 1.0 everywhere.",

@@ -2,9 +2,9 @@
 
 use super::texels::Texels;
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
-use crate::check::materials::SlotUse;
+use crate::check::khronos::materials::SlotUse;
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "ANISOTROPY_DIRECTION_UNDEFINED",
@@ -48,7 +48,7 @@ fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
     });
     if tally.count > 0 {
         ctx.emit(
-            "ANISOTROPY_DIRECTION_UNDEFINED",
+            RULE.code(),
             slot_use.pointer.clone(),
             format!(
                 "Anisotropy direction is undefined (near-zero RG) where the strength is not zero: {}.",

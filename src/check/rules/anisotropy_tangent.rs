@@ -1,8 +1,8 @@
 //! Anisotropy materials need a tangent space even without an anisotropy texture.
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::{unsigned, Context};
+use crate::diagnostic::Severity;
 use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
@@ -57,7 +57,7 @@ fn check(ctx: &mut Context) {
             };
             if needs.anisotropy && !needs.needs_tangent && !(has("NORMAL") && has("TANGENT")) {
                 ctx.emit(
-                    "ANISOTROPY_NO_TANGENT_SPACE",
+                    RULE.code(),
                     format!("{mesh_pointer}/primitives/{p}/material"),
                     "The anisotropy material needs a tangent space, but the primitive has no NORMAL + TANGENT and the material no normal texture to generate one from.",
                 );

@@ -1,9 +1,9 @@
 //! An anisotropy texture with anisotropyStrength zero.
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
-use crate::check::materials::slot_uses;
+use crate::check::khronos::materials::slot_uses;
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "ANISOTROPY_TEXTURE_ZERO_STRENGTH",
@@ -38,7 +38,7 @@ fn check(ctx: &mut Context) {
             && slot_use.extension_number("anisotropyStrength", 0.0) == 0.0
         {
             ctx.emit(
-                "ANISOTROPY_TEXTURE_ZERO_STRENGTH",
+                RULE.code(),
                 slot_use.pointer.clone(),
                 "anisotropyTexture has no effect: anisotropyStrength is 0 (its default), which multiplies the texture's strength.",
             );

@@ -2,10 +2,10 @@
 
 use super::texels::Texels;
 use super::{Rule, Run, LARGE_AREA};
-use crate::check::codes::Severity;
 use crate::check::context::{number, Context};
-use crate::check::materials::SlotUse;
-use crate::color::{linear_to_srgb, luminance, srgb_to_linear};
+use crate::check::khronos::materials::SlotUse;
+use crate::diagnostic::Severity;
+use crate::gltf::color::{linear_to_srgb, luminance, srgb_to_linear};
 use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
@@ -80,7 +80,7 @@ fn check_factor(ctx: &mut Context) {
         let level = srgb_level(factor(material));
         if implausible(level) {
             ctx.emit(
-                "PBR_BASE_COLOR_RANGE",
+                RULE.code(),
                 format!("{pointer}/pbrMetallicRoughness/baseColorFactor"),
                 format!("Dielectric base colour has sRGB luminance {level:.0}, outside the plausible {DARKEST}–{BRIGHTEST}."),
             );
@@ -110,7 +110,7 @@ fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
     });
     if tally.fraction() > LARGE_AREA {
         ctx.emit(
-            "PBR_BASE_COLOR_RANGE",
+            RULE.code(),
             slot_use.pointer.clone(),
             format!(
                 "Dielectric base colour is outside sRGB luminance {DARKEST}–{BRIGHTEST} in {}.",

@@ -1,9 +1,9 @@
 //! One image read as sRGB colour by one slot and as linear data by another.
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
-use crate::check::materials::{slot_uses, Channels, A, B, G, R};
+use crate::check::khronos::materials::{slot_uses, Channels, A, B, G, R};
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "IMAGE_COLOR_SPACE_CONFLICT",
@@ -47,7 +47,7 @@ fn check(ctx: &mut Context) {
             });
             if let Some((earlier, clash)) = earlier {
                 ctx.emit(
-                    "IMAGE_COLOR_SPACE_CONFLICT",
+                    RULE.code(),
                     this.pointer.clone(),
                     format!(
                         "Image {image} channel(s) {} are read as {} here but as {} by {}.",

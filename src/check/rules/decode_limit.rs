@@ -1,7 +1,7 @@
 //! Images too large to decode within gltfmat's limits (`--deep`).
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "IMAGE_DECODE_LIMIT",

@@ -1,8 +1,8 @@
 //! Duplicate keys in one JSON object.
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
+use crate::diagnostic::Severity;
 use crate::document::json;
 
 pub const RULE: Rule = Rule::new(
@@ -32,7 +32,7 @@ Khronos validator does not detect it: its parser silently keeps the last value.
 fn check(ctx: &mut Context) {
     for (pointer, _) in json::duplicate_keys(ctx.document.json_text()) {
         ctx.emit(
-            "JSON_DUPLICATE_KEY",
+            RULE.code(),
             pointer,
             "Duplicate key: parsers disagree on which value wins (the last one was used).",
         );

@@ -1,8 +1,8 @@
 //! Material extensions that the specs forbid on the same material.
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
+use crate::diagnostic::Severity;
 use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
@@ -98,7 +98,7 @@ fn check(ctx: &mut Context) {
             for other in extensions.keys() {
                 if combination(standalone, other) == Combination::Excluded {
                     ctx.emit(
-                        "MATERIAL_EXTENSION_EXCLUDED",
+                        RULE.code(),
                         format!("{pointer}/extensions/{other}"),
                         format!("{other} must not be used together with {standalone} (its spec excludes the combination)."),
                     );

@@ -2,10 +2,11 @@
 //! `gltfmat upgrade`.
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::{member, Context};
 use crate::check::schema;
-use crate::legacy_pbr::{self, Model, EXTENSION_NAMES};
+use crate::diagnostic::khronos;
+use crate::diagnostic::Severity;
+use crate::legacy::pbr::{self, Model, EXTENSION_NAMES};
 use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
@@ -69,7 +70,7 @@ reports `VALUE_NOT_IN_RANGE` at `/materials/gold/extensions/FRAUNHOFER_materials
 /// The whole 1.0 check (default profile).
 pub fn check(ctx: &mut Context) {
     ctx.emit(
-        "GLTF_1_0_ASSET",
+        RULE.code(),
         "/asset/version",
         "This is a glTF 1.0 asset. Run `gltfmat upgrade IN -o OUT` to convert it to glTF 2.0.",
     );
@@ -89,9 +90,9 @@ pub fn check(ctx: &mut Context) {
 fn check_pbr_block(ctx: &mut Context, name: &'static str, block: &Value, pointer: &str) {
     let found = schema::validate_gltf1_pbr(block, pointer);
     ctx.diagnostics.extend(found);
-    if legacy_pbr::declared_model(block).is_none() {
+    if pbr::declared_model(block).is_none() {
         ctx.emit(
-            "UNDEFINED_PROPERTY",
+            khronos::UNDEFINED_PROPERTY,
             pointer,
             "Property 'materialModel' (or the July 2016 'technique') must be defined.",
         );
@@ -102,14 +103,14 @@ fn check_pbr_block(ctx: &mut Context, name: &'static str, block: &Value, pointer
             let Some(id) = value.as_str() else { continue };
             if textures.and_then(|t| t.get(id)).is_none() {
                 ctx.emit(
-                    "UNRESOLVED_REFERENCE",
+                    khronos::UNRESOLVED_REFERENCE,
                     member(&format!("{pointer}/values"), key),
                     format!("Unresolved reference: {id}."),
                 );
             }
         }
     }
-    if let Some(pbr) = legacy_pbr::parse(name, block) {
+    if let Some(pbr) = pbr::parse(name, block) {
         let target = match pbr.model {
             Model::MetalRoughness => "core pbrMetallicRoughness (metallic moved from R to B)",
             Model::SpecularGlossiness => {
@@ -117,7 +118,7 @@ fn check_pbr_block(ctx: &mut Context, name: &'static str, block: &Value, pointer
             }
         };
         ctx.emit(
-            "GLTF_1_0_PBR_MATERIAL",
+            PBR_RULE.code(),
             pointer,
             format!(
                 "{name} {:?} material: `gltfmat upgrade` converts it to {target}.",

@@ -1,9 +1,9 @@
 //! A slot that packs different data into R, G and B is bound to a greyscale image.
 
 use super::{bound_images, Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
-use crate::check::materials::RGB;
+use crate::check::khronos::materials::RGB;
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "TEXTURE_GREYSCALE_PACKED",
@@ -39,7 +39,7 @@ fn check(ctx: &mut Context) {
         let (_, linear) = slot_use.reads();
         if (linear & RGB).count_ones() >= 2 && info.channels.is_grey() {
             ctx.emit(
-                "TEXTURE_GREYSCALE_PACKED",
+                RULE.code(),
                 slot_use.pointer,
                 format!(
                     "{} reads separate data from its colour channels, but image {image} is greyscale, so they all read the same value.",

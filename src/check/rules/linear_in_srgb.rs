@@ -1,8 +1,8 @@
 //! A PNG tagged as linear is read as sRGB colour.
 
 use super::{bound_images, Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
+use crate::diagnostic::Severity;
 use crate::document::image_header::Transfer;
 
 pub const RULE: Rule = Rule::new(
@@ -38,7 +38,7 @@ fn check(ctx: &mut Context) {
         let (srgb, _) = slot_use.reads();
         if srgb != 0 && info.transfer == Some(Transfer::Linear) {
             ctx.emit(
-                "IMAGE_LINEAR_IN_SRGB_SLOT",
+                RULE.code(),
                 slot_use.pointer,
                 format!(
                     "{} decodes image {image} as sRGB, but the image is tagged linear (gAMA 1.0).",

@@ -1,8 +1,8 @@
 //! Direction data stored with lossy JPEG compression.
 
 use super::{bound_images, Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
+use crate::diagnostic::Severity;
 use crate::document::image_header::ImageFormat;
 
 pub const RULE: Rule = Rule::new(
@@ -35,7 +35,7 @@ fn check(ctx: &mut Context) {
         let direction = slot_use.slot.is_normal() || slot_use.slot.key == "anisotropyTexture";
         if direction && info.format == ImageFormat::Jpeg {
             ctx.emit(
-                "TEXTURE_LOSSY_DIRECTION",
+                RULE.code(),
                 slot_use.pointer,
                 format!(
                     "{} stores directions in image {image}, a JPEG: lossy compression distorts them; prefer PNG, lossless WebP or KTX2.",

@@ -2,9 +2,9 @@
 
 use super::texels::Texels;
 use super::{Rule, Run, LARGE_AREA};
-use crate::check::codes::Severity;
 use crate::check::context::{number, Context};
-use crate::check::materials::SlotUse;
+use crate::check::khronos::materials::SlotUse;
+use crate::diagnostic::Severity;
 use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
@@ -49,7 +49,7 @@ fn check_factor(ctx: &mut Context) {
         let metallic = metallic_factor(material);
         if !textured && MIXED.contains(&metallic) && metallic != MIXED.start {
             ctx.emit(
-                "PBR_METALLIC_MIXED",
+                RULE.code(),
                 format!("{pointer}/pbrMetallicRoughness/metallicFactor"),
                 format!("metallicFactor {metallic} is neither metal nor dielectric."),
             );
@@ -69,7 +69,7 @@ fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
     });
     if tally.fraction() > LARGE_AREA {
         ctx.emit(
-            "PBR_METALLIC_MIXED",
+            RULE.code(),
             slot_use.pointer.clone(),
             format!("Metallic is between 0.1 and 0.9 in {}.", tally.describe()),
         );

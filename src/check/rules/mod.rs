@@ -2,6 +2,7 @@
 //! metadata and documentation (What it does / Why / Example), which `gltfmat rules`,
 //! `gltfmat explain` and SARIF read from this table.
 
+use crate::diagnostic::khronos;
 mod alpha_constant;
 mod alpha_missing;
 mod anisotropy_direction;
@@ -18,7 +19,7 @@ mod linear_in_srgb;
 mod lossy_direction;
 mod metallic_mixed;
 mod normal_length;
-mod outside_folder;
+pub(crate) mod outside_folder;
 mod sheen_disabled;
 mod sheen_zero_roughness;
 mod specgloss_energy;
@@ -28,9 +29,10 @@ pub mod texels;
 mod undecodable;
 mod unlit_ignored;
 
-use super::codes::{CodeInfo, Origin, Severity};
 use super::context::Context;
-use super::materials::{slot_uses, SlotUse};
+use super::khronos::materials::{slot_uses, SlotUse};
+use super::registry::{CodeInfo, Origin};
+use crate::diagnostic::{Code, Severity};
 use crate::document::image_header::ImageInfo;
 use texels::Texels;
 
@@ -89,8 +91,13 @@ impl Run {
 }
 
 impl Rule {
+    /// The code this rule emits.
+    pub const fn code(&self) -> Code {
+        self.info.code
+    }
+
     pub const fn new(
-        code: &'static str,
+        name: &'static str,
         severity: Severity,
         group: &'static str,
         summary: &'static str,
@@ -99,8 +106,7 @@ impl Rule {
     ) -> Rule {
         Rule {
             info: CodeInfo {
-                code,
-                severity,
+                code: Code::new(name, severity),
                 group,
                 summary,
                 doc,
@@ -141,29 +147,29 @@ pub static RULES: &[&Rule] = &[
 
 /// Khronos codes that gltfmat's default profile reports differently, and why. The
 /// conformance test allows exactly these differences (plus gltfmat's own codes).
-pub static SUPERSESSIONS: &[(&str, &str)] = &[
+pub static SUPERSESSIONS: &[(Code, &str)] = &[
     (
-        "MULTIPLE_EXTENSIONS",
+        khronos::MULTIPLE_EXTENSIONS,
         "Replaced by MATERIAL_EXTENSION_EXCLUDED for real exclusions and dropped for combinations the specs allow.",
     ),
     (
-        "UNUSED_MESH_TANGENT",
+        khronos::UNUSED_MESH_TANGENT,
         "Not reported on anisotropy materials: KHR_materials_anisotropy reads the tangent even without an anisotropyTexture.",
     ),
     (
-        "KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD",
+        khronos::KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD,
         "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
     ),
     (
-        "KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD",
+        khronos::KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD,
         "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
     ),
     (
-        "GLTF_1_0_ASSET",
+        crate::check::rules::gltf1::RULE.code(),
         "On a glTF 1.0 document the 2.0 passes do not run: every Khronos code is replaced by GLTF_1_0_ASSET and the 1.0 PBR checks.",
     ),
     (
-        "IO_ERROR",
+        khronos::IO_ERROR,
         "A URI leaving the asset's folder is URI_OUTSIDE_ASSET_FOLDER, not a failed read.",
     ),
 ];

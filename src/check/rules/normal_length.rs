@@ -2,9 +2,9 @@
 
 use super::texels::Texels;
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
-use crate::check::materials::SlotUse;
+use crate::check::khronos::materials::SlotUse;
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "NORMAL_TEXEL_NOT_UNIT",
@@ -47,7 +47,7 @@ fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
     });
     if tally.count > 0 {
         ctx.emit(
-            "NORMAL_TEXEL_NOT_UNIT",
+            RULE.code(),
             slot_use.pointer.clone(),
             format!(
                 "Normal-map texels are far from unit length: {}.",

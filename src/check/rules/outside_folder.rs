@@ -1,7 +1,7 @@
 //! URIs that leave the asset's folder (emitted by the resource pass).
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "URI_OUTSIDE_ASSET_FOLDER",

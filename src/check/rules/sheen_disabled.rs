@@ -1,9 +1,9 @@
 //! Sheen textures on a material whose sheen colour is zero.
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
-use crate::check::materials::{extension, slot_uses};
+use crate::check::khronos::materials::{extension, slot_uses};
+use crate::diagnostic::Severity;
 use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
@@ -61,7 +61,7 @@ fn check(ctx: &mut Context) {
         let sheen = extension(slot_use.material, "KHR_materials_sheen");
         if sheen.is_some_and(|s| writes_a_factor(s) && sheen_colour_is_zero(s)) {
             ctx.emit(
-                "SHEEN_TEXTURE_DISABLED",
+                RULE.code(),
                 slot_use.pointer.clone(),
                 format!(
                     "{} has no effect: sheenColorFactor is zero (its default), which disables the sheen layer.",

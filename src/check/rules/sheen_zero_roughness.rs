@@ -2,9 +2,9 @@
 
 use super::sheen_disabled::sheen_colour_is_zero;
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::{number, Context};
-use crate::check::materials::extension;
+use crate::check::khronos::materials::extension;
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "SHEEN_ZERO_ROUGHNESS",
@@ -47,7 +47,7 @@ fn check(ctx: &mut Context) {
                 ""
             };
             ctx.emit(
-                "SHEEN_ZERO_ROUGHNESS",
+                RULE.code(),
                 format!("{pointer}/extensions/KHR_materials_sheen{at}"),
                 "The sheen is visible but its roughness is 0 (the default): the Charlie distribution degenerates and engines clamp it differently.",
             );

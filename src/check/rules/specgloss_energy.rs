@@ -1,9 +1,9 @@
 //! Specular-glossiness factors that reflect more light than they receive.
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
-use crate::check::materials::extension;
+use crate::check::khronos::materials::extension;
+use crate::diagnostic::Severity;
 use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
@@ -60,7 +60,7 @@ fn check(ctx: &mut Context) {
         let brightest = diffuse.iter().take(3).copied().fold(0.0, f64::max);
         if brightest + max_specular > 1.0 {
             ctx.emit(
-                "PBR_SPECGLOSS_ENERGY_GAIN",
+                RULE.code(),
                 format!("{pointer}/extensions/{name}"),
                 format!("Diffuse {brightest} plus specular {max_specular} reflects more light than it receives ({:.2} > 1).", brightest + max_specular),
             );

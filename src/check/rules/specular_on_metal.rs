@@ -1,9 +1,9 @@
 //! KHR_materials_ior / KHR_materials_specular on a fully metallic material.
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::{number, Context};
-use crate::check::materials::extension;
+use crate::check::khronos::materials::extension;
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "SPECULAR_ON_METAL",
@@ -50,7 +50,7 @@ fn check(ctx: &mut Context) {
         for name in ["KHR_materials_ior", "KHR_materials_specular"] {
             if extension(material, name).is_some() {
                 ctx.emit(
-                    "SPECULAR_ON_METAL",
+                    RULE.code(),
                     format!("{pointer}/extensions/{name}"),
                     format!("{name} has no effect: the material is fully metallic (metallicFactor is 1, its default, and no texture lowers it)."),
                 );

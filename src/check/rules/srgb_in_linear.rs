@@ -1,8 +1,8 @@
 //! A PNG explicitly tagged sRGB holds linear data.
 
 use super::{bound_images, Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
+use crate::diagnostic::Severity;
 use crate::document::image_header::Transfer;
 
 pub const RULE: Rule = Rule::new(
@@ -35,7 +35,7 @@ fn check(ctx: &mut Context) {
         let (srgb, linear) = slot_use.reads();
         if srgb == 0 && linear != 0 && info.transfer == Some(Transfer::Srgb) {
             ctx.emit(
-                "IMAGE_SRGB_IN_LINEAR_SLOT",
+                RULE.code(),
                 slot_use.pointer,
                 format!(
                     "{} reads image {image} as linear data, but the image is tagged sRGB; tools that honour the tag will alter the values.",

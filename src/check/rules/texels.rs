@@ -24,7 +24,7 @@ pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
         Ok(image) => Some(Texels { image }),
         Err(error @ DecodeError::Limit) => {
             ctx.emit(
-                "IMAGE_DECODE_LIMIT",
+                crate::check::rules::decode_limit::RULE.code(),
                 format!("/images/{index}"),
                 format!("Image is {error}; its pixel rules were skipped."),
             );
@@ -32,7 +32,7 @@ pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
         }
         Err(error) => {
             ctx.emit(
-                "IMAGE_UNDECODABLE",
+                crate::check::rules::undecodable::RULE.code(),
                 format!("/images/{index}"),
                 format!("Image data cannot be decoded: {error}."),
             );

@@ -1,7 +1,7 @@
 //! Images whose pixel data cannot be decoded (`--deep`).
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "IMAGE_UNDECODABLE",

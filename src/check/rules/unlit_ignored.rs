@@ -1,9 +1,9 @@
 //! Lighting textures on an unlit material.
 
 use super::{Rule, Run};
-use crate::check::codes::Severity;
 use crate::check::context::Context;
-use crate::check::materials::{extension, slot_uses};
+use crate::check::khronos::materials::{extension, slot_uses};
+use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
     "UNLIT_IGNORED_TEXTURE",
@@ -45,7 +45,7 @@ fn check(ctx: &mut Context) {
         let unlit = extension(slot_use.material, "KHR_materials_unlit").is_some();
         if unlit && LIGHTING_SLOTS.contains(&slot_use.slot.key) {
             ctx.emit(
-                "UNLIT_IGNORED_TEXTURE",
+                RULE.code(),
                 slot_use.pointer.clone(),
                 format!(
                     "{} is ignored by unlit shading; only clients without KHR_materials_unlit would use it.",

@@ -1,0 +1,397 @@
+//! Accessor data: one pass over each accessor's elements for non-finite floats, for `min` /
+//! `max` that do not match the data, and for the checks its uses add (unit normals, index
+//! bounds, animation inputs…, see `accessor_usage`): the Khronos ACCESSOR_* data codes.
+
+use super::accessor_fast;
+use super::accessor_usage::{self, Checker, Finding, Findings};
+use super::resources::view_bytes;
+use crate::check::context::{unsigned, Context};
+use crate::diagnostic::khronos;
+use crate::document::Bytes;
+use crate::gltf::accessor::{component_count, component_size, normalise};
+use crate::gltf::gl;
+use rayon::prelude::*;
+use serde_json::Value;
+
+/// The most components an element has (MAT4).
+pub(super) const MAX_COMPONENTS: usize = 16;
+/// Elements decoded per batch: small enough for L1, large enough that each check's
+/// dispatch is paid once per batch rather than once per element; a multiple of 3 so that
+/// triangles rarely straddle batches.
+const BATCH: usize = 240;
+
+/// Calls `f(first element index, values)` for consecutive batches of elements, `values`
+/// holding `components` numbers per element, as stored (integers not normalised).
+/// Dispatching on the component type once, outside the loop, keeps the inner loop a plain
+/// load: this pass runs over every byte of large assets.
+fn visit(layout: &Layout, bytes: &[u8], f: impl FnMut(usize, &[f64])) {
+    match layout.component_type {
+        gl::BYTE => walk(layout, bytes, |[b]: [u8; 1]| f64::from(b as i8), f),
+        gl::UNSIGNED_BYTE => walk(layout, bytes, |[b]: [u8; 1]| f64::from(b), f),
+        gl::SHORT => walk(layout, bytes, |b| f64::from(i16::from_le_bytes(b)), f),
+        gl::UNSIGNED_SHORT => walk(layout, bytes, |b| f64::from(u16::from_le_bytes(b)), f),
+        gl::UNSIGNED_INT => walk(layout, bytes, |b| f64::from(u32::from_le_bytes(b)), f),
+        _ => walk(layout, bytes, |b| f64::from(f32::from_le_bytes(b)), f),
+    }
+}
+
+/// Element `i`, as stored; the layout was checked to fit by `scannable`.
+pub(super) fn element(layout: &Layout, bytes: &[u8], i: usize) -> [f64; MAX_COMPONENTS] {
+    let mut value = [0.0; MAX_COMPONENTS];
+    let one = Layout {
+        offset: layout.offset + i * layout.stride,
+        count: 1,
+        ..*layout
+    };
+    visit(&one, bytes, |_, v| value[..v.len()].copy_from_slice(v));
+    value
+}
+
+fn walk<const SIZE: usize>(
+    layout: &Layout,
+    bytes: &[u8],
+    decode: impl Fn([u8; SIZE]) -> f64,
+    mut f: impl FnMut(usize, &[f64]),
+) {
+    let n = layout.components.min(MAX_COMPONENTS);
+    let element_size = SIZE * n;
+    let mut values = [0.0; BATCH * MAX_COMPONENTS];
+    let mut first = 0;
+    while first < layout.count {
+        let k = BATCH.min(layout.count - first);
+        let start = layout.offset + first * layout.stride;
+        if layout.stride == element_size {
+            // Tightly packed: the batch is one run of bytes, decoded in a loop the compiler
+            // can vectorise.
+            let Some(run) = bytes.get(start..start + k * element_size) else {
+                return;
+            };
+            for (value, raw) in values.iter_mut().zip(run.chunks_exact(SIZE)) {
+                *value = decode(raw.try_into().unwrap_or([0; SIZE]));
+            }
+            f(first, &values[..k * n]);
+            first += k;
+            continue;
+        }
+        for (e, out) in values.chunks_exact_mut(n).take(k).enumerate() {
+            let start = layout.offset + (first + e) * layout.stride;
+            let Some(element) = bytes.get(start..start + element_size) else {
+                return;
+            };
+            for (value, raw) in out.iter_mut().zip(element.chunks_exact(SIZE)) {
+                *value = decode(raw.try_into().unwrap_or([0; SIZE]));
+            }
+        }
+        f(first, &values[..k * n]);
+        first += k;
+    }
+}
+
+#[derive(Clone, Copy)]
+pub(super) struct Layout {
+    pub component_type: u64,
+    pub size: usize,
+    pub components: usize,
+    pub stride: usize,
+    pub offset: usize,
+    pub count: usize,
+}
+
+fn layout(ctx: &Context, accessor: &Value, view: usize) -> Option<Layout> {
+    let component_type = unsigned(accessor, "componentType")?;
+    let size = component_size(component_type)?;
+    let kind = accessor.get("type")?.as_str()?;
+    // Small-component matrices have padded columns, which this pass does not walk.
+    if kind.starts_with("MAT") && kind != "MAT4" && size < 4 {
+        return None;
+    }
+    let components = component_count(kind)?;
+    let element = size * components;
+    let stride = unsigned(&ctx.items("bufferViews")[view], "byteStride").unwrap_or(element as u64);
+    Some(Layout {
+        component_type,
+        size,
+        components,
+        stride: usize::try_from(stride).ok()?,
+        offset: usize::try_from(unsigned(accessor, "byteOffset").unwrap_or(0)).ok()?,
+        count: usize::try_from(unsigned(accessor, "count")?).ok()?,
+    })
+}
+
+fn show(component_type: u64, v: f64) -> String {
+    if component_type == gl::FLOAT {
+        format!("{v:?}")
+    } else {
+        format!("{v}")
+    }
+}
+
+pub fn check(ctx: &mut Context) {
+    let mut uses = accessor_usage::checkers(ctx);
+    // Accessors are independent and read-only here: scanned in parallel, reported in order.
+    let mut work: Vec<Work> = ctx
+        .objects("accessors")
+        .into_iter()
+        .filter_map(|(index, pointer, accessor)| {
+            let (layout, bytes) = scannable(ctx, accessor)?;
+            let checkers = uses.remove(&index).unwrap_or_default();
+            Some(Work {
+                pointer,
+                layout,
+                bytes,
+                accessor,
+                checkers,
+            })
+        })
+        .collect();
+    let source = &ctx.document.bytes;
+    let findings: Vec<Vec<Finding>> = work.par_iter_mut().map(|w| scan(w, source)).collect();
+    for (code, pointer, message) in findings.into_iter().flatten() {
+        ctx.emit(code, pointer, message);
+    }
+}
+
+/// One accessor to scan, with the checks its uses add.
+struct Work<'c> {
+    pointer: String,
+    layout: Layout,
+    bytes: &'c [u8],
+    accessor: &'c Value,
+    checkers: Vec<Checker>,
+}
+
+/// The accessor's layout and its view's bytes, when it is plain (not sparse) data that fits
+/// its view (otherwise ACCESSOR_TOO_LONG or a schema code was reported).
+pub(super) fn scannable<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])> {
+    if accessor.get("sparse").is_some() {
+        return None; // sparse substitution is not applied by this pass
+    }
+    let view = unsigned(accessor, "bufferView")? as usize;
+    if view >= ctx.items("bufferViews").len() {
+        return None;
+    }
+    let layout = layout(ctx, accessor, view)?;
+    let bytes = view_bytes(ctx, view)?;
+    let needed = layout
+        .count
+        .checked_sub(1)
+        .and_then(|n| n.checked_mul(layout.stride))
+        .and_then(|n| n.checked_add(layout.size * layout.components + layout.offset));
+    (layout.count > 0 && needed.is_some_and(|n| n <= bytes.len())).then_some((layout, bytes))
+}
+
+/// Bytes scanned between two releases of a mapped file's pages.
+const RELEASE_STEP: usize = 4 << 20;
+
+/// Every finding of one accessor, from a single walk over its elements. Pages of a mapped
+/// `source` are released behind the walk, so that peak memory stays far below the size of
+/// a large GLB.
+fn scan(work: &mut Work, source: &Bytes) -> Vec<Finding> {
+    let Work {
+        pointer,
+        layout,
+        bytes,
+        accessor,
+        checkers,
+    } = work;
+    let mut findings = Findings::default();
+    if let Some((min, max)) = accessor_fast::bounds(layout, bytes, checkers, |b| source.release(b))
+    {
+        Bounds {
+            layout,
+            bytes,
+            pointer,
+            findings: &mut findings,
+        }
+        .compare(accessor, &min, &max);
+        for checker in checkers.iter() {
+            checker.finish(layout.count, &mut findings);
+        }
+        return findings.into_vec();
+    }
+    let n = layout.components;
+    let unit = unit_scale(layout.component_type, accessor);
+    let mut actual_min = [f64::INFINITY; MAX_COMPONENTS];
+    let mut actual_max = [f64::NEG_INFINITY; MAX_COMPONENTS];
+    let mut non_finite = false;
+    let mut released = layout.offset;
+    visit(layout, bytes, |first, values| {
+        for c in 0..n {
+            // A comparison is false for NaN, so NaN never becomes a bound; infinities are
+            // taken out again by the slow path.
+            let (low, high) = (&mut actual_min[c], &mut actual_max[c]);
+            for &v in values[c..].iter().step_by(n) {
+                *low = if v < *low { v } else { *low };
+                *high = if v > *high { v } else { *high };
+            }
+        }
+        for checker in checkers.iter_mut() {
+            checker.feed(first * n, values, n, unit, &mut findings);
+        }
+        non_finite |= values.iter().any(|v| !v.is_finite());
+        let done = (layout.offset + (first + values.len() / n) * layout.stride).min(bytes.len());
+        if done - released >= RELEASE_STEP {
+            source.release(&bytes[released..done]);
+            released = done;
+        }
+    });
+    source.release(&bytes[released..]);
+    if non_finite {
+        report_non_finite(
+            layout,
+            bytes,
+            pointer,
+            &mut actual_min,
+            &mut actual_max,
+            &mut findings,
+        );
+    }
+    let mut bounds = Bounds {
+        layout,
+        bytes,
+        pointer,
+        findings: &mut findings,
+    };
+    bounds.compare(accessor, &actual_min[..n], &actual_max[..n]);
+    for checker in checkers.iter() {
+        checker.finish(layout.count * n, &mut findings);
+    }
+    findings.into_vec()
+}
+
+/// The rare second walk of an accessor holding NaN or infinities: reports each and takes
+/// min/max over the finite values only.
+fn report_non_finite(
+    layout: &Layout,
+    bytes: &[u8],
+    pointer: &str,
+    actual_min: &mut [f64; MAX_COMPONENTS],
+    actual_max: &mut [f64; MAX_COMPONENTS],
+    findings: &mut Findings,
+) {
+    *actual_min = [f64::INFINITY; MAX_COMPONENTS];
+    *actual_max = [f64::NEG_INFINITY; MAX_COMPONENTS];
+    let n = layout.components;
+    visit(layout, bytes, |first, values| {
+        for (i, c, v) in components(first, values, n) {
+            if v.is_finite() {
+                actual_min[c] = actual_min[c].min(*v);
+                actual_max[c] = actual_max[c].max(*v);
+                continue;
+            }
+            let what = if v.is_nan() {
+                "NaN"
+            } else if *v > 0.0 {
+                "Infinity"
+            } else {
+                "-Infinity"
+            };
+            findings.push((
+                khronos::ACCESSOR_INVALID_FLOAT,
+                pointer.to_string(),
+                format!("Accessor element at index {} is {what}.", i * n + c),
+            ));
+        }
+    });
+}
+
+/// (element index, component, value) for each number of a batch starting at `first`.
+fn components(
+    first: usize,
+    values: &[f64],
+    n: usize,
+) -> impl Iterator<Item = (usize, usize, &f64)> {
+    values
+        .iter()
+        .enumerate()
+        .map(move |(k, v)| (first + k / n, k % n, v))
+}
+
+/// Declared `min` / `max` against the data.
+struct Bounds<'w> {
+    layout: &'w Layout,
+    bytes: &'w [u8],
+    pointer: &'w str,
+    findings: &'w mut Findings,
+}
+
+impl Bounds<'_> {
+    fn compare(&mut self, accessor: &Value, actual_min: &[f64], actual_max: &[f64]) {
+        let sides = [
+            ("min", "minimum", "less than", actual_min),
+            ("max", "maximum", "greater than", actual_max),
+        ];
+        for (key, word, relation, actual) in sides {
+            let Some(declared) = self.declared(accessor, key) else {
+                continue;
+            };
+            let is_min = key == "min";
+            let t = self.layout.component_type;
+            for (c, (&declared, &actual)) in declared.iter().zip(actual).enumerate() {
+                if !actual.is_finite() || self.as_stored(declared) == actual {
+                    continue;
+                }
+                let at = format!("{}/{key}/{c}", self.pointer);
+                let code = if is_min {
+                    khronos::ACCESSOR_MIN_MISMATCH
+                } else {
+                    khronos::ACCESSOR_MAX_MISMATCH
+                };
+                self.findings.push((code, at.clone(), format!("Declared {word} value for this component ({}) does not match actual {word} ({}).", show(t, declared), show(t, actual))));
+                let outside = self.count_outside(c, self.as_stored(declared), is_min);
+                if outside > 0 {
+                    let code = if is_min {
+                        khronos::ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND
+                    } else {
+                        khronos::ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND
+                    };
+                    let message = format!(
+                        "Accessor contains {outside} element(s) {relation} declared {word} value {}.",
+                        show(t, declared)
+                    );
+                    self.findings.push((code, at, message));
+                }
+            }
+        }
+    }
+
+    /// A declared bound with one number per component.
+    fn declared(&self, accessor: &Value, key: &str) -> Option<Vec<f64>> {
+        let list = accessor.get(key)?.as_array()?;
+        (list.len() == self.layout.components).then(|| {
+            list.iter()
+                .map(|v| v.as_f64().unwrap_or(f64::NAN))
+                .collect()
+        })
+    }
+
+    /// A declared bound as the data's own precision sees it.
+    fn as_stored(&self, v: f64) -> f64 {
+        if self.layout.component_type == gl::FLOAT {
+            f64::from(v as f32)
+        } else {
+            v
+        }
+    }
+
+    /// Counts the elements past a bound: a second walk, needed only when the bound is wrong.
+    fn count_outside(&self, c: usize, bound: f64, is_min: bool) -> u64 {
+        let mut outside = 0;
+        let n = self.layout.components;
+        visit(self.layout, self.bytes, |_, values| {
+            for v in values.iter().skip(c).step_by(n) {
+                outside += u64::from(if is_min { *v < bound } else { *v > bound });
+            }
+        });
+        outside
+    }
+}
+
+/// Maps a stored value to the value a shader sees (the glTF normalisation rules for
+/// `normalized` integers; floats and plain integers unchanged).
+pub(super) fn unit_scale(component_type: u64, accessor: &Value) -> fn(f64) -> f64 {
+    if accessor.get("normalized").and_then(Value::as_bool) != Some(true) {
+        return |v| v;
+    }
+    normalise(component_type)
+}

@@ -1,0 +1,484 @@
+//! Data checks that depend on how an accessor is used: unit normals and tangents, clamped
+//! colours, index buffers, animation inputs and rotations, inverse bind matrices (the
+//! Khronos ACCESSOR_* data codes reported at the using pointer).
+//!
+//! Each use adds a [`Checker`] to its accessor; the accessor-data pass feeds every checker in
+//! the same single walk over the accessor's elements that computes min/max.
+
+use super::primitives::Format;
+use crate::check::context::{elements, unsigned, Context};
+use crate::diagnostic::{khronos, Code};
+use crate::gltf::accessor::component_count;
+use crate::gltf::gl;
+use serde_json::Value;
+use std::collections::HashMap;
+
+/// How far from 1 a normal or tangent length may be: the Khronos validator's tolerance,
+/// which admits 8-bit quantised unit vectors.
+const UNIT_TOLERANCE_VEC3: f64 = 0.00674;
+/// The same for quaternions.
+pub(super) const UNIT_TOLERANCE_VEC4: f64 = 0.00769;
+
+/// (code, pointer, message)
+pub(super) type Finding = (Code, String, String);
+
+/// At most this many findings are kept per accessor (or skinned primitive): a corrupt
+/// buffer of millions of elements must not turn into millions of diagnostics in memory.
+const KEPT_FINDINGS: usize = 1000;
+
+/// The findings of one walk, bounded by [`KEPT_FINDINGS`].
+#[derive(Default)]
+pub(super) struct Findings {
+    kept: Vec<Finding>,
+    dropped: u64,
+}
+
+impl Findings {
+    pub(super) fn push(&mut self, finding: Finding) {
+        if self.kept.len() < KEPT_FINDINGS {
+            self.kept.push(finding);
+        } else {
+            self.dropped += 1;
+        }
+    }
+
+    /// The kept findings; the last one says how many more were not listed.
+    pub(super) fn into_vec(mut self) -> Vec<Finding> {
+        if let Some(last) = self.kept.last_mut().filter(|_| self.dropped > 0) {
+            let more = self.dropped;
+            last.2 += &format!(" ({more} more findings here are not listed.)");
+        }
+        self.kept
+    }
+}
+
+enum Kind {
+    UnitVector,
+    UnitVectorWithSign,
+    Clamped,
+    Indices {
+        max_vertex: i64,
+        restart: f64,
+        triangles: bool,
+    },
+    AnimationInput,
+    Rotation {
+        cubic: bool,
+    },
+    InverseBind,
+}
+
+/// One use of an accessor, with the running state its check needs.
+pub(super) struct Checker {
+    pointer: String,
+    kind: Kind,
+    last: f64,
+    /// Position within a cubic-spline (in-tangent, value, out-tangent) triple, or within
+    /// a triangle.
+    slot: usize,
+    triangle: [f64; 3],
+    degenerate: u64,
+}
+
+impl Checker {
+    fn new(pointer: String, kind: Kind) -> Self {
+        Checker {
+            pointer,
+            kind,
+            last: 0.0,
+            slot: 0,
+            triangle: [0.0; 3],
+            degenerate: 0,
+        }
+    }
+
+    /// Takes a batch of elements, as stored, `n` numbers each, the first number having
+    /// flat index `first` (`element × n`); `unit` maps a stored value to its normalised value.
+    pub(super) fn feed(
+        &mut self,
+        first: usize,
+        values: &[f64],
+        n: usize,
+        unit: fn(f64) -> f64,
+        out: &mut Findings,
+    ) {
+        let elements = values.chunks_exact(n).enumerate();
+        let elements = elements.map(|(e, element)| (first + e * n, element));
+        match self.kind {
+            Kind::UnitVector => {
+                for (at, element) in elements {
+                    self.unit_length(at, element, unit, out);
+                }
+            }
+            Kind::UnitVectorWithSign => {
+                for (at, element) in elements {
+                    self.unit_length(at, element, unit, out);
+                    self.sign(at, element, unit, out);
+                }
+            }
+            Kind::Clamped => {
+                for (at, v) in values.iter().enumerate() {
+                    if !(0.0..=1.0).contains(v) {
+                        self.report(
+                            out,
+                            khronos::ACCESSOR_NON_CLAMPED,
+                            format!(
+                                "Accessor element at index {} is not clamped to 0..1 range: {v:?}.",
+                                first + at
+                            ),
+                        );
+                    }
+                }
+            }
+            Kind::Indices {
+                max_vertex,
+                restart,
+                triangles,
+            } => {
+                for (at, v) in values.iter().enumerate() {
+                    if *v > max_vertex as f64 || *v == restart {
+                        self.bad_index(first + at, *v, max_vertex, restart, out);
+                    }
+                }
+                if triangles {
+                    self.count_degenerate(values);
+                }
+            }
+            Kind::AnimationInput => {
+                for (at, v) in values.iter().enumerate() {
+                    self.animation_input(first + at, *v, out);
+                }
+            }
+            Kind::Rotation { cubic } => {
+                for (at, element) in elements {
+                    self.rotation(at, element, cubic, unit, out);
+                }
+            }
+            Kind::InverseBind => {
+                for (at, element) in elements {
+                    self.inverse_bind(at, element, out);
+                }
+            }
+        }
+    }
+
+    fn sign(&self, at: usize, element: &[f64], unit: fn(f64) -> f64, out: &mut Findings) {
+        let w = element.get(3).map_or(1.0, |w| unit(*w));
+        if w != 1.0 && w != -1.0 {
+            self.report(out, khronos::ACCESSOR_INVALID_SIGN, format!("Vector3 with sign at accessor indices {at}..{} has invalid w component: {w:?}. Must be 1.0 or -1.0.", at + 3));
+        }
+    }
+
+    fn rotation(
+        &mut self,
+        at: usize,
+        element: &[f64],
+        cubic: bool,
+        unit: fn(f64) -> f64,
+        out: &mut Findings,
+    ) {
+        // Cubic-spline outputs hold (in-tangent, value, out-tangent): only values must be
+        // unit quaternions.
+        let is_value = !cubic || self.slot == 1;
+        self.slot = (self.slot + 1) % 3;
+        let length = element.iter().map(|v| unit(*v).powi(2)).sum::<f64>().sqrt();
+        if is_value && (length - 1.0).abs() > UNIT_TOLERANCE_VEC4 {
+            self.report(out, khronos::ACCESSOR_ANIMATION_SAMPLER_OUTPUT_NON_NORMALIZED_QUATERNION, format!("Animation sampler output accessor element at indices {at}..{} is not of unit length: {length:?}.", at + 3));
+        }
+    }
+
+    fn inverse_bind(&self, at: usize, element: &[f64], out: &mut Findings) {
+        for c in [3, 7, 11, 15] {
+            let expected = if c == 15 { 1.0 } else { 0.0 };
+            let v = element.get(c).copied().unwrap_or(expected);
+            if v != expected {
+                self.report(out, khronos::ACCESSOR_INVALID_IBM, format!("Matrix element at index {} (component index {c}) contains invalid value: {v:?}.", at + c));
+            }
+        }
+    }
+
+    fn unit_length(&self, first: usize, element: &[f64], unit: fn(f64) -> f64, out: &mut Findings) {
+        let length = element
+            .iter()
+            .take(3)
+            .map(|v| unit(*v).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        if !is_unit_length(length) {
+            self.report(
+                out,
+                khronos::ACCESSOR_VECTOR3_NON_UNIT,
+                format!(
+                    "Vector3 at accessor indices {first}..{} is not of unit length: {length:?}.",
+                    first + 2
+                ),
+            );
+        }
+    }
+
+    fn bad_index(&self, at: usize, v: f64, max_vertex: i64, restart: f64, out: &mut Findings) {
+        if v > max_vertex as f64 {
+            self.report(out, khronos::ACCESSOR_INDEX_OOB, format!("Indices accessor element at index {at} has value {v} that is greater than the maximum vertex index available ({max_vertex})."));
+        }
+        if v == restart {
+            self.report(
+                out,
+                khronos::ACCESSOR_INDEX_PRIMITIVE_RESTART,
+                format!("Indices accessor contains primitive restart value ({v}) at index {at}."),
+            );
+        }
+    }
+
+    /// Counts triangles with a repeated vertex; a triangle may straddle two batches.
+    fn count_degenerate(&mut self, values: &[f64]) {
+        let mut rest = values;
+        while self.slot != 0 {
+            let Some((v, after)) = rest.split_first() else {
+                return;
+            };
+            self.add_vertex(*v);
+            rest = after;
+        }
+        let whole = rest.chunks_exact(3);
+        let tail = whole.remainder();
+        self.degenerate += whole
+            .map(|t| u64::from(t[0] == t[1] || t[1] == t[2] || t[2] == t[0]))
+            .sum::<u64>();
+        for v in tail {
+            self.add_vertex(*v);
+        }
+    }
+
+    fn add_vertex(&mut self, v: f64) {
+        self.triangle[self.slot] = v;
+        self.slot += 1;
+        if self.slot == 3 {
+            self.slot = 0;
+            let [a, b, c] = self.triangle;
+            self.degenerate += u64::from(a == b || b == c || c == a);
+        }
+    }
+
+    fn animation_input(&mut self, index: usize, value: f64, out: &mut Findings) {
+        if value < 0.0 {
+            self.report(
+                out,
+                khronos::ACCESSOR_ANIMATION_INPUT_NEGATIVE,
+                format!(
+                    "Animation input accessor element at index {index} is negative: {value:?}."
+                ),
+            );
+            return;
+        }
+        if index != 0 && value <= self.last {
+            self.report(out, khronos::ACCESSOR_ANIMATION_INPUT_NON_INCREASING, format!("Animation input accessor element at index {index} is less than or equal to previous: {value:?} <= {:?}.", self.last));
+        }
+        self.last = value;
+    }
+
+    /// Takes the summary of an index buffer whose elements were not fed one by one: its
+    /// largest value and its degenerate triangles. False when that value needs the
+    /// element-by-element report (out of range, or the restart value) or this checker is not
+    /// an index check: the caller then feeds every element instead.
+    pub(super) fn accept_index_summary(&mut self, largest: f64, degenerate: u64) -> bool {
+        let Kind::Indices {
+            max_vertex,
+            restart,
+            triangles,
+        } = self.kind
+        else {
+            return false;
+        };
+        if largest > max_vertex as f64 || largest == restart {
+            return false;
+        }
+        if triangles {
+            self.degenerate = degenerate;
+        }
+        true
+    }
+
+    /// Whether this checker only asks that (float) elements be unit vectors, which the fast
+    /// path can test on its own.
+    pub(super) fn wants_unit_vectors_only(&self) -> bool {
+        matches!(self.kind, Kind::UnitVector)
+    }
+
+    /// Reports what is only known after the last element.
+    pub(super) fn finish(&self, elements: usize, out: &mut Findings) {
+        if self.degenerate > 0 {
+            self.report(
+                out,
+                khronos::ACCESSOR_INDEX_TRIANGLE_DEGENERATE,
+                format!(
+                    "Indices accessor contains {} degenerate triangles (out of {}).",
+                    self.degenerate,
+                    elements / 3
+                ),
+            );
+        }
+    }
+
+    fn report(&self, out: &mut Findings, code: Code, message: String) {
+        out.push((code, self.pointer.clone(), message));
+    }
+}
+
+/// Whether a normal or tangent of this length counts as unit length.
+pub(super) fn is_unit_length(length: f64) -> bool {
+    (length - 1.0).abs() <= UNIT_TOLERANCE_VEC3
+}
+
+/// The checkers of every accessor, keyed by accessor index.
+pub(super) fn checkers(ctx: &Context) -> HashMap<usize, Vec<Checker>> {
+    let mut found = Uses {
+        accessors: ctx.items("accessors"),
+        quantized: ctx.extensions_used().contains(&"KHR_mesh_quantization"),
+        map: HashMap::new(),
+    };
+    for (_, pointer, mesh) in ctx.objects("meshes") {
+        for (p, primitive) in elements(mesh, "primitives") {
+            found.primitive(primitive, &format!("{pointer}/primitives/{p}"));
+        }
+    }
+    for (_, pointer, animation) in ctx.objects("animations") {
+        found.animation(animation, &pointer);
+    }
+    for (_, pointer, skin) in ctx.objects("skins") {
+        if let Some(a) = found.accessor(skin, "inverseBindMatrices", "MAT4", &[gl::FLOAT]) {
+            found.add(
+                a,
+                format!("{pointer}/inverseBindMatrices"),
+                Kind::InverseBind,
+            );
+        }
+    }
+    found.map
+}
+
+struct Uses<'a> {
+    accessors: &'a [Value],
+    /// KHR_mesh_quantization widens the attribute formats.
+    quantized: bool,
+    map: HashMap<usize, Vec<Checker>>,
+}
+
+impl Uses<'_> {
+    fn add(&mut self, accessor: usize, pointer: String, kind: Kind) {
+        self.map
+            .entry(accessor)
+            .or_default()
+            .push(Checker::new(pointer, kind));
+    }
+
+    /// `object[key]` as an accessor index, when that accessor has the given type and one
+    /// of the component types (integer ones normalised); other formats are reported by
+    /// the format checks and not read here.
+    fn accessor(&self, object: &Value, key: &str, kind: &str, types: &[u64]) -> Option<usize> {
+        let index = unsigned(object, key)? as usize;
+        let accessor = self.accessors.get(index)?;
+        let component_type = unsigned(accessor, "componentType")?;
+        let normalized = accessor.get("normalized").and_then(Value::as_bool) == Some(true);
+        let format_ok = accessor.get("type")?.as_str()? == kind
+            && types.contains(&component_type)
+            && (component_type == gl::FLOAT || normalized);
+        format_ok.then_some(index)
+    }
+
+    /// A vertex attribute's accessor index, when its format is one the semantic allows
+    /// (others are reported by the format check and not read here).
+    fn attribute(&self, attributes: &Value, semantic: &str) -> Option<(usize, Format<'_>)> {
+        let index = unsigned(attributes, semantic)? as usize;
+        let format = Format::of(self.accessors.get(index)?)?;
+        format
+            .allowed_for(semantic, false, self.quantized)?
+            .then_some((index, format))
+    }
+
+    fn primitive(&mut self, primitive: &Value, pointer: &str) {
+        let Some(attributes) = primitive.get("attributes").filter(|a| a.is_object()) else {
+            return;
+        };
+        let attribute = |name: &str| format!("{pointer}/attributes/{name}");
+        if let Some((a, _)) = self.attribute(attributes, "NORMAL") {
+            self.add(a, attribute("NORMAL"), Kind::UnitVector);
+        }
+        if let Some((a, _)) = self.attribute(attributes, "TANGENT") {
+            self.add(a, attribute("TANGENT"), Kind::UnitVectorWithSign);
+        }
+        if let Some((a, format)) = self.attribute(attributes, "COLOR_0") {
+            if format.is_float() {
+                self.add(a, attribute("COLOR_0"), Kind::Clamped);
+            }
+        }
+        self.indices(primitive, attributes, pointer);
+    }
+
+    fn indices(&mut self, primitive: &Value, attributes: &Value, pointer: &str) {
+        let Some(index) = unsigned(primitive, "indices").map(|i| i as usize) else {
+            return;
+        };
+        let Some(accessor) = self.accessors.get(index) else {
+            return;
+        };
+        let restart = match unsigned(accessor, "componentType") {
+            Some(gl::UNSIGNED_BYTE) => f64::from(u8::MAX),
+            Some(gl::UNSIGNED_SHORT) => f64::from(u16::MAX),
+            Some(gl::UNSIGNED_INT) => f64::from(u32::MAX),
+            _ => return,
+        };
+        let is_scalar = accessor.get("type").and_then(Value::as_str) == Some("SCALAR");
+        let normalized = accessor.get("normalized").and_then(Value::as_bool) == Some(true);
+        if !is_scalar || normalized {
+            return;
+        }
+        // The vertex count is the first attribute's count, as the Khronos validator takes it.
+        let vertex_count = attributes
+            .as_object()
+            .and_then(|a| a.values().next())
+            .and_then(|v| self.accessors.get(v.as_u64()? as usize))
+            .and_then(|a| unsigned(a, "count"))
+            .map_or(0, |n| n as i64);
+        let kind = Kind::Indices {
+            max_vertex: vertex_count - 1,
+            restart,
+            triangles: unsigned(primitive, "mode").unwrap_or(4) == 4,
+        };
+        self.add(index, format!("{pointer}/indices"), kind);
+    }
+
+    fn animation(&mut self, animation: &Value, pointer: &str) {
+        let samplers = animation.get("samplers").and_then(Value::as_array);
+        for (s, sampler) in samplers.into_iter().flatten().enumerate() {
+            if let Some(a) = self.accessor(sampler, "input", "SCALAR", &[gl::FLOAT]) {
+                let p = format!("{pointer}/samplers/{s}/input");
+                self.add(a, p, Kind::AnimationInput);
+            }
+        }
+        for (c, channel) in elements(animation, "channels") {
+            let target_path = channel.get("target").and_then(|t| t.get("path"));
+            if target_path.and_then(Value::as_str) != Some("rotation") {
+                continue;
+            }
+            let Some(sampler) =
+                unsigned(channel, "sampler").and_then(|s| samplers?.get(s as usize))
+            else {
+                continue;
+            };
+            let Some(output) = unsigned(sampler, "output").map(|o| o as usize) else {
+                continue;
+            };
+            let components = self
+                .accessors
+                .get(output)
+                .and_then(|a| a.get("type")?.as_str())
+                .and_then(component_count);
+            if components == Some(4) {
+                let interpolation = sampler.get("interpolation").and_then(Value::as_str);
+                let cubic = interpolation == Some("CUBICSPLINE");
+                let p = format!("{pointer}/channels/{c}/sampler");
+                self.add(output, p, Kind::Rotation { cubic });
+            }
+        }
+    }
+}

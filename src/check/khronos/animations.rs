@@ -1,0 +1,233 @@
+//! Animations as the Khronos validator checks them beyond references: sampler input and
+//! output accessors (format, bounds, byteStride, key frame counts) and channel targets
+//! (matrix or skinned nodes, morph weights without targets, duplicates).
+
+use super::primitives::{mesh_morph_targets, Format};
+use crate::check::context::{elements, unsigned, Context};
+use crate::diagnostic::khronos;
+use serde_json::Value;
+
+pub fn check(ctx: &mut Context) {
+    let pointer_paths = ctx.extensions_used().contains(&"KHR_animation_pointer");
+    for (_, pointer, animation) in ctx.objects("animations") {
+        for (c, channel) in elements(animation, "channels") {
+            let at = format!("{pointer}/channels/{c}/target");
+            animation_pointer(ctx, channel, &at, pointer_paths);
+        }
+        let samplers = animation.get("samplers").and_then(Value::as_array);
+        let channels = animation.get("channels").and_then(Value::as_array);
+        let (Some(samplers), Some(channels)) = (samplers, channels) else {
+            continue;
+        };
+        for (s, sampler) in samplers.iter().enumerate() {
+            sampler_accessors(ctx, sampler, &format!("{pointer}/samplers/{s}"));
+        }
+        for (c, channel) in channels.iter().enumerate() {
+            let at = format!("{pointer}/channels/{c}");
+            target(ctx, channel, &at);
+            let sampler = unsigned(channel, "sampler").and_then(|s| samplers.get(s as usize));
+            if let Some(sampler) = sampler {
+                output(ctx, channel, sampler, &at);
+            }
+            let key = target_key(channel);
+            for later in channels.iter().skip(c + 1) {
+                if key.is_some() && key == target_key(later) {
+                    ctx.emit(
+                        khronos::ANIMATION_DUPLICATE_TARGETS,
+                        format!("{at}/target"),
+                        "Animation channel has the same target as another channel.",
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The target path `pointer` exists only with KHR_animation_pointer, which then owns the
+/// target: no node, and that path.
+fn animation_pointer(ctx: &mut Context, channel: &Value, at: &str, declared: bool) {
+    let Some(target) = channel.get("target") else {
+        return;
+    };
+    let path = target.get("path").and_then(Value::as_str);
+    if path == Some("pointer") && !declared {
+        ctx.emit(
+            khronos::VALUE_NOT_IN_LIST,
+            format!("{at}/path"),
+            "Invalid value 'pointer'. Valid values are ('translation', 'rotation', 'scale', 'weights').",
+        );
+    }
+    let Some(extension) = target
+        .get("extensions")
+        .and_then(|e| e.get("KHR_animation_pointer"))
+    else {
+        return;
+    };
+    let here = format!("{at}/extensions/KHR_animation_pointer");
+    if !extension.is_object() {
+        return;
+    }
+    ctx.emit(
+        khronos::INCOMPLETE_EXTENSION_SUPPORT,
+        here.clone(),
+        "Validation support for this extension is incomplete; the asset may have undetected issues.",
+    );
+    if target.get("node").is_some() {
+        ctx.emit(
+            khronos::KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_NODE,
+            here.clone(),
+            "This extension requires the animation channel target node to be undefined.",
+        );
+    }
+    if let Some(other) = path.filter(|p| *p != "pointer") {
+        ctx.emit(
+            khronos::KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_PATH,
+            here,
+            format!("This extension requires the animation channel target path to be 'pointer'. Found '{other}' instead."),
+        );
+    }
+}
+
+/// (node, path) of a channel's target, when it names a node.
+fn target_key(channel: &Value) -> Option<(u64, &str)> {
+    let target = channel.get("target")?;
+    Some((unsigned(target, "node")?, target.get("path")?.as_str()?))
+}
+
+fn accessor<'a>(ctx: &Context<'a>, object: &Value, key: &str) -> Option<&'a Value> {
+    ctx.items("accessors").get(unsigned(object, key)? as usize)
+}
+
+fn interpolation(sampler: &Value) -> &str {
+    sampler
+        .get("interpolation")
+        .and_then(Value::as_str)
+        .unwrap_or("LINEAR")
+}
+
+fn sampler_accessors(ctx: &mut Context, sampler: &Value, at: &str) {
+    for key in ["input", "output"] {
+        let Some(data) = accessor(ctx, sampler, key) else {
+            continue;
+        };
+        if ctx.has_strided_view(data) {
+            ctx.emit(
+                khronos::ANIMATION_SAMPLER_ACCESSOR_WITH_BYTESTRIDE,
+                format!("{at}/{key}"),
+                "bufferView.byteStride must not be defined for buffer views used by animation sampler accessors.",
+            );
+        }
+    }
+    let Some(input) = accessor(ctx, sampler, "input") else {
+        return;
+    };
+    let at = format!("{at}/input");
+    if !Format::of(input).is_some_and(|f| f.is_plain_float("SCALAR")) {
+        ctx.emit(
+            khronos::ANIMATION_SAMPLER_INPUT_ACCESSOR_INVALID_FORMAT,
+            at.clone(),
+            "Invalid Animation sampler input accessor format. Must be SCALAR FLOAT.",
+        );
+    }
+    if input.get("min").is_none() || input.get("max").is_none() {
+        ctx.emit(
+            khronos::ANIMATION_SAMPLER_INPUT_ACCESSOR_WITHOUT_BOUNDS,
+            at.clone(),
+            "accessor.min and accessor.max must be defined for animation input accessor.",
+        );
+    }
+    if interpolation(sampler) == "CUBICSPLINE" && unsigned(input, "count").is_some_and(|n| n < 2) {
+        ctx.emit(
+            khronos::ANIMATION_SAMPLER_INPUT_ACCESSOR_TOO_FEW_ELEMENTS,
+            at,
+            "Animation sampler has CUBICSPLINE interpolation; input accessor must have at least 2 elements.",
+        );
+    }
+}
+
+/// The morph target count of the mesh a channel's node draws.
+fn morph_target_count(ctx: &Context, node: &Value) -> Option<usize> {
+    mesh_morph_targets(ctx.items("meshes").get(unsigned(node, "mesh")? as usize)?)
+}
+
+fn target(ctx: &mut Context, channel: &Value, at: &str) {
+    let Some(target) = channel.get("target") else {
+        return;
+    };
+    let Some(node) = unsigned(target, "node").and_then(|n| ctx.items("nodes").get(n as usize))
+    else {
+        return;
+    };
+    match target.get("path").and_then(Value::as_str) {
+        Some("translation" | "rotation" | "scale") => {
+            if node.get("matrix").is_some() {
+                ctx.emit(
+                    khronos::ANIMATION_CHANNEL_TARGET_NODE_MATRIX,
+                    format!("{at}/target"),
+                    "Animation channel cannot target TRS properties of a node with defined matrix.",
+                );
+            }
+            if node.get("skin").is_some() {
+                ctx.emit(
+                    khronos::ANIMATION_CHANNEL_TARGET_NODE_SKIN,
+                    format!("{at}/target/path"),
+                    "Animated TRS properties will not affect a skinned mesh.",
+                );
+            }
+        }
+        Some("weights") if morph_target_count(ctx, node).is_none() => ctx.emit(
+            khronos::ANIMATION_CHANNEL_TARGET_NODE_WEIGHTS_NO_MORPHS,
+            format!("{at}/target"),
+            "Animation channel cannot target WEIGHTS when mesh does not have morph targets.",
+        ),
+        _ => {}
+    }
+}
+
+/// The sampler output must suit the targeted property, with one value (three for cubic
+/// splines) per key frame, times the morph target count for weights.
+fn output(ctx: &mut Context, channel: &Value, sampler: &Value, at: &str) {
+    let Some(output) = accessor(ctx, sampler, "output") else {
+        return;
+    };
+    let Some(target) = channel.get("target") else {
+        return;
+    };
+    let path = target.get("path").and_then(Value::as_str).unwrap_or("");
+    let format = Format::of(output);
+    let allowed = format.map(|f| f.allowed_for_animation(path));
+    if allowed == Some(Some(false)) {
+        ctx.emit(
+            khronos::ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_FORMAT,
+            format!("{at}/sampler"),
+            format!("Invalid animation sampler output accessor format for path '{path}'."),
+        );
+    }
+    let Some(input) = accessor(ctx, sampler, "input") else {
+        return;
+    };
+    let (Some(keys), Some(count)) = (unsigned(input, "count"), unsigned(output, "count")) else {
+        return;
+    };
+    let per_key = if interpolation(sampler) == "CUBICSPLINE" {
+        3
+    } else {
+        1
+    };
+    let node = unsigned(target, "node").and_then(|n| ctx.items("nodes").get(n as usize));
+    let values = match path {
+        "weights" => node.and_then(|n| morph_target_count(ctx, n)).unwrap_or(0) as u64,
+        "translation" | "rotation" | "scale" => 1,
+        _ => 0,
+    };
+    let expected = keys * per_key * values;
+    if expected != 0 && expected != count {
+        ctx.emit(
+            khronos::ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_COUNT,
+            format!("{at}/sampler"),
+            format!(
+                "Animation sampler output accessor of count {expected} expected. Found {count}."
+            ),
+        );
+    }
+}

@@ -1,0 +1,78 @@
+//! Cameras as the Khronos validator checks them beyond the schema: the projection object
+//! the `type` names, one projection only, clip planes in order, positive magnifications and
+//! a field of view below π.
+
+use crate::check::context::{member, Context};
+use crate::diagnostic::khronos;
+use serde_json::Value;
+
+pub fn check(ctx: &mut Context) {
+    for (_, pointer, camera) in ctx.objects("cameras") {
+        let kind = camera.get("type").and_then(Value::as_str);
+        if camera.get("perspective").is_some() && camera.get("orthographic").is_some() {
+            ctx.emit(
+                khronos::ONE_OF_MISMATCH,
+                pointer.clone(),
+                "Exactly one of ('orthographic', 'perspective') properties must be defined.",
+            );
+        }
+        for projection in ["perspective", "orthographic"] {
+            if kind == Some(projection) && camera.get(projection).is_none() {
+                ctx.emit(
+                    khronos::UNDEFINED_PROPERTY,
+                    pointer.clone(),
+                    format!("Property '{projection}' must be defined."),
+                );
+            }
+        }
+        if let Some(perspective) = camera.get("perspective").filter(|p| p.is_object()) {
+            projection(ctx, perspective, &member(&pointer, "perspective"), true);
+        }
+        if let Some(orthographic) = camera.get("orthographic").filter(|p| p.is_object()) {
+            projection(ctx, orthographic, &member(&pointer, "orthographic"), false);
+        }
+    }
+}
+
+fn projection(ctx: &mut Context, projection: &Value, at: &str, perspective: bool) {
+    // A missing or mistyped number compares false, as NaN does: the schema reported it.
+    let number = |key: &str| {
+        projection
+            .get(key)
+            .and_then(Value::as_f64)
+            .unwrap_or(f64::NAN)
+    };
+    if number("zfar") <= number("znear") {
+        ctx.emit(
+            khronos::CAMERA_ZFAR_LEQUAL_ZNEAR,
+            at,
+            "zfar must be greater than znear.",
+        );
+    }
+    if perspective {
+        if number("yfov") >= std::f64::consts::PI {
+            ctx.emit(
+                khronos::CAMERA_YFOV_GEQUAL_PI,
+                at,
+                "yfov should be less than Pi.",
+            );
+        }
+        return;
+    }
+    for key in ["xmag", "ymag"] {
+        let value = number(key);
+        if value == 0.0 {
+            ctx.emit(
+                khronos::CAMERA_XMAG_YMAG_ZERO,
+                member(at, key),
+                "xmag and ymag must not be zero.",
+            );
+        } else if value < 0.0 {
+            ctx.emit(
+                khronos::CAMERA_XMAG_YMAG_NEGATIVE,
+                member(at, key),
+                "xmag and ymag should not be negative.",
+            );
+        }
+    }
+}

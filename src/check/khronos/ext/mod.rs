@@ -1,0 +1,3 @@
+//! Extension passes, one file per extension (the Khronos validator's `ext/`).
+
+pub(crate) mod lights;

@@ -1,0 +1,271 @@
+//! Extension declarations and placement: extensionsUsed / extensionsRequired consistency,
+//! extension objects on hosts that do not take them, and non-object extras.
+
+use super::materials::TEXTURE_SLOTS;
+use crate::check::context::{member, Context};
+use crate::diagnostic::khronos;
+use serde_json::Value;
+
+/// Extensions the Khronos validator implements, with the objects that may carry them.
+const KHRONOS_SUPPORTED: &[(&str, &[Host])] = &[
+    ("EXT_texture_webp", &[Host::Texture]),
+    ("KHR_animation_pointer", &[Host::ChannelTarget]),
+    ("KHR_lights_punctual", &[Host::Root, Host::Node]),
+    ("KHR_materials_anisotropy", &[Host::Material]),
+    ("KHR_materials_clearcoat", &[Host::Material]),
+    ("KHR_materials_dispersion", &[Host::Material]),
+    ("KHR_materials_emissive_strength", &[Host::Material]),
+    ("KHR_materials_ior", &[Host::Material]),
+    ("KHR_materials_iridescence", &[Host::Material]),
+    ("KHR_materials_pbrSpecularGlossiness", &[Host::Material]),
+    ("KHR_materials_sheen", &[Host::Material]),
+    ("KHR_materials_specular", &[Host::Material]),
+    ("KHR_materials_transmission", &[Host::Material]),
+    ("KHR_materials_unlit", &[Host::Material]),
+    ("KHR_materials_variants", &[Host::Root, Host::Primitive]),
+    ("KHR_materials_volume", &[Host::Material]),
+    ("KHR_mesh_quantization", &[]),
+    ("KHR_node_visibility", &[Host::Node]),
+    ("KHR_texture_transform", &[Host::TextureInfo]),
+];
+
+/// Extensions gltfmat validates beyond the Khronos list (default profile only).
+const GLTFMAT_SUPPORTED: &[(&str, &[Host])] =
+    &[("KHR_materials_diffuse_transmission", &[Host::Material])];
+
+/// The kinds of object that can carry `extensions`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Host {
+    Root,
+    Other,
+    Material,
+    TextureInfo,
+    Texture,
+    Primitive,
+    Node,
+    ChannelTarget,
+}
+
+/// Members of each host holding child objects: (key, child host, is array).
+fn children(host: Host) -> &'static [(&'static str, Host, bool)] {
+    match host {
+        Host::Root => &[
+            ("asset", Host::Other, false),
+            ("accessors", Host::Other, true),
+            ("animations", Host::Other, true),
+            ("buffers", Host::Other, true),
+            ("bufferViews", Host::Other, true),
+            ("cameras", Host::Other, true),
+            ("images", Host::Other, true),
+            ("materials", Host::Material, true),
+            ("meshes", Host::Other, true),
+            ("nodes", Host::Node, true),
+            ("samplers", Host::Other, true),
+            ("scenes", Host::Other, true),
+            ("skins", Host::Other, true),
+            ("textures", Host::Texture, true),
+        ],
+        Host::Material => &[("pbrMetallicRoughness", Host::Other, false)],
+        _ => &[],
+    }
+}
+
+/// Second-level members that are plain objects (so their extensions and extras are seen).
+fn nested(collection: &str) -> &'static [&'static str] {
+    match collection {
+        "accessors" => &["sparse"],
+        "animations" => &["channels", "samplers"],
+        "cameras" => &["perspective", "orthographic"],
+        "meshes" => &["primitives"],
+        _ => &[],
+    }
+}
+
+pub fn check(ctx: &mut Context) {
+    check_declarations(ctx);
+    let root = ctx.root;
+    visit(ctx, root, "", Host::Root);
+}
+
+fn supported(ctx: &Context, name: &str) -> Option<&'static [Host]> {
+    let gltfmat = if ctx.is_khronos() {
+        &[][..]
+    } else {
+        GLTFMAT_SUPPORTED
+    };
+    KHRONOS_SUPPORTED
+        .iter()
+        .chain(gltfmat)
+        .find(|(n, _)| *n == name)
+        .map(|(_, hosts)| *hosts)
+}
+
+fn valid_name(name: &str) -> bool {
+    let Some((prefix, rest)) = name.split_once('_') else {
+        return false;
+    };
+    !prefix.is_empty()
+        && prefix
+            .chars()
+            .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit())
+        && !rest.is_empty()
+        && rest.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// Extensions a loader cannot ignore: using one without requiring it is an error.
+const MUST_BE_REQUIRED: &[&str] = &["KHR_mesh_quantization"];
+
+fn check_declarations(ctx: &mut Context) {
+    let used = ctx.extensions_used();
+    let required: Vec<&str> = ctx
+        .items("extensionsRequired")
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    for (i, value) in ctx.items("extensionsUsed").iter().enumerate() {
+        let Some(name) = value.as_str() else { continue };
+        let pointer = format!("/extensionsUsed/{i}");
+        if !valid_name(name) {
+            ctx.emit(
+                khronos::INVALID_EXTENSION_NAME_FORMAT,
+                pointer.clone(),
+                "Extension name has invalid format.",
+            );
+        }
+        if supported(ctx, name).is_none() {
+            ctx.emit(
+                khronos::UNSUPPORTED_EXTENSION,
+                pointer.clone(),
+                format!("Cannot validate an extension as it is not supported by the validator: '{name}'."),
+            );
+        }
+        if MUST_BE_REQUIRED.contains(&name) && !required.contains(&name) {
+            ctx.emit(
+                khronos::NON_REQUIRED_EXTENSION,
+                pointer,
+                format!("Extension '{name}' cannot be optional."),
+            );
+        }
+    }
+    for (i, value) in ctx.items("extensionsRequired").iter().enumerate() {
+        let Some(name) = value.as_str() else { continue };
+        if !used.contains(&name) {
+            ctx.emit(
+                khronos::UNUSED_EXTENSION_REQUIRED,
+                format!("/extensionsRequired/{i}"),
+                format!("Unused extension '{name}' cannot be required."),
+            );
+        }
+    }
+}
+
+fn visit(ctx: &mut Context, object: &Value, pointer: &str, host: Host) {
+    let Some(map) = object.as_object() else {
+        return;
+    };
+    if let Some(extras) = map.get("extras") {
+        if !extras.is_object() && !extras.is_null() {
+            ctx.emit(
+                khronos::NON_OBJECT_EXTRAS,
+                member(pointer, "extras"),
+                "Prefer JSON Objects for extras.",
+            );
+        }
+    }
+    if let Some(extensions) = map.get("extensions").and_then(Value::as_object) {
+        for (name, value) in extensions {
+            visit_extension(
+                ctx,
+                name,
+                value,
+                &member(&member(pointer, "extensions"), name),
+                host,
+            );
+        }
+    }
+    for (key, child_host, is_array) in children(host) {
+        let child_pointer = member(pointer, key);
+        match map.get(*key) {
+            Some(Value::Array(items)) if *is_array => {
+                for (i, item) in items.iter().enumerate() {
+                    let item_pointer = format!("{child_pointer}/{i}");
+                    visit(ctx, item, &item_pointer, *child_host);
+                    visit_nested(ctx, key, item, &item_pointer);
+                }
+            }
+            Some(child) if !is_array => visit(ctx, child, &child_pointer, *child_host),
+            _ => {}
+        }
+    }
+    if host == Host::Material {
+        for slot in TEXTURE_SLOTS.iter().filter(|s| s.extension.is_none()) {
+            if let Some(info) = slot.lookup(object) {
+                visit(
+                    ctx,
+                    info,
+                    &format!("{pointer}{}", slot.pointer()),
+                    Host::TextureInfo,
+                );
+            }
+        }
+    }
+}
+
+fn visit_nested(ctx: &mut Context, collection: &str, item: &Value, pointer: &str) {
+    for key in nested(collection) {
+        let child_pointer = member(pointer, key);
+        match item.get(*key) {
+            Some(Value::Array(items)) => {
+                for (i, child) in items.iter().enumerate() {
+                    let host = if *key == "primitives" {
+                        Host::Primitive
+                    } else {
+                        Host::Other
+                    };
+                    let p = format!("{child_pointer}/{i}");
+                    visit(ctx, child, &p, host);
+                    if *key == "channels" {
+                        if let Some(target) = child.get("target") {
+                            visit(ctx, target, &member(&p, "target"), Host::ChannelTarget);
+                        }
+                    }
+                }
+            }
+            Some(child) => visit(ctx, child, &child_pointer, Host::Other),
+            None => {}
+        }
+    }
+}
+
+fn visit_extension(ctx: &mut Context, name: &str, value: &Value, pointer: &str, host: Host) {
+    if !ctx.extensions_used().contains(&name) {
+        ctx.emit(
+            khronos::UNDECLARED_EXTENSION,
+            pointer,
+            "Extension is not declared in extensionsUsed.",
+        );
+    }
+    let Some(hosts) = supported(ctx, name) else {
+        return;
+    };
+    if !hosts.contains(&host) {
+        ctx.emit(
+            khronos::UNEXPECTED_EXTENSION_OBJECT,
+            pointer,
+            format!("Unexpected location for this extension object ({name})."),
+        );
+        return;
+    }
+    if value.get("extras").is_some_and(|e| !e.is_object()) {
+        ctx.emit(
+            khronos::NON_OBJECT_EXTRAS,
+            member(pointer, "extras"),
+            "Prefer JSON Objects for extras.",
+        );
+    }
+    for slot in TEXTURE_SLOTS.iter().filter(|s| s.extension == Some(name)) {
+        if let Some(info) = value.get(slot.key) {
+            visit(ctx, info, &member(pointer, slot.key), Host::TextureInfo);
+        }
+    }
+}

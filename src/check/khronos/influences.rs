@@ -1,0 +1,143 @@
+//! Skinning influences: each vertex's JOINTS_n / WEIGHTS_n sets read together (the Khronos
+//! ACCESSOR_JOINTS_* and ACCESSOR_WEIGHTS_* codes).
+
+use super::accessor_data::{element, scannable, unit_scale, Layout};
+use super::accessor_usage::Findings;
+use crate::check::context::{elements, unsigned, Context};
+use crate::diagnostic::khronos;
+use serde_json::Value;
+use std::collections::HashSet;
+
+pub fn check(ctx: &mut Context) {
+    let mut findings = Vec::new();
+    for (m, pointer, mesh) in ctx.objects("meshes") {
+        let Some((max_joint, skin)) = limiting_skin(ctx, m) else {
+            continue;
+        };
+        for (p, primitive) in elements(mesh, "primitives") {
+            if let Some(sets) = influence_sets(ctx, primitive) {
+                let at = format!("{pointer}/primitives/{p}/attributes");
+                let limit = JointLimit { max_joint, skin };
+                let mut found = Findings::default();
+                check_primitive(&sets, &at, limit, &mut found);
+                findings.extend(found.into_vec());
+            }
+        }
+    }
+    for (code, pointer, message) in findings {
+        ctx.emit(code, pointer, message);
+    }
+}
+
+/// The largest joint index every skin used with the mesh can resolve, and that skin.
+#[derive(Clone, Copy)]
+struct JointLimit {
+    max_joint: f64,
+    skin: usize,
+}
+
+/// The skin with the fewest joints among the nodes that draw mesh `m` skinned.
+fn limiting_skin(ctx: &Context, m: usize) -> Option<(f64, usize)> {
+    let skins = ctx.items("skins");
+    ctx.items("nodes")
+        .iter()
+        .filter(|node| unsigned(node, "mesh") == Some(m as u64))
+        .filter_map(|node| {
+            let s = unsigned(node, "skin")? as usize;
+            let joints = skins.get(s)?.get("joints")?.as_array()?.len();
+            Some((joints, s))
+        })
+        .min_by_key(|(joints, _)| *joints)
+        .filter(|(joints, _)| *joints > 0)
+        .map(|(joints, s)| ((joints - 1) as f64, s))
+}
+
+/// One JOINTS_n / WEIGHTS_n pair, readable and as long as the primitive.
+struct Set<'c> {
+    joints: (Layout, &'c [u8]),
+    weights: (Layout, &'c [u8]),
+    weight_scale: fn(f64) -> f64,
+}
+
+/// All sets of a primitive, or None when any is missing, unreadable or of another length
+/// (those are reported elsewhere).
+fn influence_sets<'c>(ctx: &'c Context, primitive: &Value) -> Option<Vec<Set<'c>>> {
+    let attributes = primitive.get("attributes")?;
+    let accessors = ctx.items("accessors");
+    let vertex_count = attributes
+        .as_object()?
+        .values()
+        .next()
+        .and_then(|a| accessors.get(a.as_u64()? as usize))
+        .and_then(|a| unsigned(a, "count"))?;
+    let mut sets = Vec::new();
+    for n in 0.. {
+        let Some(joints) = attributes.get(format!("JOINTS_{n}")) else {
+            break;
+        };
+        let joints = accessors.get(joints.as_u64()? as usize)?;
+        let weights = accessors.get(attributes.get(format!("WEIGHTS_{n}"))?.as_u64()? as usize)?;
+        let readable = |a: &'c Value| {
+            let (layout, bytes) = scannable(ctx, a)?;
+            let fits = layout.count as u64 == vertex_count && layout.components == 4;
+            fits.then_some((layout, bytes))
+        };
+        let weight_scale = unit_scale(unsigned(weights, "componentType")?, weights);
+        sets.push(Set {
+            joints: readable(joints)?,
+            weights: readable(weights)?,
+            weight_scale,
+        });
+    }
+    (!sets.is_empty()).then_some(sets)
+}
+
+fn check_primitive(sets: &[Set], at: &str, limit: JointLimit, out: &mut Findings) {
+    let joints_at = |n: usize| format!("{at}/JOINTS_{n}");
+    let weights_at = |n: usize| format!("{at}/WEIGHTS_{n}");
+    let mut seen = HashSet::new();
+    for vertex in 0..sets[0].joints.0.count {
+        seen.clear();
+        let read = |(layout, bytes): &(Layout, &[u8])| element(layout, bytes, vertex);
+        let values: Vec<_> = sets
+            .iter()
+            .map(|s| (read(&s.joints), read(&s.weights)))
+            .collect();
+        let mut sum = 0f32;
+        // Rounding allowance: a float32 ulp near 1 per weight summed.
+        let mut allowance = 0.0;
+        for c in 0..4 {
+            let index = vertex * 4 + c;
+            for (n, (set, (joints, weights))) in sets.iter().zip(&values).enumerate() {
+                let joint = joints[c];
+                if joint > limit.max_joint {
+                    out.push((khronos::ACCESSOR_JOINTS_INDEX_OOB, joints_at(n), format!("Joints accessor element at index {index} (component index {c}) has value {joint} that is greater than the maximum joint index ({}) set by skin {}.", limit.max_joint, limit.skin)));
+                    continue;
+                }
+                let weight = (set.weight_scale)(weights[c]);
+                if weight == 0.0 {
+                    if joint != 0.0 {
+                        out.push((khronos::ACCESSOR_JOINTS_USED_ZERO_WEIGHT, joints_at(n), format!("Joints accessor element at index {index} (component index {c}) is used with zero weight but has non-zero value ({joint}).")));
+                    }
+                    continue;
+                }
+                let unique = seen.insert(joint.to_bits());
+                if !unique {
+                    out.push((khronos::ACCESSOR_JOINTS_INDEX_DUPLICATE, joints_at(n), format!("Joints accessor element at index {index} (component index {c}) has value {joint} that is already in use for the vertex.")));
+                }
+                if weight < 0.0 {
+                    out.push((khronos::ACCESSOR_WEIGHTS_NEGATIVE, weights_at(n), format!("Weights accessor element at index {index} (component index {c}) has negative value {weight:?}.")));
+                } else if unique {
+                    sum = (f64::from(sum) + weight) as f32;
+                    allowance += 2e-7;
+                }
+            }
+        }
+        if (f64::from(sum) - 1.0).abs() > allowance {
+            let first = vertex * 4;
+            for n in 0..sets.len() {
+                out.push((khronos::ACCESSOR_WEIGHTS_NON_NORMALIZED, weights_at(n), format!("Weights accessor elements (at indices {first}..{}) have non-normalized sum: {:?}.", first + 3, f64::from(sum))));
+            }
+        }
+    }
+}

@@ -1,0 +1,443 @@
+//! Textures and materials: references, texCoord sets and tangent needs recorded for the mesh
+//! pass, and the Khronos material-extension rules.
+
+use super::resources::declared_mime;
+use crate::check::context::{member, number, unsigned, Context, MaterialNeeds};
+use crate::check::rules::exclusion::{combination, Combination};
+use crate::diagnostic::khronos;
+use crate::gltf::material::{effective_texcoord, texture_images, texture_transform};
+use serde_json::Value;
+use std::sync::Arc;
+
+/// Colour channels as a bit mask.
+pub type Channels = u8;
+pub const R: Channels = 1;
+pub const G: Channels = 2;
+pub const B: Channels = 4;
+pub const A: Channels = 8;
+pub const RGB: Channels = R | G | B;
+
+/// Every texture slot a material can have: where it sits and which channels it reads how.
+/// This is the one table the tangent, channel and colour-space rules read; the channel and
+/// transfer columns come from each extension's spec (summarised in validator-anchors.md §5).
+#[derive(Debug)]
+pub struct TextureSlot {
+    pub extension: Option<&'static str>,
+    /// Core slots nested in `pbrMetallicRoughness`.
+    pub in_pbr: bool,
+    pub key: &'static str,
+    /// Channels decoded with the sRGB transfer function (colours).
+    pub srgb: Channels,
+    /// Channels read as linear data.
+    pub linear: Channels,
+    /// Alpha is coverage, read only when the material's alphaMode is not OPAQUE.
+    pub coverage_alpha: bool,
+}
+
+const fn slot(
+    extension: Option<&'static str>,
+    key: &'static str,
+    srgb: Channels,
+    linear: Channels,
+) -> TextureSlot {
+    TextureSlot {
+        extension,
+        in_pbr: false,
+        key,
+        srgb,
+        linear,
+        coverage_alpha: false,
+    }
+}
+
+const fn core(key: &'static str, srgb: Channels, linear: Channels) -> TextureSlot {
+    slot(None, key, srgb, linear)
+}
+
+const fn colour_with_coverage(mut slot: TextureSlot) -> TextureSlot {
+    slot.coverage_alpha = true;
+    slot
+}
+
+const fn in_pbr(mut slot: TextureSlot) -> TextureSlot {
+    slot.in_pbr = true;
+    slot
+}
+
+const ANISOTROPY: Option<&str> = Some("KHR_materials_anisotropy");
+const CLEARCOAT: Option<&str> = Some("KHR_materials_clearcoat");
+const DIFFUSE_TRANSMISSION: Option<&str> = Some("KHR_materials_diffuse_transmission");
+const IRIDESCENCE: Option<&str> = Some("KHR_materials_iridescence");
+const SPEC_GLOSS: Option<&str> = Some("KHR_materials_pbrSpecularGlossiness");
+const SHEEN: Option<&str> = Some("KHR_materials_sheen");
+const SPECULAR: Option<&str> = Some("KHR_materials_specular");
+
+pub static TEXTURE_SLOTS: &[TextureSlot] = &[
+    in_pbr(colour_with_coverage(core("baseColorTexture", RGB, 0))),
+    in_pbr(core("metallicRoughnessTexture", 0, G | B)),
+    core("normalTexture", 0, RGB),
+    core("occlusionTexture", 0, R),
+    core("emissiveTexture", RGB, 0),
+    slot(ANISOTROPY, "anisotropyTexture", 0, RGB),
+    slot(CLEARCOAT, "clearcoatTexture", 0, R),
+    slot(CLEARCOAT, "clearcoatRoughnessTexture", 0, G),
+    slot(CLEARCOAT, "clearcoatNormalTexture", 0, RGB),
+    slot(DIFFUSE_TRANSMISSION, "diffuseTransmissionTexture", 0, A),
+    slot(
+        DIFFUSE_TRANSMISSION,
+        "diffuseTransmissionColorTexture",
+        RGB,
+        0,
+    ),
+    slot(IRIDESCENCE, "iridescenceTexture", 0, R),
+    slot(IRIDESCENCE, "iridescenceThicknessTexture", 0, G),
+    colour_with_coverage(slot(SPEC_GLOSS, "diffuseTexture", RGB, 0)),
+    slot(SPEC_GLOSS, "specularGlossinessTexture", RGB, A),
+    slot(SHEEN, "sheenColorTexture", RGB, 0),
+    slot(SHEEN, "sheenRoughnessTexture", 0, A),
+    slot(SPECULAR, "specularTexture", 0, A),
+    slot(SPECULAR, "specularColorTexture", RGB, 0),
+    slot(
+        Some("KHR_materials_transmission"),
+        "transmissionTexture",
+        0,
+        R,
+    ),
+    slot(Some("KHR_materials_volume"), "thicknessTexture", 0, G),
+];
+
+impl TextureSlot {
+    /// Normal maps: they need a tangent space, and their texels are unit vectors.
+    pub fn is_normal(&self) -> bool {
+        matches!(self.key, "normalTexture" | "clearcoatNormalTexture")
+    }
+
+    /// The channels this slot reads in `material`: (sRGB, linear).
+    pub fn reads(&self, material: &Value) -> (Channels, Channels) {
+        let mode = material.get("alphaMode").and_then(Value::as_str);
+        let coverage = self.coverage_alpha && mode.is_some_and(|m| m != "OPAQUE");
+        (self.srgb, self.linear | if coverage { A } else { 0 })
+    }
+
+    /// The slot's pointer relative to its material.
+    pub fn pointer(&self) -> String {
+        match (self.extension, self.in_pbr) {
+            (Some(ext), _) => format!("/extensions/{ext}/{}", self.key),
+            (None, true) => format!("/pbrMetallicRoughness/{}", self.key),
+            (None, false) => format!("/{}", self.key),
+        }
+    }
+
+    /// The slot's textureInfo object in a material, if present.
+    pub fn lookup<'v>(&self, material: &'v Value) -> Option<&'v Value> {
+        let parent = match (self.extension, self.in_pbr) {
+            (Some(ext), _) => material.get("extensions")?.get(ext)?,
+            (None, true) => material.get("pbrMetallicRoughness")?,
+            (None, false) => material,
+        };
+        parent.get(self.key).filter(|v| v.is_object())
+    }
+}
+
+pub fn check_textures(ctx: &mut Context) {
+    for (_, pointer, texture) in ctx.objects("textures") {
+        ctx.reference(texture, "sampler", &pointer, "samplers");
+        if let Some(image) = ctx.reference(texture, "source", &pointer, "images") {
+            check_texture_source_mime(
+                ctx,
+                image,
+                &member(&pointer, "source"),
+                &["image/jpeg", "image/png"],
+            );
+        }
+        let webp = texture
+            .get("extensions")
+            .and_then(|e| e.get("EXT_texture_webp"));
+        if let Some(webp) = webp.filter(|w| w.is_object()) {
+            let webp_pointer = format!("{pointer}/extensions/EXT_texture_webp");
+            if let Some(image) = ctx.reference(webp, "source", &webp_pointer, "images") {
+                check_texture_source_mime(
+                    ctx,
+                    image,
+                    &member(&webp_pointer, "source"),
+                    &["image/webp"],
+                );
+            }
+        }
+    }
+}
+
+fn check_texture_source_mime(ctx: &mut Context, image: usize, pointer: &str, valid: &[&str]) {
+    let declared = declared_mime(&ctx.items("images")[image]).or_else(|| {
+        ctx.images[image]
+            .as_ref()
+            .map(|i| i.format.mime_type().to_string())
+    });
+    if let Some(mime) = declared.filter(|m| !valid.contains(&m.as_str())) {
+        ctx.emit(
+            khronos::TEXTURE_INVALID_IMAGE_MIME_TYPE,
+            pointer,
+            format!("Invalid MIME type '{mime}' for the texture source. Valid MIME types are {valid:?}."),
+        );
+    }
+}
+
+pub fn check_materials(ctx: &mut Context) {
+    ctx.material_needs = vec![MaterialNeeds::default(); ctx.items("materials").len()];
+    for (i, pointer, material) in ctx.objects("materials") {
+        let needs = texture_needs(ctx, material, &pointer);
+        ctx.material_needs[i] = needs;
+        check_alpha_cutoff(ctx, material, &pointer);
+        check_extension_rules(ctx, material, &pointer);
+    }
+}
+
+fn texture_needs(ctx: &mut Context, material: &Value, pointer: &str) -> MaterialNeeds {
+    let mut needs = MaterialNeeds::default();
+    for slot in TEXTURE_SLOTS {
+        let Some(info) = slot.lookup(material) else {
+            continue;
+        };
+        let info_pointer = format!("{pointer}{}", slot.pointer());
+        ctx.reference(info, "index", &info_pointer, "textures");
+        // The Khronos validator checks both the binding's own set and a
+        // KHR_texture_transform override, each under its own pointer.
+        let own = unsigned(info, "texCoord").unwrap_or(0);
+        needs.texcoords.push((info_pointer.clone(), own));
+        if let Some(set) = texture_transform(info).and_then(|t| unsigned(t, "texCoord")) {
+            let at = format!("{info_pointer}/extensions/KHR_texture_transform");
+            needs.texcoords.push((at, set));
+        }
+        if slot.is_normal() || slot.key == "anisotropyTexture" {
+            needs.needs_tangent = true;
+        }
+    }
+    needs.can_generate_tangent = material.get("normalTexture").is_some_and(Value::is_object);
+    needs.anisotropy = extension(material, "KHR_materials_anisotropy").is_some();
+    needs
+}
+
+/// A material's extension object by name.
+pub fn extension<'v>(material: &'v Value, name: &str) -> Option<&'v Value> {
+    material
+        .get("extensions")?
+        .get(name)
+        .filter(|v| v.is_object())
+}
+
+fn check_alpha_cutoff(ctx: &mut Context, material: &Value, pointer: &str) {
+    let mode = material
+        .get("alphaMode")
+        .and_then(Value::as_str)
+        .unwrap_or("OPAQUE");
+    if material.get("alphaCutoff").is_some() && mode != "MASK" {
+        ctx.emit(
+            khronos::MATERIAL_ALPHA_CUTOFF_INVALID_MODE,
+            member(pointer, "alphaCutoff"),
+            "Alpha cutoff is supported only for 'MASK' alpha mode.",
+        );
+    }
+}
+
+fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
+    let ext_pointer = |name: &str| format!("{pointer}/extensions/{name}");
+    let Some(extensions) = material.get("extensions").and_then(Value::as_object) else {
+        return;
+    };
+    let khronos = ctx.is_khronos();
+    for standalone in ["KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit"] {
+        if !extensions.contains_key(standalone) {
+            continue;
+        }
+        // The Khronos validator warns about any other key; gltfmat's default profile keeps
+        // the warning only where the specs say nothing (MATERIAL_EXTENSION_EXCLUDED covers
+        // the real exclusions).
+        let doubtful = extensions
+            .keys()
+            .filter(|k| *k != standalone)
+            .any(|other| khronos || combination(standalone, other) == Combination::Unknown);
+        if doubtful {
+            ctx.emit(
+                khronos::MULTIPLE_EXTENSIONS,
+                ext_pointer(standalone),
+                "This extension may be incompatible with other extensions for the object.",
+            );
+        }
+    }
+    let strength = extension(material, "KHR_materials_emissive_strength")
+        .and_then(|e| e.get("emissiveStrength"));
+    if strength.and_then(Value::as_f64).is_some_and(|s| s >= 0.0) {
+        let emissive = material.get("emissiveFactor").and_then(Value::as_array);
+        let zero = emissive.is_none_or(|f| f.iter().all(|c| c.as_f64() == Some(0.0)));
+        if zero {
+            ctx.emit(
+                khronos::KHR_MATERIALS_EMISSIVE_STRENGTH_ZERO_FACTOR,
+                ext_pointer("KHR_materials_emissive_strength"),
+                "Emissive strength has no effect when the emissive factor is zero or undefined.",
+            );
+        }
+    }
+    if let Some(volume) = extension(material, "KHR_materials_volume") {
+        // An extension this validator does not know may well be the one that transmits.
+        let transmits = extensions.keys().any(|name| {
+            matches!(
+                name.as_str(),
+                "KHR_materials_transmission" | "KHR_materials_diffuse_transmission"
+            ) || !name.starts_with("KHR_materials_")
+        });
+        if !transmits {
+            ctx.emit(
+                khronos::KHR_MATERIALS_VOLUME_NO_TRANSMISSION,
+                ext_pointer("KHR_materials_volume"),
+                "The volume extension needs to be combined with an extension that allows light to transmit through the surface.",
+            );
+        }
+        let thick = number(volume, "thicknessFactor", 0.0) > 0.0;
+        if thick && material.get("doubleSided").and_then(Value::as_bool) == Some(true) {
+            ctx.emit(
+                khronos::KHR_MATERIALS_VOLUME_DOUBLE_SIDED,
+                ext_pointer("KHR_materials_volume"),
+                "The volume extension should not be used with double-sided materials.",
+            );
+        }
+    }
+    if extension(material, "KHR_materials_dispersion").is_some()
+        && !extensions.contains_key("KHR_materials_volume")
+    {
+        ctx.emit(
+            khronos::KHR_MATERIALS_DISPERSION_NO_VOLUME,
+            ext_pointer("KHR_materials_dispersion"),
+            "The dispersion extension needs to be combined with the volume extension.",
+        );
+    }
+    if let Some(iridescence) = extension(material, "KHR_materials_iridescence") {
+        let p = ext_pointer("KHR_materials_iridescence");
+        let has_texture = iridescence.get("iridescenceThicknessTexture").is_some();
+        if iridescence.get("iridescenceThicknessMinimum").is_some() && !has_texture {
+            ctx.emit(
+                khronos::KHR_MATERIALS_IRIDESCENCE_THICKNESS_RANGE_WITHOUT_TEXTURE,
+                member(&p, "iridescenceThicknessMinimum"),
+                "Thickness minimum has no effect when a thickness texture is not defined.",
+            );
+        }
+        let min = number(iridescence, "iridescenceThicknessMinimum", 100.0);
+        let max = number(iridescence, "iridescenceThicknessMaximum", 400.0);
+        if has_texture && min == max {
+            ctx.emit(
+                khronos::KHR_MATERIALS_IRIDESCENCE_THICKNESS_TEXTURE_UNUSED,
+                member(&p, "iridescenceThicknessTexture"),
+                "Thickness texture has no effect when the thickness minimum is equal to the thickness maximum.",
+            );
+        }
+    }
+    check_texcoord_pairs(ctx, material, pointer);
+}
+
+/// Normal and anisotropy / clearcoat-normal textures should share texCoords. The Khronos
+/// validator compares the raw `texCoord`; gltfmat's default profile applies the
+/// KHR_texture_transform override, which is what a renderer samples.
+fn check_texcoord_pairs(ctx: &mut Context, material: &Value, pointer: &str) {
+    let Some(normal) = material.get("normalTexture").filter(|n| n.is_object()) else {
+        return;
+    };
+    let khronos = ctx.is_khronos();
+    let texcoord = |info: &Value| {
+        if khronos {
+            unsigned(info, "texCoord").unwrap_or(0)
+        } else {
+            effective_texcoord(info)
+        }
+    };
+    let pairs = [
+        (
+            "KHR_materials_anisotropy",
+            "anisotropyTexture",
+            khronos::KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD,
+            "Normal and anisotropy textures should use the same texture coords.",
+        ),
+        (
+            "KHR_materials_clearcoat",
+            "clearcoatNormalTexture",
+            khronos::KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD,
+            "Normal and clearcoat normal textures should use the same texture coords.",
+        ),
+    ];
+    let normal_set = texcoord(normal);
+    for (ext, key, code, message) in pairs {
+        let Some(info) = extension(material, ext)
+            .and_then(|e| e.get(key))
+            .filter(|i| i.is_object())
+        else {
+            continue;
+        };
+        if texcoord(info) != normal_set {
+            ctx.emit(code, format!("{pointer}/extensions/{ext}/{key}"), message);
+        }
+    }
+}
+
+/// One texture bound to one slot of one material.
+#[derive(Clone)]
+pub struct SlotUse<'a> {
+    pub material_index: usize,
+    pub material: &'a Value,
+    pub slot: &'static TextureSlot,
+    /// Pointer to the textureInfo.
+    pub pointer: String,
+    pub info: &'a Value,
+    /// Images the texture may sample: `source` and any extension's `source` (WebP, KTX2 …).
+    pub images: Vec<usize>,
+}
+
+impl SlotUse<'_> {
+    /// The channels this use reads: (sRGB, linear).
+    pub fn reads(&self) -> (Channels, Channels) {
+        self.slot.reads(self.material)
+    }
+
+    /// A member of the slot's extension object (or of the material for core slots).
+    pub fn extension_number(&self, key: &str, default: f64) -> f64 {
+        self.slot
+            .extension
+            .and_then(|name| extension(self.material, name))
+            .map_or(default, |ext| number(ext, key, default))
+    }
+}
+
+/// Every resolvable texture binding in the document, in material and slot order.
+/// Computed once per document (the rules share it); see [`collect_slot_uses`].
+pub fn slot_uses<'a>(ctx: &Context<'a>) -> Arc<[SlotUse<'a>]> {
+    ctx.slot_uses
+        .get_or_init(|| collect_slot_uses(ctx).into())
+        .clone()
+}
+
+fn collect_slot_uses<'a>(ctx: &Context<'a>) -> Vec<SlotUse<'a>> {
+    let textures = ctx.items("textures");
+    let image_count = ctx.items("images").len() as u64;
+    let mut uses = Vec::new();
+    for (material_index, material_pointer, material) in ctx.objects("materials") {
+        for slot in TEXTURE_SLOTS {
+            let Some(info) = slot.lookup(material) else {
+                continue;
+            };
+            let texture = unsigned(info, "index").and_then(|i| textures.get(i as usize));
+            let Some(texture) = texture else {
+                continue;
+            };
+            let images = texture_images(texture)
+                .filter(|&i| i < image_count)
+                .map(|i| i as usize)
+                .collect();
+            uses.push(SlotUse {
+                material_index,
+                material,
+                slot,
+                pointer: format!("{material_pointer}{}", slot.pointer()),
+                info,
+                images,
+            });
+        }
+    }
+    uses
+}

@@ -1,0 +1,52 @@
+//! Khronos parity: the passes that reproduce the Khronos glTF-Validator, one file per glTF object
+//! type (like its `base/`) and one folder per extension (`ext/`, like its `ext/`). gltfmat's own
+//! behaviour lives in `check/rules/`; nothing here depends on the profile except where the
+//! Khronos validator itself would.
+
+pub(crate) mod accessor_data;
+mod accessor_fast;
+pub(crate) mod accessor_usage;
+mod animations;
+mod cameras;
+pub(crate) mod ext;
+mod extensions;
+mod influences;
+pub(crate) mod materials;
+mod nodes;
+mod objects;
+pub(crate) mod primitives;
+pub(crate) mod resources;
+mod skins;
+mod unused;
+mod view_usage;
+
+use super::context::Context;
+
+/// The Khronos link order: each pass may read what the passes before it stored in the context
+/// (buffer bytes before accessor data, image headers before materials, …).
+pub(crate) const PASSES: &[(&str, fn(&mut Context))] = &[
+    ("extensions", extensions::check),
+    ("asset", objects::check_asset),
+    ("buffers", resources::check_buffers),
+    ("bufferViews", resources::check_buffer_views),
+    ("accessors", objects::check_accessors),
+    ("accessor data", accessor_data::check),
+    ("skin influences", influences::check),
+    ("images", resources::check_images),
+    ("textures", materials::check_textures),
+    ("materials", materials::check_materials),
+    ("meshes", objects::check_meshes),
+    ("mesh primitives", primitives::check),
+    ("bufferView usage", view_usage::check),
+    ("nodes and scenes", objects::check_nodes_and_scenes),
+    ("node rules", nodes::check),
+    ("cameras", cameras::check),
+    ("animations", animations::check),
+    ("skins", skins::check),
+    ("KHR_lights_punctual", ext::lights::check),
+    (
+        "skins, animations, cameras",
+        objects::check_skins_animations_cameras,
+    ),
+    ("unused objects", unused::check),
+];

@@ -1,0 +1,369 @@
+//! Nodes as the Khronos validator checks them: transforms (matrix with TRS, default or
+//! non-decomposable matrices, non-unit rotations), what a skin or morph weights depend on,
+//! the hierarchy (a second parent, loops, scene roots that are children) and skinned meshes
+//! under transformed parents.
+
+use super::accessor_usage::UNIT_TOLERANCE_VEC4;
+use super::primitives::{joint_sets, mesh_morph_targets};
+use crate::check::context::{elements, member, unsigned, Context};
+use crate::diagnostic::khronos;
+use serde_json::Value;
+use std::collections::HashSet;
+
+/// How far a matrix may be from its TRS recomposition.
+const TRS_TOLERANCE: f64 = 0.00005;
+
+pub fn check(ctx: &mut Context) {
+    let nodes = ctx.items("nodes");
+    let parents = parents(ctx, nodes);
+    for (i, pointer, node) in ctx.objects("nodes") {
+        transforms(ctx, node, &pointer);
+        dependencies(ctx, node, &pointer);
+        if in_loop(&parents, i) {
+            ctx.emit(
+                khronos::NODE_LOOP,
+                pointer.clone(),
+                "Node is a part of a node loop.",
+            );
+        }
+        if unsigned(node, "skin").is_some_and(|s| (s as usize) < ctx.items("skins").len()) {
+            skinned_placement(ctx, nodes, &parents, i, &pointer);
+        }
+    }
+    for (_, pointer, scene) in ctx.objects("scenes") {
+        for (k, root) in elements(scene, "nodes") {
+            let index = root.as_u64().map(|n| n as usize);
+            if index.is_some_and(|n| parents.get(n).copied().flatten().is_some()) {
+                ctx.emit(
+                    khronos::SCENE_NON_ROOT_NODE,
+                    format!("{pointer}/nodes/{k}"),
+                    format!("Node {} is not a root node.", index.unwrap_or_default()),
+                );
+            }
+        }
+    }
+    unused_mesh_weights(ctx, nodes);
+}
+
+/// Each node's parent, walking `children` in node order; a node listed as a child more than
+/// once gets the last parent that lists it. Calls `relisted(parent, k, child)` for each
+/// listing after the first.
+fn walk_parents(
+    nodes: &[Value],
+    mut relisted: impl FnMut(usize, usize, usize),
+) -> Vec<Option<usize>> {
+    let mut parent = vec![None; nodes.len()];
+    for (i, node) in nodes.iter().enumerate() {
+        for (k, child) in elements(node, "children") {
+            let Some(c) = child
+                .as_u64()
+                .map(|c| c as usize)
+                .filter(|c| *c < nodes.len())
+            else {
+                continue;
+            };
+            if parent[c].is_some() {
+                relisted(i, k, c);
+            }
+            parent[c] = Some(i);
+        }
+    }
+    parent
+}
+
+/// Each node's parent (see `walk_parents`).
+pub(super) fn parent_map(nodes: &[Value]) -> Vec<Option<usize>> {
+    walk_parents(nodes, |_, _, _| {})
+}
+
+/// Each node's parent; a second listing as a child is NODE_PARENT_OVERRIDE.
+fn parents(ctx: &mut Context, nodes: &[Value]) -> Vec<Option<usize>> {
+    let mut overrides = Vec::new();
+    let parent = walk_parents(nodes, |i, k, c| overrides.push((i, k, c)));
+    for (i, k, c) in overrides {
+        ctx.emit(
+            khronos::NODE_PARENT_OVERRIDE,
+            format!("/nodes/{i}/children/{k}"),
+            format!("Value overrides parent of node {c}."),
+        );
+    }
+    parent
+}
+
+/// Whether walking up from `node` comes back to it.
+fn in_loop(parents: &[Option<usize>], node: usize) -> bool {
+    let mut seen = HashSet::new();
+    let mut at = node;
+    while let Some(up) = parents[at] {
+        if up == node {
+            return true;
+        }
+        if !seen.insert(up) {
+            return false;
+        }
+        at = up;
+    }
+    false
+}
+
+fn numbers(node: &Value, key: &str, length: usize) -> Option<Vec<f64>> {
+    let list = node.get(key)?.as_array()?;
+    let values: Vec<f64> = list.iter().filter_map(Value::as_f64).collect();
+    (values.len() == length && list.len() == length).then_some(values)
+}
+
+fn transforms(ctx: &mut Context, node: &Value, pointer: &str) {
+    if let Some(q) = numbers(node, "rotation", 4).filter(|q| q.iter().all(|v| v.abs() <= 1.0)) {
+        let length = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if (1.0 - length).abs() > UNIT_TOLERANCE_VEC4 {
+            ctx.emit(
+                khronos::ROTATION_NON_UNIT,
+                member(pointer, "rotation"),
+                "Rotation quaternion must be normalized.",
+            );
+        }
+    }
+    let Some(matrix) = numbers(node, "matrix", 16) else {
+        return;
+    };
+    let at = member(pointer, "matrix");
+    if ["translation", "rotation", "scale"]
+        .iter()
+        .any(|k| node.get(k).is_some())
+    {
+        ctx.emit(
+            khronos::NODE_MATRIX_TRS,
+            at.clone(),
+            "A node can have either a matrix or any combination of translation/rotation/scale (TRS) properties.",
+        );
+    }
+    if matrix == IDENTITY {
+        ctx.emit(
+            khronos::NODE_MATRIX_DEFAULT,
+            at,
+            "Do not specify default transform matrix.",
+        );
+    } else if !is_trs_decomposable(&matrix) {
+        ctx.emit(
+            khronos::NODE_MATRIX_NON_TRS,
+            at,
+            "Matrix must be decomposable to TRS.",
+        );
+    }
+}
+
+const IDENTITY: [f64; 16] = [
+    1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+];
+
+/// Whether a column-major matrix is translation × rotation × scale: an affine last row, an
+/// invertible 3×3 part, and a recomposition from its decomposition within tolerance (shear
+/// fails it).
+fn is_trs_decomposable(m: &[f64]) -> bool {
+    if m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0 {
+        return false;
+    }
+    let column = |c: usize| [m[4 * c], m[4 * c + 1], m[4 * c + 2]];
+    let (x, y, z) = (column(0), column(1), column(2));
+    let det = x[0] * (y[1] * z[2] - z[1] * y[2]) - y[0] * (x[1] * z[2] - z[1] * x[2])
+        + z[0] * (x[1] * y[2] - y[1] * x[2]);
+    if det == 0.0 {
+        return false;
+    }
+    let length = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let mut scale = [length(x), length(y), length(z)];
+    if det < 0.0 {
+        scale[0] = -scale[0];
+    }
+    let r: Vec<[f64; 3]> = [x, y, z]
+        .iter()
+        .zip(scale)
+        .map(|(c, s)| c.map(|v| v / s))
+        .collect();
+    let rotation = rotation_matrix(quaternion(&r));
+    // Recomposed columns: rotation column c × scale c; the translation is kept exactly.
+    (0..3).all(|c| {
+        (0..3).all(|row| (rotation[c][row] * scale[c] - m[4 * c + row]).abs() < TRS_TOLERANCE)
+    })
+}
+
+/// The quaternion of a rotation matrix given by columns (Shepperd's method).
+fn quaternion(r: &[[f64; 3]]) -> [f64; 4] {
+    let at = |row: usize, col: usize| r[col][row];
+    let trace = at(0, 0) + at(1, 1) + at(2, 2);
+    if trace > 0.0 {
+        let s = (trace + 1.0).sqrt() * 2.0;
+        [
+            (at(2, 1) - at(1, 2)) / s,
+            (at(0, 2) - at(2, 0)) / s,
+            (at(1, 0) - at(0, 1)) / s,
+            s / 4.0,
+        ]
+    } else if at(0, 0) > at(1, 1) && at(0, 0) > at(2, 2) {
+        let s = (1.0 + at(0, 0) - at(1, 1) - at(2, 2)).sqrt() * 2.0;
+        [
+            s / 4.0,
+            (at(0, 1) + at(1, 0)) / s,
+            (at(0, 2) + at(2, 0)) / s,
+            (at(2, 1) - at(1, 2)) / s,
+        ]
+    } else if at(1, 1) > at(2, 2) {
+        let s = (1.0 + at(1, 1) - at(0, 0) - at(2, 2)).sqrt() * 2.0;
+        [
+            (at(0, 1) + at(1, 0)) / s,
+            s / 4.0,
+            (at(1, 2) + at(2, 1)) / s,
+            (at(0, 2) - at(2, 0)) / s,
+        ]
+    } else {
+        let s = (1.0 + at(2, 2) - at(0, 0) - at(1, 1)).sqrt() * 2.0;
+        [
+            (at(0, 2) + at(2, 0)) / s,
+            (at(1, 2) + at(2, 1)) / s,
+            s / 4.0,
+            (at(1, 0) - at(0, 1)) / s,
+        ]
+    }
+}
+
+/// The rotation matrix (columns) of a quaternion, normalised first.
+fn rotation_matrix(q: [f64; 4]) -> [[f64; 3]; 3] {
+    let n = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let [x, y, z, w] = q.map(|v| v / n);
+    [
+        [
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y + z * w),
+            2.0 * (x * z - y * w),
+        ],
+        [
+            2.0 * (x * y - z * w),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z + x * w),
+        ],
+        [
+            2.0 * (x * z + y * w),
+            2.0 * (y * z - x * w),
+            1.0 - 2.0 * (x * x + y * y),
+        ],
+    ]
+}
+
+/// A skin or morph weights need a mesh; weights must match its morph targets; a skin needs
+/// a skinned mesh, and a skinned mesh a skin.
+fn dependencies(ctx: &mut Context, node: &Value, pointer: &str) {
+    if node.get("mesh").is_none() {
+        for key in ["skin", "weights"] {
+            if node.get(key).is_some() {
+                ctx.emit(
+                    khronos::UNSATISFIED_DEPENDENCY,
+                    member(pointer, key),
+                    "Dependency failed. 'mesh' must be defined.",
+                );
+            }
+        }
+        return;
+    }
+    let mesh = unsigned(node, "mesh").and_then(|m| ctx.items("meshes").get(m as usize));
+    let Some(primitives) = mesh.and_then(|m| m.get("primitives")?.as_array()) else {
+        return;
+    };
+    if let Some(weights) = node.get("weights").and_then(Value::as_array) {
+        let targets = mesh.and_then(mesh_morph_targets);
+        if targets != Some(weights.len()) {
+            ctx.emit(
+                khronos::NODE_WEIGHTS_INVALID,
+                member(pointer, "weights"),
+                format!("The length of weights array ({}) does not match the number of morph targets ({}).", weights.len(), targets.unwrap_or(0)),
+            );
+        }
+    }
+    let skinned = |p: &Value| {
+        p.get("attributes")
+            .and_then(Value::as_object)
+            .is_some_and(|a| joint_sets(a) > 0)
+    };
+    let has_skin = unsigned(node, "skin").is_some_and(|s| (s as usize) < ctx.items("skins").len());
+    if has_skin && !primitives.iter().any(skinned) {
+        ctx.emit(
+            khronos::NODE_SKIN_WITH_NON_SKINNED_MESH,
+            pointer,
+            "Node has skin defined, but mesh has no joints data.",
+        );
+    }
+    if node.get("skin").is_none() && primitives.iter().any(skinned) {
+        ctx.emit(
+            khronos::NODE_SKINNED_MESH_WITHOUT_SKIN,
+            pointer,
+            "Node uses skinned mesh, but has no skin defined.",
+        );
+    }
+}
+
+/// Whether a node moves what it holds: a non-identity matrix or any non-default TRS.
+fn has_transform(node: &Value) -> bool {
+    let is =
+        |key: &str, default: &[f64]| numbers(node, key, default.len()).is_none_or(|v| v == default);
+    !(is("matrix", &IDENTITY)
+        && is("translation", &[0.0; 3])
+        && is("rotation", &[0.0, 0.0, 0.0, 1.0])
+        && is("scale", &[1.0; 3]))
+}
+
+/// A skinned mesh ignores its node's and its ancestors' transforms: say so.
+fn skinned_placement(
+    ctx: &mut Context,
+    nodes: &[Value],
+    parents: &[Option<usize>],
+    i: usize,
+    pointer: &str,
+) {
+    if has_transform(&nodes[i]) {
+        ctx.emit(
+            khronos::NODE_SKINNED_MESH_LOCAL_TRANSFORMS,
+            pointer,
+            "Local transforms will not affect a skinned mesh.",
+        );
+    }
+    if parents[i].is_none() {
+        return;
+    }
+    let mut seen = HashSet::new();
+    let mut up = parents[i];
+    while let Some(p) = up.filter(|p| seen.insert(*p)) {
+        if has_transform(&nodes[p]) {
+            ctx.emit(
+                khronos::NODE_SKINNED_MESH_PARENT_TRANSFORMS,
+                pointer,
+                "Node with a skinned mesh has parent nodes with transforms. Parent transforms will not affect a skinned mesh.",
+            );
+            break;
+        }
+        up = parents[p];
+    }
+    ctx.emit(
+        khronos::NODE_SKINNED_MESH_NON_ROOT,
+        pointer,
+        "Node with a skinned mesh is not root. Parent transforms will not affect a skinned mesh.",
+    );
+}
+
+/// A mesh's own morph weights do nothing when every node that draws it has weights.
+fn unused_mesh_weights(ctx: &mut Context, nodes: &[Value]) {
+    for (m, pointer, mesh) in ctx.objects("meshes") {
+        if mesh.get("weights").is_none() {
+            continue;
+        }
+        let users: Vec<&Value> = nodes
+            .iter()
+            .filter(|n| unsigned(n, "mesh") == Some(m as u64))
+            .collect();
+        if !users.is_empty() && users.iter().all(|n| n.get("weights").is_some()) {
+            ctx.emit(
+                khronos::UNUSED_MESH_WEIGHTS,
+                member(&pointer, "weights"),
+                "The static morph target weights are always overridden.",
+            );
+        }
+    }
+}

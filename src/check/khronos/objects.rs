@@ -1,0 +1,490 @@
+//! Asset version, accessors, meshes, nodes, scenes, skins, animations and cameras: references
+//! and the structural rules a material checker depends on (texCoords, tangent space).
+
+use super::primitives::indexed_sets;
+use crate::check::context::{elements, member, unsigned, Context, MaterialNeeds};
+use crate::diagnostic::khronos;
+use crate::gltf::accessor::{component_count, component_size};
+use crate::gltf::gl;
+use serde_json::Value;
+use std::collections::{BTreeSet, HashSet};
+
+fn version(text: &str) -> Option<(u64, u64)> {
+    let (major, minor) = text.split_once('.')?;
+    Some((major.parse().ok()?, minor.parse().ok()?))
+}
+
+pub fn check_asset(ctx: &mut Context) {
+    let Some(asset) = ctx.root.get("asset") else {
+        return;
+    };
+    let Some((major, minor)) = asset
+        .get("version")
+        .and_then(Value::as_str)
+        .and_then(version)
+    else {
+        return;
+    };
+    if major != 2 {
+        let hint = if major == 1 && !ctx.is_khronos() {
+            " Run `gltfmat upgrade` to convert it to glTF 2.0."
+        } else {
+            ""
+        };
+        ctx.emit(
+            khronos::UNKNOWN_ASSET_MAJOR_VERSION,
+            "/asset/version",
+            format!("Unknown glTF major asset version: {major}.{hint}"),
+        );
+    } else if minor > 0 {
+        ctx.emit(
+            khronos::UNKNOWN_ASSET_MINOR_VERSION,
+            "/asset/version",
+            format!("Unknown glTF minor asset version: {minor}."),
+        );
+    }
+    if let Some((min_major, min_minor)) = asset
+        .get("minVersion")
+        .and_then(Value::as_str)
+        .and_then(version)
+    {
+        if (min_major, min_minor) > (major, minor) {
+            ctx.emit(
+                khronos::ASSET_MIN_VERSION_GREATER_THAN_VERSION,
+                "/asset/minVersion",
+                format!("Asset minVersion '{min_major}.{min_minor}' is greater than version '{major}.{minor}'."),
+            );
+        }
+    }
+}
+
+pub fn check_accessors(ctx: &mut Context) {
+    for (_, pointer, accessor) in ctx.objects("accessors") {
+        check_accessor_format(ctx, accessor, &pointer);
+        if let Some(view) = ctx.reference(accessor, "bufferView", &pointer, "bufferViews") {
+            check_accessor_fits(ctx, accessor, view, &pointer);
+        }
+        if let Some(sparse) = accessor.get("sparse").filter(|s| s.is_object()) {
+            let sparse_pointer = member(&pointer, "sparse");
+            for key in ["indices", "values"] {
+                if let Some(part) = sparse.get(key) {
+                    ctx.reference(
+                        part,
+                        "bufferView",
+                        &member(&sparse_pointer, key),
+                        "bufferViews",
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// What an accessor's own members must agree on, whatever its bufferView.
+fn check_accessor_format(ctx: &mut Context, accessor: &Value, pointer: &str) {
+    if accessor.get("bufferView").is_none() && accessor.get("byteOffset").is_some() {
+        ctx.emit(
+            khronos::UNSATISFIED_DEPENDENCY,
+            member(pointer, "byteOffset"),
+            "Dependency failed. 'bufferView' must be defined.",
+        );
+    }
+    let component_type = unsigned(accessor, "componentType");
+    let normalized = accessor.get("normalized").and_then(Value::as_bool) == Some(true);
+    if normalized && matches!(component_type, Some(gl::FLOAT | gl::UNSIGNED_INT)) {
+        ctx.emit(
+            khronos::ACCESSOR_NORMALIZED_INVALID,
+            member(pointer, "normalized"),
+            "Only (u)byte and (u)short accessors can be normalized.",
+        );
+    }
+    let is_matrix = accessor
+        .get("type")
+        .and_then(Value::as_str)
+        .is_some_and(|t| t.starts_with("MAT"));
+    if is_matrix && unsigned(accessor, "byteOffset").is_some_and(|o| o % 4 != 0) {
+        ctx.emit(
+            khronos::ACCESSOR_MATRIX_ALIGNMENT,
+            member(pointer, "byteOffset"),
+            "Matrix accessors must be aligned to 4-byte boundaries.",
+        );
+    }
+}
+
+/// The accessor inside its bufferView: stride, alignment of its own and total offset, and
+/// ACCESSOR_TOO_LONG, the last element ending inside the view. Computed with checked
+/// arithmetic, so a count of 2^31 or 2^64 − 1 is a finding, not an overflow.
+fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer: &str) {
+    let Some(component_size) = unsigned(accessor, "componentType").and_then(component_size) else {
+        return;
+    };
+    let Some(components) = accessor
+        .get("type")
+        .and_then(Value::as_str)
+        .and_then(component_count)
+    else {
+        return;
+    };
+    let (Some(count), Some(view_length)) = (
+        unsigned(accessor, "count").filter(|c| *c > 0),
+        unsigned(&ctx.items("bufferViews")[view], "byteLength"),
+    ) else {
+        return;
+    };
+    // Matrix columns start on 4-byte boundaries (glTF 2.0 §3.6.2.4): elements are padded,
+    // but the last element ends after its last column's data.
+    let is_mat2 = accessor.get("type").and_then(Value::as_str) == Some("MAT2");
+    let (element, last): (u64, u64) = match (components, component_size) {
+        (4, 1) if is_mat2 => (8, 6),
+        (9, 1) => (12, 11),
+        (9, 2) => (24, 22),
+        _ => {
+            let size = (components * component_size) as u64;
+            (size, size)
+        }
+    };
+    let view_object = &ctx.items("bufferViews")[view];
+    let declared_stride = unsigned(view_object, "byteStride");
+    if declared_stride.is_some_and(|s| s < element) {
+        ctx.emit(
+            khronos::ACCESSOR_SMALL_BYTESTRIDE,
+            pointer,
+            format!("Referenced bufferView's byteStride value {} is less than accessor element's length {element}.", declared_stride.unwrap_or_default()),
+        );
+    }
+    let stride = declared_stride.unwrap_or(element);
+    let offset = unsigned(accessor, "byteOffset").unwrap_or(0);
+    let size = component_size as u64;
+    if !offset.is_multiple_of(size) {
+        ctx.emit(
+            khronos::ACCESSOR_OFFSET_ALIGNMENT,
+            member(pointer, "byteOffset"),
+            format!("Offset {offset} is not a multiple of componentType length {size}."),
+        );
+    }
+    let total = unsigned(view_object, "byteOffset")
+        .unwrap_or(0)
+        .saturating_add(offset);
+    if !total.is_multiple_of(size) {
+        ctx.emit(
+            khronos::ACCESSOR_TOTAL_OFFSET_ALIGNMENT,
+            pointer,
+            format!("Accessor's total byteOffset {total} isn't a multiple of componentType length {size}."),
+        );
+    }
+    let length = (count - 1)
+        .checked_mul(stride)
+        .and_then(|n| n.checked_add(last));
+    let fits = length
+        .and_then(|n| n.checked_add(offset))
+        .is_some_and(|end| end <= view_length);
+    if !fits {
+        let length = length.map_or_else(|| "more than 2^64".to_string(), |n| n.to_string());
+        let at = if offset > view_length {
+            member(pointer, "byteOffset")
+        } else {
+            pointer.to_string()
+        };
+        ctx.emit(
+            khronos::ACCESSOR_TOO_LONG,
+            at,
+            format!("Accessor (offset: {offset}, length: {length}) does not fit referenced bufferView [{view}] length {view_length}."),
+        );
+    }
+}
+
+pub fn check_meshes(ctx: &mut Context) {
+    let variant_count = ctx
+        .root
+        .get("extensions")
+        .and_then(|e| e.get("KHR_materials_variants"))
+        .and_then(|v| v.get("variants"))
+        .and_then(Value::as_array)
+        .map_or(0, Vec::len);
+    for (_, pointer, mesh) in ctx.objects("meshes") {
+        let Some(primitives) = mesh.get("primitives").and_then(Value::as_array) else {
+            continue;
+        };
+        for (j, primitive) in primitives.iter().enumerate().filter(|(_, p)| p.is_object()) {
+            let p = format!("{pointer}/primitives/{j}");
+            check_primitive(ctx, primitive, &p, variant_count);
+        }
+    }
+}
+
+fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_count: usize) {
+    let attributes = primitive.get("attributes").and_then(Value::as_object);
+    if let Some(attributes) = attributes {
+        for (name, value) in attributes {
+            ctx.reference_value(
+                value,
+                &member(&member(pointer, "attributes"), name),
+                "accessors",
+            );
+        }
+    }
+    if let Some(targets) = primitive.get("targets").and_then(Value::as_array) {
+        for (t, target) in targets.iter().enumerate() {
+            for (name, value) in target.as_object().into_iter().flatten() {
+                ctx.reference_value(value, &format!("{pointer}/targets/{t}/{name}"), "accessors");
+            }
+        }
+    }
+    ctx.reference(primitive, "indices", pointer, "accessors");
+    let has = |name: &str| attributes.is_some_and(|a| a.contains_key(name));
+    let texcoord_sets = attributes.map_or(0, |a| indexed_sets(a, "TEXCOORD"));
+    let mut texcoords_used = BTreeSet::new();
+    if let Some(material) = ctx.reference(primitive, "material", pointer, "materials") {
+        let needs = ctx
+            .material_needs
+            .get(material)
+            .cloned()
+            .unwrap_or_default();
+        let material_pointer = member(pointer, "material");
+        read_texcoords(
+            ctx,
+            &needs,
+            &material_pointer,
+            texcoord_sets,
+            &mut texcoords_used,
+        );
+        let has_tangent_space = has("NORMAL") && has("TANGENT");
+        if needs.needs_tangent && !has_tangent_space {
+            if needs.can_generate_tangent {
+                ctx.emit(
+                    khronos::MESH_PRIMITIVE_GENERATED_TANGENT_SPACE,
+                    material_pointer,
+                    "Material requires a tangent space but the mesh primitive does not provide it. Runtime-generated tangent space may be non-portable across implementations.",
+                );
+            } else {
+                ctx.emit(
+                    khronos::MESH_PRIMITIVE_NO_TANGENT_SPACE,
+                    material_pointer,
+                    "Material requires a tangent space but the mesh primitive does not provide it and the material does not contain a normal map to generate it.",
+                );
+            }
+        }
+        // Tangents on an anisotropy material are used even without an anisotropyTexture:
+        // the default profile does not call them unused (the Khronos validator does).
+        let tangent_used = needs.needs_tangent || (needs.anisotropy && !ctx.is_khronos());
+        if has("TANGENT") && !tangent_used {
+            unused_tangent(ctx, pointer);
+        }
+    } else if has("TANGENT") && primitive.get("material").is_none() {
+        unused_tangent(ctx, pointer);
+    }
+    let mapped = check_variant_mappings(ctx, primitive, pointer, variant_count);
+    for (material, at) in mapped {
+        let needs = ctx
+            .material_needs
+            .get(material)
+            .cloned()
+            .unwrap_or_default();
+        read_texcoords(ctx, &needs, &at, texcoord_sets, &mut texcoords_used);
+    }
+    for set in (0..texcoord_sets).filter(|s| !texcoords_used.contains(s)) {
+        ctx.emit(
+            khronos::UNUSED_OBJECT,
+            format!("{pointer}/attributes/TEXCOORD_{set}"),
+            "This object may be unused.",
+        );
+    }
+    if has("TANGENT") && !has("NORMAL") {
+        ctx.emit(
+            khronos::MESH_PRIMITIVE_TANGENT_WITHOUT_NORMAL,
+            format!("{pointer}/attributes/TANGENT"),
+            "TANGENT attribute without NORMAL found.",
+        );
+    }
+}
+
+/// Marks the texCoord sets a material's bindings read as used, and reports each binding that
+/// reads a set the primitive does not have (at `at`, the pointer to the material reference).
+fn read_texcoords(
+    ctx: &mut Context,
+    needs: &MaterialNeeds,
+    at: &str,
+    sets: u64,
+    used: &mut BTreeSet<u64>,
+) {
+    for (binding, set) in &needs.texcoords {
+        if *set < sets {
+            used.insert(*set);
+        } else {
+            ctx.emit(
+                khronos::MESH_PRIMITIVE_TOO_FEW_TEXCOORDS,
+                at,
+                format!("Material is incompatible with mesh primitive: Texture binding '{binding}' needs 'TEXCOORD_{set}' attribute."),
+            );
+        }
+    }
+}
+
+fn unused_tangent(ctx: &mut Context, pointer: &str) {
+    ctx.emit(
+        khronos::UNUSED_MESH_TANGENT,
+        format!("{pointer}/attributes/TANGENT"),
+        "Unused TANGENT attribute: the material does not need a tangent space.",
+    );
+}
+
+/// Checks the KHR_materials_variants mappings; returns each mapped material with the
+/// pointer to its reference.
+fn check_variant_mappings(
+    ctx: &mut Context,
+    primitive: &Value,
+    pointer: &str,
+    variant_count: usize,
+) -> Vec<(usize, String)> {
+    let mut mapped = Vec::new();
+    let Some(ext) = primitive
+        .get("extensions")
+        .and_then(|e| e.get("KHR_materials_variants"))
+    else {
+        return mapped;
+    };
+    let Some(mappings) = ext.get("mappings").and_then(Value::as_array) else {
+        return mapped;
+    };
+    let root_declares_variants = ctx
+        .root
+        .get("extensions")
+        .and_then(|e| e.get("KHR_materials_variants"))
+        .is_some();
+    let mut seen = Vec::new();
+    for (m, mapping) in mappings.iter().enumerate().filter(|(_, m)| m.is_object()) {
+        let mp = format!("{pointer}/extensions/KHR_materials_variants/mappings/{m}");
+        if !root_declares_variants {
+            ctx.emit(
+                khronos::UNSATISFIED_DEPENDENCY,
+                mp,
+                "Dependency failed. The root KHR_materials_variants extension must define the variants.",
+            );
+            continue;
+        }
+        if let Some(material) = ctx.reference(mapping, "material", &mp, "materials") {
+            mapped.push((material, member(&mp, "material")));
+        }
+        for (v, variant) in elements(mapping, "variants") {
+            let vp = format!("{mp}/variants/{v}");
+            let Some(index) = variant.as_u64() else {
+                continue;
+            };
+            if index as usize >= variant_count {
+                ctx.emit(
+                    khronos::UNRESOLVED_REFERENCE,
+                    vp,
+                    format!("Unresolved reference: {index}."),
+                );
+                continue;
+            }
+            ctx.mark_used("variants", index as usize);
+            if seen.contains(&index) {
+                ctx.emit(
+                    khronos::KHR_MATERIALS_VARIANTS_NON_UNIQUE_VARIANT,
+                    vp,
+                    "This variant is used more than once for this mesh primitive.",
+                );
+            } else {
+                seen.push(index);
+            }
+        }
+    }
+    mapped
+}
+
+pub fn check_nodes_and_scenes(ctx: &mut Context) {
+    let joints: HashSet<u64> = ctx
+        .items("skins")
+        .iter()
+        .flat_map(|skin| elements(skin, "joints"))
+        .filter_map(|(_, joint)| joint.as_u64())
+        .collect();
+    for (index, pointer, node) in ctx.objects("nodes") {
+        let mesh = ctx.reference(node, "mesh", &pointer, "meshes");
+        let camera = ctx.reference(node, "camera", &pointer, "cameras");
+        ctx.reference(node, "skin", &pointer, "skins");
+        for (c, child) in elements(node, "children") {
+            ctx.reference_value(child, &format!("{pointer}/children/{c}"), "nodes");
+        }
+        // As the Khronos validator sees it: a skin alone leaves a node empty; children,
+        // even unresolved ones, do not.
+        let has_children = node
+            .get("children")
+            .and_then(Value::as_array)
+            .is_some_and(|c| !c.is_empty());
+        let extras = node.get("extras").is_some_and(|e| !e.is_null());
+        let named = node.get("name").is_some();
+        // A joint is not empty: skinning reads its transform.
+        let empty = !joints.contains(&(index as u64))
+            && mesh.is_none()
+            && camera.is_none()
+            && !has_children
+            && node.get("extensions").is_none()
+            && !extras
+            && !named;
+        if empty {
+            ctx.emit(
+                khronos::NODE_EMPTY,
+                pointer.clone(),
+                "Empty node encountered.",
+            );
+        }
+    }
+    for (_, pointer, scene) in ctx.objects("scenes") {
+        for (n, node) in elements(scene, "nodes") {
+            ctx.reference_value(node, &format!("{pointer}/nodes/{n}"), "nodes");
+        }
+    }
+    if let Some(scene) = ctx.root.get("scene") {
+        ctx.reference_value(scene, "/scene", "scenes");
+    }
+}
+
+pub fn check_skins_animations_cameras(ctx: &mut Context) {
+    for (_, pointer, skin) in ctx.objects("skins") {
+        ctx.reference(skin, "inverseBindMatrices", &pointer, "accessors");
+        ctx.reference(skin, "skeleton", &pointer, "nodes");
+        for (j, joint) in elements(skin, "joints") {
+            ctx.reference_value(joint, &format!("{pointer}/joints/{j}"), "nodes");
+        }
+    }
+    for (_, pointer, animation) in ctx.objects("animations") {
+        let samplers = animation
+            .get("samplers")
+            .and_then(Value::as_array)
+            .map_or(&[][..], Vec::as_slice);
+        let mut sampler_used = vec![false; samplers.len()];
+        for (s, sampler) in samplers.iter().enumerate() {
+            let sp = format!("{pointer}/samplers/{s}");
+            ctx.reference(sampler, "input", &sp, "accessors");
+            ctx.reference(sampler, "output", &sp, "accessors");
+        }
+        for (c, channel) in elements(animation, "channels") {
+            let cp = format!("{pointer}/channels/{c}");
+            if let Some(s) = unsigned(channel, "sampler") {
+                if (s as usize) < samplers.len() {
+                    sampler_used[s as usize] = true;
+                } else {
+                    ctx.emit(
+                        khronos::UNRESOLVED_REFERENCE,
+                        member(&cp, "sampler"),
+                        format!("Unresolved reference: {s}."),
+                    );
+                }
+            }
+            if let Some(target) = channel.get("target") {
+                ctx.reference(target, "node", &member(&cp, "target"), "nodes");
+            }
+        }
+        for (s, used) in sampler_used.iter().enumerate() {
+            if !used && samplers[s].is_object() {
+                ctx.emit(
+                    khronos::UNUSED_OBJECT,
+                    format!("{pointer}/samplers/{s}"),
+                    "This object may be unused.",
+                );
+            }
+        }
+    }
+}

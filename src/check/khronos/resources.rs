@@ -1,0 +1,373 @@
+//! Buffers, buffer views and images: where their bytes come from, whether the declared
+//! lengths hold, and what the image headers say.
+
+use crate::check::context::{member, unsigned, Context, ResourceInfo};
+use crate::diagnostic::khronos;
+use crate::document::image_header::{self, HeaderError, ImageFormat};
+use crate::document::uri::{classify, LoadError, UriKind};
+use crate::document::{BufferData, Bytes};
+use crate::gltf::gl::ELEMENT_ARRAY_BUFFER;
+use serde_json::Value;
+
+/// Bytes behind a `uri`, with diagnostics for everything that stops us reading them.
+/// Returns the bytes and, for data URIs, the declared media type.
+fn load_uri(
+    ctx: &mut Context,
+    uri: &str,
+    pointer: &str,
+) -> (Option<Bytes>, Option<String>, &'static str) {
+    let glb = crate::check::is_glb(ctx.document);
+    if glb {
+        ctx.emit(khronos::URI_GLB, pointer, "URI is used in GLB container.");
+    }
+    match classify(uri) {
+        Err(reason) => {
+            ctx.emit(
+                khronos::INVALID_URI,
+                pointer,
+                format!("Invalid URI '{}'. Parser output: {reason}", shorten(uri)),
+            );
+            (None, None, "data-uri")
+        }
+        Ok(UriKind::Data { media_type, bytes }) => {
+            if glb {
+                ctx.emit(
+                    khronos::DATA_URI_GLB,
+                    pointer,
+                    "Data URI is used in GLB container.",
+                );
+            }
+            (Some(bytes.into()), Some(media_type), "data-uri")
+        }
+        Ok(UriKind::NonRelative) => {
+            ctx.emit(
+                khronos::NON_RELATIVE_URI,
+                pointer,
+                format!("Non-relative URI found: '{uri}'. It is not fetched."),
+            );
+            (None, None, "external")
+        }
+        Ok(UriKind::AbsolutePath) => {
+            refuse_outside(ctx, pointer, uri);
+            (None, None, "external")
+        }
+        Ok(UriKind::Relative(path)) => match ctx.loader.load(&path) {
+            Ok(bytes) => (Some(bytes), None, "external"),
+            Err(LoadError::OutsideFolder(_)) => {
+                refuse_outside(ctx, pointer, uri);
+                (None, None, "external")
+            }
+            Err(LoadError::NoFolder) => (None, None, "external"),
+            Err(LoadError::NotFound(p)) => {
+                ctx.emit(
+                    khronos::IO_ERROR,
+                    pointer,
+                    format!("Resource not found ({p})."),
+                );
+                (None, None, "external")
+            }
+            Err(LoadError::TooLarge(size)) => {
+                ctx.emit(
+                    khronos::IO_ERROR,
+                    pointer,
+                    format!("Resource too large to read ({size} bytes)."),
+                );
+                (None, None, "external")
+            }
+            Err(LoadError::Io(e)) => {
+                ctx.emit(
+                    khronos::IO_ERROR,
+                    pointer,
+                    format!("Could not read resource: {e}."),
+                );
+                (None, None, "external")
+            }
+        },
+    }
+}
+
+/// Absolute paths and `..` escapes are never read. The Khronos profile words it as the
+/// IO_ERROR that validator gives for a file it cannot read.
+fn refuse_outside(ctx: &mut Context, pointer: &str, uri: &str) {
+    let code = if ctx.is_khronos() {
+        khronos::IO_ERROR
+    } else {
+        crate::check::rules::outside_folder::RULE.code()
+    };
+    ctx.emit(
+        code,
+        pointer,
+        format!(
+            "Refused to read '{}': it resolves outside the asset's folder.",
+            shorten(uri)
+        ),
+    );
+}
+
+fn shorten(uri: &str) -> String {
+    if uri.chars().count() > 80 {
+        format!("{}…", uri.chars().take(77).collect::<String>())
+    } else {
+        uri.to_string()
+    }
+}
+
+fn align4(n: u64) -> u64 {
+    n.div_ceil(4) * 4
+}
+
+pub fn check_buffers(ctx: &mut Context) {
+    let buffers = ctx.items("buffers");
+    ctx.buffers = buffers.iter().map(|_| None).collect();
+    for (i, pointer, buffer) in ctx.objects("buffers") {
+        let declared = unsigned(buffer, "byteLength");
+        let (data, storage, uri) = match buffer.get("uri").and_then(Value::as_str) {
+            Some(uri) => {
+                let uri_pointer = member(&pointer, "uri");
+                let (data, media_type, storage) = load_uri(ctx, uri, &uri_pointer);
+                if let Some(media) = media_type {
+                    let lower = media.to_ascii_lowercase();
+                    if lower != "application/octet-stream" && lower != "application/gltf-buffer" {
+                        ctx.emit(
+                            khronos::BUFFER_DATA_URI_MIME_TYPE_INVALID,
+                            uri_pointer,
+                            format!("Data URI media type must be 'application/octet-stream' or 'application/gltf-buffer'. Found '{media}' instead."),
+                        );
+                    }
+                }
+                let uri = (storage == "external").then(|| uri.to_string());
+                (data.map(BufferData::Loaded), storage, uri)
+            }
+            None if i == 0 && crate::check::is_glb(ctx.document) => {
+                let Some(bin) = ctx.document.bin() else {
+                    ctx.emit(
+                        khronos::BUFFER_MISSING_GLB_DATA,
+                        pointer.clone(),
+                        "Buffer refers to an unresolved GLB binary chunk.",
+                    );
+                    continue;
+                };
+                if let Some(length) = declared {
+                    let padded = align4(length);
+                    if bin.len() as u64 > padded {
+                        ctx.emit(
+                            khronos::BUFFER_GLB_CHUNK_TOO_BIG,
+                            pointer.clone(),
+                            format!(
+                                "GLB-stored BIN chunk contains {} extra padding byte(s).",
+                                bin.len() as u64 - padded
+                            ),
+                        );
+                    }
+                }
+                (Some(BufferData::Glb(bin)), "glb", None)
+            }
+            None => (None, "buffer", None),
+        };
+        if let (Some(bytes), Some(length)) = (&data, declared) {
+            if (bytes.len() as u64) < length {
+                ctx.emit(
+                    khronos::BUFFER_BYTE_LENGTH_MISMATCH,
+                    pointer.clone(),
+                    format!("Actual data byte length ({}) is less than the declared buffer byte length ({length}).", bytes.len()),
+                );
+            }
+        }
+        ctx.resources.push(ResourceInfo {
+            pointer: pointer.clone(),
+            storage,
+            mime_type: Some("application/gltf-buffer".into()),
+            byte_length: data.as_ref().map(|d| d.len()),
+            uri,
+            image: None,
+        });
+        ctx.buffers[i] = data;
+    }
+}
+
+pub fn check_buffer_views(ctx: &mut Context) {
+    for (_, pointer, view) in ctx.objects("bufferViews") {
+        let buffer = ctx.reference(view, "buffer", &pointer, "buffers");
+        let offset = unsigned(view, "byteOffset").unwrap_or(0);
+        let length = unsigned(view, "byteLength");
+        if let (Some(b), Some(length)) = (buffer, length) {
+            if let Some(buffer_length) = unsigned(&ctx.items("buffers")[b], "byteLength") {
+                if offset.saturating_add(length) > buffer_length {
+                    let key = if offset >= buffer_length {
+                        "byteOffset"
+                    } else {
+                        "byteLength"
+                    };
+                    ctx.emit(
+                        khronos::BUFFER_VIEW_TOO_LONG,
+                        member(&pointer, key),
+                        format!(
+                            "BufferView does not fit buffer ({b}) byteLength ({buffer_length})."
+                        ),
+                    );
+                }
+            }
+        }
+        if let Some(stride) = unsigned(view, "byteStride") {
+            if length.is_some_and(|l| stride > l) {
+                ctx.emit(
+                    khronos::BUFFER_VIEW_TOO_BIG_BYTE_STRIDE,
+                    member(&pointer, "byteStride"),
+                    format!("Buffer view's byteStride ({stride}) is greater than byteLength."),
+                );
+            }
+            if unsigned(view, "target") == Some(ELEMENT_ARRAY_BUFFER) {
+                ctx.emit(
+                    khronos::BUFFER_VIEW_INVALID_BYTE_STRIDE,
+                    member(&pointer, "byteStride"),
+                    "Only buffer views with raw vertex data can have byteStride.",
+                );
+            }
+        }
+    }
+}
+
+/// The bytes of a buffer view, when its buffer was read and the range fits.
+pub fn view_bytes<'c>(ctx: &'c Context, view_index: usize) -> Option<&'c [u8]> {
+    let view = ctx.items("bufferViews").get(view_index)?;
+    let buffer = ctx
+        .buffers
+        .get(unsigned(view, "buffer")? as usize)?
+        .as_ref()?;
+    let start = usize::try_from(unsigned(view, "byteOffset").unwrap_or(0)).ok()?;
+    let end = start.checked_add(usize::try_from(unsigned(view, "byteLength")?).ok()?)?;
+    buffer.get(start..end)
+}
+
+/// The MIME type an image declares: its `mimeType`, else its data URI's media type.
+pub fn declared_mime(image: &Value) -> Option<String> {
+    if let Some(m) = image.get("mimeType").and_then(Value::as_str) {
+        return Some(m.to_string());
+    }
+    let uri = image.get("uri")?.as_str()?;
+    let rest = uri.strip_prefix("data:")?;
+    Some(rest.split([';', ',']).next()?.to_string())
+}
+
+pub fn check_images(ctx: &mut Context) {
+    ctx.images = vec![None; ctx.items("images").len()];
+    ctx.image_bytes = ctx.items("images").iter().map(|_| None).collect();
+    let webp_enabled = ctx.extensions_used().contains(&"EXT_texture_webp");
+    for (i, pointer, image) in ctx.objects("images") {
+        let mime_type = image.get("mimeType").and_then(Value::as_str);
+        if let Some(m) = mime_type {
+            let allowed =
+                matches!(m, "image/png" | "image/jpeg") || (m == "image/webp" && webp_enabled);
+            if !allowed {
+                ctx.emit(
+                    khronos::VALUE_NOT_IN_LIST,
+                    member(&pointer, "mimeType"),
+                    format!("Invalid value '{m}'. Valid values are ('image/jpeg', 'image/png')."),
+                );
+            }
+        }
+        let (bytes, media_type, storage, uri, mime_pointer) =
+            if let Some(uri) = image.get("uri").and_then(Value::as_str) {
+                let uri_pointer = member(&pointer, "uri");
+                let (bytes, media, storage) = load_uri(ctx, uri, &uri_pointer);
+                let uri = (storage == "external").then(|| uri.to_string());
+                (bytes, media, storage, uri, uri_pointer)
+            } else if let Some(view) = ctx.reference(image, "bufferView", &pointer, "bufferViews") {
+                if ctx.items("bufferViews")[view].get("byteStride").is_some() {
+                    ctx.emit(
+                        khronos::IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE,
+                        member(&pointer, "bufferView"),
+                        "Buffer view used by an image must not have byteStride.",
+                    );
+                }
+                let bytes = view_bytes(ctx, view).map(|b| Bytes::Owned(b.to_vec()));
+                (
+                    bytes,
+                    None,
+                    "buffer-view",
+                    None,
+                    member(&pointer, "mimeType"),
+                )
+            } else {
+                continue;
+            };
+        let mut resource = ResourceInfo {
+            pointer: pointer.clone(),
+            storage,
+            mime_type: mime_type.map(str::to_string),
+            byte_length: bytes.as_ref().map(|b| b.len()),
+            uri,
+            image: None,
+        };
+        if let Some(bytes) = bytes {
+            let header = image_header::read(&bytes);
+            match header {
+                Ok(info) => {
+                    let found = info.format.mime_type();
+                    if let Some(media) = media_type.as_deref().filter(|m| *m != found) {
+                        ctx.emit(
+                            khronos::INVALID_URI,
+                            mime_pointer.clone(),
+                            format!("Invalid URI. Parser output: the declared media type '{media}' does not match the embedded content ({found})."),
+                        );
+                    }
+                    if let Some(declared) = mime_type.filter(|m| *m != found) {
+                        ctx.emit(
+                            khronos::IMAGE_MIME_TYPE_INVALID,
+                            mime_pointer,
+                            format!("Recognized image format '{found}' does not match declared image format '{declared}'."),
+                        );
+                    }
+                    if info.format == ImageFormat::Webp && !webp_enabled {
+                        ctx.emit(
+                            khronos::IMAGE_NON_ENABLED_MIME_TYPE,
+                            pointer.clone(),
+                            "Image format 'image/webp' not enabled (declare EXT_texture_webp).",
+                        );
+                    }
+                    if info.has_unsupported_features() {
+                        ctx.emit(
+                            khronos::IMAGE_FEATURES_UNSUPPORTED,
+                            pointer.clone(),
+                            "Image contains unsupported features like non-default colorspace information, non-square pixels, or animation.",
+                        );
+                    }
+                    if info.format != ImageFormat::Ktx2
+                        && (!info.width.is_power_of_two() || !info.height.is_power_of_two())
+                    {
+                        ctx.emit(
+                            khronos::IMAGE_NPOT_DIMENSIONS,
+                            pointer.clone(),
+                            format!(
+                                "Image has non-power-of-two dimensions: {}x{}.",
+                                info.width, info.height
+                            ),
+                        );
+                    }
+                    resource.mime_type = Some(found.to_string());
+                    resource.image = Some(info.clone());
+                    ctx.images[i] = Some(info);
+                    if ctx.options.deep {
+                        ctx.image_bytes[i] = Some(bytes);
+                    }
+                }
+                Err(HeaderError::Unrecognized) => ctx.emit(
+                    khronos::IMAGE_UNRECOGNIZED_FORMAT,
+                    pointer.clone(),
+                    "Image format not recognized.",
+                ),
+                Err(HeaderError::UnexpectedEnd) => ctx.emit(
+                    khronos::IMAGE_UNEXPECTED_EOS,
+                    pointer.clone(),
+                    "Unexpected end of image stream.",
+                ),
+                Err(HeaderError::Invalid(why)) => ctx.emit(
+                    khronos::IMAGE_DATA_INVALID,
+                    pointer.clone(),
+                    format!("Image data is invalid: {why}."),
+                ),
+            }
+        }
+        ctx.resources.push(resource);
+    }
+}

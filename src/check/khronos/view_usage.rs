@@ -1,0 +1,152 @@
+//! What each bufferView is used for — vertex data, indices, images, inverse bind matrices or
+//! other data — and the bufferView `target` that should say so (BUFFER_VIEW_TARGET_MISSING,
+//! BUFFER_VIEW_TARGET_OVERRIDE). Uses are met in the Khronos validator's link order, which
+//! decides where a conflict is reported.
+
+use crate::check::context::{elements, member, unsigned, Context};
+use crate::diagnostic::khronos;
+use crate::document::json::escape_token;
+use crate::gltf::gl;
+use serde_json::Value;
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Usage {
+    Vertex,
+    Index,
+    Image,
+    InverseBind,
+    Other,
+}
+
+impl Usage {
+    fn name(self) -> &'static str {
+        match self {
+            Usage::Vertex => "VertexBuffer",
+            Usage::Index => "IndexBuffer",
+            Usage::Image => "Image",
+            Usage::InverseBind => "IBM",
+            Usage::Other => "Other",
+        }
+    }
+}
+
+pub fn check(ctx: &mut Context) {
+    let usages = ctx
+        .items("bufferViews")
+        .iter()
+        .map(|view| match unsigned(view, "target") {
+            Some(gl::ARRAY_BUFFER) => Some(Usage::Vertex),
+            Some(gl::ELEMENT_ARRAY_BUFFER) => Some(Usage::Index),
+            _ => None,
+        })
+        .collect();
+    let mut walk = Walk { ctx, usages };
+    walk.sparse_accessors();
+    walk.images();
+    walk.meshes();
+    walk.skins();
+    walk.animations();
+}
+
+struct Walk<'c, 'a> {
+    ctx: &'c mut Context<'a>,
+    usages: Vec<Option<Usage>>,
+}
+
+impl Walk<'_, '_> {
+    fn set(&mut self, view: Option<u64>, usage: Usage, at: String) {
+        let Some(slot) = view.and_then(|v| self.usages.get_mut(v as usize)) else {
+            return;
+        };
+        match *slot {
+            None => {
+                *slot = Some(usage);
+                if matches!(usage, Usage::Vertex | Usage::Index) {
+                    self.ctx.emit(
+                        khronos::BUFFER_VIEW_TARGET_MISSING,
+                        at,
+                        "bufferView.target should be set for vertex or index data.",
+                    );
+                }
+            }
+            Some(previous) if previous != usage => self.ctx.emit(
+                khronos::BUFFER_VIEW_TARGET_OVERRIDE,
+                at,
+                format!(
+                    "Override of previously set bufferView target or usage. Initial: '{}', new: '{}'.",
+                    previous.name(),
+                    usage.name()
+                ),
+            ),
+            Some(_) => {}
+        }
+    }
+
+    /// The bufferView of the accessor that `index` names.
+    fn view_of(&self, index: Option<&Value>) -> Option<u64> {
+        let accessor = self.ctx.items("accessors").get(index?.as_u64()? as usize)?;
+        unsigned(accessor, "bufferView")
+    }
+
+    fn sparse_accessors(&mut self) {
+        for (_, pointer, accessor) in self.ctx.objects("accessors") {
+            let Some(sparse) = accessor.get("sparse") else {
+                continue;
+            };
+            for part in ["indices", "values"] {
+                let view = sparse.get(part).and_then(|p| unsigned(p, "bufferView"));
+                let at = format!("{pointer}/sparse/{part}/bufferView");
+                self.set(view, Usage::Other, at);
+            }
+        }
+    }
+
+    fn images(&mut self) {
+        for (_, pointer, image) in self.ctx.objects("images") {
+            let view = unsigned(image, "bufferView");
+            self.set(view, Usage::Image, member(&pointer, "bufferView"));
+        }
+    }
+
+    fn meshes(&mut self) {
+        for (_, pointer, mesh) in self.ctx.objects("meshes") {
+            for (p, primitive) in elements(mesh, "primitives") {
+                let at = format!("{pointer}/primitives/{p}");
+                let attributes = primitive.get("attributes").and_then(Value::as_object);
+                for (semantic, index) in attributes.into_iter().flatten() {
+                    let view = self.view_of(Some(index));
+                    let here = format!("{at}/attributes/{}", escape_token(semantic));
+                    self.set(view, Usage::Vertex, here);
+                }
+                let view = self.view_of(primitive.get("indices"));
+                self.set(view, Usage::Index, member(&at, "indices"));
+                for (t, target) in elements(primitive, "targets") {
+                    for (semantic, index) in target.as_object().into_iter().flatten() {
+                        let view = self.view_of(Some(index));
+                        let here = format!("{at}/targets/{t}/{}", escape_token(semantic));
+                        self.set(view, Usage::Vertex, here);
+                    }
+                }
+            }
+        }
+    }
+
+    fn skins(&mut self) {
+        for (_, pointer, skin) in self.ctx.objects("skins") {
+            let view = self.view_of(skin.get("inverseBindMatrices"));
+            let at = member(&pointer, "inverseBindMatrices");
+            self.set(view, Usage::InverseBind, at);
+        }
+    }
+
+    fn animations(&mut self) {
+        for (_, pointer, animation) in self.ctx.objects("animations") {
+            for (s, sampler) in elements(animation, "samplers") {
+                for key in ["input", "output"] {
+                    let view = self.view_of(sampler.get(key));
+                    self.set(view, Usage::Other, format!("{pointer}/samplers/{s}/{key}"));
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,89 @@
+//! The registry of every code gltfmat can emit: the Khronos catalogue plus gltfmat's own rules.
+//! `gltfmat rules`, `gltfmat explain` and the SARIF rule list are generated from it.
+
+use crate::diagnostic::{khronos, Code, Severity};
+
+/// Who defines a code.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Origin {
+    /// A Khronos glTF-Validator code, emitted with the same meaning.
+    Khronos,
+    /// A gltfmat rule (not emitted in `--profile khronos`).
+    Gltfmat,
+}
+
+/// What the registry knows of one code.
+#[derive(Debug, Clone, Copy)]
+pub struct CodeInfo {
+    /// The code and its default severity.
+    pub code: Code,
+    /// The Khronos group, or the gltfmat rule group (`materials`, `plausibility`, …).
+    pub group: &'static str,
+    /// One line: the Khronos message template, or the rule's summary.
+    pub summary: &'static str,
+    /// The full documentation (What it does / Why / Example), for gltfmat rules.
+    pub doc: &'static str,
+    /// Who defines it.
+    pub origin: Origin,
+}
+
+impl CodeInfo {
+    /// The code's default severity.
+    pub fn severity(&self) -> Severity {
+        self.code.default_severity()
+    }
+}
+
+const fn from_catalogue(entry: &khronos::Entry) -> CodeInfo {
+    CodeInfo {
+        code: entry.code,
+        group: entry.group,
+        summary: entry.template,
+        doc: "",
+        origin: Origin::Khronos,
+    }
+}
+
+/// Every code, Khronos ones first.
+pub fn all() -> impl Iterator<Item = CodeInfo> {
+    khronos::CATALOGUE
+        .iter()
+        .map(from_catalogue)
+        .chain(super::rules::RULES.iter().map(|rule| rule.info))
+}
+
+/// The registered code named `code` (case-insensitive).
+pub fn find(code: &str) -> Option<CodeInfo> {
+    all().find(|info| info.code.name().eq_ignore_ascii_case(code))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashSet;
+
+    #[test]
+    fn codes_are_unique() {
+        let mut seen = HashSet::new();
+        for info in all() {
+            assert!(
+                seen.insert(info.code.name()),
+                "{} is registered twice",
+                info.code
+            );
+        }
+    }
+
+    #[test]
+    fn every_gltfmat_rule_is_documented() {
+        for info in all().filter(|i| i.origin == Origin::Gltfmat) {
+            for heading in ["What it does", "Why", "Example"] {
+                assert!(
+                    info.doc.contains(heading),
+                    "{} lacks '{heading}'",
+                    info.code
+                );
+            }
+        }
+    }
+}

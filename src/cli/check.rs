@@ -1,0 +1,216 @@
+//! `gltfmat check FILES-OR-FOLDERS…`: options from flags and gltfmat.toml, files checked in
+//! parallel, one rendering of all reports.
+
+use crate::common::{Failure, Outcome};
+use crate::config;
+use crate::rules::print;
+use gltfmat::check::registry;
+use gltfmat::report::{render, Format, Style};
+use gltfmat::{check_bytes, check_path, CheckOptions, NoResources, Profile, Report};
+use rayon::prelude::*;
+use std::io::{IsTerminal, Read};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(clap::Args)]
+pub struct CheckArgs {
+    /// Files or folders; folders are walked for .gltf and .glb.
+    #[arg(required = true)]
+    inputs: Vec<PathBuf>,
+    #[arg(long, value_enum, default_value = "human")]
+    format: FormatArg,
+    /// `khronos` reports exactly what the Khronos glTF-Validator reports.
+    #[arg(long, value_enum)]
+    profile: Option<ProfileArg>,
+    /// Never report this code (repeatable).
+    #[arg(long)]
+    ignore: Vec<String>,
+    /// Report only this code (repeatable).
+    #[arg(long)]
+    only: Vec<String>,
+    /// Override a severity: CODE=error|warning|info|hint (repeatable).
+    #[arg(long = "severity")]
+    severities: Vec<String>,
+    /// Stop after N issues per file and mark the report truncated.
+    #[arg(long)]
+    max_issues: Option<usize>,
+    /// A gltfmat.toml to use instead of the one found upward from the current folder.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Decode textures for the pixel rules.
+    #[arg(long)]
+    deep: bool,
+    /// Skip a rule group, e.g. `plausibility` (repeatable; groups are listed by `gltfmat rules`).
+    #[arg(long = "disable-group")]
+    disabled_groups: Vec<String>,
+    /// No progress bar (it is shown only on a terminal, on stderr).
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum FormatArg {
+    /// `path:line:col: severity[CODE]: message` with a source snippet.
+    Human,
+    /// Khronos validation report shape (an array for several inputs).
+    Json,
+    /// One Khronos-shaped report per line.
+    Jsonl,
+    /// SARIF 2.1.0.
+    Sarif,
+    /// GitHub Actions workflow commands (`::error file=…`).
+    Github,
+}
+
+impl FormatArg {
+    fn format(self) -> Format {
+        match self {
+            FormatArg::Human => Format::Human,
+            FormatArg::Json => Format::Json,
+            FormatArg::Jsonl => Format::Jsonl,
+            FormatArg::Sarif => Format::Sarif,
+            FormatArg::Github => Format::Github,
+        }
+    }
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum ProfileArg {
+    Default,
+    Khronos,
+}
+
+pub fn run(args: CheckArgs) -> Outcome {
+    let options = build_options(&args).map_err(Failure::usage)?;
+    let mut unreadable = false;
+    let mut files = Vec::new();
+    for input in &args.inputs {
+        if input.as_os_str() == "-" || input.is_file() {
+            files.push(input.clone());
+        } else if input.is_dir() {
+            collect_assets(input, &mut files);
+        } else {
+            eprintln!("gltfmat: {}: no such file or folder", input.display());
+            unreadable = true;
+        }
+    }
+    // Files are checked in parallel; reports keep the input order. The progress bar goes to
+    // stderr, only on a terminal and without --quiet.
+    let progress = if args.quiet || !std::io::stderr().is_terminal() || files.len() < 2 {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::new(files.len() as u64)
+    };
+    let results: Vec<Result<Report, String>> = files
+        .par_iter()
+        .map(|file| {
+            let result = check_file(file, &options);
+            progress.inc(1);
+            result
+        })
+        .collect();
+    progress.finish_and_clear();
+    let mut reports = Vec::new();
+    for (file, result) in files.iter().zip(results) {
+        match result {
+            Ok(report) => reports.push(report),
+            Err(message) => {
+                eprintln!("gltfmat: {}: {message}", file.display());
+                unreadable = true;
+            }
+        }
+    }
+    let colour = args.format == FormatArg::Human
+        && std::io::stdout().is_terminal()
+        && std::env::var_os("NO_COLOR").is_none();
+    print(&render(args.format.format(), &reports, &Style::new(colour)));
+    Ok(if unreadable {
+        ExitCode::from(2)
+    } else if reports.iter().any(Report::has_errors) {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+fn check_file(path: &Path, options: &CheckOptions) -> Result<Report, String> {
+    if path.as_os_str() == "-" {
+        let mut bytes = Vec::new();
+        std::io::stdin()
+            .read_to_end(&mut bytes)
+            .map_err(|e| e.to_string())?;
+        return Ok(check_bytes("-", bytes, &NoResources, options));
+    }
+    check_path(path, options).map_err(|e| match e {
+        gltfmat::Error::Io { source, .. } => source.to_string(),
+        other => other.to_string(),
+    })
+}
+
+/// Every .gltf/.glb below a folder, sorted, without following symlinked folders.
+fn collect_assets(folder: &Path, out: &mut Vec<PathBuf>) {
+    let mut stack = vec![folder.to_path_buf()];
+    let mut found = Vec::new();
+    while let Some(dir) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            let Ok(kind) = entry.file_type() else {
+                continue;
+            };
+            if kind.is_dir() {
+                stack.push(path);
+            } else if matches!(
+                path.extension().and_then(|e| e.to_str()),
+                Some("gltf" | "glb")
+            ) {
+                found.push(path);
+            }
+        }
+    }
+    found.sort();
+    out.extend(found);
+}
+
+fn build_options(args: &CheckArgs) -> Result<CheckOptions, String> {
+    let config = match &args.config {
+        Some(path) => config::load(path)?,
+        None => match config::find_upward() {
+            Some(path) => config::load(&path)?,
+            None => config::Config::default(),
+        },
+    };
+    let mut options = config.into_options()?;
+    if let Some(profile) = args.profile {
+        options.profile = match profile {
+            ProfileArg::Default => Profile::Default,
+            ProfileArg::Khronos => Profile::Khronos,
+        };
+    }
+    options.ignore.extend(args.ignore.iter().cloned());
+    options.only.extend(args.only.iter().cloned());
+    for pair in &args.severities {
+        let (code, level) = config::parse_severity(pair)?;
+        options.severity_overrides.insert(code, level);
+    }
+    if let Some(n) = args.max_issues {
+        options.max_issues = n;
+    }
+    options.deep |= args.deep;
+    options
+        .disabled_groups
+        .extend(args.disabled_groups.iter().cloned());
+    for code in options
+        .ignore
+        .iter()
+        .chain(&options.only)
+        .chain(options.severity_overrides.keys())
+    {
+        if registry::find(code).is_none() {
+            return Err(format!("unknown code '{code}' (see `gltfmat rules`)"));
+        }
+    }
+    Ok(options)
+}

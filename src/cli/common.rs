@@ -1,0 +1,45 @@
+//! What every subcommand shares: how a failure becomes a message and an exit status.
+
+use std::process::ExitCode;
+
+/// Why a subcommand stopped: printed as `gltfmat: MESSAGE` on stderr.
+pub struct Failure {
+    message: String,
+    status: u8,
+}
+
+impl Failure {
+    /// A usage error or an unreadable input: exit status 2.
+    pub fn usage(message: impl Into<String>) -> Failure {
+        Failure {
+            message: message.into(),
+            status: 2,
+        }
+    }
+
+    /// The input was read but the job was refused (the asset fails, a proof fails): status 1.
+    pub fn refused(message: impl Into<String>) -> Failure {
+        Failure {
+            message: message.into(),
+            status: 1,
+        }
+    }
+
+    /// Prints the message and returns the exit status.
+    pub fn report(self) -> ExitCode {
+        eprintln!("gltfmat: {}", self.message);
+        ExitCode::from(self.status)
+    }
+}
+
+impl From<gltfmat::Error> for Failure {
+    fn from(error: gltfmat::Error) -> Failure {
+        match error {
+            gltfmat::Error::Upgrade(_) => Failure::refused(error.to_string()),
+            _ => Failure::usage(error.to_string()),
+        }
+    }
+}
+
+/// What a subcommand returns.
+pub type Outcome = Result<ExitCode, Failure>;

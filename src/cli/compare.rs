@@ -1,0 +1,122 @@
+//! `gltfmat compare A B`: ΔE2000 of paired materials, human or JSON, optional heat maps.
+
+use crate::common::{Failure, Outcome};
+use gltfmat::shade::compare::DIRECTIONS;
+use gltfmat::shade::render::heatmap;
+use gltfmat::{compare, CompareOptions};
+use serde_json::json;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(clap::Args)]
+pub struct CompareArgs {
+    /// Two assets (glTF 2.0, or glTF 1.0 with PBR-draft materials).
+    a: PathBuf,
+    b: PathBuf,
+    /// Pair material I of A with material J of B (repeatable; default: same index).
+    #[arg(long = "material-map", value_name = "I=J")]
+    material_map: Vec<String>,
+    /// Largest ΔE2000 allowed (1.0 ≈ one just-noticeable difference).
+    #[arg(long, default_value_t = 1.0)]
+    threshold: f64,
+    /// UV grid per side (0: the finest texture resolution involved, at least 16).
+    #[arg(long, default_value_t = 0)]
+    grid: u32,
+    #[arg(long, value_enum, default_value = "human")]
+    format: CompareFormat,
+    /// Write a ΔE heat map per pair (black 0 → red at the threshold); `-N` is added before
+    /// the extension when several pairs are compared.
+    #[arg(long)]
+    heatmap: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum CompareFormat {
+    Human,
+    Json,
+}
+
+pub fn print_human(outcomes: &[gltfmat::Outcome], threshold: f64) {
+    for o in outcomes {
+        let r = &o.result;
+        let verdict = if r.max <= threshold {
+            "same"
+        } else {
+            "DIFFERENT"
+        };
+        let (tv, tl, phi) = r.worst.directions;
+        println!(
+            "material {} ({}) ↔ {} ({}): {verdict}: ΔE2000 max {:.4}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}), θv {tv}°, θl {tl}°, φ {phi}°; {}² grid × {} directions = {} samples",
+            o.a.0, o.a.1, o.b.0, o.b.1, r.max, r.p99, r.mean, r.worst.uv[0], r.worst.uv[1], r.grid, DIRECTIONS.len(), r.samples
+        );
+    }
+}
+
+fn parse_map(entries: &[String]) -> Result<Vec<(usize, usize)>, String> {
+    entries
+        .iter()
+        .map(|e| {
+            let (i, j) = e
+                .split_once('=')
+                .ok_or_else(|| format!("--material-map expects I=J, got '{e}'"))?;
+            let parse = |s: &str| {
+                s.trim()
+                    .parse::<usize>()
+                    .map_err(|_| format!("--material-map: '{s}' is not an index"))
+            };
+            Ok((parse(i)?, parse(j)?))
+        })
+        .collect()
+}
+
+pub fn run(args: CompareArgs) -> Outcome {
+    let mut options = CompareOptions::default();
+    options.pairs = parse_map(&args.material_map).map_err(Failure::usage)?;
+    options.grid = args.grid;
+    let outcomes = compare(&args.a, &args.b, &options)?;
+    if let Some(path) = &args.heatmap {
+        for (k, o) in outcomes.iter().enumerate() {
+            let target = if outcomes.len() == 1 {
+                path.clone()
+            } else {
+                path.with_file_name(format!(
+                    "{}-{k}.png",
+                    path.file_stem()
+                        .and_then(|s| s.to_str())
+                        .unwrap_or("heatmap")
+                ))
+            };
+            let image = heatmap(&o.result.per_texel, o.result.grid, args.threshold);
+            image
+                .save(&target)
+                .map_err(|e| Failure::usage(format!("{}: {e}", target.display())))?;
+        }
+    }
+    if args.format == CompareFormat::Json {
+        let list: Vec<_> = outcomes
+            .iter()
+            .map(|o| {
+                json!({"a": o.a.0, "aName": o.a.1, "b": o.b.0, "bName": o.b.1,
+                    "max": o.result.max, "p99": o.result.p99, "mean": o.result.mean,
+                    "worst": {"uv": o.result.worst.uv, "thetaV": o.result.worst.directions.0,
+                              "thetaL": o.result.worst.directions.1, "phi": o.result.worst.directions.2},
+                    "grid": o.result.grid, "samples": o.result.samples,
+                    "pass": o.result.max <= args.threshold})
+            })
+            .collect();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&list).unwrap_or_default()
+        );
+    } else {
+        print_human(&outcomes, args.threshold);
+    }
+    if outcomes.is_empty() {
+        return Err(Failure::usage("no material pairs to compare"));
+    }
+    Ok(if outcomes.iter().all(|o| o.result.max <= args.threshold) {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}

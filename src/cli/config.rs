@@ -1,0 +1,88 @@
+//! `gltfmat.toml`: the same keys as the command-line options.
+//!
+//! ```toml
+//! profile = "default"      # or "khronos"
+//! ignore = ["UNUSED_OBJECT"]
+//! only = []
+//! max-issues = 100
+//! deep = false
+//! disabled-groups = ["plausibility"]
+//! [severity]
+//! IMAGE_NPOT_DIMENSIONS = "warning"
+//! ```
+
+use gltfmat::{CheckOptions, Profile, Severity};
+use serde::Deserialize;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct Config {
+    profile: Option<String>,
+    #[serde(default)]
+    ignore: Vec<String>,
+    #[serde(default)]
+    only: Vec<String>,
+    #[serde(default)]
+    severity: HashMap<String, String>,
+    max_issues: Option<usize>,
+    #[serde(default)]
+    deep: bool,
+    #[serde(default)]
+    disabled_groups: Vec<String>,
+}
+
+pub const FILE_NAME: &str = "gltfmat.toml";
+
+/// The nearest gltfmat.toml in the current folder or one of its parents.
+pub fn find_upward() -> Option<PathBuf> {
+    let mut dir = std::env::current_dir().ok()?;
+    loop {
+        let candidate = dir.join(FILE_NAME);
+        if candidate.is_file() {
+            return Some(candidate);
+        }
+        if !dir.pop() {
+            return None;
+        }
+    }
+}
+
+pub fn load(path: &Path) -> Result<Config, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+pub fn parse_severity(pair: &str) -> Result<(String, Severity), String> {
+    let (code, level) = pair
+        .split_once('=')
+        .ok_or_else(|| format!("expected CODE=LEVEL, got '{pair}'"))?;
+    let level = Severity::parse(level)
+        .ok_or_else(|| format!("unknown severity '{level}' (error, warning, info, hint)"))?;
+    Ok((code.to_string(), level))
+}
+
+impl Config {
+    pub fn into_options(self) -> Result<CheckOptions, String> {
+        let profile = match self.profile.as_deref() {
+            None | Some("default") => Profile::Default,
+            Some("khronos") => Profile::Khronos,
+            Some(other) => return Err(format!("unknown profile '{other}' in {FILE_NAME}")),
+        };
+        let mut severity_overrides = HashMap::new();
+        for (code, level) in self.severity {
+            let (code, level) = parse_severity(&format!("{code}={level}"))?;
+            severity_overrides.insert(code, level);
+        }
+        Ok(CheckOptions {
+            profile,
+            ignore: self.ignore,
+            only: self.only,
+            severity_overrides,
+            max_issues: self.max_issues.unwrap_or(0),
+            deep: self.deep,
+            disabled_groups: self.disabled_groups,
+        })
+    }
+}

@@ -1,0 +1,55 @@
+//! The `gltfmat` command line: one file per subcommand, all on top of the library's façade.
+
+mod check;
+mod common;
+mod compare;
+mod config;
+mod lut;
+mod render;
+mod rules;
+mod upgrade;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "gltfmat",
+    version,
+    about = "glTF material checker, 1.0 upgrader and shading evaluator"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Check .gltf/.glb files or folders (use `-` for stdin).
+    Check(check::CheckArgs),
+    /// Convert a glTF 1.0 asset (with WEB3D/KHR/FRAUNHOFER/EXT PBR materials) to glTF 2.0.
+    Upgrade(upgrade::UpgradeArgs),
+    /// Render a material ball (or --all materials) to PNG.
+    Render(render::RenderArgs),
+    /// Do two materials render the same? ΔE2000 over a UV grid and a set of directions.
+    Compare(compare::CompareArgs),
+    /// Export a lookup table of the shading evaluator (the sheen albedo E).
+    Lut(lut::LutArgs),
+    /// List every code gltfmat can report.
+    Rules,
+    /// Show the full documentation of one code.
+    Explain { code: String },
+}
+
+fn main() -> ExitCode {
+    let outcome = match Cli::parse().command {
+        Command::Check(args) => check::run(args),
+        Command::Upgrade(args) => upgrade::run(args),
+        Command::Lut(args) => lut::run(args),
+        Command::Compare(args) => compare::run(args),
+        Command::Render(args) => render::run(args),
+        Command::Rules => rules::list(),
+        Command::Explain { code } => rules::explain(&code),
+    };
+    outcome.unwrap_or_else(common::Failure::report)
+}

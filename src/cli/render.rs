@@ -1,0 +1,40 @@
+//! `gltfmat render ASSET`: a material ball, or a contact sheet of every material, to PNG.
+
+use crate::common::{Failure, Outcome};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(clap::Args)]
+pub struct RenderArgs {
+    asset: PathBuf,
+    /// Material index or name (default: the first).
+    #[arg(long)]
+    material: Option<String>,
+    /// Every material on one contact sheet, each with its name (also listed on stdout).
+    #[arg(long)]
+    all: bool,
+    #[arg(short, long, default_value = "material.png")]
+    output: PathBuf,
+    /// Pixels per side (per material with --all).
+    #[arg(long, default_value_t = 512)]
+    size: u32,
+}
+
+pub fn run(args: RenderArgs) -> Outcome {
+    let mut options = gltfmat::RenderOptions::default();
+    options.material = args.material.clone();
+    options.all = args.all;
+    options.size = args.size;
+    let (image, drawn) = gltfmat::render(&args.asset, &options)?;
+    for (k, (i, name)) in drawn.iter().enumerate() {
+        println!(
+            "cell {k} (row {}, column {}): material {i} '{name}'",
+            k / 4,
+            k % 4
+        );
+    }
+    image
+        .save(&args.output)
+        .map_err(|e| Failure::usage(format!("{}: {e}", args.output.display())))?;
+    Ok(ExitCode::SUCCESS)
+}

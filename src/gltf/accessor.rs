@@ -1,0 +1,58 @@
+//! Accessor component types and element types, as glTF (1.0 and 2.0) defines them: shared by
+//! the checker's accessor passes and the converter's data repacking.
+
+pub use super::gl::{BYTE, FLOAT, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT};
+
+/// Bytes per component of a `componentType`.
+pub fn component_size(component_type: u64) -> Option<usize> {
+    match component_type {
+        BYTE | UNSIGNED_BYTE => Some(1),
+        SHORT | UNSIGNED_SHORT => Some(2),
+        UNSIGNED_INT | FLOAT => Some(4),
+        _ => None,
+    }
+}
+
+/// Components per element of a `type` (`"VEC3"` → 3).
+pub fn component_count(kind: &str) -> Option<usize> {
+    match kind {
+        "SCALAR" => Some(1),
+        "VEC2" => Some(2),
+        "VEC3" => Some(3),
+        "VEC4" | "MAT2" => Some(4),
+        "MAT3" => Some(9),
+        "MAT4" => Some(16),
+        _ => None,
+    }
+}
+
+/// One little-endian component as stored (integers not normalised); `bytes` holds at least
+/// `component_size(component_type)` bytes, and an unknown type reads as a float.
+#[inline(always)]
+pub fn decode_component(component_type: u64, bytes: &[u8]) -> f64 {
+    let word = |n: usize| {
+        let mut b = [0u8; 4];
+        b[..n].copy_from_slice(&bytes[..n]);
+        b
+    };
+    match component_type {
+        BYTE => f64::from(bytes[0] as i8),
+        UNSIGNED_BYTE => f64::from(bytes[0]),
+        SHORT => f64::from(i16::from_le_bytes([bytes[0], bytes[1]])),
+        UNSIGNED_SHORT => f64::from(u16::from_le_bytes([bytes[0], bytes[1]])),
+        UNSIGNED_INT => f64::from(u32::from_le_bytes(word(4))),
+        _ => f64::from(f32::from_le_bytes(word(4))),
+    }
+}
+
+/// The glTF 2.0 normalisation of a `normalized` integer component (§3.11): the value a shader
+/// sees. Floats and unnormalised integers are unchanged.
+pub fn normalise(component_type: u64) -> fn(f64) -> f64 {
+    match component_type {
+        BYTE => |v| (v / 127.0).max(-1.0),
+        UNSIGNED_BYTE => |v| v / 255.0,
+        SHORT => |v| (v / 32767.0).max(-1.0),
+        UNSIGNED_SHORT => |v| v / 65535.0,
+        _ => |v| v,
+    }
+}

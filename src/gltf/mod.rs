@@ -1,0 +1,25 @@
+//! glTF's own vocabulary, written once: GL enums, accessor component types and decoding,
+//! colour transfer functions, texture slots. No I/O and no diagnostics.
+
+pub mod accessor;
+pub mod color;
+pub mod gl;
+pub(crate) mod material;
+
+use serde_json::Value;
+
+/// A non-negative integer member (an index or a count), also when written as a float (`1.0`),
+/// as glTF's JSON allows.
+pub fn unsigned(object: &Value, key: &str) -> Option<u64> {
+    as_index(object.get(key)?)
+}
+
+/// A JSON value read as a glTF index: a non-negative integer, also when written as a float.
+pub fn as_index(value: &Value) -> Option<u64> {
+    value.as_u64().or_else(|| {
+        value
+            .as_f64()
+            .filter(|f| f.fract() == 0.0 && *f >= 0.0)
+            .map(|f| f as u64)
+    })
+}

@@ -1,0 +1,194 @@
+//! Materials of whole assets, paired and compared or rendered: what `compare`, `render` and
+//! `upgrade --verify` share, so that no caller builds a shader or a sheen table by hand.
+
+use super::brdf::SheenVisibility;
+use super::compare::{self as evaluate, Comparison};
+use super::load::gltf2_materials;
+use super::material::Shader;
+use super::render::{contact_sheet, material_ball};
+use super::sample::MaterialSource;
+use super::sheen_table::SheenTable;
+use crate::document::uri::{FolderResources, ResourceLoader};
+use crate::upgrade::{legacy_materials, UpgradeError};
+use crate::Error;
+use image::RgbImage;
+use std::path::Path;
+
+/// A material's name with what the evaluator samples (`None`: a 1.0 material that is not a
+/// PBR-draft material, so it has no model to evaluate).
+pub type Named = (String, Option<MaterialSource>);
+
+/// An asset's materials: a 1.0 asset's PBR-draft materials, otherwise a 2.0 asset's.
+pub fn load_materials(
+    bytes: Vec<u8>,
+    name: &str,
+    loader: &dyn ResourceLoader,
+) -> Result<Vec<Named>, String> {
+    match legacy_materials(&bytes, loader) {
+        Ok(materials) => Ok(materials),
+        Err(UpgradeError::NotGltf1(_)) => {
+            let materials = gltf2_materials(bytes, name, loader)?;
+            Ok(materials.into_iter().map(|(n, m)| (n, Some(m))).collect())
+        }
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+/// A shader whose sheen table covers the materials (a 16² table only when one has sheen).
+pub fn shader_for<'m>(materials: impl IntoIterator<Item = &'m MaterialSource>) -> Shader {
+    let sheen = materials.into_iter().any(|m| match m {
+        MaterialSource::Gltf2(prepared) => prepared.has_sheen,
+        MaterialSource::Legacy { .. } => false,
+    });
+    Shader::new(SheenTable::compute(
+        if sheen { 16 } else { 2 },
+        SheenVisibility::Charlie,
+    ))
+}
+
+/// One compared pair of materials.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// Index and name of the material in the first asset.
+    pub a: (usize, String),
+    /// Index and name of the material in the second asset.
+    pub b: (usize, String),
+    /// The ΔE2000 figures.
+    pub result: Comparison,
+}
+
+/// Compares each pair `(i, j)` of `a[i]` with `b[j]`; pairs with a missing side are skipped.
+pub fn compare_pairs(
+    a: &[Named],
+    b: &[Named],
+    pairs: &[(usize, usize)],
+    grid: u32,
+) -> Vec<Outcome> {
+    let shader = shader_for(a.iter().chain(b).filter_map(|(_, m)| m.as_ref()));
+    pairs
+        .iter()
+        .filter_map(|&(i, j)| {
+            let (name_a, Some(ma)) = a.get(i)? else {
+                return None;
+            };
+            let (name_b, Some(mb)) = b.get(j)? else {
+                return None;
+            };
+            Some(Outcome {
+                a: (i, name_a.clone()),
+                b: (j, name_b.clone()),
+                result: evaluate::compare(&shader, ma, mb, grid),
+            })
+        })
+        .collect()
+}
+
+/// Which materials [`compare`] pairs, and how finely it samples them.
+#[derive(Debug, Clone, Default)]
+#[non_exhaustive]
+pub struct CompareOptions {
+    /// Pairs `(i, j)`: material `i` of the first asset with material `j` of the second.
+    /// Empty: every index both assets have, with itself.
+    pub pairs: Vec<(usize, usize)>,
+    /// UV grid per side; 0 picks the finest texture resolution involved (at least 16).
+    pub grid: u32,
+}
+
+/// Compares the materials of two assets (glTF 2.0, or glTF 1.0 with PBR-draft materials),
+/// each read with its own folder's resources.
+///
+/// ```
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let same = "fixtures/valid/sheen-triangle.gltf";
+/// let outcomes = gltfmat::compare(same, same, &gltfmat::CompareOptions::default())?;
+/// assert!(outcomes.iter().all(|o| o.result.max == 0.0));
+/// # Ok(()) }
+/// ```
+pub fn compare(
+    a: impl AsRef<Path>,
+    b: impl AsRef<Path>,
+    options: &CompareOptions,
+) -> Result<Vec<Outcome>, Error> {
+    let a = materials_of(a.as_ref())?;
+    let b = materials_of(b.as_ref())?;
+    let pairs = if options.pairs.is_empty() {
+        (0..a.len().min(b.len())).map(|i| (i, i)).collect()
+    } else {
+        options.pairs.clone()
+    };
+    Ok(compare_pairs(&a, &b, &pairs, options.grid))
+}
+
+/// The materials of an asset on disk, its resources read from its folder.
+pub fn materials_of(path: &Path) -> Result<Vec<Named>, Error> {
+    let bytes = std::fs::read(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let loader = FolderResources::beside(path);
+    load_materials(bytes, &path.display().to_string(), &loader).map_err(|reason| Error::Unusable {
+        path: path.to_path_buf(),
+        reason,
+    })
+}
+
+/// What [`render`] draws.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct RenderOptions {
+    /// A material index or name; `None`: the first.
+    pub material: Option<String>,
+    /// Every material on one contact sheet (four to a row).
+    pub all: bool,
+    /// Pixels per side (per material with `all`), clamped to 8–4096.
+    pub size: u32,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        RenderOptions {
+            material: None,
+            all: false,
+            size: 512,
+        }
+    }
+}
+
+/// Renders a material ball (or a contact sheet of every material) of an asset; returns the
+/// picture and the `(index, name)` of each material drawn, in cell order.
+pub fn render(
+    path: impl AsRef<Path>,
+    options: &RenderOptions,
+) -> Result<(RgbImage, Vec<(usize, String)>), Error> {
+    let path = path.as_ref();
+    let materials = materials_of(path)?;
+    let chosen: Vec<(usize, &String, &MaterialSource)> = materials
+        .iter()
+        .enumerate()
+        .filter_map(|(i, (name, m))| Some((i, name, m.as_ref()?)))
+        .filter(|(i, name, _)| match (&options.material, options.all) {
+            (_, true) | (None, false) => true,
+            (Some(wanted), false) => wanted == *name || wanted.parse() == Ok(*i),
+        })
+        .take(if options.all { usize::MAX } else { 1 })
+        .collect();
+    let Some(first) = chosen.first() else {
+        return Err(Error::Unusable {
+            path: path.to_path_buf(),
+            reason: "no such material to render".into(),
+        });
+    };
+    let shader = shader_for(chosen.iter().map(|(_, _, m)| *m));
+    let size = options.size.clamp(8, 4096);
+    let image = if options.all {
+        let named: Vec<(&str, &MaterialSource)> = chosen
+            .iter()
+            .map(|(_, name, m)| (name.as_str(), *m))
+            .collect();
+        contact_sheet(&shader, &named, size)
+    } else {
+        material_ball(&shader, first.2, size)
+    };
+    let drawn = chosen.iter().map(|(i, n, _)| (*i, (*n).clone())).collect();
+    Ok((image, drawn))
+}
