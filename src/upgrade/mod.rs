@@ -11,12 +11,12 @@
 //! accessors of different strides, at the price of de-interleaving interleaved vertices.
 
 pub mod binary;
+mod builder;
+mod convert;
 mod data;
-mod materials;
 pub mod output;
 mod rebake;
 mod source;
-mod structure;
 
 use crate::document::uri::ResourceLoader;
 use crate::legacy::pbr;
@@ -121,9 +121,7 @@ pub fn upgrade(
     options: &UpgradeOptions,
 ) -> Result<Upgraded, UpgradeError> {
     let source = source::read(bytes, loader)?;
-    let mut build = structure::Builder::new(&source, options);
-    build.run()?;
-    Ok(build.finish())
+    convert::run(builder::Builder::new(&source, options))
 }
 
 /// The PBR-draft materials of a glTF 1.0 asset as the shading evaluator samples them (their

@@ -1,0 +1,274 @@
+//! The 2.0 asset under construction, shared by every conversion step in `convert/`: 1.0 ids
+//! become indices (the id becomes the name when there is none), collections are appended to,
+//! data is repacked into one binary, and every decision is noted.
+
+use super::binary::Binary;
+use super::data::{self, Role};
+use super::source::Source;
+use super::{EncodedImage, Note, NoteKind, UpgradeError, UpgradeOptions, Upgraded};
+use crate::gltf::gl::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
+use serde_json::{json, Map, Value};
+use std::collections::HashMap;
+
+/// Dictionaries whose objects map one-to-one onto 2.0 arrays, in output order.
+const MAPPED: &[&str] = &[
+    "samplers",
+    "images",
+    "textures",
+    "materials",
+    "meshes",
+    "cameras",
+    "nodes",
+    "animations",
+    "scenes",
+];
+
+/// The 2.0 asset under construction: collections by name, the 1.0 id → 2.0 index maps, the
+/// output binary and the conversion report.
+pub struct Builder<'s, 'a> {
+    pub(in crate::upgrade) source: &'s Source<'a>,
+    pub(in crate::upgrade) options: &'s UpgradeOptions,
+    pub(in crate::upgrade) index: HashMap<(&'static str, String), usize>,
+    pub(in crate::upgrade) arrays: HashMap<&'static str, Vec<Value>>,
+    pub(in crate::upgrade) images: Vec<EncodedImage>,
+    pub(in crate::upgrade) binary: Binary,
+    pub(in crate::upgrade) packed_accessors: HashMap<(String, Role), usize>,
+    pub(in crate::upgrade) report: Vec<Note>,
+}
+
+/// `/collection/id` with the id escaped as a JSON pointer token.
+pub fn pointer(collection: &str, id: &str) -> String {
+    format!("/{collection}/{}", crate::document::json::escape_token(id))
+}
+
+/// A 1.0 list of ids.
+pub fn id_list(value: Option<&Value>) -> Vec<String> {
+    value
+        .and_then(Value::as_array)
+        .map(|a| {
+            a.iter()
+                .filter_map(Value::as_str)
+                .map(str::to_string)
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+impl<'s, 'a> Builder<'s, 'a> {
+    pub fn new(source: &'s Source<'a>, options: &'s UpgradeOptions) -> Self {
+        let mut index = HashMap::new();
+        for collection in MAPPED {
+            for (i, (id, _)) in source.dictionary(collection).into_iter().enumerate() {
+                index.insert((*collection, id.to_string()), i);
+            }
+        }
+        Builder {
+            source,
+            options,
+            index,
+            arrays: HashMap::new(),
+            images: Vec::new(),
+            // Repacked data is about the size of the input buffers: reserve it once.
+            binary: Binary::default(),
+            packed_accessors: HashMap::new(),
+            report: Vec::new(),
+        }
+    }
+
+    pub fn note(&mut self, pointer: impl Into<String>, kind: NoteKind, text: impl Into<String>) {
+        self.report.push(Note {
+            pointer: pointer.into(),
+            kind,
+            text: text.into(),
+        });
+    }
+
+    /// The 2.0 index of a 1.0 id in a mapped collection.
+    pub fn index_of(&self, collection: &'static str, id: Option<&Value>) -> Option<usize> {
+        let id = id?.as_str()?;
+        self.index.get(&(collection, id.to_string())).copied()
+    }
+
+    pub(in crate::upgrade) fn push(&mut self, collection: &'static str, value: Value) -> usize {
+        let array = self.arrays.entry(collection).or_default();
+        array.push(value);
+        array.len() - 1
+    }
+
+    pub(in crate::upgrade) fn named(id: &str, object: &Value) -> Map<String, Value> {
+        let mut out = Map::new();
+        let name = object.get("name").and_then(Value::as_str).unwrap_or(id);
+        out.insert("name".into(), json!(name));
+        if let Some(extras) = object.get("extras") {
+            out.insert("extras".into(), extras.clone());
+        }
+        out
+    }
+
+    /// Adds an image (and returns its index); `stem` names its file in `.gltf` output.
+    pub fn add_image(
+        &mut self,
+        json: Map<String, Value>,
+        bytes: Vec<u8>,
+        mime_type: String,
+        stem: &str,
+    ) -> usize {
+        let extension = mime_type
+            .rsplit('/')
+            .next()
+            .unwrap_or("bin")
+            .replace("jpeg", "jpg");
+        let safe: String = stem
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        let file_name = format!("{}-{safe}.{extension}", self.images.len());
+        self.images.push(EncodedImage {
+            bytes,
+            mime_type,
+            file_name,
+        });
+        self.push("images", Value::Object(json))
+    }
+
+    /// A texture reading `image` with the sampler of 1.0 texture `like` (for rebaked images).
+    pub fn add_texture(&mut self, image: usize, like: Option<usize>, name: String) -> usize {
+        let mut out = Map::new();
+        out.insert("name".into(), json!(name));
+        let sampler =
+            like.and_then(|t| self.arrays.get("textures")?.get(t)?.get("sampler").cloned());
+        if let Some(sampler) = sampler {
+            out.insert("sampler".into(), sampler);
+        }
+        out.insert("source".into(), json!(image));
+        self.push("textures", Value::Object(out))
+    }
+
+    /// The image a 2.0 texture reads.
+    pub fn texture_image(&self, texture: usize) -> Option<&EncodedImage> {
+        let source = self
+            .arrays
+            .get("textures")?
+            .get(texture)?
+            .get("source")?
+            .as_u64()?;
+        self.images.get(source as usize)
+    }
+
+    /// Repacks a 1.0 accessor for a role (once per role) and returns its 2.0 index.
+    pub(in crate::upgrade) fn accessor(&mut self, id: &str, role: Role) -> Result<usize, UpgradeError> {
+        if let Some(&i) = self.packed_accessors.get(&(id.to_string(), role)) {
+            return Ok(i);
+        }
+        let at = pointer("accessors", id);
+        let input = data::read(self.source, id).map_err(|reason| UpgradeError::Resource {
+            pointer: at.clone(),
+            reason,
+        })?;
+        let packed = data::pack(&input, role, &mut self.binary);
+        if let Some(from) = packed.converted_from {
+            self.note(
+                &at,
+                NoteKind::Decision,
+                format!(
+                    "componentType {from} → {} as glTF 2.0 requires for {role:?}.",
+                    packed.component_type
+                ),
+            );
+        }
+        let (kind, count) = (input.kind.clone(), input.count);
+        let index = self.add_accessor(packed, &kind, count, role, Some(id));
+        self.packed_accessors.insert((id.to_string(), role), index);
+        Ok(index)
+    }
+
+    /// Adds packed data (already in the binary) as one bufferView and one accessor.
+    pub(in crate::upgrade) fn add_accessor(
+        &mut self,
+        packed: data::Packed,
+        kind: &str,
+        count: usize,
+        role: Role,
+        name: Option<&str>,
+    ) -> usize {
+        let mut view =
+            json!({"buffer": 0, "byteOffset": packed.offset, "byteLength": packed.length});
+        match role {
+            Role::Indices => view["target"] = json!(ELEMENT_ARRAY_BUFFER),
+            Role::Data => {}
+            _ => view["target"] = json!(ARRAY_BUFFER),
+        }
+        if let Some(stride) = packed.byte_stride {
+            view["byteStride"] = json!(stride);
+        }
+        let view_index = self.push("bufferViews", view);
+        let mut accessor = json!({
+            "bufferView": view_index,
+            "componentType": packed.component_type,
+            "count": count,
+            "type": kind,
+        });
+        if let Some(name) = name {
+            accessor["name"] = json!(name);
+        }
+        if packed.normalized {
+            accessor["normalized"] = json!(true);
+        }
+        if !packed.min.is_empty() {
+            accessor["min"] = json!(packed.min);
+            accessor["max"] = json!(packed.max);
+        }
+        self.push("accessors", accessor)
+    }
+
+    /// The finished asset; `extensions_used` comes from the converted materials.
+    pub fn finish(mut self, extensions_used: Vec<String>) -> Upgraded {
+        let mut root = Map::new();
+        let source_asset = self.source.json.get("asset");
+        let mut asset = json!({"version": "2.0", "generator": concat!("gltfmat ", env!("CARGO_PKG_VERSION"), " upgrade")});
+        if let Some(copyright) = source_asset.and_then(|a| a.get("copyright")) {
+            asset["copyright"] = copyright.clone();
+        }
+        root.insert("asset".into(), asset);
+        if !extensions_used.is_empty() {
+            root.insert("extensionsUsed".into(), json!(extensions_used));
+        }
+        if let Some(scene) = self.index_of("scenes", self.source.json.get("scene")) {
+            root.insert("scene".into(), json!(scene));
+        }
+        if !self.binary.is_empty() {
+            self.push("buffers", json!({"byteLength": self.binary.len()}));
+        }
+        for collection in [
+            "scenes",
+            "nodes",
+            "meshes",
+            "materials",
+            "textures",
+            "images",
+            "samplers",
+            "skins",
+            "animations",
+            "cameras",
+            "accessors",
+            "bufferViews",
+            "buffers",
+        ] {
+            if let Some(items) = self.arrays.remove(collection).filter(|a| !a.is_empty()) {
+                root.insert(collection.into(), Value::Array(items));
+            }
+        }
+        Upgraded {
+            json: Value::Object(root),
+            binary: self.binary,
+            images: self.images,
+            report: self.report,
+        }
+    }
+}

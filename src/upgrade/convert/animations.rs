@@ -1,0 +1,76 @@
+//! Animations: channels and samplers re-indexed, accessors repacked.
+
+use std::collections::HashMap;
+use crate::upgrade::builder::{pointer, Builder};
+use crate::upgrade::data::Role;
+use crate::upgrade::{NoteKind, UpgradeError};
+use serde_json::{json, Value};
+
+impl Builder<'_, '_> {
+    pub(in crate::upgrade) fn animations(&mut self) -> Result<(), UpgradeError> {
+        for (id, animation) in self.source.dictionary("animations") {
+            let at = pointer("animations", id);
+            let mut out = Self::named(id, animation);
+            let parameters = animation.get("parameters");
+            let mut sampler_index = HashMap::new();
+            let mut samplers = Vec::new();
+            let source_samplers = animation.get("samplers").and_then(Value::as_object);
+            for (sampler_id, sampler) in source_samplers.into_iter().flatten() {
+                let accessor_of = |key: &str| {
+                    let parameter = sampler.get(key).and_then(Value::as_str)?;
+                    parameters?.get(parameter)?.as_str().map(str::to_string)
+                };
+                let (Some(input), Some(output)) = (accessor_of("input"), accessor_of("output"))
+                else {
+                    self.note(
+                        format!("{at}/samplers/{sampler_id}"),
+                        NoteKind::Dropped,
+                        "sampler whose parameters do not resolve dropped.",
+                    );
+                    continue;
+                };
+                let interpolation = sampler
+                    .get("interpolation")
+                    .cloned()
+                    .unwrap_or(json!("LINEAR"));
+                let (input, output) = (
+                    self.accessor(&input, Role::Data)?,
+                    self.accessor(&output, Role::Data)?,
+                );
+                sampler_index.insert(sampler_id.clone(), samplers.len());
+                samplers.push(
+                    json!({"input": input, "output": output, "interpolation": interpolation}),
+                );
+            }
+            let mut channels = Vec::new();
+            for channel in animation
+                .get("channels")
+                .and_then(Value::as_array)
+                .into_iter()
+                .flatten()
+            {
+                let sampler = channel
+                    .get("sampler")
+                    .and_then(Value::as_str)
+                    .and_then(|s| sampler_index.get(s));
+                let target = channel.get("target");
+                let node = self.index_of("nodes", target.and_then(|t| t.get("id")));
+                let path = target.and_then(|t| t.get("path")).cloned();
+                match (sampler, node, path) {
+                    (Some(s), Some(n), Some(p)) => {
+                        channels.push(json!({"sampler": s, "target": {"node": n, "path": p}}))
+                    }
+                    _ => self.note(
+                        &at,
+                        NoteKind::Dropped,
+                        "channel with an unresolved sampler or target dropped.",
+                    ),
+                }
+            }
+            out.insert("samplers".into(), json!(samplers));
+            out.insert("channels".into(), json!(channels));
+            self.push("animations", Value::Object(out));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,80 @@
+//! Cameras (znear 0 fixed), scenes, and the 1.0 collections glTF 2.0 has no place for.
+
+use crate::upgrade::builder::{id_list, pointer, Builder};
+use crate::upgrade::NoteKind;
+use serde_json::{json, Value};
+
+impl Builder<'_, '_> {
+    pub(in crate::upgrade) fn cameras(&mut self) {
+        for (id, camera) in self.source.dictionary("cameras") {
+            let mut out = Self::named(id, camera);
+            let kind = camera
+                .get("type")
+                .and_then(Value::as_str)
+                .unwrap_or("perspective");
+            out.insert("type".into(), json!(kind));
+            let mut projection = camera.get(kind).cloned().unwrap_or_else(|| json!({}));
+            if kind == "perspective" {
+                self.fix_perspective(&mut projection, id);
+            }
+            out.insert(kind.into(), projection);
+            self.push("cameras", Value::Object(out));
+        }
+    }
+
+    /// 2.0 needs znear > 0, yfov > 0 and (when given) aspectRatio > 0.
+    pub(in crate::upgrade) fn fix_perspective(&mut self, projection: &mut Value, id: &str) {
+        let at = pointer("cameras", id);
+        let get = |projection: &Value, key: &str| projection.get(key).and_then(Value::as_f64);
+        if get(projection, "aspectRatio").is_some_and(|a| a <= 0.0) {
+            projection.as_object_mut().map(|p| p.remove("aspectRatio"));
+            self.note(
+                &at,
+                NoteKind::Dropped,
+                "aspectRatio 0 removed (the viewport's ratio is used).",
+            );
+        }
+        if get(projection, "yfov").is_none_or(|y| y <= 0.0) {
+            projection["yfov"] = json!(1.0);
+            self.note(
+                &at,
+                NoteKind::Decision,
+                "yfov 0 or missing set to 1.0 radian.",
+            );
+        }
+        if get(projection, "znear").is_none_or(|z| z <= 0.0) {
+            let znear = get(projection, "zfar").map_or(0.01, |far| (far * 1e-4).max(1e-6));
+            projection["znear"] = json!(znear);
+            self.note(
+                &at,
+                NoteKind::Decision,
+                format!("znear 0 is invalid in 2.0; set to {znear} (zfar / 10000, or 0.01)."),
+            );
+        }
+    }
+
+    pub(in crate::upgrade) fn scenes(&mut self) {
+        for (id, scene) in self.source.dictionary("scenes") {
+            let mut out = Self::named(id, scene);
+            let nodes: Vec<usize> = id_list(scene.get("nodes"))
+                .iter()
+                .filter_map(|n| self.index_of("nodes", Some(&json!(n))))
+                .collect();
+            out.insert("nodes".into(), json!(nodes));
+            self.push("scenes", Value::Object(out));
+        }
+    }
+
+    pub(in crate::upgrade) fn dropped_collections(&mut self) {
+        for collection in ["techniques", "programs", "shaders"] {
+            let count = self.source.dictionary(collection).len();
+            if count > 0 {
+                self.note(
+                    format!("/{collection}"),
+                    NoteKind::Dropped,
+                    format!("{count} {collection} dropped: glTF 2.0 materials are not shader programs (their files were not read)."),
+                );
+            }
+        }
+    }
+}
