@@ -52,20 +52,15 @@ fn main() {
     });
     let bytes = serde_json::to_vec(&asset).expect("json");
     let loader = FolderResources::new(&folder);
-    let options = CheckOptions {
-        deep: true,
-        ..CheckOptions::default()
-    };
+    let options = CheckOptions::default().with_deep(true);
     for groups in [
         vec!["pixels".to_string(), "plausibility".to_string()],
         vec!["plausibility".to_string()],
         vec!["pixels".to_string()],
     ] {
-        let options = CheckOptions {
-            deep: true,
-            disabled_groups: groups.clone(),
-            ..CheckOptions::default()
-        };
+        let options = CheckOptions::default()
+            .with_deep(true)
+            .with_disabled_groups(groups.clone());
         let start = Instant::now();
         check_bytes("bench.gltf", bytes.clone(), &loader, &options);
         println!(

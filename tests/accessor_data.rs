@@ -39,10 +39,7 @@ fn with_bytes(view: usize, at: usize, bytes: &[u8]) -> Value {
 /// (code, pointer) of every finding, in both profiles (which must agree on these codes).
 fn findings(gltf: &Value) -> Vec<(String, String)> {
     let run = |profile| {
-        let options = CheckOptions {
-            profile,
-            ..CheckOptions::default()
-        };
+        let options = CheckOptions::default().with_profile(profile);
         let bytes = serde_json::to_vec(gltf).unwrap();
         let report = check_bytes("case.gltf", bytes, &NoResources, &options);
         let mut out: Vec<(String, String)> = report

@@ -7,7 +7,6 @@
 //! up (in a listed folder, cases that already match are counted as passing).
 
 use gltfmat::check::registry::{self, Origin};
-use gltfmat::check::rules::SUPERSESSIONS;
 use gltfmat::check::{check_bytes, CheckOptions, Location, Profile};
 use gltfmat::document::uri::FolderResources;
 use serde_json::Value;
@@ -111,10 +110,7 @@ fn asset_of(report_path: &Path) -> PathBuf {
 
 /// The multiset of (code, location, severity) gltfmat reports for an asset.
 fn diagnose(asset: &Path, profile: Profile) -> BTreeMap<Key, usize> {
-    let options = CheckOptions {
-        profile,
-        ..Default::default()
-    };
+    let options = CheckOptions::default().with_profile(profile);
     let loader = FolderResources::new(asset.parent().unwrap());
     let report = check_bytes(
         &asset.to_string_lossy(),
@@ -263,10 +259,11 @@ fn default_profile_differs_only_by_documented_rules() {
                         noisy_on_valid.push(format!("{}: {key:?}", asset.display()));
                     }
                     "gltfmat rule".to_string()
-                } else if let Some((_, why)) = SUPERSESSIONS
-                    .iter()
-                    .find(|(c, _)| *c == code || (gltf1 && *c == "GLTF_1_0_ASSET"))
-                {
+                } else if let Some(why) = registry::supersession(code).or_else(|| {
+                    gltf1
+                        .then(|| registry::supersession("GLTF_1_0_ASSET"))
+                        .flatten()
+                }) {
                     format!("supersession: {why}")
                 } else {
                     undocumented.push(format!(

@@ -15,10 +15,7 @@ fn codes(report: &Report) -> Vec<&'static str> {
 }
 
 fn deep() -> CheckOptions {
-    CheckOptions {
-        deep: true,
-        ..CheckOptions::default()
-    }
+    CheckOptions::default().with_deep(true)
 }
 
 #[test]

@@ -8,7 +8,6 @@ mod common;
 use base64::Engine;
 use common::chunk;
 use gltfmat::check::registry::{self, Origin};
-use gltfmat::check::rules::RULES;
 use gltfmat::check::{check_bytes, CheckOptions, Location};
 use gltfmat::document::uri::{FolderResources, NoResources};
 use image::{DynamicImage, GrayImage, ImageFormat, RgbImage, RgbaImage};
@@ -278,10 +277,7 @@ fn collect_extension_names(value: &Value, names: &mut BTreeSet<String>) {
 
 /// Every issue found, as (code, pointer), with each severity checked against the registry.
 fn issues(uri: &str, bytes: Vec<u8>, deep: bool, folder: Option<&str>) -> Vec<(String, String)> {
-    let options = CheckOptions {
-        deep,
-        ..CheckOptions::default()
-    };
+    let options = CheckOptions::default().with_deep(deep);
     let report = match folder {
         Some(folder) => check_bytes(uri, bytes, &FolderResources::new(folder), &options),
         None => check_bytes(uri, bytes, &NoResources, &options),
@@ -589,13 +585,13 @@ fn every_rule_has_a_firing_fixture_and_a_near_miss() {
             .flat_map(|(_, e)| e.into_iter().map(|(c, _)| c.to_string())),
     );
     let near_misses: BTreeSet<_> = cases().iter().filter_map(|c| c.silent_for).collect();
-    for rule in RULES {
-        let code = rule.code().name();
+    for rule in registry::all().filter(|i| i.origin == Origin::Gltfmat) {
+        let code = rule.code.name();
         assert!(
             fired.contains(code),
             "{code} has no fixture that triggers it"
         );
-        let has_logic = rule.run.document.is_some() || rule.run.pixels.is_some();
+        let has_logic = rule.own_logic;
         assert!(
             !has_logic || near_misses.contains(code),
             "{code} has no near-miss fixture"

@@ -194,10 +194,7 @@ fn spec_gloss_textures_are_rebaked_per_texel() {
 
 #[test]
 fn spec_gloss_extension_mode_is_an_exact_rename() {
-    let options = UpgradeOptions {
-        specular_glossiness: SpecularGlossiness::Extension,
-        ..UpgradeOptions::default()
-    };
+    let options = UpgradeOptions::default().with_specular_glossiness(SpecularGlossiness::Extension);
     let upgraded = upgrade_file(
         &repo("fixtures/gltf1/pbr-sg-textured-fraunhofer.glb"),
         &options,
@@ -513,10 +510,7 @@ mod structure {
     #[test]
     fn the_double_sided_option_applies_to_materials_without_a_technique() {
         let bytes = serde_json::to_vec(&asset()).unwrap();
-        let options = UpgradeOptions {
-            double_sided_default: true,
-            ..UpgradeOptions::default()
-        };
+        let options = UpgradeOptions::default().with_double_sided_default(true);
         let up = upgrade(&bytes, &NoResources, &options).unwrap();
         assert_eq!(up.json["materials"][1]["doubleSided"], true);
     }

@@ -13,23 +13,36 @@ use std::collections::HashSet;
 /// A resource as listed in the report's `info.resources`.
 #[derive(Debug, Clone, Default)]
 pub struct ResourceInfo {
+    /// Where the resource is declared (`/buffers/0`, `/images/2`).
     pub pointer: String,
+    /// `external`, `data-uri`, `glb` or `buffer-view`, as in the Khronos report.
     pub storage: &'static str,
+    /// Its media type, when known.
     pub mime_type: Option<String>,
+    /// Its length in bytes, when read.
     pub byte_length: Option<usize>,
+    /// Its URI, for external files.
     pub uri: Option<String>,
+    /// The image header, for images.
     pub image: Option<ImageInfo>,
 }
 
 /// The report's `info` section.
 #[derive(Debug, Clone, Default)]
 pub struct AssetInfo {
+    /// `asset.version`.
     pub version: Option<String>,
+    /// `asset.minVersion`.
     pub min_version: Option<String>,
+    /// `asset.generator`.
     pub generator: Option<String>,
+    /// `extensionsUsed`.
     pub extensions_used: Vec<String>,
+    /// `extensionsRequired`.
     pub extensions_required: Vec<String>,
+    /// Every buffer and image.
     pub resources: Vec<ResourceInfo>,
+    /// Object counts (`drawCallCount`, `totalTriangleCount`, …) as the Khronos report has them.
     pub counts: Vec<(&'static str, u64)>,
 }
 
@@ -46,7 +59,7 @@ pub struct MaterialNeeds {
     pub anisotropy: bool,
 }
 
-pub struct Context<'a> {
+pub(crate) struct Context<'a> {
     pub root: &'a Value,
     pub document: &'a Document,
     pub loader: &'a dyn ResourceLoader,

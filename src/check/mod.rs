@@ -2,14 +2,15 @@
 
 pub mod registry;
 
-pub mod rules;
-pub mod schema;
+pub(crate) mod rules;
+pub(crate) mod schema;
 
-pub mod context;
+pub(crate) mod context;
 mod khronos;
 
 pub use crate::diagnostic::{Code, Diagnostic, Location, Severity};
-pub use context::Context;
+pub(crate) use context::Context;
+pub use context::{AssetInfo, ResourceInfo};
 
 use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::document::{self, Container, Document};
@@ -26,13 +27,17 @@ pub enum Profile {
     Khronos,
 }
 
+/// What to report and how much.
 #[derive(Debug, Clone, Default)]
+#[non_exhaustive]
 pub struct CheckOptions {
+    /// Khronos parity only, or also gltfmat's rules.
     pub profile: Profile,
     /// Codes never reported.
     pub ignore: Vec<String>,
     /// When not empty, the only codes reported.
     pub only: Vec<String>,
+    /// Severity per code (case-insensitive names), replacing the default.
     pub severity_overrides: HashMap<String, Severity>,
     /// Stop collecting after this many issues (0 = unlimited); sets `truncated`.
     pub max_issues: usize,
@@ -42,17 +47,49 @@ pub struct CheckOptions {
     pub disabled_groups: Vec<String>,
 }
 
+impl CheckOptions {
+    /// These options with `profile`.
+    pub fn with_profile(mut self, profile: Profile) -> Self {
+        self.profile = profile;
+        self
+    }
+
+    /// These options with texture decoding for the pixel rules on or off.
+    pub fn with_deep(mut self, deep: bool) -> Self {
+        self.deep = deep;
+        self
+    }
+
+    /// These options with the rule groups `groups` skipped.
+    pub fn with_disabled_groups(mut self, groups: Vec<String>) -> Self {
+        self.disabled_groups = groups;
+        self
+    }
+
+    /// These options keeping at most `max_issues` findings (0 = all).
+    pub fn with_max_issues(mut self, max_issues: usize) -> Self {
+        self.max_issues = max_issues;
+        self
+    }
+}
+
 /// The result of checking one asset.
 #[derive(Debug)]
 pub struct Report {
+    /// The name the asset was checked under (its path, or `-`).
     pub uri: String,
+    /// The document as read (bytes, container, JSON), for locating findings.
     pub document: Document,
+    /// The findings, in pass order.
     pub diagnostics: Vec<Diagnostic>,
+    /// True when `max_issues` cut the list.
     pub truncated: bool,
-    pub info: context::AssetInfo,
+    /// The report's `info` section (version, extensions, resources, counts).
+    pub info: AssetInfo,
 }
 
 impl Report {
+    /// How many findings have `severity`.
     pub fn count(&self, severity: Severity) -> usize {
         self.diagnostics
             .iter()
@@ -60,10 +97,12 @@ impl Report {
             .count()
     }
 
+    /// Whether any finding is an error.
     pub fn has_errors(&self) -> bool {
         self.count(Severity::Error) > 0
     }
 
+    /// The media type of the container (`model/gltf+json` or `model/gltf-binary`).
     pub fn mime_type(&self) -> &'static str {
         self.document.container.mime_type()
     }

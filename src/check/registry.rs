@@ -25,6 +25,9 @@ pub struct CodeInfo {
     pub doc: &'static str,
     /// Who defines it.
     pub origin: Origin,
+    /// A gltfmat rule with checks of its own (not only emitted by a core pass, like
+    /// JSON_DUPLICATE_KEY by the JSON reader).
+    pub own_logic: bool,
 }
 
 impl CodeInfo {
@@ -41,6 +44,7 @@ const fn from_catalogue(entry: &khronos::Entry) -> CodeInfo {
         summary: entry.template,
         doc: "",
         origin: Origin::Khronos,
+        own_logic: false,
     }
 }
 
@@ -55,6 +59,15 @@ pub fn all() -> impl Iterator<Item = CodeInfo> {
 /// The registered code named `code` (case-insensitive).
 pub fn find(code: &str) -> Option<CodeInfo> {
     all().find(|info| info.code.name().eq_ignore_ascii_case(code))
+}
+
+/// Why the default profile reports a Khronos code differently, when it does (see
+/// `rules::SUPERSESSIONS`).
+pub fn supersession(code: &str) -> Option<&'static str> {
+    super::rules::SUPERSESSIONS
+        .iter()
+        .find(|(c, _)| *c == code)
+        .map(|(_, why)| *why)
 }
 
 #[cfg(test)]

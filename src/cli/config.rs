@@ -75,14 +75,14 @@ impl Config {
             let (code, level) = parse_severity(&format!("{code}={level}"))?;
             severity_overrides.insert(code, level);
         }
-        Ok(CheckOptions {
-            profile,
-            ignore: self.ignore,
-            only: self.only,
-            severity_overrides,
-            max_issues: self.max_issues.unwrap_or(0),
-            deep: self.deep,
-            disabled_groups: self.disabled_groups,
-        })
+        let mut options = CheckOptions::default()
+            .with_profile(profile)
+            .with_deep(self.deep)
+            .with_max_issues(self.max_issues.unwrap_or(0))
+            .with_disabled_groups(self.disabled_groups);
+        options.ignore = self.ignore;
+        options.only = self.only;
+        options.severity_overrides = severity_overrides;
+        Ok(options)
     }
 }

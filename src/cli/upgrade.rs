@@ -44,12 +44,12 @@ enum SpecGlossArg {
 pub fn run(args: UpgradeArgs) -> Outcome {
     let bytes = std::fs::read(&args.input)
         .map_err(|e| Failure::usage(format!("{}: {e}", args.input.display())))?;
-    let mut options = UpgradeOptions::default();
-    options.specular_glossiness = match args.specular_glossiness {
-        SpecGlossArg::MetalRough => SpecularGlossiness::MetalRough,
-        SpecGlossArg::Extension => SpecularGlossiness::Extension,
-    };
-    options.double_sided_default = args.double_sided;
+    let options = UpgradeOptions::default()
+        .with_specular_glossiness(match args.specular_glossiness {
+            SpecGlossArg::MetalRough => SpecularGlossiness::MetalRough,
+            SpecGlossArg::Extension => SpecularGlossiness::Extension,
+        })
+        .with_double_sided_default(args.double_sided);
     let loader = FolderResources::beside(&args.input);
     let upgraded = upgrade(&bytes, &loader, &options)
         .map_err(|e| Failure::refused(format!("{}: {e}", args.input.display())))?;

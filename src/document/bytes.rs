@@ -8,9 +8,12 @@ use std::path::Path;
 /// Files at least this large are mapped; below it a read is cheaper than the mapping.
 const MAP_THRESHOLD: u64 = 1 << 20;
 
+/// A file's bytes: read into memory, or memory-mapped when large.
 #[derive(Debug)]
 pub enum Bytes {
+    /// Read into memory.
     Owned(Vec<u8>),
+    /// Memory-mapped (files of 1 MiB or more).
     Mapped(memmap2::Mmap),
 }
 
@@ -90,7 +93,9 @@ impl AsRef<[u8]> for Bytes {
 /// A buffer's bytes: borrowed from the document (the GLB BIN chunk), or held (an external
 /// file or a data URI).
 pub enum BufferData<'a> {
+    /// Borrowed from the GLB BIN chunk.
     Glb(&'a [u8]),
+    /// Read from an external file or a data URI.
     Loaded(Bytes),
 }
 

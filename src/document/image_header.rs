@@ -59,14 +59,22 @@ pub enum Transfer {
     Custom,
 }
 
+/// What an image header says, without decoding pixels.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ImageInfo {
+    /// The container format.
     pub format: ImageFormat,
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
+    /// Which channels the pixels hold.
     pub channels: Channels,
+    /// Bits per channel.
     pub bits: u8,
+    /// The transfer function the file declares, if any.
     pub transfer: Option<Transfer>,
+    /// An animated image (APNG, animated WebP).
     pub animated: bool,
     /// Colour primaries other than sRGB's (PNG cHRM or iCCP, WebP ICC profile).
     pub custom_primaries: bool,

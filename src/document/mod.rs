@@ -1,25 +1,29 @@
 //! Bytes → document: container detection, GLB chunks, JSON, and external resources.
 
-use crate::diagnostic::khronos;
 pub mod bytes;
-pub mod glb;
-pub mod image_decode;
-pub mod image_header;
-pub mod json;
+pub(crate) mod glb;
+pub(crate) mod image_decode;
+pub(crate) mod image_header;
+pub(crate) mod json;
 pub mod uri;
 
-use crate::diagnostic::Diagnostic;
+use crate::diagnostic::{khronos, Diagnostic};
 pub use bytes::{BufferData, Bytes};
+pub use image_header::ImageInfo;
 use serde_json::Value;
 use std::ops::Range;
 
+/// How the asset is stored.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Container {
+    /// JSON text (`.gltf`).
     Gltf,
+    /// Binary container (`.glb`).
     Glb,
 }
 
 impl Container {
+    /// The media type of the container.
     pub fn mime_type(self) -> &'static str {
         match self {
             Container::Gltf => "model/gltf+json",
@@ -32,22 +36,28 @@ impl Container {
 /// without copies.
 #[derive(Debug)]
 pub struct Document {
+    /// The whole file.
     pub bytes: Bytes,
+    /// How it is stored.
     pub container: Container,
+    /// Where the JSON text lies in `bytes`.
     pub json_range: Range<usize>,
     /// `None` when the JSON could not be parsed (the reason is in `diagnostics`).
     pub root: Option<Value>,
+    /// Where the GLB BIN chunk's data lies in `bytes`, if there is one.
     pub bin: Option<Range<usize>>,
     /// Problems found while reading the container and the JSON.
     pub diagnostics: Vec<Diagnostic>,
 }
 
 impl Document {
+    /// The JSON text.
     pub fn json_text(&self) -> &[u8] {
         // Empty when the bytes were handed back to their owner (see `upgrade::output::verify`).
         self.bytes.get(self.json_range.clone()).unwrap_or_default()
     }
 
+    /// The GLB BIN chunk's data.
     pub fn bin(&self) -> Option<&[u8]> {
         self.bin.clone().and_then(|r| self.bytes.get(r))
     }

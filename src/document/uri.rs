@@ -9,7 +9,12 @@ use std::path::{Component, Path, PathBuf};
 #[derive(Debug, PartialEq)]
 pub enum UriKind {
     /// `data:[<media type>][;base64],<data>`
-    Data { media_type: String, bytes: Vec<u8> },
+    Data {
+        /// The media type, `text/plain;charset=US-ASCII` when absent.
+        media_type: String,
+        /// The decoded data.
+        bytes: Vec<u8>,
+    },
     /// A relative reference, percent-decoded.
     Relative(String),
     /// Has a scheme (http, https, file, …): never read.
@@ -118,6 +123,7 @@ pub enum LoadError {
 /// Where external files come from. The CLI confines reads to the asset's folder; library
 /// users can plug in their own store.
 pub trait ResourceLoader: Sync {
+    /// Reads `relative_path` (already percent-decoded), relative to the asset.
     fn load(&self, relative_path: &str) -> Result<Bytes, LoadError>;
 }
 
@@ -133,6 +139,7 @@ impl ResourceLoader for NoResources {
 /// Files held in memory by relative path (an upgrade's output, checked before it is written).
 #[derive(Debug, Default)]
 pub struct MemoryResources {
+    /// Files by relative path.
     pub files: std::collections::HashMap<String, Vec<u8>>,
 }
 

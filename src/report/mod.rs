@@ -39,6 +39,7 @@ impl Style {
     }
 }
 
+/// Renders every report in `format` as one string.
 pub fn render(format: Format, reports: &[Report], options: &Style) -> String {
     match format {
         Format::Human => human::render(reports, options.colour),

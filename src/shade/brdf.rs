@@ -4,22 +4,25 @@
 //! Every function returns a finite value for any unit input, including α = 0 and grazing
 //! angles (the smallest α evaluated is [`MIN_ALPHA`]).
 //!
-//! The lobes are generic over [`Real`]: material parameters are plain `f64`, the directions
-//! are one pair (`f64`) or several evaluated together ([`Lanes`]), and the results agree bit
+//! The lobes are generic over `Real`: material parameters are plain `f64`, the directions
+//! are one pair (`f64`) or several evaluated together (`Lanes`), and the results agree bit
 //! for bit. Conditions on the directions are selects, not branches.
 
 use super::lanes::{Lanes, Mask, Real};
 use std::f64::consts::PI;
 
+/// A 3-vector (directions, RGB).
 pub type V3 = [f64; 3];
 
 /// Appendix B forbids evaluating GGX at α = 0 (a Dirac lobe); below this α is clamped.
 pub const MIN_ALPHA: f64 = 1e-4;
 
+/// The dot product.
 pub fn dot(a: V3, b: V3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
+/// `a` scaled to unit length.
 pub fn normalize(a: V3) -> V3 {
     let length = dot(a, a).sqrt();
     if length == 0.0 {
@@ -34,6 +37,7 @@ pub fn half(v: V3, l: V3) -> V3 {
     normalize([v[0] + l[0], v[1] + l[1], v[2] + l[2]])
 }
 
+/// The largest of three values.
 pub fn max3<R: Real>([a, b, c]: [R; 3]) -> R {
     a.max(b).max(c)
 }
@@ -41,8 +45,11 @@ pub fn max3<R: Real>([a, b, c]: [R; 3]) -> R {
 /// A view/light pair and what every lobe derives from it, computed once per pair.
 #[derive(Debug, Clone, Copy)]
 pub struct Geometry<R: Real> {
+    /// Direction to the viewer.
     pub v: [R; 3],
+    /// Direction to the light.
     pub l: [R; 3],
+    /// The half vector.
     pub h: [R; 3],
     /// Both directions are above the surface; the BRDF is 0 otherwise.
     pub above: R::Mask,
@@ -51,6 +58,7 @@ pub struct Geometry<R: Real> {
 }
 
 impl Geometry<f64> {
+    /// The geometry of one view/light pair (unit vectors in the shading frame).
     pub fn new(v: V3, l: V3) -> Geometry<f64> {
         let h = half(v, l);
         Geometry {

@@ -33,22 +33,31 @@ const BINS: usize = 100_000;
 /// Bins per unit of ΔE: a multiplication per sample where a width of 0.001 would divide.
 const BINS_PER_UNIT: f64 = 1000.0;
 
+/// Where the largest difference was found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Worst {
+    /// Its ΔE2000.
     pub delta_e: f64,
+    /// Its texture coordinates.
     pub uv: [f64; 2],
     /// (θ_v, θ_l, φ) in degrees.
     pub directions: (f64, f64, f64),
 }
 
+/// The ΔE2000 figures of one material pair.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Comparison {
+    /// Largest ΔE2000.
     pub max: f64,
+    /// 99th percentile ΔE2000.
     pub p99: f64,
+    /// Mean ΔE2000.
     pub mean: f64,
+    /// Where the largest was.
     pub worst: Worst,
     /// Grid size per side and the number of (texel, direction) samples compared.
     pub grid: u32,
+    /// Texels × directions evaluated.
     pub samples: u64,
     /// The largest ΔE over the directions, per texel (row-major), for heat maps.
     pub per_texel: Vec<f32>,

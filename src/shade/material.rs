@@ -23,17 +23,27 @@ use std::f64::consts::PI;
 /// Every input of the BRDF at one surface point, linear values.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Inputs {
+    /// Base colour, linear RGB.
     pub base_color: V3,
+    /// Metalness, 0–1.
     pub metallic: f64,
+    /// Perceptual roughness, 0–1.
     pub roughness: f64,
+    /// Index of refraction (KHR_materials_ior).
     pub ior: f64,
+    /// Specular strength (KHR_materials_specular).
     pub specular: f64,
+    /// Specular colour, linear RGB.
     pub specular_color: V3,
+    /// Sheen colour, linear RGB.
     pub sheen_color: V3,
+    /// Sheen roughness, 0–1.
     pub sheen_roughness: f64,
+    /// Anisotropy strength, 0–1.
     pub anisotropy_strength: f64,
     /// Anisotropy direction angle in the tangent plane (texture direction + rotation).
     pub anisotropy_angle: f64,
+    /// KHR_materials_unlit: the base colour is emitted as is.
     pub unlit: bool,
 }
 
@@ -74,14 +84,17 @@ impl Inputs {
 
 /// Evaluates materials; holds the sheen albedo table for its visibility term.
 pub struct Shader {
+    /// The sheen albedo table of its visibility term.
     pub sheen_table: SheenTable,
 }
 
 impl Shader {
+    /// A shader using `sheen_table`.
     pub fn new(sheen_table: SheenTable) -> Shader {
         Shader { sheen_table }
     }
 
+    /// The sheen visibility term its table was computed for.
     pub fn visibility(&self) -> SheenVisibility {
         self.sheen_table.visibility
     }

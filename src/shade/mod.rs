@@ -3,14 +3,16 @@
 
 pub mod brdf;
 pub mod compare;
-pub mod delta_e;
-pub mod elementary;
-pub mod label;
-pub mod lanes;
-pub mod load;
+pub(crate) mod delta_e;
+pub(crate) mod elementary;
+pub(crate) mod label;
+pub(crate) mod lanes;
+pub(crate) mod load;
 pub mod material;
 pub mod pairing;
-pub mod quadrature;
+pub(crate) mod quadrature;
 pub mod render;
-pub mod sample;
+pub(crate) mod sample;
+
+pub use sample::MaterialSource;
 pub mod sheen_table;

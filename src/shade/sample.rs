@@ -212,8 +212,11 @@ pub enum MaterialSource {
     Gltf2(Arc<Prepared>),
     /// A glTF 1.0 PBR-draft material with its two textures.
     Legacy {
+        /// The draft material's parameters.
         pbr: LegacyPbr,
+        /// Its colour texture (diffuse or base colour).
         colour: Option<Texture>,
+        /// Its data texture (metallic-roughness or specular-glossiness).
         data: Option<Texture>,
     },
 }

@@ -20,15 +20,19 @@ pub fn albedo(visibility: SheenVisibility, mu: f64, sheen_roughness: f64) -> f64
     })
 }
 
+/// The directional albedo E(μ, sheenRoughness) of the sheen lobe, on a square grid.
 #[derive(Debug, Clone)]
 pub struct SheenTable {
+    /// Samples per side.
     pub size: usize,
+    /// The visibility term it was computed with.
     pub visibility: SheenVisibility,
     /// Row-major: `values[row * size + column]`, row = roughness, column = μ.
     pub values: Vec<f64>,
 }
 
 impl SheenTable {
+    /// Computes the table by quadrature.
     pub fn compute(size: usize, visibility: SheenVisibility) -> SheenTable {
         let size = size.max(2);
         let centre = |i: usize| (i as f64 + 0.5) / size as f64;

@@ -7,6 +7,7 @@ use crate::document::Bytes;
 use std::ops::Range;
 use std::sync::Arc;
 
+/// The output buffer: repacked data and runs borrowed from the input, laid out in order.
 #[derive(Debug, Clone, Default)]
 pub struct Binary {
     runs: Vec<Run>,
@@ -30,10 +31,12 @@ impl Run {
 }
 
 impl Binary {
+    /// Its length in bytes.
     pub fn len(&self) -> usize {
         self.runs().map(<[u8]>::len).sum()
     }
 
+    /// Whether it holds nothing.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }

@@ -162,7 +162,11 @@ impl<'s, 'a> Builder<'s, 'a> {
     }
 
     /// Repacks a 1.0 accessor for a role (once per role) and returns its 2.0 index.
-    pub(in crate::upgrade) fn accessor(&mut self, id: &str, role: Role) -> Result<usize, UpgradeError> {
+    pub(in crate::upgrade) fn accessor(
+        &mut self,
+        id: &str,
+        role: Role,
+    ) -> Result<usize, UpgradeError> {
         if let Some(&i) = self.packed_accessors.get(&(id.to_string(), role)) {
             return Ok(i);
         }

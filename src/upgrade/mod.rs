@@ -1,9 +1,9 @@
 //! glTF 1.0 → glTF 2.0, including the WEB3D / KHR / FRAUNHOFER / EXT `_materials_pbr` drafts.
 //!
-//! The conversion reads the whole 1.0 asset ([`source`]), rebuilds every object in 2.0 form
-//! ([`structure`]: ids become indices, the old id becomes the name), converts materials
-//! ([`materials`], with texture rebaking in [`rebake`]) and assembles the output
-//! ([`output`]). Every decision and everything dropped is recorded in the conversion report.
+//! The conversion reads the whole 1.0 asset (`source`), rebuilds every object in 2.0 form
+//! (`builder` holds the asset under construction; `convert/` has one file per step: ids become
+//! indices, the old id becomes the name), converts materials (`convert/materials`, with
+//! texture rebaking in `rebake`) and assembles the output ([`output`]). Every decision and everything dropped is recorded in the conversion report.
 //!
 //! Vertex, index, animation and skin data are repacked: each accessor gets a bufferView of
 //! its own, tightly packed except where 2.0 demands 4-byte vertex alignment. That satisfies
@@ -36,8 +36,11 @@ pub enum SpecularGlossiness {
     Extension,
 }
 
+/// How the converter writes what 2.0 can express in several ways.
 #[derive(Debug, Clone, Default)]
+#[non_exhaustive]
 pub struct UpgradeOptions {
+    /// Spec-gloss materials: converted to metal-rough, or kept as the extension.
     pub specular_glossiness: SpecularGlossiness,
     /// `doubleSided` for materials whose 1.0 form says nothing about culling (PBR-extension
     /// materials with no technique). Techniques decide for themselves: no CULL_FACE in
@@ -45,15 +48,33 @@ pub struct UpgradeOptions {
     pub double_sided_default: bool,
 }
 
+impl UpgradeOptions {
+    /// These options writing spec-gloss materials as `mode` says.
+    pub fn with_specular_glossiness(mut self, mode: SpecularGlossiness) -> Self {
+        self.specular_glossiness = mode;
+        self
+    }
+
+    /// These options with `doubleSided` as the default for materials that do not say.
+    pub fn with_double_sided_default(mut self, double_sided: bool) -> Self {
+        self.double_sided_default = double_sided;
+        self
+    }
+}
+
 /// One line of the conversion report: what was decided or dropped, and where (a pointer
 /// into the 1.0 input).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Note {
+    /// A JSON pointer into the 1.0 input.
     pub pointer: String,
+    /// Decision or dropped part.
     pub kind: NoteKind,
+    /// What and why, for a person.
     pub text: String,
 }
 
+/// What a note records.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NoteKind {
     /// A choice the converter made (a mapping, a default written out).
@@ -66,15 +87,30 @@ pub enum NoteKind {
 /// `json.images`, which carry neither `uri` nor `bufferView` until [`output`] places them).
 #[derive(Debug, Clone)]
 pub struct Upgraded {
+    /// The glTF 2.0 JSON.
     pub json: Value,
+    /// The one output buffer.
     pub binary: Binary,
+    /// Images, in `images` order.
     pub images: Vec<EncodedImage>,
+    /// The conversion report.
     pub report: Vec<Note>,
 }
 
+impl Upgraded {
+    /// The asset as one GLB file in memory (JSON chunk, then geometry and images in the BIN
+    /// chunk). [`output::write_checked`] writes it to disk instead, checked and atomically.
+    pub fn to_glb(&self) -> Vec<u8> {
+        output::layout(self, "asset.glb").main.bytes()
+    }
+}
+
+/// An image of the output, encoded.
 #[derive(Debug, Clone)]
 pub struct EncodedImage {
+    /// The encoded file.
     pub bytes: Vec<u8>,
+    /// Its media type.
     pub mime_type: String,
     /// A file name for `.gltf` output (unique within the asset).
     pub file_name: String,
@@ -114,6 +150,11 @@ pub enum UpgradeError {
 /// assert_eq!(gold["name"], "gold");
 /// assert_eq!(gold["pbrMetallicRoughness"]["roughnessFactor"], 0.3);
 /// assert_eq!(upgraded.json["asset"]["version"], "2.0");
+///
+/// // The output, as bytes, passes its own check.
+/// let glb = upgraded.to_glb();
+/// let report = gltfmat::check_bytes("gold.glb", glb, &NoResources, &Default::default());
+/// assert!(!report.has_errors());
 /// ```
 pub fn upgrade(
     bytes: &[u8],

@@ -15,7 +15,9 @@ use std::path::{Path, PathBuf};
 /// borrowed from the upgrade, so laying out a large asset copies nothing.
 #[derive(Debug, Clone)]
 pub struct File<'u> {
+    /// The file name, without a folder.
     pub name: String,
+    /// Its bytes, in pieces (borrowed where unchanged).
     pub parts: Vec<Cow<'u, [u8]>>,
 }
 
@@ -36,7 +38,9 @@ impl File<'_> {
 /// The files of an output asset: the main one, and those its URIs name.
 #[derive(Debug, Clone)]
 pub struct Files<'u> {
+    /// The file the user named.
     pub main: File<'u>,
+    /// The files it refers to (`.bin`, images).
     pub side: Vec<File<'u>>,
 }
 
@@ -177,6 +181,7 @@ pub enum WriteError {
 
 /// The outcome of `write_checked`: the check of the files, and whether they were kept.
 pub struct Checked {
+    /// The check of the files as written.
     pub report: Report,
     /// False when the check found an error: then nothing was written.
     pub written: bool,

@@ -145,14 +145,8 @@ fn as_asset(input: &[u8]) -> Vec<u8> {
 
 fn exercise(input: &[u8]) {
     let asset = as_asset(input);
-    let deep = CheckOptions {
-        deep: true,
-        ..CheckOptions::default()
-    };
-    let khronos = CheckOptions {
-        profile: Profile::Khronos,
-        ..CheckOptions::default()
-    };
+    let deep = CheckOptions::default().with_deep(true);
+    let khronos = CheckOptions::default().with_profile(Profile::Khronos);
     for options in [&deep, &khronos] {
         let report = check_bytes("fuzz.gltf", asset.clone(), &NoResources, options);
         let _ = gltfmat::report::render(

@@ -379,12 +379,10 @@ fn check_texcoord_pairs(ctx: &mut Context, material: &Value, pointer: &str) {
 /// One texture bound to one slot of one material.
 #[derive(Clone)]
 pub struct SlotUse<'a> {
-    pub material_index: usize,
     pub material: &'a Value,
     pub slot: &'static TextureSlot,
     /// Pointer to the textureInfo.
     pub pointer: String,
-    pub info: &'a Value,
     /// Images the texture may sample: `source` and any extension's `source` (WebP, KTX2 …).
     pub images: Vec<usize>,
 }
@@ -416,7 +414,7 @@ fn collect_slot_uses<'a>(ctx: &Context<'a>) -> Vec<SlotUse<'a>> {
     let textures = ctx.items("textures");
     let image_count = ctx.items("images").len() as u64;
     let mut uses = Vec::new();
-    for (material_index, material_pointer, material) in ctx.objects("materials") {
+    for (_, material_pointer, material) in ctx.objects("materials") {
         for slot in TEXTURE_SLOTS {
             let Some(info) = slot.lookup(material) else {
                 continue;
@@ -430,11 +428,9 @@ fn collect_slot_uses<'a>(ctx: &Context<'a>) -> Vec<SlotUse<'a>> {
                 .map(|i| i as usize)
                 .collect();
             uses.push(SlotUse {
-                material_index,
                 material,
                 slot,
                 pointer: format!("{material_pointer}{}", slot.pointer()),
-                info,
                 images,
             });
         }

@@ -22,9 +22,12 @@ mod view_usage;
 
 use super::context::Context;
 
+/// One pass over the document, recording findings and what later passes need in the context.
+pub(crate) type Pass = fn(&mut Context);
+
 /// The Khronos link order: each pass may read what the passes before it stored in the context
 /// (buffer bytes before accessor data, image headers before materials, …).
-pub(crate) const PASSES: &[(&str, fn(&mut Context))] = &[
+pub(crate) const PASSES: &[(&str, Pass)] = &[
     ("extensions", extensions::check),
     ("asset", objects::check_asset),
     ("buffers", resources::check_buffers),

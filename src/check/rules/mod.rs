@@ -111,6 +111,7 @@ impl Rule {
                 summary,
                 doc,
                 origin: Origin::Gltfmat,
+                own_logic: run.document.is_some() || run.pixels.is_some(),
             },
             run,
         }

@@ -1,10 +1,10 @@
 //! Animations: channels and samplers re-indexed, accessors repacked.
 
-use std::collections::HashMap;
 use crate::upgrade::builder::{pointer, Builder};
 use crate::upgrade::data::Role;
 use crate::upgrade::{NoteKind, UpgradeError};
 use serde_json::{json, Value};
+use std::collections::HashMap;
 
 impl Builder<'_, '_> {
     pub(in crate::upgrade) fn animations(&mut self) -> Result<(), UpgradeError> {

@@ -56,11 +56,28 @@ impl Builder<'_, '_> {
     pub(in crate::upgrade) fn scenes(&mut self) {
         for (id, scene) in self.source.dictionary("scenes") {
             let mut out = Self::named(id, scene);
-            let nodes: Vec<usize> = id_list(scene.get("nodes"))
-                .iter()
-                .filter_map(|n| self.index_of("nodes", Some(&json!(n))))
-                .collect();
-            out.insert("nodes".into(), json!(nodes));
+            let at = pointer("scenes", id);
+            let mut nodes = Vec::new();
+            for node in id_list(scene.get("nodes")) {
+                match self.index_of("nodes", Some(&json!(node))) {
+                    Some(index) => nodes.push(index),
+                    None => self.note(
+                        format!("{at}/nodes"),
+                        NoteKind::Dropped,
+                        format!("node '{node}' does not exist: left out of the scene."),
+                    ),
+                }
+            }
+            if nodes.is_empty() {
+                // 2.0 forbids an empty `nodes` array; a scene without the member is valid.
+                self.note(
+                    &at,
+                    NoteKind::Decision,
+                    "the scene has no nodes: written without a `nodes` array (2.0 forbids an empty one).",
+                );
+            } else {
+                out.insert("nodes".into(), json!(nodes));
+            }
             self.push("scenes", Value::Object(out));
         }
     }

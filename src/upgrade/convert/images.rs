@@ -1,10 +1,10 @@
 //! Samplers (1.0 defaults written out), images (embedded, external or in the binary) and textures.
 
 use crate::document::image_header;
+use crate::gltf::gl;
 use crate::upgrade::builder::{pointer, Builder};
 use crate::upgrade::{NoteKind, UpgradeError};
 use serde_json::{json, Value};
-use crate::gltf::gl;
 
 impl Builder<'_, '_> {
     pub(in crate::upgrade) fn samplers(&mut self) {

@@ -1,12 +1,12 @@
 //! 1.0 materials → 2.0: the PBR drafts, KHR_materials_common, technique values, technique
 //! render states, and the 1.0 default material.
 
-use crate::upgrade::builder::{pointer, Builder};
-use crate::upgrade::rebake;
-use crate::upgrade::{NoteKind, SpecularGlossiness, UpgradeError};
 use crate::gltf::color::srgb_to_linear;
 use crate::gltf::gl::{BLEND, CULL_FACE};
 use crate::legacy::pbr::{self, LegacyPbr, Model};
+use crate::upgrade::builder::{pointer, Builder};
+use crate::upgrade::rebake;
+use crate::upgrade::{NoteKind, SpecularGlossiness, UpgradeError};
 use serde_json::{json, Map, Value};
 
 pub fn convert(builder: &mut Builder, id: &str, material: &Value) -> Result<Value, UpgradeError> {

@@ -21,7 +21,11 @@ impl Builder<'_, '_> {
         Ok(())
     }
 
-    pub(in crate::upgrade) fn primitive(&mut self, primitive: &Value, at: &str) -> Result<Value, UpgradeError> {
+    pub(in crate::upgrade) fn primitive(
+        &mut self,
+        primitive: &Value,
+        at: &str,
+    ) -> Result<Value, UpgradeError> {
         let mut attributes = Map::new();
         let source_attributes = primitive.get("attributes").and_then(Value::as_object);
         for (semantic, accessor) in source_attributes.into_iter().flatten() {

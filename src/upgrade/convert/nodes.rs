@@ -1,7 +1,7 @@
 //! Nodes and skins: per-instance skins, bindShapeMatrix folded into the inverse bind matrices, transforms copied.
 
-use crate::upgrade::data;
 use crate::upgrade::builder::{id_list, pointer, Builder};
+use crate::upgrade::data;
 use crate::upgrade::data::Role;
 use crate::upgrade::{NoteKind, UpgradeError};
 use serde_json::{json, Map, Value};
@@ -74,7 +74,11 @@ impl Builder<'_, '_> {
 
     /// The 2.0 skin for a node instancing a 1.0 skin with its `skeletons` (one 2.0 skin per
     /// instance, as 2.0 joints are absolute node indices).
-    pub(in crate::upgrade) fn skin_instance(&mut self, id: &str, node: &Value) -> Result<Option<usize>, UpgradeError> {
+    pub(in crate::upgrade) fn skin_instance(
+        &mut self,
+        id: &str,
+        node: &Value,
+    ) -> Result<Option<usize>, UpgradeError> {
         let Some(skin_id) = node.get("skin").and_then(Value::as_str) else {
             return Ok(None);
         };

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes a large glTF 1.0 asset for the benchmarks: a vertex grid with NORMAL and TEXCOORD_0,
 32-bit indices, one FRAUNHOFER_materials_pbr material with a 2048² base colour texture.
-    bench/gen_gltf1.py WORK_FOLDER VERTICES   → WORK_FOLDER/big.gltf + big.bin + base.png
+    scripts/bench/gen_gltf1.py WORK_FOLDER VERTICES   → WORK_FOLDER/big.gltf + big.bin + base.png
 """
 import array, json, sys, math, struct, zlib
 work, n = sys.argv[1], int(sys.argv[2])

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the npm Khronos glTF-Validator (an oracle, never a dependency) on each file and prints
 # its error/warning/info counts; exits 1 when any file has an error.
-#   bench/khronos-validate.sh FILE...
+#   scripts/bench/khronos-validate.sh FILE...
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 [ -d "$here/node_modules/gltf-validator" ] || npm install --prefix "$here" --no-save --silent gltf-validator gltf-pipeline >/dev/null

@@ -3,7 +3,7 @@
 # (source against its upgrade) on a generated glTF 1.0 asset with five 2048² textures (two
 # metal-rough materials, one spec-gloss), best of 5 runs each (this machine's timings vary by
 # a third from run to run).
-#   bench/verify.sh [size]
+#   scripts/bench/verify.sh [size]
 source "$(dirname "$0")/common.sh"
 size=${1:-2048}
 python3 - "$work" "$size" "$(pwd)" <<'PY'
