@@ -202,3 +202,57 @@ fn a_corrupt_index_buffer_gives_a_bounded_list_of_findings() {
         oob[999].message
     );
 }
+
+#[test]
+fn offsets_near_two_to_the_64_are_a_finding_not_a_wrapped_sum() {
+    for (offset, stride) in [
+        (18_446_744_073_709_551_612u64, None),
+        (0, Some(9_223_372_036_854_775_808u64)),
+    ] {
+        let mut view = json!({"buffer": 0, "byteLength": 36});
+        if let Some(stride) = stride {
+            view["byteStride"] = json!(stride);
+        }
+        let gltf = json!({
+            "asset": {"version": "2.0"},
+            "buffers": [{"byteLength": 36, "uri": format!("data:application/octet-stream;base64,{}", base64::engine::general_purpose::STANDARD.encode([0u8; 36]))}],
+            "bufferViews": [view],
+            "accessors": [{"bufferView": 0, "byteOffset": offset, "componentType": 5126, "count": 3, "type": "VEC3"}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]
+        });
+        let bytes = serde_json::to_vec(&gltf).unwrap();
+        for profile in [gltfmat::Profile::Default, gltfmat::Profile::Khronos] {
+            let options = CheckOptions::default().with_profile(profile);
+            let report = check_bytes("extreme.gltf", bytes.clone(), &NoResources, &options);
+            assert!(
+                report.has_errors(),
+                "offset {offset}, stride {stride:?}: {:?}",
+                codes(&report)
+            );
+        }
+    }
+}
+
+#[test]
+fn a_file_without_a_2_x_version_gets_only_the_asset_findings() {
+    // The rest of the file is not judged by rules of a version it does not claim.
+    for asset in [json!({}), json!({"version": "3.0"})] {
+        let gltf = json!({"asset": asset, "nodes": [{"matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1], "children": [7]}]});
+        let options = CheckOptions::default().with_profile(gltfmat::Profile::Khronos);
+        let report = check_bytes(
+            "v.gltf",
+            serde_json::to_vec(&gltf).unwrap(),
+            &NoResources,
+            &options,
+        );
+        let found = codes(&report);
+        assert!(!found.is_empty(), "{asset}");
+        assert!(
+            report
+                .diagnostics
+                .iter()
+                .all(|d| d.pointer().is_some_and(|p| p.starts_with("/asset"))),
+            "{asset}: {found:?}"
+        );
+    }
+}

@@ -2,7 +2,7 @@
 //! passes gltfmat's check, materials convert as documented, and files are handled safely.
 
 use gltfmat::check::Severity;
-use gltfmat::document::uri::FolderResources;
+use gltfmat::document::uri::{FolderResources, NoResources};
 use gltfmat::upgrade::{output, upgrade, SpecularGlossiness, UpgradeOptions, Upgraded};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -533,4 +533,18 @@ fn linear_to_srgb(linear: f64) -> f64 {
     } else {
         1.055 * linear.powf(1.0 / 2.4) - 0.055
     }
+}
+
+#[test]
+fn a_scene_without_nodes_upgrades_to_a_valid_scene() {
+    let gltf1 =
+        br#"{"asset": {"version": "1.0"}, "scene": "s", "scenes": {"s": {"nodes": ["missing"]}}}"#;
+    let up = upgrade(gltf1, &NoResources, &UpgradeOptions::default()).unwrap();
+    assert!(up.json["scenes"][0].get("nodes").is_none());
+    assert!(up
+        .report
+        .iter()
+        .any(|n| n.text.contains("'missing' does not exist")));
+    let report = gltfmat::check_bytes("s.glb", up.to_glb(), &NoResources, &Default::default());
+    assert!(!report.has_errors(), "{:?}", report.diagnostics);
 }

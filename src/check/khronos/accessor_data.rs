@@ -172,12 +172,17 @@ pub(super) fn scannable<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layou
     }
     let layout = layout(ctx, accessor, view)?;
     let bytes = view_bytes(ctx, view)?;
+    // Every offset the walk computes is below `needed`, so once it fits, none can overflow.
+    // Elements that overlap (a stride below the element size) are not walked: other passes
+    // report that layout.
+    let element = layout.size.checked_mul(layout.components)?;
     let needed = layout
         .count
-        .checked_sub(1)
-        .and_then(|n| n.checked_mul(layout.stride))
-        .and_then(|n| n.checked_add(layout.size * layout.components + layout.offset));
-    (layout.count > 0 && needed.is_some_and(|n| n <= bytes.len())).then_some((layout, bytes))
+        .checked_sub(1)?
+        .checked_mul(layout.stride)?
+        .checked_add(element)?
+        .checked_add(layout.offset)?;
+    (layout.stride >= element && needed <= bytes.len()).then_some((layout, bytes))
 }
 
 /// Bytes scanned between two releases of a mapped file's pages.

@@ -21,7 +21,10 @@ pub(super) fn bounds(
     release: impl Fn(&[u8]),
 ) -> Option<(Vec<f64>, Vec<f64>)> {
     let element = layout.size * layout.components;
-    let end = layout.offset + layout.count * element;
+    let end = layout
+        .count
+        .checked_mul(element)?
+        .checked_add(layout.offset)?;
     if layout.stride != element || layout.components == 0 {
         return None;
     }

@@ -21,6 +21,7 @@ mod unused;
 mod view_usage;
 
 use super::context::Context;
+pub(crate) use objects::{check_asset, has_supported_version, is_about_asset};
 
 /// One pass over the document, recording findings and what later passes need in the context.
 pub(crate) type Pass = fn(&mut Context);

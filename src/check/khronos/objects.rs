@@ -14,6 +14,25 @@ fn version(text: &str) -> Option<(u64, u64)> {
     Some((major.parse().ok()?, minor.parse().ok()?))
 }
 
+/// Whether `asset.version` says glTF 2.x: the other passes assume it.
+pub fn has_supported_version(root: &Value) -> bool {
+    root.get("asset")
+        .and_then(|a| a.get("version"))
+        .and_then(Value::as_str)
+        .and_then(version)
+        .is_some_and(|(major, _)| major == 2)
+}
+
+/// A schema finding about the `asset` object (or its absence from the root).
+pub fn is_about_asset(diagnostic: &crate::diagnostic::Diagnostic) -> bool {
+    match diagnostic.pointer() {
+        Some("" | "/") => diagnostic.message.contains("'asset'"),
+        Some(pointer) => pointer == "/asset" || pointer.starts_with("/asset/"),
+        None => false,
+    }
+}
+
+/// The `asset` object: version and minVersion (run alone when the version is not 2.x).
 pub fn check_asset(ctx: &mut Context) {
     let Some(asset) = ctx.root.get("asset") else {
         return;
@@ -408,21 +427,20 @@ pub fn check_nodes_and_scenes(ctx: &mut Context) {
             ctx.reference_value(child, &format!("{pointer}/children/{c}"), "nodes");
         }
         // As the Khronos validator sees it: a skin alone leaves a node empty; children,
-        // even unresolved ones, do not.
+        // even unresolved ones, do not; a name does not count (its gltf.dart ignores it, and
+        // Blender writes named empty nodes).
         let has_children = node
             .get("children")
             .and_then(Value::as_array)
             .is_some_and(|c| !c.is_empty());
         let extras = node.get("extras").is_some_and(|e| !e.is_null());
-        let named = node.get("name").is_some();
         // A joint is not empty: skinning reads its transform.
         let empty = !joints.contains(&(index as u64))
             && mesh.is_none()
             && camera.is_none()
             && !has_children
             && node.get("extensions").is_none()
-            && !extras
-            && !named;
+            && !extras;
         if empty {
             ctx.emit(
                 khronos::NODE_EMPTY,
