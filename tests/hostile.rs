@@ -256,3 +256,45 @@ fn a_file_without_a_2_x_version_gets_only_the_asset_findings() {
         );
     }
 }
+
+#[test]
+fn max_issues_keeps_errors_first_and_counts_everything() {
+    // The schema pass emits the warning (an unknown root member) before the link pass emits
+    // the error (an unresolved scene).
+    let gltf = json!({"asset": {"version": "2.0"}, "unknownMember": 1, "scene": 5});
+    let bytes = serde_json::to_vec(&gltf).unwrap();
+    let all = check_bytes(
+        "m.gltf",
+        bytes.clone(),
+        &NoResources,
+        &CheckOptions::default(),
+    );
+    assert_eq!(codes(&all)[0], "UNEXPECTED_PROPERTY", "{:?}", codes(&all));
+    let options = CheckOptions::default().with_max_issues(1);
+    let report = check_bytes("m.gltf", bytes, &NoResources, &options);
+    assert!(report.truncated);
+    assert_eq!(codes(&report), ["UNRESOLVED_REFERENCE"]);
+    for severity in gltfmat::Severity::ALL {
+        assert_eq!(report.count(severity), all.count(severity), "{severity}");
+    }
+    assert!(report.has_errors());
+}
+
+#[test]
+fn an_index_beyond_u64_is_unresolved_as_written_not_saturated() {
+    let gltf = br#"{"asset":{"version":"2.0"},"nodes":[{"mesh":1e29}],"scenes":[{"nodes":[0]}]}"#;
+    let report = check_bytes(
+        "i.gltf",
+        gltf.to_vec(),
+        &NoResources,
+        &CheckOptions::default(),
+    );
+    let found: Vec<_> = report
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "UNRESOLVED_REFERENCE")
+        .collect();
+    assert_eq!(found.len(), 1, "{:?}", codes(&report));
+    assert!(found[0].message.contains("1e+29"), "{}", found[0].message);
+    assert!(!found[0].message.contains("18446744073709551615"));
+}

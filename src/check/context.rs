@@ -151,16 +151,22 @@ impl<'a> Context<'a> {
         pointer: &str,
         collection: &'static str,
     ) -> Option<usize> {
-        let index = as_index(value)?;
+        let index = as_index(value);
         let len = self.items(collection).len() as u64;
-        if index >= len {
-            self.emit(
-                khronos::UNRESOLVED_REFERENCE,
-                pointer,
-                format!("Unresolved reference: {index}."),
-            );
+        // A whole number too large for an index (1e29) resolves to nothing, like any other
+        // index past the end; other values are the schema pass's to report.
+        let whole = value.as_f64().is_some_and(|f| f.fract() == 0.0 && f >= 0.0);
+        let Some(index) = index.filter(|&i| i < len) else {
+            if whole {
+                self.emit(
+                    khronos::UNRESOLVED_REFERENCE,
+                    pointer,
+                    // The number as written: an index beyond u64 must not print as a saturated one.
+                    format!("Unresolved reference: {value}."),
+                );
+            }
             return None;
-        }
+        };
         self.used.insert((collection, index as usize));
         Some(index as usize)
     }

@@ -84,17 +84,18 @@ pub struct Report {
     pub diagnostics: Vec<Diagnostic>,
     /// True when `max_issues` cut the list.
     pub truncated: bool,
+    /// Findings per severity (error, warning, info, hint), counted before `max_issues` cut
+    /// the list: a truncated report still says how many errors the asset has.
+    counts: [usize; 4],
     /// The report's `info` section (version, extensions, resources, counts).
     pub info: AssetInfo,
 }
 
 impl Report {
     /// How many findings have `severity`.
+    /// Counted before `max_issues` cut the list.
     pub fn count(&self, severity: Severity) -> usize {
-        self.diagnostics
-            .iter()
-            .filter(|d| d.severity == severity)
-            .count()
+        self.counts[severity as usize]
     }
 
     /// Whether any finding is an error.
@@ -152,12 +153,13 @@ pub fn check_bytes(
             diagnostics.extend(ctx.diagnostics);
         }
     }
-    let (diagnostics, truncated) = apply_options(diagnostics, options);
+    let (diagnostics, counts, truncated) = apply_options(diagnostics, options);
     Report {
         uri: uri.to_string(),
         document,
         diagnostics,
         truncated,
+        counts,
         info,
     }
 }
@@ -195,8 +197,12 @@ fn run_passes(ctx: &mut Context) {
     }
 }
 
-/// Applies ignore/only/severity overrides and the issue limit.
-fn apply_options(diagnostics: Vec<Diagnostic>, options: &CheckOptions) -> (Vec<Diagnostic>, bool) {
+/// Applies ignore/only/severity overrides, counts the findings per severity, then applies the
+/// issue limit, keeping the most severe findings (each severity in emission order).
+fn apply_options(
+    diagnostics: Vec<Diagnostic>,
+    options: &CheckOptions,
+) -> (Vec<Diagnostic>, [usize; 4], bool) {
     let matches = |list: &[String], code: &str| list.iter().any(|c| c.eq_ignore_ascii_case(code));
     let mut kept: Vec<Diagnostic> = diagnostics
         .into_iter()
@@ -213,11 +219,16 @@ fn apply_options(diagnostics: Vec<Diagnostic>, options: &CheckOptions) -> (Vec<D
             d
         })
         .collect();
+    let mut counts = [0; 4];
+    for d in &kept {
+        counts[d.severity as usize] += 1;
+    }
     let truncated = options.max_issues > 0 && kept.len() > options.max_issues;
     if truncated {
+        kept.sort_by_key(|d| d.severity);
         kept.truncate(options.max_issues);
     }
-    (kept, truncated)
+    (kept, counts, truncated)
 }
 
 /// Whether the container is binary (used by passes that treat GLB specially).

@@ -19,7 +19,8 @@ pub fn as_index(value: &Value) -> Option<u64> {
     value.as_u64().or_else(|| {
         value
             .as_f64()
-            .filter(|f| f.fract() == 0.0 && *f >= 0.0)
+            // Integers written as floats; beyond 2^64 a cast would saturate to a false index.
+            .filter(|f| f.fract() == 0.0 && *f >= 0.0 && *f < 18_446_744_073_709_551_616.0)
             .map(|f| f as u64)
     })
 }
