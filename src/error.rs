@@ -7,14 +7,14 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
-    /// A file could not be read or written.
+    /// A file could not be read (missing, not a regular file, too large, or unreadable).
     #[error("{}: {source}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
-        /// What the system said.
+        /// Why.
         #[source]
-        source: std::io::Error,
+        source: crate::document::file::FileError,
     },
     /// The asset holds nothing the operation can use (no materials to compare, …).
     #[error("{}: {reason}", path.display())]

@@ -113,7 +113,7 @@ impl Report {
 /// An unreadable file is an [`Error`](crate::Error); problems in the asset are diagnostics.
 pub fn check_path(path: impl AsRef<Path>, options: &CheckOptions) -> Result<Report, crate::Error> {
     let path = path.as_ref();
-    let bytes = document::Bytes::open(path).map_err(|source| crate::Error::Io {
+    let bytes = document::file::read(path).map_err(|source| crate::Error::Io {
         path: path.to_path_buf(),
         source,
     })?;

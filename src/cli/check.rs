@@ -85,13 +85,18 @@ pub fn run(args: CheckArgs) -> Outcome {
     let mut unreadable = false;
     let mut files = Vec::new();
     for input in &args.inputs {
-        if input.as_os_str() == "-" || input.is_file() {
+        if input.as_os_str() == "-" {
             files.push(input.clone());
-        } else if input.is_dir() {
-            collect_assets(input, &mut files);
-        } else {
-            eprintln!("gltfmat: {}: no such file or folder", input.display());
-            unreadable = true;
+            continue;
+        }
+        match std::fs::metadata(input) {
+            Ok(metadata) if metadata.is_dir() => unreadable |= !collect_assets(input, &mut files),
+            // Anything else named is checked, or refused as not a regular file.
+            Ok(_) => files.push(input.clone()),
+            Err(e) => {
+                eprintln!("gltfmat: {}: {e}", input.display());
+                unreadable = true;
+            }
         }
     }
     // Files are checked in parallel; reports keep the input order. The progress bar goes to
@@ -147,31 +152,44 @@ fn check_file(path: &Path, options: &CheckOptions) -> Result<Report, String> {
     })
 }
 
-/// Every .gltf/.glb below a folder, sorted, without following symlinked folders.
-fn collect_assets(folder: &Path, out: &mut Vec<PathBuf>) {
-    let mut stack = vec![folder.to_path_buf()];
+/// Every .gltf/.glb (in any letter case) below a folder, sorted, as a walk in the style of
+/// ripgrep finds them: `.gitignore`d and hidden entries are left out and symlinked folders
+/// are not followed. An entry that is not a regular file (a FIFO, a device, or a symlink to
+/// one) is skipped with a note; false when a folder could not be read (reported).
+fn collect_assets(folder: &Path, out: &mut Vec<PathBuf>) -> bool {
     let mut found = Vec::new();
-    while let Some(dir) = stack.pop() {
-        let Ok(entries) = std::fs::read_dir(&dir) else {
-            continue;
-        };
-        for entry in entries.flatten() {
-            let path = entry.path();
-            let Ok(kind) = entry.file_type() else {
+    let mut complete = true;
+    for entry in ignore::WalkBuilder::new(folder).require_git(false).build() {
+        let entry = match entry {
+            Ok(entry) => entry,
+            Err(e) => {
+                eprintln!("gltfmat: {e}");
+                complete = false;
                 continue;
-            };
-            if kind.is_dir() {
-                stack.push(path);
-            } else if matches!(
-                path.extension().and_then(|e| e.to_str()),
-                Some("gltf" | "glb")
-            ) {
-                found.push(path);
             }
+        };
+        if !is_asset_name(entry.path()) {
+            continue;
+        }
+        match std::fs::metadata(entry.path()) {
+            Ok(metadata) if metadata.is_file() => found.push(entry.into_path()),
+            Ok(metadata) if metadata.is_dir() => {}
+            Ok(_) => eprintln!(
+                "gltfmat: note: skipped {}: not a regular file",
+                entry.path().display()
+            ),
+            Err(e) => eprintln!("gltfmat: note: skipped {}: {e}", entry.path().display()),
         }
     }
     found.sort();
     out.extend(found);
+    complete
+}
+
+fn is_asset_name(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
 }
 
 fn build_options(args: &CheckArgs) -> Result<CheckOptions, String> {

@@ -2,19 +2,22 @@
 //! the conversion report.
 
 use crate::common::{Failure, Outcome};
+use gltfmat::document::file::FileId;
 use gltfmat::document::uri::folder_of;
 use gltfmat::report::{render, Format, Style};
 use gltfmat::shade::pairing::compare_pairs;
 use gltfmat::upgrade::{legacy_materials, output, NoteKind, SpecularGlossiness};
 use gltfmat::{upgrade, FolderResources, Severity, UpgradeOptions, Upgraded};
-use std::path::PathBuf;
+use std::io::Write;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(clap::Args)]
 pub struct UpgradeArgs {
     /// The glTF 1.0 asset (.gltf, or a KHR_binary_glTF .glb).
     input: PathBuf,
-    /// Output: .glb embeds everything; .gltf writes .bin and images beside it.
+    /// Output: .glb embeds everything; .gltf writes .bin and images beside it; - writes a
+    /// GLB to stdout (the notes then go to stderr).
     #[arg(short, long)]
     output: PathBuf,
     /// How spec-gloss materials are written.
@@ -42,7 +45,15 @@ enum SpecGlossArg {
 }
 
 pub fn run(args: UpgradeArgs) -> Outcome {
-    let bytes = std::fs::read(&args.input)
+    let destination = Destination::of(&args.output)?;
+    let input_id = FileId::of_path(&args.input);
+    // Refused before converting: a conversion can take minutes.
+    if let Destination::File { folder, name } = &destination {
+        let protected: Vec<FileId> = input_id.into_iter().collect();
+        output::may_write(&folder.join(name), &protected, args.force)
+            .map_err(|e| Failure::usage(e.to_string()))?;
+    }
+    let bytes = gltfmat::document::file::read(&args.input)
         .map_err(|e| Failure::usage(format!("{}: {e}", args.input.display())))?;
     let options = UpgradeOptions::default()
         .with_specular_glossiness(match args.specular_glossiness {
@@ -53,32 +64,27 @@ pub fn run(args: UpgradeArgs) -> Outcome {
     let loader = FolderResources::beside(&args.input);
     let upgraded = upgrade(&bytes, &loader, &options)
         .map_err(|e| Failure::refused(format!("{}: {e}", args.input.display())))?;
+    let mut log = Log::to(&destination);
     for note in &upgraded.report {
         let kind = match note.kind {
             NoteKind::Decision => "decision",
             NoteKind::Dropped => "dropped",
         };
-        println!("{kind:<8} {} {}", note.pointer, note.text);
+        log.line(format_args!("{kind:<8} {} {}", note.pointer, note.text));
     }
     if args.verify && !verified(&bytes, &args, &upgraded) {
         return Err(Failure::refused(
             "a converted material does not render like its source; nothing was written.",
         ));
     }
-    let Some(name) = args.output.file_name().and_then(|n| n.to_str()) else {
-        return Err(Failure::usage(format!(
-            "{}: not a file name",
-            args.output.display()
-        )));
+    let (folder, name) = match destination {
+        Destination::Stdout => return write_to_stdout(&upgraded),
+        Destination::File { folder, name } => (folder, name),
     };
-    let files = output::layout(&upgraded, name);
-    let checked = output::write_checked(
-        &files,
-        &folder_of(&args.output),
-        Some(&args.input),
-        args.force,
-    )
-    .map_err(|e| Failure::usage(e.to_string()))?;
+    let files = output::layout(&upgraded, &name);
+    let protected: Vec<FileId> = input_id.into_iter().chain(loader.files_read()).collect();
+    let checked = output::write_checked(&files, &folder, &protected, args.force)
+        .map_err(|e| Failure::usage(e.to_string()))?;
     let report = checked.report;
     if !checked.written {
         eprint!("{}", render(Format::Human, &[report], &Style::new(false)));
@@ -92,6 +98,79 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         args.output.display(),
         1 + files.side.len()
     );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Where the output goes: a `.gltf`/`.glb` file, or stdout (`-o -`, as a GLB).
+enum Destination {
+    Stdout,
+    File { folder: PathBuf, name: String },
+}
+
+impl Destination {
+    fn of(output: &Path) -> Result<Destination, Failure> {
+        if output.as_os_str() == "-" {
+            return Ok(Destination::Stdout);
+        }
+        let name = (output.file_name().and_then(|n| n.to_str()))
+            .filter(|_| !output.as_os_str().to_string_lossy().ends_with(['/', '\\']))
+            .filter(|n| {
+                let n = n.to_ascii_lowercase();
+                n.ends_with(".gltf") || n.ends_with(".glb")
+            });
+        let Some(name) = name else {
+            return Err(Failure::usage(format!(
+                "{}: the output must be a file named *.gltf or *.glb (or - for a GLB on stdout)",
+                output.display()
+            )));
+        };
+        Ok(Destination::File {
+            folder: folder_of(output),
+            name: name.to_string(),
+        })
+    }
+}
+
+/// The conversion's notes: on stdout, or on stderr when stdout carries the asset.
+struct Log {
+    to_stderr: bool,
+}
+
+impl Log {
+    fn to(destination: &Destination) -> Log {
+        Log {
+            to_stderr: matches!(destination, Destination::Stdout),
+        }
+    }
+
+    fn line(&mut self, line: std::fmt::Arguments) {
+        if self.to_stderr {
+            eprintln!("{line}");
+        } else {
+            println!("{line}");
+        }
+    }
+}
+
+/// `-o -`: the GLB, checked in memory, on stdout.
+fn write_to_stdout(upgraded: &Upgraded) -> Outcome {
+    let files = output::layout(upgraded, "-.glb");
+    let report = output::verify(&files);
+    if report.has_errors() {
+        eprint!("{}", render(Format::Human, &[report], &Style::new(false)));
+        return Err(Failure::refused(
+            "the upgraded asset fails its own check; nothing was written.",
+        ));
+    }
+    let mut stdout = std::io::stdout().lock();
+    for part in &files.main.parts {
+        stdout
+            .write_all(part)
+            .map_err(|e| Failure::usage(format!("stdout: {e}")))?;
+    }
+    stdout
+        .flush()
+        .map_err(|e| Failure::usage(format!("stdout: {e}")))?;
     Ok(ExitCode::SUCCESS)
 }
 

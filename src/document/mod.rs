@@ -1,6 +1,7 @@
 //! Bytes → document: container detection, GLB chunks, JSON, and external resources.
 
 pub mod bytes;
+pub mod file;
 pub(crate) mod glb;
 pub(crate) mod image_decode;
 pub(crate) mod image_header;

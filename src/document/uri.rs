@@ -1,6 +1,7 @@
 //! URIs in glTF: data URIs decoded in memory, relative references read from the asset's own
 //! folder only. Nothing is ever fetched from a network, and no path may leave the folder.
 
+use super::file::{read_opened_with_id, FileError, FileId};
 use super::Bytes;
 use base64::Engine;
 use std::path::{Component, Path, PathBuf};
@@ -115,6 +116,9 @@ pub enum LoadError {
     /// Larger than a resource may be (bytes).
     #[error("too large ({0} bytes)")]
     TooLarge(u64),
+    /// A folder, FIFO, socket or device: never read.
+    #[error("{0}: not a regular file ({1})")]
+    NotRegular(String, &'static str),
     /// Reading failed.
     #[error("{0}")]
     Io(String),
@@ -147,7 +151,7 @@ impl ResourceLoader for MemoryResources {
     fn load(&self, relative: &str) -> Result<Bytes, LoadError> {
         self.files
             .get(relative)
-            .map(|bytes| Bytes::Owned(bytes.clone()))
+            .cloned()
             .ok_or_else(|| LoadError::NotFound(relative.to_string()))
     }
 }
@@ -160,11 +164,14 @@ pub fn folder_of(path: &Path) -> PathBuf {
     }
 }
 
-/// Reads files below one folder, refusing anything that resolves outside it.
+/// Reads files below one folder, refusing anything that resolves outside it. The folder is
+/// opened once and every file is opened through that handle, resolved by the system
+/// beneath it (cap-std): a `..` or a symlink that leads out cannot be followed, even when
+/// it is swapped in while the asset is being read.
 pub struct FolderResources {
-    folder: PathBuf,
-    /// Files larger than this are refused, so a hostile URI cannot exhaust memory.
-    pub max_bytes: u64,
+    folder: Result<cap_std::fs::Dir, String>,
+    /// Every file read so far, so that a writer can leave them alone.
+    read: std::sync::Mutex<Vec<FileId>>,
 }
 
 impl FolderResources {
@@ -174,53 +181,79 @@ impl FolderResources {
     }
 
     /// Resources below `folder`.
-    pub fn new(folder: impl Into<PathBuf>) -> Self {
+    pub fn new(folder: impl AsRef<Path>) -> Self {
+        let folder = folder.as_ref();
         FolderResources {
-            folder: folder.into(),
-            max_bytes: 4 << 30,
+            folder: cap_std::fs::Dir::open_ambient_dir(folder, cap_std::ambient_authority())
+                .map_err(|e| format!("{}: {e}", folder.display())),
+            read: Default::default(),
         }
     }
 
-    fn resolve(&self, relative: &str) -> Result<PathBuf, LoadError> {
-        let mut depth = 0i32;
-        for component in Path::new(relative).components() {
-            match component {
-                Component::ParentDir => depth -= 1,
-                Component::Normal(_) => depth += 1,
-                Component::CurDir => {}
-                Component::RootDir | Component::Prefix(_) => {
-                    return Err(LoadError::OutsideFolder(relative.to_string()))
-                }
-            }
-            if depth < 0 {
-                return Err(LoadError::OutsideFolder(relative.to_string()));
-            }
-        }
-        let path = self.folder.join(relative);
-        let real = path
-            .canonicalize()
-            .map_err(|_| LoadError::NotFound(relative.to_string()))?;
-        let base = self
-            .folder
-            .canonicalize()
-            .map_err(|e| LoadError::Io(e.to_string()))?;
-        if !real.starts_with(&base) {
+    /// The files read so far, by identity.
+    pub fn files_read(&self) -> Vec<FileId> {
+        self.read
+            .lock()
+            .map(|read| read.clone())
+            .unwrap_or_default()
+    }
+
+    fn open(&self, relative: &str) -> Result<std::fs::File, LoadError> {
+        if leaves_folder(relative) {
             return Err(LoadError::OutsideFolder(relative.to_string()));
         }
-        Ok(real)
+        let folder = self.folder.as_ref().map_err(|e| LoadError::Io(e.clone()))?;
+        let mut options = cap_std::fs::OpenOptions::new();
+        options.read(true);
+        super::file::non_blocking(&mut options);
+        match folder.open_with(relative, &options) {
+            Ok(file) => Ok(file.into_std()),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                Err(LoadError::NotFound(relative.to_string()))
+            }
+            // cap-std refuses an escape with PermissionDenied and no OS error code; the
+            // system's own EACCES carries one.
+            Err(e)
+                if e.kind() == std::io::ErrorKind::PermissionDenied
+                    && e.raw_os_error().is_none() =>
+            {
+                Err(LoadError::OutsideFolder(relative.to_string()))
+            }
+            Err(e) => Err(LoadError::Io(e.to_string())),
+        }
     }
+}
+
+/// Whether a relative path names something outside its folder by its words alone (`..`
+/// past the top, a root or a drive).
+fn leaves_folder(relative: &str) -> bool {
+    let mut depth = 0i32;
+    for component in Path::new(relative).components() {
+        match component {
+            Component::ParentDir => depth -= 1,
+            Component::Normal(_) => depth += 1,
+            Component::CurDir => {}
+            Component::RootDir | Component::Prefix(_) => return true,
+        }
+        if depth < 0 {
+            return true;
+        }
+    }
+    false
 }
 
 impl ResourceLoader for FolderResources {
     fn load(&self, relative: &str) -> Result<Bytes, LoadError> {
-        let path = self.resolve(relative)?;
-        let size = std::fs::metadata(&path)
-            .map_err(|e| LoadError::Io(e.to_string()))?
-            .len();
-        if size > self.max_bytes {
-            return Err(LoadError::TooLarge(size));
+        let file = self.open(relative)?;
+        let (bytes, id) = read_opened_with_id(file).map_err(|e| match e {
+            FileError::NotRegular(kind) => LoadError::NotRegular(relative.to_string(), kind),
+            FileError::TooLarge(size) => LoadError::TooLarge(size),
+            other => LoadError::Io(other.to_string()),
+        })?;
+        if let (Some(id), Ok(mut read)) = (id, self.read.lock()) {
+            read.push(id);
         }
-        Bytes::open(&path).map_err(|e| LoadError::Io(e.to_string()))
+        Ok(bytes)
     }
 }
 

@@ -8,7 +8,7 @@ use serde_json::Value;
 
 fn uri_bytes(uri: &str, loader: &dyn ResourceLoader) -> Option<Bytes> {
     match classify(uri).ok()? {
-        UriKind::Data { bytes, .. } => Some(bytes.into()),
+        UriKind::Data { bytes, .. } => Some(bytes),
         UriKind::Relative(path) => loader.load(&path).ok(),
         _ => None,
     }

@@ -121,7 +121,7 @@ pub fn compare(
 
 /// The materials of an asset on disk, its resources read from its folder.
 pub fn materials_of(path: &Path) -> Result<Vec<Named>, Error> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
+    let bytes = crate::document::file::read(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
     })?;

@@ -1,5 +1,5 @@
 //! The upgraded binary buffer as runs of bytes: data that 2.0 can take unchanged stays in
-//! the (memory-mapped) input buffer and is only referenced; everything the converter
+//! the input buffer and is only referenced; everything the converter
 //! produces is owned. Writing the output then copies each input byte once, file to file,
 //! and a 100 MB asset never needs a 100 MB buffer in memory.
 

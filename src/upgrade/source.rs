@@ -2,7 +2,7 @@
 //! its images on demand.
 
 use super::UpgradeError;
-use crate::document::uri::{classify, LoadError, ResourceLoader, UriKind};
+use crate::document::uri::{classify, ResourceLoader, UriKind};
 use crate::document::Bytes;
 use serde_json::Value;
 use std::cell::OnceCell;
@@ -138,14 +138,8 @@ impl Source<'_> {
     /// Reads a data URI or a file inside the asset's folder.
     pub fn load_uri(&self, uri: &str) -> Result<Bytes, String> {
         match classify(uri)? {
-            UriKind::Data { bytes, .. } => Ok(bytes.into()),
-            UriKind::Relative(path) => self.loader.load(&path).map_err(|e| match e {
-                LoadError::OutsideFolder(p) => format!("'{p}' is outside the asset's folder"),
-                LoadError::NotFound(p) => format!("'{p}' not found"),
-                LoadError::NoFolder => "external files cannot be read for this input".into(),
-                LoadError::TooLarge(n) => format!("file too large ({n} bytes)"),
-                LoadError::Io(e) => e,
-            }),
+            UriKind::Data { bytes, .. } => Ok(bytes),
+            UriKind::Relative(path) => self.loader.load(&path).map_err(|e| e.to_string()),
             UriKind::NonRelative => Err(format!("'{uri}' is not a relative URI; not fetched")),
             UriKind::AbsolutePath => Err(format!("'{uri}' is an absolute path; not read")),
         }
@@ -200,6 +194,6 @@ impl Source<'_> {
             .get("uri")
             .and_then(Value::as_str)
             .ok_or("the image has no uri")?;
-        self.load_uri(uri).map(Bytes::into_vec)
+        self.load_uri(uri)
     }
 }

@@ -7,7 +7,6 @@ use super::accessor_usage::{self, Checker, Finding, Findings};
 use super::resources::view_bytes;
 use crate::check::context::{unsigned, Context};
 use crate::diagnostic::khronos;
-use crate::document::Bytes;
 use crate::gltf::accessor::{component_count, component_size, normalise};
 use crate::gltf::gl;
 use rayon::prelude::*;
@@ -144,8 +143,7 @@ pub fn check(ctx: &mut Context) {
             })
         })
         .collect();
-    let source = &ctx.document.bytes;
-    let findings: Vec<Vec<Finding>> = work.par_iter_mut().map(|w| scan(w, source)).collect();
+    let findings: Vec<Vec<Finding>> = work.par_iter_mut().map(scan).collect();
     for (code, pointer, message) in findings.into_iter().flatten() {
         ctx.emit(code, pointer, message);
     }
@@ -185,13 +183,8 @@ pub(super) fn scannable<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layou
     (layout.stride >= element && needed <= bytes.len()).then_some((layout, bytes))
 }
 
-/// Bytes scanned between two releases of a mapped file's pages.
-const RELEASE_STEP: usize = 4 << 20;
-
-/// Every finding of one accessor, from a single walk over its elements. Pages of a mapped
-/// `source` are released behind the walk, so that peak memory stays far below the size of
-/// a large GLB.
-fn scan(work: &mut Work, source: &Bytes) -> Vec<Finding> {
+/// Every finding of one accessor, from a single walk over its elements.
+fn scan(work: &mut Work) -> Vec<Finding> {
     let Work {
         pointer,
         layout,
@@ -200,8 +193,7 @@ fn scan(work: &mut Work, source: &Bytes) -> Vec<Finding> {
         checkers,
     } = work;
     let mut findings = Findings::default();
-    if let Some((min, max)) = accessor_fast::bounds(layout, bytes, checkers, |b| source.release(b))
-    {
+    if let Some((min, max)) = accessor_fast::bounds(layout, bytes, checkers) {
         Bounds {
             layout,
             bytes,
@@ -219,7 +211,6 @@ fn scan(work: &mut Work, source: &Bytes) -> Vec<Finding> {
     let mut actual_min = [f64::INFINITY; MAX_COMPONENTS];
     let mut actual_max = [f64::NEG_INFINITY; MAX_COMPONENTS];
     let mut non_finite = false;
-    let mut released = layout.offset;
     visit(layout, bytes, |first, values| {
         for c in 0..n {
             // A comparison is false for NaN, so NaN never becomes a bound; infinities are
@@ -234,13 +225,7 @@ fn scan(work: &mut Work, source: &Bytes) -> Vec<Finding> {
             checker.feed(first * n, values, n, unit, &mut findings);
         }
         non_finite |= values.iter().any(|v| !v.is_finite());
-        let done = (layout.offset + (first + values.len() / n) * layout.stride).min(bytes.len());
-        if done - released >= RELEASE_STEP {
-            source.release(&bytes[released..done]);
-            released = done;
-        }
     });
-    source.release(&bytes[released..]);
     if non_finite {
         report_non_finite(
             layout,

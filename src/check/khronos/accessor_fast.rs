@@ -9,16 +9,11 @@ use super::accessor_data::Layout;
 use super::accessor_usage::{is_unit_length, Checker};
 use crate::gltf::gl;
 
-/// Bytes processed between two calls of `release`.
-const STEP: usize = 4 << 20;
-
-/// min/max per component, or None when the general walk is needed. `release` is called on
-/// each processed run of bytes.
+/// min/max per component, or None when the general walk is needed.
 pub(super) fn bounds(
     layout: &Layout,
     bytes: &[u8],
     checkers: &mut [Checker],
-    release: impl Fn(&[u8]),
 ) -> Option<(Vec<f64>, Vec<f64>)> {
     let element = layout.size * layout.components;
     let end = layout
@@ -29,31 +24,24 @@ pub(super) fn bounds(
         return None;
     }
     let data = bytes.get(layout.offset..end)?;
-    // Runs hold whole triangles (3 indices) and whole elements.
-    let run = STEP / (3 * element) * (3 * element);
     match (layout.component_type, layout.components) {
-        (gl::FLOAT, n @ 1..=4) if checkers.is_empty() => floats(n, data, run, &release),
+        (gl::FLOAT, n @ 1..=4) if checkers.is_empty() => floats(n, data),
         (gl::FLOAT, 3) if checkers.iter().all(Checker::wants_unit_vectors_only) => {
-            float_bounds::<3>(data, run, &release, unit_vector)
+            float_bounds::<3>(data, unit_vector)
         }
-        (gl::UNSIGNED_BYTE, 1) => indices::<1>(data, run, checkers, &release),
-        (gl::UNSIGNED_SHORT, 1) => indices::<2>(data, run, checkers, &release),
-        (gl::UNSIGNED_INT, 1) => indices::<4>(data, run, checkers, &release),
+        (gl::UNSIGNED_BYTE, 1) => indices::<1>(data, checkers),
+        (gl::UNSIGNED_SHORT, 1) => indices::<2>(data, checkers),
+        (gl::UNSIGNED_INT, 1) => indices::<4>(data, checkers),
         _ => None,
     }
 }
 
-fn floats(
-    n: usize,
-    data: &[u8],
-    run: usize,
-    release: &impl Fn(&[u8]),
-) -> Option<(Vec<f64>, Vec<f64>)> {
+fn floats(n: usize, data: &[u8]) -> Option<(Vec<f64>, Vec<f64>)> {
     match n {
-        1 => float_bounds::<1>(data, run, release, |_| true),
-        2 => float_bounds::<2>(data, run, release, |_| true),
-        3 => float_bounds::<3>(data, run, release, |_| true),
-        _ => float_bounds::<4>(data, run, release, |_| true),
+        1 => float_bounds::<1>(data, |_| true),
+        2 => float_bounds::<2>(data, |_| true),
+        3 => float_bounds::<3>(data, |_| true),
+        _ => float_bounds::<4>(data, |_| true),
     }
 }
 
@@ -66,26 +54,21 @@ fn unit_vector(v: &[f32; 3]) -> bool {
 /// `f64`). Declines on NaN, an infinity, or an element that `valid` rejects.
 fn float_bounds<const N: usize>(
     data: &[u8],
-    run: usize,
-    release: &impl Fn(&[u8]),
     valid: impl Fn(&[f32; N]) -> bool,
 ) -> Option<(Vec<f64>, Vec<f64>)> {
     let (mut low, mut high) = ([f32::INFINITY; N], [f32::NEG_INFINITY; N]);
     let (mut nan, mut rejected) = (false, false);
-    for part in data.chunks(run) {
-        for element in part.chunks_exact(4 * N) {
-            let mut v = [0f32; N];
-            for (value, word) in v.iter_mut().zip(element.chunks_exact(4)) {
-                *value = f32::from_le_bytes(word.try_into().unwrap_or_default());
-            }
-            for c in 0..N {
-                low[c] = if v[c] < low[c] { v[c] } else { low[c] };
-                high[c] = if v[c] > high[c] { v[c] } else { high[c] };
-                nan |= v[c].is_nan();
-            }
-            rejected |= !valid(&v);
+    for element in data.chunks_exact(4 * N) {
+        let mut v = [0f32; N];
+        for (value, word) in v.iter_mut().zip(element.chunks_exact(4)) {
+            *value = f32::from_le_bytes(word.try_into().unwrap_or_default());
         }
-        release(part);
+        for c in 0..N {
+            low[c] = if v[c] < low[c] { v[c] } else { low[c] };
+            high[c] = if v[c] > high[c] { v[c] } else { high[c] };
+            nan |= v[c].is_nan();
+        }
+        rejected |= !valid(&v);
     }
     let finite = low.iter().chain(&high).all(|v| v.is_finite());
     (finite && !nan && !rejected)
@@ -96,9 +79,7 @@ fn float_bounds<const N: usize>(
 /// index checkers. Declines when an index is out of range or the restart value.
 fn indices<const SIZE: usize>(
     data: &[u8],
-    run: usize,
     checkers: &mut [Checker],
-    release: &impl Fn(&[u8]),
 ) -> Option<(Vec<f64>, Vec<f64>)> {
     let value = |word: &[u8]| {
         let mut le = [0u8; 4];
@@ -106,23 +87,20 @@ fn indices<const SIZE: usize>(
         u32::from_le_bytes(le)
     };
     let (mut low, mut high, mut degenerate) = (u32::MAX, 0u32, 0u64);
-    for part in data.chunks(run) {
-        for word in part.chunks_exact(SIZE) {
-            let v = value(word);
-            low = low.min(v);
-            high = high.max(v);
+    for word in data.chunks_exact(SIZE) {
+        let v = value(word);
+        low = low.min(v);
+        high = high.max(v);
+    }
+    if !checkers.is_empty() {
+        for triangle in data.chunks_exact(3 * SIZE) {
+            let (a, b, c) = (
+                value(&triangle[..SIZE]),
+                value(&triangle[SIZE..2 * SIZE]),
+                value(&triangle[2 * SIZE..]),
+            );
+            degenerate += u64::from(a == b || b == c || c == a);
         }
-        if !checkers.is_empty() {
-            for triangle in part.chunks_exact(3 * SIZE) {
-                let (a, b, c) = (
-                    value(&triangle[..SIZE]),
-                    value(&triangle[SIZE..2 * SIZE]),
-                    value(&triangle[2 * SIZE..]),
-                );
-                degenerate += u64::from(a == b || b == c || c == a);
-            }
-        }
-        release(part);
     }
     let clean = checkers
         .iter_mut()

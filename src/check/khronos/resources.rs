@@ -37,7 +37,7 @@ fn load_uri(
                     "Data URI is used in GLB container.",
                 );
             }
-            (Some(bytes.into()), Some(media_type), "data-uri")
+            (Some(bytes), Some(media_type), "data-uri")
         }
         Ok(UriKind::NonRelative) => {
             ctx.emit(
@@ -66,19 +66,11 @@ fn load_uri(
                 );
                 (None, None, "external")
             }
-            Err(LoadError::TooLarge(size)) => {
+            Err(unreadable) => {
                 ctx.emit(
                     khronos::IO_ERROR,
                     pointer,
-                    format!("Resource too large to read ({size} bytes)."),
-                );
-                (None, None, "external")
-            }
-            Err(LoadError::Io(e)) => {
-                ctx.emit(
-                    khronos::IO_ERROR,
-                    pointer,
-                    format!("Could not read resource: {e}."),
+                    format!("Could not read resource: {unreadable}."),
                 );
                 (None, None, "external")
             }
@@ -280,7 +272,7 @@ pub fn check_images(ctx: &mut Context) {
                         "Buffer view used by an image must not have byteStride.",
                     );
                 }
-                let bytes = view_bytes(ctx, view).map(|b| Bytes::Owned(b.to_vec()));
+                let bytes = view_bytes(ctx, view).map(<[u8]>::to_vec);
                 (
                     bytes,
                     None,

@@ -3,12 +3,15 @@
 
 use super::Upgraded;
 use crate::check::{check_bytes, CheckOptions, Report};
+use crate::document::file::FileId;
 use crate::document::uri::{LoadError, MemoryResources, ResourceLoader};
 use crate::document::Bytes;
 use serde_json::{json, Value};
 use std::borrow::Cow;
-use std::io::Write;
 use std::path::{Path, PathBuf};
+
+mod temporary;
+use temporary::Temporary;
 
 /// One output file: its name (relative to the output folder) and its bytes in pieces,
 /// written one after the other. Headers and padding are owned; geometry and images are
@@ -168,9 +171,12 @@ pub fn verify(files: &Files) -> Report {
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum WriteError {
-    /// The output would replace the input.
-    #[error("{} is the input: the input is never overwritten", .0.display())]
+    /// The output would replace the input or a file the input reads.
+    #[error("{} is the input or a file it reads: those are never replaced", .0.display())]
     WouldOverwriteInput(PathBuf),
+    /// A folder stands where a file is to be written.
+    #[error("{} is a folder", .0.display())]
+    IsFolder(PathBuf),
     /// A file exists and `force` was not given.
     #[error("{} exists (use --force to replace it)", .0.display())]
     Exists(PathBuf),
@@ -187,58 +193,79 @@ pub struct Checked {
     pub written: bool,
 }
 
+/// Whether `target` may be written: never when it is one of the `protected` files (the
+/// input and everything it reads, by identity, so no other name or link for them gets
+/// past), and only with `force` when it exists. Called before converting, for the main
+/// file, and again for every file before writing.
+pub fn may_write(target: &Path, protected: &[FileId], force: bool) -> Result<(), WriteError> {
+    let Ok(existing) = std::fs::symlink_metadata(target) else {
+        return Ok(());
+    };
+    let reached = FileId::of_path(target).or(FileId::of(&existing));
+    if reached.is_some_and(|id| protected.contains(&id)) {
+        return Err(WriteError::WouldOverwriteInput(target.to_path_buf()));
+    }
+    if existing.is_dir() {
+        return Err(WriteError::IsFolder(target.to_path_buf()));
+    }
+    if !force {
+        return Err(WriteError::Exists(target.to_path_buf()));
+    }
+    Ok(())
+}
+
 /// Writes every file into `folder` under a temporary name, checks those exact bytes as they
 /// lie on disk, and renames them into place only when the check finds no error and every
-/// file was written; otherwise the temporaries are removed and nothing is left behind. The
-/// input is never replaced, and existing files only with `force`.
+/// file was written; otherwise the temporaries are removed and nothing is left behind.
+///
+/// Temporaries are created new (never through an existing name or symlink) under
+/// unpredictable names, and are removed when the process is interrupted (see
+/// [`remove_unfinished`]); a later run into the same folder removes those a killed run left.
+/// Side files are renamed before the main file, so the main file never names missing data.
+/// Without `force` no existing file is replaced, even one created while this runs; with it,
+/// existing files are, except the `protected` ones (see [`may_write`]).
 pub fn write_checked(
     files: &Files,
     folder: &Path,
-    input: Option<&Path>,
+    protected: &[FileId],
     force: bool,
 ) -> Result<Checked, WriteError> {
     let all: Vec<&File> = std::iter::once(&files.main).chain(&files.side).collect();
-    let input = input.and_then(|p| p.canonicalize().ok());
     for file in &all {
-        let target = folder.join(&file.name);
-        if let (Some(input), Ok(existing)) = (&input, target.canonicalize()) {
-            if *input == existing {
-                return Err(WriteError::WouldOverwriteInput(target));
-            }
-        }
-        if target.exists() && !force {
-            return Err(WriteError::Exists(target));
-        }
+        may_write(&folder.join(&file.name), protected, force)?;
     }
-    let mut temporaries = Temporaries(Vec::new());
-    for file in &all {
-        let temporary = folder.join(format!(".{}.gltfmat-{}.tmp", file.name, std::process::id()));
-        temporaries.0.push((file.name.clone(), temporary.clone()));
-        write_parts(&temporary, &file.parts).map_err(|e| WriteError::Io(temporary, e))?;
-    }
-    let main = &temporaries.0[0].1;
-    let bytes = Bytes::open(main).map_err(|e| WriteError::Io(main.clone(), e))?;
-    let mut report = check_bytes(
+    temporary::remove_stale(folder, all.iter().map(|f| f.name.as_str()));
+    let main = Temporary::write(folder, &files.main.name, &files.main.parts)?;
+    let side = (files.side.iter())
+        .map(|file| Temporary::write(folder, &file.name, &file.parts))
+        .collect::<Result<Vec<_>, _>>()?;
+    let bytes = main.read_back()?;
+    let report = check_bytes(
         &files.main.name,
         bytes,
-        &temporaries,
+        &Side(&side),
         &CheckOptions::default(),
     );
     if report.has_errors() {
-        // The report outlives the temporary it was read from: it keeps its own copy.
-        report.document.bytes = Bytes::Owned(report.document.bytes.to_vec());
         return Ok(Checked {
             report,
             written: false,
         });
     }
-    // Renamed one by one; on failure, the ones not yet renamed are removed by the drop.
-    while !temporaries.0.is_empty() {
-        let (name, temporary) = temporaries.0.remove(0);
-        let target = folder.join(name);
-        if let Err(e) = std::fs::rename(&temporary, &target) {
-            let _ = std::fs::remove_file(&temporary);
-            return Err(WriteError::Io(target, e));
+    let mut placed = Vec::new();
+    for temporary in side.into_iter().chain(std::iter::once(main)) {
+        match temporary.place(folder, force) {
+            Ok(target) => placed.push(target),
+            Err(e) => {
+                if !force {
+                    // Only files this run created were placed: taking them back leaves the
+                    // folder as it was.
+                    for target in &placed {
+                        let _ = std::fs::remove_file(target);
+                    }
+                }
+                return Err(e);
+            }
         }
     }
     Ok(Checked {
@@ -247,34 +274,20 @@ pub fn write_checked(
     })
 }
 
-fn write_parts(path: &Path, parts: &[Cow<[u8]>]) -> std::io::Result<()> {
-    let mut file = std::fs::File::create(path)?;
-    for part in parts {
-        file.write_all(part)?;
-    }
-    Ok(())
-}
+pub use temporary::remove_unfinished;
 
-/// The temporaries written so far, by final name: the check reads side files through it,
-/// and whatever was not renamed into place is removed when it is dropped.
-struct Temporaries(Vec<(String, PathBuf)>);
+/// The side files written, by final name: the check reads them through it.
+struct Side<'t>(&'t [Temporary]);
 
-impl ResourceLoader for Temporaries {
+impl ResourceLoader for Side<'_> {
     fn load(&self, relative: &str) -> Result<Bytes, LoadError> {
-        let (_, path) = self
+        let temporary = self
             .0
             .iter()
-            .skip(1) // the main file is not a resource of itself
-            .find(|(name, _)| name == relative)
+            .find(|t| t.name == relative)
             .ok_or_else(|| LoadError::NotFound(relative.to_string()))?;
-        Bytes::open(path).map_err(|e| LoadError::Io(e.to_string()))
-    }
-}
-
-impl Drop for Temporaries {
-    fn drop(&mut self) {
-        for (_, temporary) in &self.0 {
-            let _ = std::fs::remove_file(temporary);
-        }
+        temporary
+            .read_back()
+            .map_err(|e| LoadError::Io(e.to_string()))
     }
 }

@@ -1,0 +1,183 @@
+//! Reading files as a stranger may have laid them out. Only regular files are read: a FIFO
+//! would block forever and a device never ends. What is read is decided by the opened
+//! handle, never by a name looked at before opening, so a file swapped in between cannot be
+//! read in its place. Reads are bounded by the largest file a glTF asset can use.
+
+use std::fs::{File, FileType, Metadata};
+use std::io::{self, Read};
+use std::path::Path;
+
+/// The largest file read. A GLB's length is a 32-bit field, and no buffer, image or `.gltf`
+/// a viewer can load is larger; anything bigger is refused rather than read into memory.
+pub const MAX_FILE_BYTES: u64 = u32::MAX as u64;
+
+/// Why a file was not read.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum FileError {
+    /// A folder, FIFO, socket or device.
+    #[error("not a regular file ({0})")]
+    NotRegular(&'static str),
+    /// Larger than [`MAX_FILE_BYTES`].
+    #[error("too large ({0} bytes; at most {MAX_FILE_BYTES} are read)")]
+    TooLarge(u64),
+    /// Opening or reading failed.
+    #[error(transparent)]
+    Io(#[from] io::Error),
+}
+
+/// Reads the regular file at `path` (a symlink is followed: the caller named it).
+pub fn read(path: &Path) -> Result<Vec<u8>, FileError> {
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    non_blocking(&mut options);
+    read_opened(options.open(path)?)
+}
+
+/// Opening a FIFO for reading waits for a writer unless it is non-blocking; the handle is
+/// then refused as not regular, so no read ever sees the flag.
+#[cfg(unix)]
+pub(crate) fn non_blocking(options: &mut impl NonBlocking) {
+    options.set_non_blocking();
+}
+
+#[cfg(not(unix))]
+pub(crate) fn non_blocking<T>(_: &mut T) {}
+
+/// Open options that can open without blocking.
+#[cfg(unix)]
+pub(crate) trait NonBlocking {
+    fn set_non_blocking(&mut self);
+}
+
+#[cfg(unix)]
+impl NonBlocking for std::fs::OpenOptions {
+    fn set_non_blocking(&mut self) {
+        std::os::unix::fs::OpenOptionsExt::custom_flags(self, libc::O_NONBLOCK);
+    }
+}
+
+#[cfg(unix)]
+impl NonBlocking for cap_std::fs::OpenOptions {
+    fn set_non_blocking(&mut self) {
+        cap_std::fs::OpenOptionsExt::custom_flags(self, libc::O_NONBLOCK);
+    }
+}
+
+/// Reads an opened file when it is a regular file of at most [`MAX_FILE_BYTES`]. A file
+/// that grows while it is read is cut at that bound; one that shrinks is read as it now is.
+pub fn read_opened(file: File) -> Result<Vec<u8>, FileError> {
+    read_opened_with_id(file).map(|(bytes, _)| bytes)
+}
+
+/// [`read_opened`], also giving the identity of the file read.
+pub(crate) fn read_opened_with_id(file: File) -> Result<(Vec<u8>, Option<FileId>), FileError> {
+    let metadata = file.metadata()?;
+    check_regular(&metadata)?;
+    let mut bytes = Vec::with_capacity(metadata.len() as usize);
+    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(FileError::TooLarge(bytes.len() as u64));
+    }
+    Ok((bytes, FileId::of(&metadata)))
+}
+
+fn check_regular(metadata: &Metadata) -> Result<(), FileError> {
+    if !metadata.is_file() {
+        return Err(FileError::NotRegular(kind(&metadata.file_type())));
+    }
+    if metadata.len() > MAX_FILE_BYTES {
+        return Err(FileError::TooLarge(metadata.len()));
+    }
+    Ok(())
+}
+
+/// Which file a handle or path reaches, whatever name or link led to it: two paths reach
+/// the same file exactly when their identities are equal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct FileId {
+    device: u64,
+    inode: u64,
+}
+
+impl FileId {
+    /// The identity of the file `metadata` describes (None where the system gives none).
+    pub fn of(metadata: &Metadata) -> Option<FileId> {
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::MetadataExt;
+            Some(FileId {
+                device: metadata.dev(),
+                inode: metadata.ino(),
+            })
+        }
+        #[cfg(not(unix))]
+        {
+            let _ = metadata;
+            None
+        }
+    }
+
+    /// The identity of the file `path` leads to (following symlinks), if it exists.
+    pub fn of_path(path: &Path) -> Option<FileId> {
+        FileId::of(&std::fs::metadata(path).ok()?)
+    }
+}
+
+/// What a file that is not regular is, in words.
+pub(crate) fn kind(file_type: &FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if file_type.is_fifo() {
+            return "a FIFO";
+        }
+        if file_type.is_char_device() || file_type.is_block_device() {
+            return "a device";
+        }
+        if file_type.is_socket() {
+            return "a socket";
+        }
+    }
+    if file_type.is_dir() {
+        "a folder"
+    } else if file_type.is_symlink() {
+        "a symlink"
+    } else {
+        "not a file"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn regular_files_are_read_whole() {
+        let folder = tempfile::tempdir().unwrap();
+        let path = folder.path().join("a.bin");
+        std::fs::write(&path, b"abc").unwrap();
+        assert_eq!(read(&path).unwrap(), b"abc");
+    }
+
+    #[test]
+    fn folders_are_refused_as_not_regular() {
+        let folder = tempfile::tempdir().unwrap();
+        let refused = read(folder.path()).unwrap_err();
+        assert_eq!(refused.to_string(), "not a regular file (a folder)");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn devices_and_fifos_are_refused_without_reading_or_waiting() {
+        let refused = read(Path::new("/dev/zero")).unwrap_err();
+        assert_eq!(refused.to_string(), "not a regular file (a device)");
+        let folder = tempfile::tempdir().unwrap();
+        let fifo = folder.path().join("pipe.gltf");
+        let name = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+        // SAFETY: a valid NUL-terminated path; mkfifo only creates the node.
+        assert_eq!(unsafe { libc::mkfifo(name.as_ptr(), 0o600) }, 0);
+        let refused = read(&fifo).unwrap_err();
+        assert_eq!(refused.to_string(), "not a regular file (a FIFO)");
+    }
+}

@@ -1,0 +1,378 @@
+//! File-system attacks on `check` and `upgrade` (issue 13, findings 2–9 and 19), each input
+//! generated here: a stranger's file swapped, truncated or replaced by a FIFO while it is
+//! read, symlinks planted in the output folder, concurrent runs, kills mid-write. The
+//! promise each test states: a diagnostic or a clean refusal (exit 0, 1 or 2, never a
+//! signal), nothing outside the output folder touched, the input's files byte-identical.
+
+use gltfmat::check::{check_path, CheckOptions};
+use serde_json::json;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+fn gltfmat(folder: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(args)
+        .current_dir(folder)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("gltfmat runs")
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// A glTF 1.0 triangle soup of `triangles` triangles whose positions are in `model.bin`.
+fn write_gltf1(folder: &Path, name: &str, triangles: usize) {
+    let vertices = 3 * triangles;
+    let mut bin = Vec::with_capacity(vertices * 12);
+    for i in 0..vertices {
+        for c in [i % 7, i % 5, i % 3] {
+            bin.extend((c as f32).to_le_bytes());
+        }
+    }
+    let gltf = json!({
+        "asset": {"version": "1.0"},
+        "buffers": {"b": {"uri": "model.bin", "byteLength": bin.len()}},
+        "bufferViews": {"v": {"buffer": "b", "byteOffset": 0, "byteLength": bin.len(), "target": 34962}},
+        "accessors": {"p": {"bufferView": "v", "byteOffset": 0, "componentType": 5126,
+            "count": vertices, "type": "VEC3", "min": [0, 0, 0], "max": [6, 4, 2]}},
+        "meshes": {"m": {"primitives": [{"attributes": {"POSITION": "p"}, "mode": 4}]}},
+        "nodes": {"n": {"meshes": ["m"]}},
+        "scenes": {"s": {"nodes": ["n"]}},
+        "scene": "s"
+    });
+    std::fs::write(folder.join(name), serde_json::to_vec(&gltf).unwrap()).unwrap();
+    std::fs::write(folder.join("model.bin"), bin).unwrap();
+}
+
+/// A glTF 2.0 asset whose one buffer is the file `uri` of `length` bytes.
+fn gltf2_with_buffer(uri: &str, length: usize) -> Vec<u8> {
+    serde_json::to_vec(&json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": uri, "byteLength": length}]
+    }))
+    .unwrap()
+}
+
+fn snapshot(folder: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    let mut files: Vec<_> = std::fs::read_dir(folder)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.file_type().is_ok_and(|t| t.is_file()))
+        .map(|e| (e.path(), std::fs::read(e.path()).unwrap()))
+        .collect();
+    files.sort();
+    files
+}
+
+fn temporaries(folder: &Path) -> Vec<String> {
+    std::fs::read_dir(folder)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".gltfmat-"))
+        .collect()
+}
+
+#[test]
+fn a_large_input_truncated_while_it_is_checked_gives_an_exit_status_not_a_signal() {
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("big.glb");
+    for _ in 0..5 {
+        let mut glb = b"glTF\x02\0\0\0".to_vec();
+        let json = br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":8388608}]}"#;
+        glb.extend(((12 + 8 + json.len() + 8 + (8 << 20)) as u32).to_le_bytes());
+        glb.extend(common_chunk(b"JSON", json));
+        glb.extend(common_chunk(b"BIN\0", &vec![7u8; 8 << 20]));
+        std::fs::write(&path, &glb).unwrap();
+        let child = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(["check", "--quiet"])
+            .arg(&path)
+            .stdout(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open(&path)
+            .unwrap()
+            .set_len(100)
+            .unwrap();
+        let status = child.wait_with_output().unwrap().status;
+        assert!(status.code().is_some(), "killed by a signal: {status:?}");
+    }
+}
+
+fn common_chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
+    let mut padded = data.to_vec();
+    padded.resize(data.len().div_ceil(4) * 4, b' ');
+    let mut chunk = (padded.len() as u32).to_le_bytes().to_vec();
+    chunk.extend(kind);
+    chunk.extend(padded);
+    chunk
+}
+
+#[cfg(unix)]
+#[test]
+fn symlinks_planted_for_the_temporaries_are_never_written_through() {
+    let root = tempfile::tempdir().unwrap();
+    let (folder, outside) = (root.path().join("out"), root.path().join("victim.txt"));
+    std::fs::create_dir(&folder).unwrap();
+    std::fs::write(&outside, b"precious").unwrap();
+    write_gltf1(&folder, "in.gltf", 4);
+    // Every name an earlier release would have used for the next thousand processes.
+    let next = std::process::id();
+    for pid in next..next + 1000 {
+        for name in ["out.gltf", "out.bin"] {
+            let planted = folder.join(format!(".{name}.gltfmat-{pid}.tmp"));
+            std::os::unix::fs::symlink(&outside, planted).unwrap();
+        }
+    }
+    let output = gltfmat(&folder, &["upgrade", "in.gltf", "-o", "out.gltf"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert_eq!(std::fs::read(&outside).unwrap(), b"precious");
+    let written: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("out.gltf")).unwrap()).unwrap();
+    assert_eq!(written["asset"]["version"], "2.0");
+}
+
+#[cfg(unix)]
+#[test]
+fn a_resource_swapped_for_a_symlink_leading_out_is_never_read() {
+    let root = tempfile::tempdir().unwrap();
+    let folder = root.path().join("asset");
+    std::fs::create_dir(&folder).unwrap();
+    // The outside file is longer than the declared buffer: had it been read, the check would
+    // report its length.
+    std::fs::write(root.path().join("secret"), vec![1u8; 100]).unwrap();
+    std::fs::write(folder.join("a.gltf"), gltf2_with_buffer("x.bin", 12)).unwrap();
+    let (regular, link) = (folder.join("regular"), folder.join("link"));
+    std::fs::write(&regular, [0u8; 12]).unwrap();
+    std::os::unix::fs::symlink(root.path().join("secret"), &link).unwrap();
+    let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let swapper = {
+        let (stop, folder) = (stop.clone(), folder.clone());
+        std::thread::spawn(move || {
+            let target = folder.join("x.bin");
+            while !stop.load(std::sync::atomic::Ordering::Relaxed) {
+                let _ = std::fs::hard_link(&regular, folder.join("x.tmp"));
+                let _ = std::fs::rename(folder.join("x.tmp"), &target);
+                let copy = folder.join("l.tmp");
+                let _ = std::fs::remove_file(&copy);
+                let _ = std::os::unix::fs::symlink(std::fs::read_link(&link).unwrap(), &copy);
+                let _ = std::fs::rename(&copy, &target);
+            }
+        })
+    };
+    for _ in 0..2000 {
+        let report = check_path(folder.join("a.gltf"), &CheckOptions::default()).unwrap();
+        let read_outside = report.diagnostics.iter().any(|d| d.message.contains("100"));
+        assert!(!read_outside, "{:?}", report.diagnostics);
+    }
+    stop.store(true, std::sync::atomic::Ordering::Relaxed);
+    swapper.join().unwrap();
+}
+
+#[cfg(unix)]
+fn mkfifo(path: &Path) {
+    let name = std::ffi::CString::new(path.to_str().unwrap()).unwrap();
+    // SAFETY: a valid NUL-terminated path; mkfifo only creates the node.
+    assert_eq!(unsafe { libc::mkfifo(name.as_ptr(), 0o600) }, 0);
+}
+
+#[cfg(unix)]
+#[test]
+fn fifos_and_devices_are_refused_at_once_never_read() {
+    let folder = tempfile::tempdir().unwrap();
+    let folder = folder.path();
+    mkfifo(&folder.join("pipe.bin"));
+    mkfifo(&folder.join("pipe.gltf"));
+    std::os::unix::fs::symlink("/dev/zero", folder.join("zero.glb")).unwrap();
+    std::fs::write(folder.join("a.gltf"), gltf2_with_buffer("pipe.bin", 4)).unwrap();
+    let started = Instant::now();
+    let report = check_path(folder.join("a.gltf"), &CheckOptions::default()).unwrap();
+    let refusal = report
+        .diagnostics
+        .iter()
+        .find(|d| d.code == "IO_ERROR")
+        .expect("the FIFO is reported");
+    assert!(
+        refusal.message.contains("not a regular file (a FIFO)"),
+        "{}",
+        refusal.message
+    );
+
+    // Named directly, each is refused with what it is; walked, each is skipped with a note.
+    for (name, kind) in [("pipe.gltf", "a FIFO"), ("zero.glb", "a device")] {
+        let output = gltfmat(folder, &["check", name]);
+        assert_eq!(output.status.code(), Some(2));
+        assert!(stderr(&output).contains(&format!("not a regular file ({kind})")));
+    }
+    let output = gltfmat(folder, &["check", ".", "--format", "json"]);
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(
+        report["uri"], "./a.gltf",
+        "one report (an object), of a.gltf only"
+    );
+    assert!(stderr(&output).contains("skipped ./pipe.gltf: not a regular file"));
+    assert!(stderr(&output).contains("skipped ./zero.glb: not a regular file"));
+    let output = gltfmat(folder, &["check", "/dev/null"]);
+    assert!(stderr(&output).contains("/dev/null: not a regular file (a device)"));
+    assert!(
+        started.elapsed() < Duration::from_secs(60),
+        "nothing waited on a FIFO"
+    );
+}
+
+#[test]
+fn force_never_replaces_a_file_the_input_reads() {
+    let folder = tempfile::tempdir().unwrap();
+    let folder = folder.path();
+    write_gltf1(folder, "scene.gltf", 4);
+    let before = snapshot(folder);
+    // model.gltf would write model.bin: the input's own buffer.
+    for output in ["model.gltf", "scene.gltf", "scene.glb"] {
+        if output == "scene.glb" {
+            #[cfg(unix)]
+            std::os::unix::fs::symlink("scene.gltf", folder.join("scene.glb")).unwrap();
+            #[cfg(not(unix))]
+            continue;
+        }
+        let run = gltfmat(folder, &["upgrade", "scene.gltf", "-o", output, "--force"]);
+        assert_eq!(run.status.code(), Some(2), "{output}");
+        assert!(
+            stderr(&run).contains("is the input or a file it reads"),
+            "{}",
+            stderr(&run)
+        );
+        let now: Vec<_> = snapshot(folder);
+        assert_eq!(now, before, "{output}: the input's files are unchanged");
+    }
+}
+
+#[test]
+fn a_side_file_that_cannot_be_placed_leaves_the_old_output_whole() {
+    let folder = tempfile::tempdir().unwrap();
+    let folder = folder.path();
+    write_gltf1(folder, "in.gltf", 4);
+    std::fs::write(folder.join("out.gltf"), b"old output").unwrap();
+    std::fs::create_dir(folder.join("out.bin")).unwrap();
+    let run = gltfmat(folder, &["upgrade", "in.gltf", "-o", "out.gltf", "--force"]);
+    assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+    assert!(
+        stderr(&run).contains("out.bin is a folder"),
+        "{}",
+        stderr(&run)
+    );
+    assert_eq!(
+        std::fs::read(folder.join("out.gltf")).unwrap(),
+        b"old output"
+    );
+    assert!(temporaries(folder).is_empty());
+}
+
+#[test]
+fn of_two_runs_writing_the_same_new_output_exactly_one_succeeds() {
+    let folder = tempfile::tempdir().unwrap();
+    let folder = folder.path();
+    write_gltf1(folder, "in.gltf", 20_000);
+    for round in 0..4 {
+        let out = format!("out-{round}.glb");
+        let start = || {
+            Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+                .args(["upgrade", "in.gltf", "-o", &out])
+                .current_dir(folder)
+                .output()
+        };
+        let (a, b) = std::thread::scope(|s| {
+            let a = s.spawn(start);
+            let b = s.spawn(start);
+            (a.join().unwrap().unwrap(), b.join().unwrap().unwrap())
+        });
+        let successes = [&a, &b].iter().filter(|o| o.status.success()).count();
+        assert_eq!(successes, 1, "{}\n{}", stderr(&a), stderr(&b));
+        let loser = if a.status.success() { &b } else { &a };
+        assert!(stderr(loser).contains("exists"), "{}", stderr(loser));
+    }
+}
+
+/// Starts an upgrade of a large asset, waits until its temporary exists, and stops it with
+/// `signal`; None when the run finished before a temporary was seen.
+#[cfg(unix)]
+fn interrupt_mid_write(folder: &Path, output: &str, signal: i32) -> Option<()> {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(["upgrade", "in.gltf", "-o", output])
+        .current_dir(folder)
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    loop {
+        if child.try_wait().unwrap().is_some() {
+            let _ = std::fs::remove_file(folder.join(output));
+            return None;
+        }
+        if !temporaries(folder).is_empty() {
+            // SAFETY: kill sends a signal to our own child; it has no memory effects here.
+            unsafe { libc::kill(child.id() as i32, signal) };
+            child.wait().unwrap();
+            return Some(());
+        }
+        std::thread::yield_now();
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn interrupted_runs_leave_no_temporary_and_killed_ones_are_cleaned_by_the_next() {
+    let folder = tempfile::tempdir().unwrap();
+    let folder = folder.path();
+    write_gltf1(folder, "in.gltf", 1_000_000);
+    let mut interrupted = 0;
+    for signal in [libc::SIGTERM, libc::SIGINT, libc::SIGTERM, libc::SIGINT] {
+        if interrupt_mid_write(folder, "out.glb", signal).is_some() {
+            interrupted += 1;
+            assert_eq!(temporaries(folder), Vec::<String>::new(), "signal {signal}");
+        }
+    }
+    assert!(interrupted > 0, "no run was caught mid-write");
+    let mut killed = false;
+    for _ in 0..4 {
+        if interrupt_mid_write(folder, "out.glb", libc::SIGKILL).is_some() {
+            killed = true;
+            break;
+        }
+    }
+    assert!(killed, "no run was caught mid-write");
+    assert!(
+        !temporaries(folder).is_empty(),
+        "a killed run cannot clean up"
+    );
+    let run = gltfmat(folder, &["upgrade", "in.gltf", "-o", "out.glb", "--force"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert_eq!(temporaries(folder), Vec::<String>::new());
+}
+
+#[test]
+fn outputs_that_are_not_an_asset_file_are_refused_before_converting() {
+    let folder = tempfile::tempdir().unwrap();
+    let folder = folder.path();
+    write_gltf1(folder, "in.gltf", 4);
+    std::fs::create_dir(folder.join("dir")).unwrap();
+    std::fs::write(folder.join("taken.glb"), b"x").unwrap();
+    for (output, says) in [
+        ("x.bin", "must be a file named *.gltf or *.glb"),
+        ("dir/", "must be a file named *.gltf or *.glb"),
+        ("taken.glb", "taken.glb exists"),
+    ] {
+        let run = gltfmat(folder, &["upgrade", "in.gltf", "-o", output]);
+        assert_eq!(run.status.code(), Some(2), "{output}");
+        assert!(stderr(&run).contains(says), "{output}: {}", stderr(&run));
+        // Refused before converting: no conversion note was printed.
+        assert!(run.stdout.is_empty(), "{output}");
+    }
+    let run = gltfmat(folder, &["upgrade", "in.gltf", "-o", "-"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert_eq!(&run.stdout[..4], b"glTF", "a GLB on stdout");
+    assert!(!folder.join("-").exists() && !folder.join("-.bin").exists());
+}
