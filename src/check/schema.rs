@@ -406,8 +406,12 @@ fn duplicate_positions(instance: &Value) -> Vec<usize> {
     let Some(items) = instance.as_array() else {
         return Vec::new();
     };
+    // Compared through a hash set of their JSON text, which is equal exactly when scalars
+    // are (every uniqueItems array of glTF holds strings or integers); two objects that
+    // differ only in key order are not taken for duplicates.
+    let mut seen = std::collections::HashSet::new();
     (0..items.len())
-        .filter(|&i| items[..i].contains(&items[i]))
+        .filter(|&i| !seen.insert(items[i].to_string()))
         .collect()
 }
 

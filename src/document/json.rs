@@ -2,10 +2,12 @@
 //!
 //! Values are parsed once with serde_json (fast, depth-limited, never overflows the stack).
 //! Spans are *not* stored per node: a pointer is resolved back to a byte range only when a
-//! diagnostic is printed, by [`locate`], a small iterative scanner over the original text.
+//! diagnostic is printed, by [`locate_all`] (every diagnostic of a report in one pass), a
+//! small scanner over the original text.
 //! The same scanner reports duplicate object keys, which serde_json silently collapses.
 
 use serde_json::Value;
+use std::collections::HashMap;
 
 /// A JSON syntax error with its 1-based position.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,22 +48,6 @@ fn offset_of(bytes: &[u8], line: usize, column: usize) -> usize {
     (start + column.saturating_sub(1)).min(bytes.len())
 }
 
-/// 1-based line and column (in characters) of a byte offset.
-pub fn line_col(text: &[u8], offset: usize) -> (usize, usize) {
-    let offset = offset.min(text.len());
-    let before = &text[..offset];
-    let line = before.iter().filter(|b| **b == b'\n').count() + 1;
-    let line_start = before
-        .iter()
-        .rposition(|b| *b == b'\n')
-        .map_or(0, |p| p + 1);
-    let column = String::from_utf8_lossy(&text[line_start..offset])
-        .chars()
-        .count()
-        + 1;
-    (line, column)
-}
-
 /// Splits an RFC 6901 pointer into unescaped tokens.
 pub fn pointer_tokens(pointer: &str) -> Vec<String> {
     if pointer.is_empty() || pointer == "/" {
@@ -79,31 +65,120 @@ pub fn escape_token(token: &str) -> String {
     token.replace('~', "~0").replace('/', "~1")
 }
 
-/// Byte range of the value a pointer names; for an object member the range starts at its key,
-/// so a snippet shows the property name. Falls back to the deepest existing ancestor.
-pub fn locate(text: &[u8], pointer: &str) -> Option<std::ops::Range<usize>> {
+/// Byte range of the value each pointer names; for an object member the range starts at
+/// its key, so a snippet shows the property name (of a repeated key, the last one, whose
+/// value parsers keep). All pointers are found in one pass over the text, skipping the
+/// subtrees no pointer enters, so the cost is one scan however many diagnostics are
+/// located. Pointers that name nothing are absent from the map.
+pub fn locate_all<'p>(
+    text: &[u8],
+    pointers: impl IntoIterator<Item = &'p str>,
+) -> HashMap<&'p str, std::ops::Range<usize>> {
+    let mut trie = vec![TrieNode::default()];
+    for pointer in pointers {
+        let mut at = 0;
+        for token in pointer_tokens(pointer) {
+            let next = trie.len();
+            at = match trie[at].members.get(&token) {
+                Some(&child) => child,
+                None => {
+                    trie.push(TrieNode::default());
+                    if let Ok(index) = token.parse::<usize>() {
+                        trie[at].elements.insert(index, next);
+                    }
+                    trie[at].members.insert(token, next);
+                    next
+                }
+            };
+        }
+        trie[at].ends.push(pointer);
+    }
+    let mut found = HashMap::new();
     let mut scanner = Scanner { text, pos: 0 };
     scanner.skip_ws();
-    let mut found_start = scanner.pos;
-    for token in pointer_tokens(pointer) {
-        scanner.skip_ws();
-        match scanner.peek()? {
-            b'{' => {
-                let key_start = scanner.find_member(&token)?;
-                found_start = key_start;
-            }
-            b'[' => {
-                let index: usize = token.parse().ok()?;
-                scanner.find_element(index)?;
-                found_start = scanner.pos;
-            }
-            _ => return None,
+    let start = scanner.pos;
+    // Malformed text ends the walk; what was found before stays found.
+    let _ = scanner.locate_in(&trie, 0, start, &mut found);
+    found
+}
+
+/// A step of the pointers being located: the members and elements they go on through, and
+/// the pointers that end here.
+#[derive(Default)]
+struct TrieNode<'p> {
+    members: HashMap<String, usize>,
+    elements: HashMap<usize, usize>,
+    ends: Vec<&'p str>,
+}
+
+/// 1-based line and column of byte offsets in one text, from an index built once: line
+/// starts, and the number of characters before every 4 KiB boundary (so a column in a
+/// 28 MB single-line file costs at most 4 KiB of counting).
+pub struct LineIndex<'t> {
+    text: &'t [u8],
+    line_starts: Vec<usize>,
+    chars_before_block: Vec<usize>,
+}
+
+const BLOCK: usize = 1 << 12;
+
+impl<'t> LineIndex<'t> {
+    /// Indexes `text`.
+    pub fn new(text: &'t [u8]) -> Self {
+        let mut line_starts = vec![0];
+        line_starts.extend(memchr_all(b'\n', text).map(|p| p + 1));
+        let mut chars_before_block = Vec::with_capacity(text.len() / BLOCK + 1);
+        let mut chars = 0;
+        for block in text.chunks(BLOCK) {
+            chars_before_block.push(chars);
+            chars += count_chars(block);
+        }
+        chars_before_block.push(chars);
+        LineIndex {
+            text,
+            line_starts,
+            chars_before_block,
         }
     }
-    scanner.skip_ws();
-    let value_start = scanner.pos;
-    scanner.skip_value()?;
-    Some(found_start.min(value_start)..scanner.pos)
+
+    /// The line and column (in characters) of `offset`.
+    pub fn line_col(&self, offset: usize) -> (usize, usize) {
+        let offset = offset.min(self.text.len());
+        let line = self.line_starts.partition_point(|&start| start <= offset);
+        let line_start = self.line_starts[line - 1];
+        (
+            line,
+            self.chars_before(offset) - self.chars_before(line_start) + 1,
+        )
+    }
+
+    /// The bytes of line `line` (1-based), without its line break.
+    pub fn line(&self, line: usize) -> &'t [u8] {
+        let start = self
+            .line_starts
+            .get(line - 1)
+            .copied()
+            .unwrap_or(self.text.len());
+        let end = (self.line_starts.get(line)).map_or(self.text.len(), |&next| next - 1);
+        &self.text[start..end.max(start)]
+    }
+
+    fn chars_before(&self, offset: usize) -> usize {
+        let block = offset / BLOCK;
+        self.chars_before_block[block] + count_chars(&self.text[block * BLOCK..offset])
+    }
+}
+
+/// Characters in UTF-8 text: every byte that does not continue a character.
+fn count_chars(bytes: &[u8]) -> usize {
+    bytes.iter().filter(|&&b| b & 0xC0 != 0x80).count()
+}
+
+fn memchr_all(needle: u8, text: &[u8]) -> impl Iterator<Item = usize> + '_ {
+    text.iter()
+        .enumerate()
+        .filter(move |(_, &b)| b == needle)
+        .map(|(i, _)| i)
 }
 
 /// Pointers (and key offsets) of object keys that occur more than once in their object.
@@ -115,7 +190,7 @@ pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
         /// The token naming this container inside its parent.
         token: String,
         /// Keys seen so far (objects), or `None` for arrays.
-        keys: Option<Vec<String>>,
+        keys: Option<std::collections::HashSet<String>>,
         /// Next element index (arrays).
         next_index: usize,
     }
@@ -146,7 +221,7 @@ pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
         match b {
             b'{' | b'[' => {
                 let token = child_token(&mut stack, &mut pending_key);
-                let keys = (b == b'{').then(Vec::new);
+                let keys = (b == b'{').then(Default::default);
                 stack.push(Frame {
                     token,
                     keys,
@@ -171,10 +246,11 @@ pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
                         .last()
                         .and_then(|f| f.keys.as_ref())
                         .is_some_and(|k| k.contains(&s));
+                    // A hash set: an object with 10^5 keys costs 10^5 lookups, not 10^10.
                     if duplicate {
                         found.push((format!("{}/{}", pointer(&stack), escape_token(&s)), start));
                     } else if let Some(keys) = stack.last_mut().and_then(|f| f.keys.as_mut()) {
-                        keys.push(s.clone());
+                        keys.insert(s.clone());
                     }
                     pending_key = Some(s);
                 } else {
@@ -269,51 +345,82 @@ impl Scanner<'_> {
         }
     }
 
-    /// Positioned on `{`: moves to the value of `key` (last occurrence wins, as in parsing)
-    /// and returns the offset of that key.
-    fn find_member(&mut self, key: &str) -> Option<usize> {
-        self.pos += 1;
-        let mut hit: Option<(usize, usize)> = None;
-        loop {
-            self.skip_ws();
-            match self.peek()? {
-                b'}' => break,
-                b',' => self.pos += 1,
-                b'"' => {
-                    let key_start = self.pos;
-                    let name = self.read_string()?;
-                    self.skip_ws();
-                    if self.peek()? != b':' {
-                        return None;
-                    }
-                    self.pos += 1;
-                    self.skip_ws();
-                    if name == key {
-                        hit = Some((key_start, self.pos));
-                    }
-                    self.skip_value()?;
-                }
-                _ => return None,
-            }
-        }
-        let (key_start, value_start) = hit?;
-        self.pos = value_start;
-        Some(key_start)
-    }
-
-    /// Positioned on `[`: moves to element `index`.
-    fn find_element(&mut self, index: usize) -> Option<()> {
-        self.pos += 1;
-        for _ in 0..index {
-            self.skip_value()?;
-            self.skip_ws();
-            if self.peek()? != b',' {
-                return None;
-            }
-            self.pos += 1;
-        }
+    /// Positioned on a value reached through `trie[node]` (its member key, if any, at
+    /// `found_start`): records the range of every pointer ending here and walks on into the
+    /// members and elements some pointer goes through, skipping the rest. It recurses only
+    /// along the pointers' tokens, so its depth is that of the deepest pointer.
+    fn locate_in<'p>(
+        &mut self,
+        trie: &[TrieNode<'p>],
+        node: usize,
+        found_start: usize,
+        found: &mut HashMap<&'p str, std::ops::Range<usize>>,
+    ) -> Option<()> {
         self.skip_ws();
-        (self.peek()? != b']').then_some(())
+        let value_start = self.pos;
+        let step = &trie[node];
+        match self.peek()? {
+            b'{' if !step.members.is_empty() => {
+                self.pos += 1;
+                loop {
+                    self.skip_ws();
+                    match self.peek()? {
+                        b'}' => break,
+                        b',' => self.pos += 1,
+                        b'"' => {
+                            let key_start = self.pos;
+                            let name = self.read_string()?;
+                            self.skip_ws();
+                            if self.peek()? != b':' {
+                                return None;
+                            }
+                            self.pos += 1;
+                            match step.members.get(&name) {
+                                Some(&child) => self.locate_in(trie, child, key_start, found)?,
+                                None => {
+                                    self.skip_ws();
+                                    self.skip_value()?;
+                                }
+                            }
+                        }
+                        _ => return None,
+                    }
+                }
+                self.pos += 1;
+            }
+            b'[' if !step.elements.is_empty() => {
+                self.pos += 1;
+                let mut index = 0;
+                loop {
+                    self.skip_ws();
+                    if self.peek()? == b']' {
+                        break;
+                    }
+                    match step.elements.get(&index) {
+                        Some(&child) => {
+                            let at = self.pos;
+                            self.locate_in(trie, child, at, found)?
+                        }
+                        None => self.skip_value()?,
+                    }
+                    self.skip_ws();
+                    match self.peek()? {
+                        b',' => {
+                            self.pos += 1;
+                            index += 1;
+                        }
+                        b']' => break,
+                        _ => return None,
+                    }
+                }
+                self.pos += 1;
+            }
+            _ => self.skip_value()?,
+        }
+        for pointer in &step.ends {
+            found.insert(pointer, found_start.min(value_start)..self.pos);
+        }
+        Some(())
     }
 }
 
@@ -326,14 +433,62 @@ mod tests {
   "nodes": [{}, {"name": "a/b", "mesh": 3}]
 }"#;
 
+    fn locate(text: &[u8], pointer: &str) -> Option<std::ops::Range<usize>> {
+        locate_all(text, [pointer]).remove(pointer)
+    }
+
     #[test]
     fn locate_finds_a_member_by_its_key() {
         let range = locate(TEXT, "/nodes/1/mesh").unwrap();
         assert_eq!(&TEXT[range], br#""mesh": 3"#);
+        let lines = LineIndex::new(TEXT);
         assert_eq!(
-            line_col(TEXT, locate(TEXT, "/nodes/1").unwrap().start),
+            lines.line_col(locate(TEXT, "/nodes/1").unwrap().start),
             (3, 17)
         );
+        assert_eq!(
+            lines.line(3),
+            br#"  "nodes": [{}, {"name": "a/b", "mesh": 3}]"#
+        );
+    }
+
+    #[test]
+    fn many_pointers_are_located_in_one_pass_each_as_alone() {
+        let pointers = [
+            "/nodes/1/mesh",
+            "/nodes/1",
+            "/nodes/0",
+            "/asset/version",
+            "/nodes",
+            "",
+        ];
+        let all = locate_all(TEXT, pointers);
+        for pointer in pointers {
+            let alone = locate_all(TEXT, [pointer]).remove(pointer);
+            assert_eq!(all.get(pointer).cloned(), alone, "{pointer}");
+            assert!(alone.is_some(), "{pointer}");
+        }
+        assert_eq!(&TEXT[all["/asset/version"].clone()], br#""version": "2.0""#);
+    }
+
+    #[test]
+    fn a_repeated_key_is_located_at_its_last_value() {
+        let text = br#"{"a": 1, "a": [5]}"#;
+        assert_eq!(&text[locate(text, "/a").unwrap()], br#""a": [5]"#);
+    }
+
+    #[test]
+    fn columns_count_characters_across_index_blocks() {
+        let text = format!("{}é\nxy", "a".repeat(2 * BLOCK + 5));
+        let lines = LineIndex::new(text.as_bytes());
+        let e_acute = 2 * BLOCK + 5;
+        assert_eq!(lines.line_col(e_acute), (1, e_acute + 1));
+        assert_eq!(
+            lines.line_col(e_acute + 2),
+            (1, e_acute + 2),
+            "é is one character"
+        );
+        assert_eq!(lines.line_col(text.len() - 1), (2, 2));
     }
 
     #[test]

@@ -117,7 +117,7 @@ fn parse_json(text: &[u8], diagnostics: &mut Vec<Diagnostic>) -> Option<Value> {
     match json::parse(text) {
         Ok(value) => Some(value),
         Err(error) => {
-            let (line, col) = json::line_col(text, error.offset);
+            let (line, col) = json::LineIndex::new(text).line_col(error.offset);
             let mut d = Diagnostic::at(
                 khronos::INVALID_JSON,
                 "",

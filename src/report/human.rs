@@ -1,7 +1,8 @@
 //! Human output: `path:line:col: severity[CODE]: message`, then the source line with a caret.
 
-use super::{line_col, location_suffix, span};
+use super::{location_suffix, Positions};
 use crate::check::{Report, Severity};
+use crate::document::json::LineIndex;
 
 fn paint(text: &str, code: &str, colour: bool) -> String {
     if colour {
@@ -23,8 +24,9 @@ fn severity_colour(severity: Severity) -> &'static str {
 pub fn render(reports: &[Report], colour: bool) -> String {
     let mut out = String::new();
     for report in reports {
+        let positions = Positions::of(report);
         for d in &report.diagnostics {
-            let position = match line_col(report, d) {
+            let position = match positions.line_col(d) {
                 Some((l, c)) => format!("{}:{l}:{c}", report.uri),
                 None => report.uri.clone(),
             };
@@ -38,8 +40,8 @@ pub fn render(reports: &[Report], colour: bool) -> String {
                 d.message,
                 location_suffix(d)
             ));
-            if let Some(range) = span(report, d) {
-                out.push_str(&snippet(report.document.json_text(), range.start, colour));
+            if let Some(range) = positions.span(d) {
+                out.push_str(&snippet(&positions.lines, range.start, colour));
             }
         }
         out.push_str(&summary(report));
@@ -48,30 +50,19 @@ pub fn render(reports: &[Report], colour: bool) -> String {
 }
 
 /// The source line holding `offset`, with a caret under the column.
-fn snippet(text: &[u8], offset: usize, colour: bool) -> String {
-    let offset = offset.min(text.len());
-    let start = text[..offset]
-        .iter()
-        .rposition(|b| *b == b'\n')
-        .map_or(0, |p| p + 1);
-    let end = text[offset..]
-        .iter()
-        .position(|b| *b == b'\n')
-        .map_or(text.len(), |p| offset + p);
-    let line = String::from_utf8_lossy(&text[start..end]);
+fn snippet(lines: &LineIndex, offset: usize, colour: bool) -> String {
+    let (line_no, column) = lines.line_col(offset);
+    let line = lines.line(line_no);
     if line.len() > 200 {
         return String::new();
     }
-    let column = String::from_utf8_lossy(&text[start..offset])
-        .chars()
-        .count();
-    let (line_no, _) = crate::document::json::line_col(text, offset);
+    let line = String::from_utf8_lossy(line);
     let gutter = format!("{line_no:>5} | ");
     let pad: String = " ".repeat(gutter.len() - 2);
     format!(
         "{gutter}{}\n{pad}| {}{}\n",
         line.trim_end(),
-        " ".repeat(column),
+        " ".repeat(column - 1),
         paint("^", "1;31", colour)
     )
 }

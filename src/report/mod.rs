@@ -7,6 +7,8 @@ mod sarif;
 use crate::check::{Diagnostic, Location, Report, Severity};
 use crate::document::json;
 use serde_json::{json, Map, Value};
+use std::collections::HashMap;
+use std::ops::Range;
 
 /// An output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -57,38 +59,67 @@ pub fn render(format: Format, reports: &[Report], options: &Style) -> String {
         Format::Sarif => sarif::render(reports),
         Format::Github => reports
             .iter()
-            .flat_map(|r| r.diagnostics.iter().map(move |d| github_line(r, d)))
+            .flat_map(|r| {
+                let positions = Positions::of(r);
+                (r.diagnostics.iter())
+                    .map(|d| github_line(r, &positions, d))
+                    .collect::<Vec<_>>()
+            })
             .collect(),
     }
 }
 
-/// 1-based line and column of a diagnostic, when it can be located in the source.
-pub fn line_col(report: &Report, diagnostic: &Diagnostic) -> Option<(usize, usize)> {
-    let text = report.document.json_text();
-    let offset = span(report, diagnostic)?.start;
-    Some(json::line_col(text, offset))
+/// Where a report's diagnostics lie in its JSON text: every pointer located in one pass and
+/// lines indexed once, so that rendering N diagnostics costs one scan of the file, not N.
+pub(crate) struct Positions<'r> {
+    spans: HashMap<&'r str, Range<usize>>,
+    /// The JSON text's lines.
+    pub lines: json::LineIndex<'r>,
 }
 
-/// Byte range in the JSON text that a diagnostic points at.
-pub fn span(report: &Report, diagnostic: &Diagnostic) -> Option<std::ops::Range<usize>> {
-    if let Some(offset) = diagnostic.span_hint {
-        return Some(offset..offset);
-    }
-    match &diagnostic.location {
-        Location::Pointer(pointer) if report.document.root.is_some() => {
-            json::locate(report.document.json_text(), pointer)
+impl<'r> Positions<'r> {
+    pub fn of(report: &'r Report) -> Self {
+        let text = report.document.json_text();
+        let pointers = report.diagnostics.iter().filter_map(|d| match &d.location {
+            Location::Pointer(pointer) if d.span_hint.is_none() => Some(pointer.as_str()),
+            _ => None,
+        });
+        let spans = if report.document.root.is_some() {
+            json::locate_all(text, pointers)
+        } else {
+            HashMap::new()
+        };
+        Positions {
+            spans,
+            lines: json::LineIndex::new(text),
         }
-        _ => None,
+    }
+
+    /// Byte range in the JSON text that a diagnostic points at.
+    pub fn span(&self, diagnostic: &Diagnostic) -> Option<Range<usize>> {
+        if let Some(offset) = diagnostic.span_hint {
+            return Some(offset..offset);
+        }
+        match &diagnostic.location {
+            Location::Pointer(pointer) => self.spans.get(pointer.as_str()).cloned(),
+            Location::Offset(_) => None,
+        }
+    }
+
+    /// 1-based line and column of a diagnostic, when it can be located in the source.
+    pub fn line_col(&self, diagnostic: &Diagnostic) -> Option<(usize, usize)> {
+        Some(self.lines.line_col(self.span(diagnostic)?.start))
     }
 }
 
-fn github_line(report: &Report, d: &Diagnostic) -> String {
+fn github_line(report: &Report, positions: &Positions, d: &Diagnostic) -> String {
     let level = match d.severity {
         Severity::Error => "error",
         Severity::Warning => "warning",
         Severity::Info | Severity::Hint => "notice",
     };
-    let position = line_col(report, d).map_or(String::new(), |(l, c)| format!(",line={l},col={c}"));
+    let position =
+        (positions.line_col(d)).map_or(String::new(), |(l, c)| format!(",line={l},col={c}"));
     let escape = |s: &str| {
         s.replace('%', "%25")
             .replace('\r', "%0D")

@@ -1,7 +1,7 @@
 //! SARIF 2.1.0, with every registered code as a rule carrying its documentation.
 
-use super::{line_col, location_suffix};
-use crate::check::{registry, Location, Report, Severity};
+use super::{location_suffix, Positions};
+use crate::check::{registry, Diagnostic, Location, Report, Severity};
 use serde_json::{json, Value};
 
 pub fn render(reports: &[Report]) -> String {
@@ -24,29 +24,11 @@ pub fn render(reports: &[Report]) -> String {
         .collect();
     let results: Vec<Value> = reports
         .iter()
-        .flat_map(|report| report.diagnostics.iter().map(move |d| (report, d)))
-        .map(|(report, d)| {
-            let mut region = json!({});
-            if let Some((line, column)) = line_col(report, d) {
-                region = json!({"startLine": line, "startColumn": column});
-            } else if let Location::Offset(offset) = d.location {
-                region = json!({"byteOffset": offset});
-            }
-            let mut physical = json!({"artifactLocation": {"uri": report.uri}});
-            if region.as_object().is_some_and(|r| !r.is_empty()) {
-                physical["region"] = region;
-            }
-            let mut result = json!({
-                "ruleId": d.code,
-                "level": level(d.severity),
-                "message": {"text": format!("{}{}", d.message, location_suffix(d))},
-                "locations": [{"physicalLocation": physical}],
-            });
-            if let Location::Pointer(p) = &d.location {
-                result["locations"][0]["logicalLocations"] =
-                    json!([{"fullyQualifiedName": p, "kind": "member"}]);
-            }
-            result
+        .flat_map(|report| {
+            let positions = Positions::of(report);
+            (report.diagnostics.iter())
+                .map(|d| result(report, &positions, d))
+                .collect::<Vec<_>>()
         })
         .collect();
     let log = json!({
@@ -71,4 +53,29 @@ fn level(severity: Severity) -> &'static str {
         Severity::Warning => "warning",
         Severity::Info | Severity::Hint => "note",
     }
+}
+
+/// One SARIF result.
+fn result(report: &Report, positions: &Positions, d: &Diagnostic) -> Value {
+    let mut region = json!({});
+    if let Some((line, column)) = positions.line_col(d) {
+        region = json!({"startLine": line, "startColumn": column});
+    } else if let Location::Offset(offset) = d.location {
+        region = json!({"byteOffset": offset});
+    }
+    let mut physical = json!({"artifactLocation": {"uri": report.uri}});
+    if region.as_object().is_some_and(|r| !r.is_empty()) {
+        physical["region"] = region;
+    }
+    let mut result = json!({
+        "ruleId": d.code,
+        "level": level(d.severity),
+        "message": {"text": format!("{}{}", d.message, location_suffix(d))},
+        "locations": [{"physicalLocation": physical}],
+    });
+    if let Location::Pointer(p) = &d.location {
+        result["locations"][0]["logicalLocations"] =
+            json!([{"fullyQualifiedName": p, "kind": "member"}]);
+    }
+    result
 }

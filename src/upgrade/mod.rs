@@ -132,6 +132,14 @@ pub enum UpgradeError {
         /// Why it could not be used.
         reason: String,
     },
+    /// The 1.0 asset is broken where a faithful conversion needs it whole.
+    #[error("{pointer}: {reason}")]
+    Invalid {
+        /// Where the problem is.
+        pointer: String,
+        /// What is wrong.
+        reason: String,
+    },
 }
 
 /// Upgrades a glTF 1.0 asset (`.gltf` text or a KHR_binary_glTF GLB v1). External files are

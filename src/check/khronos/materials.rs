@@ -410,6 +410,24 @@ pub fn slot_uses<'a>(ctx: &Context<'a>) -> Arc<[SlotUse<'a>]> {
         .clone()
 }
 
+/// The texture uses of each image, in document order: `by_image(uses, n)[i]` are the uses
+/// that may sample image `i` (one pass over the uses, not one per image).
+pub fn by_image<'u, 'a>(uses: &'u [SlotUse<'a>], image_count: usize) -> Vec<Vec<&'u SlotUse<'a>>> {
+    let mut grouped: Vec<Vec<&SlotUse>> = vec![Vec::new(); image_count];
+    for slot_use in uses {
+        for &image in &slot_use.images {
+            // A texture may name one image twice (`source` and an extension's).
+            let group = grouped.get_mut(image);
+            if let Some(group) =
+                group.filter(|g| !g.last().is_some_and(|&u| std::ptr::eq(u, slot_use)))
+            {
+                group.push(slot_use);
+            }
+        }
+    }
+    grouped
+}
+
 fn collect_slot_uses<'a>(ctx: &Context<'a>) -> Vec<SlotUse<'a>> {
     let textures = ctx.items("textures");
     let image_count = ctx.items("images").len() as u64;

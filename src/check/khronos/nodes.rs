@@ -8,7 +8,7 @@ use super::primitives::{joint_sets, mesh_morph_targets};
 use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
 use serde_json::Value;
-use std::collections::HashSet;
+use std::collections::HashMap;
 
 /// How far a matrix may be from its TRS recomposition.
 const TRS_TOLERANCE: f64 = 0.00005;
@@ -16,10 +16,11 @@ const TRS_TOLERANCE: f64 = 0.00005;
 pub fn check(ctx: &mut Context) {
     let nodes = ctx.items("nodes");
     let parents = parents(ctx, nodes);
+    let hierarchy = Hierarchy::of(nodes, &parents);
     for (i, pointer, node) in ctx.objects("nodes") {
         transforms(ctx, node, &pointer);
         dependencies(ctx, node, &pointer);
-        if in_loop(&parents, i) {
+        if hierarchy.on_loop[i] {
             ctx.emit(
                 khronos::NODE_LOOP,
                 pointer.clone(),
@@ -27,7 +28,7 @@ pub fn check(ctx: &mut Context) {
             );
         }
         if unsigned(node, "skin").is_some_and(|s| (s as usize) < ctx.items("skins").len()) {
-            skinned_placement(ctx, nodes, &parents, i, &pointer);
+            skinned_placement(ctx, nodes, &parents, &hierarchy, i, &pointer);
         }
     }
     for (_, pointer, scene) in ctx.objects("scenes") {
@@ -90,20 +91,57 @@ fn parents(ctx: &mut Context, nodes: &[Value]) -> Vec<Option<usize>> {
     parent
 }
 
-/// Whether walking up from `node` comes back to it.
-fn in_loop(parents: &[Option<usize>], node: usize) -> bool {
-    let mut seen = HashSet::new();
-    let mut at = node;
-    while let Some(up) = parents[at] {
-        if up == node {
-            return true;
+/// What each node's ancestry holds, found for all nodes in one walk (memoised, so a
+/// 10^5-node chain costs 10^5 steps, not 10^10).
+struct Hierarchy {
+    /// Walking up from the node comes back to it.
+    on_loop: Vec<bool>,
+    /// Some ancestor (on a loop: some node of the loop) has a transform.
+    transformed_above: Vec<bool>,
+}
+
+impl Hierarchy {
+    fn of(nodes: &[Value], parents: &[Option<usize>]) -> Hierarchy {
+        let n = parents.len();
+        let mut on_loop = vec![false; n];
+        let mut above: Vec<Option<bool>> = vec![None; n];
+        let mut position = vec![usize::MAX; n];
+        let transformed = |i: usize| has_transform(&nodes[i]);
+        for start in 0..n {
+            // Climb until a root, a node already known, or a node of this climb (a loop).
+            let mut path = Vec::new();
+            let mut at = Some(start);
+            while let Some(node) = at.filter(|&a| above[a].is_none() && position[a] == usize::MAX) {
+                position[node] = path.len();
+                path.push(node);
+                at = parents[node];
+            }
+            let mut known = match at {
+                None => false,
+                Some(a) if position[a] != usize::MAX => {
+                    let cycle = path.split_off(position[a]);
+                    let any = cycle.iter().any(|&c| transformed(c));
+                    for &c in &cycle {
+                        on_loop[c] = true;
+                        above[c] = Some(any);
+                        position[c] = usize::MAX;
+                    }
+                    any
+                }
+                Some(a) => transformed(a) || above[a].unwrap_or(false),
+            };
+            // Down again: each node's answer is its parent's transform or the parent's answer.
+            for &node in path.iter().rev() {
+                above[node] = Some(known);
+                position[node] = usize::MAX;
+                known = known || transformed(node);
+            }
         }
-        if !seen.insert(up) {
-            return false;
+        Hierarchy {
+            on_loop,
+            transformed_above: above.into_iter().map(|a| a.unwrap_or(false)).collect(),
         }
-        at = up;
     }
-    false
 }
 
 fn numbers(node: &Value, key: &str, length: usize) -> Option<Vec<f64>> {
@@ -315,6 +353,7 @@ fn skinned_placement(
     ctx: &mut Context,
     nodes: &[Value],
     parents: &[Option<usize>],
+    hierarchy: &Hierarchy,
     i: usize,
     pointer: &str,
 ) {
@@ -328,18 +367,12 @@ fn skinned_placement(
     if parents[i].is_none() {
         return;
     }
-    let mut seen = HashSet::new();
-    let mut up = parents[i];
-    while let Some(p) = up.filter(|p| seen.insert(*p)) {
-        if has_transform(&nodes[p]) {
-            ctx.emit(
-                khronos::NODE_SKINNED_MESH_PARENT_TRANSFORMS,
-                pointer,
-                "Node with a skinned mesh has parent nodes with transforms. Parent transforms will not affect a skinned mesh.",
-            );
-            break;
-        }
-        up = parents[p];
+    if hierarchy.transformed_above[i] {
+        ctx.emit(
+            khronos::NODE_SKINNED_MESH_PARENT_TRANSFORMS,
+            pointer,
+            "Node with a skinned mesh has parent nodes with transforms. Parent transforms will not affect a skinned mesh.",
+        );
     }
     ctx.emit(
         khronos::NODE_SKINNED_MESH_NON_ROOT,
@@ -350,15 +383,21 @@ fn skinned_placement(
 
 /// A mesh's own morph weights do nothing when every node that draws it has weights.
 fn unused_mesh_weights(ctx: &mut Context, nodes: &[Value]) {
+    // Per mesh: the nodes that draw it, and how many of them have their own weights.
+    let mut drawn_by: HashMap<usize, (usize, usize)> = HashMap::new();
+    for node in nodes {
+        if let Some(mesh) = unsigned(node, "mesh") {
+            let entry = drawn_by.entry(mesh as usize).or_default();
+            entry.0 += 1;
+            entry.1 += usize::from(node.get("weights").is_some());
+        }
+    }
     for (m, pointer, mesh) in ctx.objects("meshes") {
         if mesh.get("weights").is_none() {
             continue;
         }
-        let users: Vec<&Value> = nodes
-            .iter()
-            .filter(|n| unsigned(n, "mesh") == Some(m as u64))
-            .collect();
-        if !users.is_empty() && users.iter().all(|n| n.get("weights").is_some()) {
+        let (users, overriding) = drawn_by.get(&m).copied().unwrap_or((0, 0));
+        if users > 0 && users == overriding {
             ctx.emit(
                 khronos::UNUSED_MESH_WEIGHTS,
                 member(&pointer, "weights"),

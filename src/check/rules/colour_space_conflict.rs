@@ -2,7 +2,7 @@
 
 use super::{Rule, Run};
 use crate::check::context::Context;
-use crate::check::khronos::materials::{slot_uses, Channels, A, B, G, R};
+use crate::check::khronos::materials::{by_image, slot_uses, Channels, A, B, G, R};
 use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
@@ -35,40 +35,71 @@ as linear occlusion).
 
 fn check(ctx: &mut Context) {
     let uses = slot_uses(ctx);
-    let image_count = ctx.items("images").len();
-    for image in 0..image_count {
-        let on_image: Vec<_> = uses.iter().filter(|u| u.images.contains(&image)).collect();
-        for (later, this) in on_image.iter().enumerate() {
+    for (image, on_image) in by_image(&uses, ctx.items("images").len())
+        .iter()
+        .enumerate()
+    {
+        let mut first = FirstReaders::default();
+        for (order, this) in on_image.iter().enumerate() {
             let (srgb, linear) = this.reads();
-            let earlier = on_image[..later].iter().find_map(|e| {
-                let (e_srgb, e_linear) = e.reads();
+            if let Some(earlier) = first.earliest_clash(srgb, linear) {
+                let (e_srgb, e_linear) = on_image[earlier].reads();
                 let clash = (e_srgb & linear) | (e_linear & srgb);
-                (clash != 0).then_some((e, clash))
-            });
-            if let Some((earlier, clash)) = earlier {
+                let (here, there) = if srgb & clash != 0 {
+                    ("sRGB colour", "linear data")
+                } else {
+                    ("linear data", "sRGB colour")
+                };
                 ctx.emit(
                     RULE.code(),
                     this.pointer.clone(),
                     format!(
-                        "Image {image} channel(s) {} are read as {} here but as {} by {}.",
+                        "Image {image} channel(s) {} are read as {here} here but as {there} by {}.",
                         channel_names(clash),
-                        if srgb & clash != 0 {
-                            "sRGB colour"
-                        } else {
-                            "linear data"
-                        },
-                        if srgb & clash != 0 {
-                            "linear data"
-                        } else {
-                            "sRGB colour"
-                        },
-                        earlier.pointer
+                        on_image[earlier].pointer
                     ),
                 );
+            }
+            first.record(order, srgb, linear);
+        }
+    }
+}
+
+/// For each channel, the first use (by order) that reads it as sRGB and as linear data, so
+/// that the earliest use a later one clashes with is found without rescanning them all.
+#[derive(Default)]
+struct FirstReaders {
+    srgb: [Option<usize>; 4],
+    linear: [Option<usize>; 4],
+}
+
+impl FirstReaders {
+    fn earliest_clash(&self, srgb: Channels, linear: Channels) -> Option<usize> {
+        CHANNELS
+            .iter()
+            .enumerate()
+            .flat_map(|(c, &bit)| {
+                let against_srgb = (linear & bit != 0).then_some(self.srgb[c]).flatten();
+                let against_linear = (srgb & bit != 0).then_some(self.linear[c]).flatten();
+                [against_srgb, against_linear]
+            })
+            .flatten()
+            .min()
+    }
+
+    fn record(&mut self, order: usize, srgb: Channels, linear: Channels) {
+        for (c, &bit) in CHANNELS.iter().enumerate() {
+            if srgb & bit != 0 {
+                self.srgb[c].get_or_insert(order);
+            }
+            if linear & bit != 0 {
+                self.linear[c].get_or_insert(order);
             }
         }
     }
 }
+
+const CHANNELS: [Channels; 4] = [R, G, B, A];
 
 fn channel_names(mask: Channels) -> String {
     [(R, 'R'), (G, 'G'), (B, 'B'), (A, 'A')]

@@ -30,7 +30,7 @@ mod undecodable;
 mod unlit_ignored;
 
 use super::context::Context;
-use super::khronos::materials::{slot_uses, SlotUse};
+use super::khronos::materials::{by_image, slot_uses, SlotUse};
 use super::registry::{CodeInfo, Origin};
 use crate::diagnostic::{Code, Severity};
 use crate::document::image_header::ImageInfo;
@@ -205,10 +205,12 @@ fn run_pixel_rules(ctx: &mut Context) {
         .map(|check| (check.applies, check.inspect))
         .collect();
     let uses = slot_uses(ctx);
-    for image in 0..ctx.items("images").len() {
-        let wanted: Vec<_> = uses
-            .iter()
-            .filter(|u| u.images.contains(&image))
+    for (image, on_image) in by_image(&uses, ctx.items("images").len())
+        .into_iter()
+        .enumerate()
+    {
+        let wanted: Vec<_> = on_image
+            .into_iter()
             .flat_map(|u| {
                 pixel_rules
                     .iter()

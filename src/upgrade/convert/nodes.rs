@@ -5,6 +5,7 @@ use crate::upgrade::data;
 use crate::upgrade::data::Role;
 use crate::upgrade::{NoteKind, UpgradeError};
 use serde_json::{json, Map, Value};
+use std::collections::{HashMap, HashSet};
 
 impl Builder<'_, '_> {
     pub(in crate::upgrade) fn nodes(&mut self) -> Result<(), UpgradeError> {
@@ -91,10 +92,21 @@ impl Builder<'_, '_> {
             return Ok(None);
         };
         let skeletons = id_list(node.get("skeletons"));
-        let joints: Vec<usize> = id_list(skin.get("jointNames"))
-            .iter()
-            .filter_map(|name| self.find_joint(name, &skeletons))
-            .collect();
+        let by_name = self.joints_by_name(id, &skeletons)?;
+        let mut joints = Vec::new();
+        for (k, name) in id_list(skin.get("jointNames")).iter().enumerate() {
+            let Some(&joint) = by_name.get(name) else {
+                // Dropping the name would shift every later joint: vertices would follow
+                // the wrong bones.
+                return Err(UpgradeError::Invalid {
+                    pointer: format!("{}/jointNames/{k}", pointer("skins", skin_id)),
+                    reason: format!(
+                        "joint name '{name}' names no node under the skeletons of node '{id}'"
+                    ),
+                });
+            };
+            joints.push(joint);
+        }
         let mut out = Self::named(skin_id, skin);
         out.insert("joints".into(), json!(joints));
         if let Some(root) = skeletons
@@ -108,30 +120,53 @@ impl Builder<'_, '_> {
         Ok(Some(self.push("skins", Value::Object(out))))
     }
 
-    /// The node whose `jointName` is `name`, searched in the skeleton subtrees (1.0 scopes
-    /// joint names by them), or among all nodes when the instance names no skeleton.
-    pub(in crate::upgrade) fn find_joint(&self, name: &str, skeletons: &[String]) -> Option<usize> {
-        let mut stack: Vec<String> = if skeletons.is_empty() {
-            self.source
-                .dictionary("nodes")
-                .iter()
-                .map(|(id, _)| id.to_string())
+    /// Every `jointName` in the skeleton subtrees (1.0 scopes joint names by them), or among
+    /// all nodes when the instance names no skeleton, to its 2.0 node index: one walk for
+    /// all the skin's names. Where two nodes share a name, the one met first wins. A
+    /// skeleton or child id that names no node is an error: the joints below it are unknown.
+    fn joints_by_name(
+        &self,
+        id: &str,
+        skeletons: &[String],
+    ) -> Result<HashMap<String, usize>, UpgradeError> {
+        let mut stack: Vec<(String, String)> = if skeletons.is_empty() {
+            (self.source.dictionary("nodes").iter())
+                .map(|(node, _)| (node.to_string(), String::new()))
                 .collect()
         } else {
-            skeletons.to_vec()
+            let from = format!("{}/skeletons", pointer("nodes", id));
+            skeletons
+                .iter()
+                .map(|s| (s.clone(), from.clone()))
+                .collect()
         };
-        let mut seen = std::collections::HashSet::new();
-        while let Some(id) = stack.pop() {
-            if !seen.insert(id.clone()) {
+        let (mut found, mut seen) = (HashMap::new(), HashSet::new());
+        while let Some((node_id, named_at)) = stack.pop() {
+            if !seen.insert(node_id.clone()) {
                 continue;
             }
-            let node = self.source.object("nodes", &id)?;
-            if node.get("jointName").and_then(Value::as_str) == Some(name) {
-                return self.index_of("nodes", Some(&json!(id)));
+            let Some(node) = self.source.object("nodes", &node_id) else {
+                return Err(UpgradeError::Invalid {
+                    pointer: named_at,
+                    reason: format!("node '{node_id}' does not exist, so the skin's joints below it cannot be found"),
+                });
+            };
+            if let (Some(name), Some(index)) = (
+                node.get("jointName").and_then(Value::as_str),
+                self.index_of("nodes", Some(&json!(node_id))),
+            ) {
+                found.entry(name.to_string()).or_insert(index);
             }
-            stack.extend(id_list(node.get("children")));
+            if !skeletons.is_empty() {
+                let children_at = format!("{}/children", pointer("nodes", &node_id));
+                stack.extend(
+                    id_list(node.get("children"))
+                        .into_iter()
+                        .map(|c| (c, children_at.clone())),
+                );
+            }
         }
-        None
+        Ok(found)
     }
 
     /// Inverse bind matrices with the bind shape matrix folded in: IBMᵢ · BSM, so that the

@@ -1,0 +1,193 @@
+#!/usr/bin/env -S python3 -u
+"""Time and peak memory of gltfmat on every input class that once blew up (issue 13,
+findings 11-15), each at N and 10·N. Prints one row per class: seconds and peak RSS at both
+sizes and their growth; near-linear means growth ≲ 15× for 10× N.
+
+    python3 scripts/bench/blowup.py [target/release/gltfmat] [--only NAME]
+
+Each input is generated into a scratch folder; nothing here is a test (no assertion on time).
+"""
+import base64, json, os, struct, subprocess, sys, tempfile, time, zlib
+
+EXE = os.path.abspath(next((a for a in sys.argv[1:] if not a.startswith('--')), 'target/release/gltfmat'))
+ONLY = sys.argv[sys.argv.index('--only') + 1] if '--only' in sys.argv else None
+WORK = tempfile.mkdtemp(prefix='gltfmat-blowup-')
+
+
+def asset(**fields):
+    return {'asset': {'version': '2.0'}, **fields}
+
+
+def write(name, doc):
+    path = os.path.join(WORK, name)
+    with open(path, 'wb') as f:
+        f.write(doc if isinstance(doc, bytes) else json.dumps(doc).encode())
+    return path
+
+
+def node_chain(n):
+    nodes = [{'children': [i + 1]} for i in range(n - 1)] + [{}]
+    return write(f'chain-{n}.gltf', asset(nodes=nodes, scenes=[{'nodes': [0]}]))
+
+
+def skin_joints(n):
+    nodes = [{'children': [i + 1]} for i in range(n - 1)] + [{}]
+    return write(f'skin-{n}.gltf', asset(nodes=nodes, skins=[{'joints': list(range(n))}]))
+
+
+def duplicate_keys(n):
+    text = '{"asset":{"version":"2.0"},"extras":{' + ','.join('"k":0' for _ in range(n)) + '}}'
+    return write(f'keys-{n}.gltf', text.encode())
+
+
+def duplicate_scene_nodes(n):
+    nodes = [{} for _ in range(n)]
+    return write(f'scene-nodes-{n}.gltf', asset(nodes=nodes, scenes=[{'nodes': list(range(n)) + [0]}]))
+
+
+def meshes_and_nodes(n):
+    mesh = {'primitives': [{'attributes': {}}]}
+    return write(f'meshes-{n}.gltf', asset(meshes=[mesh] * n, nodes=[{'mesh': i} for i in range(n)]))
+
+
+def shared_texture(n):
+    png = tiny_png()
+    images = [{'uri': 'data:image/png;base64,' + base64.b64encode(png).decode()}]
+    materials = [{'pbrMetallicRoughness': {'baseColorTexture': {'index': 0}}} if i % 2 else
+                 {'normalTexture': {'index': 0}} for i in range(n)]
+    return write(f'texture-{n}.gltf', asset(images=images, textures=[{'source': 0}], materials=materials))
+
+
+def animation_targets(n):
+    channels = [{'sampler': 0, 'target': {'node': 0, 'path': 'translation'}} for _ in range(n)]
+    data = base64.b64encode(struct.pack('<f', 0) + struct.pack('<3f', 0, 0, 0)).decode()
+    doc = asset(
+        nodes=[{}],
+        buffers=[{'uri': 'data:application/octet-stream;base64,' + data, 'byteLength': 16}],
+        bufferViews=[{'buffer': 0, 'byteLength': 4}, {'buffer': 0, 'byteOffset': 4, 'byteLength': 12}],
+        accessors=[{'bufferView': 0, 'componentType': 5126, 'count': 1, 'type': 'SCALAR', 'min': [0], 'max': [0]},
+                   {'bufferView': 1, 'componentType': 5126, 'count': 1, 'type': 'VEC3'}],
+        animations=[{'channels': channels, 'samplers': [{'input': 0, 'output': 1}]}])
+    return write(f'channels-{n}.gltf', doc)
+
+
+def empty_materials(n):
+    text = '{"asset":{"version":"2.0"},"materials":[' + ','.join('{}' for _ in range(n)) + ']}'
+    return write(f'materials-{n}.gltf', text.encode())
+
+
+def empty_chunks(n):
+    json_chunk = b'{"asset":{"version":"2.0"}}'
+    json_chunk += b' ' * (-len(json_chunk) % 4)
+    body = struct.pack('<I', len(json_chunk)) + b'JSON' + json_chunk
+    body += (struct.pack('<I', 0) + b'XTRA') * n
+    return write(f'chunks-{n}.glb', b'glTF' + struct.pack('<II', 2, 12 + len(body)) + body)
+
+
+def zeros(n):
+    return write(f'zeros-{n}.gltf', ('{"asset":{"version":"2.0"},"nodes":[' + ','.join('0' for _ in range(n)) + ']}').encode())
+
+
+def many_findings(n):
+    # One finding per node (a non-unit quaternion), each on its own line.
+    nodes = [{'rotation': [1, 1, 1, 1]} for _ in range(n)]
+    return write(f'findings-{n}.gltf', json.dumps(asset(nodes=nodes), indent=1).encode())
+
+
+def joint_names(n):
+    nodes = {f'j{i}': ({'jointName': f'J{i}', 'children': [f'j{i + 1}']} if i + 1 < n else {'jointName': f'J{i}'})
+             for i in range(n)}
+    nodes['root'] = {'children': ['j0']}
+    doc = {'asset': {'version': '1.0'}, 'nodes': nodes,
+           'skins': {'s': {'jointNames': [f'J{i}' for i in range(n)],
+                           'inverseBindMatrices': 'ibm', 'bindShapeMatrix': [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}},
+           'buffers': {'b': {'uri': 'data:application/octet-stream;base64,' +
+                             base64.b64encode(struct.pack('<16f', *[1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]) * n).decode(),
+                             'byteLength': 64 * n}},
+           'bufferViews': {'v': {'buffer': 'b', 'byteLength': 64 * n}},
+           'accessors': {'ibm': {'bufferView': 'v', 'componentType': 5126, 'count': n, 'type': 'MAT4'}},
+           'scenes': {'s': {'nodes': ['root']}}, 'scene': 's'}
+    return write(f'joints-{n}.gltf', doc)
+
+
+def big_png_references(n):
+    """One 8192² PNG (a few hundred KB compressed) used by n materials."""
+    png = big_png(8192)
+    images = [{'uri': 'data:image/png;base64,' + base64.b64encode(png).decode()}]
+    materials = [{'name': f'm{i}', 'pbrMetallicRoughness': {'baseColorTexture': {'index': 0}}} for i in range(n)]
+    return write(f'png-{n}.gltf', asset(images=images, textures=[{'source': 0}], materials=materials))
+
+
+def png_chunk(kind, data):
+    return struct.pack('>I', len(data)) + kind + data + struct.pack('>I', zlib.crc32(kind + data))
+
+
+def encode_png(size, rows):
+    header = struct.pack('>IIBBBBB', size, size, 8, 2, 0, 0, 0)
+    return b'\x89PNG\r\n\x1a\n' + png_chunk(b'IHDR', header) + png_chunk(b'IDAT', zlib.compress(rows, 9)) + png_chunk(b'IEND', b'')
+
+
+def tiny_png():
+    return encode_png(1, b'\x00\xff\x00\x00')
+
+
+def big_png(size):
+    return encode_png(size, (b'\x00' + b'\x80' * (3 * size)) * size)
+
+
+CLASSES = [
+    # name, generator, N, command
+    ('node chain (11)', node_chain, 10_000, ['check']),
+    ('skin joints (11)', skin_joints, 3_000, ['check']),
+    ('duplicate keys (11)', duplicate_keys, 10_000, ['check']),
+    ('scene node list (11)', duplicate_scene_nodes, 10_000, ['check']),
+    ('meshes x nodes (11)', meshes_and_nodes, 3_000, ['check']),
+    ('shared texture (11)', shared_texture, 10_000, ['check']),
+    ('1.0 joint names (11)', joint_names, 2_000, ['upgrade', '-o', os.path.join(WORK, 'out.glb'), '--force']),
+    ('one target, N channels (12)', animation_targets, 10_000, ['check', '--max-issues', '10']),
+    ('empty materials (13)', empty_materials, 100_000, ['check', '--max-issues', '10']),
+    ('empty GLB chunks (13)', empty_chunks, 100_000, ['check', '--max-issues', '10']),
+    ('array of zeros (13)', zeros, 1_000_000, ['check', '--max-issues', '10']),
+    ('human findings (14)', many_findings, 3_000, ['check', '--format', 'human']),
+    ('sarif findings (14)', many_findings, 3_000, ['check', '--format', 'sarif']),
+    ('8192² PNG, N references (15)', big_png_references, 1, ['render', '--all', '--size', '64', '-o', os.path.join(WORK, 'sheet.png')]),
+]
+
+
+def run(command, path):
+    args = [EXE, command[0], path, '--quiet'] + command[1:] if command[0] == 'check' else [EXE, command[0], path] + command[1:]
+    best = None
+    for _ in range(3):
+        started = time.perf_counter()
+        proc = subprocess.run(['/usr/bin/time', '-f', '%M'] + args, capture_output=True, timeout=900)
+        seconds = time.perf_counter() - started
+        kb = int(proc.stderr.decode().strip().splitlines()[-1])
+        if proc.returncode not in (0, 1):
+            return None, None, proc.stderr.decode()[-300:]
+        if best is None or seconds < best[0]:
+            best = (seconds, kb)
+    return best[0], best[1], None
+
+
+def main():
+    sys.stdout.reconfigure(line_buffering=True)
+    print(f'{"class":32} {"N":>9} {"s":>7} {"MB":>6} {"10N s":>7} {"MB":>6} {"time x":>7} {"mem x":>6}')
+    for name, generate, n, command in CLASSES:
+        if ONLY and ONLY not in name:
+            continue
+        row = []
+        for size in (n, 10 * n):
+            path = generate(size)
+            seconds, kb, failure = run(command, path)
+            if failure:
+                print(f'{name:32} failed: {failure}')
+                break
+            row.append((seconds, kb, os.path.getsize(path)))
+        else:
+            (s1, k1, _), (s2, k2, b2) = row
+            print(f'{name:32} {n:>9} {s1:7.2f} {k1 / 1024:6.0f} {s2:7.2f} {k2 / 1024:6.0f} {s2 / s1:7.1f} {k2 / k1:6.1f}'
+                  f'   (10N input {b2 / 1e6:.1f} MB)')
+
+
+if __name__ == '__main__':
+    main()
