@@ -1,7 +1,9 @@
 //! State shared by the passes: the document, found diagnostics, which objects are referenced,
 //! and what earlier passes learned (buffer data, image headers, material needs).
 
+use super::collector::Collector;
 use super::{CheckOptions, Diagnostic};
+use crate::diagnostic::Sink;
 use crate::diagnostic::{khronos, Code};
 use crate::document::image_header::ImageInfo;
 use crate::document::json::escape_token;
@@ -64,7 +66,7 @@ pub(crate) struct Context<'a> {
     pub document: &'a Document,
     pub loader: &'a dyn ResourceLoader,
     pub options: &'a CheckOptions,
-    pub diagnostics: Vec<Diagnostic>,
+    pub diagnostics: Collector<'a>,
     used: HashSet<(&'static str, usize)>,
     /// Bytes of each buffer, where they could be read (the GLB BIN chunk is borrowed).
     pub buffers: Vec<Option<BufferData<'a>>>,
@@ -84,13 +86,14 @@ impl<'a> Context<'a> {
         document: &'a Document,
         loader: &'a dyn ResourceLoader,
         options: &'a CheckOptions,
+        diagnostics: Collector<'a>,
     ) -> Self {
         Context {
             root,
             document,
             loader,
             options,
-            diagnostics: Vec::new(),
+            diagnostics,
             used: HashSet::new(),
             buffers: Vec::new(),
             images: Vec::new(),

@@ -5,6 +5,7 @@ pub mod registry;
 pub(crate) mod rules;
 pub(crate) mod schema;
 
+mod collector;
 pub(crate) mod context;
 mod khronos;
 
@@ -12,8 +13,10 @@ pub use crate::diagnostic::{Code, Diagnostic, Location, Severity};
 pub(crate) use context::Context;
 pub use context::{AssetInfo, ResourceInfo};
 
+use crate::diagnostic::Sink;
 use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::document::{self, Container, Document};
+use collector::Collector;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -133,8 +136,8 @@ pub fn check_bytes(
     loader: &dyn ResourceLoader,
     options: &CheckOptions,
 ) -> Report {
-    let document = document::read(bytes, uri);
-    let mut diagnostics = document.diagnostics.clone();
+    let mut diagnostics = Collector::new(options);
+    let document = document::read(bytes, uri, &mut diagnostics);
     let mut info = context::AssetInfo::default();
     if let Some(root) = &document.root {
         if !root.is_object() {
@@ -147,13 +150,13 @@ pub fn check_bytes(
                 ),
             ));
         } else {
-            let mut ctx = Context::new(root, &document, loader, options);
+            let mut ctx = Context::new(root, &document, loader, options, diagnostics);
             run_passes(&mut ctx);
             info = ctx.info();
-            diagnostics.extend(ctx.diagnostics);
+            diagnostics = ctx.diagnostics;
         }
     }
-    let (diagnostics, counts, truncated) = apply_options(diagnostics, options);
+    let (diagnostics, counts, truncated) = diagnostics.finish();
     Report {
         uri: uri.to_string(),
         document,
@@ -195,40 +198,6 @@ fn run_passes(ctx: &mut Context) {
     if !khronos {
         rules::run_all(ctx);
     }
-}
-
-/// Applies ignore/only/severity overrides, counts the findings per severity, then applies the
-/// issue limit, keeping the most severe findings (each severity in emission order).
-fn apply_options(
-    diagnostics: Vec<Diagnostic>,
-    options: &CheckOptions,
-) -> (Vec<Diagnostic>, [usize; 4], bool) {
-    let matches = |list: &[String], code: &str| list.iter().any(|c| c.eq_ignore_ascii_case(code));
-    let mut kept: Vec<Diagnostic> = diagnostics
-        .into_iter()
-        .filter(|d| !matches(&options.ignore, d.code.name()))
-        .filter(|d| options.only.is_empty() || matches(&options.only, d.code.name()))
-        .map(|mut d| {
-            if let Some((_, s)) = options
-                .severity_overrides
-                .iter()
-                .find(|(c, _)| c.eq_ignore_ascii_case(d.code.name()))
-            {
-                d.severity = *s;
-            }
-            d
-        })
-        .collect();
-    let mut counts = [0; 4];
-    for d in &kept {
-        counts[d.severity as usize] += 1;
-    }
-    let truncated = options.max_issues > 0 && kept.len() > options.max_issues;
-    if truncated {
-        kept.sort_by_key(|d| d.severity);
-        kept.truncate(options.max_issues);
-    }
-    (kept, counts, truncated)
 }
 
 /// Whether the container is binary (used by passes that treat GLB specially).

@@ -165,3 +165,17 @@ impl Diagnostic {
         }
     }
 }
+
+/// Where findings go as they are made. A checker's sink may filter, count and bound them
+/// (see `check`'s collector), so that memory stays bounded however many a file holds; a
+/// `Vec` keeps them all.
+pub trait Sink {
+    /// Takes one finding.
+    fn push(&mut self, diagnostic: Diagnostic);
+}
+
+impl Sink for Vec<Diagnostic> {
+    fn push(&mut self, diagnostic: Diagnostic) {
+        Vec::push(self, diagnostic);
+    }
+}

@@ -4,7 +4,7 @@
 //! length: chunks are ranges into the input, and every sum is checked against the real size.
 //! The offsets and the order of checks follow the Khronos validator so reports are comparable.
 
-use crate::diagnostic::{khronos, Code, Diagnostic, Location};
+use crate::diagnostic::{khronos, Code, Diagnostic, Location, Sink};
 use std::ops::Range;
 
 const MAGIC: &[u8; 4] = b"glTF";
@@ -19,7 +19,6 @@ pub struct GlbParts {
     pub version: u32,
     pub json: Option<Range<usize>>,
     pub bin: Option<Range<usize>>,
-    pub diagnostics: Vec<Diagnostic>,
     /// The JSON chunk was empty while another JSON chunk followed; the Khronos validator
     /// then parses an empty document, so the caller reports INVALID_JSON.
     pub json_expected_but_empty: bool,
@@ -38,9 +37,9 @@ pub fn looks_like_glb(bytes: &[u8]) -> bool {
     bytes.starts_with(MAGIC)
 }
 
-pub fn read(bytes: &[u8]) -> GlbParts {
+/// Reads the container; every problem goes to `diags`.
+pub fn read(bytes: &[u8], diags: &mut dyn Sink) -> GlbParts {
     let mut parts = GlbParts::default();
-    let diags = &mut parts.diagnostics;
     if bytes.len() < HEADER_LEN {
         diags.push(at(
             khronos::GLB_UNEXPECTED_END_OF_HEADER,
@@ -225,15 +224,20 @@ mod tests {
         out
     }
 
-    fn codes(parts: &GlbParts) -> Vec<Code> {
-        parts.diagnostics.iter().map(|d| d.code).collect()
+    fn codes(found: &[Diagnostic]) -> Vec<Code> {
+        found.iter().map(|d| d.code).collect()
+    }
+
+    fn read(bytes: &[u8]) -> (GlbParts, Vec<Diagnostic>) {
+        let mut found = Vec::new();
+        (super::read(bytes, &mut found), found)
     }
 
     #[test]
     fn a_valid_glb_has_json_and_bin_ranges() {
         let bytes = glb(&[(CHUNK_JSON, b"{}  "), (CHUNK_BIN, &[1, 2, 3, 4])], None);
-        let parts = read(&bytes);
-        assert!(parts.diagnostics.is_empty());
+        let (parts, found) = read(&bytes);
+        assert!(found.is_empty());
         assert_eq!(&bytes[parts.json.unwrap()], b"{}  ");
         assert_eq!(&bytes[parts.bin.unwrap()], &[1, 2, 3, 4]);
     }
@@ -242,9 +246,9 @@ mod tests {
     fn a_chunk_claiming_4_gib_is_reported_without_allocating() {
         let mut bytes = glb(&[(CHUNK_JSON, b"{}  ")], Some(u32::MAX));
         bytes[12..16].copy_from_slice(&u32::MAX.to_le_bytes());
-        let parts = read(&bytes);
+        let (_, found) = read(&bytes);
         assert_eq!(
-            codes(&parts),
+            codes(&found),
             vec![
                 khronos::GLB_CHUNK_LENGTH_UNALIGNED,
                 khronos::GLB_CHUNK_TOO_BIG,
@@ -263,9 +267,9 @@ mod tests {
             ],
             None,
         );
-        let parts = read(&bytes);
+        let (parts, found) = read(&bytes);
         assert_eq!(
-            codes(&parts),
+            codes(&found),
             vec![
                 khronos::GLB_UNKNOWN_CHUNK_TYPE,
                 khronos::GLB_UNEXPECTED_BIN_CHUNK
@@ -278,8 +282,8 @@ mod tests {
     fn version_1_points_to_upgrade() {
         let mut bytes = glb(&[(CHUNK_JSON, b"{}  ")], None);
         bytes[4] = 1;
-        let parts = read(&bytes);
-        assert_eq!(codes(&parts), vec![khronos::GLB_INVALID_VERSION]);
-        assert!(parts.diagnostics[0].message.contains("gltfmat upgrade"));
+        let (_, found) = read(&bytes);
+        assert_eq!(codes(&found), vec![khronos::GLB_INVALID_VERSION]);
+        assert!(found[0].message.contains("gltfmat upgrade"));
     }
 }

@@ -75,7 +75,9 @@ pub fn locate_all<'p>(
     pointers: impl IntoIterator<Item = &'p str>,
 ) -> HashMap<&'p str, std::ops::Range<usize>> {
     let mut trie = vec![TrieNode::default()];
-    for pointer in pointers {
+    // Each pointer once: a thousand findings at one place are one place to find.
+    let unique: std::collections::HashSet<&str> = pointers.into_iter().collect();
+    for pointer in unique {
         let mut at = 0;
         for token in pointer_tokens(pointer) {
             let next = trie.len();

@@ -8,7 +8,7 @@ pub(crate) mod image_header;
 pub(crate) mod json;
 pub mod uri;
 
-use crate::diagnostic::{khronos, Diagnostic};
+use crate::diagnostic::{khronos, Diagnostic, Sink};
 pub use bytes::{BufferData, Bytes};
 pub use image_header::ImageInfo;
 use serde_json::Value;
@@ -43,12 +43,10 @@ pub struct Document {
     pub container: Container,
     /// Where the JSON text lies in `bytes`.
     pub json_range: Range<usize>,
-    /// `None` when the JSON could not be parsed (the reason is in `diagnostics`).
+    /// `None` when the JSON could not be parsed (the reason went to the reader's sink).
     pub root: Option<Value>,
     /// Where the GLB BIN chunk's data lies in `bytes`, if there is one.
     pub bin: Option<Range<usize>>,
-    /// Problems found while reading the container and the JSON.
-    pub diagnostics: Vec<Diagnostic>,
 }
 
 impl Document {
@@ -82,13 +80,12 @@ impl Document {
 
 /// Reads a `.gltf` or `.glb` from its bytes. The container is recognised by its magic, or by
 /// the name's `.glb` ending (so a broken GLB is reported as one, not as invalid JSON).
-pub fn read(bytes: impl Into<Bytes>, name: &str) -> Document {
+/// Problems with the container and the JSON go to `diagnostics`.
+pub fn read(bytes: impl Into<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> Document {
     let bytes = bytes.into();
-    let mut diagnostics = Vec::new();
     let named_glb = name.to_ascii_lowercase().ends_with(".glb");
     let (container, json_range, bin, empty_json) = if glb::looks_like_glb(&bytes) || named_glb {
-        let parts = glb::read(&bytes);
-        diagnostics.extend(parts.diagnostics);
+        let parts = glb::read(&bytes, diagnostics);
         (
             Container::Glb,
             parts.json,
@@ -99,8 +96,8 @@ pub fn read(bytes: impl Into<Bytes>, name: &str) -> Document {
         (Container::Gltf, Some(0..bytes.len()), None, false)
     };
     let root = match &json_range {
-        Some(range) => parse_json(&bytes[range.clone()], &mut diagnostics),
-        None if empty_json => parse_json(b"", &mut diagnostics),
+        Some(range) => parse_json(&bytes[range.clone()], diagnostics),
+        None if empty_json => parse_json(b"", diagnostics),
         None => None,
     };
     Document {
@@ -109,11 +106,10 @@ pub fn read(bytes: impl Into<Bytes>, name: &str) -> Document {
         container,
         root,
         bin,
-        diagnostics,
     }
 }
 
-fn parse_json(text: &[u8], diagnostics: &mut Vec<Diagnostic>) -> Option<Value> {
+fn parse_json(text: &[u8], diagnostics: &mut dyn Sink) -> Option<Value> {
     match json::parse(text) {
         Ok(value) => Some(value),
         Err(error) => {

@@ -66,7 +66,8 @@ pub fn gltf2_materials(
     name: &str,
     loader: &dyn ResourceLoader,
 ) -> Result<Vec<(String, MaterialSource)>, String> {
-    let doc = document::read(bytes, name);
+    // Only the materials are read here; problems with the file are `check`'s to report.
+    let doc = document::read(bytes, name, &mut Vec::new());
     let root = doc.root.as_ref().ok_or("not a readable glTF document")?;
     let list = |key: &str| {
         root.get(key)

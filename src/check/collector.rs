@@ -1,0 +1,113 @@
+//! The findings of one check as they are made: the user's filters applied (ignore, only,
+//! severity overrides), every finding counted per severity, and, with `max_issues`, only the
+//! first N kept in report order (errors first, then by emission), so that a file with 10^6
+//! findings costs the memory of N.
+
+use super::CheckOptions;
+use crate::diagnostic::{Diagnostic, Severity, Sink};
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+pub(crate) struct Collector<'o> {
+    options: &'o CheckOptions,
+    /// The kept findings; with a limit, a max-heap whose top is the one to drop first.
+    kept: BinaryHeap<Ranked>,
+    counts: [usize; 4],
+    emitted: usize,
+    truncated: bool,
+}
+
+/// A finding with its place in report order: severity, then emission.
+struct Ranked(Diagnostic, usize);
+
+impl Ranked {
+    fn key(&self) -> (Severity, usize) {
+        (self.0.severity, self.1)
+    }
+}
+
+impl PartialEq for Ranked {
+    fn eq(&self, other: &Self) -> bool {
+        self.key() == other.key()
+    }
+}
+
+impl Eq for Ranked {}
+
+impl PartialOrd for Ranked {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Ranked {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.key().cmp(&other.key())
+    }
+}
+
+impl<'o> Collector<'o> {
+    pub fn new(options: &'o CheckOptions) -> Self {
+        Collector {
+            options,
+            kept: BinaryHeap::new(),
+            counts: [0; 4],
+            emitted: 0,
+            truncated: false,
+        }
+    }
+
+    /// The kept findings (in emission order, or in report order when some were dropped),
+    /// the full per-severity counts, and whether some were dropped.
+    pub fn finish(self) -> (Vec<Diagnostic>, [usize; 4], bool) {
+        let mut kept = self.kept.into_vec();
+        if self.truncated {
+            kept.sort();
+        } else {
+            kept.sort_by_key(|r| r.1);
+        }
+        let kept = kept.into_iter().map(|r| r.0).collect();
+        (kept, self.counts, self.truncated)
+    }
+
+    fn wanted(&self, code: &str) -> bool {
+        let listed = |list: &[String]| list.iter().any(|c| c.eq_ignore_ascii_case(code));
+        !listed(&self.options.ignore)
+            && (self.options.only.is_empty() || listed(&self.options.only))
+    }
+}
+
+impl Sink for Collector<'_> {
+    fn push(&mut self, mut diagnostic: Diagnostic) {
+        let code = diagnostic.code.name();
+        if !self.wanted(code) {
+            return;
+        }
+        let overridden =
+            (self.options.severity_overrides.iter()).find(|(c, _)| c.eq_ignore_ascii_case(code));
+        if let Some((_, severity)) = overridden {
+            diagnostic.severity = *severity;
+        }
+        self.counts[diagnostic.severity as usize] += 1;
+        let ranked = Ranked(diagnostic, self.emitted);
+        self.emitted += 1;
+        let limit = self.options.max_issues;
+        if limit == 0 || self.kept.len() < limit {
+            self.kept.push(ranked);
+            return;
+        }
+        self.truncated = true;
+        if self.kept.peek().is_some_and(|worst| ranked < *worst) {
+            self.kept.pop();
+            self.kept.push(ranked);
+        }
+    }
+}
+
+impl Extend<Diagnostic> for Collector<'_> {
+    fn extend<T: IntoIterator<Item = Diagnostic>>(&mut self, found: T) {
+        for diagnostic in found {
+            self.push(diagnostic);
+        }
+    }
+}
