@@ -317,7 +317,7 @@ mod verify {
         let sources =
             legacy_materials(&bytes, &FolderResources::new(path.parent().unwrap())).unwrap();
         let source = sources[0].1.clone().expect("a PBR material");
-        let converted = converted_materials(&upgraded).remove(0);
+        let converted = converted_materials(&upgraded).unwrap().remove(0);
         let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
         compare(&shader, &source, &converted, 0).max
     }

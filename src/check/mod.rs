@@ -179,24 +179,31 @@ fn run_passes(ctx: &mut Context) {
         rules::gltf1::check(ctx);
         return;
     }
-    let schema_diagnostics = schema::validate(ctx.root, khronos);
     if !khronos::has_supported_version(ctx.root) {
         // The Khronos validator reads `asset` first and stops when it is missing or not 2.x:
         // what it would say of the rest assumes a format the file does not claim.
-        ctx.diagnostics.extend(
-            schema_diagnostics
-                .into_iter()
-                .filter(khronos::is_about_asset),
-        );
+        let mut about_asset = Only(&mut ctx.diagnostics, khronos::is_about_asset);
+        schema::validate(ctx.root, khronos, &mut about_asset);
         khronos::check_asset(ctx);
         return;
     }
-    ctx.diagnostics.extend(schema_diagnostics);
+    schema::validate(ctx.root, khronos, &mut ctx.diagnostics);
     for (_, pass) in khronos::PASSES {
         pass(ctx);
     }
     if !khronos {
         rules::run_all(ctx);
+    }
+}
+
+/// A sink passing on only the findings `keep` accepts.
+struct Only<'s, F>(&'s mut dyn Sink, F);
+
+impl<F: Fn(&Diagnostic) -> bool> Sink for Only<'_, F> {
+    fn push(&mut self, diagnostic: Diagnostic) {
+        if (self.1)(&diagnostic) {
+            self.0.push(diagnostic);
+        }
     }
 }
 

@@ -2,7 +2,7 @@
 //! binary and evaluated by the `jsonschema` crate with nothing fetched. Each schema error is
 //! mapped to the Khronos code and pointer for the same finding.
 
-use crate::diagnostic::{khronos, Code, Diagnostic};
+use crate::diagnostic::{khronos, Code, Diagnostic, Location, Sink};
 use crate::document::json::escape_token;
 use jsonschema::error::{TypeKind, ValidationErrorKind};
 use jsonschema::Validator;
@@ -146,8 +146,90 @@ fn validator(khronos: bool) -> &'static Validator {
 }
 
 /// Validates the document; returns Khronos-coded diagnostics.
-pub fn validate(doc: &Value, khronos: bool) -> Vec<Diagnostic> {
-    diagnostics(validator(khronos), doc, "")
+pub fn validate(doc: &Value, khronos: bool, sink: &mut dyn Sink) {
+    let validator = validator(khronos);
+    let Some(root) = doc
+        .as_object()
+        .filter(|root| root.iter().any(|m| long(m).is_some()))
+    else {
+        return diagnostics(validator, doc, "", sink);
+    };
+    // The document with each long collection cut to its first chunk, then each further
+    // chunk alone, its pointers shifted to where its elements are.
+    let head: serde_json::Map<String, Value> = (root.iter())
+        .map(|(key, value)| match long((key, value)) {
+            Some((_, items)) => (key.clone(), Value::Array(items[..CHUNK].to_vec())),
+            None => (key.clone(), value.clone()),
+        })
+        .collect();
+    diagnostics(validator, &Value::Object(head), "", sink);
+    for (key, items) in root.iter().filter_map(long) {
+        for (c, chunk) in items.chunks(CHUNK).enumerate().skip(1) {
+            let part = serde_json::json!({ key.as_str(): chunk });
+            let mut shifted = Shifted {
+                sink: &mut *sink,
+                collection: format!("/{}/", escape_token(key)),
+                offset: c * CHUNK,
+            };
+            diagnostics(validator, &part, "", &mut shifted);
+        }
+    }
+}
+
+/// A top-level collection long enough to be validated in chunks.
+fn long<'d>((key, value): (&'d String, &'d Value)) -> Option<(&'d String, &'d Vec<Value>)> {
+    let items = value.as_array().filter(|items| items.len() > CHUNK)?;
+    COLLECTIONS.contains(&key.as_str()).then_some((key, items))
+}
+
+/// Elements of one top-level collection validated at a time: the validator gathers all of
+/// an array's errors before it yields the first, so a 10^7-element array of wrong types
+/// would be 10^7 errors in memory at once.
+const CHUNK: usize = 4096;
+
+/// The top-level arrays whose elements are objects validated independently of each other
+/// (none has uniqueItems), so they can be validated a chunk at a time.
+const COLLECTIONS: &[&str] = &[
+    "accessors",
+    "animations",
+    "buffers",
+    "bufferViews",
+    "cameras",
+    "images",
+    "materials",
+    "meshes",
+    "nodes",
+    "samplers",
+    "scenes",
+    "skins",
+    "textures",
+];
+
+/// Passes on the findings inside one chunk of a collection, at their real index.
+struct Shifted<'s> {
+    sink: &'s mut dyn Sink,
+    collection: String,
+    offset: usize,
+}
+
+impl Sink for Shifted<'_> {
+    fn push(&mut self, mut diagnostic: Diagnostic) {
+        let Location::Pointer(pointer) = &diagnostic.location else {
+            return;
+        };
+        // Findings about the chunk's own root (a missing `asset`) are the head's to report.
+        let Some(rest) = pointer.strip_prefix(&self.collection) else {
+            return;
+        };
+        let (index, tail) = rest.split_once('/').map_or((rest, ""), |(i, t)| (i, t));
+        let Ok(index) = index.parse::<usize>() else {
+            return;
+        };
+        let slash = if tail.is_empty() { "" } else { "/" };
+        let shifted = format!("{}{}{slash}{tail}", self.collection, index + self.offset);
+        diagnostic.location = Location::Pointer(shifted);
+        self.sink.push(diagnostic);
+    }
 }
 
 /// Validates a glTF 1.0 PBR material extension object found at `pointer`.
@@ -159,24 +241,27 @@ pub fn validate_gltf1_pbr(extension: &Value, pointer: &str) -> Vec<Diagnostic> {
             .build(&schema)
             .expect("the 1.0 PBR schema compiles")
     });
-    diagnostics(validator, extension, pointer)
+    let mut found = Vec::new();
+    diagnostics(validator, extension, pointer, &mut found);
+    found
 }
 
 const GLTF1_PBR: &str = include_str!("../../schema/gltf1/materials_pbr.schema.json");
 
-fn diagnostics(validator: &Validator, instance: &Value, prefix: &str) -> Vec<Diagnostic> {
-    let mut found: Vec<Diagnostic> = validator
-        .iter_errors(instance)
-        .flat_map(|error| {
-            let pointer = format!("{prefix}{}", error.instance_path());
-            let schema_path = error.schema_path().to_string();
-            map_error(error.kind(), error.instance(), &pointer, &schema_path)
-        })
-        .collect();
+/// Every schema error of `instance`, streamed into `sink` as it is found (a 10^7-element
+/// array of wrong types is never held as 10^7 findings).
+fn diagnostics(validator: &Validator, instance: &Value, prefix: &str, sink: &mut dyn Sink) {
     // An array reports its first wrongly typed element only.
     let mut arrays = std::collections::HashSet::new();
-    found.retain(|d| d.code != khronos::ARRAY_TYPE_MISMATCH || arrays.insert(d.location.clone()));
-    found
+    for error in validator.iter_errors(instance) {
+        let pointer = format!("{prefix}{}", error.instance_path());
+        let schema_path = error.schema_path().to_string();
+        for d in map_error(error.kind(), error.instance(), &pointer, &schema_path) {
+            if d.code != khronos::ARRAY_TYPE_MISMATCH || arrays.insert(d.location.clone()) {
+                sink.push(d);
+            }
+        }
+    }
 }
 
 /// The array holding the element at `pointer`, when that array is a property inside an
@@ -421,7 +506,9 @@ mod tests {
     use serde_json::json;
 
     fn codes(doc: Value) -> Vec<(String, String)> {
-        validate(&doc, true)
+        let mut found = Vec::new();
+        validate(&doc, true, &mut found);
+        found
             .into_iter()
             .map(|d| (d.code.to_string(), d.pointer().unwrap().to_string()))
             .collect()

@@ -43,3 +43,15 @@ impl From<gltfmat::Error> for Failure {
 
 /// What a subcommand returns.
 pub type Outcome = Result<ExitCode, Failure>;
+
+/// A ΔE threshold: a finite number ≥ 0 (NaN would make every comparison fail).
+pub fn threshold(text: &str) -> Result<f64, String> {
+    let value: f64 = text
+        .parse()
+        .map_err(|_| format!("'{text}' is not a number"))?;
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(format!("'{text}' is not a finite number ≥ 0"))
+    }
+}

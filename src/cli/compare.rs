@@ -17,10 +17,11 @@ pub struct CompareArgs {
     #[arg(long = "material-map", value_name = "I=J")]
     material_map: Vec<String>,
     /// Largest ΔE2000 allowed (1.0 ≈ one just-noticeable difference).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = crate::common::threshold)]
     threshold: f64,
-    /// UV grid per side (0: the finest texture resolution involved, at least 16).
-    #[arg(long, default_value_t = 0)]
+    /// UV grid per side, at most 4096 (0: the finest texture resolution involved, at least
+    /// 16 and at most 4096).
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=4096))]
     grid: u32,
     #[arg(long, value_enum, default_value = "human")]
     format: CompareFormat,

@@ -15,8 +15,8 @@ pub struct RenderArgs {
     all: bool,
     #[arg(short, long, default_value = "material.png")]
     output: PathBuf,
-    /// Pixels per side (per material with --all).
-    #[arg(long, default_value_t = 512)]
+    /// Pixels per side (per material with --all), 8 to 4096.
+    #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u32).range(8..=4096))]
     size: u32,
 }
 

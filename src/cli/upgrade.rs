@@ -34,7 +34,7 @@ pub struct UpgradeArgs {
     #[arg(long)]
     verify: bool,
     /// ΔE2000 allowed by --verify.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = crate::common::threshold)]
     threshold: f64,
 }
 
@@ -180,7 +180,14 @@ fn verified(bytes: &[u8], args: &UpgradeArgs, upgraded: &Upgraded) -> bool {
     let Ok(sources) = legacy_materials(bytes, &loader) else {
         return false;
     };
-    let converted: Vec<_> = gltfmat::upgrade::converted_materials(upgraded)
+    let converted = match gltfmat::upgrade::converted_materials(upgraded) {
+        Ok(converted) => converted,
+        Err(why) => {
+            eprintln!("gltfmat: the converted materials cannot be evaluated: {why}");
+            return false;
+        }
+    };
+    let converted: Vec<_> = converted
         .into_iter()
         .zip(&sources)
         .map(|(m, (name, _))| (name.clone(), Some(m)))

@@ -151,14 +151,18 @@ struct Partial {
     histogram: Vec<u32>,
 }
 
-/// Compares `a` with `b` on a `grid`² UV grid (texel centres); `grid` 0 picks the finest
-/// texture resolution of either (at least 16).
+/// The finest UV grid compared: 4096² texel centres × every direction is already minutes.
+pub const MAX_GRID: u32 = 4096;
+
+/// Compares `a` with `b` on a `grid`² UV grid (texel centres, at most [`MAX_GRID`]); `grid` 0
+/// picks the finest texture resolution of either (at least 16).
 pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u32) -> Comparison {
     let grid = if grid == 0 {
         a.max_resolution().max(b.max_resolution()).max(16)
     } else {
         grid
-    };
+    }
+    .min(MAX_GRID);
     let job = Job {
         shader,
         a,

@@ -6,11 +6,12 @@ use crate::document::{self, BufferData, Bytes, Container};
 use crate::gltf::material::texture_images;
 use serde_json::Value;
 
-fn uri_bytes(uri: &str, loader: &dyn ResourceLoader) -> Option<Bytes> {
-    match classify(uri).ok()? {
-        UriKind::Data { bytes, .. } => Some(bytes),
-        UriKind::Relative(path) => loader.load(&path).ok(),
-        _ => None,
+fn uri_bytes(uri: &str, loader: &dyn ResourceLoader) -> Result<Bytes, String> {
+    match classify(uri)? {
+        UriKind::Data { bytes, .. } => Ok(bytes),
+        UriKind::Relative(path) => loader.load(&path).map_err(|e| e.to_string()),
+        UriKind::NonRelative => Err(format!("'{uri}' is not fetched")),
+        UriKind::AbsolutePath => Err(format!("'{uri}' is an absolute path; not read")),
     }
 }
 
@@ -80,7 +81,7 @@ pub fn gltf2_materials(
         .enumerate()
         .map(
             |(i, buffer)| match buffer.get("uri").and_then(Value::as_str) {
-                Some(uri) => uri_bytes(uri, loader).map(BufferData::Loaded),
+                Some(uri) => uri_bytes(uri, loader).ok().map(BufferData::Loaded),
                 None if i == 0 && doc.container == Container::Glb => doc.bin().map(BufferData::Glb),
                 None => None,
             },
@@ -97,20 +98,22 @@ pub fn gltf2_materials(
         buffer.get(start..end)
     };
     let needed = used_images(&list("materials"), &list("textures"));
-    let encoded: Vec<Option<Encoded>> = list("images")
+    let encoded: Vec<sample::Wanted<Encoded>> = list("images")
         .iter()
         .enumerate()
         .map(|(i, image)| (i, image.get("uri").and_then(Value::as_str)))
         .map(|(i, uri)| match (needed.contains(&i), uri) {
             (false, _) => None,
-            (true, Some(uri)) => uri_bytes(uri, loader).map(Encoded::Loaded),
-            (true, None) => {
-                let view = list("images")[i].get("bufferView")?.as_u64()?;
-                view_bytes(view).map(Encoded::View)
-            }
+            (true, Some(uri)) => Some(uri_bytes(uri, loader).map(Encoded::Loaded)),
+            (true, None) => Some(
+                (list("images")[i].get("bufferView").and_then(Value::as_u64))
+                    .and_then(view_bytes)
+                    .map(Encoded::View)
+                    .ok_or_else(|| "its bufferView cannot be read".to_string()),
+            ),
         })
         .collect();
-    let images = sample::decode_all(&encoded);
+    let images = sample::decode_all(&encoded)?;
     let textures: Vec<Option<Texture>> = list("textures")
         .iter()
         .map(|texture| images.get(texture_source(texture)? as usize)?.clone())

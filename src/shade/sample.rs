@@ -62,31 +62,107 @@ fn unorm8_table() -> &'static [f64; 256] {
     TABLE.get_or_init(|| std::array::from_fn(|b| b as f64 / 255.0))
 }
 
-fn decode(bytes: &[u8]) -> Option<Texture> {
-    let image = crate::document::image_decode::decode(bytes).ok()?;
+fn decode(bytes: &[u8]) -> Result<Texture, String> {
+    let image = crate::document::image_decode::decode(bytes).map_err(|e| e.to_string())?;
     let eight_bit = image.color().bytes_per_pixel() == image.color().channel_count();
     let texels = if eight_bit {
         Texels::Unorm8(image.to_rgba8().into_raw())
     } else {
         Texels::Float(image.to_rgba32f().into_raw())
     };
-    Some(Arc::new(TextureImage {
+    Ok(Arc::new(TextureImage {
         width: image.width(),
         height: image.height(),
         texels,
     }))
 }
 
-/// Decodes several images at once, one per available core (decoding a 2048² PNG takes tens
-/// of milliseconds, and a comparison decodes every texture of both assets first).
-pub fn decode_all<B: AsRef<[u8]> + Sync>(sources: &[Option<B>]) -> Vec<Option<Texture>> {
+/// Decoded texels allowed for one asset's textures: 1 GiB, eight 8192² 8-bit images or two
+/// 16-bit ones. A texture past it is refused before it is decoded.
+pub const TEXEL_BUDGET: u64 = 1 << 30;
+
+/// An image to decode: `None` when nothing samples it, `Some(Err(why))` when something does
+/// but its bytes could not be read.
+pub type Wanted<B> = Option<Result<B, String>>;
+
+/// Decodes every wanted image, one per available core (decoding a 2048² PNG takes tens of
+/// milliseconds, and a comparison decodes every texture of both assets first). Images with
+/// the same bytes are decoded once and shared, and the decoded size of all of them together
+/// is held to [`TEXEL_BUDGET`] from their headers before anything is decoded. A wanted image
+/// that cannot be read or decoded is an error: a material evaluated without its texture
+/// would be a different material.
+pub fn decode_all<B: AsRef<[u8]> + Sync>(
+    sources: &[Wanted<B>],
+) -> Result<Vec<Option<Texture>>, String> {
+    let bytes: Vec<Option<&[u8]>> = (sources.iter().enumerate())
+        .map(|(i, source)| match source {
+            None => Ok(None),
+            Some(Ok(bytes)) => Ok(Some(bytes.as_ref())),
+            Some(Err(why)) => Err(format!("image {i}: {why}")),
+        })
+        .collect::<Result<_, _>>()?;
+    let first_copy = first_copies(&bytes);
+    let unique: Vec<Option<&[u8]>> = (bytes.iter().enumerate())
+        .map(|(i, b)| b.filter(|_| first_copy[i] == i))
+        .collect();
+    within_budget(&unique)?;
+    let mut decoded = decode_in_parallel(&unique)?;
+    for (i, &first) in first_copy.iter().enumerate() {
+        if first != i {
+            decoded[i] = decoded[first].clone();
+        }
+    }
+    Ok(decoded)
+}
+
+/// For each image, the index of the first image with the same bytes (itself if none).
+fn first_copies(bytes: &[Option<&[u8]>]) -> Vec<usize> {
+    use std::hash::{Hash, Hasher};
+    let mut seen: std::collections::HashMap<u64, Vec<usize>> = Default::default();
+    (bytes.iter().enumerate())
+        .map(|(i, b)| {
+            let Some(b) = b else { return i };
+            let mut hasher = std::collections::hash_map::DefaultHasher::new();
+            b.hash(&mut hasher);
+            let same = seen.entry(hasher.finish()).or_default();
+            let first = same.iter().copied().find(|&j| bytes[j] == Some(b));
+            first.unwrap_or_else(|| {
+                same.push(i);
+                i
+            })
+        })
+        .collect()
+}
+
+/// Refuses the set when the decoded texels their headers announce pass [`TEXEL_BUDGET`].
+fn within_budget(unique: &[Option<&[u8]>]) -> Result<(), String> {
+    let mut total = 0u64;
+    for (i, bytes) in unique.iter().enumerate() {
+        let Some(info) = bytes.and_then(|b| crate::document::image_header::read(b).ok()) else {
+            continue; // decoding says why
+        };
+        let per_texel = if info.bits > 8 { 16 } else { 4 };
+        total += u64::from(info.width) * u64::from(info.height) * per_texel;
+        if total > TEXEL_BUDGET {
+            return Err(format!(
+                "image {i} ({}×{}) would take the decoded textures past {} MiB for one asset",
+                info.width,
+                info.height,
+                TEXEL_BUDGET >> 20
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn decode_in_parallel(sources: &[Option<&[u8]>]) -> Result<Vec<Option<Texture>>, String> {
     use std::sync::atomic::{AtomicUsize, Ordering};
     let next = AtomicUsize::new(0);
     let threads = std::thread::available_parallelism()
         .map_or(1, |n| n.get())
         .min(sources.len());
-    let mut decoded: Vec<Option<Texture>> = vec![None; sources.len()];
-    let finished: Vec<Vec<(usize, Texture)>> = std::thread::scope(|scope| {
+    type Done = Vec<(usize, Result<Texture, String>)>;
+    let finished: Vec<Done> = std::thread::scope(|scope| {
         let workers: Vec<_> = (0..threads)
             .map(|_| {
                 scope.spawn(|| {
@@ -97,8 +173,8 @@ pub fn decode_all<B: AsRef<[u8]> + Sync>(sources: &[Option<B>]) -> Vec<Option<Te
                         let Some(source) = sources.get(i) else {
                             return done;
                         };
-                        if let Some(texture) = source.as_ref().and_then(|b| decode(b.as_ref())) {
-                            done.push((i, texture));
+                        if let Some(bytes) = source {
+                            done.push((i, decode(bytes)));
                         }
                     }
                 })
@@ -106,10 +182,13 @@ pub fn decode_all<B: AsRef<[u8]> + Sync>(sources: &[Option<B>]) -> Vec<Option<Te
             .collect();
         workers.into_iter().filter_map(|w| w.join().ok()).collect()
     });
-    for (i, texture) in finished.into_iter().flatten() {
-        decoded[i] = Some(texture);
+    let mut outcomes: Done = finished.into_iter().flatten().collect();
+    outcomes.sort_by_key(|(i, _)| *i);
+    let mut decoded: Vec<Option<Texture>> = vec![None; sources.len()];
+    for (i, outcome) in outcomes {
+        decoded[i] = Some(outcome.map_err(|why| format!("image {i}: {why}"))?);
     }
-    decoded
+    Ok(decoded)
 }
 
 /// Bilinear sample with repeat wrapping, texel centres at (i + ½) / size.

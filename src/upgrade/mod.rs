@@ -198,15 +198,20 @@ pub fn legacy_materials(
         .collect::<std::collections::BTreeSet<_>>()
         .into_iter()
         .collect();
-    let encoded: Vec<Option<_>> = texture_ids
+    let encoded: Vec<sample::Wanted<_>> = texture_ids
         .iter()
         .map(|id| {
-            let texture = source.object("textures", id)?;
-            let image = source.object("images", texture.get("source")?.as_str()?)?;
-            source.image_bytes(image).ok()
+            let image = (source.object("textures", id))
+                .and_then(|texture| texture.get("source")?.as_str())
+                .and_then(|image| source.object("images", image))
+                .ok_or_else(|| format!("texture '{id}' names no image"));
+            Some(image.and_then(|image| source.image_bytes(image)))
         })
         .collect();
-    let decoded = sample::decode_all(&encoded);
+    let decoded = sample::decode_all(&encoded).map_err(|reason| UpgradeError::Resource {
+        pointer: "/textures".into(),
+        reason,
+    })?;
     let texture = |id: &Option<String>| -> Option<Texture> {
         let at = texture_ids
             .iter()
@@ -226,17 +231,18 @@ pub fn legacy_materials(
         .collect())
 }
 
-/// The materials of an upgraded asset as the shading evaluator samples them.
-pub fn converted_materials(upgraded: &Upgraded) -> Vec<MaterialSource> {
+/// The materials of an upgraded asset as the shading evaluator samples them (an error when
+/// one of its textures cannot be decoded).
+pub fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, String> {
     let list = |key: &str| upgraded.json[key].as_array().cloned().unwrap_or_default();
     let needed = crate::shade::load::used_images(&list("materials"), &list("textures"));
-    let encoded: Vec<Option<&[u8]>> = upgraded
+    let encoded: Vec<sample::Wanted<&[u8]>> = upgraded
         .images
         .iter()
         .enumerate()
-        .map(|(i, image)| needed.contains(&i).then_some(&image.bytes[..]))
+        .map(|(i, image)| needed.contains(&i).then_some(Ok(&image.bytes[..])))
         .collect();
-    let images = sample::decode_all(&encoded);
+    let images = sample::decode_all(&encoded)?;
     let textures: Vec<Option<Texture>> = upgraded.json["textures"]
         .as_array()
         .map(|list| {
@@ -249,12 +255,12 @@ pub fn converted_materials(upgraded: &Upgraded) -> Vec<MaterialSource> {
                 .collect()
         })
         .unwrap_or_default();
-    upgraded.json["materials"]
+    Ok(upgraded.json["materials"]
         .as_array()
         .map(|list| {
             list.iter()
                 .map(|material| MaterialSource::gltf2(material, &textures))
                 .collect()
         })
-        .unwrap_or_default()
+        .unwrap_or_default())
 }

@@ -6,12 +6,13 @@ use super::accessor_usage::Findings;
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;
 use serde_json::Value;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 pub fn check(ctx: &mut Context) {
     let mut findings = Vec::new();
+    let limits = limiting_skins(ctx);
     for (m, pointer, mesh) in ctx.objects("meshes") {
-        let Some((max_joint, skin)) = limiting_skin(ctx, m) else {
+        let Some(&(max_joint, skin)) = limits.get(&m) else {
             continue;
         };
         for (p, primitive) in elements(mesh, "primitives") {
@@ -36,20 +37,30 @@ struct JointLimit {
     skin: usize,
 }
 
-/// The skin with the fewest joints among the nodes that draw mesh `m` skinned.
-fn limiting_skin(ctx: &Context, m: usize) -> Option<(f64, usize)> {
+/// For each mesh drawn skinned, the largest joint index every skin it is drawn with can
+/// resolve, and the skin with the fewest joints (one pass over the nodes for all meshes).
+fn limiting_skins(ctx: &Context) -> HashMap<usize, (f64, usize)> {
     let skins = ctx.items("skins");
-    ctx.items("nodes")
-        .iter()
-        .filter(|node| unsigned(node, "mesh") == Some(m as u64))
-        .filter_map(|node| {
-            let s = unsigned(node, "skin")? as usize;
-            let joints = skins.get(s)?.get("joints")?.as_array()?.len();
-            Some((joints, s))
-        })
-        .min_by_key(|(joints, _)| *joints)
-        .filter(|(joints, _)| *joints > 0)
-        .map(|(joints, s)| ((joints - 1) as f64, s))
+    let mut fewest: HashMap<usize, (usize, usize)> = HashMap::new();
+    for node in ctx.items("nodes") {
+        let (Some(m), Some(s)) = (unsigned(node, "mesh"), unsigned(node, "skin")) else {
+            continue;
+        };
+        let Some(joints) = (skins.get(s as usize))
+            .and_then(|skin| skin.get("joints")?.as_array())
+            .map(Vec::len)
+        else {
+            continue;
+        };
+        let entry = fewest.entry(m as usize).or_insert((joints, s as usize));
+        if joints < entry.0 {
+            *entry = (joints, s as usize);
+        }
+    }
+    (fewest.into_iter())
+        .filter(|(_, (joints, _))| *joints > 0)
+        .map(|(m, (joints, s))| (m, ((joints - 1) as f64, s)))
+        .collect()
 }
 
 /// One JOINTS_n / WEIGHTS_n pair, readable and as long as the primitive.
