@@ -298,3 +298,333 @@ fn an_index_beyond_u64_is_unresolved_as_written_not_saturated() {
     assert!(found[0].message.contains("1e+29"), "{}", found[0].message);
     assert!(!found[0].message.contains("18446744073709551615"));
 }
+
+fn check(gltf: &serde_json::Value, options: &CheckOptions) -> Report {
+    check_bytes(
+        "big.gltf",
+        serde_json::to_vec(gltf).unwrap(),
+        &NoResources,
+        options,
+    )
+}
+
+fn count(report: &Report, code: &str) -> usize {
+    report.diagnostics.iter().filter(|d| d.code == code).count()
+}
+
+fn every_issue() -> CheckOptions {
+    CheckOptions::default().with_max_issues(0)
+}
+
+/// A 1.0 skin instance whose jointNames and skeleton ids are given.
+fn gltf1_skin(joint_names: &[&str], skeleton_children: &[&str]) -> Vec<u8> {
+    let identity: Vec<u8> = [
+        1f32, 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1.,
+    ]
+    .iter()
+    .flat_map(|v| v.to_le_bytes())
+    .collect::<Vec<u8>>()
+    .repeat(joint_names.len());
+    let data = base64::engine::general_purpose::STANDARD.encode(&identity);
+    serde_json::to_vec(&json!({
+        "asset": {"version": "1.0"},
+        "buffers": {"b": {"uri": format!("data:application/octet-stream;base64,{data}"), "byteLength": identity.len()}},
+        "bufferViews": {"v": {"buffer": "b", "byteOffset": 0, "byteLength": identity.len()}},
+        "accessors": {"ibm": {"bufferView": "v", "byteOffset": 0, "componentType": 5126, "count": joint_names.len(), "type": "MAT4"}},
+        "skins": {"s": {"jointNames": joint_names, "inverseBindMatrices": "ibm",
+            "bindShapeMatrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}},
+        "nodes": {
+            "root": {"jointName": "A", "children": skeleton_children},
+            "b": {"jointName": "B"},
+            "instance": {"skin": "s", "skeletons": ["root"]}
+        },
+        "scenes": {"s": {"nodes": ["root", "instance"]}},
+        "scene": "s"
+    }))
+    .unwrap()
+}
+
+#[test]
+fn a_skin_whose_joints_cannot_all_be_found_is_refused_not_shifted() {
+    let options = UpgradeOptions::default();
+    let whole = upgrade(&gltf1_skin(&["A", "B"], &["b"]), &NoResources, &options).unwrap();
+    assert_eq!(whole.json["skins"][0]["joints"], json!([0, 1]));
+
+    // Finding 10: "C" names no node, so every later joint would move up one place.
+    let error = upgrade(&gltf1_skin(&["C", "B"], &["b"]), &NoResources, &options).unwrap_err();
+    assert!(
+        error.to_string().contains("/skins/s/jointNames/0"),
+        "{error}"
+    );
+    assert!(error.to_string().contains("'C' names no node"), "{error}");
+
+    // A child id in the skeleton that names no node hides the joints below it.
+    let error = upgrade(
+        &gltf1_skin(&["A", "B"], &["b", "ghost"]),
+        &NoResources,
+        &options,
+    )
+    .unwrap_err();
+    assert!(
+        error.to_string().contains("/nodes/root/children"),
+        "{error}"
+    );
+    assert!(
+        error.to_string().contains("'ghost' does not exist"),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_hundred_thousand_node_chain_is_walked_once() {
+    // Finding 11: each node used to walk to the root (10^10 steps here).
+    let n = 100_000;
+    let mut nodes: Vec<_> = (0..n).map(|i| json!({"children": [i + 1]})).collect();
+    // The last three nodes form a loop: 99997 → 99998 → 99999 → 99997.
+    nodes[n - 1] = json!({"children": [n - 3], "translation": [1, 0, 0]});
+    let report = check(
+        &json!({"asset": {"version": "2.0"}, "nodes": nodes, "scenes": [{"nodes": [0]}]}),
+        &every_issue(),
+    );
+    let looped: Vec<_> = (report.diagnostics.iter())
+        .filter(|d| d.code == "NODE_LOOP")
+        .map(|d| d.pointer().unwrap_or_default().to_string())
+        .collect();
+    assert_eq!(looped, ["/nodes/99997", "/nodes/99998", "/nodes/99999"]);
+}
+
+#[test]
+fn common_skin_roots_are_found_for_thirty_thousand_joints() {
+    let n = 30_000;
+    let chain: Vec<_> = (0..n).map(|i| json!({"children": [i + 1]})).collect();
+    let mut nodes = chain.clone();
+    nodes.push(json!({}));
+    let joints: Vec<usize> = (0..=n).collect();
+    let rooted = check(
+        &json!({"asset": {"version": "2.0"}, "nodes": nodes, "skins": [{"joints": joints, "skeleton": 0}]}),
+        &every_issue(),
+    );
+    assert_eq!(count(&rooted, "SKIN_NO_COMMON_ROOT"), 0);
+    assert_eq!(count(&rooted, "SKIN_SKELETON_INVALID"), 0);
+    // The skeleton must be an ancestor of every joint: the chain's second node is not one
+    // of the first.
+    let deeper = check(
+        &json!({"asset": {"version": "2.0"}, "nodes": nodes, "skins": [{"joints": joints, "skeleton": 1}]}),
+        &every_issue(),
+    );
+    assert_eq!(count(&deeper, "SKIN_SKELETON_INVALID"), 1);
+    // Two separate trees have no common root.
+    let mut forest = nodes.clone();
+    forest.push(json!({}));
+    let split = check(
+        &json!({"asset": {"version": "2.0"}, "nodes": forest, "skins": [{"joints": [n, n + 1]}]}),
+        &every_issue(),
+    );
+    assert_eq!(count(&split, "SKIN_NO_COMMON_ROOT"), 1);
+}
+
+#[test]
+fn repeated_keys_and_shared_textures_are_found_in_linear_time() {
+    let n = 20_000;
+    let text = format!(
+        r#"{{"asset":{{"version":"2.0"}},"extras":{{{}}}}}"#,
+        vec![r#""k":0"#; n].join(",")
+    );
+    let report = check_bytes("k.gltf", text.into_bytes(), &NoResources, &every_issue());
+    assert_eq!(count(&report, "JSON_DUPLICATE_KEY"), n - 1);
+
+    // Every other material reads the one image as sRGB colour, the rest as linear data:
+    // every use after the first clashes, each with the first use of the other kind.
+    let materials: Vec<_> = (0..n)
+        .map(|i| match i % 2 {
+            0 => json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}),
+            _ => json!({"occlusionTexture": {"index": 0}}),
+        })
+        .collect();
+    let report = check(
+        &json!({"asset": {"version": "2.0"}, "images": [{"uri": "a.png"}], "textures": [{"source": 0}], "materials": materials}),
+        &every_issue(),
+    );
+    let conflicts: Vec<_> = (report.diagnostics.iter())
+        .filter(|d| d.code == "IMAGE_COLOR_SPACE_CONFLICT")
+        .collect();
+    assert_eq!(conflicts.len(), n - 1);
+    let last_two = &conflicts[n - 3..];
+    assert!(last_two[0]
+        .message
+        .ends_with("by /materials/1/occlusionTexture."));
+    assert!(last_two[1]
+        .message
+        .ends_with("by /materials/0/pbrMetallicRoughness/baseColorTexture."));
+}
+
+#[test]
+fn channels_sharing_a_target_give_one_finding_each_not_one_per_pair() {
+    // Finding 12: N channels on one target were N²/2 findings (10^8 here).
+    let n = 20_000;
+    let channels: Vec<_> = (0..n)
+        .map(|_| json!({"sampler": 0, "target": {"node": 0, "path": "translation"}}))
+        .collect();
+    let report = check(
+        &json!({"asset": {"version": "2.0"}, "nodes": [{}],
+            "animations": [{"channels": channels, "samplers": [{"input": 0, "output": 1}]}]}),
+        &every_issue(),
+    );
+    assert_eq!(count(&report, "ANIMATION_DUPLICATE_TARGETS"), n - 1);
+}
+
+#[test]
+fn max_issues_is_held_while_collecting_with_every_count_complete() {
+    // Finding 13: 10^5 findings of each kind, 10 kept.
+    let n = 100_000;
+    let materials: Vec<_> = (0..n).map(|_| json!({})).collect();
+    let zeros = vec![0; n];
+    let options = CheckOptions::default().with_max_issues(10);
+    let report = check(
+        &json!({"asset": {"version": "2.0"}, "materials": materials, "meshes": zeros}),
+        &options,
+    );
+    assert_eq!(report.diagnostics.len(), 10);
+    assert!(report.truncated);
+    assert_eq!(
+        report.count(gltfmat::Severity::Error),
+        n,
+        "one TYPE_MISMATCH per mesh"
+    );
+    let all = check(
+        &json!({"asset": {"version": "2.0"}, "materials": materials, "meshes": zeros}),
+        &every_issue(),
+    );
+    for severity in gltfmat::Severity::ALL {
+        assert_eq!(report.count(severity), all.count(severity), "{severity}");
+    }
+    // The elements past the first chunk are reported where they are.
+    assert!(all
+        .diagnostics
+        .iter()
+        .any(|d| d.pointer() == Some(&format!("/meshes/{}", n - 1))));
+}
+
+#[test]
+fn every_printed_finding_is_at_its_own_line_however_many_there_are() {
+    // Finding 14: one rescan of the file per finding.
+    let n = 20_000;
+    let nodes: Vec<_> = (0..n).map(|_| json!({"rotation": [1, 1, 1, 1]})).collect();
+    let text = serde_json::to_string_pretty(&json!({"asset": {"version": "2.0"}, "nodes": nodes}))
+        .unwrap();
+    let report = check_bytes(
+        "r.gltf",
+        text.clone().into_bytes(),
+        &NoResources,
+        &every_issue(),
+    );
+    let human = gltfmat::report::render(
+        gltfmat::report::Format::Human,
+        std::slice::from_ref(&report),
+        &gltfmat::report::Style::new(false),
+    );
+    let lines: Vec<&str> = text.lines().collect();
+    let mut seen = 0;
+    for line in human.lines().filter(|l| l.contains("[ROTATION_NON_UNIT]")) {
+        let position = line.strip_prefix("r.gltf:").unwrap();
+        let (row, rest) = position.split_once(':').unwrap();
+        let row: usize = row.parse().unwrap();
+        let column: usize = rest.split_once(':').unwrap().0.parse().unwrap();
+        assert!(
+            lines[row - 1][column - 1..].starts_with("\"rotation\""),
+            "{line}"
+        );
+        seen += 1;
+    }
+    assert_eq!(seen, n);
+}
+
+/// A PNG claiming `size`² 8-bit RGBA texels, with no pixel data.
+fn png_header(size: u32) -> Vec<u8> {
+    let mut header = size.to_be_bytes().to_vec();
+    header.extend(size.to_be_bytes());
+    header.extend([8, 6, 0, 0, 0]);
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    for (kind, data) in [(b"IHDR", &header[..]), (b"IDAT", &[]), (b"IEND", &[])] {
+        let mut typed = kind.to_vec();
+        typed.extend(data);
+        png.extend((data.len() as u32).to_be_bytes());
+        png.extend(&typed);
+        png.extend(common::crc32(&typed).to_be_bytes());
+    }
+    png
+}
+
+fn textured(images: &[Vec<u8>]) -> serde_json::Value {
+    let uri = |png: &Vec<u8>| {
+        format!(
+            "data:image/png;base64,{}",
+            base64::engine::general_purpose::STANDARD.encode(png)
+        )
+    };
+    let images: Vec<_> = images.iter().map(|png| json!({"uri": uri(png)})).collect();
+    let textures: Vec<_> = (0..images.len()).map(|i| json!({"source": i})).collect();
+    let materials: Vec<_> = (0..images.len())
+        .map(|i| json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": i}}}))
+        .collect();
+    json!({"asset": {"version": "2.0"}, "images": images, "textures": textures, "materials": materials})
+}
+
+fn render_all(gltf: &serde_json::Value) -> Result<(), String> {
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("t.gltf");
+    std::fs::write(&path, serde_json::to_vec(gltf).unwrap()).unwrap();
+    let mut options = gltfmat::RenderOptions::default();
+    options.all = true;
+    options.size = 8;
+    gltfmat::render(&path, &options)
+        .map(|_| ())
+        .map_err(|e| e.to_string())
+}
+
+#[test]
+fn decoded_textures_are_held_to_a_budget_before_anything_is_decoded() {
+    // Finding 15: two headers announcing about 1 GiB each once decoded are refused from
+    // their headers; nothing is allocated for them. (Two identical images would be one.)
+    let error = render_all(&textured(&[png_header(16384), png_header(16383)])).unwrap_err();
+    assert!(error.contains("image 1 (16383×16383)"), "{error}");
+    assert!(error.contains("past 1024 MiB"), "{error}");
+}
+
+#[test]
+fn a_texture_that_cannot_be_decoded_is_an_error_not_an_untextured_material() {
+    // Finding 18: a header claiming 60000² (past the decoder's limits), and a truncated one.
+    for png in [png_header(60000), png_header(4)] {
+        let error = render_all(&textured(&[png])).unwrap_err();
+        assert!(error.contains("image 0"), "{error}");
+    }
+}
+
+#[test]
+fn numeric_options_out_of_range_are_usage_errors() {
+    // Finding 19.
+    let asset = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/valid/sheen-triangle.gltf"
+    );
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    for args in [
+        vec!["compare", asset, asset, "--threshold", "nan"],
+        vec!["compare", asset, asset, "--threshold=-1"],
+        vec!["compare", asset, asset, "--grid", "5000"],
+        vec!["render", asset, "--size", "0"],
+        vec!["render", asset, "--size", "65536"],
+    ] {
+        let output = run(&args);
+        assert_eq!(output.status.code(), Some(2), "{args:?}");
+        assert!(
+            String::from_utf8_lossy(&output.stderr).contains("invalid value"),
+            "{args:?}"
+        );
+    }
+}
