@@ -3,7 +3,10 @@
 //!
 //! Seeds are every file under `fixtures/` (glTF, GLB, 1.0 assets, PNG images). Each iteration
 //! picks a seed, applies a few random mutations (bit flips, byte overwrites with interesting
-//! values, range deletion/duplication, splices from another seed, JSON number swaps), and
+//! values, range deletion/duplication, splices from another seed, JSON number swaps), or,
+//! for a glTF text seed, structural ones on its parsed JSON (numeric extremes into any
+//! number, indices permuted, arrays and objects duplicated to 10^3–10^4 elements, path-like
+//! strings into URIs: inputs byte mutation almost never makes), and
 //! runs the checker (default profile with `--deep`, and the Khronos profile) and the
 //! converter on the result. Images are also embedded into a glTF as data URIs so the image
 //! decoders are reached. A panic is a failure: the input is saved to `target/fuzz-crashes/`
@@ -122,6 +125,99 @@ fn mutate(rng: &mut Rng, input: &mut Vec<u8>, corpus: &[Vec<u8>]) {
     }
 }
 
+/// Numbers byte mutation rarely writes: each limit an offset, count or index can hit.
+const EXTREMES: &[f64] = &[
+    0.0,
+    -1.0,
+    2147483648.0,
+    4294967296.0,
+    9007199254740992.0,
+    18446744073709551612.0,
+    1e308,
+    -0.0,
+    1e-320,
+];
+
+/// Strings a URI can hold that lead somewhere unexpected.
+const PATHS: &[&str] = &[
+    "../x.bin",
+    "/etc/passwd",
+    "..",
+    ".",
+    "",
+    "a/../../b",
+    "C:\\x",
+    "%2e%2e/x",
+    "data:,",
+    "data:application/octet-stream;base64,",
+    "x.bin?#",
+    "\u{0}",
+];
+
+/// A structural mutation of a JSON document: one of its values, chosen at random, is
+/// replaced by an extreme number, a path, a duplicated container or a permuted array.
+fn mutate_json(rng: &mut Rng, root: &mut serde_json::Value) {
+    use serde_json::Value;
+    // Walk down a few random steps (stopping at a leaf), then change what is there.
+    let mut path = String::new();
+    let mut walked = &*root;
+    for _ in 0..rng.below(6) {
+        walked = match walked {
+            Value::Array(items) if !items.is_empty() => {
+                let i = rng.below(items.len());
+                path.push_str(&format!("/{i}"));
+                &items[i]
+            }
+            Value::Object(map) if !map.is_empty() => {
+                let Some((key, value)) = map.iter().nth(rng.below(map.len())) else {
+                    break;
+                };
+                path.push('/');
+                path.push_str(&key.replace('~', "~0").replace('/', "~1"));
+                value
+            }
+            _ => break,
+        };
+    }
+    let Some(at) = root.pointer_mut(&path) else {
+        return;
+    };
+    match (rng.below(5), &mut *at) {
+        (0, Value::Number(_)) | (0, Value::Null) => {
+            let extreme = EXTREMES[rng.below(EXTREMES.len())];
+            *at = serde_json::json!(extreme);
+        }
+        (1, Value::String(_)) => *at = Value::String(PATHS[rng.below(PATHS.len())].into()),
+        (2, Value::Array(items)) if !items.is_empty() => {
+            // Each element is kept: an index permutation makes references point elsewhere.
+            for i in (1..items.len()).rev() {
+                items.swap(i, rng.below(i + 1));
+            }
+        }
+        (3, Value::Array(items)) if !items.is_empty() => {
+            let times = [1_000, 10_000][rng.below(2)] / items.len().max(1);
+            let copy = items.clone();
+            for _ in 0..times {
+                items.extend(copy.iter().cloned());
+            }
+        }
+        (4, Value::Object(map)) => {
+            let copy = Value::Object(map.clone());
+            *at = Value::Array(vec![copy; 1 + rng.below(1_000)]);
+        }
+        (_, value) => *value = serde_json::json!(EXTREMES[rng.below(EXTREMES.len())] as i64),
+    }
+}
+
+/// A glTF text seed mutated structurally, or None for seeds that are not JSON.
+fn mutate_structure(rng: &mut Rng, input: &[u8]) -> Option<Vec<u8>> {
+    let mut root: serde_json::Value = serde_json::from_slice(input).ok()?;
+    for _ in 0..1 + rng.below(3) {
+        mutate_json(rng, &mut root);
+    }
+    serde_json::to_vec(&root).ok()
+}
+
 /// Image bytes become a one-texture glTF, so mutated images reach the decoders.
 fn as_asset(input: &[u8]) -> Vec<u8> {
     let is_image = input.starts_with(b"\x89PNG")
@@ -177,7 +273,13 @@ pub fn run(iterations: u64, seed: u64) -> Result<usize, String> {
     let mut failure = None;
     for i in 0..iterations {
         let mut input = corpus[rng.below(corpus.len())].clone();
-        mutate(&mut rng, &mut input, &corpus);
+        match rng.below(2) {
+            0 => mutate(&mut rng, &mut input, &corpus),
+            _ => match mutate_structure(&mut rng, &input) {
+                Some(mutated) => input = mutated,
+                None => mutate(&mut rng, &mut input, &corpus),
+            },
+        }
         if catch_unwind(AssertUnwindSafe(|| exercise(&input))).is_err() {
             let folder = root.join("target/fuzz-crashes");
             let _ = std::fs::create_dir_all(&folder);
