@@ -24,10 +24,6 @@ const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
         "numbers beyond f64 (1e400) are INVALID_JSON here, VALUE_NOT_IN_RANGE in Khronos",
     ),
     (
-        "base/data/accessor/invalid_sparse_count_and_stride.gltf",
-        "sparse accessor counts and views are not checked yet",
-    ),
-    (
         "base/data/animation/empty_objects.gltf",
         "Khronos reports an unused sampler at a pointer that does not exist",
     ),

@@ -628,3 +628,71 @@ fn numeric_options_out_of_range_are_usage_errors() {
         );
     }
 }
+
+#[test]
+fn sparse_accessors_are_checked_and_their_values_applied() {
+    // Finding 17: a count of 2^32 over 8- and 16-byte views, misaligned parts, repeated and
+    // out-of-range indices, and substituted values outside the declared bounds all passed.
+    let words = |values: &[u16]| {
+        values
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect::<Vec<u8>>()
+    };
+    let floats = |values: &[f32]| {
+        values
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect::<Vec<u8>>()
+    };
+    let mut data = floats(&[0.0; 4]);
+    data.extend(words(&[1, 1, 0, 9]));
+    data.extend(floats(&[5.0, 6.0, 7.0, 8.0]));
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&data)
+    );
+    let sparse = |count: u64, offset: u64| {
+        json!({"count": count, "indices": {"bufferView": 1, "componentType": 5123, "byteOffset": offset},
+            "values": {"bufferView": 2, "byteOffset": 2 * offset}})
+    };
+    let gltf = json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": uri, "byteLength": data.len()}],
+        "bufferViews": [{"buffer": 0, "byteLength": 16}, {"buffer": 0, "byteOffset": 16, "byteLength": 8},
+            {"buffer": 0, "byteOffset": 24, "byteLength": 16}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "SCALAR", "min": [0], "max": [0], "sparse": sparse(4, 0)},
+            {"componentType": 5126, "count": 4, "type": "SCALAR", "sparse": sparse(1 << 32, 1)}
+        ]
+    });
+    let report = check(&gltf, &every_issue());
+    let found: Vec<(&str, &str)> = (report.diagnostics.iter())
+        .map(|d| (d.code.name(), d.pointer().unwrap_or_default()))
+        .collect();
+    for expected in [
+        (
+            "ACCESSOR_SPARSE_COUNT_OUT_OF_RANGE",
+            "/accessors/1/sparse/count",
+        ),
+        (
+            "ACCESSOR_OFFSET_ALIGNMENT",
+            "/accessors/1/sparse/indices/byteOffset",
+        ),
+        (
+            "ACCESSOR_TOTAL_OFFSET_ALIGNMENT",
+            "/accessors/1/sparse/values",
+        ),
+        ("ACCESSOR_TOO_LONG", "/accessors/1/sparse/indices"),
+        ("ACCESSOR_TOO_LONG", "/accessors/1/sparse/values"),
+        (
+            "ACCESSOR_SPARSE_INDICES_NON_INCREASING",
+            "/accessors/0/sparse",
+        ),
+        ("ACCESSOR_SPARSE_INDEX_OOB", "/accessors/0/sparse"),
+        ("ACCESSOR_MAX_MISMATCH", "/accessors/0/max/0"),
+    ] {
+        assert!(found.contains(&expected), "{expected:?} in {found:?}");
+    }
+    assert_eq!(count(&report, "ACCESSOR_SPARSE_INDICES_NON_INCREASING"), 2);
+}

@@ -11,6 +11,7 @@ use crate::gltf::accessor::{component_count, component_size, normalise};
 use crate::gltf::gl;
 use rayon::prelude::*;
 use serde_json::Value;
+use std::borrow::Cow;
 
 /// The most components an element has (MAT4).
 pub(super) const MAX_COMPONENTS: usize = 16;
@@ -97,6 +98,16 @@ pub(super) struct Layout {
 }
 
 fn layout(ctx: &Context, accessor: &Value, view: usize) -> Option<Layout> {
+    let mut layout = packed_layout(accessor)?;
+    if let Some(stride) = unsigned(&ctx.items("bufferViews")[view], "byteStride") {
+        layout.stride = usize::try_from(stride).ok()?;
+    }
+    layout.offset = usize::try_from(unsigned(accessor, "byteOffset").unwrap_or(0)).ok()?;
+    Some(layout)
+}
+
+/// The accessor's elements packed one after the other from offset 0.
+pub(super) fn packed_layout(accessor: &Value) -> Option<Layout> {
     let component_type = unsigned(accessor, "componentType")?;
     let size = component_size(component_type)?;
     let kind = accessor.get("type")?.as_str()?;
@@ -105,14 +116,12 @@ fn layout(ctx: &Context, accessor: &Value, view: usize) -> Option<Layout> {
         return None;
     }
     let components = component_count(kind)?;
-    let element = size * components;
-    let stride = unsigned(&ctx.items("bufferViews")[view], "byteStride").unwrap_or(element as u64);
     Some(Layout {
         component_type,
         size,
         components,
-        stride: usize::try_from(stride).ok()?,
-        offset: usize::try_from(unsigned(accessor, "byteOffset").unwrap_or(0)).ok()?,
+        stride: size * components,
+        offset: 0,
         count: usize::try_from(unsigned(accessor, "count")?).ok()?,
     })
 }
@@ -128,21 +137,25 @@ fn show(component_type: u64, v: f64) -> String {
 pub fn check(ctx: &mut Context) {
     let mut uses = accessor_usage::checkers(ctx);
     // Accessors are independent and read-only here: scanned in parallel, reported in order.
-    let mut work: Vec<Work> = ctx
-        .objects("accessors")
-        .into_iter()
-        .filter_map(|(index, pointer, accessor)| {
-            let (layout, bytes) = scannable(ctx, accessor)?;
-            let checkers = uses.remove(&index).unwrap_or_default();
-            Some(Work {
-                pointer,
-                layout,
-                bytes,
-                accessor,
-                checkers,
+    let mut work: Vec<Work> =
+        ctx.objects("accessors")
+            .into_iter()
+            .filter_map(|(index, pointer, accessor)| {
+                let (layout, bytes) = match accessor.get("sparse") {
+                    None => scannable(ctx, accessor).map(|(l, b)| (l, Cow::Borrowed(b)))?,
+                    Some(_) => super::sparse::substituted(ctx, accessor)
+                        .map(|(l, b)| (l, Cow::Owned(b)))?,
+                };
+                let checkers = uses.remove(&index).unwrap_or_default();
+                Some(Work {
+                    pointer,
+                    layout,
+                    bytes,
+                    accessor,
+                    checkers,
+                })
             })
-        })
-        .collect();
+            .collect();
     let findings: Vec<Vec<Finding>> = work.par_iter_mut().map(scan).collect();
     for (code, pointer, message) in findings.into_iter().flatten() {
         ctx.emit(code, pointer, message);
@@ -153,7 +166,8 @@ pub fn check(ctx: &mut Context) {
 struct Work<'c> {
     pointer: String,
     layout: Layout,
-    bytes: &'c [u8],
+    /// The view's bytes, or a sparse accessor's elements with the substitution applied.
+    bytes: Cow<'c, [u8]>,
     accessor: &'c Value,
     checkers: Vec<Checker>,
 }
@@ -162,8 +176,13 @@ struct Work<'c> {
 /// its view (otherwise ACCESSOR_TOO_LONG or a schema code was reported).
 pub(super) fn scannable<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])> {
     if accessor.get("sparse").is_some() {
-        return None; // sparse substitution is not applied by this pass
+        return None; // see `sparse::substituted`
     }
+    in_view(ctx, accessor)
+}
+
+/// The accessor's layout and its view's bytes when its elements fit the view, sparse or not.
+pub(super) fn in_view<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])> {
     let view = unsigned(accessor, "bufferView")? as usize;
     if view >= ctx.items("bufferViews").len() {
         return None;

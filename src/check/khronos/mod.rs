@@ -17,6 +17,7 @@ mod objects;
 pub(crate) mod primitives;
 pub(crate) mod resources;
 mod skins;
+mod sparse;
 mod unused;
 mod view_usage;
 
@@ -35,6 +36,7 @@ pub(crate) const PASSES: &[(&str, Pass)] = &[
     ("bufferViews", resources::check_buffer_views),
     ("accessors", objects::check_accessors),
     ("accessor data", accessor_data::check),
+    ("sparse indices", sparse::check_indices),
     ("skin influences", influences::check),
     ("images", resources::check_images),
     ("textures", materials::check_textures),

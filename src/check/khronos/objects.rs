@@ -83,19 +83,7 @@ pub fn check_accessors(ctx: &mut Context) {
         if let Some(view) = ctx.reference(accessor, "bufferView", &pointer, "bufferViews") {
             check_accessor_fits(ctx, accessor, view, &pointer);
         }
-        if let Some(sparse) = accessor.get("sparse").filter(|s| s.is_object()) {
-            let sparse_pointer = member(&pointer, "sparse");
-            for key in ["indices", "values"] {
-                if let Some(part) = sparse.get(key) {
-                    ctx.reference(
-                        part,
-                        "bufferView",
-                        &member(&sparse_pointer, key),
-                        "bufferViews",
-                    );
-                }
-            }
-        }
+        super::sparse::check_structure(ctx, accessor, &pointer);
     }
 }
 
@@ -144,7 +132,8 @@ fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer
     else {
         return;
     };
-    let (Some(count), Some(view_length)) = (
+    // Without the view's byteLength (a schema error) nothing below can be judged.
+    let (Some(count), Some(_)) = (
         unsigned(accessor, "count").filter(|c| *c > 0),
         unsigned(&ctx.items("bufferViews")[view], "byteLength"),
     ) else {
@@ -173,7 +162,28 @@ fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer
     }
     let stride = declared_stride.unwrap_or(element);
     let offset = unsigned(accessor, "byteOffset").unwrap_or(0);
-    let size = component_size as u64;
+    let length = (count - 1)
+        .checked_mul(stride)
+        .and_then(|n| n.checked_add(last));
+    fits_in_view(ctx, pointer, view, offset, component_size as u64, length);
+}
+
+/// `length` bytes at `offset` in bufferView `view`, read as components of `size` bytes (an
+/// accessor, or a part of a sparse one at `pointer`): the offset and the total offset
+/// aligned to the component, and the bytes inside the view (ACCESSOR_TOO_LONG; a length
+/// past 2^64 is `None`).
+pub(super) fn fits_in_view(
+    ctx: &mut Context,
+    pointer: &str,
+    view: usize,
+    offset: u64,
+    size: u64,
+    length: Option<u64>,
+) {
+    let view_object = &ctx.items("bufferViews")[view];
+    let Some(view_length) = unsigned(view_object, "byteLength") else {
+        return;
+    };
     if !offset.is_multiple_of(size) {
         ctx.emit(
             khronos::ACCESSOR_OFFSET_ALIGNMENT,
@@ -191,9 +201,6 @@ fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer
             format!("Accessor's total byteOffset {total} isn't a multiple of componentType length {size}."),
         );
     }
-    let length = (count - 1)
-        .checked_mul(stride)
-        .and_then(|n| n.checked_add(last));
     let fits = length
         .and_then(|n| n.checked_add(offset))
         .is_some_and(|end| end <= view_length);

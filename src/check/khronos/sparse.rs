@@ -1,0 +1,170 @@
+//! Sparse accessors as the Khronos validator checks them: the sparse count against the
+//! accessor's, each part (indices, values) inside its bufferView, and the indices' data,
+//! strictly increasing and each below the accessor's count.
+
+use super::accessor_data::{in_view, packed_layout, Layout};
+use super::objects::fits_in_view;
+use super::resources::view_bytes;
+use crate::check::context::{member, unsigned, Context};
+use crate::diagnostic::khronos;
+use crate::gltf::accessor::{component_count, component_size};
+use serde_json::Value;
+
+/// The sparse count and the placement of both parts (from the accessors pass).
+pub fn check_structure(ctx: &mut Context, accessor: &Value, pointer: &str) {
+    let Some(sparse) = accessor.get("sparse").filter(|s| s.is_object()) else {
+        return;
+    };
+    let at = member(pointer, "sparse");
+    let parts = ["indices", "values"].map(|key| (key, sparse.get(key)));
+    for (key, part) in parts {
+        if let Some(part) = part {
+            ctx.reference(part, "bufferView", &member(&at, key), "bufferViews");
+        }
+    }
+    let (Some(sparse_count), [(_, Some(indices)), (_, Some(values))]) =
+        (unsigned(sparse, "count"), parts)
+    else {
+        return;
+    };
+    if let Some(count) = unsigned(accessor, "count").filter(|&count| sparse_count > count) {
+        ctx.emit(
+            khronos::ACCESSOR_SPARSE_COUNT_OUT_OF_RANGE,
+            member(&at, "count"),
+            format!("Sparse accessor overrides more elements ({sparse_count}) than the base accessor contains ({count})."),
+        );
+    }
+    let index_size = unsigned(indices, "componentType").and_then(component_size);
+    let value_size = unsigned(accessor, "componentType").and_then(component_size);
+    let components = accessor
+        .get("type")
+        .and_then(Value::as_str)
+        .and_then(component_count);
+    let values_element = value_size.zip(components).map(|(size, n)| (size, size * n));
+    for (key, part, sizes) in [
+        ("indices", indices, index_size.map(|size| (size, size))),
+        ("values", values, values_element),
+    ] {
+        let view = unsigned(part, "bufferView").map(|v| v as usize);
+        let Some(view) = view.filter(|&v| v < ctx.items("bufferViews").len()) else {
+            continue;
+        };
+        let part_at = member(&at, key);
+        if ctx.items("bufferViews")[view].get("byteStride").is_some() {
+            ctx.emit(
+                khronos::BUFFER_VIEW_INVALID_BYTE_STRIDE,
+                member(&part_at, "bufferView"),
+                "Only buffer views with raw vertex data can have byteStride.",
+            );
+        }
+        let Some((size, element)) = sizes else {
+            continue;
+        };
+        let offset = unsigned(part, "byteOffset").unwrap_or(0);
+        let length = (element as u64).checked_mul(sparse_count);
+        fits_in_view(ctx, &part_at, view, offset, size as u64, length);
+    }
+}
+
+/// The sparse indices of every accessor: strictly increasing, each naming an element the
+/// accessor has (a pass after the buffers are read).
+pub fn check_indices(ctx: &mut Context) {
+    for (_, pointer, accessor) in ctx.objects("accessors") {
+        let Some(sparse) = accessor.get("sparse") else {
+            continue;
+        };
+        let (Some(count), Some(indices)) =
+            (unsigned(accessor, "count"), readable_indices(ctx, sparse))
+        else {
+            continue;
+        };
+        let at = member(&pointer, "sparse");
+        let mut previous: Option<u64> = None;
+        let mut findings = Vec::new();
+        for (k, index) in indices.enumerate() {
+            if let Some(last) = previous.filter(|&last| index <= last) {
+                findings.push((
+                    khronos::ACCESSOR_SPARSE_INDICES_NON_INCREASING,
+                    format!("Accessor sparse indices element at index {k} is less than or equal to previous: {index} <= {last}."),
+                ));
+            }
+            if index >= count {
+                findings.push((
+                    khronos::ACCESSOR_SPARSE_INDEX_OOB,
+                    format!("Accessor sparse indices element at index {k} is greater than or equal to the number of accessor elements: {index} >= {count}."),
+                ));
+            }
+            previous = Some(index);
+        }
+        for (code, message) in findings {
+            ctx.emit(code, at.clone(), message);
+        }
+    }
+}
+
+/// The largest dense copy made of a sparse accessor without a bufferView (its base elements
+/// are zeros, and its count may claim anything).
+const MAX_ZEROS: usize = 64 << 20;
+
+/// A sparse accessor's elements with its values substituted, packed from offset 0, so that
+/// the accessor-data pass checks (min, max, normalisation …) what a loader reads. None when
+/// the base, the indices or the values cannot be read (each reported elsewhere).
+pub(super) fn substituted(ctx: &Context, accessor: &Value) -> Option<(Layout, Vec<u8>)> {
+    let sparse = accessor.get("sparse")?;
+    let layout = packed_layout(accessor)?;
+    let element = layout.size.checked_mul(layout.components)?;
+    let mut dense = match accessor.get("bufferView") {
+        Some(_) => {
+            let (base, bytes) = in_view(ctx, accessor)?;
+            (0..base.count)
+                .flat_map(|i| {
+                    let at = base.offset + i * base.stride;
+                    bytes[at..at + element].iter().copied()
+                })
+                .collect()
+        }
+        None => vec![
+            0u8;
+            layout
+                .count
+                .checked_mul(element)
+                .filter(|&n| n <= MAX_ZEROS)?
+        ],
+    };
+    let values = sparse.get("values")?;
+    let value_bytes = view_bytes(ctx, unsigned(values, "bufferView")? as usize)?;
+    let start = usize::try_from(unsigned(values, "byteOffset").unwrap_or(0)).ok()?;
+    let sparse_count = usize::try_from(unsigned(sparse, "count")?).ok()?;
+    let length = sparse_count.checked_mul(element)?;
+    let value_bytes = value_bytes.get(start..start.checked_add(length)?)?;
+    for (index, value) in readable_indices(ctx, sparse)?.zip(value_bytes.chunks_exact(element)) {
+        let at = usize::try_from(index)
+            .ok()
+            .and_then(|i| i.checked_mul(element));
+        let range = at.and_then(|at| Some(at..at.checked_add(element)?));
+        if let Some(slot) = range.and_then(|range| dense.get_mut(range)) {
+            slot.copy_from_slice(value);
+        }
+    }
+    Some((layout, dense))
+}
+
+/// The sparse indices, when their view holds all `sparse.count` of them.
+fn readable_indices<'c>(
+    ctx: &'c Context,
+    sparse: &Value,
+) -> Option<impl Iterator<Item = u64> + 'c> {
+    let indices = sparse.get("indices")?;
+    let size = unsigned(indices, "componentType").and_then(component_size)?;
+    let bytes = view_bytes(ctx, unsigned(indices, "bufferView")? as usize)?;
+    let start = usize::try_from(unsigned(indices, "byteOffset").unwrap_or(0)).ok()?;
+    let length = usize::try_from(unsigned(sparse, "count")?)
+        .ok()?
+        .checked_mul(size)?;
+    let data = bytes.get(start..start.checked_add(length)?)?;
+    Some(data.chunks_exact(size).map(|word| {
+        let mut le = [0u8; 8];
+        le[..word.len()].copy_from_slice(word);
+        u64::from_le_bytes(le)
+    }))
+}
