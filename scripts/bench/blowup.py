@@ -111,11 +111,13 @@ def joint_names(n):
 
 
 def big_png_references(n):
-    """One 8192² PNG (a few hundred KB compressed) used by n materials."""
-    png = big_png(8192)
-    images = [{'uri': 'data:image/png;base64,' + base64.b64encode(png).decode()}]
-    materials = [{'name': f'm{i}', 'pbrMetallicRoughness': {'baseColorTexture': {'index': 0}}} for i in range(n)]
-    return write(f'png-{n}.gltf', asset(images=images, textures=[{'source': 0}], materials=materials))
+    """One 8192² PNG (a few hundred KB compressed) as n images, each with its material."""
+    with open(os.path.join(WORK, 'big.png'), 'wb') as f:
+        f.write(big_png(8192))
+    images = [{'uri': 'big.png'} for _ in range(n)]
+    textures = [{'source': i} for i in range(n)]
+    materials = [{'name': f'm{i}', 'pbrMetallicRoughness': {'baseColorTexture': {'index': i}}} for i in range(n)]
+    return write(f'png-{n}.gltf', asset(images=images, textures=textures, materials=materials))
 
 
 def png_chunk(kind, data):
