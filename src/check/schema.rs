@@ -179,31 +179,17 @@ pub fn validate(doc: &Value, khronos: bool, sink: &mut dyn Sink) {
 /// A top-level collection long enough to be validated in chunks.
 fn long<'d>((key, value): (&'d String, &'d Value)) -> Option<(&'d String, &'d Vec<Value>)> {
     let items = value.as_array().filter(|items| items.len() > CHUNK)?;
-    COLLECTIONS.contains(&key.as_str()).then_some((key, items))
+    // Their elements are validated independently of each other (no collection has
+    // uniqueItems), so they can be validated a chunk at a time.
+    crate::gltf::COLLECTIONS
+        .contains(&key.as_str())
+        .then_some((key, items))
 }
 
 /// Elements of one top-level collection validated at a time: the validator gathers all of
 /// an array's errors before it yields the first, so a 10^7-element array of wrong types
 /// would be 10^7 errors in memory at once.
 const CHUNK: usize = 4096;
-
-/// The top-level arrays whose elements are objects validated independently of each other
-/// (none has uniqueItems), so they can be validated a chunk at a time.
-const COLLECTIONS: &[&str] = &[
-    "accessors",
-    "animations",
-    "buffers",
-    "bufferViews",
-    "cameras",
-    "images",
-    "materials",
-    "meshes",
-    "nodes",
-    "samplers",
-    "scenes",
-    "skins",
-    "textures",
-];
 
 /// Passes on the findings inside one chunk of a collection, at their real index.
 struct Shifted<'s> {

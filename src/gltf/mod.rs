@@ -8,6 +8,23 @@ pub(crate) mod material;
 
 use serde_json::Value;
 
+/// The top-level arrays of a glTF 2.0 document whose elements are objects of their own.
+pub const COLLECTIONS: &[&str] = &[
+    "accessors",
+    "animations",
+    "buffers",
+    "bufferViews",
+    "cameras",
+    "images",
+    "materials",
+    "meshes",
+    "nodes",
+    "samplers",
+    "scenes",
+    "skins",
+    "textures",
+];
+
 /// A non-negative integer member (an index or a count), also when written as a float (`1.0`),
 /// as glTF's JSON allows.
 pub fn unsigned(object: &Value, key: &str) -> Option<u64> {

@@ -22,29 +22,52 @@ pub fn render(reports: &[Report]) -> String {
             })
         })
         .collect();
-    let results: Vec<Value> = reports
-        .iter()
-        .flat_map(|report| {
-            let positions = Positions::of(report);
-            (report.diagnostics.iter())
-                .map(|d| result(report, &positions, d))
-                .collect::<Vec<_>>()
-        })
-        .collect();
-    let log = json!({
-        "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
-        "version": "2.1.0",
-        "runs": [{
-            "tool": {"driver": {
+    let log = Log {
+        schema: "https://json.schemastore.org/sarif-2.1.0.json",
+        version: "2.1.0",
+        runs: [Run {
+            tool: json!({"driver": {
                 "name": "gltfmat",
                 "version": env!("CARGO_PKG_VERSION"),
                 "informationUri": "https://github.com/gltfmat/gltfmat",
                 "rules": rules,
-            }},
-            "results": results,
+            }}),
+            results: Results(reports),
         }],
-    });
+    };
     serde_json::to_string_pretty(&log).unwrap_or_default() + "\n"
+}
+
+/// The log, serialised as it is walked: each result is built, written and dropped in turn,
+/// so 10^5 results never exist as one JSON tree (ten times the size of their text).
+#[derive(serde::Serialize)]
+struct Log<'r> {
+    #[serde(rename = "$schema")]
+    schema: &'static str,
+    version: &'static str,
+    runs: [Run<'r>; 1],
+}
+
+#[derive(serde::Serialize)]
+struct Run<'r> {
+    tool: Value,
+    results: Results<'r>,
+}
+
+struct Results<'r>(&'r [Report]);
+
+impl serde::Serialize for Results<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeSeq;
+        let mut sequence = serializer.serialize_seq(None)?;
+        for report in self.0 {
+            let positions = Positions::of(report);
+            for d in &report.diagnostics {
+                sequence.serialize_element(&result(report, &positions, d))?;
+            }
+        }
+        sequence.end()
+    }
 }
 
 fn level(severity: Severity) -> &'static str {

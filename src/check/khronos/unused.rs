@@ -4,22 +4,13 @@
 use crate::check::context::Context;
 use crate::diagnostic::khronos;
 
-const COLLECTIONS: &[&str] = &[
-    "accessors",
-    "buffers",
-    "bufferViews",
-    "cameras",
-    "images",
-    "materials",
-    "meshes",
-    "nodes",
-    "samplers",
-    "skins",
-    "textures",
-];
+/// Animations and scenes are used by being there; everything else by being referenced.
+fn may_be_unused(collection: &str) -> bool {
+    !matches!(collection, "animations" | "scenes")
+}
 
 pub fn check(ctx: &mut Context) {
-    for collection in COLLECTIONS {
+    for collection in crate::gltf::COLLECTIONS.iter().filter(|c| may_be_unused(c)) {
         for (i, pointer, _) in ctx.objects(collection) {
             if !ctx.is_used(collection, i) {
                 ctx.emit(
