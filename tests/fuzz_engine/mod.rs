@@ -195,7 +195,7 @@ fn mutate_json(rng: &mut Rng, root: &mut serde_json::Value) {
             }
         }
         (3, Value::Array(items)) if !items.is_empty() => {
-            let times = [1_000, 10_000][rng.below(2)] / items.len().max(1);
+            let times = ([1_000, 10_000][rng.below(2)] / items.len()).min(copies_within(items));
             let copy = items.clone();
             for _ in 0..times {
                 items.extend(copy.iter().cloned());
@@ -203,10 +203,18 @@ fn mutate_json(rng: &mut Rng, root: &mut serde_json::Value) {
         }
         (4, Value::Object(map)) => {
             let copy = Value::Object(map.clone());
-            *at = Value::Array(vec![copy; 1 + rng.below(1_000)]);
+            let times = (1 + rng.below(1_000)).min(copies_within(&copy));
+            *at = Value::Array(vec![copy; times]);
         }
         (_, value) => *value = serde_json::json!(EXTREMES[rng.below(EXTREMES.len())] as i64),
     }
+}
+
+/// How many copies of `value` stay within 4 MB of JSON: the inputs stay large in count, not
+/// in bytes, and the fuzzer itself in memory.
+fn copies_within(value: &impl serde::Serialize) -> usize {
+    let bytes = serde_json::to_vec(value).map_or(usize::MAX, |text| text.len().max(1));
+    (4 << 20) / bytes
 }
 
 /// A glTF text seed mutated structurally, or None for seeds that are not JSON.
@@ -215,7 +223,9 @@ fn mutate_structure(rng: &mut Rng, input: &[u8]) -> Option<Vec<u8>> {
     for _ in 0..1 + rng.below(3) {
         mutate_json(rng, &mut root);
     }
-    serde_json::to_vec(&root).ok()
+    serde_json::to_vec(&root)
+        .ok()
+        .filter(|text| text.len() <= 16 << 20)
 }
 
 /// Image bytes become a one-texture glTF, so mutated images reach the decoders.
