@@ -107,7 +107,7 @@ fn layout(ctx: &Context, accessor: &Value, view: usize) -> Option<Layout> {
 }
 
 /// The accessor's elements packed one after the other from offset 0.
-pub(super) fn packed_layout(accessor: &Value) -> Option<Layout> {
+fn packed_layout(accessor: &Value) -> Option<Layout> {
     let component_type = unsigned(accessor, "componentType")?;
     let size = component_size(component_type)?;
     let kind = accessor.get("type")?.as_str()?;
@@ -137,25 +137,24 @@ fn show(component_type: u64, v: f64) -> String {
 pub fn check(ctx: &mut Context) {
     let mut uses = accessor_usage::checkers(ctx);
     // Accessors are independent and read-only here: scanned in parallel, reported in order.
-    let mut work: Vec<Work> =
-        ctx.objects("accessors")
-            .into_iter()
-            .filter_map(|(index, pointer, accessor)| {
-                let (layout, bytes) = match accessor.get("sparse") {
-                    None => scannable(ctx, accessor).map(|(l, b)| (l, Cow::Borrowed(b)))?,
-                    Some(_) => super::sparse::substituted(ctx, accessor)
-                        .map(|(l, b)| (l, Cow::Owned(b)))?,
-                };
-                let checkers = uses.remove(&index).unwrap_or_default();
-                Some(Work {
-                    pointer,
-                    layout,
-                    bytes,
-                    accessor,
-                    checkers,
-                })
+    let mut work: Vec<Work> = ctx
+        .objects("accessors")
+        .into_iter()
+        .filter_map(|(index, pointer, accessor)| {
+            let (layout, bytes) = match accessor.get("sparse") {
+                None => scannable(ctx, accessor).map(|(l, b)| (l, Cow::Borrowed(b)))?,
+                Some(_) => substituted(ctx, accessor).map(|(l, b)| (l, Cow::Owned(b)))?,
+            };
+            let checkers = uses.remove(&index).unwrap_or_default();
+            Some(Work {
+                pointer,
+                layout,
+                bytes,
+                accessor,
+                checkers,
             })
-            .collect();
+        })
+        .collect();
     let findings: Vec<Vec<Finding>> = work.par_iter_mut().map(scan).collect();
     for (code, pointer, message) in findings.into_iter().flatten() {
         ctx.emit(code, pointer, message);
@@ -176,13 +175,13 @@ struct Work<'c> {
 /// its view (otherwise ACCESSOR_TOO_LONG or a schema code was reported).
 pub(super) fn scannable<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])> {
     if accessor.get("sparse").is_some() {
-        return None; // see `sparse::substituted`
+        return None; // see `substituted`
     }
     in_view(ctx, accessor)
 }
 
 /// The accessor's layout and its view's bytes when its elements fit the view, sparse or not.
-pub(super) fn in_view<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])> {
+fn in_view<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])> {
     let view = unsigned(accessor, "bufferView")? as usize;
     if view >= ctx.items("bufferViews").len() {
         return None;
@@ -200,6 +199,55 @@ pub(super) fn in_view<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout,
         .checked_add(element)?
         .checked_add(layout.offset)?;
     (layout.stride >= element && needed <= bytes.len()).then_some((layout, bytes))
+}
+
+/// The largest dense copy made of a sparse accessor without a bufferView (its base elements
+/// are zeros, and its count may claim anything).
+const MAX_ZEROS: usize = 64 << 20;
+
+/// A sparse accessor's elements with its values substituted, packed from offset 0, so that
+/// the accessor-data pass checks (min, max, normalisation …) what a loader reads. None when
+/// the base, the indices or the values cannot be read (each reported elsewhere).
+fn substituted(ctx: &Context, accessor: &Value) -> Option<(Layout, Vec<u8>)> {
+    let sparse = accessor.get("sparse")?;
+    let layout = packed_layout(accessor)?;
+    let element = layout.size.checked_mul(layout.components)?;
+    let mut dense = match accessor.get("bufferView") {
+        Some(_) => {
+            let (base, bytes) = in_view(ctx, accessor)?;
+            (0..base.count)
+                .flat_map(|i| {
+                    let at = base.offset + i * base.stride;
+                    bytes[at..at + element].iter().copied()
+                })
+                .collect()
+        }
+        None => vec![
+            0u8;
+            layout
+                .count
+                .checked_mul(element)
+                .filter(|&n| n <= MAX_ZEROS)?
+        ],
+    };
+    let values = sparse.get("values")?;
+    let value_bytes = view_bytes(ctx, unsigned(values, "bufferView")? as usize)?;
+    let start = usize::try_from(unsigned(values, "byteOffset").unwrap_or(0)).ok()?;
+    let sparse_count = usize::try_from(unsigned(sparse, "count")?).ok()?;
+    let length = sparse_count.checked_mul(element)?;
+    let value_bytes = value_bytes.get(start..start.checked_add(length)?)?;
+    for (index, value) in
+        super::sparse::readable_indices(ctx, sparse)?.zip(value_bytes.chunks_exact(element))
+    {
+        let at = usize::try_from(index)
+            .ok()
+            .and_then(|i| i.checked_mul(element));
+        let range = at.and_then(|at| Some(at..at.checked_add(element)?));
+        if let Some(slot) = range.and_then(|range| dense.get_mut(range)) {
+            slot.copy_from_slice(value);
+        }
+    }
+    Some((layout, dense))
 }
 
 /// Every finding of one accessor, from a single walk over its elements.

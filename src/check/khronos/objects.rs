@@ -2,6 +2,7 @@
 //! and the structural rules a material checker depends on (texCoords, tangent space).
 
 use super::primitives::indexed_sets;
+use super::resources::fits_in_view;
 use crate::check::context::{elements, member, unsigned, Context, MaterialNeeds};
 use crate::diagnostic::khronos;
 use crate::gltf::accessor::{component_count, component_size};
@@ -166,57 +167,6 @@ fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer
         .checked_mul(stride)
         .and_then(|n| n.checked_add(last));
     fits_in_view(ctx, pointer, view, offset, component_size as u64, length);
-}
-
-/// `length` bytes at `offset` in bufferView `view`, read as components of `size` bytes (an
-/// accessor, or a part of a sparse one at `pointer`): the offset and the total offset
-/// aligned to the component, and the bytes inside the view (ACCESSOR_TOO_LONG; a length
-/// past 2^64 is `None`).
-pub(super) fn fits_in_view(
-    ctx: &mut Context,
-    pointer: &str,
-    view: usize,
-    offset: u64,
-    size: u64,
-    length: Option<u64>,
-) {
-    let view_object = &ctx.items("bufferViews")[view];
-    let Some(view_length) = unsigned(view_object, "byteLength") else {
-        return;
-    };
-    if !offset.is_multiple_of(size) {
-        ctx.emit(
-            khronos::ACCESSOR_OFFSET_ALIGNMENT,
-            member(pointer, "byteOffset"),
-            format!("Offset {offset} is not a multiple of componentType length {size}."),
-        );
-    }
-    let total = unsigned(view_object, "byteOffset")
-        .unwrap_or(0)
-        .saturating_add(offset);
-    if !total.is_multiple_of(size) {
-        ctx.emit(
-            khronos::ACCESSOR_TOTAL_OFFSET_ALIGNMENT,
-            pointer,
-            format!("Accessor's total byteOffset {total} isn't a multiple of componentType length {size}."),
-        );
-    }
-    let fits = length
-        .and_then(|n| n.checked_add(offset))
-        .is_some_and(|end| end <= view_length);
-    if !fits {
-        let length = length.map_or_else(|| "more than 2^64".to_string(), |n| n.to_string());
-        let at = if offset > view_length {
-            member(pointer, "byteOffset")
-        } else {
-            pointer.to_string()
-        };
-        ctx.emit(
-            khronos::ACCESSOR_TOO_LONG,
-            at,
-            format!("Accessor (offset: {offset}, length: {length}) does not fit referenced bufferView [{view}] length {view_length}."),
-        );
-    }
 }
 
 pub fn check_meshes(ctx: &mut Context) {

@@ -231,6 +231,57 @@ pub fn view_bytes<'c>(ctx: &'c Context, view_index: usize) -> Option<&'c [u8]> {
     buffer.get(start..end)
 }
 
+/// `length` bytes at `offset` in bufferView `view`, read as components of `size` bytes (an
+/// accessor, or a part of a sparse one at `pointer`): the offset and the total offset
+/// aligned to the component, and the bytes inside the view (ACCESSOR_TOO_LONG; a length
+/// past 2^64 is `None`).
+pub(super) fn fits_in_view(
+    ctx: &mut Context,
+    pointer: &str,
+    view: usize,
+    offset: u64,
+    size: u64,
+    length: Option<u64>,
+) {
+    let view_object = &ctx.items("bufferViews")[view];
+    let Some(view_length) = unsigned(view_object, "byteLength") else {
+        return;
+    };
+    if !offset.is_multiple_of(size) {
+        ctx.emit(
+            khronos::ACCESSOR_OFFSET_ALIGNMENT,
+            member(pointer, "byteOffset"),
+            format!("Offset {offset} is not a multiple of componentType length {size}."),
+        );
+    }
+    let total = unsigned(view_object, "byteOffset")
+        .unwrap_or(0)
+        .saturating_add(offset);
+    if !total.is_multiple_of(size) {
+        ctx.emit(
+            khronos::ACCESSOR_TOTAL_OFFSET_ALIGNMENT,
+            pointer,
+            format!("Accessor's total byteOffset {total} isn't a multiple of componentType length {size}."),
+        );
+    }
+    let fits = length
+        .and_then(|n| n.checked_add(offset))
+        .is_some_and(|end| end <= view_length);
+    if !fits {
+        let length = length.map_or_else(|| "more than 2^64".to_string(), |n| n.to_string());
+        let at = if offset > view_length {
+            member(pointer, "byteOffset")
+        } else {
+            pointer.to_string()
+        };
+        ctx.emit(
+            khronos::ACCESSOR_TOO_LONG,
+            at,
+            format!("Accessor (offset: {offset}, length: {length}) does not fit referenced bufferView [{view}] length {view_length}."),
+        );
+    }
+}
+
 /// The MIME type an image declares: its `mimeType`, else its data URI's media type.
 pub fn declared_mime(image: &Value) -> Option<String> {
     if let Some(m) = image.get("mimeType").and_then(Value::as_str) {

@@ -2,9 +2,7 @@
 //! accessor's, each part (indices, values) inside its bufferView, and the indices' data,
 //! strictly increasing and each below the accessor's count.
 
-use super::accessor_data::{in_view, packed_layout, Layout};
-use super::objects::fits_in_view;
-use super::resources::view_bytes;
+use super::resources::{fits_in_view, view_bytes};
 use crate::check::context::{member, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::gltf::accessor::{component_count, component_size};
@@ -102,55 +100,8 @@ pub fn check_indices(ctx: &mut Context) {
     }
 }
 
-/// The largest dense copy made of a sparse accessor without a bufferView (its base elements
-/// are zeros, and its count may claim anything).
-const MAX_ZEROS: usize = 64 << 20;
-
-/// A sparse accessor's elements with its values substituted, packed from offset 0, so that
-/// the accessor-data pass checks (min, max, normalisation …) what a loader reads. None when
-/// the base, the indices or the values cannot be read (each reported elsewhere).
-pub(super) fn substituted(ctx: &Context, accessor: &Value) -> Option<(Layout, Vec<u8>)> {
-    let sparse = accessor.get("sparse")?;
-    let layout = packed_layout(accessor)?;
-    let element = layout.size.checked_mul(layout.components)?;
-    let mut dense = match accessor.get("bufferView") {
-        Some(_) => {
-            let (base, bytes) = in_view(ctx, accessor)?;
-            (0..base.count)
-                .flat_map(|i| {
-                    let at = base.offset + i * base.stride;
-                    bytes[at..at + element].iter().copied()
-                })
-                .collect()
-        }
-        None => vec![
-            0u8;
-            layout
-                .count
-                .checked_mul(element)
-                .filter(|&n| n <= MAX_ZEROS)?
-        ],
-    };
-    let values = sparse.get("values")?;
-    let value_bytes = view_bytes(ctx, unsigned(values, "bufferView")? as usize)?;
-    let start = usize::try_from(unsigned(values, "byteOffset").unwrap_or(0)).ok()?;
-    let sparse_count = usize::try_from(unsigned(sparse, "count")?).ok()?;
-    let length = sparse_count.checked_mul(element)?;
-    let value_bytes = value_bytes.get(start..start.checked_add(length)?)?;
-    for (index, value) in readable_indices(ctx, sparse)?.zip(value_bytes.chunks_exact(element)) {
-        let at = usize::try_from(index)
-            .ok()
-            .and_then(|i| i.checked_mul(element));
-        let range = at.and_then(|at| Some(at..at.checked_add(element)?));
-        if let Some(slot) = range.and_then(|range| dense.get_mut(range)) {
-            slot.copy_from_slice(value);
-        }
-    }
-    Some((layout, dense))
-}
-
 /// The sparse indices, when their view holds all `sparse.count` of them.
-fn readable_indices<'c>(
+pub(super) fn readable_indices<'c>(
     ctx: &'c Context,
     sparse: &Value,
 ) -> Option<impl Iterator<Item = u64> + 'c> {
