@@ -376,3 +376,67 @@ fn outputs_that_are_not_an_asset_file_are_refused_before_converting() {
     assert_eq!(&run.stdout[..4], b"glTF", "a GLB on stdout");
     assert!(!folder.join("-").exists() && !folder.join("-.bin").exists());
 }
+
+#[test]
+fn a_folder_walk_finds_assets_in_any_case_and_leaves_out_what_the_user_excludes() {
+    let folder = tempfile::tempdir().unwrap();
+    let folder = folder.path();
+    let valid = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/valid/sheen-triangle.gltf"
+    ))
+    .unwrap();
+    for name in [
+        "A.GLTF",
+        "ignored/b.gltf",
+        ".hidden/c.gltf",
+        "excluded/d.gltf",
+        "kept/e.Gltf",
+    ] {
+        let path = folder.join(name);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, &valid).unwrap();
+    }
+    std::fs::write(folder.join(".gitignore"), "ignored/\n").unwrap();
+    let run = gltfmat(
+        folder,
+        &["check", ".", "--format", "json", "--exclude", "excluded/"],
+    );
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    let reports: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    let uris: Vec<&str> = (reports.as_array().unwrap().iter())
+        .map(|r| r["uri"].as_str().unwrap())
+        .collect();
+    assert_eq!(uris, ["./A.GLTF", "./kept/e.Gltf"]);
+
+    // A folder with no asset is not a pass.
+    std::fs::create_dir(folder.join("empty")).unwrap();
+    let run = gltfmat(folder, &["check", "empty"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        stderr(&run).contains("empty: no .gltf or .glb file found"),
+        "{}",
+        stderr(&run)
+    );
+}
+
+#[test]
+fn render_does_not_replace_a_file_without_force() {
+    let folder = tempfile::tempdir().unwrap();
+    let folder = folder.path();
+    std::fs::write(folder.join("material.png"), b"mine").unwrap();
+    let asset = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fixtures/valid/sheen-triangle.gltf"
+    );
+    let run = gltfmat(folder, &["render", asset, "--size", "8"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(stderr(&run).contains("material.png exists (use --force to replace it)"));
+    assert_eq!(std::fs::read(folder.join("material.png")).unwrap(), b"mine");
+    let run = gltfmat(folder, &["render", asset, "--size", "8", "--force"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert_eq!(
+        &std::fs::read(folder.join("material.png")).unwrap()[1..4],
+        b"PNG"
+    );
+}

@@ -43,6 +43,10 @@ pub struct CheckArgs {
     /// Skip a rule group, e.g. `plausibility` (repeatable; groups are listed by `gltfmat rules`).
     #[arg(long = "disable-group")]
     disabled_groups: Vec<String>,
+    /// Leave out walked files and folders matching this glob (gitignore syntax, relative
+    /// to each folder argument; repeatable).
+    #[arg(long, value_name = "GLOB")]
+    exclude: Vec<String>,
     /// No progress bar (it is shown only on a terminal, on stderr).
     #[arg(long, short)]
     quiet: bool,
@@ -90,7 +94,15 @@ pub fn run(args: CheckArgs) -> Outcome {
             continue;
         }
         match std::fs::metadata(input) {
-            Ok(metadata) if metadata.is_dir() => unreadable |= !collect_assets(input, &mut files),
+            Ok(metadata) if metadata.is_dir() => {
+                let before = files.len();
+                unreadable |= !collect_assets(input, &args.exclude, &mut files)?;
+                if files.len() == before {
+                    // A gate that checked nothing must not pass.
+                    eprintln!("gltfmat: {}: no .gltf or .glb file found", input.display());
+                    unreadable = true;
+                }
+            }
             // Anything else named is checked, or refused as not a regular file.
             Ok(_) => files.push(input.clone()),
             Err(e) => {
@@ -155,11 +167,29 @@ fn check_file(path: &Path, options: &CheckOptions) -> Result<Report, String> {
 /// Every .gltf/.glb (in any letter case) below a folder, sorted, as a walk in the style of
 /// ripgrep finds them: `.gitignore`d and hidden entries are left out and symlinked folders
 /// are not followed. An entry that is not a regular file (a FIFO, a device, or a symlink to
-/// one) is skipped with a note; false when a folder could not be read (reported).
-fn collect_assets(folder: &Path, out: &mut Vec<PathBuf>) -> bool {
+/// one) is skipped with a note; false when a folder could not be read (reported). `exclude`
+/// globs (gitignore syntax) leave matching paths out.
+fn collect_assets(
+    folder: &Path,
+    exclude: &[String],
+    out: &mut Vec<PathBuf>,
+) -> Result<bool, Failure> {
+    let mut overrides = ignore::overrides::OverrideBuilder::new(folder);
+    for glob in exclude {
+        overrides
+            .add(&format!("!{glob}"))
+            .map_err(|e| Failure::usage(format!("--exclude {glob}: {e}")))?;
+    }
+    let overrides = overrides
+        .build()
+        .map_err(|e| Failure::usage(format!("--exclude: {e}")))?;
     let mut found = Vec::new();
     let mut complete = true;
-    for entry in ignore::WalkBuilder::new(folder).require_git(false).build() {
+    let walk = ignore::WalkBuilder::new(folder)
+        .require_git(false)
+        .overrides(overrides)
+        .build();
+    for entry in walk {
         let entry = match entry {
             Ok(entry) => entry,
             Err(e) => {
@@ -183,7 +213,7 @@ fn collect_assets(folder: &Path, out: &mut Vec<PathBuf>) -> bool {
     }
     found.sort();
     out.extend(found);
-    complete
+    Ok(complete)
 }
 
 fn is_asset_name(path: &Path) -> bool {

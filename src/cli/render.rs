@@ -15,12 +15,21 @@ pub struct RenderArgs {
     all: bool,
     #[arg(short, long, default_value = "material.png")]
     output: PathBuf,
+    /// Replace an existing output file.
+    #[arg(long)]
+    force: bool,
     /// Pixels per side (per material with --all), 8 to 4096.
     #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u32).range(8..=4096))]
     size: u32,
 }
 
 pub fn run(args: RenderArgs) -> Outcome {
+    if args.output.exists() && !args.force {
+        return Err(Failure::usage(format!(
+            "{} exists (use --force to replace it)",
+            args.output.display()
+        )));
+    }
     let mut options = gltfmat::RenderOptions::default();
     options.material = args.material.clone();
     options.all = args.all;
