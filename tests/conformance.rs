@@ -353,3 +353,62 @@ fn khronos_profile_matches_the_released_validator_on_real_exporters_files() {
     );
     assert!(matching > 100, "only {matching} real-world files compared");
 }
+
+/// Real skinned 1.0 assets (COLLADA2GLTF's CesiumMan, Monster, RiggedFigure, RiggedSimple in
+/// every variant): all but RiggedSimple store weights that sum to as little as 0.18, and each
+/// upgrades, its weights renormalised where needed, to an asset that passes the output check.
+#[test]
+fn real_skinned_gltf1_assets_upgrade_with_renormalised_weights() {
+    let Some(models) = shared("real-world/gltf1/sample-models", "real skinned 1.0 assets") else {
+        return;
+    };
+    let (mut upgraded, mut renormalised_count) = (0, 0);
+    for model in ["CesiumMan", "Monster", "RiggedFigure", "RiggedSimple"] {
+        for path in assets_below(&models.join(model)) {
+            let bytes = std::fs::read(&path).unwrap();
+            let loader = FolderResources::beside(&path);
+            let result = gltfmat::upgrade(&bytes, &loader, &gltfmat::UpgradeOptions::default())
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let renormalised = result
+                .report
+                .iter()
+                .any(|n| n.text.starts_with("skin weights renormalised"));
+            renormalised_count += usize::from(renormalised);
+            let files = gltfmat::upgrade::output::layout(&result, "out.glb");
+            let report = gltfmat::upgrade::output::verify(&files);
+            assert!(
+                !report.has_errors(),
+                "{}: {:?}",
+                path.display(),
+                report.diagnostics.first()
+            );
+            upgraded += 1;
+        }
+    }
+    assert!(upgraded >= 16, "{upgraded} assets");
+    // CesiumMan, Monster and RiggedFigure (12 inputs) were refused before renormalising.
+    assert!(
+        renormalised_count >= 12,
+        "{renormalised_count} renormalised"
+    );
+}
+
+fn assets_below(folder: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![folder.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap().flatten() {
+            let p = entry.path();
+            let extension = p.extension().and_then(|e| e.to_str()).unwrap_or_default();
+            if p.is_dir() {
+                stack.push(p);
+            } else if extension.eq_ignore_ascii_case("gltf")
+                || extension.eq_ignore_ascii_case("glb")
+            {
+                out.push(p);
+            }
+        }
+    }
+    out.sort();
+    out
+}

@@ -186,6 +186,16 @@ impl<'s, 'a> Builder<'s, 'a> {
                 ),
             );
         }
+        if let Some(changed) = packed.renormalised {
+            self.note(
+                &at,
+                NoteKind::Decision,
+                format!(
+                    "skin weights renormalised: {} of {} vertices' weights did not sum to 1 (lowest sum {:.3}); each was divided by its sum, which draws what the 1.0 shaders drew (their perspective divide removed the same factor).",
+                    changed.vertices, input.count, changed.lowest
+                ),
+            );
+        }
         let (kind, count) = (input.kind.clone(), input.count);
         let index = self.add_accessor(packed, &kind, count, role, Some(id));
         self.packed_accessors.insert((id.to_string(), role), index);

@@ -5,8 +5,8 @@ use super::binary::Binary;
 use super::source::Source;
 pub use crate::gltf::accessor::FLOAT;
 use crate::gltf::accessor::{
-    component_count, component_size, decode_component, BYTE, SHORT, UNSIGNED_BYTE, UNSIGNED_INT,
-    UNSIGNED_SHORT,
+    component_count, component_size, decode_component, normalise, BYTE, SHORT, UNSIGNED_BYTE,
+    UNSIGNED_INT, UNSIGNED_SHORT,
 };
 use serde_json::Value;
 
@@ -135,6 +135,64 @@ pub struct Packed {
     pub max: Vec<f64>,
     /// The component type changed: say so in the report.
     pub converted_from: Option<u64>,
+    /// Skin weights divided by their per-vertex sum (see `renormalised_weights`).
+    pub renormalised: Option<Renormalised>,
+}
+
+/// What renormalising skin weights changed.
+#[derive(Debug, Clone, Copy)]
+pub struct Renormalised {
+    /// Vertices whose weights did not sum to 1.
+    pub vertices: usize,
+    /// The smallest such sum.
+    pub lowest: f64,
+}
+
+/// How far from 1 a vertex's weights may sum before they are divided by the sum: below
+/// the Khronos validator's allowance (2·10⁻⁷ per weight, summed in single precision).
+const WEIGHT_SUM_TOLERANCE: f64 = 1e-7;
+
+/// Skin weights (as values in [0, 1]) with each vertex's divided by its sum, when some sum
+/// is not 1. 2.0 requires sums of 1; the 1.0 shaders multiplied the affine joint matrices by
+/// the raw weights, which scales the homogeneous coordinate by the sum, and the perspective
+/// divide (and `normalize` of the normal) took the same factor out again: dividing by the
+/// sum draws exactly what 1.0 drew. A vertex whose weights sum to 0 is left as it is (no
+/// division repairs it; the output check reports it).
+pub fn renormalised_weights(accessor: &Accessor) -> Option<(Vec<f64>, Renormalised)> {
+    let unit = normalise(accessor.component_type);
+    let mut values: Vec<f64> = accessor.values().into_iter().map(unit).collect();
+    let mut changed = Renormalised {
+        vertices: 0,
+        lowest: f64::INFINITY,
+    };
+    for vertex in values.chunks_mut(accessor.components.max(1)) {
+        let sum: f64 = vertex.iter().sum();
+        if (sum - 1.0).abs() > WEIGHT_SUM_TOLERANCE && sum > 0.0 && sum.is_finite() {
+            vertex.iter_mut().for_each(|w| *w /= sum);
+            settle_in_single_precision(vertex);
+            changed.vertices += 1;
+            changed.lowest = changed.lowest.min(sum);
+        }
+    }
+    (changed.vertices > 0).then_some((values, changed))
+}
+
+/// Rounds weights that sum to 1 to single precision (as they are stored) and moves the
+/// rounding residue into the largest, so that their single-precision sum is 1 too.
+fn settle_in_single_precision(weights: &mut [f64]) {
+    let single_sum = |w: &[f64]| w.iter().fold(0f32, |sum, &v| (f64::from(sum) + v) as f32);
+    weights.iter_mut().for_each(|w| *w = f64::from(*w as f32));
+    let Some(largest) = (0..weights.len()).max_by(|&a, &b| weights[a].total_cmp(&weights[b]))
+    else {
+        return;
+    };
+    for _ in 0..3 {
+        let residue = 1.0 - f64::from(single_sum(weights));
+        if residue == 0.0 {
+            break;
+        }
+        weights[largest] = f64::from((weights[largest] + residue) as f32);
+    }
 }
 
 fn output_type(role: Role, input: u64) -> (u64, bool) {
@@ -195,6 +253,7 @@ pub fn pack_values(
         min,
         max,
         converted_from: None,
+        renormalised: None,
     }
 }
 
@@ -316,6 +375,7 @@ fn copy_elements(
         min,
         max,
         converted_from: None,
+        renormalised: None,
     }
 }
 
@@ -357,6 +417,16 @@ fn bounds_of(
 
 /// Appends an accessor's data to `out`, repacked for its role.
 pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
+    if role == Role::Weights {
+        if let Some((weights, renormalised)) = renormalised_weights(accessor) {
+            // Floats: the quotients are not representable as normalised integers.
+            let mut packed = pack_values(&weights, accessor.components, FLOAT, false, true, out);
+            packed.converted_from =
+                (accessor.component_type != FLOAT).then_some(accessor.component_type);
+            packed.renormalised = Some(renormalised);
+            return packed;
+        }
+    }
     let (component_type, normalized) = output_type(role, accessor.component_type);
     if component_type == accessor.component_type {
         return copy_elements(accessor, normalized, role.is_vertex(), out);
@@ -388,6 +458,16 @@ pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn weights_are_divided_by_their_sum_until_single_precision_sums_to_one() {
+        let mut weights = [0.1, 0.05, 0.03, 0.0].map(|w: f64| w / 0.18);
+        settle_in_single_precision(&mut weights);
+        let single: f32 = weights.iter().fold(0f32, |s, &w| (f64::from(s) + w) as f32);
+        assert_eq!(single, 1.0);
+        assert!((weights[0] - 0.1 / 0.18).abs() < 1e-6);
+        assert_eq!(weights[3], 0.0, "a zero weight stays zero");
+    }
 
     #[test]
     fn vertex_elements_are_padded_to_four_bytes_and_bounded() {
