@@ -548,3 +548,78 @@ fn a_scene_without_nodes_upgrades_to_a_valid_scene() {
     let report = gltfmat::check_bytes("s.glb", up.to_glb(), &NoResources, &Default::default());
     assert!(!report.has_errors(), "{:?}", report.diagnostics);
 }
+
+/// A one-triangle 1.0 asset whose vertex attributes are the given VEC3 arrays (3 vertices
+/// each), plus an animation with no channels.
+fn gltf1_triangle(attributes: &[(&str, [[f32; 3]; 3])]) -> Vec<u8> {
+    use base64::Engine;
+    let mut bin = Vec::new();
+    let mut accessors = serde_json::Map::new();
+    let mut semantics = serde_json::Map::new();
+    for (k, (semantic, vertices)) in attributes.iter().enumerate() {
+        let offset = bin.len();
+        bin.extend(vertices.iter().flatten().flat_map(|v| v.to_le_bytes()));
+        let (low, high) = (0..3).fold(([f32::MAX; 3], [f32::MIN; 3]), |(mut l, mut h), c| {
+            for v in vertices {
+                l[c] = l[c].min(v[c]);
+                h[c] = h[c].max(v[c]);
+            }
+            (l, h)
+        });
+        accessors.insert(
+            format!("a{k}"),
+            serde_json::json!({"bufferView": "v", "byteOffset": offset,
+            "componentType": 5126, "count": 3, "type": "VEC3", "min": low, "max": high}),
+        );
+        semantics.insert(semantic.to_string(), serde_json::json!(format!("a{k}")));
+    }
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&bin)
+    );
+    serde_json::to_vec(&serde_json::json!({
+        "asset": {"version": "1.0"},
+        "buffers": {"b": {"uri": uri, "byteLength": bin.len()}},
+        "bufferViews": {"v": {"buffer": "b", "byteOffset": 0, "byteLength": bin.len(), "target": 34962}},
+        "accessors": accessors,
+        "meshes": {"m": {"primitives": [{"attributes": semantics, "mode": 4}]}},
+        "nodes": {"n": {"meshes": ["m"]}},
+        "animations": {"idle": {"channels": [], "samplers": {}, "parameters": {}}},
+        "scenes": {"s": {"nodes": ["n"]}},
+        "scene": "s"
+    }))
+    .unwrap()
+}
+
+#[test]
+fn vec3_tangents_get_the_handedness_of_their_binormal_and_empty_animations_are_dropped() {
+    let up = [0.0, 0.0, 1.0];
+    let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let asset = gltf1_triangle(&[
+        ("POSITION", positions),
+        ("NORMAL", [up; 3]),
+        ("TANGENT", [[1.0, 0.0, 0.0]; 3]),
+        // cross(N, T) = +Y; a binormal along −Y makes the frame left-handed: w = −1.
+        (
+            "BINORMAL",
+            [[0.0, -1.0, 0.0], [0.0, -1.0, 0.0], [0.0, 1.0, 0.0]],
+        ),
+    ]);
+    let upgraded = upgrade(&asset, &NoResources, &UpgradeOptions::default()).unwrap();
+    let attributes = &upgraded.json["meshes"][0]["primitives"][0]["attributes"];
+    assert!(attributes.get("BINORMAL").is_none() && attributes.get("_BINORMAL").is_none());
+    let tangent = &upgraded.json["accessors"][attributes["TANGENT"].as_u64().unwrap() as usize];
+    assert_eq!(tangent["type"], "VEC4");
+    assert_eq!(tangent["min"], serde_json::json!([1.0, 0.0, 0.0, -1.0]));
+    assert_eq!(tangent["max"], serde_json::json!([1.0, 0.0, 0.0, 1.0]));
+    assert!(
+        upgraded.json.get("animations").is_none(),
+        "the empty animation is dropped"
+    );
+    assert!(upgraded
+        .report
+        .iter()
+        .any(|n| n.pointer == "/animations/idle" && n.text.contains("animates nothing")));
+    let report = output::verify(&output::layout(&upgraded, "out.glb"));
+    assert!(!report.has_errors(), "{:?}", report.diagnostics);
+}

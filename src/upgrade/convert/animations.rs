@@ -6,10 +6,20 @@ use crate::upgrade::{NoteKind, UpgradeError};
 use serde_json::{json, Value};
 use std::collections::HashMap;
 
+/// 1.0 allows an animation without channels; 2.0 requires one, and such an animation moves
+/// nothing, so it is dropped with this note.
+const NO_CHANNELS: &str = "animation without (resolvable) channels dropped: it animates nothing, and glTF 2.0 requires at least one channel.";
+
 impl Builder<'_, '_> {
     pub(in crate::upgrade) fn animations(&mut self) -> Result<(), UpgradeError> {
         for (id, animation) in self.source.dictionary("animations") {
             let at = pointer("animations", id);
+            let has_channels = (animation.get("channels").and_then(Value::as_array))
+                .is_some_and(|channels| !channels.is_empty());
+            if !has_channels {
+                self.note(&at, NoteKind::Dropped, NO_CHANNELS);
+                continue;
+            }
             let mut out = Self::named(id, animation);
             let parameters = animation.get("parameters");
             let mut sampler_index = HashMap::new();
@@ -66,6 +76,10 @@ impl Builder<'_, '_> {
                         "channel with an unresolved sampler or target dropped.",
                     ),
                 }
+            }
+            if channels.is_empty() {
+                self.note(&at, NoteKind::Dropped, NO_CHANNELS);
+                continue;
             }
             out.insert("samplers".into(), json!(samplers));
             out.insert("channels".into(), json!(channels));

@@ -1,7 +1,7 @@
 //! Meshes and primitives: attributes renamed, accessors repacked, modes kept.
 
 use crate::upgrade::builder::{pointer, Builder};
-use crate::upgrade::data::Role;
+use crate::upgrade::data::{self, Role};
 use crate::upgrade::{NoteKind, UpgradeError};
 use serde_json::{json, Map, Value};
 
@@ -28,10 +28,20 @@ impl Builder<'_, '_> {
     ) -> Result<Value, UpgradeError> {
         let mut attributes = Map::new();
         let source_attributes = primitive.get("attributes").and_then(Value::as_object);
+        let tangents = match source_attributes {
+            Some(source) => self.signed_tangents(source, at)?,
+            None => None,
+        };
+        if let Some(index) = tangents {
+            attributes.insert("TANGENT".into(), json!(index));
+        }
         for (semantic, accessor) in source_attributes.into_iter().flatten() {
             let Some(accessor) = accessor.as_str() else {
                 continue;
             };
+            if tangents.is_some() && matches!(semantic.as_str(), "TANGENT" | "BINORMAL") {
+                continue;
+            }
             let renamed = rename_semantic(semantic);
             if renamed != *semantic {
                 self.note(
@@ -58,6 +68,83 @@ impl Builder<'_, '_> {
             out.insert("mode".into(), mode.clone());
         }
         Ok(Value::Object(out))
+    }
+}
+
+impl Builder<'_, '_> {
+    /// 2.0 tangents for 1.0 VEC3 ones: VEC4 with w = ±1, the sign of dot(cross(N, T), B) with
+    /// the 1.0 BINORMAL (the bitangent 2.0 rebuilds as cross(N, T) · w), or +1 without one.
+    /// None when the tangents are not VEC3 (they are converted as they are).
+    fn signed_tangents(
+        &mut self,
+        attributes: &Map<String, Value>,
+        at: &str,
+    ) -> Result<Option<usize>, UpgradeError> {
+        let id = |semantic: &str| attributes.get(semantic).and_then(Value::as_str);
+        let Some(tangent_id) = id("TANGENT") else {
+            return Ok(None);
+        };
+        let read = |builder: &Self, accessor: &str| {
+            data::read(builder.source, accessor).map_err(|reason| UpgradeError::Resource {
+                pointer: pointer("accessors", accessor),
+                reason,
+            })
+        };
+        let tangents = read(self, tangent_id)?;
+        if tangents.kind != "VEC3" {
+            return Ok(None);
+        }
+        let count = tangents.count;
+        let vec3 = |builder: &Self, semantic: &str| -> Result<Option<_>, UpgradeError> {
+            let Some(accessor) = id(semantic) else {
+                return Ok(None);
+            };
+            let data = read(builder, accessor)?;
+            Ok((data.kind == "VEC3" && data.count == count).then_some(data))
+        };
+        let (normals, binormals) = (vec3(self, "NORMAL")?, vec3(self, "BINORMAL")?);
+        let mut values = Vec::with_capacity(count * 4);
+        for i in 0..count {
+            let t = [0, 1, 2].map(|c| tangents.get(i, c));
+            let w = match (&normals, &binormals) {
+                (Some(n), Some(b)) => {
+                    let n = [0, 1, 2].map(|c| n.get(i, c));
+                    let b = [0, 1, 2].map(|c| b.get(i, c));
+                    let cross = [
+                        n[1] * t[2] - n[2] * t[1],
+                        n[2] * t[0] - n[0] * t[2],
+                        n[0] * t[1] - n[1] * t[0],
+                    ];
+                    if cross[0] * b[0] + cross[1] * b[1] + cross[2] * b[2] < 0.0 {
+                        -1.0
+                    } else {
+                        1.0
+                    }
+                }
+                _ => 1.0,
+            };
+            values.extend(t);
+            values.push(w);
+        }
+        let packed = data::pack_values(&values, 4, data::FLOAT, false, true, &mut self.binary);
+        let index = self.add_accessor(
+            packed,
+            "VEC4",
+            count,
+            Role::FloatAttribute,
+            Some(tangent_id),
+        );
+        let how = if binormals.is_some() && normals.is_some() {
+            "w = the sign of dot(cross(NORMAL, TANGENT), BINORMAL); BINORMAL dropped, as 2.0 rebuilds it from NORMAL, TANGENT and w"
+        } else {
+            "w = +1 (no BINORMAL and NORMAL to take the handedness from)"
+        };
+        self.note(
+            format!("{at}/attributes/TANGENT"),
+            NoteKind::Decision,
+            format!("VEC3 tangents written as the VEC4 glTF 2.0 requires: {how}."),
+        );
+        Ok(Some(index))
     }
 }
 
