@@ -116,6 +116,15 @@ pub enum LoadError {
     /// Larger than a resource may be (bytes).
     #[error("too large ({0} bytes)")]
     TooLarge(u64),
+    /// No such file, but one whose name differs only in letter case (which a
+    /// case-insensitive file system would have read).
+    #[error("{uri}: no such file; {found} differs only in letter case")]
+    CaseMismatch {
+        /// The path the asset names.
+        uri: String,
+        /// The file that exists.
+        found: String,
+    },
     /// A folder, FIFO, socket or device: never read.
     #[error("{0}: not a regular file ({1})")]
     NotRegular(String, &'static str),
@@ -209,7 +218,13 @@ impl FolderResources {
         match folder.open_with(relative, &options) {
             Ok(file) => Ok(file.into_std()),
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                Err(LoadError::NotFound(relative.to_string()))
+                Err(match differing_in_case(folder, relative) {
+                    Some(found) => LoadError::CaseMismatch {
+                        uri: relative.to_string(),
+                        found,
+                    },
+                    None => LoadError::NotFound(relative.to_string()),
+                })
             }
             // cap-std refuses an escape with PermissionDenied and no OS error code; the
             // system's own EACCES carries one.
@@ -222,6 +237,21 @@ impl FolderResources {
             Err(e) => Err(LoadError::Io(e.to_string())),
         }
     }
+}
+
+/// The name of a file beside `relative`'s that differs from it only in letter case.
+fn differing_in_case(folder: &cap_std::fs::Dir, relative: &str) -> Option<String> {
+    let path = Path::new(relative);
+    let name = path.file_name()?.to_str()?;
+    let parent = path.parent().filter(|p| !p.as_os_str().is_empty());
+    let listing = match parent {
+        Some(parent) => folder.read_dir(parent).ok()?,
+        None => folder.entries().ok()?,
+    };
+    listing
+        .flatten()
+        .filter_map(|entry| entry.file_name().into_string().ok())
+        .find(|candidate| candidate.eq_ignore_ascii_case(name))
 }
 
 /// Whether a relative path names something outside its folder by its words alone (`..`
@@ -304,6 +334,13 @@ mod tests {
             loader.load("missing.bin"),
             Err(LoadError::NotFound(_))
         ));
+        // On a case-sensitive file system the near miss is named.
+        if !dir.join("SUB/A.BIN").exists() {
+            assert_eq!(
+                loader.load("A.bin").unwrap_err().to_string(),
+                "A.bin: no such file; a.bin differs only in letter case"
+            );
+        }
         #[cfg(unix)]
         {
             std::fs::write(dir.join("secret"), b"s").unwrap();
