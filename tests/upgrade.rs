@@ -623,3 +623,48 @@ fn vec3_tangents_get_the_handedness_of_their_binormal_and_empty_animations_are_d
     let report = output::verify(&output::layout(&upgraded, "out.glb"));
     assert!(!report.has_errors(), "{:?}", report.diagnostics);
 }
+
+#[test]
+fn quantized_positions_are_decoded_with_their_decode_matrix() {
+    use base64::Engine;
+    // Two unsigned-short positions; the matrix scales by 1/65535 and moves by (−0.5, 0, 2).
+    let stored: Vec<u8> = [0u16, 0, 0, 65535, 65535, 65535]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    let s = 1.0 / 65535.0;
+    let matrix = [
+        s, 0., 0., 0., 0., s, 0., 0., 0., 0., s, 0., -0.5, 0., 2., 1.,
+    ];
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&stored)
+    );
+    let gltf1 = serde_json::json!({
+        "asset": {"version": "1.0"},
+        "extensionsUsed": ["WEB3D_quantized_attributes"],
+        "buffers": {"b": {"uri": uri, "byteLength": 12}},
+        "bufferViews": {"v": {"buffer": "b", "byteOffset": 0, "byteLength": 12, "target": 34962}},
+        "accessors": {"p": {"bufferView": "v", "byteOffset": 0, "componentType": 5123, "count": 2, "type": "VEC3",
+            "extensions": {"WEB3D_quantized_attributes": {"decodeMatrix": matrix,
+                "decodedMin": [-0.5, 0, 2], "decodedMax": [0.5, 1, 3]}}}},
+        "meshes": {"m": {"primitives": [{"attributes": {"POSITION": "p"}, "mode": 0}]}},
+        "nodes": {"n": {"meshes": ["m"]}},
+        "scenes": {"s": {"nodes": ["n"]}},
+        "scene": "s"
+    });
+    let upgraded = upgrade(
+        &serde_json::to_vec(&gltf1).unwrap(),
+        &NoResources,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    let position = &upgraded.json["accessors"][0];
+    assert_eq!(position["componentType"], 5126);
+    assert_eq!(position["min"], serde_json::json!([-0.5, 0.0, 2.0]));
+    assert_eq!(position["max"], serde_json::json!([0.5, 1.0, 3.0]));
+    assert!(upgraded
+        .report
+        .iter()
+        .any(|n| n.text.contains("decodeMatrix")));
+}

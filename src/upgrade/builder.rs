@@ -175,7 +175,33 @@ impl<'s, 'a> Builder<'s, 'a> {
             pointer: at.clone(),
             reason,
         })?;
-        let packed = data::pack(&input, role, &mut self.binary);
+        let quantization = (self.source.object("accessors", id))
+            .and_then(|a| a.get("extensions"))
+            .and_then(|e| e.get("WEB3D_quantized_attributes"));
+        let packed = match data::dequantized(&input, quantization) {
+            None => data::pack(&input, role, &mut self.binary),
+            Some(decoded) => {
+                let decoded = decoded.map_err(|reason| UpgradeError::Invalid {
+                    pointer: format!("{at}/extensions/WEB3D_quantized_attributes"),
+                    reason,
+                })?;
+                self.note(
+                    &at,
+                    NoteKind::Decision,
+                    "WEB3D_quantized_attributes decoded with its decodeMatrix to floats (glTF 2.0 core has no decode matrix).",
+                );
+                let mut packed = data::pack_values(
+                    &decoded,
+                    input.components,
+                    data::FLOAT,
+                    false,
+                    role.is_vertex(),
+                    &mut self.binary,
+                );
+                packed.converted_from = Some(input.component_type);
+                packed
+            }
+        };
         if let Some(from) = packed.converted_from {
             self.note(
                 &at,

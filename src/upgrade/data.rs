@@ -51,7 +51,7 @@ impl Role {
         }
     }
 
-    fn is_vertex(self) -> bool {
+    pub fn is_vertex(self) -> bool {
         !matches!(self, Role::Indices | Role::Data)
     }
 }
@@ -413,6 +413,37 @@ fn bounds_of(
         }
     }
     (low[..n].to_vec(), high[..n].to_vec())
+}
+
+/// The values of an accessor quantized with WEB3D_quantized_attributes, decoded: each element
+/// v (n components) becomes the first n rows of `decodeMatrix` · [v, 1] (column-major, of
+/// size (n + 1)²). None without the extension; `Err` when its matrix has the wrong size.
+pub fn dequantized(
+    accessor: &Accessor,
+    extension: Option<&Value>,
+) -> Option<Result<Vec<f64>, String>> {
+    let matrix = extension?.get("decodeMatrix");
+    let n = accessor.components;
+    let matrix: Option<Vec<f64>> = matrix
+        .and_then(Value::as_array)
+        .filter(|m| m.len() == (n + 1) * (n + 1))
+        .and_then(|m| m.iter().map(Value::as_f64).collect());
+    let Some(matrix) = matrix else {
+        return Some(Err(format!(
+            "WEB3D_quantized_attributes decodeMatrix is not {0}×{0} numbers",
+            n + 1
+        )));
+    };
+    let stored = accessor.values();
+    let mut decoded = Vec::with_capacity(stored.len());
+    for element in stored.chunks_exact(n.max(1)) {
+        for row in 0..n {
+            let column = |c: usize| matrix[c * (n + 1) + row];
+            let sum: f64 = (0..n).map(|c| column(c) * element[c]).sum();
+            decoded.push(sum + column(n));
+        }
+    }
+    Some(Ok(decoded))
 }
 
 /// Appends an accessor's data to `out`, repacked for its role.
