@@ -72,6 +72,11 @@ fn corpus() -> Option<PathBuf> {
 }
 
 fn cases(folder: &Path) -> Vec<PathBuf> {
+    files_below(folder, |p| p.to_string_lossy().ends_with(".report.json"))
+}
+
+/// Every file below `folder` that `keep` accepts, sorted.
+fn files_below(folder: &Path, keep: impl Fn(&Path) -> bool) -> Vec<PathBuf> {
     let mut out = Vec::new();
     let mut stack = vec![folder.to_path_buf()];
     while let Some(dir) = stack.pop() {
@@ -79,7 +84,7 @@ fn cases(folder: &Path) -> Vec<PathBuf> {
             let p = entry.path();
             if p.is_dir() {
                 stack.push(p);
-            } else if p.to_string_lossy().ends_with(".report.json") {
+            } else if keep(&p) {
                 out.push(p);
             }
         }
@@ -394,21 +399,8 @@ fn real_skinned_gltf1_assets_upgrade_with_renormalised_weights() {
 }
 
 fn assets_below(folder: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    let mut stack = vec![folder.to_path_buf()];
-    while let Some(dir) = stack.pop() {
-        for entry in std::fs::read_dir(&dir).unwrap().flatten() {
-            let p = entry.path();
-            let extension = p.extension().and_then(|e| e.to_str()).unwrap_or_default();
-            if p.is_dir() {
-                stack.push(p);
-            } else if extension.eq_ignore_ascii_case("gltf")
-                || extension.eq_ignore_ascii_case("glb")
-            {
-                out.push(p);
-            }
-        }
-    }
-    out.sort();
-    out
+    files_below(folder, |p| {
+        let extension = p.extension().and_then(|e| e.to_str()).unwrap_or_default();
+        extension.eq_ignore_ascii_case("gltf") || extension.eq_ignore_ascii_case("glb")
+    })
 }
