@@ -44,10 +44,7 @@ enum Command {
 fn main() -> ExitCode {
     // An interrupted upgrade leaves no temporary behind (they can be as large as the output).
     // Without a handler (another one already set) a killed run's are removed by the next.
-    let _ = ctrlc::set_handler(|| {
-        gltfmat::upgrade::output::remove_unfinished();
-        std::process::exit(130);
-    });
+    let _ = ctrlc::set_handler(|| gltfmat::upgrade::output::exit_removing_unfinished(130));
     let outcome = match Cli::parse().command {
         Command::Check(args) => check::run(args),
         Command::Upgrade(args) => upgrade::run(args),

@@ -220,7 +220,7 @@ pub fn may_write(target: &Path, protected: &[FileId], force: bool) -> Result<(),
 ///
 /// Temporaries are created new (never through an existing name or symlink) under
 /// unpredictable names, and are removed when the process is interrupted (see
-/// [`remove_unfinished`]); a later run into the same folder removes those a killed run left.
+/// [`exit_removing_unfinished`]); a later run into the same folder removes those a killed run left.
 /// Side files are renamed before the main file, so the main file never names missing data.
 /// Without `force` no existing file is replaced, even one created while this runs; with it,
 /// existing files are, except the `protected` ones (see [`may_write`]).
@@ -274,7 +274,7 @@ pub fn write_checked(
     })
 }
 
-pub use temporary::remove_unfinished;
+pub use temporary::exit_removing_unfinished;
 
 /// The side files written, by final name: the check reads them through it.
 struct Side<'t>(&'t [Temporary]);

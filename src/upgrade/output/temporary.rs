@@ -3,27 +3,34 @@
 //! random name, read back through its own handle, and placed by rename: without `force` a
 //! rename that refuses to replace (`RENAME_NOREPLACE`, or link and unlink), so two runs
 //! writing the same new file cannot both succeed. Unfinished temporaries are removed on
-//! drop, on interruption ([`remove_unfinished`]), and, after a kill, by the next run into
-//! the same folder ([`remove_stale`]).
+//! drop, on interruption ([`exit_removing_unfinished`]), and, after a kill, by the next run
+//! into the same folder ([`remove_stale`]).
 
 use super::WriteError;
 use crate::document::file::read_opened;
 use std::borrow::Cow;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
-/// The temporaries of this process not yet placed or removed.
+/// The temporaries of this process not yet placed or removed. A temporary is created and
+/// entered here under one lock, so an interruption never falls between the two.
 static UNFINISHED: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
-/// Removes every temporary this process has not placed yet. For the handler of SIGINT and
-/// SIGTERM, which then exits: a temporary can be as large as the output.
-pub fn remove_unfinished() {
-    if let Ok(unfinished) = UNFINISHED.lock() {
-        for path in unfinished.iter() {
-            let _ = std::fs::remove_file(path);
-        }
+fn unfinished() -> MutexGuard<'static, Vec<PathBuf>> {
+    UNFINISHED.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// Removes every temporary this process has not placed yet and exits with `code`. For the
+/// handler of SIGINT and SIGTERM: a temporary can be as large as the output. The registry
+/// stays locked until the process is gone, so a temporary another thread is about to
+/// create waits instead of appearing after the clean-up.
+pub fn exit_removing_unfinished(code: i32) -> ! {
+    let unfinished = unfinished();
+    for path in unfinished.iter() {
+        let _ = std::fs::remove_file(path);
     }
+    std::process::exit(code)
 }
 
 /// One output file under its temporary name.
@@ -38,19 +45,21 @@ pub(super) struct Temporary {
 struct Unfinished(PathBuf);
 
 impl Unfinished {
-    fn new(path: &Path) -> Unfinished {
-        if let Ok(mut unfinished) = UNFINISHED.lock() {
-            unfinished.push(path.to_path_buf());
-        }
-        Unfinished(path.to_path_buf())
+    /// Creates a file with `create` and enters its path, both under the registry's lock.
+    fn create(
+        create: impl FnOnce() -> std::io::Result<tempfile::NamedTempFile>,
+    ) -> std::io::Result<(tempfile::NamedTempFile, Unfinished)> {
+        let mut unfinished = unfinished();
+        let file = create()?;
+        let path = file.path().to_path_buf();
+        unfinished.push(path.clone());
+        Ok((file, Unfinished(path)))
     }
 }
 
 impl Drop for Unfinished {
     fn drop(&mut self) {
-        if let Ok(mut unfinished) = UNFINISHED.lock() {
-            unfinished.retain(|p| *p != self.0);
-        }
+        unfinished().retain(|p| *p != self.0);
     }
 }
 
@@ -73,11 +82,12 @@ impl Temporary {
         // the owner-only ones of a temporary.
         #[cfg(unix)]
         builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-        let file = builder.tempfile_in(folder).map_err(failed)?;
+        let (file, unfinished) =
+            Unfinished::create(|| builder.tempfile_in(folder)).map_err(failed)?;
         let temporary = Temporary {
             name: name.to_string(),
-            _unfinished: Unfinished::new(file.path()),
             file,
+            _unfinished: unfinished,
         };
         for part in parts {
             temporary.file.as_file().write_all(part).map_err(failed)?;
