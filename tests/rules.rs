@@ -1,7 +1,8 @@
 //! gltfmat's material rules as a specification: each case is a fixture (a clean base asset
 //! changed by a JSON merge patch, with images generated here so that what they contain is
-//! visible in the test) and the complete list of issues it must produce. Near-misses list
-//! nothing: they must stay silent. Every rule has at least one firing case and one near-miss.
+//! visible in the test) and the complete list of issues it must produce. Near-misses must
+//! not trigger their rule (they list nothing else either, but for a Khronos info the setting
+//! they need brings). Every rule has at least one firing case and one near-miss.
 
 mod common;
 
@@ -239,6 +240,45 @@ impl Case {
         self
     }
 
+    /// Adds an animation that takes the number at `pointer` from 0 to 1 in one second
+    /// (KHR_animation_pointer), its keys in a buffer of their own.
+    fn animated(mut self, pointer: &str) -> Case {
+        let keys: Vec<u8> = [0.0f32, 1.0, 0.0, 1.0]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        let push = |document: &mut Value, collection: &str, item: Value| {
+            let items = document[collection]
+                .as_array_mut()
+                .expect("the base has it");
+            items.push(item);
+            items.len() - 1
+        };
+        let buffer = push(
+            &mut self.document,
+            "buffers",
+            json!({"uri": data_uri("application/octet-stream", &keys), "byteLength": 16}),
+        );
+        let mut accessor = |offset: usize| {
+            let view = push(
+                &mut self.document,
+                "bufferViews",
+                json!({"buffer": buffer, "byteOffset": offset, "byteLength": 8}),
+            );
+            push(
+                &mut self.document,
+                "accessors",
+                json!({"bufferView": view, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0.0], "max": [1.0]}),
+            )
+        };
+        let (input, output) = (accessor(0), accessor(8));
+        self.document["animations"] = json!([{
+            "channels": [{"sampler": 0, "target": {"path": "pointer", "extensions": {"KHR_animation_pointer": {"pointer": pointer}}}}],
+            "samplers": [{"input": input, "output": output}]
+        }]);
+        self
+    }
+
     fn expect(mut self, code: &'static str, pointer: &str) -> Case {
         self.expected.push((code, pointer.to_string()));
         self
@@ -276,8 +316,17 @@ fn collect_extension_names(value: &Value, names: &mut BTreeSet<String>) {
 }
 
 /// Every issue found, as (code, pointer), with each severity checked against the registry.
-fn issues(uri: &str, bytes: Vec<u8>, deep: bool, folder: Option<&str>) -> Vec<(String, String)> {
-    let options = CheckOptions::default().with_deep(deep);
+/// `groups` are the opt-in rule groups run besides the default ones.
+fn issues(
+    uri: &str,
+    bytes: Vec<u8>,
+    deep: bool,
+    groups: Vec<String>,
+    folder: Option<&str>,
+) -> Vec<(String, String)> {
+    let options = CheckOptions::default()
+        .with_deep(deep)
+        .with_enabled_groups(groups);
     let report = match folder {
         Some(folder) => check_bytes(uri, bytes, &FolderResources::new(folder), &options),
         None => check_bytes(uri, bytes, &NoResources, &options),
@@ -310,8 +359,20 @@ fn issues(uri: &str, bytes: Vec<u8>, deep: bool, folder: Option<&str>) -> Vec<(S
     found
 }
 
+/// The opt-in groups of the codes a case is about: a case about a plausibility rule runs
+/// that group, every other case runs the default profile as users get it.
+fn opt_in_groups<'c>(codes: impl Iterator<Item = &'c str>) -> Vec<String> {
+    codes
+        .filter_map(registry::find)
+        .filter(|info| registry::is_opt_in(info.group))
+        .map(|info| info.group.to_string())
+        .collect()
+}
+
 fn run(case: Case) -> Vec<String> {
     let (name, deep) = (case.name, case.deep);
+    let about = case.expected.iter().map(|(c, _)| *c).chain(case.silent_for);
+    let groups = opt_in_groups(about);
     let mut expected: Vec<_> = case
         .expected
         .iter()
@@ -319,7 +380,7 @@ fn run(case: Case) -> Vec<String> {
         .collect();
     expected.sort();
     let text = serde_json::to_vec_pretty(&case.declared()).expect("serialises");
-    let found = issues(name, text, deep, None);
+    let found = issues(name, text, deep, groups, None);
     assert_eq!(found, expected, "case `{name}`");
     expected.into_iter().map(|(code, _)| code).collect()
 }
@@ -411,7 +472,14 @@ fn cases() -> Vec<Case> {
         // -- colour space
         case("one image as base colour and occlusion", json!({"occlusionTexture": {"index": 0},
             "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}), vec![rgb([128, 128, 128])])
-            .expect("IMAGE_COLOR_SPACE_CONFLICT", &at("/occlusionTexture")),
+            .expect("IMAGE_COLOR_SPACE_CONFLICT", "/images/0"),
+        case("one image as base colour, occlusion and metallic-roughness, seen closer", json!({"occlusionTexture": {"index": 0},
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 0}, "metallicFactor": 0.0}}),
+            vec![rgb([128, 128, 128])]).deep()
+            .expect("IMAGE_COLOR_SPACE_CONFLICT", "/images/0"),
+        near_miss("IMAGE_COLOR_SPACE_CONFLICT", "a black-and-white image reads the same as sRGB colour and as linear data",
+            json!({"occlusionTexture": {"index": 0}, "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}),
+            vec![rgba_with_one([0, 0, 0, 255], [255, 255, 255, 255])]).deep(),
         near_miss("IMAGE_COLOR_SPACE_CONFLICT", "base colour RGB and sheen roughness alpha share an image", json!({
             "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0},
             "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.5,
@@ -429,8 +497,9 @@ fn cases() -> Vec<Case> {
         case("sheen texture with the default zero colour", material(ext("KHR_materials_sheen",
             json!({"sheenRoughnessFactor": 0.5, "sheenColorTexture": {"index": 0}}))), vec![rgb([200, 200, 200])])
             .expect("SHEEN_TEXTURE_DISABLED", &at("/extensions/KHR_materials_sheen/sheenColorTexture")),
-        near_miss("SHEEN_TEXTURE_DISABLED", "texture-only sheen object, the test-suite form", material(ext("KHR_materials_sheen",
-            json!({"sheenColorTexture": {"index": 0}}))), vec![rgb([200, 200, 200])]),
+        case("a sheen object holding only a texture (no factor at all)", material(ext("KHR_materials_sheen",
+            json!({"sheenColorTexture": {"index": 0}}))), vec![rgb([200, 200, 200])])
+            .expect("SHEEN_TEXTURE_DISABLED", &at("/extensions/KHR_materials_sheen/sheenColorTexture")),
         near_miss("SHEEN_TEXTURE_DISABLED", "sheen texture with a colour", material(ext("KHR_materials_sheen",
             json!({"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.5, "sheenColorTexture": {"index": 0}}))), vec![rgb([200, 200, 200])]),
         case("visible sheen with the default roughness", material(ext("KHR_materials_sheen", json!({"sheenColorFactor": [1.0, 1.0, 1.0]}))), vec![])
@@ -453,8 +522,13 @@ fn cases() -> Vec<Case> {
         case("ior on a material left at the default metallic 1", json!({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0]},
             "extensions": {"KHR_materials_ior": {"ior": 1.45}}}), vec![])
             .expect("SPECULAR_ON_METAL", &at("/extensions/KHR_materials_ior")),
-        near_miss("SPECULAR_ON_METAL", "ior on a skeleton material (no pbrMetallicRoughness)",
-            json!({"extensions": {"KHR_materials_ior": {"ior": 1.45}}}), vec![]),
+        case("ior on a material without pbrMetallicRoughness (metallic 1 by default)",
+            json!({"extensions": {"KHR_materials_ior": {"ior": 1.45}}}), vec![])
+            .expect("SPECULAR_ON_METAL", &at("/extensions/KHR_materials_ior")),
+        near_miss("SPECULAR_ON_METAL", "ior on a material whose metallicFactor is animated from 0 to 1",
+            json!({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0]}, "extensions": {"KHR_materials_ior": {"ior": 1.45}}}), vec![])
+            .animated("/materials/0/pbrMetallicRoughness/metallicFactor")
+            .expect("INCOMPLETE_EXTENSION_SUPPORT", "/animations/0/channels/0/target/extensions/KHR_animation_pointer"),
         near_miss("SPECULAR_ON_METAL", "ior on a dielectric", material(ext("KHR_materials_ior", json!({"ior": 1.45}))), vec![]),
         // -- pixels (--deep)
         case("anisotropy texel with no direction", material(ext("KHR_materials_anisotropy",
@@ -464,11 +538,13 @@ fn cases() -> Vec<Case> {
         near_miss("ANISOTROPY_DIRECTION_UNDEFINED", "no direction where the strength is zero", material(ext("KHR_materials_anisotropy",
             json!({"anisotropyStrength": 0.5, "anisotropyTexture": {"index": 0}}))),
             vec![rgba_with_one([255, 128, 255, 255], [128, 128, 0, 255])]).patch(with_tangents()).deep(),
-        case("normal texel far from unit length", material(json!({"normalTexture": {"index": 0}})),
-            vec![rgba_with_one([128, 128, 255, 255], [128, 128, 128, 255])]).patch(with_tangents()).deep()
-            .expect("NORMAL_TEXEL_NOT_UNIT", &at("/normalTexture")),
-        near_miss("NORMAL_TEXEL_NOT_UNIT", "tilted unit normals", material(json!({"normalTexture": {"index": 0}})),
+        case("a normal texel pointing into the surface", material(json!({"normalTexture": {"index": 0}})),
+            vec![rgba_with_one([128, 128, 255, 255], [128, 128, 100, 255])]).patch(with_tangents()).deep()
+            .expect("NORMAL_TEXEL_BELOW_SURFACE", &at("/normalTexture")),
+        near_miss("NORMAL_TEXEL_BELOW_SURFACE", "tilted unit normals", material(json!({"normalTexture": {"index": 0}})),
             vec![rgba_with_one([128, 128, 255, 255], [218, 128, 218, 255])]).patch(with_tangents()).deep(),
+        near_miss("NORMAL_TEXEL_BELOW_SURFACE", "normals longer than 1, as a renderer normalises them", material(json!({"normalTexture": {"index": 0}})),
+            vec![rgba_with_one([189, 188, 254, 255], [128, 128, 255, 255])]).patch(with_tangents()).deep(),
         case("constant alpha read as sheen roughness", material(ext("KHR_materials_sheen", json!({"sheenColorFactor": [1.0, 1.0, 1.0],
             "sheenRoughnessFactor": 0.5, "sheenRoughnessTexture": {"index": 0}}))), vec![rgba([9, 9, 9, 200])]).deep()
             .expect("TEXTURE_ALPHA_CONSTANT", &at("/extensions/KHR_materials_sheen/sheenRoughnessTexture")),
@@ -495,17 +571,35 @@ fn cases() -> Vec<Case> {
             .expect("PBR_METALLIC_MIXED", &at("/pbrMetallicRoughness/metallicRoughnessTexture")),
         near_miss("PBR_METALLIC_MIXED", "metal/dielectric texture", json!({"pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 0},
             "baseColorFactor": [0.5, 0.5, 0.5, 1.0]}}), vec![rgba_with_one([0, 128, 255, 255], [0, 128, 0, 255])]).deep(),
-        case("spec-gloss reflecting more than it receives", material(ext("KHR_materials_pbrSpecularGlossiness",
-            json!({"diffuseFactor": [0.9, 0.9, 0.9, 1.0], "specularFactor": [0.5, 0.5, 0.5]}))), vec![])
-            .expect("PBR_SPECGLOSS_ENERGY_GAIN", &at("/extensions/KHR_materials_pbrSpecularGlossiness")),
-        near_miss("PBR_SPECGLOSS_ENERGY_GAIN", "plausible spec-gloss", material(ext("KHR_materials_pbrSpecularGlossiness", spec_gloss())), vec![]),
+        near_miss("PBR_BASE_COLOR_RANGE", "clear glass: white base colour, full transmission", json!({
+            "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.0},
+            "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}}}), vec![]),
+        near_miss("PBR_BASE_COLOR_RANGE", "the default base colour, not written", json!({
+            "pbrMetallicRoughness": {"metallicFactor": 0.0}}), vec![]),
+        near_miss("PBR_METALLIC_MIXED", "0.1 as float32 is a dielectric", json!({
+            "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.100000001490116}}), vec![]),
     ]
 }
 
 #[test]
 fn the_base_fixture_is_clean() {
     let text = serde_json::to_vec(&base()).unwrap();
-    assert_eq!(issues("base", text, true, None), Vec::new());
+    let every_group = registry::OPT_IN_GROUPS
+        .iter()
+        .map(|g| g.to_string())
+        .collect();
+    assert_eq!(issues("base", text, true, every_group, None), Vec::new());
+}
+
+/// Diffuse 1 and specular 1 (the defaults) cannot reflect more than they receive: the
+/// extension scales diffuse by (1 − max specular). No rule, opt-in ones included, says so.
+#[test]
+fn a_specular_glossiness_material_at_its_defaults_is_not_a_finding() {
+    let spec_gloss = json!({"extensions": {"KHR_materials_pbrSpecularGlossiness": {}}});
+    let case = case("spec-gloss defaults", material(spec_gloss), vec![]);
+    let text = serde_json::to_vec(&case.declared()).unwrap();
+    let every_group = registry::OPT_IN_GROUPS.iter().map(|g| g.to_string()).collect();
+    assert_eq!(issues("spec-gloss defaults", text, true, every_group, None), Vec::new());
 }
 
 #[test]
@@ -560,7 +654,7 @@ fn file_fixtures_report_exactly_their_issues() {
         let full = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
         let bytes = std::fs::read(&full).unwrap_or_else(|e| panic!("{path}: {e}"));
         let folder = full.parent().unwrap().to_str().unwrap().to_string();
-        let found: Vec<_> = issues(path, bytes, false, Some(&folder))
+        let found: Vec<_> = issues(path, bytes, false, Vec::new(), Some(&folder))
             .into_iter()
             .filter(|(code, _)| {
                 registry::find(code).is_some_and(|i| i.origin == Origin::Gltfmat)

@@ -46,8 +46,11 @@ pub struct CheckOptions {
     pub max_issues: usize,
     /// Decode textures for the pixel rules.
     pub deep: bool,
-    /// Skip rule groups by name (e.g. "plausibility").
+    /// Skip rule groups by name (e.g. "materials").
     pub disabled_groups: Vec<String>,
+    /// Run these opt-in rule groups too (e.g. "plausibility"; see
+    /// [`rules::OPT_IN_GROUPS`]), unless they are also disabled.
+    pub enabled_groups: Vec<String>,
 }
 
 impl CheckOptions {
@@ -66,6 +69,12 @@ impl CheckOptions {
     /// These options with the rule groups `groups` skipped.
     pub fn with_disabled_groups(mut self, groups: Vec<String>) -> Self {
         self.disabled_groups = groups;
+        self
+    }
+
+    /// These options with the opt-in rule groups `groups` run.
+    pub fn with_enabled_groups(mut self, groups: Vec<String>) -> Self {
+        self.enabled_groups = groups;
         self
     }
 

@@ -1,6 +1,7 @@
 //! The registry of every code gltfmat can emit: the Khronos catalogue plus gltfmat's own rules.
 //! `gltfmat rules`, `gltfmat explain` and the SARIF rule list are generated from it.
 
+pub use super::rules::{is_opt_in, OPT_IN_GROUPS};
 use crate::diagnostic::{khronos, Code, Severity};
 
 /// Who defines a code.
@@ -59,6 +60,13 @@ pub fn all() -> impl Iterator<Item = CodeInfo> {
 /// The registered code named `code` (case-insensitive).
 pub fn find(code: &str) -> Option<CodeInfo> {
     all().find(|info| info.code.name().eq_ignore_ascii_case(code))
+}
+
+/// Whether `group` names the group of one of gltfmat's rules (case-insensitive).
+pub fn is_rule_group(group: &str) -> bool {
+    super::rules::RULES
+        .iter()
+        .any(|rule| rule.info.group.eq_ignore_ascii_case(group))
 }
 
 /// Why the default profile reports a Khronos code differently, when it does (see

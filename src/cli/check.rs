@@ -40,9 +40,12 @@ pub struct CheckArgs {
     /// Decode textures for the pixel rules.
     #[arg(long)]
     deep: bool,
-    /// Skip a rule group, e.g. `plausibility` (repeatable; groups are listed by `gltfmat rules`).
-    #[arg(long = "disable-group")]
+    /// Skip a rule group, e.g. `materials` (repeatable; groups are listed by `gltfmat rules`).
+    #[arg(long = "disable-group", value_name = "GROUP")]
     disabled_groups: Vec<String>,
+    /// Also run an opt-in rule group, e.g. `plausibility` (repeatable).
+    #[arg(long = "enable-group", value_name = "GROUP")]
+    enabled_groups: Vec<String>,
     /// Leave out walked files and folders matching this glob (gitignore syntax, relative
     /// to each folder argument; repeatable).
     #[arg(long, value_name = "GLOB")]
@@ -250,6 +253,20 @@ fn build_options(args: &CheckArgs) -> Result<CheckOptions, String> {
     options
         .disabled_groups
         .extend(args.disabled_groups.iter().cloned());
+    options
+        .enabled_groups
+        .extend(args.enabled_groups.iter().cloned());
+    for group in options
+        .disabled_groups
+        .iter()
+        .chain(&options.enabled_groups)
+    {
+        if !registry::is_rule_group(group) {
+            return Err(format!(
+                "unknown rule group '{group}' (see `gltfmat rules`)"
+            ));
+        }
+    }
     for code in options
         .ignore
         .iter()

@@ -6,7 +6,8 @@
 //! only = []
 //! max-issues = 100
 //! deep = false
-//! disabled-groups = ["plausibility"]
+//! disabled-groups = ["materials"]
+//! enabled-groups = ["plausibility"]   # opt-in groups, off by default
 //! [severity]
 //! IMAGE_NPOT_DIMENSIONS = "warning"
 //! ```
@@ -31,6 +32,8 @@ pub struct Config {
     deep: bool,
     #[serde(default)]
     disabled_groups: Vec<String>,
+    #[serde(default)]
+    enabled_groups: Vec<String>,
 }
 
 pub const FILE_NAME: &str = "gltfmat.toml";
@@ -79,7 +82,8 @@ impl Config {
             .with_profile(profile)
             .with_deep(self.deep)
             .with_max_issues(self.max_issues.unwrap_or(0))
-            .with_disabled_groups(self.disabled_groups);
+            .with_disabled_groups(self.disabled_groups)
+            .with_enabled_groups(self.enabled_groups);
         options.ignore = self.ignore;
         options.only = self.only;
         options.severity_overrides = severity_overrides;

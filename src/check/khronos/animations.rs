@@ -46,6 +46,26 @@ pub fn check(ctx: &mut Context) {
     }
 }
 
+/// Every JSON pointer an animation channel targets through KHR_animation_pointer.
+pub fn animated_pointers(root: &Value) -> std::collections::HashSet<&str> {
+    let channels = root
+        .get("animations")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(|animation| animation.get("channels")?.as_array())
+        .flatten();
+    channels
+        .filter_map(|channel| {
+            let extension = channel.get("target")?.get("extensions")?;
+            extension
+                .get("KHR_animation_pointer")?
+                .get("pointer")?
+                .as_str()
+        })
+        .collect()
+}
+
 /// The target path `pointer` exists only with KHR_animation_pointer, which then owns the
 /// target: no node, and that path.
 fn animation_pointer(ctx: &mut Context, channel: &Value, at: &str, declared: bool) {

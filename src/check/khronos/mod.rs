@@ -6,7 +6,7 @@
 pub(crate) mod accessor_data;
 mod accessor_fast;
 pub(crate) mod accessor_usage;
-mod animations;
+pub(crate) mod animations;
 mod cameras;
 pub(crate) mod ext;
 mod extensions;

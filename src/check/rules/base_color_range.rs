@@ -3,7 +3,7 @@
 use super::texels::Texels;
 use super::{Rule, Run, LARGE_AREA};
 use crate::check::context::{number, Context};
-use crate::check::khronos::materials::SlotUse;
+use crate::check::khronos::materials::{extension, SlotUse};
 use crate::diagnostic::Severity;
 use crate::gltf::color::{linear_to_srgb, luminance, srgb_to_linear};
 use serde_json::Value;
@@ -21,15 +21,17 @@ const DOC: &str = "\
 ## What it does
 For dielectric materials (`metallicFactor` ≤ 0.1, so no texel can be more metallic), computes
 the base colour's luminance and encodes it as 8-bit sRGB. Reports values below 30 or above
-240: from `baseColorFactor` when there is no texture, and with `--deep` from the texture
-times the factor when more than 10% of its texels are out of range.
+240: from a `baseColorFactor` written in the file when there is no texture, and with `--deep`
+from the texture times the factor when more than 10% of its texels are out of range.
+Materials that transmit light (KHR_materials_transmission with a factor above 0 or a
+texture) are left out: their base colour also tints the transmitted light, and clear glass
+is white. Unlit materials are left out too.
 
 ## Why
 Real non-metals reflect between about 2% (charcoal) and 90% (fresh snow) of light. Darker
 albedos make surfaces look like holes under any lighting; brighter ones glow and break
 exposure. The range is the one Substance's PBR Validate and Khronos's asset auditor use.
-This is a plausibility hint, in its own group: `--disable-group plausibility` turns it off for
-stylised content.
+It is an opinion, not a spec rule: it runs only with `--enable-group plausibility`.
 
 ## Example
 ```json
@@ -45,11 +47,32 @@ fn is_dielectric(material: &Value) -> bool {
     pbr.map_or(1.0, |p| number(p, "metallicFactor", 1.0)) <= 0.1
 }
 
-fn factor(material: &Value) -> [f64; 3] {
-    let list = material
+/// Whether the material lets light through: its base colour is then the tint of the
+/// transmitted light as well (KHR_materials_transmission §Base Color), and clear glass must
+/// be white.
+fn transmits(material: &Value) -> bool {
+    extension(material, "KHR_materials_transmission").is_some_and(|t| {
+        number(t, "transmissionFactor", 0.0) > 0.0 || t.get("transmissionTexture").is_some()
+    })
+}
+
+/// Whether a base colour is judged at all: a dielectric that does not transmit light and is
+/// not unlit.
+fn judged(material: &Value) -> bool {
+    is_dielectric(material)
+        && !transmits(material)
+        && extension(material, "KHR_materials_unlit").is_none()
+}
+
+fn written_factor(material: &Value) -> Option<&Vec<Value>> {
+    material
         .get("pbrMetallicRoughness")
         .and_then(|p| p.get("baseColorFactor"))
-        .and_then(Value::as_array);
+        .and_then(Value::as_array)
+}
+
+fn factor(material: &Value) -> [f64; 3] {
+    let list = written_factor(material);
     let channel = |i: usize| {
         list.and_then(|l| l.get(i))
             .and_then(Value::as_f64)
@@ -71,10 +94,8 @@ fn check_factor(ctx: &mut Context) {
     for (_, pointer, material) in ctx.objects("materials") {
         let pbr = material.get("pbrMetallicRoughness");
         let textured = pbr.is_some_and(|p| p.get("baseColorTexture").is_some());
-        let unlit = material
-            .get("extensions")
-            .is_some_and(|e| e.get("KHR_materials_unlit").is_some());
-        if textured || unlit || !is_dielectric(material) {
+        // An absent factor is the default white, which nobody chose: nothing to point at.
+        if textured || written_factor(material).is_none() || !judged(material) {
             continue;
         }
         let level = srgb_level(factor(material));
@@ -89,7 +110,7 @@ fn check_factor(ctx: &mut Context) {
 }
 
 fn applies(slot_use: &SlotUse) -> bool {
-    slot_use.slot.key == "baseColorTexture" && is_dielectric(slot_use.material)
+    slot_use.slot.key == "baseColorTexture" && judged(slot_use.material)
 }
 
 fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {

@@ -1,8 +1,9 @@
 //! One image read as sRGB colour by one slot and as linear data by another.
 
+use super::texels::{self, Texels};
 use super::{Rule, Run};
 use crate::check::context::Context;
-use crate::check::khronos::materials::{by_image, slot_uses, Channels, A, B, G, R};
+use crate::check::khronos::materials::{by_image, slot_uses, Channels, SlotUse, A, B, G, R};
 use crate::diagnostic::Severity;
 
 pub const RULE: Rule = Rule::new(
@@ -16,12 +17,14 @@ pub const RULE: Rule = Rule::new(
 
 const DOC: &str = "\
 ## What it does
-Reports a texture binding that reads a channel of an image as linear data (metallic-roughness,
-occlusion, normal, sheen roughness, anisotropy, glossiness alpha, clearcoat, transmission …)
-when an earlier binding reads the same channel of the same image as sRGB colour (base colour,
-emissive, sheen colour, specular colour, diffuse, specular-glossiness RGB), or the other way
-round. Channels are compared one by one: base colour RGB with sheen roughness in the alpha of
-the same image is fine. The pointer is the later binding; the message names the earlier one.
+Reports an image one texture binding reads as sRGB colour (base colour, emissive, sheen
+colour, specular colour, diffuse, specular-glossiness RGB) and another reads as linear data
+(metallic-roughness, occlusion, normal, sheen roughness, anisotropy, glossiness alpha,
+clearcoat, transmission …) in the same channel. Channels are compared one by one: base colour
+RGB with sheen roughness in the alpha of the same image is fine. There is one finding per
+image, at the image; it names the first binding of each kind and counts the bindings that
+clash. With `--deep`, an image whose clashing channels hold only 0 and 255 is not reported:
+those are the two values both readings agree on.
 
 ## Why
 Engines decode a texture once, with one transfer function chosen by its use. Reading one
@@ -39,63 +42,69 @@ fn check(ctx: &mut Context) {
         .iter()
         .enumerate()
     {
-        let mut first = FirstReaders::default();
-        for (order, this) in on_image.iter().enumerate() {
-            let (srgb, linear) = this.reads();
-            if let Some(earlier) = first.earliest_clash(srgb, linear) {
-                let (e_srgb, e_linear) = on_image[earlier].reads();
-                let clash = (e_srgb & linear) | (e_linear & srgb);
-                let (here, there) = if srgb & clash != 0 {
-                    ("sRGB colour", "linear data")
-                } else {
-                    ("linear data", "sRGB colour")
-                };
-                ctx.emit(
-                    RULE.code(),
-                    this.pointer.clone(),
-                    format!(
-                        "Image {image} channel(s) {} are read as {here} here but as {there} by {}.",
-                        channel_names(clash),
-                        on_image[earlier].pointer
-                    ),
-                );
-            }
-            first.record(order, srgb, linear);
+        let Some(conflict) = Conflict::find(on_image) else {
+            continue;
+        };
+        if ctx.options.deep
+            && texels::decode_quietly(ctx, image).is_some_and(|t| conflict.harmless_on(&t))
+        {
+            continue;
         }
+        let message = format!(
+            "Image {image} is read as sRGB colour by {} and as linear data by {} in channel(s) {}; {} of its {} bindings clash.",
+            conflict.first_srgb,
+            conflict.first_linear,
+            channel_names(conflict.channels),
+            conflict.clashing,
+            on_image.len()
+        );
+        ctx.emit(RULE.code(), format!("/images/{image}"), message);
     }
 }
 
-/// For each channel, the first use (by order) that reads it as sRGB and as linear data, so
-/// that the earliest use a later one clashes with is found without rescanning them all.
-#[derive(Default)]
-struct FirstReaders {
-    srgb: [Option<usize>; 4],
-    linear: [Option<usize>; 4],
+/// How the bindings of one image disagree.
+struct Conflict<'u> {
+    first_srgb: &'u str,
+    first_linear: &'u str,
+    /// The channels read both ways.
+    channels: Channels,
+    /// Bindings that read at least one of those channels.
+    clashing: usize,
 }
 
-impl FirstReaders {
-    fn earliest_clash(&self, srgb: Channels, linear: Channels) -> Option<usize> {
-        CHANNELS
-            .iter()
-            .enumerate()
-            .flat_map(|(c, &bit)| {
-                let against_srgb = (linear & bit != 0).then_some(self.srgb[c]).flatten();
-                let against_linear = (srgb & bit != 0).then_some(self.linear[c]).flatten();
-                [against_srgb, against_linear]
-            })
-            .flatten()
-            .min()
+impl<'u> Conflict<'u> {
+    fn find(on_image: &'u [&SlotUse]) -> Option<Conflict<'u>> {
+        let reads: Vec<_> = on_image.iter().map(|u| u.reads()).collect();
+        let srgb = reads.iter().fold(0, |all, (s, _)| all | s);
+        let linear = reads.iter().fold(0, |all, (_, l)| all | l);
+        let channels = srgb & linear;
+        if channels == 0 {
+            return None;
+        }
+        let first = |kind: fn(&(Channels, Channels)) -> Channels| {
+            let at = reads.iter().position(|r| kind(r) & channels != 0)?;
+            Some(on_image[at].pointer.as_str())
+        };
+        Some(Conflict {
+            first_srgb: first(|r| r.0)?,
+            first_linear: first(|r| r.1)?,
+            channels,
+            clashing: reads
+                .iter()
+                .filter(|(s, l)| (s | l) & channels != 0)
+                .count(),
+        })
     }
 
-    fn record(&mut self, order: usize, srgb: Channels, linear: Channels) {
-        for (c, &bit) in CHANNELS.iter().enumerate() {
-            if srgb & bit != 0 {
-                self.srgb[c].get_or_insert(order);
-            }
-            if linear & bit != 0 {
-                self.linear[c].get_or_insert(order);
-            }
-        }
+    /// Whether every texel holds 0 or 255 in each clashing channel.
+    fn harmless_on(&self, texels: &Texels) -> bool {
+        let wanted: Vec<usize> = (0..4)
+            .filter(|&c| self.channels & CHANNELS[c] != 0)
+            .collect();
+        texels
+            .tally(|rgba| wanted.iter().any(|&c| rgba[c] != 0.0 && rgba[c] != 1.0))
+            .count
+            == 0
     }
 }
 

@@ -26,7 +26,9 @@ metallic-roughness texture, and with `--deep` a metallic-roughness texture whose
 A surface is either a metal or not; intermediate values belong only to the anti-aliased
 transitions between the two (rust edges, dust). Large areas of half-metal usually mean a
 specular or gloss map was reused as metallic, and they shade as a physically impossible
-material that looks different under every environment. A plausibility hint, in its own group.
+material that looks different under every environment. It is an opinion, not a spec rule: it
+runs only with `--enable-group plausibility`. Factors are compared as the single-precision
+values engines load, so 0.1 written as 0.100000001490116 is a dielectric.
 
 ## Example
 ```json
@@ -34,7 +36,12 @@ material that looks different under every environment. A plausibility hint, in i
 ```
 ";
 
-const MIXED: std::ops::Range<f64> = 0.1..0.9;
+/// Strictly between 0.1 and 0.9, compared in single precision: a float32 0.1 read back as
+/// a double lies just above 0.1.
+fn is_mixed(metallic: f64) -> bool {
+    let metallic = metallic as f32;
+    metallic > 0.1 && metallic < 0.9
+}
 
 fn metallic_factor(material: &Value) -> f64 {
     material
@@ -47,7 +54,7 @@ fn check_factor(ctx: &mut Context) {
         let pbr = material.get("pbrMetallicRoughness");
         let textured = pbr.is_some_and(|p| p.get("metallicRoughnessTexture").is_some());
         let metallic = metallic_factor(material);
-        if !textured && MIXED.contains(&metallic) && metallic != MIXED.start {
+        if !textured && is_mixed(metallic) {
             ctx.emit(
                 RULE.code(),
                 format!("{pointer}/pbrMetallicRoughness/metallicFactor"),
@@ -63,10 +70,7 @@ fn applies(slot_use: &SlotUse) -> bool {
 
 fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
     let factor = metallic_factor(slot_use.material);
-    let tally = texels.tally(|[_, _, b, _]| {
-        let metallic = f64::from(b) * factor;
-        MIXED.contains(&metallic) && metallic != MIXED.start
-    });
+    let tally = texels.tally(|[_, _, b, _]| is_mixed(f64::from(b) * factor));
     if tally.fraction() > LARGE_AREA {
         ctx.emit(
             RULE.code(),

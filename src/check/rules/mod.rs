@@ -18,11 +18,10 @@ mod greyscale_packed;
 mod linear_in_srgb;
 mod lossy_direction;
 mod metallic_mixed;
-mod normal_length;
+mod normal_below_surface;
 pub(crate) mod outside_folder;
 mod sheen_disabled;
 mod sheen_zero_roughness;
-mod specgloss_energy;
 mod specular_on_metal;
 mod srgb_in_linear;
 pub mod texels;
@@ -139,11 +138,10 @@ pub static RULES: &[&Rule] = &[
     &undecodable::RULE,
     &decode_limit::RULE,
     &anisotropy_direction::RULE,
-    &normal_length::RULE,
+    &normal_below_surface::RULE,
     &alpha_constant::RULE,
     &base_color_range::RULE,
     &metallic_mixed::RULE,
-    &specgloss_energy::RULE,
 ];
 
 /// Khronos codes that gltfmat's default profile reports differently, and why. The
@@ -175,11 +173,23 @@ pub static SUPERSESSIONS: &[(Code, &str)] = &[
     ),
 ];
 
+/// Groups whose rules run only when asked for: opinions about plausible values, which no
+/// spec sentence makes a defect, stay out of the default report.
+pub static OPT_IN_GROUPS: &[&str] = &["plausibility"];
+
+/// Whether `group` is one of the [`OPT_IN_GROUPS`].
+pub fn is_opt_in(group: &str) -> bool {
+    OPT_IN_GROUPS.iter().any(|g| g.eq_ignore_ascii_case(group))
+}
+
 fn enabled(ctx: &Context, rule: &Rule) -> bool {
-    !ctx.options
-        .disabled_groups
-        .iter()
-        .any(|g| g.eq_ignore_ascii_case(rule.info.group))
+    let named = |groups: &[String]| {
+        groups
+            .iter()
+            .any(|g| g.eq_ignore_ascii_case(rule.info.group))
+    };
+    let wanted = !is_opt_in(rule.info.group) || named(&ctx.options.enabled_groups);
+    wanted && !named(&ctx.options.disabled_groups)
 }
 
 /// Runs every enabled document rule, then (with `--deep`) every enabled pixel rule.

@@ -20,10 +20,8 @@ const DOC: &str = "\
 Reports `sheenColorTexture` and `sheenRoughnessTexture` on a material whose
 `sheenColorFactor` is [0, 0, 0] — which is also its default when the member is missing.
 
-A sheen object that holds textures and no factor at all is not reported: that minimal form is
-what test suites (the Khronos corpus among them) use to exercise texture references, while
-exporters always write the factors. As soon as any factor is written, a zero or missing
-`sheenColorFactor` is reported.
+A sheen object that holds textures and no factor at all is reported too: it is exactly the
+mistake this rule exists for (the textures are multiplied by the default factor 0).
 
 ## Why
 The sheen colour is the factor times the texture, so a zero factor turns the whole sheen layer
@@ -47,19 +45,13 @@ pub fn sheen_colour_is_zero(sheen: &Value) -> bool {
         .is_none_or(|f| f.iter().all(|c| c.as_f64() == Some(0.0)))
 }
 
-fn writes_a_factor(sheen: &Value) -> bool {
-    ["sheenColorFactor", "sheenRoughnessFactor"]
-        .iter()
-        .any(|key| sheen.get(key).is_some())
-}
-
 fn check(ctx: &mut Context) {
     for slot_use in slot_uses(ctx).iter() {
         if slot_use.slot.extension != Some("KHR_materials_sheen") {
             continue;
         }
         let sheen = extension(slot_use.material, "KHR_materials_sheen");
-        if sheen.is_some_and(|s| writes_a_factor(s) && sheen_colour_is_zero(s)) {
+        if sheen.is_some_and(sheen_colour_is_zero) {
             ctx.emit(
                 RULE.code(),
                 slot_use.pointer.clone(),

@@ -2,6 +2,7 @@
 
 use super::{Rule, Run};
 use crate::check::context::{number, Context};
+use crate::check::khronos::animations::animated_pointers;
 use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
 
@@ -16,13 +17,11 @@ pub const RULE: Rule = Rule::new(
 
 const DOC: &str = "\
 ## What it does
-Reports `KHR_materials_ior` and `KHR_materials_specular` on a material that has a
-`pbrMetallicRoughness` object whose metallic value is 1 everywhere: `metallicFactor` is 1 (its
-default when missing) and there is no `metallicRoughnessTexture` that could lower it.
-
-A material without any `pbrMetallicRoughness` object is not reported: that skeleton form is
-what test suites (the Khronos corpus among them) use to exercise an extension on its own,
-while exporters always write the object.
+Reports `KHR_materials_ior` and `KHR_materials_specular` on a material whose metallic value
+is 1 everywhere: `metallicFactor` is 1 (its default when missing, also when the whole
+`pbrMetallicRoughness` object is), there is no `metallicRoughnessTexture` that could lower it, and no
+animation channel (KHR_animation_pointer) targets `metallicFactor`: an animated factor is
+not 1 all the time.
 
 ## Why
 Both extensions change only the dielectric Fresnel term; a metal's reflectance is its base
@@ -39,12 +38,15 @@ glTF 2.0 §3.9.2 (metallicFactor default 1).
 ";
 
 fn check(ctx: &mut Context) {
+    let animated = animated_pointers(ctx.root);
     for (_, pointer, material) in ctx.objects("materials") {
-        let Some(pbr) = material.get("pbrMetallicRoughness") else {
-            continue;
-        };
-        let metallic = number(pbr, "metallicFactor", 1.0);
-        if metallic < 1.0 || pbr.get("metallicRoughnessTexture").is_some() {
+        let pbr = material.get("pbrMetallicRoughness");
+        let metallic = pbr.map_or(1.0, |p| number(p, "metallicFactor", 1.0));
+        let factor_pointer = format!("{pointer}/pbrMetallicRoughness/metallicFactor");
+        if metallic < 1.0
+            || pbr.is_some_and(|p| p.get("metallicRoughnessTexture").is_some())
+            || animated.contains(factor_pointer.as_str())
+        {
             continue;
         }
         for name in ["KHR_materials_ior", "KHR_materials_specular"] {

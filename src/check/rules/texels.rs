@@ -41,6 +41,14 @@ pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
     }
 }
 
+/// Decodes image `index` without reporting a failure: for a document rule that only looks
+/// closer when it can (the pixel rules report what cannot be decoded).
+pub fn decode_quietly(ctx: &Context, index: usize) -> Option<Texels> {
+    let bytes = ctx.image_bytes.get(index)?.as_deref()?;
+    let image = image_decode::decode(bytes).ok()?;
+    Some(Texels { image })
+}
+
 impl Texels {
     pub fn has_alpha(&self) -> bool {
         self.image.color().has_alpha()
