@@ -598,8 +598,14 @@ fn a_specular_glossiness_material_at_its_defaults_is_not_a_finding() {
     let spec_gloss = json!({"extensions": {"KHR_materials_pbrSpecularGlossiness": {}}});
     let case = case("spec-gloss defaults", material(spec_gloss), vec![]);
     let text = serde_json::to_vec(&case.declared()).unwrap();
-    let every_group = registry::OPT_IN_GROUPS.iter().map(|g| g.to_string()).collect();
-    assert_eq!(issues("spec-gloss defaults", text, true, every_group, None), Vec::new());
+    let every_group = registry::OPT_IN_GROUPS
+        .iter()
+        .map(|g| g.to_string())
+        .collect();
+    assert_eq!(
+        issues("spec-gloss defaults", text, true, every_group, None),
+        Vec::new()
+    );
 }
 
 #[test]

@@ -87,7 +87,7 @@ catalogue! {
     NODE_MATRIX_NON_TRS Error SemanticError "Matrix must be decomposable to TRS.";
     NODE_MATRIX_TRS Error SemanticError "A node can have either a matrix or any combination of translation/rotation/scale (TRS) properties.";
     NODE_SKINNED_MESH_LOCAL_TRANSFORMS Warning SemanticError "Local transforms will not affect a skinned mesh.";
-    NODE_SKINNED_MESH_NON_ROOT Info SemanticError "Node with a skinned mesh is not root. Parent transforms will not affect a skinned mesh.";
+    NODE_SKINNED_MESH_NON_ROOT Warning SemanticError "Node with a skinned mesh is not root. Parent transforms will not affect a skinned mesh.";
     NODE_SKINNED_MESH_PARENT_TRANSFORMS Warning SemanticError "Node with a skinned mesh has parent nodes with transforms. Parent transforms will not affect a skinned mesh.";
     NODE_SKIN_NO_SCENE Error SemanticError "A node with a skinned mesh is used in a scene that does not contain joint nodes.";
     NON_OBJECT_EXTRAS Info SemanticError "Prefer JSON Objects for extras.";

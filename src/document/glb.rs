@@ -19,9 +19,9 @@ pub struct GlbParts {
     pub version: u32,
     pub json: Option<Range<usize>>,
     pub bin: Option<Range<usize>>,
-    /// The JSON chunk was empty while another JSON chunk followed; the Khronos validator
-    /// then parses an empty document, so the caller reports INVALID_JSON.
-    pub json_expected_but_empty: bool,
+    /// The JSON chunk was empty and more bytes followed it; the Khronos validator then
+    /// parses an empty document, so the caller reports INVALID_JSON.
+    pub json_parsed_empty: bool,
 }
 
 fn at(code: Code, offset: usize, message: impl Into<String>) -> Diagnostic {
@@ -81,7 +81,17 @@ pub fn read(bytes: &[u8], diags: &mut dyn Sink) -> GlbParts {
     let mut pos = HEADER_LEN;
     let mut index = 0usize;
     let mut saw_empty_json = false;
-    while pos < declared && pos < bytes.len() {
+    // Chunk by chunk as the Khronos validator streams them: the header's checks (length,
+    // place, type, duplicates) all come before the data is found missing.
+    while pos < bytes.len() {
+        if pos == declared {
+            diags.push(at(
+                khronos::GLB_EXTRA_DATA,
+                pos,
+                "Extra data after the end of GLB stream.",
+            ));
+            return parts;
+        }
         if bytes.len() - pos < CHUNK_HEADER_LEN {
             diags.push(at(
                 khronos::GLB_UNEXPECTED_END_OF_CHUNK_HEADER,
@@ -90,101 +100,72 @@ pub fn read(bytes: &[u8], diags: &mut dyn Sink) -> GlbParts {
             ));
             return parts;
         }
-        let start = pos;
-        let length = read_u32(bytes, pos) as usize;
-        let kind = read_u32(bytes, pos + 4);
-        let data_start = pos + CHUNK_HEADER_LEN;
-        if !length.is_multiple_of(4) {
-            diags.push(at(
-                khronos::GLB_CHUNK_LENGTH_UNALIGNED,
-                start,
-                format!("Length of 0x{kind:08x} chunk is not aligned to 4-byte boundaries."),
-            ));
-        }
-        // `length` is at most 2^32 - 1, so this sum cannot overflow a 64-bit usize; on a 32-bit
-        // target checked_add keeps it honest.
-        let Some(data_end) = data_start.checked_add(length) else {
-            diags.push(at(
-                khronos::GLB_CHUNK_TOO_BIG,
-                start,
-                "Chunk length exceeds the address space.",
-            ));
-            return parts;
+        let chunk = Chunk {
+            start: pos,
+            length: read_u32(bytes, pos) as usize,
+            kind: read_u32(bytes, pos + 4),
+            index,
         };
-        if data_end > declared {
-            diags.push(at(
-                khronos::GLB_CHUNK_TOO_BIG,
-                start,
-                format!("Chunk (0x{kind:08x}) length ({length}) does not fit total GLB length."),
-            ));
+        check_chunk_header(&chunk, declared, diags);
+        // Saturating: on a 32-bit target a 4 GiB length would wrap.
+        let data_start = pos + CHUNK_HEADER_LEN;
+        let data_end = data_start.saturating_add(chunk.length);
+        let complete = data_end <= bytes.len();
+        let range = complete.then_some(data_start..data_end);
+        match chunk.kind {
+            CHUNK_JSON => {
+                if chunk.length == 0 {
+                    diags.push(at(
+                        khronos::GLB_EMPTY_CHUNK,
+                        chunk.start,
+                        "Chunk (JSON) cannot have zero length.",
+                    ));
+                }
+                if parts.json.is_some() || saw_empty_json {
+                    chunk.duplicate("JSON", diags);
+                } else if chunk.length == 0 {
+                    saw_empty_json = true;
+                    // The validator feeds the empty chunk to its JSON parser only when
+                    // more bytes follow it.
+                    parts.json_parsed_empty = data_end < bytes.len();
+                } else {
+                    parts.json = range;
+                }
+            }
+            CHUNK_BIN => {
+                if chunk.index > 1 && parts.bin.is_none() {
+                    diags.push(at(
+                        khronos::GLB_UNEXPECTED_BIN_CHUNK,
+                        chunk.start,
+                        "BIN chunk must be the second chunk.",
+                    ));
+                }
+                if chunk.length == 0 {
+                    diags.push(at(
+                        khronos::GLB_EMPTY_BIN_CHUNK,
+                        chunk.start,
+                        "Empty BIN chunk should be omitted.",
+                    ));
+                }
+                if parts.bin.is_some() {
+                    chunk.duplicate("BIN", diags);
+                } else {
+                    parts.bin = range;
+                }
+            }
+            _ => diags.push(at(
+                khronos::GLB_UNKNOWN_CHUNK_TYPE,
+                chunk.start,
+                format!("Unknown GLB chunk type: 0x{:08x}.", chunk.kind),
+            )),
         }
-        if data_end > bytes.len() {
+        if !complete {
             diags.push(at(
                 khronos::GLB_UNEXPECTED_END_OF_CHUNK_DATA,
                 bytes.len(),
                 "Unexpected end of chunk data.",
             ));
             return parts;
-        }
-        if index == 0 && kind != CHUNK_JSON {
-            diags.push(at(
-                khronos::GLB_UNEXPECTED_FIRST_CHUNK,
-                start,
-                format!("First chunk must be of JSON type. Found 0x{kind:08x} instead."),
-            ));
-        }
-        match kind {
-            CHUNK_JSON => {
-                if length == 0 {
-                    diags.push(at(
-                        khronos::GLB_EMPTY_CHUNK,
-                        start,
-                        "Chunk (JSON) cannot have zero length.",
-                    ));
-                }
-                if parts.json.is_some() || saw_empty_json {
-                    diags.push(at(
-                        khronos::GLB_DUPLICATE_CHUNK,
-                        start,
-                        "Chunk of type JSON has already been used.",
-                    ));
-                    parts.json_expected_but_empty = saw_empty_json && parts.json.is_none();
-                } else if length == 0 {
-                    saw_empty_json = true;
-                } else {
-                    parts.json = Some(data_start..data_end);
-                }
-            }
-            CHUNK_BIN => {
-                if length == 0 {
-                    diags.push(at(
-                        khronos::GLB_EMPTY_BIN_CHUNK,
-                        start,
-                        "Empty BIN chunk should be omitted.",
-                    ));
-                }
-                if parts.bin.is_some() {
-                    diags.push(at(
-                        khronos::GLB_DUPLICATE_CHUNK,
-                        start,
-                        "Chunk of type BIN has already been used.",
-                    ));
-                } else {
-                    if index > 1 {
-                        diags.push(at(
-                            khronos::GLB_UNEXPECTED_BIN_CHUNK,
-                            start,
-                            "BIN chunk must be the second chunk.",
-                        ));
-                    }
-                    parts.bin = Some(data_start..data_end);
-                }
-            }
-            _ => diags.push(at(
-                khronos::GLB_UNKNOWN_CHUNK_TYPE,
-                start,
-                format!("Unknown GLB chunk type: 0x{kind:08x}."),
-            )),
         }
         pos = data_end;
         index += 1;
@@ -195,14 +176,57 @@ pub fn read(bytes: &[u8], diags: &mut dyn Sink) -> GlbParts {
             pos,
             format!("Declared length ({declared}) does not match GLB length ({pos})."),
         ));
-    } else if bytes.len() > pos {
-        diags.push(at(
-            khronos::GLB_EXTRA_DATA,
-            pos,
-            "Extra data after the end of GLB stream.",
-        ));
     }
     parts
+}
+
+/// A chunk header as read.
+struct Chunk {
+    start: usize,
+    length: usize,
+    kind: u32,
+    /// Its place among the chunks, from 0.
+    index: usize,
+}
+
+impl Chunk {
+    fn duplicate(&self, name: &str, diags: &mut dyn Sink) {
+        diags.push(at(
+            khronos::GLB_DUPLICATE_CHUNK,
+            self.start,
+            format!("Chunk of type {name} has already been used."),
+        ));
+    }
+}
+
+/// The checks on a chunk header that do not depend on its type's state: alignment, fit in
+/// the declared length, JSON first.
+fn check_chunk_header(chunk: &Chunk, declared: usize, diags: &mut dyn Sink) {
+    let (start, kind) = (chunk.start, chunk.kind);
+    if !chunk.length.is_multiple_of(4) {
+        diags.push(at(
+            khronos::GLB_CHUNK_LENGTH_UNALIGNED,
+            start,
+            format!("Length of 0x{kind:08x} chunk is not aligned to 4-byte boundaries."),
+        ));
+    }
+    if (start + CHUNK_HEADER_LEN).saturating_add(chunk.length) > declared {
+        diags.push(at(
+            khronos::GLB_CHUNK_TOO_BIG,
+            start,
+            format!(
+                "Chunk (0x{kind:08x}) length ({}) does not fit total GLB length.",
+                chunk.length
+            ),
+        ));
+    }
+    if chunk.index == 0 && kind != CHUNK_JSON {
+        diags.push(at(
+            khronos::GLB_UNEXPECTED_FIRST_CHUNK,
+            start,
+            format!("First chunk must be of JSON type. Found 0x{kind:08x} instead."),
+        ));
+    }
 }
 
 #[cfg(test)]
@@ -276,6 +300,43 @@ mod tests {
             ]
         );
         assert!(parts.bin.is_some());
+    }
+
+    #[test]
+    fn a_truncated_chunk_is_judged_by_its_header_before_its_missing_data() {
+        // An empty JSON chunk, then JSON text read as a chunk header: length '{\r\n ',
+        // type '  "a', and the file ends. The type and the empty document are reported too.
+        let mut bytes = glb(&[(CHUNK_JSON, b"")], Some(32));
+        bytes.extend_from_slice(b"{\r\n   \"accessors\"");
+        bytes.truncate(32);
+        let (parts, found) = read(&bytes);
+        assert_eq!(
+            codes(&found),
+            vec![
+                khronos::GLB_EMPTY_CHUNK,
+                khronos::GLB_CHUNK_LENGTH_UNALIGNED,
+                khronos::GLB_CHUNK_TOO_BIG,
+                khronos::GLB_UNKNOWN_CHUNK_TYPE,
+                khronos::GLB_UNEXPECTED_END_OF_CHUNK_DATA
+            ]
+        );
+        assert!(parts.json_parsed_empty);
+        assert_eq!(found[4].location, Location::Offset(32));
+    }
+
+    #[test]
+    fn a_truncated_second_json_chunk_is_still_a_duplicate() {
+        let mut bytes = glb(&[(CHUNK_JSON, b"{}  "), (CHUNK_JSON, b"{}  ")], None);
+        bytes.truncate(bytes.len() - 2);
+        let (parts, found) = read(&bytes);
+        assert_eq!(
+            codes(&found),
+            vec![
+                khronos::GLB_DUPLICATE_CHUNK,
+                khronos::GLB_UNEXPECTED_END_OF_CHUNK_DATA
+            ]
+        );
+        assert!(parts.json.is_some());
     }
 
     #[test]

@@ -90,7 +90,7 @@ pub fn read(bytes: impl Into<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> 
             Container::Glb,
             parts.json,
             parts.bin,
-            parts.json_expected_but_empty,
+            parts.json_parsed_empty,
         )
     } else {
         (Container::Gltf, Some(0..bytes.len()), None, false)

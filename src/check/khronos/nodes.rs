@@ -348,7 +348,10 @@ fn has_transform(node: &Value) -> bool {
         && is("scale", &[1.0; 3]))
 }
 
-/// A skinned mesh ignores its node's and its ancestors' transforms: say so.
+/// A skinned mesh ignores its node's and its ancestors' transforms: say so. The Khronos
+/// profile follows the released validator (2.0.0-dev.3.10): a warning for every non-root
+/// skinned node. The default profile reports only what is lost, a parent's transform, as
+/// the next Khronos build does (NODE_SKINNED_MESH_PARENT_TRANSFORMS).
 fn skinned_placement(
     ctx: &mut Context,
     nodes: &[Value],
@@ -367,18 +370,19 @@ fn skinned_placement(
     if parents[i].is_none() {
         return;
     }
-    if hierarchy.transformed_above[i] {
+    if ctx.is_khronos() {
+        ctx.emit(
+            khronos::NODE_SKINNED_MESH_NON_ROOT,
+            pointer,
+            "Node with a skinned mesh is not root. Parent transforms will not affect a skinned mesh.",
+        );
+    } else if hierarchy.transformed_above[i] {
         ctx.emit(
             khronos::NODE_SKINNED_MESH_PARENT_TRANSFORMS,
             pointer,
             "Node with a skinned mesh has parent nodes with transforms. Parent transforms will not affect a skinned mesh.",
         );
     }
-    ctx.emit(
-        khronos::NODE_SKINNED_MESH_NON_ROOT,
-        pointer,
-        "Node with a skinned mesh is not root. Parent transforms will not affect a skinned mesh.",
-    );
 }
 
 /// A mesh's own morph weights do nothing when every node that draws it has weights.

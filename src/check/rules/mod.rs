@@ -168,6 +168,14 @@ pub static SUPERSESSIONS: &[(Code, &str)] = &[
         "On a glTF 1.0 document the 2.0 passes do not run: every Khronos code is replaced by GLTF_1_0_ASSET and the 1.0 PBR checks.",
     ),
     (
+        khronos::NODE_SKINNED_MESH_NON_ROOT,
+        "Replaced by NODE_SKINNED_MESH_PARENT_TRANSFORMS where a parent has a transform, as the Khronos build after 2.0.0-dev.3.10 does: under untransformed parents nothing is lost.",
+    ),
+    (
+        khronos::NODE_SKINNED_MESH_PARENT_TRANSFORMS,
+        "Reported by the default profile only: the released Khronos validator (2.0.0-dev.3.10) does not have it.",
+    ),
+    (
         khronos::IO_ERROR,
         "A URI leaving the asset's folder is URI_OUTSIDE_ASSET_FOLDER, not a failed read.",
     ),
