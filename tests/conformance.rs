@@ -6,6 +6,9 @@
 //! each case listed by name must still differ, so that the list shrinks as gltfmat catches
 //! up (in a listed folder, cases that already match are counted as passing).
 
+mod common;
+use common::shared;
+
 use gltfmat::check::registry::{self, Origin};
 use gltfmat::check::{check_bytes, CheckOptions, Location, Profile};
 use gltfmat::document::uri::FolderResources;
@@ -51,24 +54,6 @@ fn known_difference(case: &str) -> Option<(&'static str, &'static str)> {
         .iter()
         .find(|(prefix, _)| case.starts_with(prefix))
         .copied()
-}
-
-/// A corpus folder below `../shared`. Missing, the test is skipped with a loud message, except
-/// under CI (`CI` set), where a missing corpus fails.
-fn shared(relative: &str, test: &str) -> Option<PathBuf> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared")
-        .join(relative);
-    if path.is_dir() {
-        return Some(path);
-    }
-    let message = format!(
-        "*** {test}: ../shared/{relative} is MISSING ({}): this test did not run.",
-        path.display()
-    );
-    assert!(std::env::var_os("CI").is_none(), "\n{message}\n");
-    eprintln!("\n{message}\n");
-    None
 }
 
 fn corpus() -> Option<PathBuf> {

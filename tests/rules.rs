@@ -473,13 +473,13 @@ fn cases() -> Vec<Case> {
         case("one image as base colour and occlusion", json!({"occlusionTexture": {"index": 0},
             "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}), vec![rgb([128, 128, 128])])
             .expect("IMAGE_COLOR_SPACE_CONFLICT", "/images/0"),
-        case("one image as base colour, occlusion and metallic-roughness, seen closer", json!({"occlusionTexture": {"index": 0},
+        case("one image as base colour, occlusion and metallic-roughness, with --deep", json!({"occlusionTexture": {"index": 0},
             "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 0}, "metallicFactor": 0.0}}),
             vec![rgb([128, 128, 128])]).deep()
             .expect("IMAGE_COLOR_SPACE_CONFLICT", "/images/0"),
         near_miss("IMAGE_COLOR_SPACE_CONFLICT", "a black-and-white image reads the same as sRGB colour and as linear data",
             json!({"occlusionTexture": {"index": 0}, "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}),
-            vec![rgba_with_one([0, 0, 0, 255], [255, 255, 255, 255])]).deep(),
+            vec![rgba_with_one([0, 0, 0, 255], [255, 255, 255, 255])]),
         near_miss("IMAGE_COLOR_SPACE_CONFLICT", "base colour RGB and sheen roughness alpha share an image", json!({
             "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0},
             "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.5,

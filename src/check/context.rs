@@ -72,7 +72,7 @@ pub(crate) struct Context<'a> {
     pub buffers: Vec<Option<BufferData<'a>>>,
     /// Header of each image, where it could be read.
     pub images: Vec<Option<ImageInfo>>,
-    /// Encoded bytes of each image, kept only with `--deep` for the pixel rules.
+    /// Encoded bytes of each image, kept for gltfmat's rules (not in the Khronos profile).
     pub image_bytes: Vec<Option<Bytes>>,
     pub material_needs: Vec<MaterialNeeds>,
     /// Every texture binding, computed on first use (see `materials::slot_uses`).

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)] // each test binary uses its own subset
 
+use std::path::{Path, PathBuf};
+
 /// CRC-32 (ISO-HDLC), as PNG chunks need.
 pub fn crc32(bytes: &[u8]) -> u32 {
     let mut crc = !0u32;
@@ -23,4 +25,22 @@ pub fn chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
     out.extend(&body);
     out.extend(crc32(&body).to_be_bytes());
     out
+}
+
+/// A corpus folder below `../shared`. Missing, the test is skipped with a loud message, except
+/// under CI (`CI` set), where a missing corpus fails.
+pub fn shared(relative: &str, test: &str) -> Option<PathBuf> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared")
+        .join(relative);
+    if path.is_dir() {
+        return Some(path);
+    }
+    let message = format!(
+        "*** {test}: ../shared/{relative} is MISSING ({}): this test did not run.",
+        path.display()
+    );
+    assert!(std::env::var_os("CI").is_none(), "\n{message}\n");
+    eprintln!("\n{message}\n");
+    None
 }

@@ -390,7 +390,9 @@ pub fn check_images(ctx: &mut Context) {
                     resource.mime_type = Some(found.to_string());
                     resource.image = Some(info.clone());
                     ctx.images[i] = Some(info);
-                    if ctx.options.deep {
+                    // Kept for gltfmat's rules: the pixel rules, and the colour-space
+                    // rule, which decodes an image two slots read differently.
+                    if !ctx.is_khronos() {
                         ctx.image_bytes[i] = Some(bytes);
                     }
                 }

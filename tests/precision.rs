@@ -1,0 +1,116 @@
+//! The default profile is precise on files real exporters wrote: every finding `check` makes on
+//! ../shared/real-world/gltf2 (default profile, and with `--deep`) is listed in
+//! tests/expected/real-world-findings.tsv with the reason it is a real problem. A finding not
+//! listed fails the test, and so does a listed one no longer found: the list is the complete
+//! expectation, not an allowance.
+
+mod common;
+use common::shared;
+
+use gltfmat::check::{check_bytes, CheckOptions, Location};
+use gltfmat::document::uri::FolderResources;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+const EXPECTATION: &str = include_str!("expected/real-world-findings.tsv");
+
+/// (file below real-world/gltf2, code, pointer or @offset) → how many times.
+type Findings = BTreeMap<(String, String, String), usize>;
+
+/// The listed findings for a run with or without `--deep`, each entry's reason checked to be
+/// there.
+fn listed(deep: bool) -> Findings {
+    let mut findings = Findings::new();
+    for (number, line) in EXPECTATION.lines().enumerate() {
+        if line.starts_with('#') || line.trim().is_empty() {
+            continue;
+        }
+        let fields: Vec<&str> = line.split('\t').collect();
+        let [file, code, location, when, why] = fields[..] else {
+            panic!(
+                "line {}: expected 5 tab-separated fields: {line}",
+                number + 1
+            );
+        };
+        assert!(
+            why.trim().len() > 10,
+            "line {}: no reason given: {line}",
+            number + 1
+        );
+        let applies = match when {
+            "always" => true,
+            "deep" => deep,
+            "shallow" => !deep,
+            other => panic!("line {}: unknown 'when' {other}", number + 1),
+        };
+        if applies {
+            *findings
+                .entry((file.into(), code.into(), location.into()))
+                .or_default() += 1;
+        }
+    }
+    findings
+}
+
+fn found(root: &Path, deep: bool) -> Findings {
+    let list = std::fs::read_to_string(root.join("list.txt")).unwrap();
+    let options = CheckOptions::default().with_deep(deep);
+    let mut findings = Findings::new();
+    for name in list.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        let path = root.join(name);
+        let loader = FolderResources::beside(&path);
+        let bytes = std::fs::read(&path).unwrap();
+        let report = check_bytes(name, bytes, &loader, &options);
+        for d in &report.diagnostics {
+            let location = match &d.location {
+                Location::Pointer(p) => p.clone(),
+                Location::Offset(o) => format!("@{o}"),
+            };
+            *findings
+                .entry((name.to_string(), d.code.to_string(), location))
+                .or_default() += 1;
+        }
+    }
+    findings
+}
+
+/// What one side has more of than the other, one line per entry.
+fn surplus(more: &Findings, less: &Findings) -> Vec<String> {
+    more.iter()
+        .filter(|(key, n)| less.get(*key).unwrap_or(&0) < n)
+        .map(|((file, code, at), n)| format!("{file}\t{code}\t{at}\t×{n}"))
+        .collect()
+}
+
+fn compare(deep: bool) {
+    let Some(root) = shared("real-world/gltf2", "default-profile precision") else {
+        return;
+    };
+    let (expected, actual) = (listed(deep), found(&root, deep));
+    let unlisted = surplus(&actual, &expected);
+    let gone = surplus(&expected, &actual);
+    assert!(
+        unlisted.is_empty() && gone.is_empty(),
+        "--deep {deep}: {} finding(s) not in tests/expected/real-world-findings.tsv (each needs a reason it is a real problem, or is a false positive to fix):\n{}\n\n{} listed finding(s) no longer made (take them off the list):\n{}",
+        unlisted.len(),
+        unlisted.join("\n"),
+        gone.len(),
+        gone.join("\n")
+    );
+    let total: usize = actual.values().sum();
+    assert!(
+        total > 500,
+        "only {total} findings: is the corpus complete?"
+    );
+    println!("--deep {deep}: {total} findings, each listed with its reason");
+}
+
+#[test]
+fn every_default_profile_finding_on_real_exporters_files_is_listed_with_its_reason() {
+    compare(false);
+}
+
+#[test]
+fn every_deep_finding_on_real_exporters_files_is_listed_with_its_reason() {
+    compare(true);
+}
