@@ -8,9 +8,11 @@ use gltfmat::check::registry;
 use gltfmat::report::{render, Format, Style};
 use gltfmat::{check_bytes, check_path, CheckOptions, NoResources, Profile, Report};
 use rayon::prelude::*;
+use std::collections::HashMap;
 use std::io::{IsTerminal, Read};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
 
 #[derive(clap::Args)]
 pub struct CheckArgs {
@@ -34,7 +36,7 @@ pub struct CheckArgs {
     /// Stop after N issues per file and mark the report truncated.
     #[arg(long)]
     max_issues: Option<usize>,
-    /// A gltfmat.toml to use instead of the one found upward from the current folder.
+    /// A gltfmat.toml for every file, instead of the nearest one above each file.
     #[arg(long)]
     config: Option<PathBuf>,
     /// Decode textures for the pixel rules.
@@ -50,9 +52,42 @@ pub struct CheckArgs {
     /// to each folder argument; repeatable).
     #[arg(long, value_name = "GLOB")]
     exclude: Vec<String>,
+    /// List infos and hints in human output too (they are counted in the summary otherwise).
+    #[arg(long)]
+    all_findings: bool,
+    /// Colour in human output: `auto` follows the terminal, NO_COLOR, CLICOLOR_FORCE,
+    /// FORCE_COLOR and TERM=dumb.
+    #[arg(long, value_enum, default_value = "auto", value_name = "WHEN")]
+    color: ColorArg,
     /// No progress bar (it is shown only on a terminal, on stderr).
     #[arg(long, short)]
     quiet: bool,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum ColorArg {
+    Auto,
+    Always,
+    Never,
+}
+
+impl ColorArg {
+    /// Whether to colour standard output. `auto` asks anstream, which follows the terminal,
+    /// NO_COLOR (when not empty), CLICOLOR, CLICOLOR_FORCE and TERM; FORCE_COLOR (not empty,
+    /// not 0), which anstream does not read, forces colour as CLICOLOR_FORCE does.
+    fn wanted(self) -> bool {
+        match self {
+            ColorArg::Always => true,
+            ColorArg::Never => false,
+            ColorArg::Auto => {
+                let forced =
+                    std::env::var_os("FORCE_COLOR").is_some_and(|v| !v.is_empty() && v != "0");
+                let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
+                let choice = anstream::AutoStream::choice(&std::io::stdout());
+                (forced && !no_color) || choice != anstream::ColorChoice::Never
+            }
+        }
+    }
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -88,7 +123,11 @@ enum ProfileArg {
 }
 
 pub fn run(args: CheckArgs) -> Outcome {
-    let options = build_options(&args).map_err(Failure::usage)?;
+    let mut settings = Settings::new(&args);
+    // The configuration that applies here decides the human output's shape (and a broken
+    // one stops the run before any file is read).
+    let here = settings.for_folder(Path::new("."))?;
+    let all_findings = args.all_findings || here.1;
     let mut unreadable = false;
     let mut files = Vec::new();
     for input in &args.inputs {
@@ -121,10 +160,12 @@ pub fn run(args: CheckArgs) -> Outcome {
     } else {
         indicatif::ProgressBar::new(files.len() as u64)
     };
-    let results: Vec<Result<Report, String>> = files
-        .par_iter()
-        .map(|file| {
-            let result = check_file(file, &options);
+    let options: Vec<Arc<CheckOptions>> = (files.iter())
+        .map(|file| settings.for_file(file).map(|(options, _)| options))
+        .collect::<Result<_, _>>()?;
+    let results: Vec<Result<Report, String>> = (files.par_iter().zip(&options))
+        .map(|(file, options)| {
+            let result = check_file(file, options);
             progress.inc(1);
             result
         })
@@ -140,10 +181,9 @@ pub fn run(args: CheckArgs) -> Outcome {
             }
         }
     }
-    let colour = args.format == FormatArg::Human
-        && std::io::stdout().is_terminal()
-        && std::env::var_os("NO_COLOR").is_none();
-    print(&render(args.format.format(), &reports, &Style::new(colour)));
+    let colour = args.format == FormatArg::Human && args.color.wanted();
+    let style = Style::new(colour).with_all_findings(args.all_findings || all_findings);
+    print(&render(args.format.format(), &reports, &style));
     Ok(if unreadable {
         ExitCode::from(2)
     } else if reports.iter().any(Report::has_errors) {
@@ -225,14 +265,54 @@ fn is_asset_name(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
 }
 
-fn build_options(args: &CheckArgs) -> Result<CheckOptions, String> {
-    let config = match &args.config {
-        Some(path) => config::load(path)?,
-        None => match config::find_upward() {
-            Some(path) => config::load(&path)?,
-            None => config::Config::default(),
-        },
-    };
+/// The check options of each file: its gltfmat.toml (or `--config`'s) with the command-line
+/// options added, each configuration read and validated once.
+struct Settings<'a> {
+    args: &'a CheckArgs,
+    /// By configuration file (None: no file).
+    resolved: HashMap<Option<PathBuf>, (Arc<CheckOptions>, bool)>,
+}
+
+impl<'a> Settings<'a> {
+    fn new(args: &'a CheckArgs) -> Self {
+        Settings {
+            args,
+            resolved: HashMap::new(),
+        }
+    }
+
+    fn for_file(&mut self, file: &Path) -> Result<(Arc<CheckOptions>, bool), Failure> {
+        let folder = match file.parent() {
+            _ if file.as_os_str() == "-" => Path::new("."),
+            Some(parent) if !parent.as_os_str().is_empty() => parent,
+            _ => Path::new("."),
+        };
+        self.for_folder(folder)
+    }
+
+    fn for_folder(&mut self, folder: &Path) -> Result<(Arc<CheckOptions>, bool), Failure> {
+        let path = match &self.args.config {
+            Some(path) => Some(path.clone()),
+            None => config::find_upward(folder),
+        };
+        if let Some(known) = self.resolved.get(&path) {
+            return Ok(known.clone());
+        }
+        let config = match &path {
+            Some(path) => config::load(path),
+            None => Ok(config::Config::default()),
+        };
+        let all_findings = config.as_ref().is_ok_and(config::Config::all_findings);
+        let options = config
+            .and_then(|c| build_options(self.args, c))
+            .map_err(Failure::usage)?;
+        let resolved = (Arc::new(options), all_findings);
+        self.resolved.insert(path, resolved.clone());
+        Ok(resolved)
+    }
+}
+
+fn build_options(args: &CheckArgs, config: config::Config) -> Result<CheckOptions, String> {
     let mut options = config.into_options()?;
     if let Some(profile) = args.profile {
         options.profile = match profile {

@@ -1,4 +1,6 @@
-//! `gltfmat.toml`: the same keys as the command-line options.
+//! `gltfmat.toml`: the same keys as the command-line options. Each file is checked with the
+//! nearest gltfmat.toml in its folder or a parent (input from stdin: from the current
+//! folder), unless `--config` names one for all; command-line options add to it.
 //!
 //! ```toml
 //! profile = "default"      # or "khronos"
@@ -6,6 +8,7 @@
 //! only = []
 //! max-issues = 100
 //! deep = false
+//! all-findings = false     # human output lists infos and hints too
 //! disabled-groups = ["materials"]
 //! enabled-groups = ["plausibility"]   # opt-in groups, off by default
 //! [severity]
@@ -34,13 +37,15 @@ pub struct Config {
     disabled_groups: Vec<String>,
     #[serde(default)]
     enabled_groups: Vec<String>,
+    #[serde(default)]
+    all_findings: bool,
 }
 
 pub const FILE_NAME: &str = "gltfmat.toml";
 
-/// The nearest gltfmat.toml in the current folder or one of its parents.
-pub fn find_upward() -> Option<PathBuf> {
-    let mut dir = std::env::current_dir().ok()?;
+/// The nearest gltfmat.toml in `dir` or one of its parents.
+pub fn find_upward(dir: &Path) -> Option<PathBuf> {
+    let mut dir = std::path::absolute(dir).ok()?;
     loop {
         let candidate = dir.join(FILE_NAME);
         if candidate.is_file() {
@@ -67,6 +72,11 @@ pub fn parse_severity(pair: &str) -> Result<(String, Severity), String> {
 }
 
 impl Config {
+    /// Whether human output lists infos and hints.
+    pub fn all_findings(&self) -> bool {
+        self.all_findings
+    }
+
     pub fn into_options(self) -> Result<CheckOptions, String> {
         let profile = match self.profile.as_deref() {
             None | Some("default") => Profile::Default,

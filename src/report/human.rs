@@ -1,8 +1,11 @@
 //! Human output: `path:line:col: severity[CODE]: message`, then the source line with a caret.
+//! Errors come first, then warnings, each in file order; infos and hints, which real
+//! exporters' files carry by the dozen, are counted in the summary unless asked for.
 
-use super::{location_suffix, Positions};
-use crate::check::{Report, Severity};
+use super::{location_suffix, Positions, Style};
+use crate::check::{Diagnostic, Location, Report, Severity};
 use crate::document::json::LineIndex;
+use crate::document::Container;
 
 fn paint(text: &str, code: &str, colour: bool) -> String {
     if colour {
@@ -21,60 +24,246 @@ fn severity_colour(severity: Severity) -> &'static str {
     }
 }
 
-pub fn render(reports: &[Report], colour: bool) -> String {
+/// Whether a finding of `severity` gets its own lines.
+fn listed(severity: Severity, style: &Style) -> bool {
+    style.all_findings || matches!(severity, Severity::Error | Severity::Warning)
+}
+
+pub fn render(reports: &[Report], style: &Style) -> String {
     let mut out = String::new();
     for report in reports {
         let positions = Positions::of(report);
-        for d in &report.diagnostics {
-            let position = match positions.line_col(d) {
-                Some((l, c)) => format!("{}:{l}:{c}", report.uri),
-                None => report.uri.clone(),
-            };
-            let label = paint(
-                &format!("{}[{}]", d.severity.name(), d.code),
-                severity_colour(d.severity),
-                colour,
-            );
-            out.push_str(&format!(
-                "{position}: {label}: {}{}\n",
-                d.message,
-                location_suffix(d)
-            ));
-            if let Some(range) = positions.span(d) {
-                out.push_str(&snippet(&positions.lines, range.start, colour));
-            }
+        for d in in_reading_order(report, &positions, style) {
+            out.push_str(&finding(report, &positions, d, style.colour));
         }
-        out.push_str(&summary(report));
+        out.push_str(&summary(report, style));
+    }
+    if reports.len() > 1 {
+        out.push_str(&grand_total(reports));
     }
     out
 }
 
-/// The source line holding `offset`, with a caret under the column.
+/// The listed findings by severity, then line and column; findings without a place in the
+/// text (GLB container offsets, the whole file) after those that have one, in report order.
+fn in_reading_order<'r>(
+    report: &'r Report,
+    positions: &Positions,
+    style: &Style,
+) -> Vec<&'r Diagnostic> {
+    let mut listed: Vec<(&Diagnostic, Option<(usize, usize)>)> = (report.diagnostics.iter())
+        .filter(|d| listed(d.severity, style))
+        .map(|d| (d, positions.line_col(d)))
+        .collect();
+    listed.sort_by_key(|(d, at)| (d.severity, at.is_none(), *at));
+    listed.into_iter().map(|(d, _)| d).collect()
+}
+
+fn finding(report: &Report, positions: &Positions, d: &Diagnostic, colour: bool) -> String {
+    let position = match positions.line_col(d) {
+        Some((l, c)) => format!("{}:{l}:{c}", report.uri),
+        None => report.uri.clone(),
+    };
+    let label = paint(
+        &format!("{}[{}]", d.severity.name(), d.code),
+        severity_colour(d.severity),
+        colour,
+    );
+    let mut out = format!("{position}: {label}: {}{}\n", d.message, location_suffix(d));
+    if let Some(range) = positions.span(d) {
+        let byte = (report.document.container == Container::Glb
+            && matches!(d.location, Location::Pointer(_)))
+        .then(|| positions.text_start + range.start);
+        out.push_str(&notes(positions.shown_at(d), byte));
+        out.push_str(&snippet(&positions.lines, range.start, colour));
+    }
+    out
+}
+
+/// Where a finding is shown when that needs saying: at an enclosing value (its own member
+/// is not written), and at which byte of a GLB.
+fn notes(shown_at: Option<&str>, byte: Option<usize>) -> String {
+    let mut out = String::new();
+    if let Some(ancestor) = shown_at {
+        let ancestor = if ancestor.is_empty() { "/" } else { ancestor };
+        out.push_str(&format!(
+            "      = not written (its default applies); shown at {ancestor}\n"
+        ));
+    }
+    if let Some(byte) = byte {
+        out.push_str(&format!("      = byte {byte} of the file (JSON chunk)\n"));
+    }
+    out
+}
+
+/// Characters of a long line shown on each side of the column.
+const WINDOW: usize = 60;
+
+/// The source line holding `offset`, with a caret under the column. A long line (minified
+/// JSON, a GLB's JSON chunk) is cut to a window around the column; tabs before the column are
+/// repeated under it, so the caret lands where the terminal draws the character.
 fn snippet(lines: &LineIndex, offset: usize, colour: bool) -> String {
     let (line_no, column) = lines.line_col(offset);
-    let line = lines.line(line_no);
-    if line.len() > 200 {
-        return String::new();
-    }
-    let line = String::from_utf8_lossy(line);
+    let line = String::from_utf8_lossy(lines.line(line_no));
+    let chars: Vec<char> = line.trim_end().chars().collect();
+    let at = (column - 1).min(chars.len());
+    let from = at.saturating_sub(WINDOW);
+    let to = (at + WINDOW).min(chars.len());
+    let (lead, tail) = (
+        if from > 0 { "…" } else { "" },
+        if to < chars.len() { "…" } else { "" },
+    );
+    let shown: String = chars[from..to].iter().collect();
+    let pad: String = (chars[from..at].iter())
+        .map(|&c| if c == '\t' { '\t' } else { ' ' })
+        .collect();
     let gutter = format!("{line_no:>5} | ");
-    let pad: String = " ".repeat(gutter.len() - 2);
+    let blank = " ".repeat(gutter.len() - 2);
     format!(
-        "{gutter}{}\n{pad}| {}{}\n",
-        line.trim_end(),
-        " ".repeat(column - 1),
+        "{gutter}{lead}{shown}{tail}\n{blank}| {}{pad}{}\n",
+        " ".repeat(lead.chars().count()),
         paint("^", "1;31", colour)
     )
 }
 
-fn summary(report: &Report) -> String {
+fn summary(report: &Report, style: &Style) -> String {
+    let hidden = [Severity::Info, Severity::Hint]
+        .iter()
+        .any(|&s| !listed(s, style) && report.count(s) > 0);
     format!(
-        "{}: {} error(s), {} warning(s), {} info(s), {} hint(s){}\n",
+        "{}: {} error(s), {} warning(s), {} info(s), {} hint(s){}{}\n",
         report.uri,
         report.count(Severity::Error),
         report.count(Severity::Warning),
         report.count(Severity::Info),
         report.count(Severity::Hint),
+        if hidden {
+            " (infos and hints not listed: --all-findings lists them)"
+        } else {
+            ""
+        },
         if report.truncated { " (truncated)" } else { "" }
     )
+}
+
+fn grand_total(reports: &[Report]) -> String {
+    let total = |s: Severity| reports.iter().map(|r| r.count(s)).sum::<usize>();
+    let with_errors = reports.iter().filter(|r| r.has_errors()).count();
+    format!(
+        "{} file(s) checked, {with_errors} with errors: {} error(s), {} warning(s), {} info(s), {} hint(s)\n",
+        reports.len(),
+        total(Severity::Error),
+        total(Severity::Warning),
+        total(Severity::Info),
+        total(Severity::Hint),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::{check_bytes, CheckOptions};
+    use crate::diagnostic::khronos;
+    use crate::document::uri::NoResources;
+
+    /// The report of `text` with exactly `findings` (code, pointer), replacing what the check
+    /// found, so that each case shows one rendering rule.
+    fn report_with(text: &str, findings: &[(crate::diagnostic::Code, &str)]) -> Report {
+        let mut report = check_bytes(
+            "a.gltf",
+            text.as_bytes().to_vec(),
+            &NoResources,
+            &CheckOptions::default(),
+        );
+        report.diagnostics = (findings.iter())
+            .map(|(code, pointer)| Diagnostic::at(*code, *pointer, "m."))
+            .collect();
+        report
+    }
+
+    fn plain(report: &Report, all: bool) -> String {
+        render(
+            std::slice::from_ref(report),
+            &Style::new(false).with_all_findings(all),
+        )
+    }
+
+    #[test]
+    fn errors_come_first_then_warnings_each_in_file_order() {
+        let text = "{\n\"asset\": {\"version\": \"2.0\"},\n\"nodes\": [{}, {}]\n}";
+        let report = report_with(
+            text,
+            &[
+                (khronos::NODE_SKINNED_MESH_LOCAL_TRANSFORMS, "/nodes/1"),
+                (khronos::NODE_SKINNED_MESH_LOCAL_TRANSFORMS, "/nodes/0"),
+                (khronos::UNDEFINED_PROPERTY, "/asset"),
+                (khronos::UNDEFINED_PROPERTY, "/nodes"),
+            ],
+        );
+        let out = plain(&report, false);
+        let heads: Vec<&str> = (out.lines())
+            .filter(|l| l.contains("]: m."))
+            .map(|l| l.split(": ").next().unwrap())
+            .collect();
+        // UNDEFINED_PROPERTY is an error, the other a warning; a finding is placed at its
+        // member's name.
+        assert_eq!(
+            heads,
+            ["a.gltf:2:1", "a.gltf:3:1", "a.gltf:3:11", "a.gltf:3:15"]
+        );
+    }
+
+    #[test]
+    fn infos_and_hints_are_counted_not_listed_unless_asked() {
+        let text = r#"{"asset": {"version": "2.0"}, "nodes": [{}]}"#;
+        let report = report_with(text, &[(khronos::NODE_EMPTY, "/nodes/0")]);
+        assert!(!plain(&report, false).contains("NODE_EMPTY"));
+        assert!(plain(&report, true).contains("info[NODE_EMPTY]"));
+    }
+
+    #[test]
+    fn a_member_that_is_not_written_is_shown_at_its_nearest_enclosing_value() {
+        let text = "{\n  \"asset\": {\"version\": \"2.0\"},\n  \"materials\": [{\"pbrMetallicRoughness\": {}}]\n}";
+        let report = report_with(
+            text,
+            &[(
+                khronos::UNDEFINED_PROPERTY,
+                "/materials/0/pbrMetallicRoughness/baseColorFactor",
+            )],
+        );
+        let out = plain(&report, false);
+        assert!(out.starts_with("a.gltf:3:18: "), "{out}");
+        assert!(
+            out.contains(
+                "not written (its default applies); shown at /materials/0/pbrMetallicRoughness"
+            ),
+            "{out}"
+        );
+    }
+
+    #[test]
+    fn the_caret_follows_tabs_and_long_lines_are_windowed() {
+        let text = "{\n\t\t\"asset\": {\"version\": \"2.0\"}\n}";
+        let out = plain(
+            &report_with(text, &[(khronos::UNDEFINED_PROPERTY, "/asset")]),
+            false,
+        );
+        assert!(out.contains("\n      | \t\t^"), "{out}");
+
+        let padding = format!("\"{}\"", "x".repeat(500));
+        let text =
+            format!(r#"{{"extras": {padding}, "asset": {{"version": "2.0"}}, "more": {padding}}}"#);
+        let out = plain(
+            &report_with(&text, &[(khronos::UNDEFINED_PROPERTY, "/asset")]),
+            false,
+        );
+        let lines: Vec<&str> = out.lines().collect();
+        assert!(
+            lines[1].starts_with("    1 | …") && lines[1].ends_with('…'),
+            "{out}"
+        );
+        let caret = lines[2].find('^').unwrap();
+        let under: String = lines[1].chars().skip(caret).take(7).collect();
+        assert_eq!(under, "\"asset\"", "{out}");
+    }
 }

@@ -32,19 +32,30 @@ pub enum Format {
 pub struct Style {
     /// ANSI colours.
     pub colour: bool,
+    /// List infos and hints too, not only count them.
+    pub all_findings: bool,
 }
 
 impl Style {
-    /// Plain text, or coloured.
+    /// Plain text, or coloured; infos and hints counted, not listed.
     pub fn new(colour: bool) -> Style {
-        Style { colour }
+        Style {
+            colour,
+            all_findings: false,
+        }
+    }
+
+    /// This style listing infos and hints too (or not).
+    pub fn with_all_findings(mut self, all: bool) -> Style {
+        self.all_findings = all;
+        self
     }
 }
 
 /// Renders every report in `format` as one string.
 pub fn render(format: Format, reports: &[Report], options: &Style) -> String {
     match format {
-        Format::Human => human::render(reports, options.colour),
+        Format::Human => human::render(reports, options),
         Format::Json => {
             let value = match reports {
                 [one] => khronos_report(one),
@@ -71,38 +82,60 @@ pub fn render(format: Format, reports: &[Report], options: &Style) -> String {
 
 /// Where a report's diagnostics lie in its JSON text: every pointer located in one pass and
 /// lines indexed once, so that rendering N diagnostics costs one scan of the file, not N.
+/// A pointer to a member that is not written (a default) is placed at its nearest enclosing
+/// value that is.
 pub(crate) struct Positions<'r> {
     spans: HashMap<&'r str, Range<usize>>,
+    /// For pointers not in the text: the nearest ancestor that is, and where.
+    enclosing: HashMap<&'r str, (&'r str, Range<usize>)>,
     /// The JSON text's lines.
     pub lines: json::LineIndex<'r>,
+    /// Where the JSON text starts in the file (the JSON chunk of a GLB).
+    pub text_start: usize,
 }
 
 impl<'r> Positions<'r> {
     pub fn of(report: &'r Report) -> Self {
         let text = report.document.json_text();
-        let pointers = report.diagnostics.iter().filter_map(|d| match &d.location {
-            Location::Pointer(pointer) if d.span_hint.is_none() => Some(pointer.as_str()),
-            _ => None,
-        });
-        let spans = if report.document.root.is_some() {
-            json::locate_all(text, pointers)
+        let pointers: Vec<&str> = (report.diagnostics.iter())
+            .filter_map(|d| match &d.location {
+                Location::Pointer(pointer) if d.span_hint.is_none() => Some(pointer.as_str()),
+                _ => None,
+            })
+            .collect();
+        let (spans, enclosing) = if report.document.root.is_some() {
+            locate_with_ancestors(text, &pointers)
         } else {
-            HashMap::new()
+            Default::default()
         };
         Positions {
             spans,
+            enclosing,
             lines: json::LineIndex::new(text),
+            text_start: report.document.json_range.start,
         }
     }
 
-    /// Byte range in the JSON text that a diagnostic points at.
+    /// Byte range in the JSON text that a diagnostic points at, or, for a member that is not
+    /// written, at its nearest enclosing value.
     pub fn span(&self, diagnostic: &Diagnostic) -> Option<Range<usize>> {
         if let Some(offset) = diagnostic.span_hint {
             return Some(offset..offset);
         }
         match &diagnostic.location {
-            Location::Pointer(pointer) => self.spans.get(pointer.as_str()).cloned(),
+            Location::Pointer(pointer) => (self.spans.get(pointer.as_str()).cloned())
+                .or_else(|| Some(self.enclosing.get(pointer.as_str())?.1.clone())),
             Location::Offset(_) => None,
+        }
+    }
+
+    /// The enclosing value a diagnostic is shown at when its own pointer is not in the text.
+    pub fn shown_at(&self, diagnostic: &Diagnostic) -> Option<&'r str> {
+        match &diagnostic.location {
+            Location::Pointer(p) if diagnostic.span_hint.is_none() => {
+                Some(self.enclosing.get(p.as_str())?.0)
+            }
+            _ => None,
         }
     }
 
@@ -110,6 +143,33 @@ impl<'r> Positions<'r> {
     pub fn line_col(&self, diagnostic: &Diagnostic) -> Option<(usize, usize)> {
         Some(self.lines.line_col(self.span(diagnostic)?.start))
     }
+}
+
+/// Locates `pointers` in `text`, and for those not found, their nearest ancestor that is.
+#[allow(clippy::type_complexity)]
+fn locate_with_ancestors<'p>(
+    text: &[u8],
+    pointers: &[&'p str],
+) -> (
+    HashMap<&'p str, Range<usize>>,
+    HashMap<&'p str, (&'p str, Range<usize>)>,
+) {
+    let spans = json::locate_all(text, pointers.iter().copied());
+    let missing: Vec<&str> = (pointers.iter().copied())
+        .filter(|p| !spans.contains_key(p))
+        .collect();
+    let ancestors = |pointer: &'p str| {
+        std::iter::successors(Some(pointer), |p| p.rfind('/').map(|i| &p[..i])).skip(1)
+    };
+    let found = json::locate_all(text, missing.iter().flat_map(|&p| ancestors(p)));
+    let enclosing = missing
+        .into_iter()
+        .filter_map(|p| {
+            let ancestor = ancestors(p).find(|a| found.contains_key(a))?;
+            Some((p, (ancestor, found[ancestor].clone())))
+        })
+        .collect();
+    (spans, enclosing)
 }
 
 fn github_line(report: &Report, positions: &Positions, d: &Diagnostic) -> String {
