@@ -1,5 +1,6 @@
 //! The `gltfmat` binary, end to end, on the bundled fixtures.
 
+use std::path::Path;
 use std::process::Command;
 
 fn gltfmat(args: &[&str]) -> (i32, String) {
@@ -323,4 +324,84 @@ fn render_compare_heatmap_and_lut_png_write_readable_images() {
         assert_eq!((image.width(), image.height()), (size, size), "{name}");
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `check` of a fixture with warnings, with `env` set (and nothing else of the caller's
+/// colour settings): whether its output holds ANSI colour.
+fn coloured(args: &[&str], env: &[(&str, &str)]) -> bool {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_gltfmat"));
+    command
+        .args(["check", "fixtures/broken/duplicate-key.gltf"])
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"));
+    for name in [
+        "NO_COLOR",
+        "CLICOLOR",
+        "CLICOLOR_FORCE",
+        "FORCE_COLOR",
+        "TERM",
+        "CI",
+    ] {
+        command.env_remove(name);
+    }
+    command.envs(env.iter().copied());
+    let out = command.output().expect("gltfmat runs");
+    String::from_utf8_lossy(&out.stdout).contains("\x1b[")
+}
+
+#[test]
+fn colour_follows_the_conventions_and_color_overrides_them() {
+    // Piped output is plain unless forced.
+    assert!(!coloured(&[], &[]));
+    assert!(!coloured(&[], &[("NO_COLOR", "")]));
+    assert!(coloured(&[], &[("CLICOLOR_FORCE", "1")]));
+    assert!(coloured(&[], &[("FORCE_COLOR", "1")]));
+    assert!(!coloured(&[], &[("FORCE_COLOR", "0")]));
+    // NO_COLOR, when not empty, wins over the forcing variables; --color over everything.
+    assert!(!coloured(
+        &[],
+        &[("CLICOLOR_FORCE", "1"), ("NO_COLOR", "1")]
+    ));
+    assert!(!coloured(&[], &[("FORCE_COLOR", "1"), ("NO_COLOR", "1")]));
+    assert!(coloured(&["--color", "always"], &[("NO_COLOR", "1")]));
+    assert!(!coloured(&["--color", "never"], &[("CLICOLOR_FORCE", "1")]));
+}
+
+#[test]
+fn each_file_is_checked_with_the_nearest_gltfmat_toml_above_it() {
+    let root = tempfile::tempdir().unwrap();
+    let asset = std::fs::read(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/broken/duplicate-key.gltf"),
+    )
+    .unwrap();
+    for folder in ["quiet", "loud"] {
+        std::fs::create_dir(root.path().join(folder)).unwrap();
+        std::fs::write(root.path().join(folder).join("a.gltf"), &asset).unwrap();
+    }
+    std::fs::write(
+        root.path().join("quiet/gltfmat.toml"),
+        "ignore = [\"JSON_DUPLICATE_KEY\"]\n",
+    )
+    .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(["check", "quiet", "loud", "--format", "jsonl"])
+        .current_dir(root.path())
+        .output()
+        .unwrap();
+    let reports: Vec<serde_json::Value> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let duplicate_keys = |report: &serde_json::Value| {
+        (report["issues"]["messages"].as_array().unwrap().iter())
+            .filter(|m| m["code"] == "JSON_DUPLICATE_KEY")
+            .count()
+    };
+    assert_eq!(reports.len(), 2);
+    assert_eq!(
+        duplicate_keys(&reports[0]),
+        0,
+        "quiet/gltfmat.toml applies to quiet/a.gltf"
+    );
+    assert_eq!(duplicate_keys(&reports[1]), 1, "and not to loud/a.gltf");
 }
