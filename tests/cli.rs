@@ -405,3 +405,99 @@ fn each_file_is_checked_with_the_nearest_gltfmat_toml_above_it() {
     );
     assert_eq!(duplicate_keys(&reports[1]), 1, "and not to loud/a.gltf");
 }
+
+#[test]
+fn sarif_shows_well_in_code_scanning() {
+    let root = tempfile::tempdir().unwrap();
+    let folder = root.path().join("we,ird:dir");
+    std::fs::create_dir(&folder).unwrap();
+    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures");
+    std::fs::copy(
+        fixtures.join("broken/bad-material.gltf"),
+        folder.join("a 100%.gltf"),
+    )
+    .unwrap();
+    std::fs::copy(
+        fixtures.join("broken/duplicate-key.gltf"),
+        folder.join("b.glb.gltf"),
+    )
+    .unwrap();
+    let glb = std::fs::read(fixtures.join("valid/sheen-triangle.glb")).unwrap();
+    // A valid GLB still has infos and hints: those are placed by byte in the file.
+    std::fs::write(root.path().join("t.glb"), &glb).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(["check", "--format", "sarif", "we,ird:dir", "t.glb"])
+        .current_dir(root.path())
+        .output()
+        .unwrap();
+    let log: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let run = &log["runs"][0];
+    // Headings are sentences, not message templates; help says more than the heading.
+    for rule in run["tool"]["driver"]["rules"].as_array().unwrap() {
+        let heading = rule["shortDescription"]["text"].as_str().unwrap();
+        assert!(!heading.contains('%'), "{}: {heading}", rule["id"]);
+        assert_ne!(
+            rule["help"]["text"].as_str().unwrap(),
+            heading,
+            "{}",
+            rule["id"]
+        );
+    }
+    assert!(run["tool"]["driver"]["informationUri"]
+        .as_str()
+        .is_none_or(|u| !u.contains("OWNER")));
+    let base = run["originalUriBaseIds"]["%SRCROOT%"]["uri"]
+        .as_str()
+        .unwrap();
+    assert!(
+        base.starts_with("file:///") && base.ends_with('/'),
+        "{base}"
+    );
+    let results = run["results"].as_array().unwrap();
+    assert!(!results.is_empty());
+    let mut fingerprints = std::collections::HashSet::new();
+    for result in results {
+        let location = &result["locations"][0]["physicalLocation"];
+        assert_eq!(location["artifactLocation"]["uriBaseId"], "%SRCROOT%");
+        let uri = location["artifactLocation"]["uri"].as_str().unwrap();
+        assert!(
+            [
+                "we%2Cird%3Adir/a%20100%25.gltf",
+                "we%2Cird%3Adir/b.glb.gltf",
+                "t.glb"
+            ]
+            .contains(&uri),
+            "{uri}"
+        );
+        let fingerprint = result["partialFingerprints"]["gltfmat/v1"]
+            .as_str()
+            .unwrap();
+        fingerprints.insert((
+            uri.to_string(),
+            fingerprint.to_string(),
+            result["ruleId"].to_string(),
+        ));
+        if uri == "t.glb" {
+            assert!(
+                location["region"]["byteOffset"].as_u64().is_some(),
+                "{location}"
+            );
+            assert!(location["region"]["startLine"].is_null(), "{location}");
+        } else {
+            assert!(
+                location["region"]["startLine"].as_u64().is_some(),
+                "{location}"
+            );
+        }
+    }
+    assert!(results
+        .iter()
+        .any(|r| r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] == "t.glb"));
+    // Two findings share a fingerprint only when they share file, code and place.
+    assert!(
+        fingerprints.len() * 10 >= results.len() * 9,
+        "{} of {}",
+        fingerprints.len(),
+        results.len()
+    );
+}

@@ -36,6 +36,74 @@ impl CodeInfo {
     pub fn severity(&self) -> Severity {
         self.code.default_severity()
     }
+
+    /// One sentence saying what the code reports, without the message's placeholders: for
+    /// headings such as SARIF's descriptions. A gltfmat rule's summary; for a Khronos code its
+    /// template with each value left out ("…"), or its name when the template is only a value.
+    pub fn description(&self) -> String {
+        if self.origin == Origin::Gltfmat {
+            return self.summary.to_string();
+        }
+        let text = without_placeholders(self.summary);
+        if text.chars().filter(|c| c.is_alphabetic()).count() < 8 {
+            return format!("{}.", sentence_case(self.code.name()));
+        }
+        text
+    }
+
+    /// The documentation as Markdown: a gltfmat rule's own; for a Khronos code, what it
+    /// means, where the Khronos validator lists it, and how the default profile differs.
+    pub fn help_markdown(&self) -> String {
+        if self.origin == Origin::Gltfmat {
+            return self.doc.to_string();
+        }
+        let mut help = format!(
+            "**{}**\n\nA check of the Khronos glTF-Validator ({} group), reported with its code, severity and meaning; the message names the values found, e.g. \"{}\".\n\nSee the validator's [list of issues]({KHRONOS_ISSUES}).",
+            self.description(),
+            self.group,
+            self.summary
+        );
+        if let Some(why) = supersession(self.code.name()) {
+            help.push_str(&format!("\n\nIn gltfmat's default profile: {why}"));
+        }
+        help
+    }
+}
+
+/// Where the Khronos validator documents its codes.
+pub const KHRONOS_ISSUES: &str =
+    "https://github.com/KhronosGroup/glTF-Validator/blob/main/ISSUES.md";
+
+/// A message template with each placeholder (`%1`, `%a`, quoted or not, or a list of them)
+/// replaced by "(…)".
+fn without_placeholders(template: &str) -> String {
+    let mut out = String::new();
+    let mut chars = template.chars().peekable();
+    while let Some(c) = chars.next() {
+        if c == '%' && chars.peek().is_some_and(|n| n.is_ascii_alphanumeric()) {
+            chars.next();
+            out.push_str("(…)");
+        } else {
+            out.push(c);
+        }
+    }
+    for quoted in ["('(…)', '(…)', '(…)')", "'(…)'", "((…))"] {
+        out = out.replace(quoted, "(…)");
+    }
+    out
+}
+
+/// `IO_ERROR` → "IO error", `EMPTY_ENTITY` → "Empty entity".
+fn sentence_case(name: &str) -> String {
+    const ACRONYMS: &[&str] = &["IO", "URI", "GLB", "JSON", "KHR", "PNG", "JPEG"];
+    let words: Vec<String> = (name.split('_').enumerate())
+        .map(|(i, word)| match word {
+            _ if ACRONYMS.contains(&word) => word.to_string(),
+            _ if i == 0 => word[..1].to_string() + &word[1..].to_ascii_lowercase(),
+            _ => word.to_ascii_lowercase(),
+        })
+        .collect();
+    words.join(" ")
 }
 
 const fn from_catalogue(entry: &khronos::Entry) -> CodeInfo {

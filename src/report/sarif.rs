@@ -2,40 +2,104 @@
 
 use super::{location_suffix, Positions};
 use crate::check::{registry, Diagnostic, Location, Report, Severity};
+use crate::document::Container;
+use percent_encoding::{utf8_percent_encode, AsciiSet, NON_ALPHANUMERIC};
 use serde_json::{json, Value};
 
 pub fn render(reports: &[Report]) -> String {
-    let rules: Vec<Value> = registry::all()
-        .map(|info| {
-            let help = if info.doc.is_empty() {
-                info.summary
-            } else {
-                info.doc
-            };
-            json!({
-                "id": info.code,
-                "shortDescription": {"text": info.summary},
-                "fullDescription": {"text": help},
-                "help": {"text": help, "markdown": help},
-                "defaultConfiguration": {"level": level(info.severity())},
-                "properties": {"group": info.group},
-            })
-        })
-        .collect();
+    let rules: Vec<Value> = registry::all().map(rule).collect();
+    let root = SourceRoot::current();
+    let mut tool = json!({"driver": {
+        "name": "gltfmat",
+        "version": env!("CARGO_PKG_VERSION"),
+        "rules": rules,
+    }});
+    if let Some(home) = option_env!("CARGO_PKG_REPOSITORY").filter(|r| !r.is_empty()) {
+        tool["driver"]["informationUri"] = json!(home);
+    }
     let log = Log {
         schema: "https://json.schemastore.org/sarif-2.1.0.json",
         version: "2.1.0",
         runs: [Run {
-            tool: json!({"driver": {
-                "name": "gltfmat",
-                "version": env!("CARGO_PKG_VERSION"),
-                "informationUri": "https://github.com/gltfmat/gltfmat",
-                "rules": rules,
-            }}),
-            results: Results(reports),
+            tool,
+            original_uri_base_ids: root.base_ids(),
+            results: Results(reports, &root),
         }],
     };
     serde_json::to_string_pretty(&log).unwrap_or_default() + "\n"
+}
+
+/// One rule: a sentence for the alert's heading (never a message template), the full
+/// documentation as help.
+fn rule(info: registry::CodeInfo) -> Value {
+    let description = info.description();
+    let help = info.help_markdown();
+    let mut rule = json!({
+        "id": info.code,
+        "shortDescription": {"text": description},
+        "fullDescription": {"text": description},
+        "help": {"text": help, "markdown": help},
+        "defaultConfiguration": {"level": level(info.severity())},
+        "properties": {"group": info.group},
+    });
+    if info.origin == registry::Origin::Khronos {
+        rule["helpUri"] = json!(registry::KHRONOS_ISSUES);
+    }
+    rule
+}
+
+/// The folder result paths are relative to (`%SRCROOT%`): the current one, where a CI job
+/// checks out the repository.
+struct SourceRoot {
+    folder: Option<std::path::PathBuf>,
+}
+
+/// Characters kept as they are in a URI path; the rest is percent-encoded.
+const PATH_SEGMENT: &AsciiSet = &NON_ALPHANUMERIC
+    .remove(b'-')
+    .remove(b'.')
+    .remove(b'_')
+    .remove(b'~')
+    .remove(b'/');
+
+impl SourceRoot {
+    fn current() -> SourceRoot {
+        SourceRoot {
+            folder: std::env::current_dir().ok(),
+        }
+    }
+
+    fn base_ids(&self) -> Value {
+        match self.folder.as_deref().and_then(|f| f.to_str()) {
+            Some(folder) => {
+                let folder = folder.trim_end_matches('/');
+                json!({"%SRCROOT%": {"uri": format!("file://{}/", encode(folder))}})
+            }
+            None => json!({}),
+        }
+    }
+
+    /// An artifact location: relative to `%SRCROOT%` when the file is inside it, an absolute
+    /// `file://` URI otherwise; each path segment percent-encoded (`a 100%.gltf` →
+    /// `a%20100%25.gltf`).
+    fn artifact(&self, path: &str) -> Value {
+        let file = std::path::Path::new(path);
+        let absolute = std::path::absolute(file).unwrap_or_else(|_| file.to_path_buf());
+        let inside = (self.folder.as_deref()).and_then(|root| absolute.strip_prefix(root).ok());
+        match inside.and_then(|relative| relative.to_str()) {
+            Some(relative) => json!({"uri": encode(relative), "uriBaseId": "%SRCROOT%"}),
+            None => match absolute.to_str() {
+                Some(absolute) if absolute.starts_with('/') => {
+                    json!({"uri": format!("file://{}", encode(absolute))})
+                }
+                _ => json!({"uri": encode(path)}),
+            },
+        }
+    }
+}
+
+fn encode(path: &str) -> String {
+    utf8_percent_encode(path, PATH_SEGMENT).to_string()
 }
 
 /// The log, serialised as it is walked: each result is built, written and dropped in turn,
@@ -49,12 +113,14 @@ struct Log<'r> {
 }
 
 #[derive(serde::Serialize)]
+#[serde(rename_all = "camelCase")]
 struct Run<'r> {
     tool: Value,
+    original_uri_base_ids: Value,
     results: Results<'r>,
 }
 
-struct Results<'r>(&'r [Report]);
+struct Results<'r>(&'r [Report], &'r SourceRoot);
 
 impl serde::Serialize for Results<'_> {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -62,8 +128,9 @@ impl serde::Serialize for Results<'_> {
         let mut sequence = serializer.serialize_seq(None)?;
         for report in self.0 {
             let positions = Positions::of(report);
+            let artifact = self.1.artifact(&report.uri);
             for d in &report.diagnostics {
-                sequence.serialize_element(&result(report, &positions, d))?;
+                sequence.serialize_element(&result(report, &positions, &artifact, d))?;
             }
         }
         sequence.end()
@@ -78,27 +145,51 @@ fn level(severity: Severity) -> &'static str {
     }
 }
 
-/// One SARIF result.
-fn result(report: &Report, positions: &Positions, d: &Diagnostic) -> Value {
-    let mut region = json!({});
-    if let Some((line, column)) = positions.line_col(d) {
-        region = json!({"startLine": line, "startColumn": column});
-    } else if let Location::Offset(offset) = d.location {
-        region = json!({"byteOffset": offset});
-    }
-    let mut physical = json!({"artifactLocation": {"uri": report.uri}});
-    if region.as_object().is_some_and(|r| !r.is_empty()) {
+/// One SARIF result. A GLB's findings are placed by byte in the file (its JSON chunk is one
+/// line of a binary file); a .gltf's by line and column. The fingerprint names the finding by
+/// file, code and JSON pointer, so an alert keeps its identity when lines move.
+fn result(report: &Report, positions: &Positions, artifact: &Value, d: &Diagnostic) -> Value {
+    let glb = report.document.container == Container::Glb;
+    let region = match (&d.location, positions.span(d)) {
+        (Location::Offset(offset), _) => json!({"byteOffset": offset}),
+        (Location::Pointer(_), Some(span)) if glb => json!({
+            "byteOffset": positions.text_start + span.start,
+            "byteLength": span.len().max(1),
+        }),
+        (Location::Pointer(_), Some(_)) => match positions.line_col(d) {
+            Some((line, column)) => json!({"startLine": line, "startColumn": column}),
+            None => Value::Null,
+        },
+        (Location::Pointer(_), None) => Value::Null,
+    };
+    let mut physical = json!({"artifactLocation": artifact});
+    if !region.is_null() {
         physical["region"] = region;
     }
+    let place = match &d.location {
+        Location::Pointer(p) => p.clone(),
+        Location::Offset(o) => format!("@{o}"),
+    };
     let mut result = json!({
         "ruleId": d.code,
         "level": level(d.severity),
         "message": {"text": format!("{}{}", d.message, location_suffix(d))},
         "locations": [{"physicalLocation": physical}],
+        "partialFingerprints": {"gltfmat/v1": fingerprint(&[&report.uri, d.code.name(), &place])},
     });
     if let Location::Pointer(p) = &d.location {
         result["locations"][0]["logicalLocations"] =
             json!([{"fullyQualifiedName": p, "kind": "member"}]);
     }
     result
+}
+
+/// FNV-1a over the parts (each followed by a 0 byte), as 16 hex digits: stable across runs,
+/// platforms and versions, which a std hasher does not promise.
+fn fingerprint(parts: &[&str]) -> String {
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for byte in parts.iter().flat_map(|p| p.bytes().chain([0])) {
+        hash = (hash ^ u64::from(byte)).wrapping_mul(0x0100_0000_01b3);
+    }
+    format!("{hash:016x}")
 }
