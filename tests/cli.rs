@@ -501,3 +501,111 @@ fn sarif_shows_well_in_code_scanning() {
         results.len()
     );
 }
+
+#[test]
+fn fail_on_sets_the_least_severity_that_fails() {
+    // duplicate-key.gltf has a warning and no error.
+    let fixture = "fixtures/broken/duplicate-key.gltf";
+    assert_eq!(gltfmat(&["check", fixture]).0, 0);
+    assert_eq!(gltfmat(&["check", "--fail-on", "warning", fixture]).0, 1);
+    assert_eq!(
+        gltfmat(&[
+            "check",
+            "--fail-on",
+            "never",
+            "fixtures/broken/bad-material.gltf"
+        ])
+        .0,
+        0
+    );
+    assert_eq!(
+        gltfmat(&[
+            "check",
+            "--fail-on",
+            "error",
+            "fixtures/broken/bad-material.gltf"
+        ])
+        .0,
+        1
+    );
+}
+
+#[test]
+fn stdin_filename_names_the_input_and_finds_its_resources() {
+    // sheen-triangle.gltf with its buffer moved out of the data URI into a.bin.
+    let folder = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/valid/sheen-triangle.gltf"),
+    )
+    .unwrap();
+    let mut document: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let uri = document["buffers"][0]["uri"].as_str().unwrap().to_string();
+    let data = base64::Engine::decode(
+        &base64::engine::general_purpose::STANDARD,
+        uri.split(',').nth(1).unwrap(),
+    )
+    .unwrap();
+    let data_length = data.len() as u64;
+    std::fs::write(folder.path().join("a.bin"), data).unwrap();
+    document["buffers"][0]["uri"] = "a.bin".into();
+    let name = folder.path().join("a.gltf");
+    let name = name.to_str().unwrap();
+    let run = |args: &[&str]| {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(args)
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        use std::io::Write;
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(document.to_string().as_bytes())
+            .unwrap();
+        let out = child.wait_with_output().unwrap();
+        let report = serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap();
+        (report, String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (named, notes) = run(&["check", "--format", "json", "--stdin-filename", name, "-"]);
+    assert_eq!(named["uri"], name);
+    assert_eq!(named["issues"]["numErrors"], 0, "{named}");
+    let read = &named["info"]["resources"][0];
+    assert_eq!(
+        (&read["storage"], &read["byteLength"]),
+        (&"external".into(), &data_length.into())
+    );
+    assert_eq!(notes, "");
+    let (anonymous, notes) = run(&["check", "--format", "json", "-"]);
+    assert_eq!(anonymous["uri"], "-");
+    assert!(
+        notes.contains("external resources were not read"),
+        "{notes}"
+    );
+}
+
+#[test]
+fn rules_as_json_completions_and_the_manual_page() {
+    let (code, out) = gltfmat(&["rules", "--format", "json"]);
+    assert_eq!(code, 0);
+    let rules: Vec<serde_json::Value> = serde_json::from_str(&out).unwrap();
+    let plausibility = rules
+        .iter()
+        .find(|r| r["code"] == "PBR_BASE_COLOR_RANGE")
+        .unwrap();
+    assert_eq!(plausibility["optIn"], true);
+    assert!(rules
+        .iter()
+        .all(|r| r["description"].as_str().is_some_and(|d| !d.contains('%'))));
+    let (code, out) = gltfmat(&["completions", "bash"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("--enable-group"), "{out}");
+    let (code, out) = gltfmat(&["man"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.starts_with(".ie") && out.contains(".TH gltfmat 1"),
+        "{out}"
+    );
+}

@@ -5,8 +5,9 @@ use crate::common::{Failure, Outcome};
 use crate::config;
 use crate::rules::print;
 use gltfmat::check::registry;
+use gltfmat::document::uri::FolderResources;
 use gltfmat::report::{render, Format, Style};
-use gltfmat::{check_bytes, check_path, CheckOptions, NoResources, Profile, Report};
+use gltfmat::{check_bytes, check_path, CheckOptions, NoResources, Profile, Report, Severity};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::io::{IsTerminal, Read};
@@ -59,9 +60,40 @@ pub struct CheckArgs {
     /// FORCE_COLOR and TERM=dumb.
     #[arg(long, value_enum, default_value = "auto", value_name = "WHEN")]
     color: ColorArg,
+    /// Exit 1 when a finding is at least this severe (`never`: only unreadable input fails).
+    #[arg(long, value_enum, default_value = "error", value_name = "SEVERITY")]
+    fail_on: FailOn,
+    /// The name of the asset read from stdin (`-`): shown in reports, and the folder its
+    /// gltfmat.toml and relative resources are found from.
+    #[arg(long, value_name = "PATH")]
+    stdin_filename: Option<PathBuf>,
     /// No progress bar (it is shown only on a terminal, on stderr).
     #[arg(long, short)]
     quiet: bool,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum FailOn {
+    Error,
+    Warning,
+    Info,
+    Hint,
+    Never,
+}
+
+impl FailOn {
+    fn fails(self, report: &Report) -> bool {
+        let least = match self {
+            FailOn::Error => Severity::Error,
+            FailOn::Warning => Severity::Warning,
+            FailOn::Info => Severity::Info,
+            FailOn::Hint => Severity::Hint,
+            FailOn::Never => return false,
+        };
+        Severity::ALL
+            .iter()
+            .any(|&s| s <= least && report.count(s) > 0)
+    }
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -160,12 +192,18 @@ pub fn run(args: CheckArgs) -> Outcome {
     } else {
         indicatif::ProgressBar::new(files.len() as u64)
     };
+    let stdin_name = args.stdin_filename.as_deref();
     let options: Vec<Arc<CheckOptions>> = (files.iter())
-        .map(|file| settings.for_file(file).map(|(options, _)| options))
+        .map(|file| {
+            let named = (file.as_os_str() == "-").then_some(stdin_name).flatten();
+            settings
+                .for_file(named.unwrap_or(file))
+                .map(|(options, _)| options)
+        })
         .collect::<Result<_, _>>()?;
     let results: Vec<Result<Report, String>> = (files.par_iter().zip(&options))
         .map(|(file, options)| {
-            let result = check_file(file, options);
+            let result = check_file(file, stdin_name, options);
             progress.inc(1);
             result
         })
@@ -186,20 +224,43 @@ pub fn run(args: CheckArgs) -> Outcome {
     print(&render(args.format.format(), &reports, &style));
     Ok(if unreadable {
         ExitCode::from(2)
-    } else if reports.iter().any(Report::has_errors) {
+    } else if reports.iter().any(|r| args.fail_on.fails(r)) {
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS
     })
 }
 
-fn check_file(path: &Path, options: &CheckOptions) -> Result<Report, String> {
+/// Checks one file; `-` is stdin, named `stdin_name` when given (its resources are then
+/// read beside that name, as they would be beside the file).
+fn check_file(
+    path: &Path,
+    stdin_name: Option<&Path>,
+    options: &CheckOptions,
+) -> Result<Report, String> {
     if path.as_os_str() == "-" {
         let mut bytes = Vec::new();
         std::io::stdin()
             .read_to_end(&mut bytes)
             .map_err(|e| e.to_string())?;
-        return Ok(check_bytes("-", bytes, &NoResources, options));
+        return Ok(match stdin_name {
+            Some(name) => {
+                let loader = FolderResources::beside(name);
+                check_bytes(&name.to_string_lossy(), bytes, &loader, options)
+            }
+            None => {
+                let report = check_bytes("-", bytes, &NoResources, options);
+                if report
+                    .info
+                    .resources
+                    .iter()
+                    .any(|r| r.storage == "external")
+                {
+                    eprintln!("gltfmat: -: external resources were not read (stdin has no folder; --stdin-filename gives it one)");
+                }
+                report
+            }
+        });
     }
     check_path(path, options).map_err(|e| match e {
         gltfmat::Error::Io { source, .. } => source.to_string(),

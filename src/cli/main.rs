@@ -7,9 +7,10 @@ mod config;
 mod lut;
 mod render;
 mod rules;
+mod shell;
 mod upgrade;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -35,10 +36,18 @@ enum Command {
     Compare(compare::CompareArgs),
     /// Export a lookup table of the shading evaluator (the sheen albedo E).
     Lut(lut::LutArgs),
-    /// List every code gltfmat can report.
-    Rules,
+    /// List every code gltfmat can report, with its severity and group.
+    Rules {
+        /// `table` for people, `json` for scripts.
+        #[arg(long, value_enum, default_value = "table")]
+        format: rules::ListFormat,
+    },
     /// Show the full documentation of one code.
     Explain { code: String },
+    /// Print a shell completion script (e.g. `gltfmat completions bash > /etc/bash_completion.d/gltfmat`).
+    Completions { shell: clap_complete::Shell },
+    /// Print the manual page (roff), e.g. `gltfmat man > gltfmat.1`.
+    Man,
 }
 
 fn main() -> ExitCode {
@@ -51,8 +60,10 @@ fn main() -> ExitCode {
         Command::Lut(args) => lut::run(args),
         Command::Compare(args) => compare::run(args),
         Command::Render(args) => render::run(args),
-        Command::Rules => rules::list(),
+        Command::Rules { format } => rules::list(format),
         Command::Explain { code } => rules::explain(&code),
+        Command::Completions { shell } => shell::completions(Cli::command(), shell),
+        Command::Man => shell::man(Cli::command()),
     };
     outcome.unwrap_or_else(common::Failure::report)
 }

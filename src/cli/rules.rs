@@ -10,18 +10,69 @@ pub fn print(text: &str) {
     let _ = std::io::stdout().lock().write_all(text.as_bytes());
 }
 
-pub fn list() -> Outcome {
-    let mut out = String::new();
-    for info in registry::all() {
-        out.push_str(&format!(
-            "{:<58} {:<8} {}\n",
-            info.code,
-            info.severity().name(),
-            info.summary
-        ));
-    }
+/// How `gltfmat rules` prints the list.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ListFormat {
+    /// Aligned columns: code, severity, group (`*` for an opt-in group), origin, description.
+    Table,
+    /// One JSON array of objects with the same fields and the documentation.
+    Json,
+}
+
+pub fn list(format: ListFormat) -> Outcome {
+    let out = match format {
+        ListFormat::Table => table(),
+        ListFormat::Json => {
+            let entries: Vec<serde_json::Value> = registry::all().map(entry).collect();
+            serde_json::to_string_pretty(&entries).unwrap_or_default() + "\n"
+        }
+    };
     print(&out);
     Ok(ExitCode::SUCCESS)
+}
+
+fn origin(info: &registry::CodeInfo) -> &'static str {
+    match info.origin {
+        registry::Origin::Khronos => "khronos",
+        registry::Origin::Gltfmat => "gltfmat",
+    }
+}
+
+fn table() -> String {
+    let mut out = format!(
+        "{:<58} {:<8} {:<15} {:<8} DESCRIPTION\n",
+        "CODE", "SEVERITY", "GROUP", "ORIGIN"
+    );
+    for info in registry::all() {
+        let group = if registry::is_opt_in(info.group) {
+            format!("{}*", info.group)
+        } else {
+            info.group.to_string()
+        };
+        out.push_str(&format!(
+            "{:<58} {:<8} {:<15} {:<8} {}\n",
+            info.code.name(),
+            info.severity().name(),
+            group,
+            origin(&info),
+            info.description()
+        ));
+    }
+    out.push_str("\n* opt-in group: runs only with --enable-group\n");
+    out
+}
+
+fn entry(info: registry::CodeInfo) -> serde_json::Value {
+    serde_json::json!({
+        "code": info.code,
+        "severity": info.severity().name(),
+        "group": info.group,
+        "optIn": registry::is_opt_in(info.group),
+        "origin": origin(&info),
+        "description": info.description(),
+        "messageTemplate": (info.origin == registry::Origin::Khronos).then_some(info.summary),
+        "documentation": info.help_markdown(),
+    })
 }
 
 pub fn explain(code: &str) -> Outcome {

@@ -178,8 +178,11 @@ fn github_line(report: &Report, positions: &Positions, d: &Diagnostic) -> String
         Severity::Warning => "warning",
         Severity::Info | Severity::Hint => "notice",
     };
-    let position =
-        (positions.line_col(d)).map_or(String::new(), |(l, c)| format!(",line={l},col={c}"));
+    // A GLB is binary: a line and column of its JSON chunk mean nothing in a diff view.
+    let glb = report.document.container == crate::document::Container::Glb;
+    let position = (positions.line_col(d))
+        .filter(|_| !glb)
+        .map_or(String::new(), |(l, c)| format!(",line={l},col={c}"));
     let escape = |s: &str| {
         s.replace('%', "%25")
             .replace('\r', "%0D")
