@@ -351,6 +351,57 @@ mod verify {
         );
     }
 
+    /// A 1.0 spec-gloss factor material with `specular`, evaluated by its own model: the
+    /// proof reports the worst draft reading and refuses what is above the threshold.
+    fn verify_spec_gloss(specular: [f64; 3]) -> (i32, String) {
+        let dir = scratch(&format!("chromatic-{}", specular[1]));
+        let mut asset: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(repo("fixtures/gltf1/pbr-sg-khr.gltf")).unwrap())
+                .unwrap();
+        asset["materials"]["Effect-Texture"]["extensions"]["KHR_materials_pbr"]["values"]
+            ["specularFactor"] = specular.into();
+        let input = dir.join("in.gltf");
+        std::fs::write(&input, asset.to_string()).unwrap();
+        let out = dir.join("out.glb");
+        let result = gltfmat(&[
+            "upgrade",
+            input.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--verify",
+        ]);
+        assert_eq!(
+            out.exists(),
+            result.0 == 0,
+            "written only when the proof holds: {}",
+            result.1
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+        result
+    }
+
+    fn max_delta_e(text: &str) -> f64 {
+        let at = text.find("ΔE2000 max ").expect("a ΔE figure") + "ΔE2000 max ".len();
+        text[at..].split(',').next().unwrap().parse().unwrap()
+    }
+
+    #[test]
+    fn a_chromatic_specular_conversion_is_refused_with_its_residual() {
+        // (1 − F_c) per channel in the source against (1 − max3 F) in the target: ΔE well
+        // above one JND, not 0 (the proof used to evaluate the source with the target's model).
+        let (code, text) = verify_spec_gloss([0.9, 0.1, 0.1]);
+        assert_eq!(code, 1, "{text}");
+        assert!(max_delta_e(&text) > 5.0, "{text}");
+        assert!(
+            text.contains("source read as:"),
+            "the reading is named: {text}"
+        );
+        // A dim achromatic specular stays within the threshold under every reading.
+        let (code, text) = verify_spec_gloss([0.02, 0.02, 0.02]);
+        assert_eq!(code, 0, "{text}");
+        assert!(max_delta_e(&text) <= 1.0, "{text}");
+    }
+
     #[test]
     fn the_cli_verifies_before_writing() {
         let dir = scratch("verify");

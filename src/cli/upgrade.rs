@@ -5,7 +5,8 @@ use crate::common::{Failure, Outcome};
 use gltfmat::document::file::FileId;
 use gltfmat::document::uri::folder_of;
 use gltfmat::report::{render, Format, Style};
-use gltfmat::shade::pairing::compare_pairs;
+use gltfmat::shade::pairing::{self, compare_pairs};
+use gltfmat::shade::MaterialSource;
 use gltfmat::upgrade::{legacy_materials, output, NoteKind, SpecularGlossiness};
 use gltfmat::{upgrade, FolderResources, Severity, UpgradeOptions, Upgraded};
 use std::io::Write;
@@ -187,13 +188,42 @@ fn verified(bytes: &[u8], args: &UpgradeArgs, upgraded: &Upgraded) -> bool {
             return false;
         }
     };
-    let converted: Vec<_> = converted
-        .into_iter()
-        .zip(&sources)
-        .map(|(m, (name, _))| (name.clone(), Some(m)))
+    let outcomes: Vec<_> = (sources.iter().zip(converted).enumerate())
+        .filter_map(|(i, ((name, source), target))| {
+            worst_reading(i, name, source.as_ref()?, target)
+        })
         .collect();
-    let pairs: Vec<(usize, usize)> = (0..sources.len()).map(|i| (i, i)).collect();
-    let outcomes = compare_pairs(&sources, &converted, &pairs, 0);
     crate::compare::print_human(&outcomes, args.threshold);
     outcomes.iter().all(|o| o.result.max <= args.threshold)
+}
+
+/// The conversion of source material `index` compared under every reading of its source's
+/// text; the worst, its name saying which reading that was.
+fn worst_reading(
+    index: usize,
+    name: &str,
+    source: &MaterialSource,
+    target: MaterialSource,
+) -> Option<pairing::Outcome> {
+    let target = [(name.to_string(), Some(target))];
+    let mut worst: Option<pairing::Outcome> = None;
+    for reading in source.readings() {
+        let label = match reading.reading_name() {
+            Some(how) => format!("{name} (source read as: {how})"),
+            None => name.to_string(),
+        };
+        let read = [(label, Some(reading))];
+        let Some(mut outcome) = compare_pairs(&read, &target, &[(0, 0)], 0).pop() else {
+            continue;
+        };
+        outcome.a.0 = index;
+        outcome.b.0 = index;
+        if worst
+            .as_ref()
+            .is_none_or(|w| outcome.result.max > w.result.max)
+        {
+            worst = Some(outcome);
+        }
+    }
+    worst
 }

@@ -7,10 +7,11 @@
 //! - sheen is layered with the reciprocal albedo scaling
 //!   `min(1 − c·E(NdotV), 1 − c·E(NdotL))`, c = max3(sheenColor), E from the table of the
 //!   same lobe;
-//! - spec-gloss follows its archived spec: c_diff = diffuse · (1 − max3(specular)),
-//!   F0 = specular, α = (1 − glossiness)², with the same Fresnel-weighted dielectric form;
-//! - the glTF 1.0 drafts are evaluated as their 2.0 counterparts (metal-rough as core,
-//!   spec-gloss as above, per the 2017 draft's `diffuse · (1 − max(specular))`).
+//! - spec-gloss is evaluated by its own texts, never by its conversion's model (see
+//!   [`SpecGlossReading`]): the archived 2.0 extension weighs the diffuse by `1 − F` per
+//!   channel, where KHR_materials_specular weighs it by `1 − max3(F)`; the 1.0 drafts are
+//!   ambiguous, and each of their readings is evaluated;
+//! - the glTF 1.0 metal-rough drafts are evaluated as core metal-rough.
 
 use super::brdf::{
     anisotropic_alphas, f0_from_ior, fresnel, ggx_aniso_d, ggx_d, max3, sheen_lobe, smith_vis,
@@ -45,6 +46,71 @@ pub struct Inputs {
     pub anisotropy_angle: f64,
     /// KHR_materials_unlit: the base colour is emitted as is.
     pub unlit: bool,
+    /// How the dielectric's diffuse is weighed against its Fresnel term.
+    pub diffuse_balance: DiffuseBalance,
+}
+
+/// How a dielectric's diffuse term is weighed against the specular Fresnel term F (RGB).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DiffuseBalance {
+    /// `(1 − max3(F)) · diffuse`: glTF 2.0 with KHR_materials_specular ("dielectric_brdf =
+    /// … (1 - max_value(dielectric_fresnel)) * diffuse_brdf").
+    MaxFresnel,
+    /// `(1 − F_c) · diffuse` in each channel: Appendix B's `fresnel_mix` with an RGB Fresnel,
+    /// which the archived KHR_materials_pbrSpecularGlossiness was written against, and the
+    /// 1.0 drafts' "the diffuse term should be balanced using the inverse of the Fresnel term".
+    PerChannelFresnel,
+    /// `diffuse`, not weighed at all: the January 2017 FRAUNHOFER example shader.
+    Unbalanced,
+}
+
+/// A reading of a specular-glossiness text: how its diffuse colour and its balance against
+/// the Fresnel term are taken. The 1.0 drafts disagree with each other, so a proof
+/// evaluates each of their readings and reports the worst.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SpecGlossReading {
+    /// KHR_materials_pbrSpecularGlossiness (archived): "c_diff = diffuse.rgb * (1 -
+    /// max(specular.r, specular.g, specular.b))", F0 = specular, against Appendix B.
+    ArchivedExtension,
+    /// The drafts' Appendix ("balanced using the inverse of the Fresnel term", per channel)
+    /// with the January 2017 energy conservation `diffuse * (1 - max(specular))`.
+    DraftAppendix,
+    /// The 2016 drafts' Appendix alone: c_diff is the diffuse colour, balanced by 1 − F.
+    DraftAppendix2016,
+    /// The January 2017 example shader: `diffuse * (1 - max(specular.rgb))`, no (1 − F).
+    DraftExampleShader,
+}
+
+impl SpecGlossReading {
+    /// Every reading of the glTF 1.0 PBR drafts.
+    pub const DRAFTS: [SpecGlossReading; 3] = [
+        SpecGlossReading::DraftAppendix,
+        SpecGlossReading::DraftAppendix2016,
+        SpecGlossReading::DraftExampleShader,
+    ];
+
+    /// A short name for reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            SpecGlossReading::ArchivedExtension => "KHR_materials_pbrSpecularGlossiness (archived)",
+            SpecGlossReading::DraftAppendix => {
+                "drafts' Appendix with the 2017 diffuse · (1 − max specular)"
+            }
+            SpecGlossReading::DraftAppendix2016 => "2016 drafts' Appendix (diffuse not scaled)",
+            SpecGlossReading::DraftExampleShader => "January 2017 example shader (no 1 − F)",
+        }
+    }
+
+    fn balance(self) -> DiffuseBalance {
+        match self {
+            SpecGlossReading::DraftExampleShader => DiffuseBalance::Unbalanced,
+            _ => DiffuseBalance::PerChannelFresnel,
+        }
+    }
+
+    fn scales_diffuse(self) -> bool {
+        self != SpecGlossReading::DraftAppendix2016
+    }
 }
 
 impl Default for Inputs {
@@ -61,22 +127,33 @@ impl Default for Inputs {
             anisotropy_strength: 0.0,
             anisotropy_angle: 0.0,
             unlit: false,
+            diffuse_balance: DiffuseBalance::MaxFresnel,
         }
     }
 }
 
 impl Inputs {
-    /// KHR_materials_pbrSpecularGlossiness in the evaluator's terms: a dielectric whose F0
-    /// is the specular colour (ior 0 makes f0_ior = 1) and whose diffuse is
-    /// diffuse · (1 − max3(specular)).
-    pub fn specular_glossiness(diffuse: V3, specular: V3, glossiness: f64) -> Inputs {
-        let keep = 1.0 - max3(specular);
+    /// A specular-glossiness material under `reading`, in the evaluator's terms: a
+    /// dielectric whose F0 is the specular colour (ior 0 makes f0_ior = 1), α = (1 −
+    /// glossiness)², and whose diffuse and its balance are the reading's.
+    pub fn specular_glossiness(
+        diffuse: V3,
+        specular: V3,
+        glossiness: f64,
+        reading: SpecGlossReading,
+    ) -> Inputs {
+        let keep = if reading.scales_diffuse() {
+            1.0 - max3(specular)
+        } else {
+            1.0
+        };
         Inputs {
             base_color: channels(|i| diffuse[i] * keep),
             metallic: 0.0,
             roughness: 1.0 - glossiness,
             ior: 0.0,
             specular_color: specular,
+            diffuse_balance: reading.balance(),
             ..Inputs::default()
         }
     }
@@ -141,9 +218,14 @@ pub fn base_brdf<R: Real>(m: &Inputs, g: &Geometry<R>) -> [R; 3] {
             g.fresnel_weight,
         )
     });
-    let diffuse_weight = -max3(dielectric_f) + 1.0;
+    let max_f = max3(dielectric_f);
+    let diffuse_weight = |i: usize| match m.diffuse_balance {
+        DiffuseBalance::MaxFresnel => -max_f + 1.0,
+        DiffuseBalance::PerChannelFresnel => -dielectric_f[i] + 1.0,
+        DiffuseBalance::Unbalanced => R::splat(1.0),
+    };
     channels(|i| {
-        let dielectric = dielectric_f[i] * specular + diffuse_weight * (m.base_color[i] / PI);
+        let dielectric = dielectric_f[i] * specular + diffuse_weight(i) * (m.base_color[i] / PI);
         let metal = fresnel(m.base_color[i], 1.0, g.fresnel_weight) * specular;
         dielectric * (1.0 - m.metallic) + metal * m.metallic
     })
@@ -320,24 +402,73 @@ mod tests {
         }
     }
 
-    #[test]
-    fn spec_gloss_matches_metal_rough_with_specular_and_infinite_ior() {
-        let (diffuse, specular, gloss) = ([0.6, 0.5, 0.4], [0.2, 0.2, 0.2], 0.75);
-        let sg = Inputs::specular_glossiness(diffuse, specular, gloss);
-        let converted = Inputs {
-            base_color: diffuse.map(|d| d * 0.8),
+    /// The closed-form conversion: base colour = diffuse · (1 − max specular), roughness = 1 −
+    /// glossiness, specularColor = specular, ior 0.
+    fn converted(diffuse: V3, specular: V3, gloss: f64) -> Inputs {
+        let keep = 1.0 - max3(specular);
+        Inputs {
+            base_color: diffuse.map(|d| d * keep),
             metallic: 0.0,
-            roughness: 0.25,
+            roughness: 1.0 - gloss,
             ior: 0.0,
             specular: 1.0,
             specular_color: specular,
             ..Inputs::default()
-        };
+        }
+    }
+
+    #[test]
+    fn an_achromatic_spec_gloss_is_its_conversion_exactly() {
+        let (diffuse, specular, gloss) = ([0.6, 0.5, 0.4], [0.2, 0.2, 0.2], 0.75);
+        let sg = Inputs::specular_glossiness(
+            diffuse,
+            specular,
+            gloss,
+            SpecGlossReading::ArchivedExtension,
+        );
         for (v, l) in pairs() {
-            assert_eq!(
+            let (a, b) = (
                 base_brdf(&sg, &Geometry::new(v, l)),
-                base_brdf(&converted, &Geometry::new(v, l))
+                base_brdf(&converted(diffuse, specular, gloss), &Geometry::new(v, l)),
             );
+            assert_close(a, b);
+        }
+    }
+
+    /// The proof can fail: under its own text (1 − F per channel) a chromatic spec-gloss
+    /// exceeds its conversion (1 − max3(F)) by exactly c_diff,c · (1 − w) · (max s − s_c) / π,
+    /// w = (1 − V·H)⁵, in every channel.
+    #[test]
+    fn a_chromatic_spec_gloss_keeps_the_analytic_residual_of_its_own_model() {
+        for specular in [[0.9, 0.1, 0.1], [0.0, 0.3, 0.0], [0.4, 0.04, 0.04]] {
+            let (diffuse, gloss) = ([0.8, 0.7, 0.6], 0.6);
+            let source = Inputs::specular_glossiness(
+                diffuse,
+                specular,
+                gloss,
+                SpecGlossReading::ArchivedExtension,
+            );
+            let target = converted(diffuse, specular, gloss);
+            let max_s = max3(specular);
+            for (v, l) in pairs() {
+                let g = Geometry::new(v, l);
+                let (a, b) = (base_brdf(&source, &g), base_brdf(&target, &g));
+                let h = half(v, l);
+                let w = (1.0 - (v[0] * h[0] + v[1] * h[1] + v[2] * h[2])).powi(5);
+                for c in 0..3 {
+                    let expected = target.base_color[c] * (1.0 - w) * (max_s - specular[c]) / PI;
+                    // The source keeps more diffuse: 1 − F_c ≥ 1 − max3(F).
+                    assert!(
+                        ((a[c] - b[c]) - expected).abs() < 1e-6,
+                        "{specular:?} channel {c}: {} vs {expected}",
+                        a[c] - b[c]
+                    );
+                }
+                assert!(
+                    max3(channels(|c| (b[c] - a[c]).abs())) > 1e-3,
+                    "{specular:?}: the residual shows"
+                );
+            }
         }
     }
 }

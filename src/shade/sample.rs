@@ -5,7 +5,7 @@
 
 use super::brdf::V3;
 use super::lanes::channels;
-use super::material::Inputs;
+use super::material::{Inputs, SpecGlossReading};
 use crate::gltf::color::srgb_texel_to_linear;
 use crate::gltf::material::{effective_texcoord, texture_transform};
 use crate::legacy::pbr::{LegacyPbr, Model};
@@ -297,6 +297,8 @@ pub enum MaterialSource {
         colour: Option<Texture>,
         /// Its data texture (metallic-roughness or specular-glossiness).
         data: Option<Texture>,
+        /// How a specular-glossiness draft is read (see [`SpecGlossReading::DRAFTS`]).
+        reading: SpecGlossReading,
     },
 }
 
@@ -379,15 +381,48 @@ impl MaterialSource {
             .unwrap_or(1)
     }
 
+    /// The readings a proof must evaluate this material under: every draft reading for a
+    /// 1.0 specular-glossiness material, its one model otherwise.
+    pub fn readings(&self) -> Vec<MaterialSource> {
+        match self {
+            MaterialSource::Legacy {
+                pbr, colour, data, ..
+            } if pbr.model == Model::SpecularGlossiness => (SpecGlossReading::DRAFTS.iter())
+                .map(|&reading| MaterialSource::Legacy {
+                    pbr: pbr.clone(),
+                    colour: colour.clone(),
+                    data: data.clone(),
+                    reading,
+                })
+                .collect(),
+            _ => vec![self.clone()],
+        }
+    }
+
+    /// The name of the reading this material is evaluated under, when there is a choice.
+    pub fn reading_name(&self) -> Option<&'static str> {
+        match self {
+            MaterialSource::Legacy { pbr, reading, .. }
+                if pbr.model == Model::SpecularGlossiness =>
+            {
+                Some(reading.name())
+            }
+            _ => None,
+        }
+    }
+
     /// The BRDF inputs at texture coordinates `uvs` (one pair per TEXCOORD set). Inlined
     /// into the comparison's texel loop, which is compiled for the CPU's vector width.
     #[inline(always)]
     pub fn inputs_at(&self, uvs: &[[f64; 2]]) -> Inputs {
         match self {
             MaterialSource::Gltf2(prepared) => prepared.inputs_at(uvs),
-            MaterialSource::Legacy { pbr, colour, data } => {
-                legacy_inputs(pbr, colour.as_deref(), data.as_deref(), uvs[0])
-            }
+            MaterialSource::Legacy {
+                pbr,
+                colour,
+                data,
+                reading,
+            } => legacy_inputs(pbr, colour.as_deref(), data.as_deref(), uvs[0], *reading),
         }
     }
 }
@@ -425,6 +460,7 @@ fn prepare(material: &Value, textures: &[Option<Texture>]) -> Prepared {
         anisotropy_strength: number(anisotropy, "anisotropyStrength", 0.0),
         anisotropy_angle: number(anisotropy, "anisotropyRotation", 0.0),
         unlit: extension("KHR_materials_unlit").is_some(),
+        ..Inputs::default()
     };
     let spec_gloss = extension("KHR_materials_pbrSpecularGlossiness").map(|sg| SpecGloss {
         diffuse: colour3(sg.get("diffuseFactor"), [1.0; 3]),
@@ -466,7 +502,12 @@ impl Prepared {
                 specular = times(specular, srgb3(t));
                 glossiness *= t[3];
             }
-            return Inputs::specular_glossiness(diffuse, specular, glossiness);
+            return Inputs::specular_glossiness(
+                diffuse,
+                specular,
+                glossiness,
+                SpecGlossReading::ArchivedExtension,
+            );
         }
         let mut m = self.factors.clone();
         if let Some(t) = sample(&self.base_colour) {
@@ -498,13 +539,15 @@ impl Prepared {
 }
 
 /// The 1.0 drafts' own model: metal-rough with metallic in R and roughness in G of the data
-/// texture; spec-gloss with sRGB diffuse and specular, glossiness in A (2017 draft).
+/// texture; spec-gloss with sRGB diffuse and specular, glossiness in A (2017 draft), under
+/// `reading`.
 #[inline(always)]
 fn legacy_inputs(
     pbr: &LegacyPbr,
     colour: Option<&TextureImage>,
     data: Option<&TextureImage>,
     uv: [f64; 2],
+    reading: SpecGlossReading,
 ) -> Inputs {
     let colour_texel = colour.map(|t| bilinear(t, uv));
     let data_texel = data.map(|t| bilinear(t, uv));
@@ -534,7 +577,7 @@ fn legacy_inputs(
                 specular = times(specular, s);
                 gloss *= t[3];
             }
-            Inputs::specular_glossiness(rgb, specular, gloss)
+            Inputs::specular_glossiness(rgb, specular, gloss, reading)
         }
     }
 }

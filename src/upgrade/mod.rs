@@ -20,6 +20,7 @@ mod source;
 
 use crate::document::uri::ResourceLoader;
 use crate::legacy::pbr;
+use crate::shade::material::SpecGlossReading;
 use crate::shade::sample::{self, MaterialSource, Texture};
 pub use binary::Binary;
 use serde_json::Value;
@@ -225,6 +226,7 @@ pub fn legacy_materials(
                 colour: texture(&pbr.colour_texture),
                 data: texture(&pbr.data_texture),
                 pbr,
+                reading: SpecGlossReading::DraftAppendix,
             });
             (id.to_string(), sampled)
         })
