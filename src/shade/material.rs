@@ -5,8 +5,10 @@
 //! - the dielectric is `F_d · specular + (1 − max3(F_d)) · diffuse` (KHR_materials_specular),
 //!   which equals Appendix B's `fresnel_mix` whenever F is grey;
 //! - sheen is layered with the reciprocal albedo scaling
-//!   `min(1 − c·E(NdotV), 1 − c·E(NdotL))`, c = max3(sheenColor), E from the table of the
-//!   same lobe;
+//!   `max(0, min(1 − c·E(NdotV), 1 − c·E(NdotL)))`, c = max3(sheenColor), E from the table of
+//!   the same lobe. E exceeds 1 at low sheen roughness and grazing angles (Charlie 2.5 at
+//!   sheenRoughness 0.02, μ 0.02), where the unclamped scaling goes negative; Appendix B says
+//!   the BRDF MUST be positive, so the base is switched off there instead;
 //! - spec-gloss is evaluated by its own texts, never by its conversion's model (see
 //!   [`SpecGlossReading`]): the archived 2.0 extension weighs the diffuse by `1 − F` per
 //!   channel, where KHR_materials_specular weighs it by `1 − max3(F)`; the 1.0 drafts are
@@ -188,7 +190,9 @@ impl Shader {
         } else {
             let lobe = sheen_lobe(self.visibility(), m.sheen_roughness, g);
             let e = |mu: R| mu.map(|mu| self.sheen_table.lookup(mu, m.sheen_roughness));
-            let scale = (-(e(g.v[2]) * c) + 1.0).min(-(e(g.l[2]) * c) + 1.0);
+            let scale = (-(e(g.v[2]) * c) + 1.0)
+                .min(-(e(g.l[2]) * c) + 1.0)
+                .max(R::splat(0.0));
             channels(|i| lobe * m.sheen_color[i] + base[i] * scale)
         };
         let zero = R::splat(0.0);
@@ -470,5 +474,36 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn no_brdf_value_is_negative_at_low_sheen_roughness_and_grazing_angles() {
+        let shader = Shader::new(SheenTable::compute(32, SheenVisibility::Charlie));
+        let mut checked = 0;
+        for step in 0..=10 {
+            let material = Inputs {
+                base_color: [0.9, 0.8, 0.7],
+                metallic: 0.0,
+                roughness: 0.5,
+                sheen_color: [1.0, 1.0, 1.0],
+                sheen_roughness: 0.005 * step as f64,
+                ..Inputs::default()
+            };
+            for theta_v in [0.2, 1.0, 1.45, 1.55, 1.5608] {
+                for theta_l in [0.1, 0.8, 1.4, 1.55, 1.5608] {
+                    for phi in [0.0, 1.5, 3.1] {
+                        let g = Geometry::new(direction(theta_v, 0.0), direction(theta_l, phi));
+                        let value = shader.brdf(&material, &g);
+                        assert!(
+                            value.iter().all(|&c| c >= 0.0),
+                            "{value:?} at sr {}",
+                            material.sheen_roughness
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(checked, 11 * 5 * 5 * 3);
     }
 }
