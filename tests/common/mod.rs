@@ -27,20 +27,27 @@ pub fn chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
     out
 }
 
-/// A corpus folder below `../shared`. Missing, the test is skipped with a loud message, except
-/// under CI (`CI` set), where a missing corpus fails.
+/// A corpus folder below `../shared` (or below `$GLTFMAT_SHARED` when set). Missing, the test
+/// is skipped with a loud message, except under CI (`CI` set), where a missing corpus fails.
 pub fn shared(relative: &str, test: &str) -> Option<PathBuf> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared")
-        .join(relative);
+    let root = std::env::var_os("GLTFMAT_SHARED").map_or_else(
+        || Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared"),
+        PathBuf::from,
+    );
+    let path = root.join(relative);
     if path.is_dir() {
         return Some(path);
     }
     let message = format!(
-        "*** {test}: ../shared/{relative} is MISSING ({}): this test did not run.",
+        "*** {test}: ../shared/{relative} is MISSING ({}; set GLTFMAT_SHARED to the folder holding it): this test did not run.",
         path.display()
     );
     assert!(std::env::var_os("CI").is_none(), "\n{message}\n");
-    eprintln!("\n{message}\n");
+    // Straight to the process's stderr: the test harness captures `eprintln!` of a passing
+    // test, and a skip must be seen.
+    let _ = std::io::Write::write_all(
+        &mut std::io::stderr(),
+        format!("\n{message}\n\n").as_bytes(),
+    );
     None
 }
