@@ -51,12 +51,12 @@ fn in_reading_order<'r>(
     positions: &Positions,
     style: &Style,
 ) -> Vec<&'r Diagnostic> {
-    let mut listed: Vec<(&Diagnostic, Option<(usize, usize)>)> = (report.diagnostics.iter())
+    let mut shown: Vec<(&Diagnostic, Option<(usize, usize)>)> = (report.diagnostics.iter())
         .filter(|d| listed(d.severity, style))
         .map(|d| (d, positions.line_col(d)))
         .collect();
-    listed.sort_by_key(|(d, at)| (d.severity, at.is_none(), *at));
-    listed.into_iter().map(|(d, _)| d).collect()
+    shown.sort_by_key(|(d, at)| (d.severity, at.is_none(), *at));
+    shown.into_iter().map(|(d, _)| d).collect()
 }
 
 fn finding(report: &Report, positions: &Positions, d: &Diagnostic, colour: bool) -> String {

@@ -19,8 +19,7 @@ pub struct Tally {
 
 /// Decodes image `index`, reporting IMAGE_UNDECODABLE or IMAGE_DECODE_LIMIT on failure.
 pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
-    let bytes = ctx.image_bytes.get(index)?.as_deref()?;
-    match image_decode::decode(bytes) {
+    match image_decode::decode(encoded(ctx, index)?) {
         Ok(image) => Some(Texels { image }),
         Err(error @ DecodeError::Limit) => {
             ctx.emit(
@@ -44,9 +43,13 @@ pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
 /// Decodes image `index` without reporting a failure: for a document rule that only looks
 /// closer when it can (the pixel rules report what cannot be decoded).
 pub fn decode_quietly(ctx: &Context, index: usize) -> Option<Texels> {
-    let bytes = ctx.image_bytes.get(index)?.as_deref()?;
-    let image = image_decode::decode(bytes).ok()?;
+    let image = image_decode::decode(encoded(ctx, index)?).ok()?;
     Some(Texels { image })
+}
+
+/// The encoded bytes of image `index`, when they were read.
+fn encoded<'c>(ctx: &'c Context, index: usize) -> Option<&'c [u8]> {
+    ctx.image_bytes.get(index)?.as_deref()
 }
 
 impl Texels {
