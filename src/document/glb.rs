@@ -17,11 +17,10 @@ const CHUNK_BIN: u32 = 0x004E_4942;
 #[derive(Debug, Default)]
 pub struct GlbParts {
     pub version: u32,
+    /// The JSON chunk's bytes (empty when the chunk was empty and more bytes followed it:
+    /// the Khronos validator then parses an empty document, which is INVALID_JSON).
     pub json: Option<Range<usize>>,
     pub bin: Option<Range<usize>>,
-    /// The JSON chunk was empty and more bytes followed it; the Khronos validator then
-    /// parses an empty document, so the caller reports INVALID_JSON.
-    pub json_parsed_empty: bool,
 }
 
 fn at(code: Code, offset: usize, message: impl Into<String>) -> Diagnostic {
@@ -125,9 +124,9 @@ pub fn read(bytes: &[u8], diags: &mut dyn Sink) -> GlbParts {
                     chunk.duplicate("JSON", diags);
                 } else if chunk.length == 0 {
                     saw_empty_json = true;
-                    // The validator feeds the empty chunk to its JSON parser only when
-                    // more bytes follow it.
-                    parts.json_parsed_empty = data_end < bytes.len();
+                    // The validator feeds an empty chunk to its JSON parser (which then
+                    // reports INVALID_JSON) only when more bytes follow it.
+                    parts.json = (data_end < bytes.len()).then_some(range).flatten();
                 } else {
                     parts.json = range;
                 }
@@ -320,7 +319,11 @@ mod tests {
                 khronos::GLB_UNEXPECTED_END_OF_CHUNK_DATA
             ]
         );
-        assert!(parts.json_parsed_empty);
+        assert_eq!(
+            parts.json,
+            Some(20..20),
+            "the empty JSON chunk is parsed, at its place"
+        );
         assert_eq!(found[4].location, Location::Offset(32));
     }
 

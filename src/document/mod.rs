@@ -84,20 +84,14 @@ impl Document {
 pub fn read(bytes: impl Into<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> Document {
     let bytes = bytes.into();
     let named_glb = name.to_ascii_lowercase().ends_with(".glb");
-    let (container, json_range, bin, empty_json) = if glb::looks_like_glb(&bytes) || named_glb {
+    let (container, json_range, bin) = if glb::looks_like_glb(&bytes) || named_glb {
         let parts = glb::read(&bytes, diagnostics);
-        (
-            Container::Glb,
-            parts.json,
-            parts.bin,
-            parts.json_parsed_empty,
-        )
+        (Container::Glb, parts.json, parts.bin)
     } else {
-        (Container::Gltf, Some(0..bytes.len()), None, false)
+        (Container::Gltf, Some(0..bytes.len()), None)
     };
     let root = match &json_range {
         Some(range) => parse_json(&bytes[range.clone()], diagnostics),
-        None if empty_json => parse_json(b"", diagnostics),
         None => None,
     };
     Document {

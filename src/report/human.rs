@@ -76,8 +76,38 @@ fn finding(report: &Report, positions: &Positions, d: &Diagnostic, colour: bool)
         .then(|| positions.text_start + range.start);
         out.push_str(&notes(positions.shown_at(d), byte));
         out.push_str(&snippet(&positions.lines, range.start, colour));
+    } else if let Location::Offset(offset) = d.location {
+        out.push_str(&hex_snippet(
+            &report.document.bytes,
+            offset as usize,
+            colour,
+        ));
     }
     out
+}
+
+/// Bytes shown on each side of an offset in a binary container.
+const HEX_WINDOW: usize = 8;
+
+/// The file's bytes around `offset` (a GLB header or chunk finding), in hex with their
+/// printable characters, and a caret under the byte.
+fn hex_snippet(bytes: &[u8], offset: usize, colour: bool) -> String {
+    let from = offset.saturating_sub(HEX_WINDOW).min(bytes.len());
+    let to = (offset + HEX_WINDOW).min(bytes.len());
+    let shown = &bytes[from..to];
+    let hex: Vec<String> = shown.iter().map(|b| format!("{b:02x}")).collect();
+    let text: String = (shown.iter())
+        .map(|&b| if b.is_ascii_graphic() { b as char } else { '.' })
+        .collect();
+    let gutter = format!("{from:>8} | ");
+    let caret_at = 3 * (offset.min(to) - from);
+    format!(
+        "{gutter}{}  {text}\n{}| {}{}\n",
+        hex.join(" "),
+        " ".repeat(gutter.len() - 2),
+        " ".repeat(caret_at),
+        paint("^", "1;31", colour)
+    )
 }
 
 /// Where a finding is shown when that needs saying: at an enclosing value (its own member
@@ -265,5 +295,25 @@ mod tests {
         let caret = lines[2].find('^').unwrap();
         let under: String = lines[1].chars().skip(caret).take(7).collect();
         assert_eq!(under, "\"asset\"", "{out}");
+    }
+
+    #[test]
+    fn a_finding_at_a_byte_of_a_glb_shows_the_bytes_around_it() {
+        let mut glb = b"glTF".to_vec();
+        glb.extend_from_slice(&2u32.to_le_bytes());
+        glb.extend_from_slice(&100u32.to_le_bytes());
+        let report = check_bytes("a.glb", glb, &NoResources, &CheckOptions::default());
+        let out = plain(&report, false);
+        let lines: Vec<&str> = out.lines().collect();
+        assert!(
+            lines[0].starts_with("a.glb: error[GLB_UNEXPECTED_END_OF_CHUNK_HEADER]")
+                || lines[0].contains("(byte 12)"),
+            "{out}"
+        );
+        assert_eq!(
+            lines[1], "       4 | 02 00 00 00 64 00 00 00  ....d...",
+            "{out}"
+        );
+        assert_eq!(lines[2], "         |                         ^", "{out}");
     }
 }
