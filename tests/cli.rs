@@ -493,6 +493,37 @@ fn sarif_shows_well_in_code_scanning() {
     assert!(results
         .iter()
         .any(|r| r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] == "t.glb"));
+    // An unrelated line inserted above every finding moves them, not their fingerprints.
+    let fingerprints_of = |log: &serde_json::Value| -> Vec<(String, String)> {
+        let mut found: Vec<_> = (log["runs"][0]["results"].as_array().unwrap().iter())
+            .map(|r| {
+                (
+                    r["ruleId"].to_string(),
+                    r["partialFingerprints"]["gltfmat/v1"].to_string(),
+                )
+            })
+            .collect();
+        found.sort();
+        found
+    };
+    let sarif_of = |file: &str| -> serde_json::Value {
+        let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(["check", "--format", "sarif", file])
+            .current_dir(root.path())
+            .output()
+            .unwrap();
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let before = sarif_of("we,ird:dir/a 100%.gltf");
+    let text = std::fs::read_to_string(folder.join("a 100%.gltf")).unwrap();
+    std::fs::write(folder.join("a 100%.gltf"), format!("\n\n{text}")).unwrap();
+    let after = sarif_of("we,ird:dir/a 100%.gltf");
+    let line = |log: &serde_json::Value| {
+        log["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["region"]["startLine"]
+            .as_u64()
+    };
+    assert_eq!(line(&after), line(&before).map(|l| l + 2));
+    assert_eq!(fingerprints_of(&before), fingerprints_of(&after));
     // Two findings share a fingerprint only when they share file, code and place.
     assert!(
         fingerprints.len() * 10 >= results.len() * 9,
