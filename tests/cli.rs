@@ -609,11 +609,15 @@ fn stdin_filename_names_the_input_and_finds_its_resources() {
         (&"external".into(), &data_length.into())
     );
     assert_eq!(notes, "");
-    let (anonymous, notes) = run(&["check", "--format", "json", "-"]);
+    // Without a name there is no folder: the finding says what was not checked.
+    let (anonymous, _) = run(&["check", "--format", "json", "-"]);
     assert_eq!(anonymous["uri"], "-");
+    let messages = anonymous["issues"]["messages"].as_array().unwrap();
     assert!(
-        notes.contains("external resources were not read"),
-        "{notes}"
+        messages
+            .iter()
+            .any(|m| m["code"] == "EXTERNAL_RESOURCE_NOT_READ" && m["pointer"] == "/buffers/0/uri"),
+        "{anonymous}"
     );
 }
 

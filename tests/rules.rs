@@ -419,6 +419,11 @@ fn cases() -> Vec<Case> {
         near_miss("JSON_DUPLICATE_KEY", "the same key in two sibling objects", json!({"name": "a",
             "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0}}), vec![])
             .patch(json!({"nodes": [{"mesh": 0, "name": "a"}]})),
+        // -- resources
+        case("an image file with no folder to read it from", json!({"occlusionTexture": {"index": 0},
+            "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0}}), vec![])
+            .patch(json!({"images": [{"uri": "occlusion.png"}], "textures": [{"source": 0}]}))
+            .expect("EXTERNAL_RESOURCE_NOT_READ", "/images/0/uri"),
         // -- exclusions
         case("specgloss + sheen", material(json!({"extensions": {
             "KHR_materials_pbrSpecularGlossiness": spec_gloss(), "KHR_materials_sheen": visible_sheen()}})), vec![])

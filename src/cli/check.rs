@@ -248,18 +248,7 @@ fn check_file(
                 let loader = FolderResources::beside(name);
                 check_bytes(&name.to_string_lossy(), bytes, &loader, options)
             }
-            None => {
-                let report = check_bytes("-", bytes, &NoResources, options);
-                if report
-                    .info
-                    .resources
-                    .iter()
-                    .any(|r| r.storage == "external")
-                {
-                    eprintln!("gltfmat: -: external resources were not read (stdin has no folder; --stdin-filename gives it one)");
-                }
-                report
-            }
+            None => check_bytes("-", bytes, &NoResources, options),
         });
     }
     check_path(path, options).map_err(|e| match e {

@@ -57,7 +57,17 @@ fn load_uri(
                 refuse_outside(ctx, pointer, uri);
                 (None, None, "external")
             }
-            Err(LoadError::NoFolder) => (None, None, "external"),
+            Err(LoadError::NoFolder) => {
+                // The Khronos validator, given no resource loader, says nothing.
+                if !ctx.is_khronos() {
+                    ctx.emit(
+                        crate::check::rules::resource_not_read::RULE.code(),
+                        pointer,
+                        format!("'{uri}' was not read (no folder to resolve it in): what depends on it was not checked."),
+                    );
+                }
+                (None, None, "external")
+            }
             Err(LoadError::NotFound(p)) => {
                 ctx.emit(
                     khronos::IO_ERROR,

@@ -20,6 +20,7 @@ mod lossy_direction;
 mod metallic_mixed;
 mod normal_below_surface;
 pub(crate) mod outside_folder;
+pub(crate) mod resource_not_read;
 mod sheen_disabled;
 mod sheen_zero_roughness;
 mod specular_on_metal;
@@ -120,6 +121,7 @@ impl Rule {
 pub static RULES: &[&Rule] = &[
     &duplicate_key::RULE,
     &outside_folder::RULE,
+    &resource_not_read::RULE,
     &gltf1::RULE,
     &gltf1::PBR_RULE,
     &exclusion::RULE,
