@@ -332,11 +332,10 @@ impl<'a> Settings<'a> {
     }
 
     fn for_file(&mut self, file: &Path) -> Result<(Arc<CheckOptions>, bool), Failure> {
-        let folder = match file.parent() {
-            _ if file.as_os_str() == "-" => Path::new("."),
-            Some(parent) if !parent.as_os_str().is_empty() => parent,
-            _ => Path::new("."),
-        };
+        // stdin (`-`) and a bare file name are both in the current folder.
+        let folder = (file.parent())
+            .filter(|parent| file.as_os_str() != "-" && !parent.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
         self.for_folder(folder)
     }
 
