@@ -110,21 +110,30 @@ fn json_output_is_a_khronos_report() {
 }
 
 #[test]
-fn several_inputs_give_an_array_or_lines() {
+fn json_is_an_object_for_one_file_argument_and_an_array_for_a_folder_or_several() {
+    let json_of = |args: &[&str]| {
+        let (_, out) = gltfmat(&[&["check", "--format", "json"], args].concat());
+        serde_json::from_str::<serde_json::Value>(&out).unwrap()
+    };
+    let one_file = json_of(&["fixtures/valid/sheen-triangle.gltf"]);
+    assert_eq!(one_file["mimeType"], "model/gltf+json", "{one_file}");
+
     let files = [
         "fixtures/valid/sheen-triangle.gltf",
         "fixtures/broken/truncated.glb",
     ];
-    let (code, out) = gltfmat(&["check", "--format", "json", files[0], files[1]]);
-    assert_eq!(code, 1);
-    assert_eq!(
-        serde_json::from_str::<serde_json::Value>(&out)
-            .unwrap()
-            .as_array()
-            .unwrap()
-            .len(),
-        2
-    );
+    assert_eq!(json_of(&files).as_array().map(Vec::len), Some(2));
+
+    // The shape must not depend on how many assets a folder happened to hold.
+    let folder = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join(files[0]),
+        folder.path().join("only.gltf"),
+    )
+    .unwrap();
+    let walked = json_of(&[folder.path().to_str().unwrap()]);
+    assert_eq!(walked.as_array().map(Vec::len), Some(1), "{walked}");
+
     let (_, out) = gltfmat(&["check", "--format", "jsonl", files[0], files[1]]);
     assert_eq!(out.lines().count(), 2);
     assert!(out

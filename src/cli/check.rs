@@ -162,6 +162,7 @@ pub fn run(args: CheckArgs) -> Outcome {
     let all_findings = args.all_findings || here.1;
     let mut unreadable = false;
     let mut files = Vec::new();
+    let mut walked_a_folder = false;
     for input in &args.inputs {
         if input.as_os_str() == "-" {
             files.push(input.clone());
@@ -169,6 +170,7 @@ pub fn run(args: CheckArgs) -> Outcome {
         }
         match std::fs::metadata(input) {
             Ok(metadata) if metadata.is_dir() => {
+                walked_a_folder = true;
                 let before = files.len();
                 unreadable |= !collect_assets(input, &args.exclude, &mut files)?;
                 if files.len() == before {
@@ -220,7 +222,9 @@ pub fn run(args: CheckArgs) -> Outcome {
         }
     }
     let colour = args.format == FormatArg::Human && args.color.wanted();
-    let style = Style::new(colour).with_all_findings(args.all_findings || all_findings);
+    let style = Style::new(colour)
+        .with_all_findings(args.all_findings || all_findings)
+        .with_list(walked_a_folder || args.inputs.len() > 1);
     print(&render(args.format.format(), &reports, &style));
     Ok(if unreadable {
         ExitCode::from(2)

@@ -16,7 +16,8 @@ use std::ops::Range;
 pub enum Format {
     /// `path:line:col: severity[CODE]: message` with a source snippet.
     Human,
-    /// Khronos validation report shape (an array for several inputs).
+    /// Khronos validation report shape: one object for one file argument, an array when the
+    /// inputs form a list ([`Style::list`]).
     Json,
     /// One Khronos-shaped report per line.
     Jsonl,
@@ -26,14 +27,18 @@ pub enum Format {
     Github,
 }
 
-/// How the human format looks.
+/// How the output looks.
 #[derive(Debug, Clone, Copy, Default)]
 #[non_exhaustive]
 pub struct Style {
-    /// ANSI colours.
+    /// ANSI colours (human format).
     pub colour: bool,
-    /// List infos and hints too, not only count them.
+    /// List infos and hints too, not only count them (human format).
     pub all_findings: bool,
+    /// The inputs form a list (a folder, or several arguments), so `json` is an array even
+    /// when the list holds one report: its shape must not depend on how many files a folder
+    /// happened to hold.
+    pub list: bool,
 }
 
 impl Style {
@@ -42,12 +47,19 @@ impl Style {
         Style {
             colour,
             all_findings: false,
+            list: false,
         }
     }
 
     /// This style listing infos and hints too (or not).
     pub fn with_all_findings(mut self, all: bool) -> Style {
         self.all_findings = all;
+        self
+    }
+
+    /// This style rendering the reports as a list (or not): see [`Style::list`].
+    pub fn with_list(mut self, list: bool) -> Style {
+        self.list = list;
         self
     }
 }
@@ -58,7 +70,7 @@ pub fn render(format: Format, reports: &[Report], options: &Style) -> String {
         Format::Human => human::render(reports, options),
         Format::Json => {
             let value = match reports {
-                [one] => khronos_report(one),
+                [one] if !options.list => khronos_report(one),
                 many => Value::Array(many.iter().map(khronos_report).collect()),
             };
             serde_json::to_string_pretty(&value).unwrap_or_default() + "\n"

@@ -39,7 +39,7 @@ pub fn shared(relative: &str, test: &str) -> Option<PathBuf> {
         return Some(path);
     }
     let message = format!(
-        "*** {test}: ../shared/{relative} is MISSING ({}; set GLTFMAT_SHARED to the folder holding it): this test did not run.",
+        "*** {test}: ../shared/{relative} is MISSING ({}; `scripts/fetch-corpora.sh` fetches it, or set GLTFMAT_SHARED to the folder holding it): this test did not run.",
         path.display()
     );
     assert!(std::env::var_os("CI").is_none(), "\n{message}\n");
