@@ -298,6 +298,8 @@ fn an_output_that_fails_the_check_is_not_written() {
     ]);
     assert_eq!(code, 1, "{text}");
     assert!(text.contains("nothing was written"), "{text}");
+    // The refusal names the input construct the failing output object was made from.
+    assert!(text.contains("was made from 1.0 /images/i"), "{text}");
     assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -719,4 +721,165 @@ fn quantized_positions_are_decoded_with_their_decode_matrix() {
         .report
         .iter()
         .any(|n| n.text.contains("decodeMatrix")));
+}
+
+/// The notes of a conversion, as `kind pointer text` lines.
+fn notes(upgraded: &Upgraded) -> Vec<String> {
+    (upgraded.report.iter())
+        .map(|n| format!("{:?} {} {}", n.kind, n.pointer, n.text))
+        .collect()
+}
+
+fn upgrade_json(asset: Value) -> Upgraded {
+    let bytes = serde_json::to_vec(&asset).unwrap();
+    upgrade(&bytes, &NoResources, &UpgradeOptions::default()).expect("upgrades")
+}
+
+fn assert_passes_its_check(upgraded: &Upgraded) {
+    let report = output::verify(&output::layout(upgraded, "out.glb"));
+    assert!(!report.has_errors(), "{:?}", report.diagnostics);
+}
+
+#[test]
+fn materials_common_lights_become_punctual_lights_on_their_nodes() {
+    let upgraded = upgrade_json(serde_json::json!({
+        "asset": {"version": "1.0"},
+        "extensionsUsed": ["KHR_materials_common"],
+        "extensions": {"KHR_materials_common": {"lights": {
+            "sun": {"type": "directional", "directional": {"color": [1.0, 0.5, 0.0]}},
+            "bulb": {"type": "point", "point": {"color": [1, 1, 1], "constantAttenuation": 0,
+                "linearAttenuation": 0, "quadraticAttenuation": 0.25, "distance": 10}},
+            "lamp": {"type": "spot", "spot": {"color": [1, 1, 1], "fallOffAngle": 1.2,
+                "constantAttenuation": 1, "linearAttenuation": 0, "quadraticAttenuation": 0}},
+            "sky": {"type": "ambient", "ambient": {"color": [0.2, 0.2, 0.2]}},
+            "spare": {"type": "point", "point": {"color": [1, 0, 0]}}
+        }}},
+        "nodes": {
+            "a": {"extensions": {"KHR_materials_common": {"light": "sun"}}},
+            "b": {"extensions": {"KHR_materials_common": {"light": "bulb"}}},
+            "c": {"extensions": {"KHR_materials_common": {"light": "lamp"}}},
+            "d": {"extensions": {"KHR_materials_common": {"light": "sky"}}},
+            "e": {"extensions": {"KHR_materials_common": {"light": "sun"}}}
+        },
+        "scenes": {"s": {"nodes": ["a", "b", "c", "d", "e"]}}, "scene": "s"
+    }));
+    let json = &upgraded.json;
+    assert_eq!(
+        json["extensionsUsed"],
+        serde_json::json!(["KHR_lights_punctual"])
+    );
+    let lights = json["extensions"]["KHR_lights_punctual"]["lights"]
+        .as_array()
+        .unwrap();
+    assert_eq!(
+        lights.len(),
+        3,
+        "sun (shared by two nodes), bulb, lamp: {lights:?}"
+    );
+    let light_of =
+        |node: usize| json["nodes"][node]["extensions"]["KHR_lights_punctual"]["light"].as_u64();
+    assert_eq!([light_of(0), light_of(4)], [Some(0), Some(0)]);
+    assert_eq!(light_of(3), None, "ambient light has no 2.0 form");
+    // sRGB 0.5 → linear 0.214.
+    assert_eq!(lights[0]["type"], "directional");
+    assert!((lights[0]["color"][1].as_f64().unwrap() - 0.21404).abs() < 1e-4);
+    // 1/(q·d²) is exactly intensity/d² with intensity 1/q.
+    assert_eq!(lights[1]["intensity"], 4.0);
+    assert_eq!(lights[1]["range"], 10.0);
+    // The 1.0 fall-off angle is the full cone: the 2.0 outer cone is half of it.
+    assert_eq!(lights[2]["spot"]["outerConeAngle"], 0.6);
+    let notes = notes(&upgraded).join("\n");
+    for expected in [
+        "Dropped /extensions/KHR_materials_common/lights/sky ambient light",
+        "Dropped /extensions/KHR_materials_common/lights/spare light placed by no node",
+        "Decision /extensions/KHR_materials_common/lights/lamp attenuation 1/(1 + 0·d + 0·d²) has no 2.0 form",
+    ] {
+        assert!(notes.contains(expected), "{expected}\n in\n{notes}");
+    }
+    assert_passes_its_check(&upgraded);
+}
+
+#[test]
+fn technique_transparency_multiplies_alpha_where_the_technique_blends() {
+    let technique = |blend: bool| {
+        let enable = if blend { vec![2929, 3042] } else { vec![2929] };
+        serde_json::json!({"parameters": {"transparency": {"type": 5126}, "diffuse": {"type": 35666}},
+            "states": {"enable": enable}})
+    };
+    let upgraded = upgrade_json(serde_json::json!({
+        "asset": {"version": "1.0"},
+        "techniques": {"blends": technique(true), "opaque": technique(false)},
+        "materials": {
+            "glass": {"technique": "blends", "values": {"diffuse": [1, 1, 1, 0.5], "transparency": 0.9}},
+            "solid": {"technique": "opaque", "values": {"diffuse": [1, 1, 1, 1], "transparency": 0.9}}
+        },
+        "scenes": {"s": {"nodes": []}}, "scene": "s"
+    }));
+    let material = |i: usize| upgraded.json["materials"][i].clone();
+    assert_eq!(material(0)["alphaMode"], "BLEND");
+    let alpha = material(0)["pbrMetallicRoughness"]["baseColorFactor"][3]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (alpha - 0.45).abs() < 1e-12,
+        "diffuse.a · transparency, got {alpha}"
+    );
+    assert_eq!(
+        material(1)["alphaMode"],
+        Value::Null,
+        "no blending: alpha is not seen"
+    );
+    assert_eq!(
+        material(1)["pbrMetallicRoughness"]["baseColorFactor"][3],
+        1.0
+    );
+}
+
+#[test]
+fn unknown_extensions_are_named_and_unused_textures_are_not_written() {
+    let upgraded = upgrade_file(
+        &repo("fixtures/gltf1/pbr-sg-textured-fraunhofer.glb"),
+        &UpgradeOptions::default(),
+    );
+    // The rebake replaces the diffuse texture; only what the materials read is written.
+    let textures = upgraded.json["textures"].as_array().unwrap();
+    let images = upgraded.json["images"].as_array().unwrap();
+    assert_eq!(images.len(), upgraded.images.len());
+    let report = gltfmat::check_bytes(
+        "out.glb",
+        upgraded.to_glb(),
+        &NoResources,
+        &Default::default(),
+    );
+    let unused: Vec<_> = (report.diagnostics.iter())
+        .filter(|d| d.code == "UNUSED_OBJECT")
+        .collect();
+    assert!(
+        unused.is_empty(),
+        "{unused:?} ({} textures)",
+        textures.len()
+    );
+    assert!(
+        notes(&upgraded)
+            .iter()
+            .any(|n| n.starts_with("Dropped /textures texture")),
+        "{:?}",
+        notes(&upgraded)
+    );
+
+    let upgraded = upgrade_json(serde_json::json!({
+        "asset": {"version": "1.0"},
+        "extensionsUsed": ["CESIUM_RTC", "EXT_declared_only"],
+        "extensions": {"CESIUM_RTC": {"center": [1, 2, 3]}},
+        "nodes": {"n": {"extensions": {"VENDOR_thing": {}}}},
+        "scenes": {"s": {"nodes": ["n"]}}, "scene": "s"
+    }));
+    let notes = notes(&upgraded).join("\n");
+    for expected in [
+        "Dropped /extensions/CESIUM_RTC extension CESIUM_RTC (on 1 object(s))",
+        "Dropped /extensionsUsed/1 extension EXT_declared_only (declared in extensionsUsed but used by no object)",
+        "Dropped /nodes/n/extensions/VENDOR_thing extension VENDOR_thing (on 1 object(s))",
+    ] {
+        assert!(notes.contains(expected), "{expected}\n in\n{notes}");
+    }
 }

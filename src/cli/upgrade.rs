@@ -2,6 +2,7 @@
 //! the conversion report.
 
 use crate::common::{Failure, Outcome};
+use gltfmat::check::{Location, Report};
 use gltfmat::document::file::FileId;
 use gltfmat::document::uri::folder_of;
 use gltfmat::report::{render, Format, Style};
@@ -88,10 +89,7 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         .map_err(|e| Failure::usage(e.to_string()))?;
     let report = checked.report;
     if !checked.written {
-        eprint!("{}", render(Format::Human, &[report], &Style::new(false)));
-        return Err(Failure::refused(
-            "the upgraded asset fails its own check; nothing was written.",
-        ));
+        return Err(refuse_failed_check(report, &upgraded));
     }
     let warnings = report.count(Severity::Warning);
     println!(
@@ -158,10 +156,7 @@ fn write_to_stdout(upgraded: &Upgraded) -> Outcome {
     let files = output::layout(upgraded, "-.glb");
     let report = output::verify(&files);
     if report.has_errors() {
-        eprint!("{}", render(Format::Human, &[report], &Style::new(false)));
-        return Err(Failure::refused(
-            "the upgraded asset fails its own check; nothing was written.",
-        ));
+        return Err(refuse_failed_check(report, upgraded));
     }
     let mut stdout = std::io::stdout().lock();
     for part in &files.main.parts {
@@ -173,6 +168,31 @@ fn write_to_stdout(upgraded: &Upgraded) -> Outcome {
         .flush()
         .map_err(|e| Failure::usage(format!("stdout: {e}")))?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// The refusal of an output that fails its own check: the findings, then for each error the
+/// 1.0 object its place was made from, so that the user knows which input construct to fix.
+fn refuse_failed_check(report: Report, upgraded: &Upgraded) -> Failure {
+    let mut origins: Vec<String> = (report.diagnostics.iter())
+        .filter(|d| d.severity == Severity::Error)
+        .filter_map(|d| match &d.location {
+            Location::Pointer(at) => Some(format!(
+                "  {at} ({}) was made from 1.0 {}",
+                d.code,
+                upgraded.origin_of(at)?
+            )),
+            Location::Offset(_) => None,
+        })
+        .collect();
+    origins.dedup();
+    eprint!("{}", render(Format::Human, &[report], &Style::new(false)));
+    if !origins.is_empty() {
+        eprintln!(
+            "where the errors come from in the input:\n{}",
+            origins.join("\n")
+        );
+    }
+    Failure::refused("the upgraded asset fails its own check; nothing was written.")
 }
 
 /// Compares every 1.0 PBR material with its conversion; prints the results.

@@ -34,6 +34,10 @@ pub struct Builder<'s, 'a> {
     pub(in crate::upgrade) binary: Binary,
     pub(in crate::upgrade) packed_accessors: HashMap<(String, Role), usize>,
     pub(in crate::upgrade) report: Vec<Note>,
+    /// `/collection/index` of the output → the 1.0 object it was made from.
+    pub(in crate::upgrade) origins: HashMap<String, String>,
+    /// 1.0 light id → its KHR_lights_punctual index (None: it has no 2.0 form).
+    pub(in crate::upgrade) lights: HashMap<String, Option<usize>>,
 }
 
 /// `/collection/id` with the id escaped as a JSON pointer token.
@@ -72,6 +76,8 @@ impl<'s, 'a> Builder<'s, 'a> {
             binary: Binary::default(),
             packed_accessors: HashMap::new(),
             report: Vec::new(),
+            lights: HashMap::new(),
+            origins: HashMap::new(),
         }
     }
 
@@ -93,6 +99,42 @@ impl<'s, 'a> Builder<'s, 'a> {
         let array = self.arrays.entry(collection).or_default();
         array.push(value);
         array.len() - 1
+    }
+
+    /// [`Builder::push`], remembering the 1.0 object the value was made from.
+    pub(in crate::upgrade) fn push_from(
+        &mut self,
+        collection: &'static str,
+        value: Value,
+        origin: String,
+    ) -> usize {
+        let index = self.push(collection, value);
+        self.record_origin(collection, index, origin);
+        index
+    }
+
+    pub(in crate::upgrade) fn record_origin(
+        &mut self,
+        collection: &str,
+        index: usize,
+        origin: String,
+    ) {
+        // An accessor's bufferView is its own: it comes from the same 1.0 accessor.
+        let view = (collection == "accessors")
+            .then(|| {
+                self.arrays
+                    .get("accessors")?
+                    .get(index)?
+                    .get("bufferView")?
+                    .as_u64()
+            })
+            .flatten();
+        if let Some(view) = view {
+            self.origins
+                .insert(format!("/bufferViews/{view}"), origin.clone());
+        }
+        self.origins
+            .insert(format!("/{collection}/{index}"), origin);
     }
 
     pub(in crate::upgrade) fn named(id: &str, object: &Value) -> Map<String, Value> {
@@ -224,6 +266,7 @@ impl<'s, 'a> Builder<'s, 'a> {
         }
         let (kind, count) = (input.kind.clone(), input.count);
         let index = self.add_accessor(packed, &kind, count, role, Some(id));
+        self.record_origin("accessors", index, at);
         self.packed_accessors.insert((id.to_string(), role), index);
         Ok(index)
     }
@@ -279,6 +322,12 @@ impl<'s, 'a> Builder<'s, 'a> {
         if !extensions_used.is_empty() {
             root.insert("extensionsUsed".into(), json!(extensions_used));
         }
+        if let Some(lights) = self.arrays.remove("lights") {
+            root.insert(
+                "extensions".into(),
+                json!({"KHR_lights_punctual": {"lights": lights}}),
+            );
+        }
         if let Some(scene) = self.index_of("scenes", self.source.json.get("scene")) {
             root.insert("scene".into(), json!(scene));
         }
@@ -309,6 +358,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             binary: self.binary,
             images: self.images,
             report: self.report,
+            origins: self.origins,
         }
     }
 }

@@ -96,9 +96,20 @@ pub struct Upgraded {
     pub images: Vec<EncodedImage>,
     /// The conversion report.
     pub report: Vec<Note>,
+    /// `/collection/index` of the output → the 1.0 object it was made from.
+    origins: std::collections::HashMap<String, String>,
 }
 
 impl Upgraded {
+    /// The 1.0 object a place in the output was made from (a JSON pointer into the input,
+    /// or a short description), for telling a user which input construct an output
+    /// finding comes from.
+    pub fn origin_of(&self, output_pointer: &str) -> Option<&str> {
+        let mut tokens = output_pointer.split('/').skip(1);
+        let object = format!("/{}/{}", tokens.next()?, tokens.next()?);
+        self.origins.get(&object).map(String::as_str)
+    }
+
     /// The asset as one GLB file in memory (JSON chunk, then geometry and images in the BIN
     /// chunk). [`output::write_checked`] writes it to disk instead, checked and atomically.
     pub fn to_glb(&self) -> Vec<u8> {

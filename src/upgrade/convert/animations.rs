@@ -83,7 +83,7 @@ impl Builder<'_, '_> {
             }
             out.insert("samplers".into(), json!(samplers));
             out.insert("channels".into(), json!(channels));
-            self.push("animations", Value::Object(out));
+            self.push_from("animations", Value::Object(out), pointer("animations", id));
         }
         Ok(())
     }

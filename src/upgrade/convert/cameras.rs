@@ -18,7 +18,7 @@ impl Builder<'_, '_> {
                 self.fix_perspective(&mut projection, id);
             }
             out.insert(kind.into(), projection);
-            self.push("cameras", Value::Object(out));
+            self.push_from("cameras", Value::Object(out), pointer("cameras", id));
         }
     }
 
@@ -78,7 +78,7 @@ impl Builder<'_, '_> {
             } else {
                 out.insert("nodes".into(), json!(nodes));
             }
-            self.push("scenes", Value::Object(out));
+            self.push_from("scenes", Value::Object(out), pointer("scenes", id));
         }
     }
 

@@ -21,7 +21,7 @@ impl Builder<'_, '_> {
                 let value = sampler.get(key).and_then(Value::as_u64).unwrap_or(default);
                 out.insert(key.into(), json!(value));
             }
-            self.push("samplers", Value::Object(out));
+            self.push_from("samplers", Value::Object(out), pointer("samplers", id));
         }
         if !samplers.is_empty() {
             self.note(
@@ -47,7 +47,8 @@ impl Builder<'_, '_> {
                 reason: format!("not a readable image ({e:?})"),
             })?;
             let mime_type = format.format.mime_type().to_string();
-            self.add_image(Self::named(id, image), bytes, mime_type, id);
+            let index = self.add_image(Self::named(id, image), bytes, mime_type, id);
+            self.record_origin("images", index, pointer("images", id));
         }
         Ok(())
     }
@@ -72,7 +73,7 @@ impl Builder<'_, '_> {
                     format!("texture format {format} (ALPHA/LUMINANCE) has no 2.0 equivalent; the image is sampled as stored."),
                 );
             }
-            self.push("textures", Value::Object(out));
+            self.push_from("textures", Value::Object(out), pointer("textures", id));
         }
     }
 }

@@ -286,7 +286,7 @@ fn spec_gloss_extension(
 
 /// An sRGB colour value of a 1.0 shading model, made linear (1.0 shaders wrote it directly
 /// to an sRGB framebuffer).
-fn linear_colour(value: &Value) -> Option<[f64; 4]> {
+pub(super) fn linear_colour(value: &Value) -> Option<[f64; 4]> {
     let list = value.as_array()?;
     let c = |i: usize, default: f64| list.get(i).and_then(Value::as_f64).unwrap_or(default);
     Some([
@@ -367,14 +367,7 @@ fn convert_common(builder: &mut Builder, common: &Value, at: &str, out: &mut Map
         .unwrap_or(false);
     if transparent || transparency < 1.0 {
         out.insert("alphaMode".into(), json!("BLEND"));
-        if let Some(factor) = out
-            .get_mut("pbrMetallicRoughness")
-            .and_then(|p| p.get_mut("baseColorFactor"))
-        {
-            factor[3] = json!(factor[3].as_f64().unwrap_or(1.0) * transparency);
-        } else if let Some(core) = out.get_mut("pbrMetallicRoughness") {
-            core["baseColorFactor"] = json!([1.0, 1.0, 1.0, transparency]);
-        }
+        scale_alpha(out, transparency);
     }
     if common.get("doubleSided").and_then(Value::as_bool) == Some(true) {
         out.insert("doubleSided".into(), json!(true));
@@ -407,7 +400,27 @@ fn convert_technique_values(
     if let Some(own) = material.get("values").and_then(Value::as_object) {
         values.extend(own.clone());
     }
+    let transparency = values.get("transparency").and_then(Value::as_f64);
     lit_material(builder, &Value::Object(values), at, out);
+    // COLLADA2GLTF's shaders write alpha = diffuse.a · u_transparency; it matters only where
+    // the technique blends.
+    if let Some(opacity) = transparency.filter(|t| *t < 1.0) {
+        if out.get("alphaMode") == Some(&json!("BLEND")) {
+            scale_alpha(out, opacity);
+            builder.note(at, NoteKind::Decision, format!("technique value transparency {opacity} multiplied into the base colour's alpha (BLEND). The 1.0 shaders blended premultiplied (ONE, ONE_MINUS_SRC_ALPHA) without scaling the colour by it; 2.0 blends straight alpha, so the surface's own colour is scaled too."));
+        }
+    }
+}
+
+/// Multiplies the base colour's alpha by `opacity` (over a white factor when none is written).
+fn scale_alpha(out: &mut Map<String, Value>, opacity: f64) {
+    if let Some(core) = out.get_mut("pbrMetallicRoughness") {
+        let alpha = core["baseColorFactor"][3].as_f64().unwrap_or(1.0);
+        if core.get("baseColorFactor").is_none() {
+            core["baseColorFactor"] = json!([1.0, 1.0, 1.0, 1.0]);
+        }
+        core["baseColorFactor"][3] = json!(alpha * opacity);
+    }
 }
 
 /// The KHR extensions the converted materials use.

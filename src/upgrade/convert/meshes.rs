@@ -16,7 +16,7 @@ impl Builder<'_, '_> {
                 primitives.push(self.primitive(primitive, &at)?);
             }
             out.insert("primitives".into(), json!(primitives));
-            self.push("meshes", Value::Object(out));
+            self.push_from("meshes", Value::Object(out), pointer("meshes", id));
         }
         Ok(())
     }
@@ -134,6 +134,7 @@ impl Builder<'_, '_> {
             Role::FloatAttribute,
             Some(tangent_id),
         );
+        self.record_origin("accessors", index, pointer("accessors", tangent_id));
         let how = if binormals.is_some() && normals.is_some() {
             "w = the sign of dot(cross(NORMAL, TANGENT), BINORMAL); BINORMAL dropped, as 2.0 rebuilds it from NORMAL, TANGENT and w"
         } else {

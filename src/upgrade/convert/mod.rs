@@ -4,12 +4,15 @@
 
 mod animations;
 mod cameras;
+mod extensions;
 mod images;
+mod lights;
 pub(super) mod materials;
 mod meshes;
 mod nodes;
+mod unused;
 
-use super::builder::Builder;
+use super::builder::{self, Builder};
 use super::{UpgradeError, Upgraded};
 
 /// Runs every step on `builder` and finishes the asset.
@@ -19,19 +22,26 @@ pub(super) fn run(mut builder: Builder) -> Result<Upgraded, UpgradeError> {
     builder.textures();
     for (id, material) in builder.source.dictionary("materials") {
         let converted = materials::convert(&mut builder, id, material)?;
-        builder.push("materials", converted);
+        builder.push_from("materials", converted, builder::pointer("materials", id));
     }
     builder.meshes()?;
     builder.cameras();
     builder.nodes()?;
+    builder.unplaced_lights();
     builder.animations()?;
     builder.scenes();
     builder.dropped_collections();
-    let used = materials::extensions_used(
+    builder.unconverted_extensions();
+    builder.drop_unused_textures();
+    let mut used = materials::extensions_used(
         builder
             .arrays
             .get("materials")
             .map_or(&[][..], Vec::as_slice),
     );
+    if builder.arrays.contains_key("lights") {
+        used.push(lights::PUNCTUAL.to_string());
+        used.sort();
+    }
     Ok(builder.finish(used))
 }

@@ -38,11 +38,12 @@ impl Builder<'_, '_> {
                 }
                 // 2.0 nodes hold one mesh: the others become children (keeping the skin).
                 let mut child = json!({"name": format!("{id}-mesh{k}"), "mesh": mesh});
+                let origin = format!("{}/meshes/{k}", pointer("nodes", id));
                 if let Some(skin) = skin {
                     child["skin"] = json!(skin);
                 }
                 children.push(json!(nodes.len() + extra_nodes.len()));
-                extra_nodes.push(child);
+                extra_nodes.push((child, origin));
             }
             if meshes.len() > 1 {
                 self.note(
@@ -54,21 +55,14 @@ impl Builder<'_, '_> {
             if !children.is_empty() {
                 out.insert("children".into(), json!(children));
             }
-            if node
-                .get("extensions")
-                .and_then(|e| e.get("KHR_materials_common"))
-                .is_some()
-            {
-                self.note(
-                    pointer("nodes", id),
-                    NoteKind::Dropped,
-                    "KHR_materials_common light dropped (no light conversion).",
-                );
+            if let Some(light) = self.node_light(&pointer("nodes", id), node) {
+                let placed = json!({super::lights::PUNCTUAL: {"light": light}});
+                out.insert("extensions".into(), placed);
             }
-            outputs.push(Value::Object(out));
+            outputs.push((Value::Object(out), pointer("nodes", id)));
         }
-        for node in outputs.into_iter().chain(extra_nodes) {
-            self.push("nodes", node);
+        for (node, origin) in outputs.into_iter().chain(extra_nodes) {
+            self.push_from("nodes", node, origin);
         }
         Ok(())
     }
@@ -117,7 +111,12 @@ impl Builder<'_, '_> {
         }
         let matrices = self.inverse_bind_matrices(skin_id, skin, joints.len())?;
         out.insert("inverseBindMatrices".into(), json!(matrices));
-        Ok(Some(self.push("skins", Value::Object(out))))
+        let origin = format!(
+            "{} (instanced by {})",
+            pointer("skins", skin_id),
+            pointer("nodes", id)
+        );
+        Ok(Some(self.push_from("skins", Value::Object(out), origin)))
     }
 
     /// Every `jointName` in the skeleton subtrees (1.0 scopes joint names by them), or among
@@ -200,7 +199,10 @@ impl Builder<'_, '_> {
             .collect();
         let count = folded.len() / 16;
         let packed = data::pack_values(&folded, 16, data::FLOAT, false, false, &mut self.binary);
-        Ok(self.add_accessor(packed, "MAT4", count, Role::Data, Some(skin_id)))
+        let index = self.add_accessor(packed, "MAT4", count, Role::Data, Some(skin_id));
+        let origin = format!("{}/inverseBindMatrices", pointer("skins", skin_id));
+        self.record_origin("accessors", index, origin);
+        Ok(index)
     }
 }
 

@@ -1,0 +1,110 @@
+//! Textures, images and samplers no material uses are not written: a rebake leaves the
+//! original images behind (they would show as UNUSED_OBJECT), and a 1.0 asset may carry
+//! textures nothing reads.
+
+use crate::upgrade::builder::Builder;
+use crate::upgrade::NoteKind;
+use serde_json::{json, Value};
+
+impl Builder<'_, '_> {
+    pub(in crate::upgrade) fn drop_unused_textures(&mut self) {
+        let mut used = Vec::new();
+        for material in self.arrays.get_mut("materials").into_iter().flatten() {
+            texture_references(material, &mut |index| used.push(*index));
+        }
+        let textures = self.keep_used("textures", &used);
+        for material in self.arrays.get_mut("materials").into_iter().flatten() {
+            // Every index read above is in range and kept.
+            texture_references(material, &mut |index| {
+                *index = textures[*index].unwrap_or(0)
+            });
+        }
+        let images = self.keep_used("images", &self.referenced("source"));
+        let samplers = self.keep_used("samplers", &self.referenced("sampler"));
+        for texture in self.arrays.get_mut("textures").into_iter().flatten() {
+            for (key, new) in [("source", &images), ("sampler", &samplers)] {
+                if let Some(old) = texture.get(key).and_then(Value::as_u64) {
+                    texture[key] = json!(new[old as usize]);
+                }
+            }
+        }
+        let mut index = 0;
+        self.images.retain(|_| {
+            index += 1;
+            images[index - 1].is_some()
+        });
+    }
+
+    /// Removes the objects of `collection` that `used` (their indices) does not name, noting
+    /// each; returns every old index's new one (None: removed).
+    fn keep_used(&mut self, collection: &'static str, used: &[usize]) -> Vec<Option<usize>> {
+        let items = self.arrays.remove(collection).unwrap_or_default();
+        let mut is_used = vec![false; items.len()];
+        for &i in used {
+            if let Some(flag) = is_used.get_mut(i) {
+                *flag = true;
+            }
+        }
+        let mut kept = Vec::new();
+        let mut new_index = Vec::with_capacity(items.len());
+        for (old, (item, used)) in items.into_iter().zip(is_used).enumerate() {
+            let origin = self.origins.remove(&format!("/{collection}/{old}"));
+            if used {
+                if let Some(origin) = origin {
+                    self.record_origin(collection, kept.len(), origin);
+                }
+                new_index.push(Some(kept.len()));
+                kept.push(item);
+                continue;
+            }
+            new_index.push(None);
+            let name = item.get("name").and_then(Value::as_str).unwrap_or("");
+            self.note(
+                format!("/{collection}"),
+                NoteKind::Dropped,
+                format!(
+                    "{} '{name}' not written: nothing in the output uses it.",
+                    &collection[..collection.len() - 1]
+                ),
+            );
+        }
+        self.arrays.insert(collection, kept);
+        new_index
+    }
+}
+
+impl Builder<'_, '_> {
+    /// The indices the textures' `key` member names.
+    fn referenced(&self, key: &str) -> Vec<usize> {
+        (self.arrays.get("textures").into_iter().flatten())
+            .filter_map(|texture| texture.get(key)?.as_u64())
+            .map(|i| i as usize)
+            .collect()
+    }
+}
+
+/// Every texture index a material reads (the `index` of each member named `…Texture`, in the
+/// core object and in any extension), handed to `found`, which may change it.
+fn texture_references(value: &mut Value, found: &mut impl FnMut(&mut usize)) {
+    match value {
+        Value::Object(members) => {
+            for (key, member) in members.iter_mut() {
+                let index = (key.ends_with("Texture"))
+                    .then(|| member.get("index").and_then(Value::as_u64))
+                    .flatten();
+                match index {
+                    Some(old) => {
+                        let mut index = old as usize;
+                        found(&mut index);
+                        member["index"] = json!(index);
+                    }
+                    None => texture_references(member, found),
+                }
+            }
+        }
+        Value::Array(items) => items
+            .iter_mut()
+            .for_each(|item| texture_references(item, found)),
+        _ => {}
+    }
+}
