@@ -21,9 +21,20 @@ fn upgrade_file(path: &Path, options: &UpgradeOptions) -> Upgraded {
     upgrade(&bytes, &loader, options).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
-/// Upgrades and checks the exact bytes that would be written, in both containers.
+/// Upgrades and checks the exact bytes that would be written, in both containers; the GLB
+/// loads in gltf-rs (a real client) and every primitive's attributes read through it.
 fn assert_upgrades_cleanly(path: &Path) {
     let upgraded = upgrade_file(path, &UpgradeOptions::default());
+    let glb = upgraded.to_glb();
+    let gltf = gltf::Gltf::from_slice(&glb)
+        .unwrap_or_else(|e| panic!("{}: gltf-rs refuses the output: {e}", path.display()));
+    let blob = gltf.blob.as_deref();
+    for primitive in gltf.meshes().flat_map(|m| m.primitives()) {
+        let reader = primitive.reader(|_| blob);
+        assert!(reader.read_positions().is_some_and(|p| p.count() > 0));
+        let _ = reader.read_indices().map(|i| i.into_u32().count());
+        let _ = reader.read_tex_coords(0).map(|t| t.into_f32().count());
+    }
     for name in ["out.glb", "out.gltf"] {
         let report = output::verify(&output::layout(&upgraded, name));
         assert_eq!(
