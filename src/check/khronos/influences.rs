@@ -6,7 +6,7 @@ use super::accessor_usage::Findings;
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;
 use serde_json::Value;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 pub fn check(ctx: &mut Context) {
     let mut findings = Vec::new();
@@ -106,14 +106,15 @@ fn influence_sets<'c>(ctx: &'c Context, primitive: &Value) -> Option<Vec<Set<'c>
 fn check_primitive(sets: &[Set], at: &str, limit: JointLimit, out: &mut Findings) {
     let joints_at = |n: usize| format!("{at}/JOINTS_{n}");
     let weights_at = |n: usize| format!("{at}/WEIGHTS_{n}");
-    let mut seen = HashSet::new();
+    // A vertex has a few influences: a short list searched linearly beats hashing, and
+    // both buffers are reused from vertex to vertex (this runs per vertex of large meshes).
+    let mut seen: Vec<u64> = Vec::new();
+    let mut values = Vec::with_capacity(sets.len());
     for vertex in 0..sets[0].joints.0.count {
         seen.clear();
+        values.clear();
         let read = |(layout, bytes): &(Layout, &[u8])| element(layout, bytes, vertex);
-        let values: Vec<_> = sets
-            .iter()
-            .map(|s| (read(&s.joints), read(&s.weights)))
-            .collect();
+        values.extend(sets.iter().map(|s| (read(&s.joints), read(&s.weights))));
         let mut sum = 0f32;
         // Rounding allowance: a float32 ulp near 1 per weight summed.
         let mut allowance = 0.0;
@@ -132,7 +133,10 @@ fn check_primitive(sets: &[Set], at: &str, limit: JointLimit, out: &mut Findings
                     }
                     continue;
                 }
-                let unique = seen.insert(joint.to_bits());
+                let unique = !seen.contains(&joint.to_bits());
+                if unique {
+                    seen.push(joint.to_bits());
+                }
                 if !unique {
                     out.push((khronos::ACCESSOR_JOINTS_INDEX_DUPLICATE, joints_at(n), format!("Joints accessor element at index {index} (component index {c}) has value {joint} that is already in use for the vertex.")));
                 }

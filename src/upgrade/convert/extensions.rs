@@ -8,8 +8,10 @@ use crate::upgrade::NoteKind;
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-/// The 1.0 extensions some conversion step reads (besides the PBR drafts).
+/// The 1.0 extensions some conversion step reads (besides the PBR drafts), or that glTF 2.0
+/// holds in its core (OES_element_index_uint: 32-bit indices).
 const CONVERTED: &[&str] = &[
+    "OES_element_index_uint",
     "KHR_binary_glTF",
     "KHR_materials_common",
     "WEB3D_quantized_attributes",
