@@ -210,11 +210,13 @@ fn fifos_and_devices_are_refused_at_once_never_read() {
         assert!(stderr(&output).contains(&format!("not a regular file ({kind})")));
     }
     let output = gltfmat(folder, &["check", ".", "--format", "json"]);
-    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let reports: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     assert_eq!(
-        report["uri"], "./a.gltf",
-        "one report (an object), of a.gltf only"
+        reports,
+        serde_json::json!([reports[0]]),
+        "a walked folder gives an array: here of one report"
     );
+    assert_eq!(reports[0]["uri"], "./a.gltf", "of a.gltf only");
     assert!(stderr(&output).contains("skipped ./pipe.gltf: not a regular file"));
     assert!(stderr(&output).contains("skipped ./zero.glb: not a regular file"));
     let output = gltfmat(folder, &["check", "/dev/null"]);
