@@ -803,7 +803,7 @@ fn materials_common_lights_become_punctual_lights_on_their_nodes() {
     for expected in [
         "Dropped /extensions/KHR_materials_common/lights/sky ambient light",
         "Dropped /extensions/KHR_materials_common/lights/spare light placed by no node",
-        "Decision /extensions/KHR_materials_common/lights/lamp attenuation 1/(1 + 0·d + 0·d²) has no 2.0 form",
+        "Decision /extensions/KHR_materials_common/lights/lamp attenuation 1/(1.0 + 0.0·d + 0.0·d²) has no 2.0 form",
     ] {
         assert!(notes.contains(expected), "{expected}\n in\n{notes}");
     }

@@ -81,7 +81,18 @@ impl Builder<'_, '_> {
                 return None;
             }
         }
-        out["color"] = json!(linear_rgb(params.get("color")));
+        let colour = linear_rgb(params.get("color"));
+        let clamped = colour.map(|c| c.clamp(0.0, 1.0));
+        if clamped != colour {
+            self.note(
+                at,
+                NoteKind::Decision,
+                format!(
+                    "colour {colour:?} clamped to 0–1, the range of KHR_lights_punctual colours."
+                ),
+            );
+        }
+        out["color"] = json!(clamped);
         if kind == "spot" {
             let how = spot_cone(&params, &mut out);
             self.note(at, NoteKind::Decision, how);
@@ -100,19 +111,21 @@ impl Builder<'_, '_> {
             number("linearAttenuation", 1.0),
             number("quadraticAttenuation", 1.0),
         );
-        let at_one = c + l + q;
-        out["intensity"] = json!(if at_one > 0.0 { 1.0 / at_one } else { 1.0 });
+        // A sum that is not positive, or so small its reciprocal overflows, has no strength
+        // to match: the default intensity stands.
+        let intensity = Some(1.0 / (c + l + q)).filter(|i| *i > 0.0 && i.is_finite());
+        out["intensity"] = json!(intensity.unwrap_or(1.0));
         let distance = number("distance", 0.0);
         if distance > 0.0 {
             out["range"] = json!(distance);
         }
-        if c == 0.0 && l == 0.0 && q > 0.0 {
+        if c == 0.0 && l == 0.0 && intensity.is_some() {
             format!(
-                "attenuation 1/({q}·d²) written exactly as intensity {}.",
+                "attenuation 1/({q:?}·d²) written exactly as intensity {:?}.",
                 1.0 / q
             )
         } else {
-            format!("attenuation 1/({c} + {l}·d + {q}·d²) has no 2.0 form: inverse-square falloff with the same strength at distance 1.")
+            format!("attenuation 1/({c:?} + {l:?}·d + {q:?}·d²) has no 2.0 form: inverse-square falloff with the same strength at distance 1.")
         }
     }
 }
@@ -139,8 +152,8 @@ fn spot_cone(params: &Value, out: &mut Value) -> String {
     let inner = if exponent > 0.0 { 0.0 } else { outer * 0.99 };
     out["spot"] = json!({"innerConeAngle": inner, "outerConeAngle": outer});
     if exponent > 0.0 {
-        format!("spot fall-off angle {angle} → outer cone {outer}; fall-off exponent {exponent} has no 2.0 form: a smooth fall-off from the axis (inner cone 0).")
+        format!("spot fall-off angle {angle:?} → outer cone {outer:?}; fall-off exponent {exponent:?} has no 2.0 form: a smooth fall-off from the axis (inner cone 0).")
     } else {
-        format!("spot fall-off angle {angle} → outer cone {outer} with a hard edge (inner cone 0.99 of it).")
+        format!("spot fall-off angle {angle:?} → outer cone {outer:?} with a hard edge (inner cone 0.99 of it).")
     }
 }
