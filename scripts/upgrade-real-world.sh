@@ -17,7 +17,7 @@ while IFS= read -r -d '' input; do
       written+=("$out")
     else
       refused=$((refused + 1))
-      echo "refused ($ext): $input: $(grep -m1 -v '^ ' "$stem.$ext.log" | tail -c 200)"
+      echo "refused ($ext): $(grep -m1 '^gltfmat: ' "$stem.$ext.log")"
     fi
   done
 done < <(find "$folder" -type f \( -iname '*.gltf' -o -iname '*.glb' \) -print0 | sort -z)

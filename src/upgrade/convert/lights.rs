@@ -104,18 +104,16 @@ impl Builder<'_, '_> {
     /// 1.0 attenuation is 1 / (c + l·d + q·d²); KHR_lights_punctual's is intensity / d².
     /// Exact when only q is set (intensity 1/q); otherwise matched at distance 1.
     fn attenuation(&self, params: &Value, out: &mut Value) -> String {
-        let number =
-            |key: &str, default: f64| params.get(key).and_then(Value::as_f64).unwrap_or(default);
         let (c, l, q) = (
-            number("constantAttenuation", 0.0),
-            number("linearAttenuation", 1.0),
-            number("quadraticAttenuation", 1.0),
+            number(params, &["constantAttenuation"], 0.0),
+            number(params, &["linearAttenuation"], 1.0),
+            number(params, &["quadraticAttenuation"], 1.0),
         );
         // A sum that is not positive, or so small its reciprocal overflows, has no strength
         // to match: the default intensity stands.
         let intensity = Some(1.0 / (c + l + q)).filter(|i| *i > 0.0 && i.is_finite());
         out["intensity"] = json!(intensity.unwrap_or(1.0));
-        let distance = number("distance", 0.0);
+        let distance = number(params, &["distance"], 0.0);
         if distance > 0.0 {
             out["range"] = json!(distance);
         }
@@ -141,13 +139,12 @@ fn linear_rgb(colour: Option<&Value>) -> [f64; 3] {
 /// fall-off exponent has no 2.0 form: exponent 0 (a hard edge) becomes an inner cone just
 /// inside the outer one, a positive exponent a smooth fall-off from the axis.
 fn spot_cone(params: &Value, out: &mut Value) -> String {
-    let number = |keys: [&str; 2], default: f64| {
-        (keys.iter())
-            .find_map(|key| params.get(*key).and_then(Value::as_f64))
-            .unwrap_or(default)
-    };
-    let angle = number(["falloffAngle", "fallOffAngle"], std::f64::consts::PI);
-    let exponent = number(["falloffExponent", "fallOffExponent"], 0.0);
+    let angle = number(
+        params,
+        &["falloffAngle", "fallOffAngle"],
+        std::f64::consts::PI,
+    );
+    let exponent = number(params, &["falloffExponent", "fallOffExponent"], 0.0);
     let outer = (angle / 2.0).clamp(1e-6, std::f64::consts::FRAC_PI_2);
     let inner = if exponent > 0.0 { 0.0 } else { outer * 0.99 };
     out["spot"] = json!({"innerConeAngle": inner, "outerConeAngle": outer});
@@ -156,4 +153,11 @@ fn spot_cone(params: &Value, out: &mut Value) -> String {
     } else {
         format!("spot fall-off angle {angle:?} → outer cone {outer:?} with a hard edge (inner cone 0.99 of it).")
     }
+}
+
+/// The first of `keys` (spellings of one property) that `params` holds as a number.
+fn number(params: &Value, keys: &[&str], default: f64) -> f64 {
+    (keys.iter())
+        .find_map(|key| params.get(*key).and_then(Value::as_f64))
+        .unwrap_or(default)
 }
