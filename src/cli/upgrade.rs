@@ -8,7 +8,7 @@ use gltfmat::document::uri::folder_of;
 use gltfmat::report::{render, Format, Style};
 use gltfmat::shade::pairing::{self, compare_pairs};
 use gltfmat::shade::MaterialSource;
-use gltfmat::upgrade::{legacy_materials, output, NoteKind, SpecularGlossiness};
+use gltfmat::upgrade::{output, NoteKind, SpecularGlossiness};
 use gltfmat::{upgrade, FolderResources, Severity, UpgradeOptions, Upgraded};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -16,7 +16,8 @@ use std::process::ExitCode;
 
 #[derive(clap::Args)]
 pub struct UpgradeArgs {
-    /// The glTF 1.0 asset (.gltf, or a KHR_binary_glTF .glb).
+    /// The glTF 1.0 asset (.gltf, or a KHR_binary_glTF .glb) to upgrade, or a glTF 2.0 asset
+    /// (.gltf, .glb) whose KHR_materials_pbrSpecularGlossiness materials are to be converted.
     input: PathBuf,
     /// Output: .glb embeds everything; .gltf writes .bin and images beside it; - writes a
     /// GLB to stdout (the notes then go to stderr).
@@ -31,7 +32,7 @@ pub struct UpgradeArgs {
     /// Replace an existing output (never the input).
     #[arg(long)]
     force: bool,
-    /// Prove with the shading evaluator that each converted material renders like its 1.0
+    /// Prove with the shading evaluator that each converted material renders like its
     /// source (ΔE2000 ≤ --threshold); otherwise nothing is written.
     #[arg(long)]
     verify: bool,
@@ -195,11 +196,17 @@ fn refuse_failed_check(report: Report, upgraded: &Upgraded) -> Failure {
     Failure::refused("the upgraded asset fails its own check; nothing was written.")
 }
 
-/// Compares every 1.0 PBR material with its conversion; prints the results.
+/// Compares every source material that has a model of its own (a 1.0 asset's PBR-draft
+/// materials, every material of a 2.0 asset) with its conversion; prints the results.
 fn verified(bytes: &[u8], args: &UpgradeArgs, upgraded: &Upgraded) -> bool {
     let loader = FolderResources::beside(&args.input);
-    let Ok(sources) = legacy_materials(bytes, &loader) else {
-        return false;
+    let name = args.input.to_string_lossy();
+    let sources = match pairing::load_materials(bytes.to_vec(), &name, &loader) {
+        Ok(sources) => sources,
+        Err(why) => {
+            eprintln!("gltfmat: the source materials cannot be evaluated: {why}");
+            return false;
+        }
     };
     let converted = match gltfmat::upgrade::converted_materials(upgraded) {
         Ok(converted) => converted,

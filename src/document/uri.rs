@@ -140,6 +140,17 @@ pub trait ResourceLoader: Sync {
     fn load(&self, relative_path: &str) -> Result<Bytes, LoadError>;
 }
 
+/// The bytes a `uri` names: a data URI's own, or a file read through `loader`. Non-relative
+/// URIs are not fetched and absolute paths not read (both are errors saying so).
+pub fn load_uri(uri: &str, loader: &dyn ResourceLoader) -> Result<Bytes, String> {
+    match classify(uri)? {
+        UriKind::Data { bytes, .. } => Ok(bytes),
+        UriKind::Relative(path) => loader.load(&path).map_err(|e| e.to_string()),
+        UriKind::NonRelative => Err(format!("'{uri}' is not a relative URI; not fetched")),
+        UriKind::AbsolutePath => Err(format!("'{uri}' is an absolute path; not read")),
+    }
+}
+
 /// No external resources (stdin, or in-memory checks).
 pub struct NoResources;
 

@@ -29,3 +29,44 @@ pub fn effective_texcoord(info: &Value) -> u64 {
         .or_else(|| unsigned(info, "texCoord"))
         .unwrap_or(0)
 }
+
+/// The archived specular-glossiness extension.
+pub const SPEC_GLOSS: &str = "KHR_materials_pbrSpecularGlossiness";
+/// The unlit extension.
+pub const UNLIT: &str = "KHR_materials_unlit";
+
+/// The material extensions that extend the metallic-roughness BRDF: each one's README
+/// excludes KHR_materials_pbrSpecularGlossiness and KHR_materials_unlit on the same material.
+const EXTENDS_METAL_ROUGH: &[&str] = &[
+    "KHR_materials_anisotropy",
+    "KHR_materials_clearcoat",
+    "KHR_materials_diffuse_transmission",
+    "KHR_materials_dispersion",
+    "KHR_materials_ior",
+    "KHR_materials_iridescence",
+    "KHR_materials_sheen",
+    "KHR_materials_specular",
+    "KHR_materials_transmission",
+    "KHR_materials_volume",
+];
+
+/// What the specs say about `other` on a material that has the standalone extension
+/// `standalone` (specular-glossiness or unlit).
+#[derive(Debug, PartialEq, Eq)]
+pub enum Combination {
+    Excluded,
+    Allowed,
+    Unknown,
+}
+
+pub fn combination(standalone: &str, other: &str) -> Combination {
+    if EXTENDS_METAL_ROUGH.contains(&other)
+        || (standalone == UNLIT && other == "KHR_materials_emissive_strength")
+    {
+        Combination::Excluded
+    } else if other == "KHR_materials_emissive_strength" {
+        Combination::Allowed
+    } else {
+        Combination::Unknown
+    }
+}

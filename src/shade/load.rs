@@ -1,19 +1,10 @@
 //! Reading the materials of a glTF 2.0 file (`.gltf` or `.glb`) for the evaluator.
 
 use super::sample::{self, MaterialSource, Texture};
-use crate::document::uri::{classify, ResourceLoader, UriKind};
+use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::{self, BufferData, Bytes, Container};
 use crate::gltf::material::texture_images;
 use serde_json::Value;
-
-fn uri_bytes(uri: &str, loader: &dyn ResourceLoader) -> Result<Bytes, String> {
-    match classify(uri)? {
-        UriKind::Data { bytes, .. } => Ok(bytes),
-        UriKind::Relative(path) => loader.load(&path).map_err(|e| e.to_string()),
-        UriKind::NonRelative => Err(format!("'{uri}' is not fetched")),
-        UriKind::AbsolutePath => Err(format!("'{uri}' is an absolute path; not read")),
-    }
-}
 
 /// An image's encoded bytes: its own file or data URI, or a buffer view of the document.
 enum Encoded<'a> {
@@ -81,7 +72,7 @@ pub fn gltf2_materials(
         .enumerate()
         .map(
             |(i, buffer)| match buffer.get("uri").and_then(Value::as_str) {
-                Some(uri) => uri_bytes(uri, loader).ok().map(BufferData::Loaded),
+                Some(uri) => load_uri(uri, loader).ok().map(BufferData::Loaded),
                 None if i == 0 && doc.container == Container::Glb => doc.bin().map(BufferData::Glb),
                 None => None,
             },
@@ -104,7 +95,7 @@ pub fn gltf2_materials(
         .map(|(i, image)| (i, image.get("uri").and_then(Value::as_str)))
         .map(|(i, uri)| match (needed.contains(&i), uri) {
             (false, _) => None,
-            (true, Some(uri)) => Some(uri_bytes(uri, loader).map(Encoded::Loaded)),
+            (true, Some(uri)) => Some(load_uri(uri, loader).map(Encoded::Loaded)),
             (true, None) => Some(
                 (list("images")[i].get("bufferView").and_then(Value::as_u64))
                     .and_then(view_bytes)

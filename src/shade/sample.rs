@@ -38,6 +38,11 @@ impl TextureImage {
         self.height
     }
 
+    /// Whether its texels have more than 8 bits (a rebake from it keeps 16 bits).
+    pub fn is_wide(&self) -> bool {
+        matches!(self.texels, Texels::Float(_))
+    }
+
     /// The texel at column `x`, row `y` (inside the image), or transparent black if the
     /// texel data is short.
     #[inline(always)]
@@ -62,7 +67,8 @@ fn unorm8_table() -> &'static [f64; 256] {
     TABLE.get_or_init(|| std::array::from_fn(|b| b as f64 / 255.0))
 }
 
-fn decode(bytes: &[u8]) -> Result<Texture, String> {
+/// Decodes one image (see [`decode_all`] for a set of them).
+pub(crate) fn decode(bytes: &[u8]) -> Result<Texture, String> {
     let image = crate::document::image_decode::decode(bytes).map_err(|e| e.to_string())?;
     let eight_bit = image.color().bytes_per_pixel() == image.color().channel_count();
     let texels = if eight_bit {

@@ -155,27 +155,8 @@ impl<'s, 'a> Builder<'s, 'a> {
         mime_type: String,
         stem: &str,
     ) -> usize {
-        let extension = mime_type
-            .rsplit('/')
-            .next()
-            .unwrap_or("bin")
-            .replace("jpeg", "jpg");
-        let safe: String = stem
-            .chars()
-            .map(|c| {
-                if c.is_ascii_alphanumeric() || c == '-' {
-                    c
-                } else {
-                    '_'
-                }
-            })
-            .collect();
-        let file_name = format!("{}-{safe}.{extension}", self.images.len());
-        self.images.push(EncodedImage {
-            bytes,
-            mime_type,
-            file_name,
-        });
+        let image = EncodedImage::new(bytes, mime_type, self.images.len(), stem, false);
+        self.images.push(image);
         self.push("images", Value::Object(json))
     }
 

@@ -14,9 +14,12 @@ pub mod binary;
 mod builder;
 mod convert;
 mod data;
+mod gltf2;
 pub mod output;
 mod rebake;
+mod references;
 mod source;
+mod spec_gloss;
 
 use crate::document::uri::ResourceLoader;
 use crate::legacy::pbr;
@@ -119,6 +122,7 @@ impl Upgraded {
 
 /// An image of the output, encoded.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct EncodedImage {
     /// The encoded file.
     pub bytes: Vec<u8>,
@@ -126,9 +130,36 @@ pub struct EncodedImage {
     pub mime_type: String,
     /// A file name for `.gltf` output (unique within the asset).
     pub file_name: String,
+    /// The image already lies in a bufferView of the output buffer (a 2.0 input's embedded
+    /// image, passed through): [`output`] leaves it there and writes no file for it.
+    pub in_binary: bool,
 }
 
-/// Why an input could not be upgraded at all.
+impl EncodedImage {
+    /// Image `index` of the output, its file named after `stem` and its media type.
+    pub(crate) fn new(
+        bytes: Vec<u8>,
+        mime_type: String,
+        index: usize,
+        stem: &str,
+        in_binary: bool,
+    ) -> Self {
+        let extension = (mime_type.rsplit('/').next())
+            .filter(|e| e.chars().all(|c| c.is_ascii_alphanumeric()) && !e.is_empty())
+            .unwrap_or("bin")
+            .replace("jpeg", "jpg");
+        let safe: String = (stem.chars())
+            .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
+            .collect();
+        EncodedImage {
+            bytes,
+            file_name: format!("{index}-{safe}.{extension}"),
+            mime_type,
+            in_binary,
+        }
+    }
+}
+
 /// Why an asset could not be upgraded.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -136,6 +167,9 @@ pub enum UpgradeError {
     /// Not a glTF 1.0 asset (a 2.0 asset, not JSON, a broken GLB).
     #[error("not a glTF 1.0 asset: {0}")]
     NotGltf1(String),
+    /// A glTF 2.0 asset whose JSON cannot be read.
+    #[error("{0}")]
+    Unreadable(String),
     /// A resource the asset needs could not be read or decoded.
     #[error("{pointer}: {reason}")]
     Resource {
@@ -154,8 +188,11 @@ pub enum UpgradeError {
     },
 }
 
-/// Upgrades a glTF 1.0 asset (`.gltf` text or a KHR_binary_glTF GLB v1). External files are
-/// read through `loader` (the CLI confines it to the asset's folder).
+/// Upgrades a glTF 1.0 asset (`.gltf` text or a KHR_binary_glTF GLB v1) to glTF 2.0, or
+/// retires the archived KHR_materials_pbrSpecularGlossiness in a glTF 2.0 asset (`.gltf` or
+/// `.glb`): its materials become metallic-roughness + KHR_materials_specular +
+/// KHR_materials_ior, and everything else passes through unchanged. External files are read
+/// through `loader` (the CLI confines it to the asset's folder).
 ///
 /// ```
 /// use gltfmat::document::uri::NoResources;
@@ -181,6 +218,9 @@ pub fn upgrade(
     loader: &dyn ResourceLoader,
     options: &UpgradeOptions,
 ) -> Result<Upgraded, UpgradeError> {
+    if gltf2::declares_gltf2(bytes) {
+        return gltf2::upgrade(bytes, loader, options);
+    }
     let source = source::read(bytes, loader)?;
     convert::run(builder::Builder::new(&source, options))
 }

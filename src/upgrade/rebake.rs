@@ -6,6 +6,7 @@ use crate::document::image_header::{self, Channels};
 use crate::gltf::color::{linear_to_srgb, linear_to_srgb8, srgb_texel_to_linear};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{DynamicImage, ExtendedColorType, ImageEncoder, Rgba32FImage};
+use crate::shade::sample::{self, TextureImage};
 use std::io::Cursor;
 
 pub fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
@@ -85,37 +86,38 @@ pub fn gloss_to_roughness(bytes: &[u8], glossiness_factor: f64) -> Result<Vec<u8
 }
 
 /// Spec-gloss base colour: diffuse · (1 − max(specular)) per texel, in linear space, alpha
-/// from the diffuse. Either texture may be missing (its factor alone is used); the output
-/// has the diffuse texture's size, or the specular one's, and the other is sampled at the
-/// nearest texel.
+/// from the diffuse. Either texture may be missing (its factor alone is used). The output
+/// has the finest grid of the two (the larger width and the larger height), and each input
+/// is sampled bilinearly (repeat wrapping, as the evaluator and viewers sample it) at the
+/// output's texel centres: the rebake is then exact at every output texel centre whatever
+/// the two resolutions, where sampling the smaller texture at its nearest texel was not.
+/// Returns the PNG and whether it has an alpha channel.
 pub fn spec_gloss_base_colour(
     diffuse: Option<&[u8]>,
     specular: Option<&[u8]>,
     diffuse_factor: [f64; 4],
     specular_factor: [f64; 3],
 ) -> Result<(Vec<u8>, bool), String> {
-    let diffuse = diffuse.map(decode).transpose()?;
-    let specular = specular.map(decode).transpose()?;
-    let wide = diffuse.as_ref().or(specular.as_ref()).is_some_and(is_wide);
-    let alpha = diffuse.as_ref().is_some_and(|d| d.color().has_alpha()) || diffuse_factor[3] < 1.0;
-    let diffuse = diffuse.map(|d| d.to_rgba32f());
-    let specular = specular.map(|s| s.to_rgba32f());
-    let (width, height) = diffuse
-        .as_ref()
-        .or(specular.as_ref())
-        .map(|i| i.dimensions())
-        .ok_or("no texture to rebake")?;
-    let diffuse = diffuse.map(|image| Nearest::new(image, width, height));
-    let specular = specular.map(|image| Nearest::new(image, width, height));
+    let alpha = diffuse.is_some_and(has_translucent_texels) || diffuse_factor[3] < 1.0;
+    let diffuse = diffuse.map(sample::decode).transpose()?;
+    let specular = specular.map(sample::decode).transpose()?;
+    let inputs: Vec<&TextureImage> = diffuse.iter().chain(&specular).map(|t| &**t).collect();
+    let width = inputs.iter().map(|t| t.width()).max().ok_or("no texture to rebake")?;
+    let height = inputs.iter().map(|t| t.height()).max().unwrap_or(1);
+    let wide = inputs.iter().any(|t| t.is_wide());
     let out = Rgba32FImage::from_fn(width, height, |x, y| {
-        let d = diffuse.as_ref().map_or([1.0; 4], |i| i.at(x, y));
-        let s = specular.as_ref().map_or([1.0; 4], |i| i.at(x, y));
+        let centre = [
+            (f64::from(x) + 0.5) / f64::from(width),
+            (f64::from(y) + 0.5) / f64::from(height),
+        ];
+        let d = diffuse.as_ref().map_or([1.0; 4], |t| sample::bilinear(t, centre));
+        let s = specular.as_ref().map_or([1.0; 4], |t| sample::bilinear(t, centre));
         let max_specular = (0..3)
-            .map(|c| srgb_texel_to_linear(f64::from(s[c])) * specular_factor[c])
+            .map(|c| srgb_texel_to_linear(s[c]) * specular_factor[c])
             .fold(0.0, f64::max);
         let keep = (1.0 - max_specular).max(0.0);
         let channel = |c: usize| {
-            let linear = srgb_texel_to_linear(f64::from(d[c])) * diffuse_factor[c] * keep;
+            let linear = srgb_texel_to_linear(d[c]) * diffuse_factor[c] * keep;
             if wide {
                 linear_to_srgb(linear.clamp(0.0, 1.0)) as f32
             } else {
@@ -123,44 +125,9 @@ pub fn spec_gloss_base_colour(
                 f32::from(linear_to_srgb8(linear)) / 255.0
             }
         };
-        image::Rgba([
-            channel(0),
-            channel(1),
-            channel(2),
-            (f64::from(d[3]) * diffuse_factor[3]) as f32,
-        ])
+        image::Rgba([channel(0), channel(1), channel(2), (d[3] * diffuse_factor[3]) as f32])
     });
     Ok((encode(&out, alpha, wide), alpha))
-}
-
-/// An image sampled at the nearest texel on an output grid of another size, with the
-/// source column and row of every output column and row worked out once (a division per
-/// texel was a third of the rebake's time).
-struct Nearest {
-    image: Rgba32FImage,
-    columns: Vec<u32>,
-    rows: Vec<u32>,
-}
-
-impl Nearest {
-    fn new(image: Rgba32FImage, width: u32, height: u32) -> Nearest {
-        let scale = |to: u32, from: u32| -> Vec<u32> {
-            (0..to)
-                .map(|i| (u64::from(i) * u64::from(from) / u64::from(to)) as u32)
-                .collect()
-        };
-        Nearest {
-            columns: scale(width, image.width()),
-            rows: scale(height, image.height()),
-            image,
-        }
-    }
-
-    fn at(&self, x: u32, y: u32) -> [f32; 4] {
-        self.image
-            .get_pixel(self.columns[x as usize], self.rows[y as usize])
-            .0
-    }
 }
 
 /// Whether any texel has alpha below 1 (the material then needs alpha blending). An image

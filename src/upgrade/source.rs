@@ -2,7 +2,7 @@
 //! its images on demand.
 
 use super::UpgradeError;
-use crate::document::uri::{classify, ResourceLoader, UriKind};
+use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::Bytes;
 use serde_json::Value;
 use std::cell::OnceCell;
@@ -137,12 +137,7 @@ impl Source<'_> {
 
     /// Reads a data URI or a file inside the asset's folder.
     pub fn load_uri(&self, uri: &str) -> Result<Bytes, String> {
-        match classify(uri)? {
-            UriKind::Data { bytes, .. } => Ok(bytes),
-            UriKind::Relative(path) => self.loader.load(&path).map_err(|e| e.to_string()),
-            UriKind::NonRelative => Err(format!("'{uri}' is not a relative URI; not fetched")),
-            UriKind::AbsolutePath => Err(format!("'{uri}' is an absolute path; not read")),
-        }
+        load_uri(uri, self.loader)
     }
 
     /// A 1.0 dictionary (`accessors`, `nodes`, …) in document order.

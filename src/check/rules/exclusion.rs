@@ -3,6 +3,7 @@
 use super::{Rule, Run};
 use crate::check::context::Context;
 use crate::diagnostic::Severity;
+use crate::gltf::material::{combination, Combination, SPEC_GLOSS, UNLIT};
 use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
@@ -47,44 +48,6 @@ Spec: each extension's README, section \"Extending Materials\" / \"Exclusions\".
 ```
 reports `/materials/0/extensions/KHR_materials_sheen`.
 ";
-
-const SPEC_GLOSS: &str = "KHR_materials_pbrSpecularGlossiness";
-const UNLIT: &str = "KHR_materials_unlit";
-
-/// The extensions that exclude both specular-glossiness and unlit.
-const EXTENDS_METAL_ROUGH: &[&str] = &[
-    "KHR_materials_anisotropy",
-    "KHR_materials_clearcoat",
-    "KHR_materials_diffuse_transmission",
-    "KHR_materials_dispersion",
-    "KHR_materials_ior",
-    "KHR_materials_iridescence",
-    "KHR_materials_sheen",
-    "KHR_materials_specular",
-    "KHR_materials_transmission",
-    "KHR_materials_volume",
-];
-
-/// What the specs say about `other` on a material that has the standalone extension
-/// `standalone` (specular-glossiness or unlit).
-#[derive(Debug, PartialEq, Eq)]
-pub enum Combination {
-    Excluded,
-    Allowed,
-    Unknown,
-}
-
-pub fn combination(standalone: &str, other: &str) -> Combination {
-    if EXTENDS_METAL_ROUGH.contains(&other)
-        || (standalone == UNLIT && other == "KHR_materials_emissive_strength")
-    {
-        Combination::Excluded
-    } else if other == "KHR_materials_emissive_strength" {
-        Combination::Allowed
-    } else {
-        Combination::Unknown
-    }
-}
 
 fn check(ctx: &mut Context) {
     for (_, pointer, material) in ctx.objects("materials") {

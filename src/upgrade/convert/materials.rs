@@ -6,6 +6,7 @@ use crate::gltf::gl::{BLEND, CULL_FACE};
 use crate::legacy::pbr::{self, LegacyPbr, Model};
 use crate::upgrade::builder::{pointer, Builder};
 use crate::upgrade::rebake;
+use crate::upgrade::spec_gloss::{self, Slot};
 use crate::upgrade::{NoteKind, SpecularGlossiness, UpgradeError};
 use serde_json::{json, Map, Value};
 
@@ -195,66 +196,50 @@ fn spec_gloss_as_metal_rough(
     block: &str,
     out: &mut Map<String, Value>,
 ) -> Result<(), UpgradeError> {
-    let max_specular = pbr.specular.iter().copied().fold(0.0, f64::max);
-    let diffuse = texture_bytes(builder, pbr.colour_texture.as_deref());
-    let specular = texture_bytes(builder, pbr.data_texture.as_deref());
-    let mut core = json!({"metallicFactor": 0.0, "roughnessFactor": 1.0 - pbr.glossiness});
-    if specular.is_some() {
-        // The specular texture varies per texel: base colour must be baked texel by texel.
-        // The two rebakes are independent: the roughness one runs on a second thread.
-        let (base_colour, roughness) = std::thread::scope(|scope| {
-            let roughness = scope.spawn(|| {
-                let source = specular.as_deref().unwrap_or_default();
-                rebake::gloss_to_roughness(source, pbr.glossiness)
-            });
-            let base_colour = rebake::spec_gloss_base_colour(
-                diffuse.as_deref(),
-                specular.as_deref(),
-                pbr.colour,
-                pbr.specular,
-            );
-            let roughness = roughness
-                .join()
-                .unwrap_or_else(|_| Err("the roughness rebake failed".to_string()));
-            (base_colour, roughness)
-        });
-        let (rebaked, _) = base_colour.map_err(|e| rebake_error(block, e))?;
-        let like = pbr
-            .colour_texture
-            .as_deref()
-            .or(pbr.data_texture.as_deref());
-        core["baseColorTexture"] = add_rebaked(builder, rebaked, like, "baseColor");
-        core["baseColorFactor"] = json!([1.0, 1.0, 1.0, 1.0]);
-        let roughness = roughness.map_err(|e| rebake_error(block, e))?;
-        core["metallicRoughnessTexture"] =
-            add_rebaked(builder, roughness, pbr.data_texture.as_deref(), "roughness");
-        core["roughnessFactor"] = json!(1.0);
-        builder.note(block, NoteKind::Decision, "baseColor = diffuse · (1 − max specular) and roughness = 1 − glossiness rebaked per texel into new textures.");
-    } else {
-        let keep = 1.0 - max_specular;
-        let [r, g, b, a] = pbr.colour;
-        core["baseColorFactor"] = json!([r * keep, g * keep, b * keep, a]);
-        if let Some(info) = texture_info(builder, pbr.colour_texture.as_deref()) {
-            core["baseColorTexture"] = info;
-        }
-        builder.note(
-            block,
-            NoteKind::Decision,
-            format!("baseColorFactor = diffuse · (1 − max specular) = diffuse · {keep}."),
-        );
+    let factors = spec_gloss::Factors {
+        diffuse: pbr.colour,
+        specular: pbr.specular,
+        glossiness: pbr.glossiness,
+    };
+    let mut textures = DraftTextures { builder, pbr };
+    let converted =
+        spec_gloss::to_metal_rough(&factors, &mut textures).map_err(|e| rebake_error(block, e))?;
+    for decision in converted.decisions {
+        builder.note(block, NoteKind::Decision, decision);
     }
-    let mut specular_ext = json!({"specularColorFactor": pbr.specular});
-    if let Some(info) = texture_info(builder, pbr.data_texture.as_deref()) {
-        // Its RGB is the sRGB specular colour, exactly what specularColorTexture reads.
-        specular_ext["specularColorTexture"] = info;
-    }
-    out.insert("pbrMetallicRoughness".into(), core);
-    out.insert(
-        "extensions".into(),
-        json!({"KHR_materials_specular": specular_ext, "KHR_materials_ior": {"ior": 0}}),
-    );
-    builder.note(block, NoteKind::Decision, "spec-gloss → metal-rough: metallic 0, F0 = specular via KHR_materials_specular (specularColor) and KHR_materials_ior (ior 0, infinite). Residual: exact for achromatic specular; a chromatic specular keeps a (1 − max F) vs (1 − F) difference in the diffuse weighting (converter-anchors §2.4).");
+    out.insert("pbrMetallicRoughness".into(), converted.pbr_metallic_roughness);
+    out.insert("extensions".into(), Value::Object(converted.extensions));
     Ok(())
+}
+
+/// A 1.0 draft material's two textures, by their 1.0 ids, as the builder holds them.
+struct DraftTextures<'b, 'p, 's, 'a> {
+    builder: &'b mut Builder<'s, 'a>,
+    pbr: &'p LegacyPbr,
+}
+
+impl DraftTextures<'_, '_, '_, '_> {
+    fn id(&self, slot: Slot) -> Option<&str> {
+        match slot {
+            Slot::Diffuse => self.pbr.colour_texture.as_deref(),
+            Slot::SpecularGlossiness => self.pbr.data_texture.as_deref(),
+        }
+    }
+}
+
+impl spec_gloss::Textures for DraftTextures<'_, '_, '_, '_> {
+    fn info(&self, slot: Slot) -> Option<Value> {
+        texture_info(self.builder, self.id(slot))
+    }
+
+    fn bytes(&self, slot: Slot) -> Option<Vec<u8>> {
+        texture_bytes(self.builder, self.id(slot))
+    }
+
+    fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value {
+        let like = self.id(like).map(str::to_string);
+        add_rebaked(self.builder, bytes, like.as_deref(), name)
+    }
 }
 
 fn spec_gloss_extension(

@@ -3,30 +3,24 @@
 //! textures nothing reads.
 
 use crate::upgrade::builder::Builder;
+use crate::upgrade::references::{renumber_texture_members, renumber_textures, texture_indices};
 use crate::upgrade::NoteKind;
-use serde_json::{json, Value};
+use serde_json::Value;
 
 impl Builder<'_, '_> {
     pub(in crate::upgrade) fn drop_unused_textures(&mut self) {
         let mut used = Vec::new();
-        for material in self.arrays.get_mut("materials").into_iter().flatten() {
-            texture_references(material, &mut |index| used.push(*index));
+        for material in self.arrays.get("materials").into_iter().flatten() {
+            used.extend(texture_indices(material));
         }
         let textures = self.keep_used("textures", &used);
         for material in self.arrays.get_mut("materials").into_iter().flatten() {
-            // Every index read above is in range and kept.
-            texture_references(material, &mut |index| {
-                *index = textures[*index].unwrap_or(0)
-            });
+            renumber_textures(material, &textures);
         }
         let images = self.keep_used("images", &self.referenced("source"));
         let samplers = self.keep_used("samplers", &self.referenced("sampler"));
         for texture in self.arrays.get_mut("textures").into_iter().flatten() {
-            for (key, new) in [("source", &images), ("sampler", &samplers)] {
-                if let Some(old) = texture.get(key).and_then(Value::as_u64) {
-                    texture[key] = json!(new[old as usize]);
-                }
-            }
+            renumber_texture_members(texture, &images, &samplers);
         }
         let mut index = 0;
         self.images.retain(|_| {
@@ -80,31 +74,5 @@ impl Builder<'_, '_> {
             .filter_map(|texture| texture.get(key)?.as_u64())
             .map(|i| i as usize)
             .collect()
-    }
-}
-
-/// Every texture index a material reads (the `index` of each member named `…Texture`, in the
-/// core object and in any extension), handed to `found`, which may change it.
-fn texture_references(value: &mut Value, found: &mut impl FnMut(&mut usize)) {
-    match value {
-        Value::Object(members) => {
-            for (key, member) in members.iter_mut() {
-                let index = (key.ends_with("Texture"))
-                    .then(|| member.get("index").and_then(Value::as_u64))
-                    .flatten();
-                match index {
-                    Some(old) => {
-                        let mut index = old as usize;
-                        found(&mut index);
-                        member["index"] = json!(index);
-                    }
-                    None => texture_references(member, found),
-                }
-            }
-        }
-        Value::Array(items) => items
-            .iter_mut()
-            .for_each(|item| texture_references(item, found)),
-        _ => {}
     }
 }

@@ -66,7 +66,8 @@ fn glb<'u>(upgraded: &'u Upgraded, name: &str) -> File<'u> {
     let mut length = upgraded.binary.len();
     let mut views = json["bufferViews"].as_array().cloned().unwrap_or_default();
     let mut body: Vec<Cow<[u8]>> = upgraded.binary.runs().map(Cow::Borrowed).collect();
-    for (i, image) in upgraded.images.iter().enumerate() {
+    let placed = upgraded.images.iter().enumerate().filter(|(_, i)| !i.in_binary);
+    for (i, image) in placed {
         let aligned = length.div_ceil(4) * 4;
         body.push(Cow::Owned(vec![0; aligned - length]));
         body.push(Cow::Borrowed(&image.bytes));
@@ -79,7 +80,7 @@ fn glb<'u>(upgraded: &'u Upgraded, name: &str) -> File<'u> {
         json["bufferViews"] = Value::Array(views);
     }
     if length > 0 {
-        json["buffers"] = json!([{"byteLength": length}]);
+        set_buffer_length(&mut json, length);
     }
     let mut text = serde_json::to_vec(&json).unwrap_or_default();
     text.resize(text.len().div_ceil(4) * 4, b' ');
@@ -121,7 +122,8 @@ fn separate<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
             parts: upgraded.binary.runs().map(Cow::Borrowed).collect(),
         });
     }
-    for (i, image) in upgraded.images.iter().enumerate() {
+    let placed = upgraded.images.iter().enumerate().filter(|(_, i)| !i.in_binary);
+    for (i, image) in placed {
         let name = format!("{stem}-{}", image.file_name);
         json["images"][i]["uri"] = json!(uri_escape(&name));
         side.push(File {
@@ -134,6 +136,14 @@ fn separate<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
     Files {
         main: File::whole(main_name.to_string(), text),
         side,
+    }
+}
+
+/// The one buffer's byteLength, keeping its other members (a 2.0 input's name, extras).
+fn set_buffer_length(json: &mut Value, length: usize) {
+    match json.get_mut("buffers").and_then(|b| b.get_mut(0)) {
+        Some(buffer) if buffer.is_object() => buffer["byteLength"] = json!(length),
+        _ => json["buffers"] = json!([{"byteLength": length}]),
     }
 }
 

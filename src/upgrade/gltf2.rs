@@ -1,0 +1,515 @@
+//! glTF 2.0 inputs: the archived KHR_materials_pbrSpecularGlossiness retired. Every
+//! spec-gloss material becomes metallic-roughness + KHR_materials_specular +
+//! KHR_materials_ior by the same mapping as the 1.0 drafts' (`spec_gloss`); everything else
+//! passes through: every other object, extension and extra as it was, every buffer byte
+//! unchanged and in place (a single buffer keeps every bufferView's offset; several are
+//! laid end to end, 4-byte aligned, their views moved with them). Textures, images and
+//! samplers that only the converted materials used, and no longer do, are not written;
+//! images stored in a bufferView stay, so that no buffer byte moves.
+
+use super::spec_gloss::{self, Factors, Slot};
+use super::{Binary, EncodedImage, Note, NoteKind, SpecularGlossiness, UpgradeError};
+use super::{UpgradeOptions, Upgraded};
+use super::references::{renumber_texture_members, renumber_textures, texture_indices};
+use crate::document::uri::{load_uri, ResourceLoader};
+use crate::document::{self, image_header, Bytes, Container};
+use crate::gltf::material::{combination, effective_texcoord, texture_images, texture_transform};
+use crate::gltf::material::{Combination, SPEC_GLOSS, UNLIT};
+use crate::gltf::unsigned;
+use serde_json::{json, Map, Value};
+use std::collections::BTreeSet;
+use std::ops::Range;
+use std::sync::Arc;
+
+/// Whether `bytes` declare glTF 2.x: a GLB of version 2, or JSON whose `asset.version` is
+/// 2.x. Only `asset` is looked at, so this costs a scan, not a parse into values.
+pub(super) fn declares_gltf2(bytes: &[u8]) -> bool {
+    if bytes.starts_with(b"glTF") {
+        return bytes.get(4..8) == Some(&2u32.to_le_bytes()[..]);
+    }
+    #[derive(serde::Deserialize)]
+    struct Head {
+        asset: Option<AssetHead>,
+    }
+    #[derive(serde::Deserialize)]
+    struct AssetHead {
+        version: Option<Value>,
+    }
+    let head = serde_json::from_slice::<Head>(bytes).ok();
+    let version = head.and_then(|h| h.asset?.version);
+    version
+        .as_ref()
+        .and_then(Value::as_str)
+        .is_some_and(|v| v.starts_with("2."))
+}
+
+/// Upgrades a glTF 2.0 asset: its spec-gloss materials converted, the rest passed through.
+pub(super) fn upgrade(
+    bytes: &[u8],
+    loader: &dyn ResourceLoader,
+    options: &UpgradeOptions,
+) -> Result<Upgraded, UpgradeError> {
+    let name = if bytes.starts_with(b"glTF") {
+        "input.glb"
+    } else {
+        "input.gltf"
+    };
+    let mut doc = document::read(bytes.to_vec(), name, &mut Vec::new());
+    let Some(Value::Object(root)) = doc.root.take() else {
+        return Err(UpgradeError::Unreadable(
+            "the glTF 2.0 JSON cannot be read (`gltfmat check` says why)".into(),
+        ));
+    };
+    let bytes = Arc::new(std::mem::take(&mut doc.bytes));
+    let glb_bin = (doc.container == Container::Glb)
+        .then_some(doc.bin.clone())
+        .flatten()
+        .map(|bin| (&bytes, bin));
+    let mut asset = Asset {
+        root,
+        binary: Binary::default(),
+        images: Vec::new(),
+        report: Vec::new(),
+    };
+    let buffers = asset.read_buffers(glb_bin, loader)?;
+    asset.take_images(&buffers, loader)?;
+    asset.join_buffers(&buffers);
+    if options.specular_glossiness == SpecularGlossiness::MetalRough {
+        asset.convert_materials()?;
+    } else {
+        asset.note("/materials", NoteKind::Decision, "--specular-glossiness extension: spec-gloss materials are left as they are.");
+    }
+    Ok(Upgraded {
+        json: Value::Object(asset.root),
+        binary: asset.binary,
+        images: asset.images,
+        report: asset.report,
+        origins: Default::default(),
+    })
+}
+
+/// The 2.0 asset being rewritten.
+struct Asset {
+    root: Map<String, Value>,
+    binary: Binary,
+    images: Vec<EncodedImage>,
+    report: Vec<Note>,
+}
+
+/// An input buffer's bytes: the shared file (or GLB) and the buffer's range in it.
+struct Buffer {
+    bytes: Arc<Bytes>,
+    range: Range<usize>,
+}
+
+fn resource_error(pointer: &str, reason: impl Into<String>) -> UpgradeError {
+    UpgradeError::Resource {
+        pointer: pointer.to_string(),
+        reason: reason.into(),
+    }
+}
+
+impl Asset {
+    fn note(&mut self, pointer: impl Into<String>, kind: NoteKind, text: impl Into<String>) {
+        self.report.push(Note {
+            pointer: pointer.into(),
+            kind,
+            text: text.into(),
+        });
+    }
+
+    fn list(&self, key: &str) -> &[Value] {
+        self.root
+            .get(key)
+            .and_then(Value::as_array)
+            .map_or(&[], Vec::as_slice)
+    }
+
+    fn list_mut(&mut self, key: &str) -> &mut Vec<Value> {
+        let slot = self.root.entry(key).or_insert_with(|| json!([]));
+        if !slot.is_array() {
+            *slot = json!([]);
+        }
+        slot.as_array_mut().expect("made an array above")
+    }
+
+    /// Every buffer's declared bytes: read from its file or data URI, or the GLB's BIN chunk.
+    fn read_buffers(
+        &self,
+        glb_bin: Option<(&Arc<Bytes>, Range<usize>)>,
+        loader: &dyn ResourceLoader,
+    ) -> Result<Vec<Buffer>, UpgradeError> {
+        let mut buffers = Vec::new();
+        for (i, buffer) in self.list("buffers").iter().enumerate() {
+            let at = format!("/buffers/{i}");
+            let length = unsigned(buffer, "byteLength")
+                .ok_or_else(|| resource_error(&at, "byteLength is missing"))?
+                as usize;
+            let (bytes, start) = match (buffer.get("uri").and_then(Value::as_str), &glb_bin) {
+                (Some(uri), _) => {
+                    let bytes = load_uri(uri, loader).map_err(|e| resource_error(&at, e))?;
+                    (Arc::new(bytes), 0)
+                }
+                (None, Some((bytes, bin))) if i == 0 => (Arc::clone(bytes), bin.start),
+                (None, _) => {
+                    let why = "it has no uri and is not the GLB's BIN chunk";
+                    return Err(resource_error(&at, why));
+                }
+            };
+            let available = match &glb_bin {
+                Some((_, bin)) if buffer.get("uri").is_none() => bin.len(),
+                _ => bytes.len(),
+            };
+            if length > available {
+                let why = format!("byteLength is {length}, but it holds {available} bytes");
+                return Err(resource_error(&at, why));
+            }
+            buffers.push(Buffer {
+                bytes,
+                range: start..start + length,
+            });
+        }
+        Ok(buffers)
+    }
+
+    /// Lays the buffers end to end in the output buffer. A lone buffer starts at 0, so no
+    /// bufferView changes; later buffers start 4-byte aligned and their views move to
+    /// buffer 0 with their offsets shifted.
+    fn join_buffers(&mut self, buffers: &[Buffer]) {
+        let mut starts = Vec::with_capacity(buffers.len());
+        for buffer in buffers {
+            starts.push(self.binary.align());
+            self.binary.share(&buffer.bytes, buffer.range.clone());
+        }
+        if buffers.len() > 1 {
+            for view in self.list_mut("bufferViews") {
+                let Some(buffer) = unsigned(view, "buffer") else {
+                    continue;
+                };
+                let Some(&start) = starts.get(buffer as usize) else {
+                    continue;
+                };
+                let offset = unsigned(view, "byteOffset").unwrap_or(0);
+                view["buffer"] = json!(0);
+                view["byteOffset"] = json!(offset + start as u64);
+            }
+            let joined = format!("{} buffers joined into one (bufferViews moved with their bytes; no byte changed).", buffers.len());
+            self.note("/buffers", NoteKind::Decision, joined);
+        }
+        match self.list("buffers").first() {
+            Some(Value::Object(first)) => {
+                let mut kept = first.clone();
+                kept.remove("uri");
+                kept.insert("byteLength".into(), json!(self.binary.len()));
+                self.root.insert("buffers".into(), json!([kept]));
+            }
+            _ => {
+                self.root.remove("buffers");
+            }
+        }
+    }
+
+    /// Every image's bytes: those in a bufferView stay there; those in files or data URIs
+    /// are read, to be written beside the output or into its BIN chunk.
+    fn take_images(
+        &mut self,
+        buffers: &[Buffer],
+        loader: &dyn ResourceLoader,
+    ) -> Result<(), UpgradeError> {
+        let images = self.list("images").to_vec();
+        for (i, image) in images.iter().enumerate() {
+            let at = format!("/images/{i}");
+            let uri = image.get("uri").and_then(Value::as_str);
+            let (bytes, in_binary) = match uri {
+                Some(uri) => (load_uri(uri, loader).map_err(|e| resource_error(&at, e))?, false),
+                None => {
+                    let view = unsigned(image, "bufferView")
+                        .and_then(|v| self.view_bytes(v as usize, buffers))
+                        .ok_or_else(|| resource_error(&at, "its bufferView cannot be read"))?;
+                    (view.to_vec(), true)
+                }
+            };
+            let declared = image.get("mimeType").and_then(Value::as_str);
+            let mime_type = (declared.map(str::to_string))
+                .or_else(|| Some(image_header::read(&bytes).ok()?.format.mime_type().into()))
+                .unwrap_or_else(|| "application/octet-stream".into());
+            let name = image.get("name").and_then(Value::as_str).unwrap_or("image");
+            let stem = uri.map_or_else(|| name.to_string(), file_stem);
+            let encoded = EncodedImage::new(bytes, mime_type, i, &stem, in_binary);
+            self.images.push(encoded);
+            if let Some(image) = self.list_mut("images")[i].as_object_mut() {
+                image.remove("uri");
+            }
+        }
+        Ok(())
+    }
+
+    /// The bytes of bufferView `index` of the input (before the buffers are joined).
+    fn view_bytes<'b>(&self, index: usize, buffers: &'b [Buffer]) -> Option<&'b [u8]> {
+        let view = self.list("bufferViews").get(index)?;
+        let buffer = buffers.get(unsigned(view, "buffer")? as usize)?;
+        let start = unsigned(view, "byteOffset").unwrap_or(0) as usize;
+        let end = start.checked_add(unsigned(view, "byteLength")? as usize)?;
+        buffer.bytes.get(buffer.range.clone())?.get(start..end)
+    }
+
+    fn convert_materials(&mut self) -> Result<(), UpgradeError> {
+        let used_before = self.used_textures();
+        let mut converted = 0;
+        for i in 0..self.list("materials").len() {
+            if self.convert_material(i)? {
+                converted += 1;
+            }
+        }
+        if converted == 0 {
+            self.note("/materials", NoteKind::Decision, "no KHR_materials_pbrSpecularGlossiness material was converted: the asset passes through unchanged.");
+            return Ok(());
+        }
+        self.update_extension_lists();
+        let now_used = self.used_textures();
+        let unused: BTreeSet<usize> = used_before.difference(&now_used).copied().collect();
+        self.drop_textures(&unused);
+        Ok(())
+    }
+
+    /// Converts material `i` if it is a spec-gloss material that can be; true when it was.
+    fn convert_material(&mut self, i: usize) -> Result<bool, UpgradeError> {
+        let at = format!("/materials/{i}/extensions/{SPEC_GLOSS}");
+        let material = self.list("materials")[i].clone();
+        let Some(extensions) = material.get("extensions").and_then(Value::as_object) else {
+            return Ok(false);
+        };
+        let Some(block) = extensions.get(SPEC_GLOSS) else {
+            return Ok(false);
+        };
+        if let Some(why) = why_not_converted(extensions, block) {
+            self.note(&at, NoteKind::Decision, format!("left as spec-gloss: {why}"));
+            return Ok(false);
+        }
+        let factors = Factors {
+            diffuse: numbers(block.get("diffuseFactor"), [1.0; 4]),
+            specular: numbers(block.get("specularFactor"), [1.0; 3]),
+            glossiness: block.get("glossinessFactor").and_then(Value::as_f64).unwrap_or(1.0),
+        };
+        let mut textures = MaterialTextures {
+            asset: self,
+            diffuse: block.get("diffuseTexture").cloned(),
+            specular_glossiness: block.get("specularGlossinessTexture").cloned(),
+            material: i,
+        };
+        let converted = spec_gloss::to_metal_rough(&factors, &mut textures).map_err(|e| {
+            resource_error(&at, format!("texture cannot be rebaked: {e}"))
+        })?;
+        if material.get("pbrMetallicRoughness").is_some() {
+            self.note(&at, NoteKind::Decision, "the material's own pbrMetallicRoughness (the fallback for viewers without the extension) is replaced by the conversion.");
+        }
+        for decision in converted.decisions {
+            self.note(&at, NoteKind::Decision, decision);
+        }
+        let out = &mut self.list_mut("materials")[i];
+        out["pbrMetallicRoughness"] = converted.pbr_metallic_roughness;
+        if let Some(extensions) = out.get_mut("extensions").and_then(Value::as_object_mut) {
+            extensions.remove(SPEC_GLOSS);
+            extensions.extend(converted.extensions);
+        }
+        Ok(true)
+    }
+
+    /// extensionsUsed gains what the conversions wrote and loses the spec-gloss extension
+    /// when no material has it any more (extensionsRequired too).
+    fn update_extension_lists(&mut self) {
+        let still_used = self
+            .list("materials")
+            .iter()
+            .any(|m| m.get("extensions").and_then(|e| e.get(SPEC_GLOSS)).is_some());
+        let mut used: Vec<Value> = self.list("extensionsUsed").to_vec();
+        for added in spec_gloss::EXTENSIONS_ADDED {
+            if !used.iter().any(|u| u == added) {
+                used.push(json!(added));
+            }
+        }
+        if !still_used {
+            used.retain(|u| u != SPEC_GLOSS);
+            if let Some(required) = self.root.get_mut("extensionsRequired").and_then(Value::as_array_mut) {
+                required.retain(|r| r != SPEC_GLOSS);
+                if required.is_empty() {
+                    self.root.remove("extensionsRequired");
+                }
+            }
+        }
+        self.root.insert("extensionsUsed".into(), Value::Array(used));
+    }
+
+    /// The textures the materials read (through any `…Texture` member's `index`).
+    fn used_textures(&self) -> BTreeSet<usize> {
+        let mut used = BTreeSet::new();
+        for material in self.list("materials") {
+            used.extend(texture_indices(material));
+        }
+        used
+    }
+
+    /// Removes `textures`, then the images and samplers only they used (images in a
+    /// bufferView stay: removing them would leave their bytes behind as an unused view),
+    /// renumbering what refers to the rest.
+    fn drop_textures(&mut self, textures: &BTreeSet<usize>) {
+        let images_before = self.referenced_by_textures("source");
+        let samplers_before = self.referenced_by_textures("sampler");
+        let texture_map = self.remove("textures", textures);
+        if let Some(Value::Array(materials)) = self.root.get_mut("materials") {
+            for material in materials {
+                renumber_textures(material, &texture_map);
+            }
+        }
+        let images_after = self.referenced_by_textures("source");
+        let removable_images: BTreeSet<usize> = (images_before.difference(&images_after))
+            .copied()
+            .filter(|&i| self.images.get(i).is_some_and(|image| !image.in_binary))
+            .collect();
+        let samplers_after = self.referenced_by_textures("sampler");
+        let removable_samplers: BTreeSet<usize> =
+            samplers_before.difference(&samplers_after).copied().collect();
+        let image_map = self.remove("images", &removable_images);
+        let mut index = 0;
+        self.images.retain(|_| {
+            index += 1;
+            image_map[index - 1].is_some()
+        });
+        let sampler_map = self.remove("samplers", &removable_samplers);
+        if let Some(Value::Array(textures)) = self.root.get_mut("textures") {
+            for texture in textures {
+                renumber_texture_members(texture, &image_map, &sampler_map);
+            }
+        }
+    }
+
+    /// The image (`source`, including extensions' sources) or sampler indices textures name.
+    fn referenced_by_textures(&self, key: &str) -> BTreeSet<usize> {
+        let textures = self.list("textures");
+        if key == "source" {
+            textures.iter().flat_map(texture_images).map(|i| i as usize).collect()
+        } else {
+            textures.iter().filter_map(|t| unsigned(t, key)).map(|i| i as usize).collect()
+        }
+    }
+
+    /// Removes the listed objects of a collection, noting each; returns every old index's
+    /// new one (None: removed).
+    fn remove(&mut self, collection: &str, removed: &BTreeSet<usize>) -> Vec<Option<usize>> {
+        let Some(Value::Array(items)) = self.root.remove(collection) else {
+            return Vec::new();
+        };
+        let mut map = Vec::with_capacity(items.len());
+        let mut kept = Vec::new();
+        for (i, item) in items.into_iter().enumerate() {
+            if removed.contains(&i) {
+                map.push(None);
+                let name = item.get("name").and_then(Value::as_str).unwrap_or("");
+                self.note(format!("/{collection}/{i}"), NoteKind::Dropped, format!("not written: only the converted spec-gloss materials used it ('{name}')."));
+            } else {
+                map.push(Some(kept.len()));
+                kept.push(item);
+            }
+        }
+        if !kept.is_empty() {
+            self.root.insert(collection.into(), Value::Array(kept));
+        }
+        map
+    }
+}
+
+/// Why a spec-gloss material is not converted, if it is not: extensions its spec excludes
+/// (reported, not guessed at), unlit (which shows the fallback base colour, not the
+/// spec-gloss model), or two textures a per-texel rebake cannot join.
+fn why_not_converted(extensions: &Map<String, Value>, block: &Value) -> Option<String> {
+    let excluded: Vec<&str> = (extensions.keys())
+        .filter(|other| combination(SPEC_GLOSS, other) == Combination::Excluded)
+        .map(String::as_str)
+        .collect();
+    if !excluded.is_empty() {
+        return Some(format!(
+            "it also has {}, which the spec-gloss extension excludes (the material is invalid; which one the author meant is not guessed).",
+            excluded.join(", ")
+        ));
+    }
+    if extensions.contains_key(UNLIT) {
+        return Some(format!("it is also {UNLIT}: viewers show it unlit, and its base colour must stay as written."));
+    }
+    let (Some(diffuse), Some(specular)) = (block.get("diffuseTexture"), block.get("specularGlossinessTexture")) else {
+        return None;
+    };
+    let mapping = |info: &Value| (effective_texcoord(info), texture_transform(info).cloned());
+    (mapping(diffuse) != mapping(specular)).then(|| {
+        "its diffuse and specular-glossiness textures use different texture coordinates or transforms, so no texture can hold diffuse · (1 − max specular).".to_string()
+    })
+}
+
+/// A JSON array of numbers, each missing or non-numeric entry taken from `default`.
+fn numbers<const N: usize>(value: Option<&Value>, default: [f64; N]) -> [f64; N] {
+    std::array::from_fn(|i| {
+        value
+            .and_then(|v| v.get(i))
+            .and_then(Value::as_f64)
+            .unwrap_or(default[i])
+    })
+}
+
+/// The last path segment of a URI without its extension (a data URI: "image").
+fn file_stem(uri: &str) -> String {
+    if uri.starts_with("data:") {
+        return "image".into();
+    }
+    let last = uri.rsplit('/').next().unwrap_or(uri);
+    last.rsplit_once('.').map_or(last, |(stem, _)| stem).to_string()
+}
+
+/// A spec-gloss material's two textureInfos, read from and added to the 2.0 asset.
+struct MaterialTextures<'a> {
+    asset: &'a mut Asset,
+    diffuse: Option<Value>,
+    specular_glossiness: Option<Value>,
+    material: usize,
+}
+
+impl MaterialTextures<'_> {
+    fn slot(&self, slot: Slot) -> Option<&Value> {
+        match slot {
+            Slot::Diffuse => self.diffuse.as_ref(),
+            Slot::SpecularGlossiness => self.specular_glossiness.as_ref(),
+        }
+    }
+
+    fn texture(&self, slot: Slot) -> Option<&Value> {
+        let index = unsigned(self.slot(slot)?, "index")?;
+        self.asset.list("textures").get(index as usize)
+    }
+}
+
+impl spec_gloss::Textures for MaterialTextures<'_> {
+    fn info(&self, slot: Slot) -> Option<Value> {
+        self.slot(slot).cloned()
+    }
+
+    fn bytes(&self, slot: Slot) -> Option<Vec<u8>> {
+        let image = texture_images(self.texture(slot)?).next()?;
+        Some(self.asset.images.get(image as usize)?.bytes.clone())
+    }
+
+    fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value {
+        let name = format!("material {} {name}", self.material);
+        let index = self.asset.list("images").len();
+        self.asset
+            .images
+            .push(EncodedImage::new(bytes, "image/png".into(), index, &name, false));
+        self.asset.list_mut("images").push(json!({"name": name}));
+        let mut texture = json!({"name": name, "source": index});
+        if let Some(sampler) = self.texture(like).and_then(|t| t.get("sampler")).cloned() {
+            texture["sampler"] = sampler;
+        }
+        let mut info = self.slot(like).cloned().unwrap_or_else(|| json!({}));
+        let textures = self.asset.list_mut("textures");
+        textures.push(texture);
+        info["index"] = json!(textures.len() - 1);
+        info
+    }
+}

@@ -1,0 +1,107 @@
+//! The one specular-glossiness → metallic-roughness mapping, for the 1.0 drafts'
+//! spec-gloss materials and for glTF 2.0's archived KHR_materials_pbrSpecularGlossiness:
+//! metallic 0, roughness 1 − glossiness, F0 = specular through KHR_materials_specular
+//! (specularColor) and KHR_materials_ior (ior 0, so that F0 is the specular colour itself),
+//! base colour diffuse · (1 − max specular). With a specular-glossiness texture, base colour
+//! and roughness vary per texel and are rebaked into new textures.
+
+use super::rebake;
+use serde_json::{json, Map, Value};
+
+/// A spec-gloss material's factors (diffuse RGBA, specular RGB, glossiness).
+#[derive(Debug, Clone, Copy)]
+pub struct Factors {
+    pub diffuse: [f64; 4],
+    pub specular: [f64; 3],
+    pub glossiness: f64,
+}
+
+/// The two textures of a spec-gloss material.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Slot {
+    /// The diffuse colour (sRGB RGB, alpha).
+    Diffuse,
+    /// Specular (sRGB RGB) and glossiness (A).
+    SpecularGlossiness,
+}
+
+/// The material's textures as the output asset holds them.
+pub trait Textures {
+    /// The textureInfo that reads the slot's texture as it is, if the material has one.
+    fn info(&self, slot: Slot) -> Option<Value>;
+    /// The encoded image of the slot's texture.
+    fn bytes(&self, slot: Slot) -> Option<Vec<u8>>;
+    /// Adds a rebaked image as a new texture sampled like the slot's texture (its sampler,
+    /// texture coordinates and transform); returns the textureInfo that reads it.
+    fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value;
+}
+
+/// A converted material: its `pbrMetallicRoughness`, the extensions it gains, and the
+/// decisions made, for the conversion report.
+pub struct Converted {
+    pub pbr_metallic_roughness: Value,
+    pub extensions: Map<String, Value>,
+    pub decisions: Vec<String>,
+}
+
+/// Converts one material; an error says why a texture could not be rebaked.
+pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<Converted, String> {
+    let mut decisions = Vec::new();
+    let specular_texture = textures.bytes(Slot::SpecularGlossiness);
+    let mut core = json!({"metallicFactor": 0.0, "roughnessFactor": 1.0 - factors.glossiness});
+    if let Some(specular) = &specular_texture {
+        let diffuse = textures.bytes(Slot::Diffuse);
+        // The two rebakes are independent: the roughness one runs on a second thread.
+        let (base_colour, roughness) = std::thread::scope(|scope| {
+            let roughness =
+                scope.spawn(|| rebake::gloss_to_roughness(specular, factors.glossiness));
+            let base_colour = rebake::spec_gloss_base_colour(
+                diffuse.as_deref(),
+                Some(specular),
+                factors.diffuse,
+                factors.specular,
+            );
+            let roughness = (roughness.join())
+                .unwrap_or_else(|_| Err("the roughness rebake failed".to_string()));
+            (base_colour, roughness)
+        });
+        let like = if diffuse.is_some() {
+            Slot::Diffuse
+        } else {
+            Slot::SpecularGlossiness
+        };
+        core["baseColorTexture"] = textures.add_rebaked(base_colour?.0, like, "baseColor");
+        core["baseColorFactor"] = json!([1.0, 1.0, 1.0, 1.0]);
+        core["metallicRoughnessTexture"] =
+            textures.add_rebaked(roughness?, Slot::SpecularGlossiness, "roughness");
+        core["roughnessFactor"] = json!(1.0);
+        decisions.push("baseColor = diffuse · (1 − max specular) and roughness = 1 − glossiness rebaked per texel into new textures (on the finer grid of the two, each sampled bilinearly).".to_string());
+    } else {
+        let keep = 1.0 - factors.specular.iter().copied().fold(0.0, f64::max);
+        let [r, g, b, a] = factors.diffuse;
+        core["baseColorFactor"] = json!([r * keep, g * keep, b * keep, a]);
+        if let Some(info) = textures.info(Slot::Diffuse) {
+            core["baseColorTexture"] = info;
+        }
+        decisions.push(format!(
+            "baseColorFactor = diffuse · (1 − max specular) = diffuse · {keep}."
+        ));
+    }
+    let mut specular = json!({"specularColorFactor": factors.specular});
+    if let Some(info) = textures.info(Slot::SpecularGlossiness) {
+        // Its RGB is the sRGB specular colour, exactly what specularColorTexture reads.
+        specular["specularColorTexture"] = info;
+    }
+    let mut extensions = Map::new();
+    extensions.insert("KHR_materials_specular".into(), specular);
+    extensions.insert("KHR_materials_ior".into(), json!({"ior": 0}));
+    decisions.push("spec-gloss → metal-rough: metallic 0, F0 = specular via KHR_materials_specular (specularColor) and KHR_materials_ior (ior 0, infinite). Residual: exact for achromatic specular; a chromatic specular keeps a (1 − max F) vs (1 − F) difference in the diffuse weighting (converter-anchors §2.4).".to_string());
+    Ok(Converted {
+        pbr_metallic_roughness: core,
+        extensions,
+        decisions,
+    })
+}
+
+/// The extensions a converted material gains, for `extensionsUsed`.
+pub const EXTENSIONS_ADDED: [&str; 2] = ["KHR_materials_specular", "KHR_materials_ior"];
