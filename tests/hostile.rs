@@ -536,6 +536,39 @@ fn every_printed_finding_is_at_its_own_line_however_many_there_are() {
     assert_eq!(seen, n);
 }
 
+#[test]
+fn a_minified_file_shows_each_finding_in_a_window_of_its_one_line() {
+    // Each snippet decoded the whole line: on a minified file, the whole file per finding.
+    let n = 20_000;
+    let nodes: Vec<_> = (0..n).map(|_| json!({"rotation": [1, 1, 1, 1]})).collect();
+    let text =
+        serde_json::to_string(&json!({"asset": {"version": "2.0"}, "nodes": nodes})).unwrap();
+    let report = check_bytes("m.gltf", text.into_bytes(), &NoResources, &every_issue());
+    let human = gltfmat::report::render(
+        gltfmat::report::Format::Human,
+        std::slice::from_ref(&report),
+        &gltfmat::report::Style::new(false),
+    );
+    let lines: Vec<&str> = human.lines().collect();
+    let mut seen = 0;
+    for pair in lines.windows(2) {
+        let Some((gutter, shown)) = pair[0].split_once(" | ") else {
+            continue;
+        };
+        if gutter.trim().parse::<usize>().is_err() {
+            continue; // not a snippet line
+        }
+        let caret = pair[1].find('^').expect("a caret under every snippet");
+        let column = caret - pair[1].find("| ").unwrap() - 2;
+        let at: String = shown.chars().skip(column).take(10).collect();
+        assert_eq!(at, "\"rotation\"", "{}\n{}", pair[0], pair[1]);
+        let cut = shown.starts_with('…') || shown.ends_with('…');
+        assert!(cut && shown.chars().count() <= 122, "a window: {shown}");
+        seen += 1;
+    }
+    assert_eq!(seen, n);
+}
+
 /// A PNG claiming `size`² 8-bit RGBA texels, with no pixel data.
 fn png_header(size: u32) -> Vec<u8> {
     let mut header = size.to_be_bytes().to_vec();

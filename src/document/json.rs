@@ -154,6 +154,11 @@ impl<'t> LineIndex<'t> {
         )
     }
 
+    /// The byte offset at which line `line` (1-based) starts.
+    pub fn line_start(&self, line: usize) -> usize {
+        (self.line_starts.get(line.saturating_sub(1)).copied()).unwrap_or(self.text.len())
+    }
+
     /// The bytes of line `line` (1-based), without its line break.
     pub fn line(&self, line: usize) -> &'t [u8] {
         let start = self

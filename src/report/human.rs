@@ -133,18 +133,40 @@ const WINDOW: usize = 60;
 /// JSON, a GLB's JSON chunk) is cut to a window around the column; tabs before the column are
 /// repeated under it, so the caret lands where the terminal draws the character.
 fn snippet(lines: &LineIndex, offset: usize, colour: bool) -> String {
-    let (line_no, column) = lines.line_col(offset);
-    let line = String::from_utf8_lossy(lines.line(line_no));
-    let chars: Vec<char> = line.trim_end().chars().collect();
-    let at = (column - 1).min(chars.len());
-    let from = at.saturating_sub(WINDOW);
-    let to = (at + WINDOW).min(chars.len());
-    let (lead, tail) = (
-        if from > 0 { "…" } else { "" },
-        if to < chars.len() { "…" } else { "" },
-    );
-    let shown: String = chars[from..to].iter().collect();
-    let pad: String = (chars[from..at].iter())
+    let (line_no, _) = lines.line_col(offset);
+    let line = lines.line(line_no);
+    let at = offset
+        .saturating_sub(lines.line_start(line_no))
+        .min(line.len());
+    // Only a window of bytes around the column is decoded: a minified file is one line, and
+    // decoding all of it for each finding made reports quadratic in the file's size.
+    let reach = 4 * WINDOW; // a character is at most 4 bytes
+    let from_byte = char_boundary(line, at.saturating_sub(reach));
+    let to_byte = char_boundary(line, (at + reach).min(line.len()));
+    let before: Vec<char> = String::from_utf8_lossy(&line[from_byte..at])
+        .chars()
+        .collect();
+    let after_text = String::from_utf8_lossy(&line[at..to_byte]);
+    let after_text = if to_byte == line.len() {
+        after_text.trim_end()
+    } else {
+        &after_text
+    };
+    let after: Vec<char> = after_text.chars().collect();
+    let shown_before = &before[before.len().saturating_sub(WINDOW)..];
+    let shown_after = &after[..after.len().min(WINDOW)];
+    let lead = if from_byte > 0 || shown_before.len() < before.len() {
+        "…"
+    } else {
+        ""
+    };
+    let tail = if to_byte < line.len() || shown_after.len() < after.len() {
+        "…"
+    } else {
+        ""
+    };
+    let shown: String = shown_before.iter().chain(shown_after).collect();
+    let pad: String = (shown_before.iter())
         .map(|&c| if c == '\t' { '\t' } else { ' ' })
         .collect();
     let gutter = format!("{line_no:>5} | ");
@@ -154,6 +176,14 @@ fn snippet(lines: &LineIndex, offset: usize, colour: bool) -> String {
         " ".repeat(lead.chars().count()),
         paint("^", "1;31", colour)
     )
+}
+
+/// The nearest UTF-8 character start at or after `at` (so a window never splits a character).
+fn char_boundary(bytes: &[u8], mut at: usize) -> usize {
+    while at < bytes.len() && (bytes[at] & 0b1100_0000) == 0b1000_0000 {
+        at += 1;
+    }
+    at
 }
 
 fn summary(report: &Report, style: &Style) -> String {

@@ -7,10 +7,10 @@
 //! samplers that only the converted materials used, and no longer do, are not written;
 //! images stored in a bufferView stay, so that no buffer byte moves.
 
+use super::references::{renumber_texture_members, renumber_textures, texture_indices};
 use super::spec_gloss::{self, Factors, Slot};
 use super::{Binary, EncodedImage, Note, NoteKind, SpecularGlossiness, UpgradeError};
 use super::{UpgradeOptions, Upgraded};
-use super::references::{renumber_texture_members, renumber_textures, texture_indices};
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::{self, image_header, Bytes, Container};
 use crate::gltf::material::{combination, effective_texcoord, texture_images, texture_transform};
@@ -77,7 +77,11 @@ pub(super) fn upgrade(
     if options.specular_glossiness == SpecularGlossiness::MetalRough {
         asset.convert_materials()?;
     } else {
-        asset.note("/materials", NoteKind::Decision, "--specular-glossiness extension: spec-gloss materials are left as they are.");
+        asset.note(
+            "/materials",
+            NoteKind::Decision,
+            "--specular-glossiness extension: spec-gloss materials are left as they are.",
+        );
     }
     Ok(Upgraded {
         json: Value::Object(asset.root),
@@ -193,7 +197,10 @@ impl Asset {
                 view["buffer"] = json!(0);
                 view["byteOffset"] = json!(offset + start as u64);
             }
-            let joined = format!("{} buffers joined into one (bufferViews moved with their bytes; no byte changed).", buffers.len());
+            let joined = format!(
+                "{} buffers joined into one (bufferViews moved with their bytes; no byte changed).",
+                buffers.len()
+            );
             self.note("/buffers", NoteKind::Decision, joined);
         }
         match self.list("buffers").first() {
@@ -221,7 +228,10 @@ impl Asset {
             let at = format!("/images/{i}");
             let uri = image.get("uri").and_then(Value::as_str);
             let (bytes, in_binary) = match uri {
-                Some(uri) => (load_uri(uri, loader).map_err(|e| resource_error(&at, e))?, false),
+                Some(uri) => (
+                    load_uri(uri, loader).map_err(|e| resource_error(&at, e))?,
+                    false,
+                ),
                 None => {
                     let view = unsigned(image, "bufferView")
                         .and_then(|v| self.view_bytes(v as usize, buffers))
@@ -283,13 +293,20 @@ impl Asset {
             return Ok(false);
         };
         if let Some(why) = why_not_converted(extensions, block) {
-            self.note(&at, NoteKind::Decision, format!("left as spec-gloss: {why}"));
+            self.note(
+                &at,
+                NoteKind::Decision,
+                format!("left as spec-gloss: {why}"),
+            );
             return Ok(false);
         }
         let factors = Factors {
             diffuse: numbers(block.get("diffuseFactor"), [1.0; 4]),
             specular: numbers(block.get("specularFactor"), [1.0; 3]),
-            glossiness: block.get("glossinessFactor").and_then(Value::as_f64).unwrap_or(1.0),
+            glossiness: block
+                .get("glossinessFactor")
+                .and_then(Value::as_f64)
+                .unwrap_or(1.0),
         };
         let mut textures = MaterialTextures {
             asset: self,
@@ -297,9 +314,8 @@ impl Asset {
             specular_glossiness: block.get("specularGlossinessTexture").cloned(),
             material: i,
         };
-        let converted = spec_gloss::to_metal_rough(&factors, &mut textures).map_err(|e| {
-            resource_error(&at, format!("texture cannot be rebaked: {e}"))
-        })?;
+        let converted = spec_gloss::to_metal_rough(&factors, &mut textures)
+            .map_err(|e| resource_error(&at, format!("texture cannot be rebaked: {e}")))?;
         if material.get("pbrMetallicRoughness").is_some() {
             self.note(&at, NoteKind::Decision, "the material's own pbrMetallicRoughness (the fallback for viewers without the extension) is replaced by the conversion.");
         }
@@ -318,10 +334,11 @@ impl Asset {
     /// extensionsUsed gains what the conversions wrote and loses the spec-gloss extension
     /// when no material has it any more (extensionsRequired too).
     fn update_extension_lists(&mut self) {
-        let still_used = self
-            .list("materials")
-            .iter()
-            .any(|m| m.get("extensions").and_then(|e| e.get(SPEC_GLOSS)).is_some());
+        let still_used = self.list("materials").iter().any(|m| {
+            m.get("extensions")
+                .and_then(|e| e.get(SPEC_GLOSS))
+                .is_some()
+        });
         let mut used: Vec<Value> = self.list("extensionsUsed").to_vec();
         for added in spec_gloss::EXTENSIONS_ADDED {
             if !used.iter().any(|u| u == added) {
@@ -330,14 +347,19 @@ impl Asset {
         }
         if !still_used {
             used.retain(|u| u != SPEC_GLOSS);
-            if let Some(required) = self.root.get_mut("extensionsRequired").and_then(Value::as_array_mut) {
+            if let Some(required) = self
+                .root
+                .get_mut("extensionsRequired")
+                .and_then(Value::as_array_mut)
+            {
                 required.retain(|r| r != SPEC_GLOSS);
                 if required.is_empty() {
                     self.root.remove("extensionsRequired");
                 }
             }
         }
-        self.root.insert("extensionsUsed".into(), Value::Array(used));
+        self.root
+            .insert("extensionsUsed".into(), Value::Array(used));
     }
 
     /// The textures the materials read (through any `…Texture` member's `index`).
@@ -367,8 +389,10 @@ impl Asset {
             .filter(|&i| self.images.get(i).is_some_and(|image| !image.in_binary))
             .collect();
         let samplers_after = self.referenced_by_textures("sampler");
-        let removable_samplers: BTreeSet<usize> =
-            samplers_before.difference(&samplers_after).copied().collect();
+        let removable_samplers: BTreeSet<usize> = samplers_before
+            .difference(&samplers_after)
+            .copied()
+            .collect();
         let image_map = self.remove("images", &removable_images);
         let mut index = 0;
         self.images.retain(|_| {
@@ -387,9 +411,17 @@ impl Asset {
     fn referenced_by_textures(&self, key: &str) -> BTreeSet<usize> {
         let textures = self.list("textures");
         if key == "source" {
-            textures.iter().flat_map(texture_images).map(|i| i as usize).collect()
+            textures
+                .iter()
+                .flat_map(texture_images)
+                .map(|i| i as usize)
+                .collect()
         } else {
-            textures.iter().filter_map(|t| unsigned(t, key)).map(|i| i as usize).collect()
+            textures
+                .iter()
+                .filter_map(|t| unsigned(t, key))
+                .map(|i| i as usize)
+                .collect()
         }
     }
 
@@ -405,7 +437,13 @@ impl Asset {
             if removed.contains(&i) {
                 map.push(None);
                 let name = item.get("name").and_then(Value::as_str).unwrap_or("");
-                self.note(format!("/{collection}/{i}"), NoteKind::Dropped, format!("not written: only the converted spec-gloss materials used it ('{name}')."));
+                self.note(
+                    format!("/{collection}/{i}"),
+                    NoteKind::Dropped,
+                    format!(
+                        "not written: only the converted spec-gloss materials used it ('{name}')."
+                    ),
+                );
             } else {
                 map.push(Some(kept.len()));
                 kept.push(item);
@@ -433,9 +471,14 @@ fn why_not_converted(extensions: &Map<String, Value>, block: &Value) -> Option<S
         ));
     }
     if extensions.contains_key(UNLIT) {
-        return Some(format!("it is also {UNLIT}: viewers show it unlit, and its base colour must stay as written."));
+        return Some(format!(
+            "it is also {UNLIT}: viewers show it unlit, and its base colour must stay as written."
+        ));
     }
-    let (Some(diffuse), Some(specular)) = (block.get("diffuseTexture"), block.get("specularGlossinessTexture")) else {
+    let (Some(diffuse), Some(specular)) = (
+        block.get("diffuseTexture"),
+        block.get("specularGlossinessTexture"),
+    ) else {
         return None;
     };
     let mapping = |info: &Value| (effective_texcoord(info), texture_transform(info).cloned());
@@ -460,7 +503,9 @@ fn file_stem(uri: &str) -> String {
         return "image".into();
     }
     let last = uri.rsplit('/').next().unwrap_or(uri);
-    last.rsplit_once('.').map_or(last, |(stem, _)| stem).to_string()
+    last.rsplit_once('.')
+        .map_or(last, |(stem, _)| stem)
+        .to_string()
 }
 
 /// A spec-gloss material's two textureInfos, read from and added to the 2.0 asset.
@@ -498,9 +543,13 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value {
         let name = format!("material {} {name}", self.material);
         let index = self.asset.list("images").len();
-        self.asset
-            .images
-            .push(EncodedImage::new(bytes, "image/png".into(), index, &name, false));
+        self.asset.images.push(EncodedImage::new(
+            bytes,
+            "image/png".into(),
+            index,
+            &name,
+            false,
+        ));
         self.asset.list_mut("images").push(json!({"name": name}));
         let mut texture = json!({"name": name, "source": index});
         if let Some(sampler) = self.texture(like).and_then(|t| t.get("sampler")).cloned() {

@@ -149,7 +149,13 @@ impl EncodedImage {
             .unwrap_or("bin")
             .replace("jpeg", "jpg");
         let safe: String = (stem.chars())
-            .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
             .collect();
         EncodedImage {
             bytes,

@@ -4,9 +4,9 @@
 use crate::document::image_decode;
 use crate::document::image_header::{self, Channels};
 use crate::gltf::color::{linear_to_srgb, linear_to_srgb8, srgb_texel_to_linear};
+use crate::shade::sample::{self, TextureImage};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{DynamicImage, ExtendedColorType, ImageEncoder, Rgba32FImage};
-use crate::shade::sample::{self, TextureImage};
 use std::io::Cursor;
 
 pub fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
@@ -102,7 +102,11 @@ pub fn spec_gloss_base_colour(
     let diffuse = diffuse.map(sample::decode).transpose()?;
     let specular = specular.map(sample::decode).transpose()?;
     let inputs: Vec<&TextureImage> = diffuse.iter().chain(&specular).map(|t| &**t).collect();
-    let width = inputs.iter().map(|t| t.width()).max().ok_or("no texture to rebake")?;
+    let width = inputs
+        .iter()
+        .map(|t| t.width())
+        .max()
+        .ok_or("no texture to rebake")?;
     let height = inputs.iter().map(|t| t.height()).max().unwrap_or(1);
     let wide = inputs.iter().any(|t| t.is_wide());
     let out = Rgba32FImage::from_fn(width, height, |x, y| {
@@ -110,8 +114,12 @@ pub fn spec_gloss_base_colour(
             (f64::from(x) + 0.5) / f64::from(width),
             (f64::from(y) + 0.5) / f64::from(height),
         ];
-        let d = diffuse.as_ref().map_or([1.0; 4], |t| sample::bilinear(t, centre));
-        let s = specular.as_ref().map_or([1.0; 4], |t| sample::bilinear(t, centre));
+        let d = diffuse
+            .as_ref()
+            .map_or([1.0; 4], |t| sample::bilinear(t, centre));
+        let s = specular
+            .as_ref()
+            .map_or([1.0; 4], |t| sample::bilinear(t, centre));
         let max_specular = (0..3)
             .map(|c| srgb_texel_to_linear(s[c]) * specular_factor[c])
             .fold(0.0, f64::max);
@@ -125,7 +133,12 @@ pub fn spec_gloss_base_colour(
                 f32::from(linear_to_srgb8(linear)) / 255.0
             }
         };
-        image::Rgba([channel(0), channel(1), channel(2), (d[3] * diffuse_factor[3]) as f32])
+        image::Rgba([
+            channel(0),
+            channel(1),
+            channel(2),
+            (d[3] * diffuse_factor[3]) as f32,
+        ])
     });
     Ok((encode(&out, alpha, wide), alpha))
 }
@@ -171,7 +184,7 @@ mod tests {
 
     #[test]
     fn base_colour_keeps_what_the_specular_lobe_does_not_take() {
-        let diffuse = image::RgbaImage::from_pixel(1, 1, image::Rgba([188, 188, 188, 255])); // ≈ 0.5 linear
+        let diffuse = image::RgbaImage::from_pixel(1, 1, image::Rgba([188, 188, 188, 200])); // ≈ 0.5 linear
         let (bytes, alpha) =
             spec_gloss_base_colour(Some(&png(diffuse)), None, [1.0; 4], [0.5, 0.2, 0.2]).unwrap();
         let texel = decode(&bytes).unwrap().to_rgb8().get_pixel(0, 0).0;
@@ -181,7 +194,10 @@ mod tests {
             (f64::from(texel[0]) - expected).abs() <= 0.5,
             "{texel:?} vs {expected}"
         );
-        assert!(alpha, "an RGBA diffuse keeps its alpha channel");
+        assert!(
+            alpha,
+            "a diffuse with a texel below full alpha keeps its alpha channel"
+        );
     }
 
     #[test]

@@ -3,8 +3,8 @@
 
 use super::resources::declared_mime;
 use crate::check::context::{member, number, unsigned, Context, MaterialNeeds};
-use crate::gltf::material::{combination, Combination};
 use crate::diagnostic::khronos;
+use crate::gltf::material::{combination, Combination};
 use crate::gltf::material::{effective_texcoord, texture_images, texture_transform};
 use serde_json::Value;
 use std::sync::Arc;

@@ -207,7 +207,10 @@ fn spec_gloss_as_metal_rough(
     for decision in converted.decisions {
         builder.note(block, NoteKind::Decision, decision);
     }
-    out.insert("pbrMetallicRoughness".into(), converted.pbr_metallic_roughness);
+    out.insert(
+        "pbrMetallicRoughness".into(),
+        converted.pbr_metallic_roughness,
+    );
     out.insert("extensions".into(), Value::Object(converted.extensions));
     Ok(())
 }

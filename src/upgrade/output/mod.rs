@@ -66,7 +66,11 @@ fn glb<'u>(upgraded: &'u Upgraded, name: &str) -> File<'u> {
     let mut length = upgraded.binary.len();
     let mut views = json["bufferViews"].as_array().cloned().unwrap_or_default();
     let mut body: Vec<Cow<[u8]>> = upgraded.binary.runs().map(Cow::Borrowed).collect();
-    let placed = upgraded.images.iter().enumerate().filter(|(_, i)| !i.in_binary);
+    let placed = upgraded
+        .images
+        .iter()
+        .enumerate()
+        .filter(|(_, i)| !i.in_binary);
     for (i, image) in placed {
         let aligned = length.div_ceil(4) * 4;
         body.push(Cow::Owned(vec![0; aligned - length]));
@@ -122,7 +126,11 @@ fn separate<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
             parts: upgraded.binary.runs().map(Cow::Borrowed).collect(),
         });
     }
-    let placed = upgraded.images.iter().enumerate().filter(|(_, i)| !i.in_binary);
+    let placed = upgraded
+        .images
+        .iter()
+        .enumerate()
+        .filter(|(_, i)| !i.in_binary);
     for (i, image) in placed {
         let name = format!("{stem}-{}", image.file_name);
         json["images"][i]["uri"] = json!(uri_escape(&name));

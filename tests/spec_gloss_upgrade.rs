@@ -1,0 +1,480 @@
+//! `upgrade` of glTF 2.0 assets that use the archived KHR_materials_pbrSpecularGlossiness:
+//! every spec-gloss material becomes metal-rough + KHR_materials_specular +
+//! KHR_materials_ior, everything else passes through, and the proof can fail.
+
+mod common;
+
+use gltfmat::document::uri::{FolderResources, NoResources};
+use gltfmat::shade::pairing::{compare_pairs, load_materials};
+use gltfmat::upgrade::{converted_materials, output, upgrade, UpgradeOptions, Upgraded};
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+
+const SPEC_GLOSS: &str = "KHR_materials_pbrSpecularGlossiness";
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures/spec-gloss")
+        .join(name)
+}
+
+fn upgrade_path(path: &Path, options: &UpgradeOptions) -> Upgraded {
+    let bytes = std::fs::read(path).unwrap();
+    let loader = FolderResources::new(path.parent().unwrap());
+    upgrade(&bytes, &loader, options).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The JSON of an input (.gltf or the JSON chunk of a .glb).
+fn input_json(path: &Path) -> Value {
+    let bytes = std::fs::read(path).unwrap();
+    if bytes.starts_with(b"glTF") {
+        let length = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+        serde_json::from_slice(&bytes[20..20 + length]).unwrap()
+    } else {
+        serde_json::from_slice(&bytes).unwrap()
+    }
+}
+
+/// The bytes of every bufferView of an input, read here from its buffers.
+fn input_views(path: &Path, json: &Value) -> Vec<Vec<u8>> {
+    let bytes = std::fs::read(path).unwrap();
+    let buffers: Vec<Vec<u8>> = json["buffers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|buffer| match buffer["uri"].as_str() {
+            Some(uri) => std::fs::read(path.parent().unwrap().join(uri)).unwrap(),
+            None => {
+                let json_length = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+                bytes[20 + json_length + 8..].to_vec()
+            }
+        })
+        .collect();
+    views_of(json, &buffers)
+}
+
+fn views_of(json: &Value, buffers: &[Vec<u8>]) -> Vec<Vec<u8>> {
+    let views = json["bufferViews"].as_array().cloned().unwrap_or_default();
+    views
+        .iter()
+        .map(|view| {
+            let buffer = &buffers[view["buffer"].as_u64().unwrap() as usize];
+            let start = view["byteOffset"].as_u64().unwrap_or(0) as usize;
+            buffer[start..start + view["byteLength"].as_u64().unwrap() as usize].to_vec()
+        })
+        .collect()
+}
+
+/// The 2.0 spec-gloss assets: the fixtures, and Blender's in ../shared when it is there.
+fn spec_gloss_assets(test: &str) -> Vec<PathBuf> {
+    let mut assets: Vec<PathBuf> = [
+        "factors.gltf",
+        "chromatic.gltf",
+        "textured.gltf",
+        "mixed.glb",
+        "transform.gltf",
+    ]
+    .into_iter()
+    .map(fixture)
+    .collect();
+    if let Some(blender) = common::shared("real-world/gltf2/blender-io", test) {
+        for name in ["04_sphere_specular_glossiness", "14_emission_strength"] {
+            assets.push(blender.join(name).join(format!("{name}.gltf")));
+        }
+    }
+    assets
+}
+
+#[test]
+fn every_spec_gloss_asset_converts_to_an_asset_that_passes_its_check() {
+    for path in spec_gloss_assets("every_spec_gloss_asset_converts") {
+        let upgraded = upgrade_path(&path, &UpgradeOptions::default());
+        for name in ["out.glb", "out.gltf"] {
+            let report = output::verify(&output::layout(&upgraded, name));
+            assert!(
+                !report.has_errors(),
+                "{} as {name}: {:?}",
+                path.display(),
+                report.diagnostics
+            );
+        }
+        let left = notes_saying(&upgraded, "left as spec-gloss");
+        for (i, material) in upgraded.json["materials"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .enumerate()
+        {
+            let still = material["extensions"].get(SPEC_GLOSS).is_some();
+            let reported = left
+                .iter()
+                .any(|p| p.starts_with(&format!("/materials/{i}/")));
+            assert_eq!(
+                still,
+                reported,
+                "{} material {i}: kept only when reported",
+                path.display()
+            );
+        }
+    }
+}
+
+fn notes_saying(upgraded: &Upgraded, text: &str) -> Vec<String> {
+    (upgraded.report.iter())
+        .filter(|n| n.text.contains(text))
+        .map(|n| n.pointer.clone())
+        .collect()
+}
+
+#[test]
+fn everything_but_the_materials_passes_through_unchanged() {
+    for path in spec_gloss_assets("everything_but_the_materials_passes_through") {
+        let before = input_json(&path);
+        let upgraded = upgrade_path(&path, &UpgradeOptions::default());
+        let after = &upgraded.json;
+        let material_side = [
+            "materials",
+            "textures",
+            "images",
+            "samplers",
+            "buffers",
+            "extensionsUsed",
+            "extensionsRequired",
+        ];
+        for (key, value) in before.as_object().unwrap() {
+            if !material_side.contains(&key.as_str()) {
+                assert_eq!(&after[key], value, "{}: /{key} changed", path.display());
+            }
+        }
+        let binary = upgraded.binary.to_vec();
+        assert_eq!(
+            views_of(after, &[binary]),
+            input_views(&path, &before),
+            "{}: a bufferView's bytes changed",
+            path.display()
+        );
+        assert_eq!(
+            after["buffers"][0]["byteLength"],
+            before["buffers"][0]["byteLength"]
+        );
+        // Members of a converted material other than its PBR parameters are kept; a texture
+        // they read may be renumbered (textures only the conversion used are not written),
+        // but it reads the same image.
+        let image_bytes = upgraded_image_bytes(&upgraded);
+        let source_images = input_image_bytes(&path, &before);
+        for (old, new) in before["materials"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(after["materials"].as_array().unwrap())
+        {
+            for (key, value) in old.as_object().unwrap() {
+                if key == "extensions" || key == "pbrMetallicRoughness" {
+                    continue;
+                }
+                let (mut value, mut kept) = (value.clone(), new[key].clone());
+                if let (Some(i), Some(j)) = (value["index"].as_u64(), kept["index"].as_u64()) {
+                    assert_eq!(
+                        source_images(i),
+                        image_bytes(j),
+                        "{}: {key} reads another image",
+                        path.display()
+                    );
+                    value["index"] = json!(0);
+                    kept["index"] = json!(0);
+                }
+                assert_eq!(kept, value, "{}: material member {key}", path.display());
+            }
+        }
+    }
+}
+
+/// The image bytes texture `index` of an input reads.
+fn input_image_bytes<'a>(path: &'a Path, json: &'a Value) -> impl Fn(u64) -> Vec<u8> + 'a {
+    let views = input_views(path, json);
+    move |texture| {
+        let image = &json["images"][json["textures"][texture as usize]["source"]
+            .as_u64()
+            .unwrap() as usize];
+        match image["uri"].as_str() {
+            Some(uri) => std::fs::read(path.parent().unwrap().join(uri)).unwrap(),
+            None => views[image["bufferView"].as_u64().unwrap() as usize].clone(),
+        }
+    }
+}
+
+/// The image bytes texture `index` of an upgraded asset reads.
+fn upgraded_image_bytes(upgraded: &Upgraded) -> impl Fn(u64) -> Vec<u8> + '_ {
+    move |texture| {
+        let source = upgraded.json["textures"][texture as usize]["source"]
+            .as_u64()
+            .unwrap();
+        upgraded.images[source as usize].bytes.clone()
+    }
+}
+
+/// The worst ΔE2000 of each material of `path` against its conversion, on a `grid` (0: the
+/// comparison's own choice).
+fn delta_e(path: &Path, upgraded: &Upgraded, grid: u32) -> Vec<f64> {
+    let loader = FolderResources::new(path.parent().unwrap());
+    let bytes = std::fs::read(path).unwrap();
+    let sources = load_materials(bytes, &path.to_string_lossy(), &loader).unwrap();
+    let converted: Vec<_> = (converted_materials(upgraded).unwrap().into_iter())
+        .map(|m| ("converted".to_string(), Some(m)))
+        .collect();
+    let pairs: Vec<(usize, usize)> = (0..sources.len()).map(|i| (i, i)).collect();
+    compare_pairs(&sources, &converted, &pairs, grid)
+        .into_iter()
+        .map(|o| o.result.max)
+        .collect()
+}
+
+#[test]
+fn achromatic_conversions_prove_and_a_chromatic_one_shows_its_residual() {
+    for name in ["factors.gltf", "textured.gltf", "transform.gltf"] {
+        let path = fixture(name);
+        let upgraded = upgrade_path(&path, &UpgradeOptions::default());
+        for (i, worst) in delta_e(&path, &upgraded, 0).into_iter().enumerate() {
+            assert!(worst < 1.0, "{name} material {i}: ΔE {worst}");
+        }
+    }
+    // Specular (0.9, 0.1, 0.1): the source balances its diffuse per channel (1 − F_c), the
+    // conversion by 1 − max F. A proof that evaluated the source by the target's model would
+    // find 0 here.
+    let path = fixture("chromatic.gltf");
+    let upgraded = upgrade_path(&path, &UpgradeOptions::default());
+    let worst = delta_e(&path, &upgraded, 0)[0];
+    assert!(
+        worst > 5.0,
+        "the real residual is reported, not hidden: ΔE {worst}"
+    );
+}
+
+#[test]
+fn mixed_resolutions_are_exact_at_the_output_texel_centres() {
+    // mixed.glb: an 8×8 diffuse with a 4×4 spec-gloss texture, and the reverse. Both
+    // rebakes are 8×8; an 8² comparison grid samples their texel centres.
+    let path = fixture("mixed.glb");
+    let upgraded = upgrade_path(&path, &UpgradeOptions::default());
+    for (i, worst) in delta_e(&path, &upgraded, 8).into_iter().enumerate() {
+        assert!(worst < 1.0, "material {i}: ΔE {worst} at the texel centres");
+    }
+}
+
+/// sRGB → linear, written here from the sRGB definition.
+fn linear(encoded: f64) -> f64 {
+    if encoded <= 0.04045 {
+        encoded / 12.92
+    } else {
+        ((encoded + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+fn encoded(linear: f64) -> f64 {
+    if linear <= 0.0031308 {
+        linear * 12.92
+    } else {
+        1.055 * linear.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Bilinear sample of an 8-bit image with repeat wrapping, values 0..1.
+fn bilinear(image: &image::RgbaImage, u: f64, v: f64) -> [f64; 4] {
+    let (w, h) = (image.width() as i64, image.height() as i64);
+    let (x, y) = (u * w as f64 - 0.5, v * h as f64 - 0.5);
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let at = |i: i64, j: i64| {
+        image
+            .get_pixel(i.rem_euclid(w) as u32, j.rem_euclid(h) as u32)
+            .0
+    };
+    let (a, b, c, d) = (
+        at(x0 as i64, y0 as i64),
+        at(x0 as i64 + 1, y0 as i64),
+        at(x0 as i64, y0 as i64 + 1),
+        at(x0 as i64 + 1, y0 as i64 + 1),
+    );
+    std::array::from_fn(|k| {
+        let level = |p: [u8; 4]| f64::from(p[k]) / 255.0;
+        let top = level(a) * (1.0 - fx) + level(b) * fx;
+        let bottom = level(c) * (1.0 - fx) + level(d) * fx;
+        top * (1.0 - fy) + bottom * fy
+    })
+}
+
+fn image_of(upgraded: &Upgraded, info: &Value) -> image::RgbaImage {
+    let texture = info["index"].as_u64().unwrap() as usize;
+    let source = upgraded.json["textures"][texture]["source"]
+        .as_u64()
+        .unwrap() as usize;
+    image::load_from_memory(&upgraded.images[source].bytes)
+        .unwrap()
+        .to_rgba8()
+}
+
+#[test]
+fn rebaked_texels_follow_the_formula() {
+    // Source images by texture index, decoded from the input asset itself.
+    for (name, material) in [("textured.gltf", 0), ("mixed.glb", 0), ("mixed.glb", 1)] {
+        let path = fixture(name);
+        let before = input_json(&path);
+        let image_bytes = input_image_bytes(&path, &before);
+        let source_image = |slot: &str| -> image::RgbaImage {
+            let block = &before["materials"][material]["extensions"][SPEC_GLOSS];
+            let bytes = image_bytes(block[slot]["index"].as_u64().unwrap());
+            image::load_from_memory(&bytes).unwrap().to_rgba8()
+        };
+        let block = &before["materials"][material]["extensions"][SPEC_GLOSS];
+        let factor = |key: &str, i: usize, default: f64| block[key][i].as_f64().unwrap_or(default);
+        let (diffuse, specular) = (
+            source_image("diffuseTexture"),
+            source_image("specularGlossinessTexture"),
+        );
+        let upgraded = upgrade_path(&path, &UpgradeOptions::default());
+        let pbr = &upgraded.json["materials"][material]["pbrMetallicRoughness"];
+        let base = image_of(&upgraded, &pbr["baseColorTexture"]);
+        let roughness = image_of(&upgraded, &pbr["metallicRoughnessTexture"]);
+        assert_eq!(
+            base.dimensions(),
+            (
+                diffuse.width().max(specular.width()),
+                diffuse.height().max(specular.height())
+            ),
+            "{name}: the finer grid"
+        );
+        for (x, y, texel) in base.enumerate_pixels() {
+            let (u, v) = (
+                (x as f64 + 0.5) / base.width() as f64,
+                (y as f64 + 0.5) / base.height() as f64,
+            );
+            let (d, s) = (bilinear(&diffuse, u, v), bilinear(&specular, u, v));
+            let max_specular = (0..3)
+                .map(|c| linear(s[c]) * factor("specularFactor", c, 1.0))
+                .fold(0.0, f64::max);
+            for c in 0..3 {
+                let expected =
+                    encoded(linear(d[c]) * factor("diffuseFactor", c, 1.0) * (1.0 - max_specular))
+                        * 255.0;
+                assert!(
+                    (f64::from(texel.0[c]) - expected).abs() <= 0.5 + 1e-9,
+                    "{name} material {material} texel ({x}, {y}) channel {c}: {} vs {expected}",
+                    texel.0[c]
+                );
+            }
+            assert!(
+                (f64::from(texel.0[3]) - d[3] * 255.0 * factor("diffuseFactor", 3, 1.0)).abs()
+                    <= 0.5 + 1e-9
+            );
+        }
+        for (x, y, texel) in roughness.enumerate_pixels() {
+            let gloss = f64::from(specular.get_pixel(x, y).0[3]) / 255.0
+                * block["glossinessFactor"].as_f64().unwrap_or(1.0);
+            assert!(
+                (f64::from(texel.0[1]) - (1.0 - gloss) * 255.0).abs() <= 0.5 + 1e-9,
+                "{name} roughness ({x}, {y})"
+            );
+            assert_eq!(texel.0[2], 0, "dielectric: metallic 0");
+        }
+    }
+}
+
+fn upgrade_json(asset: Value) -> Upgraded {
+    upgrade(
+        asset.to_string().as_bytes(),
+        &NoResources,
+        &UpgradeOptions::default(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_material_with_an_excluded_extension_or_unlit_is_reported_not_converted() {
+    let sg = json!({"diffuseFactor": [0.5, 0.5, 0.5, 1], "specularFactor": [0.1, 0.1, 0.1]});
+    let upgraded = upgrade_json(json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": [SPEC_GLOSS, "KHR_materials_sheen", "KHR_materials_unlit", "KHR_materials_emissive_strength"],
+        "materials": [
+            {"extensions": {SPEC_GLOSS: sg, "KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1]}}},
+            {"extensions": {SPEC_GLOSS: sg, "KHR_materials_unlit": {}}},
+            {"extensions": {SPEC_GLOSS: sg, "KHR_materials_emissive_strength": {"emissiveStrength": 2}}},
+        ]
+    }));
+    let materials = &upgraded.json["materials"];
+    assert!(materials[0]["extensions"].get(SPEC_GLOSS).is_some());
+    assert!(materials[1]["extensions"].get(SPEC_GLOSS).is_some());
+    let left = notes_saying(&upgraded, "left as spec-gloss");
+    assert_eq!(left.len(), 2, "{:?}", upgraded.report);
+    assert!(upgraded.report.iter().any(|n| n
+        .text
+        .contains("KHR_materials_sheen, which the spec-gloss extension excludes")));
+    // emissive_strength is allowed with spec-gloss: that material is converted and keeps it.
+    assert!(materials[2]["extensions"].get(SPEC_GLOSS).is_none());
+    assert_eq!(
+        materials[2]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"],
+        2
+    );
+    let used: Vec<&str> = upgraded.json["extensionsUsed"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    assert!(
+        used.contains(&SPEC_GLOSS),
+        "still used by materials 0 and 1"
+    );
+    assert!(used.contains(&"KHR_materials_specular") && used.contains(&"KHR_materials_ior"));
+}
+
+#[test]
+fn the_extension_leaves_the_extension_lists_when_no_material_uses_it() {
+    let upgraded = upgrade_json(json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": [SPEC_GLOSS],
+        "extensionsRequired": [SPEC_GLOSS],
+        "materials": [{"extensions": {SPEC_GLOSS: {"glossinessFactor": 0.5}}}]
+    }));
+    assert_eq!(
+        upgraded.json["extensionsUsed"],
+        json!(["KHR_materials_specular", "KHR_materials_ior"])
+    );
+    assert!(upgraded.json.get("extensionsRequired").is_none());
+    assert_eq!(
+        upgraded.json["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"],
+        0.5
+    );
+}
+
+#[test]
+fn extension_mode_leaves_a_2_0_asset_as_it_was() {
+    let path = fixture("textured.gltf");
+    let options = UpgradeOptions::default()
+        .with_specular_glossiness(gltfmat::upgrade::SpecularGlossiness::Extension);
+    let upgraded = upgrade_path(&path, &options);
+    let before = input_json(&path);
+    assert_eq!(upgraded.json["materials"], before["materials"]);
+    assert_eq!(upgraded.json["textures"], before["textures"]);
+}
+
+#[test]
+fn several_buffers_are_joined_and_their_views_move_with_their_bytes() {
+    use base64::Engine;
+    let data = |bytes: &[u8]| {
+        format!(
+            "data:application/octet-stream;base64,{}",
+            base64::engine::general_purpose::STANDARD.encode(bytes)
+        )
+    };
+    let upgraded = upgrade_json(json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": data(&[1, 2, 3]), "byteLength": 3}, {"uri": data(&[9, 8, 7, 6]), "byteLength": 4, "name": "second"}],
+        "bufferViews": [{"buffer": 0, "byteLength": 3}, {"buffer": 1, "byteOffset": 1, "byteLength": 3}]
+    }));
+    let binary = upgraded.binary.to_vec();
+    assert_eq!(
+        views_of(&upgraded.json, &[binary]),
+        vec![vec![1, 2, 3], vec![8, 7, 6]]
+    );
+    assert_eq!(upgraded.json["buffers"].as_array().unwrap().len(), 1);
+}
