@@ -141,8 +141,9 @@ fn snippet(lines: &LineIndex, offset: usize, colour: bool) -> String {
     // Only a window of bytes around the column is decoded: a minified file is one line, and
     // decoding all of it for each finding made reports quadratic in the file's size.
     let reach = 4 * WINDOW; // a character is at most 4 bytes
-    let from_byte = char_boundary(line, at.saturating_sub(reach));
-    let to_byte = char_boundary(line, (at + reach).min(line.len()));
+                            // Snapped to character starts, but never past the column (invalid UTF-8 has no starts).
+    let from_byte = char_boundary(line, at.saturating_sub(reach)).min(at);
+    let to_byte = char_boundary(line, (at + reach).min(line.len())).max(at);
     let before: Vec<char> = String::from_utf8_lossy(&line[from_byte..at])
         .chars()
         .collect();
@@ -222,6 +223,17 @@ fn grand_total(reports: &[Report]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_snippet_of_invalid_utf8_keeps_its_caret_at_the_column() {
+        // Continuation bytes with no character start: the window cannot snap past the column.
+        let text = b"\x80\x80\x80abc";
+        for offset in 0..text.len() {
+            let shown = snippet(&LineIndex::new(text), offset, false);
+            assert_eq!(shown.lines().count(), 2, "{shown}");
+            assert!(shown.lines().nth(1).unwrap().ends_with('^'), "{shown}");
+        }
+    }
     use crate::check::{check_bytes, CheckOptions};
     use crate::diagnostic::khronos;
     use crate::document::uri::NoResources;

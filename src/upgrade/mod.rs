@@ -218,6 +218,19 @@ pub enum UpgradeError {
 /// let glb = upgraded.to_glb();
 /// let report = gltfmat::check_bytes("gold.glb", glb, &NoResources, &Default::default());
 /// assert!(!report.has_errors());
+///
+/// // A glTF 2.0 asset: its spec-gloss material becomes metal-rough + specular + ior.
+/// let gltf2 = br#"{"asset": {"version": "2.0"},
+///   "extensionsUsed": ["KHR_materials_pbrSpecularGlossiness"],
+///   "materials": [{"name": "plastic", "extensions": {"KHR_materials_pbrSpecularGlossiness": {
+///     "diffuseFactor": [0.8, 0.1, 0.1, 1.0], "specularFactor": [0.04, 0.04, 0.04],
+///     "glossinessFactor": 0.6}}}]}"#;
+/// let upgraded = upgrade(gltf2, &NoResources, &UpgradeOptions::default()).unwrap();
+/// let plastic = &upgraded.json["materials"][0];
+/// assert_eq!(plastic["extensions"]["KHR_materials_ior"]["ior"], 0);
+/// assert_eq!(plastic["extensions"]["KHR_materials_specular"]["specularColorFactor"][0], 0.04);
+/// assert!((plastic["pbrMetallicRoughness"]["roughnessFactor"].as_f64().unwrap() - 0.4).abs() < 1e-12);
+/// assert!(plastic["extensions"].get("KHR_materials_pbrSpecularGlossiness").is_none());
 /// ```
 pub fn upgrade(
     bytes: &[u8],
