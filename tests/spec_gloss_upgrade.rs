@@ -352,10 +352,10 @@ fn rebaked_texels_follow_the_formula() {
             let max_specular = (0..3)
                 .map(|c| linear(s[c]) * factor("specularFactor", c, 1.0))
                 .fold(0.0, f64::max);
-            for c in 0..3 {
-                let expected =
-                    encoded(linear(d[c]) * factor("diffuseFactor", c, 1.0) * (1.0 - max_specular))
-                        * 255.0;
+            for (c, &diffuse_level) in d.iter().enumerate().take(3) {
+                let expected = encoded(
+                    linear(diffuse_level) * factor("diffuseFactor", c, 1.0) * (1.0 - max_specular),
+                ) * 255.0;
                 assert!(
                     (f64::from(texel.0[c]) - expected).abs() <= 0.5 + 1e-9,
                     "{name} material {material} texel ({x}, {y}) channel {c}: {} vs {expected}",
@@ -477,4 +477,53 @@ fn several_buffers_are_joined_and_their_views_move_with_their_bytes() {
         vec![vec![1, 2, 3], vec![8, 7, 6]]
     );
     assert_eq!(upgraded.json["buffers"].as_array().unwrap().len(), 1);
+}
+
+/// Runs the CLI; its exit status, stdout and stderr.
+fn gltfmat(args: &[&str]) -> (i32, Vec<u8>, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(args)
+        .output()
+        .expect("gltfmat runs");
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    (out.status.code().unwrap_or(-1), out.stdout, stderr)
+}
+
+#[test]
+fn every_upgrade_proves_itself_and_verify_makes_a_failed_proof_refuse() {
+    let dir = std::env::temp_dir().join(format!("gltfmat-sg-cli-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = fixture("chromatic.gltf");
+    let input = input.to_str().unwrap();
+    let out = |name: &str| dir.join(name).to_string_lossy().into_owned();
+
+    // By default the proof's figures are printed, and a failure is a warning.
+    let (code, stdout, _) = gltfmat(&["upgrade", input, "-o", &out("a.glb")]);
+    let stdout = String::from_utf8_lossy(&stdout);
+    assert_eq!(code, 0, "{stdout}");
+    assert!(
+        stdout.contains("proof: material 0 (red specular)") && stdout.contains("DIFFERENT"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("warning: a converted material does not render like its source"));
+
+    // --verify refuses it; nothing is written.
+    let (code, stdout, _) = gltfmat(&["upgrade", input, "-o", &out("b.glb"), "--verify"]);
+    assert_eq!(code, 1, "{}", String::from_utf8_lossy(&stdout));
+    assert!(!dir.join("b.glb").exists());
+
+    // --no-verify skips it.
+    let (code, stdout, _) = gltfmat(&["upgrade", input, "-o", &out("c.glb"), "--no-verify"]);
+    assert_eq!(code, 0);
+    assert!(!String::from_utf8_lossy(&stdout).contains("proof:"));
+
+    // With the asset on stdout, the proof goes to stderr and stdout is the GLB alone.
+    let (code, stdout, stderr) = gltfmat(&["upgrade", input, "-o", "-"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stderr.contains("proof: material 0"), "{stderr}");
+    assert!(stdout.starts_with(b"glTF"));
+    let length = u32::from_le_bytes(stdout[8..12].try_into().unwrap()) as usize;
+    assert_eq!(length, stdout.len(), "nothing but the GLB on stdout");
+    let _ = std::fs::remove_dir_all(&dir);
 }

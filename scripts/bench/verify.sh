@@ -40,7 +40,7 @@ box["materials"] = {
 }
 json.dump(box, open(f"{work}/big.gltf", "w"))
 PY
-./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/upgraded.glb" --verify | grep -E "^material|wrote"
+./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/upgraded.glb" --verify | grep -E "^proof|wrote"
 read -r verify_s verify_kb < <(best_of 5 ./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/out-RUN.glb" --verify)
 read -r compare_s compare_kb < <(best_of 5 ./target/release/gltfmat compare "$work/big.gltf" "$work/upgraded.glb")
 printf 'five %d² textures, best of 5: upgrade --verify %.2fs (%d MB), compare %.2fs (%d MB)\n' \

@@ -3,7 +3,8 @@
 # oracle, never a dependency) on every glTF 2.0 KHR_materials_pbrSpecularGlossiness asset of
 # the fixtures and of ../shared/real-world: both outputs compared with the source by
 # `gltfmat compare` (same evaluator, same direction set, the source read as the archived
-# extension's own model), and both tools timed in the same run, best of five each.
+# extension's own model), and both tools timed in the same run, best of five each; gltfmat's
+# time includes its own proof (every converted material evaluated) and its output check.
 #   scripts/bench/vs-gltf-transform.sh [ASSET…]
 source "$(dirname "$0")/common.sh"
 if [ ! -d "$bench_dir/node_modules/@gltf-transform/functions" ] || [ ! -d "$bench_dir/node_modules/ndarray-pixels" ]; then

@@ -38,19 +38,29 @@ enum CompareFormat {
 }
 
 pub fn print_human(outcomes: &[gltfmat::Outcome], threshold: f64) {
-    for o in outcomes {
-        let r = &o.result;
-        let verdict = if r.max <= threshold {
-            "same"
-        } else {
-            "DIFFERENT"
-        };
-        let (tv, tl, phi) = r.worst.directions;
-        println!(
-            "material {} ({}) ↔ {} ({}): {verdict}: ΔE2000 max {:.4}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}), θv {tv}°, θl {tl}°, φ {phi}°; {}² grid × {} directions = {} samples",
-            o.a.0, o.a.1, o.b.0, o.b.1, r.max, r.p99, r.mean, r.worst.uv[0], r.worst.uv[1], r.grid, DIRECTIONS.len(), r.samples
-        );
+    for line in human_lines(outcomes, threshold) {
+        println!("{line}");
     }
+}
+
+/// One line per compared pair: verdict, ΔE2000 max / p99 / mean, and where the worst is.
+pub fn human_lines(outcomes: &[gltfmat::Outcome], threshold: f64) -> Vec<String> {
+    outcomes
+        .iter()
+        .map(|o| {
+            let r = &o.result;
+            let verdict = if r.max <= threshold {
+                "same"
+            } else {
+                "DIFFERENT"
+            };
+            let (tv, tl, phi) = r.worst.directions;
+            format!(
+                "material {} ({}) ↔ {} ({}): {verdict}: ΔE2000 max {:.4}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}), θv {tv}°, θl {tl}°, φ {phi}°; {}² grid × {} directions = {} samples",
+                o.a.0, o.a.1, o.b.0, o.b.1, r.max, r.p99, r.mean, r.worst.uv[0], r.worst.uv[1], r.grid, DIRECTIONS.len(), r.samples
+            )
+        })
+        .collect()
 }
 
 fn parse_map(entries: &[String]) -> Result<Vec<(usize, usize)>, String> {

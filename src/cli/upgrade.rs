@@ -32,11 +32,15 @@ pub struct UpgradeArgs {
     /// Replace an existing output (never the input).
     #[arg(long)]
     force: bool,
-    /// Prove with the shading evaluator that each converted material renders like its
-    /// source (ΔE2000 ≤ --threshold); otherwise nothing is written.
-    #[arg(long)]
+    /// Refuse the output when the proof fails: a converted material differs from its source
+    /// by more than --threshold ΔE2000 (without it the proof's figures are printed and a
+    /// failure is a warning).
+    #[arg(long, conflicts_with = "no_verify")]
     verify: bool,
-    /// ΔE2000 allowed by --verify.
+    /// Skip the proof (every converted material is otherwise evaluated against its source).
+    #[arg(long)]
+    no_verify: bool,
+    /// ΔE2000 a converted material may differ from its source by.
     #[arg(long, default_value_t = 1.0, value_parser = crate::common::threshold)]
     threshold: f64,
 }
@@ -75,10 +79,13 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         };
         log.line(format_args!("{kind:<8} {} {}", note.pointer, note.text));
     }
-    if args.verify && !verified(&bytes, &args, &upgraded) {
-        return Err(Failure::refused(
-            "a converted material does not render like its source; nothing was written.",
-        ));
+    if !args.no_verify && !proved(&bytes, &args, &upgraded, &mut log) {
+        if args.verify {
+            return Err(Failure::refused(
+                "a converted material does not render like its source; nothing was written.",
+            ));
+        }
+        log.line(format_args!("warning: a converted material does not render like its source within ΔE2000 {} (the output is written; --verify refuses it)", args.threshold));
     }
     let (folder, name) = match destination {
         Destination::Stdout => return write_to_stdout(&upgraded),
@@ -196,22 +203,27 @@ fn refuse_failed_check(report: Report, upgraded: &Upgraded) -> Failure {
     Failure::refused("the upgraded asset fails its own check; nothing was written.")
 }
 
-/// Compares every source material that has a model of its own (a 1.0 asset's PBR-draft
-/// materials, every material of a 2.0 asset) with its conversion; prints the results.
-fn verified(bytes: &[u8], args: &UpgradeArgs, upgraded: &Upgraded) -> bool {
+/// The proof: every source material that has a model of its own (a 1.0 asset's PBR-draft
+/// materials, every material of a 2.0 asset) compared with its conversion, one line each in
+/// the log. False when one differs by more than the threshold or cannot be evaluated.
+fn proved(bytes: &[u8], args: &UpgradeArgs, upgraded: &Upgraded, log: &mut Log) -> bool {
     let loader = FolderResources::beside(&args.input);
     let name = args.input.to_string_lossy();
     let sources = match pairing::load_materials(bytes.to_vec(), &name, &loader) {
         Ok(sources) => sources,
         Err(why) => {
-            eprintln!("gltfmat: the source materials cannot be evaluated: {why}");
+            log.line(format_args!(
+                "proof: the source materials cannot be evaluated: {why}"
+            ));
             return false;
         }
     };
     let converted = match gltfmat::upgrade::converted_materials(upgraded) {
         Ok(converted) => converted,
         Err(why) => {
-            eprintln!("gltfmat: the converted materials cannot be evaluated: {why}");
+            log.line(format_args!(
+                "proof: the converted materials cannot be evaluated: {why}"
+            ));
             return false;
         }
     };
@@ -220,7 +232,9 @@ fn verified(bytes: &[u8], args: &UpgradeArgs, upgraded: &Upgraded) -> bool {
             worst_reading(i, name, source.as_ref()?, target)
         })
         .collect();
-    crate::compare::print_human(&outcomes, args.threshold);
+    for line in crate::compare::human_lines(&outcomes, args.threshold) {
+        log.line(format_args!("proof: {line}"));
+    }
     outcomes.iter().all(|o| o.result.max <= args.threshold)
 }
 
