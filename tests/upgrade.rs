@@ -176,11 +176,10 @@ fn spec_gloss_textures_are_rebaked_per_texel() {
     let (diffuse, spec_gloss) = (fixture_png("diffuse.png"), fixture_png("spec_gloss.png"));
     for (x, y, d) in diffuse.enumerate_pixels() {
         let s = spec_gloss.get_pixel(x, y).0;
-        let max_specular = (0..3)
-            .map(|c| srgb_to_linear(f64::from(s[c]) / 255.0) * 0.2)
-            .fold(0.0, f64::max);
         for (c, factor) in [0.6, 0.5, 0.4].iter().enumerate() {
-            let linear = srgb_to_linear(f64::from(d.0[c]) / 255.0) * factor * (1.0 - max_specular);
+            // Per channel: what the channel's specular does not take (see upgrade/spec_gloss.rs).
+            let keep = 1.0 - srgb_to_linear(f64::from(s[c]) / 255.0) * 0.2;
+            let linear = srgb_to_linear(f64::from(d.0[c]) / 255.0) * factor * keep;
             let want = linear_to_srgb(linear) * 255.0;
             let got = f64::from(base.get_pixel(x, y).0[c]);
             assert!(

@@ -228,6 +228,7 @@ fn proved(bytes: &[u8], args: &UpgradeArgs, upgraded: &Upgraded, log: &mut Log) 
         }
     };
     let outcomes: Vec<_> = (sources.iter().zip(converted).enumerate())
+        .filter(|(i, _)| !upgraded.is_passed_through(*i))
         .filter_map(|(i, ((name, source), target))| {
             worst_reading(i, name, source.as_ref()?, target)
         })

@@ -406,12 +406,17 @@ mod tests {
         }
     }
 
-    /// The closed-form conversion: base colour = diffuse · (1 − max specular), roughness = 1 −
-    /// glossiness, specularColor = specular, ior 0.
+    /// The first closed-form conversion: base colour = diffuse · (1 − max specular),
+    /// roughness = 1 − glossiness, specularColor = specular, ior 0.
     fn converted(diffuse: V3, specular: V3, gloss: f64) -> Inputs {
         let keep = 1.0 - max3(specular);
+        per_channel_converted(diffuse.map(|d| d * keep), specular, gloss)
+    }
+
+    /// A conversion with base colour `base`, the rest as the converter writes it.
+    fn per_channel_converted(base: V3, specular: V3, gloss: f64) -> Inputs {
         Inputs {
-            base_color: diffuse.map(|d| d * keep),
+            base_color: base,
             metallic: 0.0,
             roughness: 1.0 - gloss,
             ior: 0.0,
@@ -472,6 +477,28 @@ mod tests {
                     max3(channels(|c| (b[c] - a[c]).abs())) > 1e-3,
                     "{specular:?}: the residual shows"
                 );
+            }
+        }
+    }
+
+    /// The converter's mapping (upgrade/spec_gloss.rs), base colour = diffuse · (1 − s_c) per
+    /// channel: 1 − F_c = (1 − s_c)(1 − w) and 1 − max3(F) = (1 − max s)(1 − w), so the source's
+    /// c_diff · (1 − F_c) equals base_c · (1 − max3 F) at every angle.
+    #[test]
+    fn per_channel_base_colour_reproduces_a_chromatic_spec_gloss_exactly() {
+        for specular in [[0.9, 0.1, 0.1], [0.0, 0.3, 0.0], [0.4, 0.04, 0.04]] {
+            let (diffuse, gloss) = ([0.8, 0.7, 0.6], 0.6);
+            let source = Inputs::specular_glossiness(
+                diffuse,
+                specular,
+                gloss,
+                SpecGlossReading::ArchivedExtension,
+            );
+            let base = channels(|c| diffuse[c] * (1.0 - specular[c]));
+            let target = per_channel_converted(base, specular, gloss);
+            for (v, l) in pairs() {
+                let g = Geometry::new(v, l);
+                assert_close(base_brdf(&source, &g), base_brdf(&target, &g));
             }
         }
     }

@@ -340,6 +340,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             images: self.images,
             report: self.report,
             origins: self.origins,
+            passed_through: Default::default(),
         }
     }
 }

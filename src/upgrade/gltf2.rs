@@ -74,8 +74,12 @@ pub(super) fn upgrade(
     let buffers = asset.read_buffers(glb_bin, loader)?;
     asset.take_images(&buffers, loader)?;
     asset.join_buffers(&buffers);
+    let mut passed_through: std::collections::BTreeSet<usize> =
+        (0..asset.list("materials").len()).collect();
     if options.specular_glossiness == SpecularGlossiness::MetalRough {
-        asset.convert_materials()?;
+        for converted in asset.convert_materials()? {
+            passed_through.remove(&converted);
+        }
     } else {
         asset.note(
             "/materials",
@@ -89,6 +93,7 @@ pub(super) fn upgrade(
         images: asset.images,
         report: asset.report,
         origins: Default::default(),
+        passed_through,
     })
 }
 
@@ -263,23 +268,24 @@ impl Asset {
         buffer.bytes.get(buffer.range.clone())?.get(start..end)
     }
 
-    fn convert_materials(&mut self) -> Result<(), UpgradeError> {
+    /// Converts every spec-gloss material that can be; returns their indices.
+    fn convert_materials(&mut self) -> Result<Vec<usize>, UpgradeError> {
         let used_before = self.used_textures();
-        let mut converted = 0;
+        let mut converted = Vec::new();
         for i in 0..self.list("materials").len() {
             if self.convert_material(i)? {
-                converted += 1;
+                converted.push(i);
             }
         }
-        if converted == 0 {
+        if converted.is_empty() {
             self.note("/materials", NoteKind::Decision, "no KHR_materials_pbrSpecularGlossiness material was converted: the asset passes through unchanged.");
-            return Ok(());
+            return Ok(converted);
         }
         self.update_extension_lists();
         let now_used = self.used_textures();
         let unused: BTreeSet<usize> = used_before.difference(&now_used).copied().collect();
         self.drop_textures(&unused);
-        Ok(())
+        Ok(converted)
     }
 
     /// Converts material `i` if it is a spec-gloss material that can be; true when it was.
@@ -483,7 +489,7 @@ fn why_not_converted(extensions: &Map<String, Value>, block: &Value) -> Option<S
     };
     let mapping = |info: &Value| (effective_texcoord(info), texture_transform(info).cloned());
     (mapping(diffuse) != mapping(specular)).then(|| {
-        "its diffuse and specular-glossiness textures use different texture coordinates or transforms, so no texture can hold diffuse · (1 − max specular).".to_string()
+        "its diffuse and specular-glossiness textures use different texture coordinates or transforms, so no texture can hold diffuse · (1 − specular).".to_string()
     })
 }
 

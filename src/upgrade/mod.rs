@@ -33,7 +33,7 @@ use serde_json::Value;
 pub enum SpecularGlossiness {
     /// Metal-roughness (metallic 0, roughness 1 − glossiness) with KHR_materials_specular
     /// (specularColor = specular) and KHR_materials_ior (ior 0), base colour
-    /// diffuse · (1 − max specular); textures rebaked per texel.
+    /// diffuse · (1 − specular) per channel; textures rebaked per texel.
     #[default]
     MetalRough,
     /// KHR_materials_pbrSpecularGlossiness: an exact rename, for legacy viewers.
@@ -101,6 +101,9 @@ pub struct Upgraded {
     pub report: Vec<Note>,
     /// `/collection/index` of the output → the 1.0 object it was made from.
     origins: std::collections::HashMap<String, String>,
+    /// Materials passed through as they were (a 2.0 input's materials that are not
+    /// converted): a proof has nothing to compare for them.
+    passed_through: std::collections::BTreeSet<usize>,
 }
 
 impl Upgraded {
@@ -111,6 +114,12 @@ impl Upgraded {
         let mut tokens = output_pointer.split('/').skip(1);
         let object = format!("/{}/{}", tokens.next()?, tokens.next()?);
         self.origins.get(&object).map(String::as_str)
+    }
+
+    /// Whether material `index` was passed through from a 2.0 input as it was, rather than
+    /// converted.
+    pub fn is_passed_through(&self, index: usize) -> bool {
+        self.passed_through.contains(&index)
     }
 
     /// The asset as one GLB file in memory (JSON chunk, then geometry and images in the BIN

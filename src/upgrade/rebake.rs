@@ -85,7 +85,8 @@ pub fn gloss_to_roughness(bytes: &[u8], glossiness_factor: f64) -> Result<Vec<u8
     Ok(encode(&out, false, wide))
 }
 
-/// Spec-gloss base colour: diffuse · (1 − max(specular)) per texel, in linear space, alpha
+/// Spec-gloss base colour: diffuse · (1 − specular) per texel and channel (see
+/// `spec_gloss`), in linear space, alpha
 /// from the diffuse. Either texture may be missing (its factor alone is used). The output
 /// has the finest grid of the two (the larger width and the larger height), and each input
 /// is sampled bilinearly (repeat wrapping, as the evaluator and viewers sample it) at the
@@ -120,11 +121,8 @@ pub fn spec_gloss_base_colour(
         let s = specular
             .as_ref()
             .map_or([1.0; 4], |t| sample::bilinear(t, centre));
-        let max_specular = (0..3)
-            .map(|c| srgb_texel_to_linear(s[c]) * specular_factor[c])
-            .fold(0.0, f64::max);
-        let keep = (1.0 - max_specular).max(0.0);
         let channel = |c: usize| {
+            let keep = (1.0 - srgb_texel_to_linear(s[c]) * specular_factor[c]).max(0.0);
             let linear = srgb_texel_to_linear(d[c]) * diffuse_factor[c] * keep;
             if wide {
                 linear_to_srgb(linear.clamp(0.0, 1.0)) as f32

@@ -2,8 +2,16 @@
 //! spec-gloss materials and for glTF 2.0's archived KHR_materials_pbrSpecularGlossiness:
 //! metallic 0, roughness 1 − glossiness, F0 = specular through KHR_materials_specular
 //! (specularColor) and KHR_materials_ior (ior 0, so that F0 is the specular colour itself),
-//! base colour diffuse · (1 − max specular). With a specular-glossiness texture, base colour
-//! and roughness vary per texel and are rebaked into new textures.
+//! base colour diffuse · (1 − specular), channel by channel. With a specular-glossiness
+//! texture, base colour and roughness vary per texel and are rebaked into new textures.
+//!
+//! Why per channel: the source's diffuse is c_diff,c · (1 − F_c) with c_diff = diffuse ·
+//! (1 − max specular) (the archived extension's text, balanced per channel as Appendix B's
+//! `fresnel_mix` with an RGB Fresnel). The target's is base_c · (1 − max_c F_c)
+//! (KHR_materials_specular). With ior 0, F_c = s_c + (1 − s_c)·w for the same Schlick weight
+//! w, so 1 − F_c = (1 − s_c)(1 − w) and 1 − max F = (1 − max s)(1 − w): base_c = diffuse_c ·
+//! (1 − s_c) makes the two equal at every angle, chromatic specular included. (The earlier
+//! diffuse · (1 − max s) is the same only for an achromatic specular.)
 
 use super::rebake;
 use serde_json::{json, Map, Value};
@@ -75,16 +83,16 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
         core["metallicRoughnessTexture"] =
             textures.add_rebaked(roughness?, Slot::SpecularGlossiness, "roughness");
         core["roughnessFactor"] = json!(1.0);
-        decisions.push("baseColor = diffuse · (1 − max specular) and roughness = 1 − glossiness rebaked per texel into new textures (on the finer grid of the two, each sampled bilinearly).".to_string());
+        decisions.push("baseColor = diffuse · (1 − specular) per channel and roughness = 1 − glossiness rebaked per texel into new textures (on the finer grid of the two, each sampled bilinearly).".to_string());
     } else {
-        let keep = 1.0 - factors.specular.iter().copied().fold(0.0, f64::max);
+        let keep = factors.specular.map(|s| 1.0 - s);
         let [r, g, b, a] = factors.diffuse;
-        core["baseColorFactor"] = json!([r * keep, g * keep, b * keep, a]);
+        core["baseColorFactor"] = json!([r * keep[0], g * keep[1], b * keep[2], a]);
         if let Some(info) = textures.info(Slot::Diffuse) {
             core["baseColorTexture"] = info;
         }
         decisions.push(format!(
-            "baseColorFactor = diffuse · (1 − max specular) = diffuse · {keep}."
+            "baseColorFactor = diffuse · (1 − specular) per channel = diffuse · {keep:?}."
         ));
     }
     let mut specular = json!({"specularColorFactor": factors.specular});
@@ -95,7 +103,7 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
     let mut extensions = Map::new();
     extensions.insert("KHR_materials_specular".into(), specular);
     extensions.insert("KHR_materials_ior".into(), json!({"ior": 0}));
-    decisions.push("spec-gloss → metal-rough: metallic 0, F0 = specular via KHR_materials_specular (specularColor) and KHR_materials_ior (ior 0, infinite). Residual: exact for achromatic specular; a chromatic specular keeps a (1 − max F) vs (1 − F) difference in the diffuse weighting (converter-anchors §2.4).".to_string());
+    decisions.push("spec-gloss → metal-rough: metallic 0, F0 = specular via KHR_materials_specular (specularColor) and KHR_materials_ior (ior 0, infinite). With base colour diffuse · (1 − specular) per channel the diffuse term equals the archived extension's per-channel (1 − F) balance at every angle, chromatic specular included.".to_string());
     Ok(Converted {
         pbr_metallic_roughness: core,
         extensions,
