@@ -1,4 +1,6 @@
-//! Material and texture vocabulary shared by the checker, the converter and the evaluator.
+//! Material and texture vocabulary shared by the checker, the converter and the evaluator:
+//! texture sources and transforms, every texture slot with the channels it reads and their
+//! colour space, and which material extensions exclude each other.
 
 use super::unsigned;
 use serde_json::Value;
@@ -68,5 +70,135 @@ pub fn combination(standalone: &str, other: &str) -> Combination {
         Combination::Allowed
     } else {
         Combination::Unknown
+    }
+}
+
+/// Colour channels as a bit mask.
+pub type Channels = u8;
+pub const R: Channels = 1;
+pub const G: Channels = 2;
+pub const B: Channels = 4;
+pub const A: Channels = 8;
+pub const RGB: Channels = R | G | B;
+
+/// Every texture slot a material can have: where it sits and which channels it reads how.
+/// This is the one table the tangent, channel and colour-space rules read; the channel and
+/// transfer columns come from each extension's spec (summarised in validator-anchors.md §5).
+#[derive(Debug)]
+pub struct TextureSlot {
+    pub extension: Option<&'static str>,
+    /// Core slots nested in `pbrMetallicRoughness`.
+    pub in_pbr: bool,
+    pub key: &'static str,
+    /// Channels decoded with the sRGB transfer function (colours).
+    pub srgb: Channels,
+    /// Channels read as linear data.
+    pub linear: Channels,
+    /// Alpha is coverage, read only when the material's alphaMode is not OPAQUE.
+    pub coverage_alpha: bool,
+}
+
+const fn slot(
+    extension: Option<&'static str>,
+    key: &'static str,
+    srgb: Channels,
+    linear: Channels,
+) -> TextureSlot {
+    TextureSlot {
+        extension,
+        in_pbr: false,
+        key,
+        srgb,
+        linear,
+        coverage_alpha: false,
+    }
+}
+
+const fn core(key: &'static str, srgb: Channels, linear: Channels) -> TextureSlot {
+    slot(None, key, srgb, linear)
+}
+
+const fn colour_with_coverage(mut slot: TextureSlot) -> TextureSlot {
+    slot.coverage_alpha = true;
+    slot
+}
+
+const fn in_pbr(mut slot: TextureSlot) -> TextureSlot {
+    slot.in_pbr = true;
+    slot
+}
+
+const ANISOTROPY: Option<&str> = Some("KHR_materials_anisotropy");
+const CLEARCOAT: Option<&str> = Some("KHR_materials_clearcoat");
+const DIFFUSE_TRANSMISSION: Option<&str> = Some("KHR_materials_diffuse_transmission");
+const IRIDESCENCE: Option<&str> = Some("KHR_materials_iridescence");
+const SPEC_GLOSS_SLOT: Option<&str> = Some(SPEC_GLOSS);
+const SHEEN: Option<&str> = Some("KHR_materials_sheen");
+const SPECULAR: Option<&str> = Some("KHR_materials_specular");
+
+pub static TEXTURE_SLOTS: &[TextureSlot] = &[
+    in_pbr(colour_with_coverage(core("baseColorTexture", RGB, 0))),
+    in_pbr(core("metallicRoughnessTexture", 0, G | B)),
+    core("normalTexture", 0, RGB),
+    core("occlusionTexture", 0, R),
+    core("emissiveTexture", RGB, 0),
+    slot(ANISOTROPY, "anisotropyTexture", 0, RGB),
+    slot(CLEARCOAT, "clearcoatTexture", 0, R),
+    slot(CLEARCOAT, "clearcoatRoughnessTexture", 0, G),
+    slot(CLEARCOAT, "clearcoatNormalTexture", 0, RGB),
+    slot(DIFFUSE_TRANSMISSION, "diffuseTransmissionTexture", 0, A),
+    slot(
+        DIFFUSE_TRANSMISSION,
+        "diffuseTransmissionColorTexture",
+        RGB,
+        0,
+    ),
+    slot(IRIDESCENCE, "iridescenceTexture", 0, R),
+    slot(IRIDESCENCE, "iridescenceThicknessTexture", 0, G),
+    colour_with_coverage(slot(SPEC_GLOSS_SLOT, "diffuseTexture", RGB, 0)),
+    slot(SPEC_GLOSS_SLOT, "specularGlossinessTexture", RGB, A),
+    slot(SHEEN, "sheenColorTexture", RGB, 0),
+    slot(SHEEN, "sheenRoughnessTexture", 0, A),
+    slot(SPECULAR, "specularTexture", 0, A),
+    slot(SPECULAR, "specularColorTexture", RGB, 0),
+    slot(
+        Some("KHR_materials_transmission"),
+        "transmissionTexture",
+        0,
+        R,
+    ),
+    slot(Some("KHR_materials_volume"), "thicknessTexture", 0, G),
+];
+
+impl TextureSlot {
+    /// Normal maps: they need a tangent space, and their texels are unit vectors.
+    pub fn is_normal(&self) -> bool {
+        matches!(self.key, "normalTexture" | "clearcoatNormalTexture")
+    }
+
+    /// The channels this slot reads in `material`: (sRGB, linear).
+    pub fn reads(&self, material: &Value) -> (Channels, Channels) {
+        let mode = material.get("alphaMode").and_then(Value::as_str);
+        let coverage = self.coverage_alpha && mode.is_some_and(|m| m != "OPAQUE");
+        (self.srgb, self.linear | if coverage { A } else { 0 })
+    }
+
+    /// The slot's pointer relative to its material.
+    pub fn pointer(&self) -> String {
+        match (self.extension, self.in_pbr) {
+            (Some(ext), _) => format!("/extensions/{ext}/{}", self.key),
+            (None, true) => format!("/pbrMetallicRoughness/{}", self.key),
+            (None, false) => format!("/{}", self.key),
+        }
+    }
+
+    /// The slot's textureInfo object in a material, if present.
+    pub fn lookup<'v>(&self, material: &'v Value) -> Option<&'v Value> {
+        let parent = match (self.extension, self.in_pbr) {
+            (Some(ext), _) => material.get("extensions")?.get(ext)?,
+            (None, true) => material.get("pbrMetallicRoughness")?,
+            (None, false) => material,
+        };
+        parent.get(self.key).filter(|v| v.is_object())
     }
 }

@@ -1,9 +1,9 @@
 //! Extension declarations and placement: extensionsUsed / extensionsRequired consistency,
 //! extension objects on hosts that do not take them, and non-object extras.
 
-use super::materials::TEXTURE_SLOTS;
 use crate::check::context::{member, Context};
 use crate::diagnostic::khronos;
+use crate::gltf::material::TEXTURE_SLOTS;
 use serde_json::Value;
 
 /// Extensions the Khronos validator implements, with the objects that may carry them.

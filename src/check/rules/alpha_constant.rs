@@ -3,8 +3,9 @@
 use super::texels::Texels;
 use super::{Rule, Run};
 use crate::check::context::Context;
-use crate::check::khronos::materials::{SlotUse, A};
+use crate::check::khronos::materials::SlotUse;
 use crate::diagnostic::Severity;
+use crate::gltf::material::A;
 
 pub const RULE: Rule = Rule::new(
     "TEXTURE_ALPHA_CONSTANT",

@@ -2,8 +2,8 @@
 
 use super::{bound_images, Rule, Run};
 use crate::check::context::Context;
-use crate::check::khronos::materials::A;
 use crate::diagnostic::Severity;
+use crate::gltf::material::A;
 
 pub const RULE: Rule = Rule::new(
     "TEXTURE_ALPHA_MISSING",

@@ -3,8 +3,9 @@
 use super::texels::{self, Texels};
 use super::{Rule, Run};
 use crate::check::context::Context;
-use crate::check::khronos::materials::{by_image, slot_uses, Channels, SlotUse, A, B, G, R};
+use crate::check::khronos::materials::{by_image, slot_uses, SlotUse};
 use crate::diagnostic::Severity;
+use crate::gltf::material::{Channels, A, B, G, R};
 
 pub const RULE: Rule = Rule::new(
     "IMAGE_COLOR_SPACE_CONFLICT",

@@ -2,8 +2,8 @@
 
 use super::{bound_images, Rule, Run};
 use crate::check::context::Context;
-use crate::check::khronos::materials::RGB;
 use crate::diagnostic::Severity;
+use crate::gltf::material::RGB;
 
 pub const RULE: Rule = Rule::new(
     "TEXTURE_GREYSCALE_PACKED",
