@@ -537,3 +537,23 @@ fn every_upgrade_proves_itself_and_verify_makes_a_failed_proof_refuse() {
     assert_eq!(length, stdout.len(), "nothing but the GLB on stdout");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn materials_sharing_textures_and_factors_share_their_rebakes() {
+    let path = fixture("textured.gltf");
+    let mut asset = input_json(&path);
+    let material = asset["materials"][0].clone();
+    asset["materials"] = json!([material.clone(), material]);
+    let loader = FolderResources::new(path.parent().unwrap());
+    let upgraded = upgrade(
+        asset.to_string().as_bytes(),
+        &loader,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    let pbr = |i: usize| upgraded.json["materials"][i]["pbrMetallicRoughness"].clone();
+    assert_eq!(pbr(0), pbr(1), "the same textures");
+    // The spec-gloss image (now the specular colour) and the normal map, plus one base
+    // colour and one roughness rebake (the diffuse image is no longer used).
+    assert_eq!(upgraded.images.len(), 4, "{:?}", upgraded.json["images"]);
+}

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Times `gltfmat upgrade --verify` (upgrade + rebake + check + ΔE proof) and `gltfmat compare`
+# Times `gltfmat upgrade` (upgrade + rebake + check + its ΔE proof) and `gltfmat compare`
 # (source against its upgrade) on a generated glTF 1.0 asset with five 2048² textures (two
 # metal-rough materials, one spec-gloss), best of 5 runs each (this machine's timings vary by
 # a third from run to run).
@@ -40,8 +40,9 @@ box["materials"] = {
 }
 json.dump(box, open(f"{work}/big.gltf", "w"))
 PY
-./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/upgraded.glb" --verify | grep -E "^proof|wrote"
-read -r verify_s verify_kb < <(best_of 5 ./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/out-RUN.glb" --verify)
+# The proof's verdicts are printed; a failed one is a warning here (--verify would refuse).
+./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/upgraded.glb" | grep -E "^proof|^warning|wrote"
+read -r verify_s verify_kb < <(best_of 5 ./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/out-RUN.glb")
 read -r compare_s compare_kb < <(best_of 5 ./target/release/gltfmat compare "$work/big.gltf" "$work/upgraded.glb")
-printf 'five %d² textures, best of 5: upgrade --verify %.2fs (%d MB), compare %.2fs (%d MB)\n' \
+printf 'five %d² textures, best of 5: upgrade with its proof %.2fs (%d MB), compare %.2fs (%d MB)\n' \
   "$size" "$verify_s" "$((verify_kb / 1024))" "$compare_s" "$((compare_kb / 1024))"

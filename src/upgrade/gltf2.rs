@@ -17,7 +17,7 @@ use crate::gltf::material::{combination, effective_texcoord, texture_images, tex
 use crate::gltf::material::{Combination, SPEC_GLOSS, UNLIT};
 use crate::gltf::unsigned;
 use serde_json::{json, Map, Value};
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
 use std::ops::Range;
 use std::sync::Arc;
 
@@ -70,6 +70,7 @@ pub(super) fn upgrade(
         binary: Binary::default(),
         images: Vec::new(),
         report: Vec::new(),
+        rebaked: HashMap::new(),
     };
     let buffers = asset.read_buffers(glb_bin, loader)?;
     asset.take_images(&buffers, loader)?;
@@ -103,6 +104,9 @@ struct Asset {
     binary: Binary,
     images: Vec<EncodedImage>,
     report: Vec<Note>,
+    /// Rebaked textures by image bytes and sampler: materials that share their textures and
+    /// factors share the rebake instead of writing one image each.
+    rebaked: HashMap<(Vec<u8>, Option<u64>), usize>,
 }
 
 /// An input buffer's bytes: the shared file (or GLB) and the buffer's range in it.
@@ -547,24 +551,27 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
     }
 
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value {
+        let sampler = self.texture(like).and_then(|t| unsigned(t, "sampler"));
+        let mut info = self.slot(like).cloned().unwrap_or_else(|| json!({}));
+        let key = (bytes, sampler);
+        if let Some(&texture) = self.asset.rebaked.get(&key) {
+            info["index"] = json!(texture);
+            return info;
+        }
         let name = format!("material {} {name}", self.material);
         let index = self.asset.list("images").len();
-        self.asset.images.push(EncodedImage::new(
-            bytes,
-            "image/png".into(),
-            index,
-            &name,
-            false,
-        ));
+        let image = EncodedImage::new(key.0.clone(), "image/png".into(), index, &name, false);
+        self.asset.images.push(image);
         self.asset.list_mut("images").push(json!({"name": name}));
         let mut texture = json!({"name": name, "source": index});
-        if let Some(sampler) = self.texture(like).and_then(|t| t.get("sampler")).cloned() {
-            texture["sampler"] = sampler;
+        if let Some(sampler) = sampler {
+            texture["sampler"] = json!(sampler);
         }
-        let mut info = self.slot(like).cloned().unwrap_or_else(|| json!({}));
         let textures = self.asset.list_mut("textures");
         textures.push(texture);
-        info["index"] = json!(textures.len() - 1);
+        let texture = textures.len() - 1;
+        self.asset.rebaked.insert(key, texture);
+        info["index"] = json!(texture);
         info
     }
 }
