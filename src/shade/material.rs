@@ -444,19 +444,25 @@ mod tests {
         }
     }
 
+    /// Chromatic spec-gloss materials (diffuse, specular, glossiness) and their evaluation
+    /// under the archived extension's text.
+    fn chromatic_spec_gloss() -> impl Iterator<Item = (V3, V3, f64, Inputs)> {
+        let (diffuse, gloss) = ([0.8, 0.7, 0.6], 0.6);
+        [[0.9, 0.1, 0.1], [0.0, 0.3, 0.0], [0.4, 0.04, 0.04]]
+            .map(|specular| {
+                let reading = SpecGlossReading::ArchivedExtension;
+                let source = Inputs::specular_glossiness(diffuse, specular, gloss, reading);
+                (diffuse, specular, gloss, source)
+            })
+            .into_iter()
+    }
+
     /// The proof can fail: under its own text (1 − F per channel) a chromatic spec-gloss
     /// exceeds its conversion (1 − max3(F)) by exactly c_diff,c · (1 − w) · (max s − s_c) / π,
     /// w = (1 − V·H)⁵, in every channel.
     #[test]
     fn a_chromatic_spec_gloss_keeps_the_analytic_residual_of_its_own_model() {
-        for specular in [[0.9, 0.1, 0.1], [0.0, 0.3, 0.0], [0.4, 0.04, 0.04]] {
-            let (diffuse, gloss) = ([0.8, 0.7, 0.6], 0.6);
-            let source = Inputs::specular_glossiness(
-                diffuse,
-                specular,
-                gloss,
-                SpecGlossReading::ArchivedExtension,
-            );
+        for (diffuse, specular, gloss, source) in chromatic_spec_gloss() {
             let target = converted(diffuse, specular, gloss);
             let max_s = max3(specular);
             for (v, l) in pairs() {
@@ -486,14 +492,7 @@ mod tests {
     /// c_diff · (1 − F_c) equals base_c · (1 − max3 F) at every angle.
     #[test]
     fn per_channel_base_colour_reproduces_a_chromatic_spec_gloss_exactly() {
-        for specular in [[0.9, 0.1, 0.1], [0.0, 0.3, 0.0], [0.4, 0.04, 0.04]] {
-            let (diffuse, gloss) = ([0.8, 0.7, 0.6], 0.6);
-            let source = Inputs::specular_glossiness(
-                diffuse,
-                specular,
-                gloss,
-                SpecGlossReading::ArchivedExtension,
-            );
+        for (diffuse, specular, gloss, source) in chromatic_spec_gloss() {
             let base = channels(|c| diffuse[c] * (1.0 - specular[c]));
             let target = per_channel_converted(base, specular, gloss);
             for (v, l) in pairs() {

@@ -66,12 +66,7 @@ fn glb<'u>(upgraded: &'u Upgraded, name: &str) -> File<'u> {
     let mut length = upgraded.binary.len();
     let mut views = json["bufferViews"].as_array().cloned().unwrap_or_default();
     let mut body: Vec<Cow<[u8]>> = upgraded.binary.runs().map(Cow::Borrowed).collect();
-    let placed = upgraded
-        .images
-        .iter()
-        .enumerate()
-        .filter(|(_, i)| !i.in_binary);
-    for (i, image) in placed {
+    for (i, image) in images_to_place(upgraded) {
         let aligned = length.div_ceil(4) * 4;
         body.push(Cow::Owned(vec![0; aligned - length]));
         body.push(Cow::Borrowed(&image.bytes));
@@ -126,12 +121,7 @@ fn separate<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
             parts: upgraded.binary.runs().map(Cow::Borrowed).collect(),
         });
     }
-    let placed = upgraded
-        .images
-        .iter()
-        .enumerate()
-        .filter(|(_, i)| !i.in_binary);
-    for (i, image) in placed {
+    for (i, image) in images_to_place(upgraded) {
         let name = format!("{stem}-{}", image.file_name);
         json["images"][i]["uri"] = json!(uri_escape(&name));
         side.push(File {
@@ -145,6 +135,12 @@ fn separate<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
         main: File::whole(main_name.to_string(), text),
         side,
     }
+}
+
+/// The images that need a place in the output (those already in a bufferView have one),
+/// with their indices.
+fn images_to_place(upgraded: &Upgraded) -> impl Iterator<Item = (usize, &super::EncodedImage)> {
+    (upgraded.images.iter().enumerate()).filter(|(_, image)| !image.in_binary)
 }
 
 /// The one buffer's byteLength, keeping its other members (a 2.0 input's name, extras).
