@@ -557,3 +557,28 @@ fn materials_sharing_textures_and_factors_share_their_rebakes() {
     // colour and one roughness rebake (the diffuse image is no longer used).
     assert_eq!(upgraded.images.len(), 4, "{:?}", upgraded.json["images"]);
 }
+
+#[test]
+fn a_material_whose_texture_cannot_be_decoded_is_left_and_reported() {
+    use base64::Engine;
+    let broken = base64::engine::general_purpose::STANDARD.encode(b"\x89PNG not really");
+    let upgraded = upgrade_json(json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": [SPEC_GLOSS],
+        "images": [{"uri": format!("data:image/png;base64,{broken}")}],
+        "textures": [{"source": 0}],
+        "materials": [
+            {"extensions": {SPEC_GLOSS: {"specularGlossinessTexture": {"index": 0}}}},
+            {"extensions": {SPEC_GLOSS: {"glossinessFactor": 0.5}}}
+        ]
+    }));
+    let left = notes_saying(&upgraded, "cannot be rebaked");
+    assert_eq!(left, vec![format!("/materials/0/extensions/{SPEC_GLOSS}")]);
+    assert!(upgraded.json["materials"][0]["extensions"]
+        .get(SPEC_GLOSS)
+        .is_some());
+    assert!(upgraded.json["materials"][1]["extensions"]
+        .get(SPEC_GLOSS)
+        .is_none());
+    assert_eq!(upgraded.images.len(), 1, "no rebake was added");
+}

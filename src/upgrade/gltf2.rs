@@ -324,8 +324,15 @@ impl Asset {
             specular_glossiness: block.get("specularGlossinessTexture").cloned(),
             material: i,
         };
-        let converted = spec_gloss::to_metal_rough(&factors, &mut textures)
-            .map_err(|e| resource_error(&at, format!("texture cannot be rebaked: {e}")))?;
+        let converted = match spec_gloss::to_metal_rough(&factors, &mut textures) {
+            Ok(converted) => converted,
+            Err(why) => {
+                // A texture gltfmat cannot decode (KTX2, a broken file): that material only.
+                let text = format!("left as spec-gloss: its textures cannot be rebaked: {why}");
+                self.note(&at, NoteKind::Decision, text);
+                return Ok(false);
+            }
+        };
         if material.get("pbrMetallicRoughness").is_some() {
             self.note(&at, NoteKind::Decision, "the material's own pbrMetallicRoughness (the fallback for viewers without the extension) is replaced by the conversion.");
         }

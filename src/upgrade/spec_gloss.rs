@@ -73,15 +73,17 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
                 .unwrap_or_else(|_| Err("the roughness rebake failed".to_string()));
             (base_colour, roughness)
         });
+        // Both rebakes must succeed before either is added: a failure leaves no orphan.
+        let (base_colour, roughness) = (base_colour?.0, roughness?);
         let like = if diffuse.is_some() {
             Slot::Diffuse
         } else {
             Slot::SpecularGlossiness
         };
-        core["baseColorTexture"] = textures.add_rebaked(base_colour?.0, like, "baseColor");
+        core["baseColorTexture"] = textures.add_rebaked(base_colour, like, "baseColor");
         core["baseColorFactor"] = json!([1.0, 1.0, 1.0, 1.0]);
         core["metallicRoughnessTexture"] =
-            textures.add_rebaked(roughness?, Slot::SpecularGlossiness, "roughness");
+            textures.add_rebaked(roughness, Slot::SpecularGlossiness, "roughness");
         core["roughnessFactor"] = json!(1.0);
         decisions.push("baseColor = diffuse · (1 − specular) per channel and roughness = 1 − glossiness rebaked per texel into new textures (on the finer grid of the two, each sampled bilinearly).".to_string());
     } else {
