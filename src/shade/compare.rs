@@ -353,6 +353,9 @@ fn merge(partials: Vec<Partial>, grid: u32) -> Comparison {
 }
 
 #[cfg(test)]
+mod sensitivity;
+
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::shade::brdf::SheenVisibility;

@@ -1,0 +1,136 @@
+//! What `compare` (and so every upgrade's proof) catches and what it lets pass: mistakes a
+//! converter makes are caught (ΔE2000 above one JND), differences nobody can see are not.
+
+use super::compare;
+use crate::shade::brdf::SheenVisibility;
+use crate::shade::material::Shader;
+use crate::shade::sample::{decode_all, MaterialSource, Texture};
+use crate::shade::sheen_table::SheenTable;
+use serde_json::{json, Value};
+
+/// A 2×2 RGB PNG of one texel colour (8-bit, as stored).
+fn png(texel: [u8; 3]) -> Vec<u8> {
+    let image = image::RgbImage::from_pixel(2, 2, image::Rgb(texel));
+    let mut bytes = Vec::new();
+    image::DynamicImage::ImageRgb8(image)
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .unwrap();
+    bytes
+}
+
+/// A material with texture `i` being `textures[i]`.
+fn material(json: Value, textures: &[[u8; 3]]) -> MaterialSource {
+    let encoded: Vec<_> = textures.iter().map(|t| Some(Ok(png(*t)))).collect();
+    let decoded: Vec<Option<Texture>> = decode_all(&encoded).unwrap();
+    MaterialSource::gltf2(&json, &decoded)
+}
+
+fn worst(a: &MaterialSource, b: &MaterialSource) -> f64 {
+    let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
+    compare(&shader, a, b, 4).max
+}
+
+fn srgb_to_linear(encoded: f64) -> f64 {
+    if encoded <= 0.04045 {
+        encoded / 12.92
+    } else {
+        ((encoded + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+fn pbr(base: [f64; 3], metallic: f64, roughness: f64) -> Value {
+    json!({"pbrMetallicRoughness": {"baseColorFactor": [base[0], base[1], base[2], 1.0],
+        "metallicFactor": metallic, "roughnessFactor": roughness}})
+}
+
+#[test]
+fn the_mistakes_a_converter_makes_are_caught() {
+    let base = [0.5, 0.3, 0.2];
+    let reference = material(pbr(base, 0.0, 0.5), &[]);
+    let textured_mr = |texel| {
+        let mut m = pbr([0.8, 0.6, 0.4], 1.0, 1.0);
+        m["pbrMetallicRoughness"]["metallicRoughnessTexture"] = json!({"index": 0});
+        material(m, &[texel])
+    };
+    let srgb_texture = |texel| {
+        let mut m = pbr([1.0; 3], 0.0, 0.5);
+        m["pbrMetallicRoughness"]["baseColorTexture"] = json!({"index": 0});
+        material(m, &[texel])
+    };
+    // Linear 0.2158 is sRGB level 128; a converter that forgot the encoding writes 55.
+    let level = (srgb_to_linear(128.0 / 255.0) * 255.0).round() as u8;
+    let spec_gloss = material(
+        json!({"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+            "diffuseFactor": [0.6, 0.5, 0.4, 1.0], "specularFactor": [0.3, 0.3, 0.3], "glossinessFactor": 0.5}}}),
+        &[],
+    );
+    let with_base = |base: [f64; 3]| {
+        let mut m = pbr(base, 0.0, 0.5);
+        m["extensions"] = json!({"KHR_materials_specular": {"specularColorFactor": [0.3, 0.3, 0.3]},
+            "KHR_materials_ior": {"ior": 0}});
+        material(m, &[])
+    };
+    let cases = [
+        (
+            "base colour 5% darker",
+            worst(
+                &reference,
+                &material(pbr(base.map(|c| c * 0.95), 0.0, 0.5), &[]),
+            ),
+        ),
+        (
+            "roughness + 0.05",
+            worst(&reference, &material(pbr(base, 0.0, 0.55), &[])),
+        ),
+        (
+            "roughness − 0.05",
+            worst(&reference, &material(pbr(base, 0.0, 0.45), &[])),
+        ),
+        (
+            "metallic and roughness swapped R/B in the texture",
+            worst(&textured_mr([0, 100, 255]), &textured_mr([255, 100, 0])),
+        ),
+        (
+            "a linear value stored where sRGB is read",
+            worst(&srgb_texture([128; 3]), &srgb_texture([level; 3])),
+        ),
+        (
+            "spec-gloss base colour = diffuse (no 1 − specular)",
+            worst(&spec_gloss, &with_base([0.6, 0.5, 0.4])),
+        ),
+    ];
+    for (mistake, delta_e) in cases {
+        assert!(delta_e > 1.0, "{mistake}: ΔE {delta_e} is not caught");
+    }
+    // The same spec-gloss converted as gltfmat converts it passes: the table's rows above
+    // fail for their mistake, not for the comparison's own noise.
+    let exact = worst(&spec_gloss, &with_base([0.6 * 0.7, 0.5 * 0.7, 0.4 * 0.7]));
+    assert!(exact < 1e-6, "ΔE {exact}");
+}
+
+#[test]
+fn differences_nobody_can_see_pass() {
+    let defaults = material(json!({}), &[]);
+    let explicit = material(pbr([1.0; 3], 1.0, 1.0), &[]);
+    let ior = |ior: f64| {
+        let mut m = pbr([0.4, 0.5, 0.6], 0.0, 0.4);
+        m["extensions"] = json!({"KHR_materials_specular": {"specularColorFactor": [0.05, 0.05, 0.05]},
+            "KHR_materials_ior": {"ior": ior}});
+        material(m, &[])
+    };
+    let level = |l: f64| material(pbr([srgb_to_linear(l / 255.0); 3], 0.0, 0.5), &[]);
+    let cases = [
+        ("explicit defaults", worst(&defaults, &explicit)),
+        ("ior 0 against ior 1e9", worst(&ior(0.0), &ior(1e9))),
+        (
+            "half an 8-bit step of base colour",
+            worst(&level(100.0), &level(100.5)),
+        ),
+    ];
+    for (difference, delta_e) in cases {
+        assert!(delta_e < 1.0, "{difference}: ΔE {delta_e} should pass");
+    }
+}
