@@ -111,11 +111,13 @@ impl Accessor<'_> {
 
     /// Every element's components, in order.
     pub fn values(&self) -> Vec<f64> {
+        let size = component_size(self.component_type).unwrap_or(4);
+        let element = size * self.components;
         let mut out = Vec::with_capacity(self.count * self.components);
         for i in 0..self.count {
-            for c in 0..self.components {
-                out.push(self.get(i, c));
-            }
+            let at = i * self.stride;
+            let components = self.bytes[at..at + element].chunks_exact(size);
+            out.extend(components.map(|bytes| decode_component(self.component_type, bytes)));
         }
         out
     }
@@ -230,15 +232,39 @@ pub fn pack_values(
     out.reserve(count * stride);
     let mut min = vec![f64::INFINITY; components];
     let mut max = vec![f64::NEG_INFINITY; components];
-    for element_values in values.chunks_exact(components.max(1)) {
-        for (c, &v) in element_values.iter().enumerate() {
-            let stored = write_component(out, component_type, v);
-            if !stored.is_nan() {
-                min[c] = min[c].min(stored);
-                max[c] = max[c].max(stored);
-            }
-        }
-        out.resize(out.len() + stride - element, 0);
+    let mut pack = Packing {
+        components,
+        padding: stride - element,
+        out,
+        min: &mut min,
+        max: &mut max,
+    };
+    // One loop per component type: the type is matched once, not once per value.
+    match component_type {
+        BYTE => pack.all(values, |v| {
+            let x = v.round().clamp(-128.0, 127.0) as i8;
+            (x.to_le_bytes(), f64::from(x))
+        }),
+        UNSIGNED_BYTE => pack.all(values, |v| {
+            let x = v.round().clamp(0.0, 255.0) as u8;
+            ([x], f64::from(x))
+        }),
+        SHORT => pack.all(values, |v| {
+            let x = v.round().clamp(-32768.0, 32767.0) as i16;
+            (x.to_le_bytes(), f64::from(x))
+        }),
+        UNSIGNED_SHORT => pack.all(values, |v| {
+            let x = v.round().clamp(0.0, 65535.0) as u16;
+            (x.to_le_bytes(), f64::from(x))
+        }),
+        UNSIGNED_INT => pack.all(values, |v| {
+            let x = v.round().clamp(0.0, f64::from(u32::MAX)) as u32;
+            (x.to_le_bytes(), f64::from(x))
+        }),
+        _ => pack.all(values, |v| {
+            let x = v as f32;
+            (x.to_le_bytes(), f64::from(x))
+        }),
     }
     if count == 0 {
         min.clear();
@@ -257,38 +283,29 @@ pub fn pack_values(
     }
 }
 
-/// Writes one component; returns the value as stored (for min/max).
-fn write_component(out: &mut Vec<u8>, component_type: u64, v: f64) -> f64 {
-    match component_type {
-        BYTE => {
-            let x = v.round().clamp(-128.0, 127.0) as i8;
-            out.push(x as u8);
-            f64::from(x)
-        }
-        UNSIGNED_BYTE => {
-            let x = v.round().clamp(0.0, 255.0) as u8;
-            out.push(x);
-            f64::from(x)
-        }
-        SHORT => {
-            let x = v.round().clamp(-32768.0, 32767.0) as i16;
-            out.extend(x.to_le_bytes());
-            f64::from(x)
-        }
-        UNSIGNED_SHORT => {
-            let x = v.round().clamp(0.0, 65535.0) as u16;
-            out.extend(x.to_le_bytes());
-            f64::from(x)
-        }
-        UNSIGNED_INT => {
-            let x = v.round().clamp(0.0, f64::from(u32::MAX)) as u32;
-            out.extend(x.to_le_bytes());
-            f64::from(x)
-        }
-        _ => {
-            let x = v as f32;
-            out.extend(x.to_le_bytes());
-            f64::from(x)
+/// Values being appended as one component type, with their min/max as stored.
+struct Packing<'a> {
+    components: usize,
+    /// Zero bytes after each element (vertex attributes are 4-byte aligned).
+    padding: usize,
+    out: &'a mut Vec<u8>,
+    min: &'a mut [f64],
+    max: &'a mut [f64],
+}
+
+impl Packing<'_> {
+    /// Appends every value as `encode` stores it (its bytes and the value they hold).
+    fn all<const N: usize>(&mut self, values: &[f64], encode: impl Fn(f64) -> ([u8; N], f64)) {
+        for element in values.chunks_exact(self.components.max(1)) {
+            for (c, &v) in element.iter().enumerate() {
+                let (bytes, stored) = encode(v);
+                self.out.extend_from_slice(&bytes);
+                if !stored.is_nan() {
+                    self.min[c] = self.min[c].min(stored);
+                    self.max[c] = self.max[c].max(stored);
+                }
+            }
+            self.out.extend_from_slice(&[0; 4][..self.padding]);
         }
     }
 }
