@@ -502,6 +502,47 @@ mod tests {
         }
     }
 
+    /// White furnace: a white sheen layered on a white Lambert base (no specular lobe) reflects
+    /// at most what arrives, with the 16² table `compare` uses for sheen materials, except
+    /// where the sheen lobe alone reflects more: the Charlie lobe is not energy conserving at
+    /// grazing view and low roughness (its own albedo is 1.0035 at sheenRoughness 0.05, μ 0.05,
+    /// and KHR_materials_sheen does not normalise it). The layering itself adds nothing: the
+    /// base is scaled by 1 − E (clamped at 0) from the table.
+    #[test]
+    fn a_white_sheen_on_a_white_lambert_base_reflects_at_most_what_arrives() {
+        use crate::shade::sheen_table::albedo as sheen_albedo;
+        let shader = Shader::new(SheenTable::compute(16, SheenVisibility::Charlie));
+        let mut above_one = 0;
+        for sheen_roughness in [0.05, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0] {
+            let material = Inputs {
+                base_color: [1.0; 3],
+                metallic: 0.0,
+                specular: 0.0,
+                sheen_color: [1.0; 3],
+                sheen_roughness,
+                ..Inputs::default()
+            };
+            for theta_v in [0.0, 0.4, 0.8, 1.1, 1.3, 1.45, 1.52] {
+                let v = direction(theta_v, 0.0);
+                let albedo = crate::shade::quadrature::hemisphere(384, 64, |l| {
+                    shader.brdf(&material, &Geometry::new(v, l))[0] * l[2]
+                });
+                let lobe = sheen_albedo(SheenVisibility::Charlie, v[2], sheen_roughness);
+                assert!(
+                    albedo <= lobe.max(1.0) + 1e-3,
+                    "sheen roughness {sheen_roughness}, θv {theta_v}: albedo {albedo}, lobe {lobe}"
+                );
+                if lobe > 1.0 {
+                    above_one += 1;
+                }
+            }
+        }
+        assert!(
+            above_one > 0,
+            "the sweep reaches where the lobe alone exceeds 1"
+        );
+    }
+
     #[test]
     fn no_brdf_value_is_negative_at_low_sheen_roughness_and_grazing_angles() {
         let shader = Shader::new(SheenTable::compute(32, SheenVisibility::Charlie));
