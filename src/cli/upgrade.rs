@@ -227,45 +227,64 @@ fn proved(bytes: &[u8], args: &UpgradeArgs, upgraded: &Upgraded, log: &mut Log) 
             return false;
         }
     };
-    let outcomes: Vec<_> = (sources.iter().zip(converted).enumerate())
-        .filter(|(i, _)| !upgraded.is_passed_through(*i))
-        .filter_map(|(i, ((name, source), target))| {
-            worst_reading(i, name, source.as_ref()?, target)
-        })
+    let converted: Vec<pairing::Named> = (converted.into_iter().zip(&sources))
+        .map(|(target, (name, _))| (name.clone(), Some(target)))
         .collect();
+    let pairs: Vec<(usize, usize)> = (0..sources.len().min(converted.len()))
+        .filter(|&i| !upgraded.is_passed_through(i))
+        .map(|i| (i, i))
+        .collect();
+    let outcomes = worst_readings(&sources, &converted, &pairs);
     for line in crate::compare::human_lines(&outcomes, args.threshold) {
         log.line(format_args!("proof: {line}"));
     }
     outcomes.iter().all(|o| o.result.max <= args.threshold)
 }
 
-/// The conversion of source material `index` compared under every reading of its source's
-/// text; the worst, its name saying which reading that was.
-fn worst_reading(
-    index: usize,
-    name: &str,
-    source: &MaterialSource,
-    target: MaterialSource,
-) -> Option<pairing::Outcome> {
-    let target = [(name.to_string(), Some(target))];
-    let mut worst: Option<pairing::Outcome> = None;
-    for reading in source.readings() {
-        let label = match reading.reading_name() {
-            Some(how) => format!("{name} (source read as: {how})"),
-            None => name.to_string(),
-        };
-        let read = [(label, Some(reading))];
-        let Some(mut outcome) = compare_pairs(&read, &target, &[(0, 0)], 0).pop() else {
-            continue;
-        };
-        outcome.a.0 = index;
-        outcome.b.0 = index;
-        if worst
-            .as_ref()
-            .is_none_or(|w| outcome.result.max > w.result.max)
-        {
-            worst = Some(outcome);
+/// Each pair compared under every reading of its source's text (one comparison per reading
+/// for all pairs together, so that identical pairs are evaluated once); the worst reading of
+/// each, named in its label.
+fn worst_readings(
+    sources: &[pairing::Named],
+    converted: &[pairing::Named],
+    pairs: &[(usize, usize)],
+) -> Vec<pairing::Outcome> {
+    let readings: Vec<Vec<MaterialSource>> = (sources.iter())
+        .map(|(_, source)| {
+            source
+                .as_ref()
+                .map(MaterialSource::readings)
+                .unwrap_or_default()
+        })
+        .collect();
+    let most = readings.iter().map(Vec::len).max().unwrap_or(0);
+    let mut worst: std::collections::BTreeMap<usize, pairing::Outcome> = Default::default();
+    for r in 0..most {
+        let read: Vec<pairing::Named> = (sources.iter().zip(&readings))
+            .map(|((name, _), all)| {
+                let Some(reading) = all.get(r) else {
+                    return (name.clone(), None);
+                };
+                let label = match reading.reading_name() {
+                    Some(how) => format!("{name} (source read as: {how})"),
+                    None => name.clone(),
+                };
+                (label, Some(reading.clone()))
+            })
+            .collect();
+        for outcome in compare_pairs(&read, converted, pairs, 0) {
+            let slot = worst.entry(outcome.a.0);
+            match slot {
+                std::collections::btree_map::Entry::Vacant(empty) => {
+                    empty.insert(outcome);
+                }
+                std::collections::btree_map::Entry::Occupied(mut kept) => {
+                    if outcome.result.max > kept.get().result.max {
+                        kept.insert(outcome);
+                    }
+                }
+            }
         }
     }
-    worst
+    worst.into_values().collect()
 }

@@ -65,6 +65,9 @@ pub fn compare_pairs(
     grid: u32,
 ) -> Vec<Outcome> {
     let shader = shader_for(a.iter().chain(b).filter_map(|(_, m)| m.as_ref()));
+    // Materials that evaluate the same way are compared once (an asset's thousand copies of
+    // one material are one comparison).
+    let mut done: std::collections::HashMap<(String, String), Comparison> = Default::default();
     pairs
         .iter()
         .filter_map(|&(i, j)| {
@@ -74,10 +77,14 @@ pub fn compare_pairs(
             let (name_b, Some(mb)) = b.get(j)? else {
                 return None;
             };
+            let key = (ma.fingerprint(), mb.fingerprint());
+            let result = (done.entry(key))
+                .or_insert_with(|| evaluate::compare(&shader, ma, mb, grid))
+                .clone();
             Some(Outcome {
                 a: (i, name_a.clone()),
                 b: (j, name_b.clone()),
-                result: evaluate::compare(&shader, ma, mb, grid),
+                result,
             })
         })
         .collect()
@@ -191,4 +198,45 @@ pub fn render(
     };
     let drawn = chosen.iter().map(|(i, n, _)| (*i, (*n).clone())).collect();
     Ok((image, drawn))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shade::sample::decode_all;
+    use serde_json::json;
+
+    fn png(level: u8) -> Vec<u8> {
+        let image = image::RgbImage::from_pixel(2, 2, image::Rgb([level; 3]));
+        let mut bytes = Vec::new();
+        image::DynamicImage::ImageRgb8(image)
+            .write_to(
+                &mut std::io::Cursor::new(&mut bytes),
+                image::ImageFormat::Png,
+            )
+            .unwrap();
+        bytes
+    }
+
+    #[test]
+    fn identical_pairs_are_compared_once_and_different_ones_are_not_merged() {
+        // Two images, and two materials with the same JSON reading texture 0 of different
+        // texture lists: same JSON, different textures, different materials.
+        let textures = decode_all(&[Some(Ok(png(40))), Some(Ok(png(220)))]).unwrap();
+        let json = json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}});
+        let dark = MaterialSource::gltf2(&json, &textures[0..1]);
+        let light = MaterialSource::gltf2(&json, &textures[1..2]);
+        assert_ne!(dark.fingerprint(), light.fingerprint());
+        assert_eq!(
+            dark.fingerprint(),
+            MaterialSource::gltf2(&json, &textures[0..1]).fingerprint()
+        );
+        let named = |m: &MaterialSource| ("m".to_string(), Some(m.clone()));
+        let a = [named(&dark), named(&dark), named(&light)];
+        let b = [named(&light), named(&light), named(&light)];
+        let outcomes = compare_pairs(&a, &b, &[(0, 0), (1, 1), (2, 2)], 4);
+        assert_eq!(outcomes[0].result.max, outcomes[1].result.max);
+        assert!(outcomes[0].result.max > 10.0, "dark against light");
+        assert_eq!(outcomes[2].result.max, 0.0, "light against itself");
+    }
 }

@@ -320,6 +320,9 @@ pub struct Prepared {
     sheen_roughness: Option<Binding>,
     anisotropy: Option<Binding>,
     pub has_sheen: bool,
+    /// The material's JSON and the identities of its decoded textures (see
+    /// [`MaterialSource::fingerprint`]).
+    fingerprint: String,
 }
 
 struct SpecGloss {
@@ -360,24 +363,7 @@ impl MaterialSource {
     /// The highest texture resolution involved (for the comparison grid).
     pub fn max_resolution(&self) -> u32 {
         let textures: Vec<&Texture> = match self {
-            MaterialSource::Gltf2(p) => [
-                &p.base_colour,
-                &p.metallic_roughness,
-                &p.specular,
-                &p.specular_colour,
-                &p.sheen_colour,
-                &p.sheen_roughness,
-                &p.anisotropy,
-            ]
-            .into_iter()
-            .chain(
-                p.spec_gloss
-                    .iter()
-                    .flat_map(|s| [&s.diffuse_texture, &s.specular_glossiness_texture]),
-            )
-            .flatten()
-            .map(|b| &b.texture)
-            .collect(),
+            MaterialSource::Gltf2(p) => p.bindings().map(|b| &b.texture).collect(),
             MaterialSource::Legacy { colour, data, .. } => colour.iter().chain(data).collect(),
         };
         textures
@@ -385,6 +371,25 @@ impl MaterialSource {
             .map(|t| t.width().max(t.height()))
             .max()
             .unwrap_or(1)
+    }
+
+    /// A key equal for two sources that evaluate the same way (the same JSON or parameters,
+    /// the same decoded textures, the same reading), so that a comparison of identical pairs
+    /// is made once.
+    pub fn fingerprint(&self) -> String {
+        match self {
+            MaterialSource::Gltf2(prepared) => prepared.fingerprint.clone(),
+            MaterialSource::Legacy {
+                pbr,
+                colour,
+                data,
+                reading,
+            } => format!(
+                "{pbr:?}|{:?}|{:?}|{reading:?}",
+                colour.as_ref().map(Arc::as_ptr),
+                data.as_ref().map(Arc::as_ptr)
+            ),
+        }
     }
 
     /// The readings a proof must evaluate this material under: every draft reading for a
@@ -475,7 +480,7 @@ fn prepare(material: &Value, textures: &[Option<Texture>]) -> Prepared {
         diffuse_texture: bind(sg.get("diffuseTexture")),
         specular_glossiness_texture: bind(sg.get("specularGlossinessTexture")),
     });
-    Prepared {
+    let mut prepared = Prepared {
         factors,
         spec_gloss,
         base_colour: bind(in_pbr("baseColorTexture")),
@@ -486,7 +491,14 @@ fn prepare(material: &Value, textures: &[Option<Texture>]) -> Prepared {
         sheen_roughness: bind(sheen.and_then(|s| s.get("sheenRoughnessTexture"))),
         anisotropy: bind(anisotropy.and_then(|a| a.get("anisotropyTexture"))),
         has_sheen: sheen.is_some(),
-    }
+        fingerprint: String::new(),
+    };
+    let bound: Vec<_> = prepared
+        .bindings()
+        .map(|b| Arc::as_ptr(&b.texture))
+        .collect();
+    prepared.fingerprint = format!("{material}|{bound:?}");
+    prepared
 }
 
 #[inline(always)]
@@ -495,6 +507,25 @@ fn times(a: V3, b: V3) -> V3 {
 }
 
 impl Prepared {
+    /// Every texture binding of the material.
+    fn bindings(&self) -> impl Iterator<Item = &Binding> {
+        [
+            &self.base_colour,
+            &self.metallic_roughness,
+            &self.specular,
+            &self.specular_colour,
+            &self.sheen_colour,
+            &self.sheen_roughness,
+            &self.anisotropy,
+        ]
+        .into_iter()
+        .chain(
+            (self.spec_gloss.iter())
+                .flat_map(|s| [&s.diffuse_texture, &s.specular_glossiness_texture]),
+        )
+        .flatten()
+    }
+
     #[inline(always)]
     fn inputs_at(&self, uvs: &[[f64; 2]]) -> Inputs {
         let sample = |b: &Option<Binding>| b.as_ref().map(|b| b.sample(uvs));
