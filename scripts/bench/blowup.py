@@ -94,6 +94,20 @@ def many_findings(n):
     return write(f'findings-{n}.gltf', json.dumps(asset(nodes=nodes), indent=1).encode())
 
 
+def many_findings_minified(n):
+    # The same findings on one line (a minified file): each snippet once decoded the line.
+    nodes = [{'rotation': [1, 1, 1, 1]} for _ in range(n)]
+    return write(f'findings-min-{n}.gltf', json.dumps(asset(nodes=nodes)).encode())
+
+
+def spec_gloss_materials(n):
+    # N glTF 2.0 spec-gloss materials for `upgrade`, two of every three alike.
+    sg = 'KHR_materials_pbrSpecularGlossiness'
+    materials = [{'extensions': {sg: {'diffuseFactor': [0.5, 0.4, 0.3, 1], 'specularFactor': [0.1 + (i % 3) / 10] * 3,
+                                      'glossinessFactor': 0.6}}} for i in range(n)]
+    return write(f'spec-gloss-{n}.gltf', asset(materials=materials, extensionsUsed=[sg]))
+
+
 def joint_names(n):
     nodes = {f'j{i}': ({'jointName': f'J{i}', 'children': [f'j{i + 1}']} if i + 1 < n else {'jointName': f'J{i}'})
              for i in range(n)}
@@ -152,7 +166,9 @@ CLASSES = [
     ('array of zeros (13)', zeros, 1_000_000, ['check', '--max-issues', '10']),
     ('human findings (14)', many_findings, 3_000, ['check', '--format', 'human']),
     ('sarif findings (14)', many_findings, 3_000, ['check', '--format', 'sarif']),
-    ('8192² PNG, N references (15)', big_png_references, 1, ['render', '--all', '--size', '64', '-o', os.path.join(WORK, 'sheet.png')]),
+    ('human findings, one line', many_findings_minified, 3_000, ['check', '--format', 'human']),
+    ('2.0 spec-gloss materials, upgrade with proof', spec_gloss_materials, 10_000, ['upgrade', '-o', os.path.join(WORK, 'sg.glb'), '--force']),
+    ('8192² PNG, N references (15)', big_png_references, 1, ['render', '--all', '--size', '64', '-o', os.path.join(WORK, 'sheet.png'), '--force']),
 ]
 
 
