@@ -9,8 +9,10 @@ Each input is generated into a scratch folder; nothing here is a test (no assert
 """
 import base64, json, os, struct, subprocess, sys, tempfile, time, zlib
 
-EXE = os.path.abspath(next((a for a in sys.argv[1:] if not a.startswith('--')), 'target/release/gltfmat'))
 ONLY = sys.argv[sys.argv.index('--only') + 1] if '--only' in sys.argv else None
+# The executable: the first argument that is neither an option nor --only's value.
+POSITIONAL = [a for i, a in enumerate(sys.argv[1:], 1) if not a.startswith('--') and sys.argv[i - 1] != '--only']
+EXE = os.path.abspath(POSITIONAL[0] if POSITIONAL else 'target/release/gltfmat')
 WORK = tempfile.mkdtemp(prefix='gltfmat-blowup-')
 
 
