@@ -203,26 +203,15 @@ pub fn render(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shade::sample::decode_all;
+    use crate::shade::sample::{decode_all, solid_png};
     use serde_json::json;
-
-    fn png(level: u8) -> Vec<u8> {
-        let image = image::RgbImage::from_pixel(2, 2, image::Rgb([level; 3]));
-        let mut bytes = Vec::new();
-        image::DynamicImage::ImageRgb8(image)
-            .write_to(
-                &mut std::io::Cursor::new(&mut bytes),
-                image::ImageFormat::Png,
-            )
-            .unwrap();
-        bytes
-    }
 
     #[test]
     fn identical_pairs_are_compared_once_and_different_ones_are_not_merged() {
         // Two images, and two materials with the same JSON reading texture 0 of different
         // texture lists: same JSON, different textures, different materials.
-        let textures = decode_all(&[Some(Ok(png(40))), Some(Ok(png(220)))]).unwrap();
+        let textures =
+            decode_all(&[Some(Ok(solid_png([40; 3]))), Some(Ok(solid_png([220; 3])))]).unwrap();
         let json = json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}});
         let dark = MaterialSource::gltf2(&json, &textures[0..1]);
         let light = MaterialSource::gltf2(&json, &textures[1..2]);

@@ -67,6 +67,20 @@ fn unorm8_table() -> &'static [f64; 256] {
     TABLE.get_or_init(|| std::array::from_fn(|b| b as f64 / 255.0))
 }
 
+/// A 2×2 RGB PNG of one colour, for tests that need a decoded texture.
+#[cfg(test)]
+pub(crate) fn solid_png(texel: [u8; 3]) -> Vec<u8> {
+    let image = image::RgbImage::from_pixel(2, 2, image::Rgb(texel));
+    let mut bytes = Vec::new();
+    image::DynamicImage::ImageRgb8(image)
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .expect("a PNG in memory");
+    bytes
+}
+
 /// Decodes one image (see [`decode_all`] for a set of them).
 pub(crate) fn decode(bytes: &[u8]) -> Result<Texture, String> {
     let image = crate::document::image_decode::decode(bytes).map_err(|e| e.to_string())?;

@@ -4,26 +4,13 @@
 use super::compare;
 use crate::shade::brdf::SheenVisibility;
 use crate::shade::material::Shader;
-use crate::shade::sample::{decode_all, MaterialSource, Texture};
+use crate::shade::sample::{decode_all, solid_png, MaterialSource, Texture};
 use crate::shade::sheen_table::SheenTable;
 use serde_json::{json, Value};
 
-/// A 2×2 RGB PNG of one texel colour (8-bit, as stored).
-fn png(texel: [u8; 3]) -> Vec<u8> {
-    let image = image::RgbImage::from_pixel(2, 2, image::Rgb(texel));
-    let mut bytes = Vec::new();
-    image::DynamicImage::ImageRgb8(image)
-        .write_to(
-            &mut std::io::Cursor::new(&mut bytes),
-            image::ImageFormat::Png,
-        )
-        .unwrap();
-    bytes
-}
-
 /// A material with texture `i` being `textures[i]`.
 fn material(json: Value, textures: &[[u8; 3]]) -> MaterialSource {
-    let encoded: Vec<_> = textures.iter().map(|t| Some(Ok(png(*t)))).collect();
+    let encoded: Vec<_> = textures.iter().map(|t| Some(Ok(solid_png(*t)))).collect();
     let decoded: Vec<Option<Texture>> = decode_all(&encoded).unwrap();
     MaterialSource::gltf2(&json, &decoded)
 }
