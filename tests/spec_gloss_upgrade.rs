@@ -4,6 +4,8 @@
 
 mod common;
 
+use common::{linear_to_srgb, srgb_to_linear};
+
 use gltfmat::document::uri::{FolderResources, NoResources};
 use gltfmat::shade::pairing::{compare_pairs, load_materials};
 use gltfmat::upgrade::{converted_materials, output, upgrade, UpgradeOptions, Upgraded};
@@ -272,23 +274,6 @@ fn mixed_resolutions_are_exact_at_the_output_texel_centres() {
     }
 }
 
-/// sRGB → linear, written here from the sRGB definition.
-fn linear(encoded: f64) -> f64 {
-    if encoded <= 0.04045 {
-        encoded / 12.92
-    } else {
-        ((encoded + 0.055) / 1.055).powf(2.4)
-    }
-}
-
-fn encoded(linear: f64) -> f64 {
-    if linear <= 0.0031308 {
-        linear * 12.92
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
-    }
-}
-
 /// Bilinear sample of an 8-bit image with repeat wrapping, values 0..1.
 fn bilinear(image: &image::RgbaImage, u: f64, v: f64) -> [f64; 4] {
     let (w, h) = (image.width() as i64, image.height() as i64);
@@ -361,9 +346,10 @@ fn rebaked_texels_follow_the_formula() {
             );
             let (d, s) = (bilinear(&diffuse, u, v), bilinear(&specular, u, v));
             for (c, &diffuse_level) in d.iter().enumerate().take(3) {
-                let keep = 1.0 - linear(s[c]) * factor("specularFactor", c, 1.0);
-                let expected =
-                    encoded(linear(diffuse_level) * factor("diffuseFactor", c, 1.0) * keep) * 255.0;
+                let keep = 1.0 - srgb_to_linear(s[c]) * factor("specularFactor", c, 1.0);
+                let expected = linear_to_srgb(
+                    srgb_to_linear(diffuse_level) * factor("diffuseFactor", c, 1.0) * keep,
+                ) * 255.0;
                 assert!(
                     (f64::from(texel.0[c]) - expected).abs() <= 0.5 + 1e-9,
                     "{name} material {material} texel ({x}, {y}) channel {c}: {} vs {expected}",

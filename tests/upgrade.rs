@@ -2,7 +2,7 @@
 //! passes gltfmat's check, materials convert as documented, and files are handled safely.
 
 mod common;
-use common::shared;
+use common::{linear_to_srgb, shared, srgb_to_linear};
 
 use gltfmat::check::Severity;
 use gltfmat::document::uri::{FolderResources, NoResources};
@@ -577,25 +577,6 @@ mod structure {
         let options = UpgradeOptions::default().with_double_sided_default(true);
         let up = upgrade(&bytes, &NoResources, &options).unwrap();
         assert_eq!(up.json["materials"][1]["doubleSided"], true);
-    }
-}
-
-/// IEC 61966-2-1 decoding, written here from the standard so the test does not reuse the
-/// converter's own code.
-fn srgb_to_linear(encoded: f64) -> f64 {
-    if encoded <= 0.04045 {
-        encoded / 12.92
-    } else {
-        ((encoded + 0.055) / 1.055).powf(2.4)
-    }
-}
-
-/// IEC 61966-2-1 encoding.
-fn linear_to_srgb(linear: f64) -> f64 {
-    if linear <= 0.0031308 {
-        linear * 12.92
-    } else {
-        1.055 * linear.powf(1.0 / 2.4) - 0.055
     }
 }
 

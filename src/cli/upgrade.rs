@@ -273,16 +273,9 @@ fn worst_readings(
             })
             .collect();
         for outcome in compare_pairs(&read, converted, pairs, 0) {
-            let slot = worst.entry(outcome.a.0);
-            match slot {
-                std::collections::btree_map::Entry::Vacant(empty) => {
-                    empty.insert(outcome);
-                }
-                std::collections::btree_map::Entry::Occupied(mut kept) => {
-                    if outcome.result.max > kept.get().result.max {
-                        kept.insert(outcome);
-                    }
-                }
+            let kept = worst.get(&outcome.a.0);
+            if kept.is_none_or(|kept| outcome.result.max > kept.result.max) {
+                worst.insert(outcome.a.0, outcome);
             }
         }
     }

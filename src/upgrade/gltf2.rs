@@ -75,8 +75,7 @@ pub(super) fn upgrade(
     let buffers = asset.read_buffers(glb_bin, loader)?;
     asset.take_images(&buffers, loader)?;
     asset.join_buffers(&buffers);
-    let mut passed_through: std::collections::BTreeSet<usize> =
-        (0..asset.list("materials").len()).collect();
+    let mut passed_through: BTreeSet<usize> = (0..asset.list("materials").len()).collect();
     if options.specular_glossiness == SpecularGlossiness::MetalRough {
         for converted in asset.convert_materials()? {
             passed_through.remove(&converted);

@@ -51,3 +51,22 @@ pub fn shared(relative: &str, test: &str) -> Option<PathBuf> {
     );
     None
 }
+
+/// IEC 61966-2-1 decoding, written here from the standard so that tests do not reuse the
+/// code they check.
+pub fn srgb_to_linear(encoded: f64) -> f64 {
+    if encoded <= 0.04045 {
+        encoded / 12.92
+    } else {
+        ((encoded + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// IEC 61966-2-1 encoding.
+pub fn linear_to_srgb(linear: f64) -> f64 {
+    if linear <= 0.0031308 {
+        linear * 12.92
+    } else {
+        1.055 * linear.powf(1.0 / 2.4) - 0.055
+    }
+}
