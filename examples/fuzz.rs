@@ -20,9 +20,8 @@ fn main() {
     let seed = flag("--seed", 0x9E37_79B9_7F4A_7C15);
     let started = std::time::Instant::now();
     match fuzz_engine::run(iterations, seed) {
-        Ok(seeds) => println!(
-            "fuzz: {iterations} inputs ({} executions of check/upgrade), no panic, {:.1} s, {seeds} seeds",
-            iterations * 4,
+        Ok((seeds, executions)) => println!(
+            "fuzz: {iterations} inputs ({executions} executions of check/upgrade), no panic, {:.1} s, {seeds} seeds",
             started.elapsed().as_secs_f64()
         ),
         Err(message) => {

@@ -9,7 +9,11 @@
 //! strings into URIs: inputs byte mutation almost never makes), and
 //! runs the checker (default profile with `--deep`, and the Khronos profile) and the
 //! converter on the result. Images are also embedded into a glTF as data URIs so the image
-//! decoders are reached. A panic is a failure: the input is saved to `target/fuzz-crashes/`
+//! decoders are reached. One input in eight is also written to a folder where each file it
+//! names is, at random, a seed's bytes (whole or cut), a FIFO, a folder, a symlink to
+//! `/dev/zero`, to a file outside the folder or to itself, or missing, and is then checked
+//! and upgraded from there: the file-system tricks a stranger's upload can hold.
+//! A panic is a failure: the input is saved to `target/fuzz-crashes/`
 //! and the process exits 1.
 
 use base64::Engine;
@@ -270,7 +274,104 @@ fn exercise(input: &[u8]) {
 }
 
 /// Runs `iterations` mutated inputs; `Err` names the saved input of the first panic.
-pub fn run(iterations: u64, seed: u64) -> Result<usize, String> {
+/// Every relative file name a URI in `value` names (data URIs and schemes left out).
+fn named_files(value: &serde_json::Value, out: &mut Vec<String>) {
+    match value {
+        serde_json::Value::Object(map) => {
+            for (key, member) in map {
+                match member {
+                    serde_json::Value::String(uri) if key == "uri" => {
+                        if !uri.contains(':') && !uri.is_empty() && uri.len() < 200 {
+                            out.push(uri.clone());
+                        }
+                    }
+                    _ => named_files(member, out),
+                }
+            }
+        }
+        serde_json::Value::Array(items) => items.iter().for_each(|item| named_files(item, out)),
+        _ => {}
+    }
+}
+
+/// Makes `name` in `folder` one of the things a hostile upload can put there.
+#[cfg(unix)]
+fn plant(rng: &mut Rng, folder: &Path, name: &str, corpus: &[Vec<u8>]) {
+    // Only names that stay inside the scratch folder are planted.
+    let path = folder.join(name);
+    if !path.starts_with(folder) || name.contains("..") {
+        return;
+    }
+    if let Some(parent) = path.parent() {
+        let _ = std::fs::create_dir_all(parent);
+    }
+    let outside = folder.parent().unwrap_or(folder).join("outside.bin");
+    let _ = match rng.below(8) {
+        0 | 1 => {
+            // create_new: a name planted twice may already be a FIFO, which a write would
+            // wait on forever.
+            let bytes = &corpus[rng.below(corpus.len())];
+            std::fs::File::create_new(&path).and_then(|mut file| {
+                std::io::Write::write_all(&mut file, &bytes[..rng.below(bytes.len() + 1)])
+            })
+        }
+        2 => {
+            let c_path = std::ffi::CString::new(path.as_os_str().as_encoded_bytes()).ok();
+            // SAFETY: mkfifo reads a NUL-terminated path that outlives the call.
+            c_path.map_or(Ok(()), |c| {
+                unsafe { libc::mkfifo(c.as_ptr(), 0o600) };
+                Ok(())
+            })
+        }
+        3 => std::fs::create_dir(&path),
+        4 => std::os::unix::fs::symlink("/dev/zero", &path),
+        5 => std::os::unix::fs::symlink(&outside, &path),
+        6 => std::os::unix::fs::symlink(&path, &path),
+        _ => Ok(()),
+    };
+}
+
+/// `input` checked and upgraded from a folder of planted files; returns the executions run.
+#[cfg(unix)]
+fn exercise_on_disk(rng: &mut Rng, input: &[u8], corpus: &[Vec<u8>], scratch: &Path) -> u64 {
+    let folder = scratch.join("asset");
+    let _ = std::fs::remove_dir_all(&folder);
+    if std::fs::create_dir_all(&folder).is_err() {
+        return 0;
+    }
+    let asset = as_asset(input);
+    let name = if asset.starts_with(b"glTF") {
+        "a.glb"
+    } else {
+        "a.gltf"
+    };
+    let path = folder.join(name);
+    if std::fs::write(&path, &asset).is_err() {
+        return 0;
+    }
+    let mut files = Vec::new();
+    if let Ok(root) = serde_json::from_slice::<serde_json::Value>(&asset) {
+        named_files(&root, &mut files);
+    }
+    files.sort();
+    files.dedup();
+    for file in files.iter().take(8) {
+        plant(rng, &folder, file, corpus);
+    }
+    let _ = gltfmat::check::check_path(&path, &CheckOptions::default().with_deep(true));
+    let resources = gltfmat::document::uri::FolderResources::beside(&path);
+    let _ = upgrade(&asset, &resources, &UpgradeOptions::default());
+    2
+}
+
+#[cfg(not(unix))]
+fn exercise_on_disk(_: &mut Rng, _: &[u8], _: &[Vec<u8>], _: &Path) -> u64 {
+    0
+}
+
+/// Runs `iterations` mutated inputs; `Ok` is the number of seeds and of executions of
+/// check or upgrade, `Err` names the saved input of the first panic.
+pub fn run(iterations: u64, seed: u64) -> Result<(usize, u64), String> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let mut corpus = Vec::new();
     seeds(&root.join("fixtures"), &mut corpus);
@@ -281,6 +382,11 @@ pub fn run(iterations: u64, seed: u64) -> Result<usize, String> {
     std::panic::set_hook(Box::new(|_| {}));
     let mut rng = Rng(seed | 1);
     let mut failure = None;
+    let mut executions = 0;
+    let scratch =
+        std::env::temp_dir().join(format!("gltfmat-fuzz-{}-{seed:x}", std::process::id()));
+    let _ = std::fs::create_dir_all(&scratch);
+    let _ = std::fs::write(scratch.join("outside.bin"), b"outside the asset's folder");
     for i in 0..iterations {
         let mut input = corpus[rng.below(corpus.len())].clone();
         match rng.below(2) {
@@ -290,7 +396,20 @@ pub fn run(iterations: u64, seed: u64) -> Result<usize, String> {
                 None => mutate(&mut rng, &mut input, &corpus),
             },
         }
-        if catch_unwind(AssertUnwindSafe(|| exercise(&input))).is_err() {
+        let on_disk = rng.below(8) == 0;
+        let ran = catch_unwind(AssertUnwindSafe(|| {
+            exercise(&input);
+            match on_disk {
+                true => 4 + exercise_on_disk(&mut rng, &input, &corpus, &scratch),
+                false => 4,
+            }
+        }));
+        if let Ok(count) = ran {
+            executions += count;
+            if (i + 1) % 100_000 == 0 {
+                eprintln!("fuzz: {} inputs, {executions} executions, no panic", i + 1);
+            }
+        } else {
             let folder = root.join("target/fuzz-crashes");
             let _ = std::fs::create_dir_all(&folder);
             let path = folder.join(format!("crash-{seed:x}-{i}.bin"));
@@ -303,5 +422,6 @@ pub fn run(iterations: u64, seed: u64) -> Result<usize, String> {
         }
     }
     std::panic::set_hook(previous_hook);
-    failure.map_or(Ok(corpus.len()), Err)
+    let _ = std::fs::remove_dir_all(&scratch);
+    failure.map_or(Ok((corpus.len(), executions)), Err)
 }
