@@ -35,6 +35,14 @@ enum Command {
     /// Do two materials render the same? ΔE2000 over a UV grid and a set of directions.
     Compare(compare::CompareArgs),
     /// Export a lookup table of the shading evaluator (the sheen albedo E).
+    ///
+    /// Row i holds sheenRoughness (i + 0.5)/N, column j NdotV (j + 0.5)/N. E is not bounded
+    /// by 1: KHR_materials_sheen's Charlie lobe is not energy-normalised, and at low
+    /// sheenRoughness and grazing NdotV its albedo exceeds 1 (the 32² table's first row
+    /// peaks at 3.24). The evaluator clamps the base layer's scaling 1 − max(sheenColor)·E
+    /// at 0, and below the first row it interpolates towards E = 0, the lobe's limit at
+    /// sheenRoughness 0. The CSV holds E as computed; the PNG stores round(E · 65535) in 16
+    /// bits, so every E above 1 is written as 65535.
     Lut(lut::LutArgs),
     /// List every code gltfmat can report, with its severity and group.
     Rules {

@@ -1,7 +1,8 @@
 //! The sheen albedo E(μ, sheenRoughness) = ∫ D_s V_s (n·l) dω_l for a unit sheen colour,
 //! computed in-process by deterministic quadrature for the exact lobe the evaluator uses,
 //! on a declared grid: row i ↔ sheenRoughness (i + ½)/N, column j ↔ μ = NdotV (j + ½)/N
-//! (texel centres), looked up bilinearly and clamped at the edges.
+//! (texel centres), looked up bilinearly and clamped at the edges, except below the first
+//! row: there E is interpolated towards its limit at sheenRoughness 0 (see [`SheenTable::limit`]).
 
 use super::brdf::{sheen_lobe, Geometry, SheenVisibility};
 use super::quadrature::hemisphere;
@@ -29,6 +30,13 @@ pub struct SheenTable {
     pub visibility: SheenVisibility,
     /// Row-major: `values[row * size + column]`, row = roughness, column = μ.
     pub values: Vec<f64>,
+    /// E at sheenRoughness 0 for each column's μ: the row below the first. Clamping there
+    /// would take E from roughness 1/(2·size) for the spec's default roughness 0, where E
+    /// peaks (1.63 at 16², 3.24 at 32² at grazing μ) and would dim the base by that much.
+    /// At roughness 0 the Charlie distribution is a spike at half-vectors in the tangent
+    /// plane, which no pair of directions above the horizon has, so the lobe and its albedo
+    /// vanish: computing this row with the evaluator's own lobe gives that limit, 0.
+    pub limit: Vec<f64>,
 }
 
 impl SheenTable {
@@ -50,14 +58,19 @@ impl SheenTable {
                 });
             }
         });
+        let limit = (0..size)
+            .map(|j| albedo(visibility, centre(j), 0.0))
+            .collect();
         SheenTable {
             size,
             visibility,
             values,
+            limit,
         }
     }
 
-    /// Bilinear lookup between texel centres, clamped at the edges.
+    /// Bilinear lookup between texel centres, clamped at the μ edges and at roughness 1;
+    /// between roughness 0 and the first row it interpolates from the [`limit`](Self::limit).
     pub fn lookup(&self, mu: f64, sheen_roughness: f64) -> f64 {
         let n = self.size;
         let coordinate = |x: f64| {
@@ -66,11 +79,15 @@ impl SheenTable {
             (i, t - i as f64)
         };
         let (j, fx) = coordinate(mu);
+        let across = |row: &[f64]| row[j] * (1.0 - fx) + row[j + 1] * fx;
+        let row = |i: usize| &self.values[i * n..(i + 1) * n];
+        let first_centre = 0.5 / n as f64;
+        if sheen_roughness < first_centre {
+            let fy = sheen_roughness.max(0.0) / first_centre;
+            return across(&self.limit) * (1.0 - fy) + across(row(0)) * fy;
+        }
         let (i, fy) = coordinate(sheen_roughness);
-        let at = |row: usize, column: usize| self.values[row * n + column];
-        let top = at(i, j) * (1.0 - fx) + at(i, j + 1) * fx;
-        let bottom = at(i + 1, j) * (1.0 - fx) + at(i + 1, j + 1) * fx;
-        top * (1.0 - fy) + bottom * fy
+        across(row(i)) * (1.0 - fy) + across(row(i + 1)) * fy
     }
 
     /// One row per roughness, one column per μ, with a header naming the grid.
@@ -133,16 +150,46 @@ mod tests {
     }
 
     #[test]
+    fn below_the_first_row_e_goes_to_its_vanishing_limit_not_to_the_first_row() {
+        for size in [16, 32] {
+            let table = SheenTable::compute(size, SheenVisibility::Charlie);
+            let first_row_peak = table.values[..size].iter().cloned().fold(0.0, f64::max);
+            assert!(
+                first_row_peak > 1.0,
+                "{size}²: the first row peaks at {first_row_peak}"
+            );
+            for mu in [0.01, 0.1, 0.5, 1.0] {
+                let e = table.lookup(mu, 0.0);
+                assert!(e.abs() < 1e-9, "{size}²: E({mu}, 0) = {e}");
+                // Between 0 and the first row: between the limit and the first row's value.
+                let halfway = table.lookup(mu, 0.25 / size as f64);
+                let first = table.lookup(mu, 0.5 / size as f64);
+                assert!(
+                    (halfway - first / 2.0).abs() < 1e-12,
+                    "{size}²: {halfway} vs {first}"
+                );
+            }
+        }
+    }
+
+    #[test]
     fn lookup_returns_texel_centres_exactly_and_interpolates_between() {
         let table = SheenTable {
             size: 2,
             visibility: SheenVisibility::Charlie,
             values: vec![0.0, 1.0, 2.0, 3.0],
+            limit: vec![-1.0, -1.0],
         };
         assert_eq!(table.lookup(0.25, 0.25), 0.0);
         assert_eq!(table.lookup(0.75, 0.75), 3.0);
         assert_eq!(table.lookup(0.5, 0.5), 1.5);
         assert_eq!(table.lookup(0.0, 1.0), 2.0, "clamped at the edges");
+        assert_eq!(
+            table.lookup(0.25, 0.0),
+            -1.0,
+            "the limit row at roughness 0"
+        );
+        assert_eq!(table.lookup(0.25, 0.125), -0.5, "halfway to the first row");
         let csv = table.to_csv();
         assert_eq!(csv.lines().nth(1), Some("0.000000,1.000000"));
     }
