@@ -1,29 +1,42 @@
 //! Do two materials render the same? Both are evaluated on a UV grid (at least as fine as
 //! their finest texture) for a fixed, stratified set of view/light directions including
-//! grazing ones; each result becomes a colour under the same exposure and the two colours
-//! are compared with CIEDE2000.
+//! grazing ones; each result becomes the colour a viewer shows and the two colours are
+//! compared with CIEDE2000.
 //!
-//! Exposure: one directional light of irradiance π at normal incidence, so a white Lambertian
-//! surface lit head-on has radiance 1 (CIELAB L* = 100). Unlit materials emit their colour.
+//! The light: one directional light of irradiance π at normal incidence, so a white
+//! Lambertian surface lit head-on has radiance 1. Unlit materials emit their colour. The
+//! radiance is then exposed and tone-mapped with Khronos PBR Neutral ([`super::tone`]) before
+//! CIELAB, as a viewer shows it: L* stays within 0–100, so ΔE 1 is about one just-noticeable
+//! difference on a display. (CIELAB is taken of the tone-mapped linear colour, which is what
+//! decoding its sRGB encoding gives back.)
 
 use super::brdf::{Geometry, V3};
 use super::delta_e::{ciede2000, lab_from_linear_srgb};
 use super::lanes::{channels, Lanes, Real};
 use super::material::{Inputs, Shader};
 use super::sample::MaterialSource;
+use super::tone::displayed;
 use std::f64::consts::PI;
 
-const DIRECTION_COUNT: usize = 8;
+const DIRECTION_COUNT: usize = 10;
 
 /// (θ_v, θ_l, φ between them), degrees: head-on, off-specular, mirror, crossed (anisotropy)
-/// and grazing configurations.
+/// and grazing configurations; the view lies along the tangent (φ_v = 0), which is where an
+/// anisotropy angle of 0 points.
 pub const DIRECTIONS: [(f64, f64, f64); DIRECTION_COUNT] = [
     (0.0, 0.0, 0.0),
     (0.0, 60.0, 0.0),
     (45.0, 45.0, 180.0),
     (45.0, 45.0, 90.0),
     (60.0, 30.0, 0.0),
+    // In the plane of the anisotropy direction, 40° off the mirror: the half-vector tilts
+    // 20° along the tangent, inside the stretched lobe (α_t up to 1) and outside the
+    // isotropic one.
+    (60.0, 20.0, 180.0),
     (75.0, 75.0, 180.0),
+    // Light behind the viewer, both grazing: sheen's retro-reflective peak, where the Charlie
+    // distribution (half-vector 80° off the normal) is largest.
+    (80.0, 80.0, 0.0),
     (85.0, 20.0, 90.0),
     (88.0, 88.0, 180.0),
 ];
@@ -128,7 +141,10 @@ impl Batch {
         for (i, delta) in out.iter_mut().enumerate() {
             let a = [self.a[0][i], self.a[1][i], self.a[2][i]];
             let b = [self.b[0][i], self.b[1][i], self.b[2][i]];
-            *delta = ciede2000(lab_from_linear_srgb(a), lab_from_linear_srgb(b));
+            *delta = ciede2000(
+                lab_from_linear_srgb(displayed(a)),
+                lab_from_linear_srgb(displayed(b)),
+            );
         }
         out
     }

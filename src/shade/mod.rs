@@ -13,6 +13,7 @@ pub mod pairing;
 pub(crate) mod quadrature;
 pub mod render;
 pub(crate) mod sample;
+pub mod tone;
 
 pub use sample::MaterialSource;
 pub mod sheen_table;

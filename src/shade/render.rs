@@ -12,6 +12,7 @@
 use super::brdf::{dot, normalize, Geometry, V3};
 use super::material::Shader;
 use super::sample::MaterialSource;
+use super::tone::displayed;
 use crate::gltf::color::linear_to_srgb8;
 use image::{Rgb, RgbImage};
 use std::f64::consts::PI;
@@ -24,24 +25,6 @@ const LIGHTS: [(V3, f64); 3] = [
 const SKY_RADIANCE: f64 = 0.3;
 const SKY_SAMPLES_PER_SIDE: usize = 8;
 const BACKGROUND: [u8; 3] = [46, 46, 50];
-
-/// Khronos PBR Neutral tone mapping (linear in, linear out, 0..1).
-pub fn pbr_neutral(colour: V3) -> V3 {
-    const START_COMPRESSION: f64 = 0.8 - 0.04;
-    const DESATURATION: f64 = 0.15;
-    let x = colour[0].min(colour[1]).min(colour[2]);
-    let offset = if x < 0.08 { x - 6.25 * x * x } else { 0.04 };
-    let mut c = colour.map(|v| v - offset);
-    let peak = c[0].max(c[1]).max(c[2]);
-    if peak < START_COMPRESSION {
-        return c;
-    }
-    let d = 1.0 - START_COMPRESSION;
-    let new_peak = 1.0 - d * d / (peak + d - START_COMPRESSION);
-    c = c.map(|v| v * new_peak / peak);
-    let g = 1.0 - 1.0 / (DESATURATION * (peak - new_peak) + 1.0);
-    c.map(|v| v * (1.0 - g) + new_peak * g)
-}
 
 fn cross(a: V3, b: V3) -> V3 {
     [
@@ -158,8 +141,7 @@ fn shade_pixel(
 }
 
 fn encode(linear: V3) -> Rgb<u8> {
-    let mapped = pbr_neutral(linear.map(|c| c.max(0.0)));
-    Rgb(mapped.map(linear_to_srgb8))
+    Rgb(displayed(linear).map(linear_to_srgb8))
 }
 
 /// Renders one material ball.
@@ -245,14 +227,6 @@ mod tests {
     use super::*;
     use crate::shade::brdf::SheenVisibility;
     use crate::shade::sheen_table::SheenTable;
-
-    #[test]
-    fn pbr_neutral_leaves_dark_colours_nearly_alone_and_compresses_highlights() {
-        let dark = pbr_neutral([0.3, 0.2, 0.1]);
-        assert!((dark[0] - (0.3 - 0.04)).abs() < 1e-12, "{dark:?}");
-        let bright = pbr_neutral([4.0, 4.0, 4.0]);
-        assert!(bright.iter().all(|c| *c < 1.0 && *c > 0.9), "{bright:?}");
-    }
 
     #[test]
     fn a_grey_ball_is_lit_from_the_upper_left() {

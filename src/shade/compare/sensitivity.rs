@@ -2,6 +2,7 @@
 //! converter makes are caught (ΔE2000 above one JND), differences nobody can see are not.
 
 use super::compare;
+use crate::gltf::color::srgb_to_linear;
 use crate::shade::brdf::SheenVisibility;
 use crate::shade::material::Shader;
 use crate::shade::sample::{decode_all, solid_png, MaterialSource, Texture};
@@ -18,14 +19,6 @@ fn material(json: Value, textures: &[[u8; 3]]) -> MaterialSource {
 fn worst(a: &MaterialSource, b: &MaterialSource) -> f64 {
     let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
     compare(&shader, a, b, 4).max
-}
-
-fn srgb_to_linear(encoded: f64) -> f64 {
-    if encoded <= 0.04045 {
-        encoded / 12.92
-    } else {
-        ((encoded + 0.055) / 1.055).powf(2.4)
-    }
 }
 
 fn pbr(base: [f64; 3], metallic: f64, roughness: f64) -> Value {
@@ -60,7 +53,25 @@ fn the_mistakes_a_converter_makes_are_caught() {
             "KHR_materials_ior": {"ior": 0}});
         material(m, &[])
     };
+    let anisotropic = |rotation: f64| {
+        let mut m = pbr(base, 0.0, 0.3);
+        m["extensions"] = json!({"KHR_materials_anisotropy": {"anisotropyStrength": 0.8, "anisotropyRotation": rotation}});
+        material(m, &[])
+    };
+    let sheen = |roughness: f64| {
+        let mut m = pbr(base, 0.0, 0.5);
+        m["extensions"] = json!({"KHR_materials_sheen": {"sheenColorFactor": [0.2, 0.2, 0.2], "sheenRoughnessFactor": roughness}});
+        material(m, &[])
+    };
     let cases = [
+        (
+            "anisotropy direction turned by 90°",
+            worst(&anisotropic(0.0), &anisotropic(std::f64::consts::FRAC_PI_2)),
+        ),
+        (
+            "sheen roughness 0.3 read as 0.25",
+            worst(&sheen(0.3), &sheen(0.25)),
+        ),
         (
             "base colour 5% darker",
             worst(
@@ -90,6 +101,7 @@ fn the_mistakes_a_converter_makes_are_caught() {
         ),
     ];
     for (mistake, delta_e) in cases {
+        println!("caught: {mistake}: ΔE {delta_e:.2}");
         assert!(delta_e > 1.0, "{mistake}: ΔE {delta_e} is not caught");
     }
     // The same spec-gloss converted as gltfmat converts it passes: the table's rows above
@@ -118,6 +130,7 @@ fn differences_nobody_can_see_pass() {
         ),
     ];
     for (difference, delta_e) in cases {
+        println!("passes: {difference}: ΔE {delta_e:.2}");
         assert!(delta_e < 1.0, "{difference}: ΔE {delta_e} should pass");
     }
 }
