@@ -18,17 +18,15 @@ use super::sample::MaterialSource;
 use super::tone::displayed;
 use std::f64::consts::PI;
 
-const DIRECTION_COUNT: usize = 10;
+const DIRECTION_COUNT: usize = 8;
 
 /// (θ_v, θ_l, φ between them), degrees: head-on, off-specular, mirror, crossed (anisotropy)
 /// and grazing configurations; the view lies along the tangent (φ_v = 0), which is where an
 /// anisotropy angle of 0 points.
 pub const DIRECTIONS: [(f64, f64, f64); DIRECTION_COUNT] = [
     (0.0, 0.0, 0.0),
-    (0.0, 60.0, 0.0),
     (45.0, 45.0, 180.0),
     (45.0, 45.0, 90.0),
-    (60.0, 30.0, 0.0),
     // In the plane of the anisotropy direction, 40° off the mirror: the half-vector tilts
     // 20° along the tangent, inside the stretched lobe (α_t up to 1) and outside the
     // isotropic one.
