@@ -73,7 +73,7 @@ impl Lobe {
         [w[0] * c + w[1] * s, w[1] * c - w[0] * s, w[2]]
     }
 
-    fn from_lobe(&self, w: V3) -> V3 {
+    fn out_of_lobe(&self, w: V3) -> V3 {
         let (s, c) = self.angle.sin_cos();
         [w[0] * c - w[1] * s, w[0] * s + w[1] * c, w[2]]
     }
@@ -101,7 +101,7 @@ impl Lobe {
         let up = (1.0 - a * a - b * b).max(0.0).sqrt();
         let n = [0, 1, 2].map(|i| a * t1[i] + b * t2[i] + up * stretched[i]);
         let h = normalize([self.alpha_t * n[0], self.alpha_b * n[1], n[2].max(0.0)]);
-        self.from_lobe(h)
+        self.out_of_lobe(h)
     }
 
     /// The density of `l` as the reflection of `v` about a half-vector from
