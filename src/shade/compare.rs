@@ -113,7 +113,7 @@ impl Directions {
     }
 }
 
-/// Texels whose samples are converted to ΔE together.
+/// Distinct texels whose samples are converted to ΔE together.
 const BATCH_TEXELS: usize = 8;
 const BATCH: usize = BATCH_TEXELS * DIRECTION_COUNT;
 
@@ -265,38 +265,90 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Partial {
         ]
     };
     for y in rows {
-        for first in (0..grid).step_by(BATCH_TEXELS) {
-            let texels = first..(first + BATCH_TEXELS as u32).min(grid);
-            let mut differing = false;
-            for (k, x) in texels.clone().enumerate() {
-                let uv = texel_uv(x, y);
-                let (ma, mb) = (a.inputs_at(&[uv, uv]), b.inputs_at(&[uv, uv]));
-                // Identical inputs give identical colours, whose ΔE is exactly 0: any equal
-                // pair stands in for them.
-                let (colours_a, colours_b) = if ma == mb {
-                    let black = [Lanes::splat(0.0); 3];
-                    (black, black)
-                } else {
-                    differing = true;
-                    (
-                        directions.colours(shader, &ma),
-                        directions.colours(shader, &mb),
-                    )
-                };
-                Batch::put(&mut batch.a, k, colours_a);
-                Batch::put(&mut batch.b, k, colours_b);
-            }
-            let deltas = if differing {
-                batch.delta_e()
+        let mut row = Row::default();
+        for x in 0..grid {
+            let uv = texel_uv(x, y);
+            let inputs = (a.inputs_at(&[uv, uv]), b.inputs_at(&[uv, uv]));
+            let source = if inputs.0 == inputs.1 {
+                // Identical inputs give identical colours, whose ΔE is exactly 0.
+                Source::Zero
+            } else if let Some(same) = row.repeat_of(&inputs) {
+                // A texel like the one before (a flat region of a texture) has its ΔE.
+                same
             } else {
-                [0.0; BATCH]
+                let slot = row.unique;
+                Batch::put(&mut batch.a, slot, directions.colours(shader, &inputs.0));
+                Batch::put(&mut batch.b, slot, directions.colours(shader, &inputs.1));
+                row.unique += 1;
+                Source::Slot(slot)
             };
-            for (x, samples) in texels.zip(deltas.chunks_exact(DIRECTION_COUNT)) {
-                partial.add_texel(texel_uv(x, y), samples, &directions.angles);
+            row.previous = Some((inputs, source));
+            row.pending.push((x, source));
+            if row.unique == BATCH_TEXELS {
+                row.flush(&batch, &mut partial, |x| texel_uv(x, y), &directions.angles);
             }
         }
+        row.flush(&batch, &mut partial, |x| texel_uv(x, y), &directions.angles);
     }
     partial
+}
+
+/// Where a texel's ΔE samples come from.
+#[derive(Clone, Copy)]
+enum Source {
+    /// Both materials have the same inputs there.
+    Zero,
+    /// A texel of the batch being filled.
+    Slot(usize),
+    /// Already computed (a repeat of a texel of an earlier batch).
+    Known([f64; DIRECTION_COUNT]),
+}
+
+/// The texels of one grid row waiting for their batch's ΔE, in order.
+#[derive(Default)]
+struct Row {
+    /// (x, where its samples come from), in row order.
+    pending: Vec<(u32, Source)>,
+    /// Texels put into the batch so far.
+    unique: usize,
+    /// The last texel's inputs and samples: equal inputs give equal colours.
+    previous: Option<((Inputs, Inputs), Source)>,
+}
+
+impl Row {
+    fn repeat_of(&self, inputs: &(Inputs, Inputs)) -> Option<Source> {
+        let (previous, source) = self.previous.as_ref()?;
+        (previous == inputs).then_some(*source)
+    }
+
+    /// Computes the batch's ΔE and hands every pending texel to `partial`, in row order.
+    /// Inlined so that the ΔE loop is compiled with the caller's vector instructions.
+    #[inline(always)]
+    fn flush(
+        &mut self,
+        batch: &Batch,
+        partial: &mut Partial,
+        uv: impl Fn(u32) -> [f64; 2],
+        angles: &[(f64, f64, f64)],
+    ) {
+        let deltas = if self.unique > 0 {
+            batch.delta_e()
+        } else {
+            [0.0; BATCH]
+        };
+        let samples = |source: Source| match source {
+            Source::Zero => [0.0; DIRECTION_COUNT],
+            Source::Slot(k) => std::array::from_fn(|i| deltas[k * DIRECTION_COUNT + i]),
+            Source::Known(known) => known,
+        };
+        for (x, source) in self.pending.drain(..) {
+            partial.add_texel(uv(x), &samples(source), angles);
+        }
+        if let Some((_, source)) = &mut self.previous {
+            *source = Source::Known(samples(*source));
+        }
+        self.unique = 0;
+    }
 }
 
 impl Partial {
@@ -382,6 +434,67 @@ mod tests {
 
     fn gltf2(material: serde_json::Value) -> MaterialSource {
         MaterialSource::gltf2(&material, &[])
+    }
+
+    #[test]
+    fn repeated_texels_reuse_their_samples_exactly() {
+        // A 16² base colour in runs of three texels (runs cross the 8-texel batches), and
+        // a material differing in roughness: each texel's ΔE, computed alone, must equal
+        // what the row-wise reuse reports.
+        let palette = [
+            [200, 40, 40],
+            [40, 200, 40],
+            [40, 40, 200],
+            [128, 128, 128],
+            [10, 10, 10],
+        ];
+        let image = image::RgbImage::from_fn(16, 16, |x, y| {
+            image::Rgb(palette[((x / 3 + y) % 5) as usize])
+        });
+        let mut png = Vec::new();
+        image::DynamicImage::ImageRgb8(image)
+            .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+            .unwrap();
+        let textures = crate::shade::sample::decode_all(&[Some(Ok(png))]).unwrap();
+        let textured = |roughness: f64| {
+            MaterialSource::gltf2(
+                &json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                    "metallicFactor": 0.0, "roughnessFactor": roughness}}),
+                &textures,
+            )
+        };
+        let (a, b) = (textured(0.5), textured(0.6));
+        let shader = shader();
+        let result = compare(&shader, &a, &b, 16);
+        let directions = Directions::new();
+        for y in 0..16 {
+            for x in 0..16 {
+                let uv = [(x as f64 + 0.5) / 16.0, (y as f64 + 0.5) / 16.0];
+                let (ca, cb) = (
+                    directions.colours(&shader, &a.inputs_at(&[uv, uv])),
+                    directions.colours(&shader, &b.inputs_at(&[uv, uv])),
+                );
+                let alone = (0..DIRECTION_COUNT)
+                    .map(|d| {
+                        let colour = |c: &Colours| displayed([c[0].0[d], c[1].0[d], c[2].0[d]]);
+                        ciede2000(
+                            lab_from_linear_srgb(colour(&ca)),
+                            lab_from_linear_srgb(colour(&cb)),
+                        )
+                    })
+                    .fold(0.0, f64::max);
+                assert_eq!(
+                    result.per_texel[y * 16 + x],
+                    alone as f32,
+                    "texel ({x}, {y})"
+                );
+            }
+        }
+        assert!(
+            result.max > 1.0,
+            "the roughness change shows: {}",
+            result.max
+        );
     }
 
     #[test]
