@@ -438,7 +438,8 @@ mod tests {
 
     #[test]
     fn repeated_texels_reuse_their_samples_exactly() {
-        // A 16² base colour in runs of three texels (runs cross the 8-texel batches), and
+        // A 48² base colour in runs of three texels (16 distinct per row: a run continues after
+        // its batch of 8 is converted), and
         // a material differing in roughness: each texel's ΔE, computed alone, must equal
         // what the row-wise reuse reports.
         let palette = [
@@ -448,7 +449,7 @@ mod tests {
             [128, 128, 128],
             [10, 10, 10],
         ];
-        let image = image::RgbImage::from_fn(16, 16, |x, y| {
+        let image = image::RgbImage::from_fn(48, 48, |x, y| {
             image::Rgb(palette[((x / 3 + y) % 5) as usize])
         });
         let mut png = Vec::new();
@@ -465,11 +466,11 @@ mod tests {
         };
         let (a, b) = (textured(0.5), textured(0.6));
         let shader = shader();
-        let result = compare(&shader, &a, &b, 16);
+        let result = compare(&shader, &a, &b, 48);
         let directions = Directions::new();
-        for y in 0..16 {
-            for x in 0..16 {
-                let uv = [(x as f64 + 0.5) / 16.0, (y as f64 + 0.5) / 16.0];
+        for y in 0..48 {
+            for x in 0..48 {
+                let uv = [(x as f64 + 0.5) / 48.0, (y as f64 + 0.5) / 48.0];
                 let (ca, cb) = (
                     directions.colours(&shader, &a.inputs_at(&[uv, uv])),
                     directions.colours(&shader, &b.inputs_at(&[uv, uv])),
@@ -484,7 +485,7 @@ mod tests {
                     })
                     .fold(0.0, f64::max);
                 assert_eq!(
-                    result.per_texel[y * 16 + x],
+                    result.per_texel[y * 48 + x],
                     alone as f32,
                     "texel ({x}, {y})"
                 );
