@@ -113,6 +113,22 @@ impl Directions {
     }
 }
 
+/// The largest ΔE2000 over the direction pairs between two materials' inputs at one point
+/// (what `compare` computes per texel), for fitting factors.
+pub fn worst_at_point(shader: &Shader, a: &Inputs, b: &Inputs) -> f64 {
+    let directions = Directions::new();
+    let (ca, cb) = (directions.colours(shader, a), directions.colours(shader, b));
+    let shown = |c: &Colours, d: usize| displayed([c[0].0[d], c[1].0[d], c[2].0[d]]);
+    (0..DIRECTION_COUNT)
+        .map(|d| {
+            ciede2000(
+                lab_from_linear_srgb(shown(&ca, d)),
+                lab_from_linear_srgb(shown(&cb, d)),
+            )
+        })
+        .fold(0.0, f64::max)
+}
+
 /// Distinct texels whose samples are converted to ΔE together.
 const BATCH_TEXELS: usize = 8;
 const BATCH: usize = BATCH_TEXELS * DIRECTION_COUNT;
@@ -467,23 +483,11 @@ mod tests {
         let (a, b) = (textured(0.5), textured(0.6));
         let shader = shader();
         let result = compare(&shader, &a, &b, 48);
-        let directions = Directions::new();
         for y in 0..48 {
             for x in 0..48 {
                 let uv = [(x as f64 + 0.5) / 48.0, (y as f64 + 0.5) / 48.0];
-                let (ca, cb) = (
-                    directions.colours(&shader, &a.inputs_at(&[uv, uv])),
-                    directions.colours(&shader, &b.inputs_at(&[uv, uv])),
-                );
-                let alone = (0..DIRECTION_COUNT)
-                    .map(|d| {
-                        let colour = |c: &Colours| displayed([c[0].0[d], c[1].0[d], c[2].0[d]]);
-                        ciede2000(
-                            lab_from_linear_srgb(colour(&ca)),
-                            lab_from_linear_srgb(colour(&cb)),
-                        )
-                    })
-                    .fold(0.0, f64::max);
+                let alone =
+                    worst_at_point(&shader, &a.inputs_at(&[uv, uv]), &b.inputs_at(&[uv, uv]));
                 assert_eq!(
                     result.per_texel[y * 48 + x],
                     alone as f32,

@@ -14,6 +14,7 @@ pub mod binary;
 mod builder;
 mod convert;
 mod data;
+mod fit;
 mod gltf2;
 pub mod output;
 mod rebake;

@@ -5,6 +5,7 @@ use crate::gltf::color::srgb_to_linear;
 use crate::gltf::gl::{BLEND, CULL_FACE};
 use crate::legacy::pbr::{self, LegacyPbr, Model};
 use crate::upgrade::builder::{pointer, Builder};
+use crate::upgrade::fit;
 use crate::upgrade::rebake;
 use crate::upgrade::spec_gloss::{self, Slot};
 use crate::upgrade::{NoteKind, SpecularGlossiness, UpgradeError};
@@ -202,8 +203,12 @@ fn spec_gloss_as_metal_rough(
         glossiness: pbr.glossiness,
     };
     let mut textures = DraftTextures { builder, pbr };
-    let converted =
+    let mut converted =
         spec_gloss::to_metal_rough(&factors, &mut textures).map_err(|e| rebake_error(block, e))?;
+    if pbr.colour_texture.is_none() && pbr.data_texture.is_none() {
+        let decision = fit_factors(pbr, &mut converted);
+        converted.decisions.push(decision);
+    }
     for decision in converted.decisions {
         builder.note(block, NoteKind::Decision, decision);
     }
@@ -213,6 +218,35 @@ fn spec_gloss_as_metal_rough(
     );
     out.insert("extensions".into(), Value::Object(converted.extensions));
     Ok(())
+}
+
+/// A factor-only draft spec-gloss material: the closed form's worst ΔE over the drafts'
+/// readings, and where it is above the proof's threshold the fitted factors written instead
+/// (see `upgrade::fit`). Returns the decision naming both figures.
+fn fit_factors(pbr: &LegacyPbr, converted: &mut spec_gloss::Converted) -> String {
+    let [r, g, b, alpha] = pbr.colour;
+    let closed = fit::Target {
+        base_colour: std::array::from_fn(|i| [r, g, b][i] * (1.0 - pbr.specular[i])),
+        roughness: 1.0 - pbr.glossiness,
+        specular_colour: pbr.specular,
+    };
+    let outcome = fit::fit([r, g, b], pbr.specular, pbr.glossiness, closed);
+    let Some((target, figure)) = outcome.fitted else {
+        return format!(
+            "closed form kept: its worst ΔE2000 over the drafts' three readings is {:.2}.",
+            outcome.closed_form
+        );
+    };
+    let [br, bg, bb] = target.base_colour;
+    let core = &mut converted.pbr_metallic_roughness;
+    core["baseColorFactor"] = json!([br, bg, bb, alpha]);
+    core["roughnessFactor"] = json!(target.roughness);
+    converted.extensions["KHR_materials_specular"]["specularColorFactor"] =
+        json!(target.specular_colour);
+    format!(
+        "fitted: the drafts' three readings disagree, and the closed form's worst ΔE2000 over them is {:.2}; the factors were fitted to the smallest worst case, {figure:.2} (baseColor {:.4?}, roughness {:.4}, specularColor {:.4?}), no longer exact under any one reading.",
+        outcome.closed_form, target.base_colour, target.roughness, target.specular_colour
+    )
 }
 
 /// A 1.0 draft material's two textures, by their 1.0 ids, as the builder holds them.
