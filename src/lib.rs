@@ -1,8 +1,8 @@
 //! gltfmat: checks glTF 2.0 / GLB assets and their materials, upgrades glTF 1.0, and evaluates
 //! materials with a reference shading model.
 //!
-//! The façade is this page: [`check_path`] / [`check_bytes`], [`upgrade()`], [`compare`] and
-//! [`render`], their options, [`Report`] and [`Error`]. Data flows one way: bytes →
+//! The façade is this page: [`check_path`] / [`check_bytes`], [`upgrade()`] and its proof
+//! [`prove`], [`compare`] and [`render`], their options, [`Report`] and [`Error`]. Data flows one way: bytes →
 //! [`document`] → check / upgrade / shade → [`report`].
 //!
 //! Check a file (its external `.bin` and images are read from its folder):
@@ -22,6 +22,21 @@
 //! assert!(report.diagnostics.iter().any(|d| d.code == khronos::MATERIAL_ALPHA_CUTOFF_INVALID_MODE));
 //! assert!(!report.has_errors());
 //! ```
+//!
+//! Upgrade a glTF 1.0 asset and prove that its materials render as before:
+//! ```
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! use gltfmat::{prove, upgrade, FolderResources, UpgradeOptions};
+//!
+//! let path = std::path::Path::new("fixtures/gltf1/pbr-mr-web3d.gltf");
+//! let bytes = std::fs::read(path)?;
+//! let resources = FolderResources::beside(path);
+//! let upgraded = upgrade(&bytes, &resources, &UpgradeOptions::default())?;
+//! let proof = prove(&bytes, "pbr-mr-web3d.gltf", &resources, &upgraded)?;
+//! assert!(!proof.is_empty());
+//! assert!(proof.iter().all(|outcome| outcome.result.max < 1.0));
+//! # Ok(()) }
+//! ```
 
 #![warn(missing_docs)]
 
@@ -40,4 +55,4 @@ pub use diagnostic::{Code, Diagnostic, Location, Severity};
 pub use document::uri::{FolderResources, MemoryResources, NoResources, ResourceLoader};
 pub use error::Error;
 pub use shade::pairing::{compare, render, CompareOptions, Outcome, RenderOptions};
-pub use upgrade::{upgrade, UpgradeError, UpgradeOptions, Upgraded};
+pub use upgrade::{prove, upgrade, ProofError, UpgradeError, UpgradeOptions, Upgraded};

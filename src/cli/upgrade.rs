@@ -6,8 +6,6 @@ use gltfmat::check::{Location, Report};
 use gltfmat::document::file::FileId;
 use gltfmat::document::uri::folder_of;
 use gltfmat::report::{render, Format, Style};
-use gltfmat::shade::pairing::{self, compare_pairs};
-use gltfmat::shade::MaterialSource;
 use gltfmat::upgrade::{output, NoteKind, SpecularGlossiness};
 use gltfmat::{upgrade, FolderResources, Severity, UpgradeOptions, Upgraded};
 use std::io::Write;
@@ -209,75 +207,15 @@ fn refuse_failed_check(report: Report, upgraded: &Upgraded) -> Failure {
 fn proved(bytes: &[u8], args: &UpgradeArgs, upgraded: &Upgraded, log: &mut Log) -> bool {
     let loader = FolderResources::beside(&args.input);
     let name = args.input.to_string_lossy();
-    let sources = match pairing::load_materials(bytes.to_vec(), &name, &loader) {
-        Ok(sources) => sources,
+    let outcomes = match gltfmat::upgrade::prove(bytes, &name, &loader, upgraded) {
+        Ok(outcomes) => outcomes,
         Err(why) => {
-            log.line(format_args!(
-                "proof: the source materials cannot be evaluated: {why}"
-            ));
+            log.line(format_args!("proof: {why}"));
             return false;
         }
     };
-    let converted = match gltfmat::upgrade::converted_materials(upgraded) {
-        Ok(converted) => converted,
-        Err(why) => {
-            log.line(format_args!(
-                "proof: the converted materials cannot be evaluated: {why}"
-            ));
-            return false;
-        }
-    };
-    let converted: Vec<pairing::Named> = (converted.into_iter().zip(&sources))
-        .map(|(target, (name, _))| (name.clone(), Some(target)))
-        .collect();
-    let pairs: Vec<(usize, usize)> = (0..sources.len().min(converted.len()))
-        .filter(|&i| !upgraded.is_passed_through(i))
-        .map(|i| (i, i))
-        .collect();
-    let outcomes = worst_readings(&sources, &converted, &pairs);
     for line in crate::compare::human_lines(&outcomes, args.threshold) {
         log.line(format_args!("proof: {line}"));
     }
     outcomes.iter().all(|o| o.result.max <= args.threshold)
-}
-
-/// Each pair compared under every reading of its source's text (one comparison per reading
-/// for all pairs together, so that identical pairs are evaluated once); the worst reading of
-/// each, named in its label.
-fn worst_readings(
-    sources: &[pairing::Named],
-    converted: &[pairing::Named],
-    pairs: &[(usize, usize)],
-) -> Vec<pairing::Outcome> {
-    let readings: Vec<Vec<MaterialSource>> = (sources.iter())
-        .map(|(_, source)| {
-            source
-                .as_ref()
-                .map(MaterialSource::readings)
-                .unwrap_or_default()
-        })
-        .collect();
-    let most = readings.iter().map(Vec::len).max().unwrap_or(0);
-    let mut worst: std::collections::BTreeMap<usize, pairing::Outcome> = Default::default();
-    for r in 0..most {
-        let read: Vec<pairing::Named> = (sources.iter().zip(&readings))
-            .map(|((name, _), all)| {
-                let Some(reading) = all.get(r) else {
-                    return (name.clone(), None);
-                };
-                let label = match reading.reading_name() {
-                    Some(how) => format!("{name} (source read as: {how})"),
-                    None => name.clone(),
-                };
-                (label, Some(reading.clone()))
-            })
-            .collect();
-        for outcome in compare_pairs(&read, converted, pairs, 0) {
-            let kept = worst.get(&outcome.a.0);
-            if kept.is_none_or(|kept| outcome.result.max > kept.result.max) {
-                worst.insert(outcome.a.0, outcome);
-            }
-        }
-    }
-    worst.into_values().collect()
 }

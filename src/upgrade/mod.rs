@@ -17,6 +17,7 @@ mod data;
 mod fit;
 mod gltf2;
 pub mod output;
+mod proof;
 mod rebake;
 mod references;
 mod source;
@@ -27,6 +28,7 @@ use crate::legacy::pbr;
 use crate::shade::material::SpecGlossReading;
 use crate::shade::sample::{self, MaterialSource, Texture};
 pub use binary::Binary;
+pub use proof::{prove, ProofError};
 use serde_json::Value;
 
 /// How specular-glossiness materials are written.
