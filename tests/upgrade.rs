@@ -185,6 +185,33 @@ fn spec_gloss_factors_follow_the_documented_mapping() {
 }
 
 #[test]
+fn a_fit_brings_a_grey_plastic_under_the_proofs_threshold() {
+    // A grey 0.04 specular over diffuse (0.5, 0.4, 0.3), glossiness 0.5: the closed form is
+    // exact under the drafts' Appendix reading but 1.05 away under the example shader's
+    // (no 1 − F). The fitted factors keep every reading within ΔE 1, so the proof passes.
+    let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
+    let mut asset: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    asset["materials"]["Effect-Texture"]["extensions"]["KHR_materials_pbr"]["values"] = serde_json::json!({
+        "diffuseFactor": [0.5, 0.4, 0.3, 1.0], "specularFactor": [0.04, 0.04, 0.04], "glossinessFactor": 0.5});
+    let bytes = asset.to_string().into_bytes();
+    let loader = FolderResources::beside(&path);
+    let upgraded = upgrade(&bytes, &loader, &UpgradeOptions::default()).unwrap();
+    let notes = notes(&upgraded).join("\n");
+    assert!(
+        notes.contains("the closed form's worst ΔE2000 over them is 1.05")
+            && notes.contains("the smallest worst case, 0.52"),
+        "{notes}"
+    );
+    let proof = gltfmat::prove(&bytes, "grey.gltf", &loader, &upgraded).unwrap();
+    assert_eq!(proof.len(), 1);
+    let max = proof[0].result.max;
+    assert!(
+        (max - 0.52).abs() < 0.01 && max < 1.0,
+        "the proof reads {max}"
+    );
+}
+
+#[test]
 fn spec_gloss_textures_are_rebaked_per_texel() {
     let upgraded = upgrade_file(
         &repo("fixtures/gltf1/pbr-sg-textured-ext.gltf"),
