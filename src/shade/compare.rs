@@ -116,7 +116,8 @@ impl Directions {
 /// The largest ΔE2000 over the direction pairs between two materials' inputs at one point
 /// (what `compare` computes per texel), for fitting factors.
 pub fn worst_at_point(shader: &Shader, a: &Inputs, b: &Inputs) -> f64 {
-    let directions = Directions::new();
+    static DIRECTIONS: std::sync::OnceLock<Directions> = std::sync::OnceLock::new();
+    let directions = DIRECTIONS.get_or_init(Directions::new);
     let (ca, cb) = (directions.colours(shader, a), directions.colours(shader, b));
     let shown = |c: &Colours, d: usize| displayed([c[0].0[d], c[1].0[d], c[2].0[d]]);
     (0..DIRECTION_COUNT)
@@ -454,10 +455,9 @@ mod tests {
 
     #[test]
     fn repeated_texels_reuse_their_samples_exactly() {
-        // A 48² base colour in runs of three texels (16 distinct per row: a run continues after
-        // its batch of 8 is converted), and
-        // a material differing in roughness: each texel's ΔE, computed alone, must equal
-        // what the row-wise reuse reports.
+        // A 48² base colour in runs of three texels (16 distinct per row, so a run continues
+        // after its batch of 8 is converted), against the same with another roughness: each
+        // texel's ΔE, computed alone, must equal what the row-wise reuse reports.
         let palette = [
             [200, 40, 40],
             [40, 200, 40],

@@ -38,6 +38,8 @@ pub struct Builder<'s, 'a> {
     pub(in crate::upgrade) origins: HashMap<String, String>,
     /// 1.0 light id → its KHR_lights_punctual index (None: it has no 2.0 form).
     pub(in crate::upgrade) lights: HashMap<String, Option<usize>>,
+    /// The factor fits of spec-gloss materials made so far.
+    pub(in crate::upgrade) fits: super::fit::Fits,
 }
 
 /// `/collection/id` with the id escaped as a JSON pointer token.
@@ -77,6 +79,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             packed_accessors: HashMap::new(),
             report: Vec::new(),
             lights: HashMap::new(),
+            fits: Default::default(),
             origins: HashMap::new(),
         }
     }

@@ -4,7 +4,9 @@
 //! them. When the closed form's worst ΔE over the readings and the proof's direction pairs is
 //! above the proof's threshold, the 2.0 factors (base colour, roughness, specular colour) are
 //! fitted to minimise that worst ΔE, the figure the proof reports, and both figures are kept
-//! for the conversion report.
+//! for the conversion report. An upgrade fits each distinct material once and at most
+//! [`MAX_DISTINCT_FITS`] of them (about 5 ms each), so that a hostile asset of a million
+//! distinct materials cannot make it run for hours.
 
 use crate::shade::brdf::SheenVisibility;
 use crate::shade::compare::worst_at_point;
@@ -13,6 +15,9 @@ use crate::shade::sheen_table::SheenTable;
 
 /// The proof's default threshold: below it the closed form is kept as it is.
 const THRESHOLD: f64 = 1.0;
+
+/// Distinct materials fitted per upgrade; later ones keep their closed form.
+pub const MAX_DISTINCT_FITS: usize = 256;
 
 /// A metal-rough + KHR_materials_specular + ior 0 material's factors.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,6 +57,7 @@ impl Target {
 
 /// The outcome: the closed form's worst ΔE, and the fitted factors with theirs when the
 /// fit was needed and did better.
+#[derive(Debug, Clone)]
 pub struct Fit {
     pub closed_form: f64,
     pub fitted: Option<(Target, f64)>,
@@ -66,16 +72,67 @@ fn worst_over_readings(shader: &Shader, sources: &[Inputs], target: &Target) -> 
         .fold(0.0, f64::max)
 }
 
+/// The fits of one upgrade: each distinct material fitted once, at most
+/// [`MAX_DISTINCT_FITS`] of them.
+pub struct Fits {
+    done: std::collections::HashMap<[u64; 7], Fit>,
+    budget: usize,
+}
+
+impl Default for Fits {
+    fn default() -> Self {
+        Fits::with_budget(MAX_DISTINCT_FITS)
+    }
+}
+
+impl Fits {
+    /// At most `budget` distinct materials fitted.
+    pub fn with_budget(budget: usize) -> Fits {
+        Fits {
+            done: Default::default(),
+            budget,
+        }
+    }
+
+    /// [`fit`], remembered by the source's factors; None once the budget is spent.
+    pub fn fit(
+        &mut self,
+        diffuse: [f64; 3],
+        specular: [f64; 3],
+        glossiness: f64,
+        closed: Target,
+    ) -> Option<Fit> {
+        let [d0, d1, d2] = diffuse;
+        let [s0, s1, s2] = specular;
+        let key = [d0, d1, d2, s0, s1, s2, glossiness].map(f64::to_bits);
+        if let Some(done) = self.done.get(&key) {
+            return Some(done.clone());
+        }
+        if self.done.len() >= self.budget {
+            return None;
+        }
+        let outcome = fit(diffuse, specular, glossiness, closed);
+        self.done.insert(key, outcome.clone());
+        Some(outcome)
+    }
+}
+
+/// The evaluator the fits use: no sheen is involved, so the smallest table will do; made
+/// once per process.
+fn shader() -> &'static Shader {
+    static SHADER: std::sync::OnceLock<Shader> = std::sync::OnceLock::new();
+    SHADER.get_or_init(|| Shader::new(SheenTable::compute(2, SheenVisibility::Charlie)))
+}
+
 /// Fits the 2.0 factors for a spec-gloss source (diffuse, specular, glossiness) whose
 /// closed-form conversion is `closed`.
 pub fn fit(diffuse: [f64; 3], specular: [f64; 3], glossiness: f64, closed: Target) -> Fit {
-    // No sheen is involved: the smallest table will do.
-    let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
+    let shader = shader();
     let sources: Vec<Inputs> = SpecGlossReading::DRAFTS
         .iter()
         .map(|&reading| Inputs::specular_glossiness(diffuse, specular, glossiness, reading))
         .collect();
-    let cost = |x: [f64; 7]| worst_over_readings(&shader, &sources, &Target::from_vector(x));
+    let cost = |x: [f64; 7]| worst_over_readings(shader, &sources, &Target::from_vector(x));
     let closed_form = cost(closed.to_vector());
     if closed_form <= THRESHOLD {
         return Fit {
@@ -162,7 +219,7 @@ mod tests {
 
     fn closed_form(diffuse: [f64; 3], specular: [f64; 3], glossiness: f64) -> Target {
         Target {
-            base_colour: std::array::from_fn(|i| diffuse[i] * (1.0 - specular[i])),
+            base_colour: crate::upgrade::spec_gloss::base_colour(diffuse, specular),
             roughness: 1.0 - glossiness,
             specular_colour: specular,
         }
@@ -189,11 +246,33 @@ mod tests {
             fit.closed_form
         );
         // The figure is the fitted factors' own, recomputed here.
-        let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
         let sources: Vec<Inputs> = SpecGlossReading::DRAFTS
             .iter()
             .map(|&r| Inputs::specular_glossiness(d, s, g, r))
             .collect();
-        assert_eq!(worst_over_readings(&shader, &sources, &target), figure);
+        assert_eq!(worst_over_readings(shader(), &sources, &target), figure);
+    }
+
+    #[test]
+    fn each_distinct_material_is_fitted_once_and_only_so_many() {
+        let budget = 3;
+        let mut fits = Fits::with_budget(budget);
+        let (s, g) = ([0.04; 3], 0.5);
+        let material = |i: usize| [0.1, 0.1, 0.1 + i as f64 * 1e-4];
+        for i in 0..budget {
+            let d = material(i);
+            assert!(fits.fit(d, s, g, closed_form(d, s, g)).is_some(), "fit {i}");
+        }
+        let again = material(0);
+        assert!(
+            fits.fit(again, s, g, closed_form(again, s, g)).is_some(),
+            "remembered"
+        );
+        let one_more = material(budget);
+        assert!(
+            fits.fit(one_more, s, g, closed_form(one_more, s, g))
+                .is_none(),
+            "over budget"
+        );
     }
 }

@@ -89,7 +89,8 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
     } else {
         let keep = factors.specular.map(|s| 1.0 - s);
         let [r, g, b, a] = factors.diffuse;
-        core["baseColorFactor"] = json!([r * keep[0], g * keep[1], b * keep[2], a]);
+        let [br, bg, bb] = base_colour([r, g, b], factors.specular);
+        core["baseColorFactor"] = json!([br, bg, bb, a]);
         if let Some(info) = textures.info(Slot::Diffuse) {
             core["baseColorTexture"] = info;
         }
@@ -111,6 +112,11 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
         extensions,
         decisions,
     })
+}
+
+/// The closed-form base colour: diffuse · (1 − specular), channel by channel.
+pub fn base_colour(diffuse: [f64; 3], specular: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| diffuse[i] * (1.0 - specular[i]))
 }
 
 /// The extensions a converted material gains, for `extensionsUsed`.

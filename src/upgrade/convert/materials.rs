@@ -206,7 +206,7 @@ fn spec_gloss_as_metal_rough(
     let mut converted =
         spec_gloss::to_metal_rough(&factors, &mut textures).map_err(|e| rebake_error(block, e))?;
     if pbr.colour_texture.is_none() && pbr.data_texture.is_none() {
-        let decision = fit_factors(pbr, &mut converted);
+        let decision = fit_factors(&mut builder.fits, pbr, &mut converted);
         converted.decisions.push(decision);
     }
     for decision in converted.decisions {
@@ -223,14 +223,23 @@ fn spec_gloss_as_metal_rough(
 /// A factor-only draft spec-gloss material: the closed form's worst ΔE over the drafts'
 /// readings, and where it is above the proof's threshold the fitted factors written instead
 /// (see `upgrade::fit`). Returns the decision naming both figures.
-fn fit_factors(pbr: &LegacyPbr, converted: &mut spec_gloss::Converted) -> String {
+fn fit_factors(
+    fits: &mut fit::Fits,
+    pbr: &LegacyPbr,
+    converted: &mut spec_gloss::Converted,
+) -> String {
     let [r, g, b, alpha] = pbr.colour;
     let closed = fit::Target {
-        base_colour: std::array::from_fn(|i| [r, g, b][i] * (1.0 - pbr.specular[i])),
+        base_colour: spec_gloss::base_colour([r, g, b], pbr.specular),
         roughness: 1.0 - pbr.glossiness,
         specular_colour: pbr.specular,
     };
-    let outcome = fit::fit([r, g, b], pbr.specular, pbr.glossiness, closed);
+    let Some(outcome) = fits.fit([r, g, b], pbr.specular, pbr.glossiness, closed) else {
+        return format!(
+            "closed form kept, not fitted: more than {} distinct spec-gloss materials (the fits' time is bounded).",
+            fit::MAX_DISTINCT_FITS
+        );
+    };
     let Some((target, figure)) = outcome.fitted else {
         return format!(
             "closed form kept: its worst ΔE2000 over the drafts' three readings is {:.2}.",
@@ -241,8 +250,9 @@ fn fit_factors(pbr: &LegacyPbr, converted: &mut spec_gloss::Converted) -> String
     let core = &mut converted.pbr_metallic_roughness;
     core["baseColorFactor"] = json!([br, bg, bb, alpha]);
     core["roughnessFactor"] = json!(target.roughness);
-    converted.extensions["KHR_materials_specular"]["specularColorFactor"] =
-        json!(target.specular_colour);
+    if let Some(specular) = converted.extensions.get_mut("KHR_materials_specular") {
+        specular["specularColorFactor"] = json!(target.specular_colour);
+    }
     format!(
         "fitted: the drafts' three readings disagree, and the closed form's worst ΔE2000 over them is {:.2}; the factors were fitted to the smallest worst case, {figure:.2} (baseColor {:.4?}, roughness {:.4}, specularColor {:.4?}), no longer exact under any one reading.",
         outcome.closed_form, target.base_colour, target.roughness, target.specular_colour
