@@ -125,13 +125,18 @@ impl<'a> Context<'a> {
     }
 
     /// Object elements of a top-level array, with their index and pointer.
-    pub fn objects(&self, collection: &'static str) -> Vec<(usize, String, &'a Value)> {
+    pub fn objects(
+        &self,
+        collection: &'static str,
+    ) -> impl Iterator<Item = (usize, String, &'a Value)> + 'a {
+        // It borrows the document, not the context, so a pass can emit while it walks; and
+        // each pointer is made as its object is reached (a million materials once took a
+        // list of a million pointers per pass).
         self.items(collection)
             .iter()
             .enumerate()
             .filter(|(_, v)| v.is_object())
-            .map(|(i, v)| (i, format!("/{collection}/{i}"), v))
-            .collect()
+            .map(move |(i, v)| (i, format!("/{collection}/{i}"), v))
     }
 
     /// Resolves `object[key]` as an index into `collection`, marking the target used.

@@ -142,7 +142,6 @@ pub fn check(ctx: &mut Context) {
     // Accessors are independent and read-only here: scanned in parallel, reported in order.
     let mut work: Vec<Work> = ctx
         .objects("accessors")
-        .into_iter()
         .filter_map(|(index, pointer, accessor)| {
             let (layout, bytes) = match accessor.get("sparse") {
                 None => scannable(ctx, accessor).map(|(l, b)| (l, Cow::Borrowed(b)))?,
