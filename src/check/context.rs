@@ -10,7 +10,7 @@ use crate::document::json::escape_token;
 use crate::document::uri::ResourceLoader;
 use crate::document::{BufferData, Bytes, Document};
 use serde_json::Value;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 /// A resource as listed in the report's `info.resources`.
 #[derive(Debug, Clone, Default)]
@@ -49,7 +49,7 @@ pub struct AssetInfo {
 }
 
 /// What a material demands of the primitives that use it.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct MaterialNeeds {
     /// Each texture binding (its pointer) with the texCoord set it reads.
     pub texcoords: Vec<(String, u64)>,
@@ -74,7 +74,9 @@ pub(crate) struct Context<'a> {
     pub images: Vec<Option<ImageInfo>>,
     /// Encoded bytes of each image, kept for gltfmat's rules (not in the Khronos profile).
     pub image_bytes: Vec<Option<Bytes>>,
-    pub material_needs: Vec<MaterialNeeds>,
+    /// By material index, for the materials that demand anything (a million empty
+    /// materials keep no entry).
+    pub material_needs: HashMap<usize, MaterialNeeds>,
     /// Every texture binding, computed on first use (see `materials::slot_uses`).
     pub slot_uses: std::sync::OnceLock<std::sync::Arc<[super::khronos::materials::SlotUse<'a>]>>,
     pub resources: Vec<ResourceInfo>,
@@ -98,7 +100,7 @@ impl<'a> Context<'a> {
             buffers: Vec::new(),
             images: Vec::new(),
             image_bytes: Vec::new(),
-            material_needs: Vec::new(),
+            material_needs: HashMap::new(),
             slot_uses: std::sync::OnceLock::new(),
             resources: Vec::new(),
         }

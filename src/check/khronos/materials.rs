@@ -54,10 +54,12 @@ fn check_texture_source_mime(ctx: &mut Context, image: usize, pointer: &str, val
 }
 
 pub fn check_materials(ctx: &mut Context) {
-    ctx.material_needs = vec![MaterialNeeds::default(); ctx.items("materials").len()];
+    ctx.material_needs.clear();
     for (i, pointer, material) in ctx.objects("materials") {
         let needs = texture_needs(ctx, material, &pointer);
-        ctx.material_needs[i] = needs;
+        if needs != MaterialNeeds::default() {
+            ctx.material_needs.insert(i, needs);
+        }
         check_alpha_cutoff(ctx, material, &pointer);
         check_extension_rules(ctx, material, &pointer);
     }

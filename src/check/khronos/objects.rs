@@ -213,7 +213,7 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
     if let Some(material) = ctx.reference(primitive, "material", pointer, "materials") {
         let needs = ctx
             .material_needs
-            .get(material)
+            .get(&material)
             .cloned()
             .unwrap_or_default();
         let material_pointer = member(pointer, "material");
@@ -253,7 +253,7 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
     for (material, at) in mapped {
         let needs = ctx
             .material_needs
-            .get(material)
+            .get(&material)
             .cloned()
             .unwrap_or_default();
         read_texcoords(ctx, &needs, &at, texcoord_sets, &mut texcoords_used);

@@ -45,7 +45,7 @@ fn check(ctx: &mut Context) {
         };
         for (p, primitive) in primitives.iter().enumerate() {
             let Some(needs) =
-                unsigned(primitive, "material").and_then(|m| ctx.material_needs.get(m as usize))
+                unsigned(primitive, "material").and_then(|m| ctx.material_needs.get(&(m as usize)))
             else {
                 continue;
             };
