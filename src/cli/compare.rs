@@ -17,7 +17,7 @@ pub struct CompareArgs {
     #[arg(long = "material-map", value_name = "I=J")]
     material_map: Vec<String>,
     /// Largest ΔE2000 allowed (1.0 ≈ one just-noticeable difference).
-    #[arg(long, default_value_t = 1.0, value_parser = crate::common::threshold)]
+    #[arg(long, default_value_t = gltfmat::shade::compare::DEFAULT_THRESHOLD, value_parser = crate::common::threshold)]
     threshold: f64,
     /// UV grid per side, at most 4096 (0: the finest texture resolution involved, at least
     /// 16 and at most 4096).

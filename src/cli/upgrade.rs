@@ -39,7 +39,7 @@ pub struct UpgradeArgs {
     #[arg(long)]
     no_verify: bool,
     /// ΔE2000 a converted material may differ from its source by.
-    #[arg(long, default_value_t = 1.0, value_parser = crate::common::threshold)]
+    #[arg(long, default_value_t = gltfmat::shade::compare::DEFAULT_THRESHOLD, value_parser = crate::common::threshold)]
     threshold: f64,
 }
 

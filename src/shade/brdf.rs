@@ -147,6 +147,14 @@ pub fn anisotropic_alphas(alpha: f64, strength: f64) -> (f64, f64) {
     (alpha + (1.0 - alpha) * s2, alpha)
 }
 
+/// `w` in the anisotropy frame: t along the direction at `angle` in the tangent plane, b
+/// perpendicular to it, the normal unchanged (an angle of −a turns it back).
+#[inline(always)]
+pub fn into_anisotropy_frame<R: Real>(w: [R; 3], angle: f64) -> [R; 3] {
+    let (s, c) = angle.sin_cos();
+    [w[0] * c + w[1] * s, w[1] * c - w[0] * s, w[2]]
+}
+
 /// Anisotropic GGX with (t, b) the anisotropy direction and its perpendicular in the
 /// tangent plane (an orthonormal frame with the normal).
 pub fn ggx_aniso_d<R: Real>(alpha_t: f64, alpha_b: f64, h: [R; 3]) -> R {

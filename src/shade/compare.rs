@@ -18,6 +18,10 @@ use super::sample::MaterialSource;
 use super::tone::displayed;
 use std::f64::consts::PI;
 
+/// The default verdict threshold: ΔE2000 1, about one just-noticeable difference on what a
+/// viewer shows (`compare --threshold`, the upgrade proof, the factor fit).
+pub const DEFAULT_THRESHOLD: f64 = 1.0;
+
 const DIRECTION_COUNT: usize = 8;
 
 /// (θ_v, θ_l, φ between them), degrees: head-on, off-specular, mirror, crossed (anisotropy)

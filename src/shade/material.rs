@@ -16,8 +16,8 @@
 //! - the glTF 1.0 metal-rough drafts are evaluated as core metal-rough.
 
 use super::brdf::{
-    anisotropic_alphas, f0_from_ior, fresnel, ggx_aniso_d, ggx_d, max3, sheen_lobe, smith_vis,
-    smith_vis_aniso, Geometry, SheenVisibility, V3,
+    anisotropic_alphas, f0_from_ior, fresnel, ggx_aniso_d, ggx_d, into_anisotropy_frame, max3,
+    sheen_lobe, smith_vis, smith_vis_aniso, Geometry, SheenVisibility, V3,
 };
 use super::lanes::{channels, Real};
 use super::sheen_table::SheenTable;
@@ -206,9 +206,7 @@ pub fn base_brdf<R: Real>(m: &Inputs, g: &Geometry<R>) -> [R; 3] {
     let alpha = m.roughness * m.roughness;
     let specular = if m.anisotropy_strength > 0.0 {
         let (alpha_t, alpha_b) = anisotropic_alphas(alpha, m.anisotropy_strength);
-        let (s, c) = m.anisotropy_angle.sin_cos();
-        // Into the anisotropy frame: t along the direction, b perpendicular, orthonormal.
-        let rotate = |w: [R; 3]| [w[0] * c + w[1] * s, w[1] * c - w[0] * s, w[2]];
+        let rotate = |w: [R; 3]| into_anisotropy_frame(w, m.anisotropy_angle);
         ggx_aniso_d(alpha_t, alpha_b, rotate(g.h))
             * smith_vis_aniso(alpha_t, alpha_b, rotate(g.v), rotate(g.l))
     } else {

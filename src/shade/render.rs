@@ -11,7 +11,9 @@
 //! the pattern turned about the normal by a fixed per-pixel angle. The sphere's UVs are equirectangular
 //! (u = ½ + φ/2π, v = θ/π) with the analytic tangent along increasing u.
 
-use super::brdf::{anisotropic_alphas, dot, ggx_aniso_d, normalize, Geometry, V3};
+use super::brdf::{
+    anisotropic_alphas, dot, ggx_aniso_d, into_anisotropy_frame, normalize, Geometry, V3,
+};
 use super::material::Shader;
 use super::sample::MaterialSource;
 use super::tone::displayed;
@@ -69,13 +71,11 @@ impl Lobe {
 
     /// Into the lobe's frame (t along the anisotropy direction) and back.
     fn to_lobe(&self, w: V3) -> V3 {
-        let (s, c) = self.angle.sin_cos();
-        [w[0] * c + w[1] * s, w[1] * c - w[0] * s, w[2]]
+        into_anisotropy_frame(w, self.angle)
     }
 
     fn out_of_lobe(&self, w: V3) -> V3 {
-        let (s, c) = self.angle.sin_cos();
-        [w[0] * c - w[1] * s, w[0] * s + w[1] * c, w[2]]
+        into_anisotropy_frame(w, -self.angle)
     }
 
     /// A half-vector distributed as the normals `v` sees (Heitz 2018, "Sampling the GGX

@@ -14,7 +14,7 @@ use crate::shade::material::{DiffuseBalance, Inputs, Shader, SpecGlossReading};
 use crate::shade::sheen_table::SheenTable;
 
 /// The proof's default threshold: below it the closed form is kept as it is.
-const THRESHOLD: f64 = 1.0;
+const THRESHOLD: f64 = crate::shade::compare::DEFAULT_THRESHOLD;
 
 /// Distinct materials fitted per upgrade; later ones keep their closed form.
 pub const MAX_DISTINCT_FITS: usize = 256;
