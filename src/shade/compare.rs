@@ -169,10 +169,11 @@ impl Batch {
     }
 }
 
-/// One comparison: the two materials, the grid size and the direction pairs.
+/// One comparison: the readings of the first material, the second material, the grid
+/// size and the direction pairs.
 struct Job<'a> {
     shader: &'a Shader,
-    a: &'a MaterialSource,
+    readings: &'a [MaterialSource],
     b: &'a MaterialSource,
     grid: u32,
     directions: Directions,
@@ -192,22 +193,36 @@ pub const MAX_GRID: u32 = 4096;
 /// Compares `a` with `b` on a `grid`² UV grid (texel centres, at most [`MAX_GRID`]); `grid` 0
 /// picks the finest texture resolution of either (at least 16).
 pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u32) -> Comparison {
+    let mut each = compare_readings(shader, std::slice::from_ref(a), b, grid);
+    each.pop().unwrap_or_else(|| merge(Vec::new(), 0))
+}
+
+/// Compares each of `readings` (one material read several ways: the same textures and
+/// texture coordinates) with `b`, in one pass over the grid: `b` is sampled once per texel
+/// for all of them. One comparison per reading, in order; the grid is as in [`compare`].
+pub fn compare_readings(
+    shader: &Shader,
+    readings: &[MaterialSource],
+    b: &MaterialSource,
+    grid: u32,
+) -> Vec<Comparison> {
+    let finest = (readings.iter().map(MaterialSource::max_resolution)).fold(1, u32::max);
     let grid = if grid == 0 {
-        a.max_resolution().max(b.max_resolution()).max(16)
+        finest.max(b.max_resolution()).max(16)
     } else {
         grid
     }
     .min(MAX_GRID);
     let job = Job {
         shader,
-        a,
+        readings,
         b,
         grid,
         directions: Directions::new(),
     };
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u32;
     let rows_per_thread = grid.div_ceil(threads);
-    let partials: Vec<Partial> = std::thread::scope(|scope| {
+    let by_thread: Vec<Vec<Partial>> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
                 let rows = (t * rows_per_thread)..((t + 1) * rows_per_thread).min(grid);
@@ -217,13 +232,18 @@ pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u3
             .collect();
         handles.into_iter().filter_map(|h| h.join().ok()).collect()
     });
-    merge(partials, grid)
+    (0..readings.len())
+        .map(|r| {
+            let partials = by_thread.iter().filter_map(|each| each.get(r));
+            merge(partials, grid)
+        })
+        .collect()
 }
 
 /// The rows' samples, with the widest vector instructions the CPU has: the texel loop is
 /// plain arithmetic, so compiling it for AVX-512 or AVX2 changes its speed, not its results
 /// (no fused multiply-adds are formed; each lane rounds exactly as scalar `f64` does).
-fn compare_rows(job: &Job, rows: std::ops::Range<u32>) -> Partial {
+fn compare_rows(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::is_x86_feature_detected as has;
@@ -243,7 +263,7 @@ fn compare_rows(job: &Job, rows: std::ops::Range<u32>) -> Partial {
 /// The CPU must support AVX-512 F, DQ and VL.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512dq,avx512vl")]
-unsafe fn compare_rows_avx512(job: &Job, rows: std::ops::Range<u32>) -> Partial {
+unsafe fn compare_rows_avx512(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
     compare_rows_inline(job, rows)
 }
 
@@ -251,34 +271,30 @@ unsafe fn compare_rows_avx512(job: &Job, rows: std::ops::Range<u32>) -> Partial 
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn compare_rows_avx2(job: &Job, rows: std::ops::Range<u32>) -> Partial {
+unsafe fn compare_rows_avx2(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
     compare_rows_inline(job, rows)
 }
 
 #[inline(always)]
-fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Partial {
+fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
     let Job {
         shader,
-        a,
+        readings,
         b,
         grid,
         ref directions,
     } = *job;
-    let mut partial = Partial {
-        per_texel: Vec::with_capacity(rows.len() * grid as usize),
-        sum: 0.0,
-        count: 0,
-        worst: Worst {
-            delta_e: -1.0,
-            uv: [0.0, 0.0],
-            directions: (0.0, 0.0, 0.0),
-        },
-        histogram: vec![0; BINS],
-    };
-    let mut batch = Batch {
-        a: [[0.0; BATCH]; 3],
-        b: [[0.0; BATCH]; 3],
-    };
+    let mut partials: Vec<Partial> = readings
+        .iter()
+        .map(|_| Partial::new(rows.len() * grid as usize))
+        .collect();
+    let mut batches: Vec<Batch> = readings
+        .iter()
+        .map(|_| Batch {
+            a: [[0.0; BATCH]; 3],
+            b: [[0.0; BATCH]; 3],
+        })
+        .collect();
     let texel_uv = |x: u32, y: u32| {
         [
             (f64::from(x) + 0.5) / f64::from(grid),
@@ -286,32 +302,39 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Partial {
         ]
     };
     for y in rows {
-        let mut row = Row::default();
+        let mut row_of: Vec<Row> = readings.iter().map(|_| Row::default()).collect();
         for x in 0..grid {
             let uv = texel_uv(x, y);
-            let inputs = (a.inputs_at(&[uv, uv]), b.inputs_at(&[uv, uv]));
-            let source = if inputs.0 == inputs.1 {
-                // Identical inputs give identical colours, whose ΔE is exactly 0.
-                Source::Zero
-            } else if let Some(same) = row.repeat_of(&inputs) {
-                // A texel like the one before (a flat region of a texture) has its ΔE.
-                same
-            } else {
-                let slot = row.unique;
-                Batch::put(&mut batch.a, slot, directions.colours(shader, &inputs.0));
-                Batch::put(&mut batch.b, slot, directions.colours(shader, &inputs.1));
-                row.unique += 1;
-                Source::Slot(slot)
-            };
-            row.previous = Some((inputs, source));
-            row.pending.push((x, source));
-            if row.unique == BATCH_TEXELS {
-                row.flush(&batch, &mut partial, |x| texel_uv(x, y), &directions.angles);
+            let target = b.inputs_at(&[uv, uv]);
+            let each = (readings.iter()).zip(&mut row_of).zip(&mut batches);
+            for (((a, row), batch), partial) in each.zip(&mut partials) {
+                let inputs = (a.inputs_at(&[uv, uv]), target.clone());
+                let source = if inputs.0 == inputs.1 {
+                    // Identical inputs give identical colours, whose ΔE is exactly 0.
+                    Source::Zero
+                } else if let Some(same) = row.repeat_of(&inputs) {
+                    // A texel like the one before (a flat region of a texture) has its ΔE.
+                    same
+                } else {
+                    let slot = row.unique;
+                    Batch::put(&mut batch.a, slot, directions.colours(shader, &inputs.0));
+                    Batch::put(&mut batch.b, slot, directions.colours(shader, &inputs.1));
+                    row.unique += 1;
+                    Source::Slot(slot)
+                };
+                row.previous = Some((inputs, source));
+                row.pending.push((x, source));
+                if row.unique == BATCH_TEXELS {
+                    row.flush(batch, partial, |x| texel_uv(x, y), &directions.angles);
+                }
             }
         }
-        row.flush(&batch, &mut partial, |x| texel_uv(x, y), &directions.angles);
+        let each = (row_of.iter_mut()).zip(&batches).zip(&mut partials);
+        for ((row, batch), partial) in each {
+            row.flush(batch, partial, |x| texel_uv(x, y), &directions.angles);
+        }
     }
-    partial
+    partials
 }
 
 /// Where a texel's ΔE samples come from.
@@ -363,7 +386,10 @@ impl Row {
             Source::Known(known) => known,
         };
         for (x, source) in self.pending.drain(..) {
-            partial.add_texel(uv(x), &samples(source), angles);
+            match source {
+                Source::Zero => partial.add_equal_texel(uv(x), angles),
+                _ => partial.add_texel(uv(x), &samples(source), angles),
+            }
         }
         if let Some((_, source)) = &mut self.previous {
             *source = Source::Known(samples(*source));
@@ -373,6 +399,36 @@ impl Row {
 }
 
 impl Partial {
+    fn new(texels: usize) -> Partial {
+        Partial {
+            per_texel: Vec::with_capacity(texels),
+            sum: 0.0,
+            count: 0,
+            worst: Worst {
+                delta_e: -1.0,
+                uv: [0.0, 0.0],
+                directions: (0.0, 0.0, 0.0),
+            },
+            histogram: vec![0; BINS],
+        }
+    }
+
+    /// A texel where both materials have the same inputs: ΔE 0 in every direction. (Most
+    /// texels of an exact conversion; the general path would update the histogram one
+    /// sample at a time.)
+    fn add_equal_texel(&mut self, uv: [f64; 2], angles: &[(f64, f64, f64)]) {
+        self.count += DIRECTION_COUNT as u64;
+        self.histogram[0] += DIRECTION_COUNT as u32;
+        if self.worst.delta_e < 0.0 {
+            self.worst = Worst {
+                delta_e: 0.0,
+                uv,
+                directions: angles[0],
+            };
+        }
+        self.per_texel.push(0.0);
+    }
+
     fn add_texel(&mut self, uv: [f64; 2], deltas: &[f64], angles: &[(f64, f64, f64)]) {
         let mut texel_max = 0f64;
         for (&delta, &angles) in deltas.iter().zip(angles) {
@@ -394,7 +450,7 @@ impl Partial {
     }
 }
 
-fn merge(partials: Vec<Partial>, grid: u32) -> Comparison {
+fn merge<'p>(partials: impl IntoIterator<Item = &'p Partial>, grid: u32) -> Comparison {
     let mut histogram = vec![0u64; BINS];
     let mut per_texel = Vec::with_capacity((grid * grid) as usize);
     let (mut sum, mut count) = (0.0, 0u64);
@@ -410,7 +466,7 @@ fn merge(partials: Vec<Partial>, grid: u32) -> Comparison {
             *total += u64::from(*n);
         }
         if worst.as_ref().is_none_or(|w| p.worst.delta_e > w.delta_e) {
-            worst = Some(p.worst);
+            worst = Some(p.worst.clone());
         }
     }
     let worst = worst.unwrap_or(Worst {
@@ -522,6 +578,24 @@ mod tests {
         assert_eq!(result.samples, 64 * DIRECTIONS.len() as u64);
     }
 
+    #[test]
+    fn readings_compared_together_give_what_each_gives_alone() {
+        let source = |diffuse: f64| {
+            gltf2(
+                json!({"pbrMetallicRoughness": {"baseColorFactor": [diffuse, 0.3, 0.2, 1.0], "roughnessFactor": 0.4}}),
+            )
+        };
+        let target = source(0.5);
+        let readings = [source(0.52), source(0.5), source(0.8)];
+        let together = compare_readings(&shader(), &readings, &target, 8);
+        assert_eq!(together.len(), readings.len());
+        for (reading, result) in readings.iter().zip(&together) {
+            assert_eq!(result, &compare(&shader(), reading, &target, 8));
+        }
+        assert_eq!(together[1].max, 0.0);
+        assert!(together[2].max > together[0].max && together[0].max > 0.0);
+    }
+
     #[cfg(target_arch = "x86_64")]
     #[test]
     fn the_vector_instruction_paths_give_the_portable_results_bit_for_bit() {
@@ -539,22 +613,24 @@ mod tests {
         for (a, b) in [(&sheen, &plain), (&plain, &sheen)] {
             let job = Job {
                 shader: &shader,
-                a,
+                readings: std::slice::from_ref(a),
                 b,
                 grid: 20,
                 directions: Directions::new(),
             };
             // 20 texels per row: two full batches and a partial one.
-            let portable = compare_rows_inline(&job, 0..3);
+            let [portable] = &compare_rows_inline(&job, 0..3)[..] else {
+                panic!("one reading, one partial");
+            };
             assert!(portable.sum > 1.0, "the materials differ: {}", portable.sum);
             let mut vector = Vec::new();
             if has!("avx2") {
                 // SAFETY: AVX2 support was checked.
-                vector.push(unsafe { compare_rows_avx2(&job, 0..3) });
+                vector.extend(unsafe { compare_rows_avx2(&job, 0..3) });
             }
             if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
                 // SAFETY: AVX-512 support was checked.
-                vector.push(unsafe { compare_rows_avx512(&job, 0..3) });
+                vector.extend(unsafe { compare_rows_avx512(&job, 0..3) });
             }
             for v in &vector {
                 assert_eq!(portable.sum.to_bits(), v.sum.to_bits());

@@ -58,6 +58,8 @@ pub struct Outcome {
 }
 
 /// Compares each pair `(i, j)` of `a[i]` with `b[j]`; pairs with a missing side are skipped.
+/// A material of `a` whose text can be read several ways (a 1.0 spec-gloss draft material)
+/// is compared under every reading, and the worst reading is kept and named in its label.
 pub fn compare_pairs(
     a: &[Named],
     b: &[Named],
@@ -67,7 +69,7 @@ pub fn compare_pairs(
     let shader = shader_for(a.iter().chain(b).filter_map(|(_, m)| m.as_ref()));
     // Materials that evaluate the same way are compared once (an asset's thousand copies of
     // one material are one comparison).
-    let mut done: std::collections::HashMap<(String, String), Comparison> = Default::default();
+    let mut done: std::collections::HashMap<(String, String), Worst> = Default::default();
     pairs
         .iter()
         .filter_map(|&(i, j)| {
@@ -78,16 +80,56 @@ pub fn compare_pairs(
                 return None;
             };
             let key = (ma.fingerprint(), mb.fingerprint());
-            let result = (done.entry(key))
-                .or_insert_with(|| evaluate::compare(&shader, ma, mb, grid))
+            let worst = (done.entry(key))
+                .or_insert_with(|| worst_reading(&shader, ma, mb, grid))
                 .clone();
+            let label = match worst.reading {
+                Some(how) => format!("{name_a} (source read as: {how})"),
+                None => name_a.clone(),
+            };
             Some(Outcome {
-                a: (i, name_a.clone()),
+                a: (i, label),
                 b: (j, name_b.clone()),
-                result,
+                result: worst.result,
             })
         })
         .collect()
+}
+
+/// The comparison under a source's worst reading, and that reading's name when it has a
+/// choice of readings.
+#[derive(Clone)]
+struct Worst {
+    result: Comparison,
+    reading: Option<&'static str>,
+}
+
+/// `source` compared with `target` under each of its readings (in one pass); the worst kept
+/// (the first of equals).
+fn worst_reading(
+    shader: &Shader,
+    source: &MaterialSource,
+    target: &MaterialSource,
+    grid: u32,
+) -> Worst {
+    let readings = source.readings();
+    let results = evaluate::compare_readings(shader, &readings, target, grid);
+    (readings.iter().zip(results))
+        .map(|(reading, result)| Worst {
+            result,
+            reading: reading.reading_name(),
+        })
+        .reduce(|kept, next| {
+            if next.result.max > kept.result.max {
+                next
+            } else {
+                kept
+            }
+        })
+        .unwrap_or_else(|| Worst {
+            result: evaluate::compare(shader, source, target, grid),
+            reading: None,
+        })
 }
 
 /// Which materials [`compare`] pairs, and how finely it samples them.

@@ -6,7 +6,6 @@
 use super::{converted_materials, Upgraded};
 use crate::document::uri::ResourceLoader;
 use crate::shade::pairing::{self, compare_pairs, Named, Outcome};
-use crate::shade::MaterialSource;
 
 /// Why a proof could not be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -38,46 +37,5 @@ pub fn prove(
         .filter(|&i| !upgraded.is_passed_through(i))
         .map(|i| (i, i))
         .collect();
-    Ok(worst_readings(&sources, &converted, &pairs))
-}
-
-/// Each pair compared under every reading of its source's text (one comparison per reading
-/// for all pairs together, so that identical pairs are evaluated once); the worst reading of
-/// each, named in its label.
-fn worst_readings(
-    sources: &[Named],
-    converted: &[Named],
-    pairs: &[(usize, usize)],
-) -> Vec<Outcome> {
-    let readings: Vec<Vec<MaterialSource>> = (sources.iter())
-        .map(|(_, source)| {
-            source
-                .as_ref()
-                .map(MaterialSource::readings)
-                .unwrap_or_default()
-        })
-        .collect();
-    let most = readings.iter().map(Vec::len).max().unwrap_or(0);
-    let mut worst: std::collections::BTreeMap<usize, Outcome> = Default::default();
-    for r in 0..most {
-        let read: Vec<Named> = (sources.iter().zip(&readings))
-            .map(|((name, _), all)| {
-                let Some(reading) = all.get(r) else {
-                    return (name.clone(), None);
-                };
-                let label = match reading.reading_name() {
-                    Some(how) => format!("{name} (source read as: {how})"),
-                    None => name.clone(),
-                };
-                (label, Some(reading.clone()))
-            })
-            .collect();
-        for outcome in compare_pairs(&read, converted, pairs, 0) {
-            let kept = worst.get(&outcome.a.0);
-            if kept.is_none_or(|kept| outcome.result.max > kept.result.max) {
-                worst.insert(outcome.a.0, outcome);
-            }
-        }
-    }
-    worst.into_values().collect()
+    Ok(compare_pairs(&sources, &converted, &pairs, 0))
 }
