@@ -1,6 +1,6 @@
 //! A mutation fuzzer for `check` and `upgrade` on the stable toolchain (long runs):
 //!
-//!     cargo run --release --example fuzz -- [--iterations N] [--seed S]
+//!     cargo run --release --example fuzz -- [--iterations N] [--seed S] [--threads T]
 //!
 //! Each input runs through `check` twice (default profile with `--deep`, Khronos profile),
 //! `check` as a GLB, and `upgrade` with its own output check. See tests/fuzz_engine.
@@ -18,10 +18,12 @@ fn main() {
     };
     let iterations = flag("--iterations", 100_000);
     let seed = flag("--seed", 0x9E37_79B9_7F4A_7C15);
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get() as u64);
+    let threads = flag("--threads", cores);
     let started = std::time::Instant::now();
-    match fuzz_engine::run(iterations, seed) {
+    match fuzz_engine::run_parallel(iterations, seed, threads) {
         Ok((seeds, executions)) => println!(
-            "fuzz: {iterations} inputs ({executions} executions of check/upgrade), no panic, {:.1} s, {seeds} seeds",
+            "fuzz: {iterations} inputs ({executions} executions of check/upgrade) on {threads} threads, no panic, {:.1} s, {seeds} seeds",
             started.elapsed().as_secs_f64()
         ),
         Err(message) => {

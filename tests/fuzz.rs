@@ -5,7 +5,7 @@ mod fuzz_engine;
 
 #[test]
 fn mutated_fixtures_never_panic() {
-    if let Err(message) = fuzz_engine::run(1500, 0x5EED) {
+    if let Err(message) = fuzz_engine::run_parallel(1500, 0x5EED, 1) {
         panic!("{message}");
     }
 }

@@ -212,6 +212,65 @@ fn a_fit_brings_a_grey_plastic_under_the_proofs_threshold() {
 }
 
 #[test]
+fn texels_the_closed_form_leaves_above_the_threshold_are_fitted_and_only_those() {
+    // Two texels of a 1.0 spec-gloss material: a dark one the closed form keeps within ΔE 1
+    // under all three draft readings, and a bright one (the verify bench's worst) it leaves
+    // at 1.11 under the example shader's reading. Only the bright one is fitted, and the
+    // proof, which samples the stored 8-bit texels, passes.
+    let dir = scratch("texel-fit");
+    let png = |path: &Path, pixels: [[u8; 4]; 2]| {
+        let image = image::RgbaImage::from_fn(2, 1, |x, _| image::Rgba(pixels[x as usize]));
+        image.save(path).unwrap();
+    };
+    let (dark, bright) = ([20, 18, 16, 255], [232, 186, 120, 255]);
+    png(&dir.join("diffuse.png"), [dark, bright]);
+    png(&dir.join("spec_gloss.png"), [[40, 69, 40, 139]; 2]);
+    let source = repo("fixtures/gltf1/pbr-sg-textured-ext.gltf");
+    let mut asset: Value = serde_json::from_slice(&std::fs::read(&source).unwrap()).unwrap();
+    asset["materials"]["Effect-Texture"]["extensions"]["EXT_materials_pbr"]["values"] = serde_json::json!({
+        "diffuseFactor": [1.0, 1.0, 1.0, 1.0], "specularFactor": [0.5, 0.5, 0.5], "glossinessFactor": 1.0,
+        "diffuseTexture": "tex_diffuse", "specularGlossinessTexture": "tex_spec_gloss"});
+    let path = dir.join("in.gltf");
+    std::fs::copy(repo("fixtures/gltf1/box.bin"), dir.join("box.bin")).unwrap();
+    std::fs::write(&path, asset.to_string()).unwrap();
+    let upgraded = upgrade_file(&path, &UpgradeOptions::default());
+    let notes = notes(&upgraded).join("\n");
+    assert!(
+        notes.contains("2 distinct texel values, the closed form's worst ΔE2000 1.11; 1 above the threshold, 1 of them fitted"),
+        "{notes}"
+    );
+    let base = texture_rgba(
+        &upgraded,
+        &material(&upgraded)["pbrMetallicRoughness"]["baseColorTexture"],
+    );
+    let closed_form = |texel: [u8; 4], c: usize| {
+        let specular = srgb_to_linear(40.0 / 255.0 + [0.0, 29.0, 0.0][c] / 255.0) * 0.5;
+        let linear = srgb_to_linear(f64::from(texel[c]) / 255.0) * (1.0 - specular);
+        (linear_to_srgb(linear) * 255.0).round() as u8
+    };
+    let stored = |x: u32| base.get_pixel(x, 0).0;
+    assert_eq!(
+        [0, 1, 2].map(|c| stored(0)[c]),
+        [0, 1, 2].map(|c| closed_form(dark, c)),
+        "the dark texel keeps the closed form"
+    );
+    assert_ne!(
+        [0, 1, 2].map(|c| stored(1)[c]),
+        [0, 1, 2].map(|c| closed_form(bright, c)),
+        "the bright texel is fitted"
+    );
+    let loader = FolderResources::beside(&path);
+    let input = std::fs::read(&path).unwrap();
+    let proof = gltfmat::prove(&input, "in.gltf", &loader, &upgraded).unwrap();
+    assert!(
+        proof[0].result.max < 1.0,
+        "the proof reads {}",
+        proof[0].result.max
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn spec_gloss_textures_are_rebaked_per_texel() {
     let upgraded = upgrade_file(
         &repo("fixtures/gltf1/pbr-sg-textured-ext.gltf"),
@@ -222,19 +281,25 @@ fn spec_gloss_textures_are_rebaked_per_texel() {
     let base = texture_rgba(&upgraded, &pbr["baseColorTexture"]);
     let roughness = texture_rgba(&upgraded, &pbr["metallicRoughnessTexture"]);
     let (diffuse, spec_gloss) = (fixture_png("diffuse.png"), fixture_png("spec_gloss.png"));
+    // The texels whose closed form is above the proof's threshold are fitted (see the next
+    // test): the report says how many, and every other texel follows the formula.
+    let fitted: usize = (notes(&upgraded).iter())
+        .find_map(|note| {
+            let (_, after) = note.split_once("above the threshold, ")?;
+            after.split_once(" of them fitted")?.0.parse().ok()
+        })
+        .unwrap_or(0);
+    let mut away_from_formula = 0;
     for (x, y, d) in diffuse.enumerate_pixels() {
         let s = spec_gloss.get_pixel(x, y).0;
-        for (c, factor) in [0.6, 0.5, 0.4].iter().enumerate() {
+        let follows = [0.6, 0.5, 0.4].iter().enumerate().all(|(c, factor)| {
             // Per channel: what the channel's specular does not take (see upgrade/spec_gloss.rs).
             let keep = 1.0 - srgb_to_linear(f64::from(s[c]) / 255.0) * 0.2;
             let linear = srgb_to_linear(f64::from(d.0[c]) / 255.0) * factor * keep;
             let want = linear_to_srgb(linear) * 255.0;
-            let got = f64::from(base.get_pixel(x, y).0[c]);
-            assert!(
-                (got - want).abs() <= 0.51,
-                "base colour ({x}, {y}) channel {c}: {got} vs {want}"
-            );
-        }
+            (f64::from(base.get_pixel(x, y).0[c]) - want).abs() <= 0.51
+        });
+        away_from_formula += usize::from(!follows);
         let want_roughness = (1.0 - f64::from(s[3]) / 255.0 * 0.75) * 255.0;
         let got = f64::from(roughness.get_pixel(x, y).0[1]);
         assert!(
@@ -243,6 +308,14 @@ fn spec_gloss_textures_are_rebaked_per_texel() {
         );
         assert_eq!(roughness.get_pixel(x, y).0[2], 0, "dielectric");
     }
+    assert_eq!(
+        away_from_formula, fitted,
+        "only the fitted texels leave the formula"
+    );
+    assert!(
+        fitted < 16 / 2,
+        "most texels follow the formula: {fitted} fitted"
+    );
     // The specular colour is the original spec-gloss texture (its RGB is the sRGB specular).
     let specular = &m["extensions"]["KHR_materials_specular"];
     assert_eq!(

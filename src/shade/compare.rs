@@ -117,21 +117,28 @@ impl Directions {
     }
 }
 
-/// The largest ΔE2000 over the direction pairs between two materials' inputs at one point
-/// (what `compare` computes per texel), for fitting factors.
-pub fn worst_at_point(shader: &Shader, a: &Inputs, b: &Inputs) -> f64 {
+/// The largest ΔE2000 over the direction pairs between any of `sources` and `target` at one
+/// point (what `compare` computes per texel, for each reading of a source), for fitting
+/// factors.
+pub fn worst_at_point(shader: &Shader, sources: &[Inputs], target: &Inputs) -> f64 {
     static DIRECTIONS: std::sync::OnceLock<Directions> = std::sync::OnceLock::new();
     let directions = DIRECTIONS.get_or_init(Directions::new);
-    let (ca, cb) = (directions.colours(shader, a), directions.colours(shader, b));
-    let shown = |c: &Colours, d: usize| displayed([c[0].0[d], c[1].0[d], c[2].0[d]]);
-    (0..DIRECTION_COUNT)
-        .map(|d| {
-            ciede2000(
-                lab_from_linear_srgb(shown(&ca, d)),
-                lab_from_linear_srgb(shown(&cb, d)),
-            )
-        })
-        .fold(0.0, f64::max)
+    let lab = |inputs: &Inputs| {
+        let c = directions.colours(shader, inputs);
+        let mut lab = [[0.0; 3]; DIRECTION_COUNT];
+        for (d, lab) in lab.iter_mut().enumerate() {
+            *lab = lab_from_linear_srgb(displayed([c[0].0[d], c[1].0[d], c[2].0[d]]));
+        }
+        lab
+    };
+    let target = lab(target);
+    let mut worst = 0f64;
+    for source in sources {
+        for (source, target) in lab(source).into_iter().zip(target) {
+            worst = worst.max(ciede2000(source, target));
+        }
+    }
+    worst
 }
 
 /// Distinct texels whose samples are converted to ΔE together.
@@ -547,7 +554,7 @@ mod tests {
             for x in 0..48 {
                 let uv = [(x as f64 + 0.5) / 48.0, (y as f64 + 0.5) / 48.0];
                 let alone =
-                    worst_at_point(&shader, &a.inputs_at(&[uv, uv]), &b.inputs_at(&[uv, uv]));
+                    worst_at_point(&shader, &[a.inputs_at(&[uv, uv])], &b.inputs_at(&[uv, uv]));
                 assert_eq!(
                     result.per_texel[y * 48 + x],
                     alone as f32,

@@ -40,6 +40,8 @@ pub struct Builder<'s, 'a> {
     pub(in crate::upgrade) lights: HashMap<String, Option<usize>>,
     /// The factor fits of spec-gloss materials made so far.
     pub(in crate::upgrade) fits: super::fit::Fits,
+    /// The per-texel fits of textured spec-gloss materials made so far.
+    pub(in crate::upgrade) texel_fits: super::fit::TexelFits,
 }
 
 /// `/collection/id` with the id escaped as a JSON pointer token.
@@ -80,6 +82,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             report: Vec::new(),
             lights: HashMap::new(),
             fits: Default::default(),
+            texel_fits: Default::default(),
             origins: HashMap::new(),
         }
     }

@@ -8,6 +8,7 @@
 //! [`MAX_DISTINCT_FITS`] of them (about 5 ms each), so that a hostile asset of a million
 //! distinct materials cannot make it run for hours.
 
+use crate::gltf::color::{linear_to_srgb, srgb_to_linear};
 use crate::shade::brdf::SheenVisibility;
 use crate::shade::compare::worst_at_point;
 use crate::shade::material::{DiffuseBalance, Inputs, Shader, SpecGlossReading};
@@ -65,11 +66,7 @@ pub struct Fit {
 
 /// The worst ΔE of `target` against the spec-gloss source under every draft reading.
 fn worst_over_readings(shader: &Shader, sources: &[Inputs], target: &Target) -> f64 {
-    let target = target.inputs();
-    sources
-        .iter()
-        .map(|source| worst_at_point(shader, source, &target))
-        .fold(0.0, f64::max)
+    worst_at_point(shader, sources, &target.inputs())
 }
 
 /// The fits of one upgrade: each distinct material fitted once, at most
@@ -117,6 +114,171 @@ impl Fits {
     }
 }
 
+/// Distinct texel values whose closed form is evaluated per upgrade (about 5 µs each); texels
+/// past it keep the closed form unchecked, so that a photograph's million distinct texels
+/// (or a hostile 8192² texture) add well under a second.
+pub const MAX_SCREENED_TEXELS: usize = 1 << 16;
+
+/// Distinct texel values fitted per upgrade (about 0.5 ms each); later ones above the
+/// threshold keep the closed form.
+pub const MAX_TEXEL_FITS: usize = 1024;
+
+/// Per-texel fits of textured draft spec-gloss materials. Where the rebaked base colour's
+/// closed form, diffuse · (1 − specular), is above the proof's threshold under the drafts'
+/// readings at a texel, the base colour of that texel is fitted to the smallest worst ΔE over
+/// the readings (roughness and specular colour stay the textures' own, which the output
+/// reads as they are). Each distinct texel value is evaluated once for the whole upgrade.
+pub struct TexelFits {
+    done: std::collections::HashMap<[u64; 7], [f64; 3]>,
+    screen_budget: usize,
+    fits_left: usize,
+    /// What the texels rebaked since the last [`TexelFits::take_report`] came to.
+    report: TexelReport,
+}
+
+/// The figures of one material's texels (distinct texel values, each counted once).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TexelReport {
+    /// Distinct texel values evaluated.
+    pub screened: usize,
+    /// Of those, above the threshold under the closed form.
+    pub above: usize,
+    /// Of those, fitted to a smaller worst ΔE.
+    pub fitted: usize,
+    /// The closed form's worst ΔE over the evaluated values.
+    pub closed_worst: f64,
+    /// The worst ΔE of what is written (fitted or closed form), before 8-bit quantisation.
+    pub written_worst: f64,
+    /// Texels left with the closed form unchecked, past [`MAX_SCREENED_TEXELS`].
+    pub unscreened: usize,
+}
+
+impl Default for TexelFits {
+    fn default() -> Self {
+        TexelFits::with_budgets(MAX_SCREENED_TEXELS, MAX_TEXEL_FITS)
+    }
+}
+
+impl TexelFits {
+    /// At most `screened` distinct texel values evaluated and `fits` fitted.
+    pub fn with_budgets(screened: usize, fits: usize) -> TexelFits {
+        TexelFits {
+            done: Default::default(),
+            screen_budget: screened,
+            fits_left: fits,
+            report: TexelReport::default(),
+        }
+    }
+
+    /// The base colour written for each distinct texel value (linear diffuse, specular,
+    /// glossiness, factors applied), in order; `None` for a value past the check's budget,
+    /// which keeps the closed form unchecked. A value is judged by what a viewer samples
+    /// from the PNG: its sRGB encoding rounded to `levels` (255 or 65535) steps. New values
+    /// are evaluated in parallel; which of them are checked and fitted depends only on their
+    /// order.
+    pub fn resolve(&mut self, values: &[TexelValue], levels: f64) -> Vec<Option<[f64; 3]>> {
+        use rayon::prelude::*;
+        let new: Vec<&TexelValue> = (values.iter())
+            .filter(|v| !self.done.contains_key(&v.key()))
+            .take(self.screen_budget.saturating_sub(self.done.len()))
+            .collect();
+        let screened: Vec<(f64, [f64; 3])> = (new.par_iter())
+            .map(|v| {
+                let closed = v.closed_form();
+                (v.cost(closed, levels), closed)
+            })
+            .collect();
+        let report = &mut self.report;
+        report.screened += new.len();
+        let mut to_fit = Vec::new();
+        for (k, &(figure, _)) in screened.iter().enumerate() {
+            report.closed_worst = report.closed_worst.max(figure);
+            if figure > THRESHOLD {
+                report.above += 1;
+                if to_fit.len() < self.fits_left {
+                    to_fit.push(k);
+                }
+            }
+        }
+        self.fits_left -= to_fit.len();
+        let fitted: Vec<([f64; 3], f64)> = (to_fit.par_iter())
+            .map(|&k| {
+                let cost = |base: [f64; 3]| new[k].cost(base, levels);
+                nelder_mead(cost, screened[k].1, 0.05, 100)
+            })
+            .collect();
+        let mut chosen = screened;
+        for (&k, &(base, figure)) in to_fit.iter().zip(&fitted) {
+            if figure < chosen[k].0 - 1e-3 {
+                report.fitted += 1;
+                chosen[k] = (figure, base);
+            }
+        }
+        for (value, (figure, base)) in new.iter().zip(chosen) {
+            report.written_worst = report.written_worst.max(figure);
+            self.done.insert(value.key(), base);
+        }
+        (values.iter())
+            .map(|v| self.done.get(&v.key()).copied())
+            .collect()
+    }
+
+    /// Counts `texels` left with the closed form unchecked.
+    pub fn unchecked(&mut self, texels: usize) {
+        self.report.unscreened += texels;
+    }
+
+    /// The figures since the last call, and a fresh start for the next material (the
+    /// values evaluated are remembered).
+    pub fn take_report(&mut self) -> TexelReport {
+        std::mem::take(&mut self.report)
+    }
+}
+
+/// One texel of a spec-gloss source: linear diffuse and specular colours and glossiness,
+/// factors applied.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TexelValue {
+    pub diffuse: [f64; 3],
+    pub specular: [f64; 3],
+    pub glossiness: f64,
+}
+
+impl TexelValue {
+    /// Equal exactly for equal values.
+    pub fn key(&self) -> [u64; 7] {
+        let ([d0, d1, d2], [s0, s1, s2]) = (self.diffuse, self.specular);
+        [d0, d1, d2, s0, s1, s2, self.glossiness].map(f64::to_bits)
+    }
+
+    fn closed_form(&self) -> [f64; 3] {
+        crate::upgrade::spec_gloss::base_colour(self.diffuse, self.specular)
+    }
+
+    /// The worst ΔE over the drafts' readings of `base_colour` as the PNG stores it.
+    fn cost(&self, base_colour: [f64; 3], levels: f64) -> f64 {
+        let stored = base_colour.map(|c| {
+            let level = (linear_to_srgb(c.clamp(0.0, 1.0)) * levels).round();
+            srgb_to_linear(level / levels)
+        });
+        let target = Target {
+            base_colour: stored,
+            roughness: 1.0 - self.glossiness,
+            specular_colour: self.specular,
+        };
+        let sources = draft_readings(self.diffuse, self.specular, self.glossiness);
+        worst_over_readings(shader(), &sources, &target)
+    }
+}
+
+/// A spec-gloss source under each of the drafts' readings.
+fn draft_readings(diffuse: [f64; 3], specular: [f64; 3], glossiness: f64) -> Vec<Inputs> {
+    SpecGlossReading::DRAFTS
+        .iter()
+        .map(|&reading| Inputs::specular_glossiness(diffuse, specular, glossiness, reading))
+        .collect()
+}
+
 /// The evaluator the fits use: no sheen is involved, so the smallest table will do; made
 /// once per process.
 fn shader() -> &'static Shader {
@@ -128,10 +290,7 @@ fn shader() -> &'static Shader {
 /// closed-form conversion is `closed`.
 pub fn fit(diffuse: [f64; 3], specular: [f64; 3], glossiness: f64, closed: Target) -> Fit {
     let shader = shader();
-    let sources: Vec<Inputs> = SpecGlossReading::DRAFTS
-        .iter()
-        .map(|&reading| Inputs::specular_glossiness(diffuse, specular, glossiness, reading))
-        .collect();
+    let sources = draft_readings(diffuse, specular, glossiness);
     let cost = |x: [f64; 7]| worst_over_readings(shader, &sources, &Target::from_vector(x));
     let closed_form = cost(closed.to_vector());
     if closed_form <= THRESHOLD {
@@ -148,16 +307,17 @@ pub fn fit(diffuse: [f64; 3], specular: [f64; 3], glossiness: f64, closed: Targe
     }
 }
 
-/// Nelder–Mead simplex minimisation from `start` with initial steps of `step`, for at most
-/// `evaluations` evaluations: derivative-free, as the worst ΔE over readings and directions
-/// is a maximum of smooth functions, not smooth itself.
-fn nelder_mead(
-    f: impl Fn([f64; 7]) -> f64,
-    start: [f64; 7],
+/// Nelder–Mead simplex minimisation over parameters in 0..1 from `start` with initial
+/// steps of `step`, for at most `evaluations` evaluations: derivative-free, as the worst ΔE
+/// over readings and directions is a maximum of smooth functions, not smooth itself. The
+/// result is clamped to 0..1, as the factors written are, and its figure is its own.
+fn nelder_mead<const N: usize>(
+    f: impl Fn([f64; N]) -> f64,
+    start: [f64; N],
     step: f64,
     evaluations: usize,
-) -> ([f64; 7], f64) {
-    let mut simplex: Vec<([f64; 7], f64)> = (0..=7)
+) -> ([f64; N], f64) {
+    let mut simplex: Vec<([f64; N], f64)> = (0..=N)
         .map(|k| {
             let mut x = start;
             if k > 0 {
@@ -170,10 +330,10 @@ fn nelder_mead(
     let mut used = simplex.len();
     while used < evaluations {
         simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
-        let worst = simplex[7];
-        let centroid: [f64; 7] =
-            std::array::from_fn(|i| simplex[..7].iter().map(|(x, _)| x[i]).sum::<f64>() / 7.0);
-        let towards = |t: f64| -> [f64; 7] {
+        let worst = simplex[N];
+        let centroid: [f64; N] =
+            std::array::from_fn(|i| simplex[..N].iter().map(|(x, _)| x[i]).sum::<f64>() / N as f64);
+        let towards = |t: f64| -> [f64; N] {
             std::array::from_fn(|i| centroid[i] + t * (worst.0[i] - centroid[i]))
         };
         let reflected = towards(-1.0);
@@ -183,19 +343,19 @@ fn nelder_mead(
             let expanded = towards(-2.0);
             let expanded_cost = f(expanded);
             used += 1;
-            simplex[7] = if expanded_cost < reflected_cost {
+            simplex[N] = if expanded_cost < reflected_cost {
                 (expanded, expanded_cost)
             } else {
                 (reflected, reflected_cost)
             };
-        } else if reflected_cost < simplex[6].1 {
-            simplex[7] = (reflected, reflected_cost);
+        } else if reflected_cost < simplex[N - 1].1 {
+            simplex[N] = (reflected, reflected_cost);
         } else {
             let contracted = towards(0.5);
             let contracted_cost = f(contracted);
             used += 1;
             if contracted_cost < worst.1 {
-                simplex[7] = (contracted, contracted_cost);
+                simplex[N] = (contracted, contracted_cost);
             } else {
                 // Shrink every vertex towards the best.
                 let best = simplex[0].0;
@@ -208,8 +368,7 @@ fn nelder_mead(
         }
     }
     simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
-    // The factors written are the clamped ones: report their figure.
-    let best = Target::from_vector(simplex[0].0).to_vector();
+    let best = simplex[0].0.map(|v| v.clamp(0.0, 1.0));
     (best, f(best))
 }
 
@@ -251,6 +410,43 @@ mod tests {
             .map(|&r| Inputs::specular_glossiness(d, s, g, r))
             .collect();
         assert_eq!(worst_over_readings(shader(), &sources, &target), figure);
+    }
+
+    #[test]
+    fn texel_values_are_judged_once_and_within_their_budgets() {
+        // The verify bench's worst texel (closed form 1.11 as stored in 8 bits), one near it
+        // one, and a black one.
+        let value = |diffuse| TexelValue {
+            diffuse,
+            specular: [0.0106, 0.0298, 0.0106],
+            glossiness: 0.545,
+        };
+        let (bench, nearby, black) = (
+            value([0.807, 0.491, 0.188]),
+            value([0.8, 0.49, 0.19]),
+            value([0.0; 3]),
+        );
+        let mut fits = TexelFits::with_budgets(2, 1);
+        let chosen = fits.resolve(&[bench, nearby, black, bench], 255.0);
+        let report = fits.take_report();
+        assert_eq!((report.screened, report.above, report.fitted), (2, 2, 1));
+        assert!(report.closed_worst > 1.1 && report.written_worst > THRESHOLD);
+        let fitted = chosen[0].expect("judged");
+        assert_ne!(fitted, bench.closed_form(), "the first is fitted");
+        assert!(bench.cost(fitted, 255.0) <= THRESHOLD);
+        assert_eq!(
+            chosen[1],
+            Some(nearby.closed_form()),
+            "past the fits' budget"
+        );
+        assert_eq!(
+            chosen[2], None,
+            "past the check's budget: the closed form, unchecked"
+        );
+        assert_eq!(chosen[3], chosen[0], "a value judged once");
+        // Remembered for the rest of the upgrade, with nothing new to report.
+        assert_eq!(fits.resolve(&[bench], 255.0), vec![Some(fitted)]);
+        assert_eq!(fits.take_report().screened, 0);
     }
 
     #[test]

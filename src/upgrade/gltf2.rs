@@ -556,6 +556,11 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
         Some(self.asset.images.get(image as usize)?.bytes.clone())
     }
 
+    /// The archived extension has one reading, which the closed form reproduces exactly.
+    fn texel_fits(&mut self) -> Option<&mut super::fit::TexelFits> {
+        None
+    }
+
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value {
         let sampler = self.texture(like).and_then(|t| unsigned(t, "sampler"));
         let mut info = self.slot(like).cloned().unwrap_or_else(|| json!({}));

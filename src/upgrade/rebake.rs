@@ -5,8 +5,11 @@ use crate::document::image_decode;
 use crate::document::image_header::{self, Channels};
 use crate::gltf::color::{linear_to_srgb, linear_to_srgb8, srgb_texel_to_linear};
 use crate::shade::sample::{self, TextureImage};
+use crate::upgrade::fit::{self, TexelFits, TexelValue};
+use crate::upgrade::spec_gloss::{base_colour, Factors};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{DynamicImage, ExtendedColorType, ImageEncoder, Rgba32FImage};
+use std::collections::hash_map::{Entry, HashMap};
 use std::io::Cursor;
 
 pub fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
@@ -85,21 +88,21 @@ pub fn gloss_to_roughness(bytes: &[u8], glossiness_factor: f64) -> Result<Vec<u8
     Ok(encode(&out, false, wide))
 }
 
-/// Spec-gloss base colour: diffuse · (1 − specular) per texel and channel (see
-/// `spec_gloss`), in linear space, alpha
-/// from the diffuse. Either texture may be missing (its factor alone is used). The output
-/// has the finest grid of the two (the larger width and the larger height), and each input
-/// is sampled bilinearly (repeat wrapping, as the evaluator and viewers sample it) at the
-/// output's texel centres: the rebake is then exact at every output texel centre whatever
-/// the two resolutions, where sampling the smaller texture at its nearest texel was not.
-/// Returns the PNG and whether it has an alpha channel.
+/// Spec-gloss base colour, per texel, in linear space: diffuse · (1 − specular) per channel
+/// (see `spec_gloss`), or with `fits` its per-texel fit where that is above the proof's
+/// threshold; alpha from the diffuse. Either texture may be missing (its factor alone is
+/// used). The output has the finest grid of the two (the larger width and the larger
+/// height), and each input is sampled bilinearly (repeat wrapping, as the evaluator and
+/// viewers sample it) at the output's texel centres: the rebake is then exact at every
+/// output texel centre whatever the two resolutions, where sampling the smaller texture at
+/// its nearest texel was not. Returns the PNG and whether it has an alpha channel.
 pub fn spec_gloss_base_colour(
     diffuse: Option<&[u8]>,
     specular: Option<&[u8]>,
-    diffuse_factor: [f64; 4],
-    specular_factor: [f64; 3],
+    factors: &Factors,
+    fits: Option<&mut TexelFits>,
 ) -> Result<(Vec<u8>, bool), String> {
-    let alpha = diffuse.is_some_and(has_translucent_texels) || diffuse_factor[3] < 1.0;
+    let alpha = diffuse.is_some_and(has_translucent_texels) || factors.diffuse[3] < 1.0;
     let diffuse = diffuse.map(sample::decode).transpose()?;
     let specular = specular.map(sample::decode).transpose()?;
     let inputs: Vec<&TextureImage> = diffuse.iter().chain(&specular).map(|t| &**t).collect();
@@ -110,35 +113,139 @@ pub fn spec_gloss_base_colour(
         .ok_or("no texture to rebake")?;
     let height = inputs.iter().map(|t| t.height()).max().unwrap_or(1);
     let wide = inputs.iter().any(|t| t.is_wide());
-    let out = Rgba32FImage::from_fn(width, height, |x, y| {
-        let centre = [
-            (f64::from(x) + 0.5) / f64::from(width),
-            (f64::from(y) + 0.5) / f64::from(height),
-        ];
-        let d = diffuse
-            .as_ref()
-            .map_or([1.0; 4], |t| sample::bilinear(t, centre));
-        let s = specular
-            .as_ref()
-            .map_or([1.0; 4], |t| sample::bilinear(t, centre));
-        let channel = |c: usize| {
-            let keep = (1.0 - srgb_texel_to_linear(s[c]) * specular_factor[c]).max(0.0);
-            let linear = srgb_texel_to_linear(d[c]) * diffuse_factor[c] * keep;
-            if wide {
-                linear_to_srgb(linear.clamp(0.0, 1.0)) as f32
-            } else {
-                // Exactly the 8-bit level the encoder would round the value to.
-                f32::from(linear_to_srgb8(linear)) / 255.0
+    let source = SpecGlossTexels {
+        diffuse: diffuse.as_deref(),
+        specular: specular.as_deref(),
+        factors,
+        width,
+        height,
+    };
+    // With fits, the distinct texel values are listed first so that they are judged
+    // together (in parallel); the image is then written from their verdicts.
+    let fitted = fits.map(|fits| judged(&source, fits, if wide { 65535.0 } else { 255.0 }));
+    let texel = |x: u32, y: u32| -> [f32; 4] {
+        let at = y as usize * width as usize + x as usize;
+        let fitted =
+            (fitted.as_ref()).and_then(|(index, bases)| *bases.get(*index.get(at)? as usize)?);
+        let (colour, alpha) = match fitted {
+            Some(colour) => (colour, source.alpha(x, y)),
+            None => {
+                let (value, alpha) = source.at(x, y);
+                (base_colour(value.diffuse, value.specular), alpha)
             }
         };
-        image::Rgba([
-            channel(0),
-            channel(1),
-            channel(2),
-            (d[3] * diffuse_factor[3]) as f32,
-        ])
-    });
+        let channel = |c: usize| {
+            if wide {
+                linear_to_srgb(colour[c].clamp(0.0, 1.0)) as f32
+            } else {
+                // Exactly the 8-bit level the encoder would round the value to.
+                f32::from(linear_to_srgb8(colour[c])) / 255.0
+            }
+        };
+        [channel(0), channel(1), channel(2), alpha]
+    };
+    let out = in_parallel_rows(width, height, texel);
     Ok((encode(&out, alpha, wide), alpha))
+}
+
+/// An image computed texel by texel, its rows shared among the cores.
+fn in_parallel_rows(
+    width: u32,
+    height: u32,
+    texel: impl Fn(u32, u32) -> [f32; 4] + Sync,
+) -> Rgba32FImage {
+    use rayon::prelude::*;
+    let row = width as usize * 4;
+    let mut raw = vec![0f32; row * height as usize];
+    raw.par_chunks_mut(row.max(1))
+        .enumerate()
+        .for_each(|(y, out)| {
+            for (x, pixel) in out.chunks_exact_mut(4).enumerate() {
+                pixel.copy_from_slice(&texel(x as u32, y as u32));
+            }
+        });
+    // The buffer has exactly width × height pixels: from_raw cannot refuse it.
+    Rgba32FImage::from_raw(width, height, raw).unwrap_or_default()
+}
+
+/// Each output texel's index into the distinct values, and the base colour `fits` chose for
+/// each value (`None`: the closed form, unchecked). At most [`fit::MAX_SCREENED_TEXELS`]
+/// values are listed, so that memory stays bounded whatever the texture holds.
+fn judged(
+    source: &SpecGlossTexels,
+    fits: &mut TexelFits,
+    levels: f64,
+) -> (Vec<u32>, Vec<Option<[f64; 3]>>) {
+    let mut distinct: HashMap<[u64; 7], u32> = HashMap::new();
+    let mut values = Vec::new();
+    let unlisted = u32::MAX;
+    // A texel equal to the one before it (a flat region) takes its index without hashing.
+    let mut previous: Option<(TexelValue, u32)> = None;
+    let index: Vec<u32> = (0..source.height)
+        .flat_map(|y| (0..source.width).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let value = source.at(x, y).0;
+            if let Some((_, i)) = previous.filter(|(before, _)| *before == value) {
+                return i;
+            }
+            let listed = distinct.len() < fit::MAX_SCREENED_TEXELS;
+            let i = match distinct.entry(value.key()) {
+                Entry::Occupied(known) => *known.get(),
+                Entry::Vacant(new) if listed => {
+                    values.push(value);
+                    *new.insert(values.len() as u32 - 1)
+                }
+                Entry::Vacant(_) => unlisted,
+            };
+            previous = Some((value, i));
+            i
+        })
+        .collect();
+    let bases = fits.resolve(&values, levels);
+    let unchecked = |&i: &u32| bases.get(i as usize).is_none_or(Option::is_none);
+    fits.unchecked(index.iter().filter(|i| unchecked(i)).count());
+    (index, bases)
+}
+
+/// A spec-gloss material's two textures sampled on the rebake's grid.
+struct SpecGlossTexels<'t> {
+    diffuse: Option<&'t TextureImage>,
+    specular: Option<&'t TextureImage>,
+    factors: &'t Factors,
+    width: u32,
+    height: u32,
+}
+
+impl SpecGlossTexels<'_> {
+    fn centre(&self, x: u32, y: u32) -> [f64; 2] {
+        [
+            (f64::from(x) + 0.5) / f64::from(self.width),
+            (f64::from(y) + 0.5) / f64::from(self.height),
+        ]
+    }
+
+    /// The diffuse alpha (factor applied) at the centre of output texel (x, y).
+    fn alpha(&self, x: u32, y: u32) -> f32 {
+        let a = (self.diffuse).map_or(1.0, |t| sample::bilinear(t, self.centre(x, y))[3]);
+        (a * self.factors.diffuse[3]) as f32
+    }
+
+    /// The value at the centre of output texel (x, y) (linear, factors applied), and the
+    /// diffuse alpha.
+    fn at(&self, x: u32, y: u32) -> (TexelValue, f32) {
+        let centre = self.centre(x, y);
+        let sample = |t: Option<&TextureImage>| t.map_or([1.0; 4], |t| sample::bilinear(t, centre));
+        let (d, s) = (sample(self.diffuse), sample(self.specular));
+        let linear = |texel: [f64; 4], factor: &[f64]| {
+            std::array::from_fn(|c| srgb_texel_to_linear(texel[c]) * factor[c])
+        };
+        let value = TexelValue {
+            diffuse: linear(d, &self.factors.diffuse),
+            specular: linear(s, &self.factors.specular),
+            glossiness: s[3] * self.factors.glossiness,
+        };
+        (value, (d[3] * self.factors.diffuse[3]) as f32)
+    }
 }
 
 /// Whether any texel has alpha below 1 (the material then needs alpha blending). An image
@@ -183,8 +290,13 @@ mod tests {
     #[test]
     fn base_colour_keeps_what_the_specular_lobe_does_not_take() {
         let diffuse = image::RgbaImage::from_pixel(1, 1, image::Rgba([188, 188, 188, 200])); // ≈ 0.5 linear
+        let factors = Factors {
+            diffuse: [1.0; 4],
+            specular: [0.5, 0.2, 0.2],
+            glossiness: 1.0,
+        };
         let (bytes, alpha) =
-            spec_gloss_base_colour(Some(&png(diffuse)), None, [1.0; 4], [0.5, 0.2, 0.2]).unwrap();
+            spec_gloss_base_colour(Some(&png(diffuse)), None, &factors, None).unwrap();
         let texel = decode(&bytes).unwrap().to_rgb8().get_pixel(0, 0).0;
         let expected =
             linear_to_srgb(crate::gltf::color::srgb_to_linear(188.0 / 255.0) * 0.5) * 255.0;

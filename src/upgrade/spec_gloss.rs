@@ -13,6 +13,7 @@
 //! (1 − s_c) makes the two equal at every angle, chromatic specular included. (The earlier
 //! diffuse · (1 − max s) is the same only for an achromatic specular.)
 
+use super::fit::{TexelFits, TexelReport};
 use super::rebake;
 use serde_json::{json, Map, Value};
 
@@ -42,6 +43,9 @@ pub trait Textures {
     /// Adds a rebaked image as a new texture sampled like the slot's texture (its sampler,
     /// texture coordinates and transform); returns the textureInfo that reads it.
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value;
+    /// The per-texel fits, for a source whose text can be read several ways (the 1.0
+    /// drafts); `None` where the closed form is exact (the archived 2.0 extension).
+    fn texel_fits(&mut self) -> Option<&mut TexelFits>;
 }
 
 /// A converted material: its `pbrMetallicRoughness`, the extensions it gains, and the
@@ -59,16 +63,13 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
     let mut core = json!({"metallicFactor": 0.0, "roughnessFactor": 1.0 - factors.glossiness});
     if let Some(specular) = &specular_texture {
         let diffuse = textures.bytes(Slot::Diffuse);
+        let fits = textures.texel_fits();
         // The two rebakes are independent: the roughness one runs on a second thread.
         let (base_colour, roughness) = std::thread::scope(|scope| {
             let roughness =
                 scope.spawn(|| rebake::gloss_to_roughness(specular, factors.glossiness));
-            let base_colour = rebake::spec_gloss_base_colour(
-                diffuse.as_deref(),
-                Some(specular),
-                factors.diffuse,
-                factors.specular,
-            );
+            let base_colour =
+                rebake::spec_gloss_base_colour(diffuse.as_deref(), Some(specular), factors, fits);
             let roughness = (roughness.join())
                 .unwrap_or_else(|_| Err("the roughness rebake failed".to_string()));
             (base_colour, roughness)
@@ -86,6 +87,9 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
             textures.add_rebaked(roughness, Slot::SpecularGlossiness, "roughness");
         core["roughnessFactor"] = json!(1.0);
         decisions.push("baseColor = diffuse · (1 − specular) per channel and roughness = 1 − glossiness rebaked per texel into new textures (on the finer grid of the two, each sampled bilinearly).".to_string());
+        if let Some(fits) = textures.texel_fits() {
+            decisions.push(texel_fit_decision(&fits.take_report()));
+        }
     } else {
         let keep = factors.specular.map(|s| 1.0 - s);
         let [r, g, b, a] = factors.diffuse;
@@ -114,9 +118,39 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
     })
 }
 
-/// The closed-form base colour: diffuse · (1 − specular), channel by channel.
+/// The closed-form base colour: diffuse · (1 − specular), channel by channel (a specular
+/// above 1 takes all of the diffuse, never more).
 pub fn base_colour(diffuse: [f64; 3], specular: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|i| diffuse[i] * (1.0 - specular[i]))
+    std::array::from_fn(|i| diffuse[i] * (1.0 - specular[i]).max(0.0))
+}
+
+/// The conversion report's line for a rebake's per-texel fits.
+fn texel_fit_decision(report: &TexelReport) -> String {
+    let mut line = format!(
+        "per-texel check of the rebaked base colour against the drafts' three readings: {} distinct texel values, the closed form's worst ΔE2000 {:.2}",
+        report.screened, report.closed_worst
+    );
+    if report.above > 0 {
+        line += &format!(
+            "; {} above the threshold, {} of them fitted (base colour per texel, no longer exact under any one reading): worst now {:.2} as the PNG stores it",
+            report.above, report.fitted, report.written_worst
+        );
+    }
+    if report.above > report.fitted {
+        line += &format!(
+            " ({} kept the closed form: at most {} distinct texel values are fitted per upgrade)",
+            report.above - report.fitted,
+            super::fit::MAX_TEXEL_FITS
+        );
+    }
+    if report.unscreened > 0 {
+        line += &format!(
+            "; {} texels kept the closed form unchecked (at most {} distinct texel values are checked per upgrade)",
+            report.unscreened,
+            super::fit::MAX_SCREENED_TEXELS
+        );
+    }
+    line + "."
 }
 
 /// The extensions a converted material gains, for `extensionsUsed`.

@@ -369,17 +369,50 @@ fn exercise_on_disk(_: &mut Rng, _: &[u8], _: &[Vec<u8>], _: &Path) -> u64 {
     0
 }
 
-/// Runs `iterations` mutated inputs; `Ok` is the number of seeds and of executions of
-/// check or upgrade, `Err` names the saved input of the first panic.
-pub fn run(iterations: u64, seed: u64) -> Result<(usize, u64), String> {
+/// Runs `iterations` mutated inputs on `threads` threads, each with its own share of the
+/// iterations and its own seed derived from `seed`; `Ok` is the number of seeds and of
+/// executions of check or upgrade (summed), `Err` names the saved input of a panic.
+pub fn run_parallel(iterations: u64, seed: u64, threads: u64) -> Result<(usize, u64), String> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let mut corpus = Vec::new();
     seeds(&root.join("fixtures"), &mut corpus);
     if corpus.is_empty() {
         return Err("no seeds under fixtures/".into());
     }
+    // Panics are caught and reported by input: the default hook's message would only
+    // interleave with the progress lines.
     let previous_hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
+    let threads = threads.max(1);
+    let outcomes: Vec<Result<u64, String>> = std::thread::scope(|scope| {
+        let workers: Vec<_> = (0..threads)
+            .map(|t| {
+                let share = iterations / threads + u64::from(t < iterations % threads);
+                let seed = seed.wrapping_add(t.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+                let corpus = &corpus;
+                scope.spawn(move || run_one(share, seed, corpus))
+            })
+            .collect();
+        workers
+            .into_iter()
+            .map(|w| {
+                w.join()
+                    .unwrap_or_else(|_| Err("a fuzz thread died".into()))
+            })
+            .collect()
+    });
+    std::panic::set_hook(previous_hook);
+    let mut executions = 0;
+    for outcome in outcomes {
+        executions += outcome?;
+    }
+    Ok((corpus.len(), executions))
+}
+
+/// One thread's run: `iterations` inputs from `seed`; the executions, or the saved input of
+/// the first panic.
+fn run_one(iterations: u64, seed: u64, corpus: &[Vec<u8>]) -> Result<u64, String> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let mut rng = Rng(seed | 1);
     let mut failure = None;
     let mut executions = 0;
@@ -390,24 +423,27 @@ pub fn run(iterations: u64, seed: u64) -> Result<(usize, u64), String> {
     for i in 0..iterations {
         let mut input = corpus[rng.below(corpus.len())].clone();
         match rng.below(2) {
-            0 => mutate(&mut rng, &mut input, &corpus),
+            0 => mutate(&mut rng, &mut input, corpus),
             _ => match mutate_structure(&mut rng, &input) {
                 Some(mutated) => input = mutated,
-                None => mutate(&mut rng, &mut input, &corpus),
+                None => mutate(&mut rng, &mut input, corpus),
             },
         }
         let on_disk = rng.below(8) == 0;
         let ran = catch_unwind(AssertUnwindSafe(|| {
             exercise(&input);
             match on_disk {
-                true => 4 + exercise_on_disk(&mut rng, &input, &corpus, &scratch),
+                true => 4 + exercise_on_disk(&mut rng, &input, corpus, &scratch),
                 false => 4,
             }
         }));
         if let Ok(count) = ran {
             executions += count;
             if (i + 1) % 100_000 == 0 {
-                eprintln!("fuzz: {} inputs, {executions} executions, no panic", i + 1);
+                eprintln!(
+                    "fuzz ({seed:x}): {} inputs, {executions} executions, no panic",
+                    i + 1
+                );
             }
         } else {
             let folder = root.join("target/fuzz-crashes");
@@ -421,7 +457,6 @@ pub fn run(iterations: u64, seed: u64) -> Result<(usize, u64), String> {
             break;
         }
     }
-    std::panic::set_hook(previous_hook);
     let _ = std::fs::remove_dir_all(&scratch);
-    failure.map_or(Ok((corpus.len(), executions)), Err)
+    failure.map_or(Ok(executions), Err)
 }

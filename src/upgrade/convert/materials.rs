@@ -287,6 +287,10 @@ impl spec_gloss::Textures for DraftTextures<'_, '_, '_, '_> {
         let like = self.id(like).map(str::to_string);
         add_rebaked(self.builder, bytes, like.as_deref(), name)
     }
+
+    fn texel_fits(&mut self) -> Option<&mut fit::TexelFits> {
+        Some(&mut self.builder.texel_fits)
+    }
 }
 
 fn spec_gloss_extension(
