@@ -4,8 +4,7 @@
 use super::Upgraded;
 use crate::check::{check_bytes, CheckOptions, Report};
 use crate::document::file::FileId;
-use crate::document::uri::{LoadError, MemoryResources, ResourceLoader};
-use crate::document::Bytes;
+use crate::document::uri::MemoryResources;
 use serde_json::{json, Value};
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
@@ -228,9 +227,11 @@ pub fn may_write(target: &Path, protected: &[FileId], force: bool) -> Result<(),
     Ok(())
 }
 
-/// Writes every file into `folder` under a temporary name, checks those exact bytes as they
-/// lie on disk, and renames them into place only when the check finds no error and every
-/// file was written; otherwise the temporaries are removed and nothing is left behind.
+/// Writes every file into `folder` under a temporary name while the same bytes are checked
+/// (the writing on a second thread: for a large asset both take about as long), and renames
+/// them into place only when the check finds no error and every file was written; otherwise
+/// the temporaries are removed and nothing is left behind. The bytes checked are the bytes
+/// written: both come from the one `files`.
 ///
 /// Temporaries are created new (never through an existing name or symlink) under
 /// unpredictable names, and are removed when the process is interrupted (see
@@ -249,17 +250,24 @@ pub fn write_checked(
         may_write(&folder.join(&file.name), protected, force)?;
     }
     temporary::remove_stale(folder, all.iter().map(|f| f.name.as_str()));
-    let main = Temporary::write(folder, &files.main.name, &files.main.parts)?;
-    let side = (files.side.iter())
-        .map(|file| Temporary::write(folder, &file.name, &file.parts))
-        .collect::<Result<Vec<_>, _>>()?;
-    let bytes = main.read_back()?;
-    let report = check_bytes(
-        &files.main.name,
-        bytes,
-        &Side(&side),
-        &CheckOptions::default(),
-    );
+    let (written, report) = std::thread::scope(|scope| {
+        let writer = scope.spawn(|| {
+            let write = |file: &File| Temporary::write(folder, &file.name, &file.parts);
+            let side = files
+                .side
+                .iter()
+                .map(write)
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok((side, write(&files.main)?))
+        });
+        let report = verify(files);
+        let written = writer.join().unwrap_or_else(|_| {
+            let failed = std::io::Error::other("the thread writing the files failed");
+            Err(WriteError::Io(folder.join(&files.main.name), failed))
+        });
+        (written, report)
+    });
+    let (side, main) = written?;
     if report.has_errors() {
         return Ok(Checked {
             report,
@@ -289,19 +297,3 @@ pub fn write_checked(
 }
 
 pub use temporary::exit_removing_unfinished;
-
-/// The side files written, by final name: the check reads them through it.
-struct Side<'t>(&'t [Temporary]);
-
-impl ResourceLoader for Side<'_> {
-    fn load(&self, relative: &str) -> Result<Bytes, LoadError> {
-        let temporary = self
-            .0
-            .iter()
-            .find(|t| t.name == relative)
-            .ok_or_else(|| LoadError::NotFound(relative.to_string()))?;
-        temporary
-            .read_back()
-            .map_err(|e| LoadError::Io(e.to_string()))
-    }
-}

@@ -1,13 +1,12 @@
 //! Temporary files in the output folder, as a hostile neighbour in that folder may meet
 //! them. Each is created new (`O_EXCL`, never through an existing name or symlink) under a
-//! random name, read back through its own handle, and placed by rename: without `force` a
+//! random name and placed by rename: without `force` a
 //! rename that refuses to replace (`RENAME_NOREPLACE`, or link and unlink), so two runs
 //! writing the same new file cannot both succeed. Unfinished temporaries are removed on
 //! drop, on interruption ([`exit_removing_unfinished`]), and, after a kill, by the next run
 //! into the same folder ([`remove_stale`]).
 
 use super::WriteError;
-use crate::document::file::read_opened;
 use std::borrow::Cow;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -93,13 +92,6 @@ impl Temporary {
             temporary.file.as_file().write_all(part).map_err(failed)?;
         }
         Ok(temporary)
-    }
-
-    /// The bytes as they lie on disk, read through a handle checked to be this file.
-    pub fn read_back(&self) -> Result<Vec<u8>, WriteError> {
-        let failed = |e: std::io::Error| WriteError::Io(self.file.path().to_path_buf(), e);
-        let handle = self.file.reopen().map_err(failed)?;
-        read_opened(handle).map_err(|e| failed(std::io::Error::other(e)))
     }
 
     /// Renames the temporary to its name in `folder`; an existing file is replaced only with
