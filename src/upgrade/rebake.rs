@@ -20,31 +20,34 @@ pub fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
 fn encode(image: &Rgba32FImage, alpha: bool, wide: bool) -> Vec<u8> {
     let (width, height) = image.dimensions();
     let channels = if alpha { 4 } else { 3 };
-    let values = || {
-        image
-            .pixels()
-            .flat_map(move |p| p.0.into_iter().take(channels))
-    };
-    // The image crate's float → integer rule: clamp to 0..1, scale, round.
-    let quantise = |v: f32, max: f32| (v.clamp(0.0, 1.0) * max).round();
+    // The image crate's float → integer rule: clamp to 0..1, scale, round (half away from
+    // zero, which for these non-negative values is + ½ and truncation, in f64 so that no
+    // value just below a half rounds up; `f32::round` is a library call per sample).
+    let quantise = |v: f32, max: f64| (f64::from(v.clamp(0.0, 1.0)) * max + 0.5) as u16;
+    let values = image.as_raw().chunks_exact(4).flat_map(|p| &p[..channels]);
+    let samples = width as usize * height as usize * channels;
     let (bytes, color) = if wide {
-        let samples: Vec<u8> = values()
-            .flat_map(|v| (quantise(v, 65535.0) as u16).to_ne_bytes())
-            .collect();
+        let mut bytes = Vec::with_capacity(samples * 2);
+        for &v in values {
+            bytes.extend_from_slice(&quantise(v, 65535.0).to_ne_bytes());
+        }
         let color = if alpha {
             ExtendedColorType::Rgba16
         } else {
             ExtendedColorType::Rgb16
         };
-        (samples, color)
+        (bytes, color)
     } else {
-        let samples: Vec<u8> = values().map(|v| quantise(v, 255.0) as u8).collect();
+        let mut bytes = Vec::with_capacity(samples);
+        for &v in values {
+            bytes.push(quantise(v, 255.0) as u8);
+        }
         let color = if alpha {
             ExtendedColorType::Rgba8
         } else {
             ExtendedColorType::Rgb8
         };
-        (samples, color)
+        (bytes, color)
     };
     let mut png = Vec::new();
     let encoder = PngEncoder::new_with_quality(
@@ -58,33 +61,38 @@ fn encode(image: &Rgba32FImage, alpha: bool, wide: bool) -> Vec<u8> {
         .unwrap_or_default()
 }
 
-fn is_wide(image: &DynamicImage) -> bool {
-    image.color().bytes_per_pixel() / image.color().channel_count() > 1
+/// Each texel of the image in `bytes` (values 0..1 as stored) mapped by `f`, computed on
+/// every core, and whether the image has more than 8 bits per sample.
+fn mapped(
+    bytes: &[u8],
+    f: impl Fn([f64; 4]) -> [f32; 4] + Sync,
+) -> Result<(Rgba32FImage, bool), String> {
+    let source = sample::decode(bytes)?;
+    let (width, height) = (source.width(), source.height());
+    let texel = |x: u32, y: u32| {
+        // Sampled at its centre, a texel is read as it is.
+        let centre = [
+            (f64::from(x) + 0.5) / f64::from(width),
+            (f64::from(y) + 0.5) / f64::from(height),
+        ];
+        f(sample::bilinear(&source, centre))
+    };
+    Ok((in_parallel_rows(width, height, texel), source.is_wide()))
 }
 
 /// 1.0 metal-rough texture (R metallic, G roughness) → 2.0 (G roughness, B metallic).
 /// R is written as 1 (no occlusion) for engines that pack occlusion there.
 pub fn metal_rough_swizzle(bytes: &[u8]) -> Result<Vec<u8>, String> {
-    let source = decode(bytes)?;
-    let wide = is_wide(&source);
-    let texels = source.to_rgba32f();
-    let out = Rgba32FImage::from_fn(texels.width(), texels.height(), |x, y| {
-        let [r, g, _, _] = texels.get_pixel(x, y).0;
-        image::Rgba([1.0, g, r, 1.0])
-    });
+    let (out, wide) = mapped(bytes, |[r, g, _, _]| [1.0, g as f32, r as f32, 1.0])?;
     Ok(encode(&out, false, wide))
 }
 
 /// Spec-gloss glossiness (A × factor) → a metal-rough texture: G = 1 − glossiness, B = 0
 /// (dielectric), R = 1.
 pub fn gloss_to_roughness(bytes: &[u8], glossiness_factor: f64) -> Result<Vec<u8>, String> {
-    let source = decode(bytes)?;
-    let wide = is_wide(&source);
-    let texels = source.to_rgba32f();
-    let out = Rgba32FImage::from_fn(texels.width(), texels.height(), |x, y| {
-        let gloss = f64::from(texels.get_pixel(x, y).0[3]) * glossiness_factor;
-        image::Rgba([1.0, (1.0 - gloss) as f32, 0.0, 1.0])
-    });
+    let (out, wide) = mapped(bytes, |[_, _, _, a]| {
+        [1.0, (1.0 - a * glossiness_factor) as f32, 0.0, 1.0]
+    })?;
     Ok(encode(&out, false, wide))
 }
 
