@@ -1,19 +1,30 @@
 //! The reference shading evaluator: f64 BRDFs written from the specification equations,
-//! sheen albedo tables computed by quadrature, and (in later work) renders and comparisons.
+//! sheen albedo tables computed by quadrature, materials sampled from their textures, and
+//! what is built on them: comparisons (ΔE2000 on what a viewer shows) and pictures.
+//!
+//! - `eval/`: the equations. BRDF lobes, material inputs and their readings, the lanes the
+//!   lobes are evaluated on, elementary functions, quadrature and the sheen table.
+//! - `sources/`: a material's inputs at a texture coordinate (decoding, sampling, loading a
+//!   glTF 2.0 asset's materials).
+//! - `compare.rs`, `delta_e.rs`, `tone.rs`: the figure of merit.
+//! - `picture/`: material balls, contact sheets and their labels.
+//! - `pairing.rs`: whole assets' materials paired and compared or rendered.
+//!
+//! The modules keep their paths under `shade::` (re-exported below), so callers name
+//! `shade::brdf` wherever the file lives.
 
-pub mod brdf;
+mod eval;
+mod picture;
+mod sources;
+
 pub mod compare;
 pub(crate) mod delta_e;
-pub(crate) mod elementary;
-pub(crate) mod label;
-pub(crate) mod lanes;
-pub(crate) mod load;
-pub mod material;
 pub mod pairing;
-pub(crate) mod quadrature;
-pub mod render;
-pub(crate) mod sample;
 pub mod tone;
 
+pub use eval::{brdf, material, sheen_table};
+pub(crate) use eval::{elementary, lanes};
+pub use picture::render;
+pub(crate) use sources::{load, sample};
+
 pub use sample::MaterialSource;
-pub mod sheen_table;

@@ -3,12 +3,12 @@
 //! per slot, and KHR_texture_transform is applied. Both glTF 2.0 materials and glTF 1.0
 //! PBR-draft materials (their own model) are sampled.
 
-use super::brdf::V3;
-use super::lanes::channels;
-use super::material::{Inputs, SpecGlossReading};
 use crate::gltf::color::srgb_texel_to_linear;
 use crate::gltf::material::{effective_texcoord, texture_transform};
 use crate::legacy::pbr::{LegacyPbr, Model};
+use crate::shade::brdf::V3;
+use crate::shade::lanes::channels;
+use crate::shade::material::{Inputs, SpecGlossReading};
 use serde_json::Value;
 use std::sync::Arc;
 

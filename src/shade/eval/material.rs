@@ -237,7 +237,7 @@ pub fn base_brdf<R: Real>(m: &Inputs, g: &Geometry<R>) -> [R; 3] {
 mod tests {
     use super::*;
     use crate::shade::brdf::{half, schlick};
-    use crate::shade::quadrature::hemisphere;
+    use crate::shade::eval::quadrature::hemisphere;
 
     fn shader() -> Shader {
         Shader::new(SheenTable::compute(8, SheenVisibility::Charlie))
@@ -522,7 +522,7 @@ mod tests {
             };
             for theta_v in [0.0, 0.4, 0.8, 1.1, 1.3, 1.45, 1.52] {
                 let v = direction(theta_v, 0.0);
-                let albedo = crate::shade::quadrature::hemisphere(384, 64, |l| {
+                let albedo = crate::shade::eval::quadrature::hemisphere(384, 64, |l| {
                     shader.brdf(&material, &Geometry::new(v, l))[0] * l[2]
                 });
                 let lobe = sheen_albedo(SheenVisibility::Charlie, v[2], sheen_roughness);

@@ -11,13 +11,13 @@
 //! the pattern turned about the normal by a fixed per-pixel angle. The sphere's UVs are equirectangular
 //! (u = ½ + φ/2π, v = θ/π) with the analytic tangent along increasing u.
 
-use super::brdf::{
+use crate::gltf::color::linear_to_srgb8;
+use crate::shade::brdf::{
     anisotropic_alphas, dot, ggx_aniso_d, into_anisotropy_frame, normalize, Geometry, V3,
 };
-use super::material::Shader;
-use super::sample::MaterialSource;
-use super::tone::displayed;
-use crate::gltf::color::linear_to_srgb8;
+use crate::shade::material::Shader;
+use crate::shade::sample::MaterialSource;
+use crate::shade::tone::displayed;
 use image::{Rgb, RgbImage};
 use std::f64::consts::PI;
 
@@ -59,7 +59,7 @@ struct Lobe {
 }
 
 impl Lobe {
-    fn of(inputs: &super::material::Inputs) -> Lobe {
+    fn of(inputs: &crate::shade::material::Inputs) -> Lobe {
         let alpha = (inputs.roughness * inputs.roughness).max(1e-3);
         let (alpha_t, alpha_b) = anisotropic_alphas(alpha, inputs.anisotropy_strength);
         Lobe {
@@ -122,7 +122,7 @@ impl Lobe {
 /// 1 / (N·pdf_cos + N·pdf_ggx) at that direction.
 fn sky_radiance(
     shader: &Shader,
-    inputs: &super::material::Inputs,
+    inputs: &crate::shade::material::Inputs,
     v: V3,
     points: &[[f64; 2]],
     turn: f64,
@@ -340,7 +340,7 @@ mod tests {
                 ..Default::default()
             };
             let estimate = sky_radiance(&shader, &inputs, v, &sky_directions(64), 0.3)[0];
-            let exact = crate::shade::quadrature::hemisphere(512, 512, |l| {
+            let exact = crate::shade::eval::quadrature::hemisphere(512, 512, |l| {
                 shader.brdf(&inputs, &Geometry::new(v, l))[0] * l[2] * SKY_RADIANCE
             });
             assert!(

@@ -1,0 +1,8 @@
+//! The equations: BRDF lobes, material inputs, and what they are computed with.
+
+pub mod brdf;
+pub(crate) mod elementary;
+pub(crate) mod lanes;
+pub mod material;
+pub(crate) mod quadrature;
+pub mod sheen_table;

@@ -1,0 +1,5 @@
+//! A material's inputs at a texture coordinate: textures decoded and sampled, glTF 2.0
+//! materials loaded from their asset.
+
+pub(crate) mod load;
+pub(crate) mod sample;
