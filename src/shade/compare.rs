@@ -315,11 +315,19 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
             let target = b.inputs_at(&[uv, uv]);
             let each = (readings.iter()).zip(&mut row_of).zip(&mut batches);
             for (((a, row), batch), partial) in each.zip(&mut partials) {
-                let inputs = (a.inputs_at(&[uv, uv]), target.clone());
-                let source = if inputs.0 == inputs.1 {
-                    // Identical inputs give identical colours, whose ΔE is exactly 0.
-                    Source::Zero
-                } else if let Some(same) = row.repeat_of(&inputs) {
+                let source = a.inputs_at(&[uv, uv]);
+                if source == target {
+                    // Identical inputs give identical colours, whose ΔE is exactly 0: added
+                    // at once unless texels before it wait for their batch. (The previous
+                    // texel is left as it was: no texel with differing inputs equals this.)
+                    match row.pending.is_empty() {
+                        true => partial.add_equal_texel(uv, &directions.angles),
+                        false => row.pending.push((x, Source::Zero)),
+                    }
+                    continue;
+                }
+                let inputs = (source, target.clone());
+                let source = if let Some(same) = row.repeat_of(&inputs) {
                     // A texel like the one before (a flat region of a texture) has its ΔE.
                     same
                 } else {
