@@ -126,7 +126,19 @@ pub fn decode_all<B: AsRef<[u8]> + Sync>(
         .map(|(i, b)| b.filter(|_| first_copy[i] == i))
         .collect();
     within_budget(&unique)?;
-    let mut decoded = decode_in_parallel(&unique)?;
+    // Images another decode of this process still holds are shared, not decoded again.
+    let held: Vec<Option<Texture>> = unique.iter().map(|b| b.and_then(Live::get)).collect();
+    let to_decode: Vec<Option<&[u8]>> = (unique.iter().zip(&held))
+        .map(|(bytes, held)| bytes.filter(|_| held.is_none()))
+        .collect();
+    let mut decoded = decode_in_parallel(&to_decode)?;
+    for (i, held) in held.into_iter().enumerate() {
+        match (held, &decoded[i], to_decode[i]) {
+            (Some(texture), _, _) => decoded[i] = Some(texture),
+            (None, Some(texture), Some(bytes)) => Live::put(bytes, texture),
+            _ => {}
+        }
+    }
     for (i, &first) in first_copy.iter().enumerate() {
         if first != i {
             decoded[i] = decoded[first].clone();
@@ -173,6 +185,47 @@ fn within_budget(unique: &[Option<&[u8]>]) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// Textures decoded by this process that something still holds, by their bytes (length and
+/// a hash keyed at random per process, so that no input can be made to collide with
+/// another): a comparison or proof that decodes the same image for both of its assets (an
+/// upgrade keeps most images as they are) decodes it once. Only weak references are kept,
+/// so a texture lives no longer than its users.
+struct Live {
+    keys: std::collections::hash_map::RandomState,
+    textures: std::collections::HashMap<(usize, u64), std::sync::Weak<TextureImage>>,
+}
+
+static LIVE: std::sync::Mutex<Option<Live>> = std::sync::Mutex::new(None);
+
+impl Live {
+    fn with<R>(f: impl FnOnce(&mut Live) -> R) -> R {
+        let mut live = LIVE
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        f(live.get_or_insert_with(|| Live {
+            keys: Default::default(),
+            textures: Default::default(),
+        }))
+    }
+
+    fn key(&self, bytes: &[u8]) -> (usize, u64) {
+        use std::hash::BuildHasher;
+        (bytes.len(), self.keys.hash_one(bytes))
+    }
+
+    fn get(bytes: &[u8]) -> Option<Texture> {
+        Live::with(|live| live.textures.get(&live.key(bytes))?.upgrade())
+    }
+
+    fn put(bytes: &[u8], texture: &Texture) {
+        Live::with(|live| {
+            live.textures.retain(|_, held| held.strong_count() > 0);
+            let key = live.key(bytes);
+            live.textures.insert(key, Arc::downgrade(texture));
+        })
+    }
 }
 
 fn decode_in_parallel(sources: &[Option<&[u8]>]) -> Result<Vec<Option<Texture>>, String> {
@@ -630,5 +683,37 @@ fn legacy_inputs(
             }
             Inputs::specular_glossiness(rgb, specular, gloss, reading)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_image_still_held_is_shared_and_a_dropped_one_decoded_again() {
+        let png = solid_png([12, 34, 56]);
+        let first = decode_all(&[Some(Ok(&png[..]))])
+            .unwrap()
+            .remove(0)
+            .unwrap();
+        let again = decode_all(&[Some(Ok(&png[..]))])
+            .unwrap()
+            .remove(0)
+            .unwrap();
+        assert!(Arc::ptr_eq(&first, &again), "decoded once while held");
+        let other = decode_all(&[Some(Ok(&solid_png([12, 34, 57])[..]))]).unwrap();
+        assert!(
+            !Arc::ptr_eq(&first, other[0].as_ref().unwrap()),
+            "other bytes"
+        );
+        let weak = Arc::downgrade(&first);
+        drop((first, again));
+        assert!(weak.upgrade().is_none(), "the cache holds no texture alive");
+        let fresh = decode_all(&[Some(Ok(&png[..]))])
+            .unwrap()
+            .remove(0)
+            .unwrap();
+        assert_eq!(bilinear(&fresh, [0.5, 0.5])[0], 12.0 / 255.0);
     }
 }
