@@ -1,4 +1,9 @@
-//! The fitted conversion of a factor-only 1.0 spec-gloss material. The drafts can be read
+//! The spec-gloss → metal-rough closed form's vocabulary (the source's [`Factors`], the
+//! closed-form [`base_colour`]) and what improves on it: the fitted conversion of a
+//! factor-only 1.0 spec-gloss material, and of a textured one's base colour texel by texel
+//! ([`TexelFits`]). This is the bottom of the mapping: `rebake` and `spec_gloss` build on it.
+//!
+//! A factor-only 1.0 spec-gloss material: the drafts can be read
 //! three ways (see `SpecGlossReading::DRAFTS`), and where their readings disagree (a
 //! chromatic specular, or one read with no 1 − F) no closed-form 2.0 material matches all of
 //! them. When the closed form's worst ΔE over the readings and the proof's direction pairs is
@@ -19,6 +24,20 @@ const THRESHOLD: f64 = crate::shade::compare::DEFAULT_THRESHOLD;
 
 /// Distinct materials fitted per upgrade; later ones keep their closed form.
 pub const MAX_DISTINCT_FITS: usize = 256;
+
+/// A spec-gloss material's factors (diffuse RGBA, specular RGB, glossiness).
+#[derive(Debug, Clone, Copy)]
+pub struct Factors {
+    pub diffuse: [f64; 4],
+    pub specular: [f64; 3],
+    pub glossiness: f64,
+}
+
+/// The closed-form base colour: diffuse · (1 − specular), channel by channel (a specular
+/// above 1 takes all of the diffuse, never more).
+pub fn base_colour(diffuse: [f64; 3], specular: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| diffuse[i] * (1.0 - specular[i]).max(0.0))
+}
 
 /// A metal-rough + KHR_materials_specular + ior 0 material's factors.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -252,7 +271,7 @@ impl TexelValue {
     }
 
     fn closed_form(&self) -> [f64; 3] {
-        crate::upgrade::spec_gloss::base_colour(self.diffuse, self.specular)
+        base_colour(self.diffuse, self.specular)
     }
 
     /// The worst ΔE over the drafts' readings of `base_colour` as the PNG stores it.
@@ -378,7 +397,7 @@ mod tests {
 
     fn closed_form(diffuse: [f64; 3], specular: [f64; 3], glossiness: f64) -> Target {
         Target {
-            base_colour: crate::upgrade::spec_gloss::base_colour(diffuse, specular),
+            base_colour: base_colour(diffuse, specular),
             roughness: 1.0 - glossiness,
             specular_colour: specular,
         }

@@ -13,17 +13,10 @@
 //! (1 − s_c) makes the two equal at every angle, chromatic specular included. (The earlier
 //! diffuse · (1 − max s) is the same only for an achromatic specular.)
 
+pub use super::fit::{base_colour, Factors};
 use super::fit::{TexelFits, TexelReport};
 use super::rebake;
 use serde_json::{json, Map, Value};
-
-/// A spec-gloss material's factors (diffuse RGBA, specular RGB, glossiness).
-#[derive(Debug, Clone, Copy)]
-pub struct Factors {
-    pub diffuse: [f64; 4],
-    pub specular: [f64; 3],
-    pub glossiness: f64,
-}
 
 /// The two textures of a spec-gloss material.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -116,12 +109,6 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
         extensions,
         decisions,
     })
-}
-
-/// The closed-form base colour: diffuse · (1 − specular), channel by channel (a specular
-/// above 1 takes all of the diffuse, never more).
-pub fn base_colour(diffuse: [f64; 3], specular: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|i| diffuse[i] * (1.0 - specular[i]).max(0.0))
 }
 
 /// The conversion report's line for a rebake's per-texel fits.
