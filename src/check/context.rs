@@ -9,6 +9,7 @@ use crate::document::image_header::ImageInfo;
 use crate::document::json::escape_token;
 use crate::document::uri::ResourceLoader;
 use crate::document::{BufferData, Bytes, Document};
+use crate::gltf::material::{Channels, TextureSlot};
 use serde_json::Value;
 use std::collections::{HashMap, HashSet};
 
@@ -78,7 +79,7 @@ pub(crate) struct Context<'a> {
     /// materials keep no entry).
     pub material_needs: HashMap<usize, MaterialNeeds>,
     /// Every texture binding, computed on first use (see `materials::slot_uses`).
-    pub slot_uses: std::sync::OnceLock<std::sync::Arc<[super::khronos::materials::SlotUse<'a>]>>,
+    pub slot_uses: std::sync::OnceLock<std::sync::Arc<[SlotUse<'a>]>>,
     pub resources: Vec<ResourceInfo>,
 }
 
@@ -265,3 +266,37 @@ pub fn number(object: &Value, key: &str, default: f64) -> f64 {
 }
 
 pub use crate::gltf::{as_index, unsigned};
+
+/// A material's extension object by name.
+pub fn extension<'v>(material: &'v Value, name: &str) -> Option<&'v Value> {
+    material
+        .get("extensions")?
+        .get(name)
+        .filter(|v| v.is_object())
+}
+
+/// One texture bound to one slot of one material.
+#[derive(Clone)]
+pub struct SlotUse<'a> {
+    pub material: &'a Value,
+    pub slot: &'static TextureSlot,
+    /// Pointer to the textureInfo.
+    pub pointer: String,
+    /// Images the texture may sample: `source` and any extension's `source` (WebP, KTX2 …).
+    pub images: Vec<usize>,
+}
+
+impl SlotUse<'_> {
+    /// The channels this use reads: (sRGB, linear).
+    pub fn reads(&self) -> (Channels, Channels) {
+        self.slot.reads(self.material)
+    }
+
+    /// A member of the slot's extension object (or of the material for core slots).
+    pub fn extension_number(&self, key: &str, default: f64) -> f64 {
+        self.slot
+            .extension
+            .and_then(|name| extension(self.material, name))
+            .map_or(default, |ext| number(ext, key, default))
+    }
+}

@@ -1,5 +1,6 @@
 //! The validator: schema pass, link passes in the Khronos order, then gltfmat's own rules.
 
+mod code_info;
 pub mod registry;
 
 pub(crate) mod rules;

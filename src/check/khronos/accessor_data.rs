@@ -2,7 +2,7 @@
 //! `max` that do not match the data, and for the checks its uses add (unit normals, index
 //! bounds, animation inputs…, see `accessor_usage`): the Khronos ACCESSOR_* data codes.
 
-use super::accessor_fast;
+use super::accessor_fast::{self, Layout};
 use super::accessor_usage::{self, Checker, Finding, Findings};
 use super::resources::view_bytes;
 use crate::check::context::{unsigned, Context};
@@ -88,16 +88,6 @@ fn walk<const SIZE: usize>(
         f(first, &values[..k * n]);
         first += k;
     }
-}
-
-#[derive(Clone, Copy)]
-pub(super) struct Layout {
-    pub component_type: u64,
-    pub size: usize,
-    pub components: usize,
-    pub stride: usize,
-    pub offset: usize,
-    pub count: usize,
 }
 
 fn layout(ctx: &Context, accessor: &Value, view: usize) -> Option<Layout> {

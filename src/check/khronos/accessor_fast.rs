@@ -5,9 +5,19 @@
 //! an index out of range or equal to the restart value) they decline, and the general walk
 //! runs and reports it.
 
-use super::accessor_data::Layout;
 use super::accessor_usage::{is_unit_length, Checker};
 use crate::gltf::gl;
+
+/// Where an accessor's elements lie in its bufferView's bytes.
+#[derive(Clone, Copy)]
+pub(super) struct Layout {
+    pub component_type: u64,
+    pub size: usize,
+    pub components: usize,
+    pub stride: usize,
+    pub offset: usize,
+    pub count: usize,
+}
 
 /// min/max per component, or None when the general walk is needed.
 pub(super) fn bounds(

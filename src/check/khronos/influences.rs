@@ -1,7 +1,8 @@
 //! Skinning influences: each vertex's JOINTS_n / WEIGHTS_n sets read together (the Khronos
 //! ACCESSOR_JOINTS_* and ACCESSOR_WEIGHTS_* codes).
 
-use super::accessor_data::{element, scannable, unit_scale, Layout};
+use super::accessor_data::{element, scannable, unit_scale};
+use super::accessor_fast::Layout;
 use super::accessor_usage::Findings;
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;

@@ -3,10 +3,12 @@
 
 use super::resources::declared_mime;
 use crate::check::context::{member, number, unsigned, Context, MaterialNeeds};
+// Defined beside the context, which caches the slot uses; named here, where they are made.
+pub use crate::check::context::{extension, SlotUse};
 use crate::diagnostic::khronos;
+use crate::gltf::material::TEXTURE_SLOTS;
 use crate::gltf::material::{combination, Combination};
 use crate::gltf::material::{effective_texcoord, texture_images, texture_transform};
-use crate::gltf::material::{Channels, TextureSlot, TEXTURE_SLOTS};
 use serde_json::Value;
 use std::sync::Arc;
 
@@ -88,14 +90,6 @@ fn texture_needs(ctx: &mut Context, material: &Value, pointer: &str) -> Material
     needs.can_generate_tangent = material.get("normalTexture").is_some_and(Value::is_object);
     needs.anisotropy = extension(material, "KHR_materials_anisotropy").is_some();
     needs
-}
-
-/// A material's extension object by name.
-pub fn extension<'v>(material: &'v Value, name: &str) -> Option<&'v Value> {
-    material
-        .get("extensions")?
-        .get(name)
-        .filter(|v| v.is_object())
 }
 
 fn check_alpha_cutoff(ctx: &mut Context, material: &Value, pointer: &str) {
@@ -246,32 +240,6 @@ fn check_texcoord_pairs(ctx: &mut Context, material: &Value, pointer: &str) {
         if texcoord(info) != normal_set {
             ctx.emit(code, format!("{pointer}/extensions/{ext}/{key}"), message);
         }
-    }
-}
-
-/// One texture bound to one slot of one material.
-#[derive(Clone)]
-pub struct SlotUse<'a> {
-    pub material: &'a Value,
-    pub slot: &'static TextureSlot,
-    /// Pointer to the textureInfo.
-    pub pointer: String,
-    /// Images the texture may sample: `source` and any extension's `source` (WebP, KTX2 …).
-    pub images: Vec<usize>,
-}
-
-impl SlotUse<'_> {
-    /// The channels this use reads: (sRGB, linear).
-    pub fn reads(&self) -> (Channels, Channels) {
-        self.slot.reads(self.material)
-    }
-
-    /// A member of the slot's extension object (or of the material for core slots).
-    pub fn extension_number(&self, key: &str, default: f64) -> f64 {
-        self.slot
-            .extension
-            .and_then(|name| extension(self.material, name))
-            .map_or(default, |ext| number(ext, key, default))
     }
 }
 

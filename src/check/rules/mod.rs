@@ -29,9 +29,9 @@ pub mod texels;
 mod undecodable;
 mod unlit_ignored;
 
+use super::code_info::{CodeInfo, Origin};
 use super::context::Context;
 use super::khronos::materials::{by_image, slot_uses, SlotUse};
-use super::registry::{CodeInfo, Origin};
 use crate::diagnostic::{Code, Severity};
 use crate::document::image_header::ImageInfo;
 use texels::Texels;
