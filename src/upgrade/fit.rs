@@ -13,7 +13,7 @@
 //! [`MAX_DISTINCT_FITS`] of them (about 5 ms each), so that a hostile asset of a million
 //! distinct materials cannot make it run for hours.
 
-use crate::gltf::color::{linear_to_srgb, srgb_to_linear};
+use crate::gltf::color::{linear_to_srgb, linear_to_srgb8, srgb_to_linear};
 use crate::shade::brdf::SheenVisibility;
 use crate::shade::compare::worst_at_point;
 use crate::shade::material::{DiffuseBalance, Inputs, Shader, SpecGlossReading};
@@ -276,8 +276,15 @@ impl TexelValue {
 
     /// The worst ΔE over the drafts' readings of `base_colour` as the PNG stores it.
     fn cost(&self, base_colour: [f64; 3], levels: f64) -> f64 {
+        // The level the rebake writes: the 8-bit one by the same table, or the 16-bit
+        // encoder's rounding of the f32 it is given.
         let stored = base_colour.map(|c| {
-            let level = (linear_to_srgb(c.clamp(0.0, 1.0)) * levels).round();
+            let level = if levels == 255.0 {
+                f64::from(linear_to_srgb8(c))
+            } else {
+                let encoded = linear_to_srgb(c.clamp(0.0, 1.0)) as f32;
+                (f64::from(encoded) * levels + 0.5).floor()
+            };
             srgb_to_linear(level / levels)
         });
         let target = Target {
