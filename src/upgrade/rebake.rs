@@ -68,14 +68,8 @@ fn mapped(
 ) -> Result<(Rgba32FImage, bool), String> {
     let source = sample::decode(bytes)?;
     let (width, height) = (source.width(), source.height());
-    let texel = |x: u32, y: u32| {
-        // Sampled at its centre, a texel is read as it is.
-        let centre = [
-            (f64::from(x) + 0.5) / f64::from(width),
-            (f64::from(y) + 0.5) / f64::from(height),
-        ];
-        f(sample::bilinear(&source, centre))
-    };
+    // Sampled at its centre, a texel is read as it is.
+    let texel = |x: u32, y: u32| f(sample::bilinear(&source, centre(x, y, width, height)));
     Ok((in_parallel_rows(width, height, texel), source.is_wide()))
 }
 
@@ -155,6 +149,14 @@ pub fn spec_gloss_base_colour(
     Ok((encode(&out, alpha, wide), alpha))
 }
 
+/// The texture coordinates of the centre of texel (x, y) in a `width` × `height` grid.
+fn centre(x: u32, y: u32, width: u32, height: u32) -> [f64; 2] {
+    [
+        (f64::from(x) + 0.5) / f64::from(width),
+        (f64::from(y) + 0.5) / f64::from(height),
+    ]
+}
+
 /// An image computed texel by texel, its rows shared among the cores.
 fn in_parallel_rows(
     width: u32,
@@ -225,10 +227,7 @@ struct SpecGlossTexels<'t> {
 
 impl SpecGlossTexels<'_> {
     fn centre(&self, x: u32, y: u32) -> [f64; 2] {
-        [
-            (f64::from(x) + 0.5) / f64::from(self.width),
-            (f64::from(y) + 0.5) / f64::from(self.height),
-        ]
+        centre(x, y, self.width, self.height)
     }
 
     /// The diffuse alpha (factor applied) at the centre of output texel (x, y).
