@@ -24,7 +24,7 @@ pub fn parse(bytes: &[u8]) -> Result<Value, SyntaxError> {
             offset: 0,
         });
     }
-    serde_json::from_slice(bytes).map_err(|e| {
+    super::json_tree::from_slice(bytes).map_err(|e| {
         let offset = offset_of(bytes, e.line(), e.column());
         SyntaxError {
             message: e.to_string(),
