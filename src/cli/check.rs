@@ -3,7 +3,6 @@
 
 use crate::common::{Failure, Outcome};
 use crate::config;
-use crate::rules::print;
 use gltfmat::check::registry;
 use gltfmat::document::uri::FolderResources;
 use gltfmat::report::{render, Format, Style};
@@ -175,14 +174,14 @@ pub fn run(args: CheckArgs) -> Outcome {
                 unreadable |= !collect_assets(input, &args.exclude, &mut files)?;
                 if files.len() == before {
                     // A gate that checked nothing must not pass.
-                    eprintln!("gltfmat: {}: no .gltf or .glb file found", input.display());
+                    errln!("gltfmat: {}: no .gltf or .glb file found", input.display());
                     unreadable = true;
                 }
             }
             // Anything else named is checked, or refused as not a regular file.
             Ok(_) => files.push(input.clone()),
             Err(e) => {
-                eprintln!("gltfmat: {}: {e}", input.display());
+                errln!("gltfmat: {}: {e}", input.display());
                 unreadable = true;
             }
         }
@@ -216,7 +215,7 @@ pub fn run(args: CheckArgs) -> Outcome {
         match result {
             Ok(report) => reports.push(report),
             Err(message) => {
-                eprintln!("gltfmat: {}: {message}", file.display());
+                errln!("gltfmat: {}: {message}", file.display());
                 unreadable = true;
             }
         }
@@ -225,7 +224,7 @@ pub fn run(args: CheckArgs) -> Outcome {
     let style = Style::new(colour)
         .with_all_findings(args.all_findings || all_findings)
         .with_list(walked_a_folder || args.inputs.len() > 1);
-    print(&render(args.format.format(), &reports, &style));
+    out!("{}", &render(args.format.format(), &reports, &style));
     Ok(if unreadable {
         ExitCode::from(2)
     } else if reports.iter().any(|r| args.fail_on.fails(r)) {
@@ -290,7 +289,7 @@ fn collect_assets(
         let entry = match entry {
             Ok(entry) => entry,
             Err(e) => {
-                eprintln!("gltfmat: {e}");
+                errln!("gltfmat: {e}");
                 complete = false;
                 continue;
             }
@@ -301,11 +300,11 @@ fn collect_assets(
         match std::fs::metadata(entry.path()) {
             Ok(metadata) if metadata.is_file() => found.push(entry.into_path()),
             Ok(metadata) if metadata.is_dir() => {}
-            Ok(_) => eprintln!(
+            Ok(_) => errln!(
                 "gltfmat: note: skipped {}: not a regular file",
                 entry.path().display()
             ),
-            Err(e) => eprintln!("gltfmat: note: skipped {}: {e}", entry.path().display()),
+            Err(e) => errln!("gltfmat: note: skipped {}: {e}", entry.path().display()),
         }
     }
     found.sort();

@@ -27,7 +27,7 @@ impl Failure {
 
     /// Prints the message and returns the exit status.
     pub fn report(self) -> ExitCode {
-        eprintln!("gltfmat: {}", self.message);
+        errln!("gltfmat: {}", self.message);
         ExitCode::from(self.status)
     }
 }

@@ -39,7 +39,7 @@ enum CompareFormat {
 
 pub fn print_human(outcomes: &[gltfmat::Outcome], threshold: f64) {
     for line in human_lines(outcomes, threshold) {
-        println!("{line}");
+        outln!("{line}");
     }
 }
 
@@ -115,7 +115,7 @@ pub fn run(args: CompareArgs) -> Outcome {
                     "pass": o.result.max <= args.threshold})
             })
             .collect();
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&list).unwrap_or_default()
         );

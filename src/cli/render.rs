@@ -36,7 +36,7 @@ pub fn run(args: RenderArgs) -> Outcome {
     options.size = args.size;
     let (image, drawn) = gltfmat::render(&args.asset, &options)?;
     for (k, (i, name)) in drawn.iter().enumerate() {
-        println!(
+        outln!(
             "cell {k} (row {}, column {}): material {i} '{name}'",
             k / 4,
             k % 4

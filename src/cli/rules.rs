@@ -2,13 +2,7 @@
 
 use crate::common::{Failure, Outcome};
 use gltfmat::check::registry;
-use std::io::Write;
 use std::process::ExitCode;
-
-/// Writes text to stdout; a closed pipe (`| head`) is not an error.
-pub fn print(text: &str) {
-    let _ = std::io::stdout().lock().write_all(text.as_bytes());
-}
 
 /// How `gltfmat rules` prints the list.
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -27,7 +21,7 @@ pub fn list(format: ListFormat) -> Outcome {
             serde_json::to_string_pretty(&entries).unwrap_or_default() + "\n"
         }
     };
-    print(&out);
+    out!("{}", &out);
     Ok(ExitCode::SUCCESS)
 }
 
@@ -83,12 +77,12 @@ pub fn explain(code: &str) -> Outcome {
     } else {
         info.doc
     };
-    print(&format!(
-        "# {} ({}, {})\n\n{}\n",
+    outln!(
+        "# {} ({}, {})\n\n{}",
         info.code,
         info.severity().name(),
         info.group,
         body
-    ));
+    );
     Ok(ExitCode::SUCCESS)
 }

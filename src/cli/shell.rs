@@ -2,13 +2,12 @@
 //! so they never disagree with `--help`.
 
 use crate::common::{Failure, Outcome};
-use crate::rules::print;
 use std::process::ExitCode;
 
 pub fn completions(mut command: clap::Command, shell: clap_complete::Shell) -> Outcome {
     let mut script = Vec::new();
     clap_complete::generate(shell, &mut command, "gltfmat", &mut script);
-    print(&String::from_utf8_lossy(&script));
+    out!("{}", &String::from_utf8_lossy(&script));
     Ok(ExitCode::SUCCESS)
 }
 
@@ -17,6 +16,6 @@ pub fn man(command: clap::Command) -> Outcome {
     clap_mangen::Man::new(command)
         .render(&mut page)
         .map_err(|e| Failure::usage(e.to_string()))?;
-    print(&String::from_utf8_lossy(&page));
+    out!("{}", &String::from_utf8_lossy(&page));
     Ok(ExitCode::SUCCESS)
 }
