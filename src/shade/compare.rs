@@ -17,6 +17,7 @@ use super::material::{Inputs, Shader};
 use super::sample::MaterialSource;
 use super::tone::displayed;
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 /// The default verdict threshold: ΔE2000 1, about one just-noticeable difference on what a
 /// viewer shows (`compare --threshold`, the upgrade proof, the factor fit).
@@ -74,8 +75,9 @@ pub struct Comparison {
     pub grid: u32,
     /// Texels × directions evaluated.
     pub samples: u64,
-    /// The largest ΔE over the directions, per texel (row-major), for heat maps.
-    pub per_texel: Vec<f32>,
+    /// The largest ΔE over the directions, per texel (row-major), for heat maps. Shared:
+    /// the outcomes of an asset's many identical pairs hold one map.
+    pub per_texel: Arc<[f32]>,
 }
 
 fn direction(theta: f64, phi: f64) -> V3 {
@@ -506,7 +508,7 @@ fn merge<'p>(partials: impl IntoIterator<Item = &'p Partial>, grid: u32) -> Comp
         worst,
         grid,
         samples: count,
-        per_texel,
+        per_texel: per_texel.into(),
     }
 }
 

@@ -5,6 +5,7 @@ use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::{self, BufferData, Bytes, Container};
 use crate::gltf::material::texture_images;
 use serde_json::Value;
+use std::collections::HashMap;
 
 /// An image's encoded bytes: its own file or data URI, or a buffer view of the document.
 enum Encoded<'a> {
@@ -61,11 +62,10 @@ pub fn gltf2_materials(
     // Only the materials are read here; problems with the file are `check`'s to report.
     let doc = document::read(bytes, name, &mut Vec::new());
     let root = doc.root.as_ref().ok_or("not a readable glTF document")?;
-    let list = |key: &str| {
+    let list = |key: &str| -> &[Value] {
         root.get(key)
             .and_then(Value::as_array)
-            .cloned()
-            .unwrap_or_default()
+            .map_or(&[], Vec::as_slice)
     };
     let buffers: Vec<Option<BufferData>> = list("buffers")
         .iter()
@@ -88,7 +88,7 @@ pub fn gltf2_materials(
         let end = start.checked_add(view.get("byteLength")?.as_u64()? as usize)?;
         buffer.get(start..end)
     };
-    let needed = used_images(&list("materials"), &list("textures"));
+    let needed = used_images(list("materials"), list("textures"));
     let encoded: Vec<sample::Wanted<Encoded>> = list("images")
         .iter()
         .enumerate()
@@ -109,16 +109,23 @@ pub fn gltf2_materials(
         .iter()
         .map(|texture| images.get(texture_source(texture)? as usize)?.clone())
         .collect();
-    Ok(list("materials")
-        .into_iter()
-        .enumerate()
-        .map(|(i, material)| {
-            let name = material
-                .get("name")
-                .and_then(Value::as_str)
-                .map_or_else(|| i.to_string(), str::to_string);
-            let source = MaterialSource::gltf2(&material, &textures);
-            (name, source)
+    let materials = list("materials");
+    let names = materials.iter().enumerate().map(|(i, material)| {
+        (material.get("name").and_then(Value::as_str)).map_or_else(|| i.to_string(), str::to_string)
+    });
+    Ok(names.zip(prepare_materials(materials, &textures)).collect())
+}
+
+/// Each material prepared for the evaluator with the document's textures (by texture
+/// index). An asset's copies of one material share one prepared source, so 10^5 alike
+/// materials are prepared, and held, once.
+pub fn prepare_materials(materials: &[Value], textures: &[Option<Texture>]) -> Vec<MaterialSource> {
+    let mut prepared: HashMap<String, MaterialSource> = HashMap::new();
+    (materials.iter())
+        .map(|material| {
+            (prepared.entry(sample::shading_text(material)))
+                .or_insert_with(|| MaterialSource::gltf2(material, textures))
+                .clone()
         })
-        .collect())
+        .collect()
 }

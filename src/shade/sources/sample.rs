@@ -564,8 +564,24 @@ fn prepare(material: &Value, textures: &[Option<Texture>]) -> Prepared {
         .bindings()
         .map(|b| Arc::as_ptr(&b.texture))
         .collect();
-    prepared.fingerprint = format!("{material}|{bound:?}");
+    prepared.fingerprint = format!("{}|{bound:?}", shading_text(material));
     prepared
+}
+
+/// A material's JSON without the members that do not change how it shades (`name`,
+/// `extras`): equal for two materials that evaluate the same way with the same textures.
+pub fn shading_text(material: &Value) -> String {
+    let Some(members) = material.as_object() else {
+        return material.to_string();
+    };
+    let shading = members
+        .iter()
+        .filter(|(key, _)| !matches!(key.as_str(), "name" | "extras"));
+    let mut text = String::from("{");
+    for (key, value) in shading {
+        text += &format!("{}:{value},", Value::from(key.as_str()));
+    }
+    text + "}"
 }
 
 #[inline(always)]
