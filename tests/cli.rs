@@ -653,3 +653,66 @@ fn rules_as_json_completions_and_the_manual_page() {
         "{out}"
     );
 }
+
+/// A glTF 2.0 asset of `count` spec-gloss materials, each named, all alike.
+fn alike_spec_gloss_materials(count: usize) -> String {
+    let material = |i: usize| {
+        serde_json::json!({"name": format!("m{i}"), "extensions": {"KHR_materials_pbrSpecularGlossiness": {
+            "diffuseFactor": [0.5, 0.4, 0.3, 1.0], "specularFactor": [0.1, 0.1, 0.1], "glossinessFactor": 0.6}}})
+    };
+    serde_json::json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_materials_pbrSpecularGlossiness"],
+        "materials": (0..count).map(material).collect::<Vec<_>>(),
+    })
+    .to_string()
+}
+
+#[test]
+fn alike_notes_make_one_report_line_naming_where_they_apply() {
+    let folder = tempfile::tempdir().unwrap();
+    let input = folder.path().join("alike.gltf");
+    std::fs::write(&input, alike_spec_gloss_materials(500)).unwrap();
+    let output = folder.path().join("out.gltf");
+    let (code, out) = gltfmat(&[
+        "upgrade",
+        input.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+        "--no-verify",
+    ]);
+    assert_eq!(code, 0, "{out}");
+    let decisions: Vec<&str> = out.lines().filter(|l| l.starts_with("decision")).collect();
+    // Two decisions per material, each the same for all 500: two lines, not 1,000.
+    assert_eq!(decisions.len(), 2, "{out}");
+    let first = "/materials/0/extensions/KHR_materials_pbrSpecularGlossiness";
+    assert!(
+        decisions
+            .iter()
+            .all(|l| l.contains(first) && l.contains(" and 497 more ")),
+        "{out}"
+    );
+}
+
+#[test]
+fn a_reader_that_goes_away_ends_no_command_in_a_panic() {
+    let folder = tempfile::tempdir().unwrap();
+    let input = folder.path().join("alike.gltf");
+    // Named materials: one proof line each, far more than a pipe holds.
+    std::fs::write(&input, alike_spec_gloss_materials(3000)).unwrap();
+    let output = folder.path().join("out.glb");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(["upgrade", input.to_str().unwrap(), "-o"])
+        .arg(&output)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // `| head -0`: the reader is gone before the first line.
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(output.is_file(), "the upgrade still writes its output");
+}

@@ -6,8 +6,9 @@ use gltfmat::check::{Location, Report};
 use gltfmat::document::file::FileId;
 use gltfmat::document::uri::folder_of;
 use gltfmat::report::{render, Format, Style};
-use gltfmat::upgrade::{output, NoteKind, SpecularGlossiness};
+use gltfmat::upgrade::{output, Note, NoteKind, SpecularGlossiness};
 use gltfmat::{upgrade, FolderResources, Severity, UpgradeOptions, Upgraded};
+use std::collections::HashMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -70,13 +71,7 @@ pub fn run(args: UpgradeArgs) -> Outcome {
     let upgraded = upgrade(&bytes, &loader, &options)
         .map_err(|e| Failure::refused(format!("{}: {e}", args.input.display())))?;
     let mut log = Log::to(&destination);
-    for note in &upgraded.report {
-        let kind = match note.kind {
-            NoteKind::Decision => "decision",
-            NoteKind::Dropped => "dropped",
-        };
-        log.line(format_args!("{kind:<8} {} {}", note.pointer, note.text));
-    }
+    print_notes(&upgraded.report, &mut log);
     if !args.no_verify && !proved(&bytes, &args, &upgraded, &mut log) {
         if args.verify {
             return Err(Failure::refused(
@@ -98,7 +93,7 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         return Err(refuse_failed_check(report, &upgraded));
     }
     let warnings = report.count(Severity::Warning);
-    println!(
+    outln!(
         "wrote {} ({} file(s)); check: 0 errors, {warnings} warning(s)",
         args.output.display(),
         1 + files.side.len()
@@ -150,10 +145,39 @@ impl Log {
 
     fn line(&mut self, line: std::fmt::Arguments) {
         if self.to_stderr {
-            eprintln!("{line}");
+            errln!("{line}");
         } else {
-            println!("{line}");
+            outln!("{line}");
         }
+    }
+}
+
+/// How many places a report line names before it only counts the rest.
+const PLACES_SHOWN: usize = 3;
+
+/// The conversion report, one line per distinct note in the order first made, naming where
+/// it applies: an asset's 10^5 alike materials give one line, not 10^5.
+fn print_notes(notes: &[Note], log: &mut Log) {
+    let mut lines: Vec<(NoteKind, &str, Vec<&str>)> = Vec::new();
+    let mut line_of: HashMap<(NoteKind, &str), usize> = HashMap::new();
+    for note in notes {
+        let key = (note.kind, &*note.text);
+        let line = *line_of.entry(key).or_insert_with(|| {
+            lines.push((note.kind, &note.text, Vec::new()));
+            lines.len() - 1
+        });
+        lines[line].2.push(&note.pointer);
+    }
+    for (kind, text, places) in lines {
+        let kind = match kind {
+            NoteKind::Decision => "decision",
+            NoteKind::Dropped => "dropped",
+        };
+        let mut at = places[..places.len().min(PLACES_SHOWN)].join(", ");
+        if places.len() > PLACES_SHOWN {
+            at += &format!(" and {} more", places.len() - PLACES_SHOWN);
+        }
+        log.line(format_args!("{kind:<8} {at} {text}"));
     }
 }
 
@@ -191,9 +215,9 @@ fn refuse_failed_check(report: Report, upgraded: &Upgraded) -> Failure {
         })
         .collect();
     origins.dedup();
-    eprint!("{}", render(Format::Human, &[report], &Style::new(false)));
+    err!("{}", render(Format::Human, &[report], &Style::new(false)));
     if !origins.is_empty() {
-        eprintln!(
+        errln!(
             "where the errors come from in the input:\n{}",
             origins.join("\n")
         );

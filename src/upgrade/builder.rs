@@ -5,7 +5,7 @@
 use super::binary::Binary;
 use super::data::{self, Role};
 use super::source::Source;
-use super::{EncodedImage, Note, NoteKind, UpgradeError, UpgradeOptions, Upgraded};
+use super::{EncodedImage, NoteKind, Notes, UpgradeError, UpgradeOptions, Upgraded};
 use crate::gltf::gl::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
 use serde_json::{json, Map, Value};
 use std::collections::HashMap;
@@ -33,7 +33,7 @@ pub struct Builder<'s, 'a> {
     pub(in crate::upgrade) images: Vec<EncodedImage>,
     pub(in crate::upgrade) binary: Binary,
     pub(in crate::upgrade) packed_accessors: HashMap<(String, Role), usize>,
-    pub(in crate::upgrade) report: Vec<Note>,
+    pub(in crate::upgrade) report: Notes,
     /// `/collection/index` of the output → the 1.0 object it was made from.
     pub(in crate::upgrade) origins: HashMap<String, String>,
     /// 1.0 light id → its KHR_lights_punctual index (None: it has no 2.0 form).
@@ -79,7 +79,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             // Repacked data is about the size of the input buffers: reserve it once.
             binary: Binary::default(),
             packed_accessors: HashMap::new(),
-            report: Vec::new(),
+            report: Notes::default(),
             lights: HashMap::new(),
             fits: Default::default(),
             texel_fits: Default::default(),
@@ -88,11 +88,7 @@ impl<'s, 'a> Builder<'s, 'a> {
     }
 
     pub fn note(&mut self, pointer: impl Into<String>, kind: NoteKind, text: impl Into<String>) {
-        self.report.push(Note {
-            pointer: pointer.into(),
-            kind,
-            text: text.into(),
-        });
+        self.report.push(pointer.into(), kind, text.into());
     }
 
     /// The 2.0 index of a 1.0 id in a mapped collection.
@@ -344,7 +340,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             json: Value::Object(root),
             binary: self.binary,
             images: self.images,
-            report: self.report,
+            report: self.report.into_list(),
             origins: self.origins,
             passed_through: Default::default(),
         }

@@ -9,7 +9,7 @@
 
 use super::references::{renumber_texture_members, renumber_textures, texture_indices};
 use super::spec_gloss::{self, Factors, Slot};
-use super::{Binary, EncodedImage, Note, NoteKind, SpecularGlossiness, UpgradeError};
+use super::{Binary, EncodedImage, NoteKind, Notes, SpecularGlossiness, UpgradeError};
 use super::{UpgradeOptions, Upgraded};
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::{self, image_header, Bytes, Container};
@@ -69,7 +69,7 @@ pub(super) fn upgrade(
         root,
         binary: Binary::default(),
         images: Vec::new(),
-        report: Vec::new(),
+        report: Notes::default(),
         rebaked: HashMap::new(),
     };
     let buffers = asset.read_buffers(glb_bin, loader)?;
@@ -91,7 +91,7 @@ pub(super) fn upgrade(
         json: Value::Object(asset.root),
         binary: asset.binary,
         images: asset.images,
-        report: asset.report,
+        report: asset.report.into_list(),
         origins: Default::default(),
         passed_through,
     })
@@ -102,7 +102,7 @@ struct Asset {
     root: Map<String, Value>,
     binary: Binary,
     images: Vec<EncodedImage>,
-    report: Vec<Note>,
+    report: Notes,
     /// Rebaked textures by image bytes and sampler: materials that share their textures and
     /// factors share the rebake instead of writing one image each.
     rebaked: HashMap<(Vec<u8>, Option<u64>), usize>,
@@ -123,11 +123,7 @@ fn resource_error(pointer: &str, reason: impl Into<String>) -> UpgradeError {
 
 impl Asset {
     fn note(&mut self, pointer: impl Into<String>, kind: NoteKind, text: impl Into<String>) {
-        self.report.push(Note {
-            pointer: pointer.into(),
-            kind,
-            text: text.into(),
-        });
+        self.report.push(pointer.into(), kind, text.into());
     }
 
     fn list(&self, key: &str) -> &[Value] {

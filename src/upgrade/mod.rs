@@ -30,6 +30,8 @@ use crate::shade::sample::{self, MaterialSource, Texture};
 pub use binary::Binary;
 pub use proof::{prove, ProofError};
 use serde_json::Value;
+use std::collections::HashSet;
+use std::sync::Arc;
 
 /// How specular-glossiness materials are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -77,12 +79,42 @@ pub struct Note {
     pub pointer: String,
     /// Decision or dropped part.
     pub kind: NoteKind,
-    /// What and why, for a person.
-    pub text: String,
+    /// What and why, for a person. Shared by every note of the same text (an asset's 10^5
+    /// alike materials give 10^5 notes and one text).
+    pub text: Arc<str>,
+}
+
+/// A conversion report being written: each distinct text is held once.
+#[derive(Debug, Default)]
+pub(crate) struct Notes {
+    list: Vec<Note>,
+    texts: HashSet<Arc<str>>,
+}
+
+impl Notes {
+    pub(crate) fn push(&mut self, pointer: String, kind: NoteKind, text: String) {
+        let text = match self.texts.get(text.as_str()) {
+            Some(shared) => Arc::clone(shared),
+            None => {
+                let shared: Arc<str> = text.into();
+                self.texts.insert(Arc::clone(&shared));
+                shared
+            }
+        };
+        self.list.push(Note {
+            pointer,
+            kind,
+            text,
+        });
+    }
+
+    pub(crate) fn into_list(self) -> Vec<Note> {
+        self.list
+    }
 }
 
 /// What a note records.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum NoteKind {
     /// A choice the converter made (a mapping, a default written out).
     Decision,
@@ -318,8 +350,8 @@ pub fn legacy_materials(
 /// The materials of an upgraded asset as the shading evaluator samples them (an error when
 /// one of its textures cannot be decoded).
 pub fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, String> {
-    let list = |key: &str| upgraded.json[key].as_array().cloned().unwrap_or_default();
-    let needed = crate::shade::load::used_images(&list("materials"), &list("textures"));
+    let list = |key: &str| upgraded.json[key].as_array().map_or(&[][..], Vec::as_slice);
+    let needed = crate::shade::load::used_images(list("materials"), list("textures"));
     let encoded: Vec<sample::Wanted<&[u8]>> = upgraded
         .images
         .iter()
@@ -327,24 +359,15 @@ pub fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, S
         .map(|(i, image)| needed.contains(&i).then_some(Ok(&image.bytes[..])))
         .collect();
     let images = sample::decode_all(&encoded)?;
-    let textures: Vec<Option<Texture>> = upgraded.json["textures"]
-        .as_array()
-        .map(|list| {
-            list.iter()
-                .map(|t| {
-                    images
-                        .get(crate::shade::load::texture_source(t)? as usize)?
-                        .clone()
-                })
-                .collect()
+    let textures: Vec<Option<Texture>> = (list("textures").iter())
+        .map(|t| {
+            images
+                .get(crate::shade::load::texture_source(t)? as usize)?
+                .clone()
         })
-        .unwrap_or_default();
-    Ok(upgraded.json["materials"]
-        .as_array()
-        .map(|list| {
-            list.iter()
-                .map(|material| MaterialSource::gltf2(material, &textures))
-                .collect()
-        })
-        .unwrap_or_default())
+        .collect();
+    Ok(crate::shade::load::prepare_materials(
+        list("materials"),
+        &textures,
+    ))
 }
