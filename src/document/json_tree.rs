@@ -20,6 +20,26 @@ pub fn from_slice(text: &[u8]) -> serde_json::Result<Value> {
     Ok(value)
 }
 
+/// The same value with no spare room in its arrays and objects: for trees built member by
+/// member (a converted material), which otherwise keep their growth room for good.
+pub(crate) fn tighten(value: Value) -> Value {
+    match value {
+        Value::Array(elements) => {
+            let mut array: Vec<Value> = elements.into_iter().map(tighten).collect();
+            array.shrink_to_fit();
+            Value::Array(array)
+        }
+        Value::Object(members) => {
+            let mut object = Map::with_capacity(members.len());
+            for (key, value) in members {
+                object.insert(key, tighten(value));
+            }
+            Value::Object(object)
+        }
+        scalar => scalar,
+    }
+}
+
 /// A `Value` whose arrays and objects are allocated at their final size.
 struct ExactValue;
 
@@ -112,6 +132,16 @@ mod tests {
         let reference: Value = serde_json::from_slice(br#"[1,2,3,4,5]"#).unwrap();
         // The comparison that makes the test mean something: serde_json's own leaves room.
         assert!(reference.as_array().unwrap().capacity() > 5);
+    }
+
+    #[test]
+    fn a_tightened_value_is_equal_and_has_no_spare_room() {
+        let mut grown = serde_json::json!({"a": [1, 2, 3], "o": {"x": {"y": [true]}}});
+        grown["a"].as_array_mut().unwrap().push(4.into());
+        assert!(grown["a"].as_array().unwrap().capacity() > 4);
+        let tight = tighten(grown.clone());
+        assert_eq!(tight, grown);
+        assert_eq!(tight["a"].as_array().unwrap().capacity(), 4);
     }
 
     #[test]

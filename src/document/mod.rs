@@ -6,7 +6,7 @@ pub(crate) mod glb;
 pub(crate) mod image_decode;
 pub(crate) mod image_header;
 pub(crate) mod json;
-mod json_tree;
+pub(crate) mod json_tree;
 pub mod uri;
 
 use crate::diagnostic::{khronos, Diagnostic, Sink};

@@ -11,6 +11,7 @@ use super::references::{renumber_texture_members, renumber_textures, texture_ind
 use super::spec_gloss::{self, Factors, Slot};
 use super::{Binary, EncodedImage, NoteKind, Notes, SpecularGlossiness, UpgradeError};
 use super::{UpgradeOptions, Upgraded};
+use crate::document::json_tree::tighten;
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::{self, image_header, Bytes, Container};
 use crate::gltf::material::{combination, effective_texcoord, texture_images, texture_transform};
@@ -340,6 +341,7 @@ impl Asset {
             extensions.remove(SPEC_GLOSS);
             extensions.extend(converted.extensions);
         }
+        *out = tighten(out.take());
         Ok(true)
     }
 

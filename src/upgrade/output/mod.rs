@@ -5,7 +5,8 @@ use super::Upgraded;
 use crate::check::{check_bytes, CheckOptions, Report};
 use crate::document::file::FileId;
 use crate::document::uri::MemoryResources;
-use serde_json::{json, Value};
+use serde::ser::{Serialize, SerializeMap, Serializer};
+use serde_json::{json, Map, Value};
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
@@ -59,11 +60,61 @@ pub fn layout<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
     }
 }
 
+/// The asset's JSON as it is written: its own members, except the few the layout places
+/// (buffers, bufferViews, images), which are copied to be changed. The rest, materials and
+/// nodes by the 10^5, is serialised where it lies instead of being copied first.
+struct Placed<'u> {
+    json: &'u Value,
+    members: Map<String, Value>,
+}
+
+impl<'u> Placed<'u> {
+    const PLACED: [&'static str; 3] = ["buffers", "bufferViews", "images"];
+
+    fn new(json: &'u Value) -> Self {
+        let members = (Self::PLACED.iter())
+            .filter_map(|&key| Some((key.to_string(), json.get(key)?.clone())))
+            .collect();
+        Placed { json, members }
+    }
+
+    /// A placed member, to change (null when the asset has none: set it whole).
+    fn member(&mut self, key: &'static str) -> &mut Value {
+        debug_assert!(Self::PLACED.contains(&key));
+        self.members.entry(key).or_insert(Value::Null)
+    }
+}
+
+impl Serialize for Placed<'_> {
+    /// The asset's members in their order, then placed members it did not have.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let own = self.json.as_object();
+        let mut map = serializer.serialize_map(None)?;
+        for (key, value) in own.into_iter().flatten() {
+            match self.members.get(key) {
+                Some(Value::Null) => {}
+                Some(placed) => map.serialize_entry(key, placed)?,
+                None => map.serialize_entry(key, value)?,
+            }
+        }
+        let added = (self.members.iter())
+            .filter(|(k, v)| !v.is_null() && !own.is_some_and(|o| o.contains_key(*k)));
+        for (key, value) in added {
+            map.serialize_entry(key, value)?;
+        }
+        map.end()
+    }
+}
+
 fn glb<'u>(upgraded: &'u Upgraded, name: &str) -> File<'u> {
-    let mut json = upgraded.json.clone();
+    let mut json = Placed::new(&upgraded.json);
     // Images follow the geometry in the one binary chunk, each 4-byte aligned.
     let mut length = upgraded.binary.len();
-    let mut views = json["bufferViews"].as_array().cloned().unwrap_or_default();
+    let mut views = json
+        .member("bufferViews")
+        .as_array()
+        .cloned()
+        .unwrap_or_default();
     let mut body: Vec<Cow<[u8]>> = upgraded.binary.runs().map(Cow::Borrowed).collect();
     for (i, image) in images_to_place(upgraded) {
         let aligned = length.div_ceil(4) * 4;
@@ -71,14 +122,15 @@ fn glb<'u>(upgraded: &'u Upgraded, name: &str) -> File<'u> {
         body.push(Cow::Borrowed(&image.bytes));
         views.push(json!({"buffer": 0, "byteOffset": aligned, "byteLength": image.bytes.len()}));
         length = aligned + image.bytes.len();
-        json["images"][i]["bufferView"] = json!(views.len() - 1);
-        json["images"][i]["mimeType"] = json!(image.mime_type);
+        let placed = &mut json.member("images")[i];
+        placed["bufferView"] = json!(views.len() - 1);
+        placed["mimeType"] = json!(image.mime_type);
     }
     if !views.is_empty() {
-        json["bufferViews"] = Value::Array(views);
+        *json.member("bufferViews") = Value::Array(views);
     }
     if length > 0 {
-        set_buffer_length(&mut json, length);
+        set_buffer_length(json.member("buffers"), length);
     }
     let mut text = serde_json::to_vec(&json).unwrap_or_default();
     text.resize(text.len().div_ceil(4) * 4, b' ');
@@ -110,11 +162,11 @@ fn separate<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
         .rsplit_once('.')
         .map_or(main_name, |(stem, _)| stem)
         .to_string();
-    let mut json = upgraded.json.clone();
+    let mut json = Placed::new(&upgraded.json);
     let mut side = Vec::new();
     if !upgraded.binary.is_empty() {
         let name = format!("{stem}.bin");
-        json["buffers"][0]["uri"] = json!(uri_escape(&name));
+        json.member("buffers")[0]["uri"] = json!(uri_escape(&name));
         side.push(File {
             name,
             parts: upgraded.binary.runs().map(Cow::Borrowed).collect(),
@@ -122,7 +174,7 @@ fn separate<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
     }
     for (i, image) in images_to_place(upgraded) {
         let name = format!("{stem}-{}", image.file_name);
-        json["images"][i]["uri"] = json!(uri_escape(&name));
+        json.member("images")[i]["uri"] = json!(uri_escape(&name));
         side.push(File {
             name,
             parts: vec![Cow::Borrowed(&image.bytes)],
@@ -143,10 +195,10 @@ fn images_to_place(upgraded: &Upgraded) -> impl Iterator<Item = (usize, &super::
 }
 
 /// The one buffer's byteLength, keeping its other members (a 2.0 input's name, extras).
-fn set_buffer_length(json: &mut Value, length: usize) {
-    match json.get_mut("buffers").and_then(|b| b.get_mut(0)) {
+fn set_buffer_length(buffers: &mut Value, length: usize) {
+    match buffers.get_mut(0) {
         Some(buffer) if buffer.is_object() => buffer["byteLength"] = json!(length),
-        _ => json["buffers"] = json!([{"byteLength": length}]),
+        _ => *buffers = json!([{"byteLength": length}]),
     }
 }
 
