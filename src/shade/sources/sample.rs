@@ -3,6 +3,7 @@
 //! per slot, and KHR_texture_transform is applied. Both glTF 2.0 materials and glTF 1.0
 //! PBR-draft materials (their own model) are sampled.
 
+use crate::document::image_header::Channels;
 use crate::gltf::color::srgb_texel_to_linear;
 use crate::gltf::material::{effective_texcoord, texture_transform};
 use crate::legacy::pbr::{LegacyPbr, Model};
@@ -15,17 +16,21 @@ use std::sync::Arc;
 /// A decoded texture, shared by the materials that bind it.
 pub type Texture = Arc<TextureImage>;
 
-/// RGBA texels in their stored precision, read as values 0..1 (transfer functions are
-/// applied per slot). 8-bit images stay 8-bit: a quarter of the memory of floats, and no
-/// conversion pass over every texel.
+/// Texels as the file stores them (its channels, 8 or 16 bits), read as RGBA values 0..1
+/// (transfer functions are applied per slot). Nothing is widened when decoded: an 8192²
+/// RGB PNG holds 201 MB, not the 268 MB of RGBA bytes (or 1 GiB of RGBA floats) on top of
+/// the decoder's own buffer.
 pub struct TextureImage {
     width: u32,
     height: u32,
+    /// 1 (luminance), 2 (luminance, alpha), 3 (RGB) or 4 (RGBA).
+    channels: usize,
     texels: Texels,
 }
 
 enum Texels {
     Unorm8(Vec<u8>),
+    Unorm16(Vec<u16>),
     Float(Vec<f32>),
 }
 
@@ -40,24 +45,41 @@ impl TextureImage {
 
     /// Whether its texels have more than 8 bits (a rebake from it keeps 16 bits).
     pub fn is_wide(&self) -> bool {
-        matches!(self.texels, Texels::Float(_))
+        !matches!(self.texels, Texels::Unorm8(_))
     }
 
     /// The texel at column `x`, row `y` (inside the image), or transparent black if the
     /// texel data is short.
     #[inline(always)]
     fn texel(&self, x: i64, y: i64) -> [f64; 4] {
-        let at = ((y * i64::from(self.width) + x) * 4) as usize;
-        match &self.texels {
-            Texels::Unorm8(raw) => raw.get(at..at + 4).map_or([0.0; 4], |p| {
+        let at = ((y * i64::from(self.width) + x) as usize) * self.channels;
+        let stored = match &self.texels {
+            Texels::Unorm8(raw) => raw.get(at..at + self.channels).map(|p| {
                 let unorm = unorm8_table();
-                let level = |i: usize| unorm[usize::from(p[i])];
-                [level(0), level(1), level(2), level(3)]
+                rgba(p, |&b| unorm[usize::from(b)])
             }),
-            Texels::Float(raw) => raw
-                .get(at..at + 4)
-                .map_or([0.0; 4], |p| [p[0], p[1], p[2], p[3]].map(f64::from)),
-        }
+            // As the image crate's own widening (through f32), so 16-bit results do not
+            // depend on where the conversion happens.
+            Texels::Unorm16(raw) => (raw.get(at..at + self.channels))
+                .map(|p| rgba(p, |&v| f64::from(f32::from(v) / 65535.0))),
+            Texels::Float(raw) => {
+                (raw.get(at..at + self.channels)).map(|p| rgba(p, |&v| f64::from(v)))
+            }
+        };
+        stored.unwrap_or([0.0; 4])
+    }
+}
+
+/// One stored texel as RGBA: luminance stands for all three colours, and a texel with no
+/// alpha is opaque.
+#[inline(always)]
+fn rgba<T>(stored: &[T], value: impl Fn(&T) -> f64) -> [f64; 4] {
+    match stored {
+        [l] => [value(l), value(l), value(l), 1.0],
+        [l, a] => [value(l), value(l), value(l), value(a)],
+        [r, g, b] => [value(r), value(g), value(b), 1.0],
+        [r, g, b, a, ..] => [value(r), value(g), value(b), value(a)],
+        [] => [0.0; 4],
     }
 }
 
@@ -83,22 +105,41 @@ pub(crate) fn solid_png(texel: [u8; 3]) -> Vec<u8> {
 
 /// Decodes one image (see [`decode_all`] for a set of them).
 pub(crate) fn decode(bytes: &[u8]) -> Result<Texture, String> {
+    use image::DynamicImage as Stored;
     let image = crate::document::image_decode::decode(bytes).map_err(|e| e.to_string())?;
-    let eight_bit = image.color().bytes_per_pixel() == image.color().channel_count();
-    let texels = if eight_bit {
-        Texels::Unorm8(image.to_rgba8().into_raw())
-    } else {
-        Texels::Float(image.to_rgba32f().into_raw())
+    let (width, height) = (image.width(), image.height());
+    let channels = usize::from(image.color().channel_count());
+    let texels = match image {
+        Stored::ImageLuma8(i) => Texels::Unorm8(i.into_raw()),
+        Stored::ImageLumaA8(i) => Texels::Unorm8(i.into_raw()),
+        Stored::ImageRgb8(i) => Texels::Unorm8(i.into_raw()),
+        Stored::ImageRgba8(i) => Texels::Unorm8(i.into_raw()),
+        Stored::ImageLuma16(i) => Texels::Unorm16(i.into_raw()),
+        Stored::ImageLumaA16(i) => Texels::Unorm16(i.into_raw()),
+        Stored::ImageRgb16(i) => Texels::Unorm16(i.into_raw()),
+        Stored::ImageRgba16(i) => Texels::Unorm16(i.into_raw()),
+        Stored::ImageRgb32F(i) => Texels::Float(i.into_raw()),
+        other => {
+            let texels = Texels::Float(other.into_rgba32f().into_raw());
+            return Ok(Arc::new(TextureImage {
+                width,
+                height,
+                channels: 4,
+                texels,
+            }));
+        }
     };
     Ok(Arc::new(TextureImage {
-        width: image.width(),
-        height: image.height(),
+        width,
+        height,
+        channels,
         texels,
     }))
 }
 
-/// Decoded texels allowed for one asset's textures: 1 GiB, eight 8192² 8-bit images or two
-/// 16-bit ones. A texture past it is refused before it is decoded.
+/// Decoded texels allowed for one asset's textures, as stored (the file's channels, 1 or 2
+/// bytes each): 1 GiB, four 8192² RGBA 8-bit images or five RGB ones. A texture past it is
+/// refused before it is decoded.
 pub const TEXEL_BUDGET: u64 = 1 << 30;
 
 /// An image to decode: `None` when nothing samples it, `Some(Err(why))` when something does
@@ -173,7 +214,13 @@ fn within_budget(unique: &[Option<&[u8]>]) -> Result<(), String> {
         let Some(info) = bytes.and_then(|b| crate::document::image_header::read(b).ok()) else {
             continue; // decoding says why
         };
-        let per_texel = if info.bits > 8 { 16 } else { 4 };
+        // As decoded: the file's channels at 1 or 2 bytes (4 when unknown).
+        let per_texel = match info.channels {
+            Channels::Luminance => 1,
+            Channels::LuminanceAlpha => 2,
+            Channels::Rgb => 3,
+            Channels::Rgba | Channels::Unknown => 4,
+        } * if info.bits > 8 { 2 } else { 1 };
         total += u64::from(info.width) * u64::from(info.height) * per_texel;
         if total > TEXEL_BUDGET {
             return Err(format!(
@@ -731,5 +778,41 @@ mod tests {
             .remove(0)
             .unwrap();
         assert_eq!(bilinear(&fresh, [0.5, 0.5])[0], 12.0 / 255.0);
+    }
+
+    #[test]
+    fn every_stored_layout_reads_as_the_rgba_the_image_crate_widens_it_to() {
+        use image::{DynamicImage, ImageBuffer};
+        let levels8 = |n: usize| (0..2 * n).map(|i| (37 * i + 11) as u8).collect::<Vec<_>>();
+        let levels16 = |n: usize| {
+            (0..2 * n)
+                .map(|i| (9973 * i + 11) as u16)
+                .collect::<Vec<_>>()
+        };
+        let images = [
+            DynamicImage::ImageLuma8(ImageBuffer::from_raw(2, 1, levels8(1)).unwrap()),
+            DynamicImage::ImageLumaA8(ImageBuffer::from_raw(2, 1, levels8(2)).unwrap()),
+            DynamicImage::ImageRgb8(ImageBuffer::from_raw(2, 1, levels8(3)).unwrap()),
+            DynamicImage::ImageRgba8(ImageBuffer::from_raw(2, 1, levels8(4)).unwrap()),
+            DynamicImage::ImageLuma16(ImageBuffer::from_raw(2, 1, levels16(1)).unwrap()),
+            DynamicImage::ImageLumaA16(ImageBuffer::from_raw(2, 1, levels16(2)).unwrap()),
+            DynamicImage::ImageRgb16(ImageBuffer::from_raw(2, 1, levels16(3)).unwrap()),
+            DynamicImage::ImageRgba16(ImageBuffer::from_raw(2, 1, levels16(4)).unwrap()),
+        ];
+        for image in images {
+            let mut png = Vec::new();
+            (image.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)).unwrap();
+            let decoded = decode(&png).unwrap();
+            let widened = image.to_rgba32f();
+            for x in 0..2 {
+                let expected = widened.get_pixel(x, 0).0.map(f64::from);
+                let read = decoded.texel(i64::from(x), 0);
+                assert!(
+                    (0..4).all(|c| (read[c] - expected[c]).abs() < 1e-7),
+                    "{:?} texel {x}: {read:?} against {expected:?}",
+                    image.color()
+                );
+            }
+        }
     }
 }
