@@ -5,11 +5,11 @@ use crate::common::{Failure, Outcome};
 use crate::config;
 use gltfmat::check::registry;
 use gltfmat::document::uri::FolderResources;
-use gltfmat::report::{render, Format, Style};
+use gltfmat::report::{write, Format, Style};
 use gltfmat::{check_bytes, check_path, CheckOptions, NoResources, Profile, Report, Severity};
 use rayon::prelude::*;
 use std::collections::HashMap;
-use std::io::{IsTerminal, Read};
+use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -224,7 +224,10 @@ pub fn run(args: CheckArgs) -> Outcome {
     let style = Style::new(colour)
         .with_all_findings(args.all_findings || all_findings)
         .with_list(walked_a_folder || args.inputs.len() > 1);
-    out!("{}", &render(args.format.format(), &reports, &style));
+    // Written as rendered; a reader that went away (`| head`) is not an error.
+    let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
+    let _ =
+        write(args.format.format(), &reports, &style, &mut stdout).and_then(|()| stdout.flush());
     Ok(if unreadable {
         ExitCode::from(2)
     } else if reports.iter().any(|r| args.fail_on.fails(r)) {

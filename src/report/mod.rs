@@ -1,5 +1,5 @@
 //! Output formats. The checker knows nothing of terminals: each format renders a list of
-//! [`Report`]s to a string.
+//! [`Report`]s to a writer (or a string).
 
 mod human;
 mod sarif;
@@ -8,6 +8,7 @@ use crate::check::{Diagnostic, Location, Report, Severity};
 use crate::document::json;
 use serde_json::{json, Map, Value};
 use std::collections::HashMap;
+use std::io::Write;
 use std::ops::Range;
 
 /// An output format.
@@ -66,29 +67,49 @@ impl Style {
 
 /// Renders every report in `format` as one string.
 pub fn render(format: Format, reports: &[Report], options: &Style) -> String {
+    let mut text = Vec::new();
+    write(format, reports, options, &mut text).expect("writing to memory does not fail");
+    String::from_utf8(text).expect("every format writes UTF-8")
+}
+
+/// Writes every report in `format` to `out` as it is rendered: a SARIF or JSON report of
+/// 10^5 findings is never held whole in memory (`out` should be buffered).
+pub fn write(
+    format: Format,
+    reports: &[Report],
+    options: &Style,
+    out: &mut dyn Write,
+) -> std::io::Result<()> {
     match format {
-        Format::Human => human::render(reports, options),
+        Format::Human => out.write_all(human::render(reports, options).as_bytes()),
         Format::Json => {
-            let value = match reports {
-                [one] if !options.list => khronos_report(one),
-                many => Value::Array(many.iter().map(khronos_report).collect()),
-            };
-            serde_json::to_string_pretty(&value).unwrap_or_default() + "\n"
+            match reports {
+                [one] if !options.list => {
+                    serde_json::to_writer_pretty(&mut *out, &khronos_report(one))?
+                }
+                many => serde_json::to_writer_pretty(&mut *out, &KhronosReports(many))?,
+            }
+            out.write_all(b"\n")
         }
-        Format::Jsonl => reports
-            .iter()
-            .map(|r| khronos_report(r).to_string() + "\n")
-            .collect(),
-        Format::Sarif => sarif::render(reports),
-        Format::Github => reports
-            .iter()
-            .flat_map(|r| {
-                let positions = Positions::of(r);
-                (r.diagnostics.iter())
-                    .map(|d| github_line(r, &positions, d))
-                    .collect::<Vec<_>>()
-            })
-            .collect(),
+        Format::Jsonl => reports.iter().try_for_each(|r| {
+            serde_json::to_writer(&mut *out, &khronos_report(r))?;
+            out.write_all(b"\n")
+        }),
+        Format::Sarif => sarif::write(reports, out),
+        Format::Github => reports.iter().try_for_each(|r| {
+            let positions = Positions::of(r);
+            (r.diagnostics.iter())
+                .try_for_each(|d| out.write_all(github_line(r, &positions, d).as_bytes()))
+        }),
+    }
+}
+
+/// A list of Khronos-shaped reports, each built as it is written.
+struct KhronosReports<'r>(&'r [Report]);
+
+impl serde::Serialize for KhronosReports<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.0.iter().map(khronos_report))
     }
 }
 

@@ -6,7 +6,7 @@ use crate::document::Container;
 use percent_encoding::{utf8_percent_encode, AsciiSet, NON_ALPHANUMERIC};
 use serde_json::{json, Value};
 
-pub fn render(reports: &[Report]) -> String {
+pub fn write(reports: &[Report], out: &mut dyn std::io::Write) -> std::io::Result<()> {
     let rules: Vec<Value> = registry::all().map(rule).collect();
     let root = SourceRoot::current();
     let mut tool = json!({"driver": {
@@ -26,7 +26,8 @@ pub fn render(reports: &[Report]) -> String {
             results: Results(reports, &root),
         }],
     };
-    serde_json::to_string_pretty(&log).unwrap_or_default() + "\n"
+    serde_json::to_writer_pretty(&mut *out, &log)?;
+    out.write_all(b"\n")
 }
 
 /// One rule: a sentence for the alert's heading (never a message template), the full
