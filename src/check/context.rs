@@ -9,6 +9,7 @@ use crate::document::image_header::ImageInfo;
 use crate::document::json::escape_token;
 use crate::document::uri::ResourceLoader;
 use crate::document::{BufferData, Bytes, Document};
+use crate::gltf::material::texture_images;
 use crate::gltf::material::{Channels, TextureSlot};
 use serde_json::Value;
 use std::collections::{HashMap, HashSet};
@@ -275,18 +276,33 @@ pub fn extension<'v>(material: &'v Value, name: &str) -> Option<&'v Value> {
         .filter(|v| v.is_object())
 }
 
-/// One texture bound to one slot of one material.
+/// One texture bound to one slot of one material. Small and allocation-free: an asset
+/// may hold 10^5 of them, and its pointer and images are made when asked for.
 #[derive(Clone)]
 pub struct SlotUse<'a> {
     pub material: &'a Value,
+    /// The material's index.
+    pub material_index: usize,
     pub slot: &'static TextureSlot,
-    /// Pointer to the textureInfo.
-    pub pointer: String,
-    /// Images the texture may sample: `source` and any extension's `source` (WebP, KTX2 …).
-    pub images: Vec<usize>,
+    /// The texture object it binds.
+    pub texture: &'a Value,
+    /// How many images the asset has (a source past them samples nothing).
+    pub image_count: usize,
 }
 
 impl SlotUse<'_> {
+    /// Pointer to the textureInfo.
+    pub fn pointer(&self) -> String {
+        format!("/materials/{}{}", self.material_index, self.slot.pointer())
+    }
+
+    /// Images the texture may sample: `source` and any extension's `source` (WebP, KTX2 …).
+    pub fn images(&self) -> impl Iterator<Item = usize> + '_ {
+        (texture_images(self.texture))
+            .filter(|&i| i < self.image_count as u64)
+            .map(|i| i as usize)
+    }
+
     /// The channels this use reads: (sRGB, linear).
     pub fn reads(&self) -> (Channels, Channels) {
         self.slot.reads(self.material)

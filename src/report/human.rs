@@ -32,7 +32,7 @@ fn listed(severity: Severity, style: &Style) -> bool {
 pub fn render(reports: &[Report], style: &Style) -> String {
     let mut out = String::new();
     for report in reports {
-        let positions = Positions::of(report);
+        let positions = Positions::of_those(report, |d| listed(d.severity, style));
         for d in in_reading_order(report, &positions, style) {
             out.push_str(&finding(report, &positions, d, style.colour));
         }

@@ -129,8 +129,15 @@ pub(crate) struct Positions<'r> {
 
 impl<'r> Positions<'r> {
     pub fn of(report: &'r Report) -> Self {
+        Self::of_those(report, |_| true)
+    }
+
+    /// The positions of the diagnostics `wanted` picks (those a format shows: a summary of
+    /// 10^5 counted infos locates none of them).
+    pub fn of_those(report: &'r Report, wanted: impl Fn(&Diagnostic) -> bool) -> Self {
         let text = report.document.json_text();
         let pointers: Vec<&str> = (report.diagnostics.iter())
+            .filter(|d| wanted(d))
             .filter_map(|d| match &d.location {
                 Location::Pointer(pointer) if d.span_hint.is_none() => Some(pointer.as_str()),
                 _ => None,

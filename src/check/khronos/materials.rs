@@ -8,7 +8,7 @@ pub use crate::check::context::{extension, SlotUse};
 use crate::diagnostic::khronos;
 use crate::gltf::material::TEXTURE_SLOTS;
 use crate::gltf::material::{combination, Combination};
-use crate::gltf::material::{effective_texcoord, texture_images, texture_transform};
+use crate::gltf::material::{effective_texcoord, texture_transform};
 use serde_json::Value;
 use std::sync::Arc;
 
@@ -256,7 +256,7 @@ pub fn slot_uses<'a>(ctx: &Context<'a>) -> Arc<[SlotUse<'a>]> {
 pub fn by_image<'u, 'a>(uses: &'u [SlotUse<'a>], image_count: usize) -> Vec<Vec<&'u SlotUse<'a>>> {
     let mut grouped: Vec<Vec<&SlotUse>> = vec![Vec::new(); image_count];
     for slot_use in uses {
-        for &image in &slot_use.images {
+        for image in slot_use.images() {
             // A texture may name one image twice (`source` and an extension's).
             let group = grouped.get_mut(image);
             if let Some(group) =
@@ -271,9 +271,9 @@ pub fn by_image<'u, 'a>(uses: &'u [SlotUse<'a>], image_count: usize) -> Vec<Vec<
 
 fn collect_slot_uses<'a>(ctx: &Context<'a>) -> Vec<SlotUse<'a>> {
     let textures = ctx.items("textures");
-    let image_count = ctx.items("images").len() as u64;
+    let image_count = ctx.items("images").len();
     let mut uses = Vec::new();
-    for (_, material_pointer, material) in ctx.objects("materials") {
+    for (material_index, _, material) in ctx.objects("materials") {
         for slot in TEXTURE_SLOTS {
             let Some(info) = slot.lookup(material) else {
                 continue;
@@ -282,15 +282,12 @@ fn collect_slot_uses<'a>(ctx: &Context<'a>) -> Vec<SlotUse<'a>> {
             let Some(texture) = texture else {
                 continue;
             };
-            let images = texture_images(texture)
-                .filter(|&i| i < image_count)
-                .map(|i| i as usize)
-                .collect();
             uses.push(SlotUse {
                 material,
+                material_index,
                 slot,
-                pointer: format!("{material_pointer}{}", slot.pointer()),
-                images,
+                texture,
+                image_count,
             });
         }
     }

@@ -50,7 +50,7 @@ fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
     if let Some((_, high)) = range.filter(|(low, high)| low == high) {
         ctx.emit(
             RULE.code(),
-            slot_use.pointer.clone(),
+            slot_use.pointer(),
             format!(
                 "{} reads alpha, but every texel's alpha is {high:.4} (8-bit {}): the factor alone would do.",
                 slot_use.slot.key,

@@ -35,13 +35,14 @@ A `sheenRoughnessTexture` pointing at an RGB PNG.
 ";
 
 fn check(ctx: &mut Context) {
-    for (slot_use, image, info) in bound_images(ctx) {
+    let bound = bound_images(ctx);
+    for (slot_use, image, info) in bound.iter() {
         let (_, linear) = slot_use.reads();
         let known = info.channels != crate::document::image_header::Channels::Unknown;
         if linear & A != 0 && known && !info.channels.has_alpha() {
             ctx.emit(
                 RULE.code(),
-                slot_use.pointer,
+                slot_use.pointer(),
                 format!(
                     "{} reads the alpha channel, but image {image} ({}) has none, so it samples 1.0 everywhere.",
                     slot_use.slot.key,

@@ -49,7 +49,7 @@ fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
     if tally.count > 0 {
         ctx.emit(
             RULE.code(),
-            slot_use.pointer.clone(),
+            slot_use.pointer(),
             format!(
                 "Anisotropy direction is undefined (near-zero RG) where the strength is not zero: {}.",
                 tally.describe()

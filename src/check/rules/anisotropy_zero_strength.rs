@@ -39,7 +39,7 @@ fn check(ctx: &mut Context) {
         {
             ctx.emit(
                 RULE.code(),
-                slot_use.pointer.clone(),
+                slot_use.pointer(),
                 "anisotropyTexture has no effect: anisotropyStrength is 0 (its default), which multiplies the texture's strength.",
             );
         }

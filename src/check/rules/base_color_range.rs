@@ -132,7 +132,7 @@ fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
     if tally.fraction() > LARGE_AREA {
         ctx.emit(
             RULE.code(),
-            slot_use.pointer.clone(),
+            slot_use.pointer(),
             format!(
                 "Dielectric base colour is outside sRGB luminance {DARKEST}–{BRIGHTEST} in {}.",
                 tally.describe()

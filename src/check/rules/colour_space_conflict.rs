@@ -63,17 +63,17 @@ fn check(ctx: &mut Context) {
 }
 
 /// How the bindings of one image disagree.
-struct Conflict<'u> {
-    first_srgb: &'u str,
-    first_linear: &'u str,
+struct Conflict {
+    first_srgb: String,
+    first_linear: String,
     /// The channels read both ways.
     channels: Channels,
     /// Bindings that read at least one of those channels.
     clashing: usize,
 }
 
-impl<'u> Conflict<'u> {
-    fn find(on_image: &'u [&SlotUse]) -> Option<Conflict<'u>> {
+impl Conflict {
+    fn find(on_image: &[&SlotUse]) -> Option<Conflict> {
         let reads: Vec<_> = on_image.iter().map(|u| u.reads()).collect();
         let srgb = reads.iter().fold(0, |all, (s, _)| all | s);
         let linear = reads.iter().fold(0, |all, (_, l)| all | l);
@@ -83,7 +83,7 @@ impl<'u> Conflict<'u> {
         }
         let first = |kind: fn(&(Channels, Channels)) -> Channels| {
             let at = reads.iter().position(|r| kind(r) & channels != 0)?;
-            Some(on_image[at].pointer.as_str())
+            Some(on_image[at].pointer())
         };
         Some(Conflict {
             first_srgb: first(|r| r.0)?,

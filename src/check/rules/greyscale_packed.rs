@@ -35,12 +35,13 @@ A `metallicRoughnessTexture` pointing at an 8-bit greyscale PNG.
 ";
 
 fn check(ctx: &mut Context) {
-    for (slot_use, image, info) in bound_images(ctx) {
+    let bound = bound_images(ctx);
+    for (slot_use, image, info) in bound.iter() {
         let (_, linear) = slot_use.reads();
         if (linear & RGB).count_ones() >= 2 && info.channels.is_grey() {
             ctx.emit(
                 RULE.code(),
-                slot_use.pointer,
+                slot_use.pointer(),
                 format!(
                     "{} reads separate data from its colour channels, but image {image} is greyscale, so they all read the same value.",
                     slot_use.slot.key

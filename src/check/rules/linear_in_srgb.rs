@@ -34,12 +34,13 @@ A `baseColorTexture` pointing at a PNG with `gAMA` = 100000.
 ";
 
 fn check(ctx: &mut Context) {
-    for (slot_use, image, info) in bound_images(ctx) {
+    let bound = bound_images(ctx);
+    for (slot_use, image, info) in bound.iter() {
         let (srgb, _) = slot_use.reads();
         if srgb != 0 && info.transfer == Some(Transfer::Linear) {
             ctx.emit(
                 RULE.code(),
-                slot_use.pointer,
+                slot_use.pointer(),
                 format!(
                     "{} decodes image {image} as sRGB, but the image is tagged linear (gAMA 1.0).",
                     slot_use.slot.key

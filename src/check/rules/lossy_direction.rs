@@ -31,12 +31,13 @@ lossless or KTX2 (UASTC) keep the vectors intact.
 ";
 
 fn check(ctx: &mut Context) {
-    for (slot_use, image, info) in bound_images(ctx) {
+    let bound = bound_images(ctx);
+    for (slot_use, image, info) in bound.iter() {
         let direction = slot_use.slot.is_normal() || slot_use.slot.key == "anisotropyTexture";
         if direction && info.format == ImageFormat::Jpeg {
             ctx.emit(
                 RULE.code(),
-                slot_use.pointer,
+                slot_use.pointer(),
                 format!(
                     "{} stores directions in image {image}, a JPEG: lossy compression distorts them; prefer PNG, lossless WebP or KTX2.",
                     slot_use.slot.key

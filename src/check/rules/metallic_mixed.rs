@@ -74,7 +74,7 @@ fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
     if tally.fraction() > LARGE_AREA {
         ctx.emit(
             RULE.code(),
-            slot_use.pointer.clone(),
+            slot_use.pointer(),
             format!("Metallic is between 0.1 and 0.9 in {}.", tally.describe()),
         );
     }

@@ -3,6 +3,7 @@
 //! `gltfmat explain` and SARIF read from this table.
 
 use crate::diagnostic::khronos;
+use std::sync::Arc;
 mod alpha_constant;
 mod alpha_missing;
 mod anisotropy_direction;
@@ -251,20 +252,27 @@ fn run_pixel_rules(ctx: &mut Context) {
     }
 }
 
-/// Each texture binding paired with each image it may sample whose header could be read.
-fn bound_images<'a>(ctx: &Context<'a>) -> Vec<(SlotUse<'a>, usize, ImageInfo)> {
-    let mut bound = Vec::new();
-    for slot_use in slot_uses(ctx).iter() {
-        let headers: Vec<_> = slot_use
-            .images
-            .iter()
-            .filter_map(|&i| Some((i, ctx.images.get(i)?.clone()?)))
-            .collect();
-        for (image, info) in headers {
-            bound.push((slot_use.clone(), image, info));
-        }
+/// Each texture binding paired with each image it may sample whose header could be read:
+/// indices into the shared slot uses, so that 10^5 bindings copy no binding.
+struct BoundImages<'a> {
+    uses: Arc<[SlotUse<'a>]>,
+    bound: Vec<(usize, usize, ImageInfo)>,
+}
+
+impl<'a> BoundImages<'a> {
+    fn iter(&self) -> impl Iterator<Item = (&SlotUse<'a>, usize, &ImageInfo)> {
+        (self.bound.iter()).map(|(at, image, info)| (&self.uses[*at], *image, info))
     }
-    bound
+}
+
+fn bound_images<'a>(ctx: &Context<'a>) -> BoundImages<'a> {
+    let uses = slot_uses(ctx);
+    let bound = (uses.iter().enumerate())
+        .flat_map(|(at, slot_use)| {
+            (slot_use.images()).filter_map(move |i| Some((at, i, ctx.images.get(i)?.clone()?)))
+        })
+        .collect();
+    BoundImages { uses, bound }
 }
 
 /// The share of texels above which a plausibility rule reports a texture ("large areas").

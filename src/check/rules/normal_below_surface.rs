@@ -44,7 +44,7 @@ fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
     if tally.count > 0 {
         ctx.emit(
             RULE.code(),
-            slot_use.pointer.clone(),
+            slot_use.pointer(),
             format!(
                 "Normal-map texels point into the surface (blue ≤ 0.5, Z ≤ 0): {}.",
                 tally.describe()

@@ -54,7 +54,7 @@ fn check(ctx: &mut Context) {
         if sheen.is_some_and(sheen_colour_is_zero) {
             ctx.emit(
                 RULE.code(),
-                slot_use.pointer.clone(),
+                slot_use.pointer(),
                 format!(
                     "{} has no effect: sheenColorFactor is zero (its default), which disables the sheen layer.",
                     slot_use.slot.key

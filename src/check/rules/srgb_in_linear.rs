@@ -31,12 +31,13 @@ An `occlusionTexture` pointing at a PNG with an `sRGB` chunk.
 ";
 
 fn check(ctx: &mut Context) {
-    for (slot_use, image, info) in bound_images(ctx) {
+    let bound = bound_images(ctx);
+    for (slot_use, image, info) in bound.iter() {
         let (srgb, linear) = slot_use.reads();
         if srgb == 0 && linear != 0 && info.transfer == Some(Transfer::Srgb) {
             ctx.emit(
                 RULE.code(),
-                slot_use.pointer,
+                slot_use.pointer(),
                 format!(
                     "{} reads image {image} as linear data, but the image is tagged sRGB; tools that honour the tag will alter the values.",
                     slot_use.slot.key

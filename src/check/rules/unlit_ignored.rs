@@ -46,7 +46,7 @@ fn check(ctx: &mut Context) {
         if unlit && LIGHTING_SLOTS.contains(&slot_use.slot.key) {
             ctx.emit(
                 RULE.code(),
-                slot_use.pointer.clone(),
+                slot_use.pointer(),
                 format!(
                     "{} is ignored by unlit shading; only clients without KHR_materials_unlit would use it.",
                     slot_use.slot.key
