@@ -192,8 +192,8 @@ fn run_passes(ctx: &mut Context) {
     if !khronos::has_supported_version(ctx.root) {
         // The Khronos validator reads `asset` first and stops when it is missing or not 2.x:
         // what it would say of the rest assumes a format the file does not claim.
-        let mut about_asset = Only(&mut ctx.diagnostics, khronos::is_about_asset);
-        schema::validate(ctx.root, khronos, &mut about_asset);
+        let about_asset = khronos::about_asset(ctx.root);
+        schema::validate(ctx.root, khronos, &mut Only(&mut ctx.diagnostics, about_asset));
         khronos::check_asset(ctx);
         return;
     }

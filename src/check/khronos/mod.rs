@@ -22,7 +22,7 @@ mod unused;
 mod view_usage;
 
 use super::context::Context;
-pub(crate) use objects::{check_asset, has_supported_version, is_about_asset};
+pub(crate) use objects::{about_asset, check_asset, has_supported_version};
 
 /// One pass over the document, recording findings and what later passes need in the context.
 pub(crate) type Pass = fn(&mut Context);

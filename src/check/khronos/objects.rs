@@ -4,7 +4,7 @@
 use super::primitives::indexed_sets;
 use super::resources::fits_in_view;
 use crate::check::context::{elements, member, unsigned, Context, MaterialNeeds};
-use crate::diagnostic::khronos;
+use crate::diagnostic::{khronos, Diagnostic};
 use crate::gltf::accessor::{component_count, component_size};
 use crate::gltf::gl;
 use serde_json::Value;
@@ -24,10 +24,12 @@ pub fn has_supported_version(root: &Value) -> bool {
         .is_some_and(|(major, _)| major == 2)
 }
 
-/// A schema finding about the `asset` object (or its absence from the root).
-pub fn is_about_asset(diagnostic: &crate::diagnostic::Diagnostic) -> bool {
-    match diagnostic.pointer() {
-        Some("" | "/") => diagnostic.message.contains("'asset'"),
+/// Which schema findings of `root` are about its `asset` object: those inside it, and, when
+/// it is missing, the root's one missing member (the root schema requires `asset` alone).
+pub fn about_asset(root: &Value) -> impl Fn(&Diagnostic) -> bool {
+    let missing = root.get("asset").is_none();
+    move |diagnostic| match diagnostic.pointer() {
+        Some("" | "/") => missing && diagnostic.code == khronos::UNDEFINED_PROPERTY,
         Some(pointer) => pointer == "/asset" || pointer.starts_with("/asset/"),
         None => false,
     }
