@@ -669,7 +669,7 @@ fn alike_spec_gloss_materials(count: usize) -> String {
 }
 
 #[test]
-fn alike_notes_make_one_report_line_naming_where_they_apply() {
+fn alike_notes_and_proofs_make_one_line_naming_where_they_apply() {
     let folder = tempfile::tempdir().unwrap();
     let input = folder.path().join("alike.gltf");
     std::fs::write(&input, alike_spec_gloss_materials(500)).unwrap();
@@ -690,6 +690,22 @@ fn alike_notes_make_one_report_line_naming_where_they_apply() {
         decisions
             .iter()
             .all(|l| l.contains(first) && l.contains(" and 497 more ")),
+        "{out}"
+    );
+    // The proof compares the 500 alike pairs once, and says so in one line.
+    let (code, out) = gltfmat(&[
+        "upgrade",
+        input.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+        "--force",
+    ]);
+    assert_eq!(code, 0, "{out}");
+    let proofs: Vec<&str> = out.lines().filter(|l| l.starts_with("proof:")).collect();
+    assert_eq!(proofs.len(), 1, "{out}");
+    assert!(
+        proofs[0].starts_with("proof: material 0 (m0) ↔ 0 (m0), material 1 (m1)")
+            && proofs[0].contains(" and 497 more: same: "),
         "{out}"
     );
 }

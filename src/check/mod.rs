@@ -193,7 +193,11 @@ fn run_passes(ctx: &mut Context) {
         // The Khronos validator reads `asset` first and stops when it is missing or not 2.x:
         // what it would say of the rest assumes a format the file does not claim.
         let about_asset = khronos::about_asset(ctx.root);
-        schema::validate(ctx.root, khronos, &mut Only(&mut ctx.diagnostics, about_asset));
+        schema::validate(
+            ctx.root,
+            khronos,
+            &mut Only(&mut ctx.diagnostics, about_asset),
+        );
         khronos::check_asset(ctx);
         return;
     }

@@ -45,22 +45,29 @@ pub fn print_human(outcomes: &[gltfmat::Outcome], threshold: f64) {
 
 /// One line per compared pair: verdict, ΔE2000 max / p99 / mean, and where the worst is.
 pub fn human_lines(outcomes: &[gltfmat::Outcome], threshold: f64) -> Vec<String> {
-    outcomes
-        .iter()
-        .map(|o| {
-            let r = &o.result;
-            let verdict = if r.max <= threshold {
-                "same"
-            } else {
-                "DIFFERENT"
-            };
-            let (tv, tl, phi) = r.worst.directions;
-            format!(
-                "material {} ({}) ↔ {} ({}): {verdict}: ΔE2000 max {:.4}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}), θv {tv}°, θl {tl}°, φ {phi}°; {}² grid × {} directions = {} samples",
-                o.a.0, o.a.1, o.b.0, o.b.1, r.max, r.p99, r.mean, r.worst.uv[0], r.worst.uv[1], r.grid, DIRECTIONS.len(), r.samples
-            )
-        })
+    (outcomes.iter())
+        .map(|o| format!("{}: {}", pair(o), figures(o, threshold)))
         .collect()
+}
+
+/// The compared pair: `material I (NAME) ↔ J (NAME)`.
+pub fn pair(o: &gltfmat::Outcome) -> String {
+    format!("material {} ({}) ↔ {} ({})", o.a.0, o.a.1, o.b.0, o.b.1)
+}
+
+/// The verdict and the ΔE2000 figures of one comparison.
+pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
+    let r = &o.result;
+    let verdict = if r.max <= threshold {
+        "same"
+    } else {
+        "DIFFERENT"
+    };
+    let (tv, tl, phi) = r.worst.directions;
+    format!(
+        "{verdict}: ΔE2000 max {:.4}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}), θv {tv}°, θl {tl}°, φ {phi}°; {}² grid × {} directions = {} samples",
+        r.max, r.p99, r.mean, r.worst.uv[0], r.worst.uv[1], r.grid, DIRECTIONS.len(), r.samples
+    )
 }
 
 fn parse_map(entries: &[String]) -> Result<Vec<(usize, usize)>, String> {

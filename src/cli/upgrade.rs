@@ -9,6 +9,7 @@ use gltfmat::report::{render, Format, Style};
 use gltfmat::upgrade::{output, Note, NoteKind, SpecularGlossiness};
 use gltfmat::{upgrade, FolderResources, Severity, UpgradeOptions, Upgraded};
 use std::collections::HashMap;
+use std::hash::Hash;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -158,27 +159,42 @@ const PLACES_SHOWN: usize = 3;
 /// The conversion report, one line per distinct note in the order first made, naming where
 /// it applies: an asset's 10^5 alike materials give one line, not 10^5.
 fn print_notes(notes: &[Note], log: &mut Log) {
-    let mut lines: Vec<(NoteKind, &str, Vec<&str>)> = Vec::new();
-    let mut line_of: HashMap<(NoteKind, &str), usize> = HashMap::new();
-    for note in notes {
-        let key = (note.kind, &*note.text);
-        let line = *line_of.entry(key).or_insert_with(|| {
-            lines.push((note.kind, &note.text, Vec::new()));
-            lines.len() - 1
-        });
-        lines[line].2.push(&note.pointer);
-    }
-    for (kind, text, places) in lines {
+    let lines = (notes.iter()).map(|note| ((note.kind, &*note.text), note.pointer.as_str()));
+    for ((kind, text), pointers) in grouped(lines) {
         let kind = match kind {
             NoteKind::Decision => "decision",
             NoteKind::Dropped => "dropped",
         };
-        let mut at = places[..places.len().min(PLACES_SHOWN)].join(", ");
-        if places.len() > PLACES_SHOWN {
-            at += &format!(" and {} more", places.len() - PLACES_SHOWN);
-        }
-        log.line(format_args!("{kind:<8} {at} {text}"));
+        log.line(format_args!("{kind:<8} {} {text}", places(&pointers)));
     }
+}
+
+/// Items by key, in the order each key first comes, each with the places it comes at.
+fn grouped<K: Clone + Eq + Hash, P>(items: impl IntoIterator<Item = (K, P)>) -> Vec<(K, Vec<P>)> {
+    let mut groups: Vec<(K, Vec<P>)> = Vec::new();
+    let mut group_of: HashMap<K, usize> = HashMap::new();
+    for (key, place) in items {
+        let at = *group_of.entry(key.clone()).or_insert_with(|| {
+            groups.push((key, Vec::new()));
+            groups.len() - 1
+        });
+        groups[at].1.push(place);
+    }
+    groups
+}
+
+/// The first few places, then how many more: a line for 10^5 alike materials stays a line.
+fn places<P: AsRef<str>>(places: &[P]) -> String {
+    let shown: Vec<&str> = places
+        .iter()
+        .take(PLACES_SHOWN)
+        .map(AsRef::as_ref)
+        .collect();
+    let mut text = shown.join(", ");
+    if places.len() > PLACES_SHOWN {
+        text += &format!(" and {} more", places.len() - PLACES_SHOWN);
+    }
+    text
 }
 
 /// `-o -`: the GLB, checked in memory, on stdout.
@@ -238,8 +254,15 @@ fn proved(bytes: &[u8], args: &UpgradeArgs, upgraded: &Upgraded, log: &mut Log) 
             return false;
         }
     };
-    for line in crate::compare::human_lines(&outcomes, args.threshold) {
-        log.line(format_args!("proof: {line}"));
+    let lines = (outcomes.iter()).map(|o| {
+        (
+            crate::compare::figures(o, args.threshold),
+            crate::compare::pair(o),
+        )
+    });
+    // Pairs with the same figures (alike materials, compared once) share one line.
+    for (figures, pairs) in grouped(lines) {
+        log.line(format_args!("proof: {}: {figures}", places(&pairs)));
     }
     outcomes.iter().all(|o| o.result.max <= args.threshold)
 }
