@@ -69,7 +69,7 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         })
         .with_double_sided_default(args.double_sided);
     let loader = FolderResources::beside(&args.input);
-    let upgraded = upgrade(&bytes, &loader, &options)
+    let mut upgraded = upgrade(&bytes, &loader, &options)
         .map_err(|e| Failure::refused(format!("{}: {e}", args.input.display())))?;
     let mut log = Log::to(&destination);
     print_notes(&upgraded.report, &mut log);
@@ -82,10 +82,10 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         log.line(format_args!("warning: a converted material does not render like its source within ΔE2000 {} (the output is written; --verify refuses it)", args.threshold));
     }
     let (folder, name) = match destination {
-        Destination::Stdout => return write_to_stdout(&upgraded),
+        Destination::Stdout => return write_to_stdout(&mut upgraded),
         Destination::File { folder, name } => (folder, name),
     };
-    let files = output::layout(&upgraded, &name);
+    let files = output::layout_releasing_json(&mut upgraded, &name);
     let protected: Vec<FileId> = input_id.into_iter().chain(loader.files_read()).collect();
     let checked = output::write_checked(&files, &folder, &protected, args.force)
         .map_err(|e| Failure::usage(e.to_string()))?;
@@ -198,8 +198,8 @@ fn places<P: AsRef<str>>(places: &[P]) -> String {
 }
 
 /// `-o -`: the GLB, checked in memory, on stdout.
-fn write_to_stdout(upgraded: &Upgraded) -> Outcome {
-    let files = output::layout(upgraded, "-.glb");
+fn write_to_stdout(upgraded: &mut Upgraded) -> Outcome {
+    let files = output::layout_releasing_json(upgraded, "-.glb");
     let report = output::verify(&files);
     if report.has_errors() {
         return Err(refuse_failed_check(report, upgraded));
