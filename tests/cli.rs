@@ -199,6 +199,19 @@ fn usage_errors_exit_2() {
         gltfmat(&["check", "--ignore", "NOT_A_CODE", "fixtures/valid"]).0,
         2
     );
+    // An output folder that is not there is named before anything is converted.
+    let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(["upgrade", "fixtures/gltf1/pbr-mr-textured-fraunhofer.gltf"])
+        .args(["-o", "fixtures/no-such-folder/out.glb"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("the output folder fixtures/no-such-folder does not exist"),
+        "{stderr}"
+    );
 }
 
 #[test]

@@ -125,8 +125,17 @@ impl Destination {
                 output.display()
             )));
         };
+        // Said before converting, and of the folder the user named, not of a temporary in it.
+        let folder = folder_of(output);
+        if !folder.is_dir() {
+            return Err(Failure::usage(format!(
+                "{}: the output folder {} does not exist (or is not a folder)",
+                output.display(),
+                folder.display()
+            )));
+        }
         Ok(Destination::File {
-            folder: folder_of(output),
+            folder,
             name: name.to_string(),
         })
     }
