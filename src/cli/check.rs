@@ -5,9 +5,10 @@ use crate::common::{Failure, Outcome};
 use crate::config;
 use gltfmat::check::registry;
 use gltfmat::document::uri::FolderResources;
-use gltfmat::report::{write, Format, Style};
+use gltfmat::report::{write_each, Format, Style};
 use gltfmat::{check_bytes, check_path, CheckOptions, NoResources, Profile, Report, Severity};
 use rayon::prelude::*;
+use std::cell::Cell;
 use std::collections::HashMap;
 use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
@@ -202,39 +203,60 @@ pub fn run(args: CheckArgs) -> Outcome {
                 .map(|(options, _)| options)
         })
         .collect::<Result<_, _>>()?;
-    let results: Vec<Result<Report, String>> = (files.par_iter().zip(&options))
-        .map(|(file, options)| {
-            let result = check_file(file, stdin_name, options);
-            progress.inc(1);
-            result
-        })
-        .collect();
-    progress.finish_and_clear();
-    let mut reports = Vec::new();
-    for (file, result) in files.iter().zip(results) {
-        match result {
-            Ok(report) => reports.push(report),
-            Err(message) => {
-                errln!("gltfmat: {}: {message}", file.display());
-                unreadable = true;
-            }
-        }
-    }
     let colour = args.format == FormatArg::Human && args.color.wanted();
     let style = Style::new(colour)
         .with_all_findings(args.all_findings || all_findings)
         .with_list(walked_a_folder || args.inputs.len() > 1);
+    let failed = Cell::new(false);
+    let unreadable = Cell::new(unreadable);
+    let check_one = |(file, options): (&PathBuf, &Arc<CheckOptions>)| {
+        let result = check_file(file, stdin_name, options);
+        progress.inc(1);
+        result
+    };
+    // Each report is written, then dropped with its document: only a window of them is
+    // ever held, however many files the folder has.
+    let reports = in_order_by_windows(files.iter().zip(&options), check_one)
+        .zip(&files)
+        .filter_map(|(result, file)| match result {
+            Ok(report) => {
+                failed.set(failed.get() || args.fail_on.fails(&report));
+                Some(report)
+            }
+            Err(message) => {
+                progress.suspend(|| errln!("gltfmat: {}: {message}", file.display()));
+                unreadable.set(true);
+                None
+            }
+        });
     // Written as rendered; a reader that went away (`| head`) is not an error.
     let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
-    let _ =
-        write(args.format.format(), &reports, &style, &mut stdout).and_then(|()| stdout.flush());
-    Ok(if unreadable {
+    let _ = write_each(args.format.format(), reports, &style, &mut stdout)
+        .and_then(|()| stdout.flush());
+    progress.finish_and_clear();
+    Ok(if unreadable.get() {
         ExitCode::from(2)
-    } else if reports.iter().any(|r| args.fail_on.fails(r)) {
+    } else if failed.get() {
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// `work` done on every item, in parallel a window at a time, the results given in the
+/// items' order: at most a window of results exists at once.
+fn in_order_by_windows<T: Send, R: Send>(
+    items: impl Iterator<Item = T>,
+    work: impl Fn(T) -> R + Sync,
+) -> impl Iterator<Item = R> {
+    let window = 4 * rayon::current_num_threads();
+    let mut items = items.peekable();
+    std::iter::from_fn(move || {
+        items.peek()?;
+        let batch: Vec<T> = items.by_ref().take(window).collect();
+        Some(batch.into_par_iter().map(&work).collect::<Vec<R>>())
+    })
+    .flatten()
 }
 
 /// Checks one file; `-` is stdin, named `stdin_name` when given (its resources are then
@@ -413,4 +435,27 @@ fn build_options(args: &CheckArgs, config: config::Config) -> Result<CheckOption
         }
     }
     Ok(options)
+}
+
+#[cfg(test)]
+mod window_tests {
+    use super::in_order_by_windows;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    #[test]
+    fn results_come_in_order_and_only_a_window_ahead_of_the_reader() {
+        let pulled = AtomicUsize::new(0);
+        let items = (0..1000).inspect(|_| {
+            pulled.fetch_add(1, Ordering::Relaxed);
+        });
+        let mut results = in_order_by_windows(items, |i: i32| i * 2);
+        assert_eq!(results.next(), Some(0));
+        let window = 4 * rayon::current_num_threads();
+        assert!(
+            pulled.load(Ordering::Relaxed) <= window,
+            "all items taken at once"
+        );
+        let rest: Vec<i32> = results.collect();
+        assert_eq!(rest, (1..1000).map(|i| i * 2).collect::<Vec<_>>());
+    }
 }

@@ -6,6 +6,8 @@ use super::{location_suffix, Positions, Style};
 use crate::check::{Diagnostic, Location, Report, Severity};
 use crate::document::json::LineIndex;
 use crate::document::Container;
+use std::borrow::Borrow;
+use std::io::Write;
 
 fn paint(text: &str, code: &str, colour: bool) -> String {
     if colour {
@@ -29,18 +31,31 @@ fn listed(severity: Severity, style: &Style) -> bool {
     style.all_findings || matches!(severity, Severity::Error | Severity::Warning)
 }
 
-pub fn render(reports: &[Report], style: &Style) -> String {
-    let mut out = String::new();
+/// Each report's findings and summary as it comes, then the total over all of them.
+pub fn write<R: Borrow<Report>>(
+    reports: impl Iterator<Item = R>,
+    style: &Style,
+    out: &mut dyn Write,
+) -> std::io::Result<()> {
+    let mut total = Total::default();
     for report in reports {
-        let positions = Positions::of_those(report, |d| listed(d.severity, style));
-        for d in in_reading_order(report, &positions, style) {
-            out.push_str(&finding(report, &positions, d, style.colour));
-        }
-        out.push_str(&summary(report, style));
+        let report = report.borrow();
+        out.write_all(render_one(report, style).as_bytes())?;
+        total.add(report);
     }
-    if reports.len() > 1 {
-        out.push_str(&grand_total(reports));
+    if total.files > 1 {
+        out.write_all(total.line().as_bytes())?;
     }
+    Ok(())
+}
+
+fn render_one(report: &Report, style: &Style) -> String {
+    let mut out = String::new();
+    let positions = Positions::of_those(report, |d| listed(d.severity, style));
+    for d in in_reading_order(report, &positions, style) {
+        out.push_str(&finding(report, &positions, d, style.colour));
+    }
+    out.push_str(&summary(report, style));
     out
 }
 
@@ -207,17 +222,37 @@ fn summary(report: &Report, style: &Style) -> String {
     )
 }
 
-fn grand_total(reports: &[Report]) -> String {
-    let total = |s: Severity| reports.iter().map(|r| r.count(s)).sum::<usize>();
-    let with_errors = reports.iter().filter(|r| r.has_errors()).count();
-    format!(
-        "{} file(s) checked, {with_errors} with errors: {} error(s), {} warning(s), {} info(s), {} hint(s)\n",
-        reports.len(),
-        total(Severity::Error),
-        total(Severity::Warning),
-        total(Severity::Info),
-        total(Severity::Hint),
-    )
+/// What the closing line of several reports counts.
+#[derive(Default)]
+struct Total {
+    files: usize,
+    with_errors: usize,
+    counts: [usize; 4],
+}
+
+const SEVERITIES: [Severity; 4] = [
+    Severity::Error,
+    Severity::Warning,
+    Severity::Info,
+    Severity::Hint,
+];
+
+impl Total {
+    fn add(&mut self, report: &Report) {
+        self.files += 1;
+        self.with_errors += usize::from(report.has_errors());
+        for (count, severity) in self.counts.iter_mut().zip(SEVERITIES) {
+            *count += report.count(severity);
+        }
+    }
+
+    fn line(&self) -> String {
+        let [errors, warnings, infos, hints] = self.counts;
+        format!(
+            "{} file(s) checked, {} with errors: {errors} error(s), {warnings} warning(s), {infos} info(s), {hints} hint(s)\n",
+            self.files, self.with_errors,
+        )
+    }
 }
 
 #[cfg(test)]
@@ -254,10 +289,7 @@ mod tests {
     }
 
     fn plain(report: &Report, all: bool) -> String {
-        render(
-            std::slice::from_ref(report),
-            &Style::new(false).with_all_findings(all),
-        )
+        render_one(report, &Style::new(false).with_all_findings(all))
     }
 
     #[test]

@@ -7,6 +7,8 @@ mod sarif;
 use crate::check::{Diagnostic, Location, Report, Severity};
 use crate::document::json;
 use serde_json::{json, Map, Value};
+use std::borrow::Borrow;
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::io::Write;
 use std::ops::Range;
@@ -80,23 +82,42 @@ pub fn write(
     options: &Style,
     out: &mut dyn Write,
 ) -> std::io::Result<()> {
+    write_each(format, reports, options, out)
+}
+
+/// Writes each report in `format` to `out` as it comes, then what closes the output (the
+/// grand total, the end of the list): reports made one after another (a folder of 10^4
+/// assets) are each dropped, with their document, once written.
+pub fn write_each<R: Borrow<Report>>(
+    format: Format,
+    reports: impl IntoIterator<Item = R>,
+    options: &Style,
+    out: &mut dyn Write,
+) -> std::io::Result<()> {
+    let mut reports = reports.into_iter();
     match format {
-        Format::Human => out.write_all(human::render(reports, options).as_bytes()),
+        Format::Human => human::write(reports, options, out),
         Format::Json => {
-            match reports {
-                [one] if !options.list => {
-                    serde_json::to_writer_pretty(&mut *out, &khronos_report(one))?
+            let first = reports.next();
+            let second = if options.list { None } else { reports.next() };
+            match (first, second) {
+                (Some(one), None) if !options.list => {
+                    serde_json::to_writer_pretty(&mut *out, &khronos_report(one.borrow()))?
                 }
-                many => serde_json::to_writer_pretty(&mut *out, &KhronosReports(many))?,
+                (first, second) => {
+                    let all = first.into_iter().chain(second).chain(reports);
+                    serde_json::to_writer_pretty(&mut *out, &KhronosReports::new(all))?
+                }
             }
             out.write_all(b"\n")
         }
-        Format::Jsonl => reports.iter().try_for_each(|r| {
-            serde_json::to_writer(&mut *out, &khronos_report(r))?;
+        Format::Jsonl => reports.try_for_each(|r| {
+            serde_json::to_writer(&mut *out, &khronos_report(r.borrow()))?;
             out.write_all(b"\n")
         }),
         Format::Sarif => sarif::write(reports, out),
-        Format::Github => reports.iter().try_for_each(|r| {
+        Format::Github => reports.try_for_each(|r| {
+            let r = r.borrow();
             let positions = Positions::of(r);
             (r.diagnostics.iter())
                 .try_for_each(|d| out.write_all(github_line(r, &positions, d).as_bytes()))
@@ -104,12 +125,20 @@ pub fn write(
     }
 }
 
-/// A list of Khronos-shaped reports, each built as it is written.
-struct KhronosReports<'r>(&'r [Report]);
+/// A list of Khronos-shaped reports, each built as it is written (serialising takes the
+/// reports from the iterator: it is written once).
+struct KhronosReports<I>(RefCell<Option<I>>);
 
-impl serde::Serialize for KhronosReports<'_> {
+impl<I> KhronosReports<I> {
+    fn new(reports: I) -> Self {
+        KhronosReports(RefCell::new(Some(reports)))
+    }
+}
+
+impl<R: Borrow<Report>, I: Iterator<Item = R>> serde::Serialize for KhronosReports<I> {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.collect_seq(self.0.iter().map(khronos_report))
+        let reports = self.0.borrow_mut().take().into_iter().flatten();
+        serializer.collect_seq(reports.map(|r| khronos_report(r.borrow())))
     }
 }
 
@@ -340,4 +369,66 @@ fn resource_json(r: &crate::check::context::ResourceInfo) -> Value {
         );
     }
     Value::Object(m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::{check_bytes, CheckOptions};
+    use crate::document::uri::NoResources;
+    use std::cell::Cell;
+
+    /// A report that counts how many of its kind are alive.
+    struct Counted<'c>(Report, &'c Cell<usize>);
+
+    impl Drop for Counted<'_> {
+        fn drop(&mut self) {
+            self.1.set(self.1.get() - 1);
+        }
+    }
+
+    impl Borrow<Report> for Counted<'_> {
+        fn borrow(&self) -> &Report {
+            &self.0
+        }
+    }
+
+    #[test]
+    fn each_report_is_written_and_dropped_before_the_next_is_made() {
+        let text = br#"{"asset":{"version":"2.0"},"nodes":[{"rotation":[1,1,1,1]}]}"#;
+        for format in [
+            Format::Human,
+            Format::Json,
+            Format::Jsonl,
+            Format::Sarif,
+            Format::Github,
+        ] {
+            let (alive, most) = (Cell::new(0), Cell::new(0));
+            let reports = (0..5).map(|i| {
+                alive.set(alive.get() + 1);
+                most.set(most.get().max(alive.get()));
+                let report = check_bytes(
+                    &format!("{i}.gltf"),
+                    &text[..],
+                    &NoResources,
+                    &CheckOptions::default(),
+                );
+                Counted(report, &alive)
+            });
+            let mut out = Vec::new();
+            write_each(
+                format,
+                reports,
+                &Style::new(false).with_list(true),
+                &mut out,
+            )
+            .unwrap();
+            assert_eq!(most.get(), 1, "{format:?}: reports held at once");
+            let text = String::from_utf8(out).unwrap();
+            assert!(
+                text.contains("4.gltf"),
+                "{format:?}: every report written: {text}"
+            );
+        }
+    }
 }

@@ -5,8 +5,13 @@ use crate::check::{registry, Diagnostic, Location, Report, Severity};
 use crate::document::Container;
 use percent_encoding::{utf8_percent_encode, AsciiSet, NON_ALPHANUMERIC};
 use serde_json::{json, Value};
+use std::borrow::Borrow;
+use std::cell::RefCell;
 
-pub fn write(reports: &[Report], out: &mut dyn std::io::Write) -> std::io::Result<()> {
+pub fn write<R: Borrow<Report>>(
+    reports: impl Iterator<Item = R>,
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
     let rules: Vec<Value> = registry::all().map(rule).collect();
     let root = SourceRoot::current();
     let mut tool = json!({"driver": {
@@ -23,7 +28,7 @@ pub fn write(reports: &[Report], out: &mut dyn std::io::Write) -> std::io::Resul
         runs: [Run {
             tool,
             original_uri_base_ids: root.base_ids(),
-            results: Results(reports, &root),
+            results: Results(RefCell::new(Some(reports)), &root),
         }],
     };
     serde_json::to_writer_pretty(&mut *out, &log)?;
@@ -106,28 +111,32 @@ fn encode(path: &str) -> String {
 /// The log, serialised as it is walked: each result is built, written and dropped in turn,
 /// so 10^5 results never exist as one JSON tree (ten times the size of their text).
 #[derive(serde::Serialize)]
-struct Log<'r> {
+#[serde(bound(serialize = "Results<'r, I>: serde::Serialize"))]
+struct Log<'r, I> {
     #[serde(rename = "$schema")]
     schema: &'static str,
     version: &'static str,
-    runs: [Run<'r>; 1],
+    runs: [Run<'r, I>; 1],
 }
 
 #[derive(serde::Serialize)]
 #[serde(rename_all = "camelCase")]
-struct Run<'r> {
+#[serde(bound(serialize = "Results<'r, I>: serde::Serialize"))]
+struct Run<'r, I> {
     tool: Value,
     original_uri_base_ids: Value,
-    results: Results<'r>,
+    results: Results<'r, I>,
 }
 
-struct Results<'r>(&'r [Report], &'r SourceRoot);
+/// The results of every report, taken from the iterator as they are written (once).
+struct Results<'r, I>(RefCell<Option<I>>, &'r SourceRoot);
 
-impl serde::Serialize for Results<'_> {
+impl<R: Borrow<Report>, I: Iterator<Item = R>> serde::Serialize for Results<'_, I> {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeSeq;
         let mut sequence = serializer.serialize_seq(None)?;
-        for report in self.0 {
+        for report in self.0.borrow_mut().take().into_iter().flatten() {
+            let report = report.borrow();
             let positions = Positions::of(report);
             let artifact = self.1.artifact(&report.uri);
             for d in &report.diagnostics {
