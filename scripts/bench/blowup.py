@@ -126,6 +126,17 @@ def joint_names(n):
     return write(f'joints-{n}.gltf', doc)
 
 
+def folder_of_assets(n):
+    """A folder of n small assets, each with a finding: a CI gate's walk of a repository."""
+    folder = os.path.join(WORK, f'folder-{n}')
+    os.makedirs(folder, exist_ok=True)
+    text = json.dumps(asset(nodes=[{'rotation': [1, 1, 1, 1]}] * 50)).encode()
+    for i in range(n):
+        with open(os.path.join(folder, f'a{i}.gltf'), 'wb') as f:
+            f.write(text)
+    return folder
+
+
 def big_png_references(n):
     """One 8192² PNG (a few hundred KB compressed) as n images, each with its material."""
     with open(os.path.join(WORK, 'big.png'), 'wb') as f:
@@ -170,8 +181,15 @@ CLASSES = [
     ('sarif findings (14)', many_findings, 3_000, ['check', '--format', 'sarif']),
     ('human findings, one line', many_findings_minified, 3_000, ['check', '--format', 'human']),
     ('2.0 spec-gloss materials, upgrade with proof', spec_gloss_materials, 10_000, ['upgrade', '-o', os.path.join(WORK, 'sg.glb'), '--force']),
+    ('folder of N assets, sarif', folder_of_assets, 1_000, ['check', '--format', 'sarif']),
     ('8192² PNG, N references (15)', big_png_references, 1, ['render', '--all', '--size', '64', '-o', os.path.join(WORK, 'sheet.png'), '--force']),
 ]
+
+
+def size_of(path):
+    if os.path.isdir(path):
+        return sum(os.path.getsize(os.path.join(path, name)) for name in os.listdir(path))
+    return os.path.getsize(path)
 
 
 def run(command, path):
@@ -202,7 +220,7 @@ def main():
             if failure:
                 print(f'{name:32} failed: {failure}')
                 break
-            row.append((seconds, kb, os.path.getsize(path)))
+            row.append((seconds, kb, size_of(path)))
         else:
             (s1, k1, _), (s2, k2, b2) = row
             print(f'{name:32} {n:>9} {s1:7.2f} {k1 / 1024:6.0f} {s2:7.2f} {k2 / 1024:6.0f} {s2 / s1:7.1f} {k2 / k1:6.1f}'
