@@ -9,7 +9,7 @@ use crate::document::image_header::ImageInfo;
 use crate::document::json::escape_token;
 use crate::document::uri::ResourceLoader;
 use crate::document::{BufferData, Bytes, Document};
-use crate::gltf::material::texture_images;
+use crate::gltf::material::{texture_images, TEXTURE_SLOTS};
 use crate::gltf::material::{Channels, TextureSlot};
 use serde_json::Value;
 use std::collections::{HashMap, HashSet};
@@ -53,14 +53,39 @@ pub struct AssetInfo {
 /// What a material demands of the primitives that use it.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct MaterialNeeds {
-    /// Each texture binding (its pointer) with the texCoord set it reads.
-    pub texcoords: Vec<(String, u64)>,
+    /// Each texture binding with the texCoord set it reads.
+    pub texcoords: Vec<TexcoordNeed>,
     /// A normal, clearcoat-normal or anisotropy texture needs a tangent space.
     pub needs_tangent: bool,
     /// The material has a normal texture, from which a runtime can generate tangents.
     pub can_generate_tangent: bool,
     /// gltfmat: the material uses KHR_materials_anisotropy (with or without a texture).
     pub anisotropy: bool,
+}
+
+/// A texture binding's texCoord set. Its pointer is made only for a finding: 10^5
+/// materials hold no pointer strings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TexcoordNeed {
+    /// The binding's slot, an index into [`TEXTURE_SLOTS`].
+    pub slot: usize,
+    /// The set comes from the binding's KHR_texture_transform (which the Khronos validator
+    /// checks under its own pointer), not from the binding itself.
+    pub from_transform: bool,
+    pub set: u64,
+}
+
+impl TexcoordNeed {
+    /// Pointer to the binding (or its KHR_texture_transform) in material `material`.
+    pub fn binding(&self, material: usize) -> String {
+        let transform = if self.from_transform {
+            "/extensions/KHR_texture_transform"
+        } else {
+            ""
+        };
+        let slot = TEXTURE_SLOTS[self.slot].pointer();
+        format!("/materials/{material}{slot}{transform}")
+    }
 }
 
 pub(crate) struct Context<'a> {

@@ -2,7 +2,7 @@
 //! pass, and the Khronos material-extension rules.
 
 use super::resources::declared_mime;
-use crate::check::context::{member, number, unsigned, Context, MaterialNeeds};
+use crate::check::context::{member, number, unsigned, Context, MaterialNeeds, TexcoordNeed};
 // Defined beside the context, which caches the slot uses; named here, where they are made.
 pub use crate::check::context::{extension, SlotUse};
 use crate::diagnostic::khronos;
@@ -69,7 +69,7 @@ pub fn check_materials(ctx: &mut Context) {
 
 fn texture_needs(ctx: &mut Context, material: &Value, pointer: &str) -> MaterialNeeds {
     let mut needs = MaterialNeeds::default();
-    for slot in TEXTURE_SLOTS {
+    for (at, slot) in TEXTURE_SLOTS.iter().enumerate() {
         let Some(info) = slot.lookup(material) else {
             continue;
         };
@@ -77,11 +77,16 @@ fn texture_needs(ctx: &mut Context, material: &Value, pointer: &str) -> Material
         ctx.reference(info, "index", &info_pointer, "textures");
         // The Khronos validator checks both the binding's own set and a
         // KHR_texture_transform override, each under its own pointer.
-        let own = unsigned(info, "texCoord").unwrap_or(0);
-        needs.texcoords.push((info_pointer.clone(), own));
+        let need = |set, from_transform| TexcoordNeed {
+            slot: at,
+            from_transform,
+            set,
+        };
+        needs
+            .texcoords
+            .push(need(unsigned(info, "texCoord").unwrap_or(0), false));
         if let Some(set) = texture_transform(info).and_then(|t| unsigned(t, "texCoord")) {
-            let at = format!("{info_pointer}/extensions/KHR_texture_transform");
-            needs.texcoords.push((at, set));
+            needs.texcoords.push(need(set, true));
         }
         if slot.is_normal() || slot.key == "anisotropyTexture" {
             needs.needs_tangent = true;

@@ -221,7 +221,7 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
         let material_pointer = member(pointer, "material");
         read_texcoords(
             ctx,
-            &needs,
+            (material, &needs),
             &material_pointer,
             texcoord_sets,
             &mut texcoords_used,
@@ -258,7 +258,13 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
             .get(&material)
             .cloned()
             .unwrap_or_default();
-        read_texcoords(ctx, &needs, &at, texcoord_sets, &mut texcoords_used);
+        read_texcoords(
+            ctx,
+            (material, &needs),
+            &at,
+            texcoord_sets,
+            &mut texcoords_used,
+        );
     }
     for set in (0..texcoord_sets).filter(|s| !texcoords_used.contains(s)) {
         ctx.emit(
@@ -280,19 +286,19 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
 /// reads a set the primitive does not have (at `at`, the pointer to the material reference).
 fn read_texcoords(
     ctx: &mut Context,
-    needs: &MaterialNeeds,
+    (material, needs): (usize, &MaterialNeeds),
     at: &str,
     sets: u64,
     used: &mut BTreeSet<u64>,
 ) {
-    for (binding, set) in &needs.texcoords {
-        if *set < sets {
-            used.insert(*set);
+    for need in &needs.texcoords {
+        if need.set < sets {
+            used.insert(need.set);
         } else {
             ctx.emit(
                 khronos::MESH_PRIMITIVE_TOO_FEW_TEXCOORDS,
                 at,
-                format!("Material is incompatible with mesh primitive: Texture binding '{binding}' needs 'TEXCOORD_{set}' attribute."),
+                format!("Material is incompatible with mesh primitive: Texture binding '{}' needs 'TEXCOORD_{}' attribute.", need.binding(material), need.set),
             );
         }
     }
