@@ -147,10 +147,13 @@ pub fn check_bytes(
     options: &CheckOptions,
 ) -> Report {
     let mut diagnostics = Collector::new(options);
-    let document = document::read(bytes, uri, &mut diagnostics);
+    let mut document = document::read(bytes, uri, &mut diagnostics);
     let mut info = context::AssetInfo::default();
-    if let Some(root) = &document.root {
-        if !root.is_object() {
+    let khronos = options.profile == Profile::Khronos;
+    // 2.0 passes on a 1.0 document only bury the one fix: upgrading it.
+    let gltf1 = document.major_version() == Some(1) && !khronos;
+    match &mut document.root {
+        Some(root) if !root.is_object() => {
             diagnostics.push(Diagnostic::at(
                 crate::diagnostic::khronos::TYPE_MISMATCH,
                 "",
@@ -159,12 +162,22 @@ pub fn check_bytes(
                     short(root)
                 ),
             ));
-        } else {
+        }
+        Some(root) => {
+            if !gltf1 {
+                schema_pass(root, khronos, &mut diagnostics);
+            }
+            let root = document.root.as_ref().expect("matched above");
             let mut ctx = Context::new(root, &document, loader, options, diagnostics);
-            run_passes(&mut ctx);
+            if gltf1 {
+                rules::gltf1::check(&mut ctx);
+            } else {
+                run_passes(&mut ctx);
+            }
             info = ctx.info();
             diagnostics = ctx.diagnostics;
         }
+        None => {}
     }
     let (diagnostics, counts, truncated) = diagnostics.finish();
     Report {
@@ -182,30 +195,45 @@ fn short(value: &serde_json::Value) -> String {
     text.chars().take(40).collect()
 }
 
-fn run_passes(ctx: &mut Context) {
-    let khronos = ctx.options.profile == Profile::Khronos;
-    if ctx.document.major_version() == Some(1) && !khronos {
-        // 2.0 passes on a 1.0 document only bury the one fix: upgrading it.
-        rules::gltf1::check(ctx);
-        return;
+/// The schema pass, before the others: its findings, and the arrays a wrongly typed
+/// element made unreadable taken out of the tree, since the Khronos validator reads the
+/// document as if they were not there (a `translation` holding a null is no translation).
+/// Of a document that does not claim glTF 2.x, only what the Khronos validator reads
+/// before it stops (see [`khronos::read_before_asset`]).
+fn schema_pass(root: &mut serde_json::Value, khronos: bool, sink: &mut dyn Sink) {
+    let absent = if khronos::has_supported_version(root) {
+        schema::validate(root, khronos, sink)
+    } else {
+        let read = khronos::read_before_asset(root);
+        schema::validate(root, khronos, &mut Only(sink, read))
+    };
+    for pointer in absent {
+        let mut tokens = document::json::pointer_tokens(&pointer);
+        let Some(member) = tokens.pop() else { continue };
+        let parent = (tokens.iter()).try_fold(&mut *root, |value, token| match value {
+            serde_json::Value::Object(members) => members.get_mut(token),
+            serde_json::Value::Array(elements) => elements.get_mut(token.parse::<usize>().ok()?),
+            _ => None,
+        });
+        if let Some(serde_json::Value::Object(members)) = parent {
+            members.shift_remove(&member);
+        }
     }
+}
+
+fn run_passes(ctx: &mut Context) {
     if !khronos::has_supported_version(ctx.root) {
-        // The Khronos validator reads `asset` first and stops when it is missing or not 2.x:
-        // what it would say of the rest assumes a format the file does not claim.
-        let about_asset = khronos::about_asset(ctx.root);
-        schema::validate(
-            ctx.root,
-            khronos,
-            &mut Only(&mut ctx.diagnostics, about_asset),
-        );
+        // The Khronos validator reads the extension lists and `asset` and stops when that
+        // is missing or not 2.x: what it would say of the rest assumes a format the file
+        // does not claim.
+        khronos::check_extension_lists(ctx);
         khronos::check_asset(ctx);
         return;
     }
-    schema::validate(ctx.root, khronos, &mut ctx.diagnostics);
     for (_, pass) in khronos::PASSES {
         pass(ctx);
     }
-    if !khronos {
+    if ctx.options.profile != Profile::Khronos {
         rules::run_all(ctx);
     }
 }

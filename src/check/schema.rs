@@ -7,6 +7,7 @@ use crate::document::json::escape_token;
 use jsonschema::error::{TypeKind, ValidationErrorKind};
 use jsonschema::Validator;
 use serde_json::Value;
+use std::collections::HashSet;
 use std::sync::OnceLock;
 
 const CORE: &str = include_str!("../../schema/gltf.schema.json");
@@ -145,8 +146,15 @@ fn validator(khronos: bool) -> &'static Validator {
     }
 }
 
-/// Validates the document; returns Khronos-coded diagnostics.
-pub fn validate(doc: &Value, khronos: bool, sink: &mut dyn Sink) {
+/// Validates the document into `found` (Khronos-coded findings); returns the arrays a
+/// wrongly typed element makes unreadable (see [`AbsentArrays`]), by pointer.
+pub fn validate(doc: &Value, khronos: bool, found: &mut dyn Sink) -> HashSet<String> {
+    let mut absent = AbsentArrays::new(found);
+    validate_into(doc, khronos, &mut absent);
+    absent.finish()
+}
+
+fn validate_into(doc: &Value, khronos: bool, sink: &mut dyn Sink) {
     let validator = validator(khronos);
     let Some(root) = doc
         .as_object()
@@ -250,13 +258,103 @@ fn diagnostics(validator: &Validator, instance: &Value, prefix: &str, sink: &mut
     }
 }
 
-/// The array holding the element at `pointer`, when that array is a property inside an
-/// object (`/meshes/0/primitives/3` → `/meshes/0/primitives`). Elements of the top-level
-/// arrays are objects in their own right and are reported where they are.
-fn nested_array_of(pointer: &str) -> Option<&str> {
+/// The array holding the element at `pointer`, when that array is a property
+/// (`/meshes/0/primitives/3` → `/meshes/0/primitives`, `/extensionsUsed/1` →
+/// `/extensionsUsed`). Elements of the top-level collections are objects in their own right
+/// and are reported where they are.
+fn array_holding(pointer: &str) -> Option<&str> {
     let (parent, last) = pointer.rsplit_once('/')?;
-    let nested = parent.matches('/').count() >= 2;
-    (nested && !last.is_empty() && last.bytes().all(|b| b.is_ascii_digit())).then_some(parent)
+    let collection = parent.matches('/').count() == 1
+        && crate::gltf::COLLECTIONS.contains(&parent.trim_start_matches('/'));
+    let element = !last.is_empty() && last.bytes().all(|b| b.is_ascii_digit());
+    (element && !collection && !parent.is_empty()).then_some(parent)
+}
+
+/// Between the schema findings and their sink: notes each array a wrongly typed element
+/// makes unreadable (the Khronos validator then reads the document as if the array were
+/// not there), and drops what was found inside such an array or of its presence. Findings
+/// are held until the end to see every such array first, up to [`HELD`]; past that they
+/// pass on filtered by the arrays known so far, so memory stays bounded.
+struct AbsentArrays<'s> {
+    sink: &'s mut dyn Sink,
+    held: Vec<Diagnostic>,
+    arrays: HashSet<String>,
+}
+
+/// Arrays the Khronos validator keeps, without their wrongly typed elements: morph
+/// targets are plain maps of accessor indices, read one by one.
+const KEPT_ELEMENT_BY_ELEMENT: &[&str] = &["/targets"];
+
+/// Schema findings held back at most (a file of 10^7 findings streams past them).
+const HELD: usize = 1 << 16;
+
+impl<'s> AbsentArrays<'s> {
+    fn new(sink: &'s mut dyn Sink) -> Self {
+        AbsentArrays {
+            sink,
+            held: Vec::new(),
+            arrays: Default::default(),
+        }
+    }
+
+    /// Passes the held findings on and gives the unreadable arrays, by pointer.
+    fn finish(mut self) -> HashSet<String> {
+        self.release();
+        self.arrays
+    }
+
+    fn release(&mut self) {
+        for diagnostic in std::mem::take(&mut self.held) {
+            if !self.inside_absent(&diagnostic) {
+                self.sink.push(diagnostic);
+            }
+        }
+    }
+
+    fn inside_absent(&self, diagnostic: &Diagnostic) -> bool {
+        let Some(pointer) = diagnostic.pointer() else {
+            return false;
+        };
+        if diagnostic.code == khronos::ARRAY_TYPE_MISMATCH {
+            return false;
+        }
+        // The pointer itself (a dependency the array's presence demanded) or an ancestor.
+        let mut at = pointer;
+        loop {
+            if self.arrays.contains(at) {
+                return true;
+            }
+            match at.rsplit_once('/') {
+                Some((parent, _)) if !parent.is_empty() => at = parent,
+                _ => return false,
+            }
+        }
+    }
+}
+
+impl Sink for AbsentArrays<'_> {
+    fn push(&mut self, diagnostic: Diagnostic) {
+        if diagnostic.code == khronos::ARRAY_TYPE_MISMATCH {
+            if let Some(pointer) = diagnostic.pointer() {
+                // At the array, or, for a list of names, at the element.
+                let array = array_holding(pointer).unwrap_or(pointer);
+                if !KEPT_ELEMENT_BY_ELEMENT
+                    .iter()
+                    .any(|name| array.ends_with(name))
+                {
+                    self.arrays.insert(array.to_string());
+                }
+            }
+        }
+        if self.held.len() < HELD {
+            self.held.push(diagnostic);
+        } else {
+            self.release();
+            if !self.inside_absent(&diagnostic) {
+                self.sink.push(diagnostic);
+            }
+        }
+    }
 }
 
 fn member(pointer: &str, key: &str) -> String {
@@ -291,15 +389,26 @@ fn map_error(
     use ValidationErrorKind as K;
     let one = |code: Code, at: String, message: String| vec![Diagnostic::at(code, at, message)];
     match kind {
-        K::Type { kind } if type_name(kind) == "object" && nested_array_of(pointer).is_some() => {
-            one(
-                khronos::ARRAY_TYPE_MISMATCH,
-                nested_array_of(pointer).unwrap_or_default().to_string(),
-                format!(
-                    "Type mismatch. Array element {} is not a 'object'.",
-                    show(instance)
+        // An element of a property's array, by what the array holds (as the Khronos
+        // validator reads them): a wrong index is reported where it is and the others kept;
+        // a wrong number or object makes the array unreadable, reported once at it; each
+        // wrong name of a string list is reported, and the list is unreadable.
+        K::Type { kind } if array_holding(pointer).is_some() => {
+            let array = array_holding(pointer).unwrap_or_default().to_string();
+            let expected = type_name(kind);
+            let mismatch = format!(
+                "Type mismatch. Array element {} is not a '{expected}'.",
+                show(instance)
+            );
+            match expected.as_str() {
+                "integer" => one(
+                    khronos::INVALID_INDEX,
+                    pointer.to_string(),
+                    "Index must be a non-negative integer.".to_string(),
                 ),
-            )
+                "string" => one(khronos::ARRAY_TYPE_MISMATCH, pointer.to_string(), mismatch),
+                _ => one(khronos::ARRAY_TYPE_MISMATCH, array, mismatch),
+            }
         }
         K::Type { kind } => one(
             khronos::TYPE_MISMATCH,

@@ -115,7 +115,8 @@ fn valid_name(name: &str) -> bool {
 /// Extensions a loader cannot ignore: using one without requiring it is an error.
 const MUST_BE_REQUIRED: &[&str] = &["KHR_mesh_quantization"];
 
-fn check_declarations(ctx: &mut Context) {
+/// `extensionsUsed` and `extensionsRequired`: names, support, and what must be required.
+pub fn check_declarations(ctx: &mut Context) {
     let used = ctx.extensions_used();
     let required: Vec<&str> = ctx
         .items("extensionsRequired")

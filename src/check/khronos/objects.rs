@@ -24,14 +24,32 @@ pub fn has_supported_version(root: &Value) -> bool {
         .is_some_and(|(major, _)| major == 2)
 }
 
-/// Which schema findings of `root` are about its `asset` object: those inside it, and, when
-/// it is missing, the root's one missing member (the root schema requires `asset` alone).
-pub fn about_asset(root: &Value) -> impl Fn(&Diagnostic) -> bool {
+/// Which schema findings of a document whose `asset` is missing or not 2.x the Khronos
+/// validator gives: it reads the root's members, the extension lists and `asset`, then
+/// stops. So: unexpected root members, anything of `extensionsUsed` / `extensionsRequired`,
+/// anything inside `asset`, and, when it is missing, the root's one missing member (the
+/// root schema requires `asset` alone).
+pub fn read_before_asset(root: &Value) -> impl Fn(&Diagnostic) -> bool {
     let missing = root.get("asset").is_none();
-    move |diagnostic| match diagnostic.pointer() {
-        Some("" | "/") => missing && diagnostic.code == khronos::UNDEFINED_PROPERTY,
-        Some(pointer) => pointer == "/asset" || pointer.starts_with("/asset/"),
-        None => false,
+    move |diagnostic| {
+        let Some(pointer) = diagnostic.pointer() else {
+            return false;
+        };
+        let under = |member: &str| {
+            pointer == member
+                || pointer
+                    .strip_prefix(member)
+                    .is_some_and(|r| r.starts_with('/'))
+        };
+        let root_member = pointer.len() > 1 && !pointer[1..].contains('/');
+        match diagnostic.code {
+            _ if under("/asset") || under("/extensionsUsed") || under("/extensionsRequired") => {
+                true
+            }
+            khronos::UNEXPECTED_PROPERTY => root_member,
+            khronos::UNDEFINED_PROPERTY => missing && matches!(pointer, "" | "/"),
+            _ => false,
+        }
     }
 }
 

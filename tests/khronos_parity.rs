@@ -1,0 +1,150 @@
+//! Findings the Khronos profile must give exactly as the released Khronos glTF-Validator
+//! (2.0.0-dev.3.10, the npm package) gives them, on inputs its conformance corpus does not
+//! cover. Each expected list is the validator's own report of the same document (code and
+//! pointer, every finding), recorded when the case was written.
+
+use gltfmat::check::{check_bytes, CheckOptions, Profile};
+use gltfmat::document::uri::NoResources;
+use serde_json::{json, Value};
+
+/// Every finding of the Khronos profile, as (code, pointer), sorted.
+fn khronos_findings(document: Value) -> Vec<(String, String)> {
+    let options = CheckOptions::default().with_profile(Profile::Khronos);
+    let bytes = serde_json::to_vec(&document).unwrap();
+    let report = check_bytes("case.gltf", bytes, &NoResources, &options);
+    let mut found: Vec<(String, String)> = (report.diagnostics.iter())
+        .map(|d| {
+            (
+                d.code.name().to_string(),
+                d.pointer().unwrap_or_default().to_string(),
+            )
+        })
+        .collect();
+    found.sort();
+    found
+}
+
+fn expected(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
+    let mut pairs: Vec<(String, String)> = (pairs.iter())
+        .map(|(code, pointer)| (code.to_string(), pointer.to_string()))
+        .collect();
+    pairs.sort();
+    pairs
+}
+
+#[test]
+fn a_wrong_index_in_a_list_of_indices_is_that_element_and_the_others_are_kept() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "nodes": [{"children": [1, "a", 2.5]}, {}, {}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("INVALID_INDEX", "/nodes/0/children/1"),
+            ("INVALID_INDEX", "/nodes/0/children/2"),
+            ("NODE_EMPTY", "/nodes/1"),
+            ("NODE_EMPTY", "/nodes/2"),
+            ("UNUSED_OBJECT", "/nodes/0"),
+            ("UNUSED_OBJECT", "/nodes/2"),
+        ])
+    );
+}
+
+#[test]
+fn a_wrong_number_makes_its_array_absent_for_every_later_check() {
+    // A null where a serializer wrote NaN: the translation is reported once, at the array,
+    // and is then no translation (no NODE_MATRIX_TRS beside the matrix); weights that are no
+    // numbers are no weights (no dependency on a mesh, no count to compare).
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+    "nodes": [
+        {"translation": [1, null, 0], "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]},
+        {"weights": [1, "w"]}
+    ]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_TYPE_MISMATCH", "/nodes/0/translation"),
+            ("ARRAY_TYPE_MISMATCH", "/nodes/1/weights"),
+            ("NODE_EMPTY", "/nodes/0"),
+            ("NODE_EMPTY", "/nodes/1"),
+            ("NODE_MATRIX_DEFAULT", "/nodes/0/matrix"),
+            ("UNUSED_OBJECT", "/nodes/0"),
+            ("UNUSED_OBJECT", "/nodes/1"),
+        ])
+    );
+}
+
+#[test]
+fn a_wrong_name_in_the_extension_lists_is_each_element_and_the_lists_are_absent() {
+    // With its lists unreadable, nothing is declared: the extension in use is undeclared,
+    // and neither unsupported nor required-but-unused names are reported.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": [5, "KHR_materials_unlit", true],
+        "extensionsRequired": ["KHR_y", 7],
+        "materials": [{"extensions": {"KHR_materials_unlit": {}}}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_TYPE_MISMATCH", "/extensionsRequired/1"),
+            ("ARRAY_TYPE_MISMATCH", "/extensionsUsed/0"),
+            ("ARRAY_TYPE_MISMATCH", "/extensionsUsed/2"),
+            (
+                "UNDECLARED_EXTENSION",
+                "/materials/0/extensions/KHR_materials_unlit"
+            ),
+            ("UNUSED_OBJECT", "/materials/0"),
+        ])
+    );
+}
+
+#[test]
+fn a_wrong_element_in_a_list_of_objects_hides_the_whole_list_but_not_in_morph_targets() {
+    let primitives = khronos_findings(json!({"asset": {"version": "2.0"},
+        "meshes": [{"primitives": [{"attributes": {}}, 5]}]}));
+    assert_eq!(
+        primitives,
+        expected(&[
+            ("ARRAY_TYPE_MISMATCH", "/meshes/0/primitives"),
+            ("UNUSED_OBJECT", "/meshes/0"),
+        ])
+    );
+    let targets = khronos_findings(json!({"asset": {"version": "2.0"},
+        "meshes": [{"primitives": [{"attributes": {}, "targets": [{}, 3]}]}]}));
+    assert_eq!(
+        targets,
+        expected(&[
+            ("ARRAY_TYPE_MISMATCH", "/meshes/0/primitives/0/targets"),
+            ("EMPTY_ENTITY", "/meshes/0/primitives/0/attributes"),
+            ("EMPTY_ENTITY", "/meshes/0/primitives/0/targets/0"),
+            ("UNUSED_OBJECT", "/meshes/0"),
+        ])
+    );
+}
+
+#[test]
+fn a_document_not_claiming_2_x_still_gets_its_root_members_and_extension_lists_checked() {
+    // The Khronos validator reads the root's members, the extension lists and `asset`, then
+    // stops: 1.0 members are unexpected, the lists are checked, nothing else is.
+    let found = khronos_findings(json!({"asset": {"version": "3.0"},
+        "programs": {}, "nodes": 5,
+        "extensionsUsed": ["KHR_x", "KHR_x"], "extensionsRequired": ["EXT_y"]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("DUPLICATE_ELEMENTS", "/extensionsUsed/1"),
+            ("UNEXPECTED_PROPERTY", "/programs"),
+            ("UNKNOWN_ASSET_MAJOR_VERSION", "/asset/version"),
+            ("UNSUPPORTED_EXTENSION", "/extensionsUsed/0"),
+            ("UNSUPPORTED_EXTENSION", "/extensionsUsed/1"),
+            ("UNUSED_EXTENSION_REQUIRED", "/extensionsRequired/0"),
+        ])
+    );
+    let no_asset = khronos_findings(json!({"foo": 1, "extensionsUsed": []}));
+    assert_eq!(
+        no_asset,
+        expected(&[
+            ("EMPTY_ENTITY", "/extensionsUsed"),
+            ("UNDEFINED_PROPERTY", "/"),
+            ("UNEXPECTED_PROPERTY", "/foo"),
+        ])
+    );
+}
