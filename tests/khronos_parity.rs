@@ -148,3 +148,60 @@ fn a_document_not_claiming_2_x_still_gets_its_root_members_and_extension_lists_c
         ])
     );
 }
+
+#[test]
+fn an_accessor_type_that_is_no_name_is_one_finding_and_an_invalid_format_where_it_is_used() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"}, "nodes": [{}],
+        "accessors": [
+            {"type": "SCALAR", "componentType": 5126, "count": 1, "min": [0], "max": [1]},
+            {"type": 7, "componentType": 5126, "count": 1}
+        ],
+        "animations": [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "scale"}}],
+                        "samplers": [{"input": 0, "output": 1}]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_FORMAT",
+                "/animations/0/channels/0/sampler"
+            ),
+            ("NODE_EMPTY", "/nodes/0"),
+            ("TYPE_MISMATCH", "/accessors/1/type"),
+        ])
+    );
+    let untyped = khronos_findings(
+        json!({"asset": {"version": "2.0"}, "accessors": [{"count": 3}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]}),
+    );
+    assert_eq!(
+        untyped,
+        expected(&[
+            (
+                "MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT",
+                "/meshes/0/primitives/0/attributes/POSITION"
+            ),
+            (
+                "MESH_PRIMITIVE_POSITION_ACCESSOR_WITHOUT_BOUNDS",
+                "/meshes/0/primitives/0/attributes/POSITION"
+            ),
+            ("UNDEFINED_PROPERTY", "/accessors/0"),
+            ("UNDEFINED_PROPERTY", "/accessors/0"),
+            ("UNUSED_OBJECT", "/meshes/0"),
+        ])
+    );
+}
+
+#[test]
+fn a_reference_to_an_element_that_is_no_object_is_unresolved() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 4}, 5], "bufferViews": [{"buffer": 1, "byteLength": 4}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("TYPE_MISMATCH", "/buffers/1"),
+            ("UNRESOLVED_REFERENCE", "/bufferViews/0/buffer"),
+            ("UNUSED_OBJECT", "/bufferViews/0"),
+            ("UNUSED_OBJECT", "/buffers/0"),
+        ])
+    );
+}

@@ -189,11 +189,19 @@ impl<'a> Context<'a> {
         collection: &'static str,
     ) -> Option<usize> {
         let index = as_index(value);
-        let len = self.items(collection).len() as u64;
+        let items = self.items(collection);
         // A whole number too large for an index (1e29) resolves to nothing, like any other
-        // index past the end; other values are the schema pass's to report.
+        // index past the end, and so does an element that is no object (the schema pass
+        // reported it; the Khronos validator reads it as missing); other values are the
+        // schema pass's to report.
         let whole = value.as_f64().is_some_and(|f| f.fract() == 0.0 && f >= 0.0);
-        let Some(index) = index.filter(|&i| i < len) else {
+        let object_at = |i: u64| {
+            usize::try_from(i)
+                .ok()
+                .and_then(|i| items.get(i))
+                .is_some_and(Value::is_object)
+        };
+        let Some(index) = index.filter(|&i| object_at(i)) else {
             if whole {
                 self.emit(
                     khronos::UNRESOLVED_REFERENCE,

@@ -272,13 +272,16 @@ fn array_holding(pointer: &str) -> Option<&str> {
 
 /// Between the schema findings and their sink: notes each array a wrongly typed element
 /// makes unreadable (the Khronos validator then reads the document as if the array were
-/// not there), and drops what was found inside such an array or of its presence. Findings
+/// not there), and drops what was found inside such an array or of its presence, and a
+/// mistyped value's finding that it is not in its list of values. Findings
 /// are held until the end to see every such array first, up to [`HELD`]; past that they
 /// pass on filtered by the arrays known so far, so memory stays bounded.
 struct AbsentArrays<'s> {
     sink: &'s mut dyn Sink,
     held: Vec<Diagnostic>,
     arrays: HashSet<String>,
+    /// Values of the wrong type.
+    mistyped: HashSet<String>,
 }
 
 /// Arrays the Khronos validator keeps, without their wrongly typed elements: morph
@@ -294,6 +297,7 @@ impl<'s> AbsentArrays<'s> {
             sink,
             held: Vec::new(),
             arrays: Default::default(),
+            mistyped: Default::default(),
         }
     }
 
@@ -318,6 +322,10 @@ impl<'s> AbsentArrays<'s> {
         if diagnostic.code == khronos::ARRAY_TYPE_MISMATCH {
             return false;
         }
+        // A value of the wrong type is that finding only, not also outside its list.
+        if diagnostic.code == khronos::VALUE_NOT_IN_LIST && self.mistyped.contains(pointer) {
+            return true;
+        }
         // The pointer itself (a dependency the array's presence demanded) or an ancestor.
         let mut at = pointer;
         loop {
@@ -334,6 +342,11 @@ impl<'s> AbsentArrays<'s> {
 
 impl Sink for AbsentArrays<'_> {
     fn push(&mut self, diagnostic: Diagnostic) {
+        if diagnostic.code == khronos::TYPE_MISMATCH {
+            if let Some(pointer) = diagnostic.pointer() {
+                self.mistyped.insert(pointer.to_string());
+            }
+        }
         if diagnostic.code == khronos::ARRAY_TYPE_MISMATCH {
             if let Some(pointer) = diagnostic.pointer() {
                 // At the array, or, for a list of names, at the element.

@@ -389,7 +389,7 @@ impl Uses<'_> {
     /// (others are reported by the format check and not read here).
     fn attribute(&self, attributes: &Value, semantic: &str) -> Option<(usize, Format<'_>)> {
         let index = unsigned(attributes, semantic)? as usize;
-        let format = Format::of(self.accessors.get(index)?)?;
+        let format = Format::of(self.accessors.get(index)?);
         format
             .allowed_for(semantic, false, self.quantized)?
             .then_some((index, format))

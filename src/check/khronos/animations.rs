@@ -157,7 +157,7 @@ fn sampler_accessors(ctx: &mut Context, sampler: &Value, at: &str) {
         return;
     };
     let at = format!("{at}/input");
-    if !Format::of(input).is_some_and(|f| f.is_plain_float("SCALAR")) {
+    if !Format::of(input).is_plain_float("SCALAR") {
         ctx.emit(
             khronos::ANIMATION_SAMPLER_INPUT_ACCESSOR_INVALID_FORMAT,
             at.clone(),
@@ -229,9 +229,7 @@ fn output(ctx: &mut Context, channel: &Value, sampler: &Value, at: &str) {
         return;
     };
     let path = target.get("path").and_then(Value::as_str).unwrap_or("");
-    let format = Format::of(output);
-    let allowed = format.map(|f| f.allowed_for_animation(path));
-    if allowed == Some(Some(false)) {
+    if Format::of(output).allowed_for_animation(path) == Some(false) {
         ctx.emit(
             khronos::ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_FORMAT,
             format!("{at}/sampler"),

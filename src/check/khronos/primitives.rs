@@ -20,12 +20,15 @@ pub(super) struct Format<'a> {
 }
 
 impl<'a> Format<'a> {
-    pub(super) fn of(accessor: &'a Value) -> Option<Self> {
-        Some(Format {
-            kind: accessor.get("type")?.as_str()?,
-            component_type: unsigned(accessor, "componentType")?,
+    /// The accessor's format as the Khronos validator reads it: a type or component type
+    /// that is missing or not of its kind reads as none, which no format rule allows (it
+    /// is still an invalid format for the attribute, output or matrices it holds).
+    pub(super) fn of(accessor: &'a Value) -> Self {
+        Format {
+            kind: accessor.get("type").and_then(Value::as_str).unwrap_or(""),
+            component_type: unsigned(accessor, "componentType").unwrap_or(0),
             normalized: accessor.get("normalized").and_then(Value::as_bool) == Some(true),
-        })
+        }
     }
 
     pub(super) fn is_float(self) -> bool {
@@ -336,26 +339,25 @@ impl<'a> Walk<'_, 'a> {
             );
         }
         let format = Format::of(accessor);
-        match format.and_then(|f| f.allowed_for(semantic, morph, self.quantized)) {
+        match format.allowed_for(semantic, morph, self.quantized) {
             Some(false) => self.ctx.emit(
                 khronos::MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT,
                 at,
                 "Invalid accessor format for this attribute semantic.",
             ),
-            None if !morph && format.is_some_and(|f| f.component_type == UNSIGNED_INT) => {
-                self.ctx.emit(
-                    khronos::MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_UNSIGNED_INT,
-                    at,
-                    "Mesh attributes cannot use UNSIGNED_INT component type.",
-                )
-            }
+            None if !morph && format.component_type == UNSIGNED_INT => self.ctx.emit(
+                khronos::MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_UNSIGNED_INT,
+                at,
+                "Mesh attributes cannot use UNSIGNED_INT component type.",
+            ),
             _ => {}
         }
         let view = unsigned(accessor, "bufferView")
             .filter(|v| (*v as usize) < self.ctx.items("bufferViews").len());
         let strided = self.ctx.has_strided_view(accessor);
-        let element =
-            format.and_then(|f| Some(component_size(f.component_type)? * component_count(f.kind)?));
+        let element = component_size(format.component_type)
+            .zip(component_count(format.kind))
+            .map(|(size, count)| size * count);
         let offset = unsigned(accessor, "byteOffset").unwrap_or(0);
         let unpadded = element.is_some_and(|e| e % 4 != 0) && view.is_some() && !strided;
         if !offset.is_multiple_of(4) || unpadded {
@@ -389,14 +391,13 @@ impl<'a> Walk<'_, 'a> {
                 "bufferView.byteStride must not be defined for indices accessor.",
             );
         }
-        let valid = Format::of(accessor).is_some_and(|f| {
-            f.kind == "SCALAR"
-                && !f.normalized
-                && matches!(
-                    f.component_type,
-                    UNSIGNED_BYTE | UNSIGNED_SHORT | UNSIGNED_INT
-                )
-        });
+        let f = Format::of(accessor);
+        let valid = f.kind == "SCALAR"
+            && !f.normalized
+            && matches!(
+                f.component_type,
+                UNSIGNED_BYTE | UNSIGNED_SHORT | UNSIGNED_INT
+            );
         if !valid {
             self.ctx.emit(
                 khronos::MESH_PRIMITIVE_INDICES_ACCESSOR_INVALID_FORMAT,

@@ -106,7 +106,7 @@ fn inverse_binds(ctx: &mut Context, skin: &Value, pointer: &str) {
             "bufferView.byteStride must not be defined for buffer views used by inverse bind matrices accessors.",
         );
     }
-    if !Format::of(accessor).is_some_and(|f| f.is_plain_float("MAT4")) {
+    if !Format::of(accessor).is_plain_float("MAT4") {
         ctx.emit(
             khronos::SKIN_IBM_INVALID_FORMAT,
             at.clone(),
