@@ -205,3 +205,37 @@ fn a_reference_to_an_element_that_is_no_object_is_unresolved() {
         ])
     );
 }
+
+#[test]
+fn an_undeclared_extension_is_reported_and_nothing_in_it_is_read() {
+    // Its out-of-range factor is not checked and the texture and image it names stay unused.
+    let png = "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVQYV2P4z/AfAAQAAf+I0P3MAAAAAElFTkSuQmCC";
+    let clearcoat = khronos_findings(json!({"asset": {"version": "2.0"},
+        "materials": [{"extensions": {"KHR_materials_clearcoat": {"clearcoatTexture": {"index": 0}, "clearcoatFactor": 5}}}],
+        "textures": [{"source": 0}], "images": [{"uri": png}]}));
+    assert_eq!(
+        clearcoat,
+        expected(&[
+            (
+                "UNDECLARED_EXTENSION",
+                "/materials/0/extensions/KHR_materials_clearcoat"
+            ),
+            ("UNUSED_OBJECT", "/materials/0"),
+            ("UNUSED_OBJECT", "/textures/0"),
+        ])
+    );
+    let webp = khronos_findings(json!({"asset": {"version": "2.0"},
+        "textures": [{"source": 0, "extensions": {"EXT_texture_webp": {"source": 1}}}],
+        "images": [{"uri": png}, {"uri": png}]}));
+    assert_eq!(
+        webp,
+        expected(&[
+            (
+                "UNDECLARED_EXTENSION",
+                "/textures/0/extensions/EXT_texture_webp"
+            ),
+            ("UNUSED_OBJECT", "/images/1"),
+            ("UNUSED_OBJECT", "/textures/0"),
+        ])
+    );
+}

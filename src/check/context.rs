@@ -107,6 +107,9 @@ pub(crate) struct Context<'a> {
     /// Every texture binding, computed on first use (see `materials::slot_uses`).
     pub slot_uses: std::sync::OnceLock<std::sync::Arc<[SlotUse<'a>]>>,
     pub resources: Vec<ResourceInfo>,
+    /// Extension objects no `extensionsUsed` declares, taken out of the document before the
+    /// passes (the Khronos validator reads nothing of them); the extensions pass reports them.
+    pub undeclared_extensions: Vec<String>,
 }
 
 impl<'a> Context<'a> {
@@ -130,6 +133,7 @@ impl<'a> Context<'a> {
             material_needs: HashMap::new(),
             slot_uses: std::sync::OnceLock::new(),
             resources: Vec::new(),
+            undeclared_extensions: Vec::new(),
         }
     }
 

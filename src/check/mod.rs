@@ -19,6 +19,7 @@ use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::document::{self, Container, Document};
 use collector::Collector;
 use std::collections::HashMap;
+use std::collections::HashSet;
 use std::path::Path;
 
 /// Which issues to report.
@@ -164,11 +165,14 @@ pub fn check_bytes(
             ));
         }
         Some(root) => {
-            if !gltf1 {
-                schema_pass(root, khronos, &mut diagnostics);
-            }
+            let undeclared = if gltf1 {
+                Vec::new()
+            } else {
+                schema_pass(root, khronos, &mut diagnostics)
+            };
             let root = document.root.as_ref().expect("matched above");
             let mut ctx = Context::new(root, &document, loader, options, diagnostics);
+            ctx.undeclared_extensions = undeclared;
             if gltf1 {
                 rules::gltf1::check(&mut ctx);
             } else {
@@ -195,19 +199,41 @@ fn short(value: &serde_json::Value) -> String {
     text.chars().take(40).collect()
 }
 
-/// The schema pass, before the others: its findings, and the arrays a wrongly typed
-/// element made unreadable taken out of the tree, since the Khronos validator reads the
-/// document as if they were not there (a `translation` holding a null is no translation).
-/// Of a document that does not claim glTF 2.x, only what the Khronos validator reads
-/// before it stops (see [`khronos::read_before_asset`]).
-fn schema_pass(root: &mut serde_json::Value, khronos: bool, sink: &mut dyn Sink) {
-    let absent = if khronos::has_supported_version(root) {
-        schema::validate(root, khronos, sink)
-    } else {
+/// The schema pass, before the others, and what the Khronos validator does not read taken
+/// out of the tree: the arrays a wrongly typed element made unreadable (a `translation`
+/// holding a null is no translation) and the extension objects `extensionsUsed` does not
+/// declare (returned, for the extensions pass to report). Of a document that does not claim
+/// glTF 2.x, only what the Khronos validator reads before it stops (see
+/// [`khronos::read_before_asset`]).
+fn schema_pass(root: &mut serde_json::Value, khronos: bool, sink: &mut dyn Sink) -> Vec<String> {
+    if !khronos::has_supported_version(root) {
         let read = khronos::read_before_asset(root);
-        schema::validate(root, khronos, &mut Only(sink, read))
-    };
-    for pointer in absent {
+        let absent = schema::validate(root, khronos, &mut Only(sink, read), HashSet::new());
+        remove_all(root, absent);
+        return Vec::new();
+    }
+    let undeclared = khronos::undeclared_extensions(root, &declared_extensions(root));
+    let absent = schema::validate(root, khronos, sink, undeclared.iter().cloned().collect());
+    remove_all(root, absent);
+    undeclared
+}
+
+/// The names `extensionsUsed` declares; none when it is not a list of names (the schema
+/// pass reports it, and the Khronos validator then reads no declaration).
+fn declared_extensions(root: &serde_json::Value) -> Vec<&str> {
+    let names = root
+        .get("extensionsUsed")
+        .and_then(serde_json::Value::as_array);
+    (names.into_iter().flatten())
+        .map(serde_json::Value::as_str)
+        .collect::<Option<Vec<&str>>>()
+        .unwrap_or_default()
+}
+
+/// Removes the members at `pointers` from the tree (those inside arrays stay: only members
+/// of objects are ever unread).
+fn remove_all(root: &mut serde_json::Value, pointers: HashSet<String>) {
+    for pointer in pointers {
         let mut tokens = document::json::pointer_tokens(&pointer);
         let Some(member) = tokens.pop() else { continue };
         let parent = (tokens.iter()).try_fold(&mut *root, |value, token| match value {

@@ -146,10 +146,17 @@ fn validator(khronos: bool) -> &'static Validator {
     }
 }
 
-/// Validates the document into `found` (Khronos-coded findings); returns the arrays a
-/// wrongly typed element makes unreadable (see [`AbsentArrays`]), by pointer.
-pub fn validate(doc: &Value, khronos: bool, found: &mut dyn Sink) -> HashSet<String> {
+/// Validates the document into `found` (Khronos-coded findings), saying nothing of what is
+/// at or below the pointers in `unread` (what the Khronos validator does not read); returns
+/// those and the arrays a wrongly typed element makes unreadable (see [`AbsentArrays`]).
+pub fn validate(
+    doc: &Value,
+    khronos: bool,
+    found: &mut dyn Sink,
+    unread: HashSet<String>,
+) -> HashSet<String> {
     let mut absent = AbsentArrays::new(found);
+    absent.arrays = unread;
     validate_into(doc, khronos, &mut absent);
     absent.finish()
 }

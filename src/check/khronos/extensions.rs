@@ -83,8 +83,38 @@ fn nested(collection: &str) -> &'static [&'static str] {
 
 pub fn check(ctx: &mut Context) {
     check_declarations(ctx);
+    // Taken out of the document before the passes, as the Khronos validator reads nothing
+    // of them; said here, where it says it.
+    for pointer in std::mem::take(&mut ctx.undeclared_extensions) {
+        undeclared(ctx, &pointer);
+    }
     let root = ctx.root;
-    visit(ctx, root, "", Host::Root);
+    walk(root, "", Host::Root, &mut |object, pointer, host| {
+        visit(ctx, object, pointer, host)
+    });
+}
+
+/// The extension objects on the objects the Khronos validator reads extensions on whose
+/// names `declared` does not hold, by pointer (it reports them, and reads nothing in them).
+pub fn undeclared_extensions(root: &Value, declared: &[&str]) -> Vec<String> {
+    let mut found = Vec::new();
+    walk(root, "", Host::Root, &mut |object, pointer, _| {
+        let extensions = object.get("extensions").and_then(Value::as_object);
+        for name in extensions.into_iter().flat_map(|e| e.keys()) {
+            if !declared.contains(&name.as_str()) {
+                found.push(member(&member(pointer, "extensions"), name));
+            }
+        }
+    });
+    found
+}
+
+fn undeclared(ctx: &mut Context, pointer: &str) {
+    ctx.emit(
+        khronos::UNDECLARED_EXTENSION,
+        pointer,
+        "Extension is not declared in extensionsUsed.",
+    );
 }
 
 fn supported(ctx: &Context, name: &str) -> Option<&'static [Host]> {
@@ -160,6 +190,7 @@ pub fn check_declarations(ctx: &mut Context) {
     }
 }
 
+/// The extras and the extension objects of one object the validator reads them on.
 fn visit(ctx: &mut Context, object: &Value, pointer: &str, host: Host) {
     let Some(map) = object.as_object() else {
         return;
@@ -184,35 +215,46 @@ fn visit(ctx: &mut Context, object: &Value, pointer: &str, host: Host) {
             );
         }
     }
+}
+
+/// Calls `each` on `object` and every object below it that the Khronos validator reads
+/// `extensions` and `extras` on (outside extension objects), with its pointer and host,
+/// in document order.
+fn walk(object: &Value, pointer: &str, host: Host, each: &mut dyn FnMut(&Value, &str, Host)) {
+    let Some(map) = object.as_object() else {
+        return;
+    };
+    each(object, pointer, host);
     for (key, child_host, is_array) in children(host) {
         let child_pointer = member(pointer, key);
         match map.get(*key) {
             Some(Value::Array(items)) if *is_array => {
                 for (i, item) in items.iter().enumerate() {
                     let item_pointer = format!("{child_pointer}/{i}");
-                    visit(ctx, item, &item_pointer, *child_host);
-                    visit_nested(ctx, key, item, &item_pointer);
+                    walk(item, &item_pointer, *child_host, each);
+                    walk_nested(key, item, &item_pointer, each);
                 }
             }
-            Some(child) if !is_array => visit(ctx, child, &child_pointer, *child_host),
+            Some(child) if !is_array => walk(child, &child_pointer, *child_host, each),
             _ => {}
         }
     }
     if host == Host::Material {
         for slot in TEXTURE_SLOTS.iter().filter(|s| s.extension.is_none()) {
             if let Some(info) = slot.lookup(object) {
-                visit(
-                    ctx,
-                    info,
-                    &format!("{pointer}{}", slot.pointer()),
-                    Host::TextureInfo,
-                );
+                let info_pointer = format!("{pointer}{}", slot.pointer());
+                walk(info, &info_pointer, Host::TextureInfo, each);
             }
         }
     }
 }
 
-fn visit_nested(ctx: &mut Context, collection: &str, item: &Value, pointer: &str) {
+fn walk_nested(
+    collection: &str,
+    item: &Value,
+    pointer: &str,
+    each: &mut dyn FnMut(&Value, &str, Host),
+) {
     for key in nested(collection) {
         let child_pointer = member(pointer, key);
         match item.get(*key) {
@@ -224,15 +266,15 @@ fn visit_nested(ctx: &mut Context, collection: &str, item: &Value, pointer: &str
                         Host::Other
                     };
                     let p = format!("{child_pointer}/{i}");
-                    visit(ctx, child, &p, host);
+                    walk(child, &p, host, each);
                     if *key == "channels" {
                         if let Some(target) = child.get("target") {
-                            visit(ctx, target, &member(&p, "target"), Host::ChannelTarget);
+                            walk(target, &member(&p, "target"), Host::ChannelTarget, each);
                         }
                     }
                 }
             }
-            Some(child) => visit(ctx, child, &child_pointer, Host::Other),
+            Some(child) => walk(child, &child_pointer, Host::Other, each),
             None => {}
         }
     }
@@ -240,11 +282,7 @@ fn visit_nested(ctx: &mut Context, collection: &str, item: &Value, pointer: &str
 
 fn visit_extension(ctx: &mut Context, name: &str, value: &Value, pointer: &str, host: Host) {
     if !ctx.extensions_used().contains(&name) {
-        ctx.emit(
-            khronos::UNDECLARED_EXTENSION,
-            pointer,
-            "Extension is not declared in extensionsUsed.",
-        );
+        undeclared(ctx, pointer);
     }
     let Some(hosts) = supported(ctx, name) else {
         return;
@@ -266,7 +304,12 @@ fn visit_extension(ctx: &mut Context, name: &str, value: &Value, pointer: &str, 
     }
     for slot in TEXTURE_SLOTS.iter().filter(|s| s.extension == Some(name)) {
         if let Some(info) = value.get(slot.key) {
-            visit(ctx, info, &member(pointer, slot.key), Host::TextureInfo);
+            walk(
+                info,
+                &member(pointer, slot.key),
+                Host::TextureInfo,
+                &mut |o, p, h| visit(ctx, o, p, h),
+            );
         }
     }
 }
