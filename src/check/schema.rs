@@ -622,7 +622,7 @@ mod tests {
 
     fn codes(doc: Value) -> Vec<(String, String)> {
         let mut found = Vec::new();
-        validate(&doc, true, &mut found);
+        validate(&doc, true, &mut found, HashSet::new());
         found
             .into_iter()
             .map(|d| (d.code.to_string(), d.pointer().unwrap().to_string()))
