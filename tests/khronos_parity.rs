@@ -239,3 +239,22 @@ fn an_undeclared_extension_is_reported_and_nothing_in_it_is_read() {
         ])
     );
 }
+
+#[test]
+fn a_member_of_the_wrong_type_is_read_as_absent() {
+    // `min` that is no array: the accessor has no bounds for its POSITION use.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3", "min": "", "max": [1, 1, 1]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "MESH_PRIMITIVE_POSITION_ACCESSOR_WITHOUT_BOUNDS",
+                "/meshes/0/primitives/0/attributes/POSITION"
+            ),
+            ("TYPE_MISMATCH", "/accessors/0/min"),
+            ("UNUSED_OBJECT", "/meshes/0"),
+        ])
+    );
+}

@@ -287,8 +287,6 @@ struct AbsentArrays<'s> {
     sink: &'s mut dyn Sink,
     held: Vec<Diagnostic>,
     arrays: HashSet<String>,
-    /// Values of the wrong type.
-    mistyped: HashSet<String>,
 }
 
 /// Arrays the Khronos validator keeps, without their wrongly typed elements: morph
@@ -304,7 +302,6 @@ impl<'s> AbsentArrays<'s> {
             sink,
             held: Vec::new(),
             arrays: Default::default(),
-            mistyped: Default::default(),
         }
     }
 
@@ -326,14 +323,14 @@ impl<'s> AbsentArrays<'s> {
         let Some(pointer) = diagnostic.pointer() else {
             return false;
         };
-        if diagnostic.code == khronos::ARRAY_TYPE_MISMATCH {
+        if matches!(
+            diagnostic.code,
+            khronos::ARRAY_TYPE_MISMATCH | khronos::TYPE_MISMATCH
+        ) {
             return false;
         }
-        // A value of the wrong type is that finding only, not also outside its list.
-        if diagnostic.code == khronos::VALUE_NOT_IN_LIST && self.mistyped.contains(pointer) {
-            return true;
-        }
-        // The pointer itself (a dependency the array's presence demanded) or an ancestor.
+        // The pointer itself (a mistyped value is that finding only, not also outside its
+        // list of values) (a dependency the array's presence demanded) or an ancestor.
         let mut at = pointer;
         loop {
             if self.arrays.contains(at) {
@@ -349,9 +346,11 @@ impl<'s> AbsentArrays<'s> {
 
 impl Sink for AbsentArrays<'_> {
     fn push(&mut self, diagnostic: Diagnostic) {
+        // A member of the wrong type is read as absent, as the Khronos validator reads it
+        // (an accessor whose `min` is a string has no bounds).
         if diagnostic.code == khronos::TYPE_MISMATCH {
-            if let Some(pointer) = diagnostic.pointer() {
-                self.mistyped.insert(pointer.to_string());
+            if let Some(pointer) = diagnostic.pointer().filter(|p| !p.is_empty()) {
+                self.arrays.insert(pointer.to_string());
             }
         }
         if diagnostic.code == khronos::ARRAY_TYPE_MISMATCH {

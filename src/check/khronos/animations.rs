@@ -164,7 +164,7 @@ fn sampler_accessors(ctx: &mut Context, sampler: &Value, at: &str) {
             "Invalid Animation sampler input accessor format. Must be SCALAR FLOAT.",
         );
     }
-    if input.get("min").is_none() || input.get("max").is_none() {
+    if !Format::has_bounds(input) {
         ctx.emit(
             khronos::ANIMATION_SAMPLER_INPUT_ACCESSOR_WITHOUT_BOUNDS,
             at.clone(),

@@ -31,6 +31,16 @@ impl<'a> Format<'a> {
         }
     }
 
+    /// Whether the accessor declares both bounds in a form that can be read: the Khronos
+    /// validator reads `min` and `max` by the type and component type, so with either of
+    /// those missing or invalid an accessor has no bounds.
+    pub(super) fn has_bounds(accessor: &Value) -> bool {
+        let format = Format::of(accessor);
+        let readable = component_size(format.component_type).is_some()
+            && component_count(format.kind).is_some();
+        readable && accessor.get("min").is_some() && accessor.get("max").is_some()
+    }
+
     pub(super) fn is_float(self) -> bool {
         self.component_type == FLOAT
     }
@@ -329,9 +339,7 @@ impl<'a> Walk<'_, 'a> {
         at: &str,
         morph: bool,
     ) {
-        if semantic == "POSITION"
-            && (accessor.get("min").is_none() || accessor.get("max").is_none())
-        {
+        if semantic == "POSITION" && !Format::has_bounds(accessor) {
             self.ctx.emit(
                 khronos::MESH_PRIMITIVE_POSITION_ACCESSOR_WITHOUT_BOUNDS,
                 at,
