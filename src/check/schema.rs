@@ -289,6 +289,15 @@ struct AbsentArrays<'s> {
     arrays: HashSet<String>,
 }
 
+/// Whether `pointer` is an element of a top-level collection (`/nodes/3`).
+fn is_collection_element(pointer: &str) -> bool {
+    let mut tokens = pointer.split('/').skip(1);
+    match (tokens.next(), tokens.next(), tokens.next()) {
+        (Some(collection), Some(_), None) => crate::gltf::COLLECTIONS.contains(&collection),
+        _ => false,
+    }
+}
+
 /// Arrays the Khronos validator keeps, without their wrongly typed elements: morph
 /// targets are plain maps of accessor indices, read one by one.
 const KEPT_ELEMENT_BY_ELEMENT: &[&str] = &["/targets"];
@@ -348,8 +357,13 @@ impl Sink for AbsentArrays<'_> {
     fn push(&mut self, diagnostic: Diagnostic) {
         // A member of the wrong type is read as absent, as the Khronos validator reads it
         // (an accessor whose `min` is a string has no bounds).
+        // (Not an element of a top-level collection: it cannot be taken out, and 10^7
+        // mistyped nodes must not be 10^7 remembered pointers.)
         if diagnostic.code == khronos::TYPE_MISMATCH {
-            if let Some(pointer) = diagnostic.pointer().filter(|p| !p.is_empty()) {
+            let member = diagnostic
+                .pointer()
+                .filter(|p| !is_collection_element(p) && !p.is_empty());
+            if let Some(pointer) = member {
                 self.arrays.insert(pointer.to_string());
             }
         }
