@@ -1,36 +1,33 @@
 //! The `gltfmat` command line: one file per subcommand, all on top of the library's façade.
 
-/// `println!` for the CLI: a reader that went away (`gltfmat … | head`) ends nothing in
-/// the middle (an upgrade still writes its files) and is no panic.
-macro_rules! outln {
-    ($($arg:tt)*) => {{
+/// Writes to a standard stream (`print!` / `eprint!` for the CLI). A reader that went away
+/// (`gltfmat … | head`) is ignored: it ends nothing in the middle (an upgrade still writes
+/// its files) and is no panic.
+macro_rules! write_std {
+    ($stream:expr, $($arg:tt)*) => {{
         use std::io::Write as _;
-        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+        let _ = write!($stream.lock(), $($arg)*);
     }};
 }
 
-/// `eprintln!` for the CLI, on the same terms as [`outln!`].
-macro_rules! errln {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stderr().lock(), $($arg)*);
-    }};
-}
-
-/// `eprint!` for the CLI, on the same terms as [`outln!`].
-macro_rules! err {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stderr().lock(), $($arg)*);
-    }};
-}
-
-/// `print!` for the CLI, on the same terms as [`outln!`].
+/// `print!`, on the terms of [`write_std!`].
 macro_rules! out {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stdout().lock(), $($arg)*);
-    }};
+    ($($arg:tt)*) => { write_std!(std::io::stdout(), $($arg)*) };
+}
+
+/// `eprint!`, on the terms of [`write_std!`].
+macro_rules! err {
+    ($($arg:tt)*) => { write_std!(std::io::stderr(), $($arg)*) };
+}
+
+/// `println!`, on the terms of [`write_std!`].
+macro_rules! outln {
+    ($($arg:tt)*) => { out!("{}\n", format_args!($($arg)*)) };
+}
+
+/// `eprintln!`, on the terms of [`write_std!`].
+macro_rules! errln {
+    ($($arg:tt)*) => { err!("{}\n", format_args!($($arg)*)) };
 }
 
 mod check;
