@@ -258,3 +258,18 @@ fn a_member_of_the_wrong_type_is_read_as_absent() {
         ])
     );
 }
+
+#[test]
+fn an_array_of_the_wrong_length_is_reported_for_its_length_only_and_read_as_absent() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "nodes": [{"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1, "x"], "translation": [1, 2]}],
+        "scenes": [{"nodes": [0]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_LENGTH_NOT_IN_LIST", "/nodes/0/matrix"),
+            ("ARRAY_LENGTH_NOT_IN_LIST", "/nodes/0/translation"),
+            ("NODE_EMPTY", "/nodes/0"),
+        ])
+    );
+}

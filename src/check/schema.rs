@@ -287,6 +287,8 @@ struct AbsentArrays<'s> {
     sink: &'s mut dyn Sink,
     held: Vec<Diagnostic>,
     arrays: HashSet<String>,
+    /// Arrays of the wrong length (absent too).
+    wrong_length: HashSet<String>,
 }
 
 /// Whether `pointer` is an element of a top-level collection (`/nodes/3`).
@@ -311,6 +313,7 @@ impl<'s> AbsentArrays<'s> {
             sink,
             held: Vec::new(),
             arrays: Default::default(),
+            wrong_length: Default::default(),
         }
     }
 
@@ -332,9 +335,16 @@ impl<'s> AbsentArrays<'s> {
         let Some(pointer) = diagnostic.pointer() else {
             return false;
         };
+        // An array of the wrong length is reported for its length only: its elements are
+        // not read.
+        if diagnostic.code == khronos::ARRAY_TYPE_MISMATCH {
+            return self
+                .wrong_length
+                .contains(array_holding(pointer).unwrap_or(pointer));
+        }
         if matches!(
             diagnostic.code,
-            khronos::ARRAY_TYPE_MISMATCH | khronos::TYPE_MISMATCH
+            khronos::TYPE_MISMATCH | khronos::ARRAY_LENGTH_NOT_IN_LIST
         ) {
             return false;
         }
@@ -364,6 +374,12 @@ impl Sink for AbsentArrays<'_> {
                 .pointer()
                 .filter(|p| !is_collection_element(p) && !p.is_empty());
             if let Some(pointer) = member {
+                self.arrays.insert(pointer.to_string());
+            }
+        }
+        if diagnostic.code == khronos::ARRAY_LENGTH_NOT_IN_LIST {
+            if let Some(pointer) = diagnostic.pointer() {
+                self.wrong_length.insert(pointer.to_string());
                 self.arrays.insert(pointer.to_string());
             }
         }
