@@ -273,3 +273,20 @@ fn an_array_of_the_wrong_length_is_reported_for_its_length_only_and_read_as_abse
         ])
     );
 }
+
+#[test]
+fn a_buffer_view_without_its_length_holds_no_accessor() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 8}], "bufferViews": [{"buffer": 0}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 1, "type": "SCALAR", "byteOffset": 2}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ACCESSOR_OFFSET_ALIGNMENT", "/accessors/0/byteOffset"),
+            ("ACCESSOR_TOO_LONG", "/accessors/0/byteOffset"),
+            ("ACCESSOR_TOTAL_OFFSET_ALIGNMENT", "/accessors/0"),
+            ("UNDEFINED_PROPERTY", "/bufferViews/0"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+        ])
+    );
+}

@@ -254,9 +254,9 @@ pub(super) fn fits_in_view(
     length: Option<u64>,
 ) {
     let view_object = &ctx.items("bufferViews")[view];
-    let Some(view_length) = unsigned(view_object, "byteLength") else {
-        return;
-    };
+    // A view without a readable byteLength holds nothing, as the Khronos validator reads it
+    // (length -1): every accessor on it is too long, placed at its byteOffset.
+    let view_length = unsigned(view_object, "byteLength");
     if !offset.is_multiple_of(size) {
         ctx.emit(
             khronos::ACCESSOR_OFFSET_ALIGNMENT,
@@ -274,16 +274,17 @@ pub(super) fn fits_in_view(
             format!("Accessor's total byteOffset {total} isn't a multiple of componentType length {size}."),
         );
     }
-    let fits = length
-        .and_then(|n| n.checked_add(offset))
-        .is_some_and(|end| end <= view_length);
+    let fits = (length.and_then(|n| n.checked_add(offset)))
+        .zip(view_length)
+        .is_some_and(|(end, view_length)| end <= view_length);
     if !fits {
         let length = length.map_or_else(|| "more than 2^64".to_string(), |n| n.to_string());
-        let at = if offset > view_length {
+        let at = if view_length.is_none_or(|l| offset > l) {
             member(pointer, "byteOffset")
         } else {
             pointer.to_string()
         };
+        let view_length = view_length.map_or_else(|| "-1".to_string(), |l| l.to_string());
         ctx.emit(
             khronos::ACCESSOR_TOO_LONG,
             at,
