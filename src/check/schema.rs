@@ -148,15 +148,15 @@ fn validator(khronos: bool) -> &'static Validator {
 
 /// Validates the document into `found` (Khronos-coded findings), saying nothing of what is
 /// at or below the pointers in `unread` (what the Khronos validator does not read); returns
-/// those and the arrays a wrongly typed element makes unreadable (see [`AbsentArrays`]).
+/// those and the arrays a wrongly typed element makes unreadable (see [`AbsentMembers`]).
 pub fn validate(
     doc: &Value,
     khronos: bool,
     found: &mut dyn Sink,
     unread: HashSet<String>,
 ) -> HashSet<String> {
-    let mut absent = AbsentArrays::new(found);
-    absent.arrays = unread;
+    let mut absent = AbsentMembers::new(found);
+    absent.absent = unread;
     validate_into(doc, khronos, &mut absent);
     absent.finish()
 }
@@ -277,16 +277,17 @@ fn array_holding(pointer: &str) -> Option<&str> {
     (element && !collection && !parent.is_empty()).then_some(parent)
 }
 
-/// Between the schema findings and their sink: notes each array a wrongly typed element
-/// makes unreadable (the Khronos validator then reads the document as if the array were
-/// not there), and drops what was found inside such an array or of its presence, and a
-/// mistyped value's finding that it is not in its list of values. Findings
-/// are held until the end to see every such array first, up to [`HELD`]; past that they
-/// pass on filtered by the arrays known so far, so memory stays bounded.
-struct AbsentArrays<'s> {
+/// Between the schema findings and their sink: notes each member the Khronos validator
+/// reads as absent (one of the wrong type, an array with a wrongly typed element or of the
+/// wrong length, and what the caller names: undeclared extension objects), and drops what
+/// was found at or inside such a member besides the finding that made it absent. Findings
+/// are held until the end to see every such member first, up to [`HELD`]; past that they
+/// pass on filtered by the members known so far, so memory stays bounded.
+struct AbsentMembers<'s> {
     sink: &'s mut dyn Sink,
     held: Vec<Diagnostic>,
-    arrays: HashSet<String>,
+    /// Members read as absent, by pointer.
+    absent: HashSet<String>,
     /// Arrays of the wrong length (absent too).
     wrong_length: HashSet<String>,
 }
@@ -307,20 +308,20 @@ const KEPT_ELEMENT_BY_ELEMENT: &[&str] = &["/targets"];
 /// Schema findings held back at most (a file of 10^7 findings streams past them).
 const HELD: usize = 1 << 16;
 
-impl<'s> AbsentArrays<'s> {
+impl<'s> AbsentMembers<'s> {
     fn new(sink: &'s mut dyn Sink) -> Self {
-        AbsentArrays {
+        AbsentMembers {
             sink,
             held: Vec::new(),
-            arrays: Default::default(),
+            absent: Default::default(),
             wrong_length: Default::default(),
         }
     }
 
-    /// Passes the held findings on and gives the unreadable arrays, by pointer.
+    /// Passes the held findings on and gives the members read as absent, by pointer.
     fn finish(mut self) -> HashSet<String> {
         self.release();
-        self.arrays
+        self.absent
     }
 
     fn release(&mut self) {
@@ -348,11 +349,11 @@ impl<'s> AbsentArrays<'s> {
         ) {
             return false;
         }
-        // The pointer itself (a mistyped value is that finding only, not also outside its
-        // list of values) (a dependency the array's presence demanded) or an ancestor.
+        // At the member itself (a mistyped value is not also outside its list of values; an
+        // unreadable array demands no other member) or inside it.
         let mut at = pointer;
         loop {
-            if self.arrays.contains(at) {
+            if self.absent.contains(at) {
                 return true;
             }
             match at.rsplit_once('/') {
@@ -363,7 +364,7 @@ impl<'s> AbsentArrays<'s> {
     }
 }
 
-impl Sink for AbsentArrays<'_> {
+impl Sink for AbsentMembers<'_> {
     fn push(&mut self, diagnostic: Diagnostic) {
         // A member of the wrong type is read as absent, as the Khronos validator reads it
         // (an accessor whose `min` is a string has no bounds).
@@ -374,13 +375,13 @@ impl Sink for AbsentArrays<'_> {
                 .pointer()
                 .filter(|p| !is_collection_element(p) && !p.is_empty());
             if let Some(pointer) = member {
-                self.arrays.insert(pointer.to_string());
+                self.absent.insert(pointer.to_string());
             }
         }
         if diagnostic.code == khronos::ARRAY_LENGTH_NOT_IN_LIST {
             if let Some(pointer) = diagnostic.pointer() {
                 self.wrong_length.insert(pointer.to_string());
-                self.arrays.insert(pointer.to_string());
+                self.absent.insert(pointer.to_string());
             }
         }
         if diagnostic.code == khronos::ARRAY_TYPE_MISMATCH {
@@ -391,7 +392,7 @@ impl Sink for AbsentArrays<'_> {
                     .iter()
                     .any(|name| array.ends_with(name))
                 {
-                    self.arrays.insert(array.to_string());
+                    self.absent.insert(array.to_string());
                 }
             }
         }
