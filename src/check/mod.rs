@@ -18,8 +18,7 @@ use crate::diagnostic::Sink;
 use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::document::{self, Container, Document};
 use collector::Collector;
-use std::collections::HashMap;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
 /// Which issues to report.
@@ -200,9 +199,10 @@ fn short(value: &serde_json::Value) -> String {
 }
 
 /// The schema pass, before the others, and what the Khronos validator does not read taken
-/// out of the tree: the arrays a wrongly typed element made unreadable (a `translation`
-/// holding a null is no translation) and the extension objects `extensionsUsed` does not
-/// declare (returned, for the extensions pass to report). Of a document that does not claim
+/// out of the tree: members of the wrong type, arrays a wrongly typed element or a wrong
+/// length made unreadable (a `translation` holding a null is no translation) and the
+/// extension objects `extensionsUsed` does not declare (returned, for the extensions pass
+/// to report). Of a document that does not claim
 /// glTF 2.x, only what the Khronos validator reads before it stops (see
 /// [`khronos::read_before_asset`]).
 fn schema_pass(root: &mut serde_json::Value, khronos: bool, sink: &mut dyn Sink) -> Vec<String> {
@@ -234,14 +234,11 @@ fn declared_extensions(root: &serde_json::Value) -> Vec<&str> {
 /// of objects are ever unread).
 fn remove_all(root: &mut serde_json::Value, pointers: HashSet<String>) {
     for pointer in pointers {
-        let mut tokens = document::json::pointer_tokens(&pointer);
-        let Some(member) = tokens.pop() else { continue };
-        let parent = (tokens.iter()).try_fold(&mut *root, |value, token| match value {
-            serde_json::Value::Object(members) => members.get_mut(token),
-            serde_json::Value::Array(elements) => elements.get_mut(token.parse::<usize>().ok()?),
-            _ => None,
-        });
-        if let Some(serde_json::Value::Object(members)) = parent {
+        let Some((parent, token)) = pointer.rsplit_once('/') else {
+            continue;
+        };
+        let member = token.replace("~1", "/").replace("~0", "~");
+        if let Some(serde_json::Value::Object(members)) = root.pointer_mut(parent) {
             members.shift_remove(&member);
         }
     }

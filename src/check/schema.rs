@@ -271,10 +271,8 @@ fn diagnostics(validator: &Validator, instance: &Value, prefix: &str, sink: &mut
 /// and are reported where they are.
 fn array_holding(pointer: &str) -> Option<&str> {
     let (parent, last) = pointer.rsplit_once('/')?;
-    let collection = parent.matches('/').count() == 1
-        && crate::gltf::COLLECTIONS.contains(&parent.trim_start_matches('/'));
     let element = !last.is_empty() && last.bytes().all(|b| b.is_ascii_digit());
-    (element && !collection && !parent.is_empty()).then_some(parent)
+    (element && !is_collection_element(pointer) && !parent.is_empty()).then_some(parent)
 }
 
 /// Between the schema findings and their sink: notes each member the Khronos validator
