@@ -2,8 +2,9 @@
 
 use std::path::PathBuf;
 
-/// Why a façade call could not produce its result. Problems *in* an asset are not errors:
-/// they are diagnostics in the [`Report`](crate::Report).
+/// Why `check_path`, `compare` or `render` could not read an asset or use it. Problems *in*
+/// an asset are not errors: they are diagnostics in the check's report. The upgrade has
+/// errors of its own (`UpgradeError`, `ProofError`, `WriteError`).
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
@@ -24,10 +25,4 @@ pub enum Error {
         /// Why.
         reason: String,
     },
-    /// The asset could not be upgraded.
-    #[error(transparent)]
-    Upgrade(#[from] crate::upgrade::UpgradeError),
-    /// The upgraded asset could not be written.
-    #[error(transparent)]
-    Write(#[from] crate::upgrade::output::WriteError),
 }

@@ -440,16 +440,17 @@ mod verify {
     use gltfmat::shade::brdf::SheenVisibility;
     use gltfmat::shade::compare::compare;
     use gltfmat::shade::material::Shader;
+    use gltfmat::shade::pairing::load_materials;
     use gltfmat::shade::sheen_table::SheenTable;
-    use gltfmat::upgrade::{converted_materials, legacy_materials};
+    use gltfmat::upgrade::converted_materials;
 
     fn worst_delta_e(fixture: &str, corrupt: impl FnOnce(&mut Upgraded)) -> f64 {
         let path = repo(&format!("fixtures/gltf1/{fixture}"));
         let mut upgraded = upgrade_file(&path, &UpgradeOptions::default());
         corrupt(&mut upgraded);
         let bytes = std::fs::read(&path).unwrap();
-        let sources =
-            legacy_materials(&bytes, &FolderResources::new(path.parent().unwrap())).unwrap();
+        let loader = FolderResources::new(path.parent().unwrap());
+        let sources = load_materials(bytes, fixture, &loader).unwrap();
         let source = sources[0].1.clone().expect("a PBR material");
         let converted = converted_materials(&upgraded).unwrap().remove(0);
         let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));

@@ -123,10 +123,13 @@ impl Report {
 }
 
 /// Checks the asset at `path`, reading its external files from its folder (never outside it).
-/// An unreadable file is an [`Error`](crate::Error); problems in the asset are diagnostics.
-pub fn check_path(path: impl AsRef<Path>, options: &CheckOptions) -> Result<Report, crate::Error> {
+/// An unreadable file is an [`Error`](crate::error::Error); problems in the asset are diagnostics.
+pub fn check_path(
+    path: impl AsRef<Path>,
+    options: &CheckOptions,
+) -> Result<Report, crate::error::Error> {
     let path = path.as_ref();
-    let bytes = document::file::read(path).map_err(|source| crate::Error::Io {
+    let bytes = document::file::read(path).map_err(|source| crate::error::Error::Io {
         path: path.to_path_buf(),
         source,
     })?;

@@ -34,10 +34,7 @@ impl Failure {
 
 impl From<gltfmat::Error> for Failure {
     fn from(error: gltfmat::Error) -> Failure {
-        match error {
-            gltfmat::Error::Upgrade(_) => Failure::refused(error.to_string()),
-            _ => Failure::usage(error.to_string()),
-        }
+        Failure::usage(error.to_string())
     }
 }
 

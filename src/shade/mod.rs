@@ -5,7 +5,7 @@
 //! - `eval/`: the equations. BRDF lobes, material inputs and their readings, the lanes the
 //!   lobes are evaluated on, elementary functions, quadrature and the sheen table.
 //! - `sources/`: a material's inputs at a texture coordinate (decoding, sampling, loading a
-//!   glTF 2.0 asset's materials).
+//!   glTF 2.0 asset's or a 1.0 asset's PBR-draft materials).
 //! - `compare.rs`, `delta_e.rs`, `tone.rs`: the figure of merit.
 //! - `picture/`: material balls, contact sheets and their labels.
 //! - `pairing.rs`: whole assets' materials paired and compared or rendered.
@@ -25,6 +25,6 @@ pub mod tone;
 pub use eval::{brdf, material, sheen_table};
 pub(crate) use eval::{elementary, lanes};
 pub use picture::render;
-pub(crate) use sources::{load, sample};
+pub(crate) use sources::{legacy, load, sample};
 
 pub use sample::MaterialSource;

@@ -3,14 +3,14 @@
 
 use super::brdf::SheenVisibility;
 use super::compare::{self as evaluate, Comparison};
+use super::legacy::{legacy_materials, LegacyMaterialsError};
 use super::load::gltf2_materials;
 use super::material::Shader;
 use super::render::{contact_sheet, material_ball};
 use super::sample::MaterialSource;
 use super::sheen_table::SheenTable;
 use crate::document::uri::{FolderResources, ResourceLoader};
-use crate::upgrade::{legacy_materials, UpgradeError};
-use crate::Error;
+use crate::error::Error;
 use image::RgbImage;
 use std::path::Path;
 
@@ -26,7 +26,7 @@ pub fn load_materials(
 ) -> Result<Vec<Named>, String> {
     match legacy_materials(&bytes, loader) {
         Ok(materials) => Ok(materials),
-        Err(UpgradeError::NotGltf1(_)) => {
+        Err(LegacyMaterialsError::NotGltf1(_)) => {
             let materials = gltf2_materials(bytes, name, loader)?;
             Ok(materials.into_iter().map(|(n, m)| (n, Some(m))).collect())
         }

@@ -4,9 +4,9 @@
 
 use super::binary::Binary;
 use super::data::{self, Role};
-use super::source::Source;
 use super::{EncodedImage, NoteKind, Notes, UpgradeError, UpgradeOptions, Upgraded};
 use crate::gltf::gl::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
+use crate::legacy::source::Source;
 use serde_json::{json, Map, Value};
 use std::collections::HashMap;
 

@@ -2,12 +2,12 @@
 //! with the component types, alignment and min/max glTF 2.0 requires.
 
 use super::binary::Binary;
-use super::source::Source;
 pub use crate::gltf::accessor::FLOAT;
 use crate::gltf::accessor::{
     component_count, component_size, decode_component, normalise, BYTE, SHORT, UNSIGNED_BYTE,
     UNSIGNED_INT, UNSIGNED_SHORT,
 };
+use crate::legacy::source::Source;
 use serde_json::Value;
 
 /// A 1.0 accessor resolved to its bytes.

@@ -20,12 +20,10 @@ pub mod output;
 mod proof;
 mod rebake;
 mod references;
-mod source;
 mod spec_gloss;
 
 use crate::document::uri::ResourceLoader;
-use crate::legacy::pbr;
-use crate::shade::material::SpecGlossReading;
+use crate::legacy::source::{self, NotGltf1};
 use crate::shade::sample::{self, MaterialSource, Texture};
 pub use binary::Binary;
 pub use proof::{prove, ProofError};
@@ -238,6 +236,12 @@ pub enum UpgradeError {
     },
 }
 
+impl From<NotGltf1> for UpgradeError {
+    fn from(NotGltf1(reason): NotGltf1) -> Self {
+        UpgradeError::NotGltf1(reason)
+    }
+}
+
 /// Upgrades a glTF 1.0 asset (`.gltf` text or a KHR_binary_glTF GLB v1) to glTF 2.0, or
 /// retires the archived KHR_materials_pbrSpecularGlossiness in a glTF 2.0 asset (`.gltf` or
 /// `.glb`): its materials become metallic-roughness + KHR_materials_specular +
@@ -286,65 +290,6 @@ pub fn upgrade(
     }
     let source = source::read(bytes, loader)?;
     convert::run(builder::Builder::new(&source, options))
-}
-
-/// The PBR-draft materials of a glTF 1.0 asset as the shading evaluator samples them (their
-/// own model), in material order, with their ids; `None` for materials without a PBR block.
-pub fn legacy_materials(
-    bytes: &[u8],
-    loader: &dyn ResourceLoader,
-) -> Result<Vec<(String, Option<MaterialSource>)>, UpgradeError> {
-    let source = source::read(bytes, loader)?;
-    let parsed: Vec<(&str, Option<pbr::LegacyPbr>)> = source
-        .dictionary("materials")
-        .into_iter()
-        .map(|(id, material)| {
-            let pbr = pbr::find(material).and_then(|(name, block)| pbr::parse(name, block));
-            (id, pbr)
-        })
-        .collect();
-    // Every texture the materials use, decoded once and all together.
-    let texture_ids: Vec<String> = parsed
-        .iter()
-        .filter_map(|(_, pbr)| pbr.as_ref())
-        .flat_map(|pbr| [&pbr.colour_texture, &pbr.data_texture])
-        .flatten()
-        .cloned()
-        .collect::<std::collections::BTreeSet<_>>()
-        .into_iter()
-        .collect();
-    let encoded: Vec<sample::Wanted<_>> = texture_ids
-        .iter()
-        .map(|id| {
-            let image = (source.object("textures", id))
-                .and_then(|texture| texture.get("source")?.as_str())
-                .and_then(|image| source.object("images", image))
-                .ok_or_else(|| format!("texture '{id}' names no image"));
-            Some(image.and_then(|image| source.image_bytes(image)))
-        })
-        .collect();
-    let decoded = sample::decode_all(&encoded).map_err(|reason| UpgradeError::Resource {
-        pointer: "/textures".into(),
-        reason,
-    })?;
-    let texture = |id: &Option<String>| -> Option<Texture> {
-        let at = texture_ids
-            .iter()
-            .position(|known| Some(known) == id.as_ref())?;
-        decoded[at].clone()
-    };
-    Ok(parsed
-        .into_iter()
-        .map(|(id, pbr)| {
-            let sampled = pbr.map(|pbr| MaterialSource::Legacy {
-                colour: texture(&pbr.colour_texture),
-                data: texture(&pbr.data_texture),
-                pbr,
-                reading: SpecGlossReading::DraftAppendix,
-            });
-            (id.to_string(), sampled)
-        })
-        .collect())
 }
 
 /// The materials of an upgraded asset as the shading evaluator samples them (an error when

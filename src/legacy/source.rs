@@ -1,7 +1,6 @@
 //! Reading a glTF 1.0 asset: JSON text or a KHR_binary_glTF GLB (version 1), its buffers, and
 //! its images on demand.
 
-use super::UpgradeError;
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::Bytes;
 use serde_json::Value;
@@ -13,6 +12,11 @@ use std::sync::Arc;
 /// The buffer id KHR_binary_glTF gives the GLB body (and the older spelling some writers used).
 const BINARY_BUFFER_IDS: &[&str] = &["binary_glTF", "KHR_binary_glTF"];
 
+/// Why bytes are not a glTF 1.0 asset (a 2.0 asset, not JSON, a broken GLB v1).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("not a glTF 1.0 asset: {0}")]
+pub struct NotGltf1(pub String);
+
 pub struct Source<'a> {
     pub json: Value,
     /// The GLB v1 body, borrowed from the input.
@@ -23,21 +27,16 @@ pub struct Source<'a> {
     pub loader: &'a dyn ResourceLoader,
 }
 
-pub fn read<'a>(
-    bytes: &'a [u8],
-    loader: &'a dyn ResourceLoader,
-) -> Result<Source<'a>, UpgradeError> {
+pub fn read<'a>(bytes: &'a [u8], loader: &'a dyn ResourceLoader) -> Result<Source<'a>, NotGltf1> {
     let (json_bytes, body) = if bytes.starts_with(b"glTF") {
         split_glb_v1(bytes)?
     } else {
         (bytes, None)
     };
-    let json: Value = serde_json::from_slice(json_bytes)
-        .map_err(|e| UpgradeError::NotGltf1(format!("invalid JSON: {e}")))?;
+    let json: Value =
+        serde_json::from_slice(json_bytes).map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
     if !json.is_object() {
-        return Err(UpgradeError::NotGltf1(
-            "the root is not a JSON object".into(),
-        ));
+        return Err(NotGltf1("the root is not a JSON object".into()));
     }
     check_version(&json)?;
     let buffers = json
@@ -54,11 +53,11 @@ pub fn read<'a>(
 }
 
 /// Header: magic, version 1, total length, content length, content format 0 (JSON).
-fn split_glb_v1(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), UpgradeError> {
+fn split_glb_v1(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), NotGltf1> {
     let word = |at: usize| -> Option<u32> {
         Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
     };
-    let broken = |why: &str| UpgradeError::NotGltf1(format!("GLB: {why}"));
+    let broken = |why: &str| NotGltf1(format!("GLB: {why}"));
     let version = word(4).ok_or_else(|| broken("truncated header"))?;
     if version != 1 {
         return Err(broken(&format!(
@@ -81,7 +80,7 @@ fn split_glb_v1(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), UpgradeError> {
     Ok((&bytes[20..content_end], Some(&bytes[content_end..length])))
 }
 
-fn check_version(json: &Value) -> Result<(), UpgradeError> {
+fn check_version(json: &Value) -> Result<(), NotGltf1> {
     let version = json
         .get("asset")
         .and_then(|a| a.get("version"))
@@ -94,12 +93,10 @@ fn check_version(json: &Value) -> Result<(), UpgradeError> {
     };
     match major.as_str() {
         "0" | "1" => Ok(()),
-        "2" => Err(UpgradeError::NotGltf1(
+        "2" => Err(NotGltf1(
             "asset.version is 2.x: nothing to upgrade (use `gltfmat check`)".into(),
         )),
-        other => Err(UpgradeError::NotGltf1(format!(
-            "unknown asset.version '{other}'"
-        ))),
+        other => Err(NotGltf1(format!("unknown asset.version '{other}'"))),
     }
 }
 
