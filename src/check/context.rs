@@ -2,6 +2,7 @@
 //! and what earlier passes learned (buffer data, image headers, material needs).
 
 use super::collector::Collector;
+use super::profile::Filters;
 use super::{CheckOptions, Diagnostic};
 use crate::diagnostic::Sink;
 use crate::diagnostic::{khronos, Code};
@@ -94,6 +95,8 @@ pub(crate) struct Context<'a> {
     pub loader: &'a dyn ResourceLoader,
     pub options: &'a CheckOptions,
     pub diagnostics: Collector<'a>,
+    /// What the profile reports of what the passes emit.
+    filters: Filters,
     used: HashSet<(&'static str, usize)>,
     /// Bytes of each buffer, where they could be read (the GLB BIN chunk is borrowed).
     pub buffers: Vec<Option<BufferData<'a>>>,
@@ -126,6 +129,7 @@ impl<'a> Context<'a> {
             loader,
             options,
             diagnostics,
+            filters: Filters::of(options.profile),
             used: HashSet::new(),
             buffers: Vec::new(),
             images: Vec::new(),
@@ -137,9 +141,12 @@ impl<'a> Context<'a> {
         }
     }
 
+    /// Reports a finding, as the profile reports it (see `check::profile`).
     pub fn emit(&mut self, code: Code, pointer: impl Into<String>, message: impl Into<String>) {
-        self.diagnostics
-            .push(Diagnostic::at(code, pointer, message));
+        let found = Diagnostic::at(code, pointer, message);
+        if let Some(reported) = self.filters.apply(self, found) {
+            self.diagnostics.push(reported);
+        }
     }
 
     /// The elements of a top-level array, or nothing when it is missing or not an array.
@@ -234,10 +241,6 @@ impl<'a> Context<'a> {
             .and_then(Value::as_array)
             .map(|a| a.iter().filter_map(Value::as_str).collect())
             .unwrap_or_default()
-    }
-
-    pub fn is_khronos(&self) -> bool {
-        self.options.profile == super::Profile::Khronos
     }
 
     pub fn info(&self) -> AssetInfo {

@@ -9,6 +9,7 @@ pub(crate) mod schema;
 mod collector;
 pub(crate) mod context;
 mod khronos;
+pub(crate) mod profile;
 
 pub use crate::diagnostic::{Code, Diagnostic, Location, Severity};
 pub(crate) use context::Context;
@@ -152,9 +153,9 @@ pub fn check_bytes(
     let mut diagnostics = Collector::new(options);
     let mut document = document::read(bytes, uri, &mut diagnostics);
     let mut info = context::AssetInfo::default();
-    let khronos = options.profile == Profile::Khronos;
+    let khronos_extensions_only = !options.profile.knows_extensions_beyond_khronos();
     // 2.0 passes on a 1.0 document only bury the one fix: upgrading it.
-    let gltf1 = document.major_version() == Some(1) && !khronos;
+    let gltf1 = document.major_version() == Some(1) && options.profile.checks_gltf1();
     match &mut document.root {
         Some(root) if !root.is_object() => {
             diagnostics.push(Diagnostic::at(
@@ -170,7 +171,7 @@ pub fn check_bytes(
             let undeclared = if gltf1 {
                 Vec::new()
             } else {
-                schema_pass(root, khronos, &mut diagnostics)
+                schema_pass(root, khronos_extensions_only, &mut diagnostics)
             };
             let root = document.root.as_ref().expect("matched above");
             let mut ctx = Context::new(root, &document, loader, options, diagnostics);
@@ -259,7 +260,7 @@ fn run_passes(ctx: &mut Context) {
     for (_, pass) in khronos::PASSES {
         pass(ctx);
     }
-    if ctx.options.profile != Profile::Khronos {
+    if ctx.options.profile.runs_rules() {
         rules::run_all(ctx);
     }
 }

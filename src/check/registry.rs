@@ -112,12 +112,9 @@ pub fn is_rule_group(group: &str) -> bool {
 }
 
 /// Why the default profile reports a Khronos code differently, when it does (see
-/// `rules::SUPERSESSIONS`).
+/// `check::profile`).
 pub fn supersession(code: &str) -> Option<&'static str> {
-    super::rules::SUPERSESSIONS
-        .iter()
-        .find(|(c, _)| *c == code)
-        .map(|(_, why)| *why)
+    super::profile::why_different(code)
 }
 
 #[cfg(test)]

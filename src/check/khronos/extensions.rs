@@ -118,10 +118,10 @@ fn undeclared(ctx: &mut Context, pointer: &str) {
 }
 
 fn supported(ctx: &Context, name: &str) -> Option<&'static [Host]> {
-    let gltfmat = if ctx.is_khronos() {
-        &[][..]
-    } else {
+    let gltfmat = if ctx.options.profile.knows_extensions_beyond_khronos() {
         GLTFMAT_SUPPORTED
+    } else {
+        &[][..]
     };
     KHRONOS_SUPPORTED
         .iter()

@@ -7,7 +7,6 @@ use crate::check::context::{member, number, unsigned, Context, MaterialNeeds, Te
 pub use crate::check::context::{extension, SlotUse};
 use crate::diagnostic::khronos;
 use crate::gltf::material::TEXTURE_SLOTS;
-use crate::gltf::material::{combination, Combination};
 use crate::gltf::material::{effective_texcoord, texture_transform};
 use serde_json::Value;
 use std::sync::Arc;
@@ -116,19 +115,8 @@ fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
     let Some(extensions) = material.get("extensions").and_then(Value::as_object) else {
         return;
     };
-    let khronos = ctx.is_khronos();
     for standalone in ["KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit"] {
-        if !extensions.contains_key(standalone) {
-            continue;
-        }
-        // The Khronos validator warns about any other key; gltfmat's default profile keeps
-        // the warning only where the specs say nothing (MATERIAL_EXTENSION_EXCLUDED covers
-        // the real exclusions).
-        let doubtful = extensions
-            .keys()
-            .filter(|k| *k != standalone)
-            .any(|other| khronos || combination(standalone, other) == Combination::Unknown);
-        if doubtful {
+        if extensions.contains_key(standalone) && extensions.len() > 1 {
             ctx.emit(
                 khronos::MULTIPLE_EXTENSIONS,
                 ext_pointer(standalone),
@@ -212,12 +200,12 @@ fn check_texcoord_pairs(ctx: &mut Context, material: &Value, pointer: &str) {
     let Some(normal) = material.get("normalTexture").filter(|n| n.is_object()) else {
         return;
     };
-    let khronos = ctx.is_khronos();
+    let transformed = ctx.options.profile.reads_texcoord_override();
     let texcoord = |info: &Value| {
-        if khronos {
-            unsigned(info, "texCoord").unwrap_or(0)
-        } else {
+        if transformed {
             effective_texcoord(info)
+        } else {
+            unsigned(info, "texCoord").unwrap_or(0)
         }
     };
     let pairs = [

@@ -66,15 +66,11 @@ pub fn check_asset(ctx: &mut Context) {
         return;
     };
     if major != 2 {
-        let hint = if major == 1 && !ctx.is_khronos() {
-            " Run `gltfmat upgrade` to convert it to glTF 2.0."
-        } else {
-            ""
-        };
+        // (The default profile checks a 1.0 document as such: GLTF_1_0_ASSET says to upgrade.)
         ctx.emit(
             khronos::UNKNOWN_ASSET_MAJOR_VERSION,
             "/asset/version",
-            format!("Unknown glTF major asset version: {major}.{hint}"),
+            format!("Unknown glTF major asset version: {major}."),
         );
     } else if minor > 0 {
         ctx.emit(
@@ -258,10 +254,7 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
                 );
             }
         }
-        // Tangents on an anisotropy material are used even without an anisotropyTexture:
-        // the default profile does not call them unused (the Khronos validator does).
-        let tangent_used = needs.needs_tangent || (needs.anisotropy && !ctx.is_khronos());
-        if has("TANGENT") && !tangent_used {
+        if has("TANGENT") && !needs.needs_tangent {
             unused_tangent(ctx, pointer);
         }
     } else if has("TANGENT") && primitive.get("material").is_none() {

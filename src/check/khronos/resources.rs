@@ -58,14 +58,11 @@ fn load_uri(
                 (None, None, "external")
             }
             Err(LoadError::NoFolder) => {
-                // The Khronos validator, given no resource loader, says nothing.
-                if !ctx.is_khronos() {
-                    ctx.emit(
-                        crate::check::rules::resource_not_read::RULE.code(),
-                        pointer,
-                        format!("'{uri}' was not read (no folder to resolve it in): what depends on it was not checked."),
-                    );
-                }
+                ctx.emit(
+                    crate::check::rules::resource_not_read::RULE.code(),
+                    pointer,
+                    format!("'{uri}' was not read (no folder to resolve it in): what depends on it was not checked."),
+                );
                 (None, None, "external")
             }
             Err(LoadError::NotFound(p)) => {
@@ -88,16 +85,10 @@ fn load_uri(
     }
 }
 
-/// Absolute paths and `..` escapes are never read. The Khronos profile words it as the
-/// IO_ERROR that validator gives for a file it cannot read.
+/// Absolute paths and `..` escapes are never read.
 fn refuse_outside(ctx: &mut Context, pointer: &str, uri: &str) {
-    let code = if ctx.is_khronos() {
-        khronos::IO_ERROR
-    } else {
-        crate::check::rules::outside_folder::RULE.code()
-    };
     ctx.emit(
-        code,
+        crate::check::rules::outside_folder::RULE.code(),
         pointer,
         format!(
             "Refused to read '{}': it resolves outside the asset's folder.",
@@ -403,7 +394,7 @@ pub fn check_images(ctx: &mut Context) {
                     ctx.images[i] = Some(info);
                     // Kept for gltfmat's rules: the pixel rules, and the colour-space
                     // rule, which decodes an image two slots read differently.
-                    if !ctx.is_khronos() {
+                    if ctx.options.profile.runs_rules() {
                         ctx.image_bytes[i] = Some(bytes);
                     }
                 }

@@ -2,7 +2,8 @@
 
 use super::{Rule, Run};
 use crate::check::context::{unsigned, Context};
-use crate::diagnostic::Severity;
+use crate::check::profile::Supersession;
+use crate::diagnostic::{khronos, Diagnostic, Severity};
 use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
@@ -12,7 +13,12 @@ pub const RULE: Rule = Rule::new(
     "A primitive uses a KHR_materials_anisotropy material but has no NORMAL + TANGENT and its material no normal texture.",
     DOC,
     Run::document(check),
-);
+)
+.superseding(&[Supersession {
+    code: khronos::UNUSED_MESH_TANGENT,
+    why: "Not reported on anisotropy materials: KHR_materials_anisotropy reads the tangent even without an anisotropyTexture.",
+    keeps: not_anisotropic,
+}]);
 
 const DOC: &str = "\
 ## What it does
@@ -37,6 +43,17 @@ Spec: KHR_materials_anisotropy, \"Anisotropy\" (tangent space MUST be defined).
  \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0, \"NORMAL\": 1}, \"material\": 0}]}]}
 ```
 ";
+
+/// Whether the primitive of an unused TANGENT has a material without KHR_materials_anisotropy.
+fn not_anisotropic(ctx: &Context, finding: &Diagnostic) -> bool {
+    let primitive = (finding.pointer())
+        .and_then(|p| p.strip_suffix("/attributes/TANGENT"))
+        .and_then(|p| ctx.root.pointer(p));
+    let material = primitive.and_then(|p| unsigned(p, "material"));
+    !material
+        .and_then(|m| ctx.material_needs.get(&(m as usize)))
+        .is_some_and(|needs| needs.anisotropy)
+}
 
 fn check(ctx: &mut Context) {
     for (_, mesh_pointer, mesh) in ctx.objects("meshes") {

@@ -2,7 +2,8 @@
 
 use super::{Rule, Run};
 use crate::check::context::Context;
-use crate::diagnostic::Severity;
+use crate::check::profile::Supersession;
+use crate::diagnostic::{khronos, Diagnostic, Severity};
 use crate::gltf::material::{combination, Combination, SPEC_GLOSS, UNLIT};
 use serde_json::Value;
 
@@ -13,7 +14,12 @@ pub const RULE: Rule = Rule::new(
     "A material extension is combined with KHR_materials_pbrSpecularGlossiness or KHR_materials_unlit, which its spec forbids.",
     DOC,
     Run::document(check),
-);
+)
+.superseding(&[Supersession {
+    code: khronos::MULTIPLE_EXTENSIONS,
+    why: "Replaced by MATERIAL_EXTENSION_EXCLUDED for real exclusions and dropped for combinations the specs allow.",
+    keeps: doubtful_combination,
+}]);
 
 const DOC: &str = "\
 ## What it does
@@ -48,6 +54,18 @@ Spec: each extension's README, section \"Extending Materials\" / \"Exclusions\".
 ```
 reports `/materials/0/extensions/KHR_materials_sheen`.
 ";
+
+/// Whether the specification-gloss or unlit extension at the finding's pointer shares its
+/// material with an extension whose compatibility no spec states.
+fn doubtful_combination(ctx: &Context, finding: &Diagnostic) -> bool {
+    let Some((extensions, standalone)) = finding.pointer().and_then(|p| p.rsplit_once('/')) else {
+        return true;
+    };
+    let others = ctx.root.pointer(extensions).and_then(Value::as_object);
+    (others.into_iter().flat_map(|o| o.keys()))
+        .filter(|other| *other != standalone)
+        .any(|other| combination(standalone, other) == Combination::Unknown)
+}
 
 fn check(ctx: &mut Context) {
     for (_, pointer, material) in ctx.objects("materials") {

@@ -2,7 +2,6 @@
 //! metadata and documentation (What it does / Why / Example), which `gltfmat rules`,
 //! `gltfmat explain` and SARIF read from this table.
 
-use crate::diagnostic::khronos;
 use std::sync::Arc;
 mod alpha_constant;
 mod alpha_missing;
@@ -33,6 +32,7 @@ mod unlit_ignored;
 use super::code_info::{CodeInfo, Origin};
 use super::context::Context;
 use super::khronos::materials::{by_image, slot_uses, SlotUse};
+use super::profile::Supersession;
 use crate::diagnostic::{Code, Severity};
 use crate::document::image_header::ImageInfo;
 use texels::Texels;
@@ -40,6 +40,12 @@ use texels::Texels;
 pub struct Rule {
     pub info: CodeInfo,
     pub run: Run,
+    /// The Khronos findings this rule corrects, each with the filter the default profile
+    /// applies to them (see `check::profile`).
+    pub supersedes: &'static [Supersession],
+    /// The Khronos code the validator gives the same finding, and why gltfmat's differs: the
+    /// Khronos profile reports the rule's findings under that code (the others not at all).
+    pub khronos_name: Option<(Code, &'static str)>,
 }
 
 /// How a rule runs. A rule with neither part is emitted by a core pass (reading, resources).
@@ -115,6 +121,21 @@ impl Rule {
                 own_logic: run.document.is_some() || run.pixels.is_some(),
             },
             run,
+            supersedes: &[],
+            khronos_name: None,
+        }
+    }
+
+    /// The rule, correcting the Khronos findings `supersedes`.
+    pub const fn superseding(self, supersedes: &'static [Supersession]) -> Rule {
+        Rule { supersedes, ..self }
+    }
+
+    /// The rule, whose findings the Khronos validator reports as `code` (for the reason `why`).
+    pub const fn khronos_name(self, code: Code, why: &'static str) -> Rule {
+        Rule {
+            khronos_name: Some((code, why)),
+            ..self
         }
     }
 }
@@ -145,43 +166,6 @@ pub static RULES: &[&Rule] = &[
     &alpha_constant::RULE,
     &base_color_range::RULE,
     &metallic_mixed::RULE,
-];
-
-/// Khronos codes that gltfmat's default profile reports differently, and why. The
-/// conformance test allows exactly these differences (plus gltfmat's own codes).
-pub static SUPERSESSIONS: &[(Code, &str)] = &[
-    (
-        khronos::MULTIPLE_EXTENSIONS,
-        "Replaced by MATERIAL_EXTENSION_EXCLUDED for real exclusions and dropped for combinations the specs allow.",
-    ),
-    (
-        khronos::UNUSED_MESH_TANGENT,
-        "Not reported on anisotropy materials: KHR_materials_anisotropy reads the tangent even without an anisotropyTexture.",
-    ),
-    (
-        khronos::KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD,
-        "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
-    ),
-    (
-        khronos::KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD,
-        "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
-    ),
-    (
-        crate::check::rules::gltf1::RULE.code(),
-        "On a glTF 1.0 document the 2.0 passes do not run: every Khronos code is replaced by GLTF_1_0_ASSET and the 1.0 PBR checks.",
-    ),
-    (
-        khronos::NODE_SKINNED_MESH_NON_ROOT,
-        "Replaced by NODE_SKINNED_MESH_PARENT_TRANSFORMS where a parent has a transform, as the Khronos build after 2.0.0-dev.3.10 does: under untransformed parents nothing is lost.",
-    ),
-    (
-        khronos::NODE_SKINNED_MESH_PARENT_TRANSFORMS,
-        "Reported by the default profile only: the released Khronos validator (2.0.0-dev.3.10) does not have it.",
-    ),
-    (
-        khronos::IO_ERROR,
-        "A URI leaving the asset's folder is URI_OUTSIDE_ASSET_FOLDER, not a failed read.",
-    ),
 ];
 
 /// Groups whose rules run only when asked for: opinions about plausible values, which no

@@ -1,7 +1,7 @@
 //! URIs that leave the asset's folder (emitted by the resource pass).
 
 use super::{Rule, Run};
-use crate::diagnostic::Severity;
+use crate::diagnostic::{khronos, Severity};
 
 pub const RULE: Rule = Rule::new(
     "URI_OUTSIDE_ASSET_FOLDER",
@@ -10,6 +10,10 @@ pub const RULE: Rule = Rule::new(
     "A URI resolves outside the asset's folder (absolute path, `..` escape or symlink) and was not read.",
     DOC,
     Run::CORE,
+)
+.khronos_name(
+    khronos::IO_ERROR,
+    "A URI leaving the asset's folder is URI_OUTSIDE_ASSET_FOLDER, not a failed read.",
 );
 
 const DOC: &str = "\

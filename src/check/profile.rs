@@ -1,0 +1,184 @@
+//! What each profile reports of what the passes find: the one place where gltfmat's default
+//! profile departs from the Khronos report.
+//!
+//! The Khronos passes emit what the Khronos validator emits; gltfmat's rules declare, in their
+//! own files, which Khronos findings they supersede ([`Supersession`]) and which Khronos code
+//! the validator would use for theirs (`Rule::khronos_name`). This module applies both as each
+//! finding is emitted:
+//! - the default profile drops a superseded finding its rule's filter rejects, and every
+//!   finding of a code the newer Khronos validator retired ([`khronos::RETIRED`]);
+//! - the Khronos profile drops gltfmat's own codes (or renames them to the validator's code
+//!   for the same finding) and the codes the released validator does not have.
+//!
+//! Where the default profile reads the document differently (not a filter), the passes ask
+//! the [`Profile`] by name; each such reading is listed in [`READINGS`] with its reason.
+
+use super::context::Context;
+use super::rules::RULES;
+use super::Profile;
+use crate::diagnostic::{khronos, Code, Diagnostic};
+use std::collections::HashMap;
+
+/// A Khronos finding that gltfmat's default profile reports only where `keeps` says so,
+/// declared by the rule that corrects it.
+pub struct Supersession {
+    /// The Khronos code.
+    pub code: Code,
+    /// Why the default profile differs, for `gltfmat explain` and the conformance test.
+    pub why: &'static str,
+    /// Whether the default profile still reports this finding.
+    pub keeps: fn(&Context, &Diagnostic) -> bool,
+}
+
+impl Profile {
+    /// Whether a texture binding's texCoord is read through its KHR_texture_transform
+    /// override, as a renderer samples it (the Khronos validator reads the raw `texCoord`).
+    pub(crate) fn reads_texcoord_override(self) -> bool {
+        self == Profile::Default
+    }
+
+    /// Whether the extensions gltfmat validates beyond the Khronos list are validated.
+    pub(crate) fn knows_extensions_beyond_khronos(self) -> bool {
+        self == Profile::Default
+    }
+
+    /// Whether gltfmat's rules run (and the passes keep what only they read, such as the
+    /// images' bytes).
+    pub(crate) fn runs_rules(self) -> bool {
+        self == Profile::Default
+    }
+
+    /// Whether a glTF 1.0 document gets the 1.0 checks instead of the 2.0 passes.
+    pub(crate) fn checks_gltf1(self) -> bool {
+        self == Profile::Default
+    }
+}
+
+/// The Khronos codes whose findings differ in the default profile because it reads the
+/// document differently, and why.
+pub static READINGS: &[(Code, &str)] = &[
+    (
+        khronos::KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD,
+        "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
+    ),
+    (
+        khronos::KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD,
+        "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
+    ),
+    (
+        super::rules::gltf1::RULE.code(),
+        "On a glTF 1.0 document the 2.0 passes do not run: every Khronos code is replaced by GLTF_1_0_ASSET and the 1.0 PBR checks.",
+    ),
+];
+
+/// What a profile does with findings of one code.
+#[derive(Clone, Copy)]
+enum Treatment {
+    Drop,
+    Rename(Code),
+    Filter(fn(&Context, &Diagnostic) -> bool),
+}
+
+/// The treatments of one profile, looked up once per finding.
+pub(crate) struct Filters(HashMap<Code, Treatment>);
+
+impl Filters {
+    pub fn of(profile: Profile) -> Filters {
+        let treatments: Vec<(Code, Treatment)> = match profile {
+            Profile::Khronos => (RULES.iter())
+                .map(|rule| match rule.khronos_name {
+                    Some((name, _)) => (rule.code(), Treatment::Rename(name)),
+                    None => (rule.code(), Treatment::Drop),
+                })
+                .chain(
+                    khronos::UNRELEASED
+                        .iter()
+                        .map(|(c, _)| (*c, Treatment::Drop)),
+                )
+                .collect(),
+            Profile::Default => (RULES.iter())
+                .flat_map(|rule| rule.supersedes)
+                .map(|s| (s.code, Treatment::Filter(s.keeps)))
+                .chain(khronos::RETIRED.iter().map(|(c, _)| (*c, Treatment::Drop)))
+                .collect(),
+        };
+        Filters(treatments.into_iter().collect())
+    }
+
+    /// The finding as the profile reports it, or `None` when it does not.
+    pub fn apply(&self, ctx: &Context, mut diagnostic: Diagnostic) -> Option<Diagnostic> {
+        match self.0.get(&diagnostic.code) {
+            None => Some(diagnostic),
+            Some(Treatment::Drop) => None,
+            Some(Treatment::Rename(code)) => {
+                diagnostic.severity = code.default_severity();
+                diagnostic.code = *code;
+                Some(diagnostic)
+            }
+            Some(Treatment::Filter(keeps)) => keeps(ctx, &diagnostic).then_some(diagnostic),
+        }
+    }
+}
+
+/// Why the default profile reports `code` differently from the Khronos validator, if it does.
+pub fn why_different(code: &str) -> Option<&'static str> {
+    let superseded = (RULES.iter().flat_map(|rule| rule.supersedes))
+        .find(|s| s.code.name() == code)
+        .map(|s| s.why);
+    let renamed = || {
+        (RULES.iter().filter_map(|rule| rule.khronos_name))
+            .find(|(c, _)| c.name() == code)
+            .map(|(_, why)| why)
+    };
+    let khronos_own = || {
+        (khronos::RETIRED
+            .iter()
+            .chain(khronos::UNRELEASED)
+            .chain(READINGS))
+        .find(|(c, _)| c.name() == code)
+        .map(|(_, why)| *why)
+    };
+    superseded.or_else(renamed).or_else(khronos_own)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::code_info::Origin;
+    use crate::check::registry;
+
+    fn origin(code: Code) -> Origin {
+        registry::find(code.name()).expect("registered").origin
+    }
+
+    #[test]
+    fn rules_supersede_and_are_renamed_to_khronos_codes_only() {
+        for rule in RULES {
+            for superseded in rule.supersedes {
+                assert_eq!(origin(superseded.code), Origin::Khronos, "{}", rule.code());
+            }
+            if let Some((name, _)) = rule.khronos_name {
+                assert_eq!(origin(name), Origin::Khronos, "{}", rule.code());
+            }
+        }
+    }
+
+    #[test]
+    fn every_departure_says_why() {
+        let departures = (RULES
+            .iter()
+            .flat_map(|r| r.supersedes.iter().map(|s| s.code)))
+        .chain(RULES.iter().filter_map(|r| r.khronos_name.map(|(c, _)| c)))
+        .chain(
+            khronos::RETIRED
+                .iter()
+                .chain(khronos::UNRELEASED)
+                .map(|(c, _)| *c),
+        )
+        .chain(READINGS.iter().map(|(c, _)| *c));
+        for code in departures {
+            let why = why_different(code.name());
+            assert!(why.is_some_and(|w| !w.is_empty()), "{code} has no reason");
+        }
+    }
+}
