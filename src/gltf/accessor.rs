@@ -56,3 +56,44 @@ pub fn normalise(component_type: u64) -> fn(f64) -> f64 {
         _ => |v| v,
     }
 }
+
+/// Per-component bounds of tightly packed little-endian `f32` elements of `N` components.
+pub struct FloatBounds<const N: usize> {
+    /// The least value of each component (+∞ when there is none).
+    pub low: [f32; N],
+    /// The greatest value of each component (−∞ when there is none).
+    pub high: [f32; N],
+    /// Whether some component is NaN (which never becomes a bound).
+    pub nan: bool,
+}
+
+impl<const N: usize> FloatBounds<N> {
+    /// The bounds of `data`, each element also handed to `each`. Compared as `f32`, which is
+    /// exact (every `f32` is an `f64`); compare-and-select on fixed-size arrays lets the
+    /// compiler vectorise the loop.
+    pub fn of(data: &[u8], mut each: impl FnMut(&[f32; N])) -> Self {
+        let (mut low, mut high) = ([f32::INFINITY; N], [f32::NEG_INFINITY; N]);
+        let mut nan = false;
+        for element in data.chunks_exact(4 * N) {
+            let mut v = [0f32; N];
+            for (value, word) in v.iter_mut().zip(element.chunks_exact(4)) {
+                *value = f32::from_le_bytes(word.try_into().unwrap_or_default());
+            }
+            for c in 0..N {
+                low[c] = if v[c] < low[c] { v[c] } else { low[c] };
+                high[c] = if v[c] > high[c] { v[c] } else { high[c] };
+                nan |= v[c].is_nan();
+            }
+            each(&v);
+        }
+        FloatBounds { low, high, nan }
+    }
+
+    /// The bounds as glTF's `min` / `max` arrays.
+    pub fn min_max(&self) -> (Vec<f64>, Vec<f64>) {
+        (
+            self.low.map(f64::from).to_vec(),
+            self.high.map(f64::from).to_vec(),
+        )
+    }
+}

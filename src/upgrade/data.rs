@@ -4,8 +4,8 @@
 use super::binary::Binary;
 pub use crate::gltf::accessor::FLOAT;
 use crate::gltf::accessor::{
-    component_count, component_size, decode_component, normalise, BYTE, SHORT, UNSIGNED_BYTE,
-    UNSIGNED_INT, UNSIGNED_SHORT,
+    component_count, component_size, decode_component, normalise, FloatBounds, BYTE, SHORT,
+    UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
 };
 use crate::legacy::source::Source;
 use serde_json::Value;
@@ -353,10 +353,10 @@ fn copy_elements(
     let n = accessor.components;
     let (mut min, mut max) = match accessor.component_type {
         FLOAT if stride == 4 * n && n <= 4 => match n {
-            1 => float_bounds::<1>(bytes),
-            2 => float_bounds::<2>(bytes),
-            3 => float_bounds::<3>(bytes),
-            _ => float_bounds::<4>(bytes),
+            1 => FloatBounds::<1>::of(bytes, |_| {}).min_max(),
+            2 => FloatBounds::<2>::of(bytes, |_| {}).min_max(),
+            3 => FloatBounds::<3>::of(bytes, |_| {}).min_max(),
+            _ => FloatBounds::<4>::of(bytes, |_| {}).min_max(),
         },
         FLOAT => bounds_of(bytes, stride, n, |b| f64::from(f32::from_le_bytes(b))),
         UNSIGNED_INT if stride == 4 && n == 1 => {
@@ -394,20 +394,6 @@ fn copy_elements(
         converted_from: None,
         renormalised: None,
     }
-}
-
-/// min/max per component of tightly packed float elements of `N` components, compared as
-/// `f32` (exact: every `f32` is an `f64`); NaN never wins a comparison.
-fn float_bounds<const N: usize>(bytes: &[u8]) -> (Vec<f64>, Vec<f64>) {
-    let (mut low, mut high) = ([f32::INFINITY; N], [f32::NEG_INFINITY; N]);
-    for element in bytes.chunks_exact(4 * N) {
-        for (c, word) in element.chunks_exact(4).enumerate() {
-            let v = f32::from_le_bytes(word.try_into().unwrap_or_default());
-            low[c] = if v < low[c] { v } else { low[c] };
-            high[c] = if v > high[c] { v } else { high[c] };
-        }
-    }
-    (low.map(f64::from).to_vec(), high.map(f64::from).to_vec())
 }
 
 /// min/max per component over 4-byte components laid out with `stride`. A comparison is

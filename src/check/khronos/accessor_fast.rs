@@ -6,6 +6,7 @@
 //! runs and reports it.
 
 use super::accessor_usage::{is_unit_length, Checker};
+use crate::gltf::accessor::FloatBounds;
 use crate::gltf::gl;
 
 /// Where an accessor's elements lie in its bufferView's bytes.
@@ -60,29 +61,16 @@ fn unit_vector(v: &[f32; 3]) -> bool {
     is_unit_length((x * x + y * y + z * z).sqrt())
 }
 
-/// min/max of `N`-component float elements, compared as `f32` (exact: every `f32` is an
-/// `f64`). Declines on NaN, an infinity, or an element that `valid` rejects.
+/// min/max of `N`-component float elements. Declines on NaN, an infinity, or an element
+/// that `valid` rejects.
 fn float_bounds<const N: usize>(
     data: &[u8],
     valid: impl Fn(&[f32; N]) -> bool,
 ) -> Option<(Vec<f64>, Vec<f64>)> {
-    let (mut low, mut high) = ([f32::INFINITY; N], [f32::NEG_INFINITY; N]);
-    let (mut nan, mut rejected) = (false, false);
-    for element in data.chunks_exact(4 * N) {
-        let mut v = [0f32; N];
-        for (value, word) in v.iter_mut().zip(element.chunks_exact(4)) {
-            *value = f32::from_le_bytes(word.try_into().unwrap_or_default());
-        }
-        for c in 0..N {
-            low[c] = if v[c] < low[c] { v[c] } else { low[c] };
-            high[c] = if v[c] > high[c] { v[c] } else { high[c] };
-            nan |= v[c].is_nan();
-        }
-        rejected |= !valid(&v);
-    }
-    let finite = low.iter().chain(&high).all(|v| v.is_finite());
-    (finite && !nan && !rejected)
-        .then(|| (low.map(f64::from).to_vec(), high.map(f64::from).to_vec()))
+    let mut rejected = false;
+    let bounds = FloatBounds::<N>::of(data, |v| rejected |= !valid(v));
+    let finite = bounds.low.iter().chain(&bounds.high).all(|v| v.is_finite());
+    (finite && !bounds.nan && !rejected).then(|| bounds.min_max())
 }
 
 /// min/max of a scalar unsigned index buffer and its degenerate triangles, handed to its
