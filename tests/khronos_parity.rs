@@ -290,3 +290,83 @@ fn a_buffer_view_without_its_length_holds_no_accessor() {
         ])
     );
 }
+
+#[test]
+fn an_integer_beyond_two_to_the_sixty_four_is_a_length_too_long_for_anything() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 44}],
+        "bufferViews": [{"buffer": 0, "byteLength": 1e300}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 1, "type": "SCALAR"}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("BUFFER_VIEW_TOO_LONG", "/bufferViews/0/byteLength"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+        ])
+    );
+}
+
+#[test]
+fn an_animation_output_in_a_vertex_buffer_view_is_an_override_twice() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 64}],
+        "bufferViews": [{"buffer": 0, "byteLength": 64, "target": 34962}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+            {"bufferView": 0, "byteOffset": 8, "componentType": 5126, "count": 2, "type": "VEC3"}],
+        "nodes": [{}],
+        "animations": [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+                        "samplers": [{"input": 0, "output": 1}]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "BUFFER_VIEW_TARGET_OVERRIDE",
+                "/animations/0/samplers/0/input"
+            ),
+            (
+                "BUFFER_VIEW_TARGET_OVERRIDE",
+                "/animations/0/samplers/0/output"
+            ),
+            (
+                "BUFFER_VIEW_TARGET_OVERRIDE",
+                "/animations/0/samplers/0/output"
+            ),
+            ("NODE_EMPTY", "/nodes/0"),
+        ])
+    );
+}
+
+/// Skins whose joints lie in two trees: [2, 0, 1] and [0, 3, 4] end in one tree, [0, 3] does not.
+fn skins_in_two_trees() -> Value {
+    json!({"asset": {"version": "2.0"},
+        "nodes": [{"children": [1]}, {}, {}, {"children": [4]}, {}],
+        "skins": [{"joints": [2, 0, 1]}, {"joints": [0, 3, 4]}, {"joints": [0, 3]}]})
+}
+
+#[test]
+fn joints_in_two_trees_pass_when_the_last_ones_share_a_tree() {
+    assert_eq!(
+        khronos_findings(skins_in_two_trees()),
+        expected(&[
+            ("SKIN_NO_COMMON_ROOT", "/skins/2/joints"),
+            ("UNUSED_OBJECT", "/skins/0"),
+            ("UNUSED_OBJECT", "/skins/1"),
+            ("UNUSED_OBJECT", "/skins/2"),
+        ])
+    );
+}
+
+#[test]
+fn the_default_profile_reports_every_skin_whose_joints_share_no_root() {
+    let bytes = serde_json::to_vec(&skins_in_two_trees()).unwrap();
+    let report = check_bytes("case.gltf", bytes, &NoResources, &CheckOptions::default());
+    let skins: Vec<&str> = (report.diagnostics.iter())
+        .filter(|d| d.code.name() == "SKIN_NO_COMMON_ROOT")
+        .filter_map(|d| d.pointer())
+        .collect();
+    assert_eq!(
+        skins,
+        ["/skins/0/joints", "/skins/1/joints", "/skins/2/joints"]
+    );
+}

@@ -48,6 +48,12 @@ impl Profile {
         self == Profile::Default
     }
 
+    /// Whether a skin's common roots are found as the Khronos validator finds them: an
+    /// intersection of the joints' lines that starts afresh when it becomes empty.
+    pub(crate) fn refills_emptied_common_roots(self) -> bool {
+        self == Profile::Khronos
+    }
+
     /// Whether a glTF 1.0 document gets the 1.0 checks instead of the 2.0 passes.
     pub(crate) fn checks_gltf1(self) -> bool {
         self == Profile::Default
@@ -64,6 +70,10 @@ pub static READINGS: &[(Code, &str)] = &[
     (
         khronos::KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD,
         "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
+    ),
+    (
+        khronos::SKIN_NO_COMMON_ROOT,
+        "Reported for every skin whose joints share no root. The Khronos validator starts its intersection of the joints' lines afresh once it is empty, so joints in separate trees pass when the last ones share a tree.",
     ),
     (
         super::rules::gltf1::RULE.code(),

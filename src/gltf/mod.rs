@@ -32,12 +32,14 @@ pub fn unsigned(object: &Value, key: &str) -> Option<u64> {
 }
 
 /// A JSON value read as a glTF index: a non-negative integer, also when written as a float.
+/// An integer beyond 2^64 (`1e300`) reads as `u64::MAX`: as for the Khronos validator, it is
+/// an integer, and no index, offset or length that large fits anything.
 pub fn as_index(value: &Value) -> Option<u64> {
     value.as_u64().or_else(|| {
         value
             .as_f64()
-            // Integers written as floats; beyond 2^64 a cast would saturate to a false index.
-            .filter(|f| f.fract() == 0.0 && *f >= 0.0 && *f < 18_446_744_073_709_551_616.0)
+            .filter(|f| f.fract() == 0.0 && *f >= 0.0)
+            // A saturating cast: every integer from 2^64 up becomes u64::MAX.
             .map(|f| f as u64)
     })
 }

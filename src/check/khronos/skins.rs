@@ -7,7 +7,7 @@ use super::primitives::Format;
 use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
 use serde_json::Value;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 pub fn check(ctx: &mut Context) {
     let nodes = ctx.items("nodes");
@@ -25,7 +25,12 @@ pub fn check(ctx: &mut Context) {
         if !listed {
             continue;
         }
-        let roots = common_roots(&parents, &joints);
+        let counted = if ctx.options.profile.refills_emptied_common_roots() {
+            after_last_reset(&parents, &joints)
+        } else {
+            &joints[..]
+        };
+        let roots = common_roots(&parents, counted);
         if roots.is_empty() {
             ctx.emit(
                 khronos::SKIN_NO_COMMON_ROOT,
@@ -41,6 +46,66 @@ pub fn check(ctx: &mut Context) {
                 "Skeleton node is not a common root.",
             );
         }
+    }
+}
+
+/// The joints whose lines the Khronos validator intersects in the end. It refills an emptied
+/// intersection with the next joint's line, so only the joints after the last one that
+/// emptied it count, and none when the last joint emptied it. A joint empties it when its
+/// line never meets the lines so far: it lies in another tree.
+fn after_last_reset<'j>(parents: &[Option<usize>], joints: &'j [usize]) -> &'j [usize] {
+    let mut roots = Roots::new(parents);
+    let mut start = 0;
+    let mut at = 1;
+    while at < joints.len() {
+        if roots.of(joints[at]) == roots.of(joints[start]) {
+            at += 1;
+        } else if at + 1 == joints.len() {
+            return &[];
+        } else {
+            (start, at) = (at + 1, at + 2);
+        }
+    }
+    &joints[start.min(joints.len())..]
+}
+
+/// The top of each node's line (for a line ending in a loop, the loop's least node), found
+/// once per node.
+struct Roots<'p> {
+    parents: &'p [Option<usize>],
+    known: Vec<Option<usize>>,
+}
+
+impl<'p> Roots<'p> {
+    fn new(parents: &'p [Option<usize>]) -> Self {
+        Roots {
+            parents,
+            known: vec![None; parents.len()],
+        }
+    }
+
+    fn of(&mut self, node: usize) -> usize {
+        let mut on_climb = HashMap::new();
+        let mut climb = Vec::new();
+        let mut at = node;
+        let root = loop {
+            if let Some(root) = self.known[at] {
+                break root;
+            }
+            if let Some(&from) = on_climb.get(&at) {
+                break climb[from..].iter().copied().min().unwrap_or(at);
+            }
+            on_climb.insert(at, climb.len());
+            climb.push(at);
+            match self.parents[at] {
+                Some(parent) if parent < self.parents.len() => at = parent,
+                _ => break at,
+            }
+        };
+        for node in climb {
+            self.known[node] = Some(root);
+        }
+        root
     }
 }
 

@@ -142,7 +142,9 @@ impl Walk<'_, '_> {
     fn animations(&mut self) {
         for (_, pointer, animation) in self.ctx.objects("animations") {
             for (s, sampler) in elements(animation, "samplers") {
-                for key in ["input", "output"] {
+                // The validator sets an output's usage twice, so a conflicting target is
+                // reported twice there.
+                for key in ["input", "output", "output"] {
                     let view = self.view_of(sampler.get(key));
                     self.set(view, Usage::Other, format!("{pointer}/samplers/{s}/{key}"));
                 }
