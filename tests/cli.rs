@@ -745,3 +745,28 @@ fn a_reader_that_goes_away_ends_no_command_in_a_panic() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(output.is_file(), "the upgrade still writes its output");
 }
+
+#[test]
+fn a_2_0_input_with_errors_of_its_own_is_refused_saying_so() {
+    let folder = tempfile::tempdir().unwrap();
+    let input = folder.path().join("broken.gltf");
+    // A spec-gloss material to convert, and a node whose mesh does not exist: an error the
+    // upgrade passes through.
+    let asset = r#"{"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_materials_pbrSpecularGlossiness"],
+        "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {"glossinessFactor": 0.5}}}],
+        "nodes": [{"mesh": 7}], "scenes": [{"nodes": [0]}], "scene": 0}"#;
+    std::fs::write(&input, asset).unwrap();
+    let output = folder.path().join("out.glb");
+    let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(["upgrade", input.to_str().unwrap(), "-o"])
+        .arg(&output)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("glTF 2.0 with 1 error(s) of its own"),
+        "{stderr}"
+    );
+    assert!(!output.exists());
+}

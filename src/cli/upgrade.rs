@@ -7,7 +7,7 @@ use gltfmat::document::file::FileId;
 use gltfmat::document::uri::folder_of;
 use gltfmat::report::{render, Format, Style};
 use gltfmat::upgrade::{output, Note, NoteKind, SpecularGlossiness};
-use gltfmat::{upgrade, FolderResources, Severity, UpgradeOptions, Upgraded};
+use gltfmat::{upgrade, CheckOptions, FolderResources, Severity, UpgradeOptions, Upgraded};
 use std::collections::HashMap;
 use std::hash::Hash;
 use std::io::Write;
@@ -82,7 +82,7 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         log.line(format_args!("warning: a converted material does not render like its source within ΔE2000 {} (the output is written; --verify refuses it)", args.threshold));
     }
     let (folder, name) = match destination {
-        Destination::Stdout => return write_to_stdout(&mut upgraded),
+        Destination::Stdout => return write_to_stdout(&mut upgraded, &args.input),
         Destination::File { folder, name } => (folder, name),
     };
     let files = output::layout_releasing_json(&mut upgraded, &name);
@@ -91,7 +91,7 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         .map_err(|e| Failure::usage(e.to_string()))?;
     let report = checked.report;
     if !checked.written {
-        return Err(refuse_failed_check(report, &upgraded));
+        return Err(refuse_failed_check(report, &upgraded, &args.input));
     }
     let warnings = report.count(Severity::Warning);
     outln!(
@@ -207,11 +207,11 @@ fn places<P: AsRef<str>>(places: &[P]) -> String {
 }
 
 /// `-o -`: the GLB, checked in memory, on stdout.
-fn write_to_stdout(upgraded: &mut Upgraded) -> Outcome {
+fn write_to_stdout(upgraded: &mut Upgraded, input: &Path) -> Outcome {
     let files = output::layout_releasing_json(upgraded, "-.glb");
     let report = output::verify(&files);
     if report.has_errors() {
-        return Err(refuse_failed_check(report, upgraded));
+        return Err(refuse_failed_check(report, upgraded, input));
     }
     let mut stdout = std::io::stdout().lock();
     for part in &files.main.parts {
@@ -226,8 +226,9 @@ fn write_to_stdout(upgraded: &mut Upgraded) -> Outcome {
 }
 
 /// The refusal of an output that fails its own check: the findings, then for each error the
-/// 1.0 object its place was made from, so that the user knows which input construct to fix.
-fn refuse_failed_check(report: Report, upgraded: &Upgraded) -> Failure {
+/// 1.0 object its place was made from, so that the user knows which input construct to fix;
+/// of a 2.0 input, whether its own errors are what the upgrade passed through.
+fn refuse_failed_check(report: Report, upgraded: &Upgraded, input: &Path) -> Failure {
     let mut origins: Vec<String> = (report.diagnostics.iter())
         .filter(|d| d.severity == Severity::Error)
         .filter_map(|d| match &d.location {
@@ -247,7 +248,27 @@ fn refuse_failed_check(report: Report, upgraded: &Upgraded) -> Failure {
             origins.join("\n")
         );
     }
+    let inherited = inherited_errors(input);
+    if inherited > 0 {
+        return Failure::refused(format!("the upgraded asset fails its own check; nothing was written. The input is glTF 2.0 with {inherited} error(s) of its own, which the upgrade passes through unchanged: `gltfmat check {}` lists them in the input.", input.display()));
+    }
     Failure::refused("the upgraded asset fails its own check; nothing was written.")
+}
+
+/// The errors a glTF 2.0 input has itself (0 for a 1.0 input, whose objects are all rebuilt).
+fn inherited_errors(input: &Path) -> usize {
+    match gltfmat::check_path(input, &CheckOptions::default()) {
+        Ok(report)
+            if report
+                .info
+                .version
+                .as_deref()
+                .is_some_and(|v| v.starts_with("2.")) =>
+        {
+            report.count(Severity::Error)
+        }
+        _ => 0,
+    }
 }
 
 /// The proof: every source material that has a model of its own (a 1.0 asset's PBR-draft
