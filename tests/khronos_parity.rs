@@ -370,3 +370,75 @@ fn the_default_profile_reports_every_skin_whose_joints_share_no_root() {
         ["/skins/0/joints", "/skins/1/joints", "/skins/2/joints"]
     );
 }
+
+#[test]
+fn each_wrong_number_in_an_array_is_reported_at_the_array() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "nodes": [{"translation": ["a", "b", "c"]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_TYPE_MISMATCH", "/nodes/0/translation"),
+            ("ARRAY_TYPE_MISMATCH", "/nodes/0/translation"),
+            ("ARRAY_TYPE_MISMATCH", "/nodes/0/translation"),
+            ("NODE_EMPTY", "/nodes/0"),
+            ("UNUSED_OBJECT", "/nodes/0"),
+        ])
+    );
+}
+
+#[test]
+fn a_wrong_index_in_attributes_or_targets_is_that_index_and_the_attribute_is_kept() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "meshes": [{"primitives": [{"attributes": {"POSITION": "a", "NORMAL": -1},
+                                    "targets": [{"POSITION": -2}]}]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("INVALID_INDEX", "/meshes/0/primitives/0/attributes/NORMAL"),
+            (
+                "INVALID_INDEX",
+                "/meshes/0/primitives/0/attributes/POSITION"
+            ),
+            ("INVALID_INDEX", "/meshes/0/primitives/0/targets/0/POSITION"),
+            ("UNUSED_OBJECT", "/meshes/0"),
+        ])
+    );
+}
+
+#[test]
+fn bounds_are_read_only_for_a_valid_type_and_only_at_its_length() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"}, "accessors": [
+        {"componentType": 5126, "count": 1, "type": "VEC3", "max": [1, 1], "min": [0, "a", 0, 0]},
+        {"componentType": 5126, "count": 1, "type": "VEC9", "max": [1, "b"], "min": []},
+        {"componentType": 5126, "count": 1, "type": "SCALAR", "max": [1, 1], "min": "x"}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_LENGTH_NOT_IN_LIST", "/accessors/0/max"),
+            ("ARRAY_LENGTH_NOT_IN_LIST", "/accessors/0/min"),
+            ("ARRAY_LENGTH_NOT_IN_LIST", "/accessors/2/max"),
+            ("TYPE_MISMATCH", "/accessors/2/min"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("UNUSED_OBJECT", "/accessors/1"),
+            ("UNUSED_OBJECT", "/accessors/2"),
+            ("VALUE_NOT_IN_LIST", "/accessors/1/type"),
+        ])
+    );
+}
+
+#[test]
+fn nothing_inside_an_undeclared_extension_is_read() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "materials": [{"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, "a", 1]}}}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "UNDECLARED_EXTENSION",
+                "/materials/0/extensions/KHR_materials_sheen"
+            ),
+            ("UNUSED_OBJECT", "/materials/0"),
+        ])
+    );
+}

@@ -204,7 +204,9 @@ fn short(value: &serde_json::Value) -> String {
 
 /// The schema pass, before the others, and what the Khronos validator does not read taken
 /// out of the tree: members of the wrong type, arrays a wrongly typed element or a wrong
-/// length made unreadable (a `translation` holding a null is no translation) and the
+/// length made unreadable (a `translation` holding a null is no translation; an accessor's
+/// `min` of the wrong length for its type, or any bounds of an accessor without a valid
+/// type) and the
 /// extension objects `extensionsUsed` does not declare (returned, for the extensions pass
 /// to report). Of a document that does not claim
 /// glTF 2.x, only what the Khronos validator reads before it stops (see
@@ -217,7 +219,8 @@ fn schema_pass(root: &mut serde_json::Value, khronos: bool, sink: &mut dyn Sink)
         return Vec::new();
     }
     let undeclared = khronos::undeclared_extensions(root, &declared_extensions(root));
-    let absent = schema::validate(root, khronos, sink, undeclared.iter().cloned().collect());
+    let unread = (undeclared.iter().cloned()).chain(khronos::unread_bounds(root, sink));
+    let absent = schema::validate(root, khronos, sink, unread.collect());
     remove_all(root, absent);
     undeclared
 }

@@ -156,6 +156,7 @@ pub fn validate(
     unread: HashSet<String>,
 ) -> HashSet<String> {
     let mut absent = AbsentMembers::new(found);
+    absent.elements_unread = unread.clone();
     absent.absent = unread;
     validate_into(doc, khronos, &mut absent);
     absent.finish()
@@ -252,17 +253,25 @@ const GLTF1_PBR: &str = include_str!("../../schema/gltf1/materials_pbr.schema.js
 /// Every schema error of `instance`, streamed into `sink` as it is found (a 10^7-element
 /// array of wrong types is never held as 10^7 findings).
 fn diagnostics(validator: &Validator, instance: &Value, prefix: &str, sink: &mut dyn Sink) {
-    // An array reports its first wrongly typed element only.
-    let mut arrays = std::collections::HashSet::new();
     for error in validator.iter_errors(instance) {
         let pointer = format!("{prefix}{}", error.instance_path());
         let schema_path = error.schema_path().to_string();
         for d in map_error(error.kind(), error.instance(), &pointer, &schema_path) {
-            if d.code != khronos::ARRAY_TYPE_MISMATCH || arrays.insert(d.location.clone()) {
-                sink.push(d);
-            }
+            sink.push(d);
         }
     }
+}
+
+/// Whether `pointer` is a value of a map of accessor indices: a primitive's `attributes` or
+/// one of its morph `targets`.
+fn is_index_map_value(pointer: &str) -> bool {
+    let Some((map, _)) = pointer.rsplit_once('/') else {
+        return false;
+    };
+    map.ends_with("/attributes")
+        || map.rsplit_once('/').is_some_and(|(list, index)| {
+            list.ends_with("/targets") && index.parse::<usize>().is_ok()
+        })
 }
 
 /// The array holding the element at `pointer`, when that array is a property
@@ -286,8 +295,9 @@ struct AbsentMembers<'s> {
     held: Vec<Diagnostic>,
     /// Members read as absent, by pointer.
     absent: HashSet<String>,
-    /// Arrays of the wrong length (absent too).
-    wrong_length: HashSet<String>,
+    /// Arrays whose elements are not read: those of the wrong length, and what the caller
+    /// names (absent too).
+    elements_unread: HashSet<String>,
 }
 
 /// Whether `pointer` is an element of a top-level collection (`/nodes/3`).
@@ -312,7 +322,7 @@ impl<'s> AbsentMembers<'s> {
             sink,
             held: Vec::new(),
             absent: Default::default(),
-            wrong_length: Default::default(),
+            elements_unread: Default::default(),
         }
     }
 
@@ -335,11 +345,13 @@ impl<'s> AbsentMembers<'s> {
             return false;
         };
         // An array of the wrong length is reported for its length only: its elements are
-        // not read.
+        // not read; nor are those of an array inside a member that is not read.
         if diagnostic.code == khronos::ARRAY_TYPE_MISMATCH {
-            return self
-                .wrong_length
-                .contains(array_holding(pointer).unwrap_or(pointer));
+            let array = array_holding(pointer).unwrap_or(pointer);
+            let inside = array
+                .rsplit_once('/')
+                .is_some_and(|(parent, _)| self.at_or_inside_absent(parent));
+            return inside || self.elements_unread.contains(array);
         }
         if matches!(
             diagnostic.code,
@@ -349,6 +361,10 @@ impl<'s> AbsentMembers<'s> {
         }
         // At the member itself (a mistyped value is not also outside its list of values; an
         // unreadable array demands no other member) or inside it.
+        self.at_or_inside_absent(pointer)
+    }
+
+    fn at_or_inside_absent(&self, pointer: &str) -> bool {
         let mut at = pointer;
         loop {
             if self.absent.contains(at) {
@@ -378,7 +394,7 @@ impl Sink for AbsentMembers<'_> {
         }
         if diagnostic.code == khronos::ARRAY_LENGTH_NOT_IN_LIST {
             if let Some(pointer) = diagnostic.pointer() {
-                self.wrong_length.insert(pointer.to_string());
+                self.elements_unread.insert(pointer.to_string());
                 self.absent.insert(pointer.to_string());
             }
         }
@@ -439,8 +455,8 @@ fn map_error(
     match kind {
         // An element of a property's array, by what the array holds (as the Khronos
         // validator reads them): a wrong index is reported where it is and the others kept;
-        // a wrong number or object makes the array unreadable, reported once at it; each
-        // wrong name of a string list is reported, and the list is unreadable.
+        // each wrong number or object is reported at the array, which is then unreadable;
+        // each wrong name of a string list is reported, and the list is unreadable.
         K::Type { kind } if array_holding(pointer).is_some() => {
             let array = array_holding(pointer).unwrap_or_default().to_string();
             let expected = type_name(kind);
@@ -458,6 +474,12 @@ fn map_error(
                 _ => one(khronos::ARRAY_TYPE_MISMATCH, array, mismatch),
             }
         }
+        // A wrong index in a map of indices, likewise, where it is; the map is kept.
+        K::Type { kind } if is_index_map_value(pointer) && type_name(kind) == "integer" => one(
+            khronos::INVALID_INDEX,
+            pointer.to_string(),
+            "Index must be a non-negative integer.".to_string(),
+        ),
         K::Type { kind } => one(
             khronos::TYPE_MISMATCH,
             pointer.to_string(),

@@ -4,7 +4,7 @@
 use super::primitives::indexed_sets;
 use super::resources::fits_in_view;
 use crate::check::context::{elements, member, unsigned, Context, MaterialNeeds};
-use crate::diagnostic::{khronos, Diagnostic};
+use crate::diagnostic::{khronos, Diagnostic, Sink};
 use crate::gltf::accessor::{component_count, component_size};
 use crate::gltf::gl;
 use serde_json::Value;
@@ -102,6 +102,39 @@ pub fn check_accessors(ctx: &mut Context) {
         }
         super::sparse::check_structure(ctx, accessor, &pointer);
     }
+}
+
+/// An accessor's `min` and `max` that the Khronos validator does not read, by pointer: all
+/// of them when the accessor's `type` is not a valid type, and one whose length is not the
+/// type's component count (reported here, as the only finding about that array).
+pub fn unread_bounds(root: &Value, sink: &mut dyn Sink) -> Vec<String> {
+    let mut unread = Vec::new();
+    let accessors = root.get("accessors").and_then(Value::as_array);
+    for (i, accessor) in accessors.into_iter().flatten().enumerate() {
+        let components = (accessor.get("type").and_then(Value::as_str)).and_then(component_count);
+        for key in ["min", "max"] {
+            let Some(bounds) = accessor.get(key) else {
+                continue;
+            };
+            let pointer = format!("/accessors/{i}/{key}");
+            match (components, bounds.as_array()) {
+                (None, _) => unread.push(pointer),
+                (Some(n), Some(list)) if list.len() != n => {
+                    sink.push(Diagnostic::at(
+                        khronos::ARRAY_LENGTH_NOT_IN_LIST,
+                        pointer.clone(),
+                        format!(
+                            "Invalid array length {}. Valid lengths are: ({n}).",
+                            list.len()
+                        ),
+                    ));
+                    unread.push(pointer);
+                }
+                _ => {}
+            }
+        }
+    }
+    unread
 }
 
 /// What an accessor's own members must agree on, whatever its bufferView.
