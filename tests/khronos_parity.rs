@@ -442,3 +442,29 @@ fn nothing_inside_an_undeclared_extension_is_read() {
         ])
     );
 }
+
+#[test]
+fn an_animation_without_readable_channels_or_samplers_links_nothing() {
+    // Its samplers' accessors stay unused, its unused sampler and its missing target node
+    // are not reported.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [
+            {"componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+            {"componentType": 5126, "count": 2, "type": "VEC3"}],
+        "nodes": [{}],
+        "animations": [
+            {"channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}, 1.5],
+             "samplers": [{"input": 0, "output": 1}, {"input": 0, "output": 1}]},
+            {"channels": [{"sampler": 0, "target": {"node": 5, "path": "scale"}}]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_TYPE_MISMATCH", "/animations/0/channels"),
+            ("NODE_EMPTY", "/nodes/0"),
+            ("UNDEFINED_PROPERTY", "/animations/1"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("UNUSED_OBJECT", "/accessors/1"),
+            ("UNUSED_OBJECT", "/nodes/0"),
+        ])
+    );
+}

@@ -448,20 +448,21 @@ impl Uses<'_> {
     }
 
     fn animation(&mut self, animation: &Value, pointer: &str) {
-        let samplers = animation.get("samplers").and_then(Value::as_array);
-        for (s, sampler) in samplers.into_iter().flatten().enumerate() {
+        let Some((samplers, channels)) = super::animations::linked(animation) else {
+            return;
+        };
+        for (s, sampler) in samplers.iter().enumerate() {
             if let Some(a) = self.accessor(sampler, "input", "SCALAR", &[gl::FLOAT]) {
                 let p = format!("{pointer}/samplers/{s}/input");
                 self.add(a, p, Kind::AnimationInput);
             }
         }
-        for (c, channel) in elements(animation, "channels") {
+        for (c, channel) in channels.iter().enumerate() {
             let target_path = channel.get("target").and_then(|t| t.get("path"));
             if target_path.and_then(Value::as_str) != Some("rotation") {
                 continue;
             }
-            let Some(sampler) =
-                unsigned(channel, "sampler").and_then(|s| samplers?.get(s as usize))
+            let Some(sampler) = unsigned(channel, "sampler").and_then(|s| samplers.get(s as usize))
             else {
                 continue;
             };

@@ -15,9 +15,7 @@ pub fn check(ctx: &mut Context) {
             let at = format!("{pointer}/channels/{c}/target");
             animation_pointer(ctx, channel, &at, pointer_paths);
         }
-        let samplers = animation.get("samplers").and_then(Value::as_array);
-        let channels = animation.get("channels").and_then(Value::as_array);
-        let (Some(samplers), Some(channels)) = (samplers, channels) else {
+        let Some((samplers, channels)) = linked(animation) else {
             continue;
         };
         for (s, sampler) in samplers.iter().enumerate() {
@@ -44,6 +42,15 @@ pub fn check(ctx: &mut Context) {
             }
         }
     }
+}
+
+/// An animation's samplers and channels, when it has both lists: the Khronos validator links
+/// nothing of an animation without them (its samplers' accessors stay unused, its samplers
+/// and target nodes unchecked).
+pub(crate) fn linked(animation: &Value) -> Option<(&[Value], &[Value])> {
+    let samplers = animation.get("samplers")?.as_array()?;
+    let channels = animation.get("channels")?.as_array()?;
+    Some((samplers, channels))
 }
 
 /// Every JSON pointer an animation channel targets through KHR_animation_pointer.

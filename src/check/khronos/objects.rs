@@ -475,17 +475,16 @@ pub fn check_skins_animations_cameras(ctx: &mut Context) {
         }
     }
     for (_, pointer, animation) in ctx.objects("animations") {
-        let samplers = animation
-            .get("samplers")
-            .and_then(Value::as_array)
-            .map_or(&[][..], Vec::as_slice);
+        let Some((samplers, channels)) = super::animations::linked(animation) else {
+            continue;
+        };
         let mut sampler_used = vec![false; samplers.len()];
         for (s, sampler) in samplers.iter().enumerate() {
             let sp = format!("{pointer}/samplers/{s}");
             ctx.reference(sampler, "input", &sp, "accessors");
             ctx.reference(sampler, "output", &sp, "accessors");
         }
-        for (c, channel) in elements(animation, "channels") {
+        for (c, channel) in channels.iter().enumerate() {
             let cp = format!("{pointer}/channels/{c}");
             if let Some(s) = unsigned(channel, "sampler") {
                 if (s as usize) < samplers.len() {

@@ -141,7 +141,10 @@ impl Walk<'_, '_> {
 
     fn animations(&mut self) {
         for (_, pointer, animation) in self.ctx.objects("animations") {
-            for (s, sampler) in elements(animation, "samplers") {
+            let Some((samplers, _)) = super::animations::linked(animation) else {
+                continue;
+            };
+            for (s, sampler) in samplers.iter().enumerate() {
                 // The validator sets an output's usage twice, so a conflicting target is
                 // reported twice there.
                 for key in ["input", "output", "output"] {
