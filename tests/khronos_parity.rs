@@ -468,3 +468,27 @@ fn an_animation_without_readable_channels_or_samplers_links_nothing() {
         ])
     );
 }
+
+#[test]
+fn a_null_required_member_is_of_the_wrong_type_and_missing() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [{"componentType": 5126, "count": null, "type": 5}],
+        "nodes": [{"children": null}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("NODE_EMPTY", "/nodes/0"),
+            ("TYPE_MISMATCH", "/accessors/0/count"),
+            ("TYPE_MISMATCH", "/accessors/0/type"),
+            ("TYPE_MISMATCH", "/nodes/0/children"),
+            ("UNDEFINED_PROPERTY", "/accessors/0"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("UNUSED_OBJECT", "/nodes/0"),
+        ])
+    );
+    let found = khronos_findings(json!({"asset": null}));
+    assert_eq!(
+        found,
+        expected(&[("TYPE_MISMATCH", "/asset"), ("UNDEFINED_PROPERTY", "/")])
+    );
+}

@@ -215,13 +215,17 @@ fn schema_pass(root: &mut serde_json::Value, khronos: bool, sink: &mut dyn Sink)
     if !khronos::has_supported_version(root) {
         let read = khronos::read_before_asset(root);
         let absent = schema::validate(root, khronos, &mut Only(sink, read), HashSet::new());
-        remove_all(root, absent);
+        let nulls = remove_all(root, absent);
+        // Read anew: an `asset` that was null is now missing.
+        let read = khronos::read_before_asset(root);
+        schema::required_nulls(root, khronos, &nulls, &mut Only(sink, read));
         return Vec::new();
     }
     let undeclared = khronos::undeclared_extensions(root, &declared_extensions(root));
     let unread = (undeclared.iter().cloned()).chain(khronos::unread_bounds(root, sink));
     let absent = schema::validate(root, khronos, sink, unread.collect());
-    remove_all(root, absent);
+    let nulls = remove_all(root, absent);
+    schema::required_nulls(root, khronos, &nulls, sink);
     undeclared
 }
 
@@ -238,17 +242,21 @@ fn declared_extensions(root: &serde_json::Value) -> Vec<&str> {
 }
 
 /// Removes the members at `pointers` from the tree (those inside arrays stay: only members
-/// of objects are ever unread).
-fn remove_all(root: &mut serde_json::Value, pointers: HashSet<String>) {
+/// of objects are ever unread); returns those of them that were `null`.
+fn remove_all(root: &mut serde_json::Value, pointers: HashSet<String>) -> HashSet<String> {
+    let mut nulls = HashSet::new();
     for pointer in pointers {
         let Some((parent, token)) = pointer.rsplit_once('/') else {
             continue;
         };
         let member = token.replace("~1", "/").replace("~0", "~");
         if let Some(serde_json::Value::Object(members)) = root.pointer_mut(parent) {
-            members.shift_remove(&member);
+            if members.shift_remove(&member).is_some_and(|v| v.is_null()) {
+                nulls.insert(pointer);
+            }
         }
     }
+    nulls
 }
 
 fn run_passes(ctx: &mut Context) {

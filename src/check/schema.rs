@@ -162,6 +162,28 @@ pub fn validate(
     absent.finish()
 }
 
+/// The Khronos validator reads a `null` member as both of the wrong type and missing: once
+/// such members are out of the tree (`nulls`), the findings of those that are required.
+/// Validates again only when there are any.
+pub fn required_nulls(doc: &Value, khronos: bool, nulls: &HashSet<String>, sink: &mut dyn Sink) {
+    if nulls.is_empty() {
+        return;
+    }
+    for error in validator(khronos).iter_errors(doc) {
+        let ValidationErrorKind::Required { property } = error.kind() else {
+            continue;
+        };
+        let pointer = error.instance_path().to_string();
+        let name = property.as_str().unwrap_or_default();
+        if nulls.contains(&member(&pointer, name)) {
+            let schema_path = error.schema_path().to_string();
+            for d in map_error(error.kind(), error.instance(), &pointer, &schema_path) {
+                sink.push(d);
+            }
+        }
+    }
+}
+
 fn validate_into(doc: &Value, khronos: bool, sink: &mut dyn Sink) {
     let validator = validator(khronos);
     let Some(root) = doc
