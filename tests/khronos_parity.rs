@@ -492,3 +492,70 @@ fn a_null_required_member_is_of_the_wrong_type_and_missing() {
         expected(&[("TYPE_MISMATCH", "/asset"), ("UNDEFINED_PROPERTY", "/")])
     );
 }
+
+/// Three u16 indices (0, 1, 2) and three float positions, as one data-URI buffer.
+const TRIANGLE: &str =
+    "data:application/octet-stream;base64,AAABAAIAAAAAAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAAAAAACAPwAAAAA=";
+
+fn triangle(position_length: u64, accessors: Value, attributes: Value) -> Value {
+    json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": TRIANGLE, "byteLength": 44}],
+        "bufferViews": [{"buffer": 0, "byteLength": 6, "target": 34963},
+                        {"buffer": 0, "byteOffset": 8, "byteLength": position_length, "target": 34962}],
+        "accessors": accessors,
+        "meshes": [{"primitives": [{"attributes": attributes, "indices": 0}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})
+}
+
+#[test]
+fn the_vertex_count_is_the_first_attribute_that_names_an_accessor() {
+    // TEXCOORD_0 names nothing: the indices are checked against POSITION's two vertices.
+    let found = khronos_findings(triangle(
+        24,
+        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
+               {"bufferView": 1, "componentType": 5126, "count": 2, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]}]),
+        json!({"TEXCOORD_0": 7, "POSITION": 1}),
+    ));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ACCESSOR_INDEX_OOB", "/meshes/0/primitives/0/indices"),
+            ("ACCESSOR_MAX_MISMATCH", "/accessors/1/max/1"),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/meshes/0/primitives/0/attributes/TEXCOORD_0"
+            ),
+            (
+                "UNUSED_OBJECT",
+                "/meshes/0/primitives/0/attributes/TEXCOORD_0"
+            ),
+        ])
+    );
+}
+
+#[test]
+fn an_unreadable_count_differs_from_the_vertex_count() {
+    let found = khronos_findings(triangle(
+        36,
+        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
+               {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]},
+               {"bufferView": 1, "componentType": 5126, "count": "x", "type": "VEC3"}]),
+        json!({"POSITION": 1, "NORMAL": 2}),
+    ));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "MESH_PRIMITIVE_ACCESSOR_WITHOUT_BYTESTRIDE",
+                "/meshes/0/primitives/0/attributes/NORMAL"
+            ),
+            (
+                "MESH_PRIMITIVE_UNEQUAL_ACCESSOR_COUNT",
+                "/meshes/0/primitives/0/attributes/NORMAL"
+            ),
+            ("TYPE_MISMATCH", "/accessors/2/count"),
+        ])
+    );
+}

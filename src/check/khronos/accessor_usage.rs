@@ -432,11 +432,10 @@ impl Uses<'_> {
         if !is_scalar || normalized {
             return;
         }
-        // The vertex count is the first attribute's count, as the Khronos validator takes it.
-        let vertex_count = attributes
-            .as_object()
-            .and_then(|a| a.values().next())
-            .and_then(|v| self.accessors.get(v.as_u64()? as usize))
+        // The vertex count is the count of the first attribute that names an accessor, as the
+        // Khronos validator takes it.
+        let vertex_count = (attributes.as_object().into_iter().flat_map(|a| a.values()))
+            .find_map(|v| self.accessors.get(usize::try_from(v.as_u64()?).ok()?))
             .and_then(|a| unsigned(a, "count"))
             .map_or(0, |n| n as i64);
         let kind = Kind::Indices {

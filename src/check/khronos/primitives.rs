@@ -315,10 +315,12 @@ impl<'a> Walk<'_, 'a> {
             let Some(accessor) = self.accessor(value) else {
                 continue;
             };
+            // A missing or unreadable count (the validator's -1) differs from any count
+            // before it, and leaves the vertex count to the next attribute.
             let count = unsigned(accessor, "count");
             match vertex_count {
                 None => vertex_count = count,
-                Some(n) if count.is_some_and(|c| c != n) => self.ctx.emit(
+                Some(n) if count != Some(n) => self.ctx.emit(
                     khronos::MESH_PRIMITIVE_UNEQUAL_ACCESSOR_COUNT,
                     at.clone(),
                     "All accessors of the same primitive must have the same count.",
