@@ -27,7 +27,33 @@ pub struct Source<'a> {
     pub loader: &'a dyn ResourceLoader,
 }
 
+/// Whether `bytes` declare glTF 2.x: a GLB of version 2, or JSON whose `asset.version` is
+/// 2.x. Only `asset` is looked at, so this costs a scan, not a parse into values.
+pub fn declares_gltf2(bytes: &[u8]) -> bool {
+    if bytes.starts_with(b"glTF") {
+        return bytes.get(4..8) == Some(&2u32.to_le_bytes()[..]);
+    }
+    #[derive(serde::Deserialize)]
+    struct Head {
+        asset: Option<AssetHead>,
+    }
+    #[derive(serde::Deserialize)]
+    struct AssetHead {
+        version: Option<Value>,
+    }
+    let head = serde_json::from_slice::<Head>(bytes).ok();
+    let version = head.and_then(|h| h.asset?.version);
+    version
+        .as_ref()
+        .and_then(Value::as_str)
+        .is_some_and(|v| v.starts_with("2."))
+}
+
+/// Reads a glTF 1.0 asset. A 2.x asset is told apart by a scan, before any tree is built.
 pub fn read<'a>(bytes: &'a [u8], loader: &'a dyn ResourceLoader) -> Result<Source<'a>, NotGltf1> {
+    if declares_gltf2(bytes) {
+        return Err(NotGltf1(IS_GLTF2.into()));
+    }
     let (json_bytes, body) = if bytes.starts_with(b"glTF") {
         split_glb_v1(bytes)?
     } else {
@@ -80,6 +106,8 @@ fn split_glb_v1(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), NotGltf1> {
     Ok((&bytes[20..content_end], Some(&bytes[content_end..length])))
 }
 
+const IS_GLTF2: &str = "asset.version is 2.x: nothing to upgrade (use `gltfmat check`)";
+
 fn check_version(json: &Value) -> Result<(), NotGltf1> {
     let version = json
         .get("asset")
@@ -93,9 +121,7 @@ fn check_version(json: &Value) -> Result<(), NotGltf1> {
     };
     match major.as_str() {
         "0" | "1" => Ok(()),
-        "2" => Err(NotGltf1(
-            "asset.version is 2.x: nothing to upgrade (use `gltfmat check`)".into(),
-        )),
+        "2" => Err(NotGltf1(IS_GLTF2.into())),
         other => Err(NotGltf1(format!("unknown asset.version '{other}'"))),
     }
 }

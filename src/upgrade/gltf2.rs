@@ -22,28 +22,6 @@ use std::collections::{BTreeSet, HashMap};
 use std::ops::Range;
 use std::sync::Arc;
 
-/// Whether `bytes` declare glTF 2.x: a GLB of version 2, or JSON whose `asset.version` is
-/// 2.x. Only `asset` is looked at, so this costs a scan, not a parse into values.
-pub(super) fn declares_gltf2(bytes: &[u8]) -> bool {
-    if bytes.starts_with(b"glTF") {
-        return bytes.get(4..8) == Some(&2u32.to_le_bytes()[..]);
-    }
-    #[derive(serde::Deserialize)]
-    struct Head {
-        asset: Option<AssetHead>,
-    }
-    #[derive(serde::Deserialize)]
-    struct AssetHead {
-        version: Option<Value>,
-    }
-    let head = serde_json::from_slice::<Head>(bytes).ok();
-    let version = head.and_then(|h| h.asset?.version);
-    version
-        .as_ref()
-        .and_then(Value::as_str)
-        .is_some_and(|v| v.starts_with("2."))
-}
-
 /// Upgrades a glTF 2.0 asset: its spec-gloss materials converted, the rest passed through.
 pub(super) fn upgrade(
     bytes: &[u8],

@@ -285,7 +285,7 @@ pub fn upgrade(
     loader: &dyn ResourceLoader,
     options: &UpgradeOptions,
 ) -> Result<Upgraded, UpgradeError> {
-    if gltf2::declares_gltf2(bytes) {
+    if source::declares_gltf2(bytes) {
         return gltf2::upgrade(bytes, loader, options);
     }
     let source = source::read(bytes, loader)?;
