@@ -559,3 +559,26 @@ fn an_unreadable_count_differs_from_the_vertex_count() {
         ])
     );
 }
+
+#[test]
+fn an_unreadable_first_count_leaves_the_vertex_count_to_the_next_attribute() {
+    // NORMAL's count is -1: the three indices are checked against POSITION's three vertices.
+    let found = khronos_findings(triangle(
+        36,
+        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
+               {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]},
+               {"bufferView": 1, "componentType": 5126, "count": -1, "type": "VEC3"}]),
+        json!({"NORMAL": 2, "POSITION": 1}),
+    ));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "MESH_PRIMITIVE_ACCESSOR_WITHOUT_BYTESTRIDE",
+                "/meshes/0/primitives/0/attributes/POSITION"
+            ),
+            ("VALUE_NOT_IN_RANGE", "/accessors/2/count"),
+        ])
+    );
+}

@@ -432,12 +432,8 @@ impl Uses<'_> {
         if !is_scalar || normalized {
             return;
         }
-        // The vertex count is the count of the first attribute that names an accessor, as the
-        // Khronos validator takes it.
-        let vertex_count = (attributes.as_object().into_iter().flat_map(|a| a.values()))
-            .find_map(|v| self.accessors.get(usize::try_from(v.as_u64()?).ok()?))
-            .and_then(|a| unsigned(a, "count"))
-            .map_or(0, |n| n as i64);
+        let vertex_count =
+            super::primitives::vertex_count(attributes, self.accessors).map_or(0, |n| n as i64);
         let kind = Kind::Indices {
             max_vertex: vertex_count - 1,
             restart,

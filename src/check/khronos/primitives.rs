@@ -300,7 +300,7 @@ impl<'a> Walk<'_, 'a> {
         );
     }
 
-    /// The attributes' accessors; returns the vertex count (the first attribute's count).
+    /// The attributes' accessors; returns the vertex count (see [`vertex_count`]).
     fn attributes(
         &mut self,
         attributes: Option<&'a Map<String, Value>>,
@@ -491,4 +491,12 @@ impl<'a> Walk<'_, 'a> {
             .get(value.as_u64()? as usize)
             .filter(|a| a.is_object())
     }
+}
+
+/// A primitive's vertex count as the Khronos validator takes it: the first readable count of
+/// an attribute that names an accessor (an unreadable count leaves it to the next one).
+pub(super) fn vertex_count(attributes: &Value, accessors: &[Value]) -> Option<u64> {
+    (attributes.as_object().into_iter().flat_map(|a| a.values()))
+        .filter_map(|v| accessors.get(usize::try_from(v.as_u64()?).ok()?))
+        .find_map(|accessor| unsigned(accessor, "count"))
 }
