@@ -582,3 +582,25 @@ fn an_unreadable_first_count_leaves_the_vertex_count_to_the_next_attribute() {
         ])
     );
 }
+
+#[test]
+fn no_data_is_read_through_a_byte_offset_of_the_wrong_type() {
+    // The declared min (z = 5) is wrong, but neither the view's nor the accessor's offset
+    // can be read, so the data is not compared with it.
+    let accessors = |accessor_offset: Value| {
+        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
+               {"bufferView": 1, "byteOffset": accessor_offset, "componentType": 5126, "count": 3,
+                "type": "VEC3", "min": [0, 0, 5], "max": [1, 1, 0]}])
+    };
+    let mut view_offset_mistyped = triangle(36, accessors(json!(0)), json!({"POSITION": 1}));
+    view_offset_mistyped["bufferViews"][1]["byteOffset"] = json!(true);
+    assert_eq!(
+        khronos_findings(view_offset_mistyped),
+        expected(&[("TYPE_MISMATCH", "/bufferViews/1/byteOffset")])
+    );
+    let accessor_offset_mistyped = triangle(36, accessors(json!("x")), json!({"POSITION": 1}));
+    assert_eq!(
+        khronos_findings(accessor_offset_mistyped),
+        expected(&[("TYPE_MISMATCH", "/accessors/1/byteOffset")])
+    );
+}

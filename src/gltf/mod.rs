@@ -31,6 +31,12 @@ pub fn unsigned(object: &Value, key: &str) -> Option<u64> {
     as_index(object.get(key)?)
 }
 
+/// A `byteOffset`: 0 when absent, `None` when present but not a non-negative integer (the
+/// Khronos validator then reads no data through it).
+pub fn byte_offset(object: &Value) -> Option<u64> {
+    object.get("byteOffset").map_or(Some(0), as_index)
+}
+
 /// A JSON value read as a glTF index: a non-negative integer, also when written as a float.
 /// An integer beyond 2^64 (`1e300`) reads as `u64::MAX`: as for the Khronos validator, it is
 /// an integer, and no index, offset or length that large fits anything.

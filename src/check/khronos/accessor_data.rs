@@ -95,7 +95,7 @@ fn layout(ctx: &Context, accessor: &Value, view: usize) -> Option<Layout> {
     if let Some(stride) = unsigned(&ctx.items("bufferViews")[view], "byteStride") {
         layout.stride = usize::try_from(stride).ok()?;
     }
-    layout.offset = usize::try_from(unsigned(accessor, "byteOffset").unwrap_or(0)).ok()?;
+    layout.offset = usize::try_from(crate::gltf::byte_offset(accessor)?).ok()?;
     Some(layout)
 }
 
@@ -224,7 +224,7 @@ fn substituted(ctx: &Context, accessor: &Value) -> Option<(Layout, Vec<u8>)> {
     };
     let values = sparse.get("values")?;
     let value_bytes = view_bytes(ctx, unsigned(values, "bufferView")? as usize)?;
-    let start = usize::try_from(unsigned(values, "byteOffset").unwrap_or(0)).ok()?;
+    let start = usize::try_from(crate::gltf::byte_offset(values)?).ok()?;
     let sparse_count = usize::try_from(unsigned(sparse, "count")?).ok()?;
     let length = sparse_count.checked_mul(element)?;
     let value_bytes = value_bytes.get(start..start.checked_add(length)?)?;

@@ -227,7 +227,7 @@ pub fn view_bytes<'c>(ctx: &'c Context, view_index: usize) -> Option<&'c [u8]> {
         .buffers
         .get(unsigned(view, "buffer")? as usize)?
         .as_ref()?;
-    let start = usize::try_from(unsigned(view, "byteOffset").unwrap_or(0)).ok()?;
+    let start = usize::try_from(crate::gltf::byte_offset(view)?).ok()?;
     let end = start.checked_add(usize::try_from(unsigned(view, "byteLength")?).ok()?)?;
     buffer.get(start..end)
 }

@@ -108,7 +108,7 @@ pub(super) fn readable_indices<'c>(
     let indices = sparse.get("indices")?;
     let size = unsigned(indices, "componentType").and_then(component_size)?;
     let bytes = view_bytes(ctx, unsigned(indices, "bufferView")? as usize)?;
-    let start = usize::try_from(unsigned(indices, "byteOffset").unwrap_or(0)).ok()?;
+    let start = usize::try_from(crate::gltf::byte_offset(indices)?).ok()?;
     let length = usize::try_from(unsigned(sparse, "count")?)
         .ok()?
         .checked_mul(size)?;
