@@ -604,3 +604,26 @@ fn no_data_is_read_through_a_byte_offset_of_the_wrong_type() {
         expected(&[("TYPE_MISMATCH", "/accessors/1/byteOffset")])
     );
 }
+
+#[test]
+fn a_buffer_view_that_is_no_object_has_no_usage() {
+    let mut document = triangle(
+        36,
+        json!([{"bufferView": 2, "componentType": 5123, "count": 3, "type": "SCALAR"},
+               {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]}]),
+        json!({"POSITION": 1}),
+    );
+    document["bufferViews"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!(-1e308));
+    assert_eq!(
+        khronos_findings(document),
+        expected(&[
+            ("TYPE_MISMATCH", "/bufferViews/2"),
+            ("UNRESOLVED_REFERENCE", "/accessors/0/bufferView"),
+            ("UNUSED_OBJECT", "/bufferViews/0"),
+        ])
+    );
+}

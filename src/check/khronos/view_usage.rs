@@ -55,6 +55,9 @@ struct Walk<'c, 'a> {
 
 impl Walk<'_, '_> {
     fn set(&mut self, view: Option<u64>, usage: Usage, at: String) {
+        // A reference to an element that is no bufferView object is unresolved: no usage.
+        let views = self.ctx.items("bufferViews");
+        let view = view.filter(|&v| views.get(v as usize).is_some_and(Value::is_object));
         let Some(slot) = view.and_then(|v| self.usages.get_mut(v as usize)) else {
             return;
         };
