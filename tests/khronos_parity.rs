@@ -627,3 +627,42 @@ fn a_buffer_view_that_is_no_object_has_no_usage() {
         ])
     );
 }
+
+#[test]
+fn an_accessor_without_a_valid_component_type_count_and_type_links_no_buffer_view() {
+    let accessor = |members: Value| {
+        let mut accessor = json!({"bufferView": 0, "count": 4});
+        accessor
+            .as_object_mut()
+            .unwrap()
+            .extend(members.as_object().unwrap().clone());
+        khronos_findings(json!({"asset": {"version": "2.0"},
+            "buffers": [{"byteLength": 16}], "bufferViews": [{"buffer": 0, "byteLength": 16}],
+            "accessors": [accessor]}))
+    };
+    // Linked: its bufferView is used (only the accessor itself is unused).
+    assert_eq!(
+        accessor(json!({"componentType": 5126, "type": "VEC9"})),
+        expected(&[
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("VALUE_NOT_IN_LIST", "/accessors/0/type"),
+        ])
+    );
+    // Not linked: the bufferView is unused and a wrong one is not even resolved.
+    assert_eq!(
+        accessor(json!({"componentType": 7, "type": "SCALAR", "bufferView": 5})),
+        expected(&[
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("UNUSED_OBJECT", "/bufferViews/0"),
+            ("VALUE_NOT_IN_LIST", "/accessors/0/componentType"),
+        ])
+    );
+    assert_eq!(
+        accessor(json!({"componentType": 5126, "type": 5, "max": -1})),
+        expected(&[
+            ("TYPE_MISMATCH", "/accessors/0/type"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("UNUSED_OBJECT", "/bufferViews/0"),
+        ])
+    );
+}

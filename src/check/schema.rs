@@ -156,7 +156,7 @@ pub fn validate(
     unread: HashSet<String>,
 ) -> HashSet<String> {
     let mut absent = AbsentMembers::new(found);
-    absent.elements_unread = unread.clone();
+    absent.unread = unread.clone();
     absent.absent = unread;
     validate_into(doc, khronos, &mut absent);
     absent.finish()
@@ -317,9 +317,25 @@ struct AbsentMembers<'s> {
     held: Vec<Diagnostic>,
     /// Members read as absent, by pointer.
     absent: HashSet<String>,
-    /// Arrays whose elements are not read: those of the wrong length, and what the caller
-    /// names (absent too).
+    /// Arrays of the wrong length: their elements are not read (absent too).
     elements_unread: HashSet<String>,
+    /// What the caller names as not read at all: nothing at or inside it is reported
+    /// (absent too).
+    unread: HashSet<String>,
+}
+
+/// Whether `pointer` is one of `members` or inside one.
+fn at_or_inside(members: &HashSet<String>, pointer: &str) -> bool {
+    let mut at = pointer;
+    loop {
+        if members.contains(at) {
+            return true;
+        }
+        match at.rsplit_once('/') {
+            Some((parent, _)) if !parent.is_empty() => at = parent,
+            _ => return false,
+        }
+    }
 }
 
 /// Whether `pointer` is an element of a top-level collection (`/nodes/3`).
@@ -352,6 +368,7 @@ impl<'s> AbsentMembers<'s> {
             held: Vec::new(),
             absent: Default::default(),
             elements_unread: Default::default(),
+            unread: Default::default(),
         }
     }
 
@@ -373,6 +390,9 @@ impl<'s> AbsentMembers<'s> {
         let Some(pointer) = diagnostic.pointer() else {
             return false;
         };
+        if at_or_inside(&self.unread, pointer) {
+            return true;
+        }
         // An array of the wrong length is reported for its length only: its elements are
         // not read; nor are those of an array inside a member that is not read.
         if diagnostic.code == khronos::ARRAY_TYPE_MISMATCH {
@@ -394,16 +414,7 @@ impl<'s> AbsentMembers<'s> {
     }
 
     fn at_or_inside_absent(&self, pointer: &str) -> bool {
-        let mut at = pointer;
-        loop {
-            if self.absent.contains(at) {
-                return true;
-            }
-            match at.rsplit_once('/') {
-                Some((parent, _)) if !parent.is_empty() => at = parent,
-                _ => return false,
-            }
-        }
+        at_or_inside(&self.absent, pointer)
     }
 }
 

@@ -97,11 +97,23 @@ pub fn check_asset(ctx: &mut Context) {
 pub fn check_accessors(ctx: &mut Context) {
     for (_, pointer, accessor) in ctx.objects("accessors") {
         check_accessor_format(ctx, accessor, &pointer);
+        if !is_linked(accessor) {
+            continue;
+        }
         if let Some(view) = ctx.reference(accessor, "bufferView", &pointer, "bufferViews") {
             check_accessor_fits(ctx, accessor, view, &pointer);
         }
         super::sparse::check_structure(ctx, accessor, &pointer);
     }
+}
+
+/// Whether the Khronos validator links the accessor to its bufferView and sparse parts: only
+/// with a valid componentType, a count and a type (any string). Otherwise its bufferView is
+/// neither resolved nor used by it.
+fn is_linked(accessor: &Value) -> bool {
+    unsigned(accessor, "componentType").is_some_and(|c| component_size(c).is_some())
+        && unsigned(accessor, "count").is_some_and(|n| n >= 1)
+        && accessor.get("type").is_some_and(Value::is_string)
 }
 
 /// An accessor's `min` and `max` that the Khronos validator does not read, by pointer: all
