@@ -666,3 +666,76 @@ fn an_accessor_without_a_valid_component_type_count_and_type_links_no_buffer_vie
         ])
     );
 }
+
+#[test]
+fn indices_without_attributes_are_checked_against_no_vertex() {
+    let mut document = triangle(
+        36,
+        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
+               {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]}]),
+        json!({}),
+    );
+    document["meshes"][0]["primitives"][0]
+        .as_object_mut()
+        .unwrap()
+        .remove("attributes");
+    assert_eq!(
+        khronos_findings(document),
+        expected(&[
+            ("ACCESSOR_INDEX_OOB", "/meshes/0/primitives/0/indices"),
+            ("ACCESSOR_INDEX_OOB", "/meshes/0/primitives/0/indices"),
+            ("ACCESSOR_INDEX_OOB", "/meshes/0/primitives/0/indices"),
+            ("UNDEFINED_PROPERTY", "/meshes/0/primitives/0"),
+            ("UNUSED_OBJECT", "/accessors/1"),
+        ])
+    );
+}
+
+#[test]
+fn a_null_byte_offset_is_the_default_and_the_data_is_read() {
+    // The positions are then read from the start of the buffer (the index bytes).
+    let mut document = triangle(
+        36,
+        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
+               {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]}]),
+        json!({"POSITION": 1}),
+    );
+    document["bufferViews"][1]["byteOffset"] = Value::Null;
+    assert_eq!(
+        khronos_findings(document),
+        expected(&[
+            ("ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND", "/accessors/1/max/2"),
+            ("ACCESSOR_MAX_MISMATCH", "/accessors/1/max/0"),
+            ("ACCESSOR_MAX_MISMATCH", "/accessors/1/max/1"),
+            ("ACCESSOR_MAX_MISMATCH", "/accessors/1/max/2"),
+            ("TYPE_MISMATCH", "/bufferViews/1/byteOffset"),
+        ])
+    );
+}
+
+#[test]
+fn an_unlinked_accessor_a_mesh_uses_still_uses_its_buffer_view() {
+    let mut document = triangle(
+        36,
+        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
+               {"bufferView": 1, "count": 3, "type": "VEC3"}]),
+        json!({"POSITION": 1}),
+    );
+    document["meshes"][0]["primitives"][0]["indices"] = json!(0);
+    assert_eq!(
+        khronos_findings(document),
+        expected(&[
+            (
+                "MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT",
+                "/meshes/0/primitives/0/attributes/POSITION"
+            ),
+            (
+                "MESH_PRIMITIVE_POSITION_ACCESSOR_WITHOUT_BOUNDS",
+                "/meshes/0/primitives/0/attributes/POSITION"
+            ),
+            ("UNDEFINED_PROPERTY", "/accessors/1"),
+        ])
+    );
+}

@@ -251,6 +251,12 @@ fn remove_all(root: &mut serde_json::Value, pointers: HashSet<String>) -> HashSe
         };
         let member = token.replace("~1", "/").replace("~0", "~");
         if let Some(serde_json::Value::Object(members)) = root.pointer_mut(parent) {
+            // A byteOffset of a wrong type other than null stays, unreadable: the Khronos
+            // validator reads it as invalid, not as the default 0, and reads no data
+            // through it (`gltf::byte_offset`).
+            if member == "byteOffset" && members.get(&member).is_some_and(|v| !v.is_null()) {
+                continue;
+            }
             if members.shift_remove(&member).is_some_and(|v| v.is_null()) {
                 nulls.insert(pointer);
             }

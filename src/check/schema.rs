@@ -347,13 +347,6 @@ fn is_collection_element(pointer: &str) -> bool {
     }
 }
 
-/// Whether the member at `pointer` is one the Khronos validator reads as an invalid value
-/// when it has the wrong type, not as absent: a `byteOffset` is then no offset of 0, and
-/// no data is read through it (`gltf::byte_offset`).
-fn is_read_as_invalid(pointer: &str) -> bool {
-    pointer.ends_with("/byteOffset")
-}
-
 /// Arrays the Khronos validator keeps, without their wrongly typed elements: morph
 /// targets are plain maps of accessor indices, read one by one.
 const KEPT_ELEMENT_BY_ELEMENT: &[&str] = &["/targets"];
@@ -427,7 +420,7 @@ impl Sink for AbsentMembers<'_> {
         if diagnostic.code == khronos::TYPE_MISMATCH {
             let member = diagnostic
                 .pointer()
-                .filter(|p| !is_collection_element(p) && !p.is_empty() && !is_read_as_invalid(p));
+                .filter(|p| !is_collection_element(p) && !p.is_empty());
             if let Some(pointer) = member {
                 self.absent.insert(pointer.to_string());
             }

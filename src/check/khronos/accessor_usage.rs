@@ -396,22 +396,23 @@ impl Uses<'_> {
     }
 
     fn primitive(&mut self, primitive: &Value, pointer: &str) {
-        let Some(attributes) = primitive.get("attributes").filter(|a| a.is_object()) else {
-            return;
-        };
-        let attribute = |name: &str| format!("{pointer}/attributes/{name}");
-        if let Some((a, _)) = self.attribute(attributes, "NORMAL") {
-            self.add(a, attribute("NORMAL"), Kind::UnitVector);
-        }
-        if let Some((a, _)) = self.attribute(attributes, "TANGENT") {
-            self.add(a, attribute("TANGENT"), Kind::UnitVectorWithSign);
-        }
-        if let Some((a, format)) = self.attribute(attributes, "COLOR_0") {
-            if format.is_float() {
-                self.add(a, attribute("COLOR_0"), Kind::Clamped);
+        let attributes = primitive.get("attributes").filter(|a| a.is_object());
+        if let Some(attributes) = attributes {
+            let attribute = |name: &str| format!("{pointer}/attributes/{name}");
+            if let Some((a, _)) = self.attribute(attributes, "NORMAL") {
+                self.add(a, attribute("NORMAL"), Kind::UnitVector);
+            }
+            if let Some((a, _)) = self.attribute(attributes, "TANGENT") {
+                self.add(a, attribute("TANGENT"), Kind::UnitVectorWithSign);
+            }
+            if let Some((a, format)) = self.attribute(attributes, "COLOR_0") {
+                if format.is_float() {
+                    self.add(a, attribute("COLOR_0"), Kind::Clamped);
+                }
             }
         }
-        self.indices(primitive, attributes, pointer);
+        // Without attributes the indices are still checked, against no vertex at all.
+        self.indices(primitive, attributes.unwrap_or(&Value::Null), pointer);
     }
 
     fn indices(&mut self, primitive: &Value, attributes: &Value, pointer: &str) {

@@ -58,7 +58,13 @@ impl Walk<'_, '_> {
         // A reference to an element that is no bufferView object is unresolved: no usage.
         let views = self.ctx.items("bufferViews");
         let view = view.filter(|&v| views.get(v as usize).is_some_and(Value::is_object));
-        let Some(slot) = view.and_then(|v| self.usages.get_mut(v as usize)) else {
+        let Some(view) = view else {
+            return;
+        };
+        // A use marks the view used, also through an accessor the validator does not link
+        // (one without a valid format still names its view).
+        self.ctx.mark_used("bufferViews", view as usize);
+        let Some(slot) = self.usages.get_mut(view as usize) else {
             return;
         };
         match *slot {
