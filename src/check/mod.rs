@@ -206,7 +206,7 @@ fn short(value: &serde_json::Value) -> String {
 /// out of the tree: members of the wrong type, arrays a wrongly typed element or a wrong
 /// length made unreadable (a `translation` holding a null is no translation; an accessor's
 /// `min` of the wrong length for its type, or any bounds of an accessor without a valid
-/// type) and the
+/// type, taken out before the schema pass) and the
 /// extension objects `extensionsUsed` does not declare (returned, for the extensions pass
 /// to report). Of a document that does not claim
 /// glTF 2.x, only what the Khronos validator reads before it stops (see
@@ -221,9 +221,9 @@ fn schema_pass(root: &mut serde_json::Value, khronos: bool, sink: &mut dyn Sink)
         schema::required_nulls(root, khronos, &nulls, &mut Only(sink, read));
         return Vec::new();
     }
+    khronos::take_unread_bounds(root, sink);
     let undeclared = khronos::undeclared_extensions(root, &declared_extensions(root));
-    let unread = (undeclared.iter().cloned()).chain(khronos::unread_bounds(root, sink));
-    let absent = schema::validate(root, khronos, sink, unread.collect());
+    let absent = schema::validate(root, khronos, sink, undeclared.iter().cloned().collect());
     let nulls = remove_all(root, absent);
     schema::required_nulls(root, khronos, &nulls, sink);
     undeclared

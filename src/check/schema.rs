@@ -156,7 +156,6 @@ pub fn validate(
     unread: HashSet<String>,
 ) -> HashSet<String> {
     let mut absent = AbsentMembers::new(found);
-    absent.unread = unread.clone();
     absent.absent = unread;
     validate_into(doc, khronos, &mut absent);
     absent.finish()
@@ -319,9 +318,6 @@ struct AbsentMembers<'s> {
     absent: HashSet<String>,
     /// Arrays of the wrong length: their elements are not read (absent too).
     elements_unread: HashSet<String>,
-    /// What the caller names as not read at all: nothing at or inside it is reported
-    /// (absent too).
-    unread: HashSet<String>,
 }
 
 /// Whether `pointer` is one of `members` or inside one.
@@ -361,7 +357,6 @@ impl<'s> AbsentMembers<'s> {
             held: Vec::new(),
             absent: Default::default(),
             elements_unread: Default::default(),
-            unread: Default::default(),
         }
     }
 
@@ -383,9 +378,6 @@ impl<'s> AbsentMembers<'s> {
         let Some(pointer) = diagnostic.pointer() else {
             return false;
         };
-        if at_or_inside(&self.unread, pointer) {
-            return true;
-        }
         // An array of the wrong length is reported for its length only: its elements are
         // not read; nor are those of an array inside a member that is not read.
         if diagnostic.code == khronos::ARRAY_TYPE_MISMATCH {

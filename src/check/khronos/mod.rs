@@ -23,7 +23,9 @@ mod view_usage;
 
 use super::context::Context;
 pub(crate) use extensions::{check_declarations as check_extension_lists, undeclared_extensions};
-pub(crate) use objects::{check_asset, has_supported_version, read_before_asset, unread_bounds};
+pub(crate) use objects::{
+    check_asset, has_supported_version, read_before_asset, take_unread_bounds,
+};
 
 /// One pass over the document, recording findings and what later passes need in the context.
 pub(crate) type Pass = fn(&mut Context);

@@ -116,37 +116,34 @@ fn is_linked(accessor: &Value) -> bool {
         && accessor.get("type").is_some_and(Value::is_string)
 }
 
-/// An accessor's `min` and `max` that the Khronos validator does not read, by pointer: all
-/// of them when the accessor's `type` is not a valid type, and one whose length is not the
-/// type's component count (reported here, as the only finding about that array).
-pub fn unread_bounds(root: &Value, sink: &mut dyn Sink) -> Vec<String> {
-    let mut unread = Vec::new();
-    let accessors = root.get("accessors").and_then(Value::as_array);
+/// Takes out of the tree the accessors' `min` and `max` that the Khronos validator does not
+/// read: all of them when the accessor's `type` is not a valid type (nothing is reported),
+/// and one whose length is not the type's component count (reported here, as the only
+/// finding about that array).
+pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
+    let accessors = root.get_mut("accessors").and_then(Value::as_array_mut);
     for (i, accessor) in accessors.into_iter().flatten().enumerate() {
+        let Some(accessor) = accessor.as_object_mut() else {
+            continue;
+        };
         let components = (accessor.get("type").and_then(Value::as_str)).and_then(component_count);
         for key in ["min", "max"] {
-            let Some(bounds) = accessor.get(key) else {
-                continue;
+            let length = match accessor.get(key) {
+                None => continue,
+                Some(bounds) => bounds.as_array().map(Vec::len),
             };
-            let pointer = format!("/accessors/{i}/{key}");
-            match (components, bounds.as_array()) {
-                (None, _) => unread.push(pointer),
-                (Some(n), Some(list)) if list.len() != n => {
-                    sink.push(Diagnostic::at(
-                        khronos::ARRAY_LENGTH_NOT_IN_LIST,
-                        pointer.clone(),
-                        format!(
-                            "Invalid array length {}. Valid lengths are: ({n}).",
-                            list.len()
-                        ),
-                    ));
-                    unread.push(pointer);
-                }
-                _ => {}
+            match (components, length) {
+                (None, _) => {}
+                (Some(n), Some(length)) if length != n => sink.push(Diagnostic::at(
+                    khronos::ARRAY_LENGTH_NOT_IN_LIST,
+                    format!("/accessors/{i}/{key}"),
+                    format!("Invalid array length {length}. Valid lengths are: ({n})."),
+                )),
+                _ => continue,
             }
+            accessor.shift_remove(key);
         }
     }
-    unread
 }
 
 /// What an accessor's own members must agree on, whatever its bufferView.
