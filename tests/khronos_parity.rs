@@ -441,6 +441,23 @@ fn nothing_inside_an_undeclared_extension_is_read() {
             ("UNUSED_OBJECT", "/materials/0"),
         ])
     );
+    // An extension value that is no object is still reported as such.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "materials": [{"pbrMetallicRoughness": {"extensions": {"KHR_materials_volume": 4294967296_u64}}}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "TYPE_MISMATCH",
+                "/materials/0/pbrMetallicRoughness/extensions/KHR_materials_volume"
+            ),
+            (
+                "UNDECLARED_EXTENSION",
+                "/materials/0/pbrMetallicRoughness/extensions/KHR_materials_volume"
+            ),
+            ("UNUSED_OBJECT", "/materials/0"),
+        ])
+    );
 }
 
 #[test]
