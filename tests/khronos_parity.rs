@@ -514,7 +514,11 @@ fn a_null_required_member_is_of_the_wrong_type_and_missing() {
 const TRIANGLE: &str =
     "data:application/octet-stream;base64,AAABAAIAAAAAAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAAAAAACAPwAAAAA=";
 
-fn triangle(position_length: u64, accessors: Value, attributes: Value) -> Value {
+fn triangle(position_length: u64, accessors: &[Value], attributes: Value) -> Value {
+    let index = json!({"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"});
+    let accessors: Vec<Value> = std::iter::once(index)
+        .chain(accessors.iter().cloned())
+        .collect();
     json!({"asset": {"version": "2.0"},
         "buffers": [{"uri": TRIANGLE, "byteLength": 44}],
         "bufferViews": [{"buffer": 0, "byteLength": 6, "target": 34963},
@@ -524,14 +528,21 @@ fn triangle(position_length: u64, accessors: Value, attributes: Value) -> Value 
         "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})
 }
 
+/// The triangle's three positions, bounds declared (accessor 1).
+fn positions() -> Value {
+    json!({"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3",
+           "min": [0, 0, 0], "max": [1, 1, 0]})
+}
+
 #[test]
 fn the_vertex_count_is_the_first_attribute_that_names_an_accessor() {
     // TEXCOORD_0 names nothing: the indices are checked against POSITION's two vertices.
     let found = khronos_findings(triangle(
         24,
-        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
-               {"bufferView": 1, "componentType": 5126, "count": 2, "type": "VEC3",
-                "min": [0, 0, 0], "max": [1, 1, 0]}]),
+        &[
+            json!({"bufferView": 1, "componentType": 5126, "count": 2, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0]}),
+        ],
         json!({"TEXCOORD_0": 7, "POSITION": 1}),
     ));
     assert_eq!(
@@ -555,10 +566,10 @@ fn the_vertex_count_is_the_first_attribute_that_names_an_accessor() {
 fn an_unreadable_count_differs_from_the_vertex_count() {
     let found = khronos_findings(triangle(
         36,
-        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
-               {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3",
-                "min": [0, 0, 0], "max": [1, 1, 0]},
-               {"bufferView": 1, "componentType": 5126, "count": "x", "type": "VEC3"}]),
+        &[
+            positions(),
+            json!({"bufferView": 1, "componentType": 5126, "count": "x", "type": "VEC3"}),
+        ],
         json!({"POSITION": 1, "NORMAL": 2}),
     ));
     assert_eq!(
@@ -582,10 +593,10 @@ fn an_unreadable_first_count_leaves_the_vertex_count_to_the_next_attribute() {
     // NORMAL's count is -1: the three indices are checked against POSITION's three vertices.
     let found = khronos_findings(triangle(
         36,
-        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
-               {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3",
-                "min": [0, 0, 0], "max": [1, 1, 0]},
-               {"bufferView": 1, "componentType": 5126, "count": -1, "type": "VEC3"}]),
+        &[
+            positions(),
+            json!({"bufferView": 1, "componentType": 5126, "count": -1, "type": "VEC3"}),
+        ],
         json!({"NORMAL": 2, "POSITION": 1}),
     ));
     assert_eq!(
@@ -605,17 +616,16 @@ fn no_data_is_read_through_a_byte_offset_of_the_wrong_type() {
     // The declared min (z = 5) is wrong, but neither the view's nor the accessor's offset
     // can be read, so the data is not compared with it.
     let accessors = |accessor_offset: Value| {
-        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
-               {"bufferView": 1, "byteOffset": accessor_offset, "componentType": 5126, "count": 3,
-                "type": "VEC3", "min": [0, 0, 5], "max": [1, 1, 0]}])
+        json!({"bufferView": 1, "byteOffset": accessor_offset, "componentType": 5126, "count": 3,
+                "type": "VEC3", "min": [0, 0, 5], "max": [1, 1, 0]})
     };
-    let mut view_offset_mistyped = triangle(36, accessors(json!(0)), json!({"POSITION": 1}));
+    let mut view_offset_mistyped = triangle(36, &[accessors(json!(0))], json!({"POSITION": 1}));
     view_offset_mistyped["bufferViews"][1]["byteOffset"] = json!(true);
     assert_eq!(
         khronos_findings(view_offset_mistyped),
         expected(&[("TYPE_MISMATCH", "/bufferViews/1/byteOffset")])
     );
-    let accessor_offset_mistyped = triangle(36, accessors(json!("x")), json!({"POSITION": 1}));
+    let accessor_offset_mistyped = triangle(36, &[accessors(json!("x"))], json!({"POSITION": 1}));
     assert_eq!(
         khronos_findings(accessor_offset_mistyped),
         expected(&[("TYPE_MISMATCH", "/accessors/1/byteOffset")])
@@ -624,13 +634,8 @@ fn no_data_is_read_through_a_byte_offset_of_the_wrong_type() {
 
 #[test]
 fn a_buffer_view_that_is_no_object_has_no_usage() {
-    let mut document = triangle(
-        36,
-        json!([{"bufferView": 2, "componentType": 5123, "count": 3, "type": "SCALAR"},
-               {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3",
-                "min": [0, 0, 0], "max": [1, 1, 0]}]),
-        json!({"POSITION": 1}),
-    );
+    let mut document = triangle(36, &[positions()], json!({"POSITION": 1}));
+    document["accessors"][0]["bufferView"] = json!(2);
     document["bufferViews"]
         .as_array_mut()
         .unwrap()
@@ -686,13 +691,7 @@ fn an_accessor_without_a_valid_component_type_count_and_type_links_no_buffer_vie
 
 #[test]
 fn indices_without_attributes_are_checked_against_no_vertex() {
-    let mut document = triangle(
-        36,
-        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
-               {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3",
-                "min": [0, 0, 0], "max": [1, 1, 0]}]),
-        json!({}),
-    );
+    let mut document = triangle(36, &[positions()], json!({}));
     document["meshes"][0]["primitives"][0]
         .as_object_mut()
         .unwrap()
@@ -712,13 +711,7 @@ fn indices_without_attributes_are_checked_against_no_vertex() {
 #[test]
 fn a_null_byte_offset_is_the_default_and_the_data_is_read() {
     // The positions are then read from the start of the buffer (the index bytes).
-    let mut document = triangle(
-        36,
-        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
-               {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3",
-                "min": [0, 0, 0], "max": [1, 1, 0]}]),
-        json!({"POSITION": 1}),
-    );
+    let mut document = triangle(36, &[positions()], json!({"POSITION": 1}));
     document["bufferViews"][1]["byteOffset"] = Value::Null;
     assert_eq!(
         khronos_findings(document),
@@ -734,13 +727,11 @@ fn a_null_byte_offset_is_the_default_and_the_data_is_read() {
 
 #[test]
 fn an_unlinked_accessor_a_mesh_uses_still_uses_its_buffer_view() {
-    let mut document = triangle(
+    let document = triangle(
         36,
-        json!([{"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
-               {"bufferView": 1, "count": 3, "type": "VEC3"}]),
+        &[json!({"bufferView": 1, "count": 3, "type": "VEC3"})],
         json!({"POSITION": 1}),
     );
-    document["meshes"][0]["primitives"][0]["indices"] = json!(0);
     assert_eq!(
         khronos_findings(document),
         expected(&[
