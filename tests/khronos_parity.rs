@@ -747,3 +747,20 @@ fn an_unlinked_accessor_a_mesh_uses_still_uses_its_buffer_view() {
         ])
     );
 }
+
+#[test]
+fn the_sparse_parts_of_an_unlinked_accessor_use_no_buffer_view() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 28}], "bufferViews": [{"buffer": 0, "byteLength": 12}],
+        "accessors": [{"type": "SCALAR", "componentType": 5126, "sparse": {"count": 2,
+            "indices": {"componentType": 5123, "bufferView": 0},
+            "values": {"bufferView": 0, "byteOffset": 4}}}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("UNDEFINED_PROPERTY", "/accessors/0"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("UNUSED_OBJECT", "/bufferViews/0"),
+        ])
+    );
+}

@@ -110,7 +110,7 @@ pub fn check_accessors(ctx: &mut Context) {
 /// Whether the Khronos validator links the accessor to its bufferView and sparse parts: only
 /// with a valid componentType, a count and a type (any string). Otherwise its bufferView is
 /// neither resolved nor used by it.
-fn is_linked(accessor: &Value) -> bool {
+pub(super) fn is_linked(accessor: &Value) -> bool {
     unsigned(accessor, "componentType").is_some_and(|c| component_size(c).is_some())
         && unsigned(accessor, "count").is_some_and(|n| n >= 1)
         && accessor.get("type").is_some_and(Value::is_string)

@@ -99,7 +99,11 @@ impl Walk<'_, '_> {
 
     fn sparse_accessors(&mut self) {
         for (_, pointer, accessor) in self.ctx.objects("accessors") {
-            let Some(sparse) = accessor.get("sparse") else {
+            // Sparse parts are linked with their accessor, if it is linked at all.
+            let sparse = accessor
+                .get("sparse")
+                .filter(|_| super::objects::is_linked(accessor));
+            let Some(sparse) = sparse else {
                 continue;
             };
             for part in ["indices", "values"] {
