@@ -199,20 +199,13 @@ impl<'a> Context<'a> {
         pointer: &str,
         collection: &'static str,
     ) -> Option<usize> {
-        let index = as_index(value);
-        let items = self.items(collection);
         // A whole number too large for an index (1e29) resolves to nothing, like any other
         // index past the end, and so does an element that is no object (the schema pass
         // reported it; the Khronos validator reads it as missing); other values are the
         // schema pass's to report.
         let whole = value.as_f64().is_some_and(|f| f.fract() == 0.0 && f >= 0.0);
-        let object_at = |i: u64| {
-            usize::try_from(i)
-                .ok()
-                .and_then(|i| items.get(i))
-                .is_some_and(Value::is_object)
-        };
-        let Some(index) = index.filter(|&i| object_at(i)) else {
+        let index = as_index(value).filter(|&i| self.element(collection, i).is_some());
+        let Some(index) = index else {
             if whole {
                 self.emit(
                     khronos::UNRESOLVED_REFERENCE,
@@ -225,6 +218,13 @@ impl<'a> Context<'a> {
         };
         self.used.insert((collection, index as usize));
         Some(index as usize)
+    }
+
+    /// The element at `index` of a top-level collection, when it is an object: what a
+    /// reference can resolve to (an element of another type is read as missing).
+    pub fn element(&self, collection: &str, index: u64) -> Option<&'a Value> {
+        let element = self.items(collection).get(usize::try_from(index).ok()?)?;
+        element.is_object().then_some(element)
     }
 
     pub fn mark_used(&mut self, collection: &'static str, index: usize) {

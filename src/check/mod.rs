@@ -249,7 +249,7 @@ fn remove_all(root: &mut serde_json::Value, pointers: HashSet<String>) -> HashSe
         let Some((parent, token)) = pointer.rsplit_once('/') else {
             continue;
         };
-        let member = token.replace("~1", "/").replace("~0", "~");
+        let member = document::json::unescape_token(token);
         if let Some(serde_json::Value::Object(members)) = root.pointer_mut(parent) {
             // A byteOffset of a wrong type other than null stays, unreadable: the Khronos
             // validator reads it as invalid, not as the default 0, and reads no data

@@ -56,9 +56,7 @@ struct Walk<'c, 'a> {
 impl Walk<'_, '_> {
     fn set(&mut self, view: Option<u64>, usage: Usage, at: String) {
         // A reference to an element that is no bufferView object is unresolved: no usage.
-        let views = self.ctx.items("bufferViews");
-        let view = view.filter(|&v| views.get(v as usize).is_some_and(Value::is_object));
-        let Some(view) = view else {
+        let Some(view) = view.filter(|&v| self.ctx.element("bufferViews", v).is_some()) else {
             return;
         };
         // A use marks the view used, also through an accessor the validator does not link
