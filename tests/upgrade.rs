@@ -996,3 +996,52 @@ fn unknown_extensions_are_named_and_unused_textures_are_not_written() {
         assert!(notes.contains(expected), "{expected}\n in\n{notes}");
     }
 }
+
+/// A 1.0 GLB whose JSON puts an image in the binary body, with the body's last `cut` bytes
+/// missing from the file (its header declares them).
+fn glb_v1_with_image(body: &[u8], cut: usize) -> Vec<u8> {
+    let json = serde_json::to_vec(&serde_json::json!({
+        "asset": {"version": "1.0"},
+        "buffers": {"binary_glTF": {"uri": "data:,", "byteLength": body.len()}},
+        "bufferViews": {"v": {"buffer": "binary_glTF", "byteOffset": 0, "byteLength": body.len()}},
+        "images": {"i": {"uri": "data:,", "extensions": {"KHR_binary_glTF":
+            {"bufferView": "v", "mimeType": "image/png", "width": 1, "height": 1}}}},
+        "textures": {"t": {"source": "i"}},
+        "materials": {"m": {"values": {"diffuse": "t"}}}
+    }))
+    .unwrap();
+    let declared = (20 + json.len() + body.len()) as u32;
+    let mut glb = b"glTF".to_vec();
+    for word in [1, declared, json.len() as u32, 0] {
+        glb.extend(u32::to_le_bytes(word));
+    }
+    glb.extend(json);
+    glb.extend(&body[..body.len() - cut]);
+    glb
+}
+
+#[test]
+fn a_glb_cut_short_is_refused_naming_both_lengths() {
+    let glb = glb_v1_with_image(&[7; 40], 3);
+    let refusal = upgrade(&glb, &NoResources, &UpgradeOptions::default())
+        .err()
+        .expect("a view past the end of the body is refused")
+        .to_string();
+    let (declared, actual) = (glb.len() + 3, glb.len());
+    assert!(
+        refusal.starts_with("/images/i: bufferView 'v'"),
+        "{refusal}"
+    );
+    assert!(
+        refusal.contains(&format!(
+            "the GLB file is {actual} bytes but its header declares {declared}"
+        )),
+        "{refusal}"
+    );
+    let whole = glb_v1_with_image(&[7; 40], 0);
+    let refusal = upgrade(&whole, &NoResources, &UpgradeOptions::default())
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(!refusal.contains("header declares"), "{refusal}");
+}

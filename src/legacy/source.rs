@@ -20,11 +20,19 @@ pub struct NotGltf1(pub String);
 pub struct Source<'a> {
     pub json: Value,
     /// The GLB v1 body, borrowed from the input.
-    body: Option<&'a [u8]>,
+    body: Option<Body<'a>>,
     /// External and data-URI buffers, read on first use: reading only the materials (for
     /// `--verify`) must not load the geometry.
     buffers: HashMap<String, OnceCell<Result<Arc<Bytes>, String>>>,
     pub loader: &'a dyn ResourceLoader,
+}
+
+/// A GLB v1 body and, when the file is shorter than its header declares, both lengths: a
+/// view past the end then says the file was cut short rather than that the asset is wrong.
+#[derive(Clone, Copy)]
+struct Body<'a> {
+    bytes: &'a [u8],
+    cut_short: Option<(usize, usize)>,
 }
 
 /// Whether `bytes` declare glTF 2.x: a GLB of version 2, or JSON whose `asset.version` is
@@ -79,7 +87,7 @@ pub fn read<'a>(bytes: &'a [u8], loader: &'a dyn ResourceLoader) -> Result<Sourc
 }
 
 /// Header: magic, version 1, total length, content length, content format 0 (JSON).
-fn split_glb_v1(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), NotGltf1> {
+fn split_glb_v1(bytes: &[u8]) -> Result<(&[u8], Option<Body<'_>>), NotGltf1> {
     let word = |at: usize| -> Option<u32> {
         Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
     };
@@ -98,12 +106,17 @@ fn split_glb_v1(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), NotGltf1> {
     if format != 0 {
         return Err(broken(&format!("content format {format} is not JSON (0)")));
     }
+    let cut_short = (length > bytes.len()).then_some((length, bytes.len()));
     let length = length.min(bytes.len());
     let content_end = 20usize
         .checked_add(content_length)
         .filter(|end| *end <= length)
         .ok_or_else(|| broken("content length runs past the end of the file"))?;
-    Ok((&bytes[20..content_end], Some(&bytes[content_end..length])))
+    let body = Body {
+        bytes: &bytes[content_end..length],
+        cut_short,
+    };
+    Ok((&bytes[20..content_end], Some(body)))
 }
 
 const IS_GLTF2: &str = "asset.version is 2.x: nothing to upgrade (use `gltfmat check`)";
@@ -130,8 +143,8 @@ impl Source<'_> {
     /// A buffer's bytes: the GLB body for KHR_binary_glTF's buffer, otherwise its `uri`, read
     /// once.
     fn buffer(&self, id: &str) -> Result<&[u8], String> {
-        if let Some(body) = self.body.filter(|_| BINARY_BUFFER_IDS.contains(&id)) {
-            return Ok(body);
+        if let Some(body) = self.binary_body(id) {
+            return Ok(body.bytes);
         }
         let cell = self
             .buffers
@@ -144,6 +157,11 @@ impl Source<'_> {
                 .map(Arc::new)
         });
         loaded.as_deref().map(|b| &b[..]).map_err(Clone::clone)
+    }
+
+    /// The GLB v1 body when `id` names KHR_binary_glTF's buffer.
+    fn binary_body(&self, id: &str) -> Option<Body<'_>> {
+        self.body.filter(|_| BINARY_BUFFER_IDS.contains(&id))
     }
 
     /// The loaded buffer that holds `part`, and where: such bytes can go to the output by
@@ -191,10 +209,30 @@ impl Source<'_> {
         let end = offset
             .checked_add(length)
             .filter(|end| *end <= buffer.len() as u64)
-            .ok_or_else(|| {
-                format!("bufferView '{id}' runs past the end of buffer '{buffer_id}'")
-            })?;
+            .ok_or_else(|| self.past_the_end(id, offset, length, buffer_id, buffer.len()))?;
         Ok(&buffer[offset as usize..end as usize])
+    }
+
+    /// Why a view does not fit its buffer, with the figures a user needs to find the cause.
+    fn past_the_end(
+        &self,
+        id: &str,
+        offset: u64,
+        length: u64,
+        buffer_id: &str,
+        has: usize,
+    ) -> String {
+        let cause = match self.binary_body(buffer_id).and_then(|body| body.cut_short) {
+            Some((declared, actual)) => format!(
+                ": the GLB file is {actual} bytes but its header declares {declared}, so it was cut \
+                 short (or altered by a text-mode copy)"
+            ),
+            None => String::new(),
+        };
+        format!(
+            "bufferView '{id}' (byteOffset {offset}, byteLength {length}) runs past the end of \
+             buffer '{buffer_id}', which holds {has} bytes{cause}"
+        )
     }
 
     /// The bytes of a 1.0 image: KHR_binary_glTF bufferView, data URI or file.
