@@ -1023,10 +1023,10 @@ fn glb_v1_with_image(body: &[u8], cut: usize) -> Vec<u8> {
 #[test]
 fn a_glb_cut_short_is_refused_naming_both_lengths() {
     let glb = glb_v1_with_image(&[7; 40], 3);
-    let refusal = upgrade(&glb, &NoResources, &UpgradeOptions::default())
-        .err()
-        .expect("a view past the end of the body is refused")
-        .to_string();
+    let Err(refusal) = upgrade(&glb, &NoResources, &UpgradeOptions::default()) else {
+        panic!("a view past the end of the body is refused");
+    };
+    let refusal = refusal.to_string();
     let (declared, actual) = (glb.len() + 3, glb.len());
     assert!(
         refusal.starts_with("/images/i: bufferView 'v'"),
