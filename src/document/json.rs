@@ -26,8 +26,14 @@ pub fn parse(bytes: &[u8]) -> Result<Value, SyntaxError> {
     }
     super::json_tree::from_slice(bytes).map_err(|e| {
         let offset = offset_of(bytes, e.line(), e.column());
+        // The place is the offset's, printed once by whoever reports it.
+        let message = e.to_string();
+        let suffix = format!(" at line {} column {}", e.line(), e.column());
         SyntaxError {
-            message: e.to_string(),
+            message: message
+                .strip_suffix(&suffix)
+                .unwrap_or(&message)
+                .to_string(),
             offset,
         }
     })

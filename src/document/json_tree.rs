@@ -7,15 +7,31 @@
 //! is about half of it. Here each container's members are gathered first and then moved
 //! into a container made for exactly that many; the values are the ones serde_json would
 //! build (same numbers, same last-wins duplicate keys at the first key's place).
+//!
+//! A tree costs about 80 bytes per value whatever the text spends on it, so a document of
+//! 10^7 zeros (20 MB) takes 800 MB. The number of values is therefore bounded: past
+//! [`MAX_VALUES`] parsing stops with an error at that value's place, instead of memory growing
+//! with whatever a stranger uploads.
 
-use serde::de::{DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
+use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_json::{Map, Number, Value};
+use std::cell::Cell;
 use std::fmt;
 
-/// Parses JSON text into a tree whose containers have no spare capacity.
+/// The most values one document's tree holds (about 1.3 GB). Real glTF JSON stays far below:
+/// 10^5 nodes with a name, a mesh and a full transform are about 2·10^6 values.
+pub const MAX_VALUES: usize = 1 << 24;
+
+/// Parses JSON text into a tree whose containers have no spare capacity, of at most
+/// [`MAX_VALUES`] values.
 pub fn from_slice(text: &[u8]) -> serde_json::Result<Value> {
+    from_slice_within(text, MAX_VALUES)
+}
+
+fn from_slice_within(text: &[u8], max_values: usize) -> serde_json::Result<Value> {
     let mut deserializer = serde_json::Deserializer::from_slice(text);
-    let value = ExactValue.deserialize(&mut deserializer)?;
+    let left = Cell::new(max_values);
+    let value = ExactValue { left: &left }.deserialize(&mut deserializer)?;
     deserializer.end()?;
     Ok(value)
 }
@@ -40,10 +56,26 @@ pub(crate) fn tighten(value: Value) -> Value {
     }
 }
 
-/// A `Value` whose arrays and objects are allocated at their final size.
-struct ExactValue;
+/// A `Value` whose arrays and objects are allocated at their final size, counted against the
+/// values the document has `left`.
+#[derive(Clone, Copy)]
+struct ExactValue<'b> {
+    left: &'b Cell<usize>,
+}
 
-impl<'de> DeserializeSeed<'de> for ExactValue {
+impl ExactValue<'_> {
+    /// Counts one more value, or fails once the budget is spent.
+    fn spend<E: de::Error>(self) -> Result<(), E> {
+        match self.left.get().checked_sub(1) {
+            Some(left) => Ok(self.left.set(left)),
+            None => Err(E::custom(format_args!(
+                "more than {MAX_VALUES} values, the most gltfmat reads in one document"
+            ))),
+        }
+    }
+}
+
+impl<'de> DeserializeSeed<'de> for ExactValue<'_> {
     type Value = Value;
 
     fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Value, D::Error> {
@@ -51,45 +83,74 @@ impl<'de> DeserializeSeed<'de> for ExactValue {
     }
 }
 
-impl<'de> Visitor<'de> for ExactValue {
+impl<'de> Visitor<'de> for ExactValue<'_> {
     type Value = Value;
 
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
         f.write_str("any JSON value")
     }
 
-    fn visit_bool<E>(self, value: bool) -> Result<Value, E> {
+    fn visit_bool<E>(self, value: bool) -> Result<Value, E>
+    where
+        E: de::Error,
+    {
+        self.spend()?;
         Ok(Value::Bool(value))
     }
 
-    fn visit_i64<E>(self, value: i64) -> Result<Value, E> {
+    fn visit_i64<E>(self, value: i64) -> Result<Value, E>
+    where
+        E: de::Error,
+    {
+        self.spend()?;
         Ok(Value::Number(value.into()))
     }
 
-    fn visit_u64<E>(self, value: u64) -> Result<Value, E> {
+    fn visit_u64<E>(self, value: u64) -> Result<Value, E>
+    where
+        E: de::Error,
+    {
+        self.spend()?;
         Ok(Value::Number(value.into()))
     }
 
-    fn visit_f64<E>(self, value: f64) -> Result<Value, E> {
+    fn visit_f64<E>(self, value: f64) -> Result<Value, E>
+    where
+        E: de::Error,
+    {
+        self.spend()?;
         // As serde_json's own visitor: a number with no finite f64 is null.
         Ok(Number::from_f64(value).map_or(Value::Null, Value::Number))
     }
 
-    fn visit_str<E>(self, value: &str) -> Result<Value, E> {
+    fn visit_str<E>(self, value: &str) -> Result<Value, E>
+    where
+        E: de::Error,
+    {
+        self.spend()?;
         Ok(Value::String(value.to_owned()))
     }
 
-    fn visit_string<E>(self, value: String) -> Result<Value, E> {
+    fn visit_string<E>(self, value: String) -> Result<Value, E>
+    where
+        E: de::Error,
+    {
+        self.spend()?;
         Ok(Value::String(value))
     }
 
-    fn visit_unit<E>(self) -> Result<Value, E> {
+    fn visit_unit<E>(self) -> Result<Value, E>
+    where
+        E: de::Error,
+    {
+        self.spend()?;
         Ok(Value::Null)
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut elements: A) -> Result<Value, A::Error> {
+        self.spend()?;
         let mut array = Vec::new();
-        while let Some(element) = elements.next_element_seed(ExactValue)? {
+        while let Some(element) = elements.next_element_seed(self)? {
             array.push(element);
         }
         array.shrink_to_fit();
@@ -97,9 +158,10 @@ impl<'de> Visitor<'de> for ExactValue {
     }
 
     fn visit_map<A: MapAccess<'de>>(self, mut members: A) -> Result<Value, A::Error> {
+        self.spend()?;
         let mut gathered: Vec<(String, Value)> = Vec::new();
         while let Some(key) = members.next_key::<String>()? {
-            gathered.push((key, members.next_value_seed(ExactValue)?));
+            gathered.push((key, members.next_value_seed(self)?));
         }
         let mut object = Map::with_capacity(gathered.len());
         for (key, value) in gathered {
@@ -142,6 +204,15 @@ mod tests {
         let tight = tighten(grown.clone());
         assert_eq!(tight, grown);
         assert_eq!(tight["a"].as_array().unwrap().capacity(), 4);
+    }
+
+    #[test]
+    fn a_document_of_more_values_than_allowed_stops_at_the_first_value_past_the_budget() {
+        let text = br#"{"a":[0,0,{"b":0}]}"#; // 6 values: the root, a, three elements, b.
+        assert!(from_slice_within(text, 6).is_ok());
+        let error = from_slice_within(text, 5).unwrap_err();
+        assert!(error.to_string().starts_with("more than"), "{error}");
+        assert_eq!((error.line(), error.column()), (1, 16), "{error}");
     }
 
     #[test]

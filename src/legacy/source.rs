@@ -1,6 +1,7 @@
 //! Reading a glTF 1.0 asset: JSON text or a KHR_binary_glTF GLB (version 1), its buffers, and
 //! its images on demand.
 
+use crate::document::json_tree;
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::Bytes;
 use serde_json::Value;
@@ -68,7 +69,7 @@ pub fn read<'a>(bytes: &'a [u8], loader: &'a dyn ResourceLoader) -> Result<Sourc
         (bytes, None)
     };
     let json: Value =
-        serde_json::from_slice(json_bytes).map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
+        json_tree::from_slice(json_bytes).map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
     if !json.is_object() {
         return Err(NotGltf1("the root is not a JSON object".into()));
     }
