@@ -66,12 +66,13 @@ struct ExactValue<'b> {
 impl ExactValue<'_> {
     /// Counts one more value, or fails once the budget is spent.
     fn spend<E: de::Error>(self) -> Result<(), E> {
-        match self.left.get().checked_sub(1) {
-            Some(left) => Ok(self.left.set(left)),
-            None => Err(E::custom(format_args!(
+        let left = self.left.get().checked_sub(1).ok_or_else(|| {
+            E::custom(format_args!(
                 "more than {MAX_VALUES} values, the most gltfmat reads in one document"
-            ))),
-        }
+            ))
+        })?;
+        self.left.set(left);
+        Ok(())
     }
 }
 
