@@ -2,7 +2,6 @@
 //! and what earlier passes learned (buffer data, image headers, material needs).
 
 use super::collector::Collector;
-use super::profile::Filters;
 use super::{CheckOptions, Diagnostic};
 use crate::diagnostic::Sink;
 use crate::diagnostic::{khronos, Code};
@@ -89,6 +88,13 @@ impl TexcoordNeed {
     }
 }
 
+/// What a profile reports of a finding as it is emitted (`check::profile::Filters`), asked
+/// through this trait so that the passes' context does not depend on the profiles' rules.
+pub(crate) trait Reporting {
+    /// The finding as the profile reports it, or `None` when it does not.
+    fn report(&self, ctx: &Context, diagnostic: Diagnostic) -> Option<Diagnostic>;
+}
+
 pub(crate) struct Context<'a> {
     pub root: &'a Value,
     pub document: &'a Document,
@@ -96,7 +102,7 @@ pub(crate) struct Context<'a> {
     pub options: &'a CheckOptions,
     pub diagnostics: Collector<'a>,
     /// What the profile reports of what the passes emit.
-    filters: Filters,
+    reporting: &'a dyn Reporting,
     used: HashSet<(&'static str, usize)>,
     /// Bytes of each buffer, where they could be read (the GLB BIN chunk is borrowed).
     pub buffers: Vec<Option<BufferData<'a>>>,
@@ -122,6 +128,7 @@ impl<'a> Context<'a> {
         loader: &'a dyn ResourceLoader,
         options: &'a CheckOptions,
         diagnostics: Collector<'a>,
+        reporting: &'a dyn Reporting,
     ) -> Self {
         Context {
             root,
@@ -129,7 +136,7 @@ impl<'a> Context<'a> {
             loader,
             options,
             diagnostics,
-            filters: Filters::of(options.profile),
+            reporting,
             used: HashSet::new(),
             buffers: Vec::new(),
             images: Vec::new(),
@@ -144,7 +151,7 @@ impl<'a> Context<'a> {
     /// Reports a finding, as the profile reports it (see `check::profile`).
     pub fn emit(&mut self, code: Code, pointer: impl Into<String>, message: impl Into<String>) {
         let found = Diagnostic::at(code, pointer, message);
-        if let Some(reported) = self.filters.apply(self, found) {
+        if let Some(reported) = self.reporting.report(self, found) {
             self.diagnostics.push(reported);
         }
     }

@@ -9,6 +9,7 @@ pub(crate) mod schema;
 mod collector;
 pub(crate) mod context;
 mod khronos;
+mod pass_codes;
 pub(crate) mod profile;
 
 pub use crate::diagnostic::{Code, Diagnostic, Location, Severity};
@@ -150,6 +151,7 @@ pub fn check_bytes(
     loader: &dyn ResourceLoader,
     options: &CheckOptions,
 ) -> Report {
+    let filters = profile::Filters::of(options.profile);
     let mut diagnostics = Collector::new(options);
     let mut document = document::read(bytes, uri, &mut diagnostics);
     let mut info = context::AssetInfo::default();
@@ -174,7 +176,7 @@ pub fn check_bytes(
                 schema_pass(root, khronos_extensions_only, &mut diagnostics)
             };
             let root = document.root.as_ref().expect("matched above");
-            let mut ctx = Context::new(root, &document, loader, options, diagnostics);
+            let mut ctx = Context::new(root, &document, loader, options, diagnostics, &filters);
             ctx.undeclared_extensions = undeclared;
             if gltf1 {
                 rules::gltf1::check(&mut ctx);

@@ -2,7 +2,7 @@
 //! profile departs from the Khronos report.
 //!
 //! The Khronos passes emit what the Khronos validator emits; gltfmat's rules declare, in their
-//! own files, which Khronos findings they supersede ([`Supersession`]) and which Khronos code
+//! own files, which Khronos findings they supersede (`rules::Supersession`) and which Khronos code
 //! the validator would use for theirs (`Rule::khronos_name`). This module applies both as each
 //! finding is emitted:
 //! - the default profile drops a superseded finding its rule's filter rejects, and every
@@ -13,22 +13,11 @@
 //! Where the default profile reads the document differently (not a filter), the passes ask
 //! the [`Profile`] by name; each such reading is listed in [`READINGS`] with its reason.
 
-use super::context::Context;
+use super::context::{Context, Reporting};
 use super::rules::RULES;
 use super::Profile;
 use crate::diagnostic::{khronos, Code, Diagnostic};
 use std::collections::HashMap;
-
-/// A Khronos finding that gltfmat's default profile reports only where `keeps` says so,
-/// declared by the rule that corrects it.
-pub struct Supersession {
-    /// The Khronos code.
-    pub code: Code,
-    /// Why the default profile differs, for `gltfmat explain` and the conformance test.
-    pub why: &'static str,
-    /// Whether the default profile still reports this finding.
-    pub keeps: fn(&Context, &Diagnostic) -> bool,
-}
 
 impl Profile {
     /// Whether a texture binding's texCoord is read through its KHR_texture_transform
@@ -114,9 +103,10 @@ impl Filters {
         };
         Filters(treatments.into_iter().collect())
     }
+}
 
-    /// The finding as the profile reports it, or `None` when it does not.
-    pub fn apply(&self, ctx: &Context, mut diagnostic: Diagnostic) -> Option<Diagnostic> {
+impl Reporting for Filters {
+    fn report(&self, ctx: &Context, mut diagnostic: Diagnostic) -> Option<Diagnostic> {
         match self.0.get(&diagnostic.code) {
             None => Some(diagnostic),
             Some(Treatment::Drop) => None,

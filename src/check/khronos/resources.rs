@@ -2,6 +2,7 @@
 //! lengths hold, and what the image headers say.
 
 use crate::check::context::{member, unsigned, Context, ResourceInfo};
+use crate::check::pass_codes;
 use crate::diagnostic::khronos;
 use crate::document::image_header::{self, HeaderError, ImageFormat};
 use crate::document::uri::{classify, LoadError, UriKind};
@@ -59,7 +60,7 @@ fn load_uri(
             }
             Err(LoadError::NoFolder) => {
                 ctx.emit(
-                    crate::check::rules::resource_not_read::RULE.code(),
+                    pass_codes::EXTERNAL_RESOURCE_NOT_READ,
                     pointer,
                     format!("'{uri}' was not read (no folder to resolve it in): what depends on it was not checked."),
                 );
@@ -88,7 +89,7 @@ fn load_uri(
 /// Absolute paths and `..` escapes are never read.
 fn refuse_outside(ctx: &mut Context, pointer: &str, uri: &str) {
     ctx.emit(
-        crate::check::rules::outside_folder::RULE.code(),
+        pass_codes::URI_OUTSIDE_ASSET_FOLDER,
         pointer,
         format!(
             "Refused to read '{}': it resolves outside the asset's folder.",

@@ -1,8 +1,7 @@
 //! Anisotropy materials need a tangent space even without an anisotropy texture.
 
-use super::{Rule, Run};
+use super::{Rule, Run, Supersession};
 use crate::check::context::{unsigned, Context};
-use crate::check::profile::Supersession;
 use crate::diagnostic::{khronos, Diagnostic, Severity};
 use serde_json::Value;
 

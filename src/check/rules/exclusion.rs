@@ -1,8 +1,7 @@
 //! Material extensions that the specs forbid on the same material.
 
-use super::{Rule, Run};
+use super::{Rule, Run, Supersession};
 use crate::check::context::Context;
-use crate::check::profile::Supersession;
 use crate::diagnostic::{khronos, Diagnostic, Severity};
 use crate::gltf::material::{combination, Combination, SPEC_GLOSS, UNLIT};
 use serde_json::Value;

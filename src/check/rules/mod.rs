@@ -32,8 +32,7 @@ mod unlit_ignored;
 use super::code_info::{CodeInfo, Origin};
 use super::context::Context;
 use super::khronos::materials::{by_image, slot_uses, SlotUse};
-use super::profile::Supersession;
-use crate::diagnostic::{Code, Severity};
+use crate::diagnostic::{Code, Diagnostic, Severity};
 use crate::document::image_header::ImageInfo;
 use texels::Texels;
 
@@ -46,6 +45,17 @@ pub struct Rule {
     /// The Khronos code the validator gives the same finding, and why gltfmat's differs: the
     /// Khronos profile reports the rule's findings under that code (the others not at all).
     pub khronos_name: Option<(Code, &'static str)>,
+}
+
+/// A Khronos finding that gltfmat's default profile reports only where `keeps` says so,
+/// declared by the rule that corrects it (and applied by `check::profile`).
+pub struct Supersession {
+    /// The Khronos code.
+    pub code: Code,
+    /// Why the default profile differs, for `gltfmat explain` and the conformance test.
+    pub why: &'static str,
+    /// Whether the default profile still reports this finding.
+    pub keeps: fn(&Context, &Diagnostic) -> bool,
 }
 
 /// How a rule runs. A rule with neither part is emitted by a core pass (reading, resources).
@@ -111,9 +121,20 @@ impl Rule {
         doc: &'static str,
         run: Run,
     ) -> Rule {
+        Rule::documenting(Code::new(name, severity), group, summary, doc, run)
+    }
+
+    /// The rule of a code defined where a core pass can name it (see `check::pass_codes`).
+    pub const fn documenting(
+        code: Code,
+        group: &'static str,
+        summary: &'static str,
+        doc: &'static str,
+        run: Run,
+    ) -> Rule {
         Rule {
             info: CodeInfo {
-                code: Code::new(name, severity),
+                code,
                 group,
                 summary,
                 doc,

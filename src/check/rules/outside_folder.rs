@@ -1,11 +1,11 @@
 //! URIs that leave the asset's folder (emitted by the resource pass).
 
 use super::{Rule, Run};
-use crate::diagnostic::{khronos, Severity};
+use crate::check::pass_codes::URI_OUTSIDE_ASSET_FOLDER;
+use crate::diagnostic::khronos;
 
-pub const RULE: Rule = Rule::new(
-    "URI_OUTSIDE_ASSET_FOLDER",
-    Severity::Error,
+pub const RULE: Rule = Rule::documenting(
+    URI_OUTSIDE_ASSET_FOLDER,
     "resources",
     "A URI resolves outside the asset's folder (absolute path, `..` escape or symlink) and was not read.",
     DOC,

@@ -2,11 +2,10 @@
 //! resource pass).
 
 use super::{Rule, Run};
-use crate::diagnostic::Severity;
+use crate::check::pass_codes::EXTERNAL_RESOURCE_NOT_READ;
 
-pub const RULE: Rule = Rule::new(
-    "EXTERNAL_RESOURCE_NOT_READ",
-    Severity::Info,
+pub const RULE: Rule = Rule::documenting(
+    EXTERNAL_RESOURCE_NOT_READ,
     "resources",
     "An external buffer or image was not read, so it was not checked: the asset came without a folder (stdin, or bytes in memory).",
     DOC,
