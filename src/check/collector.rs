@@ -83,11 +83,10 @@ impl Sink for Collector<'_> {
         if !self.wanted(code) {
             return;
         }
+        // The one place a finding's severity is decided: the user's override, else its code's.
         let overridden =
             (self.options.severity_overrides.iter()).find(|(c, _)| c.eq_ignore_ascii_case(code));
-        if let Some((_, severity)) = overridden {
-            diagnostic.severity = *severity;
-        }
+        diagnostic.severity = overridden.map_or(diagnostic.code.default_severity(), |(_, s)| *s);
         self.counts[diagnostic.severity as usize] += 1;
         let ranked = Ranked(diagnostic, self.emitted);
         self.emitted += 1;

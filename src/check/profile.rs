@@ -111,7 +111,6 @@ impl Reporting for Filters {
             None => Some(diagnostic),
             Some(Treatment::Drop) => None,
             Some(Treatment::Rename(code)) => {
-                diagnostic.severity = code.default_severity();
                 diagnostic.code = *code;
                 Some(diagnostic)
             }

@@ -129,8 +129,8 @@ impl fmt::Display for Location {
 pub struct Diagnostic {
     /// What was found.
     pub code: Code,
-    /// The code's default severity until the check's finishing step applies the profile and
-    /// the user's overrides.
+    /// The code's default severity until the check's collector, the one place that decides
+    /// it, stamps the severity of the code the profile reports (or the user's override).
     pub severity: Severity,
     /// A sentence for a person.
     pub message: String,
