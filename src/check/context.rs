@@ -119,6 +119,7 @@ pub(crate) struct Context<'a> {
     /// Extension objects no `extensionsUsed` declares, taken out of the document before the
     /// passes (the Khronos validator reads nothing of them); the extensions pass reports them.
     pub undeclared_extensions: Vec<String>,
+    extensions_used: std::sync::OnceLock<HashSet<&'a str>>,
 }
 
 impl<'a> Context<'a> {
@@ -145,6 +146,7 @@ impl<'a> Context<'a> {
             slot_uses: std::sync::OnceLock::new(),
             resources: Vec::new(),
             undeclared_extensions: Vec::new(),
+            extensions_used: std::sync::OnceLock::new(),
         }
     }
 
@@ -242,12 +244,15 @@ impl<'a> Context<'a> {
         self.used.contains(&(collection, index))
     }
 
-    pub fn extensions_used(&self) -> Vec<&'a str> {
-        self.root
-            .get("extensionsUsed")
-            .and_then(Value::as_array)
-            .map(|a| a.iter().filter_map(Value::as_str).collect())
-            .unwrap_or_default()
+    /// Whether `extensionsUsed` names `extension`: a set built once, since an asset may
+    /// declare 10^5 names and hold as many extension objects.
+    pub fn uses_extension(&self, extension: &str) -> bool {
+        let used = self.extensions_used.get_or_init(|| {
+            (self.items("extensionsUsed").iter())
+                .filter_map(Value::as_str)
+                .collect()
+        });
+        used.contains(extension)
     }
 
     pub fn info(&self) -> AssetInfo {

@@ -233,13 +233,13 @@ fn schema_pass(root: &mut serde_json::Value, khronos: bool, sink: &mut dyn Sink)
 
 /// The names `extensionsUsed` declares; none when it is not a list of names (the schema
 /// pass reports it, and the Khronos validator then reads no declaration).
-fn declared_extensions(root: &serde_json::Value) -> Vec<&str> {
+fn declared_extensions(root: &serde_json::Value) -> HashSet<&str> {
     let names = root
         .get("extensionsUsed")
         .and_then(serde_json::Value::as_array);
     (names.into_iter().flatten())
         .map(serde_json::Value::as_str)
-        .collect::<Option<Vec<&str>>>()
+        .collect::<Option<HashSet<&str>>>()
         .unwrap_or_default()
 }
 

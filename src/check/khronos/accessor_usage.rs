@@ -333,7 +333,7 @@ pub(super) fn is_unit_length(length: f64) -> bool {
 pub(super) fn checkers(ctx: &Context) -> HashMap<usize, Vec<Checker>> {
     let mut found = Uses {
         accessors: ctx.items("accessors"),
-        quantized: ctx.extensions_used().contains(&"KHR_mesh_quantization"),
+        quantized: ctx.uses_extension("KHR_mesh_quantization"),
         map: HashMap::new(),
     };
     for (_, pointer, mesh) in ctx.objects("meshes") {

@@ -9,7 +9,7 @@ use serde_json::Value;
 use std::collections::HashMap;
 
 pub fn check(ctx: &mut Context) {
-    let pointer_paths = ctx.extensions_used().contains(&"KHR_animation_pointer");
+    let pointer_paths = ctx.uses_extension("KHR_animation_pointer");
     for (_, pointer, animation) in ctx.objects("animations") {
         for (c, channel) in elements(animation, "channels") {
             let at = format!("{pointer}/channels/{c}/target");

@@ -5,6 +5,7 @@ use crate::check::context::{member, Context};
 use crate::diagnostic::khronos;
 use crate::gltf::material::TEXTURE_SLOTS;
 use serde_json::Value;
+use std::collections::HashSet;
 
 /// Extensions the Khronos validator implements, with the objects that may carry them.
 const KHRONOS_SUPPORTED: &[(&str, &[Host])] = &[
@@ -96,12 +97,12 @@ pub fn check(ctx: &mut Context) {
 
 /// The extension objects on the objects the Khronos validator reads extensions on whose
 /// names `declared` does not hold, by pointer (it reports them, and reads nothing in them).
-pub fn undeclared_extensions(root: &Value, declared: &[&str]) -> Vec<String> {
+pub fn undeclared_extensions(root: &Value, declared: &HashSet<&str>) -> Vec<String> {
     let mut found = Vec::new();
     walk(root, "", Host::Root, &mut |object, pointer, _| {
         let extensions = object.get("extensions").and_then(Value::as_object);
         for name in extensions.into_iter().flat_map(|e| e.keys()) {
-            if !declared.contains(&name.as_str()) {
+            if !declared.contains(name.as_str()) {
                 found.push(member(&member(pointer, "extensions"), name));
             }
         }
@@ -147,7 +148,6 @@ const MUST_BE_REQUIRED: &[&str] = &["KHR_mesh_quantization"];
 
 /// `extensionsUsed` and `extensionsRequired`: names, support, and what must be required.
 pub fn check_declarations(ctx: &mut Context) {
-    let used = ctx.extensions_used();
     let required: Vec<&str> = ctx
         .items("extensionsRequired")
         .iter()
@@ -180,7 +180,7 @@ pub fn check_declarations(ctx: &mut Context) {
     }
     for (i, value) in ctx.items("extensionsRequired").iter().enumerate() {
         let Some(name) = value.as_str() else { continue };
-        if !used.contains(&name) {
+        if !ctx.uses_extension(name) {
             ctx.emit(
                 khronos::UNUSED_EXTENSION_REQUIRED,
                 format!("/extensionsRequired/{i}"),
@@ -281,7 +281,7 @@ fn walk_nested(
 }
 
 fn visit_extension(ctx: &mut Context, name: &str, value: &Value, pointer: &str, host: Host) {
-    if !ctx.extensions_used().contains(&name) {
+    if !ctx.uses_extension(name) {
         undeclared(ctx, pointer);
     }
     let Some(hosts) = supported(ctx, name) else {

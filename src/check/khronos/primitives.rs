@@ -184,7 +184,7 @@ pub(super) fn joint_sets(attributes: &Map<String, Value>) -> u64 {
 }
 
 pub fn check(ctx: &mut Context) {
-    let quantized = ctx.extensions_used().contains(&"KHR_mesh_quantization");
+    let quantized = ctx.uses_extension("KHR_mesh_quantization");
     let mut walk = Walk {
         ctx,
         quantized,

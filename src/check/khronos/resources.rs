@@ -298,7 +298,7 @@ pub fn declared_mime(image: &Value) -> Option<String> {
 pub fn check_images(ctx: &mut Context) {
     ctx.images = vec![None; ctx.items("images").len()];
     ctx.image_bytes = ctx.items("images").iter().map(|_| None).collect();
-    let webp_enabled = ctx.extensions_used().contains(&"EXT_texture_webp");
+    let webp_enabled = ctx.uses_extension("EXT_texture_webp");
     for (i, pointer, image) in ctx.objects("images") {
         let mime_type = image.get("mimeType").and_then(Value::as_str);
         if let Some(m) = mime_type {
