@@ -126,6 +126,28 @@ def joint_names(n):
     return write(f'joints-{n}.gltf', doc)
 
 
+def declared_extensions(n):
+    """n extensions declared, required and each used once: every lookup once searched the list."""
+    names = [f'X_e{i}' for i in range(n)]
+    return write(f'extensions-{n}.gltf', asset(extensionsUsed=names, extensionsRequired=names,
+                                              nodes=[{'extensions': {name: {}}} for name in names]))
+
+
+def gltf1_meshes(n):
+    """A 1.0 asset of n meshes, each with its own accessor into one buffer: each repacked
+    accessor once summed the lengths of all before it."""
+    positions = struct.pack('<9f', 0, 0, 0, 1, 0, 0, 0, 1, 0)
+    uri = 'data:application/octet-stream;base64,' + base64.b64encode(positions).decode()
+    doc = {'asset': {'version': '1.0'}, 'buffers': {'b': {'uri': uri, 'byteLength': 36}},
+           'bufferViews': {'v': {'buffer': 'b', 'byteOffset': 0, 'byteLength': 36, 'target': 34962}},
+           'accessors': {f'a{i}': {'bufferView': 'v', 'byteOffset': 0, 'componentType': 5126, 'count': 3, 'type': 'VEC3',
+                                   'min': [0, 0, 0], 'max': [1, 1, 0]} for i in range(n)},
+           'meshes': {f'm{i}': {'primitives': [{'attributes': {'POSITION': f'a{i}'}, 'mode': 4}]} for i in range(n)},
+           'nodes': {f'n{i}': {'meshes': [f'm{i}']} for i in range(n)},
+           'scenes': {'s': {'nodes': [f'n{i}' for i in range(n)]}}, 'scene': 's'}
+    return write(f'gltf1-meshes-{n}.gltf', doc)
+
+
 def folder_of_assets(n):
     """A folder of n small assets, each with a finding: a CI gate's walk of a repository."""
     folder = os.path.join(WORK, f'folder-{n}')
@@ -176,6 +198,8 @@ CLASSES = [
     ('one target, N channels (12)', animation_targets, 10_000, ['check', '--max-issues', '10']),
     ('empty materials (13)', empty_materials, 100_000, ['check', '--max-issues', '10']),
     ('empty GLB chunks (13)', empty_chunks, 100_000, ['check', '--max-issues', '10']),
+    ('declared extensions (11)', declared_extensions, 10_000, ['check']),
+    ('1.0 meshes, upgrade (11)', gltf1_meshes, 10_000, ['upgrade', '-o', os.path.join(WORK, 'meshes.glb'), '--force']),
     ('array of zeros (13)', zeros, 1_000_000, ['check', '--max-issues', '10']),
     ('human findings (14)', many_findings, 3_000, ['check', '--format', 'human']),
     ('sarif findings (14)', many_findings, 3_000, ['check', '--format', 'sarif']),

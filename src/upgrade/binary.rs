@@ -11,6 +11,9 @@ use std::sync::Arc;
 #[derive(Debug, Clone, Default)]
 pub struct Binary {
     runs: Vec<Run>,
+    /// The runs' total length, kept as they are added: an asset of 10^5 accessors adds 10^5
+    /// runs, and aligning each one must not add them all up again.
+    runs_len: usize,
     /// The owned bytes after the last run, still growing.
     tail: Vec<u8>,
 }
@@ -33,7 +36,7 @@ impl Run {
 impl Binary {
     /// Its length in bytes.
     pub fn len(&self) -> usize {
-        self.runs().map(<[u8]>::len).sum()
+        self.runs_len + self.tail.len()
     }
 
     /// Whether it holds nothing.
@@ -63,8 +66,10 @@ impl Binary {
     /// Appends a range of an input buffer by reference.
     pub fn share(&mut self, buffer: &Arc<Bytes>, range: Range<usize>) {
         if !self.tail.is_empty() {
+            self.runs_len += self.tail.len();
             self.runs.push(Run::Owned(std::mem::take(&mut self.tail)));
         }
+        self.runs_len += range.len();
         self.runs.push(Run::Shared(Arc::clone(buffer), range));
     }
 
@@ -89,5 +94,6 @@ mod tests {
         binary.owned().push(2);
         assert_eq!(binary.to_vec(), vec![1, 0, 0, 0, 11, 12, 13, 0, 2]);
         assert_eq!(binary.len(), 9);
+        assert_eq!(binary.len(), binary.runs().map(<[u8]>::len).sum::<usize>());
     }
 }

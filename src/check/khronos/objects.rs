@@ -386,7 +386,7 @@ fn check_variant_mappings(
         .get("extensions")
         .and_then(|e| e.get("KHR_materials_variants"))
         .is_some();
-    let mut seen = Vec::new();
+    let mut seen = HashSet::new();
     for (m, mapping) in mappings.iter().enumerate().filter(|(_, m)| m.is_object()) {
         let mp = format!("{pointer}/extensions/KHR_materials_variants/mappings/{m}");
         if !root_declares_variants {
@@ -414,14 +414,12 @@ fn check_variant_mappings(
                 continue;
             }
             ctx.mark_used("variants", index as usize);
-            if seen.contains(&index) {
+            if !seen.insert(index) {
                 ctx.emit(
                     khronos::KHR_MATERIALS_VARIANTS_NON_UNIQUE_VARIANT,
                     vp,
                     "This variant is used more than once for this mesh primitive.",
                 );
-            } else {
-                seen.push(index);
             }
         }
     }
