@@ -60,6 +60,29 @@ pub fn declares_gltf2(bytes: &[u8]) -> bool {
 
 /// Reads a glTF 1.0 asset. A 2.x asset is told apart by a scan, before any tree is built.
 pub fn read<'a>(bytes: &'a [u8], loader: &'a dyn ResourceLoader) -> Result<Source<'a>, NotGltf1> {
+    read_keeping(bytes, loader, |_| true)
+}
+
+/// Reads what a 1.0 asset's materials need (materials, textures, images and the buffers
+/// their bytes may sit in): the proof of a large scene's upgrade then holds the materials'
+/// tree beside the output, not a second copy of the scene.
+pub fn read_materials<'a>(
+    bytes: &'a [u8],
+    loader: &'a dyn ResourceLoader,
+) -> Result<Source<'a>, NotGltf1> {
+    read_keeping(bytes, loader, |member| {
+        matches!(
+            member,
+            "asset" | "version" | "materials" | "textures" | "images" | "bufferViews" | "buffers"
+        )
+    })
+}
+
+fn read_keeping<'a>(
+    bytes: &'a [u8],
+    loader: &'a dyn ResourceLoader,
+    keep: fn(&str) -> bool,
+) -> Result<Source<'a>, NotGltf1> {
     if declares_gltf2(bytes) {
         return Err(NotGltf1(IS_GLTF2.into()));
     }
@@ -68,8 +91,8 @@ pub fn read<'a>(bytes: &'a [u8], loader: &'a dyn ResourceLoader) -> Result<Sourc
     } else {
         (bytes, None)
     };
-    let json: Value =
-        json_tree::from_slice(json_bytes).map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
+    let json: Value = json_tree::from_slice_keeping(json_bytes, keep)
+        .map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
     if !json.is_object() {
         return Err(NotGltf1("the root is not a JSON object".into()));
     }

@@ -5,6 +5,7 @@
 use super::binary::Binary;
 use super::data::{self, Role};
 use super::{EncodedImage, NoteKind, Notes, UpgradeError, UpgradeOptions, Upgraded};
+use crate::document::json_tree::tighten;
 use crate::gltf::gl::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
 use crate::legacy::source::Source;
 use serde_json::{json, Map, Value};
@@ -99,7 +100,9 @@ impl<'s, 'a> Builder<'s, 'a> {
 
     pub(in crate::upgrade) fn push(&mut self, collection: &'static str, value: Value) -> usize {
         let array = self.arrays.entry(collection).or_default();
-        array.push(value);
+        // Objects built member by member keep their growth room (an accessor of seven
+        // members holds room for eight, at 104 bytes each) for as long as the output lives.
+        array.push(tighten(value));
         array.len() - 1
     }
 

@@ -6,6 +6,7 @@ use crate::legacy::pbr;
 use crate::legacy::source::{self, NotGltf1};
 use crate::shade::material::SpecGlossReading;
 use crate::shade::pairing::Named;
+use std::collections::HashMap;
 
 /// Why a 1.0 asset's materials cannot be sampled.
 #[derive(Debug, thiserror::Error)]
@@ -24,7 +25,7 @@ pub(crate) fn legacy_materials(
     bytes: &[u8],
     loader: &dyn ResourceLoader,
 ) -> Result<Vec<Named>, LegacyMaterialsError> {
-    let source = source::read(bytes, loader)?;
+    let source = source::read_materials(bytes, loader)?;
     let parsed: Vec<(&str, Option<pbr::LegacyPbr>)> = source
         .dictionary("materials")
         .into_iter()
@@ -43,6 +44,9 @@ pub(crate) fn legacy_materials(
         .collect::<std::collections::BTreeSet<_>>()
         .into_iter()
         .collect();
+    let position: HashMap<&str, usize> = (texture_ids.iter().enumerate())
+        .map(|(at, id)| (id.as_str(), at))
+        .collect();
     let encoded: Vec<sample::Wanted<_>> = texture_ids
         .iter()
         .map(|id| {
@@ -55,10 +59,7 @@ pub(crate) fn legacy_materials(
         .collect();
     let decoded = sample::decode_all(&encoded).map_err(LegacyMaterialsError::Textures)?;
     let texture = |id: &Option<String>| -> Option<Texture> {
-        let at = texture_ids
-            .iter()
-            .position(|known| Some(known) == id.as_ref())?;
-        decoded[at].clone()
+        decoded[*position.get(id.as_deref()?)?].clone()
     };
     Ok(parsed
         .into_iter()
