@@ -764,3 +764,34 @@ fn the_sparse_parts_of_an_unlinked_accessor_use_no_buffer_view() {
         ])
     );
 }
+
+#[test]
+fn an_integer_outside_its_range_is_reported_once_and_read_as_absent() {
+    // A byteStride beyond 252 is no stride (no multiple-of-4 finding, no stride longer than
+    // its view, an image may use the view); one in range but not a multiple of 4 is still a
+    // stride. A primitive mode beyond 6 is out of range, not out of a list. A camera whose
+    // znear and zfar are both out of range compares neither.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 8}],
+        "bufferViews": [{"buffer": 0, "byteLength": 8, "byteStride": 7777},
+                        {"buffer": 0, "byteLength": 4, "byteStride": 6}],
+        "images": [{"bufferView": 0, "mimeType": "image/png"}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 1, "znear": -1, "zfar": -2}}],
+        "meshes": [{"primitives": [{"attributes": {}, "mode": 7}]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("BUFFER_VIEW_TOO_BIG_BYTE_STRIDE", "/bufferViews/1/byteStride"),
+            ("EMPTY_ENTITY", "/meshes/0/primitives/0/attributes"),
+            ("UNUSED_OBJECT", "/bufferViews/1"),
+            ("UNUSED_OBJECT", "/cameras/0"),
+            ("UNUSED_OBJECT", "/images/0"),
+            ("UNUSED_OBJECT", "/meshes/0"),
+            ("VALUE_MULTIPLE_OF", "/bufferViews/1/byteStride"),
+            ("VALUE_NOT_IN_RANGE", "/bufferViews/0/byteStride"),
+            ("VALUE_NOT_IN_RANGE", "/cameras/0/perspective/zfar"),
+            ("VALUE_NOT_IN_RANGE", "/cameras/0/perspective/znear"),
+            ("VALUE_NOT_IN_RANGE", "/meshes/0/primitives/0/mode"),
+        ])
+    );
+}

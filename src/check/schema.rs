@@ -318,6 +318,17 @@ struct AbsentMembers<'s> {
     absent: HashSet<String>,
     /// Arrays of the wrong length: their elements are not read (absent too).
     elements_unread: HashSet<String>,
+    /// Integer members outside their range or list of values, absent too once the findings
+    /// are in (a mistyped value is absent for its type, not for its value).
+    out_of_range: HashSet<String>,
+}
+
+/// A finding about a value outside its range or list of values.
+fn is_value_finding(diagnostic: &Diagnostic) -> bool {
+    matches!(
+        diagnostic.code,
+        khronos::VALUE_NOT_IN_RANGE | khronos::VALUE_NOT_IN_LIST
+    )
 }
 
 /// Whether `pointer` is one of `members` or inside one.
@@ -347,6 +358,40 @@ fn is_collection_element(pointer: &str) -> bool {
 /// targets are plain maps of accessor indices, read one by one.
 const KEPT_ELEMENT_BY_ELEMENT: &[&str] = &["/targets"];
 
+/// Whether the schemas type members named `name` as integers (`byteStride`, `texCoord`, …):
+/// read from the schemas themselves, where no name is typed both integer and number.
+fn is_integer_member(name: &str) -> bool {
+    static NAMES: OnceLock<HashSet<String>> = OnceLock::new();
+    let names = NAMES.get_or_init(|| {
+        let mut names = HashSet::new();
+        for text in std::iter::once(CORE).chain(EXTENSIONS.iter().map(|(_, text)| *text)) {
+            if let Ok(schema) = serde_json::from_str::<Value>(text) {
+                collect_integer_members(&schema, &mut names);
+            }
+        }
+        names
+    });
+    names.contains(name)
+}
+
+fn collect_integer_members(schema: &Value, names: &mut HashSet<String>) {
+    match schema {
+        Value::Object(members) => {
+            let properties = members.get("properties").and_then(Value::as_object);
+            for (name, property) in properties.into_iter().flatten() {
+                if property.get("type").and_then(Value::as_str) == Some("integer") {
+                    names.insert(name.clone());
+                }
+            }
+            members
+                .values()
+                .for_each(|v| collect_integer_members(v, names));
+        }
+        Value::Array(items) => items.iter().for_each(|v| collect_integer_members(v, names)),
+        _ => {}
+    }
+}
+
 /// Schema findings held back at most (a file of 10^7 findings streams past them).
 const HELD: usize = 1 << 16;
 
@@ -357,11 +402,17 @@ impl<'s> AbsentMembers<'s> {
             held: Vec::new(),
             absent: Default::default(),
             elements_unread: Default::default(),
+            out_of_range: Default::default(),
         }
     }
 
     /// Passes the held findings on and gives the members read as absent, by pointer.
     fn finish(mut self) -> HashSet<String> {
+        let out_of_range = std::mem::take(&mut self.out_of_range);
+        self.out_of_range = (out_of_range.into_iter())
+            .filter(|p| !self.at_or_inside_absent(p))
+            .collect();
+        self.absent.extend(self.out_of_range.iter().cloned());
         self.release();
         self.absent
     }
@@ -393,6 +444,11 @@ impl<'s> AbsentMembers<'s> {
         ) {
             return false;
         }
+        // The finding that made an integer absent stays (unless its parent is not read).
+        if self.out_of_range.contains(pointer) && is_value_finding(diagnostic) {
+            let parent = pointer.rsplit_once('/').map_or("", |(parent, _)| parent);
+            return !parent.is_empty() && self.at_or_inside_absent(parent);
+        }
         // At the member itself (a mistyped value is not also outside its list of values; an
         // unreadable array demands no other member) or inside it.
         self.at_or_inside_absent(pointer)
@@ -416,6 +472,25 @@ impl Sink for AbsentMembers<'_> {
             if let Some(pointer) = member {
                 self.absent.insert(pointer.to_string());
             }
+        }
+        // So is an integer member outside its range or list of values: the validator reads
+        // an out-of-range byteStride as no stride. (A number or a name outside its range or
+        // list is still present: an alphaCutoff of -1 still needs MASK.) An array's element
+        // is not taken out: the array stays, as the validator keeps it.
+        let integer = |p: &&str| p.rsplit('/').next().is_some_and(is_integer_member);
+        let unread_value = Some(&diagnostic)
+            .filter(|d| is_value_finding(d))
+            .and_then(Diagnostic::pointer)
+            .filter(integer);
+        let member = unread_value
+            .filter(|p| !is_collection_element(p) && !p.is_empty())
+            .filter(|p| {
+                p.rsplit('/')
+                    .next()
+                    .is_some_and(|last| last.parse::<u64>().is_err())
+            });
+        if let Some(pointer) = member {
+            self.out_of_range.insert(pointer.to_string());
         }
         if diagnostic.code == khronos::ARRAY_LENGTH_NOT_IN_LIST {
             if let Some(pointer) = diagnostic.pointer() {

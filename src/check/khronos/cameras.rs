@@ -35,14 +35,15 @@ pub fn check(ctx: &mut Context) {
 }
 
 fn projection(ctx: &mut Context, projection: &Value, at: &str, perspective: bool) {
-    // A missing or mistyped number compares false, as NaN does: the schema reported it.
-    let number = |key: &str| {
-        projection
-            .get(key)
-            .and_then(Value::as_f64)
-            .unwrap_or(f64::NAN)
+    // A missing, mistyped or out-of-range number compares false, as NaN does (the validator
+    // reads it as NaN): the schema reported it. znear, zfar and yfov must be positive; only an
+    // orthographic znear may be 0.
+    let number = |key: &str| (projection.get(key).and_then(Value::as_f64)).unwrap_or(f64::NAN);
+    let positive = |key: &str| {
+        let in_range = |v: &f64| *v > 0.0 || (*v == 0.0 && key == "znear" && !perspective);
+        Some(number(key)).filter(in_range).unwrap_or(f64::NAN)
     };
-    if number("zfar") <= number("znear") {
+    if positive("zfar") <= positive("znear") {
         ctx.emit(
             khronos::CAMERA_ZFAR_LEQUAL_ZNEAR,
             at,
@@ -50,7 +51,7 @@ fn projection(ctx: &mut Context, projection: &Value, at: &str, perspective: bool
         );
     }
     if perspective {
-        if number("yfov") >= std::f64::consts::PI {
+        if positive("yfov") >= std::f64::consts::PI {
             ctx.emit(
                 khronos::CAMERA_YFOV_GEQUAL_PI,
                 at,
