@@ -781,7 +781,10 @@ fn an_integer_outside_its_range_is_reported_once_and_read_as_absent() {
     assert_eq!(
         found,
         expected(&[
-            ("BUFFER_VIEW_TOO_BIG_BYTE_STRIDE", "/bufferViews/1/byteStride"),
+            (
+                "BUFFER_VIEW_TOO_BIG_BYTE_STRIDE",
+                "/bufferViews/1/byteStride"
+            ),
             ("EMPTY_ENTITY", "/meshes/0/primitives/0/attributes"),
             ("UNUSED_OBJECT", "/bufferViews/1"),
             ("UNUSED_OBJECT", "/cameras/0"),
@@ -794,4 +797,86 @@ fn an_integer_outside_its_range_is_reported_once_and_read_as_absent() {
             ("VALUE_NOT_IN_RANGE", "/meshes/0/primitives/0/mode"),
         ])
     );
+}
+
+#[test]
+fn an_accessor_has_one_usage_and_an_animation_with_an_empty_list_links_nothing() {
+    // Its first use (meshes, then skins, then animations: the validator's link order) says
+    // what an accessor is for; each later use for something else is reported there, once.
+    // A morph target is a vertex attribute too. The second animation's channels are empty:
+    // its sampler, which reuses the POSITION accessor, is neither linked nor unused.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 256}], "bufferViews": [{"buffer": 0, "byteLength": 256}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]},
+            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "SCALAR", "min": [0], "max": [1]},
+            {"bufferView": 0, "componentType": 5126, "count": 2, "type": "MAT4"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "_X": 1}, "targets": [{"POSITION": 0}]}]}],
+        "nodes": [{"mesh": 0, "skin": 0}, {}],
+        "skins": [{"joints": [1], "inverseBindMatrices": 2}],
+        "animations": [
+            {"channels": [{"sampler": 0, "target": {"node": 1, "path": "weights"}}],
+             "samplers": [{"input": 1, "output": 2}, {"input": 2, "output": 2}]},
+            {"channels": [], "samplers": [{"input": 0, "output": 0}]}]}));
+    let mut want = vec![
+        ("ACCESSOR_USAGE_OVERRIDE", "/animations/0/samplers/0/input"),
+        ("ACCESSOR_USAGE_OVERRIDE", "/animations/0/samplers/0/output"),
+        ("ACCESSOR_USAGE_OVERRIDE", "/animations/0/samplers/1/input"),
+        ("ACCESSOR_USAGE_OVERRIDE", "/animations/0/samplers/1/output"),
+        (
+            "ANIMATION_CHANNEL_TARGET_NODE_WEIGHTS_NO_MORPHS",
+            "/animations/0/channels/0/target",
+        ),
+        (
+            "ANIMATION_SAMPLER_INPUT_ACCESSOR_INVALID_FORMAT",
+            "/animations/0/samplers/1/input",
+        ),
+        (
+            "ANIMATION_SAMPLER_INPUT_ACCESSOR_WITHOUT_BOUNDS",
+            "/animations/0/samplers/1/input",
+        ),
+        (
+            "ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_FORMAT",
+            "/animations/0/channels/0/sampler",
+        ),
+        (
+            "BUFFER_VIEW_TARGET_MISSING",
+            "/meshes/0/primitives/0/attributes/POSITION",
+        ),
+        (
+            "BUFFER_VIEW_TARGET_OVERRIDE",
+            "/animations/0/samplers/0/input",
+        ),
+        (
+            "BUFFER_VIEW_TARGET_OVERRIDE",
+            "/animations/0/samplers/1/input",
+        ),
+        (
+            "BUFFER_VIEW_TARGET_OVERRIDE",
+            "/skins/0/inverseBindMatrices",
+        ),
+        ("EMPTY_ENTITY", "/animations/1/channels"),
+        (
+            "MESH_PRIMITIVE_ACCESSOR_WITHOUT_BYTESTRIDE",
+            "/meshes/0/primitives/0/attributes/_X",
+        ),
+        ("MESH_PRIMITIVE_INCOMPATIBLE_MODE", "/meshes/0/primitives/0"),
+        ("NODE_SKIN_WITH_NON_SKINNED_MESH", "/nodes/0"),
+        ("UNUSED_OBJECT", "/animations/0/samplers/1"),
+        ("UNUSED_OBJECT", "/nodes/0"),
+    ];
+    // An output's view usage is set twice by the validator, so each output's is reported twice.
+    want.extend(
+        [(
+            "BUFFER_VIEW_TARGET_OVERRIDE",
+            "/animations/0/samplers/0/output",
+        ); 2],
+    );
+    want.extend(
+        [(
+            "BUFFER_VIEW_TARGET_OVERRIDE",
+            "/animations/0/samplers/1/output",
+        ); 2],
+    );
+    assert_eq!(found, expected(&want));
 }

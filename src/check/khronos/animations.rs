@@ -44,13 +44,12 @@ pub fn check(ctx: &mut Context) {
     }
 }
 
-/// An animation's samplers and channels, when it has both lists: the Khronos validator links
-/// nothing of an animation without them (its samplers' accessors stay unused, its samplers
-/// and target nodes unchecked).
+/// An animation's samplers and channels, when it has both lists and neither is empty: the
+/// Khronos validator links nothing of an animation without them (its samplers' accessors stay
+/// unused, its samplers and target nodes unchecked).
 pub(crate) fn linked(animation: &Value) -> Option<(&[Value], &[Value])> {
-    let samplers = animation.get("samplers")?.as_array()?;
-    let channels = animation.get("channels")?.as_array()?;
-    Some((samplers, channels))
+    let list = |key: &str| animation.get(key)?.as_array().filter(|a| !a.is_empty());
+    Some((list("samplers")?, list("channels")?))
 }
 
 /// Every JSON pointer an animation channel targets through KHR_animation_pointer.

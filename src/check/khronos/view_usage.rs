@@ -1,6 +1,7 @@
 //! What each bufferView is used for — vertex data, indices, images, inverse bind matrices or
 //! other data — and the bufferView `target` that should say so (BUFFER_VIEW_TARGET_MISSING,
-//! BUFFER_VIEW_TARGET_OVERRIDE). Uses are met in the Khronos validator's link order, which
+//! BUFFER_VIEW_TARGET_OVERRIDE); and what each accessor is used for, which must be one thing
+//! (ACCESSOR_USAGE_OVERRIDE). Uses are met in the Khronos validator's link order, which
 //! decides where a conflict is reported.
 
 use crate::check::context::{elements, member, unsigned, Context};
@@ -30,6 +31,28 @@ impl Usage {
     }
 }
 
+/// What an accessor is used for, by the validator's names.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum AccessorUsage {
+    VertexAttribute,
+    PrimitiveIndices,
+    InverseBind,
+    AnimationInput,
+    AnimationOutput,
+}
+
+impl AccessorUsage {
+    fn name(self) -> &'static str {
+        match self {
+            AccessorUsage::VertexAttribute => "VertexAttribute",
+            AccessorUsage::PrimitiveIndices => "PrimitiveIndices",
+            AccessorUsage::InverseBind => "IBM",
+            AccessorUsage::AnimationInput => "AnimationInput",
+            AccessorUsage::AnimationOutput => "AnimationOutput",
+        }
+    }
+}
+
 pub fn check(ctx: &mut Context) {
     let usages = ctx
         .items("bufferViews")
@@ -40,7 +63,12 @@ pub fn check(ctx: &mut Context) {
             _ => None,
         })
         .collect();
-    let mut walk = Walk { ctx, usages };
+    let accessor_usages = vec![None; ctx.items("accessors").len()];
+    let mut walk = Walk {
+        ctx,
+        usages,
+        accessor_usages,
+    };
     walk.sparse_accessors();
     walk.images();
     walk.meshes();
@@ -51,9 +79,41 @@ pub fn check(ctx: &mut Context) {
 struct Walk<'c, 'a> {
     ctx: &'c mut Context<'a>,
     usages: Vec<Option<Usage>>,
+    accessor_usages: Vec<Option<AccessorUsage>>,
 }
 
 impl Walk<'_, '_> {
+    /// An accessor's use (its first one sets what it is for; `None`: its view's only), then
+    /// its bufferView's.
+    fn use_accessor(
+        &mut self,
+        index: Option<&Value>,
+        usage: Option<AccessorUsage>,
+        view: Usage,
+        at: String,
+    ) {
+        let accessor = index.and_then(Value::as_u64);
+        let linked = accessor.filter(|&a| self.ctx.element("accessors", a).is_some());
+        if let Some((a, usage)) = linked.zip(usage) {
+            let slot = &mut self.accessor_usages[a as usize];
+            match *slot {
+                None => *slot = Some(usage),
+                Some(previous) if previous != usage => self.ctx.emit(
+                    khronos::ACCESSOR_USAGE_OVERRIDE,
+                    at.clone(),
+                    format!(
+                        "Override of previously set accessor usage. Initial: '{}', new: '{}'.",
+                        previous.name(),
+                        usage.name()
+                    ),
+                ),
+                Some(_) => {}
+            }
+        }
+        let buffer_view = self.view_of(index);
+        self.set(buffer_view, view, at);
+    }
+
     fn set(&mut self, view: Option<u64>, usage: Usage, at: String) {
         // A reference to an element that is no bufferView object is unresolved: no usage.
         let Some(view) = view.filter(|&v| self.ctx.element("bufferViews", v).is_some()) else {
@@ -124,18 +184,23 @@ impl Walk<'_, '_> {
             for (p, primitive) in elements(mesh, "primitives") {
                 let at = format!("{pointer}/primitives/{p}");
                 let attributes = primitive.get("attributes").and_then(Value::as_object);
+                let vertex = Some(AccessorUsage::VertexAttribute);
                 for (semantic, index) in attributes.into_iter().flatten() {
-                    let view = self.view_of(Some(index));
                     let here = format!("{at}/attributes/{}", escape_token(semantic));
-                    self.set(view, Usage::Vertex, here);
+                    self.use_accessor(Some(index), vertex, Usage::Vertex, here);
                 }
-                let view = self.view_of(primitive.get("indices"));
-                self.set(view, Usage::Index, member(&at, "indices"));
+                let indices = primitive.get("indices");
+                let here = member(&at, "indices");
+                self.use_accessor(
+                    indices,
+                    Some(AccessorUsage::PrimitiveIndices),
+                    Usage::Index,
+                    here,
+                );
                 for (t, target) in elements(primitive, "targets") {
                     for (semantic, index) in target.as_object().into_iter().flatten() {
-                        let view = self.view_of(Some(index));
                         let here = format!("{at}/targets/{t}/{}", escape_token(semantic));
-                        self.set(view, Usage::Vertex, here);
+                        self.use_accessor(Some(index), vertex, Usage::Vertex, here);
                     }
                 }
             }
@@ -144,9 +209,10 @@ impl Walk<'_, '_> {
 
     fn skins(&mut self) {
         for (_, pointer, skin) in self.ctx.objects("skins") {
-            let view = self.view_of(skin.get("inverseBindMatrices"));
+            let matrices = skin.get("inverseBindMatrices");
             let at = member(&pointer, "inverseBindMatrices");
-            self.set(view, Usage::InverseBind, at);
+            let usage = Some(AccessorUsage::InverseBind);
+            self.use_accessor(matrices, usage, Usage::InverseBind, at);
         }
     }
 
@@ -156,11 +222,15 @@ impl Walk<'_, '_> {
                 continue;
             };
             for (s, sampler) in samplers.iter().enumerate() {
-                // The validator sets an output's usage twice, so a conflicting target is
-                // reported twice there.
-                for key in ["input", "output", "output"] {
-                    let view = self.view_of(sampler.get(key));
-                    self.set(view, Usage::Other, format!("{pointer}/samplers/{s}/{key}"));
+                // The validator sets an output's view usage twice, so a conflicting target
+                // is reported twice there (its accessor usage once).
+                for (key, usage) in [
+                    ("input", Some(AccessorUsage::AnimationInput)),
+                    ("output", Some(AccessorUsage::AnimationOutput)),
+                    ("output", None),
+                ] {
+                    let at = format!("{pointer}/samplers/{s}/{key}");
+                    self.use_accessor(sampler.get(key), usage, Usage::Other, at);
                 }
             }
         }
