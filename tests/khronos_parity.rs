@@ -880,3 +880,23 @@ fn an_accessor_has_one_usage_and_an_animation_with_an_empty_list_links_nothing()
     );
     assert_eq!(found, expected(&want));
 }
+
+#[test]
+fn data_at_a_misaligned_total_offset_is_not_read() {
+    // The floats 1, 2, 3 start 2 bytes into the buffer: the validator reports the alignment
+    // and reads nothing there, so bounds of 0 are no mismatch.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": "data:application/octet-stream;base64,AAAAAIA/AAAAQAAAQEAAAA==", "byteLength": 16}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 2, "byteLength": 12, "target": 34962}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 1, "type": "VEC3",
+            "min": [0, 0, 0], "max": [0, 0, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ACCESSOR_TOTAL_OFFSET_ALIGNMENT", "/accessors/0"),
+            ("MESH_PRIMITIVE_INCOMPATIBLE_MODE", "/meshes/0/primitives/0"),
+        ])
+    );
+}

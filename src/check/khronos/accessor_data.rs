@@ -184,6 +184,13 @@ fn in_view<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])>
     // Elements that overlap (a stride below the element size) are not walked: other passes
     // report that layout.
     let element = layout.size.checked_mul(layout.components)?;
+    // Data at a total byteOffset that is no multiple of the component size is not read: the
+    // validator's typed arrays cannot start there (ACCESSOR_TOTAL_OFFSET_ALIGNMENT says so).
+    let view_offset = unsigned(&ctx.items("bufferViews")[view], "byteOffset").unwrap_or(0);
+    let total = view_offset.checked_add(u64::try_from(layout.offset).ok()?)?;
+    if !total.is_multiple_of(u64::try_from(layout.size).ok()?) {
+        return None;
+    }
     let needed = layout
         .count
         .checked_sub(1)?
