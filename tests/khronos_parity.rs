@@ -900,3 +900,54 @@ fn data_at_a_misaligned_total_offset_is_not_read() {
         ])
     );
 }
+
+#[test]
+fn a_ktx2_image_is_an_unrecognized_format_to_the_khronos_profile_only() {
+    // The released validator recognises no KTX2; gltfmat reads it, and a texture whose
+    // source is KTX2 without KHR_texture_basisu then names the problem.
+    let folder = std::env::temp_dir().join(format!("gltfmat-ktx2-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    let mut ktx2 = b"\xABKTX 20\xBB\r\n\x1A\n".to_vec();
+    for word in [0u32, 1, 4, 4, 0, 0, 1, 1, 0] {
+        ktx2.extend(word.to_le_bytes());
+    }
+    ktx2.extend([0; 64]);
+    std::fs::write(folder.join("k.ktx2"), ktx2).unwrap();
+    let asset = folder.join("k.gltf");
+    let document = json!({"asset": {"version": "2.0"}, "images": [{"uri": "k.ktx2"}], "textures": [{"source": 0}]});
+    std::fs::write(&asset, serde_json::to_vec(&document).unwrap()).unwrap();
+    let findings = |profile| {
+        let options = CheckOptions::default().with_profile(profile);
+        let report = gltfmat::check::check_path(&asset, &options).unwrap();
+        let mut found: Vec<(String, String)> = (report.diagnostics.iter())
+            .map(|d| {
+                (
+                    d.code.name().to_string(),
+                    d.pointer().unwrap_or_default().to_string(),
+                )
+            })
+            .collect();
+        found.sort();
+        found
+    };
+    let khronos = findings(Profile::Khronos);
+    let default = findings(Profile::Default);
+    std::fs::remove_dir_all(&folder).unwrap();
+    assert_eq!(
+        khronos,
+        expected(&[
+            ("IMAGE_UNRECOGNIZED_FORMAT", "/images/0"),
+            ("UNUSED_OBJECT", "/textures/0"),
+        ])
+    );
+    assert!(
+        default.contains(&(
+            "TEXTURE_INVALID_IMAGE_MIME_TYPE".into(),
+            "/textures/0/source".into()
+        )),
+        "{default:?}"
+    );
+    assert!(!default
+        .iter()
+        .any(|(code, _)| code == "IMAGE_UNRECOGNIZED_FORMAT"));
+}

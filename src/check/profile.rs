@@ -43,6 +43,12 @@ impl Profile {
         self == Profile::Khronos
     }
 
+    /// Whether a KTX2 image is read as one (the released Khronos validator recognises no KTX2,
+    /// with or without KHR_texture_basisu).
+    pub(crate) fn recognises_ktx2(self) -> bool {
+        self == Profile::Default
+    }
+
     /// Whether a glTF 1.0 document gets the 1.0 checks instead of the 2.0 passes.
     pub(crate) fn checks_gltf1(self) -> bool {
         self == Profile::Default
@@ -59,6 +65,10 @@ pub static READINGS: &[(Code, &str)] = &[
     (
         khronos::KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD,
         "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
+    ),
+    (
+        khronos::IMAGE_UNRECOGNIZED_FORMAT,
+        "A KTX2 image is read as KTX2 (a texture then says that its source needs KHR_texture_basisu); the released Khronos validator recognises no KTX2 and reports the image's format as unrecognized.",
     ),
     (
         khronos::SKIN_NO_COMMON_ROOT,

@@ -346,7 +346,11 @@ pub fn check_images(ctx: &mut Context) {
             image: None,
         };
         if let Some(bytes) = bytes {
-            let header = image_header::read(&bytes);
+            let header = image_header::read(&bytes).and_then(|info| {
+                let known =
+                    info.format != ImageFormat::Ktx2 || ctx.options.profile.recognises_ktx2();
+                known.then_some(info).ok_or(HeaderError::Unrecognized)
+            });
             match header {
                 Ok(info) => {
                     let found = info.format.mime_type();
