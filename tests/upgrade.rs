@@ -1045,3 +1045,27 @@ fn a_glb_cut_short_is_refused_naming_both_lengths() {
         .unwrap_or_default();
     assert!(!refusal.contains("header declares"), "{refusal}");
 }
+
+#[test]
+fn a_meshopt_asset_of_several_buffers_is_refused_saying_why() {
+    // Joining the buffers would leave each extension's `buffer` pointing at the wrong bytes.
+    let sg = "KHR_materials_pbrSpecularGlossiness";
+    let asset = |buffers: Value| {
+        serde_json::to_vec(&serde_json::json!({"asset": {"version": "2.0"},
+            "extensionsUsed": ["KHR_meshopt_compression", sg],
+            "buffers": buffers,
+            "materials": [{"extensions": {sg: {"diffuseFactor": [0.5, 0.5, 0.5, 1]}}}]}))
+        .unwrap()
+    };
+    let two = asset(serde_json::json!([{"uri": "data:,", "byteLength": 0}, {"byteLength": 8}]));
+    let Err(refusal) = upgrade(&two, &NoResources, &UpgradeOptions::default()) else {
+        panic!("a meshopt asset of two buffers is refused");
+    };
+    let refusal = refusal.to_string();
+    assert!(
+        refusal.starts_with("/extensionsUsed: KHR_meshopt_compression names buffers"),
+        "{refusal}"
+    );
+    let one = asset(serde_json::json!([{"uri": "data:,", "byteLength": 0}]));
+    assert!(upgrade(&one, &NoResources, &UpgradeOptions::default()).is_ok());
+}

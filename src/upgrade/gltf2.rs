@@ -51,6 +51,7 @@ pub(super) fn upgrade(
         report: Notes::default(),
         rebaked: HashMap::new(),
     };
+    asset.refuse_buffers_named_inside_extensions()?;
     let buffers = asset.read_buffers(glb_bin, loader)?;
     asset.take_images(&buffers, loader)?;
     asset.join_buffers(&buffers);
@@ -118,6 +119,26 @@ impl Asset {
             *slot = json!([]);
         }
         slot.as_array_mut().expect("made an array above")
+    }
+
+    /// The output holds one buffer, made by joining the input's; meshopt compression names
+    /// its compressed buffer (and an offset in it) inside each bufferView's extension, and its
+    /// fallback buffer holds no bytes, so such an asset of several buffers cannot be joined
+    /// without rewriting what the extension means. Refused, saying what to do instead.
+    fn refuse_buffers_named_inside_extensions(&self) -> Result<(), UpgradeError> {
+        const NAMING_BUFFERS: [&str; 2] = ["EXT_meshopt_compression", "KHR_meshopt_compression"];
+        let used = self.list("extensionsUsed").iter().filter_map(Value::as_str);
+        let meshopt = used.into_iter().find(|name| NAMING_BUFFERS.contains(name));
+        match meshopt {
+            Some(name) if self.list("buffers").len() > 1 => Err(UpgradeError::Invalid {
+                pointer: "/extensionsUsed".into(),
+                reason: format!(
+                    "{name} names buffers inside each bufferView's extension, and the upgrade joins the asset's {} buffers into one; decompress the asset first (for example with gltfpack without -c, or glTF-Transform), then upgrade it",
+                    self.list("buffers").len()
+                ),
+            }),
+            _ => Ok(()),
+        }
     }
 
     /// Every buffer's declared bytes: read from its file or data URI, or the GLB's BIN chunk.
