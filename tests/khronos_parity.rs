@@ -951,3 +951,24 @@ fn a_ktx2_image_is_an_unrecognized_format_to_the_khronos_profile_only() {
         .iter()
         .any(|(code, _)| code == "IMAGE_UNRECOGNIZED_FORMAT"));
 }
+
+#[test]
+fn a_data_uri_media_type_the_validator_refuses_declares_no_image_type() {
+    // A PNG in data URIs typed application/octet-stream and image/gif: each URI is invalid,
+    // and neither type is then held against the texture that uses the image.
+    let png = "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8DwHwAFBQIAX8jx0gAAAABJRU5ErkJggg==";
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "images": [{"uri": format!("data:application/octet-stream;base64,{png}")},
+                   {"uri": format!("data:image/gif;base64,{png}")}],
+        "textures": [{"source": 0}, {"source": 1}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}},
+                       "emissiveTexture": {"index": 1}}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("INVALID_URI", "/images/0/uri"),
+            ("INVALID_URI", "/images/1/uri"),
+            ("UNUSED_OBJECT", "/materials/0"),
+        ])
+    );
+}
