@@ -11,7 +11,11 @@ use serde_json::{json, Value};
 fn khronos_findings(document: Value) -> Vec<(String, String)> {
     let options = CheckOptions::default().with_profile(Profile::Khronos);
     let bytes = serde_json::to_vec(&document).unwrap();
-    let report = check_bytes("case.gltf", bytes, &NoResources, &options);
+    sorted_findings(&check_bytes("case.gltf", bytes, &NoResources, &options))
+}
+
+/// Every finding of a report, as (code, pointer), sorted.
+fn sorted_findings(report: &gltfmat::check::Report) -> Vec<(String, String)> {
     let mut found: Vec<(String, String)> = (report.diagnostics.iter())
         .map(|d| {
             (
@@ -918,17 +922,7 @@ fn a_ktx2_image_is_an_unrecognized_format_to_the_khronos_profile_only() {
     std::fs::write(&asset, serde_json::to_vec(&document).unwrap()).unwrap();
     let findings = |profile| {
         let options = CheckOptions::default().with_profile(profile);
-        let report = gltfmat::check::check_path(&asset, &options).unwrap();
-        let mut found: Vec<(String, String)> = (report.diagnostics.iter())
-            .map(|d| {
-                (
-                    d.code.name().to_string(),
-                    d.pointer().unwrap_or_default().to_string(),
-                )
-            })
-            .collect();
-        found.sort();
-        found
+        sorted_findings(&gltfmat::check::check_path(&asset, &options).unwrap())
     };
     let khronos = findings(Profile::Khronos);
     let default = findings(Profile::Default);
