@@ -475,20 +475,14 @@ impl Sink for AbsentMembers<'_> {
         }
         // So is an integer member outside its range or list of values: the validator reads
         // an out-of-range byteStride as no stride. (A number or a name outside its range or
-        // list is still present: an alphaCutoff of -1 still needs MASK.) An array's element
-        // is not taken out: the array stays, as the validator keeps it.
+        // list is still present: an alphaCutoff of -1 still needs MASK.) Only a member is
+        // named so: an array's element (its last token a number) stays, as the validator
+        // keeps the array.
         let integer = |p: &&str| p.rsplit('/').next().is_some_and(is_integer_member);
-        let unread_value = Some(&diagnostic)
+        let member = Some(&diagnostic)
             .filter(|d| is_value_finding(d))
             .and_then(Diagnostic::pointer)
             .filter(integer);
-        let member = unread_value
-            .filter(|p| !is_collection_element(p) && !p.is_empty())
-            .filter(|p| {
-                p.rsplit('/')
-                    .next()
-                    .is_some_and(|last| last.parse::<u64>().is_err())
-            });
         if let Some(pointer) = member {
             self.out_of_range.insert(pointer.to_string());
         }

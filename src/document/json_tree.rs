@@ -51,6 +51,16 @@ pub fn from_slice_keeping(text: &[u8], keep: fn(&str) -> bool) -> serde_json::Re
     Ok(value)
 }
 
+/// An object of exactly the gathered members (a repeated key keeps its first place and its
+/// last value, as serde_json's).
+fn exact_object(gathered: Vec<(String, Value)>) -> Value {
+    let mut object = Map::with_capacity(gathered.len());
+    for (key, value) in gathered {
+        object.insert(key, value);
+    }
+    Value::Object(object)
+}
+
 /// A root read by [`ExactValue`], but for the members `keep` rejects.
 struct Members<'b> {
     value: ExactValue<'b>,
@@ -82,7 +92,7 @@ impl<'de> Visitor<'de> for Members<'_> {
                 members.next_value::<de::IgnoredAny>()?;
             }
         }
-        Ok(Value::Object(gathered.into_iter().collect()))
+        Ok(exact_object(gathered))
     }
 
     // Any other root is no asset; it is built whole for the caller to say so.
@@ -243,11 +253,7 @@ impl<'de> Visitor<'de> for ExactValue<'_> {
         while let Some(key) = members.next_key::<String>()? {
             gathered.push((key, members.next_value_seed(self)?));
         }
-        let mut object = Map::with_capacity(gathered.len());
-        for (key, value) in gathered {
-            object.insert(key, value);
-        }
-        Ok(Value::Object(object))
+        Ok(exact_object(gathered))
     }
 }
 
