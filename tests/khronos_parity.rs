@@ -966,3 +966,62 @@ fn a_data_uri_media_type_the_validator_refuses_declares_no_image_type() {
         ])
     );
 }
+
+#[test]
+fn tangents_of_a_primitive_whose_material_does_not_resolve_are_unused() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAACAPwAAAAAAAAAAAACAPwAAgD8AAAAAAAAAAAAAgD8AAIA/AAAAAAAAAAAAAIA/", "byteLength": 84}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962},
+                        {"buffer": 0, "byteOffset": 36, "byteLength": 48, "target": 34962}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC4"}],
+        "materials": [{}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TANGENT": 1}, "material": 5}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "MESH_PRIMITIVE_TANGENT_WITHOUT_NORMAL",
+                "/meshes/0/primitives/0/attributes/TANGENT"
+            ),
+            ("UNRESOLVED_REFERENCE", "/meshes/0/primitives/0/material"),
+            (
+                "UNUSED_MESH_TANGENT",
+                "/meshes/0/primitives/0/attributes/TANGENT"
+            ),
+            ("UNUSED_OBJECT", "/materials/0"),
+        ])
+    );
+}
+
+#[test]
+fn an_empty_array_of_a_fixed_length_is_empty_and_read_as_absent() {
+    // Empty bounds, transforms and factors are EMPTY_ENTITY, not a wrong length; an empty
+    // translation beside a matrix is no translation (no NODE_MATRIX_TRS).
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [{"componentType": 5126, "count": 1, "type": "VEC3", "min": [], "max": []}],
+        "nodes": [{"translation": [], "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}, {"scale": []}],
+        "scenes": [{"nodes": [0, 1]}],
+        "materials": [{"emissiveFactor": [], "pbrMetallicRoughness": {"baseColorFactor": []}}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("EMPTY_ENTITY", "/accessors/0/max"),
+            ("EMPTY_ENTITY", "/accessors/0/min"),
+            ("EMPTY_ENTITY", "/materials/0/emissiveFactor"),
+            (
+                "EMPTY_ENTITY",
+                "/materials/0/pbrMetallicRoughness/baseColorFactor"
+            ),
+            ("EMPTY_ENTITY", "/nodes/0/translation"),
+            ("EMPTY_ENTITY", "/nodes/1/scale"),
+            ("NODE_EMPTY", "/nodes/0"),
+            ("NODE_EMPTY", "/nodes/1"),
+            ("NODE_MATRIX_DEFAULT", "/nodes/0/matrix"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("UNUSED_OBJECT", "/materials/0"),
+        ])
+    );
+}

@@ -323,6 +323,15 @@ struct AbsentMembers<'s> {
     out_of_range: HashSet<String>,
 }
 
+/// An empty array where the schema wants a fixed length above 1 (read as absent, as an array
+/// of a wrong length is).
+fn is_empty_fixed_length(diagnostic: &Diagnostic) -> bool {
+    diagnostic.code == khronos::EMPTY_ENTITY
+        && (diagnostic.pointer())
+            .and_then(|p| p.rsplit('/').next())
+            .is_some_and(is_fixed_length_array)
+}
+
 /// A finding about a value outside its range or list of values.
 fn is_value_finding(diagnostic: &Diagnostic) -> bool {
     matches!(
@@ -362,34 +371,43 @@ const KEPT_ELEMENT_BY_ELEMENT: &[&str] = &["/targets"];
 /// read from the schemas themselves, where no name is typed both integer and number.
 fn is_integer_member(name: &str) -> bool {
     static NAMES: OnceLock<HashSet<String>> = OnceLock::new();
-    let names = NAMES.get_or_init(|| {
-        let mut names = HashSet::new();
-        for text in std::iter::once(CORE).chain(EXTENSIONS.iter().map(|(_, text)| *text)) {
-            if let Ok(schema) = serde_json::from_str::<Value>(text) {
-                collect_integer_members(&schema, &mut names);
-            }
-        }
-        names
-    });
-    names.contains(name)
+    let integer =
+        |property: &Value| property.get("type").and_then(Value::as_str) == Some("integer");
+    NAMES.get_or_init(|| members_where(integer)).contains(name)
 }
 
-fn collect_integer_members(schema: &Value, names: &mut HashSet<String>) {
-    match schema {
-        Value::Object(members) => {
-            let properties = members.get("properties").and_then(Value::as_object);
-            for (name, property) in properties.into_iter().flatten() {
-                if property.get("type").and_then(Value::as_str) == Some("integer") {
-                    names.insert(name.clone());
+/// Whether the schemas make members named `name` arrays of a fixed length above 1
+/// (`translation`, `min`, `baseColorFactor`, …): an empty one is EMPTY_ENTITY to the validator.
+fn is_fixed_length_array(name: &str) -> bool {
+    static NAMES: OnceLock<HashSet<String>> = OnceLock::new();
+    let fixed = |property: &Value| property.get("minItems").and_then(Value::as_u64) > Some(1);
+    NAMES.get_or_init(|| members_where(fixed)).contains(name)
+}
+
+/// The names of the properties, anywhere in the embedded schemas, whose schema `holds`.
+fn members_where(holds: fn(&Value) -> bool) -> HashSet<String> {
+    fn collect(schema: &Value, holds: fn(&Value) -> bool, names: &mut HashSet<String>) {
+        match schema {
+            Value::Object(members) => {
+                let properties = members.get("properties").and_then(Value::as_object);
+                for (name, property) in properties.into_iter().flatten() {
+                    if holds(property) {
+                        names.insert(name.clone());
+                    }
                 }
+                members.values().for_each(|v| collect(v, holds, names));
             }
-            members
-                .values()
-                .for_each(|v| collect_integer_members(v, names));
+            Value::Array(items) => items.iter().for_each(|v| collect(v, holds, names)),
+            _ => {}
         }
-        Value::Array(items) => items.iter().for_each(|v| collect_integer_members(v, names)),
-        _ => {}
     }
+    let mut names = HashSet::new();
+    for text in std::iter::once(CORE).chain(EXTENSIONS.iter().map(|(_, text)| *text)) {
+        if let Ok(schema) = serde_json::from_str::<Value>(text) {
+            collect(&schema, holds, &mut names);
+        }
+    }
+    names
 }
 
 /// Schema findings held back at most (a file of 10^7 findings streams past them).
@@ -444,8 +462,11 @@ impl<'s> AbsentMembers<'s> {
         ) {
             return false;
         }
-        // The finding that made an integer absent stays (unless its parent is not read).
-        if self.out_of_range.contains(pointer) && is_value_finding(diagnostic) {
+        // The finding that made an integer or an empty fixed-length array absent stays
+        // (unless its parent is not read).
+        let made_absent = (self.out_of_range.contains(pointer) && is_value_finding(diagnostic))
+            || is_empty_fixed_length(diagnostic);
+        if made_absent {
             let parent = pointer.rsplit_once('/').map_or("", |(parent, _)| parent);
             return !parent.is_empty() && self.at_or_inside_absent(parent);
         }
@@ -486,7 +507,9 @@ impl Sink for AbsentMembers<'_> {
         if let Some(pointer) = member {
             self.out_of_range.insert(pointer.to_string());
         }
-        if diagnostic.code == khronos::ARRAY_LENGTH_NOT_IN_LIST {
+        if diagnostic.code == khronos::ARRAY_LENGTH_NOT_IN_LIST
+            || is_empty_fixed_length(&diagnostic)
+        {
             if let Some(pointer) = diagnostic.pointer() {
                 self.elements_unread.insert(pointer.to_string());
                 self.absent.insert(pointer.to_string());
@@ -644,6 +667,12 @@ fn map_error(
             ),
         ),
         K::MinItems { limit: 1 } | K::MinProperties { .. } => one(
+            khronos::EMPTY_ENTITY,
+            pointer.to_string(),
+            "Entity cannot be empty.".into(),
+        ),
+        // An empty array of a fixed length is empty to the validator, not of a wrong length.
+        K::MinItems { .. } if instance.as_array().is_some_and(Vec::is_empty) => one(
             khronos::EMPTY_ENTITY,
             pointer.to_string(),
             "Entity cannot be empty.".into(),

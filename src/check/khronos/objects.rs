@@ -134,6 +134,12 @@ pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
             };
             match (components, length) {
                 (None, _) => {}
+                // Empty bounds are empty to the validator, not of a wrong length.
+                (Some(_), Some(0)) => sink.push(Diagnostic::at(
+                    khronos::EMPTY_ENTITY,
+                    format!("/accessors/{i}/{key}"),
+                    "Entity cannot be empty.",
+                )),
                 (Some(n), Some(length)) if length != n => sink.push(Diagnostic::at(
                     khronos::ARRAY_LENGTH_NOT_IN_LIST,
                     format!("/accessors/{i}/{key}"),
@@ -299,7 +305,8 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
         if has("TANGENT") && !needs.needs_tangent {
             unused_tangent(ctx, pointer);
         }
-    } else if has("TANGENT") && primitive.get("material").is_none() {
+    } else if has("TANGENT") {
+        // No material, or one that does not resolve: nothing reads the tangents.
         unused_tangent(ctx, pointer);
     }
     let mapped = check_variant_mappings(ctx, primitive, pointer, variant_count);
