@@ -756,3 +756,32 @@ fn sparse_accessors_are_checked_and_their_values_applied() {
     }
     assert_eq!(count(&report, "ACCESSOR_SPARSE_INDICES_NON_INCREASING"), 2);
 }
+
+#[test]
+fn findings_below_the_lowest_kept_severity_are_counted_not_kept() {
+    // The human report lists no infos: 10^5 unused materials must not be held to be counted.
+    let n = 100_000;
+    let materials: Vec<_> = (0..n).map(|_| json!({})).collect();
+    let gltf = json!({"asset": {"version": "2.0"}, "materials": materials, "scene": 5});
+    let all = check(&gltf, &every_issue());
+    assert!(
+        all.count(gltfmat::Severity::Info) >= n,
+        "one UNUSED_OBJECT per material"
+    );
+    let lean = check(
+        &gltf,
+        &every_issue().with_lowest_kept(gltfmat::Severity::Warning),
+    );
+    for severity in gltfmat::Severity::ALL {
+        assert_eq!(lean.count(severity), all.count(severity), "{severity}");
+    }
+    assert!(!lean.truncated);
+    assert!(lean
+        .diagnostics
+        .iter()
+        .all(|d| d.severity <= gltfmat::Severity::Warning));
+    assert!(lean
+        .diagnostics
+        .iter()
+        .any(|d| d.code == "UNRESOLVED_REFERENCE"));
+}

@@ -1,7 +1,7 @@
 //! The findings of one check as they are made: the user's filters applied (ignore, only,
 //! severity overrides), every finding counted per severity, and, with `max_issues`, only the
 //! first N kept in report order (errors first, then by emission), so that a file with 10^6
-//! findings costs the memory of N.
+//! findings costs the memory of N; with `lowest_kept`, the less severe ones are only counted.
 
 use super::CheckOptions;
 use crate::diagnostic::{Diagnostic, Severity, Sink};
@@ -88,6 +88,9 @@ impl Sink for Collector<'_> {
             (self.options.severity_overrides.iter()).find(|(c, _)| c.eq_ignore_ascii_case(code));
         diagnostic.severity = overridden.map_or(diagnostic.code.default_severity(), |(_, s)| *s);
         self.counts[diagnostic.severity as usize] += 1;
+        if (self.options.lowest_kept).is_some_and(|lowest| diagnostic.severity > lowest) {
+            return;
+        }
         let ranked = Ranked(diagnostic, self.emitted);
         self.emitted += 1;
         let limit = self.options.max_issues;

@@ -47,6 +47,9 @@ pub struct CheckOptions {
     pub severity_overrides: HashMap<String, Severity>,
     /// Stop collecting after this many issues (0 = unlimited); sets `truncated`.
     pub max_issues: usize,
+    /// Findings less severe than this are counted but not kept (`None`: all kept). A report
+    /// that will not list infos and hints then holds none: 10^5 of them cost no memory.
+    pub lowest_kept: Option<Severity>,
     /// Decode textures for the pixel rules.
     pub deep: bool,
     /// Skip rule groups by name (e.g. "materials").
@@ -84,6 +87,12 @@ impl CheckOptions {
     /// These options keeping at most `max_issues` findings (0 = all).
     pub fn with_max_issues(mut self, max_issues: usize) -> Self {
         self.max_issues = max_issues;
+        self
+    }
+
+    /// These options keeping no finding less severe than `lowest` (all are still counted).
+    pub fn with_lowest_kept(mut self, lowest: Severity) -> Self {
+        self.lowest_kept = Some(lowest);
         self
     }
 }

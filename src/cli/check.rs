@@ -203,9 +203,19 @@ pub fn run(args: CheckArgs) -> Outcome {
                 .map(|(options, _)| options)
         })
         .collect::<Result<_, _>>()?;
+    // Infos and hints that the report will not list are only counted: 10^5 of them cost no
+    // memory.
+    let lists_all = args.format != FormatArg::Human || all_findings;
+    let options: Vec<Arc<CheckOptions>> = if lists_all {
+        options
+    } else {
+        let lean =
+            |o: &Arc<CheckOptions>| Arc::new((**o).clone().with_lowest_kept(Severity::Warning));
+        options.iter().map(lean).collect()
+    };
     let colour = args.format == FormatArg::Human && args.color.wanted();
     let style = Style::new(colour)
-        .with_all_findings(args.all_findings || all_findings)
+        .with_all_findings(all_findings)
         .with_list(walked_a_folder || args.inputs.len() > 1);
     let failed = Cell::new(false);
     let unreadable = Cell::new(unreadable);
