@@ -34,16 +34,18 @@ pub fn load_materials(
     }
 }
 
-/// A shader whose sheen table covers the materials (a 16² table only when one has sheen).
+/// A shader whose sheen table covers the materials (the standard table only when one has
+/// sheen).
 pub fn shader_for<'m>(materials: impl IntoIterator<Item = &'m MaterialSource>) -> Shader {
     let sheen = materials.into_iter().any(|m| match m {
         MaterialSource::Gltf2(prepared) => prepared.has_sheen,
         MaterialSource::Legacy { .. } => false,
     });
-    Shader::new(SheenTable::compute(
-        if sheen { 16 } else { 2 },
-        SheenVisibility::Charlie,
-    ))
+    Shader::new(if sheen {
+        SheenTable::standard()
+    } else {
+        SheenTable::compute(2, SheenVisibility::Charlie)
+    })
 }
 
 /// One compared pair of materials.

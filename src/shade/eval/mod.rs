@@ -5,4 +5,5 @@ pub(crate) mod elementary;
 pub(crate) mod lanes;
 pub mod material;
 pub(crate) mod quadrature;
+mod sheen_charlie16;
 pub mod sheen_table;

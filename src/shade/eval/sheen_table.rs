@@ -6,6 +6,7 @@
 
 use super::brdf::{sheen_lobe, Geometry, SheenVisibility};
 use super::quadrature::hemisphere;
+use super::sheen_charlie16;
 
 /// Quadrature nodes in cos θ and φ: within 3e−4 of a 512 × 256 rule over the whole table
 /// (and within 1e−3 of the published Conty-Kulla values, see the tests).
@@ -40,6 +41,21 @@ pub struct SheenTable {
 }
 
 impl SheenTable {
+    /// The side of the table the evaluator shades sheen with.
+    pub const STANDARD_SIZE: usize = 16;
+
+    /// The table the evaluator shades sheen with: [`STANDARD_SIZE`](Self::STANDARD_SIZE)²,
+    /// Charlie visibility, the values [`compute`](Self::compute) gives, stored rather than
+    /// computed again by every process.
+    pub fn standard() -> SheenTable {
+        SheenTable {
+            size: Self::STANDARD_SIZE,
+            visibility: SheenVisibility::Charlie,
+            values: sheen_charlie16::VALUES.to_vec(),
+            limit: sheen_charlie16::LIMIT.to_vec(),
+        }
+    }
+
     /// Computes the table by quadrature.
     pub fn compute(size: usize, visibility: SheenVisibility) -> SheenTable {
         let size = size.max(2);
@@ -170,6 +186,20 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn the_standard_table_is_exactly_what_the_quadrature_gives() {
+        let computed = SheenTable::compute(SheenTable::STANDARD_SIZE, SheenVisibility::Charlie);
+        let standard = SheenTable::standard();
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert!(
+            bits(&computed.values) == bits(&standard.values)
+                && bits(&computed.limit) == bits(&standard.limit),
+            "the lobe changed: paste these into sheen_charlie16.rs\nVALUES {:?}\nLIMIT {:?}",
+            computed.values,
+            computed.limit
+        );
     }
 
     #[test]
