@@ -54,5 +54,5 @@ pub use check::{check_bytes, check_path, CheckOptions, Profile, Report};
 pub use diagnostic::{Code, Diagnostic, Location, Severity};
 pub use document::uri::{FolderResources, MemoryResources, NoResources, ResourceLoader};
 pub use error::Error;
-pub use shade::pairing::{compare, render, CompareOptions, Outcome, RenderOptions};
+pub use shade::pairing::{compare, render, CompareOptions, Outcome, Picture, RenderOptions};
 pub use upgrade::{prove, upgrade, ProofError, UpgradeError, UpgradeOptions, Upgraded};

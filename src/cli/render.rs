@@ -34,15 +34,20 @@ pub fn run(args: RenderArgs) -> Outcome {
     options.material = args.material.clone();
     options.all = args.all;
     options.size = args.size;
-    let (image, drawn) = gltfmat::render(&args.asset, &options)?;
-    for (k, (i, name)) in drawn.iter().enumerate() {
+    let picture = gltfmat::render(&args.asset, &options)?;
+    for (k, (i, name)) in picture.drawn.iter().enumerate() {
+        let (row, column) = picture.layout.place(k);
+        outln!("cell {k} (row {row}, column {column}): material {i} '{name}'");
+    }
+    if picture.layout.cell < args.size {
         outln!(
-            "cell {k} (row {}, column {}): material {i} '{name}'",
-            k / 4,
-            k % 4
+            "cells drawn at {} pixels, not {}: a sheet holds at most {} pixels",
+            picture.layout.cell,
+            args.size,
+            gltfmat::shade::render::MAX_PIXELS
         );
     }
-    image
+    (picture.image)
         .save(&args.output)
         .map_err(|e| Failure::usage(format!("{}: {e}", args.output.display())))?;
     Ok(ExitCode::SUCCESS)

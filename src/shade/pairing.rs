@@ -6,7 +6,7 @@ use super::compare::{self as evaluate, Comparison};
 use super::legacy::{legacy_materials, LegacyMaterialsError};
 use super::load::gltf2_materials;
 use super::material::Shader;
-use super::render::{contact_sheet, material_ball};
+use super::render::{contact_sheet, material_ball, SheetLayout, MAX_PIXELS};
 use super::sample::MaterialSource;
 use super::sheen_table::SheenTable;
 use crate::document::uri::{FolderResources, ResourceLoader};
@@ -189,7 +189,7 @@ pub fn materials_of(path: &Path) -> Result<Vec<Named>, Error> {
 pub struct RenderOptions {
     /// A material index or name; `None`: the first.
     pub material: Option<String>,
-    /// Every material on one contact sheet (four to a row).
+    /// Every material on one contact sheet (four to a row, or a near-square grid past 16).
     pub all: bool,
     /// Pixels per side (per material with `all`), clamped to 8–4096.
     pub size: u32,
@@ -205,12 +205,21 @@ impl Default for RenderOptions {
     }
 }
 
-/// Renders a material ball (or a contact sheet of every material) of an asset; returns the
-/// picture and the `(index, name)` of each material drawn, in cell order.
-pub fn render(
-    path: impl AsRef<Path>,
-    options: &RenderOptions,
-) -> Result<(RgbImage, Vec<(usize, String)>), Error> {
+/// A rendered picture.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct Picture {
+    /// The ball, or the contact sheet.
+    pub image: RgbImage,
+    /// The `(index, name)` of each material drawn, in cell order.
+    pub drawn: Vec<(usize, String)>,
+    /// Where the cells are (one cell for a single ball); its cell may be smaller than the
+    /// size asked for, when the sheet would pass [`MAX_PIXELS`].
+    pub layout: SheetLayout,
+}
+
+/// Renders a material ball (or a contact sheet of every material) of an asset.
+pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture, Error> {
     let path = path.as_ref();
     let materials = materials_of(path)?;
     let chosen: Vec<(usize, &String, &MaterialSource)> = materials
@@ -223,25 +232,36 @@ pub fn render(
         })
         .take(if options.all { usize::MAX } else { 1 })
         .collect();
+    let unusable = |reason: String| Error::Unusable {
+        path: path.to_path_buf(),
+        reason,
+    };
     let Some(first) = chosen.first() else {
-        return Err(Error::Unusable {
-            path: path.to_path_buf(),
-            reason: "no such material to render".into(),
-        });
+        return Err(unusable("no such material to render".into()));
     };
     let shader = shader_for(chosen.iter().map(|(_, _, m)| *m));
     let size = options.size.clamp(8, 4096);
+    let layout = SheetLayout::new(chosen.len(), size).ok_or_else(|| {
+        unusable(format!(
+            "{} materials do not fit one sheet of {MAX_PIXELS} pixels even at 8 pixels each: render them one at a time (--material)",
+            chosen.len()
+        ))
+    })?;
     let image = if options.all {
         let named: Vec<(&str, &MaterialSource)> = chosen
             .iter()
             .map(|(_, name, m)| (name.as_str(), *m))
             .collect();
-        contact_sheet(&shader, &named, size)
+        contact_sheet(&shader, &named, layout)
     } else {
         material_ball(&shader, first.2, size)
     };
     let drawn = chosen.iter().map(|(i, n, _)| (*i, (*n).clone())).collect();
-    Ok((image, drawn))
+    Ok(Picture {
+        image,
+        drawn,
+        layout,
+    })
 }
 
 #[cfg(test)]

@@ -247,20 +247,64 @@ fn ball_with_sky(
     image
 }
 
-/// Every material's ball side by side, in rows of up to four, in material order, each with
-/// its name written under it.
+/// The most pixels a picture has: one ball of the largest size. A contact sheet shrinks its
+/// cells to stay within it, so that its time and memory do not grow with the number of
+/// materials times the size asked for.
+pub const MAX_PIXELS: u64 = 4096 * 4096;
+
+/// The smallest cell a contact sheet draws.
+const MIN_CELL: u32 = 8;
+
+/// Where a contact sheet puts its cells.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SheetLayout {
+    /// Cells per row.
+    pub columns: u32,
+    /// Rows of cells.
+    pub rows: u32,
+    /// Pixels per side of a cell.
+    pub cell: u32,
+}
+
+impl SheetLayout {
+    /// Up to four cells to a row for up to 16 materials, else a near-square grid; cells of
+    /// `size` pixels, or fewer when the sheet would pass [`MAX_PIXELS`]. `None` when not even
+    /// cells of 8 pixels fit.
+    pub fn new(materials: usize, size: u32) -> Option<SheetLayout> {
+        let n = materials.max(1) as u64;
+        let columns = n.min(4).max(n.isqrt() + u64::from(n.isqrt().pow(2) < n));
+        let rows = n.div_ceil(columns);
+        let fitting = (columns.checked_mul(rows)).map_or(0, |cells| (MAX_PIXELS / cells).isqrt());
+        let cell = u64::from(size).min(fitting);
+        (cell >= u64::from(MIN_CELL)).then_some(SheetLayout {
+            columns: columns as u32,
+            rows: rows as u32,
+            cell: cell as u32,
+        })
+    }
+
+    /// The (row, column) of cell `k`.
+    pub fn place(&self, k: usize) -> (u32, u32) {
+        let columns = self.columns as usize;
+        ((k / columns) as u32, (k % columns) as u32)
+    }
+}
+
+/// Every material's ball on one sheet laid out by `layout`, in material order, each with its
+/// name written under it.
 pub fn contact_sheet(
     shader: &Shader,
     materials: &[(&str, &MaterialSource)],
-    cell: u32,
+    layout: SheetLayout,
 ) -> RgbImage {
-    let columns = (materials.len() as u32).clamp(1, 4);
-    let rows = (materials.len() as u32).div_ceil(columns).max(1);
-    let mut sheet = RgbImage::from_pixel(columns * cell, rows * cell, Rgb(BACKGROUND));
+    let cell = layout.cell;
+    let (width, height) = (layout.columns * cell, layout.rows * cell);
+    let mut sheet = RgbImage::from_pixel(width, height, Rgb(BACKGROUND));
     let scale = (cell / 96).max(1);
     for (i, (name, material)) in materials.iter().enumerate() {
         let ball = material_ball(shader, material, cell);
-        let (cx, cy) = ((i as u32 % columns) * cell, (i as u32 / columns) * cell);
+        let (row, column) = layout.place(i);
+        let (cx, cy) = (column * cell, row * cell);
         for (x, y, p) in ball.enumerate_pixels() {
             sheet.put_pixel(cx + x, cy + y, *p);
         }
@@ -302,6 +346,36 @@ mod tests {
     use super::*;
     use crate::shade::brdf::SheenVisibility;
     use crate::shade::sheen_table::SheenTable;
+
+    #[test]
+    fn a_sheet_of_up_to_sixteen_has_four_to_a_row_then_grows_square() {
+        let layout = |n| SheetLayout::new(n, 64).unwrap();
+        assert_eq!((layout(1).columns, layout(1).rows), (1, 1));
+        assert_eq!((layout(3).columns, layout(3).rows), (3, 1));
+        assert_eq!((layout(6).columns, layout(6).rows), (4, 2));
+        assert_eq!((layout(16).columns, layout(16).rows), (4, 4));
+        assert_eq!((layout(17).columns, layout(17).rows), (5, 4));
+        assert_eq!((layout(10_000).columns, layout(10_000).rows), (100, 100));
+        assert_eq!(layout(6).place(5), (1, 1));
+        assert_eq!(layout(6).cell, 64);
+    }
+
+    #[test]
+    fn a_sheet_shrinks_its_cells_to_its_pixel_limit_and_refuses_past_the_smallest_cell() {
+        for (n, size) in [(100, 4096), (100_000, 64), (262_144, 8)] {
+            let layout = SheetLayout::new(n, size).unwrap();
+            let (width, height) = (layout.columns * layout.cell, layout.rows * layout.cell);
+            assert!(
+                u64::from(width) * u64::from(height) <= MAX_PIXELS,
+                "{n}: {layout:?}"
+            );
+            assert!(layout.columns as usize * layout.rows as usize >= n);
+            assert!(layout.cell >= MIN_CELL && layout.cell < size || n == 262_144);
+        }
+        assert_eq!(SheetLayout::new(100, 4096).unwrap().cell, 409);
+        assert_eq!(SheetLayout::new(262_145, 8), None);
+        assert_eq!(SheetLayout::new(usize::MAX, 4096), None);
+    }
 
     /// Root-mean-square difference, in 8-bit levels, between a ball as `render` draws it and
     /// the same ball with 16 times as many sky samples: the sampling noise, apart from the
