@@ -1025,3 +1025,28 @@ fn an_empty_array_of_a_fixed_length_is_empty_and_read_as_absent() {
         ])
     );
 }
+
+#[test]
+fn a_backslash_in_a_uri_separates_folders_and_an_escaped_one_is_part_of_the_name() {
+    // Assets written on Windows name `Textures\a.bin`; browsers and the validator read the
+    // backslash as `/`, and `%5C` as a backslash in the file's name.
+    let folder = std::env::temp_dir().join(format!("gltfmat-backslash-{}", std::process::id()));
+    std::fs::create_dir_all(folder.join("Textures")).unwrap();
+    std::fs::write(folder.join("Textures/a.bin"), [0u8; 4]).unwrap();
+    let asset = folder.join("b.gltf");
+    let document = json!({"asset": {"version": "2.0"}, "buffers": [
+        {"uri": "Textures\\a.bin", "byteLength": 4},
+        {"uri": "Textures%5Ca.bin", "byteLength": 4}]});
+    std::fs::write(&asset, serde_json::to_vec(&document).unwrap()).unwrap();
+    let options = CheckOptions::default().with_profile(Profile::Khronos);
+    let findings = sorted_findings(&gltfmat::check::check_path(&asset, &options).unwrap());
+    std::fs::remove_dir_all(&folder).unwrap();
+    assert_eq!(
+        findings,
+        expected(&[
+            ("IO_ERROR", "/buffers/1/uri"),
+            ("UNUSED_OBJECT", "/buffers/0"),
+            ("UNUSED_OBJECT", "/buffers/1"),
+        ])
+    );
+}

@@ -16,7 +16,7 @@ pub enum UriKind {
         /// The decoded data.
         bytes: Vec<u8>,
     },
-    /// A relative reference, percent-decoded.
+    /// A relative reference, `\` read as `/`, then percent-decoded.
     Relative(String),
     /// Has a scheme (http, https, file, …): never read.
     NonRelative,
@@ -53,7 +53,10 @@ pub fn classify(uri: &str) -> Result<UriKind, String> {
         return Ok(UriKind::AbsolutePath);
     }
     let path = uri.split(['?', '#']).next().unwrap_or_default();
-    percent_decode(path).map(UriKind::Relative)
+    // A backslash separates folders, as browsers (the WHATWG URL parser) and the Khronos
+    // validator read it: assets written on Windows name `Textures\a.png`. An escaped one
+    // (`%5C`) stays a character of the name.
+    percent_decode(&path.replace('\\', "/")).map(UriKind::Relative)
 }
 
 fn parse_data(rest: &str) -> Result<UriKind, String> {
@@ -326,6 +329,16 @@ mod tests {
         assert_eq!(
             classify("a%20b.bin").unwrap(),
             UriKind::Relative("a b.bin".into())
+        );
+        assert_eq!(
+            classify("Textures\\a.png").unwrap(),
+            UriKind::Relative("Textures/a.png".into()),
+            "a backslash separates folders, as browsers read it"
+        );
+        assert_eq!(
+            classify("Textures%5Ca.png").unwrap(),
+            UriKind::Relative("Textures\\a.png".into()),
+            "an escaped one is part of the name"
         );
         assert!(classify(":").is_err());
     }
