@@ -785,3 +785,33 @@ fn findings_below_the_lowest_kept_severity_are_counted_not_kept() {
         .iter()
         .any(|d| d.code == "UNRESOLVED_REFERENCE"));
 }
+
+#[test]
+fn data_findings_past_those_kept_per_accessor_are_still_counted() {
+    // 12 000 zero normals: each is ACCESSOR_VECTOR3_NON_UNIT. One walk lists at most 10 000; the
+    // report still counts every one, and the last listed says how many more there are.
+    let n = 12_000;
+    let data = base64::engine::general_purpose::STANDARD.encode(vec![0u8; 12 * n]);
+    let gltf = json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": format!("data:application/octet-stream;base64,{data}"), "byteLength": 12 * n}],
+        "bufferViews": [{"buffer": 0, "byteLength": 12 * n, "target": 34962},
+            {"buffer": 0, "byteLength": 12 * n, "target": 34962}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": n, "type": "VEC3"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "mode": 0}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0});
+    let report = check(&gltf, &every_issue());
+    assert_eq!(count(&report, "ACCESSOR_VECTOR3_NON_UNIT"), 10_000);
+    assert_eq!(report.count(gltfmat::Severity::Error), n);
+    let last = (report.diagnostics.iter())
+        .rfind(|d| d.code == "ACCESSOR_VECTOR3_NON_UNIT")
+        .unwrap();
+    assert!(
+        last.message
+            .ends_with("(2000 more findings here are not listed.)"),
+        "{}",
+        last.message
+    );
+}

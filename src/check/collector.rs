@@ -77,16 +77,34 @@ impl<'o> Collector<'o> {
     }
 }
 
-impl Sink for Collector<'_> {
-    fn push(&mut self, mut diagnostic: Diagnostic) {
+impl Collector<'_> {
+    /// The severity a finding is reported with, or `None` when the user's filters drop it.
+    /// The one place a finding's severity is decided: the user's override, else its code's.
+    fn severity(&self, diagnostic: &Diagnostic) -> Option<Severity> {
         let code = diagnostic.code.name();
         if !self.wanted(code) {
-            return;
+            return None;
         }
-        // The one place a finding's severity is decided: the user's override, else its code's.
         let overridden =
             (self.options.severity_overrides.iter()).find(|(c, _)| c.eq_ignore_ascii_case(code));
-        diagnostic.severity = overridden.map_or(diagnostic.code.default_severity(), |(_, s)| *s);
+        Some(overridden.map_or(diagnostic.code.default_severity(), |(_, s)| *s))
+    }
+
+    /// Counts `n` findings like `diagnostic` that are not listed.
+    pub fn count_unlisted(&mut self, diagnostic: &Diagnostic, n: u64) {
+        if let Some(severity) = self.severity(diagnostic) {
+            let count = &mut self.counts[severity as usize];
+            *count = count.saturating_add(usize::try_from(n).unwrap_or(usize::MAX));
+        }
+    }
+}
+
+impl Sink for Collector<'_> {
+    fn push(&mut self, mut diagnostic: Diagnostic) {
+        let Some(severity) = self.severity(&diagnostic) else {
+            return;
+        };
+        diagnostic.severity = severity;
         self.counts[diagnostic.severity as usize] += 1;
         if (self.options.lowest_kept).is_some_and(|lowest| diagnostic.severity > lowest) {
             return;

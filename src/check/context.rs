@@ -158,6 +158,15 @@ impl<'a> Context<'a> {
         }
     }
 
+    /// Counts `n` findings of `code` at `pointer` that a pass does not list (it keeps a
+    /// bounded number of one walk's findings): the report's counts stay complete.
+    pub fn count_unlisted(&mut self, code: Code, pointer: impl Into<String>, n: u64) {
+        let found = Diagnostic::at(code, pointer, String::new());
+        if let Some(reported) = self.reporting.report(self, found) {
+            self.diagnostics.count_unlisted(&reported, n);
+        }
+    }
+
     /// The elements of a top-level array, or nothing when it is missing or not an array.
     pub fn items(&self, collection: &str) -> &'a [Value] {
         self.root

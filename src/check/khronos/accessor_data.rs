@@ -3,7 +3,7 @@
 //! bounds, animation inputs…, see `accessor_usage`): the Khronos ACCESSOR_* data codes.
 
 use super::accessor_fast::{self, Layout};
-use super::accessor_usage::{self, Checker, Finding, Findings};
+use super::accessor_usage::{self, Checker, Findings};
 use super::resources::view_bytes;
 use crate::check::context::{unsigned, Context};
 use crate::diagnostic::khronos;
@@ -147,9 +147,9 @@ pub fn check(ctx: &mut Context) {
             })
         })
         .collect();
-    let findings: Vec<Vec<Finding>> = work.par_iter_mut().map(scan).collect();
-    for (code, pointer, message) in findings.into_iter().flatten() {
-        ctx.emit(code, pointer, message);
+    let findings: Vec<Findings> = work.par_iter_mut().map(scan).collect();
+    for found in findings {
+        found.report(ctx);
     }
 }
 
@@ -250,7 +250,7 @@ fn substituted(ctx: &Context, accessor: &Value) -> Option<(Layout, Vec<u8>)> {
 }
 
 /// Every finding of one accessor, from a single walk over its elements.
-fn scan(work: &mut Work) -> Vec<Finding> {
+fn scan(work: &mut Work) -> Findings {
     let Work {
         pointer,
         layout,
@@ -270,7 +270,7 @@ fn scan(work: &mut Work) -> Vec<Finding> {
         for checker in checkers.iter() {
             checker.finish(layout.count, &mut findings);
         }
-        return findings.into_vec();
+        return findings;
     }
     let n = layout.components;
     let unit = unit_scale(layout.component_type, accessor);
@@ -312,7 +312,7 @@ fn scan(work: &mut Work) -> Vec<Finding> {
     for checker in checkers.iter() {
         checker.finish(layout.count * n, &mut findings);
     }
-    findings.into_vec()
+    findings
 }
 
 /// The rare second walk of an accessor holding NaN or infinities: reports each and takes

@@ -23,32 +23,45 @@ pub(super) const UNIT_TOLERANCE_VEC4: f64 = 0.00769;
 pub(super) type Finding = (Code, String, String);
 
 /// At most this many findings are kept per accessor (or skinned primitive): a corrupt
-/// buffer of millions of elements must not turn into millions of diagnostics in memory.
-const KEPT_FINDINGS: usize = 1000;
+/// buffer of millions of elements must not turn into millions of diagnostics in memory. The
+/// rest are still counted. Real assets stay below it (an exporter's 10^3 slightly
+/// non-normalised weights are all listed, as the Khronos validator lists them).
+const KEPT_FINDINGS: usize = 10_000;
 
 /// The findings of one walk, bounded by [`KEPT_FINDINGS`].
 #[derive(Default)]
 pub(super) struct Findings {
     kept: Vec<Finding>,
-    dropped: u64,
+    /// Per code, the place of the first finding not kept and how many were not.
+    dropped: Vec<(Code, String, u64)>,
 }
 
 impl Findings {
     pub(super) fn push(&mut self, finding: Finding) {
         if self.kept.len() < KEPT_FINDINGS {
             self.kept.push(finding);
-        } else {
-            self.dropped += 1;
+            return;
+        }
+        let (code, pointer, _) = finding;
+        match self.dropped.iter_mut().find(|(c, ..)| *c == code) {
+            Some((.., n)) => *n += 1,
+            None => self.dropped.push((code, pointer, 1)),
         }
     }
 
-    /// The kept findings; the last one says how many more were not listed.
-    pub(super) fn into_vec(mut self) -> Vec<Finding> {
-        if let Some(last) = self.kept.last_mut().filter(|_| self.dropped > 0) {
-            let more = self.dropped;
+    /// Reports the kept findings, the last one saying how many more were not listed, and
+    /// counts those.
+    pub(super) fn report(mut self, ctx: &mut Context) {
+        let more: u64 = self.dropped.iter().map(|(.., n)| n).sum();
+        if let Some(last) = self.kept.last_mut().filter(|_| more > 0) {
             last.2 += &format!(" ({more} more findings here are not listed.)");
         }
-        self.kept
+        for (code, pointer, message) in self.kept {
+            ctx.emit(code, pointer, message);
+        }
+        for (code, pointer, n) in self.dropped {
+            ctx.count_unlisted(code, pointer, n);
+        }
     }
 }
 

@@ -10,7 +10,7 @@ use serde_json::Value;
 use std::collections::HashMap;
 
 pub fn check(ctx: &mut Context) {
-    let mut findings = Vec::new();
+    let mut findings: Vec<Findings> = Vec::new();
     let limits = limiting_skins(ctx);
     for (m, pointer, mesh) in ctx.objects("meshes") {
         let Some(&(max_joint, skin)) = limits.get(&m) else {
@@ -22,12 +22,12 @@ pub fn check(ctx: &mut Context) {
                 let limit = JointLimit { max_joint, skin };
                 let mut found = Findings::default();
                 check_primitive(&sets, &at, limit, &mut found);
-                findings.extend(found.into_vec());
+                findings.push(found);
             }
         }
     }
-    for (code, pointer, message) in findings {
-        ctx.emit(code, pointer, message);
+    for found in findings {
+        found.report(ctx);
     }
 }
 
