@@ -1050,3 +1050,42 @@ fn a_backslash_in_a_uri_separates_folders_and_an_escaped_one_is_part_of_the_name
         ])
     );
 }
+
+/// Four vertices drawn as triangles, with `indices` as given (none when `Value::Null`);
+/// accessor 1 is an index accessor without a count.
+fn four_vertices_indexed_by(indices: Value) -> Value {
+    let data = format!("data:application/octet-stream;base64,{}", "A".repeat(64));
+    let mut primitive = json!({"attributes": {"POSITION": 0}});
+    if !indices.is_null() {
+        primitive["indices"] = indices;
+    }
+    json!({"asset": {"version": "2.0"}, "buffers": [{"uri": data, "byteLength": 48}],
+        "bufferViews": [{"buffer": 0, "byteLength": 48}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]},
+            {"bufferView": 0, "componentType": 5123, "type": "SCALAR"}],
+        "meshes": [{"primitives": [primitive]}]})
+}
+
+#[test]
+fn the_mode_is_checked_against_the_indices_count_when_they_resolve_else_the_vertex_count() {
+    let incompatible = |indices: Value| {
+        khronos_findings(four_vertices_indexed_by(indices)).contains(&(
+            "MESH_PRIMITIVE_INCOMPATIBLE_MODE".into(),
+            "/meshes/0/primitives/0".into(),
+        ))
+    };
+    assert!(incompatible(Value::Null), "4 vertices are no triangles");
+    assert!(
+        incompatible(json!(99)),
+        "unresolved indices: the vertices count"
+    );
+    assert!(
+        incompatible(json!("x")),
+        "indices of the wrong type: the vertices count"
+    );
+    assert!(
+        !incompatible(json!(1)),
+        "indices without a count: nothing to compare"
+    );
+}

@@ -244,8 +244,10 @@ impl<'a> Walk<'_, 'a> {
             self.names(attributes, &member(pointer, "attributes"));
         }
         let vertex_count = self.attributes(attributes, pointer);
-        let index_count = self.indices(primitive, pointer);
-        self.mode(primitive, pointer, index_count.or(vertex_count));
+        // Drawn by its indices when they resolve (an index accessor without a count is not
+        // checked against the mode, as the Khronos validator does not), else by its vertices.
+        let drawn_count = self.indices(primitive, pointer).unwrap_or(vertex_count);
+        self.mode(primitive, pointer, drawn_count);
         for (t, target) in morph_targets(primitive).into_iter().flatten().enumerate() {
             let at = format!("{pointer}/targets/{t}");
             if let Some(target) = target.as_object() {
@@ -389,8 +391,8 @@ impl<'a> Walk<'_, 'a> {
         }
     }
 
-    /// Returns the index count.
-    fn indices(&mut self, primitive: &'a Value, pointer: &str) -> Option<u64> {
+    /// Returns the index accessor's count, when `indices` resolves to one.
+    fn indices(&mut self, primitive: &'a Value, pointer: &str) -> Option<Option<u64>> {
         let value = primitive.get("indices")?;
         let accessor = self.accessor(value)?;
         let at = member(pointer, "indices");
@@ -415,7 +417,7 @@ impl<'a> Walk<'_, 'a> {
                 "Invalid indices accessor format. Must be one of SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT.",
             );
         }
-        unsigned(accessor, "count")
+        Some(unsigned(accessor, "count"))
     }
 
     /// The vertex or index count must suit the draw mode.
