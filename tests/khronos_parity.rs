@@ -1089,3 +1089,29 @@ fn the_mode_is_checked_against_the_indices_count_when_they_resolve_else_the_vert
         "indices without a count: nothing to compare"
     );
 }
+
+#[test]
+fn a_buffer_file_without_a_byte_length_is_not_read_but_a_data_uri_is() {
+    // Buffer 0 holds a vertex at the origin but the accessor's max says 5; buffer 1 names a
+    // file that does not exist. Without byteLength the file is not read (no IO_ERROR); the
+    // data URI is, and its data checked.
+    let data = format!("data:application/octet-stream;base64,{}", "A".repeat(16));
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": data}, {"uri": "missing.bin"}],
+        "bufferViews": [{"buffer": 0, "byteLength": 12, "target": 34962}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 1, "type": "VEC3",
+            "min": [0, 0, 0], "max": [5, 5, 5]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": 0}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ACCESSOR_MAX_MISMATCH", "/accessors/0/max/0"),
+            ("ACCESSOR_MAX_MISMATCH", "/accessors/0/max/1"),
+            ("ACCESSOR_MAX_MISMATCH", "/accessors/0/max/2"),
+            ("UNDEFINED_PROPERTY", "/buffers/0"),
+            ("UNDEFINED_PROPERTY", "/buffers/1"),
+            ("UNUSED_OBJECT", "/buffers/1"),
+        ])
+    );
+}

@@ -116,6 +116,11 @@ pub fn check_buffers(ctx: &mut Context) {
     for (i, pointer, buffer) in ctx.objects("buffers") {
         let declared = unsigned(buffer, "byteLength");
         let (data, storage, uri) = match buffer.get("uri").and_then(Value::as_str) {
+            // Without a declared length an external file is not read and the GLB chunk not
+            // attached (a data URI is still decoded and used), as the Khronos validator reads it.
+            Some(uri) if declared.is_none() && !uri.starts_with("data:") => {
+                (None, "external", Some(uri.to_string()))
+            }
             Some(uri) => {
                 let uri_pointer = member(&pointer, "uri");
                 let (data, media_type, storage) = load_uri(ctx, uri, &uri_pointer);
@@ -154,7 +159,7 @@ pub fn check_buffers(ctx: &mut Context) {
                         );
                     }
                 }
-                (Some(BufferData::Glb(bin)), "glb", None)
+                (declared.map(|_| BufferData::Glb(bin)), "glb", None)
             }
             None => (None, "buffer", None),
         };
