@@ -1115,3 +1115,19 @@ fn a_buffer_file_without_a_byte_length_is_not_read_but_a_data_uri_is() {
         ])
     );
 }
+
+#[test]
+fn an_image_defines_exactly_one_of_uri_and_buffer_view_as_read() {
+    // A member of the wrong type is absent: `uri: 5` alone defines neither, and beside a
+    // valid bufferView (or a valid uri beside a wrong bufferView) exactly one.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "images": [{"uri": 5}, {"uri": "data:image/png;base64,", "bufferView": "x"},
+            {"uri": 7, "bufferView": 0, "mimeType": "image/png"}, {}],
+        "bufferViews": [{"buffer": 0, "byteLength": 4}],
+        "buffers": [{"byteLength": 4, "uri": "data:application/octet-stream;base64,AAAAAA=="}]}));
+    let one_of: Vec<_> = (found.iter())
+        .filter(|(code, _)| code == "ONE_OF_MISMATCH")
+        .map(|(_, pointer)| pointer.as_str())
+        .collect();
+    assert_eq!(one_of, ["/images/0", "/images/3"]);
+}

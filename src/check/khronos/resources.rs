@@ -305,6 +305,19 @@ pub fn check_images(ctx: &mut Context) {
     ctx.image_bytes = ctx.items("images").iter().map(|_| None).collect();
     let webp_enabled = ctx.uses_extension("EXT_texture_webp");
     for (i, pointer, image) in ctx.objects("images") {
+        // Counted on the members as read: one of the wrong type is absent, so `{"uri": 5}`
+        // defines neither and `{"uri": 5, "bufferView": 0}` one (the schema's `oneOf` would
+        // count what is written).
+        let defined = ["uri", "bufferView"]
+            .iter()
+            .filter(|m| image.get(**m).is_some());
+        if defined.count() != 1 {
+            ctx.emit(
+                khronos::ONE_OF_MISMATCH,
+                pointer.clone(),
+                "Exactly one of ('uri', 'bufferView') properties must be defined.",
+            );
+        }
         let mime_type = image.get("mimeType").and_then(Value::as_str);
         if let Some(m) = mime_type {
             let allowed =
