@@ -1131,3 +1131,24 @@ fn an_image_defines_exactly_one_of_uri_and_buffer_view_as_read() {
         .collect();
     assert_eq!(one_of, ["/images/0", "/images/3"]);
 }
+
+#[test]
+fn bounds_an_integer_component_type_cannot_hold_are_reported_and_not_read() {
+    // Two UNSIGNED_SHORT elements at 0: min -1 and 0.5 cannot be such values, max 70000
+    // neither; each is reported at its array, and no bound is compared with the data.
+    let data = format!("data:application/octet-stream;base64,{}", "A".repeat(8));
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": data, "byteLength": 6}],
+        "bufferViews": [{"buffer": 0, "byteLength": 4}],
+        "accessors": [{"bufferView": 0, "componentType": 5123, "count": 1, "type": "VEC2",
+            "min": [-1, 0.5], "max": [70000, 0]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_TYPE_MISMATCH", "/accessors/0/min"),
+            ("INVALID_GL_VALUE", "/accessors/0/max"),
+            ("INVALID_GL_VALUE", "/accessors/0/min"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+        ])
+    );
+}

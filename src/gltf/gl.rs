@@ -8,6 +8,19 @@ pub const UNSIGNED_SHORT: u64 = 5123;
 pub const UNSIGNED_INT: u64 = 5125;
 pub const FLOAT: u64 = 5126;
 
+/// The name and the range of values of an integer component type (`None` for FLOAT and
+/// for what is no component type).
+pub fn integer_range(component_type: u64) -> Option<(&'static str, f64, f64)> {
+    match component_type {
+        BYTE => Some(("BYTE", -128.0, 127.0)),
+        UNSIGNED_BYTE => Some(("UNSIGNED_BYTE", 0.0, 255.0)),
+        SHORT => Some(("SHORT", -32768.0, 32767.0)),
+        UNSIGNED_SHORT => Some(("UNSIGNED_SHORT", 0.0, 65535.0)),
+        UNSIGNED_INT => Some(("UNSIGNED_INT", 0.0, 4294967295.0)),
+        _ => None,
+    }
+}
+
 /// `bufferView.target` values.
 pub const ARRAY_BUFFER: u64 = 34962;
 pub const ELEMENT_ARRAY_BUFFER: u64 = 34963;

@@ -145,11 +145,57 @@ pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
                     format!("/accessors/{i}/{key}"),
                     format!("Invalid array length {length}. Valid lengths are: ({n})."),
                 )),
+                _ if !holds_its_component_type(accessor, key, i, sink) => {}
                 _ => continue,
             }
             accessor.shift_remove(key);
         }
     }
+}
+
+/// Whether every number of an integer accessor's `min` or `max` (`key`) is an integer its
+/// component type can hold; each that is not is reported (ARRAY_TYPE_MISMATCH,
+/// INVALID_GL_VALUE) and the Khronos validator then does not read the array. Elements that
+/// are no number are the schema's to report.
+fn holds_its_component_type(
+    accessor: &serde_json::Map<String, Value>,
+    key: &str,
+    i: usize,
+    sink: &mut dyn Sink,
+) -> bool {
+    let component_type = accessor.get("componentType").and_then(Value::as_u64);
+    let Some((name, lowest, highest)) = component_type.and_then(gl::integer_range) else {
+        return true;
+    };
+    let numbers = (accessor
+        .get(key)
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten())
+    .filter_map(|v| Some((v, v.as_f64()?)));
+    let mut holds = true;
+    for (value, number) in numbers {
+        let (code, message) = if number.fract() != 0.0 {
+            (
+                khronos::ARRAY_TYPE_MISMATCH,
+                format!("Type mismatch. Array element {value} is not a 'integer'."),
+            )
+        } else if !(lowest..=highest).contains(&number) {
+            (
+                khronos::INVALID_GL_VALUE,
+                format!("Invalid value {value} for GL type '{name}'."),
+            )
+        } else {
+            continue;
+        };
+        sink.push(Diagnostic::at(
+            code,
+            format!("/accessors/{i}/{key}"),
+            message,
+        ));
+        holds = false;
+    }
+    holds
 }
 
 /// What an accessor's own members must agree on, whatever its bufferView.
