@@ -1152,3 +1152,25 @@ fn bounds_an_integer_component_type_cannot_hold_are_reported_and_not_read() {
         ])
     );
 }
+
+#[test]
+fn a_negative_index_member_is_read_as_absent_but_a_negative_element_stays() {
+    // bufferView -1 is INVALID_INDEX and then absent: the byteOffset depends on nothing.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [{"bufferView": -1, "byteOffset": 0, "componentType": 5126, "count": 4, "type": "SCALAR"}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("INVALID_INDEX", "/accessors/0/bufferView"),
+            ("UNSATISFIED_DEPENDENCY", "/accessors/0/byteOffset"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+        ])
+    );
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "scenes": [{"nodes": [-1, 0]}], "nodes": [{}]}));
+    assert!(found.contains(&("INVALID_INDEX".into(), "/scenes/0/nodes/0".into())));
+    assert!(
+        !found.iter().any(|(code, _)| code == "UNUSED_OBJECT"),
+        "node 0 is still in the scene: {found:?}"
+    );
+}

@@ -336,7 +336,7 @@ fn is_empty_fixed_length(diagnostic: &Diagnostic) -> bool {
 fn is_value_finding(diagnostic: &Diagnostic) -> bool {
     matches!(
         diagnostic.code,
-        khronos::VALUE_NOT_IN_RANGE | khronos::VALUE_NOT_IN_LIST
+        khronos::VALUE_NOT_IN_RANGE | khronos::VALUE_NOT_IN_LIST | khronos::INVALID_INDEX
     )
 }
 
@@ -499,7 +499,12 @@ impl Sink for AbsentMembers<'_> {
         // list is still present: an alphaCutoff of -1 still needs MASK.) Only a member is
         // named so: an array's element (its last token a number) stays, as the validator
         // keeps the array.
-        let integer = |p: &&str| p.rsplit('/').next().is_some_and(is_integer_member);
+        // (A negative index, INVALID_INDEX, is such a member whatever its schema spells.)
+        let integer = |p: &&str| {
+            let name = p.rsplit('/').next().unwrap_or_default();
+            is_integer_member(name)
+                || diagnostic.code == khronos::INVALID_INDEX && name.parse::<u64>().is_err()
+        };
         let member = Some(&diagnostic)
             .filter(|d| is_value_finding(d))
             .and_then(Diagnostic::pointer)
