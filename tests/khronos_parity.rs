@@ -1174,3 +1174,17 @@ fn a_negative_index_member_is_read_as_absent_but_a_negative_element_stays() {
         "node 0 is still in the scene: {found:?}"
     );
 }
+
+#[test]
+fn empty_bounds_of_an_integer_accessor_are_of_a_wrong_length_not_empty() {
+    // The validator reads integer bounds as a list of integers first: [] has length 0.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [{"componentType": 5123, "count": 1, "type": "SCALAR", "min": [0], "max": []}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_LENGTH_NOT_IN_LIST", "/accessors/0/max"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+        ])
+    );
+}

@@ -127,6 +127,9 @@ pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
             continue;
         };
         let components = (accessor.get("type").and_then(Value::as_str)).and_then(component_count);
+        let integer = (accessor.get("componentType").and_then(Value::as_u64))
+            .and_then(gl::integer_range)
+            .is_some();
         for key in ["min", "max"] {
             let length = match accessor.get(key) {
                 None => continue,
@@ -134,8 +137,9 @@ pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
             };
             match (components, length) {
                 (None, _) => {}
-                // Empty bounds are empty to the validator, not of a wrong length.
-                (Some(_), Some(0)) => sink.push(Diagnostic::at(
+                // Empty float bounds are empty to the validator; integer ones (read as a
+                // list of integers first) are of a wrong length.
+                (Some(_), Some(0)) if !integer => sink.push(Diagnostic::at(
                     khronos::EMPTY_ENTITY,
                     format!("/accessors/{i}/{key}"),
                     "Entity cannot be empty.",
