@@ -1188,3 +1188,26 @@ fn empty_bounds_of_an_integer_accessor_are_of_a_wrong_length_not_empty() {
         ])
     );
 }
+
+#[test]
+fn an_offset_beyond_two_to_the_64_is_aligned_and_too_long() {
+    // 1e308 and 2^64 − 1 (which JSON readers round to 2^64) are multiples of 4: the accessor
+    // is only too long, as the validator finds it.
+    for offset in ["1e308", "18446744073709551615"] {
+        let text = r#"{"asset": {"version": "2.0"},
+            "buffers": [{"uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAA", "byteLength": 12}],
+            "bufferViews": [{"buffer": 0, "byteLength": 12}],
+            "accessors": [{"bufferView": 0, "byteOffset": OFFSET, "componentType": 5126, "count": 3, "type": "SCALAR"}]}"#
+            .replace("OFFSET", offset);
+        let options = CheckOptions::default().with_profile(Profile::Khronos);
+        let report = check_bytes("o.gltf", text.into_bytes(), &NoResources, &options);
+        assert_eq!(
+            sorted_findings(&report),
+            expected(&[
+                ("ACCESSOR_TOO_LONG", "/accessors/0/byteOffset"),
+                ("UNUSED_OBJECT", "/accessors/0"),
+            ]),
+            "{offset}"
+        );
+    }
+}

@@ -25,6 +25,11 @@ pub const COLLECTIONS: &[&str] = &[
     "textures",
 ];
 
+/// What an integer from 2^64 up reads as: 2^64 − 4096. A number that large is a multiple of
+/// 2^12 (a double's step there), so, as `1e308` is to the Khronos validator, it is aligned to
+/// every component and stride size, and it still fits nothing.
+pub const BEYOND_U64: u64 = u64::MAX & !0xFFF;
+
 /// A non-negative integer member (an index or a count), also when written as a float (`1.0`),
 /// as glTF's JSON allows.
 pub fn unsigned(object: &Value, key: &str) -> Option<u64> {
@@ -38,14 +43,19 @@ pub fn byte_offset(object: &Value) -> Option<u64> {
 }
 
 /// A JSON value read as a glTF index: a non-negative integer, also when written as a float.
-/// An integer beyond 2^64 (`1e300`) reads as `u64::MAX`: as for the Khronos validator, it is
-/// an integer, and no index, offset or length that large fits anything.
+/// An integer from 2^64 up (`1e300`) reads as [`BEYOND_U64`]: as for the Khronos validator, it
+/// is an integer, and no index, offset or length that large fits anything.
 pub fn as_index(value: &Value) -> Option<u64> {
-    value.as_u64().or_else(|| {
-        value
-            .as_f64()
-            .filter(|f| f.fract() == 0.0 && *f >= 0.0)
-            // A saturating cast: every integer from 2^64 up becomes u64::MAX.
-            .map(|f| f as u64)
+    const SAFE: u64 = 1 << 53;
+    // Past 2^53 a number is read as the double it rounds to, as the validator (JavaScript)
+    // reads it: 2^64 − 1 is 2^64, even, and beyond.
+    let f = match value.as_u64() {
+        Some(n) if n <= SAFE => return Some(n),
+        _ => value.as_f64().filter(|f| f.fract() == 0.0 && *f >= 0.0)?,
+    };
+    Some(if f < 18_446_744_073_709_551_616.0 {
+        f as u64
+    } else {
+        BEYOND_U64
     })
 }
