@@ -28,7 +28,7 @@ pub const COLLECTIONS: &[&str] = &[
 /// What an integer from 2^64 up reads as: 2^64 − 4096. A number that large is a multiple of
 /// 2^12 (a double's step there), so, as `1e308` is to the Khronos validator, it is aligned to
 /// every component and stride size, and it still fits nothing.
-pub const BEYOND_U64: u64 = u64::MAX & !0xFFF;
+pub const BEYOND_U64: u64 = !0xFFF;
 
 /// A non-negative integer member (an index or a count), also when written as a float (`1.0`),
 /// as glTF's JSON allows.
