@@ -1211,3 +1211,17 @@ fn an_offset_beyond_two_to_the_64_is_aligned_and_too_long() {
         );
     }
 }
+
+#[test]
+fn bounds_under_an_invalid_component_type_are_not_read() {
+    // Not even their own type or length is checked; a POSITION then has no bounds.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [{"componentType": 1, "count": 1, "type": "VEC3", "min": -0.0, "max": [1, 2]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("VALUE_NOT_IN_LIST", "/accessors/0/componentType"),
+        ])
+    );
+}

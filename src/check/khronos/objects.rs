@@ -117,7 +117,8 @@ pub(super) fn is_linked(accessor: &Value) -> bool {
 }
 
 /// Takes out of the tree the accessors' `min` and `max` that the Khronos validator does not
-/// read: all of them when the accessor's `type` is not a valid type (nothing is reported),
+/// read: all of them when the accessor's `type` or `componentType` is not a valid one
+/// (nothing is reported),
 /// and one whose length is not the type's component count (reported here, as the only
 /// finding about that array).
 pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
@@ -126,10 +127,13 @@ pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
         let Some(accessor) = accessor.as_object_mut() else {
             continue;
         };
-        let components = (accessor.get("type").and_then(Value::as_str)).and_then(component_count);
-        let integer = (accessor.get("componentType").and_then(Value::as_u64))
-            .and_then(gl::integer_range)
-            .is_some();
+        let component_type = accessor.get("componentType").and_then(Value::as_u64);
+        // Bounds are read as a list of the component type's values for the type's count of
+        // components: under an invalid type or component type they are not read at all.
+        let components = (accessor.get("type").and_then(Value::as_str))
+            .and_then(component_count)
+            .filter(|_| component_type.and_then(component_size).is_some());
+        let integer = component_type.and_then(gl::integer_range).is_some();
         for key in ["min", "max"] {
             let length = match accessor.get(key) {
                 None => continue,
