@@ -1225,3 +1225,37 @@ fn bounds_under_an_invalid_component_type_are_not_read() {
         ])
     );
 }
+
+#[test]
+fn an_invalid_list_of_morph_targets_links_no_accessor() {
+    // A target that is no object, or an empty one, makes the whole list unread for links
+    // and usage: its accessors are unused, unresolved ones unreported.
+    for targets in [
+        json!([{"POSITION": 1}, null]),
+        json!([{"POSITION": 1}, {}]),
+        json!([{"POSITION": 99}, 5]),
+    ] {
+        let found = khronos_findings(json!({"asset": {"version": "2.0"},
+            "buffers": [{"uri": format!("data:application/octet-stream;base64,{}", "A".repeat(32)), "byteLength": 24}],
+            "bufferViews": [{"buffer": 0, "byteLength": 12, "target": 34962}, {"buffer": 0, "byteOffset": 12, "byteLength": 12}],
+            "accessors": [
+                {"bufferView": 0, "componentType": 5126, "count": 1, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]},
+                {"bufferView": 1, "componentType": 5126, "count": 1, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": 0, "targets": targets}]}],
+            "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}));
+        assert!(
+            found.contains(&("UNUSED_OBJECT".into(), "/accessors/1".into())),
+            "{found:?}"
+        );
+        assert!(
+            !found.iter().any(|(code, _)| code == "UNRESOLVED_REFERENCE"),
+            "{found:?}"
+        );
+        assert!(
+            !found
+                .iter()
+                .any(|(code, _)| code == "BUFFER_VIEW_TARGET_MISSING"),
+            "{found:?}"
+        );
+    }
+}

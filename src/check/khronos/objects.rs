@@ -315,7 +315,7 @@ fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_
             );
         }
     }
-    if let Some(targets) = primitive.get("targets").and_then(Value::as_array) {
+    if let Some(targets) = super::primitives::morph_targets(primitive) {
         for (t, target) in targets.iter().enumerate() {
             for (name, value) in target.as_object().into_iter().flatten() {
                 ctx.reference_value(value, &format!("{pointer}/targets/{t}/{name}"), "accessors");

@@ -114,7 +114,7 @@ pub(super) fn mesh_morph_targets(mesh: &Value) -> Option<usize> {
 
 /// A primitive's morph targets when they are a non-empty list of non-empty objects; any
 /// other form is a schema error, and the list is then ignored, as the Khronos validator does.
-fn morph_targets(primitive: &Value) -> Option<&[Value]> {
+pub(super) fn morph_targets(primitive: &Value) -> Option<&[Value]> {
     let targets = primitive.get("targets")?.as_array()?;
     let valid = !targets.is_empty()
         && targets

@@ -197,7 +197,8 @@ impl Walk<'_, '_> {
                     Usage::Index,
                     here,
                 );
-                for (t, target) in elements(primitive, "targets") {
+                let targets = super::primitives::morph_targets(primitive).unwrap_or_default();
+                for (t, target) in targets.iter().enumerate() {
                     for (semantic, index) in target.as_object().into_iter().flatten() {
                         let here = format!("{at}/targets/{t}/{}", escape_token(semantic));
                         self.use_accessor(Some(index), vertex, Usage::Vertex, here);
