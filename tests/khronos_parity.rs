@@ -1259,3 +1259,23 @@ fn an_invalid_list_of_morph_targets_links_no_accessor() {
         );
     }
 }
+
+#[test]
+fn an_attribute_whose_buffer_view_is_no_object_is_not_unaligned() {
+    // A 2-byte element would be unpadded in a view; bufferView 0 is no object, so there is
+    // no view for it to be unpadded in.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "bufferViews": [[]],
+        "accessors": [{"bufferView": 0, "componentType": 5123, "count": 4, "type": "SCALAR"}],
+        "meshes": [{"primitives": [{"attributes": {"_CLASSIFICATION": 0}, "mode": 0}]}]}));
+    assert!(
+        found.contains(&("TYPE_MISMATCH".into(), "/bufferViews/0".into())),
+        "{found:?}"
+    );
+    assert!(
+        !found
+            .iter()
+            .any(|(code, _)| code == "MESH_PRIMITIVE_ACCESSOR_UNALIGNED"),
+        "{found:?}"
+    );
+}

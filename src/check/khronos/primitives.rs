@@ -365,7 +365,7 @@ impl<'a> Walk<'_, 'a> {
             _ => {}
         }
         let view = unsigned(accessor, "bufferView")
-            .filter(|v| (*v as usize) < self.ctx.items("bufferViews").len());
+            .filter(|v| self.ctx.element("bufferViews", *v).is_some());
         let strided = self.ctx.has_strided_view(accessor);
         let element = component_size(format.component_type)
             .zip(component_count(format.kind))
