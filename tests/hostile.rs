@@ -819,3 +819,29 @@ fn data_findings_past_those_kept_per_accessor_are_still_counted() {
         last.message
     );
 }
+
+#[test]
+fn accessors_aliasing_one_corrupt_view_keep_a_bounded_list_and_a_complete_count() {
+    // 300 NORMAL accessors over the same 1000 zero vectors: 300 000 findings from a small
+    // file. One data pass lists at most 100 000 of them; the report counts them all.
+    let (accessors, elements) = (300, 1000);
+    let data = base64::engine::general_purpose::STANDARD.encode(vec![0u8; 12 * elements]);
+    let mut list = vec![
+        json!({"bufferView": 0, "componentType": 5126, "count": elements, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]}),
+    ];
+    list.extend((0..accessors).map(
+        |_| json!({"bufferView": 0, "componentType": 5126, "count": elements, "type": "VEC3"}),
+    ));
+    let primitives: Vec<_> = (1..=accessors)
+        .map(|i| json!({"attributes": {"POSITION": 0, "NORMAL": i}, "mode": 0}))
+        .collect();
+    let gltf = json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": format!("data:application/octet-stream;base64,{data}"), "byteLength": 12 * elements}],
+        "bufferViews": [{"buffer": 0, "byteLength": 12 * elements, "byteStride": 12, "target": 34962}],
+        "accessors": list, "meshes": [{"primitives": primitives}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0});
+    let report = check(&gltf, &every_issue());
+    let listed = count(&report, "ACCESSOR_VECTOR3_NON_UNIT");
+    assert!(listed <= 100_000 && listed >= 90_000, "{listed} listed");
+    assert_eq!(report.count(gltfmat::Severity::Error), accessors * elements);
+}

@@ -3,7 +3,7 @@
 //! bounds, animation inputs…, see `accessor_usage`): the Khronos ACCESSOR_* data codes.
 
 use super::accessor_fast::{self, Layout};
-use super::accessor_usage::{self, Checker, Findings};
+use super::accessor_usage::{self, Budget, Checker, Findings};
 use super::resources::view_bytes;
 use crate::check::context::{unsigned, Context};
 use crate::diagnostic::khronos;
@@ -147,9 +147,23 @@ pub fn check(ctx: &mut Context) {
             })
         })
         .collect();
-    let findings: Vec<Findings> = work.par_iter_mut().map(scan).collect();
-    for found in findings {
-        found.report(ctx);
+    // In batches, each walk with its share of what the pass may still keep: memory stays
+    // bounded however many accessors alias one corrupt view, and the report does not
+    // depend on the order the walks finish in.
+    let mut budget = Budget::new();
+    let mut found: Vec<Findings> = Vec::with_capacity(work.len());
+    for batch in work.chunks_mut(WALKS_PER_BATCH) {
+        let walks = batch.len();
+        let batch_found: Vec<Findings> = (batch.par_iter_mut())
+            .map(|work| scan(work, budget.share(walks)))
+            .collect();
+        batch_found
+            .iter()
+            .for_each(|findings| budget.spend(findings));
+        found.extend(batch_found);
+    }
+    for findings in found {
+        findings.report(ctx);
     }
 }
 
@@ -249,8 +263,12 @@ fn substituted(ctx: &Context, accessor: &Value) -> Option<(Layout, Vec<u8>)> {
     Some((layout, dense))
 }
 
-/// Every finding of one accessor, from a single walk over its elements.
-fn scan(work: &mut Work) -> Findings {
+/// How many accessors are walked in parallel before their findings are reported.
+const WALKS_PER_BATCH: usize = 16;
+
+/// Every finding of one accessor (as many as `findings` keeps), from a single walk over its
+/// elements.
+fn scan(work: &mut Work, mut findings: Findings) -> Findings {
     let Work {
         pointer,
         layout,
@@ -258,7 +276,6 @@ fn scan(work: &mut Work) -> Findings {
         accessor,
         checkers,
     } = work;
-    let mut findings = Findings::default();
     if let Some((min, max)) = accessor_fast::bounds(layout, bytes, checkers) {
         Bounds {
             layout,

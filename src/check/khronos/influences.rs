@@ -3,14 +3,14 @@
 
 use super::accessor_data::{element, scannable, unit_scale};
 use super::accessor_fast::Layout;
-use super::accessor_usage::Findings;
+use super::accessor_usage::{Budget, Findings};
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;
 use serde_json::Value;
 use std::collections::HashMap;
 
 pub fn check(ctx: &mut Context) {
-    let mut findings: Vec<Findings> = Vec::new();
+    let mut budget = Budget::new();
     let limits = limiting_skins(ctx);
     for (m, pointer, mesh) in ctx.objects("meshes") {
         let Some(&(max_joint, skin)) = limits.get(&m) else {
@@ -20,14 +20,12 @@ pub fn check(ctx: &mut Context) {
             if let Some(sets) = influence_sets(ctx, primitive) {
                 let at = format!("{pointer}/primitives/{p}/attributes");
                 let limit = JointLimit { max_joint, skin };
-                let mut found = Findings::default();
+                let mut found = budget.share(1);
                 check_primitive(&sets, &at, limit, &mut found);
-                findings.push(found);
+                budget.spend(&found);
+                found.report(ctx);
             }
         }
-    }
-    for found in findings {
-        found.report(ctx);
     }
 }
 
