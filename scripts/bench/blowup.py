@@ -148,6 +148,19 @@ def gltf1_meshes(n):
     return write(f'gltf1-meshes-{n}.gltf', doc)
 
 
+def aliasing_accessors(n):
+    """n NORMAL accessors over the same 10^4 zero vectors: n·10^4 findings from a small file."""
+    count = 10_000
+    data = 'data:application/octet-stream;base64,' + base64.b64encode(bytes(12 * count)).decode()
+    accessors = [{'bufferView': 0, 'componentType': 5126, 'count': count, 'type': 'VEC3', 'min': [0, 0, 0], 'max': [0, 0, 0]}]
+    accessors += [{'bufferView': 0, 'componentType': 5126, 'count': count, 'type': 'VEC3'} for _ in range(n)]
+    primitives = [{'attributes': {'POSITION': 0, 'NORMAL': i + 1}, 'mode': 0} for i in range(n)]
+    return write(f'aliasing-{n}.gltf', asset(
+        buffers=[{'uri': data, 'byteLength': 12 * count}],
+        bufferViews=[{'buffer': 0, 'byteLength': 12 * count, 'byteStride': 12, 'target': 34962}],
+        accessors=accessors, meshes=[{'primitives': primitives}], nodes=[{'mesh': 0}], scenes=[{'nodes': [0]}], scene=0))
+
+
 def folder_of_assets(n):
     """A folder of n small assets, each with a finding: a CI gate's walk of a repository."""
     folder = os.path.join(WORK, f'folder-{n}')
@@ -201,6 +214,7 @@ CLASSES = [
     ('declared extensions (11)', declared_extensions, 10_000, ['check']),
     ('1.0 meshes, upgrade (11)', gltf1_meshes, 10_000, ['upgrade', '-o', os.path.join(WORK, 'meshes.glb'), '--force']),
     ('array of zeros (13)', zeros, 1_000_000, ['check', '--max-issues', '10']),
+    ('accessors aliasing one view (13)', aliasing_accessors, 100, ['check', '--max-issues', '0']),
     ('human findings (14)', many_findings, 3_000, ['check', '--format', 'human']),
     ('sarif findings (14)', many_findings, 3_000, ['check', '--format', 'sarif']),
     ('human findings, one line', many_findings_minified, 3_000, ['check', '--format', 'human']),
