@@ -133,17 +133,17 @@ pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
         let components = (accessor.get("type").and_then(Value::as_str))
             .and_then(component_count)
             .filter(|_| component_type.and_then(component_size).is_some());
-        let integer = component_type.and_then(gl::integer_range).is_some();
+        let integer_range = component_type.and_then(gl::integer_range);
         for key in ["min", "max"] {
-            let length = match accessor.get(key) {
-                None => continue,
-                Some(bounds) => bounds.as_array().map(Vec::len),
+            let Some(bounds) = accessor.get(key) else {
+                continue;
             };
+            let length = bounds.as_array().map(Vec::len);
             match (components, length) {
                 (None, _) => {}
                 // Empty float bounds are empty to the validator; integer ones (read as a
                 // list of integers first) are of a wrong length.
-                (Some(_), Some(0)) if !integer => sink.push(Diagnostic::at(
+                (Some(_), Some(0)) if integer_range.is_none() => sink.push(Diagnostic::at(
                     khronos::EMPTY_ENTITY,
                     format!("/accessors/{i}/{key}"),
                     "Entity cannot be empty.",
@@ -153,7 +153,7 @@ pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
                     format!("/accessors/{i}/{key}"),
                     format!("Invalid array length {length}. Valid lengths are: ({n})."),
                 )),
-                _ if !holds_its_component_type(accessor, key, i, sink) => {}
+                _ if integer_range.is_some_and(|range| !holds(range, bounds, key, i, sink)) => {}
                 _ => continue,
             }
             accessor.shift_remove(key);
@@ -161,26 +161,18 @@ pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
     }
 }
 
-/// Whether every number of an integer accessor's `min` or `max` (`key`) is an integer its
-/// component type can hold; each that is not is reported (ARRAY_TYPE_MISMATCH,
-/// INVALID_GL_VALUE) and the Khronos validator then does not read the array. Elements that
-/// are no number are the schema's to report.
-fn holds_its_component_type(
-    accessor: &serde_json::Map<String, Value>,
+/// Whether every number of an integer accessor's bounds (`key`, `bounds`) is an integer its
+/// component type (`range`: name, lowest, highest) can hold; each that is not is reported
+/// (ARRAY_TYPE_MISMATCH, INVALID_GL_VALUE) and the Khronos validator then does not read the
+/// array. Elements that are no number are the schema's to report.
+fn holds(
+    (name, lowest, highest): (&str, f64, f64),
+    bounds: &Value,
     key: &str,
     i: usize,
     sink: &mut dyn Sink,
 ) -> bool {
-    let component_type = accessor.get("componentType").and_then(Value::as_u64);
-    let Some((name, lowest, highest)) = component_type.and_then(gl::integer_range) else {
-        return true;
-    };
-    let numbers = (accessor
-        .get(key)
-        .and_then(Value::as_array)
-        .into_iter()
-        .flatten())
-    .filter_map(|v| Some((v, v.as_f64()?)));
+    let numbers = (bounds.as_array().into_iter().flatten()).filter_map(|v| Some((v, v.as_f64()?)));
     let mut holds = true;
     for (value, number) in numbers {
         let (code, message) = if number.fract() != 0.0 {
