@@ -370,9 +370,11 @@ mod tests {
                 "{n}: {layout:?}"
             );
             assert!(layout.columns as usize * layout.rows as usize >= n);
-            assert!(layout.cell >= MIN_CELL && layout.cell < size || n == 262_144);
+            assert!((MIN_CELL..=size).contains(&layout.cell), "{n}: {layout:?}");
         }
         assert_eq!(SheetLayout::new(100, 4096).unwrap().cell, 409);
+        assert_eq!(SheetLayout::new(100_000, 64).unwrap().cell, 12);
+        assert_eq!(SheetLayout::new(262_144, 8).unwrap().cell, 8);
         assert_eq!(SheetLayout::new(262_145, 8), None);
         assert_eq!(SheetLayout::new(usize::MAX, 4096), None);
     }
