@@ -8,10 +8,11 @@ use crate::diagnostic::{khronos, Code};
 use crate::document::image_header::ImageInfo;
 use crate::document::json::escape_token;
 use crate::document::uri::ResourceLoader;
+use crate::document::Array;
+use crate::document::Node;
 use crate::document::{BufferData, Bytes, Document};
 use crate::gltf::material::{texture_images, TEXTURE_SLOTS};
 use crate::gltf::material::{Channels, TextureSlot};
-use serde_json::Value;
 use std::collections::{HashMap, HashSet};
 
 /// A resource as listed in the report's `info.resources`.
@@ -96,7 +97,7 @@ pub(crate) trait Reporting {
 }
 
 pub(crate) struct Context<'a> {
-    pub root: &'a Value,
+    pub root: Node<'a>,
     pub document: &'a Document,
     pub loader: &'a dyn ResourceLoader,
     pub options: &'a CheckOptions,
@@ -124,7 +125,7 @@ pub(crate) struct Context<'a> {
 
 impl<'a> Context<'a> {
     pub fn new(
-        root: &'a Value,
+        root: Node<'a>,
         document: &'a Document,
         loader: &'a dyn ResourceLoader,
         options: &'a CheckOptions,
@@ -168,15 +169,15 @@ impl<'a> Context<'a> {
     }
 
     /// The elements of a top-level array, or nothing when it is missing or not an array.
-    pub fn items(&self, collection: &str) -> &'a [Value] {
+    pub fn items(&self, collection: &str) -> Array<'a> {
         self.root
             .get(collection)
-            .and_then(Value::as_array)
-            .map_or(&[], Vec::as_slice)
+            .and_then(Node::as_array)
+            .unwrap_or_else(|| Array::empty(self.root))
     }
 
     /// Whether an accessor's bufferView declares a byteStride (false when it has no view).
-    pub fn has_strided_view(&self, accessor: &Value) -> bool {
+    pub fn has_strided_view(&self, accessor: Node) -> bool {
         unsigned(accessor, "bufferView")
             .and_then(|v| self.items("bufferViews").get(v as usize))
             .is_some_and(|v| v.get("byteStride").is_some())
@@ -186,7 +187,7 @@ impl<'a> Context<'a> {
     pub fn objects(
         &self,
         collection: &'static str,
-    ) -> impl Iterator<Item = (usize, String, &'a Value)> + 'a {
+    ) -> impl Iterator<Item = (usize, String, Node<'a>)> + 'a {
         // It borrows the document, not the context, so a pass can emit while it walks; and
         // each pointer is made as its object is reached (a million materials once took a
         // list of a million pointers per pass).
@@ -201,7 +202,7 @@ impl<'a> Context<'a> {
     /// A missing or mistyped member gives `None` silently (the schema pass reported it).
     pub fn reference(
         &mut self,
-        object: &Value,
+        object: Node,
         key: &str,
         pointer: &str,
         collection: &'static str,
@@ -213,7 +214,7 @@ impl<'a> Context<'a> {
     /// Resolves an index value at `pointer` into `collection`.
     pub fn reference_value(
         &mut self,
-        value: &Value,
+        value: Node,
         pointer: &str,
         collection: &'static str,
     ) -> Option<usize> {
@@ -240,7 +241,7 @@ impl<'a> Context<'a> {
 
     /// The element at `index` of a top-level collection, when it is an object: what a
     /// reference can resolve to (an element of another type is read as missing).
-    pub fn element(&self, collection: &str, index: u64) -> Option<&'a Value> {
+    pub fn element(&self, collection: &str, index: u64) -> Option<Node<'a>> {
         let element = self.items(collection).get(usize::try_from(index).ok()?)?;
         element.is_object().then_some(element)
     }
@@ -258,7 +259,7 @@ impl<'a> Context<'a> {
     pub fn uses_extension(&self, extension: &str) -> bool {
         let used = self.extensions_used.get_or_init(|| {
             (self.items("extensionsUsed").iter())
-                .filter_map(Value::as_str)
+                .filter_map(Node::as_str)
                 .collect()
         });
         used.contains(extension)
@@ -269,13 +270,13 @@ impl<'a> Context<'a> {
         let text = |key: &str| {
             asset
                 .and_then(|a| a.get(key))
-                .and_then(Value::as_str)
+                .and_then(Node::as_str)
                 .map(str::to_string)
         };
         let strings = |key: &str| {
             self.root
                 .get(key)
-                .and_then(Value::as_array)
+                .and_then(Node::as_array)
                 .map(|a| {
                     a.iter()
                         .filter_map(|v| v.as_str().map(str::to_string))
@@ -313,24 +314,24 @@ pub fn member(pointer: &str, key: &str) -> String {
 
 /// The elements of an array member with their indices; nothing when missing or mistyped
 /// (the schema pass reports that).
-pub fn elements<'v>(object: &'v Value, key: &str) -> impl Iterator<Item = (usize, &'v Value)> {
+pub fn elements<'v>(object: Node<'v>, key: &str) -> impl Iterator<Item = (usize, Node<'v>)> {
     object
         .get(key)
-        .and_then(Value::as_array)
+        .and_then(Node::as_array)
         .into_iter()
         .flatten()
         .enumerate()
 }
 
 /// A number member, falling back to `default` when missing or mistyped.
-pub fn number(object: &Value, key: &str, default: f64) -> f64 {
-    object.get(key).and_then(Value::as_f64).unwrap_or(default)
+pub fn number(object: Node, key: &str, default: f64) -> f64 {
+    object.get(key).and_then(Node::as_f64).unwrap_or(default)
 }
 
 pub use crate::gltf::{as_index, unsigned};
 
 /// A material's extension object by name.
-pub fn extension<'v>(material: &'v Value, name: &str) -> Option<&'v Value> {
+pub fn extension<'v>(material: Node<'v>, name: &str) -> Option<Node<'v>> {
     material
         .get("extensions")?
         .get(name)
@@ -341,12 +342,12 @@ pub fn extension<'v>(material: &'v Value, name: &str) -> Option<&'v Value> {
 /// may hold 10^5 of them, and its pointer and images are made when asked for.
 #[derive(Clone)]
 pub struct SlotUse<'a> {
-    pub material: &'a Value,
+    pub material: Node<'a>,
     /// The material's index.
     pub material_index: usize,
     pub slot: &'static TextureSlot,
     /// The texture object it binds.
-    pub texture: &'a Value,
+    pub texture: Node<'a>,
     /// How many images the asset has (a source past them samples nothing).
     pub image_count: usize,
 }

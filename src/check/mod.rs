@@ -18,7 +18,7 @@ pub use context::{AssetInfo, ResourceInfo};
 
 use crate::diagnostic::Sink;
 use crate::document::uri::{FolderResources, ResourceLoader};
-use crate::document::{self, Container, Document};
+use crate::document::{self, Container, Document, Node, Tree};
 use collector::Collector;
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
@@ -168,23 +168,23 @@ pub fn check_bytes(
     // 2.0 passes on a 1.0 document only bury the one fix: upgrading it.
     let gltf1 = document.major_version() == Some(1) && options.profile.checks_gltf1();
     match &mut document.root {
-        Some(root) if !root.is_object() => {
+        Some(tree) if !tree.root().is_object() => {
             diagnostics.push(Diagnostic::at(
                 crate::diagnostic::khronos::TYPE_MISMATCH,
                 "",
                 format!(
                     "Type mismatch. Property value {} is not a 'object'.",
-                    short(root)
+                    short(tree.root())
                 ),
             ));
         }
-        Some(root) => {
+        Some(tree) => {
             let undeclared = if gltf1 {
                 Vec::new()
             } else {
-                schema_pass(root, khronos_extensions_only, &mut diagnostics)
+                schema_pass(tree, khronos_extensions_only, &mut diagnostics)
             };
-            let root = document.root.as_ref().expect("matched above");
+            let root = document.root.as_ref().expect("matched above").root();
             let mut ctx = Context::new(root, &document, loader, options, diagnostics, &filters);
             ctx.undeclared_extensions = undeclared;
             if gltf1 {
@@ -208,7 +208,7 @@ pub fn check_bytes(
     }
 }
 
-fn short(value: &serde_json::Value) -> String {
+fn short(value: Node) -> String {
     let text = value.to_string();
     text.chars().take(40).collect()
 }
@@ -222,55 +222,47 @@ fn short(value: &serde_json::Value) -> String {
 /// to report). Of a document that does not claim
 /// glTF 2.x, only what the Khronos validator reads before it stops (see
 /// [`khronos::read_before_asset`]).
-fn schema_pass(root: &mut serde_json::Value, khronos: bool, sink: &mut dyn Sink) -> Vec<String> {
-    if !khronos::has_supported_version(root) {
-        let read = khronos::read_before_asset(root);
-        let absent = schema::validate(root, khronos, &mut Only(sink, read), HashSet::new());
-        let nulls = remove_all(root, absent);
+fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> Vec<String> {
+    if !khronos::has_supported_version(tree.root()) {
+        let read = khronos::read_before_asset(tree.root());
+        let absent = schema::validate(tree.root(), khronos, &mut Only(sink, read), HashSet::new());
+        let nulls = remove_all(tree, absent);
         // Read anew: an `asset` that was null is now missing.
-        let read = khronos::read_before_asset(root);
-        schema::required_nulls(root, khronos, &nulls, &mut Only(sink, read));
+        let read = khronos::read_before_asset(tree.root());
+        schema::required_nulls(tree.root(), khronos, &nulls, &mut Only(sink, read));
         return Vec::new();
     }
-    khronos::take_unread_bounds(root, sink);
+    khronos::take_unread_bounds(tree, sink);
+    let root = tree.root();
     let undeclared = khronos::undeclared_extensions(root, &declared_extensions(root));
     let absent = schema::validate(root, khronos, sink, undeclared.iter().cloned().collect());
-    let nulls = remove_all(root, absent);
-    schema::required_nulls(root, khronos, &nulls, sink);
+    let nulls = remove_all(tree, absent);
+    schema::required_nulls(tree.root(), khronos, &nulls, sink);
     undeclared
 }
 
 /// The names `extensionsUsed` declares; none when it is not a list of names (the schema
 /// pass reports it, and the Khronos validator then reads no declaration).
-fn declared_extensions(root: &serde_json::Value) -> HashSet<&str> {
-    let names = root
-        .get("extensionsUsed")
-        .and_then(serde_json::Value::as_array);
+fn declared_extensions(root: Node<'_>) -> HashSet<&str> {
+    let names = root.get("extensionsUsed").and_then(Node::as_array);
     (names.into_iter().flatten())
-        .map(serde_json::Value::as_str)
+        .map(Node::as_str)
         .collect::<Option<HashSet<&str>>>()
         .unwrap_or_default()
 }
 
 /// Removes the members at `pointers` from the tree (those inside arrays stay: only members
 /// of objects are ever unread); returns those of them that were `null`.
-fn remove_all(root: &mut serde_json::Value, pointers: HashSet<String>) -> HashSet<String> {
+fn remove_all(tree: &mut Tree, pointers: HashSet<String>) -> HashSet<String> {
     let mut nulls = HashSet::new();
     for pointer in pointers {
-        let Some((parent, token)) = pointer.rsplit_once('/') else {
-            continue;
-        };
-        let member = document::json::unescape_token(token);
-        if let Some(serde_json::Value::Object(members)) = root.pointer_mut(parent) {
-            // A byteOffset of a wrong type other than null stays, unreadable: the Khronos
-            // validator reads it as invalid, not as the default 0, and reads no data
-            // through it (`gltf::byte_offset`).
-            if member == "byteOffset" && members.get(&member).is_some_and(|v| !v.is_null()) {
-                continue;
-            }
-            if members.shift_remove(&member).is_some_and(|v| v.is_null()) {
-                nulls.insert(pointer);
-            }
+        // A byteOffset of a wrong type other than null stays, unreadable: the Khronos
+        // validator reads it as invalid, not as the default 0, and reads no data through it
+        // (`gltf::byte_offset`).
+        let kept = pointer.ends_with("/byteOffset")
+            && (tree.root().pointer(&pointer)).is_some_and(|v| !v.is_null());
+        if !kept && tree.remove(&pointer) == Some(true) {
+            nulls.insert(pointer);
         }
     }
     nulls

@@ -16,15 +16,28 @@ pub struct SyntaxError {
     pub offset: usize,
 }
 
-/// Parses JSON text. A UTF-8 byte-order mark is an error, as in the glTF spec.
-pub fn parse(bytes: &[u8]) -> Result<Value, SyntaxError> {
+/// Parses JSON text into a compact tree. A UTF-8 byte-order mark is an error, as in the
+/// glTF spec.
+pub fn parse(bytes: &[u8]) -> Result<super::Tree, SyntaxError> {
+    parse_with(bytes, super::Tree::parse)
+}
+
+/// Parses JSON text as [`parse`] does, into a `serde_json::Value`.
+pub fn parse_value(bytes: &[u8]) -> Result<Value, SyntaxError> {
+    parse_with(bytes, super::json_tree::from_slice)
+}
+
+fn parse_with<R>(
+    bytes: &[u8],
+    parse: fn(&[u8]) -> serde_json::Result<R>,
+) -> Result<R, SyntaxError> {
     if bytes.starts_with(&[0xEF, 0xBB, 0xBF]) {
         return Err(SyntaxError {
             message: "BOM found at the beginning of UTF-8 stream".into(),
             offset: 0,
         });
     }
-    super::json_tree::from_slice(bytes).map_err(|e| {
+    parse(bytes).map_err(|e| {
         let offset = offset_of(bytes, e.line(), e.column());
         // The place is the offset's, printed once by whoever reports it.
         let message = e.to_string();

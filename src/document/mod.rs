@@ -7,6 +7,7 @@ pub(crate) mod image_decode;
 pub(crate) mod image_header;
 pub(crate) mod json;
 pub(crate) mod json_tree;
+pub mod tree;
 pub mod uri;
 
 use crate::diagnostic::{khronos, Diagnostic, Sink};
@@ -14,6 +15,7 @@ pub use bytes::{BufferData, Bytes};
 pub use image_header::ImageInfo;
 use serde_json::Value;
 use std::ops::Range;
+pub use tree::{Array, Node, Object, Tree};
 
 /// How the asset is stored.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -37,7 +39,7 @@ impl Container {
 /// A parsed asset. The bytes are kept so that diagnostics can be located and BIN data read
 /// without copies.
 #[derive(Debug)]
-pub struct Document {
+pub struct Document<R = Tree> {
     /// The whole file.
     pub bytes: Bytes,
     /// How it is stored.
@@ -45,12 +47,12 @@ pub struct Document {
     /// Where the JSON text lies in `bytes`.
     pub json_range: Range<usize>,
     /// `None` when the JSON could not be parsed (the reason went to the reader's sink).
-    pub root: Option<Value>,
+    pub root: Option<R>,
     /// Where the GLB BIN chunk's data lies in `bytes`, if there is one.
     pub bin: Option<Range<usize>>,
 }
 
-impl Document {
+impl<R> Document<R> {
     /// The JSON text.
     pub fn json_text(&self) -> &[u8] {
         // Empty when the bytes were handed back to their owner (see `upgrade::output::verify`).
@@ -61,20 +63,18 @@ impl Document {
     pub fn bin(&self) -> Option<&[u8]> {
         self.bin.clone().and_then(|r| self.bytes.get(r))
     }
+}
 
+impl Document<Tree> {
     /// Major version declared by `asset.version`, if readable. 1.0 exporters also wrote it as
     /// a number (`"version": 1`), and 1.0 objects are keyed by id, which gives them away when
     /// the version is missing.
     pub fn major_version(&self) -> Option<u64> {
-        let root = self.root.as_ref()?;
+        let root = self.root.as_ref()?.root();
         match root.get("asset").and_then(|a| a.get("version")) {
-            Some(serde_json::Value::String(v)) => v.split('.').next()?.parse().ok(),
-            Some(serde_json::Value::Number(n)) => n.as_f64().map(|v| v as u64),
-            Some(_) => None,
-            None => root
-                .get("scenes")
-                .is_some_and(serde_json::Value::is_object)
-                .then_some(1),
+            Some(v) if v.is_string() => v.as_str()?.split('.').next()?.parse().ok(),
+            Some(v) => v.as_f64().map(|v| v as u64),
+            None => root.get("scenes").is_some_and(Node::is_object).then_some(1),
         }
     }
 }
@@ -83,7 +83,25 @@ impl Document {
 /// the name's `.glb` ending (so a broken GLB is reported as one, not as invalid JSON).
 /// Problems with the container and the JSON go to `diagnostics`.
 pub fn read(bytes: impl Into<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> Document {
-    let bytes = bytes.into();
+    read_with(bytes.into(), name, diagnostics, json::parse)
+}
+
+/// Reads a document as [`read`] does, its JSON as a `serde_json::Value` (for code that
+/// rewrites the tree: the upgrade of a 2.0 asset, the materials a shading reads).
+pub fn read_value(
+    bytes: impl Into<Bytes>,
+    name: &str,
+    diagnostics: &mut dyn Sink,
+) -> Document<Value> {
+    read_with(bytes.into(), name, diagnostics, json::parse_value)
+}
+
+fn read_with<R>(
+    bytes: Bytes,
+    name: &str,
+    diagnostics: &mut dyn Sink,
+    parse: fn(&[u8]) -> Result<R, json::SyntaxError>,
+) -> Document<R> {
     let named_glb = name.to_ascii_lowercase().ends_with(".glb");
     let (container, json_range, bin) = if glb::looks_like_glb(&bytes) || named_glb {
         let parts = glb::read(&bytes, diagnostics);
@@ -92,7 +110,7 @@ pub fn read(bytes: impl Into<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> 
         (Container::Gltf, Some(0..bytes.len()), None)
     };
     let root = match &json_range {
-        Some(range) => parse_json(&bytes[range.clone()], diagnostics),
+        Some(range) => parse_json(&bytes[range.clone()], diagnostics, parse),
         None => None,
     };
     Document {
@@ -104,8 +122,12 @@ pub fn read(bytes: impl Into<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> 
     }
 }
 
-fn parse_json(text: &[u8], diagnostics: &mut dyn Sink) -> Option<Value> {
-    match json::parse(text) {
+fn parse_json<R>(
+    text: &[u8],
+    diagnostics: &mut dyn Sink,
+    parse: fn(&[u8]) -> Result<R, json::SyntaxError>,
+) -> Option<R> {
+    match parse(text) {
         Ok(value) => Some(value),
         Err(error) => {
             let (line, col) = json::LineIndex::new(text).line_col(error.offset);

@@ -2,30 +2,25 @@
 //! texture sources and transforms, every texture slot with the channels it reads and their
 //! colour space, and which material extensions exclude each other.
 
-use super::unsigned;
-use serde_json::Value;
+use super::{unsigned, Json};
 
 /// Every image a texture may sample, in the order a viewer prefers them: `source`, then each
 /// extension's `source` (KHR_texture_basisu, EXT_texture_webp, …).
-pub fn texture_images(texture: &Value) -> impl Iterator<Item = u64> + '_ {
-    let extensions = texture
-        .get("extensions")
-        .and_then(Value::as_object)
-        .into_iter()
-        .flat_map(|e| e.values());
+pub fn texture_images<'a, J: Json<'a>>(texture: J) -> impl Iterator<Item = u64> + 'a {
+    let extensions = (texture.get("extensions").into_iter()).flat_map(J::member_values);
     std::iter::once(texture)
         .chain(extensions)
         .filter_map(|holder| unsigned(holder, "source"))
 }
 
 /// The KHR_texture_transform object of a textureInfo.
-pub fn texture_transform(info: &Value) -> Option<&Value> {
+pub fn texture_transform<'a, J: Json<'a>>(info: J) -> Option<J> {
     info.get("extensions")?.get("KHR_texture_transform")
 }
 
 /// The texCoord set a textureInfo reads: KHR_texture_transform's `texCoord` override when
 /// present, else its own `texCoord`, else 0.
-pub fn effective_texcoord(info: &Value) -> u64 {
+pub fn effective_texcoord<'a>(info: impl Json<'a>) -> u64 {
     texture_transform(info)
         .and_then(|t| unsigned(t, "texCoord"))
         .or_else(|| unsigned(info, "texCoord"))
@@ -177,8 +172,8 @@ impl TextureSlot {
     }
 
     /// The channels this slot reads in `material`: (sRGB, linear).
-    pub fn reads(&self, material: &Value) -> (Channels, Channels) {
-        let mode = material.get("alphaMode").and_then(Value::as_str);
+    pub fn reads<'a, J: Json<'a>>(&self, material: J) -> (Channels, Channels) {
+        let mode = material.get("alphaMode").and_then(J::as_str);
         let coverage = self.coverage_alpha && mode.is_some_and(|m| m != "OPAQUE");
         (self.srgb, self.linear | if coverage { A } else { 0 })
     }
@@ -193,7 +188,7 @@ impl TextureSlot {
     }
 
     /// The slot's textureInfo object in a material, if present.
-    pub fn lookup<'v>(&self, material: &'v Value) -> Option<&'v Value> {
+    pub fn lookup<'a, J: Json<'a>>(&self, material: J) -> Option<J> {
         let parent = match (self.extension, self.in_pbr) {
             (Some(ext), _) => material.get("extensions")?.get(ext)?,
             (None, true) => material.get("pbrMetallicRoughness")?,

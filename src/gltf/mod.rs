@@ -25,6 +25,53 @@ pub const COLLECTIONS: &[&str] = &[
     "textures",
 ];
 
+/// A JSON value as the spec's vocabulary reads it: serde_json's tree (which the upgrade
+/// rewrites and the evaluator reads) and the checker's compact one alike.
+pub trait Json<'a>: Copy + 'a {
+    /// The member named `key`, when this is an object.
+    fn get(self, key: &str) -> Option<Self>;
+    /// The number, when it is an integer from 0 to `u64::MAX` as written.
+    fn as_u64(self) -> Option<u64>;
+    /// Any number, as the nearest f64.
+    fn as_f64(self) -> Option<f64>;
+    /// The text, when this is a string.
+    fn as_str(self) -> Option<&'a str>;
+    /// Whether this is an object.
+    fn is_object(self) -> bool;
+    /// The values of an object's members (none for anything else).
+    fn member_values(self) -> Box<dyn Iterator<Item = Self> + 'a>;
+}
+
+impl<'a> Json<'a> for &'a Value {
+    fn get(self, key: &str) -> Option<Self> {
+        Value::get(self, key)
+    }
+
+    fn as_u64(self) -> Option<u64> {
+        Value::as_u64(self)
+    }
+
+    fn as_f64(self) -> Option<f64> {
+        Value::as_f64(self)
+    }
+
+    fn as_str(self) -> Option<&'a str> {
+        Value::as_str(self)
+    }
+
+    fn is_object(self) -> bool {
+        Value::is_object(self)
+    }
+
+    fn member_values(self) -> Box<dyn Iterator<Item = Self> + 'a> {
+        Box::new(
+            self.as_object()
+                .into_iter()
+                .flat_map(|members| members.values()),
+        )
+    }
+}
+
 /// What an integer from 2^64 up reads as: 2^64 − 4096. A number that large is a multiple of
 /// 2^12 (a double's step there), so, as `1e308` is to the Khronos validator, it is aligned to
 /// every component and stride size, and it still fits nothing.
@@ -32,20 +79,20 @@ pub const BEYOND_U64: u64 = !0xFFF;
 
 /// A non-negative integer member (an index or a count), also when written as a float (`1.0`),
 /// as glTF's JSON allows.
-pub fn unsigned(object: &Value, key: &str) -> Option<u64> {
+pub fn unsigned<'a>(object: impl Json<'a>, key: &str) -> Option<u64> {
     as_index(object.get(key)?)
 }
 
 /// A `byteOffset`: 0 when absent, `None` when present but not a non-negative integer (the
 /// Khronos validator then reads no data through it).
-pub fn byte_offset(object: &Value) -> Option<u64> {
+pub fn byte_offset<'a>(object: impl Json<'a>) -> Option<u64> {
     object.get("byteOffset").map_or(Some(0), as_index)
 }
 
 /// A JSON value read as a glTF index: a non-negative integer, also when written as a float.
 /// An integer from 2^64 up (`1e300`) reads as [`BEYOND_U64`]: as for the Khronos validator, it
 /// is an integer, and no index, offset or length that large fits anything.
-pub fn as_index(value: &Value) -> Option<u64> {
+pub fn as_index<'a>(value: impl Json<'a>) -> Option<u64> {
     const SAFE: u64 = 1 << 53;
     // Past 2^53 a number is read as the double it rounds to, as the validator (JavaScript)
     // reads it: 2^64 − 1 is 2^64, even, and beyond.

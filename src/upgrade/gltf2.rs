@@ -33,7 +33,7 @@ pub(super) fn upgrade(
     } else {
         "input.gltf"
     };
-    let mut doc = document::read(bytes.to_vec(), name, &mut Vec::new());
+    let mut doc = document::read_value(bytes.to_vec(), name, &mut Vec::new());
     let Some(Value::Object(root)) = doc.root.take() else {
         return Err(UpgradeError::Unreadable(
             "the glTF 2.0 JSON cannot be read (`gltfmat check` says why)".into(),
@@ -191,13 +191,13 @@ impl Asset {
         }
         if buffers.len() > 1 {
             for view in self.list_mut("bufferViews") {
-                let Some(buffer) = unsigned(view, "buffer") else {
+                let Some(buffer) = unsigned(&*view, "buffer") else {
                     continue;
                 };
                 let Some(&start) = starts.get(buffer as usize) else {
                     continue;
                 };
-                let offset = unsigned(view, "byteOffset").unwrap_or(0);
+                let offset = unsigned(&*view, "byteOffset").unwrap_or(0);
                 view["buffer"] = json!(0);
                 view["byteOffset"] = json!(offset + start as u64);
             }

@@ -7,10 +7,10 @@ use super::accessor_usage::{self, Budget, Checker, Findings};
 use super::resources::view_bytes;
 use crate::check::context::{unsigned, Context};
 use crate::diagnostic::khronos;
+use crate::document::Node;
 use crate::gltf::accessor::{component_count, component_size, decode_component, normalise};
 use crate::gltf::gl;
 use rayon::prelude::*;
-use serde_json::Value;
 use std::borrow::Cow;
 
 /// The most components an element has (MAT4).
@@ -90,9 +90,13 @@ fn walk<const SIZE: usize>(
     }
 }
 
-fn layout(ctx: &Context, accessor: &Value, view: usize) -> Option<Layout> {
+fn layout(ctx: &Context, accessor: Node, view: usize) -> Option<Layout> {
     let mut layout = packed_layout(accessor)?;
-    if let Some(stride) = unsigned(&ctx.items("bufferViews")[view], "byteStride") {
+    if let Some(stride) = ctx
+        .items("bufferViews")
+        .get(view)
+        .and_then(|v| unsigned(v, "byteStride"))
+    {
         layout.stride = usize::try_from(stride).ok()?;
     }
     layout.offset = usize::try_from(crate::gltf::byte_offset(accessor)?).ok()?;
@@ -100,7 +104,7 @@ fn layout(ctx: &Context, accessor: &Value, view: usize) -> Option<Layout> {
 }
 
 /// The accessor's elements packed one after the other from offset 0.
-fn packed_layout(accessor: &Value) -> Option<Layout> {
+fn packed_layout(accessor: Node) -> Option<Layout> {
     let component_type = unsigned(accessor, "componentType")?;
     let size = component_size(component_type)?;
     let kind = accessor.get("type")?.as_str()?;
@@ -173,13 +177,13 @@ struct Work<'c> {
     layout: Layout,
     /// The view's bytes, or a sparse accessor's elements with the substitution applied.
     bytes: Cow<'c, [u8]>,
-    accessor: &'c Value,
+    accessor: Node<'c>,
     checkers: Vec<Checker>,
 }
 
 /// The accessor's layout and its view's bytes, when it is plain (not sparse) data that fits
 /// its view (otherwise ACCESSOR_TOO_LONG or a schema code was reported).
-pub(super) fn scannable<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])> {
+pub(super) fn scannable<'c>(ctx: &'c Context, accessor: Node) -> Option<(Layout, &'c [u8])> {
     if accessor.get("sparse").is_some() {
         return None; // see `substituted`
     }
@@ -187,7 +191,7 @@ pub(super) fn scannable<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layou
 }
 
 /// The accessor's layout and its view's bytes when its elements fit the view, sparse or not.
-fn in_view<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])> {
+fn in_view<'c>(ctx: &'c Context, accessor: Node) -> Option<(Layout, &'c [u8])> {
     let view = unsigned(accessor, "bufferView")? as usize;
     if view >= ctx.items("bufferViews").len() {
         return None;
@@ -200,7 +204,11 @@ fn in_view<'c>(ctx: &'c Context, accessor: &Value) -> Option<(Layout, &'c [u8])>
     let element = layout.size.checked_mul(layout.components)?;
     // Data at a total byteOffset that is no multiple of the component size is not read: the
     // validator's typed arrays cannot start there (ACCESSOR_TOTAL_OFFSET_ALIGNMENT says so).
-    let view_offset = unsigned(&ctx.items("bufferViews")[view], "byteOffset").unwrap_or(0);
+    let view_offset = ctx
+        .items("bufferViews")
+        .get(view)
+        .and_then(|v| unsigned(v, "byteOffset"))
+        .unwrap_or(0);
     let total = view_offset.checked_add(u64::try_from(layout.offset).ok()?)?;
     if !total.is_multiple_of(u64::try_from(layout.size).ok()?) {
         return None;
@@ -221,7 +229,7 @@ const MAX_ZEROS: usize = 64 << 20;
 /// A sparse accessor's elements with its values substituted, packed from offset 0, so that
 /// the accessor-data pass checks (min, max, normalisation …) what a loader reads. None when
 /// the base, the indices or the values cannot be read (each reported elsewhere).
-fn substituted(ctx: &Context, accessor: &Value) -> Option<(Layout, Vec<u8>)> {
+fn substituted(ctx: &Context, accessor: Node) -> Option<(Layout, Vec<u8>)> {
     let sparse = accessor.get("sparse")?;
     let layout = packed_layout(accessor)?;
     let element = layout.size.checked_mul(layout.components)?;
@@ -283,14 +291,14 @@ fn scan(work: &mut Work, mut findings: Findings) -> Findings {
             pointer,
             findings: &mut findings,
         }
-        .compare(accessor, &min, &max);
+        .compare(*accessor, &min, &max);
         for checker in checkers.iter() {
             checker.finish(layout.count, &mut findings);
         }
         return findings;
     }
     let n = layout.components;
-    let unit = unit_scale(layout.component_type, accessor);
+    let unit = unit_scale(layout.component_type, *accessor);
     let mut actual_min = [f64::INFINITY; MAX_COMPONENTS];
     let mut actual_max = [f64::NEG_INFINITY; MAX_COMPONENTS];
     let mut non_finite = false;
@@ -325,7 +333,7 @@ fn scan(work: &mut Work, mut findings: Findings) -> Findings {
         pointer,
         findings: &mut findings,
     };
-    bounds.compare(accessor, &actual_min[..n], &actual_max[..n]);
+    bounds.compare(*accessor, &actual_min[..n], &actual_max[..n]);
     for checker in checkers.iter() {
         checker.finish(layout.count * n, &mut findings);
     }
@@ -389,7 +397,7 @@ struct Bounds<'w> {
 }
 
 impl Bounds<'_> {
-    fn compare(&mut self, accessor: &Value, actual_min: &[f64], actual_max: &[f64]) {
+    fn compare(&mut self, accessor: Node, actual_min: &[f64], actual_max: &[f64]) {
         let sides = [
             ("min", "minimum", "less than", actual_min),
             ("max", "maximum", "greater than", actual_max),
@@ -429,7 +437,7 @@ impl Bounds<'_> {
     }
 
     /// A declared bound with one number per component.
-    fn declared(&self, accessor: &Value, key: &str) -> Option<Vec<f64>> {
+    fn declared(&self, accessor: Node, key: &str) -> Option<Vec<f64>> {
         let list = accessor.get(key)?.as_array()?;
         (list.len() == self.layout.components).then(|| {
             list.iter()
@@ -462,8 +470,8 @@ impl Bounds<'_> {
 
 /// Maps a stored value to the value a shader sees (the glTF normalisation rules for
 /// `normalized` integers; floats and plain integers unchanged).
-pub(super) fn unit_scale(component_type: u64, accessor: &Value) -> fn(f64) -> f64 {
-    if accessor.get("normalized").and_then(Value::as_bool) != Some(true) {
+pub(super) fn unit_scale(component_type: u64, accessor: Node) -> fn(f64) -> f64 {
+    if accessor.get("normalized").and_then(Node::as_bool) != Some(true) {
         return |v| v;
     }
     normalise(component_type)

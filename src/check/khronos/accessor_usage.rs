@@ -8,9 +8,10 @@
 use super::primitives::Format;
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::{khronos, Code};
+use crate::document::Array;
+use crate::document::Node;
 use crate::gltf::accessor::component_count;
 use crate::gltf::gl;
-use serde_json::Value;
 use std::collections::HashMap;
 
 /// How far from 1 a normal or tangent length may be: the Khronos validator's tolerance,
@@ -413,7 +414,7 @@ pub(super) fn checkers(ctx: &Context) -> HashMap<usize, Vec<Checker>> {
 }
 
 struct Uses<'a> {
-    accessors: &'a [Value],
+    accessors: Array<'a>,
     /// KHR_mesh_quantization widens the attribute formats.
     quantized: bool,
     map: HashMap<usize, Vec<Checker>>,
@@ -430,11 +431,11 @@ impl Uses<'_> {
     /// `object[key]` as an accessor index, when that accessor has the given type and one
     /// of the component types (integer ones normalised); other formats are reported by
     /// the format checks and not read here.
-    fn accessor(&self, object: &Value, key: &str, kind: &str, types: &[u64]) -> Option<usize> {
+    fn accessor(&self, object: Node, key: &str, kind: &str, types: &[u64]) -> Option<usize> {
         let index = unsigned(object, key)? as usize;
         let accessor = self.accessors.get(index)?;
         let component_type = unsigned(accessor, "componentType")?;
-        let normalized = accessor.get("normalized").and_then(Value::as_bool) == Some(true);
+        let normalized = accessor.get("normalized").and_then(Node::as_bool) == Some(true);
         let format_ok = accessor.get("type")?.as_str()? == kind
             && types.contains(&component_type)
             && (component_type == gl::FLOAT || normalized);
@@ -443,7 +444,7 @@ impl Uses<'_> {
 
     /// A vertex attribute's accessor index, when its format is one the semantic allows
     /// (others are reported by the format check and not read here).
-    fn attribute(&self, attributes: &Value, semantic: &str) -> Option<(usize, Format<'_>)> {
+    fn attribute(&self, attributes: Node, semantic: &str) -> Option<(usize, Format<'_>)> {
         let index = unsigned(attributes, semantic)? as usize;
         let format = Format::of(self.accessors.get(index)?);
         format
@@ -451,7 +452,7 @@ impl Uses<'_> {
             .then_some((index, format))
     }
 
-    fn primitive(&mut self, primitive: &Value, pointer: &str) {
+    fn primitive(&mut self, primitive: Node, pointer: &str) {
         let attributes = primitive.get("attributes").filter(|a| a.is_object());
         if let Some(attributes) = attributes {
             let attribute = |name: &str| format!("{pointer}/attributes/{name}");
@@ -468,10 +469,10 @@ impl Uses<'_> {
             }
         }
         // Without attributes the indices are still checked, against no vertex at all.
-        self.indices(primitive, attributes.unwrap_or(&Value::Null), pointer);
+        self.indices(primitive, attributes.unwrap_or(primitive.null()), pointer);
     }
 
-    fn indices(&mut self, primitive: &Value, attributes: &Value, pointer: &str) {
+    fn indices(&mut self, primitive: Node, attributes: Node, pointer: &str) {
         let Some(index) = unsigned(primitive, "indices").map(|i| i as usize) else {
             return;
         };
@@ -484,8 +485,8 @@ impl Uses<'_> {
             Some(gl::UNSIGNED_INT) => f64::from(u32::MAX),
             _ => return,
         };
-        let is_scalar = accessor.get("type").and_then(Value::as_str) == Some("SCALAR");
-        let normalized = accessor.get("normalized").and_then(Value::as_bool) == Some(true);
+        let is_scalar = accessor.get("type").and_then(Node::as_str) == Some("SCALAR");
+        let normalized = accessor.get("normalized").and_then(Node::as_bool) == Some(true);
         if !is_scalar || normalized {
             return;
         }
@@ -499,7 +500,7 @@ impl Uses<'_> {
         self.add(index, format!("{pointer}/indices"), kind);
     }
 
-    fn animation(&mut self, animation: &Value, pointer: &str) {
+    fn animation(&mut self, animation: Node, pointer: &str) {
         let Some((samplers, channels)) = super::animations::linked(animation) else {
             return;
         };
@@ -511,7 +512,7 @@ impl Uses<'_> {
         }
         for (c, channel) in channels.iter().enumerate() {
             let target_path = channel.get("target").and_then(|t| t.get("path"));
-            if target_path.and_then(Value::as_str) != Some("rotation") {
+            if target_path.and_then(Node::as_str) != Some("rotation") {
                 continue;
             }
             let Some(sampler) = unsigned(channel, "sampler").and_then(|s| samplers.get(s as usize))
@@ -527,7 +528,7 @@ impl Uses<'_> {
                 .and_then(|a| a.get("type")?.as_str())
                 .and_then(component_count);
             if components == Some(4) {
-                let interpolation = sampler.get("interpolation").and_then(Value::as_str);
+                let interpolation = sampler.get("interpolation").and_then(Node::as_str);
                 let cubic = interpolation == Some("CUBICSPLINE");
                 let p = format!("{pointer}/channels/{c}/sampler");
                 self.add(output, p, Kind::Rotation { cubic });

@@ -5,7 +5,8 @@
 use super::primitives::{mesh_morph_targets, Format};
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;
-use serde_json::Value;
+use crate::document::Array;
+use crate::document::Node;
 use std::collections::HashMap;
 
 pub fn check(ctx: &mut Context) {
@@ -47,16 +48,16 @@ pub fn check(ctx: &mut Context) {
 /// An animation's samplers and channels, when it has both lists and neither is empty: the
 /// Khronos validator links nothing of an animation without them (its samplers' accessors stay
 /// unused, its samplers and target nodes unchecked).
-pub(crate) fn linked(animation: &Value) -> Option<(&[Value], &[Value])> {
+pub(crate) fn linked(animation: Node) -> Option<(Array, Array)> {
     let list = |key: &str| animation.get(key)?.as_array().filter(|a| !a.is_empty());
     Some((list("samplers")?, list("channels")?))
 }
 
 /// Every JSON pointer an animation channel targets through KHR_animation_pointer.
-pub fn animated_pointers(root: &Value) -> std::collections::HashSet<&str> {
+pub fn animated_pointers(root: Node<'_>) -> std::collections::HashSet<&str> {
     let channels = root
         .get("animations")
-        .and_then(Value::as_array)
+        .and_then(Node::as_array)
         .into_iter()
         .flatten()
         .filter_map(|animation| animation.get("channels")?.as_array())
@@ -74,11 +75,11 @@ pub fn animated_pointers(root: &Value) -> std::collections::HashSet<&str> {
 
 /// The target path `pointer` exists only with KHR_animation_pointer, which then owns the
 /// target: no node, and that path.
-fn animation_pointer(ctx: &mut Context, channel: &Value, at: &str, declared: bool) {
+fn animation_pointer(ctx: &mut Context, channel: Node, at: &str, declared: bool) {
     let Some(target) = channel.get("target") else {
         return;
     };
-    let path = target.get("path").and_then(Value::as_str);
+    let path = target.get("path").and_then(Node::as_str);
     if path == Some("pointer") && !declared {
         ctx.emit(
             khronos::VALUE_NOT_IN_LIST,
@@ -122,7 +123,7 @@ fn animation_pointer(ctx: &mut Context, channel: &Value, at: &str, declared: boo
 /// gets one finding, as the Khronos validator words it for a pair; for three or more channels
 /// on one target that validator reports every later one again (N²/2 findings for N
 /// channels), which gltfmat does not: one finding per repeating channel is the same news.
-fn later_channels_per_target(channels: &[Value]) -> HashMap<(u64, &str), usize> {
+fn later_channels_per_target(channels: Array<'_>) -> HashMap<(u64, &str), usize> {
     let mut counts = HashMap::new();
     for key in channels.iter().filter_map(target_key) {
         *counts.entry(key).or_insert(0) += 1;
@@ -130,23 +131,23 @@ fn later_channels_per_target(channels: &[Value]) -> HashMap<(u64, &str), usize> 
     counts
 }
 
-fn target_key(channel: &Value) -> Option<(u64, &str)> {
+fn target_key(channel: Node<'_>) -> Option<(u64, &str)> {
     let target = channel.get("target")?;
     Some((unsigned(target, "node")?, target.get("path")?.as_str()?))
 }
 
-fn accessor<'a>(ctx: &Context<'a>, object: &Value, key: &str) -> Option<&'a Value> {
+fn accessor<'a>(ctx: &Context<'a>, object: Node, key: &str) -> Option<Node<'a>> {
     ctx.items("accessors").get(unsigned(object, key)? as usize)
 }
 
-fn interpolation(sampler: &Value) -> &str {
+fn interpolation(sampler: Node<'_>) -> &str {
     sampler
         .get("interpolation")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .unwrap_or("LINEAR")
 }
 
-fn sampler_accessors(ctx: &mut Context, sampler: &Value, at: &str) {
+fn sampler_accessors(ctx: &mut Context, sampler: Node, at: &str) {
     for key in ["input", "output"] {
         let Some(data) = accessor(ctx, sampler, key) else {
             continue;
@@ -187,11 +188,11 @@ fn sampler_accessors(ctx: &mut Context, sampler: &Value, at: &str) {
 }
 
 /// The morph target count of the mesh a channel's node draws.
-fn morph_target_count(ctx: &Context, node: &Value) -> Option<usize> {
+fn morph_target_count(ctx: &Context, node: Node) -> Option<usize> {
     mesh_morph_targets(ctx.items("meshes").get(unsigned(node, "mesh")? as usize)?)
 }
 
-fn target(ctx: &mut Context, channel: &Value, at: &str) {
+fn target(ctx: &mut Context, channel: Node, at: &str) {
     let Some(target) = channel.get("target") else {
         return;
     };
@@ -199,7 +200,7 @@ fn target(ctx: &mut Context, channel: &Value, at: &str) {
     else {
         return;
     };
-    match target.get("path").and_then(Value::as_str) {
+    match target.get("path").and_then(Node::as_str) {
         Some("translation" | "rotation" | "scale") => {
             if node.get("matrix").is_some() {
                 ctx.emit(
@@ -227,14 +228,14 @@ fn target(ctx: &mut Context, channel: &Value, at: &str) {
 
 /// The sampler output must suit the targeted property, with one value (three for cubic
 /// splines) per key frame, times the morph target count for weights.
-fn output(ctx: &mut Context, channel: &Value, sampler: &Value, at: &str) {
+fn output(ctx: &mut Context, channel: Node, sampler: Node, at: &str) {
     let Some(output) = accessor(ctx, sampler, "output") else {
         return;
     };
     let Some(target) = channel.get("target") else {
         return;
     };
-    let path = target.get("path").and_then(Value::as_str).unwrap_or("");
+    let path = target.get("path").and_then(Node::as_str).unwrap_or("");
     if Format::of(output).allowed_for_animation(path) == Some(false) {
         ctx.emit(
             khronos::ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_FORMAT,

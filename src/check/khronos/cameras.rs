@@ -4,11 +4,11 @@
 
 use crate::check::context::{member, Context};
 use crate::diagnostic::khronos;
-use serde_json::Value;
+use crate::document::Node;
 
 pub fn check(ctx: &mut Context) {
     for (_, pointer, camera) in ctx.objects("cameras") {
-        let kind = camera.get("type").and_then(Value::as_str);
+        let kind = camera.get("type").and_then(Node::as_str);
         if camera.get("perspective").is_some() && camera.get("orthographic").is_some() {
             ctx.emit(
                 khronos::ONE_OF_MISMATCH,
@@ -34,11 +34,11 @@ pub fn check(ctx: &mut Context) {
     }
 }
 
-fn projection(ctx: &mut Context, projection: &Value, at: &str, perspective: bool) {
+fn projection(ctx: &mut Context, projection: Node, at: &str, perspective: bool) {
     // A missing, mistyped or out-of-range number compares false, as NaN does (the validator
     // reads it as NaN): the schema reported it. znear, zfar and yfov must be positive; only an
     // orthographic znear may be 0.
-    let number = |key: &str| (projection.get(key).and_then(Value::as_f64)).unwrap_or(f64::NAN);
+    let number = |key: &str| (projection.get(key).and_then(Node::as_f64)).unwrap_or(f64::NAN);
     let positive = |key: &str| {
         let in_range = |v: &f64| *v > 0.0 || (*v == 0.0 && key == "znear" && !perspective);
         Some(number(key)).filter(in_range).unwrap_or(f64::NAN)

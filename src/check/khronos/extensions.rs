@@ -3,8 +3,8 @@
 
 use crate::check::context::{member, Context};
 use crate::diagnostic::khronos;
+use crate::document::Node;
 use crate::gltf::material::TEXTURE_SLOTS;
-use serde_json::Value;
 use std::collections::HashSet;
 
 /// Extensions the Khronos validator implements, with the objects that may carry them.
@@ -97,12 +97,12 @@ pub fn check(ctx: &mut Context) {
 
 /// The extension objects on the objects the Khronos validator reads extensions on whose
 /// names `declared` does not hold, by pointer (it reports them, and reads nothing in them).
-pub fn undeclared_extensions(root: &Value, declared: &HashSet<&str>) -> Vec<String> {
+pub fn undeclared_extensions(root: Node, declared: &HashSet<&str>) -> Vec<String> {
     let mut found = Vec::new();
     walk(root, "", Host::Root, &mut |object, pointer, _| {
-        let extensions = object.get("extensions").and_then(Value::as_object);
+        let extensions = object.get("extensions").and_then(Node::as_object);
         for name in extensions.into_iter().flat_map(|e| e.keys()) {
-            if !declared.contains(name.as_str()) {
+            if !declared.contains(name) {
                 found.push(member(&member(pointer, "extensions"), name));
             }
         }
@@ -151,7 +151,7 @@ pub fn check_declarations(ctx: &mut Context) {
     let required: Vec<&str> = ctx
         .items("extensionsRequired")
         .iter()
-        .filter_map(Value::as_str)
+        .filter_map(Node::as_str)
         .collect();
     for (i, value) in ctx.items("extensionsUsed").iter().enumerate() {
         let Some(name) = value.as_str() else { continue };
@@ -191,7 +191,7 @@ pub fn check_declarations(ctx: &mut Context) {
 }
 
 /// The extras and the extension objects of one object the validator reads them on.
-fn visit(ctx: &mut Context, object: &Value, pointer: &str, host: Host) {
+fn visit(ctx: &mut Context, object: Node, pointer: &str, host: Host) {
     let Some(map) = object.as_object() else {
         return;
     };
@@ -204,7 +204,7 @@ fn visit(ctx: &mut Context, object: &Value, pointer: &str, host: Host) {
             );
         }
     }
-    if let Some(extensions) = map.get("extensions").and_then(Value::as_object) {
+    if let Some(extensions) = map.get("extensions").and_then(Node::as_object) {
         for (name, value) in extensions {
             visit_extension(
                 ctx,
@@ -220,16 +220,16 @@ fn visit(ctx: &mut Context, object: &Value, pointer: &str, host: Host) {
 /// Calls `each` on `object` and every object below it that the Khronos validator reads
 /// `extensions` and `extras` on (outside extension objects), with its pointer and host,
 /// in document order.
-fn walk(object: &Value, pointer: &str, host: Host, each: &mut dyn FnMut(&Value, &str, Host)) {
+fn walk(object: Node, pointer: &str, host: Host, each: &mut dyn FnMut(Node, &str, Host)) {
     let Some(map) = object.as_object() else {
         return;
     };
     each(object, pointer, host);
     for (key, child_host, is_array) in children(host) {
         let child_pointer = member(pointer, key);
-        match map.get(*key) {
-            Some(Value::Array(items)) if *is_array => {
-                for (i, item) in items.iter().enumerate() {
+        match map.get(key) {
+            Some(items) if *is_array && items.is_array() => {
+                for (i, item) in items.as_array().into_iter().flatten().enumerate() {
                     let item_pointer = format!("{child_pointer}/{i}");
                     walk(item, &item_pointer, *child_host, each);
                     walk_nested(key, item, &item_pointer, each);
@@ -251,15 +251,15 @@ fn walk(object: &Value, pointer: &str, host: Host, each: &mut dyn FnMut(&Value, 
 
 fn walk_nested(
     collection: &str,
-    item: &Value,
+    item: Node,
     pointer: &str,
-    each: &mut dyn FnMut(&Value, &str, Host),
+    each: &mut dyn FnMut(Node, &str, Host),
 ) {
     for key in nested(collection) {
         let child_pointer = member(pointer, key);
         match item.get(*key) {
-            Some(Value::Array(items)) => {
-                for (i, child) in items.iter().enumerate() {
+            Some(items) if items.is_array() => {
+                for (i, child) in items.as_array().into_iter().flatten().enumerate() {
                     let host = if *key == "primitives" {
                         Host::Primitive
                     } else {
@@ -280,7 +280,7 @@ fn walk_nested(
     }
 }
 
-fn visit_extension(ctx: &mut Context, name: &str, value: &Value, pointer: &str, host: Host) {
+fn visit_extension(ctx: &mut Context, name: &str, value: Node, pointer: &str, host: Host) {
     if !ctx.uses_extension(name) {
         undeclared(ctx, pointer);
     }

@@ -6,7 +6,7 @@ use super::accessor_fast::Layout;
 use super::accessor_usage::{Budget, Findings};
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;
-use serde_json::Value;
+use crate::document::{Array, Node};
 use std::collections::HashMap;
 
 pub fn check(ctx: &mut Context) {
@@ -47,7 +47,7 @@ fn limiting_skins(ctx: &Context) -> HashMap<usize, (f64, usize)> {
         };
         let Some(joints) = (skins.get(s as usize))
             .and_then(|skin| skin.get("joints")?.as_array())
-            .map(Vec::len)
+            .map(Array::len)
         else {
             continue;
         };
@@ -71,7 +71,7 @@ struct Set<'c> {
 
 /// All sets of a primitive, or None when any is missing, unreadable or of another length
 /// (those are reported elsewhere).
-fn influence_sets<'c>(ctx: &'c Context, primitive: &Value) -> Option<Vec<Set<'c>>> {
+fn influence_sets<'c>(ctx: &'c Context, primitive: Node) -> Option<Vec<Set<'c>>> {
     let attributes = primitive.get("attributes")?;
     let accessors = ctx.items("accessors");
     let vertex_count = attributes
@@ -87,7 +87,7 @@ fn influence_sets<'c>(ctx: &'c Context, primitive: &Value) -> Option<Vec<Set<'c>
         };
         let joints = accessors.get(joints.as_u64()? as usize)?;
         let weights = accessors.get(attributes.get(format!("WEIGHTS_{n}"))?.as_u64()? as usize)?;
-        let readable = |a: &'c Value| {
+        let readable = |a: Node<'c>| {
             let (layout, bytes) = scannable(ctx, a)?;
             let fits = layout.count as u64 == vertex_count && layout.components == 4;
             fits.then_some((layout, bytes))

@@ -6,9 +6,9 @@ use crate::check::context::{member, number, unsigned, Context, MaterialNeeds, Te
 // Defined beside the context, which caches the slot uses; named here, where they are made.
 pub use crate::check::context::{extension, SlotUse};
 use crate::diagnostic::khronos;
+use crate::document::Node;
 use crate::gltf::material::TEXTURE_SLOTS;
 use crate::gltf::material::{effective_texcoord, texture_transform};
-use serde_json::Value;
 use std::sync::Arc;
 
 pub fn check_textures(ctx: &mut Context) {
@@ -40,7 +40,7 @@ pub fn check_textures(ctx: &mut Context) {
 }
 
 fn check_texture_source_mime(ctx: &mut Context, image: usize, pointer: &str, valid: &[&str]) {
-    let declared = declared_mime(&ctx.items("images")[image]).or_else(|| {
+    let declared = declared_mime(ctx.items("images").at(image)).or_else(|| {
         ctx.images[image]
             .as_ref()
             .map(|i| i.format.mime_type().to_string())
@@ -66,7 +66,7 @@ pub fn check_materials(ctx: &mut Context) {
     }
 }
 
-fn texture_needs(ctx: &mut Context, material: &Value, pointer: &str) -> MaterialNeeds {
+fn texture_needs(ctx: &mut Context, material: Node, pointer: &str) -> MaterialNeeds {
     let mut needs = MaterialNeeds::default();
     for (at, slot) in TEXTURE_SLOTS.iter().enumerate() {
         let Some(info) = slot.lookup(material) else {
@@ -91,15 +91,15 @@ fn texture_needs(ctx: &mut Context, material: &Value, pointer: &str) -> Material
             needs.needs_tangent = true;
         }
     }
-    needs.can_generate_tangent = material.get("normalTexture").is_some_and(Value::is_object);
+    needs.can_generate_tangent = material.get("normalTexture").is_some_and(Node::is_object);
     needs.anisotropy = extension(material, "KHR_materials_anisotropy").is_some();
     needs
 }
 
-fn check_alpha_cutoff(ctx: &mut Context, material: &Value, pointer: &str) {
+fn check_alpha_cutoff(ctx: &mut Context, material: Node, pointer: &str) {
     let mode = material
         .get("alphaMode")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .unwrap_or("OPAQUE");
     if material.get("alphaCutoff").is_some() && mode != "MASK" {
         ctx.emit(
@@ -110,9 +110,9 @@ fn check_alpha_cutoff(ctx: &mut Context, material: &Value, pointer: &str) {
     }
 }
 
-fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
+fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str) {
     let ext_pointer = |name: &str| format!("{pointer}/extensions/{name}");
-    let Some(extensions) = material.get("extensions").and_then(Value::as_object) else {
+    let Some(extensions) = material.get("extensions").and_then(Node::as_object) else {
         return;
     };
     for standalone in ["KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit"] {
@@ -126,8 +126,8 @@ fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
     }
     let strength = extension(material, "KHR_materials_emissive_strength")
         .and_then(|e| e.get("emissiveStrength"));
-    if strength.and_then(Value::as_f64).is_some_and(|s| s >= 0.0) {
-        let emissive = material.get("emissiveFactor").and_then(Value::as_array);
+    if strength.and_then(Node::as_f64).is_some_and(|s| s >= 0.0) {
+        let emissive = material.get("emissiveFactor").and_then(Node::as_array);
         let zero = emissive.is_none_or(|f| f.iter().all(|c| c.as_f64() == Some(0.0)));
         if zero {
             ctx.emit(
@@ -141,7 +141,7 @@ fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
         // An extension this validator does not know may well be the one that transmits.
         let transmits = extensions.keys().any(|name| {
             matches!(
-                name.as_str(),
+                name,
                 "KHR_materials_transmission" | "KHR_materials_diffuse_transmission"
             ) || !name.starts_with("KHR_materials_")
         });
@@ -153,7 +153,7 @@ fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
             );
         }
         let thick = number(volume, "thicknessFactor", 0.0) > 0.0;
-        if thick && material.get("doubleSided").and_then(Value::as_bool) == Some(true) {
+        if thick && material.get("doubleSided").and_then(Node::as_bool) == Some(true) {
             ctx.emit(
                 khronos::KHR_MATERIALS_VOLUME_DOUBLE_SIDED,
                 ext_pointer("KHR_materials_volume"),
@@ -196,12 +196,12 @@ fn check_extension_rules(ctx: &mut Context, material: &Value, pointer: &str) {
 /// Normal and anisotropy / clearcoat-normal textures should share texCoords. The Khronos
 /// validator compares the raw `texCoord`; gltfmat's default profile applies the
 /// KHR_texture_transform override, which is what a renderer samples.
-fn check_texcoord_pairs(ctx: &mut Context, material: &Value, pointer: &str) {
+fn check_texcoord_pairs(ctx: &mut Context, material: Node, pointer: &str) {
     let Some(normal) = material.get("normalTexture").filter(|n| n.is_object()) else {
         return;
     };
     let transformed = ctx.options.profile.reads_texcoord_override();
-    let texcoord = |info: &Value| {
+    let texcoord = |info: Node| {
         if transformed {
             effective_texcoord(info)
         } else {

@@ -7,7 +7,8 @@ use super::accessor_usage::UNIT_TOLERANCE_VEC4;
 use super::primitives::{joint_sets, mesh_morph_targets};
 use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
-use serde_json::Value;
+use crate::document::Array;
+use crate::document::Node;
 use std::collections::HashMap;
 
 /// How far a matrix may be from its TRS recomposition.
@@ -20,7 +21,7 @@ pub fn check(ctx: &mut Context) {
     for (i, pointer, node) in ctx.objects("nodes") {
         transforms(ctx, node, &pointer);
         dependencies(ctx, node, &pointer);
-        if hierarchy.on_loop[i] {
+        if hierarchy.on_loop.get(i) == Some(&true) {
             ctx.emit(
                 khronos::NODE_LOOP,
                 pointer.clone(),
@@ -34,7 +35,7 @@ pub fn check(ctx: &mut Context) {
     for (_, pointer, scene) in ctx.objects("scenes") {
         for (k, root) in elements(scene, "nodes") {
             let index = root.as_u64().map(|n| n as usize);
-            if index.is_some_and(|n| parents.get(n).copied().flatten().is_some()) {
+            if index.is_some_and(|n| parent_of(&parents, n).is_some()) {
                 ctx.emit(
                     khronos::SCENE_NON_ROOT_NODE,
                     format!("{pointer}/nodes/{k}"),
@@ -48,12 +49,10 @@ pub fn check(ctx: &mut Context) {
 
 /// Each node's parent, walking `children` in node order; a node listed as a child more than
 /// once gets the last parent that lists it. Calls `relisted(parent, k, child)` for each
-/// listing after the first.
-fn walk_parents(
-    nodes: &[Value],
-    mut relisted: impl FnMut(usize, usize, usize),
-) -> Vec<Option<usize>> {
-    let mut parent = vec![None; nodes.len()];
+/// listing after the first. Empty when no node lists a child (10^7 nodes that are all
+/// roots need no list of 10^7 parents).
+fn walk_parents(nodes: Array, mut relisted: impl FnMut(usize, usize, usize)) -> Vec<Option<usize>> {
+    let mut parent = Vec::new();
     for (i, node) in nodes.iter().enumerate() {
         for (k, child) in elements(node, "children") {
             let Some(c) = child
@@ -63,6 +62,9 @@ fn walk_parents(
             else {
                 continue;
             };
+            if parent.is_empty() {
+                parent = vec![None; nodes.len()];
+            }
             if parent[c].is_some() {
                 relisted(i, k, c);
             }
@@ -72,13 +74,22 @@ fn walk_parents(
     parent
 }
 
-/// Each node's parent (see `walk_parents`).
-pub(super) fn parent_map(nodes: &[Value]) -> Vec<Option<usize>> {
-    walk_parents(nodes, |_, _, _| {})
+/// Each node's parent (see `walk_parents`), for every node.
+pub(super) fn parent_map(nodes: Array) -> Vec<Option<usize>> {
+    let parents = walk_parents(nodes, |_, _, _| {});
+    if parents.is_empty() {
+        return vec![None; nodes.len()];
+    }
+    parents
+}
+
+/// A node's parent in a list `walk_parents` made.
+fn parent_of(parents: &[Option<usize>], node: usize) -> Option<usize> {
+    parents.get(node).copied().flatten()
 }
 
 /// Each node's parent; a second listing as a child is NODE_PARENT_OVERRIDE.
-fn parents(ctx: &mut Context, nodes: &[Value]) -> Vec<Option<usize>> {
+fn parents(ctx: &mut Context, nodes: Array) -> Vec<Option<usize>> {
     let mut overrides = Vec::new();
     let parent = walk_parents(nodes, |i, k, c| overrides.push((i, k, c)));
     for (i, k, c) in overrides {
@@ -101,30 +112,31 @@ struct Hierarchy {
 }
 
 impl Hierarchy {
-    fn of(nodes: &[Value], parents: &[Option<usize>]) -> Hierarchy {
+    fn of(nodes: Array, parents: &[Option<usize>]) -> Hierarchy {
         let n = parents.len();
         let mut on_loop = vec![false; n];
         let mut above: Vec<Option<bool>> = vec![None; n];
-        let mut position = vec![usize::MAX; n];
-        let transformed = |i: usize| has_transform(&nodes[i]);
+        // Where each node of the current climb is on it (u32: at most 2^24 values).
+        let mut position = vec![u32::MAX; n];
+        let transformed = |i: usize| has_transform(nodes.at(i));
         for start in 0..n {
             // Climb until a root, a node already known, or a node of this climb (a loop).
             let mut path = Vec::new();
             let mut at = Some(start);
-            while let Some(node) = at.filter(|&a| above[a].is_none() && position[a] == usize::MAX) {
-                position[node] = path.len();
+            while let Some(node) = at.filter(|&a| above[a].is_none() && position[a] == u32::MAX) {
+                position[node] = path.len() as u32;
                 path.push(node);
                 at = parents[node];
             }
             let mut known = match at {
                 None => false,
-                Some(a) if position[a] != usize::MAX => {
-                    let cycle = path.split_off(position[a]);
+                Some(a) if position[a] != u32::MAX => {
+                    let cycle = path.split_off(position[a] as usize);
                     let any = cycle.iter().any(|&c| transformed(c));
                     for &c in &cycle {
                         on_loop[c] = true;
                         above[c] = Some(any);
-                        position[c] = usize::MAX;
+                        position[c] = u32::MAX;
                     }
                     any
                 }
@@ -133,7 +145,7 @@ impl Hierarchy {
             // Down again: each node's answer is its parent's transform or the parent's answer.
             for &node in path.iter().rev() {
                 above[node] = Some(known);
-                position[node] = usize::MAX;
+                position[node] = u32::MAX;
                 known = known || transformed(node);
             }
         }
@@ -144,13 +156,13 @@ impl Hierarchy {
     }
 }
 
-fn numbers(node: &Value, key: &str, length: usize) -> Option<Vec<f64>> {
+fn numbers(node: Node, key: &str, length: usize) -> Option<Vec<f64>> {
     let list = node.get(key)?.as_array()?;
-    let values: Vec<f64> = list.iter().filter_map(Value::as_f64).collect();
+    let values: Vec<f64> = list.iter().filter_map(Node::as_f64).collect();
     (values.len() == length && list.len() == length).then_some(values)
 }
 
-fn transforms(ctx: &mut Context, node: &Value, pointer: &str) {
+fn transforms(ctx: &mut Context, node: Node, pointer: &str) {
     if let Some(q) = numbers(node, "rotation", 4).filter(|q| q.iter().all(|v| v.abs() <= 1.0)) {
         let length = q.iter().map(|v| v * v).sum::<f64>().sqrt();
         if (1.0 - length).abs() > UNIT_TOLERANCE_VEC4 {
@@ -289,7 +301,7 @@ fn rotation_matrix(q: [f64; 4]) -> [[f64; 3]; 3] {
 
 /// A skin or morph weights need a mesh; weights must match its morph targets; a skin needs
 /// a skinned mesh, and a skinned mesh a skin.
-fn dependencies(ctx: &mut Context, node: &Value, pointer: &str) {
+fn dependencies(ctx: &mut Context, node: Node, pointer: &str) {
     if node.get("mesh").is_none() {
         for key in ["skin", "weights"] {
             if node.get(key).is_some() {
@@ -306,7 +318,7 @@ fn dependencies(ctx: &mut Context, node: &Value, pointer: &str) {
     let Some(primitives) = mesh.and_then(|m| m.get("primitives")?.as_array()) else {
         return;
     };
-    if let Some(weights) = node.get("weights").and_then(Value::as_array) {
+    if let Some(weights) = node.get("weights").and_then(Node::as_array) {
         let targets = mesh.and_then(mesh_morph_targets);
         if targets != Some(weights.len()) {
             ctx.emit(
@@ -316,9 +328,9 @@ fn dependencies(ctx: &mut Context, node: &Value, pointer: &str) {
             );
         }
     }
-    let skinned = |p: &Value| {
+    let skinned = |p: Node| {
         p.get("attributes")
-            .and_then(Value::as_object)
+            .and_then(Node::as_object)
             .is_some_and(|a| joint_sets(a) > 0)
     };
     let has_skin = unsigned(node, "skin").is_some_and(|s| (s as usize) < ctx.items("skins").len());
@@ -339,7 +351,7 @@ fn dependencies(ctx: &mut Context, node: &Value, pointer: &str) {
 }
 
 /// Whether a node moves what it holds: a non-identity matrix or any non-default TRS.
-fn has_transform(node: &Value) -> bool {
+fn has_transform(node: Node) -> bool {
     let is =
         |key: &str, default: &[f64]| numbers(node, key, default.len()).is_none_or(|v| v == default);
     !(is("matrix", &IDENTITY)
@@ -354,20 +366,20 @@ fn has_transform(node: &Value) -> bool {
 /// the next Khronos build does (NODE_SKINNED_MESH_PARENT_TRANSFORMS).
 fn skinned_placement(
     ctx: &mut Context,
-    nodes: &[Value],
+    nodes: Array,
     parents: &[Option<usize>],
     hierarchy: &Hierarchy,
     i: usize,
     pointer: &str,
 ) {
-    if has_transform(&nodes[i]) {
+    if has_transform(nodes.at(i)) {
         ctx.emit(
             khronos::NODE_SKINNED_MESH_LOCAL_TRANSFORMS,
             pointer,
             "Local transforms will not affect a skinned mesh.",
         );
     }
-    if parents[i].is_none() {
+    if parent_of(parents, i).is_none() {
         return;
     }
     // The released validator's warning, and the newer builds' narrower one (the profiles
@@ -377,7 +389,7 @@ fn skinned_placement(
         pointer,
         "Node with a skinned mesh is not root. Parent transforms will not affect a skinned mesh.",
     );
-    if hierarchy.transformed_above[i] {
+    if hierarchy.transformed_above.get(i) == Some(&true) {
         ctx.emit(
             khronos::NODE_SKINNED_MESH_PARENT_TRANSFORMS,
             pointer,
@@ -387,7 +399,7 @@ fn skinned_placement(
 }
 
 /// A mesh's own morph weights do nothing when every node that draws it has weights.
-fn unused_mesh_weights(ctx: &mut Context, nodes: &[Value]) {
+fn unused_mesh_weights(ctx: &mut Context, nodes: Array) {
     // Per mesh: the nodes that draw it, and how many of them have their own weights.
     let mut drawn_by: HashMap<usize, (usize, usize)> = HashMap::new();
     for node in nodes {

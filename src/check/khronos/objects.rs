@@ -5,9 +5,9 @@ use super::primitives::indexed_sets;
 use super::resources::fits_in_view;
 use crate::check::context::{elements, member, unsigned, Context, MaterialNeeds};
 use crate::diagnostic::{khronos, Diagnostic, Sink};
+use crate::document::{Array, Node, Tree};
 use crate::gltf::accessor::{component_count, component_size};
 use crate::gltf::gl;
-use serde_json::Value;
 use std::collections::{BTreeSet, HashSet};
 
 fn version(text: &str) -> Option<(u64, u64)> {
@@ -16,10 +16,10 @@ fn version(text: &str) -> Option<(u64, u64)> {
 }
 
 /// Whether `asset.version` says glTF 2.x: the other passes assume it.
-pub fn has_supported_version(root: &Value) -> bool {
+pub fn has_supported_version(root: Node) -> bool {
     root.get("asset")
         .and_then(|a| a.get("version"))
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .and_then(version)
         .is_some_and(|(major, _)| major == 2)
 }
@@ -29,7 +29,7 @@ pub fn has_supported_version(root: &Value) -> bool {
 /// stops. So: unexpected root members, anything of `extensionsUsed` / `extensionsRequired`,
 /// anything inside `asset`, and, when it is missing, the root's one missing member (the
 /// root schema requires `asset` alone).
-pub fn read_before_asset(root: &Value) -> impl Fn(&Diagnostic) -> bool {
+pub fn read_before_asset(root: Node) -> impl Fn(&Diagnostic) -> bool {
     let missing = root.get("asset").is_none();
     move |diagnostic| {
         let Some(pointer) = diagnostic.pointer() else {
@@ -60,7 +60,7 @@ pub fn check_asset(ctx: &mut Context) {
     };
     let Some((major, minor)) = asset
         .get("version")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .and_then(version)
     else {
         return;
@@ -81,7 +81,7 @@ pub fn check_asset(ctx: &mut Context) {
     }
     if let Some((min_major, min_minor)) = asset
         .get("minVersion")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .and_then(version)
     {
         if (min_major, min_minor) > (major, minor) {
@@ -110,10 +110,10 @@ pub fn check_accessors(ctx: &mut Context) {
 /// Whether the Khronos validator links the accessor to its bufferView and sparse parts: only
 /// with a valid componentType, a count and a type (any string). Otherwise its bufferView is
 /// neither resolved nor used by it.
-pub(super) fn is_linked(accessor: &Value) -> bool {
+pub(super) fn is_linked(accessor: Node) -> bool {
     unsigned(accessor, "componentType").is_some_and(|c| component_size(c).is_some())
         && unsigned(accessor, "count").is_some_and(|n| n >= 1)
-        && accessor.get("type").is_some_and(Value::is_string)
+        && accessor.get("type").is_some_and(Node::is_string)
 }
 
 /// Takes out of the tree the accessors' `min` and `max` that the Khronos validator does not
@@ -121,16 +121,17 @@ pub(super) fn is_linked(accessor: &Value) -> bool {
 /// (nothing is reported),
 /// and one whose length is not the type's component count (reported here, as the only
 /// finding about that array).
-pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
-    let accessors = root.get_mut("accessors").and_then(Value::as_array_mut);
+pub fn take_unread_bounds(tree: &mut Tree, sink: &mut dyn Sink) {
+    let mut unread = Vec::new();
+    let accessors = tree.root().get("accessors").and_then(Node::as_array);
     for (i, accessor) in accessors.into_iter().flatten().enumerate() {
-        let Some(accessor) = accessor.as_object_mut() else {
+        if !accessor.is_object() {
             continue;
-        };
-        let component_type = accessor.get("componentType").and_then(Value::as_u64);
+        }
+        let component_type = accessor.get("componentType").and_then(Node::as_u64);
         // Bounds are read as a list of the component type's values for the type's count of
         // components: under an invalid type or component type they are not read at all.
-        let components = (accessor.get("type").and_then(Value::as_str))
+        let components = (accessor.get("type").and_then(Node::as_str))
             .and_then(component_count)
             .filter(|_| component_type.and_then(component_size).is_some());
         let integer_range = component_type.and_then(gl::integer_range);
@@ -138,7 +139,7 @@ pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
             let Some(bounds) = accessor.get(key) else {
                 continue;
             };
-            let length = bounds.as_array().map(Vec::len);
+            let length = bounds.as_array().map(Array::len);
             match (components, length) {
                 (None, _) => {}
                 // Empty float bounds are empty to the validator; integer ones (read as a
@@ -156,8 +157,11 @@ pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
                 _ if integer_range.is_some_and(|range| !holds(range, bounds, key, i, sink)) => {}
                 _ => continue,
             }
-            accessor.shift_remove(key);
+            unread.push(format!("/accessors/{i}/{key}"));
         }
+    }
+    for pointer in unread {
+        tree.remove(&pointer);
     }
 }
 
@@ -167,7 +171,7 @@ pub fn take_unread_bounds(root: &mut Value, sink: &mut dyn Sink) {
 /// array. Elements that are no number are the schema's to report.
 fn holds(
     (name, lowest, highest): (&str, f64, f64),
-    bounds: &Value,
+    bounds: Node,
     key: &str,
     i: usize,
     sink: &mut dyn Sink,
@@ -199,7 +203,7 @@ fn holds(
 }
 
 /// What an accessor's own members must agree on, whatever its bufferView.
-fn check_accessor_format(ctx: &mut Context, accessor: &Value, pointer: &str) {
+fn check_accessor_format(ctx: &mut Context, accessor: Node, pointer: &str) {
     if accessor.get("bufferView").is_none() && accessor.get("byteOffset").is_some() {
         ctx.emit(
             khronos::UNSATISFIED_DEPENDENCY,
@@ -208,7 +212,7 @@ fn check_accessor_format(ctx: &mut Context, accessor: &Value, pointer: &str) {
         );
     }
     let component_type = unsigned(accessor, "componentType");
-    let normalized = accessor.get("normalized").and_then(Value::as_bool) == Some(true);
+    let normalized = accessor.get("normalized").and_then(Node::as_bool) == Some(true);
     if normalized && matches!(component_type, Some(gl::FLOAT | gl::UNSIGNED_INT)) {
         ctx.emit(
             khronos::ACCESSOR_NORMALIZED_INVALID,
@@ -218,7 +222,7 @@ fn check_accessor_format(ctx: &mut Context, accessor: &Value, pointer: &str) {
     }
     let is_matrix = accessor
         .get("type")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .is_some_and(|t| t.starts_with("MAT"));
     if is_matrix && unsigned(accessor, "byteOffset").is_some_and(|o| o % 4 != 0) {
         ctx.emit(
@@ -232,13 +236,13 @@ fn check_accessor_format(ctx: &mut Context, accessor: &Value, pointer: &str) {
 /// The accessor inside its bufferView: stride, alignment of its own and total offset, and
 /// ACCESSOR_TOO_LONG, the last element ending inside the view. Computed with checked
 /// arithmetic, so a count of 2^31 or 2^64 − 1 is a finding, not an overflow.
-fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer: &str) {
+fn check_accessor_fits(ctx: &mut Context, accessor: Node, view: usize, pointer: &str) {
     let Some(component_size) = unsigned(accessor, "componentType").and_then(component_size) else {
         return;
     };
     let Some(components) = accessor
         .get("type")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .and_then(component_count)
     else {
         return;
@@ -250,7 +254,7 @@ fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer
     };
     // Matrix columns start on 4-byte boundaries (glTF 2.0 §3.6.2.4): elements are padded,
     // but the last element ends after its last column's data.
-    let is_mat2 = accessor.get("type").and_then(Value::as_str) == Some("MAT2");
+    let is_mat2 = accessor.get("type").and_then(Node::as_str) == Some("MAT2");
     let (element, last): (u64, u64) = match (components, component_size) {
         (4, 1) if is_mat2 => (8, 6),
         (9, 1) => (12, 11),
@@ -260,7 +264,7 @@ fn check_accessor_fits(ctx: &mut Context, accessor: &Value, view: usize, pointer
             (size, size)
         }
     };
-    let view_object = &ctx.items("bufferViews")[view];
+    let view_object = ctx.items("bufferViews").at(view);
     let declared_stride = unsigned(view_object, "byteStride");
     if declared_stride.is_some_and(|s| s < element) {
         ctx.emit(
@@ -283,10 +287,10 @@ pub fn check_meshes(ctx: &mut Context) {
         .get("extensions")
         .and_then(|e| e.get("KHR_materials_variants"))
         .and_then(|v| v.get("variants"))
-        .and_then(Value::as_array)
-        .map_or(0, Vec::len);
+        .and_then(Node::as_array)
+        .map_or(0, Array::len);
     for (_, pointer, mesh) in ctx.objects("meshes") {
-        let Some(primitives) = mesh.get("primitives").and_then(Value::as_array) else {
+        let Some(primitives) = mesh.get("primitives").and_then(Node::as_array) else {
             continue;
         };
         for (j, primitive) in primitives.iter().enumerate().filter(|(_, p)| p.is_object()) {
@@ -296,8 +300,8 @@ pub fn check_meshes(ctx: &mut Context) {
     }
 }
 
-fn check_primitive(ctx: &mut Context, primitive: &Value, pointer: &str, variant_count: usize) {
-    let attributes = primitive.get("attributes").and_then(Value::as_object);
+fn check_primitive(ctx: &mut Context, primitive: Node, pointer: &str, variant_count: usize) {
+    let attributes = primitive.get("attributes").and_then(Node::as_object);
     if let Some(attributes) = attributes {
         for (name, value) in attributes {
             ctx.reference_value(
@@ -420,7 +424,7 @@ fn unused_tangent(ctx: &mut Context, pointer: &str) {
 /// pointer to its reference.
 fn check_variant_mappings(
     ctx: &mut Context,
-    primitive: &Value,
+    primitive: Node,
     pointer: &str,
     variant_count: usize,
 ) -> Vec<(usize, String)> {
@@ -431,7 +435,7 @@ fn check_variant_mappings(
     else {
         return mapped;
     };
-    let Some(mappings) = ext.get("mappings").and_then(Value::as_array) else {
+    let Some(mappings) = ext.get("mappings").and_then(Node::as_array) else {
         return mapped;
     };
     let root_declares_variants = ctx
@@ -498,7 +502,7 @@ pub fn check_nodes_and_scenes(ctx: &mut Context) {
         // Blender writes named empty nodes).
         let has_children = node
             .get("children")
-            .and_then(Value::as_array)
+            .and_then(Node::as_array)
             .is_some_and(|c| !c.is_empty());
         let extras = node.get("extras").is_some_and(|e| !e.is_null());
         // A joint is not empty: skinning reads its transform.
@@ -562,7 +566,7 @@ pub fn check_skins_animations_cameras(ctx: &mut Context) {
             }
         }
         for (s, used) in sampler_used.iter().enumerate() {
-            if !used && samplers[s].is_object() {
+            if !used && samplers.at(s).is_object() {
                 ctx.emit(
                     khronos::UNUSED_OBJECT,
                     format!("{pointer}/samplers/{s}"),

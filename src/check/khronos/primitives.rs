@@ -5,8 +5,8 @@
 
 use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
+use crate::document::{Array, Node, Object};
 use crate::gltf::accessor::{component_count, component_size};
-use serde_json::{Map, Value};
 use std::collections::{HashMap, HashSet};
 
 use crate::gltf::gl::{BYTE, FLOAT, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT};
@@ -23,18 +23,18 @@ impl<'a> Format<'a> {
     /// The accessor's format as the Khronos validator reads it: a type or component type
     /// that is missing or not of its kind reads as none, which no format rule allows (it
     /// is still an invalid format for the attribute, output or matrices it holds).
-    pub(super) fn of(accessor: &'a Value) -> Self {
+    pub(super) fn of(accessor: Node<'a>) -> Self {
         Format {
-            kind: accessor.get("type").and_then(Value::as_str).unwrap_or(""),
+            kind: accessor.get("type").and_then(Node::as_str).unwrap_or(""),
             component_type: unsigned(accessor, "componentType").unwrap_or(0),
-            normalized: accessor.get("normalized").and_then(Value::as_bool) == Some(true),
+            normalized: accessor.get("normalized").and_then(Node::as_bool) == Some(true),
         }
     }
 
     /// Whether the accessor declares both bounds in a form that can be read: the Khronos
     /// validator reads `min` and `max` by the type and component type, so with either of
     /// those missing or invalid an accessor has no bounds.
-    pub(super) fn has_bounds(accessor: &Value) -> bool {
+    pub(super) fn has_bounds(accessor: Node) -> bool {
         let format = Format::of(accessor);
         let readable = component_size(format.component_type).is_some()
             && component_count(format.kind).is_some();
@@ -107,20 +107,20 @@ impl<'a> Format<'a> {
 
 /// How many morph targets a mesh has, as its first primitive lists them (None when it lists
 /// none): what node weights and weight animations are counted against.
-pub(super) fn mesh_morph_targets(mesh: &Value) -> Option<usize> {
+pub(super) fn mesh_morph_targets(mesh: Node) -> Option<usize> {
     let first = mesh.get("primitives")?.as_array()?.first()?;
     Some(first.get("targets")?.as_array()?.len())
 }
 
 /// A primitive's morph targets when they are a non-empty list of non-empty objects; any
 /// other form is a schema error, and the list is then ignored, as the Khronos validator does.
-pub(super) fn morph_targets(primitive: &Value) -> Option<&[Value]> {
+pub(super) fn morph_targets(primitive: Node) -> Option<Array> {
     let targets = primitive.get("targets")?.as_array()?;
     let valid = !targets.is_empty()
         && targets
             .iter()
             .all(|t| t.as_object().is_some_and(|o| !o.is_empty()));
-    valid.then_some(targets.as_slice())
+    valid.then_some(targets)
 }
 
 /// The index of an indexed semantic (`TEXCOORD_1` → 1): digits only, no leading zero.
@@ -152,7 +152,7 @@ fn classify(semantic: &str, morph: bool) -> Result<Option<(&str, u64)>, ()> {
 
 /// Per indexed family (COLOR, JOINTS, TEXCOORD, WEIGHTS): how many validly named sets a
 /// primitive has, and the largest index.
-fn indexed_families(attributes: &Map<String, Value>) -> HashMap<&str, (u64, u64)> {
+fn indexed_families(attributes: Object<'_>) -> HashMap<&str, (u64, u64)> {
     let mut families: HashMap<&str, (u64, u64)> = HashMap::new();
     for semantic in attributes.keys() {
         if let Ok(Some((family, index))) = classify(semantic, false) {
@@ -166,7 +166,7 @@ fn indexed_families(attributes: &Map<String, Value>) -> HashMap<&str, (u64, u64)
 
 /// How many sets of an indexed family a renderer reads: all of them when they are numbered
 /// 0, 1, … without gaps, none otherwise (as the Khronos validator counts them).
-pub(super) fn indexed_sets(attributes: &Map<String, Value>, family: &str) -> u64 {
+pub(super) fn indexed_sets(attributes: Object, family: &str) -> u64 {
     match indexed_families(attributes).get(family) {
         Some(&(count, largest)) if largest + 1 == count => count,
         _ => 0,
@@ -174,7 +174,7 @@ pub(super) fn indexed_sets(attributes: &Map<String, Value>, family: &str) -> u64
 }
 
 /// The skinning sets a primitive has: JOINTS_n and WEIGHTS_n in equal number, else none.
-pub(super) fn joint_sets(attributes: &Map<String, Value>) -> u64 {
+pub(super) fn joint_sets(attributes: Object) -> u64 {
     let joints = indexed_sets(attributes, "JOINTS");
     if joints == indexed_sets(attributes, "WEIGHTS") {
         joints
@@ -203,13 +203,13 @@ struct Walk<'c, 'a> {
 }
 
 impl<'a> Walk<'_, 'a> {
-    fn mesh(&mut self, mesh: &'a Value, pointer: &str) {
-        let primitives: Vec<&Value> = elements(mesh, "primitives").map(|(_, p)| p).collect();
-        let target_count = |p: &Value| morph_targets(p).map_or(0, <[Value]>::len);
-        let first_count = primitives.first().map_or(0, |p| target_count(p));
+    fn mesh(&mut self, mesh: Node<'a>, pointer: &str) {
+        let primitives: Vec<Node> = elements(mesh, "primitives").map(|(_, p)| p).collect();
+        let target_count = |p: Node| morph_targets(p).map_or(0, Array::len);
+        let first_count = primitives.first().map_or(0, |&p| target_count(p));
         for (i, primitive) in primitives.iter().enumerate().filter(|(_, p)| p.is_object()) {
             let at = format!("{pointer}/primitives/{i}");
-            let count = target_count(primitive);
+            let count = target_count(*primitive);
             if i > 0 && count != first_count {
                 let where_ = if count > 0 {
                     member(&at, "targets")
@@ -222,9 +222,9 @@ impl<'a> Walk<'_, 'a> {
                     "All primitives must have the same number of morph targets.",
                 );
             }
-            self.primitive(primitive, &at);
+            self.primitive(*primitive, &at);
         }
-        if let Some(weights) = mesh.get("weights").and_then(Value::as_array) {
+        if let Some(weights) = mesh.get("weights").and_then(Node::as_array) {
             if !primitives.is_empty() && weights.len() != first_count {
                 self.ctx.emit(
                     khronos::MESH_INVALID_WEIGHTS_COUNT,
@@ -235,10 +235,10 @@ impl<'a> Walk<'_, 'a> {
         }
     }
 
-    fn primitive(&mut self, primitive: &'a Value, pointer: &str) {
+    fn primitive(&mut self, primitive: Node<'a>, pointer: &str) {
         let attributes = primitive
             .get("attributes")
-            .and_then(Value::as_object)
+            .and_then(Node::as_object)
             .filter(|a| !a.is_empty());
         if let Some(attributes) = attributes {
             self.names(attributes, &member(pointer, "attributes"));
@@ -257,7 +257,7 @@ impl<'a> Walk<'_, 'a> {
     }
 
     /// Semantic names, their numbering, and the sets every primitive needs.
-    fn names(&mut self, attributes: &Map<String, Value>, at: &str) {
+    fn names(&mut self, attributes: Object, at: &str) {
         for semantic in attributes.keys() {
             if classify(semantic, false).is_err() {
                 self.invalid_name(&member(at, semantic));
@@ -303,11 +303,7 @@ impl<'a> Walk<'_, 'a> {
     }
 
     /// The attributes' accessors; returns the vertex count (see [`vertex_count`]).
-    fn attributes(
-        &mut self,
-        attributes: Option<&'a Map<String, Value>>,
-        pointer: &str,
-    ) -> Option<u64> {
+    fn attributes(&mut self, attributes: Option<Object<'a>>, pointer: &str) -> Option<u64> {
         let mut vertex_count = None;
         for (semantic, value) in attributes.into_iter().flatten() {
             let at = format!(
@@ -337,8 +333,8 @@ impl<'a> Walk<'_, 'a> {
     /// The checks every vertex accessor gets, in attributes and in morph targets.
     fn vertex_accessor(
         &mut self,
-        accessor: &'a Value,
-        index: &Value,
+        accessor: Node<'a>,
+        index: Node,
         semantic: &str,
         at: &str,
         morph: bool,
@@ -392,7 +388,7 @@ impl<'a> Walk<'_, 'a> {
     }
 
     /// Returns the index accessor's count, when `indices` resolves to one.
-    fn indices(&mut self, primitive: &'a Value, pointer: &str) -> Option<Option<u64>> {
+    fn indices(&mut self, primitive: Node<'a>, pointer: &str) -> Option<Option<u64>> {
         let value = primitive.get("indices")?;
         let accessor = self.accessor(value)?;
         let at = member(pointer, "indices");
@@ -421,7 +417,7 @@ impl<'a> Walk<'_, 'a> {
     }
 
     /// The vertex or index count must suit the draw mode.
-    fn mode(&mut self, primitive: &Value, pointer: &str, count: Option<u64>) {
+    fn mode(&mut self, primitive: Node, pointer: &str, count: Option<u64>) {
         let Some(count) = count else { return };
         let mode = unsigned(primitive, "mode").unwrap_or(4);
         let incompatible = match mode {
@@ -449,12 +445,7 @@ impl<'a> Walk<'_, 'a> {
         }
     }
 
-    fn target(
-        &mut self,
-        target: &'a Map<String, Value>,
-        attributes: Option<&'a Map<String, Value>>,
-        at: &str,
-    ) {
+    fn target(&mut self, target: Object<'a>, attributes: Option<Object<'a>>, at: &str) {
         for (semantic, value) in target {
             let semantic_at = member(at, semantic);
             if classify(semantic, true).is_err() {
@@ -487,7 +478,7 @@ impl<'a> Walk<'_, 'a> {
 
     /// The accessor an index value names, when it exists (unresolved ones are reported by
     /// the reference pass).
-    fn accessor(&self, value: &Value) -> Option<&'a Value> {
+    fn accessor(&self, value: Node) -> Option<Node<'a>> {
         self.ctx
             .items("accessors")
             .get(value.as_u64()? as usize)
@@ -497,7 +488,7 @@ impl<'a> Walk<'_, 'a> {
 
 /// A primitive's vertex count as the Khronos validator takes it: the first readable count of
 /// an attribute that names an accessor (an unreadable count leaves it to the next one).
-pub(super) fn vertex_count(attributes: &Value, accessors: &[Value]) -> Option<u64> {
+pub(super) fn vertex_count(attributes: Node, accessors: Array) -> Option<u64> {
     (attributes.as_object().into_iter().flat_map(|a| a.values()))
         .filter_map(|v| accessors.get(usize::try_from(v.as_u64()?).ok()?))
         .find_map(|accessor| unsigned(accessor, "count"))

@@ -6,9 +6,9 @@ use crate::check::pass_codes;
 use crate::diagnostic::khronos;
 use crate::document::image_header::{self, HeaderError, ImageFormat};
 use crate::document::uri::{classify, LoadError, UriKind};
+use crate::document::Node;
 use crate::document::{BufferData, Bytes};
 use crate::gltf::gl::ELEMENT_ARRAY_BUFFER;
-use serde_json::Value;
 
 /// Bytes behind a `uri`, with diagnostics for everything that stops us reading them.
 /// Returns the bytes and, for data URIs, the declared media type.
@@ -115,7 +115,7 @@ pub fn check_buffers(ctx: &mut Context) {
     ctx.buffers = buffers.iter().map(|_| None).collect();
     for (i, pointer, buffer) in ctx.objects("buffers") {
         let declared = unsigned(buffer, "byteLength");
-        let (data, storage, uri) = match buffer.get("uri").and_then(Value::as_str) {
+        let (data, storage, uri) = match buffer.get("uri").and_then(Node::as_str) {
             // Without a declared length an external file is not read and the GLB chunk not
             // attached (a data URI is still decoded and used), as the Khronos validator reads it.
             Some(uri) if declared.is_none() && !uri.starts_with("data:") => {
@@ -190,7 +190,7 @@ pub fn check_buffer_views(ctx: &mut Context) {
         let offset = unsigned(view, "byteOffset").unwrap_or(0);
         let length = unsigned(view, "byteLength");
         if let (Some(b), Some(length)) = (buffer, length) {
-            if let Some(buffer_length) = unsigned(&ctx.items("buffers")[b], "byteLength") {
+            if let Some(buffer_length) = unsigned(ctx.items("buffers").at(b), "byteLength") {
                 if offset.saturating_add(length) > buffer_length {
                     let key = if offset >= buffer_length {
                         "byteOffset"
@@ -250,7 +250,7 @@ pub(super) fn fits_in_view(
     size: u64,
     length: Option<u64>,
 ) {
-    let view_object = &ctx.items("bufferViews")[view];
+    let view_object = ctx.items("bufferViews").at(view);
     // A view without a readable byteLength holds nothing, as the Khronos validator reads it
     // (length -1): every accessor on it is too long, placed at its byteOffset.
     let view_length = unsigned(view_object, "byteLength");
@@ -293,10 +293,10 @@ pub(super) fn fits_in_view(
 /// The MIME type an image declares in its `mimeType`. (A data URI's media type is not
 /// one: the validator reads one it does not accept as INVALID_URI, and an accepted one is
 /// checked against the content instead.)
-pub fn declared_mime(image: &Value) -> Option<String> {
+pub fn declared_mime(image: Node) -> Option<String> {
     image
         .get("mimeType")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .map(str::to_string)
 }
 
@@ -318,7 +318,7 @@ pub fn check_images(ctx: &mut Context) {
                 "Exactly one of ('uri', 'bufferView') properties must be defined.",
             );
         }
-        let mime_type = image.get("mimeType").and_then(Value::as_str);
+        let mime_type = image.get("mimeType").and_then(Node::as_str);
         if let Some(m) = mime_type {
             let allowed =
                 matches!(m, "image/png" | "image/jpeg") || (m == "image/webp" && webp_enabled);
@@ -331,13 +331,18 @@ pub fn check_images(ctx: &mut Context) {
             }
         }
         let (bytes, media_type, storage, uri, mime_pointer) =
-            if let Some(uri) = image.get("uri").and_then(Value::as_str) {
+            if let Some(uri) = image.get("uri").and_then(Node::as_str) {
                 let uri_pointer = member(&pointer, "uri");
                 let (bytes, media, storage) = load_uri(ctx, uri, &uri_pointer);
                 let uri = (storage == "external").then(|| uri.to_string());
                 (bytes, media, storage, uri, uri_pointer)
             } else if let Some(view) = ctx.reference(image, "bufferView", &pointer, "bufferViews") {
-                if ctx.items("bufferViews")[view].get("byteStride").is_some() {
+                if ctx
+                    .items("bufferViews")
+                    .at(view)
+                    .get("byteStride")
+                    .is_some()
+                {
                     ctx.emit(
                         khronos::IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE,
                         member(&pointer, "bufferView"),

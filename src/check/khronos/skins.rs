@@ -6,7 +6,7 @@ use super::nodes::parent_map;
 use super::primitives::Format;
 use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
-use serde_json::Value;
+use crate::document::{Array, Node};
 use std::collections::{HashMap, HashSet};
 
 pub fn check(ctx: &mut Context) {
@@ -20,7 +20,7 @@ pub fn check(ctx: &mut Context) {
         // An empty list is a schema error; the hierarchy is then not checked.
         let listed = skin
             .get("joints")
-            .and_then(Value::as_array)
+            .and_then(Node::as_array)
             .is_some_and(|j| !j.is_empty());
         if !listed {
             continue;
@@ -157,7 +157,7 @@ fn common_roots(parents: &[Option<usize>], joints: &[usize]) -> HashSet<usize> {
     line[lowest..].iter().copied().collect()
 }
 
-fn inverse_binds(ctx: &mut Context, skin: &Value, pointer: &str) {
+fn inverse_binds(ctx: &mut Context, skin: Node, pointer: &str) {
     let Some(accessor) =
         unsigned(skin, "inverseBindMatrices").and_then(|a| ctx.items("accessors").get(a as usize))
     else {
@@ -180,8 +180,8 @@ fn inverse_binds(ctx: &mut Context, skin: &Value, pointer: &str) {
     }
     let joints = skin
         .get("joints")
-        .and_then(Value::as_array)
-        .map_or(0, Vec::len) as u64;
+        .and_then(Node::as_array)
+        .map_or(0, Array::len) as u64;
     if unsigned(accessor, "count").is_some_and(|n| skin.get("joints").is_some() && n < joints) {
         ctx.emit(
             khronos::INVALID_IBM_ACCESSOR_COUNT,

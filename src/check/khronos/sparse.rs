@@ -5,11 +5,11 @@
 use super::resources::{fits_in_view, view_bytes};
 use crate::check::context::{member, unsigned, Context};
 use crate::diagnostic::khronos;
+use crate::document::Node;
 use crate::gltf::accessor::{component_count, component_size};
-use serde_json::Value;
 
 /// The sparse count and the placement of both parts (from the accessors pass).
-pub fn check_structure(ctx: &mut Context, accessor: &Value, pointer: &str) {
+pub fn check_structure(ctx: &mut Context, accessor: Node, pointer: &str) {
     let Some(sparse) = accessor.get("sparse").filter(|s| s.is_object()) else {
         return;
     };
@@ -36,7 +36,7 @@ pub fn check_structure(ctx: &mut Context, accessor: &Value, pointer: &str) {
     let value_size = unsigned(accessor, "componentType").and_then(component_size);
     let components = accessor
         .get("type")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .and_then(component_count);
     let values_element = value_size.zip(components).map(|(size, n)| (size, size * n));
     for (key, part, sizes) in [
@@ -48,7 +48,12 @@ pub fn check_structure(ctx: &mut Context, accessor: &Value, pointer: &str) {
             continue;
         };
         let part_at = member(&at, key);
-        if ctx.items("bufferViews")[view].get("byteStride").is_some() {
+        if ctx
+            .items("bufferViews")
+            .at(view)
+            .get("byteStride")
+            .is_some()
+        {
             ctx.emit(
                 khronos::BUFFER_VIEW_INVALID_BYTE_STRIDE,
                 member(&part_at, "bufferView"),
@@ -103,7 +108,7 @@ pub fn check_indices(ctx: &mut Context) {
 /// The sparse indices, when their view holds all `sparse.count` of them.
 pub(super) fn readable_indices<'c>(
     ctx: &'c Context,
-    sparse: &Value,
+    sparse: Node,
 ) -> Option<impl Iterator<Item = u64> + 'c> {
     let indices = sparse.get("indices")?;
     let size = unsigned(indices, "componentType").and_then(component_size)?;

@@ -3,6 +3,7 @@
 
 use crate::check::context::Context;
 use crate::diagnostic::khronos;
+use crate::document::Array;
 
 /// Animations and scenes are used by being there; everything else by being referenced.
 fn may_be_unused(collection: &str) -> bool {
@@ -27,7 +28,7 @@ pub fn check(ctx: &mut Context) {
         .and_then(|e| e.get("KHR_materials_variants"))
         .and_then(|v| v.get("variants"))
         .and_then(|v| v.as_array())
-        .map_or(0, Vec::len);
+        .map_or(0, Array::len);
     for i in 0..variants {
         if !ctx.is_used("variants", i) {
             ctx.emit(

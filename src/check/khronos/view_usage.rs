@@ -7,8 +7,8 @@
 use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::json::escape_token;
+use crate::document::Node;
 use crate::gltf::gl;
-use serde_json::Value;
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Usage {
@@ -87,12 +87,12 @@ impl Walk<'_, '_> {
     /// its bufferView's.
     fn use_accessor(
         &mut self,
-        index: Option<&Value>,
+        index: Option<Node>,
         usage: Option<AccessorUsage>,
         view: Usage,
         at: String,
     ) {
-        let accessor = index.and_then(Value::as_u64);
+        let accessor = index.and_then(Node::as_u64);
         let linked = accessor.filter(|&a| self.ctx.element("accessors", a).is_some());
         if let Some((a, usage)) = linked.zip(usage) {
             let slot = &mut self.accessor_usages[a as usize];
@@ -150,7 +150,7 @@ impl Walk<'_, '_> {
     }
 
     /// The bufferView of the accessor that `index` names.
-    fn view_of(&self, index: Option<&Value>) -> Option<u64> {
+    fn view_of(&self, index: Option<Node>) -> Option<u64> {
         let accessor = self.ctx.items("accessors").get(index?.as_u64()? as usize)?;
         unsigned(accessor, "bufferView")
     }
@@ -183,7 +183,7 @@ impl Walk<'_, '_> {
         for (_, pointer, mesh) in self.ctx.objects("meshes") {
             for (p, primitive) in elements(mesh, "primitives") {
                 let at = format!("{pointer}/primitives/{p}");
-                let attributes = primitive.get("attributes").and_then(Value::as_object);
+                let attributes = primitive.get("attributes").and_then(Node::as_object);
                 let vertex = Some(AccessorUsage::VertexAttribute);
                 for (semantic, index) in attributes.into_iter().flatten() {
                     let here = format!("{at}/attributes/{}", escape_token(semantic));
@@ -197,8 +197,8 @@ impl Walk<'_, '_> {
                     Usage::Index,
                     here,
                 );
-                let targets = super::primitives::morph_targets(primitive).unwrap_or_default();
-                for (t, target) in targets.iter().enumerate() {
+                let targets = super::primitives::morph_targets(primitive);
+                for (t, target) in targets.into_iter().flatten().enumerate() {
                     for (semantic, index) in target.as_object().into_iter().flatten() {
                         let here = format!("{at}/targets/{t}/{}", escape_token(semantic));
                         self.use_accessor(Some(index), vertex, Usage::Vertex, here);

@@ -3,7 +3,7 @@
 use super::{Rule, Run, Supersession};
 use crate::check::context::{unsigned, Context};
 use crate::diagnostic::{khronos, Diagnostic, Severity};
-use serde_json::Value;
+use crate::document::Node;
 
 pub const RULE: Rule = Rule::new(
     "ANISOTROPY_NO_TANGENT_SPACE",
@@ -56,7 +56,7 @@ fn not_anisotropic(ctx: &Context, finding: &Diagnostic) -> bool {
 
 fn check(ctx: &mut Context) {
     for (_, mesh_pointer, mesh) in ctx.objects("meshes") {
-        let Some(primitives) = mesh.get("primitives").and_then(Value::as_array) else {
+        let Some(primitives) = mesh.get("primitives").and_then(Node::as_array) else {
             continue;
         };
         for (p, primitive) in primitives.iter().enumerate() {

@@ -5,8 +5,9 @@ use super::{Rule, Run, LARGE_AREA};
 use crate::check::context::{number, Context};
 use crate::check::khronos::materials::{extension, SlotUse};
 use crate::diagnostic::Severity;
+use crate::document::Array;
+use crate::document::Node;
 use crate::gltf::color::{linear_to_srgb, luminance, srgb_to_linear};
-use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
     "PBR_BASE_COLOR_RANGE",
@@ -42,7 +43,7 @@ It is an opinion, not a spec rule: it runs only with `--enable-group plausibilit
 const DARKEST: f64 = 30.0;
 const BRIGHTEST: f64 = 240.0;
 
-fn is_dielectric(material: &Value) -> bool {
+fn is_dielectric(material: Node) -> bool {
     let pbr = material.get("pbrMetallicRoughness");
     pbr.map_or(1.0, |p| number(p, "metallicFactor", 1.0)) <= 0.1
 }
@@ -50,7 +51,7 @@ fn is_dielectric(material: &Value) -> bool {
 /// Whether the material lets light through: its base colour is then the tint of the
 /// transmitted light as well (KHR_materials_transmission §Base Color), and clear glass must
 /// be white.
-fn transmits(material: &Value) -> bool {
+fn transmits(material: Node) -> bool {
     extension(material, "KHR_materials_transmission").is_some_and(|t| {
         number(t, "transmissionFactor", 0.0) > 0.0 || t.get("transmissionTexture").is_some()
     })
@@ -58,24 +59,24 @@ fn transmits(material: &Value) -> bool {
 
 /// Whether a base colour is judged at all: a dielectric that does not transmit light and is
 /// not unlit.
-fn judged(material: &Value) -> bool {
+fn judged(material: Node) -> bool {
     is_dielectric(material)
         && !transmits(material)
         && extension(material, "KHR_materials_unlit").is_none()
 }
 
-fn written_factor(material: &Value) -> Option<&Vec<Value>> {
+fn written_factor(material: Node) -> Option<Array> {
     material
         .get("pbrMetallicRoughness")
         .and_then(|p| p.get("baseColorFactor"))
-        .and_then(Value::as_array)
+        .and_then(Node::as_array)
 }
 
-fn factor(material: &Value) -> [f64; 3] {
+fn factor(material: Node) -> [f64; 3] {
     let list = written_factor(material);
     let channel = |i: usize| {
         list.and_then(|l| l.get(i))
-            .and_then(Value::as_f64)
+            .and_then(Node::as_f64)
             .unwrap_or(1.0)
     };
     [channel(0), channel(1), channel(2)]

@@ -3,8 +3,8 @@
 use super::{Rule, Run, Supersession};
 use crate::check::context::Context;
 use crate::diagnostic::{khronos, Diagnostic, Severity};
+use crate::document::Node;
 use crate::gltf::material::{combination, Combination, SPEC_GLOSS, UNLIT};
-use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
     "MATERIAL_EXTENSION_EXCLUDED",
@@ -60,7 +60,7 @@ fn doubtful_combination(ctx: &Context, finding: &Diagnostic) -> bool {
     let Some((extensions, standalone)) = finding.pointer().and_then(|p| p.rsplit_once('/')) else {
         return true;
     };
-    let others = ctx.root.pointer(extensions).and_then(Value::as_object);
+    let others = ctx.root.pointer(extensions).and_then(Node::as_object);
     (others.into_iter().flat_map(|o| o.keys()))
         .filter(|other| *other != standalone)
         .any(|other| combination(standalone, other) == Combination::Unknown)
@@ -68,7 +68,7 @@ fn doubtful_combination(ctx: &Context, finding: &Diagnostic) -> bool {
 
 fn check(ctx: &mut Context) {
     for (_, pointer, material) in ctx.objects("materials") {
-        let Some(extensions) = material.get("extensions").and_then(Value::as_object) else {
+        let Some(extensions) = material.get("extensions").and_then(Node::as_object) else {
             continue;
         };
         for standalone in [SPEC_GLOSS, UNLIT] {

@@ -6,8 +6,8 @@ use crate::check::context::{member, Context};
 use crate::check::schema;
 use crate::diagnostic::khronos;
 use crate::diagnostic::Severity;
+use crate::document::Node;
 use crate::legacy::pbr::{self, Model, EXTENSION_NAMES};
-use serde_json::Value;
 
 pub const RULE: Rule = Rule::new(
     "GLTF_1_0_ASSET",
@@ -74,7 +74,7 @@ pub fn check(ctx: &mut Context) {
         "/asset/version",
         "This is a glTF 1.0 asset. Run `gltfmat upgrade IN -o OUT` to convert it to glTF 2.0.",
     );
-    let Some(materials) = ctx.root.get("materials").and_then(Value::as_object) else {
+    let Some(materials) = ctx.root.get("materials").and_then(Node::as_object) else {
         return;
     };
     for (id, material) in materials {
@@ -87,10 +87,12 @@ pub fn check(ctx: &mut Context) {
     }
 }
 
-fn check_pbr_block(ctx: &mut Context, name: &'static str, block: &Value, pointer: &str) {
-    let found = schema::validate_gltf1_pbr(block, pointer);
+fn check_pbr_block(ctx: &mut Context, name: &'static str, block: Node, pointer: &str) {
+    // The drafts' reading is written for serde's tree; a block is a few values.
+    let block_value = block.to_value();
+    let found = schema::validate_gltf1_pbr(&block_value, pointer);
     ctx.diagnostics.extend(found);
-    if pbr::declared_model(block).is_none() {
+    if pbr::declared_model(&block_value).is_none() {
         ctx.emit(
             khronos::UNDEFINED_PROPERTY,
             pointer,
@@ -98,7 +100,7 @@ fn check_pbr_block(ctx: &mut Context, name: &'static str, block: &Value, pointer
         );
     }
     let textures = ctx.root.get("textures");
-    if let Some(values) = block.get("values").and_then(Value::as_object) {
+    if let Some(values) = block.get("values").and_then(Node::as_object) {
         for (key, value) in values {
             let Some(id) = value.as_str() else { continue };
             if textures.and_then(|t| t.get(id)).is_none() {
@@ -110,7 +112,7 @@ fn check_pbr_block(ctx: &mut Context, name: &'static str, block: &Value, pointer
             }
         }
     }
-    if let Some(pbr) = pbr::parse(name, block) {
+    if let Some(pbr) = pbr::parse(name, &block_value) {
         let target = match pbr.model {
             Model::MetalRoughness => "core pbrMetallicRoughness (metallic moved from R to B)",
             Model::SpecularGlossiness => {

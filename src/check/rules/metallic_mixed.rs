@@ -5,7 +5,7 @@ use super::{Rule, Run, LARGE_AREA};
 use crate::check::context::{number, Context};
 use crate::check::khronos::materials::SlotUse;
 use crate::diagnostic::Severity;
-use serde_json::Value;
+use crate::document::Node;
 
 pub const RULE: Rule = Rule::new(
     "PBR_METALLIC_MIXED",
@@ -43,7 +43,7 @@ fn is_mixed(metallic: f64) -> bool {
     metallic > 0.1 && metallic < 0.9
 }
 
-fn metallic_factor(material: &Value) -> f64 {
+fn metallic_factor(material: Node) -> f64 {
     material
         .get("pbrMetallicRoughness")
         .map_or(1.0, |p| number(p, "metallicFactor", 1.0))

@@ -4,7 +4,7 @@ use super::{Rule, Run};
 use crate::check::context::Context;
 use crate::check::khronos::materials::{extension, slot_uses};
 use crate::diagnostic::Severity;
-use serde_json::Value;
+use crate::document::Node;
 
 pub const RULE: Rule = Rule::new(
     "SHEEN_TEXTURE_DISABLED",
@@ -38,10 +38,10 @@ is zero, the whole sheen layer is disabled.\"
 ";
 
 /// The sheen colour factor, [0, 0, 0] when missing.
-pub fn sheen_colour_is_zero(sheen: &Value) -> bool {
+pub fn sheen_colour_is_zero(sheen: Node) -> bool {
     sheen
         .get("sheenColorFactor")
-        .and_then(Value::as_array)
+        .and_then(Node::as_array)
         .is_none_or(|f| f.iter().all(|c| c.as_f64() == Some(0.0)))
 }
 

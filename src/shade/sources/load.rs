@@ -60,7 +60,7 @@ pub fn gltf2_materials(
     loader: &dyn ResourceLoader,
 ) -> Result<Vec<(String, MaterialSource)>, String> {
     // Only the materials are read here; problems with the file are `check`'s to report.
-    let doc = document::read(bytes, name, &mut Vec::new());
+    let doc = document::read_value(bytes, name, &mut Vec::new());
     let root = doc.root.as_ref().ok_or("not a readable glTF document")?;
     let list = |key: &str| -> &[Value] {
         root.get(key)

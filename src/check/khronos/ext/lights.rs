@@ -3,16 +3,16 @@
 
 use crate::check::context::{member, unsigned, Context};
 use crate::diagnostic::khronos;
-use serde_json::Value;
+use crate::document::{Array, Node};
 
 const EXTENSION: &str = "KHR_lights_punctual";
 
 pub fn check(ctx: &mut Context) {
     let root = ctx.root.get("extensions").and_then(|e| e.get(EXTENSION));
-    let lights: &[Value] = root
+    let lights: Array = root
         .and_then(|r| r.get("lights"))
-        .and_then(Value::as_array)
-        .map_or(&[], Vec::as_slice);
+        .and_then(Node::as_array)
+        .unwrap_or_else(|| Array::empty(ctx.root));
     let base = format!("/extensions/{EXTENSION}/lights");
     for (i, light) in lights.iter().enumerate() {
         light_properties(ctx, light, &format!("{base}/{i}"));
@@ -54,8 +54,8 @@ pub fn check(ctx: &mut Context) {
     }
 }
 
-fn light_properties(ctx: &mut Context, light: &Value, at: &str) {
-    let kind = light.get("type").and_then(Value::as_str);
+fn light_properties(ctx: &mut Context, light: Node, at: &str) {
+    let kind = light.get("type").and_then(Node::as_str);
     let extra = |key: &str| member(at, key);
     if kind != Some("spot") && kind.is_some() && light.get("spot").is_some() {
         ctx.emit(
@@ -74,7 +74,7 @@ fn light_properties(ctx: &mut Context, light: &Value, at: &str) {
     let Some(spot) = light.get("spot").filter(|_| kind == Some("spot")) else {
         return;
     };
-    let angle = |key: &str, default: f64| spot.get(key).and_then(Value::as_f64).unwrap_or(default);
+    let angle = |key: &str, default: f64| spot.get(key).and_then(Node::as_f64).unwrap_or(default);
     let (inner, outer) = (
         angle("innerConeAngle", 0.0),
         angle("outerConeAngle", std::f64::consts::FRAC_PI_4),

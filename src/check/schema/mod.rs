@@ -1,106 +1,108 @@
 //! Schema pass: the document against gltfmat's own JSON Schemas (schema/), embedded in the
-//! binary and evaluated by the `jsonschema` crate with nothing fetched. Each schema error is
+//! binary and evaluated over the compact tree by [`evaluator`]. Each schema failure is
 //! mapped to the Khronos code and pointer for the same finding.
 
-use crate::diagnostic::{khronos, Code, Diagnostic, Location, Sink};
+mod evaluator;
+
+use crate::diagnostic::{khronos, Code, Diagnostic, Sink};
 use crate::document::json::escape_token;
-use jsonschema::error::{TypeKind, ValidationErrorKind};
-use jsonschema::Validator;
+use crate::document::{Array, Node, Tree};
+use evaluator::{Compiled, Failure, Kind};
 use serde_json::Value;
 use std::collections::HashSet;
 use std::sync::OnceLock;
 
-const CORE: &str = include_str!("../../schema/gltf.schema.json");
+const CORE: &str = include_str!("../../../schema/gltf.schema.json");
 
 /// Extension schemas, merged into the core schema's `$defs` under their name.
 const EXTENSIONS: &[(&str, &str)] = &[
     (
         "KHR_materials_anisotropy",
-        include_str!("../../schema/extensions/KHR_materials_anisotropy.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_anisotropy.schema.json"),
     ),
     (
         "KHR_materials_clearcoat",
-        include_str!("../../schema/extensions/KHR_materials_clearcoat.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_clearcoat.schema.json"),
     ),
     (
         "KHR_materials_diffuse_transmission",
-        include_str!("../../schema/extensions/KHR_materials_diffuse_transmission.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_diffuse_transmission.schema.json"),
     ),
     (
         "KHR_materials_dispersion",
-        include_str!("../../schema/extensions/KHR_materials_dispersion.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_dispersion.schema.json"),
     ),
     (
         "KHR_materials_emissive_strength",
-        include_str!("../../schema/extensions/KHR_materials_emissive_strength.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_emissive_strength.schema.json"),
     ),
     (
         "KHR_materials_ior",
-        include_str!("../../schema/extensions/KHR_materials_ior.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_ior.schema.json"),
     ),
     (
         "KHR_materials_iridescence",
-        include_str!("../../schema/extensions/KHR_materials_iridescence.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_iridescence.schema.json"),
     ),
     (
         "KHR_materials_pbrSpecularGlossiness",
-        include_str!("../../schema/extensions/KHR_materials_pbrSpecularGlossiness.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_pbrSpecularGlossiness.schema.json"),
     ),
     (
         "KHR_materials_sheen",
-        include_str!("../../schema/extensions/KHR_materials_sheen.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_sheen.schema.json"),
     ),
     (
         "KHR_materials_specular",
-        include_str!("../../schema/extensions/KHR_materials_specular.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_specular.schema.json"),
     ),
     (
         "KHR_materials_transmission",
-        include_str!("../../schema/extensions/KHR_materials_transmission.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_transmission.schema.json"),
     ),
     (
         "KHR_materials_unlit",
-        include_str!("../../schema/extensions/KHR_materials_unlit.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_unlit.schema.json"),
     ),
     (
         "KHR_materials_variants",
-        include_str!("../../schema/extensions/KHR_materials_variants.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_variants.schema.json"),
     ),
     (
         "KHR_materials_variants_mapping",
-        include_str!("../../schema/extensions/KHR_materials_variants_mapping.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_variants_mapping.schema.json"),
     ),
     (
         "KHR_materials_volume",
-        include_str!("../../schema/extensions/KHR_materials_volume.schema.json"),
+        include_str!("../../../schema/extensions/KHR_materials_volume.schema.json"),
     ),
     (
         "KHR_texture_transform",
-        include_str!("../../schema/extensions/KHR_texture_transform.schema.json"),
+        include_str!("../../../schema/extensions/KHR_texture_transform.schema.json"),
     ),
     (
         "EXT_texture_webp",
-        include_str!("../../schema/extensions/EXT_texture_webp.schema.json"),
+        include_str!("../../../schema/extensions/EXT_texture_webp.schema.json"),
     ),
     (
         "KHR_node_visibility",
-        include_str!("../../schema/extensions/KHR_node_visibility.schema.json"),
+        include_str!("../../../schema/extensions/KHR_node_visibility.schema.json"),
     ),
     (
         "KHR_animation_pointer",
-        include_str!("../../schema/extensions/KHR_animation_pointer.schema.json"),
+        include_str!("../../../schema/extensions/KHR_animation_pointer.schema.json"),
     ),
     (
         "KHR_lights_punctual",
-        include_str!("../../schema/extensions/KHR_lights_punctual.schema.json"),
+        include_str!("../../../schema/extensions/KHR_lights_punctual.schema.json"),
     ),
     (
         "KHR_lights_punctual_light",
-        include_str!("../../schema/extensions/KHR_lights_punctual_light.schema.json"),
+        include_str!("../../../schema/extensions/KHR_lights_punctual_light.schema.json"),
     ),
     (
         "KHR_lights_punctual_node",
-        include_str!("../../schema/extensions/KHR_lights_punctual_node.schema.json"),
+        include_str!("../../../schema/extensions/KHR_lights_punctual_node.schema.json"),
     ),
 ];
 
@@ -108,7 +110,7 @@ const EXTENSIONS: &[(&str, &str)] = &[
 /// validated (it reports UNSUPPORTED_EXTENSION instead).
 pub const NOT_IN_KHRONOS: &[&str] = &["KHR_materials_diffuse_transmission"];
 
-fn build(skip: &[&str]) -> Validator {
+fn build(skip: &[&str]) -> Compiled {
     let mut root: Value =
         serde_json::from_str(CORE).expect("schema/gltf.schema.json is valid JSON");
     let defs = root["$defs"]
@@ -130,15 +132,12 @@ fn build(skip: &[&str]) -> Validator {
         }
         defs.insert((*name).to_string(), schema);
     }
-    jsonschema::options()
-        .should_validate_formats(false)
-        .build(&root)
-        .expect("the embedded schemas compile")
+    Compiled::new(&root).expect("the embedded schemas compile")
 }
 
-fn validator(khronos: bool) -> &'static Validator {
-    static FULL: OnceLock<Validator> = OnceLock::new();
-    static KHRONOS: OnceLock<Validator> = OnceLock::new();
+fn validator(khronos: bool) -> &'static Compiled {
+    static FULL: OnceLock<Compiled> = OnceLock::new();
+    static KHRONOS: OnceLock<Compiled> = OnceLock::new();
     if khronos {
         KHRONOS.get_or_init(|| build(NOT_IN_KHRONOS))
     } else {
@@ -150,137 +149,56 @@ fn validator(khronos: bool) -> &'static Validator {
 /// at or below the pointers in `unread` (what the Khronos validator does not read); returns
 /// those and the arrays a wrongly typed element makes unreadable (see [`AbsentMembers`]).
 pub fn validate(
-    doc: &Value,
+    doc: Node,
     khronos: bool,
     found: &mut dyn Sink,
     unread: HashSet<String>,
 ) -> HashSet<String> {
     let mut absent = AbsentMembers::new(found);
     absent.absent = unread;
-    validate_into(doc, khronos, &mut absent);
+    diagnostics(validator(khronos), doc, "", &mut absent);
     absent.finish()
 }
 
 /// The Khronos validator reads a `null` member as both of the wrong type and missing: once
 /// such members are out of the tree (`nulls`), the findings of those that are required.
 /// Validates again only when there are any.
-pub fn required_nulls(doc: &Value, khronos: bool, nulls: &HashSet<String>, sink: &mut dyn Sink) {
+pub fn required_nulls(doc: Node, khronos: bool, nulls: &HashSet<String>, sink: &mut dyn Sink) {
     if nulls.is_empty() {
         return;
     }
-    for error in validator(khronos).iter_errors(doc) {
-        let ValidationErrorKind::Required { property } = error.kind() else {
-            continue;
-        };
-        let pointer = error.instance_path().to_string();
-        let name = property.as_str().unwrap_or_default();
-        if nulls.contains(&member(&pointer, name)) {
-            let schema_path = error.schema_path().to_string();
-            for d in map_error(error.kind(), error.instance(), &pointer, &schema_path) {
-                sink.push(d);
+    validator(khronos).evaluate(doc, "", &mut |failure| {
+        if let Kind::Required(name) = &failure.kind {
+            if nulls.contains(&member(&failure.pointer, name)) {
+                map_failure(&failure).into_iter().for_each(|d| sink.push(d));
             }
         }
-    }
-}
-
-fn validate_into(doc: &Value, khronos: bool, sink: &mut dyn Sink) {
-    let validator = validator(khronos);
-    let Some(root) = doc
-        .as_object()
-        .filter(|root| root.iter().any(|m| long(m).is_some()))
-    else {
-        return diagnostics(validator, doc, "", sink);
-    };
-    // The document with each long collection cut to its first chunk, then each further
-    // chunk alone, its pointers shifted to where its elements are.
-    let head: serde_json::Map<String, Value> = (root.iter())
-        .map(|(key, value)| match long((key, value)) {
-            Some((_, items)) => (key.clone(), Value::Array(items[..CHUNK].to_vec())),
-            None => (key.clone(), value.clone()),
-        })
-        .collect();
-    diagnostics(validator, &Value::Object(head), "", sink);
-    for (key, items) in root.iter().filter_map(long) {
-        for (c, chunk) in items.chunks(CHUNK).enumerate().skip(1) {
-            let part = serde_json::json!({ key.as_str(): chunk });
-            let mut shifted = Shifted {
-                sink: &mut *sink,
-                collection: format!("/{}/", escape_token(key)),
-                offset: c * CHUNK,
-            };
-            diagnostics(validator, &part, "", &mut shifted);
-        }
-    }
-}
-
-/// A top-level collection long enough to be validated in chunks.
-fn long<'d>((key, value): (&'d String, &'d Value)) -> Option<(&'d String, &'d Vec<Value>)> {
-    let items = value.as_array().filter(|items| items.len() > CHUNK)?;
-    // Their elements are validated independently of each other (no collection has
-    // uniqueItems), so they can be validated a chunk at a time.
-    crate::gltf::COLLECTIONS
-        .contains(&key.as_str())
-        .then_some((key, items))
-}
-
-/// Elements of one top-level collection validated at a time: the validator gathers all of
-/// an array's errors before it yields the first, so a 10^7-element array of wrong types
-/// would be 10^7 errors in memory at once.
-const CHUNK: usize = 4096;
-
-/// Passes on the findings inside one chunk of a collection, at their real index.
-struct Shifted<'s> {
-    sink: &'s mut dyn Sink,
-    collection: String,
-    offset: usize,
-}
-
-impl Sink for Shifted<'_> {
-    fn push(&mut self, mut diagnostic: Diagnostic) {
-        let Location::Pointer(pointer) = &diagnostic.location else {
-            return;
-        };
-        // Findings about the chunk's own root (a missing `asset`) are the head's to report.
-        let Some(rest) = pointer.strip_prefix(&self.collection) else {
-            return;
-        };
-        let (index, tail) = rest.split_once('/').map_or((rest, ""), |(i, t)| (i, t));
-        let Ok(index) = index.parse::<usize>() else {
-            return;
-        };
-        let slash = if tail.is_empty() { "" } else { "/" };
-        let shifted = format!("{}{}{slash}{tail}", self.collection, index + self.offset);
-        diagnostic.location = Location::Pointer(shifted);
-        self.sink.push(diagnostic);
-    }
+    });
 }
 
 /// Validates a glTF 1.0 PBR material extension object found at `pointer`.
 pub fn validate_gltf1_pbr(extension: &Value, pointer: &str) -> Vec<Diagnostic> {
-    static PBR: OnceLock<Validator> = OnceLock::new();
+    static PBR: OnceLock<Compiled> = OnceLock::new();
     let validator = PBR.get_or_init(|| {
         let schema: Value = serde_json::from_str(GLTF1_PBR).expect("1.0 PBR schema is valid JSON");
-        jsonschema::options()
-            .build(&schema)
-            .expect("the 1.0 PBR schema compiles")
+        Compiled::new(&schema).expect("the 1.0 PBR schema compiles")
     });
     let mut found = Vec::new();
-    diagnostics(validator, extension, pointer, &mut found);
+    // A block is a few values: read anew as a tree of its own.
+    if let Ok(tree) = Tree::parse(extension.to_string().as_bytes()) {
+        diagnostics(validator, tree.root(), pointer, &mut found);
+    }
     found
 }
 
-const GLTF1_PBR: &str = include_str!("../../schema/gltf1/materials_pbr.schema.json");
+const GLTF1_PBR: &str = include_str!("../../../schema/gltf1/materials_pbr.schema.json");
 
-/// Every schema error of `instance`, streamed into `sink` as it is found (a 10^7-element
+/// Every schema failure of `instance`, streamed into `sink` as it is found (a 10^7-element
 /// array of wrong types is never held as 10^7 findings).
-fn diagnostics(validator: &Validator, instance: &Value, prefix: &str, sink: &mut dyn Sink) {
-    for error in validator.iter_errors(instance) {
-        let pointer = format!("{prefix}{}", error.instance_path());
-        let schema_path = error.schema_path().to_string();
-        for d in map_error(error.kind(), error.instance(), &pointer, &schema_path) {
-            sink.push(d);
-        }
-    }
+fn diagnostics(validator: &Compiled, instance: Node, prefix: &str, sink: &mut dyn Sink) {
+    validator.evaluate(instance, prefix, &mut |failure| {
+        map_failure(&failure).into_iter().for_each(|d| sink.push(d));
+    });
 }
 
 /// Whether `pointer` is a value of a map of accessor indices: a primitive's `attributes` or
@@ -547,14 +465,7 @@ fn member(pointer: &str, key: &str) -> String {
     format!("{pointer}/{}", escape_token(key))
 }
 
-fn type_name(kind: &TypeKind) -> String {
-    match kind {
-        TypeKind::Single(t) => t.to_string(),
-        TypeKind::Multiple(ts) => format!("{ts:?}"),
-    }
-}
-
-fn show(value: &Value) -> String {
+fn show(value: impl std::fmt::Display) -> String {
     let text = value.to_string();
     if text.len() > 60 {
         format!(
@@ -566,52 +477,47 @@ fn show(value: &Value) -> String {
     }
 }
 
-fn map_error(
-    kind: &ValidationErrorKind,
-    instance: &Value,
-    pointer: &str,
-    schema_path: &str,
-) -> Vec<Diagnostic> {
-    use ValidationErrorKind as K;
+fn map_failure(failure: &Failure) -> Vec<Diagnostic> {
+    let Failure {
+        kind,
+        instance,
+        pointer,
+        definition,
+    } = failure;
+    let instance = *instance;
+    let pointer = pointer.as_str();
     let one = |code: Code, at: String, message: String| vec![Diagnostic::at(code, at, message)];
+    let index_message = || "Index must be a non-negative integer.".to_string();
     match kind {
         // An element of a property's array, by what the array holds (as the Khronos
         // validator reads them): a wrong index is reported where it is and the others kept;
         // each wrong number or object is reported at the array, which is then unreadable;
         // each wrong name of a string list is reported, and the list is unreadable.
-        K::Type { kind } if array_holding(pointer).is_some() => {
+        Kind::Type(expected) if array_holding(pointer).is_some() => {
             let array = array_holding(pointer).unwrap_or_default().to_string();
-            let expected = type_name(kind);
             let mismatch = format!(
                 "Type mismatch. Array element {} is not a '{expected}'.",
                 show(instance)
             );
             match expected.as_str() {
-                "integer" => one(
-                    khronos::INVALID_INDEX,
-                    pointer.to_string(),
-                    "Index must be a non-negative integer.".to_string(),
-                ),
+                "integer" => one(khronos::INVALID_INDEX, pointer.to_string(), index_message()),
                 "string" => one(khronos::ARRAY_TYPE_MISMATCH, pointer.to_string(), mismatch),
                 _ => one(khronos::ARRAY_TYPE_MISMATCH, array, mismatch),
             }
         }
         // A wrong index in a map of indices, likewise, where it is; the map is kept.
-        K::Type { kind } if is_index_map_value(pointer) && type_name(kind) == "integer" => one(
-            khronos::INVALID_INDEX,
-            pointer.to_string(),
-            "Index must be a non-negative integer.".to_string(),
-        ),
-        K::Type { kind } => one(
+        Kind::Type(expected) if is_index_map_value(pointer) && expected == "integer" => {
+            one(khronos::INVALID_INDEX, pointer.to_string(), index_message())
+        }
+        Kind::Type(expected) => one(
             khronos::TYPE_MISMATCH,
             pointer.to_string(),
             format!(
-                "Type mismatch. Property value {} is not a '{}'.",
-                show(instance),
-                type_name(kind)
+                "Type mismatch. Property value {} is not a '{expected}'.",
+                show(instance)
             ),
         ),
-        K::AdditionalProperties { unexpected } => unexpected
+        Kind::AdditionalProperties(unexpected) => unexpected
             .iter()
             .map(|key| {
                 Diagnostic::at(
@@ -621,48 +527,34 @@ fn map_error(
                 )
             })
             .collect(),
-        K::Required { property } => {
-            let name = property.as_str().unwrap_or_default();
-            if let Some(dependent) = dependent_key(schema_path, instance, name) {
-                return one(
-                    khronos::UNSATISFIED_DEPENDENCY,
-                    member(pointer, &dependent),
-                    format!("Dependency failed. '{name}' must be defined."),
-                );
-            }
-            let at = if pointer.is_empty() {
-                "/".to_string()
-            } else {
-                pointer.to_string()
-            };
+        Kind::DependentRequired { key, missing } => one(
+            khronos::UNSATISFIED_DEPENDENCY,
+            member(pointer, key),
+            format!("Dependency failed. '{missing}' must be defined."),
+        ),
+        Kind::Required(name) => {
+            let at = if pointer.is_empty() { "/" } else { pointer };
             one(
                 khronos::UNDEFINED_PROPERTY,
-                at,
+                at.to_string(),
                 format!("Property '{name}' must be defined."),
             )
         }
-        K::Minimum { .. }
-        | K::Maximum { .. }
-        | K::ExclusiveMinimum { .. }
-        | K::ExclusiveMaximum { .. }
-            if schema_path.contains("glTFid") =>
+        Kind::Minimum | Kind::Maximum | Kind::ExclusiveMinimum | Kind::ExclusiveMaximum
+            if *definition == Some("glTFid") =>
         {
-            one(
-                khronos::INVALID_INDEX,
-                pointer.to_string(),
-                "Index must be a non-negative integer.".into(),
-            )
+            one(khronos::INVALID_INDEX, pointer.to_string(), index_message())
         }
-        K::Minimum { .. }
-        | K::Maximum { .. }
-        | K::ExclusiveMinimum { .. }
-        | K::ExclusiveMaximum { .. }
-        | K::AnyOf { .. } => one(
+        Kind::Minimum
+        | Kind::Maximum
+        | Kind::ExclusiveMinimum
+        | Kind::ExclusiveMaximum
+        | Kind::AnyOf => one(
             khronos::VALUE_NOT_IN_RANGE,
             pointer.to_string(),
             format!("Value {} is out of range.", show(instance)),
         ),
-        K::Enum { options } => one(
+        Kind::Enum(options) => one(
             khronos::VALUE_NOT_IN_LIST,
             pointer.to_string(),
             format!(
@@ -671,26 +563,26 @@ fn map_error(
                 show(options)
             ),
         ),
-        K::MinItems { limit: 1 } | K::MinProperties { .. } => one(
+        Kind::MinItems(1) | Kind::MinProperties => one(
             khronos::EMPTY_ENTITY,
             pointer.to_string(),
             "Entity cannot be empty.".into(),
         ),
         // An empty array of a fixed length is empty to the validator, not of a wrong length.
-        K::MinItems { .. } if instance.as_array().is_some_and(Vec::is_empty) => one(
+        Kind::MinItems(_) if instance.as_array().is_some_and(Array::is_empty) => one(
             khronos::EMPTY_ENTITY,
             pointer.to_string(),
             "Entity cannot be empty.".into(),
         ),
-        K::MinItems { limit } | K::MaxItems { limit } => one(
+        Kind::MinItems(limit) | Kind::MaxItems(limit) => one(
             khronos::ARRAY_LENGTH_NOT_IN_LIST,
             pointer.to_string(),
             format!(
                 "Invalid array length {}. Valid lengths are: {limit}.",
-                instance.as_array().map_or(0, Vec::len)
+                instance.as_array().map_or(0, Array::len)
             ),
         ),
-        K::UniqueItems => duplicate_positions(instance)
+        Kind::UniqueItems => duplicate_positions(instance)
             .into_iter()
             .map(|i| {
                 Diagnostic::at(
@@ -700,7 +592,7 @@ fn map_error(
                 )
             })
             .collect(),
-        K::MultipleOf { multiple_of, .. } => one(
+        Kind::MultipleOf(multiple_of) => one(
             khronos::VALUE_MULTIPLE_OF,
             pointer.to_string(),
             format!(
@@ -708,7 +600,7 @@ fn map_error(
                 show(instance)
             ),
         ),
-        K::Pattern { pattern } => one(
+        Kind::Pattern(pattern) => one(
             khronos::PATTERN_MISMATCH,
             pointer.to_string(),
             format!(
@@ -719,72 +611,27 @@ fn map_error(
         // An image's `uri` / `bufferView` choice is counted by the images pass on the members
         // as read (one of the wrong type is absent); a number's (KHR_materials_ior's 0 or ≥ 1)
         // is reported as its range.
-        K::OneOfNotValid { .. } | K::OneOfMultipleValid { .. } => Vec::new(),
-        other => one(
+        Kind::OneOf => Vec::new(),
+        Kind::MinLength { .. } | Kind::Const => one(
             khronos::TYPE_MISMATCH,
             pointer.to_string(),
-            format!("Schema violation: {other:?}"),
+            format!("Schema violation: {kind:?}"),
         ),
     }
 }
 
-/// For a `dependentRequired` failure, the member whose presence demanded the missing one.
-/// The error does not name it, so it is found among the schemas' declared dependencies.
-fn dependent_key(schema_path: &str, instance: &Value, missing: &str) -> Option<String> {
-    if !schema_path.ends_with("dependentRequired") {
-        return None;
-    }
-    dependencies()
-        .iter()
-        .find(|(key, needs)| instance.get(key).is_some() && needs.iter().any(|n| n == missing))
-        .map(|(key, _)| key.clone())
-}
-
-/// Every `dependentRequired` entry of the embedded schemas: (member, members it needs).
-fn dependencies() -> &'static [(String, Vec<String>)] {
-    static DEPENDENCIES: OnceLock<Vec<(String, Vec<String>)>> = OnceLock::new();
-    DEPENDENCIES.get_or_init(|| {
-        let mut found = Vec::new();
-        let mut stack: Vec<Value> = std::iter::once(CORE)
-            .chain(EXTENSIONS.iter().map(|(_, text)| *text))
-            .filter_map(|text| serde_json::from_str(text).ok())
-            .collect();
-        while let Some(value) = stack.pop() {
-            match value {
-                Value::Object(map) => {
-                    if let Some(Value::Object(deps)) = map.get("dependentRequired") {
-                        for (key, needs) in deps {
-                            let needs = needs
-                                .as_array()
-                                .into_iter()
-                                .flatten()
-                                .filter_map(Value::as_str)
-                                .map(str::to_string)
-                                .collect();
-                            found.push((key.clone(), needs));
-                        }
-                    }
-                    stack.extend(map.into_iter().map(|(_, v)| v));
-                }
-                Value::Array(items) => stack.extend(items),
-                _ => {}
-            }
-        }
-        found
-    })
-}
-
 /// Indices of array elements equal to an earlier element.
-fn duplicate_positions(instance: &Value) -> Vec<usize> {
+fn duplicate_positions(instance: Node) -> Vec<usize> {
     let Some(items) = instance.as_array() else {
         return Vec::new();
     };
     // Compared through a hash set of their JSON text, which is equal exactly when scalars
     // are (every uniqueItems array of glTF holds strings or integers); two objects that
     // differ only in key order are not taken for duplicates.
-    let mut seen = std::collections::HashSet::new();
-    (0..items.len())
-        .filter(|&i| !seen.insert(items[i].to_string()))
+    let mut seen = HashSet::new();
+    (items.iter().enumerate())
+        .filter(|(_, item)| !seen.insert(item.to_string()))
+        .map(|(i, _)| i)
         .collect()
 }
 
@@ -795,7 +642,8 @@ mod tests {
 
     fn codes(doc: Value) -> Vec<(String, String)> {
         let mut found = Vec::new();
-        validate(&doc, true, &mut found, HashSet::new());
+        let tree = Tree::parse(doc.to_string().as_bytes()).unwrap();
+        validate(tree.root(), true, &mut found, HashSet::new());
         found
             .into_iter()
             .map(|d| (d.code.to_string(), d.pointer().unwrap().to_string()))
