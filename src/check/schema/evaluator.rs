@@ -413,13 +413,18 @@ fn equal(instance: Node, expected: &Value) -> bool {
     }
 }
 
-/// Whether two elements of an array are equal (scalars by their JSON text, which is equal
-/// exactly when they are: every uniqueItems array of glTF holds strings or integers).
+/// Whether two elements of an array are equal as JSON Schema compares them: numbers by value
+/// (`1` and `1.0` are one), anything else by its JSON text (every uniqueItems array of glTF
+/// holds strings or integers).
 fn has_duplicates(array: crate::document::Array) -> bool {
     let mut seen = HashSet::new();
-    array
-        .iter()
-        .any(|element| !seen.insert(element.to_string()))
+    array.iter().any(|element| {
+        let key = match element.as_f64() {
+            Some(number) => format!("{}", number + 0.0),
+            None => element.to_string(),
+        };
+        !seen.insert(key)
+    })
 }
 
 struct Compiler {
@@ -560,4 +565,126 @@ fn strings(v: &Value) -> Result<Vec<String>, String> {
                 .ok_or("not a name".to_string())
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::document::Tree;
+    use serde_json::json;
+
+    fn failures(schema: &Value, instance: &str) -> Vec<(Kind, String)> {
+        let compiled = Compiled::new(schema).unwrap();
+        let tree = Tree::parse(instance.as_bytes()).unwrap();
+        let mut found = Vec::new();
+        compiled.evaluate(tree.root(), "", &mut |f| found.push((f.kind, f.pointer)));
+        found
+    }
+
+    /// Each keyword judged as an independent evaluator (the `jsonschema` crate) judges it.
+    #[test]
+    fn every_keyword_agrees_with_jsonschema() {
+        let cases = [
+            (
+                json!({"type": "integer"}),
+                ["1", "1.0", "1.5", "\"1\"", "-3"].as_slice(),
+            ),
+            (
+                json!({"type": "object", "required": ["a"]}),
+                &["{}", "{\"a\":null}", "[]"],
+            ),
+            (
+                json!({"properties": {"a": {"type": "string"}}, "additionalProperties": false}),
+                &["{\"a\":\"x\"}", "{\"a\":1}", "{\"b\":1}", "7"],
+            ),
+            (
+                json!({"additionalProperties": {"minimum": 0}}),
+                &["{\"x\":-1}", "{\"x\":0}"],
+            ),
+            (
+                json!({"items": {"maximum": 2}, "minItems": 2, "maxItems": 3}),
+                &["[1,2]", "[1]", "[1,2,3,4]", "[1,5]"],
+            ),
+            (
+                json!({"uniqueItems": true}),
+                &["[1,2]", "[\"a\",\"a\"]", "[1,1.0]"],
+            ),
+            (
+                json!({"exclusiveMinimum": 0, "exclusiveMaximum": 1}),
+                &["0", "0.5", "1"],
+            ),
+            (json!({"multipleOf": 4}), &["8", "6", "8.0", "4.5"]),
+            (json!({"enum": [9728, 9729]}), &["9728", "9729.0", "1"]),
+            (
+                json!({"pattern": "^([0-9]+)\\.([0-9]+)$"}),
+                &["\"2.0\"", "\"2\"", "2"],
+            ),
+            (
+                json!({"minLength": 1, "minProperties": 1}),
+                &["\"\"", "\"a\"", "{}", "{\"a\":1}"],
+            ),
+            (
+                json!({"dependentRequired": {"a": ["b"]}}),
+                &["{\"a\":1}", "{\"a\":1,\"b\":2}", "{}"],
+            ),
+            (
+                json!({"anyOf": [{"minimum": 1}, {"enum": [0]}]}),
+                &["0", "0.5", "2"],
+            ),
+            (
+                json!({"oneOf": [{"required": ["a"]}, {"required": ["b"]}]}),
+                &["{\"a\":1}", "{\"a\":1,\"b\":1}", "{}"],
+            ),
+            (
+                json!({"allOf": [{"if": {"properties": {"t": {"const": "x"}}, "required": ["t"]},
+                              "then": {"required": ["v"]}}]}),
+                &["{\"t\":\"x\"}", "{\"t\":\"y\"}", "{\"t\":\"x\",\"v\":1}"],
+            ),
+            (
+                json!({"$defs": {"id": {"type": "integer", "minimum": 0}}, "items": {"$ref": "#/$defs/id"}}),
+                &["[0,1]", "[-1]", "[\"a\"]"],
+            ),
+        ];
+        for (schema, instances) in cases {
+            let oracle = jsonschema::options().build(&schema).unwrap();
+            for instance in instances {
+                let value: Value = serde_json::from_str(instance).unwrap();
+                let ours = failures(&schema, instance);
+                assert_eq!(
+                    ours.is_empty(),
+                    oracle.is_valid(&value),
+                    "{schema} on {instance}: {ours:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn failures_carry_their_pointer_and_definition() {
+        let schema = json!({"$defs": {"glTFid": {"type": "integer", "minimum": 0}},
+                            "properties": {"a/b": {"items": {"$ref": "#/$defs/glTFid"}}}});
+        let compiled = Compiled::new(&schema).unwrap();
+        let tree = Tree::parse(br#"{"a/b": [0, -1]}"#).unwrap();
+        let mut found = Vec::new();
+        compiled.evaluate(tree.root(), "/x", &mut |f| {
+            found.push((f.kind, f.pointer, f.definition.map(str::to_string)))
+        });
+        assert_eq!(
+            found,
+            [(
+                Kind::Minimum,
+                "/x/a~1b/1".to_string(),
+                Some("glTFid".to_string())
+            )]
+        );
+    }
+
+    #[test]
+    fn an_unknown_keyword_does_not_compile() {
+        let error = Compiled::new(&json!({"patternProperties": {}}))
+            .err()
+            .unwrap();
+        assert!(error.contains("patternProperties"), "{error}");
+        assert!(Compiled::new(&json!({"$ref": "#/$defs/missing"})).is_err());
+    }
 }
