@@ -41,7 +41,19 @@ pub struct Tree {
     /// The string ids, by the hash of their text (for lookups by key).
     strings: HashTable<u32>,
     hasher: DefaultHashBuilder,
+    /// Each member's place in the objects of more than [`SCANNED_MEMBERS`] members, by
+    /// [`member_key`]: finding one member of 10^6 is then no walk over them.
+    large_objects: HashMap<u64, u32>,
     root: Slot,
+}
+
+/// Members an object lookup compares one by one; larger objects are indexed.
+const SCANNED_MEMBERS: usize = 8;
+
+/// An object member's key in [`Tree::large_objects`]: the object's first slot and the key's
+/// string id.
+fn member_key(start: usize, key: u32) -> u64 {
+    ((start as u64) << 32) | u64::from(key)
 }
 
 /// One value: a 4-bit tag over a 60-bit payload.
@@ -138,6 +150,7 @@ impl Tree {
                 ends: Vec::new(),
                 strings: HashTable::new(),
                 hasher: DefaultHashBuilder::default(),
+                large_objects: HashMap::new(),
                 root: Slot::NULL,
             },
             counts: counts.elements,
@@ -179,10 +192,15 @@ impl Tree {
 
     /// The slot of the live member keyed by string `key` in the object at `range`.
     fn member_slot(&self, (start, len): (usize, usize), key: u32) -> Option<usize> {
-        let key = Slot::new(Tag::String, u64::from(key));
+        let key_slot = Slot::new(Tag::String, u64::from(key));
+        if len > SCANNED_MEMBERS {
+            let member = *self.large_objects.get(&member_key(start, key))? as usize;
+            let at = start + 2 * member;
+            return (self.slots[at] == key_slot).then_some(at);
+        }
         (start..start + 2 * len)
             .step_by(2)
-            .find(|&at| self.slots[at] == key)
+            .find(|&at| self.slots[at] == key_slot)
     }
 
     /// Takes the member a pointer names out of its object, as if it had never been there.
@@ -842,30 +860,23 @@ impl<'de> Visitor<'de> for Build<'_> {
     fn visit_map<A: MapAccess<'de>>(self, mut members: A) -> Result<Slot, A::Error> {
         let (start, reserved) = self.state.borrow_mut().reserve(2);
         let mut n = 0;
-        // Where each key was first written, for objects past a few members (a repeated key
-        // keeps its first place and takes the last value).
-        let mut places: HashMap<u32, usize> = HashMap::new();
         while let Some(key) = members.next_key_seed(Key(self))? {
             let value = members.next_value_seed(self)?;
-            let mut state = self.state.borrow_mut();
-            let slots = &mut state.tree.slots;
-            let key_slot = Slot::new(Tag::String, u64::from(key));
-            let place = if n <= 8 {
-                (0..n).find(|&m| slots[start + 2 * m] == key_slot)
-            } else {
-                places.get(&key).copied()
-            };
-            match place {
-                Some(m) => slots[start + 2 * m + 1] = value,
+            let tree = &mut self.state.borrow_mut().tree;
+            // A repeated key keeps its first place and takes the last value.
+            match tree.member_slot((start, n), key) {
+                Some(at) => tree.slots[at + 1] = value,
                 None if n < reserved => {
-                    slots[start + 2 * n] = key_slot;
-                    slots[start + 2 * n + 1] = value;
-                    if n == 8 {
-                        places.extend((0..=8).map(|m| (slots[start + 2 * m].payload() as u32, m)));
-                    } else if n > 8 {
-                        places.insert(key, n);
-                    }
+                    tree.slots[start + 2 * n] = Slot::new(Tag::String, u64::from(key));
+                    tree.slots[start + 2 * n + 1] = value;
                     n += 1;
+                    if n > SCANNED_MEMBERS {
+                        let first = if n == SCANNED_MEMBERS + 1 { 0 } else { n - 1 };
+                        for m in first..n {
+                            let id = tree.slots[start + 2 * m].payload() as u32;
+                            tree.large_objects.insert(member_key(start, id), m as u32);
+                        }
+                    }
                 }
                 None => {}
             }
@@ -978,6 +989,20 @@ mod tests {
         assert_eq!(object.len(), 10);
         assert_eq!(object.get("k3").unwrap().as_u64(), Some(93));
         assert_eq!(object.keys().next(), Some("k0"));
+    }
+
+    #[test]
+    fn a_large_object_finds_and_removes_members_by_their_index() {
+        let mut members: Vec<String> = (0..100).map(|i| format!("\"k{i}\":{i}")).collect();
+        members.push("\"k50\":\"last\"".into());
+        let mut tree = parsed(&format!("{{\"o\":{{{}}}}}", members.join(",")));
+        let object = tree.root().get("o").unwrap().as_object().unwrap();
+        assert_eq!(object.len(), 100);
+        assert_eq!(object.get("k50").unwrap().as_str(), Some("last"));
+        assert_eq!(object.get("k99").unwrap().as_u64(), Some(99));
+        assert_eq!(tree.remove("/o/k99"), Some(false));
+        assert!(tree.root().pointer("/o/k99").is_none());
+        assert_eq!(tree.root().pointer("/o/k98").unwrap().as_u64(), Some(98));
     }
 
     #[test]
