@@ -133,6 +133,13 @@ def declared_extensions(n):
                                               nodes=[{'extensions': {name: {}}} for name in names]))
 
 
+def undeclared_extensions(n):
+    """One node with n extension objects no `extensionsUsed` declares: each was taken out of
+    the tree by a walk over the object's members."""
+    return write(f'undeclared-{n}.gltf', asset(extensionsUsed=['X_a'],
+                                               nodes=[{'extensions': {f'X_k{i}': {} for i in range(n)}}]))
+
+
 def gltf1_meshes(n):
     """A 1.0 asset of n meshes, each with its own accessor into one buffer: each repacked
     accessor once summed the lengths of all before it."""
@@ -212,6 +219,7 @@ CLASSES = [
     ('empty materials (13)', empty_materials, 100_000, ['check', '--max-issues', '10']),
     ('empty GLB chunks (13)', empty_chunks, 100_000, ['check', '--max-issues', '10']),
     ('declared extensions (11)', declared_extensions, 10_000, ['check']),
+    ('undeclared extension objects (11)', undeclared_extensions, 100_000, ['check', '--max-issues', '10']),
     ('1.0 meshes, upgrade (11)', gltf1_meshes, 10_000, ['upgrade', '-o', os.path.join(WORK, 'meshes.glb'), '--force']),
     ('array of zeros (13)', zeros, 1_000_000, ['check', '--max-issues', '10']),
     ('accessors aliasing one view (13)', aliasing_accessors, 100, ['check', '--max-issues', '0']),
