@@ -16,11 +16,11 @@
 //! The number of values is bounded: past [`MAX_VALUES`] parsing stops with an error at that
 //! value's place, instead of memory growing with whatever a stranger uploads.
 
-use hashbrown::{DefaultHashBuilder, HashTable};
+use hashbrown::{DefaultHashBuilder, HashMap, HashTable};
 use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::ser::{Serialize, SerializeMap, SerializeSeq, Serializer};
 use std::cell::{Cell, RefCell};
-use std::collections::HashMap;
+
 use std::fmt;
 use std::hash::BuildHasher;
 
