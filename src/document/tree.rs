@@ -930,6 +930,41 @@ mod tests {
         assert_eq!(a.get("k").unwrap().as_u64(), Some(2));
     }
 
+    /// Every JSON file of the fixtures (and of the conformance corpus and the real exporters'
+    /// files, when `../shared` is beside the checkout) reads as serde_json reads it.
+    #[test]
+    fn every_json_file_at_hand_reads_as_serde_json_reads_it() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut folders = vec![root.join("fixtures")];
+        folders.extend(["conformance", "real-world"].map(|f| root.join("../shared").join(f)));
+        let mut stack: Vec<_> = folders.into_iter().filter(|f| f.is_dir()).collect();
+        let mut read = 0;
+        while let Some(folder) = stack.pop() {
+            for entry in std::fs::read_dir(&folder).unwrap().flatten() {
+                let path = entry.path();
+                if path.is_dir() {
+                    stack.push(path);
+                    continue;
+                }
+                let json = path.extension().is_some_and(|e| e == "gltf" || e == "json");
+                let Some(text) = json.then(|| std::fs::read(&path).ok()).flatten() else {
+                    continue;
+                };
+                let Ok(reference) = crate::document::json_tree::from_slice(&text) else {
+                    assert!(
+                        Tree::parse(&text).is_err(),
+                        "{path:?} is no JSON to serde_json"
+                    );
+                    continue;
+                };
+                let tree = Tree::parse(&text).unwrap();
+                assert!(tree.root().to_value() == reference, "{path:?}");
+                read += 1;
+            }
+        }
+        assert!(read >= 16, "only {read} files read");
+    }
+
     #[test]
     fn numbers_read_as_serde_json_numbers_do() {
         let text = "[0, 7, 1.0, -3, 0.1, 1152921504606846976, 18446744073709551615]";
