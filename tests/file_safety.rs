@@ -442,3 +442,128 @@ fn render_does_not_replace_a_file_without_force() {
         b"PNG"
     );
 }
+
+/// A GLB past `LARGE_GLB_BYTES`, a float VEC3 accessor over its BIN chunk with a few NaNs
+/// and non-unit normals in it (data findings only a walk over the chunk finds).
+fn large_glb_with_data_findings() -> Vec<u8> {
+    let count = (gltfmat::document::file::LARGE_GLB_BYTES as usize + (1 << 20)) / 12;
+    let mut data: Vec<u8> = (0..count)
+        .flat_map(|_| [0f32, 0.0, 1.0])
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    for i in [3, count / 2, count - 1] {
+        data[i * 12..i * 12 + 4].copy_from_slice(&f32::NAN.to_le_bytes());
+    }
+    for i in 100..140 {
+        data[i * 12 + 8..i * 12 + 12].copy_from_slice(&2f32.to_le_bytes());
+    }
+    let json = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"byteLength": data.len()}],
+        "bufferViews": [{"buffer": 0, "byteLength": data.len(), "byteStride": 12, "target": 34962}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": count, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [0, 0, 1]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 0}, "mode": 0}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0
+    })
+    .to_string();
+    let chunks = [
+        common_chunk(b"JSON", json.as_bytes()),
+        common_chunk(b"BIN\0", &data),
+    ]
+    .concat();
+    let mut glb = b"glTF\x02\0\0\0".to_vec();
+    glb.extend(((12 + chunks.len()) as u32).to_le_bytes());
+    glb.extend(chunks);
+    glb
+}
+
+#[test]
+fn a_large_glb_checked_from_its_file_reports_what_its_bytes_in_memory_do() {
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("large.glb");
+    let glb = large_glb_with_data_findings();
+    std::fs::write(&path, &glb).unwrap();
+    let options = CheckOptions::default().with_max_issues(0);
+    let from_file = gltfmat::check::check_path(&path, &options).unwrap();
+    let in_memory = gltfmat::check::check_bytes(
+        "large.glb",
+        glb,
+        &gltfmat::document::uri::NoResources,
+        &options,
+    );
+    let findings = |report: &gltfmat::check::Report| {
+        let mut found: Vec<String> = (report.diagnostics.iter())
+            .map(|d| format!("{} {:?} {}", d.code, d.location, d.message))
+            .collect();
+        found.sort();
+        found
+    };
+    let found = findings(&from_file);
+    assert!(
+        found
+            .iter()
+            .any(|f| f.starts_with("ACCESSOR_INVALID_FLOAT")),
+        "{found:?}"
+    );
+    assert!(
+        found
+            .iter()
+            .any(|f| f.starts_with("ACCESSOR_VECTOR3_NON_UNIT")),
+        "{found:?}"
+    );
+    assert_eq!(found, findings(&in_memory));
+    for severity in [gltfmat::Severity::Error, gltfmat::Severity::Warning] {
+        assert_eq!(from_file.count(severity), in_memory.count(severity));
+    }
+    // The BIN chunk was left in the file, not read whole.
+    let document = gltfmat::document::read_path(&path, &mut Vec::new()).unwrap();
+    assert!(document.bin_in_file.is_some());
+    assert!(
+        document.bytes.len() < 1 << 20,
+        "{} bytes held",
+        document.bytes.len()
+    );
+}
+
+#[test]
+fn a_large_glb_truncated_after_it_was_opened_reads_as_nothing_not_a_fault() {
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("large.glb");
+    std::fs::write(&path, large_glb_with_data_findings()).unwrap();
+    let document = gltfmat::document::read_path(&path, &mut Vec::new()).unwrap();
+    let bin = document.bin_data().unwrap();
+    assert_eq!(bin.get(0..12).map(|b| b.len()), Some(12));
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&path)
+        .unwrap()
+        .set_len(100)
+        .unwrap();
+    assert!(bin.get(0..12).is_none());
+}
+
+#[test]
+fn a_large_glb_truncated_while_it_is_checked_gives_an_exit_status_not_a_signal() {
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("large.glb");
+    let glb = large_glb_with_data_findings();
+    for _ in 0..3 {
+        std::fs::write(&path, &glb).unwrap();
+        let child = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(["check", "--quiet"])
+            .arg(&path)
+            .stdout(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open(&path)
+            .unwrap()
+            .set_len(100)
+            .unwrap();
+        let status = child.wait_with_output().unwrap().status;
+        assert!(status.code().is_some(), "killed by a signal: {status:?}");
+    }
+}

@@ -140,16 +140,21 @@ pub fn check_path(
     options: &CheckOptions,
 ) -> Result<Report, crate::error::Error> {
     let path = path.as_ref();
-    let bytes = document::file::read(path).map_err(|source| crate::error::Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let mut diagnostics = Collector::new(options);
+    // A large GLB's BIN chunk stays in the file: its views are read as they are walked.
+    let document =
+        document::read_path(path, &mut diagnostics).map_err(|source| crate::error::Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
     let loader = FolderResources::beside(path);
-    Ok(check_bytes(
-        &path.display().to_string(),
-        bytes,
+    let uri = path.display().to_string();
+    Ok(check_document(
+        &uri,
+        document,
         &loader,
         options,
+        diagnostics,
     ))
 }
 
@@ -160,9 +165,23 @@ pub fn check_bytes(
     loader: &dyn ResourceLoader,
     options: &CheckOptions,
 ) -> Report {
-    let filters = profile::Filters::of(options.profile);
     let mut diagnostics = Collector::new(options);
-    let mut document = document::read(bytes, uri, &mut diagnostics);
+    let document = document::read(bytes, uri, &mut diagnostics);
+    check_document(uri, document, loader, options, diagnostics)
+}
+
+/// Checks a document read by [`check_bytes`] or [`check_path`], whose reading's findings
+/// are already in `diagnostics`.
+fn check_document(
+    uri: &str,
+    mut document: Document,
+    loader: &dyn ResourceLoader,
+    options: &CheckOptions,
+    diagnostics: Collector,
+) -> Report {
+    // Rebound so that its lifetime may shrink to the document's, which the passes borrow.
+    let mut diagnostics = diagnostics;
+    let filters = profile::Filters::of(options.profile);
     let mut info = context::AssetInfo::default();
     let khronos_extensions_only = !options.profile.knows_extensions_beyond_khronos();
     // 2.0 passes on a 1.0 document only bury the one fix: upgrading it.

@@ -28,10 +28,112 @@ pub enum FileError {
 
 /// Reads the regular file at `path` (a symlink is followed: the caller named it).
 pub fn read(path: &Path) -> Result<Vec<u8>, FileError> {
+    read_opened(open(path)?)
+}
+
+/// Opens the file at `path` for reading, without waiting on a FIFO (it is refused when read).
+pub(crate) fn open(path: &Path) -> Result<File, FileError> {
     let mut options = std::fs::OpenOptions::new();
     options.read(true);
     non_blocking(&mut options);
-    read_opened(options.open(path)?)
+    Ok(options.open(path)?)
+}
+
+/// A GLB from this size up is not read whole: its BIN chunk's data stays in the file and
+/// each view is read as it is walked, so checking a 160 MB GLB does not hold 160 MB.
+pub const LARGE_GLB_BYTES: u64 = 32 << 20;
+
+/// A large GLB read but for its BIN chunk's data: the bytes before that data, where it lies
+/// and the bytes after it (see [`LARGE_GLB_BYTES`]).
+pub(crate) struct SplitGlb {
+    pub before: Vec<u8>,
+    pub bin: FileChunk,
+    pub after: Vec<u8>,
+}
+
+/// Splits an opened regular file when it is a large GLB of a JSON chunk then a BIN chunk
+/// that lies inside the file; `Ok(Err(file))` hands back any other file, to be read whole.
+#[cfg(unix)]
+pub(crate) fn split_large_glb(file: File) -> Result<Result<SplitGlb, File>, FileError> {
+    use std::os::unix::fs::FileExt;
+    let metadata = file.metadata()?;
+    check_regular(&metadata)?;
+    let length = metadata.len();
+    let mut header = [0u8; 20];
+    if length < LARGE_GLB_BYTES || file.read_exact_at(&mut header, 0).is_err() {
+        return Ok(Err(file));
+    }
+    let word = |bytes: &[u8], at: usize| {
+        u64::from(u32::from_le_bytes([0, 1, 2, 3].map(|i| bytes[at + i])))
+    };
+    const JSON: u64 = 0x4E4F_534A;
+    const BIN: u64 = 0x004E_4942;
+    let is_glb = &header[..4] == b"glTF" && word(&header, 4) == 2 && word(&header, 16) == JSON;
+    let bin_header = 20 + word(&header, 12);
+    if !is_glb || bin_header + 8 > length {
+        return Ok(Err(file));
+    }
+    let mut before = vec![0u8; bin_header as usize + 8];
+    file.read_exact_at(&mut before, 0)?;
+    let data = bin_header + 8;
+    let end = data + word(&before, bin_header as usize);
+    if word(&before, bin_header as usize + 4) != BIN || end > length {
+        return Ok(Err(file));
+    }
+    let mut after = vec![0u8; (length - end) as usize];
+    file.read_exact_at(&mut after, end)?;
+    let bin = FileChunk {
+        file,
+        offset: data,
+        length: (end - data) as usize,
+    };
+    Ok(Ok(SplitGlb { before, bin, after }))
+}
+
+#[cfg(not(unix))]
+pub(crate) fn split_large_glb(file: File) -> Result<Result<SplitGlb, File>, FileError> {
+    Ok(Err(file))
+}
+
+/// A chunk's data left in its (opened, regular) file, read a range at a time. A range the
+/// file no longer holds (it was truncated meanwhile) reads as nothing, never as a fault.
+#[derive(Debug)]
+pub struct FileChunk {
+    file: File,
+    offset: u64,
+    length: usize,
+}
+
+impl FileChunk {
+    /// Where the chunk's data lies in its file (for its range in the GLB).
+    pub fn offset(&self) -> u64 {
+        self.offset
+    }
+
+    /// The chunk's length as its header declares it.
+    pub fn len(&self) -> usize {
+        self.length
+    }
+
+    /// Whether the chunk holds no byte.
+    pub fn is_empty(&self) -> bool {
+        self.length == 0
+    }
+
+    /// The bytes at `range` of the chunk, read now.
+    pub fn read(&self, range: std::ops::Range<usize>) -> Option<Vec<u8>> {
+        if range.end > self.length || range.start > range.end {
+            return None;
+        }
+        let mut bytes = vec![0u8; range.len()];
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::FileExt;
+            let at = self.offset.checked_add(range.start as u64)?;
+            self.file.read_exact_at(&mut bytes, at).ok()?;
+        }
+        Some(bytes)
+    }
 }
 
 /// Opening a FIFO for reading waits for a writer unless it is non-blocking; the handle is

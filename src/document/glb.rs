@@ -27,8 +27,48 @@ fn at(code: Code, offset: usize, message: impl Into<String>) -> Diagnostic {
     Diagnostic::new(code, Location::Offset(offset as u64), message)
 }
 
-fn read_u32(bytes: &[u8], pos: usize) -> u32 {
-    u32::from_le_bytes([bytes[pos], bytes[pos + 1], bytes[pos + 2], bytes[pos + 3]])
+fn read_u32(bytes: &(impl GlbBytes + ?Sized), pos: usize) -> u32 {
+    u32::from_le_bytes([0, 1, 2, 3].map(|i| bytes.byte(pos + i)))
+}
+
+/// What the reader needs of a GLB's bytes: its length and the bytes of its headers. A GLB
+/// whose BIN chunk was left in its file ([`Holed`]) is read as the whole file is.
+pub trait GlbBytes {
+    /// The length of the whole file.
+    fn len(&self) -> usize;
+    /// The byte at `pos` (< `len`), which the reader asks only of headers.
+    fn byte(&self, pos: usize) -> u8;
+}
+
+impl GlbBytes for [u8] {
+    fn len(&self) -> usize {
+        <[u8]>::len(self)
+    }
+
+    fn byte(&self, pos: usize) -> u8 {
+        self[pos]
+    }
+}
+
+/// A GLB read but for one chunk's data (the BIN chunk of a large file, read only as its
+/// views are walked): the bytes before it, those after it, and where it lies.
+pub struct Holed<'b> {
+    pub before: &'b [u8],
+    pub hole: Range<usize>,
+    pub after: &'b [u8],
+}
+
+impl GlbBytes for Holed<'_> {
+    fn len(&self) -> usize {
+        self.hole.end + self.after.len()
+    }
+
+    fn byte(&self, pos: usize) -> u8 {
+        match pos.checked_sub(self.hole.end) {
+            Some(in_after) => self.after.get(in_after).copied().unwrap_or(0),
+            None => self.before.get(pos).copied().unwrap_or(0),
+        }
+    }
 }
 
 /// True when the bytes start like a GLB file (magic `glTF`).
@@ -37,7 +77,7 @@ pub fn looks_like_glb(bytes: &[u8]) -> bool {
 }
 
 /// Reads the container; every problem goes to `diags`.
-pub fn read(bytes: &[u8], diags: &mut dyn Sink) -> GlbParts {
+pub fn read(bytes: &(impl GlbBytes + ?Sized), diags: &mut dyn Sink) -> GlbParts {
     let mut parts = GlbParts::default();
     if bytes.len() < HEADER_LEN {
         diags.push(at(
@@ -47,7 +87,7 @@ pub fn read(bytes: &[u8], diags: &mut dyn Sink) -> GlbParts {
         ));
         return parts;
     }
-    if &bytes[..4] != MAGIC {
+    if [0, 1, 2, 3].map(|i| bytes.byte(i)) != *MAGIC {
         diags.push(at(
             khronos::GLB_INVALID_MAGIC,
             0,

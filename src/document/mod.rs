@@ -50,6 +50,9 @@ pub struct Document<R = Tree> {
     pub root: Option<R>,
     /// Where the GLB BIN chunk's data lies in `bytes`, if there is one.
     pub bin: Option<Range<usize>>,
+    /// The GLB BIN chunk's data when it was left in the file (a large GLB read by
+    /// [`read_path`]; `bytes` then holds what comes before it).
+    pub bin_in_file: Option<file::FileChunk>,
 }
 
 impl<R> Document<R> {
@@ -59,9 +62,17 @@ impl<R> Document<R> {
         self.bytes.get(self.json_range.clone()).unwrap_or_default()
     }
 
-    /// The GLB BIN chunk's data.
+    /// The GLB BIN chunk's data, when it is in memory.
     pub fn bin(&self) -> Option<&[u8]> {
         self.bin.clone().and_then(|r| self.bytes.get(r))
+    }
+
+    /// The GLB BIN chunk's data, in memory or still in the file.
+    pub fn bin_data(&self) -> Option<BufferData<'_>> {
+        match &self.bin_in_file {
+            Some(chunk) => Some(BufferData::InFile(chunk)),
+            None => self.bin().map(BufferData::Glb),
+        }
     }
 }
 
@@ -104,7 +115,7 @@ fn read_with<R>(
 ) -> Document<R> {
     let named_glb = name.to_ascii_lowercase().ends_with(".glb");
     let (container, json_range, bin) = if glb::looks_like_glb(&bytes) || named_glb {
-        let parts = glb::read(&bytes, diagnostics);
+        let parts = glb::read(&bytes[..], diagnostics);
         (Container::Glb, parts.json, parts.bin)
     } else {
         (Container::Gltf, Some(0..bytes.len()), None)
@@ -119,7 +130,41 @@ fn read_with<R>(
         container,
         root,
         bin,
+        bin_in_file: None,
     }
+}
+
+/// Reads the asset at `path` as [`read`] reads its bytes, except that a large GLB's BIN
+/// chunk data is left in the file (see [`file::LARGE_GLB_BYTES`]): its views are read as
+/// they are walked. Fails only when the file cannot be opened or read.
+pub fn read_path(
+    path: &std::path::Path,
+    diagnostics: &mut dyn Sink,
+) -> Result<Document, file::FileError> {
+    let name = path.display().to_string();
+    let split = match file::split_large_glb(file::open(path)?)? {
+        Ok(split) => split,
+        Err(opened) => return Ok(read(file::read_opened(opened)?, &name, diagnostics)),
+    };
+    let start = split.bin.offset() as usize;
+    let hole = start..start + split.bin.len();
+    let holed = glb::Holed {
+        before: &split.before,
+        hole: hole.clone(),
+        after: &split.after,
+    };
+    let parts = glb::read(&holed, diagnostics);
+    let json_range = parts.json.filter(|r| r.end <= split.before.len());
+    let root = (json_range.clone())
+        .and_then(|range| parse_json(&split.before[range], diagnostics, json::parse));
+    Ok(Document {
+        json_range: json_range.unwrap_or(0..0),
+        bytes: split.before,
+        container: Container::Glb,
+        root,
+        bin: None,
+        bin_in_file: (parts.bin == Some(hole)).then_some(split.bin),
+    })
 }
 
 fn parse_json<R>(

@@ -4,7 +4,7 @@
 
 use super::accessor_fast::{self, Layout};
 use super::accessor_usage::{self, Budget, Checker, Findings};
-use super::resources::view_bytes;
+use super::resources::{view_bytes, view_data, ViewData};
 use crate::check::context::{unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::Node;
@@ -137,15 +137,15 @@ pub fn check(ctx: &mut Context) {
     let mut work: Vec<Work> = ctx
         .objects("accessors")
         .filter_map(|(index, pointer, accessor)| {
-            let (layout, bytes) = match accessor.get("sparse") {
-                None => scannable(ctx, accessor).map(|(l, b)| (l, Cow::Borrowed(b)))?,
-                Some(_) => substituted(ctx, accessor).map(|(l, b)| (l, Cow::Owned(b)))?,
+            let (layout, data) = match accessor.get("sparse") {
+                None => scannable(ctx, accessor).map(|(l, v)| (l, Data::View(v)))?,
+                Some(_) => substituted(ctx, accessor).map(|(l, b)| (l, Data::Dense(b)))?,
             };
             let checkers = uses.remove(&index).unwrap_or_default();
             Some(Work {
                 pointer,
                 layout,
-                bytes,
+                data,
                 accessor,
                 checkers,
             })
@@ -175,29 +175,38 @@ pub fn check(ctx: &mut Context) {
 struct Work<'c> {
     pointer: String,
     layout: Layout,
-    /// The view's bytes, or a sparse accessor's elements with the substitution applied.
-    bytes: Cow<'c, [u8]>,
+    data: Data<'c>,
     accessor: Node<'c>,
     checkers: Vec<Checker>,
 }
 
-/// The accessor's layout and its view's bytes, when it is plain (not sparse) data that fits
-/// its view (otherwise ACCESSOR_TOO_LONG or a schema code was reported).
-pub(super) fn scannable<'c>(ctx: &'c Context, accessor: Node) -> Option<(Layout, &'c [u8])> {
+/// An accessor's bytes: the part of its view it reads (read when its walk starts, so that
+/// the views of a large GLB are held one walk at a time), or a sparse accessor's elements
+/// with the substitution applied.
+enum Data<'c> {
+    View(ViewData<'c>),
+    Dense(Vec<u8>),
+    Walked,
+}
+
+/// The accessor's layout and the part of its view it reads, when it is plain (not sparse)
+/// data that fits its view (otherwise ACCESSOR_TOO_LONG or a schema code was reported).
+pub(super) fn scannable<'c>(ctx: &'c Context, accessor: Node) -> Option<(Layout, ViewData<'c>)> {
     if accessor.get("sparse").is_some() {
         return None; // see `substituted`
     }
     in_view(ctx, accessor)
 }
 
-/// The accessor's layout and its view's bytes when its elements fit the view, sparse or not.
-fn in_view<'c>(ctx: &'c Context, accessor: Node) -> Option<(Layout, &'c [u8])> {
+/// The accessor's layout and the part of its view it reads when its elements fit the view,
+/// sparse or not.
+fn in_view<'c>(ctx: &'c Context, accessor: Node) -> Option<(Layout, ViewData<'c>)> {
     let view = unsigned(accessor, "bufferView")? as usize;
     if view >= ctx.items("bufferViews").len() {
         return None;
     }
     let layout = layout(ctx, accessor, view)?;
-    let bytes = view_bytes(ctx, view)?;
+    let bytes = view_data(ctx, view)?;
     // Every offset the walk computes is below `needed`, so once it fits, none can overflow.
     // Elements that overlap (a stride below the element size) are not walked: other passes
     // report that layout.
@@ -219,7 +228,8 @@ fn in_view<'c>(ctx: &'c Context, accessor: Node) -> Option<(Layout, &'c [u8])> {
         .checked_mul(layout.stride)?
         .checked_add(element)?
         .checked_add(layout.offset)?;
-    (layout.stride >= element && needed <= bytes.len()).then_some((layout, bytes))
+    let part = bytes.part(0..needed)?;
+    (layout.stride >= element).then_some((layout, part))
 }
 
 /// The largest dense copy made of a sparse accessor without a bufferView (its base elements
@@ -235,7 +245,8 @@ fn substituted(ctx: &Context, accessor: Node) -> Option<(Layout, Vec<u8>)> {
     let element = layout.size.checked_mul(layout.components)?;
     let mut dense = match accessor.get("bufferView") {
         Some(_) => {
-            let (base, bytes) = in_view(ctx, accessor)?;
+            let (base, view) = in_view(ctx, accessor)?;
+            let bytes = view.read()?;
             (0..base.count)
                 .flat_map(|i| {
                     let at = base.offset + i * base.stride;
@@ -277,13 +288,27 @@ const WALKS_PER_BATCH: usize = 16;
 /// Every finding of one accessor (as many as `findings` keeps), from a single walk over its
 /// elements.
 fn scan(work: &mut Work, mut findings: Findings) -> Findings {
+    let bytes = match std::mem::replace(&mut work.data, Data::Walked) {
+        Data::View(view) => view.read(),
+        Data::Dense(bytes) => Some(Cow::Owned(bytes)),
+        Data::Walked => None,
+    };
     let Work {
         pointer,
         layout,
-        bytes,
         accessor,
         checkers,
+        ..
     } = work;
+    let Some(bytes) = bytes else {
+        findings.push((
+            khronos::IO_ERROR,
+            pointer.clone(),
+            "The accessor's data could not be read: the file changed while it was checked.".into(),
+        ));
+        return findings;
+    };
+    let bytes = &bytes[..];
     if let Some((min, max)) = accessor_fast::bounds(layout, bytes, checkers) {
         Bounds {
             layout,

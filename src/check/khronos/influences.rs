@@ -7,6 +7,7 @@ use super::accessor_usage::{Budget, Findings};
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::{Array, Node};
+use std::borrow::Cow;
 use std::collections::HashMap;
 
 pub fn check(ctx: &mut Context) {
@@ -64,8 +65,8 @@ fn limiting_skins(ctx: &Context) -> HashMap<usize, (f64, usize)> {
 
 /// One JOINTS_n / WEIGHTS_n pair, readable and as long as the primitive.
 struct Set<'c> {
-    joints: (Layout, &'c [u8]),
-    weights: (Layout, &'c [u8]),
+    joints: (Layout, Cow<'c, [u8]>),
+    weights: (Layout, Cow<'c, [u8]>),
     weight_scale: fn(f64) -> f64,
 }
 
@@ -88,9 +89,9 @@ fn influence_sets<'c>(ctx: &'c Context, primitive: Node) -> Option<Vec<Set<'c>>>
         let joints = accessors.get(joints.as_u64()? as usize)?;
         let weights = accessors.get(attributes.get(format!("WEIGHTS_{n}"))?.as_u64()? as usize)?;
         let readable = |a: Node<'c>| {
-            let (layout, bytes) = scannable(ctx, a)?;
+            let (layout, view) = scannable(ctx, a)?;
             let fits = layout.count as u64 == vertex_count && layout.components == 4;
-            fits.then_some((layout, bytes))
+            fits.then(|| Some((layout, view.read()?))).flatten()
         };
         let weight_scale = unit_scale(unsigned(weights, "componentType")?, weights);
         sets.push(Set {
@@ -112,7 +113,7 @@ fn check_primitive(sets: &[Set], at: &str, limit: JointLimit, out: &mut Findings
     for vertex in 0..sets[0].joints.0.count {
         seen.clear();
         values.clear();
-        let read = |(layout, bytes): &(Layout, &[u8])| element(layout, bytes, vertex);
+        let read = |(layout, bytes): &(Layout, Cow<[u8]>)| element(layout, bytes, vertex);
         values.extend(sets.iter().map(|s| (read(&s.joints), read(&s.weights))));
         let mut sum = 0f32;
         // Rounding allowance: a float32 ulp near 1 per weight summed.

@@ -9,6 +9,7 @@ use crate::document::uri::{classify, LoadError, UriKind};
 use crate::document::Node;
 use crate::document::{BufferData, Bytes};
 use crate::gltf::gl::ELEMENT_ARRAY_BUFFER;
+use std::borrow::Cow;
 
 /// Bytes behind a `uri`, with diagnostics for everything that stops us reading them.
 /// Returns the bytes and, for data URIs, the declared media type.
@@ -138,7 +139,7 @@ pub fn check_buffers(ctx: &mut Context) {
                 (data.map(BufferData::Loaded), storage, uri)
             }
             None if i == 0 && crate::check::is_glb(ctx.document) => {
-                let Some(bin) = ctx.document.bin() else {
+                let Some(bin) = ctx.document.bin_data() else {
                     ctx.emit(
                         khronos::BUFFER_MISSING_GLB_DATA,
                         pointer.clone(),
@@ -159,7 +160,7 @@ pub fn check_buffers(ctx: &mut Context) {
                         );
                     }
                 }
-                (declared.map(|_| BufferData::Glb(bin)), "glb", None)
+                (declared.map(|_| bin), "glb", None)
             }
             None => (None, "buffer", None),
         };
@@ -226,8 +227,34 @@ pub fn check_buffer_views(ctx: &mut Context) {
     }
 }
 
-/// The bytes of a buffer view, when its buffer was read and the range fits.
-pub fn view_bytes<'c>(ctx: &'c Context, view_index: usize) -> Option<&'c [u8]> {
+/// A buffer view's bytes, when its buffer was read and the range fits: read (from a large
+/// GLB's file) only when asked, so a pass holds a view's bytes only while it walks them.
+pub struct ViewData<'c> {
+    buffer: &'c BufferData<'c>,
+    range: std::ops::Range<usize>,
+}
+
+impl<'c> ViewData<'c> {
+    pub fn len(&self) -> usize {
+        self.range.len()
+    }
+
+    /// The bytes at `part` of the view (what one accessor needs of it).
+    pub fn part(&self, part: std::ops::Range<usize>) -> Option<ViewData<'c>> {
+        (part.start <= part.end && part.end <= self.len()).then(|| ViewData {
+            buffer: self.buffer,
+            range: self.range.start + part.start..self.range.start + part.end,
+        })
+    }
+
+    /// The bytes, borrowed when in memory; `None` when a file no longer holds them.
+    pub fn read(&self) -> Option<Cow<'c, [u8]>> {
+        self.buffer.get(self.range.clone())
+    }
+}
+
+/// A buffer view's bytes, unread (see [`ViewData`]).
+pub fn view_data<'c>(ctx: &'c Context, view_index: usize) -> Option<ViewData<'c>> {
     let view = ctx.items("bufferViews").get(view_index)?;
     let buffer = ctx
         .buffers
@@ -235,7 +262,15 @@ pub fn view_bytes<'c>(ctx: &'c Context, view_index: usize) -> Option<&'c [u8]> {
         .as_ref()?;
     let start = usize::try_from(crate::gltf::byte_offset(view)?).ok()?;
     let end = start.checked_add(usize::try_from(unsigned(view, "byteLength")?).ok()?)?;
-    buffer.get(start..end)
+    (end <= buffer.len()).then_some(ViewData {
+        buffer,
+        range: start..end,
+    })
+}
+
+/// The bytes of a buffer view, read now (see [`view_data`]).
+pub fn view_bytes<'c>(ctx: &'c Context, view_index: usize) -> Option<Cow<'c, [u8]>> {
+    view_data(ctx, view_index)?.read()
 }
 
 /// `length` bytes at `offset` in bufferView `view`, read as components of `size` bytes (an
@@ -349,7 +384,7 @@ pub fn check_images(ctx: &mut Context) {
                         "Buffer view used by an image must not have byteStride.",
                     );
                 }
-                let bytes = view_bytes(ctx, view).map(<[u8]>::to_vec);
+                let bytes = view_bytes(ctx, view).map(Cow::into_owned);
                 (
                     bytes,
                     None,

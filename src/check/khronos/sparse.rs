@@ -2,7 +2,7 @@
 //! accessor's, each part (indices, values) inside its bufferView, and the indices' data,
 //! strictly increasing and each below the accessor's count.
 
-use super::resources::{fits_in_view, view_bytes};
+use super::resources::{fits_in_view, view_data};
 use crate::check::context::{member, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::Node;
@@ -112,15 +112,15 @@ pub(super) fn readable_indices<'c>(
 ) -> Option<impl Iterator<Item = u64> + 'c> {
     let indices = sparse.get("indices")?;
     let size = unsigned(indices, "componentType").and_then(component_size)?;
-    let bytes = view_bytes(ctx, unsigned(indices, "bufferView")? as usize)?;
+    let view = view_data(ctx, unsigned(indices, "bufferView")? as usize)?;
     let start = usize::try_from(crate::gltf::byte_offset(indices)?).ok()?;
     let length = usize::try_from(unsigned(sparse, "count")?)
         .ok()?
         .checked_mul(size)?;
-    let data = bytes.get(start..start.checked_add(length)?)?;
-    Some(data.chunks_exact(size).map(|word| {
+    let data = view.part(start..start.checked_add(length)?)?.read()?;
+    Some((0..length / size).map(move |i| {
         let mut le = [0u8; 8];
-        le[..word.len()].copy_from_slice(word);
+        le[..size].copy_from_slice(&data[i * size..(i + 1) * size]);
         u64::from_le_bytes(le)
     }))
 }

@@ -86,7 +86,7 @@ pub fn gltf2_materials(
             .as_ref()?;
         let start = view.get("byteOffset").and_then(Value::as_u64).unwrap_or(0) as usize;
         let end = start.checked_add(view.get("byteLength")?.as_u64()? as usize)?;
-        buffer.get(start..end)
+        buffer.in_memory()?.get(start..end)
     };
     let needed = used_images(list("materials"), list("textures"));
     let encoded: Vec<sample::Wanted<Encoded>> = list("images")
