@@ -80,28 +80,41 @@ fn temporaries(folder: &Path) -> Vec<String> {
 fn a_large_input_truncated_while_it_is_checked_gives_an_exit_status_not_a_signal() {
     let folder = tempfile::tempdir().unwrap();
     let path = folder.path().join("big.glb");
+    let json = br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":8388608}]}"#;
+    let glb = glb_of(json, &vec![7u8; 8 << 20]);
     for _ in 0..5 {
-        let mut glb = b"glTF\x02\0\0\0".to_vec();
-        let json = br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":8388608}]}"#;
-        glb.extend(((12 + 8 + json.len() + 8 + (8 << 20)) as u32).to_le_bytes());
-        glb.extend(common_chunk(b"JSON", json));
-        glb.extend(common_chunk(b"BIN\0", &vec![7u8; 8 << 20]));
-        std::fs::write(&path, &glb).unwrap();
-        let child = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
-            .args(["check", "--quiet"])
-            .arg(&path)
-            .stdout(std::process::Stdio::null())
-            .spawn()
-            .unwrap();
-        std::fs::OpenOptions::new()
-            .write(true)
-            .open(&path)
-            .unwrap()
-            .set_len(100)
-            .unwrap();
-        let status = child.wait_with_output().unwrap().status;
-        assert!(status.code().is_some(), "killed by a signal: {status:?}");
+        truncate_while_checked(&path, &glb, Duration::ZERO);
     }
+}
+
+/// Writes `glb` to `path`, starts `gltfmat check` on it, truncates the file after `delay`,
+/// and asserts that the check ends with an exit status, not a signal.
+fn truncate_while_checked(path: &Path, glb: &[u8], delay: Duration) {
+    std::fs::write(path, glb).unwrap();
+    let child = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(["check", "--quiet"])
+        .arg(path)
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(delay);
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(path)
+        .unwrap()
+        .set_len(100)
+        .unwrap();
+    let status = child.wait_with_output().unwrap().status;
+    assert!(status.code().is_some(), "killed by a signal: {status:?}");
+}
+
+/// A GLB of one JSON chunk and one BIN chunk.
+fn glb_of(json: &[u8], bin: &[u8]) -> Vec<u8> {
+    let chunks = [common_chunk(b"JSON", json), common_chunk(b"BIN\0", bin)].concat();
+    let mut glb = b"glTF\x02\0\0\0".to_vec();
+    glb.extend(((12 + chunks.len()) as u32).to_le_bytes());
+    glb.extend(chunks);
+    glb
 }
 
 fn common_chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
@@ -467,15 +480,7 @@ fn large_glb_with_data_findings() -> Vec<u8> {
         "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0
     })
     .to_string();
-    let chunks = [
-        common_chunk(b"JSON", json.as_bytes()),
-        common_chunk(b"BIN\0", &data),
-    ]
-    .concat();
-    let mut glb = b"glTF\x02\0\0\0".to_vec();
-    glb.extend(((12 + chunks.len()) as u32).to_le_bytes());
-    glb.extend(chunks);
-    glb
+    glb_of(json.as_bytes(), &data)
 }
 
 #[test]
@@ -549,21 +554,6 @@ fn a_large_glb_truncated_while_it_is_checked_gives_an_exit_status_not_a_signal()
     let path = folder.path().join("large.glb");
     let glb = large_glb_with_data_findings();
     for _ in 0..3 {
-        std::fs::write(&path, &glb).unwrap();
-        let child = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
-            .args(["check", "--quiet"])
-            .arg(&path)
-            .stdout(std::process::Stdio::null())
-            .spawn()
-            .unwrap();
-        std::thread::sleep(std::time::Duration::from_millis(20));
-        std::fs::OpenOptions::new()
-            .write(true)
-            .open(&path)
-            .unwrap()
-            .set_len(100)
-            .unwrap();
-        let status = child.wait_with_output().unwrap().status;
-        assert!(status.code().is_some(), "killed by a signal: {status:?}");
+        truncate_while_checked(&path, &glb, Duration::from_millis(20));
     }
 }
