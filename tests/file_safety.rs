@@ -456,10 +456,11 @@ fn render_does_not_replace_a_file_without_force() {
     );
 }
 
-/// A GLB past `LARGE_GLB_BYTES`, a float VEC3 accessor over its BIN chunk with a few NaNs
-/// and non-unit normals in it (data findings only a walk over the chunk finds).
-fn large_glb_with_data_findings() -> Vec<u8> {
-    let count = (gltfmat::document::file::LARGE_GLB_BYTES as usize + (1 << 20)) / 12;
+/// Past `LARGE_FILE_BYTES` of float VEC3 data with a few NaNs and non-unit normals in it
+/// (data findings only a walk over it finds), and the JSON of an asset drawing it from
+/// buffer 0 (`uri`: its file, or none for a GLB's BIN chunk).
+fn large_data_with_findings(uri: Option<&str>) -> (String, Vec<u8>) {
+    let count = (gltfmat::document::file::LARGE_FILE_BYTES as usize + (1 << 20)) / 12;
     let mut data: Vec<u8> = (0..count)
         .flat_map(|_| [0f32, 0.0, 1.0])
         .flat_map(f32::to_le_bytes)
@@ -470,41 +471,34 @@ fn large_glb_with_data_findings() -> Vec<u8> {
     for i in 100..140 {
         data[i * 12 + 8..i * 12 + 12].copy_from_slice(&2f32.to_le_bytes());
     }
-    let json = serde_json::json!({
+    let mut buffer = json!({"byteLength": data.len()});
+    if let Some(uri) = uri {
+        buffer["uri"] = uri.into();
+    }
+    let json = json!({
         "asset": {"version": "2.0"},
-        "buffers": [{"byteLength": data.len()}],
+        "buffers": [buffer],
         "bufferViews": [{"buffer": 0, "byteLength": data.len(), "byteStride": 12, "target": 34962}],
         "accessors": [{"bufferView": 0, "componentType": 5126, "count": count, "type": "VEC3",
                        "min": [0, 0, 0], "max": [0, 0, 1]}],
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 0}, "mode": 0}]}],
         "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0
-    })
-    .to_string();
+    });
+    (json.to_string(), data)
+}
+
+/// A GLB past `LARGE_FILE_BYTES` (see [`large_data_with_findings`]).
+fn large_glb_with_data_findings() -> Vec<u8> {
+    let (json, data) = large_data_with_findings(None);
     glb_of(json.as_bytes(), &data)
 }
 
-#[test]
-fn a_large_glb_checked_from_its_file_reports_what_its_bytes_in_memory_do() {
-    let folder = tempfile::tempdir().unwrap();
-    let path = folder.path().join("large.glb");
-    let glb = large_glb_with_data_findings();
-    std::fs::write(&path, &glb).unwrap();
-    let options = CheckOptions::default().with_max_issues(0);
-    let from_file = gltfmat::check::check_path(&path, &options).unwrap();
-    let in_memory = gltfmat::check::check_bytes(
-        "large.glb",
-        glb,
-        &gltfmat::document::uri::NoResources,
-        &options,
-    );
-    let findings = |report: &gltfmat::check::Report| {
-        let mut found: Vec<String> = (report.diagnostics.iter())
-            .map(|d| format!("{} {:?} {}", d.code, d.location, d.message))
-            .collect();
-        found.sort();
-        found
-    };
-    let found = findings(&from_file);
+/// Its findings, sorted, with a check that the walk over the data made them.
+fn data_findings(report: &gltfmat::check::Report) -> Vec<String> {
+    let mut found: Vec<String> = (report.diagnostics.iter())
+        .map(|d| format!("{} {:?} {}", d.code, d.location, d.message))
+        .collect();
+    found.sort();
     assert!(
         found
             .iter()
@@ -517,7 +511,24 @@ fn a_large_glb_checked_from_its_file_reports_what_its_bytes_in_memory_do() {
             .any(|f| f.starts_with("ACCESSOR_VECTOR3_NON_UNIT")),
         "{found:?}"
     );
-    assert_eq!(found, findings(&in_memory));
+    found
+}
+
+#[test]
+fn a_large_glb_checked_from_its_file_reports_what_its_bytes_in_memory_do() {
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("large.glb");
+    let glb = large_glb_with_data_findings();
+    std::fs::write(&path, &glb).unwrap();
+    let options = CheckOptions::default().with_max_issues(0);
+    let from_file = check_path(&path, &options).unwrap();
+    let in_memory = gltfmat::check::check_bytes(
+        "large.glb",
+        glb,
+        &gltfmat::document::uri::NoResources,
+        &options,
+    );
+    assert_eq!(data_findings(&from_file), data_findings(&in_memory));
     for severity in [gltfmat::Severity::Error, gltfmat::Severity::Warning] {
         assert_eq!(from_file.count(severity), in_memory.count(severity));
     }
@@ -528,6 +539,27 @@ fn a_large_glb_checked_from_its_file_reports_what_its_bytes_in_memory_do() {
         document.bytes.len() < 1 << 20,
         "{} bytes held",
         document.bytes.len()
+    );
+}
+
+#[test]
+fn a_large_external_buffer_checked_from_its_file_reports_what_its_bytes_in_memory_do() {
+    let folder = tempfile::tempdir().unwrap();
+    let (json, data) = large_data_with_findings(Some("large.bin"));
+    std::fs::write(folder.path().join("large.gltf"), &json).unwrap();
+    std::fs::write(folder.path().join("large.bin"), &data).unwrap();
+    let options = CheckOptions::default().with_max_issues(0);
+    let from_file = check_path(folder.path().join("large.gltf"), &options).unwrap();
+    let mut loader = gltfmat::document::uri::MemoryResources::default();
+    loader.files.insert("large.bin".into(), data);
+    let in_memory = gltfmat::check::check_bytes("large.gltf", json, &loader, &options);
+    assert_eq!(data_findings(&from_file), data_findings(&in_memory));
+    // The folder loader left the file in place; the memory one has it read.
+    let folder_loader = gltfmat::document::uri::FolderResources::new(folder.path());
+    let kept = gltfmat::document::uri::ResourceLoader::load_buffer(&folder_loader, "large.bin");
+    assert!(
+        matches!(kept, Ok(gltfmat::document::file::Kept::InFile(_))),
+        "{kept:?}"
     );
 }
 

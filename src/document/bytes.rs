@@ -3,7 +3,7 @@
 //! rewritten while it is checked. A large GLB's BIN chunk is read a range at a time from
 //! its opened file (a range the file no longer holds reads as nothing).
 
-use super::file::FileChunk;
+use super::file::{FileChunk, Kept};
 use std::borrow::Cow;
 use std::ops::Range;
 
@@ -20,6 +20,17 @@ pub enum BufferData<'a> {
     InFile(&'a FileChunk),
     /// Read from an external file or a data URI.
     Loaded(Bytes),
+    /// A large external file, still in the file.
+    LoadedInFile(FileChunk),
+}
+
+impl From<Kept> for BufferData<'_> {
+    fn from(kept: Kept) -> Self {
+        match kept {
+            Kept::Read(bytes) => BufferData::Loaded(bytes),
+            Kept::InFile(chunk) => BufferData::LoadedInFile(chunk),
+        }
+    }
 }
 
 impl BufferData<'_> {
@@ -29,6 +40,7 @@ impl BufferData<'_> {
             BufferData::Glb(bytes) => bytes.len(),
             BufferData::InFile(chunk) => chunk.len(),
             BufferData::Loaded(bytes) => bytes.len(),
+            BufferData::LoadedInFile(chunk) => chunk.len(),
         }
     }
 
@@ -44,6 +56,7 @@ impl BufferData<'_> {
             BufferData::Glb(bytes) => bytes.get(range).map(Cow::Borrowed),
             BufferData::InFile(chunk) => chunk.read(range).map(Cow::Owned),
             BufferData::Loaded(bytes) => bytes.get(range).map(Cow::Borrowed),
+            BufferData::LoadedInFile(chunk) => chunk.read(range).map(Cow::Owned),
         }
     }
 
@@ -51,7 +64,7 @@ impl BufferData<'_> {
     pub fn in_memory(&self) -> Option<&[u8]> {
         match self {
             BufferData::Glb(bytes) => Some(bytes),
-            BufferData::InFile(_) => None,
+            BufferData::InFile(_) | BufferData::LoadedInFile(_) => None,
             BufferData::Loaded(bytes) => Some(bytes),
         }
     }

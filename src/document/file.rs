@@ -39,12 +39,13 @@ pub(crate) fn open(path: &Path) -> Result<File, FileError> {
     Ok(options.open(path)?)
 }
 
-/// A GLB from this size up is not read whole: its BIN chunk's data stays in the file and
-/// each view is read as it is walked, so checking a 160 MB GLB does not hold 160 MB.
-pub const LARGE_GLB_BYTES: u64 = 32 << 20;
+/// Binary data from this size up is not read whole: a GLB's BIN chunk data, or an external
+/// buffer file, stays in its file and each view is read as it is walked, so checking a
+/// 160 MB asset does not hold 160 MB.
+pub const LARGE_FILE_BYTES: u64 = 32 << 20;
 
 /// A large GLB read but for its BIN chunk's data: the bytes before that data, where it lies
-/// and the bytes after it (see [`LARGE_GLB_BYTES`]).
+/// and the bytes after it (see [`LARGE_FILE_BYTES`]).
 pub(crate) struct SplitGlb {
     pub before: Vec<u8>,
     pub bin: FileChunk,
@@ -60,7 +61,7 @@ pub(crate) fn split_large_glb(file: File) -> Result<Result<SplitGlb, File>, File
     check_regular(&metadata)?;
     let length = metadata.len();
     let mut header = [0u8; 20];
-    if length < LARGE_GLB_BYTES || file.read_exact_at(&mut header, 0).is_err() {
+    if length < LARGE_FILE_BYTES || file.read_exact_at(&mut header, 0).is_err() {
         return Ok(Err(file));
     }
     let word = |bytes: &[u8], at: usize| {
@@ -102,6 +103,32 @@ pub struct FileChunk {
     file: File,
     offset: u64,
     length: usize,
+}
+
+/// An opened file's bytes: read whole, or, from [`LARGE_FILE_BYTES`] up, left in the file
+/// (where positioned reads can read them), with the identity of the file.
+pub(crate) fn read_or_keep(file: File) -> Result<(Kept, Option<FileId>), FileError> {
+    let metadata = file.metadata()?;
+    check_regular(&metadata)?;
+    if cfg!(unix) && metadata.len() >= LARGE_FILE_BYTES {
+        let chunk = FileChunk {
+            file,
+            offset: 0,
+            length: metadata.len() as usize,
+        };
+        return Ok((Kept::InFile(chunk), FileId::of(&metadata)));
+    }
+    let (bytes, id) = read_opened_with_id(file)?;
+    Ok((Kept::Read(bytes), id))
+}
+
+/// A file's bytes as [`read_or_keep`] gives them.
+#[derive(Debug)]
+pub enum Kept {
+    /// Read whole.
+    Read(Vec<u8>),
+    /// Left in the file.
+    InFile(FileChunk),
 }
 
 impl FileChunk {

@@ -135,7 +135,7 @@ fn read_with<R>(
 }
 
 /// Reads the asset at `path` as [`read`] reads its bytes, except that a large GLB's BIN
-/// chunk data is left in the file (see [`file::LARGE_GLB_BYTES`]): its views are read as
+/// chunk data is left in the file (see [`file::LARGE_FILE_BYTES`]): its views are read as
 /// they are walked. Fails only when the file cannot be opened or read.
 pub fn read_path(
     path: &std::path::Path,

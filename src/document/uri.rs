@@ -1,7 +1,7 @@
 //! URIs in glTF: data URIs decoded in memory, relative references read from the asset's own
 //! folder only. Nothing is ever fetched from a network, and no path may leave the folder.
 
-use super::file::{read_opened_with_id, FileError, FileId};
+use super::file::{read_opened_with_id, FileError, FileId, Kept};
 use super::Bytes;
 use base64::Engine;
 use std::path::{Component, Path, PathBuf};
@@ -141,6 +141,12 @@ pub enum LoadError {
 pub trait ResourceLoader: Sync {
     /// Reads `relative_path` (already percent-decoded), relative to the asset.
     fn load(&self, relative_path: &str) -> Result<Bytes, LoadError>;
+
+    /// Reads a buffer's file as [`load`](Self::load) does, or leaves a large one in its
+    /// opened file to be read a range at a time (see [`super::file::LARGE_FILE_BYTES`]).
+    fn load_buffer(&self, relative_path: &str) -> Result<Kept, LoadError> {
+        self.load(relative_path).map(Kept::Read)
+    }
 }
 
 /// The bytes a `uri` names: a data URI's own, or a file read through `loader`. Non-relative
@@ -286,10 +292,13 @@ fn leaves_folder(relative: &str) -> bool {
     false
 }
 
-impl ResourceLoader for FolderResources {
-    fn load(&self, relative: &str) -> Result<Bytes, LoadError> {
-        let file = self.open(relative)?;
-        let (bytes, id) = read_opened_with_id(file).map_err(|e| match e {
+/// What reads an opened file: what it made of it and the file's identity.
+type ReadOpened<T> = fn(std::fs::File) -> Result<(T, Option<FileId>), FileError>;
+
+impl FolderResources {
+    /// Opens `relative` and gives what `read` makes of the handle, noting the file as read.
+    fn read_with<T>(&self, relative: &str, read: ReadOpened<T>) -> Result<T, LoadError> {
+        let (found, id) = read(self.open(relative)?).map_err(|e| match e {
             FileError::NotRegular(kind) => LoadError::NotRegular(relative.to_string(), kind),
             FileError::TooLarge(size) => LoadError::TooLarge(size),
             other => LoadError::Io(other.to_string()),
@@ -297,7 +306,17 @@ impl ResourceLoader for FolderResources {
         if let (Some(id), Ok(mut read)) = (id, self.read.lock()) {
             read.push(id);
         }
-        Ok(bytes)
+        Ok(found)
+    }
+}
+
+impl ResourceLoader for FolderResources {
+    fn load(&self, relative: &str) -> Result<Bytes, LoadError> {
+        self.read_with(relative, read_opened_with_id)
+    }
+
+    fn load_buffer(&self, relative: &str) -> Result<Kept, LoadError> {
+        self.read_with(relative, super::file::read_or_keep)
     }
 }
 

@@ -4,20 +4,23 @@
 use crate::check::context::{member, unsigned, Context, ResourceInfo};
 use crate::check::pass_codes;
 use crate::diagnostic::khronos;
+use crate::document::file::Kept;
 use crate::document::image_header::{self, HeaderError, ImageFormat};
-use crate::document::uri::{classify, LoadError, UriKind};
+use crate::document::uri::{classify, LoadError, ResourceLoader, UriKind};
+use crate::document::BufferData;
 use crate::document::Node;
-use crate::document::{BufferData, Bytes};
 use crate::gltf::gl::ELEMENT_ARRAY_BUFFER;
 use std::borrow::Cow;
 
 /// Bytes behind a `uri`, with diagnostics for everything that stops us reading them.
-/// Returns the bytes and, for data URIs, the declared media type.
+/// Returns the bytes (a large buffer file left in the file when `keep_large`) and, for data
+/// URIs, the declared media type.
 fn load_uri(
     ctx: &mut Context,
     uri: &str,
     pointer: &str,
-) -> (Option<Bytes>, Option<String>, &'static str) {
+    keep_large: bool,
+) -> (Option<Kept>, Option<String>, &'static str) {
     let glb = crate::check::is_glb(ctx.document);
     if glb {
         ctx.emit(khronos::URI_GLB, pointer, "URI is used in GLB container.");
@@ -39,7 +42,7 @@ fn load_uri(
                     "Data URI is used in GLB container.",
                 );
             }
-            (Some(bytes), Some(media_type), "data-uri")
+            (Some(Kept::Read(bytes)), Some(media_type), "data-uri")
         }
         Ok(UriKind::NonRelative) => {
             ctx.emit(
@@ -53,8 +56,8 @@ fn load_uri(
             refuse_outside(ctx, pointer, uri);
             (None, None, "external")
         }
-        Ok(UriKind::Relative(path)) => match ctx.loader.load(&path) {
-            Ok(bytes) => (Some(bytes), None, "external"),
+        Ok(UriKind::Relative(path)) => match read_relative(ctx.loader, &path, keep_large) {
+            Ok(kept) => (Some(kept), None, "external"),
             Err(LoadError::OutsideFolder(_)) => {
                 refuse_outside(ctx, pointer, uri);
                 (None, None, "external")
@@ -84,6 +87,18 @@ fn load_uri(
                 (None, None, "external")
             }
         },
+    }
+}
+
+fn read_relative(
+    loader: &dyn ResourceLoader,
+    path: &str,
+    keep_large: bool,
+) -> Result<Kept, LoadError> {
+    if keep_large {
+        loader.load_buffer(path)
+    } else {
+        loader.load(path).map(Kept::Read)
     }
 }
 
@@ -124,7 +139,7 @@ pub fn check_buffers(ctx: &mut Context) {
             }
             Some(uri) => {
                 let uri_pointer = member(&pointer, "uri");
-                let (data, media_type, storage) = load_uri(ctx, uri, &uri_pointer);
+                let (data, media_type, storage) = load_uri(ctx, uri, &uri_pointer, true);
                 if let Some(media) = media_type {
                     let lower = media.to_ascii_lowercase();
                     if lower != "application/octet-stream" && lower != "application/gltf-buffer" {
@@ -136,7 +151,7 @@ pub fn check_buffers(ctx: &mut Context) {
                     }
                 }
                 let uri = (storage == "external").then(|| uri.to_string());
-                (data.map(BufferData::Loaded), storage, uri)
+                (data.map(BufferData::from), storage, uri)
             }
             None if i == 0 && crate::check::is_glb(ctx.document) => {
                 let Some(bin) = ctx.document.bin_data() else {
@@ -368,7 +383,11 @@ pub fn check_images(ctx: &mut Context) {
         let (bytes, media_type, storage, uri, mime_pointer) =
             if let Some(uri) = image.get("uri").and_then(Node::as_str) {
                 let uri_pointer = member(&pointer, "uri");
-                let (bytes, media, storage) = load_uri(ctx, uri, &uri_pointer);
+                let (kept, media, storage) = load_uri(ctx, uri, &uri_pointer, false);
+                let bytes = kept.and_then(|kept| match kept {
+                    Kept::Read(bytes) => Some(bytes),
+                    Kept::InFile(_) => None,
+                });
                 let uri = (storage == "external").then(|| uri.to_string());
                 (bytes, media, storage, uri, uri_pointer)
             } else if let Some(view) = ctx.reference(image, "bufferView", &pointer, "bufferViews") {
