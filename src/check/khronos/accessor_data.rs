@@ -155,11 +155,12 @@ pub fn check(ctx: &mut Context) {
     // bounded however many accessors alias one corrupt view, and the report does not
     // depend on the order the walks finish in.
     let mut budget = Budget::new();
+    let reading = Reading::default();
     let mut found: Vec<Findings> = Vec::with_capacity(work.len());
     for batch in work.chunks_mut(WALKS_PER_BATCH) {
         let walks = batch.len();
         let batch_found: Vec<Findings> = (batch.par_iter_mut())
-            .map(|work| scan(work, budget.share(walks)))
+            .map(|work| scan(work, &reading, budget.share(walks)))
             .collect();
         batch_found
             .iter()
@@ -285,10 +286,57 @@ fn substituted(ctx: &Context, accessor: Node) -> Option<(Layout, Vec<u8>)> {
 /// How many accessors are walked in parallel before their findings are reported.
 const WALKS_PER_BATCH: usize = 16;
 
+/// The most bytes the walks hold at once of data read from files (a large GLB's views):
+/// however many threads walk, and however many accessors alias one large view, a walk
+/// waits until this much is free (or nothing else is held) before it reads.
+const READ_AT_ONCE: usize = 64 << 20;
+
+/// The bytes the walks hold of data read from files, with a wait for room.
+#[derive(Default)]
+struct Reading {
+    held: std::sync::Mutex<usize>,
+    freed: std::sync::Condvar,
+}
+
+impl Reading {
+    /// Waits for room for `bytes`, and holds it until the guard is dropped.
+    fn hold(&self, bytes: usize) -> Held<'_> {
+        let mut held = self.held.lock().unwrap_or_else(|e| e.into_inner());
+        while *held > 0 && *held + bytes > READ_AT_ONCE {
+            held = self.freed.wait(held).unwrap_or_else(|e| e.into_inner());
+        }
+        *held += bytes;
+        Held {
+            reading: self,
+            bytes,
+        }
+    }
+}
+
+/// Room held in [`Reading`] while a walk holds its bytes.
+struct Held<'r> {
+    reading: &'r Reading,
+    bytes: usize,
+}
+
+impl Drop for Held<'_> {
+    fn drop(&mut self) {
+        let mut held = (self.reading.held.lock()).unwrap_or_else(|e| e.into_inner());
+        *held -= self.bytes;
+        self.reading.freed.notify_all();
+    }
+}
+
 /// Every finding of one accessor (as many as `findings` keeps), from a single walk over its
 /// elements.
-fn scan(work: &mut Work, mut findings: Findings) -> Findings {
-    let bytes = match std::mem::replace(&mut work.data, Data::Walked) {
+fn scan(work: &mut Work, reading: &Reading, mut findings: Findings) -> Findings {
+    let data = std::mem::replace(&mut work.data, Data::Walked);
+    // Dropped after the bytes (declared before them).
+    let _held = match &data {
+        Data::View(view) if view.is_in_file() => Some(reading.hold(view.len())),
+        _ => None,
+    };
+    let bytes = match data {
         Data::View(view) => view.read(),
         Data::Dense(bytes) => Some(Cow::Owned(bytes)),
         Data::Walked => None,
@@ -500,4 +548,29 @@ pub(super) fn unit_scale(component_type: u64, accessor: Node) -> fn(f64) -> f64 
         return |v| v;
     }
     normalise(component_type)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicBool, Ordering};
+
+    #[test]
+    fn a_walk_waits_to_read_until_the_bytes_held_leave_room() {
+        let reading = Reading::default();
+        let first = reading.hold(READ_AT_ONCE / 2 + 1);
+        let second_held = AtomicBool::new(false);
+        std::thread::scope(|scope| {
+            scope.spawn(|| {
+                let _second = reading.hold(READ_AT_ONCE / 2 + 1);
+                second_held.store(true, Ordering::SeqCst);
+            });
+            std::thread::sleep(std::time::Duration::from_millis(50));
+            assert!(!second_held.load(Ordering::SeqCst), "both held at once");
+            drop(first);
+        });
+        assert!(second_held.load(Ordering::SeqCst));
+        // A walk larger than the whole allowance still reads when nothing else is held.
+        let _alone = reading.hold(2 * READ_AT_ONCE);
+    }
 }

@@ -262,6 +262,11 @@ impl<'c> ViewData<'c> {
         })
     }
 
+    /// Whether reading makes a copy (the bytes are in a file, not in memory).
+    pub fn is_in_file(&self) -> bool {
+        self.buffer.in_memory().is_none()
+    }
+
     /// The bytes, borrowed when in memory; `None` when a file no longer holds them.
     pub fn read(&self) -> Option<Cow<'c, [u8]>> {
         self.buffer.get(self.range.clone())
