@@ -1,9 +1,10 @@
 //! Skinning influences: each vertex's JOINTS_n / WEIGHTS_n sets read together (the Khronos
 //! ACCESSOR_JOINTS_* and ACCESSOR_WEIGHTS_* codes).
 
-use super::accessor_data::{element, scannable, unit_scale};
+use super::accessor_data::{element, scannable, unit_scale, MAX_COMPONENTS};
 use super::accessor_fast::Layout;
 use super::accessor_usage::{Budget, Findings};
+use super::resources::ViewData;
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::{Array, Node};
@@ -22,7 +23,8 @@ pub fn check(ctx: &mut Context) {
                 let at = format!("{pointer}/primitives/{p}/attributes");
                 let limit = JointLimit { max_joint, skin };
                 let mut found = budget.share(1);
-                check_primitive(&sets, &at, limit, &mut found);
+                let mut sets = sets;
+                check_primitive(&mut sets, &at, limit, &mut found);
                 budget.spend(&found);
                 found.report(ctx);
             }
@@ -65,9 +67,42 @@ fn limiting_skins(ctx: &Context) -> HashMap<usize, (f64, usize)> {
 
 /// One JOINTS_n / WEIGHTS_n pair, readable and as long as the primitive.
 struct Set<'c> {
-    joints: (Layout, Cow<'c, [u8]>),
-    weights: (Layout, Cow<'c, [u8]>),
+    joints: Windowed<'c>,
+    weights: Windowed<'c>,
     weight_scale: fn(f64) -> f64,
+}
+
+/// Vertices whose bytes one attribute holds at a time: a primitive may have many sets, all
+/// over one large view of a GLB read from its file, and only a window of each is held.
+const WINDOW: usize = 1 << 16;
+
+/// One attribute's elements, its view read a window of vertices at a time (borrowed, not
+/// copied, when the view is in memory).
+struct Windowed<'c> {
+    layout: Layout,
+    view: ViewData<'c>,
+    /// The first vertex of the window held, and its bytes.
+    window: Option<(usize, Cow<'c, [u8]>)>,
+}
+
+impl Windowed<'_> {
+    /// The element at `vertex`, or None when its bytes cannot be read (the file changed).
+    fn element(&mut self, vertex: usize) -> Option<[f64; MAX_COMPONENTS]> {
+        let first = vertex - vertex % WINDOW;
+        if self.window.as_ref().map(|(at, _)| *at) != Some(first) {
+            let layout = &self.layout;
+            let last = (first + WINDOW).min(layout.count).checked_sub(1)?;
+            let start = layout.offset + first * layout.stride;
+            let end = layout.offset + last * layout.stride + layout.size * layout.components;
+            self.window = Some((first, self.view.part(start..end)?.read()?));
+        }
+        let (at, bytes) = self.window.as_ref()?;
+        let windowed = Layout {
+            offset: 0,
+            ..self.layout
+        };
+        Some(element(&windowed, bytes, vertex - at))
+    }
 }
 
 /// All sets of a primitive, or None when any is missing, unreadable or of another length
@@ -91,7 +126,11 @@ fn influence_sets<'c>(ctx: &'c Context, primitive: Node) -> Option<Vec<Set<'c>>>
         let readable = |a: Node<'c>| {
             let (layout, view) = scannable(ctx, a)?;
             let fits = layout.count as u64 == vertex_count && layout.components == 4;
-            fits.then(|| Some((layout, view.read()?))).flatten()
+            fits.then_some(Windowed {
+                layout,
+                view,
+                window: None,
+            })
         };
         let weight_scale = unit_scale(unsigned(weights, "componentType")?, weights);
         sets.push(Set {
@@ -103,18 +142,24 @@ fn influence_sets<'c>(ctx: &'c Context, primitive: Node) -> Option<Vec<Set<'c>>>
     (!sets.is_empty()).then_some(sets)
 }
 
-fn check_primitive(sets: &[Set], at: &str, limit: JointLimit, out: &mut Findings) {
+fn check_primitive(sets: &mut [Set], at: &str, limit: JointLimit, out: &mut Findings) {
     let joints_at = |n: usize| format!("{at}/JOINTS_{n}");
     let weights_at = |n: usize| format!("{at}/WEIGHTS_{n}");
     // A vertex has a few influences: a short list searched linearly beats hashing, and
     // both buffers are reused from vertex to vertex (this runs per vertex of large meshes).
     let mut seen: Vec<u64> = Vec::new();
     let mut values = Vec::with_capacity(sets.len());
-    for vertex in 0..sets[0].joints.0.count {
+    for vertex in 0..sets[0].joints.layout.count {
         seen.clear();
         values.clear();
-        let read = |(layout, bytes): &(Layout, Cow<[u8]>)| element(layout, bytes, vertex);
-        values.extend(sets.iter().map(|s| (read(&s.joints), read(&s.weights))));
+        for set in sets.iter_mut() {
+            let (Some(joints), Some(weights)) =
+                (set.joints.element(vertex), set.weights.element(vertex))
+            else {
+                return; // the accessor-data pass reports the unreadable data
+            };
+            values.push((joints, weights));
+        }
         let mut sum = 0f32;
         // Rounding allowance: a float32 ulp near 1 per weight summed.
         let mut allowance = 0.0;
