@@ -82,14 +82,25 @@ impl Default for Findings {
 
 impl Findings {
     pub(super) fn push(&mut self, finding: Finding) {
+        let (code, pointer, message) = finding;
+        self.record(code, || pointer, || message);
+    }
+
+    /// Keeps or counts a finding, making its pointer and message only when they are kept
+    /// (a walk may make 10^8 findings, nearly all only counted).
+    pub(super) fn record(
+        &mut self,
+        code: Code,
+        pointer: impl FnOnce() -> String,
+        message: impl FnOnce() -> String,
+    ) {
         if self.kept.len() < self.limit {
-            self.kept.push(finding);
+            self.kept.push((code, pointer(), message()));
             return;
         }
-        let (code, pointer, _) = finding;
         match self.dropped.iter_mut().find(|(c, ..)| *c == code) {
             Some((.., n)) => *n += 1,
-            None => self.dropped.push((code, pointer, 1)),
+            None => self.dropped.push((code, pointer(), 1)),
         }
     }
 

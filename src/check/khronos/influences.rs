@@ -168,13 +168,13 @@ fn check_primitive(sets: &mut [Set], at: &str, limit: JointLimit, out: &mut Find
             for (n, (set, (joints, weights))) in sets.iter().zip(&values).enumerate() {
                 let joint = joints[c];
                 if joint > limit.max_joint {
-                    out.push((khronos::ACCESSOR_JOINTS_INDEX_OOB, joints_at(n), format!("Joints accessor element at index {index} (component index {c}) has value {joint} that is greater than the maximum joint index ({}) set by skin {}.", limit.max_joint, limit.skin)));
+                    out.record(khronos::ACCESSOR_JOINTS_INDEX_OOB, || joints_at(n), || format!("Joints accessor element at index {index} (component index {c}) has value {joint} that is greater than the maximum joint index ({}) set by skin {}.", limit.max_joint, limit.skin));
                     continue;
                 }
                 let weight = (set.weight_scale)(weights[c]);
                 if weight == 0.0 {
                     if joint != 0.0 {
-                        out.push((khronos::ACCESSOR_JOINTS_USED_ZERO_WEIGHT, joints_at(n), format!("Joints accessor element at index {index} (component index {c}) is used with zero weight but has non-zero value ({joint}).")));
+                        out.record(khronos::ACCESSOR_JOINTS_USED_ZERO_WEIGHT, || joints_at(n), || format!("Joints accessor element at index {index} (component index {c}) is used with zero weight but has non-zero value ({joint})."));
                     }
                     continue;
                 }
@@ -183,10 +183,10 @@ fn check_primitive(sets: &mut [Set], at: &str, limit: JointLimit, out: &mut Find
                     seen.push(joint.to_bits());
                 }
                 if !unique {
-                    out.push((khronos::ACCESSOR_JOINTS_INDEX_DUPLICATE, joints_at(n), format!("Joints accessor element at index {index} (component index {c}) has value {joint} that is already in use for the vertex.")));
+                    out.record(khronos::ACCESSOR_JOINTS_INDEX_DUPLICATE, || joints_at(n), || format!("Joints accessor element at index {index} (component index {c}) has value {joint} that is already in use for the vertex."));
                 }
                 if weight < 0.0 {
-                    out.push((khronos::ACCESSOR_WEIGHTS_NEGATIVE, weights_at(n), format!("Weights accessor element at index {index} (component index {c}) has negative value {weight:?}.")));
+                    out.record(khronos::ACCESSOR_WEIGHTS_NEGATIVE, || weights_at(n), || format!("Weights accessor element at index {index} (component index {c}) has negative value {weight:?}."));
                 } else if unique {
                     sum = (f64::from(sum) + weight) as f32;
                     allowance += 2e-7;
@@ -196,7 +196,7 @@ fn check_primitive(sets: &mut [Set], at: &str, limit: JointLimit, out: &mut Find
         if (f64::from(sum) - 1.0).abs() > allowance {
             let first = vertex * 4;
             for n in 0..sets.len() {
-                out.push((khronos::ACCESSOR_WEIGHTS_NON_NORMALIZED, weights_at(n), format!("Weights accessor elements (at indices {first}..{}) have non-normalized sum: {:?}.", first + 3, f64::from(sum))));
+                out.record(khronos::ACCESSOR_WEIGHTS_NON_NORMALIZED, || weights_at(n), || format!("Weights accessor elements (at indices {first}..{}) have non-normalized sum: {:?}.", first + 3, f64::from(sum)));
             }
         }
     }
