@@ -177,9 +177,7 @@ impl Tree {
     }
 
     fn string(&self, id: u32) -> &str {
-        let id = id as usize;
-        let start = id.checked_sub(1).map_or(0, |i| self.ends[i] as usize);
-        &self.arena[start..self.ends[id] as usize]
+        arena_string(&self.arena, &self.ends, id)
     }
 
     /// The id of a string the document holds, if any.
@@ -225,6 +223,13 @@ impl fmt::Debug for Tree {
             self.ends.len()
         )
     }
+}
+
+/// String `id` of an arena: it starts where string `id - 1` ends.
+fn arena_string<'a>(arena: &'a str, ends: &[u32], id: u32) -> &'a str {
+    let id = id as usize;
+    let start = id.checked_sub(1).map_or(0, |i| ends[i] as usize);
+    &arena[start..ends[id] as usize]
 }
 
 /// A value of a [`Tree`]: a handle as cheap to copy as a reference.
@@ -776,11 +781,7 @@ impl Building {
             ends,
             ..
         } = tree;
-        let text_of = |id: &u32| {
-            let id = *id as usize;
-            let start = id.checked_sub(1).map_or(0, |i| ends[i] as usize);
-            hasher.hash_one(&arena[start..ends[id] as usize])
-        };
+        let text_of = |id: &u32| hasher.hash_one(arena_string(arena, ends, *id));
         strings.insert_unique(hash, id, text_of);
         Ok(id)
     }
