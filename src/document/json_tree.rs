@@ -36,21 +36,6 @@ fn from_slice_within(text: &[u8], max_values: usize) -> serde_json::Result<Value
     Ok(value)
 }
 
-/// Parses JSON text as [`from_slice`] does, except that a root object keeps only the members
-/// `keep` accepts: the others are read past (and still checked as JSON) but build no tree.
-/// Reading an asset's materials then costs the materials' tree, not the scene's.
-pub fn from_slice_keeping(text: &[u8], keep: fn(&str) -> bool) -> serde_json::Result<Value> {
-    let mut deserializer = serde_json::Deserializer::from_slice(text);
-    let left = Cell::new(MAX_VALUES);
-    let value = Members {
-        value: ExactValue { left: &left },
-        keep,
-    }
-    .deserialize(&mut deserializer)?;
-    deserializer.end()?;
-    Ok(value)
-}
-
 /// An object of exactly the gathered members (a repeated key keeps its first place and its
 /// last value, as serde_json's).
 fn exact_object(gathered: Vec<(String, Value)>) -> Value {
@@ -59,70 +44,6 @@ fn exact_object(gathered: Vec<(String, Value)>) -> Value {
         object.insert(key, value);
     }
     Value::Object(object)
-}
-
-/// A root read by [`ExactValue`], but for the members `keep` rejects.
-struct Members<'b> {
-    value: ExactValue<'b>,
-    keep: fn(&str) -> bool,
-}
-
-impl<'de> DeserializeSeed<'de> for Members<'_> {
-    type Value = Value;
-
-    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Value, D::Error> {
-        deserializer.deserialize_any(self)
-    }
-}
-
-impl<'de> Visitor<'de> for Members<'_> {
-    type Value = Value;
-
-    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        self.value.expecting(f)
-    }
-
-    fn visit_map<A: MapAccess<'de>>(self, mut members: A) -> Result<Value, A::Error> {
-        self.value.spend()?;
-        let mut gathered: Vec<(String, Value)> = Vec::new();
-        while let Some(key) = members.next_key::<String>()? {
-            if (self.keep)(&key) {
-                gathered.push((key, members.next_value_seed(self.value)?));
-            } else {
-                members.next_value::<de::IgnoredAny>()?;
-            }
-        }
-        Ok(exact_object(gathered))
-    }
-
-    // Any other root is no asset; it is built whole for the caller to say so.
-    fn visit_seq<A: SeqAccess<'de>>(self, elements: A) -> Result<Value, A::Error> {
-        self.value.visit_seq(elements)
-    }
-
-    fn visit_bool<E: de::Error>(self, value: bool) -> Result<Value, E> {
-        self.value.visit_bool(value)
-    }
-
-    fn visit_i64<E: de::Error>(self, value: i64) -> Result<Value, E> {
-        self.value.visit_i64(value)
-    }
-
-    fn visit_u64<E: de::Error>(self, value: u64) -> Result<Value, E> {
-        self.value.visit_u64(value)
-    }
-
-    fn visit_f64<E: de::Error>(self, value: f64) -> Result<Value, E> {
-        self.value.visit_f64(value)
-    }
-
-    fn visit_str<E: de::Error>(self, value: &str) -> Result<Value, E> {
-        self.value.visit_str(value)
-    }
-
-    fn visit_unit<E: de::Error>(self) -> Result<Value, E> {
-        self.value.visit_unit()
-    }
 }
 
 /// The same value with no spare room in its arrays and objects: for trees built member by
@@ -299,20 +220,6 @@ mod tests {
         let error = from_slice_within(text, 5).unwrap_err();
         assert!(error.to_string().starts_with("more than"), "{error}");
         assert_eq!((error.line(), error.column()), (1, 16), "{error}");
-    }
-
-    #[test]
-    fn a_root_keeps_only_the_members_asked_for_and_the_rest_is_still_checked() {
-        let text = br#"{"a":{"x":[1,2]},"b":[3,{"y":null}],"c":"z","a":{"x":[4]}}"#;
-        let kept = from_slice_keeping(text, |k| k != "b").unwrap();
-        let mut whole = from_slice(text).unwrap();
-        whole.as_object_mut().unwrap().remove("b");
-        assert_eq!(kept, whole);
-        assert!(from_slice_keeping(br#"{"a":1,"b":[1,}"#, |k| k == "a").is_err());
-        assert_eq!(
-            from_slice_keeping(b"[1]", |_| false).unwrap(),
-            from_slice(b"[1]").unwrap()
-        );
     }
 
     #[test]

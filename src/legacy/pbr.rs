@@ -11,7 +11,7 @@
 //!   `base`, `albedo`, `metallic`, `roughness`, `diffuse`, `specular`, `glossiness`, where a
 //!   string is a texture id and a number or array a factor.
 
-use serde_json::Value;
+use crate::document::Node;
 
 /// The four names of the extension, newest last.
 pub const EXTENSION_NAMES: &[&str] = &[
@@ -59,7 +59,7 @@ pub struct LegacyPbr {
 }
 
 /// The PBR block of a 1.0 material, if it has one: (extension name, object).
-pub fn find(material: &Value) -> Option<(&'static str, &Value)> {
+pub fn find<'t>(material: Node<'t>) -> Option<(&'static str, Node<'t>)> {
     let extensions = material.get("extensions")?;
     EXTENSION_NAMES
         .iter()
@@ -83,10 +83,10 @@ pub fn model_from_name(name: &str) -> Option<Model> {
 }
 
 /// The declared model name, from `materialModel` or `technique`.
-pub fn declared_model(block: &Value) -> Option<&str> {
+pub fn declared_model<'t>(block: Node<'t>) -> Option<&'t str> {
     ["materialModel", "technique"]
         .iter()
-        .find_map(|key| block.get(*key).and_then(Value::as_str))
+        .find_map(|key| block.get(*key).and_then(Node::as_str))
 }
 
 /// What a value key means: its canonical stem, and whether the value is a texture.
@@ -112,9 +112,9 @@ fn model_of_stem(stem: &str) -> Option<Model> {
 }
 
 /// Parses a PBR block; `None` when no model can be declared or inferred.
-pub fn parse(extension: &'static str, block: &Value) -> Option<LegacyPbr> {
-    let values = block.get("values").and_then(Value::as_object);
-    let entries: Vec<(&String, &Value)> = values.into_iter().flatten().collect();
+pub fn parse(extension: &'static str, block: Node) -> Option<LegacyPbr> {
+    let values = block.get("values").and_then(Node::as_object);
+    let entries: Vec<(&str, Node)> = values.into_iter().flat_map(|v| v.iter()).collect();
     let (model, model_source) = match declared_model(block).and_then(model_from_name) {
         Some(model) => (model, ModelSource::Declared),
         None if declared_model(block).is_some() => return None,
@@ -138,7 +138,7 @@ pub fn parse(extension: &'static str, block: &Value) -> Option<LegacyPbr> {
     };
     for (key, value) in entries {
         if !pbr.apply(stem(key), value) {
-            pbr.unknown_keys.push(key.clone());
+            pbr.unknown_keys.push(key.to_string());
         }
     }
     Some(pbr)
@@ -146,7 +146,7 @@ pub fn parse(extension: &'static str, block: &Value) -> Option<LegacyPbr> {
 
 impl LegacyPbr {
     /// Stores one value; false when the key does not belong to the model or is mistyped.
-    fn apply(&mut self, stem: &str, value: &Value) -> bool {
+    fn apply(&mut self, stem: &str, value: Node) -> bool {
         let texture = value.as_str().map(str::to_string);
         let scalar = value.as_f64();
         let colour_stem = match self.model {
@@ -178,11 +178,11 @@ impl LegacyPbr {
 }
 
 /// Copies a numeric array into `target` (missing trailing components keep their default).
-fn fill<const N: usize>(target: &mut [f64; N], value: &Value) -> bool {
+fn fill<const N: usize>(target: &mut [f64; N], value: Node) -> bool {
     let Some(list) = value.as_array() else {
         return false;
     };
-    for (slot, item) in target.iter_mut().zip(list) {
+    for (slot, item) in target.iter_mut().zip(list.iter()) {
         match item.as_f64() {
             Some(v) => *slot = v,
             None => return false,
@@ -194,20 +194,27 @@ fn fill<const N: usize>(target: &mut [f64; N], value: &Value) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::document::Tree;
     use serde_json::json;
+
+    fn tree(value: serde_json::Value) -> Tree {
+        Tree::parse(value.to_string().as_bytes()).unwrap()
+    }
 
     #[test]
     fn every_draft_spelling_reads_the_same_material() {
-        let canonical = json!({"materialModel": "PBR_metal_roughness",
+        let canonical = tree(json!({"materialModel": "PBR_metal_roughness",
             "values": {"baseColorFactor": [0.5, 0.4, 0.3, 1], "metallicFactor": 0, "roughnessFactor": 0.2,
-                       "baseColorTexture": "tex"}});
-        let july = json!({"technique": "PBR_metal_roughness",
+                       "baseColorTexture": "tex"}}));
+        let july = tree(json!({"technique": "PBR_metal_roughness",
             "values": {"baseColorFactor": [0.5, 0.4, 0.3, 1], "metallicFactor": 0, "roughnessFactor": 0.2,
-                       "baseColorTexture": "tex"}});
-        let early = json!({"values": {"base": [0.5, 0.4, 0.3, 1], "metallic": 0, "roughness": 0.2, "albedo": "tex"}});
-        let a = parse("EXT_materials_pbr", &canonical).unwrap();
-        let b = parse("EXT_materials_pbr", &july).unwrap();
-        let c = parse("EXT_materials_pbr", &early).unwrap();
+                       "baseColorTexture": "tex"}}));
+        let early = tree(
+            json!({"values": {"base": [0.5, 0.4, 0.3, 1], "metallic": 0, "roughness": 0.2, "albedo": "tex"}}),
+        );
+        let a = parse("EXT_materials_pbr", canonical.root()).unwrap();
+        let b = parse("EXT_materials_pbr", july.root()).unwrap();
+        let c = parse("EXT_materials_pbr", early.root()).unwrap();
         assert_eq!(a, b);
         assert_eq!(c.model_source, ModelSource::Inferred);
         assert_eq!(
@@ -221,8 +228,9 @@ mod tests {
     fn defaults_and_unknown_keys_follow_the_drafts() {
         let sg = parse(
             "KHR_materials_pbr",
-            &json!({"technique": "PBR_specular_glossiness",
-            "values": {"glossinessFactor": 0.25, "sheen": 1}}),
+            tree(json!({"technique": "PBR_specular_glossiness",
+            "values": {"glossinessFactor": 0.25, "sheen": 1}}))
+            .root(),
         )
         .unwrap();
         assert_eq!(sg.model, Model::SpecularGlossiness);
@@ -231,7 +239,11 @@ mod tests {
             ([1.0; 4], [1.0; 3], 0.25)
         );
         assert_eq!(sg.unknown_keys, vec!["sheen".to_string()]);
-        assert!(parse("KHR_materials_pbr", &json!({"technique": "PHONG"})).is_none());
+        assert!(parse(
+            "KHR_materials_pbr",
+            tree(json!({"technique": "PHONG"})).root()
+        )
+        .is_none());
         assert_eq!(
             model_from_name("pbr-Metallic-Roughness"),
             Some(Model::MetalRoughness)

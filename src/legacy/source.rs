@@ -1,9 +1,9 @@
 //! Reading a glTF 1.0 asset: JSON text or a KHR_binary_glTF GLB (version 1), its buffers, and
 //! its images on demand.
 
-use crate::document::json_tree;
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::Bytes;
+use crate::document::{Node, Tree};
 use serde_json::Value;
 use std::cell::OnceCell;
 use std::collections::HashMap;
@@ -19,7 +19,9 @@ const BINARY_BUFFER_IDS: &[&str] = &["binary_glTF", "KHR_binary_glTF"];
 pub struct NotGltf1(pub String);
 
 pub struct Source<'a> {
-    pub json: Value,
+    /// The JSON, as the compact tree the checker reads (a `serde_json::Value` costs about ten
+    /// times as much per value, and a stranger's 1.0 asset may hold millions of them).
+    json: Tree,
     /// The GLB v1 body, borrowed from the input.
     body: Option<Body<'a>>,
     /// External and data-URI buffers, read on first use: reading only the materials (for
@@ -60,29 +62,6 @@ pub fn declares_gltf2(bytes: &[u8]) -> bool {
 
 /// Reads a glTF 1.0 asset. A 2.x asset is told apart by a scan, before any tree is built.
 pub fn read<'a>(bytes: &'a [u8], loader: &'a dyn ResourceLoader) -> Result<Source<'a>, NotGltf1> {
-    read_keeping(bytes, loader, |_| true)
-}
-
-/// Reads what a 1.0 asset's materials need (materials, textures, images and the buffers
-/// their bytes may sit in): the proof of a large scene's upgrade then holds the materials'
-/// tree beside the output, not a second copy of the scene.
-pub fn read_materials<'a>(
-    bytes: &'a [u8],
-    loader: &'a dyn ResourceLoader,
-) -> Result<Source<'a>, NotGltf1> {
-    read_keeping(bytes, loader, |member| {
-        matches!(
-            member,
-            "asset" | "version" | "materials" | "textures" | "images" | "bufferViews" | "buffers"
-        )
-    })
-}
-
-fn read_keeping<'a>(
-    bytes: &'a [u8],
-    loader: &'a dyn ResourceLoader,
-    keep: fn(&str) -> bool,
-) -> Result<Source<'a>, NotGltf1> {
     if declares_gltf2(bytes) {
         return Err(NotGltf1(IS_GLTF2.into()));
     }
@@ -91,16 +70,18 @@ fn read_keeping<'a>(
     } else {
         (bytes, None)
     };
-    let json: Value = json_tree::from_slice_keeping(json_bytes, keep)
-        .map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
-    if !json.is_object() {
+    let json = Tree::parse(json_bytes).map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
+    let root = json.root();
+    if !root.is_object() {
         return Err(NotGltf1("the root is not a JSON object".into()));
     }
-    check_version(&json)?;
-    let buffers = json
-        .get("buffers")
-        .and_then(Value::as_object)
-        .map(|b| b.keys().map(|id| (id.clone(), OnceCell::new())).collect())
+    check_version(root)?;
+    let buffers = (root.get("buffers").and_then(Node::as_object))
+        .map(|b| {
+            b.keys()
+                .map(|id| (id.to_string(), OnceCell::new()))
+                .collect()
+        })
         .unwrap_or_default();
     Ok(Source {
         json,
@@ -145,15 +126,17 @@ fn split_glb_v1(bytes: &[u8]) -> Result<(&[u8], Option<Body<'_>>), NotGltf1> {
 
 const IS_GLTF2: &str = "asset.version is 2.x: nothing to upgrade (use `gltfmat check`)";
 
-fn check_version(json: &Value) -> Result<(), NotGltf1> {
-    let version = json
-        .get("asset")
-        .and_then(|a| a.get("version"))
-        .or_else(|| json.get("version"));
+fn check_version(root: Node) -> Result<(), NotGltf1> {
+    let version =
+        (root.get("asset").and_then(|a| a.get("version"))).or_else(|| root.get("version"));
     let major = match version {
         None => return Ok(()), // 1.0 assets may omit it; 2.0 ones may not.
-        Some(Value::String(s)) => s.split('.').next().unwrap_or_default().to_string(),
-        Some(Value::Number(n)) => n.as_f64().map_or(String::new(), |v| (v as u64).to_string()),
+        Some(v) if v.is_string() => v
+            .as_str()
+            .and_then(|s| s.split('.').next())
+            .unwrap_or_default()
+            .to_string(),
+        Some(v) if v.is_number() => v.as_f64().map_or(String::new(), |v| (v as u64).to_string()),
         Some(other) => other.to_string(),
     };
     match major.as_str() {
@@ -164,6 +147,11 @@ fn check_version(json: &Value) -> Result<(), NotGltf1> {
 }
 
 impl Source<'_> {
+    /// The asset's JSON root.
+    pub fn root(&self) -> Node<'_> {
+        self.json.root()
+    }
+
     /// A buffer's bytes: the GLB body for KHR_binary_glTF's buffer, otherwise its `uri`, read
     /// once.
     fn buffer(&self, id: &str) -> Result<&[u8], String> {
@@ -175,7 +163,8 @@ impl Source<'_> {
             .get(id)
             .ok_or_else(|| format!("buffer '{id}' does not exist"))?;
         let loaded = cell.get_or_init(|| {
-            let uri = self.json["buffers"][id].get("uri").and_then(Value::as_str);
+            let uri = (self.root().pointer("/buffers"))
+                .and_then(|buffers| buffers.get(id)?.get("uri")?.as_str());
             uri.ok_or_else(|| "the buffer has no uri".to_string())
                 .and_then(|uri| self.load_uri(uri))
                 .map(Arc::new)
@@ -206,16 +195,14 @@ impl Source<'_> {
     }
 
     /// A 1.0 dictionary (`accessors`, `nodes`, …) in document order.
-    pub fn dictionary(&self, name: &str) -> Vec<(&str, &Value)> {
-        self.json
-            .get(name)
-            .and_then(Value::as_object)
-            .map(|map| map.iter().map(|(k, v)| (k.as_str(), v)).collect())
+    pub fn dictionary(&self, name: &str) -> Vec<(&str, Node<'_>)> {
+        (self.root().get(name).and_then(Node::as_object))
+            .map(|map| map.iter().collect())
             .unwrap_or_default()
     }
 
-    pub fn object(&self, collection: &str, id: &str) -> Option<&Value> {
-        self.json.get(collection)?.get(id)
+    pub fn object(&self, collection: &str, id: &str) -> Option<Node<'_>> {
+        self.root().get(collection)?.get(id)
     }
 
     /// The bytes of a bufferView.
@@ -223,10 +210,10 @@ impl Source<'_> {
         let view = self
             .object("bufferViews", id)
             .ok_or_else(|| format!("bufferView '{id}' does not exist"))?;
-        let buffer_id = view.get("buffer").and_then(Value::as_str).unwrap_or("");
+        let buffer_id = view.get("buffer").and_then(Node::as_str).unwrap_or("");
         let buffer = self.buffer(buffer_id)?;
-        let offset = view.get("byteOffset").and_then(Value::as_u64).unwrap_or(0);
-        let length = match view.get("byteLength").and_then(Value::as_u64) {
+        let offset = view.get("byteOffset").and_then(Node::as_u64).unwrap_or(0);
+        let length = match view.get("byteLength").and_then(Node::as_u64) {
             Some(n) => n,
             None => (buffer.len() as u64).saturating_sub(offset),
         };
@@ -260,19 +247,19 @@ impl Source<'_> {
     }
 
     /// The bytes of a 1.0 image: KHR_binary_glTF bufferView, data URI or file.
-    pub fn image_bytes(&self, image: &Value) -> Result<Vec<u8>, String> {
+    pub fn image_bytes(&self, image: Node) -> Result<Vec<u8>, String> {
         let binary = image
             .get("extensions")
             .and_then(|e| e.get("KHR_binary_glTF"));
         if let Some(view) = binary
             .and_then(|b| b.get("bufferView"))
-            .and_then(Value::as_str)
+            .and_then(Node::as_str)
         {
             return self.view(view).map(<[u8]>::to_vec);
         }
         let uri = image
             .get("uri")
-            .and_then(Value::as_str)
+            .and_then(Node::as_str)
             .ok_or("the image has no uri")?;
         self.load_uri(uri)
     }

@@ -6,6 +6,7 @@ use super::binary::Binary;
 use super::data::{self, Role};
 use super::{EncodedImage, NoteKind, Notes, UpgradeError, UpgradeOptions, Upgraded};
 use crate::document::json_tree::tighten;
+use crate::document::Node;
 use crate::gltf::gl::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
 use crate::legacy::source::Source;
 use serde_json::{json, Map, Value};
@@ -51,16 +52,12 @@ pub fn pointer(collection: &str, id: &str) -> String {
 }
 
 /// A 1.0 list of ids.
-pub fn id_list(value: Option<&Value>) -> Vec<String> {
-    value
-        .and_then(Value::as_array)
-        .map(|a| {
-            a.iter()
-                .filter_map(Value::as_str)
-                .map(str::to_string)
-                .collect()
-        })
-        .unwrap_or_default()
+pub fn id_list(value: Option<Node>) -> Vec<String> {
+    (value.and_then(Node::as_array).into_iter())
+        .flat_map(|a| a.iter())
+        .filter_map(Node::as_str)
+        .map(str::to_string)
+        .collect()
 }
 
 impl<'s, 'a> Builder<'s, 'a> {
@@ -93,8 +90,12 @@ impl<'s, 'a> Builder<'s, 'a> {
     }
 
     /// The 2.0 index of a 1.0 id in a mapped collection.
-    pub fn index_of(&self, collection: &'static str, id: Option<&Value>) -> Option<usize> {
-        let id = id?.as_str()?;
+    pub fn index_of(&self, collection: &'static str, id: Option<Node>) -> Option<usize> {
+        self.index_of_id(collection, id?.as_str()?)
+    }
+
+    /// [`Builder::index_of`] for an id at hand.
+    pub fn index_of_id(&self, collection: &'static str, id: &str) -> Option<usize> {
         self.index.get(&(collection, id.to_string())).copied()
     }
 
@@ -142,12 +143,12 @@ impl<'s, 'a> Builder<'s, 'a> {
             .insert(format!("/{collection}/{index}"), origin);
     }
 
-    pub(in crate::upgrade) fn named(id: &str, object: &Value) -> Map<String, Value> {
+    pub(in crate::upgrade) fn named(id: &str, object: Node) -> Map<String, Value> {
         let mut out = Map::new();
-        let name = object.get("name").and_then(Value::as_str).unwrap_or(id);
+        let name = object.get("name").and_then(Node::as_str).unwrap_or(id);
         out.insert("name".into(), json!(name));
         if let Some(extras) = object.get("extras") {
-            out.insert("extras".into(), extras.clone());
+            out.insert("extras".into(), extras.to_value());
         }
         out
     }
@@ -299,10 +300,10 @@ impl<'s, 'a> Builder<'s, 'a> {
     /// The finished asset; `extensions_used` comes from the converted materials.
     pub fn finish(mut self, extensions_used: Vec<String>) -> Upgraded {
         let mut root = Map::new();
-        let source_asset = self.source.json.get("asset");
+        let source_asset = self.source.root().get("asset");
         let mut asset = json!({"version": "2.0", "generator": concat!("gltfmat ", env!("CARGO_PKG_VERSION"), " upgrade")});
         if let Some(copyright) = source_asset.and_then(|a| a.get("copyright")) {
-            asset["copyright"] = copyright.clone();
+            asset["copyright"] = copyright.to_value();
         }
         root.insert("asset".into(), asset);
         if !extensions_used.is_empty() {
@@ -314,7 +315,7 @@ impl<'s, 'a> Builder<'s, 'a> {
                 json!({"KHR_lights_punctual": {"lights": lights}}),
             );
         }
-        if let Some(scene) = self.index_of("scenes", self.source.json.get("scene")) {
+        if let Some(scene) = self.index_of("scenes", self.source.root().get("scene")) {
             root.insert("scene".into(), json!(scene));
         }
         if !self.binary.is_empty() {

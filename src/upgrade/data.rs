@@ -2,13 +2,13 @@
 //! with the component types, alignment and min/max glTF 2.0 requires.
 
 use super::binary::Binary;
+use crate::document::Node;
 pub use crate::gltf::accessor::FLOAT;
 use crate::gltf::accessor::{
     component_count, component_size, decode_component, normalise, FloatBounds, BYTE, SHORT,
     UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
 };
 use crate::legacy::source::Source;
-use serde_json::Value;
 
 /// A 1.0 accessor resolved to its bytes.
 pub struct Accessor<'a> {
@@ -60,11 +60,11 @@ pub fn read<'a>(source: &'a Source, id: &str) -> Result<Accessor<'a>, String> {
     let accessor = source
         .object("accessors", id)
         .ok_or_else(|| format!("accessor '{id}' does not exist"))?;
-    let number = |key: &str| accessor.get(key).and_then(Value::as_u64);
+    let number = |key: &str| accessor.get(key).and_then(Node::as_u64);
     let component_type = number("componentType").unwrap_or(0);
     let size = component_size(component_type)
         .ok_or_else(|| format!("accessor '{id}': unknown componentType {component_type}"))?;
-    let kind = accessor.get("type").and_then(Value::as_str).unwrap_or("");
+    let kind = accessor.get("type").and_then(Node::as_str).unwrap_or("");
     let components =
         component_count(kind).ok_or_else(|| format!("accessor '{id}': unknown type '{kind}'"))?;
     let count = number("count").unwrap_or(0) as usize;
@@ -75,7 +75,7 @@ pub fn read<'a>(source: &'a Source, id: &str) -> Result<Accessor<'a>, String> {
     };
     let view_id = accessor
         .get("bufferView")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .unwrap_or("");
     let view = source.view(view_id)?;
     let offset = number("byteOffset").unwrap_or(0) as usize;
@@ -423,14 +423,14 @@ fn bounds_of(
 /// size (n + 1)²). None without the extension; `Err` when its matrix has the wrong size.
 pub fn dequantized(
     accessor: &Accessor,
-    extension: Option<&Value>,
+    extension: Option<Node>,
 ) -> Option<Result<Vec<f64>, String>> {
     let matrix = extension?.get("decodeMatrix");
     let n = accessor.components;
     let matrix: Option<Vec<f64>> = matrix
-        .and_then(Value::as_array)
+        .and_then(Node::as_array)
         .filter(|m| m.len() == (n + 1) * (n + 1))
-        .and_then(|m| m.iter().map(Value::as_f64).collect());
+        .and_then(|m| m.iter().map(Node::as_f64).collect());
     let Some(matrix) = matrix else {
         return Some(Err(format!(
             "WEB3D_quantized_attributes decodeMatrix is not {0}×{0} numbers",

@@ -88,11 +88,9 @@ pub fn check(ctx: &mut Context) {
 }
 
 fn check_pbr_block(ctx: &mut Context, name: &'static str, block: Node, pointer: &str) {
-    // The drafts' reading is written for serde's tree; a block is a few values.
-    let block_value = block.to_value();
-    let found = schema::validate_gltf1_pbr(&block_value, pointer);
+    let found = schema::validate_gltf1_pbr(block, pointer);
     ctx.diagnostics.extend(found);
-    if pbr::declared_model(&block_value).is_none() {
+    if pbr::declared_model(block).is_none() {
         ctx.emit(
             khronos::UNDEFINED_PROPERTY,
             pointer,
@@ -112,7 +110,7 @@ fn check_pbr_block(ctx: &mut Context, name: &'static str, block: Node, pointer: 
             }
         }
     }
-    if let Some(pbr) = pbr::parse(name, &block_value) {
+    if let Some(pbr) = pbr::parse(name, block) {
         let target = match pbr.model {
             Model::MetalRoughness => "core pbrMetallicRoughness (metallic moved from R to B)",
             Model::SpecularGlossiness => {

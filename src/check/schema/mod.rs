@@ -6,7 +6,7 @@ mod evaluator;
 
 use crate::diagnostic::{khronos, Code, Diagnostic, Sink};
 use crate::document::json::escape_token;
-use crate::document::{Array, Node, Tree};
+use crate::document::{Array, Node};
 use evaluator::{Compiled, Failure, Kind};
 use serde_json::Value;
 use std::collections::HashSet;
@@ -177,17 +177,14 @@ pub fn required_nulls(doc: Node, khronos: bool, nulls: &HashSet<String>, sink: &
 }
 
 /// Validates a glTF 1.0 PBR material extension object found at `pointer`.
-pub fn validate_gltf1_pbr(extension: &Value, pointer: &str) -> Vec<Diagnostic> {
+pub fn validate_gltf1_pbr(extension: Node, pointer: &str) -> Vec<Diagnostic> {
     static PBR: OnceLock<Compiled> = OnceLock::new();
     let validator = PBR.get_or_init(|| {
         let schema: Value = serde_json::from_str(GLTF1_PBR).expect("1.0 PBR schema is valid JSON");
         Compiled::new(&schema).expect("the 1.0 PBR schema compiles")
     });
     let mut found = Vec::new();
-    // A block is a few values: read anew as a tree of its own.
-    if let Ok(tree) = Tree::parse(extension.to_string().as_bytes()) {
-        diagnostics(validator, tree.root(), pointer, &mut found);
-    }
+    diagnostics(validator, extension, pointer, &mut found);
     found
 }
 
@@ -638,6 +635,7 @@ fn duplicate_positions(instance: Node) -> Vec<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::document::Tree;
     use serde_json::json;
 
     fn codes(doc: Value) -> Vec<(String, String)> {

@@ -25,7 +25,7 @@ pub(crate) fn legacy_materials(
     bytes: &[u8],
     loader: &dyn ResourceLoader,
 ) -> Result<Vec<Named>, LegacyMaterialsError> {
-    let source = source::read_materials(bytes, loader)?;
+    let source = source::read(bytes, loader)?;
     let parsed: Vec<(&str, Option<pbr::LegacyPbr>)> = source
         .dictionary("materials")
         .into_iter()

@@ -1,5 +1,6 @@
 //! Animations: channels and samplers re-indexed, accessors repacked.
 
+use crate::document::Node;
 use crate::upgrade::builder::{pointer, Builder};
 use crate::upgrade::data::Role;
 use crate::upgrade::{NoteKind, UpgradeError};
@@ -14,7 +15,7 @@ impl Builder<'_, '_> {
     pub(in crate::upgrade) fn animations(&mut self) -> Result<(), UpgradeError> {
         for (id, animation) in self.source.dictionary("animations") {
             let at = pointer("animations", id);
-            let has_channels = (animation.get("channels").and_then(Value::as_array))
+            let has_channels = (animation.get("channels").and_then(Node::as_array))
                 .is_some_and(|channels| !channels.is_empty());
             if !has_channels {
                 self.note(&at, NoteKind::Dropped, NO_CHANNELS);
@@ -24,10 +25,10 @@ impl Builder<'_, '_> {
             let parameters = animation.get("parameters");
             let mut sampler_index = HashMap::new();
             let mut samplers = Vec::new();
-            let source_samplers = animation.get("samplers").and_then(Value::as_object);
-            for (sampler_id, sampler) in source_samplers.into_iter().flatten() {
+            let source_samplers = animation.get("samplers").and_then(Node::as_object);
+            for (sampler_id, sampler) in source_samplers.into_iter().flat_map(|s| s.iter()) {
                 let accessor_of = |key: &str| {
-                    let parameter = sampler.get(key).and_then(Value::as_str)?;
+                    let parameter = sampler.get(key).and_then(Node::as_str)?;
                     parameters?.get(parameter)?.as_str().map(str::to_string)
                 };
                 let (Some(input), Some(output)) = (accessor_of("input"), accessor_of("output"))
@@ -41,13 +42,13 @@ impl Builder<'_, '_> {
                 };
                 let interpolation = sampler
                     .get("interpolation")
-                    .cloned()
+                    .map(Node::to_value)
                     .unwrap_or(json!("LINEAR"));
                 let (input, output) = (
                     self.accessor(&input, Role::Data)?,
                     self.accessor(&output, Role::Data)?,
                 );
-                sampler_index.insert(sampler_id.clone(), samplers.len());
+                sampler_index.insert(sampler_id, samplers.len());
                 samplers.push(
                     json!({"input": input, "output": output, "interpolation": interpolation}),
                 );
@@ -55,17 +56,17 @@ impl Builder<'_, '_> {
             let mut channels = Vec::new();
             for channel in animation
                 .get("channels")
-                .and_then(Value::as_array)
+                .and_then(Node::as_array)
                 .into_iter()
-                .flatten()
+                .flat_map(|channels| channels.iter())
             {
                 let sampler = channel
                     .get("sampler")
-                    .and_then(Value::as_str)
+                    .and_then(Node::as_str)
                     .and_then(|s| sampler_index.get(s));
                 let target = channel.get("target");
                 let node = self.index_of("nodes", target.and_then(|t| t.get("id")));
-                let path = target.and_then(|t| t.get("path")).cloned();
+                let path = target.and_then(|t| t.get("path")).map(Node::to_value);
                 match (sampler, node, path) {
                     (Some(s), Some(n), Some(p)) => {
                         channels.push(json!({"sampler": s, "target": {"node": n, "path": p}}))

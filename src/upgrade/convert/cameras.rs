@@ -1,5 +1,6 @@
 //! Cameras (znear 0 fixed), scenes, and the 1.0 collections glTF 2.0 has no place for.
 
+use crate::document::Node;
 use crate::upgrade::builder::{id_list, pointer, Builder};
 use crate::upgrade::NoteKind;
 use serde_json::{json, Value};
@@ -10,10 +11,10 @@ impl Builder<'_, '_> {
             let mut out = Self::named(id, camera);
             let kind = camera
                 .get("type")
-                .and_then(Value::as_str)
+                .and_then(Node::as_str)
                 .unwrap_or("perspective");
             out.insert("type".into(), json!(kind));
-            let mut projection = camera.get(kind).cloned().unwrap_or_else(|| json!({}));
+            let mut projection = camera.get(kind).map_or_else(|| json!({}), Node::to_value);
             if kind == "perspective" {
                 self.fix_perspective(&mut projection, id);
             }
@@ -59,7 +60,7 @@ impl Builder<'_, '_> {
             let at = pointer("scenes", id);
             let mut nodes = Vec::new();
             for node in id_list(scene.get("nodes")) {
-                match self.index_of("nodes", Some(&json!(node))) {
+                match self.index_of_id("nodes", &node) {
                     Some(index) => nodes.push(index),
                     None => self.note(
                         format!("{at}/nodes"),

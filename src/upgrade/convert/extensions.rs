@@ -2,10 +2,10 @@
 //! report, with how many objects carried it and the first of them.
 
 use crate::document::json::escape_token;
+use crate::document::Node;
 use crate::legacy::pbr;
 use crate::upgrade::builder::Builder;
 use crate::upgrade::NoteKind;
-use serde_json::Value;
 use std::collections::BTreeMap;
 
 /// The 1.0 extensions some conversion step reads (besides the PBR drafts), or that glTF 2.0
@@ -20,12 +20,12 @@ const CONVERTED: &[&str] = &[
 impl Builder<'_, '_> {
     pub(in crate::upgrade) fn unconverted_extensions(&mut self) {
         let mut found: BTreeMap<String, (usize, String)> = BTreeMap::new();
-        collect_extensions(&self.source.json, &mut String::new(), &mut found);
-        let declared = (self.source.json.get("extensionsUsed"))
-            .and_then(Value::as_array)
+        collect_extensions(self.source.root(), &mut String::new(), &mut found);
+        let declared = (self.source.root().get("extensionsUsed"))
+            .and_then(Node::as_array)
             .into_iter()
-            .flatten()
-            .filter_map(Value::as_str)
+            .flat_map(|names| names.iter())
+            .filter_map(Node::as_str)
             .enumerate();
         for (i, name) in declared {
             found
@@ -49,36 +49,32 @@ impl Builder<'_, '_> {
 }
 
 /// Every `extensions` member below `value`: name → (objects carrying it, the first's pointer).
-fn collect_extensions(
-    value: &Value,
-    at: &mut String,
-    found: &mut BTreeMap<String, (usize, String)>,
-) {
+fn collect_extensions(value: Node, at: &mut String, found: &mut BTreeMap<String, (usize, String)>) {
     let length = at.len();
-    match value {
-        Value::Object(members) => {
-            if let Some(Value::Object(extensions)) = members.get("extensions") {
-                for name in extensions.keys() {
-                    let entry = found
-                        .entry(name.clone())
-                        .or_insert((0, format!("{at}/extensions/{}", escape_token(name))));
-                    entry.0 += 1;
-                }
-            }
-            for (key, member) in members {
-                at.push('/');
-                at.push_str(&escape_token(key));
-                collect_extensions(member, at, found);
-                at.truncate(length);
+    if let Some(members) = value.as_object() {
+        if let Some(extensions) = members.get("extensions").and_then(Node::as_object) {
+            for name in extensions.keys() {
+                let entry = found
+                    .entry(name.to_string())
+                    .or_insert((0, format!("{at}/extensions/{}", escape_token(name))));
+                entry.0 += 1;
             }
         }
-        Value::Array(items) => {
-            for (i, item) in items.iter().enumerate() {
-                at.push_str(&format!("/{i}"));
-                collect_extensions(item, at, found);
-                at.truncate(length);
-            }
+        for (key, member) in members.iter() {
+            at.push('/');
+            at.push_str(&escape_token(key));
+            collect_extensions(member, at, found);
+            at.truncate(length);
         }
-        _ => {}
+    }
+    for (i, item) in value
+        .as_array()
+        .into_iter()
+        .flat_map(|items| items.iter())
+        .enumerate()
+    {
+        at.push_str(&format!("/{i}"));
+        collect_extensions(item, at, found);
+        at.truncate(length);
     }
 }

@@ -1,6 +1,7 @@
 //! Samplers (1.0 defaults written out), images (embedded, external or in the binary) and textures.
 
 use crate::document::image_header;
+use crate::document::Node;
 use crate::gltf::gl;
 use crate::upgrade::builder::{pointer, Builder};
 use crate::upgrade::{NoteKind, UpgradeError};
@@ -10,7 +11,7 @@ impl Builder<'_, '_> {
     pub(in crate::upgrade) fn samplers(&mut self) {
         let samplers = self.source.dictionary("samplers");
         for (id, sampler) in &samplers {
-            let mut out = Self::named(id, sampler);
+            let mut out = Self::named(id, *sampler);
             // 1.0 defaults, written out: 2.0 leaves missing filters to the implementation.
             for (key, default) in [
                 ("magFilter", gl::LINEAR),
@@ -18,7 +19,7 @@ impl Builder<'_, '_> {
                 ("wrapS", gl::REPEAT),
                 ("wrapT", gl::REPEAT),
             ] {
-                let value = sampler.get(key).and_then(Value::as_u64).unwrap_or(default);
+                let value = sampler.get(key).and_then(Node::as_u64).unwrap_or(default);
                 out.insert(key.into(), json!(value));
             }
             self.push_from("samplers", Value::Object(out), pointer("samplers", id));
@@ -62,10 +63,7 @@ impl Builder<'_, '_> {
             if let Some(i) = self.index_of("images", texture.get("source")) {
                 out.insert("source".into(), json!(i));
             }
-            let format = texture
-                .get("format")
-                .and_then(Value::as_u64)
-                .unwrap_or(6408);
+            let format = texture.get("format").and_then(Node::as_u64).unwrap_or(6408);
             if !matches!(format, 6407 | 6408) {
                 self.note(
                     pointer("textures", id),

@@ -3,6 +3,7 @@
 
 use super::materials::linear_colour;
 use crate::document::json::escape_token;
+use crate::document::Node;
 use crate::upgrade::builder::Builder;
 use crate::upgrade::NoteKind;
 use serde_json::{json, Value};
@@ -14,7 +15,7 @@ pub(in crate::upgrade) const PUNCTUAL: &str = "KHR_lights_punctual";
 impl Builder<'_, '_> {
     /// The KHR_lights_punctual index of the light 1.0 node `node` places, the light converted
     /// on its first use (each decision noted once, at the light).
-    pub(in crate::upgrade) fn node_light(&mut self, node_at: &str, node: &Value) -> Option<usize> {
+    pub(in crate::upgrade) fn node_light(&mut self, node_at: &str, node: Node) -> Option<usize> {
         let id = (node.get("extensions")?.get("KHR_materials_common")?)
             .get("light")?
             .as_str()?;
@@ -22,7 +23,7 @@ impl Builder<'_, '_> {
             return known;
         }
         let at = format!("{SOURCE}/{}", escape_token(id));
-        let converted = match self.source.json.pointer(&at) {
+        let converted = match self.source.root().pointer(&at) {
             Some(light) => self.punctual(&at, id, light),
             None => {
                 self.note(
@@ -40,12 +41,12 @@ impl Builder<'_, '_> {
 
     /// Lights no node places are noted: 2.0 lights exist only where a node puts them.
     pub(in crate::upgrade) fn unplaced_lights(&mut self) {
-        let unplaced: Vec<String> = (self.source.json.pointer(SOURCE))
-            .and_then(Value::as_object)
+        let unplaced: Vec<String> = (self.source.root().pointer(SOURCE))
+            .and_then(Node::as_object)
             .into_iter()
             .flat_map(|all| all.keys())
             .filter(|id| !self.lights.contains_key(*id))
-            .cloned()
+            .map(str::to_string)
             .collect();
         for id in unplaced {
             self.note(
@@ -57,15 +58,16 @@ impl Builder<'_, '_> {
     }
 
     /// One 1.0 light as a KHR_lights_punctual light, or None (noted) when it has no 2.0 form.
-    fn punctual(&mut self, at: &str, id: &str, light: &Value) -> Option<Value> {
-        let kind = light.get("type").and_then(Value::as_str).unwrap_or("");
-        let params = light.get(kind).cloned().unwrap_or_else(|| json!({}));
+    fn punctual(&mut self, at: &str, id: &str, light: Node) -> Option<Value> {
+        let kind = light.get("type").and_then(Node::as_str).unwrap_or("");
+        // A light without its parameters reads every one as missing.
+        let params = light.get(kind).unwrap_or(light.null());
         let mut out =
-            json!({"type": kind, "name": light.get("name").and_then(Value::as_str).unwrap_or(id)});
+            json!({"type": kind, "name": light.get("name").and_then(Node::as_str).unwrap_or(id)});
         match kind {
             "directional" => {}
             "point" | "spot" => {
-                let how = self.attenuation(&params, &mut out);
+                let how = self.attenuation(params, &mut out);
                 self.note(at, NoteKind::Decision, how);
             }
             "ambient" => {
@@ -94,7 +96,7 @@ impl Builder<'_, '_> {
         }
         out["color"] = json!(clamped);
         if kind == "spot" {
-            let how = spot_cone(&params, &mut out);
+            let how = spot_cone(params, &mut out);
             self.note(at, NoteKind::Decision, how);
         }
         self.note(at, NoteKind::Decision, format!("{kind} light → {PUNCTUAL} (colour linearised; intensity in the 1.0 light's units, which had none)."));
@@ -103,7 +105,7 @@ impl Builder<'_, '_> {
 
     /// 1.0 attenuation is 1 / (c + l·d + q·d²); KHR_lights_punctual's is intensity / d².
     /// Exact when only q is set (intensity 1/q); otherwise matched at distance 1.
-    fn attenuation(&self, params: &Value, out: &mut Value) -> String {
+    fn attenuation(&self, params: Node, out: &mut Value) -> String {
         let (c, l, q) = (
             number(params, &["constantAttenuation"], 0.0),
             number(params, &["linearAttenuation"], 1.0),
@@ -129,8 +131,10 @@ impl Builder<'_, '_> {
 }
 
 /// A 1.0 light colour as linear RGB; the spec's default is black.
-fn linear_rgb(colour: Option<&Value>) -> [f64; 3] {
-    let [r, g, b, _] = colour.and_then(linear_colour).unwrap_or_default();
+fn linear_rgb(colour: Option<Node>) -> [f64; 3] {
+    let [r, g, b, _] = colour
+        .and_then(|c| linear_colour(&c.to_value()))
+        .unwrap_or_default();
     [r, g, b]
 }
 
@@ -138,7 +142,7 @@ fn linear_rgb(colour: Option<&Value>) -> [f64; 3] {
 /// cos(angle / 2)), default π; 2.0's outer cone angle is the half-angle, at most π/2. The
 /// fall-off exponent has no 2.0 form: exponent 0 (a hard edge) becomes an inner cone just
 /// inside the outer one, a positive exponent a smooth fall-off from the axis.
-fn spot_cone(params: &Value, out: &mut Value) -> String {
+fn spot_cone(params: Node, out: &mut Value) -> String {
     let angle = number(
         params,
         &["falloffAngle", "fallOffAngle"],
@@ -156,8 +160,8 @@ fn spot_cone(params: &Value, out: &mut Value) -> String {
 }
 
 /// The first of `keys` (spellings of one property) that `params` holds as a number.
-fn number(params: &Value, keys: &[&str], default: f64) -> f64 {
+fn number(params: Node, keys: &[&str], default: f64) -> f64 {
     (keys.iter())
-        .find_map(|key| params.get(*key).and_then(Value::as_f64))
+        .find_map(|key| params.get(*key).and_then(Node::as_f64))
         .unwrap_or(default)
 }

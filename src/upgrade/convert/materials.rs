@@ -1,6 +1,7 @@
 //! 1.0 materials → 2.0: the PBR drafts, KHR_materials_common, technique values, technique
 //! render states, and the 1.0 default material.
 
+use crate::document::Node;
 use crate::gltf::color::srgb_to_linear;
 use crate::gltf::gl::{BLEND, CULL_FACE};
 use crate::legacy::pbr::{self, LegacyPbr, Model};
@@ -11,9 +12,9 @@ use crate::upgrade::spec_gloss::{self, Slot};
 use crate::upgrade::{NoteKind, SpecularGlossiness, UpgradeError};
 use serde_json::{json, Map, Value};
 
-pub fn convert(builder: &mut Builder, id: &str, material: &Value) -> Result<Value, UpgradeError> {
+pub fn convert(builder: &mut Builder, id: &str, material: Node) -> Result<Value, UpgradeError> {
     let at = pointer("materials", id);
-    let name = material.get("name").and_then(Value::as_str).unwrap_or(id);
+    let name = material.get("name").and_then(Node::as_str).unwrap_or(id);
     let mut out = Map::new();
     out.insert("name".into(), json!(name));
     apply_technique_states(builder, material, &at, &mut out);
@@ -52,21 +53,21 @@ pub fn convert(builder: &mut Builder, id: &str, material: &Value) -> Result<Valu
 /// A technique's states decide blending and culling; with no technique the option decides.
 fn apply_technique_states(
     builder: &mut Builder,
-    material: &Value,
+    material: Node,
     at: &str,
     out: &mut Map<String, Value>,
 ) {
     let technique = material
         .get("technique")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .and_then(|t| builder.source.object("techniques", t));
     let double_sided = match technique {
         Some(technique) => {
             let enabled: Vec<u64> = technique
                 .get("states")
                 .and_then(|s| s.get("enable"))
-                .and_then(Value::as_array)
-                .map(|a| a.iter().filter_map(Value::as_u64).collect())
+                .and_then(Node::as_array)
+                .map(|a| a.iter().filter_map(Node::as_u64).collect())
                 .unwrap_or_default();
             if enabled.contains(&BLEND) {
                 out.insert("alphaMode".into(), json!("BLEND"));
@@ -88,12 +89,12 @@ fn apply_technique_states(
 
 /// `{index}` for a 1.0 texture id, if it resolves.
 fn texture_info(builder: &Builder, id: Option<&str>) -> Option<Value> {
-    let index = builder.index_of("textures", id.map(|i| json!(i)).as_ref())?;
+    let index = builder.index_of_id("textures", id?)?;
     Some(json!({"index": index}))
 }
 
 fn texture_bytes(builder: &Builder, id: Option<&str>) -> Option<Vec<u8>> {
-    let index = builder.index_of("textures", id.map(|i| json!(i)).as_ref())?;
+    let index = builder.index_of_id("textures", id?)?;
     Some(builder.texture_image(index)?.bytes.clone())
 }
 
@@ -102,7 +103,7 @@ fn add_rebaked(builder: &mut Builder, bytes: Vec<u8>, like: Option<&str>, name: 
     let mut image = Map::new();
     image.insert("name".into(), json!(name));
     let image = builder.add_image(image, bytes, "image/png".into(), name);
-    let like = builder.index_of("textures", like.map(|i| json!(i)).as_ref());
+    let like = like.and_then(|id| builder.index_of_id("textures", id));
     let texture = builder.add_texture(image, like, name.to_string());
     json!({"index": texture})
 }
@@ -378,12 +379,14 @@ fn lit_material(builder: &mut Builder, values: &Value, at: &str, out: &mut Map<S
     builder.note(at, NoteKind::Decision, "diffuse → base colour (linearised), emission → emissive (linearised), shininess → roughness sqrt(sqrt(2/(n+2))), metallic 0; specular and ambient are not carried over.");
 }
 
-fn convert_common(builder: &mut Builder, common: &Value, at: &str, out: &mut Map<String, Value>) {
+fn convert_common(builder: &mut Builder, common: Node, at: &str, out: &mut Map<String, Value>) {
     let technique = common
         .get("technique")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .unwrap_or("BLINN");
-    let values = common.get("values").cloned().unwrap_or_else(|| json!({}));
+    let values = common
+        .get("values")
+        .map_or_else(|| json!({}), Node::to_value);
     lit_material(builder, &values, at, out);
     if technique == "CONSTANT" {
         out.insert("extensions".into(), json!({"KHR_materials_unlit": {}}));
@@ -399,13 +402,13 @@ fn convert_common(builder: &mut Builder, common: &Value, at: &str, out: &mut Map
         .unwrap_or(1.0);
     let transparent = common
         .get("transparent")
-        .and_then(Value::as_bool)
+        .and_then(Node::as_bool)
         .unwrap_or(false);
     if transparent || transparency < 1.0 {
         out.insert("alphaMode".into(), json!("BLEND"));
         scale_alpha(out, transparency);
     }
-    if common.get("doubleSided").and_then(Value::as_bool) == Some(true) {
+    if common.get("doubleSided").and_then(Node::as_bool) == Some(true) {
         out.insert("doubleSided".into(), json!(true));
     }
 }
@@ -414,27 +417,30 @@ fn convert_common(builder: &mut Builder, common: &Value, at: &str, out: &mut Map
 /// gltf-pipeline ignores).
 fn convert_technique_values(
     builder: &mut Builder,
-    material: &Value,
+    material: Node,
     at: &str,
     out: &mut Map<String, Value>,
 ) {
     let mut values = Map::new();
     let technique = material
         .get("technique")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .and_then(|t| builder.source.object("techniques", t));
     if let Some(parameters) = technique
         .and_then(|t| t.get("parameters"))
-        .and_then(Value::as_object)
+        .and_then(Node::as_object)
     {
-        for (name, parameter) in parameters {
+        for (name, parameter) in parameters.iter() {
             if let Some(value) = parameter.get("value") {
-                values.insert(name.clone(), value.clone());
+                values.insert(name.to_string(), value.to_value());
             }
         }
     }
-    if let Some(own) = material.get("values").and_then(Value::as_object) {
-        values.extend(own.clone());
+    if let Some(own) = material.get("values").and_then(Node::as_object) {
+        values.extend(
+            own.iter()
+                .map(|(name, value)| (name.to_string(), value.to_value())),
+        );
     }
     let transparency = values.get("transparency").and_then(Value::as_f64);
     lit_material(builder, &Value::Object(values), at, out);

@@ -1,5 +1,6 @@
 //! Meshes and primitives: attributes renamed, accessors repacked, modes kept.
 
+use crate::document::{Node, Object};
 use crate::upgrade::builder::{pointer, Builder};
 use crate::upgrade::data::{self, Role};
 use crate::upgrade::{NoteKind, UpgradeError};
@@ -10,7 +11,7 @@ impl Builder<'_, '_> {
         for (id, mesh) in self.source.dictionary("meshes") {
             let mut out = Self::named(id, mesh);
             let mut primitives = Vec::new();
-            let list = mesh.get("primitives").and_then(Value::as_array);
+            let list = mesh.get("primitives").and_then(Node::as_array);
             for (p, primitive) in list.into_iter().flatten().enumerate() {
                 let at = format!("{}/primitives/{p}", pointer("meshes", id));
                 primitives.push(self.primitive(primitive, &at)?);
@@ -23,11 +24,11 @@ impl Builder<'_, '_> {
 
     pub(in crate::upgrade) fn primitive(
         &mut self,
-        primitive: &Value,
+        primitive: Node,
         at: &str,
     ) -> Result<Value, UpgradeError> {
         let mut attributes = Map::new();
-        let source_attributes = primitive.get("attributes").and_then(Value::as_object);
+        let source_attributes = primitive.get("attributes").and_then(Node::as_object);
         let tangents = match source_attributes {
             Some(source) => self.signed_tangents(source, at)?,
             None => None,
@@ -35,15 +36,15 @@ impl Builder<'_, '_> {
         if let Some(index) = tangents {
             attributes.insert("TANGENT".into(), json!(index));
         }
-        for (semantic, accessor) in source_attributes.into_iter().flatten() {
+        for (semantic, accessor) in source_attributes.into_iter().flat_map(|a| a.iter()) {
             let Some(accessor) = accessor.as_str() else {
                 continue;
             };
-            if tangents.is_some() && matches!(semantic.as_str(), "TANGENT" | "BINORMAL") {
+            if tangents.is_some() && matches!(semantic, "TANGENT" | "BINORMAL") {
                 continue;
             }
             let renamed = rename_semantic(semantic);
-            if renamed != *semantic {
+            if renamed != semantic {
                 self.note(
                     format!("{at}/attributes/{semantic}"),
                     NoteKind::Decision,
@@ -55,7 +56,7 @@ impl Builder<'_, '_> {
         }
         let mut out = Map::new();
         out.insert("attributes".into(), Value::Object(attributes));
-        if let Some(indices) = primitive.get("indices").and_then(Value::as_str) {
+        if let Some(indices) = primitive.get("indices").and_then(Node::as_str) {
             out.insert(
                 "indices".into(),
                 json!(self.accessor(indices, Role::Indices)?),
@@ -65,7 +66,7 @@ impl Builder<'_, '_> {
             out.insert("material".into(), json!(m));
         }
         if let Some(mode) = primitive.get("mode") {
-            out.insert("mode".into(), mode.clone());
+            out.insert("mode".into(), mode.to_value());
         }
         Ok(Value::Object(out))
     }
@@ -77,10 +78,10 @@ impl Builder<'_, '_> {
     /// None when the tangents are not VEC3 (they are converted as they are).
     fn signed_tangents(
         &mut self,
-        attributes: &Map<String, Value>,
+        attributes: Object,
         at: &str,
     ) -> Result<Option<usize>, UpgradeError> {
-        let id = |semantic: &str| attributes.get(semantic).and_then(Value::as_str);
+        let id = |semantic: &str| attributes.get(semantic).and_then(Node::as_str);
         let Some(tangent_id) = id("TANGENT") else {
             return Ok(None);
         };

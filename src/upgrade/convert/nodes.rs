@@ -1,5 +1,6 @@
 //! Nodes and skins: per-instance skins, bindShapeMatrix folded into the inverse bind matrices, transforms copied.
 
+use crate::document::Node;
 use crate::upgrade::builder::{id_list, pointer, Builder};
 use crate::upgrade::data;
 use crate::upgrade::data::Role;
@@ -12,11 +13,11 @@ impl Builder<'_, '_> {
         let nodes = self.source.dictionary("nodes");
         let mut extra_nodes = Vec::new();
         let mut outputs = Vec::new();
-        for (id, node) in &nodes {
+        for &(id, node) in &nodes {
             let mut out = Self::named(id, node);
             let mut children: Vec<Value> = id_list(node.get("children"))
                 .iter()
-                .filter_map(|c| self.index_of("nodes", Some(&json!(c))))
+                .filter_map(|c| self.index_of_id("nodes", c))
                 .map(|i| json!(i))
                 .collect();
             copy_transform(node, &mut out);
@@ -26,7 +27,7 @@ impl Builder<'_, '_> {
             let skin = self.skin_instance(id, node)?;
             let meshes: Vec<usize> = id_list(node.get("meshes"))
                 .iter()
-                .filter_map(|m| self.index_of("meshes", Some(&json!(m))))
+                .filter_map(|m| self.index_of_id("meshes", m))
                 .collect();
             for (k, mesh) in meshes.iter().enumerate() {
                 if k == 0 {
@@ -72,9 +73,9 @@ impl Builder<'_, '_> {
     pub(in crate::upgrade) fn skin_instance(
         &mut self,
         id: &str,
-        node: &Value,
+        node: Node,
     ) -> Result<Option<usize>, UpgradeError> {
-        let Some(skin_id) = node.get("skin").and_then(Value::as_str) else {
+        let Some(skin_id) = node.get("skin").and_then(Node::as_str) else {
             return Ok(None);
         };
         let Some(skin) = self.source.object("skins", skin_id) else {
@@ -103,10 +104,7 @@ impl Builder<'_, '_> {
         }
         let mut out = Self::named(skin_id, skin);
         out.insert("joints".into(), json!(joints));
-        if let Some(root) = skeletons
-            .first()
-            .and_then(|s| self.index_of("nodes", Some(&json!(s))))
-        {
+        if let Some(root) = skeletons.first().and_then(|s| self.index_of_id("nodes", s)) {
             out.insert("skeleton".into(), json!(root));
         }
         let matrices = self.inverse_bind_matrices(skin_id, skin, joints.len())?;
@@ -151,8 +149,8 @@ impl Builder<'_, '_> {
                 });
             };
             if let (Some(name), Some(index)) = (
-                node.get("jointName").and_then(Value::as_str),
-                self.index_of("nodes", Some(&json!(node_id))),
+                node.get("jointName").and_then(Node::as_str),
+                self.index_of_id("nodes", &node_id),
             ) {
                 found.entry(name.to_string()).or_insert(index);
             }
@@ -173,11 +171,11 @@ impl Builder<'_, '_> {
     pub(in crate::upgrade) fn inverse_bind_matrices(
         &mut self,
         skin_id: &str,
-        skin: &Value,
+        skin: Node,
         joints: usize,
     ) -> Result<usize, UpgradeError> {
         let bind_shape = matrix(skin.get("bindShapeMatrix")).unwrap_or(IDENTITY);
-        let source_matrices = match skin.get("inverseBindMatrices").and_then(Value::as_str) {
+        let source_matrices = match skin.get("inverseBindMatrices").and_then(Node::as_str) {
             Some(id) => data::read(self.source, id)
                 .map_err(|reason| UpgradeError::Resource {
                     pointer: pointer("skins", skin_id),
@@ -210,13 +208,13 @@ const IDENTITY: [f64; 16] = [
     1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
 ];
 
-fn matrix(value: Option<&Value>) -> Option<[f64; 16]> {
+fn matrix(value: Option<Node>) -> Option<[f64; 16]> {
     let list = value?.as_array()?;
     let mut m = [0.0; 16];
     if list.len() != 16 {
         return None;
     }
-    for (slot, v) in m.iter_mut().zip(list) {
+    for (slot, v) in m.iter_mut().zip(list.iter()) {
         *slot = v.as_f64()?;
     }
     Some(m)
@@ -234,7 +232,7 @@ fn multiply(a: &[f64], b: &[f64; 16]) -> [f64; 16] {
 }
 
 /// matrix or translation/rotation/scale; an identity matrix is left out.
-fn copy_transform(node: &Value, out: &mut Map<String, Value>) {
+fn copy_transform(node: Node, out: &mut Map<String, Value>) {
     match matrix(node.get("matrix")) {
         Some(m) if m != IDENTITY => {
             out.insert("matrix".into(), json!(m));
@@ -242,7 +240,7 @@ fn copy_transform(node: &Value, out: &mut Map<String, Value>) {
         _ => {
             for key in ["translation", "rotation", "scale"] {
                 if let Some(v) = node.get(key) {
-                    out.insert(key.into(), v.clone());
+                    out.insert(key.into(), v.to_value());
                 }
             }
         }

@@ -5,7 +5,6 @@ use super::Upgraded;
 use crate::check::{check_bytes, CheckOptions, Report};
 use crate::document::file::FileId;
 use crate::document::uri::MemoryResources;
-use serde::ser::{Serialize, SerializeMap, Serializer};
 use serde_json::{json, Map, Value};
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
@@ -50,7 +49,7 @@ pub struct Files<'u> {
 /// Lays the asset out as files named after `main_name` (`x.glb`, or `x.gltf` + `x.bin` +
 /// `x-<n>-<image>.png`).
 pub fn layout<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
-    layout_with(&upgraded.json, upgraded, main_name)
+    layout_with(upgraded.json.clone(), upgraded, main_name)
 }
 
 /// Lays the asset out as [`layout`] does, then lets go of its JSON tree (`upgraded.json` is
@@ -58,12 +57,21 @@ pub fn layout<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
 /// 10^5 materials that is the difference between two trees in memory and one.
 pub fn layout_releasing_json<'u>(upgraded: &'u mut Upgraded, main_name: &str) -> Files<'u> {
     let json = std::mem::take(&mut upgraded.json);
-    layout_with(&json, upgraded, main_name)
+    layout_with(json, upgraded, main_name)
 }
 
 /// The files of `json` with the binary and images of `upgraded` (the text is made here;
-/// only the binary and the images are borrowed).
-fn layout_with<'u>(json: &Value, upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
+/// only the binary and the images are borrowed). The members the layout places (buffers,
+/// bufferViews, images) are changed where they lie, never copied: an asset of 10^5
+/// accessors has 10^5 bufferViews.
+fn layout_with<'u>(mut json: Value, upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
+    match &mut json {
+        // A null where the layout places data says nothing: the layout writes its own.
+        Value::Object(root) => {
+            root.retain(|key, value| !(value.is_null() && PLACED.contains(&key.as_str())))
+        }
+        _ => json = Value::Object(Map::new()),
+    }
     if main_name.to_ascii_lowercase().ends_with(".glb") {
         Files {
             main: glb(json, upgraded, main_name),
@@ -74,79 +82,46 @@ fn layout_with<'u>(json: &Value, upgraded: &'u Upgraded, main_name: &str) -> Fil
     }
 }
 
-/// The asset's JSON as it is written: its own members, except the few the layout places
-/// (buffers, bufferViews, images), which are copied to be changed. The rest, materials and
-/// nodes by the 10^5, is serialised where it lies instead of being copied first.
-struct Placed<'u> {
-    json: &'u Value,
-    members: Map<String, Value>,
+/// The members of the asset's root the layout writes.
+const PLACED: [&str; 3] = ["buffers", "bufferViews", "images"];
+
+/// A member of the asset's root object, added (at the end, as a writer appends it) when the
+/// asset has none.
+fn member<'j>(json: &'j mut Value, key: &str, empty: fn() -> Value) -> &'j mut Value {
+    let Value::Object(root) = json else {
+        unreachable!("layout_with makes the root an object")
+    };
+    root.entry(key).or_insert_with(empty)
 }
 
-impl<'u> Placed<'u> {
-    const PLACED: [&'static str; 3] = ["buffers", "bufferViews", "images"];
-
-    fn new(json: &'u Value) -> Self {
-        let members = (Self::PLACED.iter())
-            .filter_map(|&key| Some((key.to_string(), json.get(key)?.clone())))
-            .collect();
-        Placed { json, members }
-    }
-
-    /// A placed member, to change (null when the asset has none: set it whole).
-    fn member(&mut self, key: &'static str) -> &mut Value {
-        debug_assert!(Self::PLACED.contains(&key));
-        self.members.entry(key).or_insert(Value::Null)
-    }
-}
-
-impl Serialize for Placed<'_> {
-    /// The asset's members in their order, then placed members it did not have.
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let own = self.json.as_object();
-        let mut map = serializer.serialize_map(None)?;
-        for (key, value) in own.into_iter().flatten() {
-            match self.members.get(key) {
-                Some(Value::Null) => {}
-                Some(placed) => map.serialize_entry(key, placed)?,
-                None => map.serialize_entry(key, value)?,
-            }
-        }
-        let added = (self.members.iter())
-            .filter(|(k, v)| !v.is_null() && !own.is_some_and(|o| o.contains_key(*k)));
-        for (key, value) in added {
-            map.serialize_entry(key, value)?;
-        }
-        map.end()
-    }
-}
-
-fn glb<'u>(json: &Value, upgraded: &'u Upgraded, name: &str) -> File<'u> {
-    let mut json = Placed::new(json);
+fn glb<'u>(mut json: Value, upgraded: &'u Upgraded, name: &str) -> File<'u> {
     // Images follow the geometry in the one binary chunk, each 4-byte aligned.
     let mut length = upgraded.binary.len();
-    let mut views = json
-        .member("bufferViews")
-        .as_array()
-        .cloned()
-        .unwrap_or_default();
     let mut body: Vec<Cow<[u8]>> = upgraded.binary.runs().map(Cow::Borrowed).collect();
     for (i, image) in images_to_place(upgraded) {
         let aligned = length.div_ceil(4) * 4;
         body.push(Cow::Owned(vec![0; aligned - length]));
         body.push(Cow::Borrowed(&image.bytes));
-        views.push(json!({"buffer": 0, "byteOffset": aligned, "byteLength": image.bytes.len()}));
+        let views = member(&mut json, "bufferViews", || json!([]));
+        let view = json!({"buffer": 0, "byteOffset": aligned, "byteLength": image.bytes.len()});
+        let index = match views.as_array_mut() {
+            Some(views) => {
+                views.push(view);
+                views.len() - 1
+            }
+            None => continue,
+        };
         length = aligned + image.bytes.len();
-        let placed = &mut json.member("images")[i];
-        placed["bufferView"] = json!(views.len() - 1);
-        placed["mimeType"] = json!(image.mime_type);
-    }
-    if !views.is_empty() {
-        *json.member("bufferViews") = Value::Array(views);
+        if let Some(placed) = json.get_mut("images").and_then(|images| images.get_mut(i)) {
+            placed["bufferView"] = json!(index);
+            placed["mimeType"] = json!(image.mime_type);
+        }
     }
     if length > 0 {
-        set_buffer_length(json.member("buffers"), length);
+        set_buffer_length(member(&mut json, "buffers", || Value::Null), length);
     }
     let mut text = serde_json::to_vec(&json).unwrap_or_default();
+    drop(json);
     text.resize(text.len().div_ceil(4) * 4, b' ');
     let padded = length.div_ceil(4) * 4;
     let chunks = 8 + text.len() + if length == 0 { 0 } else { 8 + padded };
@@ -171,16 +146,17 @@ fn glb<'u>(json: &Value, upgraded: &'u Upgraded, name: &str) -> File<'u> {
     }
 }
 
-fn separate<'u>(json: &Value, upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
+fn separate<'u>(mut json: Value, upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
     let stem = main_name
         .rsplit_once('.')
         .map_or(main_name, |(stem, _)| stem)
         .to_string();
-    let mut json = Placed::new(json);
     let mut side = Vec::new();
     if !upgraded.binary.is_empty() {
         let name = format!("{stem}.bin");
-        json.member("buffers")[0]["uri"] = json!(uri_escape(&name));
+        if let Some(buffer) = json.pointer_mut("/buffers/0").filter(|b| b.is_object()) {
+            buffer["uri"] = json!(uri_escape(&name));
+        }
         side.push(File {
             name,
             parts: upgraded.binary.runs().map(Cow::Borrowed).collect(),
@@ -188,7 +164,9 @@ fn separate<'u>(json: &Value, upgraded: &'u Upgraded, main_name: &str) -> Files<
     }
     for (i, image) in images_to_place(upgraded) {
         let name = format!("{stem}-{}", image.file_name);
-        json.member("images")[i]["uri"] = json!(uri_escape(&name));
+        if let Some(placed) = json.get_mut("images").and_then(|images| images.get_mut(i)) {
+            placed["uri"] = json!(uri_escape(&name));
+        }
         side.push(File {
             name,
             parts: vec![Cow::Borrowed(&image.bytes)],
