@@ -145,17 +145,11 @@ fn validator(khronos: bool) -> &'static Compiled {
     }
 }
 
-/// Validates the document into `found` (Khronos-coded findings), saying nothing of what is
-/// at or below the pointers in `unread` (what the Khronos validator does not read); returns
-/// those and the arrays a wrongly typed element makes unreadable (see [`AbsentMembers`]).
-pub fn validate(
-    doc: Node,
-    khronos: bool,
-    found: &mut dyn Sink,
-    unread: HashSet<String>,
-) -> HashSet<String> {
+/// Validates the document into `found` (Khronos-coded findings); returns the members the
+/// Khronos validator reads as absent: those of the wrong type and the arrays a wrongly typed
+/// element makes unreadable (see [`AbsentMembers`]).
+pub fn validate(doc: Node, khronos: bool, found: &mut dyn Sink) -> HashSet<String> {
     let mut absent = AbsentMembers::new(found);
-    absent.absent = unread;
     diagnostics(validator(khronos), doc, "", &mut absent);
     absent.finish()
 }
@@ -222,7 +216,7 @@ fn array_holding(pointer: &str) -> Option<&str> {
 
 /// Between the schema findings and their sink: notes each member the Khronos validator
 /// reads as absent (one of the wrong type, an array with a wrongly typed element or of the
-/// wrong length, and what the caller names: undeclared extension objects), and drops what
+/// wrong length), and drops what
 /// was found at or inside such a member besides the finding that made it absent. Findings
 /// are held until the end to see every such member first, up to [`HELD`]; past that they
 /// pass on filtered by the members known so far, so memory stays bounded.
@@ -641,7 +635,7 @@ mod tests {
     fn codes(doc: Value) -> Vec<(String, String)> {
         let mut found = Vec::new();
         let tree = Tree::parse(doc.to_string().as_bytes()).unwrap();
-        validate(tree.root(), true, &mut found, HashSet::new());
+        validate(tree.root(), true, &mut found);
         found
             .into_iter()
             .map(|d| (d.code.to_string(), d.pointer().unwrap().to_string()))
