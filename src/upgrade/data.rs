@@ -109,6 +109,16 @@ impl Accessor<'_> {
         decode_component(self.component_type, &self.bytes[at..at + size])
     }
 
+    /// Element `i`'s components, as stored, into `out` (of `components` values).
+    fn element(&self, i: usize, out: &mut [f64]) {
+        let size = component_size(self.component_type).unwrap_or(4);
+        let at = i * self.stride;
+        let components = self.bytes[at..at + size * self.components].chunks_exact(size);
+        for (slot, bytes) in out.iter_mut().zip(components) {
+            *slot = decode_component(self.component_type, bytes);
+        }
+    }
+
     /// Every element's components, in order.
     pub fn values(&self) -> Vec<f64> {
         let size = component_size(self.component_type).unwrap_or(4);
@@ -154,29 +164,49 @@ pub struct Renormalised {
 /// the Khronos validator's allowance (2·10⁻⁷ per weight, summed in single precision).
 const WEIGHT_SUM_TOLERANCE: f64 = 1e-7;
 
-/// Skin weights (as values in [0, 1]) with each vertex's divided by its sum, when some sum
-/// is not 1. 2.0 requires sums of 1; the 1.0 shaders multiplied the affine joint matrices by
-/// the raw weights, which scales the homogeneous coordinate by the sum, and the perspective
-/// divide (and `normalize` of the normal) took the same factor out again: dividing by the
-/// sum draws exactly what 1.0 drew. A vertex whose weights sum to 0 is left as it is (no
-/// division repairs it; the output check reports it).
-pub fn renormalised_weights(accessor: &Accessor) -> Option<(Vec<f64>, Renormalised)> {
-    let unit = normalise(accessor.component_type);
-    let mut values: Vec<f64> = accessor.values().into_iter().map(unit).collect();
+/// What dividing each vertex's skin weights (as values in [0, 1]) by their sum changes, when
+/// some sum is not 1. 2.0 requires sums of 1; the 1.0 shaders multiplied the affine joint
+/// matrices by the raw weights, which scales the homogeneous coordinate by the sum, and the
+/// perspective divide (and `normalize` of the normal) took the same factor out again:
+/// dividing by the sum draws exactly what 1.0 drew. A vertex whose weights sum to 0 is left
+/// as it is (no division repairs it; the output check reports it).
+fn weights_to_renormalise(accessor: &Accessor) -> Option<Renormalised> {
     let mut changed = Renormalised {
         vertices: 0,
         lowest: f64::INFINITY,
     };
-    for vertex in values.chunks_mut(accessor.components.max(1)) {
+    let mut vertex = [0.0; MOST_COMPONENTS];
+    let vertex = &mut vertex[..accessor.components.min(MOST_COMPONENTS)];
+    for i in 0..accessor.count {
+        weights_of_vertex(accessor, i, vertex);
         let sum: f64 = vertex.iter().sum();
-        if (sum - 1.0).abs() > WEIGHT_SUM_TOLERANCE && sum > 0.0 && sum.is_finite() {
-            vertex.iter_mut().for_each(|w| *w /= sum);
-            settle_in_single_precision(vertex);
+        if needs_renormalising(sum) {
             changed.vertices += 1;
             changed.lowest = changed.lowest.min(sum);
         }
     }
-    (changed.vertices > 0).then_some((values, changed))
+    (changed.vertices > 0).then_some(changed)
+}
+
+/// Vertex `i`'s weights as values in [0, 1].
+fn weights_of_vertex(accessor: &Accessor, i: usize, out: &mut [f64]) {
+    let unit = normalise(accessor.component_type);
+    accessor.element(i, out);
+    out.iter_mut().for_each(|w| *w = unit(*w));
+}
+
+fn needs_renormalising(sum: f64) -> bool {
+    (sum - 1.0).abs() > WEIGHT_SUM_TOLERANCE && sum > 0.0 && sum.is_finite()
+}
+
+/// Vertex `i`'s weights, divided by their sum when [`weights_to_renormalise`] would count it.
+fn renormalised_vertex(accessor: &Accessor, i: usize, out: &mut [f64]) {
+    weights_of_vertex(accessor, i, out);
+    let sum: f64 = out.iter().sum();
+    if needs_renormalising(sum) {
+        out.iter_mut().for_each(|w| *w /= sum);
+        settle_in_single_precision(out);
+    }
 }
 
 /// Rounds weights that sum to 1 to single precision (as they are stored) and moves the
@@ -219,49 +249,93 @@ pub fn pack_values(
     vertex: bool,
     binary: &mut Binary,
 ) -> Packed {
+    let count = values.len() / components.max(1);
+    let layout = Layout {
+        count,
+        components,
+        component_type,
+        normalized,
+        vertex,
+    };
+    pack_elements(layout, binary, |i, out| {
+        out.copy_from_slice(&values[i * components..(i + 1) * components])
+    })
+}
+
+/// The most components an element has (MAT4).
+const MOST_COMPONENTS: usize = 16;
+
+/// How packed elements are laid out.
+#[derive(Clone, Copy)]
+struct Layout {
+    count: usize,
+    components: usize,
+    component_type: u64,
+    normalized: bool,
+    /// Vertex attributes: each element padded to 4 bytes.
+    vertex: bool,
+}
+
+/// Appends `layout.count` elements, each written into a buffer by `element(i, buffer)`, with
+/// the given component type: no vector of every value is made first (a 2·10^6-vertex
+/// skin's joints and weights would take 128 MB of them).
+fn pack_elements(
+    layout: Layout,
+    binary: &mut Binary,
+    element: impl FnMut(usize, &mut [f64]),
+) -> Packed {
+    let Layout {
+        count,
+        components,
+        component_type,
+        normalized,
+        vertex,
+    } = layout;
+    let components = components.min(MOST_COMPONENTS);
     let offset = binary.align();
     let out = binary.owned();
     let size = component_size(component_type).unwrap_or(4);
-    let element = size * components;
+    let element_size = size * components;
     let stride = if vertex {
-        element.div_ceil(4) * 4
+        element_size.div_ceil(4) * 4
     } else {
-        element
+        element_size
     };
-    let count = values.len() / components.max(1);
     out.reserve(count * stride);
     let mut min = vec![f64::INFINITY; components];
     let mut max = vec![f64::NEG_INFINITY; components];
     let mut pack = Packing {
+        count,
         components,
-        padding: stride - element,
+        padding: stride - element_size,
         out,
         min: &mut min,
         max: &mut max,
+        element,
     };
     // One loop per component type: the type is matched once, not once per value.
     match component_type {
-        BYTE => pack.all(values, |v| {
+        BYTE => pack.all(|v| {
             let x = v.round().clamp(-128.0, 127.0) as i8;
             (x.to_le_bytes(), f64::from(x))
         }),
-        UNSIGNED_BYTE => pack.all(values, |v| {
+        UNSIGNED_BYTE => pack.all(|v| {
             let x = v.round().clamp(0.0, 255.0) as u8;
             ([x], f64::from(x))
         }),
-        SHORT => pack.all(values, |v| {
+        SHORT => pack.all(|v| {
             let x = v.round().clamp(-32768.0, 32767.0) as i16;
             (x.to_le_bytes(), f64::from(x))
         }),
-        UNSIGNED_SHORT => pack.all(values, |v| {
+        UNSIGNED_SHORT => pack.all(|v| {
             let x = v.round().clamp(0.0, 65535.0) as u16;
             (x.to_le_bytes(), f64::from(x))
         }),
-        UNSIGNED_INT => pack.all(values, |v| {
+        UNSIGNED_INT => pack.all(|v| {
             let x = v.round().clamp(0.0, f64::from(u32::MAX)) as u32;
             (x.to_le_bytes(), f64::from(x))
         }),
-        _ => pack.all(values, |v| {
+        _ => pack.all(|v| {
             let x = v as f32;
             (x.to_le_bytes(), f64::from(x))
         }),
@@ -275,7 +349,7 @@ pub fn pack_values(
         length: binary.len() - offset,
         component_type,
         normalized,
-        byte_stride: (stride != element).then_some(stride),
+        byte_stride: (stride != element_size).then_some(stride),
         min,
         max,
         converted_from: None,
@@ -283,21 +357,27 @@ pub fn pack_values(
     }
 }
 
-/// Values being appended as one component type, with their min/max as stored.
-struct Packing<'a> {
+/// Elements being appended as one component type, with their min/max as stored.
+struct Packing<'a, E> {
+    count: usize,
     components: usize,
     /// Zero bytes after each element (vertex attributes are 4-byte aligned).
     padding: usize,
     out: &'a mut Vec<u8>,
     min: &'a mut [f64],
     max: &'a mut [f64],
+    element: E,
 }
 
-impl Packing<'_> {
-    /// Appends every value as `encode` stores it (its bytes and the value they hold).
-    fn all<const N: usize>(&mut self, values: &[f64], encode: impl Fn(f64) -> ([u8; N], f64)) {
-        for element in values.chunks_exact(self.components.max(1)) {
-            for (c, &v) in element.iter().enumerate() {
+impl<E: FnMut(usize, &mut [f64])> Packing<'_, E> {
+    /// Appends every element's values as `encode` stores them (their bytes and the value
+    /// they hold).
+    fn all<const N: usize>(&mut self, encode: impl Fn(f64) -> ([u8; N], f64)) {
+        let mut buffer = [0.0; MOST_COMPONENTS];
+        let values = &mut buffer[..self.components];
+        for i in 0..self.count {
+            (self.element)(i, values);
+            for (c, &v) in values.iter().enumerate() {
                 let (bytes, stored) = encode(v);
                 self.out.extend_from_slice(&bytes);
                 if !stored.is_nan() {
@@ -451,12 +531,21 @@ pub fn dequantized(
 
 /// Appends an accessor's data to `out`, repacked for its role.
 pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
+    let layout = |component_type, normalized| Layout {
+        count: accessor.count,
+        components: accessor.components,
+        component_type,
+        normalized,
+        vertex: role.is_vertex(),
+    };
+    let converted_from = |to| (to != accessor.component_type).then_some(accessor.component_type);
     if role == Role::Weights {
-        if let Some((weights, renormalised)) = renormalised_weights(accessor) {
+        if let Some(renormalised) = weights_to_renormalise(accessor) {
             // Floats: the quotients are not representable as normalised integers.
-            let mut packed = pack_values(&weights, accessor.components, FLOAT, false, true, out);
-            packed.converted_from =
-                (accessor.component_type != FLOAT).then_some(accessor.component_type);
+            let mut packed = pack_elements(layout(FLOAT, false), out, |i, vertex| {
+                renormalised_vertex(accessor, i, vertex)
+            });
+            packed.converted_from = converted_from(FLOAT);
             packed.renormalised = Some(renormalised);
             return packed;
         }
@@ -465,27 +554,21 @@ pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
     if component_type == accessor.component_type {
         return copy_elements(accessor, normalized, role.is_vertex(), out);
     }
-    let mut values = accessor.values();
     // Unsigned integer weights keep their type with `normalized` (see `output_type`); signed
     // ones become floats, scaled as 1.0 shaders normalised them.
-    if role == Role::Weights && accessor.component_type != FLOAT {
-        let scale = if accessor.component_type == BYTE {
-            127.0
-        } else {
-            32767.0
-        };
-        values.iter_mut().for_each(|v| *v /= scale);
-    }
-    let mut packed = pack_values(
-        &values,
-        accessor.components,
-        component_type,
-        normalized,
-        role.is_vertex(),
-        out,
-    );
-    packed.converted_from =
-        (component_type != accessor.component_type).then_some(accessor.component_type);
+    let scale = match (role, accessor.component_type) {
+        (Role::Weights, BYTE) => 127.0,
+        (Role::Weights, FLOAT) => 1.0,
+        (Role::Weights, _) => 32767.0,
+        _ => 1.0,
+    };
+    let mut packed = pack_elements(layout(component_type, normalized), out, |i, values| {
+        accessor.element(i, values);
+        if scale != 1.0 {
+            values.iter_mut().for_each(|v| *v /= scale);
+        }
+    });
+    packed.converted_from = converted_from(component_type);
     packed
 }
 
