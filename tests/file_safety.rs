@@ -534,7 +534,10 @@ fn a_large_glb_checked_from_its_file_reports_what_its_bytes_in_memory_do() {
     }
     // The BIN chunk was left in the file, not read whole.
     let document = gltfmat::document::read_path(&path, &mut Vec::new()).unwrap();
-    assert!(document.bin_in_file.is_some());
+    assert!(matches!(
+        document.bin_elsewhere,
+        Some(gltfmat::document::Elsewhere::File(_))
+    ));
     assert!(
         document.bytes.len() < 1 << 20,
         "{} bytes held",
@@ -558,7 +561,12 @@ fn a_large_external_buffer_checked_from_its_file_reports_what_its_bytes_in_memor
     let folder_loader = gltfmat::document::uri::FolderResources::new(folder.path());
     let kept = gltfmat::document::uri::ResourceLoader::load_buffer(&folder_loader, "large.bin");
     assert!(
-        matches!(kept, Ok(gltfmat::document::file::Kept::InFile(_))),
+        matches!(
+            kept,
+            Ok(gltfmat::document::file::Kept::Elsewhere(
+                gltfmat::document::Elsewhere::File(_)
+            ))
+        ),
         "{kept:?}"
     );
 }

@@ -211,7 +211,7 @@ fn upgraded_image_bytes(upgraded: &Upgraded) -> impl Fn(u64) -> Vec<u8> + '_ {
         let source = upgraded.json["textures"][texture as usize]["source"]
             .as_u64()
             .unwrap();
-        upgraded.images[source as usize].bytes.clone()
+        upgraded.images[source as usize].bytes.to_vec()
     }
 }
 

@@ -477,8 +477,9 @@ mod verify {
             let image = upgraded.json["textures"][texture]["source"]
                 .as_u64()
                 .unwrap() as usize;
-            upgraded.images[image].bytes =
-                std::fs::read(repo("fixtures/gltf1/metal_rough.png")).unwrap();
+            upgraded.images[image].bytes = std::fs::read(repo("fixtures/gltf1/metal_rough.png"))
+                .unwrap()
+                .into();
         });
         assert!(
             wrong > 1.0,

@@ -170,6 +170,20 @@ pub fn check_bytes(
     check_document(uri, document, loader, options, diagnostics)
 }
 
+/// Checks a GLB given as its head (everything before its BIN chunk's data) and that data in
+/// pieces: an upgrade's output, checked without joining it into one copy first.
+pub(crate) fn check_glb_pieces(
+    uri: &str,
+    head: document::Bytes,
+    data: document::Pieces,
+    loader: &dyn ResourceLoader,
+    options: &CheckOptions,
+) -> Report {
+    let mut diagnostics = Collector::new(options);
+    let document = document::read_glb_pieces(head, data, &mut diagnostics);
+    check_document(uri, document, loader, options, diagnostics)
+}
+
 /// Checks a document read by [`check_bytes`] or [`check_path`], whose reading's findings
 /// are already in `diagnostics`.
 fn check_document(

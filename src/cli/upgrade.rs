@@ -214,7 +214,7 @@ fn write_to_stdout(upgraded: &mut Upgraded, input: &Path) -> Outcome {
         return Err(refuse_failed_check(report, upgraded, input));
     }
     let mut stdout = std::io::stdout().lock();
-    for part in &files.main.parts {
+    for part in files.main.slices() {
         stdout
             .write_all(part)
             .map_err(|e| Failure::usage(format!("stdout: {e}")))?;

@@ -6,29 +6,29 @@
 use super::file::{FileChunk, Kept};
 use std::borrow::Cow;
 use std::ops::Range;
+use std::sync::Arc;
 
 /// A file's bytes, read into memory.
 pub type Bytes = Vec<u8>;
 
-/// A buffer's bytes: borrowed from the document (the GLB BIN chunk), left in the GLB's file
-/// (the BIN chunk of a large GLB, read a range at a time), or held (an external file or a
-/// data URI).
+/// A buffer's bytes: borrowed from the document (the GLB BIN chunk), held (an external file
+/// or a data URI), or elsewhere: left in a file, or in pieces.
 pub enum BufferData<'a> {
     /// Borrowed from the GLB BIN chunk.
     Glb(&'a [u8]),
-    /// The BIN chunk of a large GLB, still in its file.
-    InFile(&'a FileChunk),
     /// Read from an external file or a data URI.
     Loaded(Bytes),
-    /// A large external file, still in the file.
-    LoadedInFile(FileChunk),
+    /// The BIN chunk of a large GLB, still in its file, or of an upgrade's output, in pieces.
+    Elsewhere(&'a Elsewhere),
+    /// A large external file, still in the file, or an upgrade's output buffer, in pieces.
+    LoadedElsewhere(Elsewhere),
 }
 
 impl From<Kept> for BufferData<'_> {
     fn from(kept: Kept) -> Self {
         match kept {
             Kept::Read(bytes) => BufferData::Loaded(bytes),
-            Kept::InFile(chunk) => BufferData::LoadedInFile(chunk),
+            Kept::Elsewhere(elsewhere) => BufferData::LoadedElsewhere(elsewhere),
         }
     }
 }
@@ -38,9 +38,9 @@ impl BufferData<'_> {
     pub fn len(&self) -> usize {
         match self {
             BufferData::Glb(bytes) => bytes.len(),
-            BufferData::InFile(chunk) => chunk.len(),
             BufferData::Loaded(bytes) => bytes.len(),
-            BufferData::LoadedInFile(chunk) => chunk.len(),
+            BufferData::Elsewhere(elsewhere) => elsewhere.len(),
+            BufferData::LoadedElsewhere(elsewhere) => elsewhere.len(),
         }
     }
 
@@ -49,23 +49,184 @@ impl BufferData<'_> {
         self.len() == 0
     }
 
-    /// The bytes at `range`: borrowed when they are in memory, read now when they are in a
-    /// file; `None` when the range is outside the buffer (or the file no longer holds it).
+    /// The bytes at `range`: borrowed when they are in memory in one piece, read now when
+    /// they are in a file; `None` when the range is outside the buffer (or the file no
+    /// longer holds it).
     pub fn get(&self, range: Range<usize>) -> Option<Cow<'_, [u8]>> {
         match self {
             BufferData::Glb(bytes) => bytes.get(range).map(Cow::Borrowed),
-            BufferData::InFile(chunk) => chunk.read(range).map(Cow::Owned),
             BufferData::Loaded(bytes) => bytes.get(range).map(Cow::Borrowed),
-            BufferData::LoadedInFile(chunk) => chunk.read(range).map(Cow::Owned),
+            BufferData::Elsewhere(elsewhere) => elsewhere.get(range),
+            BufferData::LoadedElsewhere(elsewhere) => elsewhere.get(range),
         }
     }
 
-    /// The whole buffer when it is in memory.
+    /// The whole buffer when it is in memory in one piece.
     pub fn in_memory(&self) -> Option<&[u8]> {
         match self {
             BufferData::Glb(bytes) => Some(bytes),
-            BufferData::InFile(_) | BufferData::LoadedInFile(_) => None,
             BufferData::Loaded(bytes) => Some(bytes),
+            BufferData::Elsewhere(_) | BufferData::LoadedElsewhere(_) => None,
         }
+    }
+}
+
+/// Bytes not held in one piece of memory.
+#[derive(Debug)]
+pub enum Elsewhere {
+    /// Left in a file, read a range at a time.
+    File(FileChunk),
+    /// In pieces: an upgrade's output, checked without being joined first.
+    Pieces(Pieces),
+}
+
+impl Elsewhere {
+    /// How many bytes there are.
+    pub fn len(&self) -> usize {
+        match self {
+            Elsewhere::File(chunk) => chunk.len(),
+            Elsewhere::Pieces(pieces) => pieces.len(),
+        }
+    }
+
+    /// Whether there is no byte.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The bytes at `range`, or `None` when it is outside them (or the file no longer holds
+    /// them).
+    pub fn get(&self, range: Range<usize>) -> Option<Cow<'_, [u8]>> {
+        match self {
+            Elsewhere::File(chunk) => chunk.read(range).map(Cow::Owned),
+            Elsewhere::Pieces(pieces) => pieces.get(range),
+        }
+    }
+}
+
+/// A range of shared bytes.
+#[derive(Debug, Clone)]
+pub struct Piece {
+    bytes: Arc<Bytes>,
+    range: Range<usize>,
+}
+
+impl Piece {
+    /// `range` of `bytes` (clamped to them).
+    pub fn new(bytes: Arc<Bytes>, range: Range<usize>) -> Self {
+        let end = range.end.min(bytes.len());
+        let range = range.start.min(end)..end;
+        Piece { bytes, range }
+    }
+
+    /// All of `bytes`.
+    pub fn whole(bytes: Bytes) -> Self {
+        let range = 0..bytes.len();
+        Piece {
+            bytes: Arc::new(bytes),
+            range,
+        }
+    }
+
+    /// The bytes.
+    pub fn as_slice(&self) -> &[u8] {
+        &self.bytes[self.range.clone()]
+    }
+}
+
+/// Bytes as pieces laid end to end.
+#[derive(Debug, Clone, Default)]
+pub struct Pieces {
+    pieces: Vec<Piece>,
+    /// Where each piece starts.
+    starts: Vec<usize>,
+    len: usize,
+}
+
+impl Pieces {
+    /// The pieces, in order.
+    pub fn new(pieces: impl IntoIterator<Item = Piece>) -> Self {
+        let mut all = Pieces::default();
+        for piece in pieces {
+            all.starts.push(all.len);
+            all.len += piece.range.len();
+            all.pieces.push(piece);
+        }
+        all
+    }
+
+    /// How many bytes there are.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether there is no byte.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The pieces' bytes, in order.
+    pub fn slices(&self) -> impl Iterator<Item = &[u8]> {
+        self.pieces.iter().map(Piece::as_slice)
+    }
+
+    /// The bytes at `range`: borrowed when one piece holds them, joined otherwise.
+    pub fn get(&self, range: Range<usize>) -> Option<Cow<'_, [u8]>> {
+        if range.start > range.end || range.end > self.len {
+            return None;
+        }
+        let first = self
+            .starts
+            .partition_point(|&start| start <= range.start)
+            .max(1)
+            - 1;
+        let Some(piece) = self.pieces.get(first) else {
+            return Some(Cow::Borrowed(&[]));
+        };
+        let within = range.start - self.starts[first]..range.end - self.starts[first];
+        if let Some(bytes) = piece.as_slice().get(within) {
+            return Some(Cow::Borrowed(bytes));
+        }
+        let mut joined = Vec::with_capacity(range.len());
+        for (piece, &start) in self.pieces[first..].iter().zip(&self.starts[first..]) {
+            let bytes = piece.as_slice();
+            let from = range.start.saturating_sub(start);
+            let to = (range.end - start).min(bytes.len());
+            joined.extend_from_slice(&bytes[from..to]);
+            if start + bytes.len() >= range.end {
+                break;
+            }
+        }
+        Some(Cow::Owned(joined))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pieces_read_as_the_bytes_they_join() {
+        let shared = Arc::new(vec![10, 11, 12, 13, 14]);
+        let pieces = Pieces::new([
+            Piece::whole(vec![1, 2]),
+            Piece::new(Arc::clone(&shared), 1..4),
+            Piece::whole(Vec::new()),
+            Piece::whole(vec![3]),
+        ]);
+        let joined = [1, 2, 11, 12, 13, 3];
+        assert_eq!(pieces.len(), joined.len());
+        for start in 0..=joined.len() {
+            for end in start..=joined.len() {
+                let got = pieces.get(start..end).expect("inside");
+                assert_eq!(&got[..], &joined[start..end], "{start}..{end}");
+            }
+        }
+        assert!(
+            matches!(pieces.get(2..5), Some(Cow::Borrowed(_))),
+            "one piece is borrowed"
+        );
+        assert!(pieces.get(5..7).is_none());
+        assert_eq!(pieces.slices().collect::<Vec<_>>().concat(), joined);
     }
 }

@@ -3,6 +3,7 @@
 //! handle, never by a name looked at before opening, so a file swapped in between cannot be
 //! read in its place. Reads are bounded by the largest file a glTF asset can use.
 
+use super::bytes::Elsewhere;
 use std::fs::{File, FileType, Metadata};
 use std::io::{self, Read};
 use std::path::Path;
@@ -116,19 +117,22 @@ pub(crate) fn read_or_keep(file: File) -> Result<(Kept, Option<FileId>), FileErr
             offset: 0,
             length: metadata.len() as usize,
         };
-        return Ok((Kept::InFile(chunk), FileId::of(&metadata)));
+        return Ok((
+            Kept::Elsewhere(Elsewhere::File(chunk)),
+            FileId::of(&metadata),
+        ));
     }
     let (bytes, id) = read_opened_with_id(file)?;
     Ok((Kept::Read(bytes), id))
 }
 
-/// A file's bytes as [`read_or_keep`] gives them.
+/// A buffer's bytes as a loader gives them (see [`read_or_keep`]).
 #[derive(Debug)]
 pub enum Kept {
     /// Read whole.
     Read(Vec<u8>),
-    /// Left in the file.
-    InFile(FileChunk),
+    /// Left in the file, or in pieces.
+    Elsewhere(Elsewhere),
 }
 
 impl FileChunk {

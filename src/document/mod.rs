@@ -11,7 +11,7 @@ pub mod tree;
 pub mod uri;
 
 use crate::diagnostic::{khronos, Diagnostic, Sink};
-pub use bytes::{BufferData, Bytes};
+pub use bytes::{BufferData, Bytes, Elsewhere, Piece, Pieces};
 pub use image_header::ImageInfo;
 use serde_json::Value;
 use std::ops::Range;
@@ -50,9 +50,10 @@ pub struct Document<R = Tree> {
     pub root: Option<R>,
     /// Where the GLB BIN chunk's data lies in `bytes`, if there is one.
     pub bin: Option<Range<usize>>,
-    /// The GLB BIN chunk's data when it was left in the file (a large GLB read by
-    /// [`read_path`]; `bytes` then holds what comes before it).
-    pub bin_in_file: Option<file::FileChunk>,
+    /// The GLB BIN chunk's data when it is not in `bytes`, which then holds what comes
+    /// before it: left in the file (a large GLB read by [`read_path`]), or in pieces (an
+    /// upgrade's output, see [`read_glb_pieces`]).
+    pub bin_elsewhere: Option<Elsewhere>,
 }
 
 impl<R> Document<R> {
@@ -69,8 +70,8 @@ impl<R> Document<R> {
 
     /// The GLB BIN chunk's data, in memory or still in the file.
     pub fn bin_data(&self) -> Option<BufferData<'_>> {
-        match &self.bin_in_file {
-            Some(chunk) => Some(BufferData::InFile(chunk)),
+        match &self.bin_elsewhere {
+            Some(elsewhere) => Some(BufferData::Elsewhere(elsewhere)),
             None => self.bin().map(BufferData::Glb),
         }
     }
@@ -130,7 +131,7 @@ fn read_with<R>(
         container,
         root,
         bin,
-        bin_in_file: None,
+        bin_elsewhere: None,
     }
 }
 
@@ -147,24 +148,51 @@ pub fn read_path(
         Err(opened) => return Ok(read(file::read_opened(opened)?, &name, diagnostics)),
     };
     let start = split.bin.offset() as usize;
-    let hole = start..start + split.bin.len();
+    let chunk = Elsewhere::File(split.bin);
+    Ok(read_holed(
+        split.before,
+        start,
+        chunk,
+        &split.after,
+        diagnostics,
+    ))
+}
+
+/// Reads a GLB whose BIN chunk's data is in `pieces`, `head` being everything before it (up
+/// to and with the BIN chunk's header): an upgrade's output is checked as it is written,
+/// without joining its geometry and images into one copy first.
+pub fn read_glb_pieces(head: Bytes, pieces: Pieces, diagnostics: &mut dyn Sink) -> Document {
+    let start = head.len();
+    read_holed(head, start, Elsewhere::Pieces(pieces), &[], diagnostics)
+}
+
+/// A GLB of the bytes `before`, then (from `start`) the BIN chunk's data `elsewhere`, then
+/// `after`, read as if it were all in one piece.
+fn read_holed(
+    before: Bytes,
+    start: usize,
+    elsewhere: Elsewhere,
+    after: &[u8],
+    diagnostics: &mut dyn Sink,
+) -> Document {
+    let hole = start..start + elsewhere.len();
     let holed = glb::Holed {
-        before: &split.before,
+        before: &before,
         hole: hole.clone(),
-        after: &split.after,
+        after,
     };
     let parts = glb::read(&holed, diagnostics);
-    let json_range = parts.json.filter(|r| r.end <= split.before.len());
-    let root = (json_range.clone())
-        .and_then(|range| parse_json(&split.before[range], diagnostics, json::parse));
-    Ok(Document {
+    let json_range = parts.json.filter(|r| r.end <= before.len());
+    let root =
+        (json_range.clone()).and_then(|range| parse_json(&before[range], diagnostics, json::parse));
+    Document {
         json_range: json_range.unwrap_or(0..0),
-        bytes: split.before,
+        bytes: before,
         container: Container::Glb,
         root,
         bin: None,
-        bin_in_file: (parts.bin == Some(hole)).then_some(split.bin),
-    })
+        bin_elsewhere: (parts.bin == Some(hole)).then_some(elsewhere),
+    }
 }
 
 fn parse_json<R>(

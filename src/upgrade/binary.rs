@@ -1,36 +1,21 @@
-//! The upgraded binary buffer as runs of bytes: data that 2.0 can take unchanged stays in
-//! the input buffer and is only referenced; everything the converter
-//! produces is owned. Writing the output then copies each input byte once, file to file,
-//! and a 100 MB asset never needs a 100 MB buffer in memory.
+//! The upgraded binary buffer as pieces: data that 2.0 can take unchanged stays in the
+//! input buffer and is only referenced; everything the converter produces is owned.
+//! Writing and checking the output then read each input byte where it lies, and a 100 MB
+//! asset never needs a 100 MB buffer of its own.
 
-use crate::document::Bytes;
+use crate::document::{Bytes, Piece};
 use std::ops::Range;
 use std::sync::Arc;
 
-/// The output buffer: repacked data and runs borrowed from the input, laid out in order.
+/// The output buffer: repacked data and ranges of the input, laid out in order.
 #[derive(Debug, Clone, Default)]
 pub struct Binary {
-    runs: Vec<Run>,
+    runs: Vec<Piece>,
     /// The runs' total length, kept as they are added: an asset of 10^5 accessors adds 10^5
     /// runs, and aligning each one must not add them all up again.
     runs_len: usize,
     /// The owned bytes after the last run, still growing.
     tail: Vec<u8>,
-}
-
-#[derive(Debug, Clone)]
-enum Run {
-    Shared(Arc<Bytes>, Range<usize>),
-    Owned(Vec<u8>),
-}
-
-impl Run {
-    fn bytes(&self) -> &[u8] {
-        match self {
-            Run::Shared(bytes, range) => &bytes[range.clone()],
-            Run::Owned(bytes) => bytes,
-        }
-    }
 }
 
 impl Binary {
@@ -47,7 +32,20 @@ impl Binary {
     /// The bytes, run by run, in order.
     pub fn runs(&self) -> impl Iterator<Item = &[u8]> {
         let tail = Some(self.tail.as_slice()).filter(|t| !t.is_empty());
-        self.runs.iter().map(Run::bytes).chain(tail)
+        self.runs.iter().map(Piece::as_slice).chain(tail)
+    }
+
+    /// The bytes as shared pieces, in order (the owned tail is copied unless [`Binary::seal`]
+    /// made it a piece already).
+    pub fn pieces(&self) -> Vec<Piece> {
+        let tail = Some(&self.tail).filter(|t| !t.is_empty());
+        let tail = tail.map(|tail| Piece::whole(tail.clone()));
+        self.runs.iter().cloned().chain(tail).collect()
+    }
+
+    /// Makes the owned tail a piece of its own: nothing more is appended.
+    pub fn seal(&mut self) {
+        self.close_tail();
     }
 
     /// The whole buffer in one piece (a copy).
@@ -65,17 +63,21 @@ impl Binary {
 
     /// Appends a range of an input buffer by reference.
     pub fn share(&mut self, buffer: &Arc<Bytes>, range: Range<usize>) {
-        if !self.tail.is_empty() {
-            self.runs_len += self.tail.len();
-            self.runs.push(Run::Owned(std::mem::take(&mut self.tail)));
-        }
+        self.close_tail();
         self.runs_len += range.len();
-        self.runs.push(Run::Shared(Arc::clone(buffer), range));
+        self.runs.push(Piece::new(Arc::clone(buffer), range));
     }
 
     /// The owned bytes at the end, for appending produced data.
     pub fn owned(&mut self) -> &mut Vec<u8> {
         &mut self.tail
+    }
+
+    fn close_tail(&mut self) {
+        if !self.tail.is_empty() {
+            self.runs_len += self.tail.len();
+            self.runs.push(Piece::whole(std::mem::take(&mut self.tail)));
+        }
     }
 }
 
@@ -85,7 +87,7 @@ mod tests {
 
     #[test]
     fn runs_concatenate_in_order_and_align_with_zeros() {
-        let input = Arc::new(Bytes::from(vec![10, 11, 12, 13, 14]));
+        let input = Arc::new(vec![10, 11, 12, 13, 14]);
         let mut binary = Binary::default();
         binary.owned().push(1);
         assert_eq!(binary.align(), 4);
@@ -95,5 +97,16 @@ mod tests {
         assert_eq!(binary.to_vec(), vec![1, 0, 0, 0, 11, 12, 13, 0, 2]);
         assert_eq!(binary.len(), 9);
         assert_eq!(binary.len(), binary.runs().map(<[u8]>::len).sum::<usize>());
+        let pieces = |b: &Binary| {
+            b.pieces()
+                .iter()
+                .map(|p| p.as_slice().to_vec())
+                .collect::<Vec<_>>()
+                .concat()
+        };
+        assert_eq!(pieces(&binary), binary.to_vec());
+        binary.seal();
+        assert_eq!(pieces(&binary), binary.to_vec(), "sealing keeps the bytes");
+        assert_eq!(binary.len(), 9);
     }
 }

@@ -548,7 +548,7 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
         self.slot(slot).cloned()
     }
 
-    fn bytes(&self, slot: Slot) -> Option<Vec<u8>> {
+    fn bytes(&self, slot: Slot) -> Option<Arc<Vec<u8>>> {
         let image = texture_images(self.texture(slot)?).next()?;
         Some(self.asset.images.get(image as usize)?.bytes.clone())
     }

@@ -166,8 +166,8 @@ impl Upgraded {
 #[derive(Debug, Clone)]
 #[non_exhaustive]
 pub struct EncodedImage {
-    /// The encoded file.
-    pub bytes: Vec<u8>,
+    /// The encoded file (shared with the output's files, which are laid out around it).
+    pub bytes: Arc<Vec<u8>>,
     /// Its media type.
     pub mime_type: String,
     /// A file name for `.gltf` output (unique within the asset).
@@ -200,7 +200,7 @@ impl EncodedImage {
             })
             .collect();
         EncodedImage {
-            bytes,
+            bytes: Arc::new(bytes),
             file_name: format!("{index}-{safe}.{extension}"),
             mime_type,
             in_binary,

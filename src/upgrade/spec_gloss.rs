@@ -17,6 +17,7 @@ pub use super::fit::{base_colour, Factors};
 use super::fit::{TexelFits, TexelReport};
 use super::rebake;
 use serde_json::{json, Map, Value};
+use std::sync::Arc;
 
 /// The two textures of a spec-gloss material.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -32,7 +33,7 @@ pub trait Textures {
     /// The textureInfo that reads the slot's texture as it is, if the material has one.
     fn info(&self, slot: Slot) -> Option<Value>;
     /// The encoded image of the slot's texture.
-    fn bytes(&self, slot: Slot) -> Option<Vec<u8>>;
+    fn bytes(&self, slot: Slot) -> Option<Arc<Vec<u8>>>;
     /// Adds a rebaked image as a new texture sampled like the slot's texture (its sampler,
     /// texture coordinates and transform); returns the textureInfo that reads it.
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value;
@@ -61,8 +62,12 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
         let (base_colour, roughness) = std::thread::scope(|scope| {
             let roughness =
                 scope.spawn(|| rebake::gloss_to_roughness(specular, factors.glossiness));
-            let base_colour =
-                rebake::spec_gloss_base_colour(diffuse.as_deref(), Some(specular), factors, fits);
+            let base_colour = rebake::spec_gloss_base_colour(
+                diffuse.as_deref().map(Vec::as_slice),
+                Some(specular),
+                factors,
+                fits,
+            );
             let roughness = (roughness.join())
                 .unwrap_or_else(|_| Err("the roughness rebake failed".to_string()));
             (base_colour, roughness)

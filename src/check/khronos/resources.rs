@@ -391,7 +391,7 @@ pub fn check_images(ctx: &mut Context) {
                 let (kept, media, storage) = load_uri(ctx, uri, &uri_pointer, false);
                 let bytes = kept.and_then(|kept| match kept {
                     Kept::Read(bytes) => Some(bytes),
-                    Kept::InFile(_) => None,
+                    Kept::Elsewhere(_) => None,
                 });
                 let uri = (storage == "external").then(|| uri.to_string());
                 (bytes, media, storage, uri, uri_pointer)

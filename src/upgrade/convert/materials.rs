@@ -11,6 +11,7 @@ use crate::upgrade::rebake;
 use crate::upgrade::spec_gloss::{self, Slot};
 use crate::upgrade::{NoteKind, SpecularGlossiness, UpgradeError};
 use serde_json::{json, Map, Value};
+use std::sync::Arc;
 
 pub fn convert(builder: &mut Builder, id: &str, material: Node) -> Result<Value, UpgradeError> {
     let at = pointer("materials", id);
@@ -93,7 +94,7 @@ fn texture_info(builder: &Builder, id: Option<&str>) -> Option<Value> {
     Some(json!({"index": index}))
 }
 
-fn texture_bytes(builder: &Builder, id: Option<&str>) -> Option<Vec<u8>> {
+fn texture_bytes(builder: &Builder, id: Option<&str>) -> Option<Arc<Vec<u8>>> {
     let index = builder.index_of_id("textures", id?)?;
     Some(builder.texture_image(index)?.bytes.clone())
 }
@@ -280,7 +281,7 @@ impl spec_gloss::Textures for DraftTextures<'_, '_, '_, '_> {
         texture_info(self.builder, self.id(slot))
     }
 
-    fn bytes(&self, slot: Slot) -> Option<Vec<u8>> {
+    fn bytes(&self, slot: Slot) -> Option<Arc<Vec<u8>>> {
         texture_bytes(self.builder, self.id(slot))
     }
 

@@ -2,69 +2,88 @@
 //! `.bin` and images beside it), checking those exact bytes, and writing them atomically.
 
 use super::Upgraded;
-use crate::check::{check_bytes, CheckOptions, Report};
-use crate::document::file::FileId;
-use crate::document::uri::MemoryResources;
+use crate::check::{check_bytes, check_glb_pieces, CheckOptions, Report};
+use crate::document::file::{FileId, Kept};
+use crate::document::uri::{LoadError, ResourceLoader};
+use crate::document::{Bytes, Elsewhere, Piece, Pieces};
 use serde_json::{json, Map, Value};
-use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 mod temporary;
 use temporary::Temporary;
 
-/// One output file: its name (relative to the output folder) and its bytes in pieces,
-/// written one after the other. Headers and padding are owned; geometry and images are
-/// borrowed from the upgrade, so laying out a large asset copies nothing.
+/// One output file: its name (relative to the output folder) and its bytes, a head in one
+/// piece and then data in shared pieces, written one after the other. The geometry and
+/// images are shared with the upgrade, so laying out a large asset copies none of them,
+/// and neither does checking it.
 #[derive(Debug, Clone)]
-pub struct File<'u> {
+pub struct File {
     /// The file name, without a folder.
     pub name: String,
-    /// Its bytes, in pieces (borrowed where unchanged).
-    pub parts: Vec<Cow<'u, [u8]>>,
+    /// What comes first: a GLB's header, JSON chunk and BIN chunk header; a `.gltf`'s text.
+    pub head: Bytes,
+    /// Then the data: a GLB's BIN chunk data, a `.bin`'s runs, an image.
+    pub data: Pieces,
 }
 
-impl File<'_> {
-    fn whole(name: String, bytes: Vec<u8>) -> Self {
+impl File {
+    fn text(name: String, text: Bytes) -> Self {
         File {
             name,
-            parts: vec![Cow::Owned(bytes)],
+            head: text,
+            data: Pieces::default(),
         }
+    }
+
+    fn data(name: String, data: Pieces) -> Self {
+        File {
+            name,
+            head: Bytes::new(),
+            data,
+        }
+    }
+
+    /// The file's bytes, piece by piece, in order.
+    pub fn slices(&self) -> impl Iterator<Item = &[u8]> {
+        std::iter::once(&self.head[..]).chain(self.data.slices())
     }
 
     /// The file's bytes in one piece (a copy).
     pub fn bytes(&self) -> Vec<u8> {
-        self.parts.concat()
+        self.slices().collect::<Vec<_>>().concat()
     }
 }
 
 /// The files of an output asset: the main one, and those its URIs name.
 #[derive(Debug, Clone)]
-pub struct Files<'u> {
+pub struct Files {
     /// The file the user named.
-    pub main: File<'u>,
+    pub main: File,
     /// The files it refers to (`.bin`, images).
-    pub side: Vec<File<'u>>,
+    pub side: Vec<File>,
 }
 
 /// Lays the asset out as files named after `main_name` (`x.glb`, or `x.gltf` + `x.bin` +
 /// `x-<n>-<image>.png`).
-pub fn layout<'u>(upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
+pub fn layout(upgraded: &Upgraded, main_name: &str) -> Files {
     layout_with(upgraded.json.clone(), upgraded, main_name)
 }
 
 /// Lays the asset out as [`layout`] does, then lets go of its JSON tree (`upgraded.json` is
 /// left `null`): the files hold it as text, and checking them parses a tree of its own. At
 /// 10^5 materials that is the difference between two trees in memory and one.
-pub fn layout_releasing_json<'u>(upgraded: &'u mut Upgraded, main_name: &str) -> Files<'u> {
+pub fn layout_releasing_json(upgraded: &mut Upgraded, main_name: &str) -> Files {
+    // Its owned tail becomes a piece the files share, rather than one they copy.
+    upgraded.binary.seal();
     let json = std::mem::take(&mut upgraded.json);
     layout_with(json, upgraded, main_name)
 }
 
 /// The files of `json` with the binary and images of `upgraded` (the text is made here;
-/// only the binary and the images are borrowed). The members the layout places (buffers,
+/// the binary and the images are shared). The members the layout places (buffers,
 /// bufferViews, images) are changed where they lie, never copied: an asset of 10^5
 /// accessors has 10^5 bufferViews.
-fn layout_with<'u>(mut json: Value, upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
+fn layout_with(mut json: Value, upgraded: &Upgraded, main_name: &str) -> Files {
     match &mut json {
         // A null where the layout places data says nothing: the layout writes its own.
         Value::Object(root) => {
@@ -94,14 +113,14 @@ fn member<'j>(json: &'j mut Value, key: &str, empty: fn() -> Value) -> &'j mut V
     root.entry(key).or_insert_with(empty)
 }
 
-fn glb<'u>(mut json: Value, upgraded: &'u Upgraded, name: &str) -> File<'u> {
+fn glb(mut json: Value, upgraded: &Upgraded, name: &str) -> File {
     // Images follow the geometry in the one binary chunk, each 4-byte aligned.
     let mut length = upgraded.binary.len();
-    let mut body: Vec<Cow<[u8]>> = upgraded.binary.runs().map(Cow::Borrowed).collect();
+    let mut body = upgraded.binary.pieces();
     for (i, image) in images_to_place(upgraded) {
         let aligned = length.div_ceil(4) * 4;
-        body.push(Cow::Owned(vec![0; aligned - length]));
-        body.push(Cow::Borrowed(&image.bytes));
+        body.push(Piece::whole(vec![0; aligned - length]));
+        body.push(Piece::new(image.bytes.clone(), 0..image.bytes.len()));
         let views = member(&mut json, "bufferViews", || json!([]));
         let view = json!({"buffer": 0, "byteOffset": aligned, "byteLength": image.bytes.len()});
         let index = match views.as_array_mut() {
@@ -132,21 +151,20 @@ fn glb<'u>(mut json: Value, upgraded: &'u Upgraded, name: &str) -> File<'u> {
     head.extend((text.len() as u32).to_le_bytes());
     head.extend(b"JSON");
     head.extend(&text);
-    let mut parts = vec![Cow::Owned(head)];
-    if length > 0 {
-        let mut bin_header = (padded as u32).to_le_bytes().to_vec();
-        bin_header.extend(b"BIN\0");
-        parts.push(Cow::Owned(bin_header));
-        parts.extend(body);
-        parts.push(Cow::Owned(vec![0; padded - length]));
+    if length == 0 {
+        return File::text(name.to_string(), head);
     }
+    head.extend((padded as u32).to_le_bytes());
+    head.extend(b"BIN\0");
+    body.push(Piece::whole(vec![0; padded - length]));
     File {
         name: name.to_string(),
-        parts,
+        head,
+        data: Pieces::new(body),
     }
 }
 
-fn separate<'u>(mut json: Value, upgraded: &'u Upgraded, main_name: &str) -> Files<'u> {
+fn separate(mut json: Value, upgraded: &Upgraded, main_name: &str) -> Files {
     let stem = main_name
         .rsplit_once('.')
         .map_or(main_name, |(stem, _)| stem)
@@ -157,25 +175,20 @@ fn separate<'u>(mut json: Value, upgraded: &'u Upgraded, main_name: &str) -> Fil
         if let Some(buffer) = json.pointer_mut("/buffers/0").filter(|b| b.is_object()) {
             buffer["uri"] = json!(uri_escape(&name));
         }
-        side.push(File {
-            name,
-            parts: upgraded.binary.runs().map(Cow::Borrowed).collect(),
-        });
+        side.push(File::data(name, Pieces::new(upgraded.binary.pieces())));
     }
     for (i, image) in images_to_place(upgraded) {
         let name = format!("{stem}-{}", image.file_name);
         if let Some(placed) = json.get_mut("images").and_then(|images| images.get_mut(i)) {
             placed["uri"] = json!(uri_escape(&name));
         }
-        side.push(File {
-            name,
-            parts: vec![Cow::Borrowed(&image.bytes)],
-        });
+        let piece = Piece::new(image.bytes.clone(), 0..image.bytes.len());
+        side.push(File::data(name, Pieces::new([piece])));
     }
     let mut text = serde_json::to_vec_pretty(&json).unwrap_or_default();
     text.push(b'\n');
     Files {
-        main: File::whole(main_name.to_string(), text),
+        main: File::text(main_name.to_string(), text),
         side,
     }
 }
@@ -206,22 +219,44 @@ fn uri_escape(name: &str) -> String {
         .collect()
 }
 
-/// gltfmat's own check of the files, in memory (each file joined into one buffer).
-/// `write_checked` checks the files as written instead.
+/// gltfmat's own check of the files, in memory: the data of a GLB's BIN chunk and of a
+/// `.bin` is read where it lies in the upgrade, never joined into one copy first.
 pub fn verify(files: &Files) -> Report {
-    let resources = MemoryResources {
-        files: files
-            .side
-            .iter()
-            .map(|f| (f.name.clone(), f.bytes()))
-            .collect(),
-    };
-    check_bytes(
-        &files.main.name,
-        files.main.bytes(),
+    let resources = SideFiles(&files.side);
+    let main = &files.main;
+    let options = CheckOptions::default();
+    if main.data.is_empty() {
+        return check_bytes(&main.name, main.head.clone(), &resources, &options);
+    }
+    check_glb_pieces(
+        &main.name,
+        main.head.clone(),
+        main.data.clone(),
         &resources,
-        &CheckOptions::default(),
+        &options,
     )
+}
+
+/// The side files, as the check of the main one reads them.
+struct SideFiles<'f>(&'f [File]);
+
+impl SideFiles<'_> {
+    fn find(&self, path: &str) -> Result<&File, LoadError> {
+        (self.0.iter().find(|file| file.name == path))
+            .ok_or_else(|| LoadError::NotFound(path.to_string()))
+    }
+}
+
+impl ResourceLoader for SideFiles<'_> {
+    fn load(&self, path: &str) -> Result<Bytes, LoadError> {
+        self.find(path).map(File::bytes)
+    }
+
+    fn load_buffer(&self, path: &str) -> Result<Kept, LoadError> {
+        // Side files are data only (`File::data`): their pieces are the whole file.
+        let file = self.find(path)?;
+        Ok(Kept::Elsewhere(Elsewhere::Pieces(file.data.clone())))
+    }
 }
 
 /// Why the output was not written.
@@ -296,7 +331,7 @@ pub fn write_checked(
     temporary::remove_stale(folder, all.iter().map(|f| f.name.as_str()));
     let (written, report) = std::thread::scope(|scope| {
         let writer = scope.spawn(|| {
-            let write = |file: &File| Temporary::write(folder, &file.name, &file.parts);
+            let write = |file: &File| Temporary::write(folder, &file.name, file.slices());
             let side = files
                 .side
                 .iter()

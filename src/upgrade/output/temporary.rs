@@ -7,7 +7,6 @@
 //! into the same folder ([`remove_stale`]).
 
 use super::WriteError;
-use std::borrow::Cow;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard, PoisonError};
@@ -72,7 +71,11 @@ const SUFFIX: &str = ".tmp";
 
 impl Temporary {
     /// Creates a new temporary for `name` in `folder` and writes `parts` into it.
-    pub fn write(folder: &Path, name: &str, parts: &[Cow<[u8]>]) -> Result<Temporary, WriteError> {
+    pub fn write<'p>(
+        folder: &Path,
+        name: &str,
+        parts: impl IntoIterator<Item = &'p [u8]>,
+    ) -> Result<Temporary, WriteError> {
         let failed = |e| WriteError::Io(folder.join(name), e);
         let prefix = prefix(name);
         let mut builder = tempfile::Builder::new();
