@@ -9,6 +9,7 @@ use crate::gltf::accessor::{
     UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
 };
 use crate::legacy::source::Source;
+use rayon::prelude::*;
 
 /// A 1.0 accessor resolved to its bytes.
 pub struct Accessor<'a> {
@@ -109,13 +110,13 @@ impl Accessor<'_> {
         decode_component(self.component_type, &self.bytes[at..at + size])
     }
 
-    /// Element `i`'s components, as stored, into `out` (of `components` values).
-    fn element(&self, i: usize, out: &mut [f64]) {
-        let size = component_size(self.component_type).unwrap_or(4);
-        let at = i * self.stride;
-        let components = self.bytes[at..at + size * self.components].chunks_exact(size);
-        for (slot, bytes) in out.iter_mut().zip(components) {
-            *slot = decode_component(self.component_type, bytes);
+    /// Its elements, to be read from several threads.
+    fn elements(&self) -> Elements<'_> {
+        Elements {
+            bytes: self.bytes,
+            stride: self.stride,
+            components: self.components,
+            component_type: self.component_type,
         }
     }
 
@@ -130,6 +131,27 @@ impl Accessor<'_> {
             out.extend(components.map(|bytes| decode_component(self.component_type, bytes)));
         }
         out
+    }
+}
+
+/// An accessor's elements as stored.
+#[derive(Clone, Copy)]
+struct Elements<'a> {
+    bytes: &'a [u8],
+    stride: usize,
+    components: usize,
+    component_type: u64,
+}
+
+impl Elements<'_> {
+    /// Element `i`'s components, as stored, into `out` (of `components` values).
+    fn read(&self, i: usize, out: &mut [f64]) {
+        let size = component_size(self.component_type).unwrap_or(4);
+        let at = i * self.stride;
+        let components = self.bytes[at..at + size * self.components].chunks_exact(size);
+        for (slot, bytes) in out.iter_mut().zip(components) {
+            *slot = decode_component(self.component_type, bytes);
+        }
     }
 }
 
@@ -171,27 +193,31 @@ const WEIGHT_SUM_TOLERANCE: f64 = 1e-7;
 /// dividing by the sum draws exactly what 1.0 drew. A vertex whose weights sum to 0 is left
 /// as it is (no division repairs it; the output check reports it).
 fn weights_to_renormalise(accessor: &Accessor) -> Option<Renormalised> {
-    let mut changed = Renormalised {
-        vertices: 0,
-        lowest: f64::INFINITY,
-    };
-    let mut vertex = [0.0; MOST_COMPONENTS];
-    let vertex = &mut vertex[..accessor.components.min(MOST_COMPONENTS)];
-    for i in 0..accessor.count {
-        weights_of_vertex(accessor, i, vertex);
-        let sum: f64 = vertex.iter().sum();
-        if needs_renormalising(sum) {
-            changed.vertices += 1;
-            changed.lowest = changed.lowest.min(sum);
-        }
-    }
-    (changed.vertices > 0).then_some(changed)
+    let elements = accessor.elements();
+    let (vertices, lowest) = (0..accessor.count)
+        .into_par_iter()
+        .with_min_len(BLOCK)
+        .fold(
+            || (0, f64::INFINITY, [0.0; MOST_COMPONENTS]),
+            |(vertices, lowest, mut buffer), i| {
+                let vertex = &mut buffer[..elements.components.min(MOST_COMPONENTS)];
+                weights_of_vertex(elements, i, vertex);
+                let sum: f64 = vertex.iter().sum();
+                match needs_renormalising(sum) {
+                    true => (vertices + 1, lowest.min(sum), buffer),
+                    false => (vertices, lowest, buffer),
+                }
+            },
+        )
+        .map(|(vertices, lowest, _)| (vertices, lowest))
+        .reduce(|| (0, f64::INFINITY), |a, b| (a.0 + b.0, a.1.min(b.1)));
+    (vertices > 0).then_some(Renormalised { vertices, lowest })
 }
 
 /// Vertex `i`'s weights as values in [0, 1].
-fn weights_of_vertex(accessor: &Accessor, i: usize, out: &mut [f64]) {
-    let unit = normalise(accessor.component_type);
-    accessor.element(i, out);
+fn weights_of_vertex(elements: Elements, i: usize, out: &mut [f64]) {
+    let unit = normalise(elements.component_type);
+    elements.read(i, out);
     out.iter_mut().for_each(|w| *w = unit(*w));
 }
 
@@ -200,8 +226,8 @@ fn needs_renormalising(sum: f64) -> bool {
 }
 
 /// Vertex `i`'s weights, divided by their sum when [`weights_to_renormalise`] would count it.
-fn renormalised_vertex(accessor: &Accessor, i: usize, out: &mut [f64]) {
-    weights_of_vertex(accessor, i, out);
+fn renormalised_vertex(elements: Elements, i: usize, out: &mut [f64]) {
+    weights_of_vertex(elements, i, out);
     let sum: f64 = out.iter().sum();
     if needs_renormalising(sum) {
         out.iter_mut().for_each(|w| *w /= sum);
@@ -276,13 +302,17 @@ struct Layout {
     vertex: bool,
 }
 
+/// Elements packed by one task: enough that a task outweighs its scheduling.
+const BLOCK: usize = 1 << 14;
+
 /// Appends `layout.count` elements, each written into a buffer by `element(i, buffer)`, with
 /// the given component type: no vector of every value is made first (a 2·10^6-vertex
-/// skin's joints and weights would take 128 MB of them).
+/// skin's joints and weights would take 128 MB of them), and blocks of elements are packed
+/// on all cores, each into its own place of the output.
 fn pack_elements(
     layout: Layout,
     binary: &mut Binary,
-    element: impl FnMut(usize, &mut [f64]),
+    element: impl Fn(usize, &mut [f64]) + Sync,
 ) -> Packed {
     let Layout {
         count,
@@ -301,45 +331,41 @@ fn pack_elements(
     } else {
         element_size
     };
-    out.reserve(count * stride);
-    let mut min = vec![f64::INFINITY; components];
-    let mut max = vec![f64::NEG_INFINITY; components];
-    let mut pack = Packing {
-        count,
+    let start = out.len();
+    out.resize(start + count * stride, 0);
+    let packing = Packing {
         components,
-        padding: stride - element_size,
-        out,
-        min: &mut min,
-        max: &mut max,
+        stride,
         element,
     };
+    let target = &mut out[start..];
     // One loop per component type: the type is matched once, not once per value.
-    match component_type {
-        BYTE => pack.all(|v| {
+    let (mut min, mut max) = match component_type {
+        BYTE => packing.all(target, |v| {
             let x = v.round().clamp(-128.0, 127.0) as i8;
             (x.to_le_bytes(), f64::from(x))
         }),
-        UNSIGNED_BYTE => pack.all(|v| {
+        UNSIGNED_BYTE => packing.all(target, |v| {
             let x = v.round().clamp(0.0, 255.0) as u8;
             ([x], f64::from(x))
         }),
-        SHORT => pack.all(|v| {
+        SHORT => packing.all(target, |v| {
             let x = v.round().clamp(-32768.0, 32767.0) as i16;
             (x.to_le_bytes(), f64::from(x))
         }),
-        UNSIGNED_SHORT => pack.all(|v| {
+        UNSIGNED_SHORT => packing.all(target, |v| {
             let x = v.round().clamp(0.0, 65535.0) as u16;
             (x.to_le_bytes(), f64::from(x))
         }),
-        UNSIGNED_INT => pack.all(|v| {
+        UNSIGNED_INT => packing.all(target, |v| {
             let x = v.round().clamp(0.0, f64::from(u32::MAX)) as u32;
             (x.to_le_bytes(), f64::from(x))
         }),
-        _ => pack.all(|v| {
+        _ => packing.all(target, |v| {
             let x = v as f32;
             (x.to_le_bytes(), f64::from(x))
         }),
-    }
+    };
     if count == 0 {
         min.clear();
         max.clear();
@@ -357,36 +383,74 @@ fn pack_elements(
     }
 }
 
-/// Elements being appended as one component type, with their min/max as stored.
-struct Packing<'a, E> {
-    count: usize,
+/// Elements being written as one component type.
+struct Packing<E> {
     components: usize,
-    /// Zero bytes after each element (vertex attributes are 4-byte aligned).
-    padding: usize,
-    out: &'a mut Vec<u8>,
-    min: &'a mut [f64],
-    max: &'a mut [f64],
+    /// Bytes from one element to the next (vertex attributes are padded to 4 bytes).
+    stride: usize,
     element: E,
 }
 
-impl<E: FnMut(usize, &mut [f64])> Packing<'_, E> {
-    /// Appends every element's values as `encode` stores them (their bytes and the value
-    /// they hold).
-    fn all<const N: usize>(&mut self, encode: impl Fn(f64) -> ([u8; N], f64)) {
+/// Per-component bounds of the values stored.
+type Bounds = ([f64; MOST_COMPONENTS], [f64; MOST_COMPONENTS]);
+
+impl<E: Fn(usize, &mut [f64]) + Sync> Packing<E> {
+    /// Writes every element's values into `target` (zeroed, `stride` bytes an element) as
+    /// `encode` stores them (their bytes and the value they hold); returns the min/max of
+    /// the values stored.
+    fn all<const N: usize>(
+        &self,
+        target: &mut [u8],
+        encode: impl Fn(f64) -> ([u8; N], f64) + Sync,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let nothing = || {
+            (
+                [f64::INFINITY; MOST_COMPONENTS],
+                [f64::NEG_INFINITY; MOST_COMPONENTS],
+            )
+        };
+        let stride = self.stride.max(1);
+        let (min, max) = target
+            .par_chunks_mut(BLOCK * stride)
+            .enumerate()
+            .map(|(block, bytes)| self.block(block * BLOCK, bytes, &encode))
+            .reduce(nothing, |(min_a, max_a), (min_b, max_b)| {
+                (
+                    std::array::from_fn(|c| min_a[c].min(min_b[c])),
+                    std::array::from_fn(|c| max_a[c].max(max_b[c])),
+                )
+            });
+        (
+            min[..self.components].to_vec(),
+            max[..self.components].to_vec(),
+        )
+    }
+
+    /// One block of elements, the first of which is element `first`.
+    fn block<const N: usize>(
+        &self,
+        first: usize,
+        bytes: &mut [u8],
+        encode: impl Fn(f64) -> ([u8; N], f64),
+    ) -> Bounds {
+        let mut bounds: Bounds = (
+            [f64::INFINITY; MOST_COMPONENTS],
+            [f64::NEG_INFINITY; MOST_COMPONENTS],
+        );
         let mut buffer = [0.0; MOST_COMPONENTS];
         let values = &mut buffer[..self.components];
-        for i in 0..self.count {
-            (self.element)(i, values);
-            for (c, &v) in values.iter().enumerate() {
-                let (bytes, stored) = encode(v);
-                self.out.extend_from_slice(&bytes);
+        for (i, element) in bytes.chunks_exact_mut(self.stride.max(1)).enumerate() {
+            (self.element)(first + i, values);
+            for (c, (&v, slot)) in values.iter().zip(element.chunks_exact_mut(N)).enumerate() {
+                let (stored_bytes, stored) = encode(v);
+                slot.copy_from_slice(&stored_bytes);
                 if !stored.is_nan() {
-                    self.min[c] = self.min[c].min(stored);
-                    self.max[c] = self.max[c].max(stored);
+                    bounds.0[c] = bounds.0[c].min(stored);
+                    bounds.1[c] = bounds.1[c].max(stored);
                 }
             }
-            self.out.extend_from_slice(&[0; 4][..self.padding]);
         }
+        bounds
     }
 }
 
@@ -542,8 +606,9 @@ pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
     if role == Role::Weights {
         if let Some(renormalised) = weights_to_renormalise(accessor) {
             // Floats: the quotients are not representable as normalised integers.
+            let elements = accessor.elements();
             let mut packed = pack_elements(layout(FLOAT, false), out, |i, vertex| {
-                renormalised_vertex(accessor, i, vertex)
+                renormalised_vertex(elements, i, vertex)
             });
             packed.converted_from = converted_from(FLOAT);
             packed.renormalised = Some(renormalised);
@@ -562,8 +627,9 @@ pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
         (Role::Weights, _) => 32767.0,
         _ => 1.0,
     };
+    let elements = accessor.elements();
     let mut packed = pack_elements(layout(component_type, normalized), out, |i, values| {
-        accessor.element(i, values);
+        elements.read(i, values);
         if scale != 1.0 {
             values.iter_mut().for_each(|v| *v /= scale);
         }
@@ -584,6 +650,25 @@ mod tests {
         assert_eq!(single, 1.0);
         assert!((weights[0] - 0.1 / 0.18).abs() < 1e-6);
         assert_eq!(weights[3], 0.0, "a zero weight stays zero");
+    }
+
+    #[test]
+    fn elements_packed_in_blocks_are_laid_out_as_one_loop_lays_them() {
+        let count = 3 * BLOCK + 5;
+        let values: Vec<f64> = (0..count * 3).map(|v| ((v * 7919) % 300) as f64).collect();
+        let mut out = Binary::default();
+        let packed = pack_values(&values, 3, UNSIGNED_BYTE, false, true, &mut out);
+        let (mut expected, mut min, mut max) = (Vec::new(), [f64::MAX; 3], [f64::MIN; 3]);
+        for element in values.chunks_exact(3) {
+            for (c, &v) in element.iter().enumerate() {
+                let stored = v.min(255.0);
+                expected.push(stored as u8);
+                (min[c], max[c]) = (min[c].min(stored), max[c].max(stored));
+            }
+            expected.push(0);
+        }
+        assert_eq!(out.to_vec(), expected);
+        assert_eq!((packed.min, packed.max), (min.to_vec(), max.to_vec()));
     }
 
     #[test]
