@@ -83,37 +83,27 @@ pub fn layout_releasing_json(upgraded: &mut Upgraded, main_name: &str) -> Files 
 /// the binary and the images are shared). The members the layout places (buffers,
 /// bufferViews, images) are changed where they lie, never copied: an asset of 10^5
 /// accessors has 10^5 bufferViews.
-fn layout_with(mut json: Value, upgraded: &Upgraded, main_name: &str) -> Files {
-    match &mut json {
-        // A null where the layout places data says nothing: the layout writes its own.
-        Value::Object(root) => {
-            root.retain(|key, value| !(value.is_null() && PLACED.contains(&key.as_str())))
-        }
-        _ => json = Value::Object(Map::new()),
-    }
+fn layout_with(json: Value, upgraded: &Upgraded, main_name: &str) -> Files {
+    let mut root = match json {
+        Value::Object(root) => root,
+        _ => Map::new(),
+    };
+    // A null where the layout places data says nothing: the layout writes its own.
+    root.retain(|key, value| !(value.is_null() && PLACED.contains(&key.as_str())));
     if main_name.to_ascii_lowercase().ends_with(".glb") {
         Files {
-            main: glb(json, upgraded, main_name),
+            main: glb(root, upgraded, main_name),
             side: Vec::new(),
         }
     } else {
-        separate(json, upgraded, main_name)
+        separate(root, upgraded, main_name)
     }
 }
 
 /// The members of the asset's root the layout writes.
 const PLACED: [&str; 3] = ["buffers", "bufferViews", "images"];
 
-/// A member of the asset's root object, added (at the end, as a writer appends it) when the
-/// asset has none.
-fn member<'j>(json: &'j mut Value, key: &str, empty: fn() -> Value) -> &'j mut Value {
-    let Value::Object(root) = json else {
-        unreachable!("layout_with makes the root an object")
-    };
-    root.entry(key).or_insert_with(empty)
-}
-
-fn glb(mut json: Value, upgraded: &Upgraded, name: &str) -> File {
+fn glb(mut json: Map<String, Value>, upgraded: &Upgraded, name: &str) -> File {
     // Images follow the geometry in the one binary chunk, each 4-byte aligned.
     let mut length = upgraded.binary.len();
     let mut body = upgraded.binary.pieces();
@@ -121,7 +111,7 @@ fn glb(mut json: Value, upgraded: &Upgraded, name: &str) -> File {
         let aligned = length.div_ceil(4) * 4;
         body.push(Piece::whole(vec![0; aligned - length]));
         body.push(Piece::new(image.bytes.clone(), 0..image.bytes.len()));
-        let views = member(&mut json, "bufferViews", || json!([]));
+        let views = json.entry("bufferViews").or_insert_with(|| json!([]));
         let view = json!({"buffer": 0, "byteOffset": aligned, "byteLength": image.bytes.len()});
         let index = match views.as_array_mut() {
             Some(views) => {
@@ -137,7 +127,7 @@ fn glb(mut json: Value, upgraded: &Upgraded, name: &str) -> File {
         }
     }
     if length > 0 {
-        set_buffer_length(member(&mut json, "buffers", || Value::Null), length);
+        set_buffer_length(json.entry("buffers").or_insert(Value::Null), length);
     }
     let mut text = serde_json::to_vec(&json).unwrap_or_default();
     drop(json);
@@ -164,7 +154,7 @@ fn glb(mut json: Value, upgraded: &Upgraded, name: &str) -> File {
     }
 }
 
-fn separate(mut json: Value, upgraded: &Upgraded, main_name: &str) -> Files {
+fn separate(mut json: Map<String, Value>, upgraded: &Upgraded, main_name: &str) -> Files {
     let stem = main_name
         .rsplit_once('.')
         .map_or(main_name, |(stem, _)| stem)
@@ -172,7 +162,10 @@ fn separate(mut json: Value, upgraded: &Upgraded, main_name: &str) -> Files {
     let mut side = Vec::new();
     if !upgraded.binary.is_empty() {
         let name = format!("{stem}.bin");
-        if let Some(buffer) = json.pointer_mut("/buffers/0").filter(|b| b.is_object()) {
+        let first_buffer = json
+            .get_mut("buffers")
+            .and_then(|buffers| buffers.get_mut(0));
+        if let Some(buffer) = first_buffer.filter(|b| b.is_object()) {
             buffer["uri"] = json!(uri_escape(&name));
         }
         side.push(File::data(name, Pieces::new(upgraded.binary.pieces())));
