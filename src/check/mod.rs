@@ -271,16 +271,12 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> Vec<Strin
     // Out before the schema pass, which then finds nothing in them (their pointers are held
     // once, for the extensions pass to report: 10^6 of them are 60 MB). One that is no
     // object stays for the schema pass to say so, and goes after it.
-    let is_object =
-        |tree: &Tree, pointer: &str| tree.root().pointer(pointer).is_some_and(Node::is_object);
-    for pointer in &undeclared {
-        if is_object(tree, pointer) {
-            tree.remove(pointer);
-        }
-    }
+    let not_objects: Vec<&String> = (undeclared.iter())
+        .filter(|pointer| tree.remove_if(pointer, |value| value.is_object()).is_none())
+        .collect();
     let absent = schema::validate(tree.root(), khronos, sink);
     let nulls = remove_all(tree, absent);
-    for pointer in &undeclared {
+    for pointer in not_objects {
         tree.remove(pointer);
     }
     schema::required_nulls(tree.root(), khronos, &nulls, sink);

@@ -7,7 +7,9 @@
 //! The same scanner reports duplicate object keys, which serde_json silently collapses.
 
 use serde_json::Value;
+use std::borrow::Cow;
 use std::collections::HashMap;
+use std::hash::BuildHasher;
 
 /// A JSON syntax error with its 1-based position.
 #[derive(Debug, Clone, PartialEq)]
@@ -217,11 +219,11 @@ fn memchr_all(needle: u8, text: &[u8]) -> impl Iterator<Item = usize> + '_ {
 /// Each open container keeps only its own token, so memory stays linear in the nesting depth;
 /// a pointer is built only for a duplicate.
 pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
-    struct Frame {
+    struct Frame<'t> {
         /// The token naming this container inside its parent.
-        token: String,
+        token: Cow<'t, str>,
         /// Keys seen so far (objects), or `None` for arrays.
-        keys: Option<std::collections::HashSet<String>>,
+        keys: Option<KeysSeen>,
         /// Next element index (arrays).
         next_index: usize,
     }
@@ -232,20 +234,23 @@ pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
             .map(|f| format!("/{}", escape_token(&f.token)))
             .collect()
     }
-    fn child_token(stack: &mut [Frame], pending: &mut Option<String>) -> String {
+    fn child_token<'t>(
+        stack: &mut [Frame<'t>],
+        pending: &mut Option<Cow<'t, str>>,
+    ) -> Cow<'t, str> {
         match stack.last_mut() {
             Some(Frame { keys: Some(_), .. }) => pending.take().unwrap_or_default(),
             Some(frame) => {
                 frame.next_index += 1;
-                (frame.next_index - 1).to_string()
+                Cow::Owned((frame.next_index - 1).to_string())
             }
-            None => String::new(),
+            None => Cow::Borrowed(""),
         }
     }
     let mut found = Vec::new();
     let mut stack: Vec<Frame> = Vec::new();
     let mut scanner = Scanner { text, pos: 0 };
-    let mut pending_key: Option<String> = None;
+    let mut pending_key: Option<Cow<str>> = None;
     while scanner.pos < text.len() {
         scanner.skip_ws();
         let Some(b) = scanner.peek() else { break };
@@ -273,15 +278,10 @@ pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
                 scanner.skip_ws();
                 let in_object = matches!(stack.last(), Some(Frame { keys: Some(_), .. }));
                 if scanner.peek() == Some(b':') && in_object && pending_key.is_none() {
-                    let duplicate = stack
-                        .last()
-                        .and_then(|f| f.keys.as_ref())
-                        .is_some_and(|k| k.contains(&s));
-                    // A hash set: an object with 10^5 keys costs 10^5 lookups, not 10^10.
-                    if duplicate {
+                    // A hash table: an object with 10^5 keys costs 10^5 lookups, not 10^10.
+                    let keys = stack.last_mut().and_then(|f| f.keys.as_mut());
+                    if keys.is_some_and(|keys| !keys.insert(text, &s, start)) {
                         found.push((format!("{}/{}", pointer(&stack), escape_token(&s)), start));
-                    } else if let Some(keys) = stack.last_mut().and_then(|f| f.keys.as_mut()) {
-                        keys.insert(s.clone());
                     }
                     pending_key = Some(s);
                 } else {
@@ -299,12 +299,46 @@ pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
     found
 }
 
+/// The keys of one object seen so far, each by where it starts in the text (four bytes a
+/// key: an object of 10^6 members must not cost a string and a hash slot per member).
+#[derive(Default)]
+struct KeysSeen {
+    starts: hashbrown::HashTable<u32>,
+    hasher: hashbrown::DefaultHashBuilder,
+}
+
+impl KeysSeen {
+    /// Notes `key`, which starts at `start` of `text`; false when the object had it already.
+    fn insert(&mut self, text: &[u8], key: &str, start: usize) -> bool {
+        let key_at = |at: &u32| {
+            Scanner {
+                text,
+                pos: *at as usize,
+            }
+            .read_string()
+        };
+        let hash = self.hasher.hash_one(key);
+        if self
+            .starts
+            .find(hash, |at| key_at(at).as_deref() == Some(key))
+            .is_some()
+        {
+            return false;
+        }
+        let hasher = &self.hasher;
+        let rehash = |at: &u32| hasher.hash_one(key_at(at).as_deref().unwrap_or_default());
+        // Files are at most u32::MAX bytes (`file::MAX_FILE_BYTES`).
+        self.starts.insert_unique(hash, start as u32, rehash);
+        true
+    }
+}
+
 struct Scanner<'a> {
     text: &'a [u8],
     pos: usize,
 }
 
-impl Scanner<'_> {
+impl<'a> Scanner<'a> {
     fn peek(&self) -> Option<u8> {
         self.text.get(self.pos).copied()
     }
@@ -315,10 +349,19 @@ impl Scanner<'_> {
         }
     }
 
-    fn read_string(&mut self) -> Option<String> {
+    /// The string at the cursor, decoded: borrowed from the text when it holds no escape (a
+    /// key of each of an object's 10^6 members is then no allocation of its own).
+    fn read_string(&mut self) -> Option<Cow<'a, str>> {
         let start = self.pos;
         self.skip_string()?;
-        serde_json::from_slice(&self.text[start..self.pos]).ok()
+        let quoted = &self.text[start..self.pos];
+        let inner = &quoted[1..quoted.len() - 1];
+        if !inner.iter().any(|&b| b == b'\\' || b < 0x20) {
+            if let Ok(plain) = std::str::from_utf8(inner) {
+                return Some(Cow::Borrowed(plain));
+            }
+        }
+        serde_json::from_slice(quoted).ok().map(Cow::Owned)
     }
 
     fn skip_string(&mut self) -> Option<()> {
@@ -406,7 +449,7 @@ impl Scanner<'_> {
                                 return None;
                             }
                             self.pos += 1;
-                            match step.members.get(&name) {
+                            match step.members.get(name.as_ref()) {
                                 Some(&child) => self.locate_in(trie, child, key_start, found)?,
                                 None => {
                                     self.skip_ws();
@@ -533,6 +576,19 @@ mod tests {
         let text = br#"{"a": 1, "b": {"c": [1, {"d": 0, "d": 1}]}, "a": 2}"#;
         let dups: Vec<String> = duplicate_keys(text).into_iter().map(|d| d.0).collect();
         assert_eq!(dups, vec!["/b/c/1/d".to_string(), "/a".to_string()]);
+    }
+
+    #[test]
+    fn keys_are_compared_as_decoded_and_found_among_many() {
+        let escaped = br#"{"a": 1, "\u0061": 2, "b\"": 3, "b\u0022": 4}"#;
+        let dups: Vec<String> = duplicate_keys(escaped).into_iter().map(|d| d.0).collect();
+        assert_eq!(dups, vec!["/a".to_string(), "/b\"".to_string()]);
+        let mut many: String = (0..100_000).map(|i| format!("\"k{i}\": 0, ")).collect();
+        many = format!("{{{many}\"k7\": 1, \"k99999\": 2}}");
+        let found = duplicate_keys(many.as_bytes());
+        let pointers: Vec<&str> = found.iter().map(|d| d.0.as_str()).collect();
+        assert_eq!(pointers, ["/k7", "/k99999"]);
+        assert_eq!(&many.as_bytes()[found[0].1..found[0].1 + 4], br#""k7""#);
     }
 
     #[test]

@@ -204,10 +204,23 @@ impl Tree {
     /// Takes the member a pointer names out of its object, as if it had never been there.
     /// Returns whether it was `null`, or `None` when the pointer names no object member.
     pub fn remove(&mut self, pointer: &str) -> Option<bool> {
+        self.remove_if(pointer, |_| true)
+    }
+
+    /// [`Tree::remove`], when the member's value is one `taken` accepts (the pointer is
+    /// resolved once).
+    pub fn remove_if(&mut self, pointer: &str, taken: impl FnOnce(Node) -> bool) -> Option<bool> {
         let (parent, token) = pointer.rsplit_once('/')?;
         let object = self.root().pointer(parent)?.object_range()?;
         let key = self.find(&super::json::unescape_token(token))?;
         let at = self.member_slot(object, key)?;
+        let value = Node {
+            tree: self,
+            slot: self.slots[at + 1],
+        };
+        if !taken(value) {
+            return None;
+        }
         let was_null = self.slots[at + 1] == Slot::NULL;
         self.slots[at] = Slot::new(Tag::Removed, u64::from(key));
         Some(was_null)
