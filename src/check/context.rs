@@ -119,7 +119,7 @@ pub(crate) struct Context<'a> {
     pub resources: Vec<ResourceInfo>,
     /// Extension objects no `extensionsUsed` declares, taken out of the document before the
     /// passes (the Khronos validator reads nothing of them); the extensions pass reports them.
-    pub undeclared_extensions: Vec<String>,
+    pub undeclared_extensions: super::khronos::Undeclared,
     extensions_used: std::sync::OnceLock<HashSet<&'a str>>,
 }
 
@@ -146,7 +146,7 @@ impl<'a> Context<'a> {
             material_needs: HashMap::new(),
             slot_uses: std::sync::OnceLock::new(),
             resources: Vec::new(),
-            undeclared_extensions: Vec::new(),
+            undeclared_extensions: Default::default(),
             extensions_used: std::sync::OnceLock::new(),
         }
     }

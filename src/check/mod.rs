@@ -213,7 +213,7 @@ fn check_document(
         }
         Some(tree) => {
             let undeclared = if gltf1 {
-                Vec::new()
+                Default::default()
             } else {
                 schema_pass(tree, khronos_extensions_only, &mut diagnostics)
             };
@@ -255,7 +255,7 @@ fn short(value: Node) -> String {
 /// to report). Of a document that does not claim
 /// glTF 2.x, only what the Khronos validator reads before it stops (see
 /// [`khronos::read_before_asset`]).
-fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> Vec<String> {
+fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::Undeclared {
     if !khronos::has_supported_version(tree.root()) {
         let read = khronos::read_before_asset(tree.root());
         let absent = schema::validate(tree.root(), khronos, &mut Only(sink, read));
@@ -263,21 +263,20 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> Vec<Strin
         // Read anew: an `asset` that was null is now missing.
         let read = khronos::read_before_asset(tree.root());
         schema::required_nulls(tree.root(), khronos, &nulls, &mut Only(sink, read));
-        return Vec::new();
+        return Default::default();
     }
     khronos::take_unread_bounds(tree, sink);
     let root = tree.root();
     let undeclared = khronos::undeclared_extensions(root, &declared_extensions(root));
-    // Out before the schema pass, which then finds nothing in them (their pointers are held
-    // once, for the extensions pass to report: 10^6 of them are 60 MB). One that is no
-    // object stays for the schema pass to say so, and goes after it.
-    let not_objects: Vec<&String> = (undeclared.iter())
-        .filter(|pointer| tree.remove_if(pointer, |value| value.is_object()).is_none())
+    // Out before the schema pass, which then finds nothing in them. One that is no object
+    // stays for the schema pass to say so, and goes after it.
+    let not_objects: Vec<usize> = (0..undeclared.len())
+        .filter(|&i| !undeclared.remove_if(i, tree, |value| value.is_object()))
         .collect();
     let absent = schema::validate(tree.root(), khronos, sink);
     let nulls = remove_all(tree, absent);
-    for pointer in not_objects {
-        tree.remove(pointer);
+    for i in not_objects {
+        undeclared.remove_if(i, tree, |_| true);
     }
     schema::required_nulls(tree.root(), khronos, &nulls, sink);
     undeclared

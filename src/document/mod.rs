@@ -15,7 +15,7 @@ pub use bytes::{BufferData, Bytes, Elsewhere, Piece, Pieces};
 pub use image_header::ImageInfo;
 use serde_json::Value;
 use std::ops::Range;
-pub use tree::{Array, Node, Object, Tree};
+pub use tree::{Array, Node, Object, StringId, Tree};
 
 /// How the asset is stored.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

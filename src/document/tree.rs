@@ -180,6 +180,11 @@ impl Tree {
         arena_string(&self.arena, &self.ends, id)
     }
 
+    /// The string `id` names (ids are of this tree; one taken out with its member stays).
+    pub fn text(&self, id: StringId) -> &str {
+        self.string(id.0)
+    }
+
     /// The id of a string the document holds, if any.
     fn find(&self, text: &str) -> Option<u32> {
         let hash = self.hasher.hash_one(text);
@@ -211,8 +216,20 @@ impl Tree {
     /// resolved once).
     pub fn remove_if(&mut self, pointer: &str, taken: impl FnOnce(Node) -> bool) -> Option<bool> {
         let (parent, token) = pointer.rsplit_once('/')?;
-        let object = self.root().pointer(parent)?.object_range()?;
         let key = self.find(&super::json::unescape_token(token))?;
+        self.remove_member(parent, StringId(key), taken)
+    }
+
+    /// [`Tree::remove_if`] for the member named `key` of the object at `parent` (a pointer):
+    /// the name is not looked up again.
+    pub fn remove_member(
+        &mut self,
+        parent: &str,
+        key: StringId,
+        taken: impl FnOnce(Node) -> bool,
+    ) -> Option<bool> {
+        let object = self.root().pointer(parent)?.object_range()?;
+        let key = key.0;
         let at = self.member_slot(object, key)?;
         let value = Node {
             tree: self,
@@ -282,7 +299,17 @@ impl<T: Index + ?Sized> Index for &T {
     }
 }
 
+/// A string of a tree, by its place in the tree's store: four bytes, where a copy of a
+/// name 10^6 members share would cost a string each.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StringId(u32);
+
 impl<'t> Node<'t> {
+    /// The tree this value is in.
+    pub fn tree(self) -> &'t Tree {
+        self.tree
+    }
+
     /// A member of an object or an element of an array.
     pub fn get(self, index: impl Index) -> Option<Node<'t>> {
         index.index_into(self)
@@ -554,6 +581,18 @@ impl<'t> Object<'t> {
             .map(move |pair| {
                 let key = tree.string(pair[0].payload() as u32);
                 (key, tree.node(pair[1]))
+            })
+    }
+
+    /// The member names in order, each with its id in the tree (see [`Tree::text`]).
+    pub fn keys_with_ids(self) -> impl Iterator<Item = (StringId, &'t str)> + 't {
+        let tree = self.tree;
+        tree.slots[self.start..self.start + 2 * self.len]
+            .chunks_exact(2)
+            .filter(|pair| pair[0].tag() == Tag::String)
+            .map(move |pair| {
+                let id = pair[0].payload() as u32;
+                (StringId(id), tree.string(id))
             })
     }
 

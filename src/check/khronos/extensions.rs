@@ -3,7 +3,7 @@
 
 use crate::check::context::{member, Context};
 use crate::diagnostic::khronos;
-use crate::document::Node;
+use crate::document::{Node, StringId, Tree};
 use crate::gltf::material::TEXTURE_SLOTS;
 use std::collections::HashSet;
 
@@ -86,7 +86,8 @@ pub fn check(ctx: &mut Context) {
     check_declarations(ctx);
     // Taken out of the document before the passes, as the Khronos validator reads nothing
     // of them; said here, where it says it.
-    for pointer in std::mem::take(&mut ctx.undeclared_extensions) {
+    let found = std::mem::take(&mut ctx.undeclared_extensions);
+    for pointer in found.pointers(ctx.root.tree()) {
         undeclared(ctx, &pointer);
     }
     let root = ctx.root;
@@ -96,18 +97,56 @@ pub fn check(ctx: &mut Context) {
 }
 
 /// The extension objects on the objects the Khronos validator reads extensions on whose
-/// names `declared` does not hold, by pointer (it reports them, and reads nothing in them).
-pub fn undeclared_extensions(root: Node, declared: &HashSet<&str>) -> Vec<String> {
-    let mut found = Vec::new();
+/// names `declared` does not hold (it reports them, and reads nothing in them).
+pub fn undeclared_extensions(root: Node, declared: &HashSet<&str>) -> Undeclared {
+    let mut found = Undeclared::default();
     walk(root, "", Host::Root, &mut |object, pointer, _| {
         let extensions = object.get("extensions").and_then(Node::as_object);
-        for name in extensions.into_iter().flat_map(|e| e.keys()) {
-            if !declared.contains(name) {
-                found.push(member(&member(pointer, "extensions"), name));
-            }
+        let names = extensions.into_iter().flat_map(|e| e.keys_with_ids());
+        let mut host = None;
+        for (id, _) in names.filter(|(_, name)| !declared.contains(name)) {
+            let host = *host.get_or_insert_with(|| {
+                found.hosts.push(member(pointer, "extensions"));
+                found.hosts.len() - 1
+            });
+            found.members.push((host, id));
         }
     });
     found
+}
+
+/// Undeclared extension objects, each as the object holding it and its name's id in the
+/// tree: 10^6 of them on one node are 10^6 pairs, not 10^6 pointers.
+#[derive(Debug, Default)]
+pub struct Undeclared {
+    /// The `extensions` objects holding them, by pointer.
+    hosts: Vec<String>,
+    /// Each one's host (an index into `hosts`) and name.
+    members: Vec<(usize, StringId)>,
+}
+
+impl Undeclared {
+    /// How many there are.
+    pub fn len(&self) -> usize {
+        self.members.len()
+    }
+
+    /// The pointer of the `i`th (`tree` is the one they were found in).
+    pub fn pointer(&self, i: usize, tree: &Tree) -> String {
+        let (host, name) = self.members[i];
+        member(&self.hosts[host], tree.text(name))
+    }
+
+    /// Takes the `i`th out of `tree` when `taken` accepts its value; false when it stays.
+    pub fn remove_if(&self, i: usize, tree: &mut Tree, taken: impl FnOnce(Node) -> bool) -> bool {
+        let (host, name) = self.members[i];
+        tree.remove_member(&self.hosts[host], name, taken).is_some()
+    }
+
+    /// Their pointers, made one at a time.
+    pub fn pointers<'a>(&'a self, tree: &'a Tree) -> impl Iterator<Item = String> + 'a {
+        (0..self.len()).map(|i| self.pointer(i, tree))
+    }
 }
 
 fn undeclared(ctx: &mut Context, pointer: &str) {

@@ -22,7 +22,9 @@ mod unused;
 mod view_usage;
 
 use super::context::Context;
-pub(crate) use extensions::{check_declarations as check_extension_lists, undeclared_extensions};
+pub(crate) use extensions::{
+    check_declarations as check_extension_lists, undeclared_extensions, Undeclared,
+};
 pub(crate) use objects::{
     check_asset, has_supported_version, read_before_asset, take_unread_bounds,
 };
