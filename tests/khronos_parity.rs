@@ -432,6 +432,29 @@ fn bounds_are_read_only_for_a_valid_type_and_only_at_its_length() {
 }
 
 #[test]
+fn nothing_inside_an_undeclared_extension_is_read_even_a_nested_extension_of_the_wrong_type() {
+    // The npm validator (2.0.0-dev.3.10) reports only the findings below; gltfmat once
+    // also reported the `scale` inside, which the pass that takes undeclared extensions out
+    // missed (found by comparing upgrades of mutated spec-gloss fixtures).
+    let found = khronos_findings(json!({"asset": {"version": "2.0"}, "extensionsUsed": "x",
+        "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {"diffuseTexture":
+            {"index": 0, "extensions": {"KHR_texture_transform": {"scale": {}}}}}}}],
+        "textures": [{}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("TYPE_MISMATCH", "/extensionsUsed"),
+            (
+                "UNDECLARED_EXTENSION",
+                "/materials/0/extensions/KHR_materials_pbrSpecularGlossiness"
+            ),
+            ("UNUSED_OBJECT", "/materials/0"),
+            ("UNUSED_OBJECT", "/textures/0"),
+        ])
+    );
+}
+
+#[test]
 fn nothing_inside_an_undeclared_extension_is_read() {
     let found = khronos_findings(json!({"asset": {"version": "2.0"},
         "materials": [{"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, "a", 1]}}}]}));
