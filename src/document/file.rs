@@ -126,7 +126,7 @@ pub(crate) fn read_or_keep(file: File) -> Result<(Kept, Option<FileId>), FileErr
     Ok((Kept::Read(bytes), id))
 }
 
-/// A buffer's bytes as a loader gives them (see [`read_or_keep`]).
+/// A buffer's bytes as a loader gives them (a file from `LARGE_FILE_BYTES` up stays in it).
 #[derive(Debug)]
 pub enum Kept {
     /// Read whole.

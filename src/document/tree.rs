@@ -2,7 +2,7 @@
 //!
 //! A `serde_json::Value` costs 80 bytes (with `preserve_order`), whatever the text spends
 //! on it: a 20 MB document of 10^7 zeros took 800 MB, and a check of an asset of 10^6
-//! nodes gigabytes. Here every value is one [`Slot`] (a tag and a payload in a `u64`):
+//! nodes gigabytes. Here every value is one `Slot` (a tag and a payload in a `u64`):
 //! small integers and floats inline, the rare wide number in a side table, a string as the
 //! id of its one copy in an arena, an array or object as a range of slots holding its
 //! elements (an object's as key, value pairs).
