@@ -10,7 +10,7 @@ use gltfmat::{check_bytes, check_path, CheckOptions, NoResources, Profile, Repor
 use rayon::prelude::*;
 use std::cell::Cell;
 use std::collections::HashMap;
-use std::io::{IsTerminal, Read, Write};
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -277,10 +277,8 @@ fn check_file(
     options: &CheckOptions,
 ) -> Result<Report, String> {
     if path.as_os_str() == "-" {
-        let mut bytes = Vec::new();
-        std::io::stdin()
-            .read_to_end(&mut bytes)
-            .map_err(|e| e.to_string())?;
+        let bytes = gltfmat::document::file::read_stream(std::io::stdin().lock())
+            .map_err(|e| format!("stdin: {e}"))?;
         return Ok(match stdin_name {
             Some(name) => {
                 let loader = FolderResources::beside(name);

@@ -207,12 +207,24 @@ pub fn read_opened(file: File) -> Result<Vec<u8>, FileError> {
 pub(crate) fn read_opened_with_id(file: File) -> Result<(Vec<u8>, Option<FileId>), FileError> {
     let metadata = file.metadata()?;
     check_regular(&metadata)?;
-    let mut bytes = Vec::with_capacity(metadata.len() as usize);
-    file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes)?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
+    let bytes = read_bounded(file, metadata.len() as usize, MAX_FILE_BYTES)?;
+    Ok((bytes, FileId::of(&metadata)))
+}
+
+/// Reads a stream (stdin, a pipe) to its end, but never more than [`MAX_FILE_BYTES`], the
+/// most a glTF asset can be: an endless stream is refused as too large, not read until
+/// memory runs out.
+pub fn read_stream(stream: impl Read) -> Result<Vec<u8>, FileError> {
+    read_bounded(stream, 0, MAX_FILE_BYTES)
+}
+
+fn read_bounded(stream: impl Read, expected: usize, most: u64) -> Result<Vec<u8>, FileError> {
+    let mut bytes = Vec::with_capacity(expected);
+    stream.take(most + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > most {
         return Err(FileError::TooLarge(bytes.len() as u64));
     }
-    Ok((bytes, FileId::of(&metadata)))
+    Ok(bytes)
 }
 
 fn check_regular(metadata: &Metadata) -> Result<(), FileError> {
@@ -284,6 +296,16 @@ pub(crate) fn kind(file_type: &FileType) -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_endless_stream_is_read_up_to_the_bound_and_refused() {
+        assert_eq!(read_bounded(&b"abcd"[..], 0, 4).unwrap(), b"abcd");
+        let endless = std::io::repeat(0);
+        assert!(matches!(
+            read_bounded(endless, 0, 1 << 20),
+            Err(FileError::TooLarge(n)) if n == (1 << 20) + 1
+        ));
+    }
 
     #[test]
     fn regular_files_are_read_whole() {
