@@ -209,19 +209,13 @@ impl Tree {
     /// Takes the member a pointer names out of its object, as if it had never been there.
     /// Returns whether it was `null`, or `None` when the pointer names no object member.
     pub fn remove(&mut self, pointer: &str) -> Option<bool> {
-        self.remove_if(pointer, |_| true)
-    }
-
-    /// [`Tree::remove`], when the member's value is one `taken` accepts (the pointer is
-    /// resolved once).
-    pub fn remove_if(&mut self, pointer: &str, taken: impl FnOnce(Node) -> bool) -> Option<bool> {
         let (parent, token) = pointer.rsplit_once('/')?;
         let key = self.find(&super::json::unescape_token(token))?;
-        self.remove_member(parent, StringId(key), taken)
+        self.remove_member(parent, StringId(key), |_| true)
     }
 
-    /// [`Tree::remove_if`] for the member named `key` of the object at `parent` (a pointer):
-    /// the name is not looked up again.
+    /// [`Tree::remove`] for the member named `key` of the object at `parent` (a pointer), when
+    /// its value is one `taken` accepts: the name is not looked up again.
     pub fn remove_member(
         &mut self,
         parent: &str,

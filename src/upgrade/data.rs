@@ -122,13 +122,10 @@ impl Accessor<'_> {
 
     /// Every element's components, in order.
     pub fn values(&self) -> Vec<f64> {
-        let size = component_size(self.component_type).unwrap_or(4);
-        let element = size * self.components;
-        let mut out = Vec::with_capacity(self.count * self.components);
-        for i in 0..self.count {
-            let at = i * self.stride;
-            let components = self.bytes[at..at + element].chunks_exact(size);
-            out.extend(components.map(|bytes| decode_component(self.component_type, bytes)));
+        let elements = self.elements();
+        let mut out = vec![0.0; self.count * self.components];
+        for (i, element) in out.chunks_exact_mut(self.components.max(1)).enumerate() {
+            elements.read(i, element);
         }
         out
     }
@@ -394,6 +391,14 @@ struct Packing<E> {
 /// Per-component bounds of the values stored.
 type Bounds = ([f64; MOST_COMPONENTS], [f64; MOST_COMPONENTS]);
 
+/// The bounds of no value: any value stored replaces them.
+fn no_bounds() -> Bounds {
+    (
+        [f64::INFINITY; MOST_COMPONENTS],
+        [f64::NEG_INFINITY; MOST_COMPONENTS],
+    )
+}
+
 impl<E: Fn(usize, &mut [f64]) + Sync> Packing<E> {
     /// Writes every element's values into `target` (zeroed, `stride` bytes an element) as
     /// `encode` stores them (their bytes and the value they hold); returns the min/max of
@@ -403,18 +408,12 @@ impl<E: Fn(usize, &mut [f64]) + Sync> Packing<E> {
         target: &mut [u8],
         encode: impl Fn(f64) -> ([u8; N], f64) + Sync,
     ) -> (Vec<f64>, Vec<f64>) {
-        let nothing = || {
-            (
-                [f64::INFINITY; MOST_COMPONENTS],
-                [f64::NEG_INFINITY; MOST_COMPONENTS],
-            )
-        };
         let stride = self.stride.max(1);
         let (min, max) = target
             .par_chunks_mut(BLOCK * stride)
             .enumerate()
             .map(|(block, bytes)| self.block(block * BLOCK, bytes, &encode))
-            .reduce(nothing, |(min_a, max_a), (min_b, max_b)| {
+            .reduce(no_bounds, |(min_a, max_a), (min_b, max_b)| {
                 (
                     std::array::from_fn(|c| min_a[c].min(min_b[c])),
                     std::array::from_fn(|c| max_a[c].max(max_b[c])),
@@ -433,10 +432,7 @@ impl<E: Fn(usize, &mut [f64]) + Sync> Packing<E> {
         bytes: &mut [u8],
         encode: impl Fn(f64) -> ([u8; N], f64),
     ) -> Bounds {
-        let mut bounds: Bounds = (
-            [f64::INFINITY; MOST_COMPONENTS],
-            [f64::NEG_INFINITY; MOST_COMPONENTS],
-        );
+        let mut bounds = no_bounds();
         let mut buffer = [0.0; MOST_COMPONENTS];
         let values = &mut buffer[..self.components];
         for (i, element) in bytes.chunks_exact_mut(self.stride.max(1)).enumerate() {
