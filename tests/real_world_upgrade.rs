@@ -773,7 +773,7 @@ fn the_pbr_drafts_hammer_upgrades_under_each_extension_name() {
                 report.diagnostics
             );
         }
-        let material = &upgraded.json["materials"][0];
+        let material = &upgraded.json.to_value()["materials"][0];
         assert!(
             material["extensions"]["KHR_materials_specular"]["specularColorTexture"].is_object(),
             "{name}: {material}"

@@ -86,13 +86,13 @@ fn every_pbr_fixture_upgrades_to_a_valid_2_0_asset() {
     }
 }
 
-fn material(upgraded: &Upgraded) -> &Value {
-    &upgraded.json["materials"][0]
+fn material(upgraded: &Upgraded) -> Value {
+    upgraded.json.items("materials").unwrap().get(0).unwrap()
 }
 
 fn texture_rgba(upgraded: &Upgraded, info: &Value) -> image::RgbaImage {
     let texture = info["index"].as_u64().unwrap() as usize;
-    let image = upgraded.json["textures"][texture]["source"]
+    let image = upgraded.json.to_value()["textures"][texture]["source"]
         .as_u64()
         .unwrap() as usize;
     image::load_from_memory(&upgraded.images[image].bytes)
@@ -177,7 +177,8 @@ fn spec_gloss_factors_follow_the_documented_mapping() {
             && fitted.contains("the smallest worst case, 2.93"),
         "{fitted}"
     );
-    let used = upgraded.json["extensionsUsed"].as_array().unwrap();
+    let used = upgraded.json.get("extensionsUsed").unwrap();
+    let used = used.as_array().unwrap();
     assert!(
         used.contains(&"KHR_materials_specular".into())
             && used.contains(&"KHR_materials_ior".into())
@@ -472,9 +473,9 @@ mod verify {
     #[test]
     fn compare_catches_metallic_left_in_red() {
         let wrong = worst_delta_e("pbr-mr-textured-fraunhofer.gltf", |upgraded| {
-            let pbr = &upgraded.json["materials"][0]["pbrMetallicRoughness"];
+            let pbr = &upgraded.json.to_value()["materials"][0]["pbrMetallicRoughness"];
             let texture = pbr["metallicRoughnessTexture"]["index"].as_u64().unwrap() as usize;
-            let image = upgraded.json["textures"][texture]["source"]
+            let image = upgraded.json.to_value()["textures"][texture]["source"]
                 .as_u64()
                 .unwrap() as usize;
             upgraded.images[image].bytes = std::fs::read(repo("fixtures/gltf1/metal_rough.png"))
@@ -637,10 +638,10 @@ mod structure {
     #[test]
     fn technique_states_become_blending_and_double_sidedness() {
         let up = upgraded();
-        let blended = &up.json["materials"][0];
+        let blended = &up.json.to_value()["materials"][0];
         assert_eq!(blended["alphaMode"], "BLEND");
         assert_eq!(blended["doubleSided"], true, "CULL_FACE is not enabled");
-        let flat = &up.json["materials"][1];
+        let flat = &up.json.to_value()["materials"][1];
         assert!(
             flat["extensions"]["KHR_materials_unlit"].is_object(),
             "CONSTANT → unlit"
@@ -654,7 +655,8 @@ mod structure {
     #[test]
     fn extra_meshes_become_skinned_children_and_the_bind_shape_is_folded() {
         let up = upgraded();
-        let nodes = up.json["nodes"].as_array().unwrap();
+        let json = up.json.to_value();
+        let nodes = json["nodes"].as_array().unwrap();
         let skinned = &nodes[2];
         assert_eq!(skinned["mesh"], 0);
         let child = skinned["children"][0].as_u64().unwrap() as usize;
@@ -663,12 +665,13 @@ mod structure {
             nodes[child]["skin"], skinned["skin"],
             "the extra mesh keeps the skin"
         );
-        let skin = &up.json["skins"][skinned["skin"].as_u64().unwrap() as usize];
+        let skin = &up.json.to_value()["skins"][skinned["skin"].as_u64().unwrap() as usize];
         assert_eq!(skin["joints"], json!([1]));
         // IBM · BSM with IBM = identity is the bind shape matrix: translation x = 5.
-        let accessor =
-            &up.json["accessors"][skin["inverseBindMatrices"].as_u64().unwrap() as usize];
-        let view = &up.json["bufferViews"][accessor["bufferView"].as_u64().unwrap() as usize];
+        let accessor = &up.json.to_value()["accessors"]
+            [skin["inverseBindMatrices"].as_u64().unwrap() as usize];
+        let view =
+            &up.json.to_value()["bufferViews"][accessor["bufferView"].as_u64().unwrap() as usize];
         let start = view["byteOffset"].as_u64().unwrap() as usize;
         let translation_x = f32::from_le_bytes(
             up.binary.to_vec()[start + 48..start + 52]
@@ -676,7 +679,7 @@ mod structure {
                 .unwrap(),
         );
         assert_eq!(translation_x, 5.0);
-        let mesh = &up.json["meshes"][0]["primitives"][0]["attributes"];
+        let mesh = &up.json.to_value()["meshes"][0]["primitives"][0]["attributes"];
         assert!(
             mesh.get("JOINTS_0").is_some() && mesh.get("WEIGHTS_0").is_some(),
             "{mesh}"
@@ -686,7 +689,7 @@ mod structure {
     #[test]
     fn a_zero_znear_is_made_valid() {
         let up = upgraded();
-        let znear = up.json["cameras"][0]["perspective"]["znear"]
+        let znear = up.json.to_value()["cameras"][0]["perspective"]["znear"]
             .as_f64()
             .unwrap();
         assert!(znear > 0.0 && znear < 1.0, "{znear}");
@@ -699,7 +702,7 @@ mod structure {
         let bytes = serde_json::to_vec(&asset()).unwrap();
         let options = UpgradeOptions::default().with_double_sided_default(true);
         let up = upgrade(&bytes, &NoResources, &options).unwrap();
-        assert_eq!(up.json["materials"][1]["doubleSided"], true);
+        assert_eq!(up.json.to_value()["materials"][1]["doubleSided"], true);
     }
 }
 
@@ -708,7 +711,7 @@ fn a_scene_without_nodes_upgrades_to_a_valid_scene() {
     let gltf1 =
         br#"{"asset": {"version": "1.0"}, "scene": "s", "scenes": {"s": {"nodes": ["missing"]}}}"#;
     let up = upgrade(gltf1, &NoResources, &UpgradeOptions::default()).unwrap();
-    assert!(up.json["scenes"][0].get("nodes").is_none());
+    assert!(up.json.to_value()["scenes"][0].get("nodes").is_none());
     assert!(up
         .report
         .iter()
@@ -774,14 +777,15 @@ fn vec3_tangents_get_the_handedness_of_their_binormal_and_empty_animations_are_d
         ),
     ]);
     let upgraded = upgrade(&asset, &NoResources, &UpgradeOptions::default()).unwrap();
-    let attributes = &upgraded.json["meshes"][0]["primitives"][0]["attributes"];
+    let attributes = &upgraded.json.to_value()["meshes"][0]["primitives"][0]["attributes"];
     assert!(attributes.get("BINORMAL").is_none() && attributes.get("_BINORMAL").is_none());
-    let tangent = &upgraded.json["accessors"][attributes["TANGENT"].as_u64().unwrap() as usize];
+    let tangent =
+        &upgraded.json.to_value()["accessors"][attributes["TANGENT"].as_u64().unwrap() as usize];
     assert_eq!(tangent["type"], "VEC4");
     assert_eq!(tangent["min"], serde_json::json!([1.0, 0.0, 0.0, -1.0]));
     assert_eq!(tangent["max"], serde_json::json!([1.0, 0.0, 0.0, 1.0]));
     assert!(
-        upgraded.json.get("animations").is_none(),
+        upgraded.json.to_value().get("animations").is_none(),
         "the empty animation is dropped"
     );
     assert!(upgraded
@@ -827,7 +831,7 @@ fn quantized_positions_are_decoded_with_their_decode_matrix() {
         &UpgradeOptions::default(),
     )
     .unwrap();
-    let position = &upgraded.json["accessors"][0];
+    let position = &upgraded.json.to_value()["accessors"][0];
     assert_eq!(position["componentType"], 5126);
     assert_eq!(position["min"], serde_json::json!([-0.5, 0.0, 2.0]));
     assert_eq!(position["max"], serde_json::json!([0.5, 1.0, 3.0]));
@@ -877,7 +881,7 @@ fn materials_common_lights_become_punctual_lights_on_their_nodes() {
         },
         "scenes": {"s": {"nodes": ["a", "b", "c", "d", "e"]}}, "scene": "s"
     }));
-    let json = &upgraded.json;
+    let json = &upgraded.json.to_value();
     assert_eq!(
         json["extensionsUsed"],
         serde_json::json!(["KHR_lights_punctual"])
@@ -929,7 +933,7 @@ fn technique_transparency_multiplies_alpha_where_the_technique_blends() {
         },
         "scenes": {"s": {"nodes": []}}, "scene": "s"
     }));
-    let material = |i: usize| upgraded.json["materials"][i].clone();
+    let material = |i: usize| upgraded.json.to_value()["materials"][i].clone();
     assert_eq!(material(0)["alphaMode"], "BLEND");
     let alpha = material(0)["pbrMetallicRoughness"]["baseColorFactor"][3]
         .as_f64()
@@ -956,8 +960,9 @@ fn unknown_extensions_are_named_and_unused_textures_are_not_written() {
         &UpgradeOptions::default(),
     );
     // The rebake replaces the diffuse texture; only what the materials read is written.
-    let textures = upgraded.json["textures"].as_array().unwrap();
-    let images = upgraded.json["images"].as_array().unwrap();
+    let json = upgraded.json.to_value();
+    let textures = json["textures"].as_array().unwrap();
+    let images = json["images"].as_array().unwrap();
     assert_eq!(images.len(), upgraded.images.len());
     let report = gltfmat::check_bytes(
         "out.glb",

@@ -22,6 +22,7 @@ use crate::document::{self, Container, Document, Node, Tree};
 use collector::Collector;
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
+use std::sync::Arc;
 
 /// Which issues to report.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -165,8 +166,19 @@ pub fn check_bytes(
     loader: &dyn ResourceLoader,
     options: &CheckOptions,
 ) -> Report {
+    check_shared_bytes(uri, Arc::new(bytes.into()), loader, options)
+}
+
+/// [`check_bytes`] of bytes shared with their owner: an upgrade's output, checked while it
+/// is written.
+pub(crate) fn check_shared_bytes(
+    uri: &str,
+    bytes: Arc<document::Bytes>,
+    loader: &dyn ResourceLoader,
+    options: &CheckOptions,
+) -> Report {
     let mut diagnostics = Collector::new(options);
-    let document = document::read(bytes, uri, &mut diagnostics);
+    let document = document::read_shared(bytes, uri, &mut diagnostics);
     check_document(uri, document, loader, options, diagnostics)
 }
 
@@ -174,7 +186,7 @@ pub fn check_bytes(
 /// pieces: an upgrade's output, checked without joining it into one copy first.
 pub(crate) fn check_glb_pieces(
     uri: &str,
-    head: document::Bytes,
+    head: Arc<document::Bytes>,
     data: document::Pieces,
     loader: &dyn ResourceLoader,
     options: &CheckOptions,

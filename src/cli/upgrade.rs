@@ -81,6 +81,8 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         }
         log.line(format_args!("warning: a converted material does not render like its source within ΔE2000 {} (the output is written; --verify refuses it)", args.threshold));
     }
+    // The output's check is the peak of memory; the input's bytes are not needed for it.
+    drop(bytes);
     let (folder, name) = match destination {
         Destination::Stdout => return write_to_stdout(&mut upgraded, &args.input),
         Destination::File { folder, name } => (folder, name),

@@ -6,7 +6,6 @@
 //! small scanner over the original text.
 //! The same scanner reports duplicate object keys, which serde_json silently collapses.
 
-use serde_json::Value;
 use std::borrow::Cow;
 use std::collections::HashMap;
 use std::hash::BuildHasher;
@@ -22,11 +21,6 @@ pub struct SyntaxError {
 /// glTF spec.
 pub fn parse(bytes: &[u8]) -> Result<super::Tree, SyntaxError> {
     parse_with(bytes, super::Tree::parse)
-}
-
-/// Parses JSON text as [`parse`] does, into a `serde_json::Value`.
-pub fn parse_value(bytes: &[u8]) -> Result<Value, SyntaxError> {
-    parse_with(bytes, super::json_tree::from_slice)
 }
 
 fn parse_with<R>(

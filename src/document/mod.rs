@@ -6,15 +6,14 @@ pub(crate) mod glb;
 pub(crate) mod image_decode;
 pub(crate) mod image_header;
 pub(crate) mod json;
-pub(crate) mod json_tree;
 pub mod tree;
 pub mod uri;
 
 use crate::diagnostic::{khronos, Diagnostic, Sink};
 pub use bytes::{BufferData, Bytes, Elsewhere, Piece, Pieces};
 pub use image_header::ImageInfo;
-use serde_json::Value;
 use std::ops::Range;
+use std::sync::Arc;
 pub use tree::{Array, Node, Object, StringId, Tree};
 
 /// How the asset is stored.
@@ -40,8 +39,9 @@ impl Container {
 /// without copies.
 #[derive(Debug)]
 pub struct Document<R = Tree> {
-    /// The whole file.
-    pub bytes: Bytes,
+    /// The whole file (shared: a check of an upgrade's output reads the bytes being
+    /// written, without a copy).
+    pub bytes: Arc<Bytes>,
     /// How it is stored.
     pub container: Container,
     /// Where the JSON text lies in `bytes`.
@@ -95,21 +95,17 @@ impl Document<Tree> {
 /// the name's `.glb` ending (so a broken GLB is reported as one, not as invalid JSON).
 /// Problems with the container and the JSON go to `diagnostics`.
 pub fn read(bytes: impl Into<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> Document {
-    read_with(bytes.into(), name, diagnostics, json::parse)
+    read_shared(Arc::new(bytes.into()), name, diagnostics)
 }
 
-/// Reads a document as [`read`] does, its JSON as a `serde_json::Value` (for code that
-/// rewrites the tree: the upgrade of a 2.0 asset, the materials a shading reads).
-pub fn read_value(
-    bytes: impl Into<Bytes>,
-    name: &str,
-    diagnostics: &mut dyn Sink,
-) -> Document<Value> {
-    read_with(bytes.into(), name, diagnostics, json::parse_value)
+/// [`read`] of bytes shared with their owner (an upgrade's output, checked as it is
+/// written).
+pub fn read_shared(bytes: Arc<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> Document {
+    read_with(bytes, name, diagnostics, json::parse)
 }
 
 fn read_with<R>(
-    bytes: Bytes,
+    bytes: Arc<Bytes>,
     name: &str,
     diagnostics: &mut dyn Sink,
     parse: fn(&[u8]) -> Result<R, json::SyntaxError>,
@@ -150,7 +146,7 @@ pub fn read_path(
     let start = split.bin.offset() as usize;
     let chunk = Elsewhere::File(split.bin);
     Ok(read_holed(
-        split.before,
+        Arc::new(split.before),
         start,
         chunk,
         &split.after,
@@ -161,7 +157,7 @@ pub fn read_path(
 /// Reads a GLB whose BIN chunk's data is in `pieces`, `head` being everything before it (up
 /// to and with the BIN chunk's header): an upgrade's output is checked as it is written,
 /// without joining its geometry and images into one copy first.
-pub fn read_glb_pieces(head: Bytes, pieces: Pieces, diagnostics: &mut dyn Sink) -> Document {
+pub fn read_glb_pieces(head: Arc<Bytes>, pieces: Pieces, diagnostics: &mut dyn Sink) -> Document {
     let start = head.len();
     read_holed(head, start, Elsewhere::Pieces(pieces), &[], diagnostics)
 }
@@ -169,7 +165,7 @@ pub fn read_glb_pieces(head: Bytes, pieces: Pieces, diagnostics: &mut dyn Sink) 
 /// A GLB of the bytes `before`, then (from `start`) the BIN chunk's data `elsewhere`, then
 /// `after`, read as if it were all in one piece.
 fn read_holed(
-    before: Bytes,
+    before: Arc<Bytes>,
     start: usize,
     elsewhere: Elsewhere,
     after: &[u8],

@@ -4,8 +4,9 @@
 
 use super::binary::Binary;
 use super::data::{self, Role};
+use super::json::{Items, Json};
+use super::origins::Origins;
 use super::{EncodedImage, NoteKind, Notes, UpgradeError, UpgradeOptions, Upgraded};
-use crate::document::json_tree::tighten;
 use crate::document::Node;
 use crate::gltf::gl::{ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
 use crate::legacy::source::Source;
@@ -30,14 +31,15 @@ const MAPPED: &[&str] = &[
 pub struct Builder<'s, 'a> {
     pub(in crate::upgrade) source: &'s Source<'a>,
     pub(in crate::upgrade) options: &'s UpgradeOptions,
-    pub(in crate::upgrade) index: HashMap<(&'static str, String), usize>,
-    pub(in crate::upgrade) arrays: HashMap<&'static str, Vec<Value>>,
+    /// Keyed by ids borrowed from the source: 10^5 ids are not copied.
+    pub(in crate::upgrade) index: HashMap<(&'static str, &'s str), usize>,
+    pub(in crate::upgrade) arrays: HashMap<&'static str, Items>,
     pub(in crate::upgrade) images: Vec<EncodedImage>,
     pub(in crate::upgrade) binary: Binary,
-    pub(in crate::upgrade) packed_accessors: HashMap<(String, Role), usize>,
+    pub(in crate::upgrade) packed_accessors: HashMap<(&'s str, Role), usize>,
     pub(in crate::upgrade) report: Notes,
     /// `/collection/index` of the output → the 1.0 object it was made from.
-    pub(in crate::upgrade) origins: HashMap<String, String>,
+    pub(in crate::upgrade) origins: Origins,
     /// 1.0 light id → its KHR_lights_punctual index (None: it has no 2.0 form).
     pub(in crate::upgrade) lights: HashMap<String, Option<usize>>,
     /// The factor fits of spec-gloss materials made so far.
@@ -65,7 +67,7 @@ impl<'s, 'a> Builder<'s, 'a> {
         let mut index = HashMap::new();
         for collection in MAPPED {
             for (i, (id, _)) in source.dictionary(collection).into_iter().enumerate() {
-                index.insert((*collection, id.to_string()), i);
+                index.insert((*collection, id), i);
             }
         }
         Builder {
@@ -81,7 +83,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             lights: HashMap::new(),
             fits: Default::default(),
             texel_fits: Default::default(),
-            origins: HashMap::new(),
+            origins: Origins::default(),
         }
     }
 
@@ -96,15 +98,11 @@ impl<'s, 'a> Builder<'s, 'a> {
 
     /// [`Builder::index_of`] for an id at hand.
     pub fn index_of_id(&self, collection: &'static str, id: &str) -> Option<usize> {
-        self.index.get(&(collection, id.to_string())).copied()
+        self.index.get(&(collection, id)).copied()
     }
 
     pub(in crate::upgrade) fn push(&mut self, collection: &'static str, value: Value) -> usize {
-        let array = self.arrays.entry(collection).or_default();
-        // Objects built member by member keep their growth room (an accessor of seven
-        // members holds room for eight, at 104 bytes each) for as long as the output lives.
-        array.push(tighten(value));
-        array.len() - 1
+        self.arrays.entry(collection).or_default().push(&value)
     }
 
     /// [`Builder::push`], remembering the 1.0 object the value was made from.
@@ -121,7 +119,7 @@ impl<'s, 'a> Builder<'s, 'a> {
 
     pub(in crate::upgrade) fn record_origin(
         &mut self,
-        collection: &str,
+        collection: &'static str,
         index: usize,
         origin: String,
     ) {
@@ -136,11 +134,9 @@ impl<'s, 'a> Builder<'s, 'a> {
             })
             .flatten();
         if let Some(view) = view {
-            self.origins
-                .insert(format!("/bufferViews/{view}"), origin.clone());
+            self.origins.record("bufferViews", view as usize, &origin);
         }
-        self.origins
-            .insert(format!("/{collection}/{index}"), origin);
+        self.origins.record(collection, index, &origin);
     }
 
     pub(in crate::upgrade) fn named(id: &str, object: Node) -> Map<String, Value> {
@@ -193,10 +189,10 @@ impl<'s, 'a> Builder<'s, 'a> {
     /// Repacks a 1.0 accessor for a role (once per role) and returns its 2.0 index.
     pub(in crate::upgrade) fn accessor(
         &mut self,
-        id: &str,
+        id: &'s str,
         role: Role,
     ) -> Result<usize, UpgradeError> {
-        if let Some(&i) = self.packed_accessors.get(&(id.to_string(), role)) {
+        if let Some(&i) = self.packed_accessors.get(&(id, role)) {
             return Ok(i);
         }
         let at = pointer("accessors", id);
@@ -254,7 +250,7 @@ impl<'s, 'a> Builder<'s, 'a> {
         let (kind, count) = (input.kind.clone(), input.count);
         let index = self.add_accessor(packed, &kind, count, role, Some(id));
         self.record_origin("accessors", index, at);
-        self.packed_accessors.insert((id.to_string(), role), index);
+        self.packed_accessors.insert((id, role), index);
         Ok(index)
     }
 
@@ -299,24 +295,25 @@ impl<'s, 'a> Builder<'s, 'a> {
 
     /// The finished asset; `extensions_used` comes from the converted materials.
     pub fn finish(mut self, extensions_used: Vec<String>) -> Upgraded {
-        let mut root = Map::new();
+        let mut root = Json::default();
         let source_asset = self.source.root().get("asset");
         let mut asset = json!({"version": "2.0", "generator": concat!("gltfmat ", env!("CARGO_PKG_VERSION"), " upgrade")});
         if let Some(copyright) = source_asset.and_then(|a| a.get("copyright")) {
             asset["copyright"] = copyright.to_value();
         }
-        root.insert("asset".into(), asset);
+        root.insert("asset", &asset);
         if !extensions_used.is_empty() {
-            root.insert("extensionsUsed".into(), json!(extensions_used));
+            root.insert("extensionsUsed", &json!(extensions_used));
         }
         if let Some(lights) = self.arrays.remove("lights") {
+            let lights = Value::Array(lights.iter().collect());
             root.insert(
-                "extensions".into(),
-                json!({"KHR_lights_punctual": {"lights": lights}}),
+                "extensions",
+                &json!({"KHR_lights_punctual": {"lights": lights}}),
             );
         }
         if let Some(scene) = self.index_of("scenes", self.source.root().get("scene")) {
-            root.insert("scene".into(), json!(scene));
+            root.insert("scene", &json!(scene));
         }
         if !self.binary.is_empty() {
             self.push("buffers", json!({"byteLength": self.binary.len()}));
@@ -337,11 +334,11 @@ impl<'s, 'a> Builder<'s, 'a> {
             "buffers",
         ] {
             if let Some(items) = self.arrays.remove(collection).filter(|a| !a.is_empty()) {
-                root.insert(collection.into(), Value::Array(items));
+                root.insert_items(collection, items);
             }
         }
         Upgraded {
-            json: Value::Object(root),
+            json: root,
             binary: self.binary,
             images: self.images,
             report: self.report.into_list(),

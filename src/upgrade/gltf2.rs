@@ -7,11 +7,11 @@
 //! samplers that only the converted materials used, and no longer do, are not written;
 //! images stored in a bufferView stay, so that no buffer byte moves.
 
+use super::json::{Items, Json};
 use super::references::{renumber_texture_members, renumber_textures, texture_indices};
 use super::spec_gloss::{self, Factors, Slot};
 use super::{Binary, EncodedImage, NoteKind, Notes, SpecularGlossiness, UpgradeError};
 use super::{UpgradeOptions, Upgraded};
-use crate::document::json_tree::tighten;
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::{self, image_header, Bytes, Container};
 use crate::gltf::material::{combination, effective_texcoord, texture_images, texture_transform};
@@ -33,13 +33,16 @@ pub(super) fn upgrade(
     } else {
         "input.gltf"
     };
-    let mut doc = document::read_value(bytes.to_vec(), name, &mut Vec::new());
-    let Some(Value::Object(root)) = doc.root.take() else {
-        return Err(UpgradeError::Unreadable(
-            "the glTF 2.0 JSON cannot be read (`gltfmat check` says why)".into(),
-        ));
+    let mut doc = document::read(bytes.to_vec(), name, &mut Vec::new());
+    let root = match doc.root.take() {
+        Some(tree) if tree.root().is_object() => Json::from_node(tree.root()),
+        _ => {
+            return Err(UpgradeError::Unreadable(
+                "the glTF 2.0 JSON cannot be read (`gltfmat check` says why)".into(),
+            ))
+        }
     };
-    let bytes = Arc::new(std::mem::take(&mut doc.bytes));
+    let bytes = Arc::clone(&doc.bytes);
     let glb_bin = (doc.container == Container::Glb)
         .then_some(doc.bin.clone())
         .flatten()
@@ -55,7 +58,7 @@ pub(super) fn upgrade(
     let buffers = asset.read_buffers(glb_bin, loader)?;
     asset.take_images(&buffers, loader)?;
     asset.join_buffers(&buffers);
-    let mut passed_through: BTreeSet<usize> = (0..asset.list("materials").len()).collect();
+    let mut passed_through: BTreeSet<usize> = (0..asset.count("materials")).collect();
     if options.specular_glossiness == SpecularGlossiness::MetalRough {
         for converted in asset.convert_materials()? {
             passed_through.remove(&converted);
@@ -68,7 +71,7 @@ pub(super) fn upgrade(
         );
     }
     Ok(Upgraded {
-        json: Value::Object(asset.root),
+        json: asset.root,
         binary: asset.binary,
         images: asset.images,
         report: asset.report.into_list(),
@@ -79,7 +82,7 @@ pub(super) fn upgrade(
 
 /// The 2.0 asset being rewritten.
 struct Asset {
-    root: Map<String, Value>,
+    root: Json,
     binary: Binary,
     images: Vec<EncodedImage>,
     report: Notes,
@@ -106,19 +109,24 @@ impl Asset {
         self.report.push(pointer.into(), kind, text.into());
     }
 
-    fn list(&self, key: &str) -> &[Value] {
-        self.root
-            .get(key)
-            .and_then(Value::as_array)
-            .map_or(&[], Vec::as_slice)
+    /// The elements of root array `key`, each parsed as it is reached.
+    fn list(&self, key: &str) -> impl Iterator<Item = Value> + '_ {
+        self.root.items(key).into_iter().flat_map(Items::iter)
     }
 
-    fn list_mut(&mut self, key: &str) -> &mut Vec<Value> {
-        let slot = self.root.entry(key).or_insert_with(|| json!([]));
-        if !slot.is_array() {
-            *slot = json!([]);
+    fn item(&self, key: &str, index: usize) -> Option<Value> {
+        self.root.items(key)?.get(index)
+    }
+
+    fn count(&self, key: &str) -> usize {
+        self.root.items(key).map_or(0, Items::len)
+    }
+
+    /// Changes every element of root array `key` through `change`.
+    fn update_all(&mut self, key: &str, change: impl FnMut(&mut Value)) {
+        if let Some(items) = self.root.items_mut_if_array(key) {
+            items.update_all(change);
         }
-        slot.as_array_mut().expect("made an array above")
     }
 
     /// The output holds one buffer, made by joining the input's; meshopt compression names
@@ -127,14 +135,16 @@ impl Asset {
     /// without rewriting what the extension means. Refused, saying what to do instead.
     fn refuse_buffers_named_inside_extensions(&self) -> Result<(), UpgradeError> {
         const NAMING_BUFFERS: [&str; 2] = ["EXT_meshopt_compression", "KHR_meshopt_compression"];
-        let used = self.list("extensionsUsed").iter().filter_map(Value::as_str);
-        let meshopt = used.into_iter().find(|name| NAMING_BUFFERS.contains(name));
+        let used = self.list("extensionsUsed");
+        let meshopt = used
+            .filter_map(|name| Some(name.as_str()?.to_string()))
+            .find(|name| NAMING_BUFFERS.contains(&name.as_str()));
         match meshopt {
-            Some(name) if self.list("buffers").len() > 1 => Err(UpgradeError::Invalid {
+            Some(name) if self.count("buffers") > 1 => Err(UpgradeError::Invalid {
                 pointer: "/extensionsUsed".into(),
                 reason: format!(
                     "{name} names buffers inside each bufferView's extension, and the upgrade joins the asset's {} buffers into one; decompress the asset first (for example with gltfpack without -c, or glTF-Transform), then upgrade it",
-                    self.list("buffers").len()
+                    self.count("buffers")
                 ),
             }),
             _ => Ok(()),
@@ -148,9 +158,9 @@ impl Asset {
         loader: &dyn ResourceLoader,
     ) -> Result<Vec<Buffer>, UpgradeError> {
         let mut buffers = Vec::new();
-        for (i, buffer) in self.list("buffers").iter().enumerate() {
+        for (i, buffer) in self.list("buffers").enumerate() {
             let at = format!("/buffers/{i}");
-            let length = unsigned(buffer, "byteLength")
+            let length = unsigned(&buffer, "byteLength")
                 .ok_or_else(|| resource_error(&at, "byteLength is missing"))?
                 as usize;
             let (bytes, start) = match (buffer.get("uri").and_then(Value::as_str), &glb_bin) {
@@ -190,29 +200,28 @@ impl Asset {
             self.binary.share(&buffer.bytes, buffer.range.clone());
         }
         if buffers.len() > 1 {
-            for view in self.list_mut("bufferViews") {
+            self.update_all("bufferViews", |view| {
                 let Some(buffer) = unsigned(&*view, "buffer") else {
-                    continue;
+                    return;
                 };
                 let Some(&start) = starts.get(buffer as usize) else {
-                    continue;
+                    return;
                 };
                 let offset = unsigned(&*view, "byteOffset").unwrap_or(0);
                 view["buffer"] = json!(0);
                 view["byteOffset"] = json!(offset + start as u64);
-            }
+            });
             let joined = format!(
                 "{} buffers joined into one (bufferViews moved with their bytes; no byte changed).",
                 buffers.len()
             );
             self.note("/buffers", NoteKind::Decision, joined);
         }
-        match self.list("buffers").first() {
-            Some(Value::Object(first)) => {
-                let mut kept = first.clone();
+        match self.item("buffers", 0) {
+            Some(Value::Object(mut kept)) => {
                 kept.remove("uri");
                 kept.insert("byteLength".into(), json!(self.binary.len()));
-                self.root.insert("buffers".into(), json!([kept]));
+                self.root.insert("buffers", &json!([kept]));
             }
             _ => {
                 self.root.remove("buffers");
@@ -227,8 +236,8 @@ impl Asset {
         buffers: &[Buffer],
         loader: &dyn ResourceLoader,
     ) -> Result<(), UpgradeError> {
-        let images = self.list("images").to_vec();
-        for (i, image) in images.iter().enumerate() {
+        for i in 0..self.count("images") {
+            let image = self.item("images", i).unwrap_or_default();
             let at = format!("/images/{i}");
             let uri = image.get("uri").and_then(Value::as_str);
             let (bytes, in_binary) = match uri {
@@ -237,7 +246,7 @@ impl Asset {
                     false,
                 ),
                 None => {
-                    let view = unsigned(image, "bufferView")
+                    let view = unsigned(&image, "bufferView")
                         .and_then(|v| self.view_bytes(v as usize, buffers))
                         .ok_or_else(|| resource_error(&at, "its bufferView cannot be read"))?;
                     (view.to_vec(), true)
@@ -251,8 +260,10 @@ impl Asset {
             let stem = uri.map_or_else(|| name.to_string(), file_stem);
             let encoded = EncodedImage::new(bytes, mime_type, i, &stem, in_binary);
             self.images.push(encoded);
-            if let Some(image) = self.list_mut("images")[i].as_object_mut() {
-                image.remove("uri");
+            if let Some(images) = self.root.items_mut_if_array("images") {
+                images.update(i, |image| {
+                    image.as_object_mut().map(|image| image.remove("uri"));
+                });
             }
         }
         Ok(())
@@ -260,10 +271,10 @@ impl Asset {
 
     /// The bytes of bufferView `index` of the input (before the buffers are joined).
     fn view_bytes<'b>(&self, index: usize, buffers: &'b [Buffer]) -> Option<&'b [u8]> {
-        let view = self.list("bufferViews").get(index)?;
-        let buffer = buffers.get(unsigned(view, "buffer")? as usize)?;
-        let start = unsigned(view, "byteOffset").unwrap_or(0) as usize;
-        let end = start.checked_add(unsigned(view, "byteLength")? as usize)?;
+        let view = self.item("bufferViews", index)?;
+        let buffer = buffers.get(unsigned(&view, "buffer")? as usize)?;
+        let start = unsigned(&view, "byteOffset").unwrap_or(0) as usize;
+        let end = start.checked_add(unsigned(&view, "byteLength")? as usize)?;
         buffer.bytes.get(buffer.range.clone())?.get(start..end)
     }
 
@@ -271,7 +282,7 @@ impl Asset {
     fn convert_materials(&mut self) -> Result<Vec<usize>, UpgradeError> {
         let used_before = self.used_textures();
         let mut converted = Vec::new();
-        for i in 0..self.list("materials").len() {
+        for i in 0..self.count("materials") {
             if self.convert_material(i)? {
                 converted.push(i);
             }
@@ -290,7 +301,7 @@ impl Asset {
     /// Converts material `i` if it is a spec-gloss material that can be; true when it was.
     fn convert_material(&mut self, i: usize) -> Result<bool, UpgradeError> {
         let at = format!("/materials/{i}/extensions/{SPEC_GLOSS}");
-        let material = self.list("materials")[i].clone();
+        let material = self.item("materials", i).unwrap_or_default();
         let Some(extensions) = material.get("extensions").and_then(Value::as_object) else {
             return Ok(false);
         };
@@ -334,25 +345,26 @@ impl Asset {
         for decision in converted.decisions {
             self.note(&at, NoteKind::Decision, decision);
         }
-        let out = &mut self.list_mut("materials")[i];
-        out["pbrMetallicRoughness"] = converted.pbr_metallic_roughness;
-        if let Some(extensions) = out.get_mut("extensions").and_then(Value::as_object_mut) {
-            extensions.remove(SPEC_GLOSS);
-            extensions.extend(converted.extensions);
-        }
-        *out = tighten(out.take());
+        let materials = self.root.items_mut("materials");
+        materials.update(i, |out| {
+            out["pbrMetallicRoughness"] = converted.pbr_metallic_roughness;
+            if let Some(extensions) = out.get_mut("extensions").and_then(Value::as_object_mut) {
+                extensions.remove(SPEC_GLOSS);
+                extensions.extend(converted.extensions);
+            }
+        });
         Ok(true)
     }
 
     /// extensionsUsed gains what the conversions wrote and loses the spec-gloss extension
     /// when no material has it any more (extensionsRequired too).
     fn update_extension_lists(&mut self) {
-        let still_used = self.list("materials").iter().any(|m| {
+        let still_used = self.list("materials").any(|m| {
             m.get("extensions")
                 .and_then(|e| e.get(SPEC_GLOSS))
                 .is_some()
         });
-        let mut used: Vec<Value> = self.list("extensionsUsed").to_vec();
+        let mut used: Vec<Value> = self.list("extensionsUsed").collect();
         for added in spec_gloss::EXTENSIONS_ADDED {
             if !used.iter().any(|u| u == added) {
                 used.push(json!(added));
@@ -360,26 +372,23 @@ impl Asset {
         }
         if !still_used {
             used.retain(|u| u != SPEC_GLOSS);
-            if let Some(required) = self
-                .root
-                .get_mut("extensionsRequired")
-                .and_then(Value::as_array_mut)
-            {
-                required.retain(|r| r != SPEC_GLOSS);
+            if let Some(mut required) = self.root.items("extensionsRequired").cloned() {
+                required.retain(|_, r| r != SPEC_GLOSS);
                 if required.is_empty() {
                     self.root.remove("extensionsRequired");
+                } else {
+                    self.root.insert_items("extensionsRequired", required);
                 }
             }
         }
-        self.root
-            .insert("extensionsUsed".into(), Value::Array(used));
+        self.root.insert("extensionsUsed", &Value::Array(used));
     }
 
     /// The textures the materials read (through any `…Texture` member's `index`).
     fn used_textures(&self) -> BTreeSet<usize> {
         let mut used = BTreeSet::new();
         for material in self.list("materials") {
-            used.extend(texture_indices(material));
+            used.extend(texture_indices(&material));
         }
         used
     }
@@ -391,11 +400,9 @@ impl Asset {
         let images_before = self.referenced_by_textures("source");
         let samplers_before = self.referenced_by_textures("sampler");
         let texture_map = self.remove("textures", textures);
-        if let Some(Value::Array(materials)) = self.root.get_mut("materials") {
-            for material in materials {
-                renumber_textures(material, &texture_map);
-            }
-        }
+        self.update_all("materials", |material| {
+            renumber_textures(material, &texture_map)
+        });
         let images_after = self.referenced_by_textures("source");
         let removable_images: BTreeSet<usize> = (images_before.difference(&images_after))
             .copied()
@@ -413,11 +420,9 @@ impl Asset {
             image_map[index - 1].is_some()
         });
         let sampler_map = self.remove("samplers", &removable_samplers);
-        if let Some(Value::Array(textures)) = self.root.get_mut("textures") {
-            for texture in textures {
-                renumber_texture_members(texture, &image_map, &sampler_map);
-            }
-        }
+        self.update_all("textures", |texture| {
+            renumber_texture_members(texture, &image_map, &sampler_map)
+        });
     }
 
     /// The image (`source`, including extensions' sources) or sampler indices textures name.
@@ -425,14 +430,12 @@ impl Asset {
         let textures = self.list("textures");
         if key == "source" {
             textures
-                .iter()
-                .flat_map(texture_images)
+                .flat_map(|t| texture_images(&t).collect::<Vec<_>>())
                 .map(|i| i as usize)
                 .collect()
         } else {
             textures
-                .iter()
-                .filter_map(|t| unsigned(t, key))
+                .filter_map(|t| unsigned(&t, key))
                 .map(|i| i as usize)
                 .collect()
         }
@@ -441,29 +444,32 @@ impl Asset {
     /// Removes the listed objects of a collection, noting each; returns every old index's
     /// new one (None: removed).
     fn remove(&mut self, collection: &str, removed: &BTreeSet<usize>) -> Vec<Option<usize>> {
-        let Some(Value::Array(items)) = self.root.remove(collection) else {
+        let Some(items) = self.root.items_mut_if_array(collection) else {
             return Vec::new();
         };
         let mut map = Vec::with_capacity(items.len());
-        let mut kept = Vec::new();
-        for (i, item) in items.into_iter().enumerate() {
+        let mut kept = 0;
+        let mut dropped = Vec::new();
+        items.retain(|i, item| {
             if removed.contains(&i) {
                 map.push(None);
                 let name = item.get("name").and_then(Value::as_str).unwrap_or("");
-                self.note(
-                    format!("/{collection}/{i}"),
-                    NoteKind::Dropped,
-                    format!(
-                        "not written: only the converted spec-gloss materials used it ('{name}')."
-                    ),
-                );
-            } else {
-                map.push(Some(kept.len()));
-                kept.push(item);
+                dropped.push((i, name.to_string()));
+                return false;
             }
+            map.push(Some(kept));
+            kept += 1;
+            true
+        });
+        if kept == 0 {
+            self.root.remove(collection);
         }
-        if !kept.is_empty() {
-            self.root.insert(collection.into(), Value::Array(kept));
+        for (i, name) in dropped {
+            self.note(
+                format!("/{collection}/{i}"),
+                NoteKind::Dropped,
+                format!("not written: only the converted spec-gloss materials used it ('{name}')."),
+            );
         }
         map
     }
@@ -537,9 +543,9 @@ impl MaterialTextures<'_> {
         }
     }
 
-    fn texture(&self, slot: Slot) -> Option<&Value> {
+    fn texture(&self, slot: Slot) -> Option<Value> {
         let index = unsigned(self.slot(slot)?, "index")?;
-        self.asset.list("textures").get(index as usize)
+        self.asset.item("textures", index as usize)
     }
 }
 
@@ -549,7 +555,7 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
     }
 
     fn bytes(&self, slot: Slot) -> Option<Arc<Vec<u8>>> {
-        let image = texture_images(self.texture(slot)?).next()?;
+        let image = texture_images(&self.texture(slot)?).next()?;
         Some(self.asset.images.get(image as usize)?.bytes.clone())
     }
 
@@ -559,7 +565,7 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
     }
 
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value {
-        let sampler = self.texture(like).and_then(|t| unsigned(t, "sampler"));
+        let sampler = self.texture(like).and_then(|t| unsigned(&t, "sampler"));
         let mut info = self.slot(like).cloned().unwrap_or_else(|| json!({}));
         let key = (bytes, sampler);
         if let Some(&texture) = self.asset.rebaked.get(&key) {
@@ -567,17 +573,18 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
             return info;
         }
         let name = format!("material {} {name}", self.material);
-        let index = self.asset.list("images").len();
+        let index = self.asset.count("images");
         let image = EncodedImage::new(key.0.clone(), "image/png".into(), index, &name, false);
         self.asset.images.push(image);
-        self.asset.list_mut("images").push(json!({"name": name}));
+        self.asset
+            .root
+            .items_mut("images")
+            .push(&json!({"name": name}));
         let mut texture = json!({"name": name, "source": index});
         if let Some(sampler) = sampler {
             texture["sampler"] = json!(sampler);
         }
-        let textures = self.asset.list_mut("textures");
-        textures.push(texture);
-        let texture = textures.len() - 1;
+        let texture = self.asset.root.items_mut("textures").push(&texture);
         self.asset.rebaked.insert(key, texture);
         info["index"] = json!(texture);
         info

@@ -16,6 +16,8 @@ mod convert;
 mod data;
 mod fit;
 mod gltf2;
+pub mod json;
+mod origins;
 pub mod output;
 mod proof;
 mod rebake;
@@ -26,6 +28,7 @@ use crate::document::uri::ResourceLoader;
 use crate::legacy::source::{self, NotGltf1};
 use crate::shade::sample::{self, MaterialSource, Texture};
 pub use binary::Binary;
+pub use json::{Items, Json};
 pub use proof::{prove, ProofError};
 use serde_json::Value;
 use std::collections::HashSet;
@@ -125,7 +128,7 @@ pub enum NoteKind {
 #[derive(Debug, Clone)]
 pub struct Upgraded {
     /// The glTF 2.0 JSON.
-    pub json: Value,
+    pub json: Json,
     /// The one output buffer.
     pub binary: Binary,
     /// Images, in `images` order.
@@ -133,7 +136,7 @@ pub struct Upgraded {
     /// The conversion report.
     pub report: Vec<Note>,
     /// `/collection/index` of the output → the 1.0 object it was made from.
-    origins: std::collections::HashMap<String, String>,
+    origins: origins::Origins,
     /// Materials passed through as they were (a 2.0 input's materials that are not
     /// converted): a proof has nothing to compare for them.
     passed_through: std::collections::BTreeSet<usize>,
@@ -145,8 +148,8 @@ impl Upgraded {
     /// finding comes from.
     pub fn origin_of(&self, output_pointer: &str) -> Option<&str> {
         let mut tokens = output_pointer.split('/').skip(1);
-        let object = format!("/{}/{}", tokens.next()?, tokens.next()?);
-        self.origins.get(&object).map(String::as_str)
+        let collection = tokens.next()?;
+        self.origins.get(collection, tokens.next()?.parse().ok()?)
     }
 
     /// Whether material `index` was passed through from a 2.0 input as it was, rather than
@@ -257,10 +260,10 @@ impl From<NotGltf1> for UpgradeError {
 ///     "materialModel": "PBR_metal_roughness",
 ///     "values": {"baseColorFactor": [1.0, 0.77, 0.34, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.3}}}}}}"#;
 /// let upgraded = upgrade(gltf1, &NoResources, &UpgradeOptions::default()).unwrap();
-/// let gold = &upgraded.json["materials"][0];
+/// let gold = upgraded.json.items("materials").unwrap().get(0).unwrap();
 /// assert_eq!(gold["name"], "gold");
 /// assert_eq!(gold["pbrMetallicRoughness"]["roughnessFactor"], 0.3);
-/// assert_eq!(upgraded.json["asset"]["version"], "2.0");
+/// assert_eq!(upgraded.json.get("asset").unwrap()["version"], "2.0");
 ///
 /// // The output, as bytes, passes its own check.
 /// let glb = upgraded.to_glb();
@@ -274,7 +277,7 @@ impl From<NotGltf1> for UpgradeError {
 ///     "diffuseFactor": [0.8, 0.1, 0.1, 1.0], "specularFactor": [0.04, 0.04, 0.04],
 ///     "glossinessFactor": 0.6}}}]}"#;
 /// let upgraded = upgrade(gltf2, &NoResources, &UpgradeOptions::default()).unwrap();
-/// let plastic = &upgraded.json["materials"][0];
+/// let plastic = upgraded.json.items("materials").unwrap().get(0).unwrap();
 /// assert_eq!(plastic["extensions"]["KHR_materials_ior"]["ior"], 0);
 /// assert_eq!(plastic["extensions"]["KHR_materials_specular"]["specularColorFactor"][0], 0.04);
 /// assert!((plastic["pbrMetallicRoughness"]["roughnessFactor"].as_f64().unwrap() - 0.4).abs() < 1e-12);
@@ -295,8 +298,11 @@ pub fn upgrade(
 /// The materials of an upgraded asset as the shading evaluator samples them (an error when
 /// one of its textures cannot be decoded).
 pub fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, String> {
-    let list = |key: &str| upgraded.json[key].as_array().map_or(&[][..], Vec::as_slice);
-    let needed = crate::shade::load::used_images(list("materials"), list("textures"));
+    let materials = || (upgraded.json.items("materials").into_iter()).flat_map(Items::iter);
+    let textures: Vec<Value> = (upgraded.json.items("textures").into_iter())
+        .flat_map(Items::iter)
+        .collect();
+    let needed = crate::shade::load::used_images(materials(), &textures);
     let encoded: Vec<sample::Wanted<&[u8]>> = upgraded
         .images
         .iter()
@@ -304,7 +310,7 @@ pub fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, S
         .map(|(i, image)| needed.contains(&i).then_some(Ok(&image.bytes[..])))
         .collect();
     let images = sample::decode_all(&encoded)?;
-    let textures: Vec<Option<Texture>> = (list("textures").iter())
+    let textures: Vec<Option<Texture>> = (textures.iter())
         .map(|t| {
             images
                 .get(crate::shade::load::texture_source(t)? as usize)?
@@ -312,7 +318,7 @@ pub fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, S
         })
         .collect();
     Ok(crate::shade::load::prepare_materials(
-        list("materials"),
+        materials(),
         &textures,
     ))
 }

@@ -2,7 +2,7 @@
 
 use super::sample::{self, MaterialSource, Texture};
 use crate::document::uri::{load_uri, ResourceLoader};
-use crate::document::{self, BufferData, Bytes, Container};
+use crate::document::{self, BufferData, Bytes, Container, Node};
 use crate::gltf::material::texture_images;
 use serde_json::Value;
 use std::collections::HashMap;
@@ -25,7 +25,10 @@ impl AsRef<[u8]> for Encoded<'_> {
 /// The images the materials sample (through their textureInfo objects, the only objects
 /// in a material with an `index`): the others, such as originals a converter kept, are not
 /// decoded.
-pub fn used_images(materials: &[Value], textures: &[Value]) -> std::collections::BTreeSet<usize> {
+pub fn used_images(
+    materials: impl IntoIterator<Item = Value>,
+    textures: &[Value],
+) -> std::collections::BTreeSet<usize> {
     fn texture_indices(value: &Value, out: &mut Vec<u64>) {
         match value {
             Value::Object(object) => {
@@ -37,9 +40,7 @@ pub fn used_images(materials: &[Value], textures: &[Value]) -> std::collections:
         }
     }
     let mut indices = Vec::new();
-    materials
-        .iter()
-        .for_each(|m| texture_indices(m, &mut indices));
+    (materials.into_iter()).for_each(|m| texture_indices(&m, &mut indices));
     indices
         .into_iter()
         .filter_map(|t| textures.get(t as usize))
@@ -60,13 +61,17 @@ pub fn gltf2_materials(
     loader: &dyn ResourceLoader,
 ) -> Result<Vec<(String, MaterialSource)>, String> {
     // Only the materials are read here; problems with the file are `check`'s to report.
-    let doc = document::read_value(bytes, name, &mut Vec::new());
-    let root = doc.root.as_ref().ok_or("not a readable glTF document")?;
-    let list = |key: &str| -> &[Value] {
-        root.get(key)
-            .and_then(Value::as_array)
-            .map_or(&[], Vec::as_slice)
-    };
+    let doc = document::read(bytes, name, &mut Vec::new());
+    let root = doc
+        .root
+        .as_ref()
+        .ok_or("not a readable glTF document")?
+        .root();
+    // Each material is made a `Value` when it is prepared, never all at once: an asset may
+    // hold 10^5 of them.
+    let nodes =
+        |key: &str| (root.get(key).and_then(Node::as_array).into_iter()).flat_map(|a| a.iter());
+    let list = |key: &str| -> Vec<Value> { nodes(key).map(Node::to_value).collect() };
     let buffers: Vec<Option<BufferData>> = list("buffers")
         .iter()
         .enumerate()
@@ -79,6 +84,7 @@ pub fn gltf2_materials(
         )
         .collect();
     let views = list("bufferViews");
+    let images = list("images");
     let view_bytes = |index: u64| -> Option<&[u8]> {
         let view = views.get(index as usize)?;
         let buffer = buffers
@@ -88,8 +94,9 @@ pub fn gltf2_materials(
         let end = start.checked_add(view.get("byteLength")?.as_u64()? as usize)?;
         buffer.in_memory()?.get(start..end)
     };
-    let needed = used_images(list("materials"), list("textures"));
-    let encoded: Vec<sample::Wanted<Encoded>> = list("images")
+    let textures = list("textures");
+    let needed = used_images(nodes("materials").map(Node::to_value), &textures);
+    let encoded: Vec<sample::Wanted<Encoded>> = images
         .iter()
         .enumerate()
         .map(|(i, image)| (i, image.get("uri").and_then(Value::as_str)))
@@ -97,34 +104,37 @@ pub fn gltf2_materials(
             (false, _) => None,
             (true, Some(uri)) => Some(load_uri(uri, loader).map(Encoded::Loaded)),
             (true, None) => Some(
-                (list("images")[i].get("bufferView").and_then(Value::as_u64))
+                (images[i].get("bufferView").and_then(Value::as_u64))
                     .and_then(view_bytes)
                     .map(Encoded::View)
                     .ok_or_else(|| "its bufferView cannot be read".to_string()),
             ),
         })
         .collect();
-    let images = sample::decode_all(&encoded)?;
-    let textures: Vec<Option<Texture>> = list("textures")
+    let decoded = sample::decode_all(&encoded)?;
+    let textures: Vec<Option<Texture>> = textures
         .iter()
-        .map(|texture| images.get(texture_source(texture)? as usize)?.clone())
+        .map(|texture| decoded.get(texture_source(texture)? as usize)?.clone())
         .collect();
-    let materials = list("materials");
-    let names = materials.iter().enumerate().map(|(i, material)| {
-        (material.get("name").and_then(Value::as_str)).map_or_else(|| i.to_string(), str::to_string)
+    let names = nodes("materials").enumerate().map(|(i, material)| {
+        (material.get("name").and_then(Node::as_str)).map_or_else(|| i.to_string(), str::to_string)
     });
-    Ok(names.zip(prepare_materials(materials, &textures)).collect())
+    let prepared = prepare_materials(nodes("materials").map(Node::to_value), &textures);
+    Ok(names.zip(prepared).collect())
 }
 
 /// Each material prepared for the evaluator with the document's textures (by texture
 /// index). An asset's copies of one material share one prepared source, so 10^5 alike
 /// materials are prepared, and held, once.
-pub fn prepare_materials(materials: &[Value], textures: &[Option<Texture>]) -> Vec<MaterialSource> {
+pub fn prepare_materials(
+    materials: impl IntoIterator<Item = Value>,
+    textures: &[Option<Texture>],
+) -> Vec<MaterialSource> {
     let mut prepared: HashMap<String, MaterialSource> = HashMap::new();
-    (materials.iter())
+    (materials.into_iter())
         .map(|material| {
-            (prepared.entry(sample::shading_text(material)))
-                .or_insert_with(|| MaterialSource::gltf2(material, textures))
+            (prepared.entry(sample::shading_text(&material)))
+                .or_insert_with(|| MaterialSource::gltf2(&material, textures))
                 .clone()
         })
         .collect()

@@ -29,7 +29,7 @@ impl Builder<'_, '_> {
             for (sampler_id, sampler) in source_samplers.into_iter().flat_map(|s| s.iter()) {
                 let accessor_of = |key: &str| {
                     let parameter = sampler.get(key).and_then(Node::as_str)?;
-                    parameters?.get(parameter)?.as_str().map(str::to_string)
+                    parameters?.get(parameter)?.as_str()
                 };
                 let (Some(input), Some(output)) = (accessor_of("input"), accessor_of("output"))
                 else {
@@ -45,8 +45,8 @@ impl Builder<'_, '_> {
                     .map(Node::to_value)
                     .unwrap_or(json!("LINEAR"));
                 let (input, output) = (
-                    self.accessor(&input, Role::Data)?,
-                    self.accessor(&output, Role::Data)?,
+                    self.accessor(input, Role::Data)?,
+                    self.accessor(output, Role::Data)?,
                 );
                 sampler_index.insert(sampler_id, samplers.len());
                 samplers.push(

@@ -7,6 +7,7 @@ use crate::gltf::gl::{BLEND, CULL_FACE};
 use crate::legacy::pbr::{self, LegacyPbr, Model};
 use crate::upgrade::builder::{pointer, Builder};
 use crate::upgrade::fit;
+use crate::upgrade::json::Items;
 use crate::upgrade::rebake;
 use crate::upgrade::spec_gloss::{self, Slot};
 use crate::upgrade::{NoteKind, SpecularGlossiness, UpgradeError};
@@ -467,11 +468,12 @@ fn scale_alpha(out: &mut Map<String, Value>, opacity: f64) {
 }
 
 /// The KHR extensions the converted materials use.
-pub fn extensions_used(materials: &[Value]) -> Vec<String> {
-    let mut used: Vec<String> = materials
-        .iter()
-        .filter_map(|m| m.get("extensions")?.as_object())
-        .flat_map(|e| e.keys().cloned())
+pub fn extensions_used(materials: Option<&Items>) -> Vec<String> {
+    let mut used: Vec<String> = (materials.into_iter().flat_map(Items::iter))
+        .flat_map(|material| match material.get("extensions") {
+            Some(Value::Object(extensions)) => extensions.keys().cloned().collect(),
+            _ => Vec::new(),
+        })
         .collect();
     used.sort();
     used.dedup();

@@ -6,7 +6,7 @@ use crate::upgrade::data::{self, Role};
 use crate::upgrade::{NoteKind, UpgradeError};
 use serde_json::{json, Map, Value};
 
-impl Builder<'_, '_> {
+impl<'s> Builder<'s, '_> {
     pub(in crate::upgrade) fn meshes(&mut self) -> Result<(), UpgradeError> {
         for (id, mesh) in self.source.dictionary("meshes") {
             let mut out = Self::named(id, mesh);
@@ -24,7 +24,7 @@ impl Builder<'_, '_> {
 
     pub(in crate::upgrade) fn primitive(
         &mut self,
-        primitive: Node,
+        primitive: Node<'s>,
         at: &str,
     ) -> Result<Value, UpgradeError> {
         let mut attributes = Map::new();

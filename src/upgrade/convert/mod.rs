@@ -33,12 +33,7 @@ pub(super) fn run(mut builder: Builder) -> Result<Upgraded, UpgradeError> {
     builder.dropped_collections();
     builder.unconverted_extensions();
     builder.drop_unused_textures();
-    let mut used = materials::extensions_used(
-        builder
-            .arrays
-            .get("materials")
-            .map_or(&[][..], Vec::as_slice),
-    );
+    let mut used = materials::extensions_used(builder.arrays.get("materials"));
     if builder.arrays.contains_key("lights") {
         used.push(lights::PUNCTUAL.to_string());
         used.sort();

@@ -12,7 +12,6 @@ impl Builder<'_, '_> {
     pub(in crate::upgrade) fn nodes(&mut self) -> Result<(), UpgradeError> {
         let nodes = self.source.dictionary("nodes");
         let mut extra_nodes = Vec::new();
-        let mut outputs = Vec::new();
         for &(id, node) in &nodes {
             let mut out = Self::named(id, node);
             let mut children: Vec<Value> = id_list(node.get("children"))
@@ -60,9 +59,11 @@ impl Builder<'_, '_> {
                 let placed = json!({super::lights::PUNCTUAL: {"light": light}});
                 out.insert("extensions".into(), placed);
             }
-            outputs.push((Value::Object(out), pointer("nodes", id)));
+            // Pushed as made (a node's index is its place in the dictionary): 10^5 nodes
+            // are never all held as values at once.
+            self.push_from("nodes", Value::Object(out), pointer("nodes", id));
         }
-        for (node, origin) in outputs.into_iter().chain(extra_nodes) {
+        for (node, origin) in extra_nodes {
             self.push_from("nodes", node, origin);
         }
         Ok(())

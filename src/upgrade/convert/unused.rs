@@ -3,6 +3,7 @@
 //! textures nothing reads.
 
 use crate::upgrade::builder::Builder;
+use crate::upgrade::json::Items;
 use crate::upgrade::references::{renumber_texture_members, renumber_textures, texture_indices};
 use crate::upgrade::NoteKind;
 use serde_json::Value;
@@ -10,17 +11,22 @@ use serde_json::Value;
 impl Builder<'_, '_> {
     pub(in crate::upgrade) fn drop_unused_textures(&mut self) {
         let mut used = Vec::new();
-        for material in self.arrays.get("materials").into_iter().flatten() {
-            used.extend(texture_indices(material));
+        for material in self
+            .arrays
+            .get("materials")
+            .into_iter()
+            .flat_map(Items::iter)
+        {
+            used.extend(texture_indices(&material));
         }
         let textures = self.keep_used("textures", &used);
-        for material in self.arrays.get_mut("materials").into_iter().flatten() {
-            renumber_textures(material, &textures);
+        if let Some(materials) = self.arrays.get_mut("materials") {
+            materials.update_all(|material| renumber_textures(material, &textures));
         }
         let images = self.keep_used("images", &self.referenced("source"));
         let samplers = self.keep_used("samplers", &self.referenced("sampler"));
-        for texture in self.arrays.get_mut("textures").into_iter().flatten() {
-            renumber_texture_members(texture, &images, &samplers);
+        if let Some(textures) = self.arrays.get_mut("textures") {
+            textures.update_all(|texture| renumber_texture_members(texture, &images, &samplers));
         }
         let mut index = 0;
         self.images.retain(|_| {
@@ -32,27 +38,34 @@ impl Builder<'_, '_> {
     /// Removes the objects of `collection` that `used` (their indices) does not name, noting
     /// each; returns every old index's new one (None: removed).
     fn keep_used(&mut self, collection: &'static str, used: &[usize]) -> Vec<Option<usize>> {
-        let items = self.arrays.remove(collection).unwrap_or_default();
+        let mut items = self.arrays.remove(collection).unwrap_or_default();
         let mut is_used = vec![false; items.len()];
         for &i in used {
             if let Some(flag) = is_used.get_mut(i) {
                 *flag = true;
             }
         }
-        let mut kept = Vec::new();
         let mut new_index = Vec::with_capacity(items.len());
-        for (old, (item, used)) in items.into_iter().zip(is_used).enumerate() {
-            let origin = self.origins.remove(&format!("/{collection}/{old}"));
-            if used {
-                if let Some(origin) = origin {
-                    self.record_origin(collection, kept.len(), origin);
-                }
-                new_index.push(Some(kept.len()));
-                kept.push(item);
-                continue;
+        let mut dropped = Vec::new();
+        let mut kept = 0;
+        self.origins
+            .renumber(collection, |old| is_used.get(old) == Some(&true));
+        items.retain(|old, item| {
+            if is_used[old] {
+                new_index.push(Some(kept));
+                kept += 1;
+                return true;
             }
             new_index.push(None);
-            let name = item.get("name").and_then(Value::as_str).unwrap_or("");
+            dropped.push(
+                item.get("name")
+                    .and_then(Value::as_str)
+                    .unwrap_or("")
+                    .to_string(),
+            );
+            false
+        });
+        for name in dropped {
             self.note(
                 format!("/{collection}"),
                 NoteKind::Dropped,
@@ -62,7 +75,7 @@ impl Builder<'_, '_> {
                 ),
             );
         }
-        self.arrays.insert(collection, kept);
+        self.arrays.insert(collection, items);
         new_index
     }
 }
@@ -70,9 +83,13 @@ impl Builder<'_, '_> {
 impl Builder<'_, '_> {
     /// The indices the textures' `key` member names.
     fn referenced(&self, key: &str) -> Vec<usize> {
-        (self.arrays.get("textures").into_iter().flatten())
-            .filter_map(|texture| texture.get(key)?.as_u64())
-            .map(|i| i as usize)
-            .collect()
+        (self
+            .arrays
+            .get("textures")
+            .into_iter()
+            .flat_map(Items::iter))
+        .filter_map(|texture| texture.get(key)?.as_u64())
+        .map(|i| i as usize)
+        .collect()
     }
 }

@@ -1,13 +1,15 @@
 //! Placing an upgraded asset into files (`.glb` with everything embedded, or `.gltf` with
 //! `.bin` and images beside it), checking those exact bytes, and writing them atomically.
 
+use super::Json;
 use super::Upgraded;
-use crate::check::{check_bytes, check_glb_pieces, CheckOptions, Report};
+use crate::check::{check_glb_pieces, check_shared_bytes, CheckOptions, Report};
 use crate::document::file::{FileId, Kept};
 use crate::document::uri::{LoadError, ResourceLoader};
 use crate::document::{Bytes, Elsewhere, Piece, Pieces};
-use serde_json::{json, Map, Value};
+use serde_json::json;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 mod temporary;
 use temporary::Temporary;
@@ -21,7 +23,8 @@ pub struct File {
     /// The file name, without a folder.
     pub name: String,
     /// What comes first: a GLB's header, JSON chunk and BIN chunk header; a `.gltf`'s text.
-    pub head: Bytes,
+    /// Shared with the check of the output, which reads it while it is written.
+    pub head: Arc<Bytes>,
     /// Then the data: a GLB's BIN chunk data, a `.bin`'s runs, an image.
     pub data: Pieces,
 }
@@ -30,7 +33,7 @@ impl File {
     fn text(name: String, text: Bytes) -> Self {
         File {
             name,
-            head: text,
+            head: Arc::new(text),
             data: Pieces::default(),
         }
     }
@@ -38,7 +41,7 @@ impl File {
     fn data(name: String, data: Pieces) -> Self {
         File {
             name,
-            head: Bytes::new(),
+            head: Arc::default(),
             data,
         }
     }
@@ -83,13 +86,9 @@ pub fn layout_releasing_json(upgraded: &mut Upgraded, main_name: &str) -> Files 
 /// the binary and the images are shared). The members the layout places (buffers,
 /// bufferViews, images) are changed where they lie, never copied: an asset of 10^5
 /// accessors has 10^5 bufferViews.
-fn layout_with(json: Value, upgraded: &Upgraded, main_name: &str) -> Files {
-    let mut root = match json {
-        Value::Object(root) => root,
-        _ => Map::new(),
-    };
+fn layout_with(mut root: Json, upgraded: &Upgraded, main_name: &str) -> Files {
     // A null where the layout places data says nothing: the layout writes its own.
-    root.retain(|key, value| !(value.is_null() && PLACED.contains(&key.as_str())));
+    root.remove_nulls(&PLACED);
     if main_name.to_ascii_lowercase().ends_with(".glb") {
         Files {
             main: glb(root, upgraded, main_name),
@@ -103,7 +102,7 @@ fn layout_with(json: Value, upgraded: &Upgraded, main_name: &str) -> Files {
 /// The members of the asset's root the layout writes.
 const PLACED: [&str; 3] = ["buffers", "bufferViews", "images"];
 
-fn glb(mut json: Map<String, Value>, upgraded: &Upgraded, name: &str) -> File {
+fn glb(mut json: Json, upgraded: &Upgraded, name: &str) -> File {
     // Images follow the geometry in the one binary chunk, each 4-byte aligned.
     let mut length = upgraded.binary.len();
     let mut body = upgraded.binary.pieces();
@@ -111,36 +110,34 @@ fn glb(mut json: Map<String, Value>, upgraded: &Upgraded, name: &str) -> File {
         let aligned = length.div_ceil(4) * 4;
         body.push(Piece::whole(vec![0; aligned - length]));
         body.push(Piece::new(image.bytes.clone(), 0..image.bytes.len()));
-        let views = json.entry("bufferViews").or_insert_with(|| json!([]));
         let view = json!({"buffer": 0, "byteOffset": aligned, "byteLength": image.bytes.len()});
-        let index = match views.as_array_mut() {
-            Some(views) => {
-                views.push(view);
-                views.len() - 1
-            }
-            None => continue,
-        };
+        let index = json.items_mut("bufferViews").push(&view);
         length = aligned + image.bytes.len();
-        if let Some(placed) = json.get_mut("images").and_then(|images| images.get_mut(i)) {
-            placed["bufferView"] = json!(index);
-            placed["mimeType"] = json!(image.mime_type);
+        if let Some(images) = json.items_mut_if_array("images") {
+            images.update(i, |placed| {
+                if placed.is_object() {
+                    placed["bufferView"] = json!(index);
+                    placed["mimeType"] = json!(image.mime_type);
+                }
+            });
         }
     }
     if length > 0 {
-        set_buffer_length(json.entry("buffers").or_insert(Value::Null), length);
+        set_buffer_length(&mut json, length);
     }
-    let mut text = serde_json::to_vec(&json).unwrap_or_default();
+    // The JSON is written straight into the head, after the 20 bytes of headers it fills in.
+    let mut head = vec![0; 20];
+    json.append_to(&mut head);
     drop(json);
-    text.resize(text.len().div_ceil(4) * 4, b' ');
+    head.resize(head.len().div_ceil(4) * 4, b' ');
+    let json_length = head.len() - 20;
     let padded = length.div_ceil(4) * 4;
-    let chunks = 8 + text.len() + if length == 0 { 0 } else { 8 + padded };
-    let mut head = Vec::with_capacity(28 + text.len());
-    head.extend(b"glTF");
-    head.extend(2u32.to_le_bytes());
-    head.extend(((12 + chunks) as u32).to_le_bytes());
-    head.extend((text.len() as u32).to_le_bytes());
-    head.extend(b"JSON");
-    head.extend(&text);
+    let chunks = 8 + json_length + if length == 0 { 0 } else { 8 + padded };
+    head[..4].copy_from_slice(b"glTF");
+    head[4..8].copy_from_slice(&2u32.to_le_bytes());
+    head[8..12].copy_from_slice(&((12 + chunks) as u32).to_le_bytes());
+    head[12..16].copy_from_slice(&(json_length as u32).to_le_bytes());
+    head[16..20].copy_from_slice(b"JSON");
     if length == 0 {
         return File::text(name.to_string(), head);
     }
@@ -149,12 +146,12 @@ fn glb(mut json: Map<String, Value>, upgraded: &Upgraded, name: &str) -> File {
     body.push(Piece::whole(vec![0; padded - length]));
     File {
         name: name.to_string(),
-        head,
+        head: Arc::new(head),
         data: Pieces::new(body),
     }
 }
 
-fn separate(mut json: Map<String, Value>, upgraded: &Upgraded, main_name: &str) -> Files {
+fn separate(mut json: Json, upgraded: &Upgraded, main_name: &str) -> Files {
     let stem = main_name
         .rsplit_once('.')
         .map_or(main_name, |(stem, _)| stem)
@@ -162,23 +159,28 @@ fn separate(mut json: Map<String, Value>, upgraded: &Upgraded, main_name: &str) 
     let mut side = Vec::new();
     if !upgraded.binary.is_empty() {
         let name = format!("{stem}.bin");
-        let first_buffer = json
-            .get_mut("buffers")
-            .and_then(|buffers| buffers.get_mut(0));
-        if let Some(buffer) = first_buffer.filter(|b| b.is_object()) {
-            buffer["uri"] = json!(uri_escape(&name));
+        if let Some(buffers) = json.items_mut_if_array("buffers") {
+            buffers.update(0, |buffer| {
+                if buffer.is_object() {
+                    buffer["uri"] = json!(uri_escape(&name));
+                }
+            });
         }
         side.push(File::data(name, Pieces::new(upgraded.binary.pieces())));
     }
     for (i, image) in images_to_place(upgraded) {
         let name = format!("{stem}-{}", image.file_name);
-        if let Some(placed) = json.get_mut("images").and_then(|images| images.get_mut(i)) {
-            placed["uri"] = json!(uri_escape(&name));
+        if let Some(images) = json.items_mut_if_array("images") {
+            images.update(i, |placed| {
+                if placed.is_object() {
+                    placed["uri"] = json!(uri_escape(&name));
+                }
+            });
         }
         let piece = Piece::new(image.bytes.clone(), 0..image.bytes.len());
         side.push(File::data(name, Pieces::new([piece])));
     }
-    let mut text = serde_json::to_vec_pretty(&json).unwrap_or_default();
+    let mut text = json.to_vec_pretty();
     text.push(b'\n');
     Files {
         main: File::text(main_name.to_string(), text),
@@ -193,10 +195,14 @@ fn images_to_place(upgraded: &Upgraded) -> impl Iterator<Item = (usize, &super::
 }
 
 /// The one buffer's byteLength, keeping its other members (a 2.0 input's name, extras).
-fn set_buffer_length(buffers: &mut Value, length: usize) {
-    match buffers.get_mut(0) {
-        Some(buffer) if buffer.is_object() => buffer["byteLength"] = json!(length),
-        _ => *buffers = json!([{"byteLength": length}]),
+fn set_buffer_length(json: &mut Json, length: usize) {
+    let first_is_object =
+        (json.items("buffers").and_then(|b| b.get(0))).is_some_and(|b| b.is_object());
+    if first_is_object {
+        let buffers = json.items_mut("buffers");
+        buffers.update(0, |buffer| buffer["byteLength"] = json!(length));
+    } else {
+        json.insert("buffers", &json!([{"byteLength": length}]));
     }
 }
 
@@ -219,7 +225,7 @@ pub fn verify(files: &Files) -> Report {
     let main = &files.main;
     let options = CheckOptions::default();
     if main.data.is_empty() {
-        return check_bytes(&main.name, main.head.clone(), &resources, &options);
+        return check_shared_bytes(&main.name, main.head.clone(), &resources, &options);
     }
     check_glb_pieces(
         &main.name,
