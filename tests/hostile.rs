@@ -29,7 +29,7 @@ fn an_accessor_claiming_two_to_the_31_elements_is_refused_not_allocated() {
         "scenes": {"s": {"nodes": []}}
     });
     let error = upgrade(
-        &serde_json::to_vec(&gltf1).unwrap(),
+        serde_json::to_vec(&gltf1).unwrap(),
         &NoResources,
         &UpgradeOptions::default(),
     )
@@ -351,11 +351,11 @@ fn gltf1_skin(joint_names: &[&str], skeleton_children: &[&str]) -> Vec<u8> {
 #[test]
 fn a_skin_whose_joints_cannot_all_be_found_is_refused_not_shifted() {
     let options = UpgradeOptions::default();
-    let whole = upgrade(&gltf1_skin(&["A", "B"], &["b"]), &NoResources, &options).unwrap();
+    let whole = upgrade(gltf1_skin(&["A", "B"], &["b"]), &NoResources, &options).unwrap();
     assert_eq!(whole.json.to_value()["skins"][0]["joints"], json!([0, 1]));
 
     // Finding 10: "C" names no node, so every later joint would move up one place.
-    let error = upgrade(&gltf1_skin(&["C", "B"], &["b"]), &NoResources, &options).unwrap_err();
+    let error = upgrade(gltf1_skin(&["C", "B"], &["b"]), &NoResources, &options).unwrap_err();
     assert!(
         error.to_string().contains("/skins/s/jointNames/0"),
         "{error}"
@@ -364,7 +364,7 @@ fn a_skin_whose_joints_cannot_all_be_found_is_refused_not_shifted() {
 
     // A child id in the skeleton that names no node hides the joints below it.
     let error = upgrade(
-        &gltf1_skin(&["A", "B"], &["b", "ghost"]),
+        gltf1_skin(&["A", "B"], &["b", "ghost"]),
         &NoResources,
         &options,
     )

@@ -760,7 +760,7 @@ fn the_pbr_drafts_hammer_upgrades_under_each_extension_name() {
         let path = scratch.path().join(format!("{name}.gltf"));
         std::fs::write(&path, serde_json::to_vec(&asset).unwrap()).unwrap();
         let upgraded = upgrade(
-            &std::fs::read(&path).unwrap(),
+            std::fs::read(&path).unwrap(),
             &FolderResources::new(scratch.path()),
             &UpgradeOptions::default(),
         )

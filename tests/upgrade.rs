@@ -826,7 +826,7 @@ fn quantized_positions_are_decoded_with_their_decode_matrix() {
         "scene": "s"
     });
     let upgraded = upgrade(
-        &serde_json::to_vec(&gltf1).unwrap(),
+        serde_json::to_vec(&gltf1).unwrap(),
         &NoResources,
         &UpgradeOptions::default(),
     )

@@ -89,6 +89,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    return_large_blocks_when_freed();
     // An interrupted upgrade leaves no temporary behind (they can be as large as the output).
     // Without a handler (another one already set) a killed run's are removed by the next.
     let _ = ctrlc::set_handler(|| gltfmat::upgrade::output::exit_removing_unfinished(130));
@@ -104,4 +105,17 @@ fn main() -> ExitCode {
         Command::Man => shell::man(Cli::command()),
     };
     outcome.unwrap_or_else(common::Failure::report)
+}
+
+/// Gives every allocation from 1 MiB up its own mapping, returned to the system when freed.
+/// glibc raises that threshold to 32 MiB once such a block is freed, after which the trees
+/// and texts of one phase (an upgrade's conversion, its proof) stay resident, freed but
+/// scattered, while the next (the check of the output) maps its own: an upgrade of 10^5
+/// meshes peaked at 170 MB instead of 143.
+fn return_large_blocks_when_freed() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: mallopt only sets a tuning parameter, before any thread is started.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 1 << 20);
+    }
 }

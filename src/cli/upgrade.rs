@@ -6,7 +6,7 @@ use gltfmat::check::{Location, Report};
 use gltfmat::document::file::FileId;
 use gltfmat::document::uri::folder_of;
 use gltfmat::report::{render, Format, Style};
-use gltfmat::upgrade::{output, Note, NoteKind, SpecularGlossiness};
+use gltfmat::upgrade::{output, Items, Note, NoteKind, SpecularGlossiness};
 use gltfmat::{upgrade, CheckOptions, FolderResources, Severity, UpgradeOptions, Upgraded};
 use std::collections::HashMap;
 use std::hash::Hash;
@@ -69,11 +69,15 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         })
         .with_double_sided_default(args.double_sided);
     let loader = FolderResources::beside(&args.input);
-    let mut upgraded = upgrade(&bytes, &loader, &options)
+    // The bytes go to the upgrade, which lets a `.gltf`'s text go once its tree is built;
+    // the proof reads the file again, and proves nothing if it changed in between.
+    let read = (!args.no_verify).then(|| Fingerprint::of(&bytes));
+    let mut upgraded = upgrade(bytes, &loader, &options)
         .map_err(|e| Failure::refused(format!("{}: {e}", args.input.display())))?;
     let mut log = Log::to(&destination);
     print_notes(&upgraded.report, &mut log);
-    if !args.no_verify && !proved(&bytes, &args, &upgraded, &mut log) {
+    let disproved = read.is_some_and(|read| !proved(read, &args, &upgraded, &mut log));
+    if disproved {
         if args.verify {
             return Err(Failure::refused(
                 "a converted material does not render like its source; nothing was written.",
@@ -81,8 +85,6 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         }
         log.line(format_args!("warning: a converted material does not render like its source within ΔE2000 {} (the output is written; --verify refuses it)", args.threshold));
     }
-    // The output's check is the peak of memory; the input's bytes are not needed for it.
-    drop(bytes);
     let (folder, name) = match destination {
         Destination::Stdout => return write_to_stdout(&mut upgraded, &args.input),
         Destination::File { folder, name } => (folder, name),
@@ -102,6 +104,18 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         1 + files.side.len()
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// What the upgrade read: its length and hash, to tell whether the proof reads the same.
+#[derive(PartialEq)]
+struct Fingerprint(usize, u64);
+
+impl Fingerprint {
+    fn of(bytes: &[u8]) -> Fingerprint {
+        let mut hasher = std::hash::DefaultHasher::new();
+        std::hash::Hasher::write(&mut hasher, bytes);
+        Fingerprint(bytes.len(), std::hash::Hasher::finish(&hasher))
+    }
 }
 
 /// Where the output goes: a `.gltf`/`.glb` file, or stdout (`-o -`, as a GLB).
@@ -276,7 +290,24 @@ fn inherited_errors(input: &Path) -> usize {
 /// The proof: every source material that has a model of its own (a 1.0 asset's PBR-draft
 /// materials, every material of a 2.0 asset) compared with its conversion, one line each in
 /// the log. False when one differs by more than the threshold or cannot be evaluated.
-fn proved(bytes: &[u8], args: &UpgradeArgs, upgraded: &Upgraded, log: &mut Log) -> bool {
+fn proved(read: Fingerprint, args: &UpgradeArgs, upgraded: &Upgraded, log: &mut Log) -> bool {
+    // No material, nothing to compare: the input is not read again.
+    if upgraded.json.items("materials").is_none_or(Items::is_empty) {
+        return true;
+    }
+    let bytes = match gltfmat::document::file::read(&args.input) {
+        Ok(bytes) if Fingerprint::of(&bytes) == read => bytes,
+        Ok(_) => {
+            log.line(format_args!(
+                "proof: the input changed while it was upgraded"
+            ));
+            return false;
+        }
+        Err(e) => {
+            log.line(format_args!("proof: {}: {e}", args.input.display()));
+            return false;
+        }
+    };
     let loader = FolderResources::beside(&args.input);
     let name = args.input.to_string_lossy();
     let outcomes = match gltfmat::upgrade::prove(bytes, &name, &loader, upgraded) {

@@ -136,11 +136,22 @@ impl Slot {
 impl Tree {
     /// Parses JSON text into a tree of at most [`MAX_VALUES`] values.
     pub fn parse(text: &[u8]) -> serde_json::Result<Tree> {
-        Self::parse_within(text, MAX_VALUES)
+        Self::parse_within(text, MAX_VALUES, None)
     }
 
-    fn parse_within(text: &[u8], max_values: usize) -> serde_json::Result<Tree> {
-        let counts = count(text, max_values)?;
+    /// [`Tree::parse`] keeping only the root object's members named in `keep`: the others
+    /// are read past (their syntax still checked) and left out. A proof reads a 1.0 asset's
+    /// materials this way, without the 10^5 meshes beside them.
+    pub fn parse_members(text: &[u8], keep: &[&str]) -> serde_json::Result<Tree> {
+        Self::parse_within(text, MAX_VALUES, Some(keep))
+    }
+
+    fn parse_within(
+        text: &[u8],
+        max_values: usize,
+        keep: Option<&[&str]>,
+    ) -> serde_json::Result<Tree> {
+        let counts = count(text, max_values, keep)?;
         let slots = counts.slots;
         let state = RefCell::new(Building {
             tree: Tree {
@@ -155,6 +166,7 @@ impl Tree {
             },
             counts: counts.elements,
             next_container: 0,
+            root_keep: keep,
         });
         let mut deserializer = serde_json::Deserializer::from_slice(text);
         let root = Build { state: &state }.deserialize(&mut deserializer)?;
@@ -561,6 +573,14 @@ impl<'t> Object<'t> {
         Some(self.tree.node(self.tree.slots[at + 1]))
     }
 
+    /// The place of the member named `key` among the members as written (members taken
+    /// out since still count): a 1.0 dictionary's ids become 2.0 indices by it.
+    pub fn position(self, key: &str) -> Option<usize> {
+        let id = self.tree.find(key)?;
+        let at = self.tree.member_slot((self.start, self.len), id)?;
+        Some((at - self.start) / 2)
+    }
+
     /// Whether a member is named `key`.
     pub fn contains_key(self, key: &str) -> bool {
         self.get(key).is_some()
@@ -673,11 +693,12 @@ struct Counts {
     slots: usize,
 }
 
-fn count(text: &[u8], max_values: usize) -> serde_json::Result<Counts> {
+fn count(text: &[u8], max_values: usize, keep: Option<&[&str]>) -> serde_json::Result<Counts> {
     let state = Counting {
         elements: RefCell::new(Vec::new()),
         slots: Cell::new(0),
         left: Cell::new(max_values),
+        root_keep: keep,
     };
     let mut deserializer = serde_json::Deserializer::from_slice(text);
     Count(&state).deserialize(&mut deserializer)?;
@@ -688,14 +709,16 @@ fn count(text: &[u8], max_values: usize) -> serde_json::Result<Counts> {
     })
 }
 
-struct Counting {
+struct Counting<'k> {
     elements: RefCell<Vec<u32>>,
     slots: Cell<usize>,
     left: Cell<usize>,
+    /// The root object's members to keep (None: all).
+    root_keep: Option<&'k [&'k str]>,
 }
 
 #[derive(Clone, Copy)]
-struct Count<'c>(&'c Counting);
+struct Count<'c>(&'c Counting<'c>);
 
 impl Count<'_> {
     /// Counts one more value, or fails once the budget is spent.
@@ -775,10 +798,26 @@ impl<'de> Visitor<'de> for Count<'_> {
     fn visit_map<A: MapAccess<'de>>(self, mut members: A) -> Result<(), A::Error> {
         self.spend()?;
         let container = self.open();
+        // The root is the first container opened.
+        let keep = self.0.root_keep.filter(|_| container == 0);
         let mut n = 0;
-        while members.next_key::<de::IgnoredAny>()?.is_some() {
-            members.next_value_seed(self)?;
-            n += 1;
+        match keep {
+            None => {
+                while members.next_key::<de::IgnoredAny>()?.is_some() {
+                    members.next_value_seed(self)?;
+                    n += 1;
+                }
+            }
+            Some(keep) => {
+                while let Some(name) = members.next_key::<String>()? {
+                    if keep.contains(&name.as_str()) {
+                        members.next_value_seed(self)?;
+                        n += 1;
+                    } else {
+                        members.next_value::<de::IgnoredAny>()?;
+                    }
+                }
+            }
         }
         self.close(container, n, 2);
         Ok(())
@@ -787,13 +826,15 @@ impl<'de> Visitor<'de> for Count<'_> {
 
 // ---- The second reading: the values into their reserved slots. ----
 
-struct Building {
+struct Building<'k> {
     tree: Tree,
     counts: Vec<u32>,
     next_container: usize,
+    /// The root object's members to keep (None: all).
+    root_keep: Option<&'k [&'k str]>,
 }
 
-impl Building {
+impl Building<'_> {
     /// Reserves the slots of the next container to open: `slots_each` per element.
     fn reserve(&mut self, slots_each: usize) -> (usize, usize) {
         let elements = self.counts.get(self.next_container).copied().unwrap_or(0) as usize;
@@ -834,11 +875,11 @@ impl Building {
 }
 
 #[derive(Clone, Copy)]
-struct Build<'b> {
-    state: &'b RefCell<Building>,
+struct Build<'b, 'k> {
+    state: &'b RefCell<Building<'k>>,
 }
 
-impl<'de> DeserializeSeed<'de> for Build<'_> {
+impl<'de> DeserializeSeed<'de> for Build<'_, '_> {
     type Value = Slot;
 
     fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Slot, D::Error> {
@@ -846,7 +887,7 @@ impl<'de> DeserializeSeed<'de> for Build<'_> {
     }
 }
 
-impl<'de> Visitor<'de> for Build<'_> {
+impl<'de> Visitor<'de> for Build<'_, '_> {
     type Value = Slot;
 
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
@@ -905,9 +946,21 @@ impl<'de> Visitor<'de> for Build<'_> {
     }
 
     fn visit_map<A: MapAccess<'de>>(self, mut members: A) -> Result<Slot, A::Error> {
+        let keep = {
+            let state = self.state.borrow();
+            state.root_keep.filter(|_| state.next_container == 0)
+        };
         let (start, reserved) = self.state.borrow_mut().reserve(2);
         let mut n = 0;
         while let Some(key) = members.next_key_seed(Key(self))? {
+            let left_out = keep.is_some_and(|keep| {
+                let state = self.state.borrow();
+                !keep.contains(&state.tree.string(key))
+            });
+            if left_out {
+                members.next_value::<de::IgnoredAny>()?;
+                continue;
+            }
             let value = members.next_value_seed(self)?;
             let tree = &mut self.state.borrow_mut().tree;
             // A repeated key keeps its first place and takes the last value.
@@ -933,9 +986,9 @@ impl<'de> Visitor<'de> for Build<'_> {
 }
 
 /// An object's key, read into the string arena: its id.
-struct Key<'b>(Build<'b>);
+struct Key<'b, 'k>(Build<'b, 'k>);
 
-impl<'de> DeserializeSeed<'de> for Key<'_> {
+impl<'de> DeserializeSeed<'de> for Key<'_, '_> {
     type Value = u32;
 
     fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<u32, D::Error> {
@@ -943,7 +996,7 @@ impl<'de> DeserializeSeed<'de> for Key<'_> {
     }
 }
 
-impl<'de> Visitor<'de> for Key<'_> {
+impl<'de> Visitor<'de> for Key<'_, '_> {
     type Value = u32;
 
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
@@ -962,6 +1015,25 @@ mod tests {
 
     fn parsed(text: &str) -> Tree {
         Tree::parse(text.as_bytes()).unwrap()
+    }
+
+    #[test]
+    fn only_the_root_members_asked_for_are_kept_and_the_rest_is_still_read_as_json() {
+        let text = r#"{"meshes": {"m": [1, {"materials": 2}]}, "materials": {"a": {"materials": 3}},
+                       "asset": {"version": "1.0"}, "materials": {"b": [4]}}"#;
+        let tree = Tree::parse_members(text.as_bytes(), &["materials", "asset"]).unwrap();
+        let expected = serde_json::json!({"materials": {"b": [4]}, "asset": {"version": "1.0"}});
+        assert_eq!(tree.root().to_value(), expected);
+        let broken = r#"{"meshes": [1, 2,], "materials": {}}"#;
+        assert!(Tree::parse_members(broken.as_bytes(), &["materials"]).is_err());
+        // Not an object at the root: nothing to leave out.
+        assert_eq!(
+            Tree::parse_members(b"[1]", &["x"])
+                .unwrap()
+                .root()
+                .to_value(),
+            serde_json::json!([1])
+        );
     }
 
     #[test]
@@ -1100,8 +1172,8 @@ mod tests {
 
     #[test]
     fn the_number_of_values_is_bounded() {
-        assert!(Tree::parse_within(b"[1,2,3]", 4).is_ok());
-        let error = Tree::parse_within(b"[1,2,3,4]", 4).err().unwrap();
+        assert!(Tree::parse_within(b"[1,2,3]", 4, None).is_ok());
+        let error = Tree::parse_within(b"[1,2,3,4]", 4, None).err().unwrap();
         assert!(error.to_string().contains("more than"), "{error}");
         assert_eq!(error.column(), 8, "at the fourth element");
     }

@@ -5,6 +5,7 @@ use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::Bytes;
 use crate::document::{Node, Tree};
 use serde_json::Value;
+use std::borrow::Cow;
 use std::cell::OnceCell;
 use std::collections::HashMap;
 use std::ops::Range;
@@ -22,8 +23,9 @@ pub struct Source<'a> {
     /// The JSON, as the compact tree the checker reads (a `serde_json::Value` costs about ten
     /// times as much per value, and a stranger's 1.0 asset may hold millions of them).
     json: Tree,
-    /// The GLB v1 body, borrowed from the input.
-    body: Option<Body<'a>>,
+    /// The GLB v1 body: the input's bytes, held (and shared with the output) only for a GLB;
+    /// a `.gltf`'s text is let go once its tree is built.
+    body: Option<Body>,
     /// External and data-URI buffers, read on first use: reading only the materials (for
     /// `--verify`) must not load the geometry.
     buffers: HashMap<String, OnceCell<Result<Arc<Bytes>, String>>>,
@@ -32,10 +34,16 @@ pub struct Source<'a> {
 
 /// A GLB v1 body and, when the file is shorter than its header declares, both lengths: a
 /// view past the end then says the file was cut short rather than that the asset is wrong.
-#[derive(Clone, Copy)]
-struct Body<'a> {
-    bytes: &'a [u8],
+struct Body {
+    file: Arc<Bytes>,
+    range: Range<usize>,
     cut_short: Option<(usize, usize)>,
+}
+
+impl Body {
+    fn bytes(&self) -> &[u8] {
+        &self.file[self.range.clone()]
+    }
 }
 
 /// Whether `bytes` declare glTF 2.x: a GLB of version 2, or JSON whose `asset.version` is
@@ -61,16 +69,61 @@ pub fn declares_gltf2(bytes: &[u8]) -> bool {
 }
 
 /// Reads a glTF 1.0 asset. A 2.x asset is told apart by a scan, before any tree is built.
-pub fn read<'a>(bytes: &'a [u8], loader: &'a dyn ResourceLoader) -> Result<Source<'a>, NotGltf1> {
-    if declares_gltf2(bytes) {
+/// Bytes handed over are let go as soon as they are not needed (a `.gltf`'s once its tree is
+/// built); borrowed ones are copied only for a GLB, whose body the source keeps.
+pub fn read<'a>(
+    bytes: Cow<'_, [u8]>,
+    loader: &'a dyn ResourceLoader,
+) -> Result<Source<'a>, NotGltf1> {
+    read_members(bytes, loader, None)
+}
+
+/// The root members the materials and their textures are read from.
+const MATERIAL_MEMBERS: &[&str] = &[
+    "asset",
+    "version",
+    "extensionsUsed",
+    "materials",
+    "textures",
+    "images",
+    "samplers",
+    "bufferViews",
+    "buffers",
+];
+
+/// [`read`] for reading materials only: the root members their reading needs, not the
+/// geometry, nodes and animations (10^5 meshes cost a proof nothing).
+pub fn read_for_materials<'a>(
+    bytes: Cow<'_, [u8]>,
+    loader: &'a dyn ResourceLoader,
+) -> Result<Source<'a>, NotGltf1> {
+    read_members(bytes, loader, Some(MATERIAL_MEMBERS))
+}
+
+fn read_members<'a>(
+    bytes: Cow<'_, [u8]>,
+    loader: &'a dyn ResourceLoader,
+    keep: Option<&[&str]>,
+) -> Result<Source<'a>, NotGltf1> {
+    if declares_gltf2(&bytes) {
         return Err(NotGltf1(IS_GLTF2.into()));
     }
-    let (json_bytes, body) = if bytes.starts_with(b"glTF") {
-        split_glb_v1(bytes)?
+    let (json_range, body) = if bytes.starts_with(b"glTF") {
+        let (json, body) = split_glb_v1(&bytes)?;
+        (json, Some(body))
     } else {
-        (bytes, None)
+        (0..bytes.len(), None)
     };
-    let json = Tree::parse(json_bytes).map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
+    let json = match keep {
+        Some(keep) => Tree::parse_members(&bytes[json_range], keep),
+        None => Tree::parse(&bytes[json_range]),
+    };
+    let json = json.map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
+    let body = body.map(|(range, cut_short)| Body {
+        file: Arc::new(bytes.into_owned()),
+        range,
+        cut_short,
+    });
     let root = json.root();
     if !root.is_object() {
         return Err(NotGltf1("the root is not a JSON object".into()));
@@ -91,8 +144,12 @@ pub fn read<'a>(bytes: &'a [u8], loader: &'a dyn ResourceLoader) -> Result<Sourc
     })
 }
 
-/// Header: magic, version 1, total length, content length, content format 0 (JSON).
-fn split_glb_v1(bytes: &[u8]) -> Result<(&[u8], Option<Body<'_>>), NotGltf1> {
+/// A body's place in the file, and the declared and actual lengths when it is cut short.
+type BodyPlace = (Range<usize>, Option<(usize, usize)>);
+
+/// Header: magic, version 1, total length, content length, content format 0 (JSON). Returns
+/// where the JSON and the body lie.
+fn split_glb_v1(bytes: &[u8]) -> Result<(Range<usize>, BodyPlace), NotGltf1> {
     let word = |at: usize| -> Option<u32> {
         Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
     };
@@ -117,11 +174,7 @@ fn split_glb_v1(bytes: &[u8]) -> Result<(&[u8], Option<Body<'_>>), NotGltf1> {
         .checked_add(content_length)
         .filter(|end| *end <= length)
         .ok_or_else(|| broken("content length runs past the end of the file"))?;
-    let body = Body {
-        bytes: &bytes[content_end..length],
-        cut_short,
-    };
-    Ok((&bytes[20..content_end], Some(body)))
+    Ok((20..content_end, (content_end..length, cut_short)))
 }
 
 const IS_GLTF2: &str = "asset.version is 2.x: nothing to upgrade (use `gltfmat check`)";
@@ -156,7 +209,7 @@ impl Source<'_> {
     /// once.
     fn buffer(&self, id: &str) -> Result<&[u8], String> {
         if let Some(body) = self.binary_body(id) {
-            return Ok(body.bytes);
+            return Ok(body.bytes());
         }
         let cell = self
             .buffers
@@ -173,16 +226,22 @@ impl Source<'_> {
     }
 
     /// The GLB v1 body when `id` names KHR_binary_glTF's buffer.
-    fn binary_body(&self, id: &str) -> Option<Body<'_>> {
-        self.body.filter(|_| BINARY_BUFFER_IDS.contains(&id))
+    fn binary_body(&self, id: &str) -> Option<&Body> {
+        self.body
+            .as_ref()
+            .filter(|_| BINARY_BUFFER_IDS.contains(&id))
     }
 
-    /// The loaded buffer that holds `part`, and where: such bytes can go to the output by
-    /// reference. None for the GLB v1 body (borrowed from the caller) and foreign slices.
+    /// The held bytes (a loaded buffer, or the GLB file) that hold `part`, and where: such
+    /// bytes can go to the output by reference. None for foreign slices.
     pub fn shared(&self, part: &[u8]) -> Option<(Arc<Bytes>, Range<usize>)> {
         let start = part.as_ptr() as usize;
-        self.buffers.values().find_map(|cell| {
-            let buffer = cell.get()?.as_ref().ok()?;
+        let loaded = self
+            .buffers
+            .values()
+            .filter_map(|cell| cell.get()?.as_ref().ok());
+        let held = loaded.chain(self.body.as_ref().map(|body| &body.file));
+        held.into_iter().find_map(|buffer| {
             let base = buffer.as_ptr() as usize;
             let inside = start >= base && start + part.len() <= base + buffer.len();
             inside.then(|| (Arc::clone(buffer), start - base..start - base + part.len()))

@@ -31,8 +31,6 @@ const MAPPED: &[&str] = &[
 pub struct Builder<'s, 'a> {
     pub(in crate::upgrade) source: &'s Source<'a>,
     pub(in crate::upgrade) options: &'s UpgradeOptions,
-    /// Keyed by ids borrowed from the source: 10^5 ids are not copied.
-    pub(in crate::upgrade) index: HashMap<(&'static str, &'s str), usize>,
     pub(in crate::upgrade) arrays: HashMap<&'static str, Items>,
     pub(in crate::upgrade) images: Vec<EncodedImage>,
     pub(in crate::upgrade) binary: Binary,
@@ -64,16 +62,9 @@ pub fn id_list(value: Option<Node>) -> Vec<String> {
 
 impl<'s, 'a> Builder<'s, 'a> {
     pub fn new(source: &'s Source<'a>, options: &'s UpgradeOptions) -> Self {
-        let mut index = HashMap::new();
-        for collection in MAPPED {
-            for (i, (id, _)) in source.dictionary(collection).into_iter().enumerate() {
-                index.insert((*collection, id), i);
-            }
-        }
         Builder {
             source,
             options,
-            index,
             arrays: HashMap::new(),
             images: Vec::new(),
             // Repacked data is about the size of the input buffers: reserve it once.
@@ -96,9 +87,12 @@ impl<'s, 'a> Builder<'s, 'a> {
         self.index_of_id(collection, id?.as_str()?)
     }
 
-    /// [`Builder::index_of`] for an id at hand.
+    /// [`Builder::index_of`] for an id at hand: the id's place in its dictionary, which
+    /// is where the step made its object (the source tree finds it without a map of ids).
     pub fn index_of_id(&self, collection: &'static str, id: &str) -> Option<usize> {
-        self.index.get(&(collection, id)).copied()
+        debug_assert!(MAPPED.contains(&collection));
+        let dictionary = self.source.root().get(collection)?.as_object()?;
+        dictionary.position(id)
     }
 
     pub(in crate::upgrade) fn push(&mut self, collection: &'static str, value: Value) -> usize {

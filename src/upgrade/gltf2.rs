@@ -24,7 +24,7 @@ use std::sync::Arc;
 
 /// Upgrades a glTF 2.0 asset: its spec-gloss materials converted, the rest passed through.
 pub(super) fn upgrade(
-    bytes: &[u8],
+    bytes: Vec<u8>,
     loader: &dyn ResourceLoader,
     options: &UpgradeOptions,
 ) -> Result<Upgraded, UpgradeError> {
@@ -33,7 +33,7 @@ pub(super) fn upgrade(
     } else {
         "input.gltf"
     };
-    let mut doc = document::read(bytes.to_vec(), name, &mut Vec::new());
+    let mut doc = document::read(bytes, name, &mut Vec::new());
     let root = match doc.root.take() {
         Some(tree) if tree.root().is_object() => Json::from_node(tree.root()),
         _ => {

@@ -251,6 +251,8 @@ impl Json {
     pub fn to_vec_pretty(&self) -> Vec<u8> {
         let mut out = Vec::new();
         self.write(&mut out, Some(0));
+        // The indentation outgrew the compact size reserved: the room doubled on the way.
+        out.shrink_to_fit();
         out
     }
 
@@ -287,8 +289,9 @@ impl Json {
         out.push(b'}');
     }
 
-    /// The compact text's length, near enough to reserve it once.
-    fn text_len(&self) -> usize {
+    /// The compact text's length, or a little more (a key's escapes aside): what to reserve
+    /// for it.
+    pub(crate) fn text_len(&self) -> usize {
         let member = |m: &Member| match m {
             Member::Items(items) => items.0.iter().map(|t| t.len() + 1).sum::<usize>() + 2,
             Member::Whole(text) => text.len(),

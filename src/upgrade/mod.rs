@@ -31,6 +31,7 @@ pub use binary::Binary;
 pub use json::{Items, Json};
 pub use proof::{prove, ProofError};
 use serde_json::Value;
+use std::borrow::Cow;
 use std::collections::HashSet;
 use std::sync::Arc;
 
@@ -283,13 +284,16 @@ impl From<NotGltf1> for UpgradeError {
 /// assert!((plastic["pbrMetallicRoughness"]["roughnessFactor"].as_f64().unwrap() - 0.4).abs() < 1e-12);
 /// assert!(plastic["extensions"].get("KHR_materials_pbrSpecularGlossiness").is_none());
 /// ```
-pub fn upgrade(
-    bytes: &[u8],
+pub fn upgrade<'b>(
+    bytes: impl Into<Cow<'b, [u8]>>,
     loader: &dyn ResourceLoader,
     options: &UpgradeOptions,
 ) -> Result<Upgraded, UpgradeError> {
-    if source::declares_gltf2(bytes) {
-        return gltf2::upgrade(bytes, loader, options);
+    // Bytes handed over (a `Vec`) are let go as soon as the conversion no longer needs them;
+    // borrowed ones are copied only where the output shares them (a GLB's body).
+    let bytes = bytes.into();
+    if source::declares_gltf2(&bytes) {
+        return gltf2::upgrade(bytes.into_owned(), loader, options);
     }
     let source = source::read(bytes, loader)?;
     convert::run(builder::Builder::new(&source, options))

@@ -19,16 +19,17 @@ pub enum ProofError {
     Converted(String),
 }
 
-/// Proves `upgraded`, made from `input` (named `name`, its files read through `loader`):
+/// Proves `upgraded`, made from `input` (named `name`, its files read through `loader`; the
+/// bytes are read into the proof's own tree, so a caller done with them hands them over):
 /// one outcome per converted material, the worst of its source's readings.
-pub fn prove(
-    input: &[u8],
+pub fn prove<'b>(
+    input: impl Into<std::borrow::Cow<'b, [u8]>>,
     name: &str,
     loader: &dyn ResourceLoader,
     upgraded: &Upgraded,
 ) -> Result<Vec<Outcome>, ProofError> {
-    let sources =
-        pairing::load_materials(input.to_vec(), name, loader).map_err(ProofError::Source)?;
+    let sources = pairing::load_materials(input.into().into_owned(), name, loader)
+        .map_err(ProofError::Source)?;
     let converted = converted_materials(upgraded).map_err(ProofError::Converted)?;
     let converted: Vec<Named> = (converted.into_iter().zip(&sources))
         .map(|(target, (name, _))| (name.clone(), Some(target)))

@@ -25,7 +25,7 @@ pub(crate) fn legacy_materials(
     bytes: &[u8],
     loader: &dyn ResourceLoader,
 ) -> Result<Vec<Named>, LegacyMaterialsError> {
-    let source = source::read(bytes, loader)?;
+    let source = source::read_for_materials(bytes.into(), loader)?;
     let parsed: Vec<(&str, Option<pbr::LegacyPbr>)> = source
         .dictionary("materials")
         .into_iter()
@@ -67,7 +67,7 @@ pub(crate) fn legacy_materials(
             let sampled = pbr.map(|pbr| MaterialSource::Legacy {
                 colour: texture(&pbr.colour_texture),
                 data: texture(&pbr.data_texture),
-                pbr,
+                pbr: Box::new(pbr),
                 reading: SpecGlossReading::DraftAppendix,
             });
             (id.to_string(), sampled)

@@ -411,8 +411,9 @@ pub enum MaterialSource {
     Gltf2(Arc<Prepared>),
     /// A glTF 1.0 PBR-draft material with its two textures.
     Legacy {
-        /// The draft material's parameters.
-        pbr: LegacyPbr,
+        /// The draft material's parameters (boxed: a list of 10^5 sources, most of them
+        /// glTF 2.0, then costs a pointer each rather than the draft's size).
+        pbr: Box<LegacyPbr>,
         /// Its colour texture (diffuse or base colour).
         colour: Option<Texture>,
         /// Its data texture (metallic-roughness or specular-glossiness).

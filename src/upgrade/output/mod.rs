@@ -126,7 +126,10 @@ fn glb(mut json: Json, upgraded: &Upgraded, name: &str) -> File {
         set_buffer_length(&mut json, length);
     }
     // The JSON is written straight into the head, after the 20 bytes of headers it fills in.
-    let mut head = vec![0; 20];
+    // Room for the headers, the text, its padding and the BIN chunk's header: growing a
+    // 30 MB text doubles it.
+    let mut head = Vec::with_capacity(20 + json.text_len() + 3 + 8);
+    head.resize(20, 0);
     json.append_to(&mut head);
     drop(json);
     head.resize(head.len().div_ceil(4) * 4, b' ');
