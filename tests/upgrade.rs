@@ -720,6 +720,42 @@ fn a_scene_without_nodes_upgrades_to_a_valid_scene() {
     assert!(!report.has_errors(), "{:?}", report.diagnostics);
 }
 
+#[test]
+fn a_gltf_output_is_indented_for_reading_unless_its_json_is_larger_than_a_person_reads() {
+    let lines = |upgraded: &Upgraded| {
+        let files = output::layout(upgraded, "out.gltf");
+        files.main.bytes().iter().filter(|&&b| b == b'\n').count()
+    };
+    let small = upgrade(
+        &br#"{"asset": {"version": "1.0"}, "nodes": {"a": {}}}"#[..],
+        &NoResources,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    assert!(lines(&small) > 5, "indented: a line per member");
+    // 20,000 nodes with 200-character names: over 4 MiB of JSON.
+    let nodes: serde_json::Map<String, Value> = (0..20_000)
+        .map(|i| {
+            (
+                format!("n{i}"),
+                serde_json::json!({"name": format!("{i:0>200}")}),
+            )
+        })
+        .collect();
+    let large = serde_json::json!({"asset": {"version": "1.0"}, "nodes": nodes});
+    let large = upgrade(
+        serde_json::to_vec(&large).unwrap(),
+        &NoResources,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(
+        lines(&large),
+        1,
+        "compact: one line and the final line break"
+    );
+}
+
 /// A one-triangle 1.0 asset whose vertex attributes are the given VEC3 arrays (3 vertices
 /// each), plus an animation with no channels.
 fn gltf1_triangle(attributes: &[(&str, [[f32; 3]; 3])]) -> Vec<u8> {

@@ -183,13 +183,22 @@ fn separate(mut json: Json, upgraded: &Upgraded, main_name: &str) -> Files {
         let piece = Piece::new(image.bytes.clone(), 0..image.bytes.len());
         side.push(File::data(name, Pieces::new([piece])));
     }
-    let mut text = json.to_vec_pretty();
+    // Indented for a person to read, unless there is more than a person reads: at 10^5
+    // objects the indentation doubles the text, and the check that reads it.
+    let mut text = if json.text_len() <= PRETTY_UP_TO {
+        json.to_vec_pretty()
+    } else {
+        json.to_vec()
+    };
     text.push(b'\n');
     Files {
         main: File::text(main_name.to_string(), text),
         side,
     }
 }
+
+/// The largest JSON (compact) a `.gltf` output is indented for reading.
+const PRETTY_UP_TO: usize = 4 << 20;
 
 /// The images that need a place in the output (those already in a bufferView have one),
 /// with their indices.
