@@ -7,7 +7,7 @@ mod common;
 use common::{linear_to_srgb, srgb_to_linear};
 
 use gltfmat::document::uri::{FolderResources, NoResources};
-use gltfmat::shade::pairing::{compare_pairs, load_materials};
+use gltfmat::shade::pairing::{compare_pairs, load_materials, AS_STORED};
 use gltfmat::upgrade::{converted_materials, output, upgrade, UpgradeOptions, Upgraded};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
@@ -220,7 +220,7 @@ fn upgraded_image_bytes(upgraded: &Upgraded) -> impl Fn(u64) -> Vec<u8> + '_ {
 fn delta_e(path: &Path, upgraded: &Upgraded, grid: u32) -> Vec<f64> {
     let loader = FolderResources::new(path.parent().unwrap());
     let bytes = std::fs::read(path).unwrap();
-    let sources = load_materials(bytes, &path.to_string_lossy(), &loader).unwrap();
+    let sources = load_materials(bytes, &path.to_string_lossy(), &loader, AS_STORED).unwrap();
     let converted: Vec<_> = (converted_materials(upgraded).unwrap().into_iter())
         .map(|m| ("converted".to_string(), Some(m)))
         .collect();

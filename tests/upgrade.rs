@@ -441,7 +441,7 @@ mod verify {
     use gltfmat::shade::brdf::SheenVisibility;
     use gltfmat::shade::compare::compare;
     use gltfmat::shade::material::Shader;
-    use gltfmat::shade::pairing::load_materials;
+    use gltfmat::shade::pairing::{load_materials, AS_STORED};
     use gltfmat::shade::sheen_table::SheenTable;
     use gltfmat::upgrade::converted_materials;
 
@@ -451,7 +451,7 @@ mod verify {
         corrupt(&mut upgraded);
         let bytes = std::fs::read(&path).unwrap();
         let loader = FolderResources::new(path.parent().unwrap());
-        let sources = load_materials(bytes, fixture, &loader).unwrap();
+        let sources = load_materials(bytes, fixture, &loader, AS_STORED).unwrap();
         let source = sources[0].1.clone().expect("a PBR material");
         let converted = converted_materials(&upgraded).unwrap().remove(0);
         let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));

@@ -8,6 +8,7 @@ use super::load::gltf2_materials;
 use super::material::Shader;
 use super::render::{contact_sheet, material_ball, SheetLayout, MAX_PIXELS};
 use super::sample::MaterialSource;
+pub use super::sample::AS_STORED;
 use super::sheen_table::SheenTable;
 use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::error::Error;
@@ -18,16 +19,18 @@ use std::path::Path;
 /// PBR-draft material, so it has no model to evaluate).
 pub type Named = (String, Option<MaterialSource>);
 
-/// An asset's materials: a 1.0 asset's PBR-draft materials, otherwise a 2.0 asset's.
+/// An asset's materials: a 1.0 asset's PBR-draft materials, otherwise a 2.0 asset's; their
+/// textures no finer than `finest` texels a side ([`AS_STORED`]: as the files store them).
 pub fn load_materials(
     bytes: Vec<u8>,
     name: &str,
     loader: &dyn ResourceLoader,
+    finest: u32,
 ) -> Result<Vec<Named>, String> {
-    match legacy_materials(&bytes, loader) {
+    match legacy_materials(&bytes, loader, finest) {
         Ok(materials) => Ok(materials),
         Err(LegacyMaterialsError::NotGltf1(_)) => {
-            let materials = gltf2_materials(bytes, name, loader)?;
+            let materials = gltf2_materials(bytes, name, loader, finest)?;
             Ok(materials.into_iter().map(|(n, m)| (n, Some(m))).collect())
         }
         Err(e) => Err(e.to_string()),
@@ -160,8 +163,8 @@ pub fn compare(
     b: impl AsRef<Path>,
     options: &CompareOptions,
 ) -> Result<Vec<Outcome>, Error> {
-    let a = materials_of(a.as_ref())?;
-    let b = materials_of(b.as_ref())?;
+    let a = materials_of(a.as_ref(), AS_STORED)?;
+    let b = materials_of(b.as_ref(), AS_STORED)?;
     let pairs = if options.pairs.is_empty() {
         (0..a.len().min(b.len())).map(|i| (i, i)).collect()
     } else {
@@ -170,17 +173,27 @@ pub fn compare(
     Ok(compare_pairs(&a, &b, &pairs, options.grid))
 }
 
-/// The materials of an asset on disk, its resources read from its folder.
-pub fn materials_of(path: &Path) -> Result<Vec<Named>, Error> {
+/// The materials of an asset on disk, its resources read from its folder (textures no finer
+/// than `finest`, as in [`load_materials`]).
+pub fn materials_of(path: &Path, finest: u32) -> Result<Vec<Named>, Error> {
     let bytes = crate::document::file::read(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
     })?;
     let loader = FolderResources::beside(path);
-    load_materials(bytes, &path.display().to_string(), &loader).map_err(|reason| Error::Unusable {
+    let name = path.display().to_string();
+    load_materials(bytes, &name, &loader, finest).map_err(|reason| Error::Unusable {
         path: path.to_path_buf(),
         reason,
     })
+}
+
+/// The finest texture detail a preview of `size` pixels a ball shows: the ball shows half
+/// its texture's width across `size` pixels, so 4 · size texels a side is twice what a pixel
+/// shows. Textures up to 2048² (most real ones) are sampled as stored whatever the size;
+/// an 8192² one is reduced rather than held whole (201 MB) for a 64-pixel picture.
+fn finest_for_preview(size: u32) -> u32 {
+    size.saturating_mul(4).max(2048)
 }
 
 /// What [`render`] draws.
@@ -221,7 +234,8 @@ pub struct Picture {
 /// Renders a material ball (or a contact sheet of every material) of an asset.
 pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture, Error> {
     let path = path.as_ref();
-    let materials = materials_of(path)?;
+    let size = options.size.clamp(8, 4096);
+    let materials = materials_of(path, finest_for_preview(size))?;
     let chosen: Vec<(usize, &String, &MaterialSource)> = materials
         .iter()
         .enumerate()
@@ -240,7 +254,6 @@ pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture
         return Err(unusable("no such material to render".into()));
     };
     let shader = shader_for(chosen.iter().map(|(_, _, m)| *m));
-    let size = options.size.clamp(8, 4096);
     let layout = SheetLayout::new(chosen.len(), size).ok_or_else(|| {
         unusable(format!(
             "{} materials do not fit one sheet of {MAX_PIXELS} pixels even at 8 pixels each: render them one at a time (--material)",

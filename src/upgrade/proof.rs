@@ -6,6 +6,7 @@
 use super::{converted_materials, Upgraded};
 use crate::document::uri::ResourceLoader;
 use crate::shade::pairing::{self, compare_pairs, Named, Outcome};
+use crate::shade::sample::AS_STORED;
 
 /// Why a proof could not be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -28,7 +29,7 @@ pub fn prove<'b>(
     loader: &dyn ResourceLoader,
     upgraded: &Upgraded,
 ) -> Result<Vec<Outcome>, ProofError> {
-    let sources = pairing::load_materials(input.into().into_owned(), name, loader)
+    let sources = pairing::load_materials(input.into().into_owned(), name, loader, AS_STORED)
         .map_err(ProofError::Source)?;
     let converted = converted_materials(upgraded).map_err(ProofError::Converted)?;
     let converted: Vec<Named> = (converted.into_iter().zip(&sources))

@@ -21,9 +21,11 @@ pub(crate) enum LegacyMaterialsError {
 
 /// The PBR-draft materials of a glTF 1.0 asset as the shading evaluator samples them (their
 /// own model), in material order, with their ids; `None` for materials without a PBR block.
+/// Textures no finer than `finest` (see [`sample::decode_all_at_most`]).
 pub(crate) fn legacy_materials(
     bytes: &[u8],
     loader: &dyn ResourceLoader,
+    finest: u32,
 ) -> Result<Vec<Named>, LegacyMaterialsError> {
     let source = source::read_for_materials(bytes.into(), loader)?;
     let parsed: Vec<(&str, Option<pbr::LegacyPbr>)> = source
@@ -57,7 +59,8 @@ pub(crate) fn legacy_materials(
             Some(image.and_then(|image| source.image_bytes(image)))
         })
         .collect();
-    let decoded = sample::decode_all(&encoded).map_err(LegacyMaterialsError::Textures)?;
+    let decoded =
+        sample::decode_all_at_most(&encoded, finest).map_err(LegacyMaterialsError::Textures)?;
     let texture = |id: &Option<String>| -> Option<Texture> {
         decoded[*position.get(id.as_deref()?)?].clone()
     };

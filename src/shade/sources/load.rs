@@ -54,11 +54,13 @@ pub fn texture_source(texture: &Value) -> Option<u64> {
     texture_images(texture).next()
 }
 
-/// Every material of a glTF 2.0 asset with its decoded textures, and the material names.
+/// Every material of a glTF 2.0 asset with its decoded textures (no finer than `finest`, see
+/// [`sample::decode_all_at_most`]), and the material names.
 pub fn gltf2_materials(
     bytes: Vec<u8>,
     name: &str,
     loader: &dyn ResourceLoader,
+    finest: u32,
 ) -> Result<Vec<(String, MaterialSource)>, String> {
     // Only the materials are read here; problems with the file are `check`'s to report.
     let doc = document::read(bytes, name, &mut Vec::new());
@@ -111,7 +113,7 @@ pub fn gltf2_materials(
             ),
         })
         .collect();
-    let decoded = sample::decode_all(&encoded)?;
+    let decoded = sample::decode_all_at_most(&encoded, finest)?;
     let textures: Vec<Option<Texture>> = textures
         .iter()
         .map(|texture| decoded.get(texture_source(texture)? as usize)?.clone())

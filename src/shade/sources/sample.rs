@@ -103,6 +103,86 @@ pub(crate) fn solid_png(texel: [u8; 3]) -> Vec<u8> {
     bytes
 }
 
+/// Decodes one image no finer than `finest` texels a side where that saves memory (see
+/// [`decode_png_reduced`]), otherwise as stored.
+fn decode_at_most(bytes: &[u8], finest: u32) -> Result<Texture, String> {
+    match decode_png_reduced(bytes, finest) {
+        Some(reduced) => reduced.map(Arc::new),
+        None => decode(bytes),
+    }
+}
+
+/// A PNG larger than `finest` texels a side, read a row at a time and averaged in boxes of
+/// k × k texels (k the smallest whole factor that brings it within `finest`), as stored
+/// (the file's channels and bit depth; averaged in the file's encoding). The whole image is
+/// never held: a preview of an 8192² texture takes the preview's texels, not 201 MB. None
+/// when there is nothing to save (the image is small enough), or when the PNG is
+/// interlaced or unreadable here: it is then decoded whole, which says why it is broken.
+fn decode_png_reduced(bytes: &[u8], finest: u32) -> Option<Result<TextureImage, String>> {
+    use crate::document::image_decode::MAX_DIMENSION;
+    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    decoder.set_transformations(png::Transformations::EXPAND);
+    let mut reader = decoder.read_info().ok()?;
+    let info = reader.info();
+    let (width, height) = (info.width, info.height);
+    let too_large = width > MAX_DIMENSION || height > MAX_DIMENSION;
+    if info.interlaced || too_large || width.max(height) <= finest.max(1) {
+        return None;
+    }
+    let k = width.max(height).div_ceil(finest.max(1)) as usize;
+    let (color, depth) = reader.output_color_type();
+    let channels = color.samples();
+    let wide = depth == png::BitDepth::Sixteen;
+    let (width, height) = (width as usize, height as usize);
+    let reduced_width = width.div_ceil(k);
+    let mut sums = vec![0u64; reduced_width * channels];
+    let mut averaged: Vec<u16> = Vec::with_capacity(reduced_width * height.div_ceil(k) * channels);
+    for y in 0..height {
+        let row = match reader.next_row() {
+            Ok(Some(row)) => row.data(),
+            Ok(None) => return Some(Err("the image data ends early".into())),
+            Err(e) => return Some(Err(e.to_string())),
+        };
+        let sample_bytes = if wide { 2 } else { 1 };
+        // One box of k texels at a time: no division per sample.
+        let boxes = row
+            .chunks(k * channels * sample_bytes)
+            .zip(sums.chunks_mut(channels));
+        for (texels, sum) in boxes {
+            for texel in texels.chunks_exact(channels * sample_bytes) {
+                for (c, sample) in texel.chunks_exact(sample_bytes).enumerate() {
+                    sum[c] += u64::from(match sample {
+                        [high, low] => u16::from_be_bytes([*high, *low]),
+                        [value] => u16::from(*value),
+                        _ => 0,
+                    });
+                }
+            }
+        }
+        let band_ends = (y + 1) % k == 0 || y + 1 == height;
+        if band_ends {
+            let rows = (y % k + 1) as u64;
+            for (i, sum) in sums.iter_mut().enumerate() {
+                let x = i / channels;
+                let columns = (width.min((x + 1) * k) - x * k) as u64;
+                let texels = rows * columns;
+                averaged.push(((*sum + texels / 2) / texels) as u16);
+                *sum = 0;
+            }
+        }
+    }
+    let texels = match wide {
+        true => Texels::Unorm16(averaged),
+        false => Texels::Unorm8(averaged.into_iter().map(|v| v as u8).collect()),
+    };
+    Some(Ok(TextureImage {
+        width: reduced_width as u32,
+        height: height.div_ceil(k) as u32,
+        channels,
+        texels,
+    }))
+}
+
 /// Decodes one image (see [`decode_all`] for a set of them).
 pub(crate) fn decode(bytes: &[u8]) -> Result<Texture, String> {
     use image::DynamicImage as Stored;
@@ -155,6 +235,19 @@ pub type Wanted<B> = Option<Result<B, String>>;
 pub fn decode_all<B: AsRef<[u8]> + Sync>(
     sources: &[Wanted<B>],
 ) -> Result<Vec<Option<Texture>>, String> {
+    decode_all_at_most(sources, AS_STORED)
+}
+
+/// The finest detail wanted when every texel counts (comparisons, proofs): images decoded
+/// as stored.
+pub const AS_STORED: u32 = u32::MAX;
+
+/// [`decode_all`] for a use that shows no detail finer than `finest` texels a side (a
+/// preview): larger images may be decoded reduced to it (see [`decode_png_reduced`]).
+pub fn decode_all_at_most<B: AsRef<[u8]> + Sync>(
+    sources: &[Wanted<B>],
+    finest: u32,
+) -> Result<Vec<Option<Texture>>, String> {
     let bytes: Vec<Option<&[u8]>> = (sources.iter().enumerate())
         .map(|(i, source)| match source {
             None => Ok(None),
@@ -168,15 +261,17 @@ pub fn decode_all<B: AsRef<[u8]> + Sync>(
         .collect();
     within_budget(&unique)?;
     // Images another decode of this process still holds are shared, not decoded again.
-    let held: Vec<Option<Texture>> = unique.iter().map(|b| b.and_then(Live::get)).collect();
+    let held: Vec<Option<Texture>> = (unique.iter())
+        .map(|b| b.and_then(|b| Live::get(b, finest)))
+        .collect();
     let to_decode: Vec<Option<&[u8]>> = (unique.iter().zip(&held))
         .map(|(bytes, held)| bytes.filter(|_| held.is_none()))
         .collect();
-    let mut decoded = decode_in_parallel(&to_decode)?;
+    let mut decoded = decode_in_parallel(&to_decode, finest)?;
     for (i, held) in held.into_iter().enumerate() {
         match (held, &decoded[i], to_decode[i]) {
             (Some(texture), _, _) => decoded[i] = Some(texture),
-            (None, Some(texture), Some(bytes)) => Live::put(bytes, texture),
+            (None, Some(texture), Some(bytes)) => Live::put(bytes, finest, texture),
             _ => {}
         }
     }
@@ -241,7 +336,8 @@ fn within_budget(unique: &[Option<&[u8]>]) -> Result<(), String> {
 /// so a texture lives no longer than its users.
 struct Live {
     keys: std::collections::hash_map::RandomState,
-    textures: std::collections::HashMap<(usize, u64), std::sync::Weak<TextureImage>>,
+    /// By (length, hash, the finest detail it was decoded for).
+    textures: std::collections::HashMap<(usize, u64, u32), std::sync::Weak<TextureImage>>,
 }
 
 static LIVE: std::sync::Mutex<Option<Live>> = std::sync::Mutex::new(None);
@@ -257,25 +353,28 @@ impl Live {
         }))
     }
 
-    fn key(&self, bytes: &[u8]) -> (usize, u64) {
+    fn key(&self, bytes: &[u8], finest: u32) -> (usize, u64, u32) {
         use std::hash::BuildHasher;
-        (bytes.len(), self.keys.hash_one(bytes))
+        (bytes.len(), self.keys.hash_one(bytes), finest)
     }
 
-    fn get(bytes: &[u8]) -> Option<Texture> {
-        Live::with(|live| live.textures.get(&live.key(bytes))?.upgrade())
+    fn get(bytes: &[u8], finest: u32) -> Option<Texture> {
+        Live::with(|live| live.textures.get(&live.key(bytes, finest))?.upgrade())
     }
 
-    fn put(bytes: &[u8], texture: &Texture) {
+    fn put(bytes: &[u8], finest: u32, texture: &Texture) {
         Live::with(|live| {
             live.textures.retain(|_, held| held.strong_count() > 0);
-            let key = live.key(bytes);
+            let key = live.key(bytes, finest);
             live.textures.insert(key, Arc::downgrade(texture));
         })
     }
 }
 
-fn decode_in_parallel(sources: &[Option<&[u8]>]) -> Result<Vec<Option<Texture>>, String> {
+fn decode_in_parallel(
+    sources: &[Option<&[u8]>],
+    finest: u32,
+) -> Result<Vec<Option<Texture>>, String> {
     use std::sync::atomic::{AtomicUsize, Ordering};
     let next = AtomicUsize::new(0);
     let threads = std::thread::available_parallelism()
@@ -294,7 +393,7 @@ fn decode_in_parallel(sources: &[Option<&[u8]>]) -> Result<Vec<Option<Texture>>,
                             return done;
                         };
                         if let Some(bytes) = source {
-                            done.push((i, decode(bytes)));
+                            done.push((i, decode_at_most(bytes, finest)));
                         }
                     }
                 })
@@ -753,6 +852,76 @@ fn legacy_inputs(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `image` encoded as a PNG.
+    fn png_of(image: image::DynamicImage) -> Vec<u8> {
+        let mut bytes = Vec::new();
+        let mut cursor = std::io::Cursor::new(&mut bytes);
+        image
+            .write_to(&mut cursor, image::ImageFormat::Png)
+            .unwrap();
+        bytes
+    }
+
+    /// Box `(bx, by)` of `k` texels a side, averaged from the full decode, rounded.
+    fn box_average(full: &TextureImage, k: usize, bx: usize, by: usize) -> Vec<u64> {
+        let (w, h, n) = (full.width as usize, full.height as usize, full.channels);
+        let xs = bx * k..w.min((bx + 1) * k);
+        let ys = by * k..h.min((by + 1) * k);
+        let count = (xs.len() * ys.len()) as u64;
+        (0..n)
+            .map(|c| {
+                let sum: u64 = (ys.clone())
+                    .flat_map(|y| xs.clone().map(move |x| (y * w + x) * n + c))
+                    .map(|at| match &full.texels {
+                        Texels::Unorm8(raw) => u64::from(raw[at]),
+                        Texels::Unorm16(raw) => u64::from(raw[at]),
+                        Texels::Float(_) => unreachable!("PNGs here are 8 or 16 bits"),
+                    })
+                    .sum();
+                (sum + count / 2) / count
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_png_larger_than_wanted_is_averaged_in_boxes_as_the_full_decode_would_be() {
+        let rgb8 = image::RgbImage::from_fn(10, 7, |x, y| {
+            image::Rgb([(x * 25) as u8, (y * 36) as u8, (x * y) as u8])
+        });
+        let la16 = image::ImageBuffer::<image::LumaA<u16>, _>::from_fn(10, 7, |x, y| {
+            image::LumaA([(x * 6000 + y * 100) as u16, 65535 - (y * 9000) as u16])
+        });
+        for png in [png_of(rgb8.into()), png_of(la16.into())] {
+            let full = decode(&png).unwrap();
+            // 10 texels over 4: boxes of 3, the last column and row partial.
+            let reduced = decode_png_reduced(&png, 4).unwrap().unwrap();
+            assert_eq!(
+                (reduced.width, reduced.height, reduced.channels),
+                (4, 3, full.channels)
+            );
+            for (by, bx) in (0..3).flat_map(|by| (0..4).map(move |bx| (by, bx))) {
+                let at = (by * 4 + bx) * full.channels;
+                let got: Vec<u64> = match &reduced.texels {
+                    Texels::Unorm8(raw) => raw[at..at + full.channels]
+                        .iter()
+                        .map(|&v| u64::from(v))
+                        .collect(),
+                    Texels::Unorm16(raw) => raw[at..at + full.channels]
+                        .iter()
+                        .map(|&v| u64::from(v))
+                        .collect(),
+                    Texels::Float(_) => unreachable!("stored as the file stores it"),
+                };
+                assert_eq!(got, box_average(&full, 3, bx, by), "box {bx},{by}");
+            }
+            assert!(
+                decode_png_reduced(&png, 10).is_none(),
+                "small enough: decoded whole"
+            );
+        }
+        assert!(decode_png_reduced(b"not a png", 1).is_none());
+    }
 
     #[test]
     fn an_image_still_held_is_shared_and_a_dropped_one_decoded_again() {
