@@ -1018,6 +1018,21 @@ mod tests {
     }
 
     #[test]
+    fn a_members_position_is_its_place_as_written_in_small_and_indexed_objects() {
+        let small = parsed(r#"{"a": 1, "b": 2, "a": 3, "c": 4}"#);
+        let small = small.root().as_object().unwrap();
+        // A repeated key keeps its first place.
+        let places: Vec<_> = ["a", "b", "c", "d"].map(|k| small.position(k)).into();
+        assert_eq!(places, [Some(0), Some(1), Some(2), None]);
+        let keys: Vec<String> = (0..1000).map(|i| format!("\"k{i}\": {i}")).collect();
+        let large = parsed(&format!("{{{}}}", keys.join(", ")));
+        let large = large.root().as_object().unwrap();
+        assert_eq!(large.position("k0"), Some(0));
+        assert_eq!(large.position("k999"), Some(999));
+        assert_eq!(large.position("k1000"), None);
+    }
+
+    #[test]
     fn only_the_root_members_asked_for_are_kept_and_the_rest_is_still_read_as_json() {
         let text = r#"{"meshes": {"m": [1, {"materials": 2}]}, "materials": {"a": {"materials": 3}},
                        "asset": {"version": "1.0"}, "materials": {"b": [4]}}"#;
