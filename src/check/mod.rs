@@ -282,25 +282,21 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::
     let undeclared = khronos::undeclared_extensions(root, &declared_extensions(root));
     // Out before the schema pass, which then finds nothing in them. One that is no object
     // stays for the schema pass to say so, and goes after it.
-    let not_objects: Vec<usize> = (0..undeclared.len())
-        .filter(|&i| !undeclared.remove_if(i, tree, |value| value.is_object()))
-        .collect();
+    undeclared.remove_where(tree, |value| value.is_object());
     let absent = schema::validate(tree.root(), khronos, sink);
     let nulls = remove_all(tree, absent);
-    for i in not_objects {
-        undeclared.remove_if(i, tree, |_| true);
-    }
+    undeclared.remove_where(tree, |_| true);
     schema::required_nulls(tree.root(), khronos, &nulls, sink);
     undeclared
 }
 
 /// The names `extensionsUsed` declares; none when it is not a list of names (the schema
 /// pass reports it, and the Khronos validator then reads no declaration).
-fn declared_extensions(root: Node<'_>) -> HashSet<&str> {
+fn declared_extensions(root: Node<'_>) -> hashbrown::HashSet<&str> {
     let names = root.get("extensionsUsed").and_then(Node::as_array);
     (names.into_iter().flatten())
         .map(Node::as_str)
-        .collect::<Option<HashSet<&str>>>()
+        .collect::<Option<hashbrown::HashSet<&str>>>()
         .unwrap_or_default()
 }
 

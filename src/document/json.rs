@@ -71,18 +71,27 @@ pub fn pointer_tokens(pointer: &str) -> Vec<String> {
     pointer
         .trim_start_matches('/')
         .split('/')
-        .map(unescape_token)
+        .map(|token| unescape_token(token).into_owned())
         .collect()
 }
 
-/// Unescapes one token of a JSON pointer.
-pub fn unescape_token(token: &str) -> String {
-    token.replace("~1", "/").replace("~0", "~")
+/// Unescapes one token of a JSON pointer (borrowed when it has no escape: a pointer is
+/// resolved on every lookup).
+pub fn unescape_token(token: &str) -> Cow<'_, str> {
+    if token.contains('~') {
+        Cow::Owned(token.replace("~1", "/").replace("~0", "~"))
+    } else {
+        Cow::Borrowed(token)
+    }
 }
 
-/// Escapes one token for use in a JSON pointer.
-pub fn escape_token(token: &str) -> String {
-    token.replace('~', "~0").replace('/', "~1")
+/// Escapes one token for use in a JSON pointer (borrowed when nothing needs escaping).
+pub fn escape_token(token: &str) -> Cow<'_, str> {
+    if token.contains(['~', '/']) {
+        Cow::Owned(token.replace('~', "~0").replace('/', "~1"))
+    } else {
+        Cow::Borrowed(token)
+    }
 }
 
 /// Byte range of the value each pointer names; for an object member the range starts at

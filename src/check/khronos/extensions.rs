@@ -5,7 +5,7 @@ use crate::check::context::{member, Context};
 use crate::diagnostic::khronos;
 use crate::document::{Node, StringId, Tree};
 use crate::gltf::material::TEXTURE_SLOTS;
-use std::collections::HashSet;
+use hashbrown::HashSet;
 
 /// Extensions the Khronos validator implements, with the objects that may carry them.
 const KHRONOS_SUPPORTED: &[(&str, &[Host])] = &[
@@ -137,10 +137,13 @@ impl Undeclared {
         member(&self.hosts[host], tree.text(name))
     }
 
-    /// Takes the `i`th out of `tree` when `taken` accepts its value; false when it stays.
-    pub fn remove_if(&self, i: usize, tree: &mut Tree, taken: impl FnOnce(Node) -> bool) -> bool {
-        let (host, name) = self.members[i];
-        tree.remove_member(&self.hosts[host], name, taken).is_some()
+    /// Takes out of `tree` those whose value `taken` accepts.
+    pub fn remove_where(&self, tree: &mut Tree, mut taken: impl FnMut(Node) -> bool) {
+        // Found host by host: each host's members are one run.
+        for run in self.members.chunk_by(|a, b| a.0 == b.0) {
+            let names = run.iter().map(|&(_, name)| name);
+            tree.remove_members(&self.hosts[run[0].0], names, &mut taken);
+        }
     }
 
     /// Their pointers, made one at a time.

@@ -30,6 +30,15 @@ Khronos validator does not detect it: its parser silently keeps the last value.
 ";
 
 fn check(ctx: &mut Context) {
+    // The parse saw every key: a text without a repeat is not read again.
+    if ctx
+        .document
+        .root
+        .as_ref()
+        .is_some_and(|tree| !tree.repeats_keys())
+    {
+        return;
+    }
     for (pointer, _) in json::duplicate_keys(ctx.document.json_text()) {
         ctx.emit(
             RULE.code(),
