@@ -110,7 +110,7 @@ pub(crate) struct Context<'a> {
     /// Header of each image, where it could be read.
     pub images: Vec<Option<ImageInfo>>,
     /// Encoded bytes of each image, kept for gltfmat's rules (not in the Khronos profile).
-    pub image_bytes: Vec<Option<Bytes>>,
+    pub image_bytes: Vec<Option<std::sync::Arc<Bytes>>>,
     /// By material index, for the materials that demand anything (a million empty
     /// materials keep no entry).
     pub material_needs: HashMap<usize, MaterialNeeds>,

@@ -16,12 +16,12 @@ pub type Bytes = Vec<u8>;
 pub enum BufferData<'a> {
     /// Borrowed from the GLB BIN chunk.
     Glb(&'a [u8]),
-    /// Read from an external file or a data URI.
-    Loaded(Bytes),
+    /// Read from an external file or a data URI (shared by every buffer naming the file).
+    Loaded(Arc<Bytes>),
     /// The BIN chunk of a large GLB, still in its file, or of an upgrade's output, in pieces.
     Elsewhere(&'a Elsewhere),
     /// A large external file, still in the file, or an upgrade's output buffer, in pieces.
-    LoadedElsewhere(Elsewhere),
+    LoadedElsewhere(Arc<Elsewhere>),
 }
 
 impl From<Kept> for BufferData<'_> {

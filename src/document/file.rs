@@ -7,6 +7,7 @@ use super::bytes::Elsewhere;
 use std::fs::{File, FileType, Metadata};
 use std::io::{self, Read};
 use std::path::Path;
+use std::sync::Arc;
 
 /// The largest file read. A GLB's length is a 32-bit field, and no buffer, image or `.gltf`
 /// a viewer can load is larger; anything bigger is refused rather than read into memory.
@@ -118,21 +119,22 @@ pub(crate) fn read_or_keep(file: File) -> Result<(Kept, Option<FileId>), FileErr
             length: metadata.len() as usize,
         };
         return Ok((
-            Kept::Elsewhere(Elsewhere::File(chunk)),
+            Kept::Elsewhere(Arc::new(Elsewhere::File(chunk))),
             FileId::of(&metadata),
         ));
     }
     let (bytes, id) = read_opened_with_id(file)?;
-    Ok((Kept::Read(bytes), id))
+    Ok((Kept::Read(Arc::new(bytes)), id))
 }
 
-/// A buffer's bytes as a loader gives them (a file from `LARGE_FILE_BYTES` up stays in it).
-#[derive(Debug)]
+/// A buffer's bytes as a loader gives them (a file from `LARGE_FILE_BYTES` up stays in it),
+/// shared: every URI naming the same file gets the same bytes.
+#[derive(Debug, Clone)]
 pub enum Kept {
     /// Read whole.
-    Read(Vec<u8>),
+    Read(Arc<Vec<u8>>),
     /// Left in the file, or in pieces.
-    Elsewhere(Elsewhere),
+    Elsewhere(Arc<Elsewhere>),
 }
 
 impl FileChunk {

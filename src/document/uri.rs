@@ -2,9 +2,11 @@
 //! folder only. Nothing is ever fetched from a network, and no path may leave the folder.
 
 use super::file::{read_opened_with_id, FileError, FileId, Kept};
-use super::Bytes;
+use super::{Bytes, Elsewhere};
 use base64::Engine;
+use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
+use std::sync::{Arc, Mutex, Weak};
 
 /// What a `uri` string is.
 #[derive(Debug, PartialEq)]
@@ -138,9 +140,12 @@ pub enum LoadError {
 
 /// Where external files come from. The CLI confines reads to the asset's folder; library
 /// users can plug in their own store.
+///
+/// The bytes are shared: a loader should give one file named by many URIs (10^4 buffers
+/// or images of one asset may name the same file) as one copy, as [`FolderResources`] does.
 pub trait ResourceLoader: Sync {
     /// Reads `relative_path` (already percent-decoded), relative to the asset.
-    fn load(&self, relative_path: &str) -> Result<Bytes, LoadError>;
+    fn load(&self, relative_path: &str) -> Result<Arc<Bytes>, LoadError>;
 
     /// Reads a buffer's file as [`load`](Self::load) does, or leaves a large one in its
     /// opened file to be read a range at a time (see [`super::file::LARGE_FILE_BYTES`]).
@@ -151,9 +156,9 @@ pub trait ResourceLoader: Sync {
 
 /// The bytes a `uri` names: a data URI's own, or a file read through `loader`. Non-relative
 /// URIs are not fetched and absolute paths not read (both are errors saying so).
-pub fn load_uri(uri: &str, loader: &dyn ResourceLoader) -> Result<Bytes, String> {
+pub fn load_uri(uri: &str, loader: &dyn ResourceLoader) -> Result<Arc<Bytes>, String> {
     match classify(uri)? {
-        UriKind::Data { bytes, .. } => Ok(bytes),
+        UriKind::Data { bytes, .. } => Ok(Arc::new(bytes)),
         UriKind::Relative(path) => loader.load(&path).map_err(|e| e.to_string()),
         UriKind::NonRelative => Err(format!("'{uri}' is not a relative URI; not fetched")),
         UriKind::AbsolutePath => Err(format!("'{uri}' is an absolute path; not read")),
@@ -164,7 +169,7 @@ pub fn load_uri(uri: &str, loader: &dyn ResourceLoader) -> Result<Bytes, String>
 pub struct NoResources;
 
 impl ResourceLoader for NoResources {
-    fn load(&self, _: &str) -> Result<Bytes, LoadError> {
+    fn load(&self, _: &str) -> Result<Arc<Bytes>, LoadError> {
         Err(LoadError::NoFolder)
     }
 }
@@ -173,11 +178,11 @@ impl ResourceLoader for NoResources {
 #[derive(Debug, Default)]
 pub struct MemoryResources {
     /// Files by relative path.
-    pub files: std::collections::HashMap<String, Vec<u8>>,
+    pub files: HashMap<String, Arc<Bytes>>,
 }
 
 impl ResourceLoader for MemoryResources {
-    fn load(&self, relative: &str) -> Result<Bytes, LoadError> {
+    fn load(&self, relative: &str) -> Result<Arc<Bytes>, LoadError> {
         self.files
             .get(relative)
             .cloned()
@@ -200,7 +205,37 @@ pub fn folder_of(path: &Path) -> PathBuf {
 pub struct FolderResources {
     folder: Result<cap_std::fs::Dir, String>,
     /// Every file read so far, so that a writer can leave them alone.
-    read: std::sync::Mutex<Vec<FileId>>,
+    read: Mutex<Vec<FileId>>,
+    /// What was made of each file still in use, by its identity and whether it was read
+    /// whole: a file many URIs name (under any spelling or link) is read once, not once
+    /// for each (10^3 buffers naming one 1 MB file held 1 GB).
+    shared: Mutex<HashMap<(FileId, Whole), Held>>,
+}
+
+/// Whether a file was read whole ([`ResourceLoader::load`]) or as a buffer, perhaps left
+/// in its file ([`ResourceLoader::load_buffer`]).
+type Whole = bool;
+
+/// A file's bytes as long as someone holds them.
+enum Held {
+    Read(Weak<Bytes>),
+    Elsewhere(Weak<Elsewhere>),
+}
+
+impl Held {
+    fn of(kept: &Kept) -> Held {
+        match kept {
+            Kept::Read(bytes) => Held::Read(Arc::downgrade(bytes)),
+            Kept::Elsewhere(elsewhere) => Held::Elsewhere(Arc::downgrade(elsewhere)),
+        }
+    }
+
+    fn get(&self) -> Option<Kept> {
+        match self {
+            Held::Read(bytes) => bytes.upgrade().map(Kept::Read),
+            Held::Elsewhere(elsewhere) => elsewhere.upgrade().map(Kept::Elsewhere),
+        }
+    }
 }
 
 impl FolderResources {
@@ -216,6 +251,7 @@ impl FolderResources {
             folder: cap_std::fs::Dir::open_ambient_dir(folder, cap_std::ambient_authority())
                 .map_err(|e| format!("{}: {e}", folder.display())),
             read: Default::default(),
+            shared: Default::default(),
         }
     }
 
@@ -293,30 +329,54 @@ fn leaves_folder(relative: &str) -> bool {
 }
 
 /// What reads an opened file: what it made of it and the file's identity.
-type ReadOpened<T> = fn(std::fs::File) -> Result<(T, Option<FileId>), FileError>;
+type ReadOpened = fn(std::fs::File) -> Result<(Kept, Option<FileId>), FileError>;
 
 impl FolderResources {
-    /// Opens `relative` and gives what `read` makes of the handle, noting the file as read.
-    fn read_with<T>(&self, relative: &str, read: ReadOpened<T>) -> Result<T, LoadError> {
-        let (found, id) = read(self.open(relative)?).map_err(|e| match e {
+    /// Opens `relative` and gives what `read` makes of the handle (or what it made of the
+    /// same file before, while that is in use), noting the file as read.
+    fn read_with(&self, relative: &str, whole: Whole, read: ReadOpened) -> Result<Kept, LoadError> {
+        let file = self.open(relative)?;
+        let failed = |e| match e {
             FileError::NotRegular(kind) => LoadError::NotRegular(relative.to_string(), kind),
             FileError::TooLarge(size) => LoadError::TooLarge(size),
             other => LoadError::Io(other.to_string()),
-        })?;
-        if let (Some(id), Ok(mut read)) = (id, self.read.lock()) {
-            read.push(id);
+        };
+        let opened = file.metadata().ok().and_then(|m| FileId::of(&m));
+        let earlier = opened.and_then(|id| {
+            let shared = self.shared.lock().ok()?;
+            shared.get(&(id, whole))?.get()
+        });
+        let (kept, id) = match earlier {
+            Some(kept) => (kept, opened),
+            None => read(file).map_err(failed)?,
+        };
+        if let Some(id) = id {
+            if let Ok(mut shared) = self.shared.lock() {
+                shared.insert((id, whole), Held::of(&kept));
+            }
+            if let Ok(mut read) = self.read.lock() {
+                read.push(id);
+            }
         }
-        Ok(found)
+        Ok(kept)
     }
 }
 
+/// [`read_opened_with_id`] as a [`Kept`].
+fn read_whole(file: std::fs::File) -> Result<(Kept, Option<FileId>), FileError> {
+    read_opened_with_id(file).map(|(bytes, id)| (Kept::Read(Arc::new(bytes)), id))
+}
+
 impl ResourceLoader for FolderResources {
-    fn load(&self, relative: &str) -> Result<Bytes, LoadError> {
-        self.read_with(relative, read_opened_with_id)
+    fn load(&self, relative: &str) -> Result<Arc<Bytes>, LoadError> {
+        match self.read_with(relative, true, read_whole)? {
+            Kept::Read(bytes) => Ok(bytes),
+            Kept::Elsewhere(_) => unreachable!("a whole read is never left in its file"),
+        }
     }
 
     fn load_buffer(&self, relative: &str) -> Result<Kept, LoadError> {
-        self.read_with(relative, super::file::read_or_keep)
+        self.read_with(relative, false, super::file::read_or_keep)
     }
 }
 
@@ -394,5 +454,36 @@ mod tests {
             ));
         }
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// 10^3 buffers naming one file must not hold 10^3 copies of it.
+    #[test]
+    fn a_file_named_many_ways_is_read_once_while_its_bytes_are_held() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("sub")).unwrap();
+        std::fs::write(dir.path().join("a.bin"), b"first").unwrap();
+        let loader = FolderResources::new(dir.path());
+        let first = loader.load("a.bin").unwrap();
+        let mut names = vec!["./a.bin", "sub/../a.bin"];
+        #[cfg(unix)]
+        {
+            std::os::unix::fs::symlink("a.bin", dir.path().join("link.bin")).unwrap();
+            names.push("link.bin");
+        }
+        for name in names {
+            assert!(Arc::ptr_eq(&first, &loader.load(name).unwrap()), "{name}");
+        }
+        // Read as a buffer it is shared among buffers, apart from the whole reads.
+        let Kept::Read(buffer) = loader.load_buffer("a.bin").unwrap() else {
+            panic!("a small file is read")
+        };
+        let Kept::Read(again) = loader.load_buffer("./a.bin").unwrap() else {
+            panic!("a small file is read")
+        };
+        assert!(Arc::ptr_eq(&buffer, &again));
+        // Once nobody holds them, the file is read anew: a later change is seen.
+        drop((first, buffer, again));
+        std::fs::write(dir.path().join("a.bin"), b"second").unwrap();
+        assert_eq!(&loader.load("a.bin").unwrap()[..], b"second");
     }
 }

@@ -220,7 +220,6 @@ impl Source<'_> {
                 .and_then(|buffers| buffers.get(id)?.get("uri")?.as_str());
             uri.ok_or_else(|| "the buffer has no uri".to_string())
                 .and_then(|uri| self.load_uri(uri))
-                .map(Arc::new)
         });
         loaded.as_deref().map(|b| &b[..]).map_err(Clone::clone)
     }
@@ -249,7 +248,7 @@ impl Source<'_> {
     }
 
     /// Reads a data URI or a file inside the asset's folder.
-    pub fn load_uri(&self, uri: &str) -> Result<Bytes, String> {
+    pub fn load_uri(&self, uri: &str) -> Result<Arc<Bytes>, String> {
         load_uri(uri, self.loader)
     }
 
@@ -306,7 +305,7 @@ impl Source<'_> {
     }
 
     /// The bytes of a 1.0 image: KHR_binary_glTF bufferView, data URI or file.
-    pub fn image_bytes(&self, image: Node) -> Result<Vec<u8>, String> {
+    pub fn image_bytes(&self, image: Node) -> Result<Arc<Bytes>, String> {
         let binary = image
             .get("extensions")
             .and_then(|e| e.get("KHR_binary_glTF"));
@@ -314,7 +313,7 @@ impl Source<'_> {
             .and_then(|b| b.get("bufferView"))
             .and_then(Node::as_str)
         {
-            return self.view(view).map(<[u8]>::to_vec);
+            return self.view(view).map(|bytes| Arc::new(bytes.to_vec()));
         }
         let uri = image
             .get("uri")

@@ -147,7 +147,7 @@ impl<'s, 'a> Builder<'s, 'a> {
     pub fn add_image(
         &mut self,
         json: Map<String, Value>,
-        bytes: Vec<u8>,
+        bytes: impl Into<std::sync::Arc<Vec<u8>>>,
         mime_type: String,
         stem: &str,
     ) -> usize {

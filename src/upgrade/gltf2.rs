@@ -166,7 +166,7 @@ impl Asset {
             let (bytes, start) = match (buffer.get("uri").and_then(Value::as_str), &glb_bin) {
                 (Some(uri), _) => {
                     let bytes = load_uri(uri, loader).map_err(|e| resource_error(&at, e))?;
-                    (Arc::new(bytes), 0)
+                    (bytes, 0)
                 }
                 (None, Some((bytes, bin))) if i == 0 => (Arc::clone(bytes), bin.start),
                 (None, _) => {
@@ -249,7 +249,7 @@ impl Asset {
                     let view = unsigned(&image, "bufferView")
                         .and_then(|v| self.view_bytes(v as usize, buffers))
                         .ok_or_else(|| resource_error(&at, "its bufferView cannot be read"))?;
-                    (view.to_vec(), true)
+                    (Arc::new(view.to_vec()), true)
                 }
             };
             let declared = image.get("mimeType").and_then(Value::as_str);

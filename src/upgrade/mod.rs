@@ -184,7 +184,7 @@ pub struct EncodedImage {
 impl EncodedImage {
     /// Image `index` of the output, its file named after `stem` and its media type.
     pub(crate) fn new(
-        bytes: Vec<u8>,
+        bytes: impl Into<Arc<Vec<u8>>>,
         mime_type: String,
         index: usize,
         stem: &str,
@@ -204,7 +204,7 @@ impl EncodedImage {
             })
             .collect();
         EncodedImage {
-            bytes: Arc::new(bytes),
+            bytes: bytes.into(),
             file_name: format!("{index}-{safe}.{extension}"),
             mime_type,
             in_binary,

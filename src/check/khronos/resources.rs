@@ -11,6 +11,8 @@ use crate::document::BufferData;
 use crate::document::Node;
 use crate::gltf::gl::ELEMENT_ARRAY_BUFFER;
 use std::borrow::Cow;
+use std::collections::HashMap;
+use std::sync::Arc;
 
 /// Bytes behind a `uri`, with diagnostics for everything that stops us reading them.
 /// Returns the bytes (a large buffer file left in the file when `keep_large`) and, for data
@@ -42,7 +44,11 @@ fn load_uri(
                     "Data URI is used in GLB container.",
                 );
             }
-            (Some(Kept::Read(bytes)), Some(media_type), "data-uri")
+            (
+                Some(Kept::Read(Arc::new(bytes))),
+                Some(media_type),
+                "data-uri",
+            )
         }
         Ok(UriKind::NonRelative) => {
             ctx.emit(
@@ -359,6 +365,7 @@ pub fn check_images(ctx: &mut Context) {
     ctx.images = vec![None; ctx.items("images").len()];
     ctx.image_bytes = ctx.items("images").iter().map(|_| None).collect();
     let webp_enabled = ctx.uses_extension("EXT_texture_webp");
+    let mut read_views = HashMap::new();
     for (i, pointer, image) in ctx.objects("images") {
         // Counted on the members as read: one of the wrong type is absent, so `{"uri": 5}`
         // defines neither and `{"uri": 5, "bufferView": 0}` one (the schema's `oneOf` would
@@ -408,7 +415,14 @@ pub fn check_images(ctx: &mut Context) {
                         "Buffer view used by an image must not have byteStride.",
                     );
                 }
-                let bytes = view_bytes(ctx, view).map(Cow::into_owned);
+                // Read once however many images share the view.
+                let bytes = match read_views.get(&view) {
+                    Some(bytes) => Some(Arc::clone(bytes)),
+                    None => view_bytes(ctx, view).map(|bytes| Arc::new(bytes.into_owned())),
+                };
+                if let Some(bytes) = &bytes {
+                    read_views.insert(view, Arc::clone(bytes));
+                }
                 (
                     bytes,
                     None,

@@ -49,7 +49,10 @@ pub fn decode_quietly(ctx: &Context, index: usize) -> Option<Texels> {
 
 /// The encoded bytes of image `index`, when they were read.
 fn encoded<'c>(ctx: &'c Context, index: usize) -> Option<&'c [u8]> {
-    ctx.image_bytes.get(index)?.as_deref()
+    ctx.image_bytes
+        .get(index)?
+        .as_deref()
+        .map(|bytes| &bytes[..])
 }
 
 impl Texels {

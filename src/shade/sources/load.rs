@@ -6,15 +6,18 @@ use crate::document::{self, BufferData, Bytes, Container, Node};
 use crate::gltf::material::texture_images;
 use serde_json::Value;
 use std::collections::HashMap;
+use std::sync::Arc;
 
 /// An image's encoded bytes: its own file or data URI, or a buffer view of the document.
 enum Encoded<'a> {
-    Loaded(Bytes),
+    Loaded(std::sync::Arc<Bytes>),
     View(&'a [u8]),
 }
 
-impl AsRef<[u8]> for Encoded<'_> {
-    fn as_ref(&self) -> &[u8] {
+impl std::ops::Deref for Encoded<'_> {
+    type Target = [u8];
+
+    fn deref(&self) -> &[u8] {
         match self {
             Encoded::Loaded(bytes) => bytes,
             Encoded::View(view) => view,
@@ -127,17 +130,55 @@ pub fn gltf2_materials(
 
 /// Each material prepared for the evaluator with the document's textures (by texture
 /// index). An asset's copies of one material share one prepared source, so 10^5 alike
-/// materials are prepared, and held, once.
+/// materials are prepared, held and compared once; copies that name different textures of
+/// the same image are copies too (the evaluator reads the image, not the texture object).
 pub fn prepare_materials(
     materials: impl IntoIterator<Item = Value>,
     textures: &[Option<Texture>],
 ) -> Vec<MaterialSource> {
+    let first_alike = first_alike_textures(textures);
     let mut prepared: HashMap<String, MaterialSource> = HashMap::new();
     (materials.into_iter())
-        .map(|material| {
+        .map(|mut material| {
+            reindex_textures(&mut material, &first_alike);
             (prepared.entry(sample::shading_text(&material)))
                 .or_insert_with(|| MaterialSource::gltf2(&material, textures))
                 .clone()
         })
         .collect()
+}
+
+/// For each texture index, the first index whose texture is the same decoded image.
+fn first_alike_textures(textures: &[Option<Texture>]) -> Vec<usize> {
+    let mut first: HashMap<*const sample::TextureImage, usize> = HashMap::new();
+    (textures.iter().enumerate())
+        .map(|(i, texture)| match texture {
+            Some(texture) => *first.entry(Arc::as_ptr(texture)).or_insert(i),
+            None => i,
+        })
+        .collect()
+}
+
+/// Points every textureInfo of `value` (a member named `…Texture` holding an `index`) at the
+/// first texture of the same image.
+fn reindex_textures(value: &mut Value, first_alike: &[usize]) {
+    match value {
+        Value::Object(members) => {
+            for (key, member) in members.iter_mut() {
+                let index = (member.get("index").and_then(Value::as_u64))
+                    .filter(|_| key.ends_with("Texture"))
+                    .and_then(|i| first_alike.get(usize::try_from(i).ok()?));
+                match index {
+                    Some(&first) => member["index"] = first.into(),
+                    None => reindex_textures(member, first_alike),
+                }
+            }
+        }
+        Value::Array(elements) => {
+            for element in elements {
+                reindex_textures(element, first_alike);
+            }
+        }
+        _ => {}
+    }
 }

@@ -11,6 +11,7 @@ use crate::shade::brdf::V3;
 use crate::shade::lanes::channels;
 use crate::shade::material::{Inputs, SpecGlossReading};
 use serde_json::Value;
+use std::ops::Deref;
 use std::sync::Arc;
 
 /// A decoded texture, shared by the materials that bind it.
@@ -232,7 +233,7 @@ pub type Wanted<B> = Option<Result<B, String>>;
 /// is held to [`TEXEL_BUDGET`] from their headers before anything is decoded. A wanted image
 /// that cannot be read or decoded is an error: a material evaluated without its texture
 /// would be a different material.
-pub fn decode_all<B: AsRef<[u8]> + Sync>(
+pub fn decode_all<B: Deref<Target: AsRef<[u8]>> + Sync>(
     sources: &[Wanted<B>],
 ) -> Result<Vec<Option<Texture>>, String> {
     decode_all_at_most(sources, AS_STORED)
@@ -244,14 +245,14 @@ pub const AS_STORED: u32 = u32::MAX;
 
 /// [`decode_all`] for a use that shows no detail finer than `finest` texels a side (a
 /// preview): larger images may be decoded reduced to it (see [`decode_png_reduced`]).
-pub fn decode_all_at_most<B: AsRef<[u8]> + Sync>(
+pub fn decode_all_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
     sources: &[Wanted<B>],
     finest: u32,
 ) -> Result<Vec<Option<Texture>>, String> {
     let bytes: Vec<Option<&[u8]>> = (sources.iter().enumerate())
         .map(|(i, source)| match source {
             None => Ok(None),
-            Some(Ok(bytes)) => Ok(Some(bytes.as_ref())),
+            Some(Ok(bytes)) => Ok(Some((**bytes).as_ref())),
             Some(Err(why)) => Err(format!("image {i}: {why}")),
         })
         .collect::<Result<_, _>>()?;

@@ -259,14 +259,16 @@ impl SideFiles<'_> {
 }
 
 impl ResourceLoader for SideFiles<'_> {
-    fn load(&self, path: &str) -> Result<Bytes, LoadError> {
-        self.find(path).map(File::bytes)
+    fn load(&self, path: &str) -> Result<Arc<Bytes>, LoadError> {
+        self.find(path).map(|file| Arc::new(file.bytes()))
     }
 
     fn load_buffer(&self, path: &str) -> Result<Kept, LoadError> {
         // Side files are data only (`File::data`): their pieces are the whole file.
         let file = self.find(path)?;
-        Ok(Kept::Elsewhere(Elsewhere::Pieces(file.data.clone())))
+        Ok(Kept::Elsewhere(Arc::new(Elsewhere::Pieces(
+            file.data.clone(),
+        ))))
     }
 }
 
