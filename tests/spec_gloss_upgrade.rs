@@ -7,7 +7,7 @@ mod common;
 use common::{linear_to_srgb, srgb_to_linear};
 
 use gltfmat::document::uri::{FolderResources, NoResources};
-use gltfmat::shade::pairing::{compare_pairs, load_materials, AS_STORED};
+use gltfmat::shade::pairing::{compare_pairs, load_materials, TexelMap, AS_STORED};
 use gltfmat::upgrade::{converted_materials, output, upgrade, UpgradeOptions, Upgraded};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
@@ -225,7 +225,7 @@ fn delta_e(path: &Path, upgraded: &Upgraded, grid: u32) -> Vec<f64> {
         .map(|m| ("converted".to_string(), Some(m)))
         .collect();
     let pairs: Vec<(usize, usize)> = (0..sources.len()).map(|i| (i, i)).collect();
-    compare_pairs(&sources, &converted, &pairs, grid)
+    compare_pairs(&sources, &converted, &pairs, grid, TexelMap::Dropped)
         .into_iter()
         .map(|o| o.result.max)
         .collect()

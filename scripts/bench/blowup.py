@@ -189,6 +189,32 @@ def big_png_references(n):
     return write(f'png-{n}.gltf', asset(images=images, textures=textures, materials=materials))
 
 
+def buffers_naming_one_file(n):
+    """n buffers naming one 1 MB file, each with its view and accessor: each buffer once read
+    the file again and held its own copy."""
+    with open(os.path.join(WORK, 'one.bin'), 'wb') as f:
+        f.write(bytes(1 << 20))
+    buffers = [{'uri': 'one.bin', 'byteLength': 1 << 20} for _ in range(n)]
+    views = [{'buffer': i, 'byteLength': 1 << 20} for i in range(n)]
+    accessors = [{'bufferView': i, 'componentType': 5126, 'count': (1 << 20) // 12, 'type': 'VEC3'} for i in range(n)]
+    return write(f'one-file-{n}.gltf', asset(buffers=buffers, bufferViews=views, accessors=accessors))
+
+
+def spec_gloss_over_one_image(n, distinct):
+    """n spec-gloss materials over one 2048² PNG: each reading its own texture of it (once
+    proved one by one), or all one texture with n diffuse factors (each proof held its 16 MB
+    per-texel map)."""
+    with open(os.path.join(WORK, 'sg.png'), 'wb') as f:
+        f.write(big_png(2048))
+    textures = 1 if distinct else n
+    materials = [{'extensions': {'KHR_materials_pbrSpecularGlossiness': {
+        'diffuseTexture': {'index': 0 if distinct else i},
+        'diffuseFactor': [1, 1, 1 - i / (10 * n) if distinct else 1, 1]}}} for i in range(n)]
+    doc = asset(extensionsUsed=['KHR_materials_pbrSpecularGlossiness'], images=[{'uri': 'sg.png'}] * textures,
+                textures=[{'source': i} for i in range(textures)], materials=materials)
+    return write(f'sg-{"distinct" if distinct else "alike"}-{n}.gltf', doc)
+
+
 def png_chunk(kind, data):
     return struct.pack('>I', len(data)) + kind + data + struct.pack('>I', zlib.crc32(kind + data))
 
@@ -228,6 +254,11 @@ CLASSES = [
     ('human findings, one line', many_findings_minified, 3_000, ['check', '--format', 'human']),
     ('2.0 spec-gloss materials, upgrade with proof', spec_gloss_materials, 10_000, ['upgrade', '-o', os.path.join(WORK, 'sg.glb'), '--force']),
     ('folder of N assets, sarif', folder_of_assets, 1_000, ['check', '--format', 'sarif']),
+    ('buffers naming one 1 MB file (15)', buffers_naming_one_file, 100, ['check']),
+    ('spec-gloss, own texture of one 2048² PNG, proof (15)', lambda n: spec_gloss_over_one_image(n, False), 10,
+     ['upgrade', '-o', os.path.join(WORK, 'sg-alike.glb'), '--force']),
+    ('spec-gloss, distinct, one 2048² texture, proof (15)', lambda n: spec_gloss_over_one_image(n, True), 2,
+     ['upgrade', '-o', os.path.join(WORK, 'sg-distinct.glb'), '--force']),
     ('8192² PNG, N references (15)', big_png_references, 1, ['render', '--all', '--size', '64', '-o', os.path.join(WORK, 'sheet.png'), '--force']),
 ]
 

@@ -91,6 +91,7 @@ pub fn run(args: CompareArgs) -> Outcome {
     let mut options = CompareOptions::default();
     options.pairs = parse_map(&args.material_map).map_err(Failure::usage)?;
     options.grid = args.grid;
+    options.heat_maps = args.heatmap.is_some();
     let outcomes = compare(&args.a, &args.b, &options)?;
     if let Some(path) = &args.heatmap {
         for (k, o) in outcomes.iter().enumerate() {

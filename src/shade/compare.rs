@@ -75,9 +75,20 @@ pub struct Comparison {
     pub grid: u32,
     /// Texels × directions evaluated.
     pub samples: u64,
-    /// The largest ΔE over the directions, per texel (row-major), for heat maps. Shared:
-    /// the outcomes of an asset's many identical pairs hold one map.
+    /// The largest ΔE over the directions, per texel (row-major), for heat maps; empty
+    /// unless [`TexelMap::Kept`]. Shared: the outcomes of an asset's many identical pairs
+    /// hold one map.
     pub per_texel: Arc<[f32]>,
+}
+
+/// Whether a comparison keeps its per-texel map, for a heat map: grid² floats (16 MB for a
+/// 2048² texture), which a proof of 10^3 distinct materials could not hold for each.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TexelMap {
+    /// Kept in [`Comparison::per_texel`].
+    Kept,
+    /// Not kept: `per_texel` is empty.
+    Dropped,
 }
 
 fn direction(theta: f64, phi: f64) -> V3 {
@@ -186,10 +197,12 @@ struct Job<'a> {
     b: &'a MaterialSource,
     grid: u32,
     directions: Directions,
+    map: TexelMap,
 }
 
 struct Partial {
-    per_texel: Vec<f32>,
+    /// `None` when the map is [`TexelMap::Dropped`].
+    per_texel: Option<Vec<f32>>,
     sum: f64,
     count: u64,
     worst: Worst,
@@ -202,7 +215,7 @@ pub const MAX_GRID: u32 = 4096;
 /// Compares `a` with `b` on a `grid`² UV grid (texel centres, at most [`MAX_GRID`]); `grid` 0
 /// picks the finest texture resolution of either (at least 16).
 pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u32) -> Comparison {
-    let mut each = compare_readings(shader, std::slice::from_ref(a), b, grid);
+    let mut each = compare_readings(shader, std::slice::from_ref(a), b, grid, TexelMap::Kept);
     each.pop().unwrap_or_else(|| merge(Vec::new(), 0))
 }
 
@@ -214,6 +227,7 @@ pub fn compare_readings(
     readings: &[MaterialSource],
     b: &MaterialSource,
     grid: u32,
+    map: TexelMap,
 ) -> Vec<Comparison> {
     let finest = (readings.iter().map(MaterialSource::max_resolution)).fold(1, u32::max);
     let grid = if grid == 0 {
@@ -228,6 +242,7 @@ pub fn compare_readings(
         b,
         grid,
         directions: Directions::new(),
+        map,
     };
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u32;
     let rows_per_thread = grid.div_ceil(threads);
@@ -292,10 +307,11 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
         b,
         grid,
         ref directions,
+        map,
     } = *job;
     let mut partials: Vec<Partial> = readings
         .iter()
-        .map(|_| Partial::new(rows.len() * grid as usize))
+        .map(|_| Partial::new(rows.len() * grid as usize, map))
         .collect();
     let mut batches: Vec<Batch> = readings
         .iter()
@@ -416,9 +432,9 @@ impl Row {
 }
 
 impl Partial {
-    fn new(texels: usize) -> Partial {
+    fn new(texels: usize, map: TexelMap) -> Partial {
         Partial {
-            per_texel: Vec::with_capacity(texels),
+            per_texel: (map == TexelMap::Kept).then(|| Vec::with_capacity(texels)),
             sum: 0.0,
             count: 0,
             worst: Worst {
@@ -443,7 +459,13 @@ impl Partial {
                 directions: angles[0],
             };
         }
-        self.per_texel.push(0.0);
+        self.note_texel(0.0);
+    }
+
+    fn note_texel(&mut self, max: f32) {
+        if let Some(map) = &mut self.per_texel {
+            map.push(max);
+        }
     }
 
     fn add_texel(&mut self, uv: [f64; 2], deltas: &[f64], angles: &[(f64, f64, f64)]) {
@@ -463,20 +485,20 @@ impl Partial {
                 };
             }
         }
-        self.per_texel.push(texel_max as f32);
+        self.note_texel(texel_max as f32);
     }
 }
 
 fn merge<'p>(partials: impl IntoIterator<Item = &'p Partial>, grid: u32) -> Comparison {
     let mut histogram = vec![0u64; BINS];
-    let mut per_texel = Vec::with_capacity((grid * grid) as usize);
+    let mut per_texel = Vec::new();
     let (mut sum, mut count) = (0.0, 0u64);
     // The first worst sample seen (in row order) wins ties, so a comparison with ΔE 0
     // everywhere names a real texel.
     let mut worst: Option<Worst> = None;
     // Partials come in row order: their texels concatenate into the grid.
     for p in partials {
-        per_texel.extend(&p.per_texel);
+        per_texel.extend(p.per_texel.iter().flatten());
         sum += p.sum;
         count += p.count;
         for (total, n) in histogram.iter_mut().zip(&p.histogram) {
@@ -604,7 +626,7 @@ mod tests {
         };
         let target = source(0.5);
         let readings = [source(0.52), source(0.5), source(0.8)];
-        let together = compare_readings(&shader(), &readings, &target, 8);
+        let together = compare_readings(&shader(), &readings, &target, 8, TexelMap::Kept);
         assert_eq!(together.len(), readings.len());
         for (reading, result) in readings.iter().zip(&together) {
             assert_eq!(result, &compare(&shader(), reading, &target, 8));
@@ -634,6 +656,7 @@ mod tests {
                 b,
                 grid: 20,
                 directions: Directions::new(),
+                map: TexelMap::Kept,
             };
             // 20 texels per row: two full batches and a partial one.
             let [portable] = &compare_rows_inline(&job, 0..3)[..] else {

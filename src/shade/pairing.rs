@@ -2,6 +2,7 @@
 //! `upgrade --verify` share, so that no caller builds a shader or a sheen table by hand.
 
 use super::brdf::SheenVisibility;
+pub use super::compare::TexelMap;
 use super::compare::{self as evaluate, Comparison};
 use super::legacy::{legacy_materials, LegacyMaterialsError};
 use super::load::gltf2_materials;
@@ -70,6 +71,7 @@ pub fn compare_pairs(
     b: &[Named],
     pairs: &[(usize, usize)],
     grid: u32,
+    map: TexelMap,
 ) -> Vec<Outcome> {
     let shader = shader_for(a.iter().chain(b).filter_map(|(_, m)| m.as_ref()));
     // Materials that evaluate the same way are compared once (an asset's thousand copies of
@@ -86,7 +88,7 @@ pub fn compare_pairs(
             };
             let key = (ma.fingerprint(), mb.fingerprint());
             let worst = (done.entry(key))
-                .or_insert_with(|| worst_reading(&shader, ma, mb, grid))
+                .or_insert_with(|| worst_reading(&shader, ma, mb, grid, map))
                 .clone();
             let label = match worst.reading {
                 Some(how) => format!("{name_a} (source read as: {how})"),
@@ -116,9 +118,10 @@ fn worst_reading(
     source: &MaterialSource,
     target: &MaterialSource,
     grid: u32,
+    map: TexelMap,
 ) -> Worst {
     let readings = source.readings();
-    let results = evaluate::compare_readings(shader, &readings, target, grid);
+    let results = evaluate::compare_readings(shader, &readings, target, grid, map);
     (readings.iter().zip(results))
         .map(|(reading, result)| Worst {
             result,
@@ -146,6 +149,8 @@ pub struct CompareOptions {
     pub pairs: Vec<(usize, usize)>,
     /// UV grid per side; 0 picks the finest texture resolution involved (at least 16).
     pub grid: u32,
+    /// Whether each outcome keeps its per-texel map (for heat maps).
+    pub heat_maps: bool,
 }
 
 /// Compares the materials of two assets (glTF 2.0, or glTF 1.0 with PBR-draft materials),
@@ -170,7 +175,12 @@ pub fn compare(
     } else {
         options.pairs.clone()
     };
-    Ok(compare_pairs(&a, &b, &pairs, options.grid))
+    let map = if options.heat_maps {
+        TexelMap::Kept
+    } else {
+        TexelMap::Dropped
+    };
+    Ok(compare_pairs(&a, &b, &pairs, options.grid, map))
 }
 
 /// The materials of an asset on disk, its resources read from its folder (textures no finer
@@ -300,9 +310,32 @@ mod tests {
         let named = |m: &MaterialSource| ("m".to_string(), Some(m.clone()));
         let a = [named(&dark), named(&dark), named(&light)];
         let b = [named(&light), named(&light), named(&light)];
-        let outcomes = compare_pairs(&a, &b, &[(0, 0), (1, 1), (2, 2)], 4);
+        let outcomes = compare_pairs(&a, &b, &[(0, 0), (1, 1), (2, 2)], 4, TexelMap::Kept);
         assert_eq!(outcomes[0].result.max, outcomes[1].result.max);
         assert!(outcomes[0].result.max > 10.0, "dark against light");
         assert_eq!(outcomes[2].result.max, 0.0, "light against itself");
+        // Without the maps, the same figures and no map held.
+        let lean = compare_pairs(&a, &b, &[(0, 0), (2, 2)], 4, TexelMap::Dropped);
+        assert_eq!(lean[0].result.max, outcomes[0].result.max);
+        assert_eq!(lean[1].result.mean, outcomes[2].result.mean);
+        assert_eq!(outcomes[0].result.per_texel.len(), 16);
+        assert!(lean.iter().all(|o| o.result.per_texel.is_empty()));
+    }
+
+    /// An asset's 10^3 materials each naming its own texture of one image are one material
+    /// to the evaluator: prepared once, and so proved once.
+    #[test]
+    fn materials_naming_different_textures_of_one_image_are_the_same_material() {
+        let textures =
+            decode_all(&[Some(Ok(solid_png([40; 3]))), Some(Ok(solid_png([220; 3])))]).unwrap();
+        // Textures 0 and 1 read image 0; texture 2 reads image 1.
+        let textures = [&textures[0], &textures[0], &textures[1]].map(Clone::clone);
+        let reading = |index: usize| json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": index}}, "name": index});
+        let prepared = crate::shade::load::prepare_materials((0..3).map(reading), &textures);
+        let [first, second, other] = &prepared[..] else {
+            panic!("three materials")
+        };
+        assert_eq!(first.fingerprint(), second.fingerprint());
+        assert_ne!(first.fingerprint(), other.fingerprint());
     }
 }

@@ -5,7 +5,7 @@
 
 use super::{converted_materials, Upgraded};
 use crate::document::uri::ResourceLoader;
-use crate::shade::pairing::{self, compare_pairs, Named, Outcome};
+use crate::shade::pairing::{self, compare_pairs, Named, Outcome, TexelMap};
 use crate::shade::sample::AS_STORED;
 
 /// Why a proof could not be made.
@@ -39,5 +39,11 @@ pub fn prove<'b>(
         .filter(|&i| !upgraded.is_passed_through(i))
         .map(|i| (i, i))
         .collect();
-    Ok(compare_pairs(&sources, &converted, &pairs, 0))
+    Ok(compare_pairs(
+        &sources,
+        &converted,
+        &pairs,
+        0,
+        TexelMap::Dropped,
+    ))
 }
