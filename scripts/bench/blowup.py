@@ -140,6 +140,18 @@ def undeclared_extensions(n):
                                                nodes=[{'extensions': {f'X_k{i}': {} for i in range(n)}}]))
 
 
+def undeclared_extensions_seen_before(n):
+    """As undeclared_extensions, but every name is written before (in `extras`, shuffled) and
+    the object's keys come in another order: its members are indexed, not found in place."""
+    import random
+    names = [f'X_k{i}' for i in range(n)]
+    random.Random(1).shuffle(names)
+    written = names[:]
+    random.Random(2).shuffle(written)
+    return write(f'undeclared-seen-{n}.gltf', asset(extensionsUsed=['X_a'], extras=names,
+                                                    nodes=[{'extensions': {name: {} for name in written}}]))
+
+
 def gltf1_meshes(n):
     """A 1.0 asset of n meshes, each with its own accessor into one buffer: each repacked
     accessor once summed the lengths of all before it."""
@@ -246,6 +258,7 @@ CLASSES = [
     ('empty GLB chunks (13)', empty_chunks, 100_000, ['check', '--max-issues', '10']),
     ('declared extensions (11)', declared_extensions, 10_000, ['check']),
     ('undeclared extension objects (11)', undeclared_extensions, 100_000, ['check', '--max-issues', '10']),
+    ('undeclared extensions, keys seen before (11)', undeclared_extensions_seen_before, 100_000, ['check', '--max-issues', '10']),
     ('1.0 meshes, upgrade (11)', gltf1_meshes, 10_000, ['upgrade', '-o', os.path.join(WORK, 'meshes.glb'), '--force']),
     ('array of zeros (13)', zeros, 1_000_000, ['check', '--max-issues', '10']),
     ('accessors aliasing one view (13)', aliasing_accessors, 100, ['check', '--max-issues', '0']),
