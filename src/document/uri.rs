@@ -346,10 +346,10 @@ impl FolderResources {
             let shared = self.shared.lock().ok()?;
             shared.get(&(id, whole))?.get()
         });
-        let (kept, id) = match earlier {
-            Some(kept) => (kept, opened),
-            None => read(file).map_err(failed)?,
-        };
+        if let Some(kept) = earlier {
+            return Ok(kept);
+        }
+        let (kept, id) = read(file).map_err(failed)?;
         if let Some(id) = id {
             if let Ok(mut shared) = self.shared.lock() {
                 shared.insert((id, whole), Held::of(&kept));
@@ -369,9 +369,10 @@ fn read_whole(file: std::fs::File) -> Result<(Kept, Option<FileId>), FileError> 
 
 impl ResourceLoader for FolderResources {
     fn load(&self, relative: &str) -> Result<Arc<Bytes>, LoadError> {
+        // A whole read (and what the cache holds of one) is never left in its file.
         match self.read_with(relative, true, read_whole)? {
             Kept::Read(bytes) => Ok(bytes),
-            Kept::Elsewhere(_) => unreachable!("a whole read is never left in its file"),
+            Kept::Elsewhere(_) => Err(LoadError::Io(format!("{relative}: not read whole"))),
         }
     }
 

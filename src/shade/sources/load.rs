@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 /// An image's encoded bytes: its own file or data URI, or a buffer view of the document.
 enum Encoded<'a> {
-    Loaded(std::sync::Arc<Bytes>),
+    Loaded(Arc<Bytes>),
     View(&'a [u8]),
 }
 
