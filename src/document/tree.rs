@@ -261,37 +261,41 @@ impl Tree {
     /// Returns whether it was `null`, or `None` when the pointer names no object member.
     pub fn remove(&mut self, pointer: &str) -> Option<bool> {
         let (parent, token) = pointer.rsplit_once('/')?;
-        let key = StringId(self.find(&super::json::unescape_token(token))?);
-        self.remove_members(parent, [key], |_| true).pop()?
+        let key = self.find(&super::json::unescape_token(token))?;
+        let object = self.root().pointer(parent)?.object_range()?;
+        let at = self.member_slot(object, key)?;
+        self.take_member(at, key, |_| true)
     }
 
     /// [`Tree::remove`] for the members named `keys` of the object at `parent` (a pointer),
     /// each when its value is one `taken` accepts: the names are not looked up again, nor
-    /// the pointer once for each. Gives, for each key in order, `None` when it stays.
+    /// the pointer once for each. Gives how many were taken out.
     pub fn remove_members(
         &mut self,
         parent: &str,
         keys: impl IntoIterator<Item = StringId>,
         mut taken: impl FnMut(Node) -> bool,
-    ) -> Vec<Option<bool>> {
-        let object = self.root().pointer(parent).and_then(Node::object_range);
-        let keys = keys.into_iter();
-        let Some(object) = object else {
-            return keys.map(|_| None).collect();
+    ) -> usize {
+        let Some(object) = self.root().pointer(parent).and_then(Node::object_range) else {
+            return 0;
         };
         // Keys asked for in the order they are written are each found next to the last,
         // live or already taken out (a key slot keeps its key's id either way).
         let mut next = object.0;
         let end = object.0 + 2 * object.1;
-        keys.map(|key| {
-            let at = match next < end && self.slots[next].payload() == u64::from(key.0) {
-                true => next,
-                false => self.member_slot(object, key.0)?,
+        let mut removed = 0;
+        for StringId(key) in keys {
+            let at = if next < end && self.slots[next].payload() == u64::from(key) {
+                next
+            } else if let Some(at) = self.member_slot(object, key) {
+                at
+            } else {
+                continue;
             };
             next = at + 2;
-            self.take_member(at, key.0, &mut taken)
-        })
-        .collect()
+            removed += usize::from(self.take_member(at, key, &mut taken).is_some());
+        }
+        removed
     }
 
     /// Takes out the member at slot `at`, keyed by string `key`, when it is still there and
@@ -1062,9 +1066,13 @@ impl Tree {
     /// repeated key keeps its first place and takes its last value, and the members are
     /// indexed by key. Gives the number of members left.
     fn settle_members(&mut self, start: usize, len: usize) -> usize {
-        let key_of = |slots: &[Slot], member: usize| slots[start + 2 * member].payload() as u32;
         let mut index: Vec<(u32, u32)> = (0..len)
-            .map(|member| (key_of(&self.slots, member), member as u32))
+            .map(|member| {
+                (
+                    self.slots[start + 2 * member].payload() as u32,
+                    member as u32,
+                )
+            })
             .collect();
         // By key, then by place: each key's run starts at its first place.
         index.sort_unstable();
@@ -1356,10 +1364,8 @@ mod tests {
         // Every third, backwards, then all in order: the even ones go.
         let even = |value: Node| value.as_u64().is_some_and(|v| v % 2 == 0);
         let backwards = ids.iter().rev().step_by(3).copied();
-        let removed = tree.remove_members("/o", backwards, even);
-        assert_eq!(removed.iter().filter(|r| r.is_some()).count(), 8);
-        let removed = tree.remove_members("/o", ids.iter().copied(), even);
-        assert_eq!(removed.iter().filter(|r| r.is_some()).count(), 17);
+        assert_eq!(tree.remove_members("/o", backwards, even), 8);
+        assert_eq!(tree.remove_members("/o", ids.iter().copied(), even), 17);
         let odd: Vec<String> = (1..50)
             .step_by(2)
             .map(|i| format!("\"k{i}\":{i}"))
@@ -1368,10 +1374,7 @@ mod tests {
             tree.root().to_string(),
             format!("{{\"o\":{{{}}}}}", odd.join(","))
         );
-        assert_eq!(
-            tree.remove_members("/x", ids.iter().copied(), |_| true),
-            vec![None; 50]
-        );
+        assert_eq!(tree.remove_members("/x", ids.iter().copied(), |_| true), 0);
     }
 
     #[test]
