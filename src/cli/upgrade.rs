@@ -230,13 +230,8 @@ fn write_to_stdout(upgraded: &mut Upgraded, input: &Path) -> Outcome {
         return Err(refuse_failed_check(report, upgraded, input));
     }
     let mut stdout = std::io::stdout().lock();
-    for part in files.main.slices() {
-        stdout
-            .write_all(part)
-            .map_err(|e| Failure::usage(format!("stdout: {e}")))?;
-    }
-    stdout
-        .flush()
+    output::write_parts(&mut stdout, files.main.slices())
+        .and_then(|()| stdout.flush())
         .map_err(|e| Failure::usage(format!("stdout: {e}")))?;
     Ok(ExitCode::SUCCESS)
 }

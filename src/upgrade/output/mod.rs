@@ -272,6 +272,21 @@ impl ResourceLoader for SideFiles<'_> {
     }
 }
 
+/// The most bytes one `write` call is given. Linux took 10 to 20 times longer to write a
+/// large asset's pieces each in one call than in calls of this size: 161 MB in 0.6 to 1.3 s
+/// against 0.06 s (and `dd` shows the same of one 200 MB write against 1 MB ones).
+const WRITE_AT_ONCE: usize = 1 << 20;
+
+/// Writes `parts` one after the other, in calls of at most [`WRITE_AT_ONCE`] bytes.
+pub fn write_parts<'p>(
+    out: &mut impl std::io::Write,
+    parts: impl IntoIterator<Item = &'p [u8]>,
+) -> std::io::Result<()> {
+    (parts.into_iter())
+        .flat_map(|part| part.chunks(WRITE_AT_ONCE))
+        .try_for_each(|chunk| out.write_all(chunk))
+}
+
 /// Why the output was not written.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]

@@ -7,7 +7,6 @@
 //! into the same folder ([`remove_stale`]).
 
 use super::WriteError;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
@@ -91,9 +90,7 @@ impl Temporary {
             file,
             _unfinished: unfinished,
         };
-        for part in parts {
-            temporary.file.as_file().write_all(part).map_err(failed)?;
-        }
+        super::write_parts(&mut temporary.file.as_file(), parts).map_err(failed)?;
         Ok(temporary)
     }
 
