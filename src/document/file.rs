@@ -209,8 +209,74 @@ pub fn read_opened(file: File) -> Result<Vec<u8>, FileError> {
 pub(crate) fn read_opened_with_id(file: File) -> Result<(Vec<u8>, Option<FileId>), FileError> {
     let metadata = file.metadata()?;
     check_regular(&metadata)?;
-    let bytes = read_bounded(file, metadata.len() as usize, MAX_FILE_BYTES)?;
+    let length = metadata.len() as usize;
+    let mut bytes = read_parts(&file, length)?;
+    // Then the rest: all of a small file, or what a large one grew by meanwhile, to the
+    // same bound as any stream.
+    let read = bytes.len();
+    let rest = read_bounded(
+        &file,
+        length.saturating_sub(read),
+        MAX_FILE_BYTES - read as u64,
+    )?;
+    if bytes.is_empty() {
+        bytes = rest;
+    } else {
+        bytes.extend_from_slice(&rest);
+    }
     Ok((bytes, FileId::of(&metadata)))
+}
+
+/// From this size up a file is read in parts on all cores: filling fresh memory costs more
+/// in page faults than in copying, and faults on several cores at once take their share of
+/// the time each (a 176 MB buffer: 130 ms read in one part, 70 ms in two).
+const READ_IN_PARTS_FROM: usize = 16 << 20;
+
+/// The first `length` bytes of the file, or as many as it still holds (it may have been
+/// truncated meanwhile), read from its start in parts at once, with positioned reads; the
+/// handle's position is left after them.
+fn read_parts(file: &File, length: usize) -> io::Result<Vec<u8>> {
+    use rayon::prelude::*;
+    if length < READ_IN_PARTS_FROM || !cfg!(unix) {
+        return Ok(Vec::new());
+    }
+    let mut bytes = vec![0u8; length];
+    let part = length.div_ceil(rayon::current_num_threads().max(1));
+    let filled: Vec<usize> = (bytes.par_chunks_mut(part).enumerate())
+        .map(|(i, place)| fill_at(file, place, (i * part) as u64))
+        .collect::<io::Result<_>>()?;
+    // A part read short ends what was read: the file is read as it now is.
+    let whole = filled
+        .iter()
+        .position(|&n| n < part)
+        .map_or(length, |i| i * part + filled[i]);
+    bytes.truncate(whole.min(length));
+    io::Seek::seek(&mut &*file, io::SeekFrom::Start(bytes.len() as u64))?;
+    Ok(bytes)
+}
+
+/// Reads into `place` from `offset` until it is full or the file ends; how many bytes.
+fn fill_at(file: &File, place: &mut [u8], offset: u64) -> io::Result<usize> {
+    let mut filled = 0;
+    while filled < place.len() {
+        match read_at(file, &mut place[filled..], offset + filled as u64) {
+            Ok(0) => break,
+            Ok(n) => filled += n,
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(filled)
+}
+
+#[cfg(unix)]
+fn read_at(file: &File, place: &mut [u8], offset: u64) -> io::Result<usize> {
+    std::os::unix::fs::FileExt::read_at(file, place, offset)
+}
+
+#[cfg(not(unix))]
+fn read_at(_: &File, _: &mut [u8], _: u64) -> io::Result<usize> {
+    Ok(0)
 }
 
 /// Reads a stream (stdin, a pipe) to its end, but never more than [`MAX_FILE_BYTES`], the
@@ -315,6 +381,22 @@ mod tests {
         let path = folder.path().join("a.bin");
         std::fs::write(&path, b"abc").unwrap();
         assert_eq!(read(&path).unwrap(), b"abc");
+    }
+
+    #[test]
+    fn large_files_are_read_in_parts_as_they_are_now() {
+        let folder = tempfile::tempdir().unwrap();
+        let path = folder.path().join("large.bin");
+        let length = READ_IN_PARTS_FROM + 12_345;
+        let content: Vec<u8> = (0..length).map(|i| (i * 7 + i / 4096) as u8).collect();
+        std::fs::write(&path, &content).unwrap();
+        assert_eq!(read(&path).unwrap(), content);
+        // A file shorter than its length said (truncated meanwhile) is read as it is.
+        let opened = File::open(&path).unwrap();
+        assert_eq!(read_parts(&opened, length + (1 << 20)).unwrap(), content);
+        let mut rest = Vec::new();
+        io::Read::read_to_end(&mut &opened, &mut rest).unwrap();
+        assert!(rest.is_empty(), "the handle is left after what was read");
     }
 
     #[test]

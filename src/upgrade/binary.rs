@@ -7,6 +7,9 @@ use crate::document::{Bytes, Piece};
 use std::ops::Range;
 use std::sync::Arc;
 
+/// Produced data from this size up is a piece of its own (see [`Binary::append_made`]).
+const OWN_PIECE_FROM: usize = 1 << 20;
+
 /// The output buffer: repacked data and ranges of the input, laid out in order.
 #[derive(Debug, Clone, Default)]
 pub struct Binary {
@@ -68,6 +71,25 @@ impl Binary {
         self.runs.push(Piece::new(Arc::clone(buffer), range));
     }
 
+    /// Appends `length` bytes that `make` writes (they start as zeros), returning what it
+    /// returns. Large data gets a piece of its own, made fresh: appended to the owned tail
+    /// it would first be zeroed on one core, and the tail's growth would copy what came
+    /// before; fresh zeros cost nothing until `make` writes them, on as many cores as it
+    /// runs on.
+    pub fn append_made<R>(&mut self, length: usize, make: impl FnOnce(&mut [u8]) -> R) -> R {
+        if length < OWN_PIECE_FROM {
+            let start = self.tail.len();
+            self.tail.resize(start + length, 0);
+            return make(&mut self.tail[start..]);
+        }
+        self.close_tail();
+        let mut bytes = vec![0; length];
+        let made = make(&mut bytes);
+        self.runs_len += length;
+        self.runs.push(Piece::whole(bytes));
+        made
+    }
+
     /// The owned bytes at the end, for appending produced data.
     pub fn owned(&mut self) -> &mut Vec<u8> {
         &mut self.tail
@@ -108,5 +130,32 @@ mod tests {
         binary.seal();
         assert_eq!(pieces(&binary), binary.to_vec(), "sealing keeps the bytes");
         assert_eq!(binary.len(), 9);
+    }
+
+    #[test]
+    fn made_data_follows_in_order_whether_small_or_large() {
+        let mut binary = Binary::default();
+        binary.owned().push(1);
+        let small = binary.append_made(3, |b| {
+            b.copy_from_slice(&[2, 3, 4]);
+            b.len()
+        });
+        let large = binary.append_made(OWN_PIECE_FROM, |b| {
+            assert!(b.iter().all(|&x| x == 0), "made data starts as zeros");
+            b[0] = 5;
+            b.len()
+        });
+        binary.owned().push(6);
+        assert_eq!((small, large), (3, OWN_PIECE_FROM));
+        let mut expected = vec![1, 2, 3, 4, 5];
+        expected.resize(4 + OWN_PIECE_FROM, 0);
+        expected.push(6);
+        assert_eq!(binary.to_vec(), expected);
+        assert_eq!(binary.len(), expected.len());
+        assert_eq!(
+            binary.runs().count(),
+            3,
+            "the large data is a run of its own"
+        );
     }
 }

@@ -8,7 +8,7 @@ use super::resources::{view_bytes, view_data, ViewData};
 use crate::check::context::{unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::Node;
-use crate::gltf::accessor::{component_count, component_size, decode_component, normalise};
+use crate::gltf::accessor::{component_count, component_size, normalise};
 use crate::gltf::gl;
 use rayon::prelude::*;
 use std::borrow::Cow;
@@ -24,7 +24,7 @@ const BATCH: usize = 240;
 /// holding `components` numbers per element, as stored (integers not normalised).
 /// Dispatching on the component type once, outside the loop, keeps the inner loop a plain
 /// load: this pass runs over every byte of large assets.
-fn visit(layout: &Layout, bytes: &[u8], f: impl FnMut(usize, &[f64])) {
+pub(super) fn visit(layout: &Layout, bytes: &[u8], f: impl FnMut(usize, &[f64])) {
     match layout.component_type {
         gl::BYTE => walk(layout, bytes, |[b]: [u8; 1]| f64::from(b as i8), f),
         gl::UNSIGNED_BYTE => walk(layout, bytes, |[b]: [u8; 1]| f64::from(b), f),
@@ -33,21 +33,6 @@ fn visit(layout: &Layout, bytes: &[u8], f: impl FnMut(usize, &[f64])) {
         gl::UNSIGNED_INT => walk(layout, bytes, |b| f64::from(u32::from_le_bytes(b)), f),
         _ => walk(layout, bytes, |b| f64::from(f32::from_le_bytes(b)), f),
     }
-}
-
-/// Element `i`, as stored; the layout was checked to fit by `scannable`.
-/// Decoded on its own, not through a batch: a batch's buffer is 30 KB to clear, which made
-/// reading one element per vertex (skinning influences) cost a second per 2 M vertices.
-pub(super) fn element(layout: &Layout, bytes: &[u8], i: usize) -> [f64; MAX_COMPONENTS] {
-    let mut value = [0.0; MAX_COMPONENTS];
-    let start = layout.offset + i * layout.stride;
-    let n = layout.components.min(MAX_COMPONENTS);
-    if let Some(raw) = bytes.get(start..start + n * layout.size) {
-        for (value, component) in value.iter_mut().zip(raw.chunks_exact(layout.size)) {
-            *value = decode_component(layout.component_type, component);
-        }
-    }
-    value
 }
 
 fn walk<const SIZE: usize>(

@@ -104,6 +104,30 @@ impl Findings {
         }
     }
 
+    /// Empty findings that may keep what these still have room for: those of a later part
+    /// of the same walk, made apart (on another core) and then [`absorb`](Self::absorb)ed.
+    pub(super) fn room(&self) -> Findings {
+        Findings {
+            limit: self.limit.saturating_sub(self.kept.len()),
+            ..Findings::default()
+        }
+    }
+
+    /// Takes in the findings of the part of the walk that follows these, as if they had
+    /// been recorded here: its kept ones are kept while there is room, and what it only
+    /// counted is counted here, under the first place of each code.
+    pub(super) fn absorb(&mut self, later: Findings) {
+        for (code, pointer, message) in later.kept {
+            self.record(code, || pointer, || message);
+        }
+        for (code, pointer, n) in later.dropped {
+            match self.dropped.iter_mut().find(|(c, ..)| *c == code) {
+                Some((.., count)) => *count += n,
+                None => self.dropped.push((code, pointer, n)),
+            }
+        }
+    }
+
     /// Reports the kept findings, the last one saying how many more were not listed, and
     /// counts those.
     pub(super) fn report(mut self, ctx: &mut Context) {
@@ -543,6 +567,57 @@ impl Uses<'_> {
                 let cubic = interpolation == Some("CUBICSPLINE");
                 let p = format!("{pointer}/channels/{c}/sampler");
                 self.add(output, p, Kind::Rotation { cubic });
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A walk's findings: two codes interleaved, each at its own place.
+    fn walk(count: usize) -> Vec<Finding> {
+        (0..count)
+            .map(|i| {
+                let code = match i % 3 {
+                    0 => khronos::ACCESSOR_WEIGHTS_NON_NORMALIZED,
+                    _ => khronos::ACCESSOR_JOINTS_INDEX_DUPLICATE,
+                };
+                (code, format!("/at/{i}"), format!("finding {i}"))
+            })
+            .collect()
+    }
+
+    fn state(findings: &Findings) -> (Vec<Finding>, Vec<(Code, String, u64)>) {
+        (findings.kept.clone(), findings.dropped.clone())
+    }
+
+    #[test]
+    fn findings_recorded_in_parts_and_absorbed_equal_those_recorded_in_one_walk() {
+        let all = walk(40);
+        for limit in [0, 1, 7, 39, 40, 100] {
+            let mut one = Findings {
+                limit,
+                ..Findings::default()
+            };
+            all.iter().cloned().for_each(|f| one.push(f));
+            // Parts made as the influences pass makes them: each with the room the merged
+            // findings had when the batch started, then absorbed in order.
+            for cuts in [vec![0, 40], vec![0, 5, 40], vec![0, 3, 8, 20, 21, 40]] {
+                let mut merged = Findings {
+                    limit,
+                    ..Findings::default()
+                };
+                for part in cuts.windows(2) {
+                    let mut found = merged.room();
+                    all[part[0]..part[1]]
+                        .iter()
+                        .cloned()
+                        .for_each(|f| found.push(f));
+                    merged.absorb(found);
+                }
+                assert_eq!(state(&merged), state(&one), "limit {limit}, cuts {cuts:?}");
             }
         }
     }

@@ -1,15 +1,16 @@
 //! Skinning influences: each vertex's JOINTS_n / WEIGHTS_n sets read together (the Khronos
 //! ACCESSOR_JOINTS_* and ACCESSOR_WEIGHTS_* codes).
 
-use super::accessor_data::{element, scannable, unit_scale, MAX_COMPONENTS};
+use super::accessor_data::{scannable, unit_scale, visit};
 use super::accessor_fast::Layout;
 use super::accessor_usage::{Budget, Findings};
 use super::resources::ViewData;
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::{Array, Node};
-use std::borrow::Cow;
+use rayon::prelude::*;
 use std::collections::HashMap;
+use std::ops::Range;
 
 pub fn check(ctx: &mut Context) {
     let mut budget = Budget::new();
@@ -23,8 +24,7 @@ pub fn check(ctx: &mut Context) {
                 let at = format!("{pointer}/primitives/{p}/attributes");
                 let limit = JointLimit { max_joint, skin };
                 let mut found = budget.share(1);
-                let mut sets = sets;
-                check_primitive(&mut sets, &at, limit, &mut found);
+                check_primitive(&sets, &at, limit, &mut found);
                 budget.spend(&found);
                 found.report(ctx);
             }
@@ -67,41 +67,40 @@ fn limiting_skins(ctx: &Context) -> HashMap<usize, (f64, usize)> {
 
 /// One JOINTS_n / WEIGHTS_n pair, readable and as long as the primitive.
 struct Set<'c> {
-    joints: Windowed<'c>,
-    weights: Windowed<'c>,
+    joints: Attribute<'c>,
+    weights: Attribute<'c>,
     weight_scale: fn(f64) -> f64,
 }
 
-/// Vertices whose bytes one attribute holds at a time: a primitive may have many sets, all
-/// over one large view of a GLB read from its file, and only a window of each is held.
-const WINDOW: usize = 1 << 16;
+/// Vertices checked as one piece of work: each attribute's elements for the block are
+/// read and decoded at once (the component type matched once a block, not once a value),
+/// and blocks run on all cores. A block's decoded sets take 256 KB an attribute.
+const BLOCK: usize = 1 << 13;
 
-/// One attribute's elements, its view read a window of vertices at a time (borrowed, not
-/// copied, when the view is in memory).
-struct Windowed<'c> {
+/// One attribute's elements in its view (read a block at a time: a primitive may have many
+/// sets, all over one large view of a GLB read from its file).
+struct Attribute<'c> {
     layout: Layout,
     view: ViewData<'c>,
-    /// The first vertex of the window held, and its bytes.
-    window: Option<(usize, Cow<'c, [u8]>)>,
 }
 
-impl Windowed<'_> {
-    /// The element at `vertex`, or None when its bytes cannot be read (the file changed).
-    fn element(&mut self, vertex: usize) -> Option<[f64; MAX_COMPONENTS]> {
-        let first = vertex - vertex % WINDOW;
-        if self.window.as_ref().map(|(at, _)| *at) != Some(first) {
-            let layout = &self.layout;
-            let last = (first + WINDOW).min(layout.count).checked_sub(1)?;
-            let start = layout.offset + first * layout.stride;
-            let end = layout.offset + last * layout.stride + layout.size * layout.components;
-            self.window = Some((first, self.view.part(start..end)?.read()?));
-        }
-        let (at, bytes) = self.window.as_ref()?;
-        let windowed = Layout {
+impl Attribute<'_> {
+    /// The components of `vertices`, four a vertex, or None when their bytes cannot be
+    /// read (the file changed).
+    fn decode(&self, vertices: &Range<usize>) -> Option<Vec<f64>> {
+        let layout = &self.layout;
+        let last = vertices.end.checked_sub(1)?;
+        let start = layout.offset + vertices.start * layout.stride;
+        let end = layout.offset + last * layout.stride + layout.size * layout.components;
+        let bytes = self.view.part(start..end)?.read()?;
+        let block = Layout {
             offset: 0,
-            ..self.layout
+            count: vertices.len(),
+            ..*layout
         };
-        Some(element(&windowed, bytes, vertex - at))
+        let mut values = Vec::with_capacity(vertices.len() * layout.components);
+        visit(&block, &bytes, |_, batch| values.extend_from_slice(batch));
+        Some(values)
     }
 }
 
@@ -126,11 +125,7 @@ fn influence_sets<'c>(ctx: &'c Context, primitive: Node) -> Option<Vec<Set<'c>>>
         let readable = |a: Node<'c>| {
             let (layout, view) = scannable(ctx, a)?;
             let fits = layout.count as u64 == vertex_count && layout.components == 4;
-            fits.then_some(Windowed {
-                layout,
-                view,
-                window: None,
-            })
+            fits.then_some(Attribute { layout, view })
         };
         let weight_scale = unit_scale(unsigned(weights, "componentType")?, weights);
         sets.push(Set {
@@ -142,36 +137,63 @@ fn influence_sets<'c>(ctx: &'c Context, primitive: Node) -> Option<Vec<Set<'c>>>
     (!sets.is_empty()).then_some(sets)
 }
 
-fn check_primitive(sets: &mut [Set], at: &str, limit: JointLimit, out: &mut Findings) {
+/// Blocks of vertices checked in parallel before their findings are merged: what the
+/// blocks may keep is what the findings so far left room for.
+const BLOCKS_AT_ONCE: usize = 16;
+
+fn check_primitive(sets: &[Set], at: &str, limit: JointLimit, out: &mut Findings) {
+    let count = sets[0].joints.layout.count;
+    let blocks: Vec<Range<usize>> = (0..count.div_ceil(BLOCK))
+        .map(|b| b * BLOCK..((b + 1) * BLOCK).min(count))
+        .collect();
+    for batch in blocks.chunks(BLOCKS_AT_ONCE) {
+        let checked: Vec<Option<Findings>> = (batch.par_iter())
+            .map(|vertices| {
+                let mut found = out.room();
+                check_block(sets, vertices, at, limit, &mut found).then_some(found)
+            })
+            .collect();
+        for found in checked {
+            // Unreadable data ends the walk (the accessor-data pass reports it).
+            let Some(found) = found else { return };
+            out.absorb(found);
+        }
+    }
+}
+
+/// Checks the influences of `vertices`; false when their bytes cannot be read.
+fn check_block(
+    sets: &[Set],
+    vertices: &Range<usize>,
+    at: &str,
+    limit: JointLimit,
+    out: &mut Findings,
+) -> bool {
     let joints_at = |n: usize| format!("{at}/JOINTS_{n}");
     let weights_at = |n: usize| format!("{at}/WEIGHTS_{n}");
-    // A vertex has a few influences: a short list searched linearly beats hashing, and
-    // both buffers are reused from vertex to vertex (this runs per vertex of large meshes).
+    let decoded: Option<Vec<(Vec<f64>, Vec<f64>)>> = (sets.iter())
+        .map(|set| Some((set.joints.decode(vertices)?, set.weights.decode(vertices)?)))
+        .collect();
+    let Some(decoded) = decoded else {
+        return false;
+    };
+    // A vertex has a few influences: a short list searched linearly beats hashing, and it
+    // is reused from vertex to vertex.
     let mut seen: Vec<u64> = Vec::new();
-    let mut values = Vec::with_capacity(sets.len());
-    for vertex in 0..sets[0].joints.layout.count {
+    for (k, vertex) in vertices.clone().enumerate() {
         seen.clear();
-        values.clear();
-        for set in sets.iter_mut() {
-            let (Some(joints), Some(weights)) =
-                (set.joints.element(vertex), set.weights.element(vertex))
-            else {
-                return; // the accessor-data pass reports the unreadable data
-            };
-            values.push((joints, weights));
-        }
         let mut sum = 0f32;
         // Rounding allowance: a float32 ulp near 1 per weight summed.
         let mut allowance = 0.0;
         for c in 0..4 {
             let index = vertex * 4 + c;
-            for (n, (set, (joints, weights))) in sets.iter().zip(&values).enumerate() {
-                let joint = joints[c];
+            for (n, (set, (joints, weights))) in sets.iter().zip(&decoded).enumerate() {
+                let joint = joints[k * 4 + c];
                 if joint > limit.max_joint {
                     out.record(khronos::ACCESSOR_JOINTS_INDEX_OOB, || joints_at(n), || format!("Joints accessor element at index {index} (component index {c}) has value {joint} that is greater than the maximum joint index ({}) set by skin {}.", limit.max_joint, limit.skin));
                     continue;
                 }
-                let weight = (set.weight_scale)(weights[c]);
+                let weight = (set.weight_scale)(weights[k * 4 + c]);
                 if weight == 0.0 {
                     if joint != 0.0 {
                         out.record(khronos::ACCESSOR_JOINTS_USED_ZERO_WEIGHT, || joints_at(n), || format!("Joints accessor element at index {index} (component index {c}) is used with zero weight but has non-zero value ({joint})."));
@@ -200,4 +222,5 @@ fn check_primitive(sets: &mut [Set], at: &str, limit: JointLimit, out: &mut Find
             }
         }
     }
+    true
 }
