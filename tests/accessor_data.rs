@@ -160,3 +160,86 @@ fn an_inverse_bind_matrix_must_be_affine() {
     let at = "/skins/0/inverseBindMatrices";
     assert_eq!(findings(&gltf), one("ACCESSOR_INVALID_IBM", at));
 }
+
+/// A triangle list over `vertices` positions whose x is the distance from the middle vertex
+/// (least there, greatest at the ends), with `normals` of the given length, its indices
+/// degenerate at `degenerate` triangles, and the bounds `declared` (min x, max x).
+fn large_mesh(vertices: usize, degenerate: &[usize], normal_z: f32, declared: [f32; 2]) -> Value {
+    let middle = (vertices / 2) as f32;
+    let positions: Vec<u8> = (0..vertices)
+        .flat_map(|i| [(i as f32 - middle).abs(), 1.0, 0.0])
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    let normals: Vec<u8> = (0..vertices)
+        .flat_map(|_| [0.0, 0.0, normal_z])
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    let indices: Vec<u8> = (0..vertices as u32 - 2)
+        .flat_map(|t| match degenerate.contains(&(t as usize)) {
+            true => [t, t, t + 2],
+            false => [t, t + 1, t + 2],
+        })
+        .flat_map(u32::to_le_bytes)
+        .collect();
+    let buffer = [positions.clone(), normals.clone(), indices.clone()].concat();
+    let data = base64::engine::general_purpose::STANDARD.encode(&buffer);
+    let view = |offset: usize, length: usize, target: u32| serde_json::json!({"buffer": 0, "byteOffset": offset, "byteLength": length, "target": target});
+    serde_json::json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"byteLength": buffer.len(), "uri": format!("data:application/octet-stream;base64,{data}")}],
+        "bufferViews": [view(0, positions.len(), 34962), view(positions.len(), normals.len(), 34962),
+            view(positions.len() + normals.len(), indices.len(), 34963)],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": vertices, "type": "VEC3",
+             "min": [declared[0], 1.0, 0.0], "max": [declared[1], 1.0, 0.0]},
+            {"bufferView": 1, "componentType": 5126, "count": vertices, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5125, "count": 3 * (vertices - 2), "type": "SCALAR"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0
+    })
+}
+
+#[test]
+fn large_data_read_in_parallel_runs_is_bounded_and_counted_as_one_walk_would() {
+    // 300 000 vertices and triangles: several runs of 65 536 elements each, bounded on
+    // different cores; the least x lies in a middle run, the greatest in the first.
+    let vertices = 300_000;
+    let middle = (vertices / 2) as f32;
+    let clean = large_mesh(vertices, &[], 1.0, [0.0, middle]);
+    assert_eq!(findings(&clean), vec![]);
+    let spread = [3, 70_000, 140_000, vertices - 3];
+    let report = |gltf: &Value| {
+        let bytes = serde_json::to_vec(gltf).unwrap();
+        check_bytes("large.gltf", bytes, &NoResources, &CheckOptions::default())
+    };
+    let degenerate = report(&large_mesh(vertices, &spread, 1.0, [0.0, middle]));
+    let messages: Vec<&str> = (degenerate.diagnostics.iter())
+        .filter(|d| d.code.to_string() == "ACCESSOR_INDEX_TRIANGLE_DEGENERATE")
+        .map(|d| d.message.as_str())
+        .collect();
+    assert_eq!(
+        messages,
+        [format!(
+            "Indices accessor contains 4 degenerate triangles (out of {}).",
+            vertices - 2
+        )]
+    );
+    let wrong_bounds = report(&large_mesh(vertices, &[], 1.0, [1.0, middle - 1.0]));
+    let actual: Vec<String> = (wrong_bounds.diagnostics.iter())
+        .filter(|d| d.code.to_string().starts_with("ACCESSOR_M"))
+        .map(|d| d.message.clone())
+        .collect();
+    assert_eq!(actual.len(), 2, "{actual:?}");
+    assert!(actual[0].contains("actual minimum (0.0)"), "{}", actual[0]);
+    assert!(
+        actual[1].contains(&format!("actual maximum ({middle:?})")),
+        "{}",
+        actual[1]
+    );
+    // A non-unit normal in a late run is found, whichever core reads it.
+    let long_normals = report(&large_mesh(vertices, &[], 2.0, [0.0, middle]));
+    assert!(long_normals
+        .diagnostics
+        .iter()
+        .any(|d| d.code.to_string() == "ACCESSOR_VECTOR3_NON_UNIT"));
+}

@@ -65,15 +65,40 @@ pub struct FloatBounds<const N: usize> {
     pub high: [f32; N],
     /// Whether some component is NaN (which never becomes a bound).
     pub nan: bool,
+    /// Whether some element was not valid (see [`FloatBounds::of`]).
+    pub rejected: bool,
 }
 
+/// Elements bounded as one piece of work: large data is bounded on all cores.
+const ELEMENTS_AT_ONCE: usize = 1 << 16;
+
 impl<const N: usize> FloatBounds<N> {
-    /// The bounds of `data`, each element also handed to `each`. Compared as `f32`, which is
-    /// exact (every `f32` is an `f64`); compare-and-select on fixed-size arrays lets the
-    /// compiler vectorise the loop.
-    pub fn of(data: &[u8], mut each: impl FnMut(&[f32; N])) -> Self {
-        let (mut low, mut high) = ([f32::INFINITY; N], [f32::NEG_INFINITY; N]);
-        let mut nan = false;
+    /// The bounds of `data`, and whether `valid` rejects some element. Compared as `f32`,
+    /// which is exact (every `f32` is an `f64`); compare-and-select on fixed-size arrays
+    /// lets the compiler vectorise the loop.
+    pub fn of(data: &[u8], valid: impl Fn(&[f32; N]) -> bool + Sync) -> Self {
+        use rayon::prelude::*;
+        (data.par_chunks(4 * N * ELEMENTS_AT_ONCE))
+            .map(|run| Self::of_run(run, &valid))
+            .reduce(Self::of_nothing, Self::with)
+    }
+
+    fn of_nothing() -> Self {
+        FloatBounds {
+            low: [f32::INFINITY; N],
+            high: [f32::NEG_INFINITY; N],
+            nan: false,
+            rejected: false,
+        }
+    }
+
+    fn of_run(data: &[u8], valid: impl Fn(&[f32; N]) -> bool) -> Self {
+        let FloatBounds {
+            mut low,
+            mut high,
+            mut nan,
+            mut rejected,
+        } = Self::of_nothing();
         for element in data.chunks_exact(4 * N) {
             let mut v = [0f32; N];
             for (value, word) in v.iter_mut().zip(element.chunks_exact(4)) {
@@ -84,9 +109,24 @@ impl<const N: usize> FloatBounds<N> {
                 high[c] = if v[c] > high[c] { v[c] } else { high[c] };
                 nan |= v[c].is_nan();
             }
-            each(&v);
+            rejected |= !valid(&v);
         }
-        FloatBounds { low, high, nan }
+        FloatBounds {
+            low,
+            high,
+            nan,
+            rejected,
+        }
+    }
+
+    /// The bounds of both.
+    fn with(self, other: Self) -> Self {
+        FloatBounds {
+            low: std::array::from_fn(|c| self.low[c].min(other.low[c])),
+            high: std::array::from_fn(|c| self.high[c].max(other.high[c])),
+            nan: self.nan || other.nan,
+            rejected: self.rejected || other.rejected,
+        }
     }
 
     /// The bounds as glTF's `min` / `max` arrays.

@@ -533,17 +533,20 @@ fn copy_elements(
     let n = accessor.components;
     let (mut min, mut max) = match accessor.component_type {
         FLOAT if stride == 4 * n && n <= 4 => match n {
-            1 => FloatBounds::<1>::of(bytes, |_| {}).min_max(),
-            2 => FloatBounds::<2>::of(bytes, |_| {}).min_max(),
-            3 => FloatBounds::<3>::of(bytes, |_| {}).min_max(),
-            _ => FloatBounds::<4>::of(bytes, |_| {}).min_max(),
+            1 => FloatBounds::<1>::of(bytes, |_| true).min_max(),
+            2 => FloatBounds::<2>::of(bytes, |_| true).min_max(),
+            3 => FloatBounds::<3>::of(bytes, |_| true).min_max(),
+            _ => FloatBounds::<4>::of(bytes, |_| true).min_max(),
         },
         FLOAT => bounds_of(bytes, stride, n, |b| f64::from(f32::from_le_bytes(b))),
         UNSIGNED_INT if stride == 4 && n == 1 => {
-            let words = bytes
-                .chunks_exact(4)
-                .map(|w| u32::from_le_bytes(w.try_into().unwrap_or_default()));
-            let (low, high) = words.fold((u32::MAX, 0), |(l, h), v| (l.min(v), h.max(v)));
+            let (low, high) = (bytes.par_chunks(4 * BLOCK))
+                .map(|run| {
+                    let words = (run.chunks_exact(4))
+                        .map(|w| u32::from_le_bytes(w.try_into().unwrap_or_default()));
+                    words.fold((u32::MAX, 0), |(l, h), v| (l.min(v), h.max(v)))
+                })
+                .reduce(|| (u32::MAX, 0), |a, b| (a.0.min(b.0), a.1.max(b.1)));
             (vec![f64::from(low)], vec![f64::from(high)])
         }
         UNSIGNED_INT => bounds_of(bytes, stride, n, |b| f64::from(u32::from_le_bytes(b))),

@@ -8,6 +8,10 @@
 use super::accessor_usage::{is_unit_length, Checker};
 use crate::gltf::accessor::FloatBounds;
 use crate::gltf::gl;
+use rayon::prelude::*;
+
+/// Indices bounded as one piece of work, in triangles: large buffers are read on all cores.
+const TRIANGLES_AT_ONCE: usize = 1 << 16;
 
 /// Where an accessor's elements lie in its bufferView's bytes.
 #[derive(Clone, Copy)]
@@ -65,12 +69,11 @@ fn unit_vector(v: &[f32; 3]) -> bool {
 /// that `valid` rejects.
 fn float_bounds<const N: usize>(
     data: &[u8],
-    valid: impl Fn(&[f32; N]) -> bool,
+    valid: impl Fn(&[f32; N]) -> bool + Sync,
 ) -> Option<(Vec<f64>, Vec<f64>)> {
-    let mut rejected = false;
-    let bounds = FloatBounds::<N>::of(data, |v| rejected |= !valid(v));
+    let bounds = FloatBounds::<N>::of(data, valid);
     let finite = bounds.low.iter().chain(&bounds.high).all(|v| v.is_finite());
-    (finite && !bounds.nan && !rejected).then(|| bounds.min_max())
+    (finite && !bounds.nan && !bounds.rejected).then(|| bounds.min_max())
 }
 
 /// min/max of a scalar unsigned index buffer and its degenerate triangles, handed to its
@@ -84,22 +87,32 @@ fn indices<const SIZE: usize>(
         le[..SIZE].copy_from_slice(word);
         u32::from_le_bytes(le)
     };
-    let (mut low, mut high, mut degenerate) = (u32::MAX, 0u32, 0u64);
-    for word in data.chunks_exact(SIZE) {
-        let v = value(word);
-        low = low.min(v);
-        high = high.max(v);
-    }
-    if !checkers.is_empty() {
-        for triangle in data.chunks_exact(3 * SIZE) {
-            let (a, b, c) = (
-                value(&triangle[..SIZE]),
-                value(&triangle[SIZE..2 * SIZE]),
-                value(&triangle[2 * SIZE..]),
-            );
-            degenerate += u64::from(a == b || b == c || c == a);
-        }
-    }
+    let triangles = !checkers.is_empty();
+    // Runs of whole triangles, on all cores.
+    let (low, high, degenerate) = (data.par_chunks(3 * SIZE * TRIANGLES_AT_ONCE))
+        .map(|run| {
+            let (mut low, mut high, mut degenerate) = (u32::MAX, 0u32, 0u64);
+            for word in run.chunks_exact(SIZE) {
+                let v = value(word);
+                low = low.min(v);
+                high = high.max(v);
+            }
+            if triangles {
+                for triangle in run.chunks_exact(3 * SIZE) {
+                    let (a, b, c) = (
+                        value(&triangle[..SIZE]),
+                        value(&triangle[SIZE..2 * SIZE]),
+                        value(&triangle[2 * SIZE..]),
+                    );
+                    degenerate += u64::from(a == b || b == c || c == a);
+                }
+            }
+            (low, high, degenerate)
+        })
+        .reduce(
+            || (u32::MAX, 0, 0),
+            |a, b| (a.0.min(b.0), a.1.max(b.1), a.2 + b.2),
+        );
     let clean = checkers
         .iter_mut()
         .all(|checker| checker.accept_index_summary(f64::from(high), degenerate));
