@@ -214,7 +214,7 @@ fn large_data_read_in_parallel_runs_is_bounded_and_counted_as_one_walk_would() {
     };
     let degenerate = report(&large_mesh(vertices, &spread, 1.0, [0.0, middle]));
     let messages: Vec<&str> = (degenerate.diagnostics.iter())
-        .filter(|d| d.code.to_string() == "ACCESSOR_INDEX_TRIANGLE_DEGENERATE")
+        .filter(|d| d.code == "ACCESSOR_INDEX_TRIANGLE_DEGENERATE")
         .map(|d| d.message.as_str())
         .collect();
     assert_eq!(
@@ -241,5 +241,5 @@ fn large_data_read_in_parallel_runs_is_bounded_and_counted_as_one_walk_would() {
     assert!(long_normals
         .diagnostics
         .iter()
-        .any(|d| d.code.to_string() == "ACCESSOR_VECTOR3_NON_UNIT"));
+        .any(|d| d.code == "ACCESSOR_VECTOR3_NON_UNIT"));
 }
