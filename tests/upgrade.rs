@@ -1111,3 +1111,74 @@ fn a_meshopt_asset_of_several_buffers_is_refused_saying_why() {
     let one = asset(serde_json::json!([{"uri": "data:,", "byteLength": 0}]));
     assert!(upgrade(&one, &NoResources, &UpgradeOptions::default()).is_ok());
 }
+
+/// A 1.0 asset of `meshes` point meshes, mesh i drawing accessor i: `count(i)` positions
+/// from byte `offset(i)` of one view of `vertices` positions.
+fn gltf1_aliases(
+    vertices: usize,
+    meshes: usize,
+    offset: impl Fn(usize) -> usize,
+    count: impl Fn(usize) -> usize,
+) -> Vec<u8> {
+    use base64::Engine;
+    let bin: Vec<u8> = (0..vertices)
+        .flat_map(|i| [(i % 7) as f32, (i % 5) as f32, 0.0])
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&bin)
+    );
+    let accessors: serde_json::Map<String, Value> = (0..meshes)
+        .map(|i| {
+            let accessor = serde_json::json!({"bufferView": "v", "byteOffset": offset(i),
+                "byteStride": 12, "componentType": 5126, "count": count(i), "type": "VEC3",
+                "min": [0, 0, 0], "max": [6, 4, 0]});
+            (format!("a{i}"), accessor)
+        })
+        .collect();
+    let mesh = |i: usize| serde_json::json!({"primitives": [{"attributes": {"POSITION": format!("a{i}")}, "mode": 0}]});
+    serde_json::to_vec(&serde_json::json!({
+        "asset": {"version": "1.0"},
+        "buffers": {"b": {"uri": uri, "byteLength": bin.len()}},
+        "bufferViews": {"v": {"buffer": "b", "byteOffset": 0, "byteLength": bin.len(), "target": 34962}},
+        "accessors": accessors,
+        "meshes": (0..meshes).map(|i| (format!("m{i}"), mesh(i))).collect::<serde_json::Map<_, _>>(),
+        "nodes": {"n": {"meshes": (0..meshes).map(|i| format!("m{i}")).collect::<Vec<_>>()}},
+        "scenes": {"s": {"nodes": ["n"]}},
+        "scene": "s"
+    }))
+    .unwrap()
+}
+
+#[test]
+fn accessors_reading_the_same_data_share_one_copy_of_it() {
+    // 200 aliases of one 120 KB view: one copy of the data, one strided bufferView.
+    let (vertices, aliases) = (10_000, 200);
+    let asset = gltf1_aliases(vertices, aliases, |_| 0, |_| vertices);
+    let upgraded = upgrade(&asset, &NoResources, &UpgradeOptions::default()).unwrap();
+    let json = upgraded.json.to_value();
+    assert_eq!(upgraded.binary.len(), 12 * vertices, "one copy of the data");
+    let accessors = json["accessors"].as_array().unwrap();
+    assert_eq!(accessors.len(), aliases, "each 1.0 accessor keeps its own");
+    assert!(accessors
+        .iter()
+        .all(|a| a["bufferView"] == 0 && a["count"] == vertices));
+    assert_eq!(accessors[7]["name"], "a7");
+    assert_eq!(
+        json["bufferViews"][0]["byteStride"], 12,
+        "2.0 requires it once shared"
+    );
+    let report = output::verify(&output::layout(&upgraded, "out.glb"));
+    assert!(!report.has_errors(), "{:?}", report.diagnostics);
+    // Windows of the data that each start further on are each new data: they may grow the
+    // output only so far, and then the upgrade is refused at the accessor that went past.
+    let vertices = 100_000;
+    let asset = gltf1_aliases(vertices, 1_000, |i| 12 * i, |i| vertices - i);
+    let refused = upgrade(&asset, &NoResources, &UpgradeOptions::default()).unwrap_err();
+    let message = refused.to_string();
+    assert!(
+        message.contains("/accessors/a") && message.contains("more than 8 times"),
+        "{message}"
+    );
+}

@@ -247,6 +247,14 @@ impl Source<'_> {
         })
     }
 
+    /// How many bytes of data are loaded: the buffers read so far, and a GLB's body.
+    pub fn loaded_bytes(&self) -> usize {
+        let buffers = (self.buffers.values())
+            .filter_map(|cell| cell.get()?.as_ref().ok())
+            .map(|bytes| bytes.len());
+        buffers.sum::<usize>() + self.body.as_ref().map_or(0, |body| body.range.len())
+    }
+
     /// Reads a data URI or a file inside the asset's folder.
     pub fn load_uri(&self, uri: &str) -> Result<Arc<Bytes>, String> {
         load_uri(uri, self.loader)

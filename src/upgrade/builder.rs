@@ -35,6 +35,8 @@ pub struct Builder<'s, 'a> {
     pub(in crate::upgrade) images: Vec<EncodedImage>,
     pub(in crate::upgrade) binary: Binary,
     pub(in crate::upgrade) packed_accessors: HashMap<(&'s str, Role), usize>,
+    /// Data repacked so far, with its bufferView, by what makes it the same.
+    repacked: HashMap<SameData, (data::Packed, usize)>,
     pub(in crate::upgrade) report: Notes,
     /// `/collection/index` of the output → the 1.0 object it was made from.
     pub(in crate::upgrade) origins: Origins,
@@ -44,6 +46,37 @@ pub struct Builder<'s, 'a> {
     pub(in crate::upgrade) fits: super::fit::Fits,
     /// The per-texel fits of textured spec-gloss materials made so far.
     pub(in crate::upgrade) texel_fits: super::fit::TexelFits,
+}
+
+/// How much the converted binary may outgrow the data read: `.0` times it plus `.1` bytes.
+/// Conversion legitimately grows data up to fourfold (8-bit texture coordinates and
+/// quantized 8-bit attributes become floats), and one accessor may serve two roles.
+const GROWTH_BOUND: (usize, usize) = (8, 64 << 20);
+
+/// What makes two accessors' repacked data the same: the same bytes (by where they lie in
+/// the loaded input, whichever view names them), read the same way, for the same role and
+/// decoded alike.
+#[derive(PartialEq, Eq, Hash)]
+struct SameData {
+    place: (usize, usize, usize),
+    count: usize,
+    component_type: u64,
+    kind: String,
+    role: Role,
+    quantization: Option<String>,
+}
+
+impl SameData {
+    fn of(input: &data::Accessor, role: Role, quantization: Option<Node>) -> Self {
+        SameData {
+            place: input.place(),
+            count: input.count,
+            component_type: input.component_type,
+            kind: input.kind.clone(),
+            role,
+            quantization: quantization.map(|q| q.to_string()),
+        }
+    }
 }
 
 /// `/collection/id` with the id escaped as a JSON pointer token.
@@ -67,9 +100,9 @@ impl<'s, 'a> Builder<'s, 'a> {
             options,
             arrays: HashMap::new(),
             images: Vec::new(),
-            // Repacked data is about the size of the input buffers: reserve it once.
             binary: Binary::default(),
             packed_accessors: HashMap::new(),
+            repacked: HashMap::new(),
             report: Notes::default(),
             lights: HashMap::new(),
             fits: Default::default(),
@@ -180,7 +213,10 @@ impl<'s, 'a> Builder<'s, 'a> {
         self.images.get(source as usize)
     }
 
-    /// Repacks a 1.0 accessor for a role (once per role) and returns its 2.0 index.
+    /// Repacks a 1.0 accessor for a role (once per role) and returns its 2.0 index. An
+    /// accessor reading the same bytes the same way as one repacked before (aliases of one
+    /// view) gets its own 2.0 accessor over that one's bufferView: a stranger's 10^3 aliases
+    /// of a 1 MB view must not become a 1 GB output.
     pub(in crate::upgrade) fn accessor(
         &mut self,
         id: &'s str,
@@ -197,30 +233,21 @@ impl<'s, 'a> Builder<'s, 'a> {
         let quantization = (self.source.object("accessors", id))
             .and_then(|a| a.get("extensions"))
             .and_then(|e| e.get("WEB3D_quantized_attributes"));
-        let packed = match data::dequantized(&input, quantization) {
-            None => data::pack(&input, role, &mut self.binary),
-            Some(decoded) => {
-                let decoded = decoded.map_err(|reason| UpgradeError::Invalid {
-                    pointer: format!("{at}/extensions/WEB3D_quantized_attributes"),
-                    reason,
-                })?;
-                self.note(
-                    &at,
-                    NoteKind::Decision,
-                    "WEB3D_quantized_attributes decoded with its decodeMatrix to floats (glTF 2.0 core has no decode matrix).",
-                );
-                let mut packed = data::pack_values(
-                    &decoded,
-                    input.components,
-                    data::FLOAT,
-                    false,
-                    role.is_vertex(),
-                    &mut self.binary,
-                );
-                packed.converted_from = Some(input.component_type);
-                packed
-            }
+        let same = SameData::of(&input, role, quantization);
+        let (packed, view) = match self.repacked.get(&same) {
+            Some((packed, view)) => (packed.clone(), Some(*view)),
+            None => (self.repack(&input, role, quantization, &at)?, None),
         };
+        if let (Some(view), true) = (view, role.is_vertex()) {
+            self.declare_stride(view, &packed, input.components);
+        }
+        if quantization.is_some() {
+            self.note(
+                &at,
+                NoteKind::Decision,
+                "WEB3D_quantized_attributes decoded with its decodeMatrix to floats (glTF 2.0 core has no decode matrix).",
+            );
+        }
         if let Some(from) = packed.converted_from {
             self.note(
                 &at,
@@ -242,10 +269,54 @@ impl<'s, 'a> Builder<'s, 'a> {
             );
         }
         let (kind, count) = (input.kind.clone(), input.count);
-        let index = self.add_accessor(packed, &kind, count, role, Some(id));
+        let view = view.unwrap_or_else(|| self.add_view(&packed, role));
+        self.repacked
+            .entry(same)
+            .or_insert_with(|| (packed.clone(), view));
+        let index = self.add_accessor_over(view, packed, &kind, count, Some(id));
         self.record_origin("accessors", index, at);
         self.packed_accessors.insert((id, role), index);
         Ok(index)
+    }
+
+    /// Appends an accessor's data to the binary, repacked for `role` (decoded first when it
+    /// is quantized); refused once the binary outgrows what the input can legitimately
+    /// become (see [`GROWTH_BOUND`]).
+    fn repack(
+        &mut self,
+        input: &data::Accessor,
+        role: Role,
+        quantization: Option<Node>,
+        at: &str,
+    ) -> Result<data::Packed, UpgradeError> {
+        let packed = match data::dequantized(input, quantization) {
+            None => data::pack(input, role, &mut self.binary),
+            Some(decoded) => {
+                let decoded = decoded.map_err(|reason| UpgradeError::Invalid {
+                    pointer: format!("{at}/extensions/WEB3D_quantized_attributes"),
+                    reason,
+                })?;
+                let mut packed = data::pack_values(
+                    &decoded,
+                    input.components,
+                    data::FLOAT,
+                    false,
+                    role.is_vertex(),
+                    &mut self.binary,
+                );
+                packed.converted_from = Some(input.component_type);
+                packed
+            }
+        };
+        let read = self.source.loaded_bytes();
+        let bound = GROWTH_BOUND.0 * read + GROWTH_BOUND.1;
+        if self.binary.len() > bound {
+            return Err(UpgradeError::Invalid {
+                pointer: at.to_string(),
+                reason: format!("the converted data has grown to {} bytes, more than {} times the {read} bytes of data read (plus {} MiB): accessors over overlapping parts of the same data repeat it; refused rather than written", self.binary.len(), GROWTH_BOUND.0, GROWTH_BOUND.1 >> 20),
+            });
+        }
+        Ok(packed)
     }
 
     /// Adds packed data (already in the binary) as one bufferView and one accessor.
@@ -257,6 +328,12 @@ impl<'s, 'a> Builder<'s, 'a> {
         role: Role,
         name: Option<&str>,
     ) -> usize {
+        let view = self.add_view(&packed, role);
+        self.add_accessor_over(view, packed, kind, count, name)
+    }
+
+    /// Adds the bufferView of packed data (already in the binary).
+    fn add_view(&mut self, packed: &data::Packed, role: Role) -> usize {
         let mut view =
             json!({"buffer": 0, "byteOffset": packed.offset, "byteLength": packed.length});
         match role {
@@ -267,9 +344,31 @@ impl<'s, 'a> Builder<'s, 'a> {
         if let Some(stride) = packed.byte_stride {
             view["byteStride"] = json!(stride);
         }
-        let view_index = self.push("bufferViews", view);
+        self.push("bufferViews", view)
+    }
+
+    /// Gives vertex bufferView `view` its byteStride, which 2.0 requires once a second
+    /// accessor reads it.
+    fn declare_stride(&mut self, view: usize, packed: &data::Packed, components: usize) {
+        let size = crate::gltf::accessor::component_size(packed.component_type).unwrap_or(4);
+        let stride = packed.byte_stride.unwrap_or(size * components);
+        let views = self.arrays.entry("bufferViews").or_default();
+        views.update(view, |view| {
+            view["byteStride"] = json!(stride);
+        });
+    }
+
+    /// Adds an accessor of packed data in bufferView `view`.
+    fn add_accessor_over(
+        &mut self,
+        view: usize,
+        packed: data::Packed,
+        kind: &str,
+        count: usize,
+        name: Option<&str>,
+    ) -> usize {
         let mut accessor = json!({
-            "bufferView": view_index,
+            "bufferView": view,
             "componentType": packed.component_type,
             "count": count,
             "type": kind,

@@ -103,6 +103,12 @@ pub fn read<'a>(source: &'a Source, id: &str) -> Result<Accessor<'a>, String> {
 }
 
 impl Accessor<'_> {
+    /// Where its bytes lie in the loaded input (address and length) and how far apart its
+    /// elements are: accessors with the same place read the same data.
+    pub fn place(&self) -> (usize, usize, usize) {
+        (self.bytes.as_ptr() as usize, self.bytes.len(), self.stride)
+    }
+
     /// Component `c` of element `i`, as stored (integers are not normalised).
     pub fn get(&self, i: usize, c: usize) -> f64 {
         let size = component_size(self.component_type).unwrap_or(4);
@@ -171,6 +177,7 @@ impl Elements<'_> {
 
 /// Repacked data, appended to the output binary, ready to become one bufferView + one
 /// accessor.
+#[derive(Clone)]
 pub struct Packed {
     /// Where the data starts in the output binary (4-byte aligned).
     pub offset: usize,
