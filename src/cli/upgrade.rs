@@ -225,6 +225,9 @@ fn places<P: AsRef<str>>(places: &[P]) -> String {
 /// `-o -`: the GLB, checked in memory, on stdout.
 fn write_to_stdout(upgraded: &mut Upgraded, input: &Path) -> Outcome {
     let files = output::layout_releasing_json(upgraded, "-.glb");
+    output::fits_glb(&files.main).map_err(|bytes| {
+        Failure::usage(output::WriteError::GlbTooLarge("stdout".into(), bytes).to_string())
+    })?;
     let report = output::verify(&files);
     if report.has_errors() {
         return Err(refuse_failed_check(report, upgraded, input));

@@ -287,6 +287,18 @@ pub fn write_parts<'p>(
         .try_for_each(|chunk| out.write_all(chunk))
 }
 
+/// `Err(length)` when `main` is a GLB longer than its 32-bit length field can say: the
+/// header would name another length, and writing gigabytes only for the check to refuse
+/// them is not done.
+pub fn fits_glb(main: &File) -> Result<(), u64> {
+    let length = (main.head.len() + main.data.len()) as u64;
+    let glb = main.head.starts_with(b"glTF");
+    match glb && length > u64::from(u32::MAX) {
+        true => Err(length),
+        false => Ok(()),
+    }
+}
+
 /// Why the output was not written.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -294,6 +306,9 @@ pub enum WriteError {
     /// The output would replace the input or a file the input reads.
     #[error("{} is the input or a file it reads: those are never replaced", .0.display())]
     WouldOverwriteInput(PathBuf),
+    /// A GLB's length would not fit its 32-bit length field.
+    #[error("{}: the GLB would be {} bytes, more than the 4 GiB a GLB can hold (write a .gltf instead)", .0.display(), .1)]
+    GlbTooLarge(PathBuf, u64),
     /// A folder stands where a file is to be written.
     #[error("{} is a folder", .0.display())]
     IsFolder(PathBuf),
@@ -356,6 +371,8 @@ pub fn write_checked(
     for file in &all {
         may_write(&folder.join(&file.name), protected, force)?;
     }
+    fits_glb(&files.main)
+        .map_err(|bytes| WriteError::GlbTooLarge(folder.join(&files.main.name), bytes))?;
     temporary::remove_stale(folder, all.iter().map(|f| f.name.as_str()));
     let (written, report) = std::thread::scope(|scope| {
         let writer = scope.spawn(|| {
@@ -404,3 +421,42 @@ pub fn write_checked(
 }
 
 pub use temporary::exit_removing_unfinished;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A main file of `head` then `megabytes` pieces of one shared megabyte (held once).
+    fn file(head: &[u8], megabytes: usize) -> Files {
+        let megabyte = Arc::new(vec![0u8; 1 << 20]);
+        let pieces = (0..megabytes).map(|_| Piece::new(Arc::clone(&megabyte), 0..1 << 20));
+        let main = File {
+            name: "out.glb".into(),
+            head: Arc::new(head.to_vec()),
+            data: Pieces::new(pieces),
+        };
+        Files {
+            main,
+            side: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_glb_past_4_gib_is_refused_before_anything_is_written() {
+        let folder = tempfile::tempdir().unwrap();
+        let too_long = file(b"glTF", 4096);
+        let refused = write_checked(&too_long, folder.path(), &[], false).err();
+        let expected = 4 + (4096u64 << 20);
+        assert!(
+            matches!(refused, Some(WriteError::GlbTooLarge(_, n)) if n == expected),
+            "{refused:?}"
+        );
+        assert_eq!(std::fs::read_dir(folder.path()).unwrap().count(), 0);
+        assert_eq!(fits_glb(&file(b"glTF", 4095).main), Ok(()));
+        assert_eq!(
+            fits_glb(&file(b"{}", 4096).main),
+            Ok(()),
+            "a .gltf has no such field"
+        );
+    }
+}
