@@ -243,3 +243,44 @@ fn large_data_read_in_parallel_runs_is_bounded_and_counted_as_one_walk_would() {
         .iter()
         .any(|d| d.code == "ACCESSOR_VECTOR3_NON_UNIT"));
 }
+
+#[test]
+fn declared_bounds_of_integer_joints_are_held_against_the_data() {
+    // The joints are (0,1,0,0), (0,1,0,0), (1,0,0,0): component 1 reaches 1, declared 0.
+    let mut gltf = fixture();
+    gltf["accessors"][2]["min"] = serde_json::json!([0, 0, 0, 0]);
+    gltf["accessors"][2]["max"] = serde_json::json!([1, 0, 0, 0]);
+    assert_eq!(
+        findings(&gltf),
+        vec![
+            (
+                "ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND".to_string(),
+                "/accessors/2/max/1".to_string()
+            ),
+            (
+                "ACCESSOR_MAX_MISMATCH".to_string(),
+                "/accessors/2/max/1".to_string()
+            ),
+        ]
+    );
+    let bytes = serde_json::to_vec(&gltf).unwrap();
+    let report = check_bytes("case.gltf", bytes, &NoResources, &CheckOptions::default());
+    let messages: Vec<&str> = report
+        .diagnostics
+        .iter()
+        .map(|d| d.message.as_str())
+        .collect();
+    assert!(
+        messages.contains(
+            &"Declared maximum value for this component (0) does not match actual maximum (1)."
+        ),
+        "{messages:?}"
+    );
+    assert!(
+        messages.contains(&"Accessor contains 2 element(s) greater than declared maximum value 0."),
+        "{messages:?}"
+    );
+    // Declared right, nothing is said.
+    gltf["accessors"][2]["max"] = serde_json::json!([1, 1, 0, 0]);
+    assert_eq!(findings(&gltf), vec![]);
+}
