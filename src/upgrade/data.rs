@@ -147,30 +147,13 @@ struct Elements<'a> {
 }
 
 impl Elements<'_> {
-    /// Element `i`'s components, as stored, into `out` (of `components` values). The type
-    /// is matched once an element, each arm a plain loop: this runs per vertex.
+    /// Element `i`'s components, as stored, into `out` (of `components` values).
     fn read(&self, i: usize, out: &mut [f64]) {
+        let size = component_size(self.component_type).unwrap_or(4);
         let at = i * self.stride;
-        match self.component_type {
-            BYTE => self.decode(at, out, |[b]| f64::from(b as i8)),
-            UNSIGNED_BYTE => self.decode(at, out, |[b]| f64::from(b)),
-            SHORT => self.decode(at, out, |b| f64::from(i16::from_le_bytes(b))),
-            UNSIGNED_SHORT => self.decode(at, out, |b| f64::from(u16::from_le_bytes(b))),
-            UNSIGNED_INT => self.decode(at, out, |b| f64::from(u32::from_le_bytes(b))),
-            _ => self.decode(at, out, |b| f64::from(f32::from_le_bytes(b))),
-        }
-    }
-
-    #[inline(always)]
-    fn decode<const SIZE: usize>(
-        &self,
-        at: usize,
-        out: &mut [f64],
-        value: impl Fn([u8; SIZE]) -> f64,
-    ) {
-        let bytes = &self.bytes[at..at + SIZE * self.components];
-        for (slot, raw) in out.iter_mut().zip(bytes.chunks_exact(SIZE)) {
-            *slot = value(raw.try_into().unwrap_or([0; SIZE]));
+        let components = self.bytes[at..at + size * self.components].chunks_exact(size);
+        for (slot, bytes) in out.iter_mut().zip(components) {
+            *slot = decode_component(self.component_type, bytes);
         }
     }
 }
