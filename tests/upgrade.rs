@@ -1182,3 +1182,39 @@ fn accessors_reading_the_same_data_share_one_copy_of_it() {
         "{message}"
     );
 }
+
+#[test]
+fn a_file_many_buffers_name_counts_once_in_the_data_read() {
+    // 100 buffers naming one 1.2 MB file, each with a window of it that starts further on:
+    // the output may grow only by what one copy of the file allows.
+    let vertices = 100_000;
+    let file: Vec<u8> = (0..vertices)
+        .flat_map(|i| [(i % 7) as f32, 1.0, 0.0])
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    let mut loader = gltfmat::document::uri::MemoryResources::default();
+    loader
+        .files
+        .insert("one.bin".into(), std::sync::Arc::new(file.clone()));
+    let n = 100;
+    let id = |kind: &str, i: usize| format!("{kind}{i}");
+    let mut root = serde_json::json!({"asset": {"version": "1.0"}, "buffers": {},
+        "bufferViews": {}, "accessors": {}, "meshes": {}, "scenes": {"s": {"nodes": ["n"]}},
+        "scene": "s", "nodes": {"n": {"meshes": (0..n).map(|i| id("m", i)).collect::<Vec<_>>()}}});
+    for i in 0..n {
+        root["buffers"][id("b", i)] =
+            serde_json::json!({"uri": "one.bin", "byteLength": file.len()});
+        root["bufferViews"][id("v", i)] = serde_json::json!({"buffer": id("b", i),
+            "byteOffset": 12 * i, "byteLength": file.len() - 12 * i, "target": 34962});
+        root["accessors"][id("a", i)] = serde_json::json!({"bufferView": id("v", i),
+            "componentType": 5126, "count": vertices - i, "type": "VEC3",
+            "min": [0, 1, 0], "max": [6, 1, 0]});
+        root["meshes"][id("m", i)] = serde_json::json!({"primitives":
+            [{"attributes": {"POSITION": id("a", i)}, "mode": 0}]});
+    }
+    let asset = serde_json::to_vec(&root).unwrap();
+    let refused = upgrade(&asset, &loader, &UpgradeOptions::default()).unwrap_err();
+    let message = refused.to_string();
+    let read = format!("the {} bytes of data read", file.len());
+    assert!(message.contains(&read), "{message}");
+}

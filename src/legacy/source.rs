@@ -6,8 +6,8 @@ use crate::document::Bytes;
 use crate::document::{Node, Tree};
 use serde_json::Value;
 use std::borrow::Cow;
-use std::cell::OnceCell;
-use std::collections::HashMap;
+use std::cell::{OnceCell, RefCell};
+use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 use std::sync::Arc;
 
@@ -29,6 +29,9 @@ pub struct Source<'a> {
     /// External and data-URI buffers, read on first use: reading only the materials (for
     /// `--verify`) must not load the geometry.
     buffers: HashMap<String, OnceCell<Result<Arc<Bytes>, String>>>,
+    /// The distinct bytes the buffers loaded (buffers naming one file share them): where
+    /// each lies, and their total.
+    loaded: RefCell<(HashSet<usize>, usize)>,
     pub loader: &'a dyn ResourceLoader,
 }
 
@@ -140,6 +143,7 @@ fn read_members<'a>(
         json,
         body,
         buffers,
+        loaded: RefCell::default(),
         loader,
     })
 }
@@ -218,8 +222,14 @@ impl Source<'_> {
         let loaded = cell.get_or_init(|| {
             let uri = (self.root().pointer("/buffers"))
                 .and_then(|buffers| buffers.get(id)?.get("uri")?.as_str());
-            uri.ok_or_else(|| "the buffer has no uri".to_string())
-                .and_then(|uri| self.load_uri(uri))
+            let bytes = uri
+                .ok_or_else(|| "the buffer has no uri".to_string())
+                .and_then(|uri| self.load_uri(uri))?;
+            let (places, total) = &mut *self.loaded.borrow_mut();
+            if places.insert(bytes.as_ptr() as usize) {
+                *total += bytes.len();
+            }
+            Ok(bytes)
         });
         loaded.as_deref().map(|b| &b[..]).map_err(Clone::clone)
     }
@@ -247,12 +257,11 @@ impl Source<'_> {
         })
     }
 
-    /// How many bytes of data are loaded: the buffers read so far, and a GLB's body.
+    /// How many distinct bytes of data are loaded: what the buffers read so far (a file
+    /// that several buffers name, once), and a GLB's body. Kept as buffers load: the
+    /// upgrade asks once an accessor.
     pub fn loaded_bytes(&self) -> usize {
-        let buffers = (self.buffers.values())
-            .filter_map(|cell| cell.get()?.as_ref().ok())
-            .map(|bytes| bytes.len());
-        buffers.sum::<usize>() + self.body.as_ref().map_or(0, |body| body.range.len())
+        self.loaded.borrow().1 + self.body.as_ref().map_or(0, |body| body.range.len())
     }
 
     /// Reads a data URI or a file inside the asset's folder.
