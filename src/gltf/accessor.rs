@@ -1,6 +1,8 @@
 //! Accessor component types and element types, as glTF (1.0 and 2.0) defines them: shared by
 //! the checker's accessor passes and the converter's data repacking.
 
+use std::ops::Range;
+
 pub use super::gl::{BYTE, FLOAT, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT};
 
 /// Bytes per component of a `componentType`.
@@ -55,6 +57,99 @@ pub fn normalise(component_type: u64) -> fn(f64) -> f64 {
         UNSIGNED_SHORT => |v| v / 65535.0,
         _ => |v| v,
     }
+}
+
+/// Where an accessor's elements lie in its bytes (from `offset`, `stride` apart), and how each
+/// is stored (`components` of `size` bytes as `component_type`).
+#[derive(Clone, Copy, Debug)]
+pub struct Layout {
+    pub component_type: u64,
+    pub size: usize,
+    pub components: usize,
+    pub stride: usize,
+    pub offset: usize,
+    pub count: usize,
+}
+
+/// The most components an element has (MAT4).
+pub const MAX_COMPONENTS: usize = 16;
+/// Elements decoded per batch: small enough for L1, large enough that each check's
+/// dispatch is paid once per batch rather than once per element; a multiple of 3 so that
+/// triangles rarely straddle batches.
+const BATCH: usize = 240;
+
+/// Calls `f(first element index, values)` for consecutive batches of elements, `values`
+/// holding `components` numbers per element, as stored (integers not normalised); stops
+/// at the first batch whose bytes `bytes` does not hold.
+pub fn visit(layout: &Layout, bytes: &[u8], mut f: impl FnMut(usize, &[f64])) {
+    let n = layout.components.clamp(1, MAX_COMPONENTS);
+    let mut values = [0.0; BATCH * MAX_COMPONENTS];
+    let mut first = 0;
+    while first < layout.count {
+        let k = BATCH.min(layout.count - first);
+        if !decode(layout, bytes, first, &mut values[..k * n]) {
+            return;
+        }
+        f(first, &values[..k * n]);
+        first += k;
+    }
+}
+
+/// Decodes the elements from `first` on that `out` has room for (`components` numbers
+/// each, as stored: integers not normalised); false when `bytes` does not hold them all.
+/// Dispatching on the component type once, outside the loop, keeps the inner loop a plain
+/// load: the check and the upgrade run this over every byte of large assets.
+pub fn decode(layout: &Layout, bytes: &[u8], first: usize, out: &mut [f64]) -> bool {
+    match layout.component_type {
+        BYTE => decode_as::<BYTE, 1>(layout, bytes, first, out),
+        UNSIGNED_BYTE => decode_as::<UNSIGNED_BYTE, 1>(layout, bytes, first, out),
+        SHORT => decode_as::<SHORT, 2>(layout, bytes, first, out),
+        UNSIGNED_SHORT => decode_as::<UNSIGNED_SHORT, 2>(layout, bytes, first, out),
+        UNSIGNED_INT => decode_as::<UNSIGNED_INT, 4>(layout, bytes, first, out),
+        _ => decode_as::<FLOAT, 4>(layout, bytes, first, out),
+    }
+}
+
+/// [`decode`] for one component type, decoded by [`decode_component`] with the type a
+/// constant, so that the match on it is resolved at compile time.
+fn decode_as<const TYPE: u64, const SIZE: usize>(
+    layout: &Layout,
+    bytes: &[u8],
+    first: usize,
+    out: &mut [f64],
+) -> bool {
+    let decode =
+        |raw: &[u8]| decode_component(TYPE, &<[u8; SIZE]>::try_from(raw).unwrap_or([0; SIZE]));
+    let n = layout.components.clamp(1, MAX_COMPONENTS);
+    let element_size = SIZE * n;
+    let start_of = |element: usize| {
+        let start = element
+            .checked_mul(layout.stride)?
+            .checked_add(layout.offset)?;
+        Some(start..start.checked_add(element_size)?)
+    };
+    if layout.stride == element_size {
+        // Tightly packed: one run of bytes, decoded in a loop the compiler can vectorise.
+        let count = out.len() / n;
+        let end = |at: Range<usize>| at.start.checked_add(count * element_size);
+        let run = start_of(first).and_then(|at| bytes.get(at.start..end(at)?));
+        let Some(run) = run else {
+            return false;
+        };
+        for (value, raw) in out.iter_mut().zip(run.chunks_exact(SIZE)) {
+            *value = decode(raw);
+        }
+        return true;
+    }
+    for (e, values) in out.chunks_exact_mut(n).enumerate() {
+        let Some(element) = start_of(first + e).and_then(|at| bytes.get(at)) else {
+            return false;
+        };
+        for (value, raw) in values.iter_mut().zip(element.chunks_exact(SIZE)) {
+            *value = decode(raw);
+        }
+    }
+    true
 }
 
 /// Per-component bounds of tightly packed little-endian `f32` elements of `N` components.

@@ -5,8 +5,8 @@ use super::binary::Binary;
 use crate::document::Node;
 pub use crate::gltf::accessor::FLOAT;
 use crate::gltf::accessor::{
-    component_count, component_size, decode_component, normalise, FloatBounds, BYTE, SHORT,
-    UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
+    component_count, component_size, decode, decode_component, normalise, FloatBounds, Layout,
+    BYTE, MAX_COMPONENTS, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
 };
 use crate::legacy::source::Source;
 use rayon::prelude::*;
@@ -120,19 +120,21 @@ impl Accessor<'_> {
     fn elements(&self) -> Elements<'_> {
         Elements {
             bytes: self.bytes,
-            stride: self.stride,
-            components: self.components,
-            component_type: self.component_type,
+            layout: Layout {
+                component_type: self.component_type,
+                size: component_size(self.component_type).unwrap_or(4),
+                components: self.components.min(MAX_COMPONENTS),
+                stride: self.stride,
+                offset: 0,
+                count: self.count,
+            },
         }
     }
 
     /// Every element's components, in order.
     pub fn values(&self) -> Vec<f64> {
-        let elements = self.elements();
         let mut out = vec![0.0; self.count * self.components];
-        for (i, element) in out.chunks_exact_mut(self.components.max(1)).enumerate() {
-            elements.read(i, element);
-        }
+        self.elements().read_run(0, &mut out);
         out
     }
 }
@@ -141,20 +143,15 @@ impl Accessor<'_> {
 #[derive(Clone, Copy)]
 struct Elements<'a> {
     bytes: &'a [u8],
-    stride: usize,
-    components: usize,
-    component_type: u64,
+    layout: Layout,
 }
 
 impl Elements<'_> {
-    /// Element `i`'s components, as stored, into `out` (of `components` values).
-    fn read(&self, i: usize, out: &mut [f64]) {
-        let size = component_size(self.component_type).unwrap_or(4);
-        let at = i * self.stride;
-        let components = self.bytes[at..at + size * self.components].chunks_exact(size);
-        for (slot, bytes) in out.iter_mut().zip(components) {
-            *slot = decode_component(self.component_type, bytes);
-        }
+    /// The components, as stored, of the elements from `first` on that `out` has room for
+    /// (`components` values each), decoded as the check's walks decode them.
+    fn read_run(&self, first: usize, out: &mut [f64]) {
+        // `read` bounded the bytes to the elements: all of them are there.
+        decode(&self.layout, self.bytes, first, out);
     }
 }
 
@@ -198,21 +195,24 @@ const WEIGHT_SUM_TOLERANCE: f64 = 1e-7;
 /// as it is (no division repairs it; the output check reports it).
 fn weights_to_renormalise(accessor: &Accessor) -> Option<Renormalised> {
     let elements = accessor.elements();
-    let components = elements.components.min(MOST_COMPONENTS);
+    let components = elements.layout.components.max(1);
     let count = accessor.count;
     // Block by block: a fold's accumulator would be moved in and out once a vertex.
     let (vertices, lowest) = (0..count.div_ceil(BLOCK))
         .into_par_iter()
         .map(|block| {
             let (mut vertices, mut lowest) = (0, f64::INFINITY);
-            let mut buffer = [0.0; MOST_COMPONENTS];
-            for i in block * BLOCK..((block + 1) * BLOCK).min(count) {
-                let vertex = &mut buffer[..components];
-                weights_of_vertex(elements, i, vertex);
-                let sum: f64 = vertex.iter().sum();
-                if needs_renormalising(sum) {
-                    vertices += 1;
-                    lowest = lowest.min(sum);
+            let mut buffer = [0.0; RUN * MAX_COMPONENTS];
+            let end = ((block + 1) * BLOCK).min(count);
+            for first in (block * BLOCK..end).step_by(RUN) {
+                let run = &mut buffer[..RUN.min(end - first) * components];
+                weights_of_run(elements, first, run);
+                for vertex in run.chunks_exact(components) {
+                    let sum: f64 = vertex.iter().sum();
+                    if needs_renormalising(sum) {
+                        vertices += 1;
+                        lowest = lowest.min(sum);
+                    }
                 }
             }
             (vertices, lowest)
@@ -221,42 +221,78 @@ fn weights_to_renormalise(accessor: &Accessor) -> Option<Renormalised> {
     (vertices > 0).then_some(Renormalised { vertices, lowest })
 }
 
-/// Vertex `i`'s weights as values in [0, 1].
-fn weights_of_vertex(elements: Elements, i: usize, out: &mut [f64]) {
-    let unit = normalise(elements.component_type);
-    elements.read(i, out);
-    out.iter_mut().for_each(|w| *w = unit(*w));
+/// The weights of the vertices from `first` on that `out` has room for, as values in [0, 1].
+fn weights_of_run(elements: Elements, first: usize, out: &mut [f64]) {
+    let component_type = elements.layout.component_type;
+    elements.read_run(first, out);
+    // Floats are the values themselves: no call per value.
+    if component_type != FLOAT {
+        let unit = normalise(component_type);
+        out.iter_mut().for_each(|w| *w = unit(*w));
+    }
 }
 
 fn needs_renormalising(sum: f64) -> bool {
     (sum - 1.0).abs() > WEIGHT_SUM_TOLERANCE && sum > 0.0 && sum.is_finite()
 }
 
-/// Vertex `i`'s weights, divided by their sum when [`weights_to_renormalise`] would count it.
-fn renormalised_vertex(elements: Elements, i: usize, out: &mut [f64]) {
-    weights_of_vertex(elements, i, out);
-    let sum: f64 = out.iter().sum();
-    if needs_renormalising(sum) {
-        out.iter_mut().for_each(|w| *w /= sum);
-        settle_in_single_precision(out);
+/// The weights of a run of vertices, each vertex's divided by their sum when
+/// [`weights_to_renormalise`] would count it.
+fn renormalised_run(elements: Elements, first: usize, out: &mut [f64]) {
+    let components = elements.layout.components.max(1);
+    weights_of_run(elements, first, out);
+    for run in out.chunks_mut(RUN * components) {
+        let mut divided = [false; RUN];
+        for (vertex, divided) in run.chunks_exact_mut(components).zip(&mut divided) {
+            let sum: f64 = vertex.iter().sum();
+            *divided = needs_renormalising(sum);
+            if *divided {
+                vertex.iter_mut().for_each(|w| *w /= sum);
+            }
+        }
+        settle_in_single_precision(run, components, &divided);
     }
 }
 
-/// Rounds weights that sum to 1 to single precision (as they are stored) and moves the
-/// rounding residue into the largest, so that their single-precision sum is 1 too.
-fn settle_in_single_precision(weights: &mut [f64]) {
-    let single_sum = |w: &[f64]| w.iter().fold(0f32, |sum, &v| (f64::from(sum) + v) as f32);
-    weights.iter_mut().for_each(|w| *w = f64::from(*w as f32));
-    let Some(largest) = (0..weights.len()).max_by(|&a, &b| weights[a].total_cmp(&weights[b]))
-    else {
-        return;
-    };
+/// Rounds the weights of each `divided` vertex (they sum to 1) to single precision, as they
+/// are stored, and moves the rounding residue into its largest weight, so that their
+/// single-precision sum, added in order as the check adds them, is 1 too. `weights` holds
+/// `components` a vertex, at most [`RUN`] vertices. The vertices are settled together, a
+/// round at a time: one vertex's sum is a chain of dependent roundings, which done vertex
+/// after vertex made this the upgrade's slowest loop.
+fn settle_in_single_precision(weights: &mut [f64], components: usize, divided: &[bool]) {
+    let n = components.max(1);
+    let count = (weights.len() / n).min(divided.len()).min(RUN);
+    let mut largest = [0; RUN];
+    for (v, vertex) in weights.chunks_exact_mut(n).take(count).enumerate() {
+        if divided[v] {
+            vertex.iter_mut().for_each(|w| *w = f64::from(*w as f32));
+            largest[v] = (0..n)
+                .max_by(|&a, &b| vertex[a].total_cmp(&vertex[b]))
+                .unwrap_or(0);
+        }
+    }
+    // A vertex whose sum is 1 is left as it is by later rounds: each round's result
+    // depends only on the weights, so this is one vertex's loop stopped when settled.
     for _ in 0..3 {
-        let residue = 1.0 - f64::from(single_sum(weights));
-        if residue == 0.0 {
+        let mut sums = [0f32; RUN];
+        for c in 0..n {
+            for (v, sum) in sums.iter_mut().take(count).enumerate() {
+                *sum = (f64::from(*sum) + weights[v * n + c]) as f32;
+            }
+        }
+        let mut settled = true;
+        for (v, sum) in sums.iter().take(count).enumerate() {
+            let residue = 1.0 - f64::from(*sum);
+            if divided[v] && residue != 0.0 {
+                let at = v * n + largest[v];
+                weights[at] = f64::from((weights[at] + residue) as f32);
+                settled = false;
+            }
+        }
+        if settled {
             break;
         }
-        weights[largest] = f64::from((weights[largest] + residue) as f32);
     }
 }
 
@@ -283,24 +319,21 @@ pub fn pack_values(
     binary: &mut Binary,
 ) -> Packed {
     let count = values.len() / components.max(1);
-    let layout = Layout {
+    let layout = PackingLayout {
         count,
         components,
         component_type,
         normalized,
         vertex,
     };
-    pack_elements(layout, binary, |i, out| {
-        out.copy_from_slice(&values[i * components..(i + 1) * components])
+    pack_elements(layout, binary, |first, out| {
+        out.copy_from_slice(&values[first * components..][..out.len()])
     })
 }
 
-/// The most components an element has (MAT4).
-const MOST_COMPONENTS: usize = 16;
-
 /// How packed elements are laid out.
 #[derive(Clone, Copy)]
-struct Layout {
+struct PackingLayout {
     count: usize,
     components: usize,
     component_type: u64,
@@ -312,23 +345,27 @@ struct Layout {
 /// Elements packed by one task: enough that a task outweighs its scheduling.
 const BLOCK: usize = 1 << 14;
 
-/// Appends `layout.count` elements, each written into a buffer by `element(i, buffer)`, with
-/// the given component type: no vector of every value is made first (a 2·10^6-vertex
-/// skin's joints and weights would take 128 MB of them), and blocks of elements are packed
-/// on all cores, each into its own place of the output.
+/// Elements made at once within a block, into a buffer small enough for L1.
+const RUN: usize = 256;
+
+/// Appends `layout.count` elements with the given component type, made a run at a time by
+/// `run(first, buffer)`, which fills `buffer` with the values of elements `first..` it has
+/// room for: no vector of every value is made first (a 2·10^6-vertex skin's joints and
+/// weights would take 128 MB of them), and blocks of elements are packed on all cores, each
+/// into its own place of the output.
 fn pack_elements(
-    layout: Layout,
+    layout: PackingLayout,
     binary: &mut Binary,
-    element: impl Fn(usize, &mut [f64]) + Sync,
+    run: impl Fn(usize, &mut [f64]) + Sync,
 ) -> Packed {
-    let Layout {
+    let PackingLayout {
         count,
         components,
         component_type,
         normalized,
         vertex,
     } = layout;
-    let components = components.min(MOST_COMPONENTS);
+    let components = components.clamp(1, MAX_COMPONENTS);
     let offset = binary.align();
     let size = component_size(component_type).unwrap_or(4);
     let element_size = size * components;
@@ -340,7 +377,7 @@ fn pack_elements(
     let packing = Packing {
         components,
         stride,
-        element,
+        run,
     };
     let (mut min, mut max) = binary.append_made(count * stride, |target| {
         packing.encode(component_type, target)
@@ -379,25 +416,26 @@ fn to_integer(v: f64, low: f64, high: f64) -> f64 {
 }
 
 /// Elements being written as one component type.
-struct Packing<E> {
+struct Packing<R> {
     components: usize,
     /// Bytes from one element to the next (vertex attributes are padded to 4 bytes).
     stride: usize,
-    element: E,
+    /// Makes a run of elements' values (see [`pack_elements`]).
+    run: R,
 }
 
 /// Per-component bounds of the values stored.
-type Bounds = ([f64; MOST_COMPONENTS], [f64; MOST_COMPONENTS]);
+type Bounds = ([f64; MAX_COMPONENTS], [f64; MAX_COMPONENTS]);
 
 /// The bounds of no value: any value stored replaces them.
 fn no_bounds() -> Bounds {
     (
-        [f64::INFINITY; MOST_COMPONENTS],
-        [f64::NEG_INFINITY; MOST_COMPONENTS],
+        [f64::INFINITY; MAX_COMPONENTS],
+        [f64::NEG_INFINITY; MAX_COMPONENTS],
     )
 }
 
-impl<E: Fn(usize, &mut [f64]) + Sync> Packing<E> {
+impl<R: Fn(usize, &mut [f64]) + Sync> Packing<R> {
     /// Writes every element into `target` as `component_type`; returns the min/max of the
     /// values stored. One loop per component type: the type is matched once, not once per
     /// value.
@@ -463,17 +501,29 @@ impl<E: Fn(usize, &mut [f64]) + Sync> Packing<E> {
         encode: impl Fn(f64) -> ([u8; N], f64),
     ) -> Bounds {
         let mut bounds = no_bounds();
-        let mut buffer = [0.0; MOST_COMPONENTS];
-        let values = &mut buffer[..self.components];
-        for (i, element) in bytes.chunks_exact_mut(self.stride.max(1)).enumerate() {
-            (self.element)(first + i, values);
-            for (c, (&v, slot)) in values.iter().zip(element.chunks_exact_mut(N)).enumerate() {
-                let (stored_bytes, stored) = encode(v);
-                slot.copy_from_slice(&stored_bytes);
-                if !stored.is_nan() {
-                    bounds.0[c] = bounds.0[c].min(stored);
-                    bounds.1[c] = bounds.1[c].max(stored);
+        let mut buffer = [0.0; RUN * MAX_COMPONENTS];
+        let stride = self.stride.max(1);
+        for (r, run) in bytes.chunks_mut(RUN * stride).enumerate() {
+            let n = self.components;
+            let values = &mut buffer[..run.len() / stride * n];
+            (self.run)(first + r * RUN, values);
+            for (element, values) in run.chunks_exact_mut(stride).zip(values.chunks_exact_mut(n)) {
+                for (value, slot) in values.iter_mut().zip(element.chunks_exact_mut(N)) {
+                    let (stored_bytes, stored) = encode(*value);
+                    slot.copy_from_slice(&stored_bytes);
+                    *value = stored;
                 }
+            }
+            // Then the run's bounds, a component at a time in local accumulators (kept in
+            // the array, each bound waited on the last store of it). A comparison with NaN
+            // is false: NaN never becomes a bound.
+            for c in 0..n {
+                let (mut low, mut high) = (bounds.0[c], bounds.1[c]);
+                for &v in values[c..].iter().step_by(n) {
+                    low = if v < low { v } else { low };
+                    high = if v > high { v } else { high };
+                }
+                (bounds.0[c], bounds.1[c]) = (low, high);
             }
         }
         bounds
@@ -624,7 +674,7 @@ pub fn dequantized(
 
 /// Appends an accessor's data to `out`, repacked for its role.
 pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
-    let layout = |component_type, normalized| Layout {
+    let layout = |component_type, normalized| PackingLayout {
         count: accessor.count,
         components: accessor.components,
         component_type,
@@ -636,8 +686,8 @@ pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
         if let Some(renormalised) = weights_to_renormalise(accessor) {
             // Floats: the quotients are not representable as normalised integers.
             let elements = accessor.elements();
-            let mut packed = pack_elements(layout(FLOAT, false), out, |i, vertex| {
-                renormalised_vertex(elements, i, vertex)
+            let mut packed = pack_elements(layout(FLOAT, false), out, |first, run| {
+                renormalised_run(elements, first, run)
             });
             packed.converted_from = converted_from(FLOAT);
             packed.renormalised = Some(renormalised);
@@ -657,8 +707,8 @@ pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
         _ => 1.0,
     };
     let elements = accessor.elements();
-    let mut packed = pack_elements(layout(component_type, normalized), out, |i, values| {
-        elements.read(i, values);
+    let mut packed = pack_elements(layout(component_type, normalized), out, |first, values| {
+        elements.read_run(first, values);
         if scale != 1.0 {
             values.iter_mut().for_each(|v| *v /= scale);
         }
@@ -709,11 +759,62 @@ mod tests {
     #[test]
     fn weights_are_divided_by_their_sum_until_single_precision_sums_to_one() {
         let mut weights = [0.1, 0.05, 0.03, 0.0].map(|w: f64| w / 0.18);
-        settle_in_single_precision(&mut weights);
+        settle_in_single_precision(&mut weights, 4, &[true]);
         let single: f32 = weights.iter().fold(0f32, |s, &w| (f64::from(s) + w) as f32);
         assert_eq!(single, 1.0);
         assert!((weights[0] - 0.1 / 0.18).abs() < 1e-6);
         assert_eq!(weights[3], 0.0, "a zero weight stays zero");
+    }
+
+    #[test]
+    fn vertices_settled_together_end_as_each_settled_alone_would() {
+        // One vertex's weights settled on their own: rounded to single precision, then the
+        // residue of their single-precision sum moved into the largest, at most 3 times.
+        fn alone(weights: &mut [f64]) {
+            let single_sum = |w: &[f64]| w.iter().fold(0f32, |s, &v| (f64::from(s) + v) as f32);
+            weights.iter_mut().for_each(|w| *w = f64::from(*w as f32));
+            let largest = (0..4)
+                .max_by(|&a, &b| weights[a].total_cmp(&weights[b]))
+                .unwrap();
+            for _ in 0..3 {
+                let residue = 1.0 - f64::from(single_sum(weights));
+                if residue == 0.0 {
+                    break;
+                }
+                weights[largest] = f64::from((weights[largest] + residue) as f32);
+            }
+        }
+        let mut state = 88_172_645_463_325_252_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut weights: Vec<f64> = (0..RUN * 4)
+            .map(|i| if i % 7 == 3 { 0.0 } else { next() })
+            .collect();
+        let divided: Vec<bool> = (0..RUN).map(|v| v % 5 != 0).collect();
+        for (vertex, &divided) in weights.chunks_exact_mut(4).zip(&divided) {
+            let sum: f64 = vertex.iter().sum();
+            if divided {
+                vertex.iter_mut().for_each(|w| *w /= sum);
+            }
+        }
+        let mut expected = weights.clone();
+        for (vertex, &divided) in expected.chunks_exact_mut(4).zip(&divided) {
+            if divided {
+                alone(vertex);
+            }
+        }
+        settle_in_single_precision(&mut weights, 4, &divided);
+        assert_eq!(weights, expected);
+        // Within the output check's allowance: a single-precision ulp near 1 per weight.
+        let single = |w: &[f64]| w.iter().fold(0f32, |s, &v| (f64::from(s) + v) as f32);
+        for (w, _) in weights.chunks_exact(4).zip(&divided).filter(|(_, &d)| d) {
+            let allowance = 2e-7 * w.iter().filter(|&&v| v != 0.0).count() as f64;
+            assert!((f64::from(single(w)) - 1.0).abs() <= allowance, "{w:?}");
+        }
     }
 
     #[test]

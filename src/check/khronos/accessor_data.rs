@@ -2,78 +2,18 @@
 //! `max` that do not match the data, and for the checks its uses add (unit normals, index
 //! bounds, animation inputs…, see `accessor_usage`): the Khronos ACCESSOR_* data codes.
 
-use super::accessor_fast::{self, Layout};
+use super::accessor_fast;
 use super::accessor_usage::{self, Budget, Checker, Findings};
 use super::resources::{view_bytes, view_data, ViewData};
 use crate::check::context::{unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::Node;
-use crate::gltf::accessor::{component_count, component_size, normalise};
+use crate::gltf::accessor::{
+    component_count, component_size, normalise, visit, Layout, MAX_COMPONENTS,
+};
 use crate::gltf::gl;
 use rayon::prelude::*;
 use std::borrow::Cow;
-
-/// The most components an element has (MAT4).
-pub(super) const MAX_COMPONENTS: usize = 16;
-/// Elements decoded per batch: small enough for L1, large enough that each check's
-/// dispatch is paid once per batch rather than once per element; a multiple of 3 so that
-/// triangles rarely straddle batches.
-const BATCH: usize = 240;
-
-/// Calls `f(first element index, values)` for consecutive batches of elements, `values`
-/// holding `components` numbers per element, as stored (integers not normalised).
-/// Dispatching on the component type once, outside the loop, keeps the inner loop a plain
-/// load: this pass runs over every byte of large assets.
-pub(super) fn visit(layout: &Layout, bytes: &[u8], f: impl FnMut(usize, &[f64])) {
-    match layout.component_type {
-        gl::BYTE => walk(layout, bytes, |[b]: [u8; 1]| f64::from(b as i8), f),
-        gl::UNSIGNED_BYTE => walk(layout, bytes, |[b]: [u8; 1]| f64::from(b), f),
-        gl::SHORT => walk(layout, bytes, |b| f64::from(i16::from_le_bytes(b)), f),
-        gl::UNSIGNED_SHORT => walk(layout, bytes, |b| f64::from(u16::from_le_bytes(b)), f),
-        gl::UNSIGNED_INT => walk(layout, bytes, |b| f64::from(u32::from_le_bytes(b)), f),
-        _ => walk(layout, bytes, |b| f64::from(f32::from_le_bytes(b)), f),
-    }
-}
-
-fn walk<const SIZE: usize>(
-    layout: &Layout,
-    bytes: &[u8],
-    decode: impl Fn([u8; SIZE]) -> f64,
-    mut f: impl FnMut(usize, &[f64]),
-) {
-    let n = layout.components.min(MAX_COMPONENTS);
-    let element_size = SIZE * n;
-    let mut values = [0.0; BATCH * MAX_COMPONENTS];
-    let mut first = 0;
-    while first < layout.count {
-        let k = BATCH.min(layout.count - first);
-        let start = layout.offset + first * layout.stride;
-        if layout.stride == element_size {
-            // Tightly packed: the batch is one run of bytes, decoded in a loop the compiler
-            // can vectorise.
-            let Some(run) = bytes.get(start..start + k * element_size) else {
-                return;
-            };
-            for (value, raw) in values.iter_mut().zip(run.chunks_exact(SIZE)) {
-                *value = decode(raw.try_into().unwrap_or([0; SIZE]));
-            }
-            f(first, &values[..k * n]);
-            first += k;
-            continue;
-        }
-        for (e, out) in values.chunks_exact_mut(n).take(k).enumerate() {
-            let start = layout.offset + (first + e) * layout.stride;
-            let Some(element) = bytes.get(start..start + element_size) else {
-                return;
-            };
-            for (value, raw) in out.iter_mut().zip(element.chunks_exact(SIZE)) {
-                *value = decode(raw.try_into().unwrap_or([0; SIZE]));
-            }
-        }
-        f(first, &values[..k * n]);
-        first += k;
-    }
-}
 
 fn layout(ctx: &Context, accessor: Node, view: usize) -> Option<Layout> {
     let mut layout = packed_layout(accessor)?;
@@ -356,7 +296,7 @@ fn scan(work: &mut Work, reading: &Reading, mut findings: Findings) -> Findings 
         return findings;
     }
     let n = layout.components;
-    let unit = unit_scale(layout.component_type, *accessor);
+    let unit = unit_scale(layout.component_type, *accessor).unwrap_or(|v| v);
     let mut actual_min = [f64::INFINITY; MAX_COMPONENTS];
     let mut actual_max = [f64::NEG_INFINITY; MAX_COMPONENTS];
     let mut non_finite = false;
@@ -526,13 +466,11 @@ impl Bounds<'_> {
     }
 }
 
-/// Maps a stored value to the value a shader sees (the glTF normalisation rules for
-/// `normalized` integers; floats and plain integers unchanged).
-pub(super) fn unit_scale(component_type: u64, accessor: Node) -> fn(f64) -> f64 {
-    if accessor.get("normalized").and_then(Node::as_bool) != Some(true) {
-        return |v| v;
-    }
-    normalise(component_type)
+/// What maps a stored value to the value a shader sees (the glTF normalisation rules for
+/// `normalized` integers); None when they are the same (floats and plain integers).
+pub(super) fn unit_scale(component_type: u64, accessor: Node) -> Option<fn(f64) -> f64> {
+    let normalized = accessor.get("normalized").and_then(Node::as_bool) == Some(true);
+    normalized.then(|| normalise(component_type))
 }
 
 #[cfg(test)]

@@ -6,24 +6,13 @@
 //! or equal to the restart value) they decline, and the general walk runs and reports it.
 
 use super::accessor_usage::{is_unit_length, Checker};
-use crate::gltf::accessor::FloatBounds;
+use crate::gltf::accessor::{FloatBounds, Layout};
 use crate::gltf::gl;
 use rayon::prelude::*;
 
 /// Elements (indices: triangles) bounded as one piece of work: large buffers are read on
 /// all cores.
 const ELEMENTS_AT_ONCE: usize = 1 << 16;
-
-/// Where an accessor's elements lie in its bufferView's bytes.
-#[derive(Clone, Copy)]
-pub(super) struct Layout {
-    pub component_type: u64,
-    pub size: usize,
-    pub components: usize,
-    pub stride: usize,
-    pub offset: usize,
-    pub count: usize,
-}
 
 /// min/max per component, or None when the general walk is needed.
 pub(super) fn bounds(

@@ -128,6 +128,12 @@ impl Findings {
         }
     }
 
+    /// Whether nothing was found.
+    #[cfg(test)]
+    pub(super) fn is_empty(&self) -> bool {
+        self.kept.is_empty() && self.dropped.is_empty()
+    }
+
     /// Reports the kept findings, the last one saying how many more were not listed, and
     /// counts those.
     pub(super) fn report(mut self, ctx: &mut Context) {
