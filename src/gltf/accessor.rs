@@ -47,15 +47,16 @@ pub fn decode_component(component_type: u64, bytes: &[u8]) -> f64 {
     }
 }
 
-/// The glTF 2.0 normalisation of a `normalized` integer component (§3.11): the value a shader
-/// sees. Floats and unnormalised integers are unchanged.
-pub fn normalise(component_type: u64) -> fn(f64) -> f64 {
+/// The glTF 2.0 normalisation of a `normalized` integer component (§3.11): what makes a
+/// stored value the value a shader sees. None for the types whose values are not changed
+/// (floats, unsigned ints), so that callers pay no call per value for them.
+pub fn normalise(component_type: u64) -> Option<fn(f64) -> f64> {
     match component_type {
-        BYTE => |v| (v / 127.0).max(-1.0),
-        UNSIGNED_BYTE => |v| v / 255.0,
-        SHORT => |v| (v / 32767.0).max(-1.0),
-        UNSIGNED_SHORT => |v| v / 65535.0,
-        _ => |v| v,
+        BYTE => Some(|v| (v / 127.0).max(-1.0)),
+        UNSIGNED_BYTE => Some(|v| v / 255.0),
+        SHORT => Some(|v| (v / 32767.0).max(-1.0)),
+        UNSIGNED_SHORT => Some(|v| v / 65535.0),
+        _ => None,
     }
 }
 
@@ -230,5 +231,69 @@ impl<const N: usize> FloatBounds<N> {
             self.low.map(f64::from).to_vec(),
             self.high.map(f64::from).to_vec(),
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Unsigned shorts, two a vertex, 6 bytes apart after a 2-byte offset (padding = 0xFFFF).
+    fn strided() -> (Layout, Vec<u8>) {
+        let words: [u16; 10] = [0xFFFF, 1, 2, 0xFFFF, 3, 4, 0xFFFF, 5, 6, 0xFFFF];
+        let layout = Layout {
+            component_type: UNSIGNED_SHORT,
+            size: 2,
+            components: 2,
+            stride: 6,
+            offset: 2,
+            count: 3,
+        };
+        (layout, words.iter().flat_map(|w| w.to_le_bytes()).collect())
+    }
+
+    #[test]
+    fn elements_are_decoded_from_any_one_on_whether_packed_or_strided() {
+        let (layout, bytes) = strided();
+        let mut out = [0.0; 4];
+        assert!(decode(&layout, &bytes, 1, &mut out));
+        assert_eq!(out, [3.0, 4.0, 5.0, 6.0]);
+        let floats: Vec<u8> = [1.5f32, -2.0, 0.25]
+            .iter()
+            .flat_map(|f| f.to_le_bytes())
+            .collect();
+        let packed = Layout {
+            component_type: FLOAT,
+            size: 4,
+            components: 1,
+            stride: 4,
+            offset: 0,
+            count: 3,
+        };
+        let mut out = [0.0; 2];
+        assert!(decode(&packed, &floats, 1, &mut out));
+        assert_eq!(out, [-2.0, 0.25]);
+    }
+
+    #[test]
+    fn elements_past_the_bytes_are_not_decoded_and_a_walk_stops_there() {
+        let (layout, bytes) = strided();
+        let mut out = [0.0; 4];
+        assert!(
+            !decode(&layout, &bytes[..14], 1, &mut out),
+            "the last element is cut"
+        );
+        assert!(
+            !decode(&layout, &bytes, usize::MAX / 2, &mut out),
+            "no overflow"
+        );
+        let mut seen = Vec::new();
+        visit(&layout, &bytes, |first, values| {
+            seen.push((first, values.to_vec()))
+        });
+        assert_eq!(seen, vec![(0, vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0])]);
+        let mut seen = 0;
+        visit(&layout, &bytes[..14], |_, _| seen += 1);
+        assert_eq!(seen, 0, "a batch that is not all there is not given");
     }
 }

@@ -207,12 +207,9 @@ fn weights_to_renormalise(accessor: &Accessor) -> Option<Renormalised> {
             for first in (block * BLOCK..end).step_by(RUN) {
                 let run = &mut buffer[..RUN.min(end - first) * components];
                 weights_of_run(elements, first, run);
-                for vertex in run.chunks_exact(components) {
-                    let sum: f64 = vertex.iter().sum();
-                    if needs_renormalising(sum) {
-                        vertices += 1;
-                        lowest = lowest.min(sum);
-                    }
+                for sum in run.chunks_exact(components).filter_map(divisor) {
+                    vertices += 1;
+                    lowest = lowest.min(sum);
                 }
             }
             (vertices, lowest)
@@ -223,17 +220,18 @@ fn weights_to_renormalise(accessor: &Accessor) -> Option<Renormalised> {
 
 /// The weights of the vertices from `first` on that `out` has room for, as values in [0, 1].
 fn weights_of_run(elements: Elements, first: usize, out: &mut [f64]) {
-    let component_type = elements.layout.component_type;
     elements.read_run(first, out);
-    // Floats are the values themselves: no call per value.
-    if component_type != FLOAT {
-        let unit = normalise(component_type);
+    if let Some(unit) = normalise(elements.layout.component_type) {
         out.iter_mut().for_each(|w| *w = unit(*w));
     }
 }
 
-fn needs_renormalising(sum: f64) -> bool {
-    (sum - 1.0).abs() > WEIGHT_SUM_TOLERANCE && sum > 0.0 && sum.is_finite()
+/// The sum a vertex's weights are divided by, when they need it: not 1 (beyond the
+/// tolerance), and a finite sum above 0.
+fn divisor(vertex: &[f64]) -> Option<f64> {
+    let sum: f64 = vertex.iter().sum();
+    let needed = (sum - 1.0).abs() > WEIGHT_SUM_TOLERANCE && sum > 0.0 && sum.is_finite();
+    needed.then_some(sum)
 }
 
 /// The weights of a run of vertices, each vertex's divided by their sum when
@@ -244,10 +242,9 @@ fn renormalised_run(elements: Elements, first: usize, out: &mut [f64]) {
     for run in out.chunks_mut(RUN * components) {
         let mut divided = [false; RUN];
         for (vertex, divided) in run.chunks_exact_mut(components).zip(&mut divided) {
-            let sum: f64 = vertex.iter().sum();
-            *divided = needs_renormalising(sum);
-            if *divided {
+            if let Some(sum) = divisor(vertex) {
                 vertex.iter_mut().for_each(|w| *w /= sum);
+                *divided = true;
             }
         }
         settle_in_single_precision(run, components, &divided);
@@ -502,9 +499,8 @@ impl<R: Fn(usize, &mut [f64]) + Sync> Packing<R> {
     ) -> Bounds {
         let mut bounds = no_bounds();
         let mut buffer = [0.0; RUN * MAX_COMPONENTS];
-        let stride = self.stride.max(1);
+        let (stride, n) = (self.stride.max(1), self.components);
         for (r, run) in bytes.chunks_mut(RUN * stride).enumerate() {
-            let n = self.components;
             let values = &mut buffer[..run.len() / stride * n];
             (self.run)(first + r * RUN, values);
             for (element, values) in run.chunks_exact_mut(stride).zip(values.chunks_exact_mut(n)) {
@@ -514,9 +510,9 @@ impl<R: Fn(usize, &mut [f64]) + Sync> Packing<R> {
                     *value = stored;
                 }
             }
-            // Then the run's bounds, a component at a time in local accumulators (kept in
-            // the array, each bound waited on the last store of it). A comparison with NaN
-            // is false: NaN never becomes a bound.
+            // Then the run's bounds, a component at a time in local accumulators: updated in
+            // the array value by value, each update waited on the store before it. A
+            // comparison with NaN is false: NaN never becomes a bound.
             for c in 0..n {
                 let (mut low, mut high) = (bounds.0[c], bounds.1[c]);
                 for &v in values[c..].iter().step_by(n) {

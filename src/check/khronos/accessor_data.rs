@@ -470,7 +470,7 @@ impl Bounds<'_> {
 /// `normalized` integers); None when they are the same (floats and plain integers).
 pub(super) fn unit_scale(component_type: u64, accessor: Node) -> Option<fn(f64) -> f64> {
     let normalized = accessor.get("normalized").and_then(Node::as_bool) == Some(true);
-    normalized.then(|| normalise(component_type))
+    normalise(component_type).filter(|_| normalized)
 }
 
 #[cfg(test)]
