@@ -87,6 +87,79 @@ fn a_large_input_truncated_while_it_is_checked_gives_an_exit_status_not_a_signal
     }
 }
 
+/// Whether this process can take a read lease on a file in `folder` (Linux, leases enabled,
+/// a file system that has them): only then are large inputs mapped rather than read.
+#[cfg(target_os = "linux")]
+fn leases_work_in(folder: &Path) -> bool {
+    use std::os::fd::AsRawFd;
+    let probe = folder.join("lease-probe");
+    std::fs::write(&probe, b"probe").unwrap();
+    let file = std::fs::File::open(&probe).unwrap();
+    // SAFETY: fcntl on a descriptor this function owns, with integer arguments only.
+    let leased = unsafe { libc::fcntl(file.as_raw_fd(), libc::F_SETLEASE, libc::F_RDLCK) } == 0;
+    drop(file);
+    std::fs::remove_file(&probe).unwrap();
+    leased
+}
+
+/// A large buffer file is mapped while leased (Linux); another process that truncates it
+/// mid-upgrade must wait for the lease, and the upgrade, seeing the lease broken, keeps
+/// nothing it made from those bytes. Never a SIGBUS.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_large_buffer_truncated_while_it_is_upgraded_stops_the_output_never_the_process() {
+    let folder = tempfile::tempdir().unwrap();
+    let leases = leases_work_in(folder.path());
+    if !leases {
+        eprintln!(
+            "NO FILE LEASES HERE: large buffers are read, not mapped; only the exit status is held"
+        );
+    }
+    let mut refused = 0;
+    for run in 0..5 {
+        write_gltf1(folder.path(), "big.gltf", 500_000); // 18 MB of positions
+        let output = format!("out{run}.glb");
+        let child = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(["upgrade", "big.gltf", "-o", &output, "--no-verify"])
+            .current_dir(folder.path())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        // The output's temporary appears once the conversion is done: the buffer has been
+        // leased and mapped, and is being written and checked.
+        while temporaries(folder.path()).is_empty() && !folder.path().join(&output).exists() {
+            std::thread::yield_now();
+        }
+        let buffer = std::fs::OpenOptions::new()
+            .write(true)
+            .open(folder.path().join("model.bin"));
+        buffer.unwrap().set_len(100).unwrap();
+        let finished = child.wait_with_output().unwrap();
+        assert!(
+            finished.status.code().is_some(),
+            "killed by a signal: {:?}",
+            finished.status
+        );
+        assert!(temporaries(folder.path()).is_empty());
+        if finished.status.success() {
+            continue; // it was done before the truncation began
+        }
+        assert!(!folder.path().join(&output).exists());
+        let message = stderr(&finished);
+        assert!(
+            message.contains(
+                "model.bin was opened for writing or truncated while the upgrade read it"
+            ),
+            "{message}"
+        );
+        refused += 1;
+    }
+    if leases {
+        assert!(refused > 0, "no run saw its lease broken");
+    }
+}
+
 /// Writes `glb` to `path`, starts `gltfmat check` on it, truncates the file after `delay`,
 /// and asserts that the check ends with an exit status, not a signal.
 fn truncate_while_checked(path: &Path, glb: &[u8], delay: Duration) {
@@ -554,7 +627,9 @@ fn a_large_external_buffer_checked_from_its_file_reports_what_its_bytes_in_memor
     let options = CheckOptions::default().with_max_issues(0);
     let from_file = check_path(folder.path().join("large.gltf"), &options).unwrap();
     let mut loader = gltfmat::document::uri::MemoryResources::default();
-    loader.files.insert("large.bin".into(), data.into());
+    loader
+        .files
+        .insert("large.bin".into(), std::sync::Arc::new(data.into()));
     let in_memory = gltfmat::check::check_bytes("large.gltf", json, &loader, &options);
     assert_eq!(data_findings(&from_file), data_findings(&in_memory));
     // The folder loader left the file in place; the memory one has it read.

@@ -478,9 +478,8 @@ mod verify {
             let image = upgraded.json.to_value()["textures"][texture]["source"]
                 .as_u64()
                 .unwrap() as usize;
-            upgraded.images[image].bytes = std::fs::read(repo("fixtures/gltf1/metal_rough.png"))
-                .unwrap()
-                .into();
+            let swizzled = std::fs::read(repo("fixtures/gltf1/metal_rough.png")).unwrap();
+            upgraded.images[image].bytes = std::sync::Arc::new(swizzled.into());
         });
         assert!(
             wrong > 1.0,
@@ -1195,7 +1194,7 @@ fn a_file_many_buffers_name_counts_once_in_the_data_read() {
     let mut loader = gltfmat::document::uri::MemoryResources::default();
     loader
         .files
-        .insert("one.bin".into(), std::sync::Arc::new(file.clone()));
+        .insert("one.bin".into(), std::sync::Arc::new(file.clone().into()));
     let n = 100;
     let id = |kind: &str, i: usize| format!("{kind}{i}");
     let mut root = serde_json::json!({"asset": {"version": "1.0"}, "buffers": {},

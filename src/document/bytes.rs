@@ -1,15 +1,105 @@
-//! The bytes of an asset or resource. They are read, never mapped: a mapped file that
-//! another process truncates kills the reader with SIGBUS, and a stranger's upload may be
-//! rewritten while it is checked. A large GLB's BIN chunk is read a range at a time from
-//! its opened file (a range the file no longer holds reads as nothing).
+//! The bytes of an asset or resource. They are read, or mapped only while no other process
+//! can change them: a mapped file that another process truncates kills the reader with
+//! SIGBUS, and a stranger's upload may be rewritten while it is checked (see
+//! [`super::file::Leased`]). A large GLB's BIN chunk is read a range at a time from its
+//! opened file (a range the file no longer holds reads as nothing).
 
 use super::file::{FileChunk, Kept};
 use std::borrow::Cow;
-use std::ops::Range;
+use std::ops::{Deref, Range};
 use std::sync::Arc;
 
-/// A file's bytes, read into memory.
-pub type Bytes = Vec<u8>;
+/// A file's bytes in memory: read, or mapped while leased.
+#[derive(Default)]
+pub struct Bytes(Storage);
+
+#[derive(Default)]
+enum Storage {
+    #[default]
+    Empty,
+    Read(Vec<u8>),
+    #[cfg(target_os = "linux")]
+    Leased(super::file::Leased),
+}
+
+impl Bytes {
+    /// Whether they are still the file's bytes as they were taken: always for bytes read;
+    /// for a leased file, whether the lease held (no other process opened the file for
+    /// writing or truncated it since).
+    pub fn still_as_read(&self) -> bool {
+        match &self.0 {
+            Storage::Empty | Storage::Read(_) => true,
+            #[cfg(target_os = "linux")]
+            Storage::Leased(leased) => leased.unbroken(),
+        }
+    }
+
+    /// Whether they are mapped from a leased file rather than read.
+    pub fn is_leased(&self) -> bool {
+        match &self.0 {
+            Storage::Empty | Storage::Read(_) => false,
+            #[cfg(target_os = "linux")]
+            Storage::Leased(_) => true,
+        }
+    }
+}
+
+#[cfg(target_os = "linux")]
+impl From<super::file::Leased> for Bytes {
+    fn from(leased: super::file::Leased) -> Self {
+        Bytes(Storage::Leased(leased))
+    }
+}
+
+impl From<Vec<u8>> for Bytes {
+    fn from(bytes: Vec<u8>) -> Self {
+        Bytes(Storage::Read(bytes))
+    }
+}
+
+impl From<String> for Bytes {
+    fn from(text: String) -> Self {
+        Bytes(Storage::Read(text.into_bytes()))
+    }
+}
+
+impl From<&str> for Bytes {
+    fn from(text: &str) -> Self {
+        Bytes(Storage::Read(text.as_bytes().to_vec()))
+    }
+}
+
+impl From<&[u8]> for Bytes {
+    fn from(bytes: &[u8]) -> Self {
+        Bytes(Storage::Read(bytes.to_vec()))
+    }
+}
+
+impl Deref for Bytes {
+    type Target = [u8];
+
+    fn deref(&self) -> &[u8] {
+        match &self.0 {
+            Storage::Empty => &[],
+            Storage::Read(bytes) => bytes,
+            #[cfg(target_os = "linux")]
+            Storage::Leased(leased) => leased,
+        }
+    }
+}
+
+impl AsRef<[u8]> for Bytes {
+    fn as_ref(&self) -> &[u8] {
+        self
+    }
+}
+
+impl std::fmt::Debug for Bytes {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let how = if self.is_leased() { "leased" } else { "read" };
+        write!(f, "Bytes({} {how})", self.len())
+    }
+}
 
 /// A buffer's bytes: borrowed from the document (the GLB BIN chunk), held (an external file
 /// or a data URI), or elsewhere: left in a file, or in pieces.
@@ -120,7 +210,8 @@ impl Piece {
     }
 
     /// All of `bytes`.
-    pub fn whole(bytes: Bytes) -> Self {
+    pub fn whole(bytes: impl Into<Bytes>) -> Self {
+        let bytes = bytes.into();
         let range = 0..bytes.len();
         Piece {
             bytes: Arc::new(bytes),
@@ -207,7 +298,7 @@ mod tests {
 
     #[test]
     fn pieces_read_as_the_bytes_they_join() {
-        let shared = Arc::new(vec![10, 11, 12, 13, 14]);
+        let shared = Arc::new(Bytes::from(vec![10, 11, 12, 13, 14]));
         let pieces = Pieces::new([
             Piece::whole(vec![1, 2]),
             Piece::new(Arc::clone(&shared), 1..4),

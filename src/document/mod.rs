@@ -146,7 +146,7 @@ pub fn read_path(
     let start = split.bin.offset() as usize;
     let chunk = Elsewhere::File(split.bin);
     Ok(read_holed(
-        Arc::new(split.before),
+        Arc::new(split.before.into()),
         start,
         chunk,
         &split.after,

@@ -1,7 +1,7 @@
 //! URIs in glTF: data URIs decoded in memory, relative references read from the asset's own
 //! folder only. Nothing is ever fetched from a network, and no path may leave the folder.
 
-use super::file::{read_opened_with_id, FileError, FileId, Kept};
+use super::file::{read_or_lease, FileError, FileId, Kept};
 use super::{Bytes, Elsewhere};
 use base64::Engine;
 use std::collections::HashMap;
@@ -158,7 +158,7 @@ pub trait ResourceLoader: Sync {
 /// URIs are not fetched and absolute paths not read (both are errors saying so).
 pub fn load_uri(uri: &str, loader: &dyn ResourceLoader) -> Result<Arc<Bytes>, String> {
     match classify(uri)? {
-        UriKind::Data { bytes, .. } => Ok(Arc::new(bytes)),
+        UriKind::Data { bytes, .. } => Ok(Arc::new(bytes.into())),
         UriKind::Relative(path) => loader.load(&path).map_err(|e| e.to_string()),
         UriKind::NonRelative => Err(format!("'{uri}' is not a relative URI; not fetched")),
         UriKind::AbsolutePath => Err(format!("'{uri}' is an absolute path; not read")),
@@ -210,6 +210,9 @@ pub struct FolderResources {
     /// whole: a file many URIs name (under any spelling or link) is read once, not once
     /// for each (10^3 buffers naming one 1 MB file held 1 GB).
     shared: Mutex<HashMap<(FileId, Whole), Held>>,
+    /// Files mapped while leased rather than read, by name, held to the end: whether each
+    /// lease held is asked once the output is written ([`FolderResources::changed_since_read`]).
+    leased: Mutex<Vec<(String, Arc<Bytes>)>>,
 }
 
 /// Whether a file was read whole ([`ResourceLoader::load`]) or as a buffer, perhaps left
@@ -252,7 +255,17 @@ impl FolderResources {
                 .map_err(|e| format!("{}: {e}", folder.display())),
             read: Default::default(),
             shared: Default::default(),
+            leased: Default::default(),
         }
+    }
+
+    /// The first file mapped rather than read whose lease has broken since: another process
+    /// opened it for writing or truncated it, so what was made of it may not be what it
+    /// held. Asked before an output is kept.
+    pub fn changed_since_read(&self) -> Option<String> {
+        let leased = self.leased.lock().ok()?;
+        let changed = leased.iter().find(|(_, bytes)| !bytes.still_as_read());
+        changed.map(|(name, _)| name.clone())
     }
 
     /// The files read so far, by identity.
@@ -350,6 +363,11 @@ impl FolderResources {
             return Ok(kept);
         }
         let (kept, id) = read(file).map_err(failed)?;
+        if let Kept::Read(bytes) = &kept {
+            if let (true, Ok(mut leased)) = (bytes.is_leased(), self.leased.lock()) {
+                leased.push((relative.to_string(), Arc::clone(bytes)));
+            }
+        }
         if let Some(id) = id {
             if let Ok(mut shared) = self.shared.lock() {
                 shared.insert((id, whole), Held::of(&kept));
@@ -362,9 +380,9 @@ impl FolderResources {
     }
 }
 
-/// [`read_opened_with_id`] as a [`Kept`].
+/// [`read_or_lease`] as a [`Kept`].
 fn read_whole(file: std::fs::File) -> Result<(Kept, Option<FileId>), FileError> {
-    read_opened_with_id(file).map(|(bytes, id)| (Kept::Read(Arc::new(bytes)), id))
+    read_or_lease(file).map(|(bytes, id)| (Kept::Read(Arc::new(bytes)), id))
 }
 
 impl ResourceLoader for FolderResources {

@@ -123,7 +123,7 @@ fn read_members<'a>(
     };
     let json = json.map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
     let body = body.map(|(range, cut_short)| Body {
-        file: Arc::new(bytes.into_owned()),
+        file: Arc::new(bytes.into_owned().into()),
         range,
         cut_short,
     });
@@ -330,7 +330,7 @@ impl Source<'_> {
             .and_then(|b| b.get("bufferView"))
             .and_then(Node::as_str)
         {
-            return self.view(view).map(|bytes| Arc::new(bytes.to_vec()));
+            return self.view(view).map(|bytes| Arc::new(bytes.to_vec().into()));
         }
         let uri = image
             .get("uri")

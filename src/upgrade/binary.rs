@@ -109,7 +109,7 @@ mod tests {
 
     #[test]
     fn runs_concatenate_in_order_and_align_with_zeros() {
-        let input = Arc::new(vec![10, 11, 12, 13, 14]);
+        let input = Arc::new(vec![10, 11, 12, 13, 14].into());
         let mut binary = Binary::default();
         binary.owned().push(1);
         assert_eq!(binary.align(), 4);

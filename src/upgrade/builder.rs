@@ -180,7 +180,7 @@ impl<'s, 'a> Builder<'s, 'a> {
     pub fn add_image(
         &mut self,
         json: Map<String, Value>,
-        bytes: impl Into<std::sync::Arc<Vec<u8>>>,
+        bytes: impl Into<std::sync::Arc<crate::document::Bytes>>,
         mime_type: String,
         stem: &str,
     ) -> usize {

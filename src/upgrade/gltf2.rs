@@ -249,7 +249,7 @@ impl Asset {
                     let view = unsigned(&image, "bufferView")
                         .and_then(|v| self.view_bytes(v as usize, buffers))
                         .ok_or_else(|| resource_error(&at, "its bufferView cannot be read"))?;
-                    (Arc::new(view.to_vec()), true)
+                    (Arc::new(view.to_vec().into()), true)
                 }
             };
             let declared = image.get("mimeType").and_then(Value::as_str);
@@ -554,7 +554,7 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
         self.slot(slot).cloned()
     }
 
-    fn bytes(&self, slot: Slot) -> Option<Arc<Vec<u8>>> {
+    fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>> {
         let image = texture_images(&self.texture(slot)?).next()?;
         Some(self.asset.images.get(image as usize)?.bytes.clone())
     }
@@ -574,7 +574,13 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
         }
         let name = format!("material {} {name}", self.material);
         let index = self.asset.count("images");
-        let image = EncodedImage::new(key.0.clone(), "image/png".into(), index, &name, false);
+        let image = EncodedImage::new(
+            Arc::new(key.0.clone().into()),
+            "image/png".into(),
+            index,
+            &name,
+            false,
+        );
         self.asset.images.push(image);
         self.asset
             .root

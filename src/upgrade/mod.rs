@@ -171,7 +171,7 @@ impl Upgraded {
 #[non_exhaustive]
 pub struct EncodedImage {
     /// The encoded file (shared with the output's files, which are laid out around it).
-    pub bytes: Arc<Vec<u8>>,
+    pub bytes: Arc<crate::document::Bytes>,
     /// Its media type.
     pub mime_type: String,
     /// A file name for `.gltf` output (unique within the asset).
@@ -184,7 +184,7 @@ pub struct EncodedImage {
 impl EncodedImage {
     /// Image `index` of the output, its file named after `stem` and its media type.
     pub(crate) fn new(
-        bytes: impl Into<Arc<Vec<u8>>>,
+        bytes: impl Into<Arc<crate::document::Bytes>>,
         mime_type: String,
         index: usize,
         stem: &str,

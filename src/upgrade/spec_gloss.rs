@@ -33,7 +33,7 @@ pub trait Textures {
     /// The textureInfo that reads the slot's texture as it is, if the material has one.
     fn info(&self, slot: Slot) -> Option<Value>;
     /// The encoded image of the slot's texture.
-    fn bytes(&self, slot: Slot) -> Option<Arc<Vec<u8>>>;
+    fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>>;
     /// Adds a rebaked image as a new texture sampled like the slot's texture (its sampler,
     /// texture coordinates and transform); returns the textureInfo that reads it.
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value;
@@ -63,7 +63,7 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
             let roughness =
                 scope.spawn(|| rebake::gloss_to_roughness(specular, factors.glossiness));
             let base_colour = rebake::spec_gloss_base_colour(
-                diffuse.as_deref().map(Vec::as_slice),
+                diffuse.as_deref().map(|bytes| &bytes[..]),
                 Some(specular),
                 factors,
                 fits,

@@ -45,7 +45,7 @@ fn load_uri(
                 );
             }
             (
-                Some(Kept::Read(Arc::new(bytes))),
+                Some(Kept::Read(Arc::new(bytes.into()))),
                 Some(media_type),
                 "data-uri",
             )
@@ -418,7 +418,7 @@ pub fn check_images(ctx: &mut Context) {
                 // Read once however many images share the view.
                 let bytes = match read_views.get(&view) {
                     Some(bytes) => Some(Arc::clone(bytes)),
-                    None => view_bytes(ctx, view).map(|bytes| Arc::new(bytes.into_owned())),
+                    None => view_bytes(ctx, view).map(|bytes| Arc::new(bytes.into_owned().into())),
                 };
                 if let Some(bytes) = &bytes {
                     read_views.insert(view, Arc::clone(bytes));

@@ -95,7 +95,7 @@ fn texture_info(builder: &Builder, id: Option<&str>) -> Option<Value> {
     Some(json!({"index": index}))
 }
 
-fn texture_bytes(builder: &Builder, id: Option<&str>) -> Option<Arc<Vec<u8>>> {
+fn texture_bytes(builder: &Builder, id: Option<&str>) -> Option<Arc<crate::document::Bytes>> {
     let index = builder.index_of_id("textures", id?)?;
     Some(builder.texture_image(index)?.bytes.clone())
 }
@@ -104,7 +104,7 @@ fn texture_bytes(builder: &Builder, id: Option<&str>) -> Option<Arc<Vec<u8>>> {
 fn add_rebaked(builder: &mut Builder, bytes: Vec<u8>, like: Option<&str>, name: &str) -> Value {
     let mut image = Map::new();
     image.insert("name".into(), json!(name));
-    let image = builder.add_image(image, bytes, "image/png".into(), name);
+    let image = builder.add_image(image, Arc::new(bytes.into()), "image/png".into(), name);
     let like = like.and_then(|id| builder.index_of_id("textures", id));
     let texture = builder.add_texture(image, like, name.to_string());
     json!({"index": texture})
@@ -282,7 +282,7 @@ impl spec_gloss::Textures for DraftTextures<'_, '_, '_, '_> {
         texture_info(self.builder, self.id(slot))
     }
 
-    fn bytes(&self, slot: Slot) -> Option<Arc<Vec<u8>>> {
+    fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>> {
         texture_bytes(self.builder, self.id(slot))
     }
 

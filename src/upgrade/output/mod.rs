@@ -30,10 +30,10 @@ pub struct File {
 }
 
 impl File {
-    fn text(name: String, text: Bytes) -> Self {
+    fn text(name: String, text: impl Into<Bytes>) -> Self {
         File {
             name,
-            head: Arc::new(text),
+            head: Arc::new(text.into()),
             data: Pieces::default(),
         }
     }
@@ -149,7 +149,7 @@ fn glb(mut json: Json, upgraded: &Upgraded, name: &str) -> File {
     body.push(Piece::whole(vec![0; padded - length]));
     File {
         name: name.to_string(),
-        head: Arc::new(head),
+        head: Arc::new(head.into()),
         data: Pieces::new(body),
     }
 }
@@ -260,7 +260,7 @@ impl SideFiles<'_> {
 
 impl ResourceLoader for SideFiles<'_> {
     fn load(&self, path: &str) -> Result<Arc<Bytes>, LoadError> {
-        self.find(path).map(|file| Arc::new(file.bytes()))
+        self.find(path).map(|file| Arc::new(file.bytes().into()))
     }
 
     fn load_buffer(&self, path: &str) -> Result<Kept, LoadError> {
@@ -315,6 +315,12 @@ pub enum WriteError {
     /// A file exists and `force` was not given.
     #[error("{} exists (use --force to replace it)", .0.display())]
     Exists(PathBuf),
+    /// A file the input reads was opened for writing or truncated by another process while
+    /// it was upgraded.
+    #[error(
+        "{0} was opened for writing or truncated while the upgrade read it: nothing was written"
+    )]
+    InputChanged(String),
     /// Writing failed.
     #[error("{}: {}", .0.display(), .1)]
     Io(PathBuf, #[source] std::io::Error),
@@ -360,11 +366,14 @@ pub fn may_write(target: &Path, protected: &[FileId], force: bool) -> Result<(),
 /// [`exit_removing_unfinished`]); a later run into the same folder removes those a killed run left.
 /// Side files are renamed before the main file, so the main file never names missing data.
 /// Without `force` no existing file is replaced, even one created while this runs; with it,
-/// existing files are, except the `protected` ones (see [`may_write`]).
+/// existing files are, except the `protected` ones (see [`may_write`]). Nothing is placed
+/// either when `changed_input` names an input file changed since it was read (see
+/// [`crate::document::uri::FolderResources::changed_since_read`]).
 pub fn write_checked(
     files: &Files,
     folder: &Path,
     protected: &[FileId],
+    changed_input: &dyn Fn() -> Option<String>,
     force: bool,
 ) -> Result<Checked, WriteError> {
     let all: Vec<&File> = std::iter::once(&files.main).chain(&files.side).collect();
@@ -392,6 +401,9 @@ pub fn write_checked(
         (written, report)
     });
     let (side, main) = written?;
+    if let Some(changed) = changed_input() {
+        return Err(WriteError::InputChanged(changed));
+    }
     if report.has_errors() {
         return Ok(Checked {
             report,
@@ -428,11 +440,11 @@ mod tests {
 
     /// A main file of `head` then `megabytes` pieces of one shared megabyte (held once).
     fn file(head: &[u8], megabytes: usize) -> Files {
-        let megabyte = Arc::new(vec![0u8; 1 << 20]);
+        let megabyte = Arc::new(vec![0u8; 1 << 20].into());
         let pieces = (0..megabytes).map(|_| Piece::new(Arc::clone(&megabyte), 0..1 << 20));
         let main = File {
             name: "out.glb".into(),
-            head: Arc::new(head.to_vec()),
+            head: Arc::new(head.into()),
             data: Pieces::new(pieces),
         };
         Files {
@@ -442,10 +454,26 @@ mod tests {
     }
 
     #[test]
+    fn nothing_is_placed_when_an_input_changed_while_it_was_read() {
+        let folder = tempfile::tempdir().unwrap();
+        let changed = || Some("big.bin".to_string());
+        let refused = write_checked(&file(b"{}", 1), folder.path(), &[], &changed, false).err();
+        assert!(
+            matches!(&refused, Some(WriteError::InputChanged(name)) if name == "big.bin"),
+            "{refused:?}"
+        );
+        assert_eq!(
+            std::fs::read_dir(folder.path()).unwrap().count(),
+            0,
+            "temporaries removed"
+        );
+    }
+
+    #[test]
     fn a_glb_past_4_gib_is_refused_before_anything_is_written() {
         let folder = tempfile::tempdir().unwrap();
         let too_long = file(b"glTF", 4096);
-        let refused = write_checked(&too_long, folder.path(), &[], false).err();
+        let refused = write_checked(&too_long, folder.path(), &[], &|| None, false).err();
         let expected = 4 + (4096u64 << 20);
         assert!(
             matches!(refused, Some(WriteError::GlbTooLarge(_, n)) if n == expected),
