@@ -10,6 +10,7 @@ use crate::gltf::accessor::{
 };
 use crate::legacy::source::Source;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
 /// A 1.0 accessor resolved to its bytes.
 pub struct Accessor<'a> {
@@ -170,7 +171,7 @@ pub struct Packed {
     pub max: Vec<f64>,
     /// The component type changed: say so in the report.
     pub converted_from: Option<u64>,
-    /// Skin weights divided by their per-vertex sum (see `renormalised_weights`).
+    /// Skin weights divided by their per-vertex sum (see `some_weights_to_renormalise`).
     pub renormalised: Option<Renormalised>,
 }
 
@@ -187,35 +188,57 @@ pub struct Renormalised {
 /// the Khronos validator's allowance (2·10⁻⁷ per weight, summed in single precision).
 const WEIGHT_SUM_TOLERANCE: f64 = 1e-7;
 
-/// What dividing each vertex's skin weights (as values in [0, 1]) by their sum changes, when
-/// some sum is not 1. 2.0 requires sums of 1; the 1.0 shaders multiplied the affine joint
-/// matrices by the raw weights, which scales the homogeneous coordinate by the sum, and the
-/// perspective divide (and `normalize` of the normal) took the same factor out again:
-/// dividing by the sum draws exactly what 1.0 drew. A vertex whose weights sum to 0 is left
-/// as it is (no division repairs it; the output check reports it).
-fn weights_to_renormalise(accessor: &Accessor) -> Option<Renormalised> {
+/// Whether dividing each vertex's skin weights (as values in [0, 1]) by their sum changes
+/// some vertex: whether some sum is not 1. Stops at the first such vertex; what the division
+/// changed is tallied as it is made ([`Tally`]). 2.0 requires sums of 1; the 1.0 shaders
+/// multiplied the affine joint matrices by the raw weights, which scales the homogeneous
+/// coordinate by the sum, and the perspective divide (and `normalize` of the normal) took
+/// the same factor out again: dividing by the sum draws exactly what 1.0 drew. A vertex
+/// whose weights sum to 0 is left as it is (no division repairs it; the output check
+/// reports it).
+fn some_weights_to_renormalise(accessor: &Accessor) -> bool {
     let elements = accessor.elements();
     let components = elements.layout.components.max(1);
     let count = accessor.count;
-    // Block by block: a fold's accumulator would be moved in and out once a vertex.
-    let (vertices, lowest) = (0..count.div_ceil(BLOCK))
-        .into_par_iter()
-        .map(|block| {
-            let (mut vertices, mut lowest) = (0, f64::INFINITY);
-            let mut buffer = [0.0; RUN * MAX_COMPONENTS];
-            let end = ((block + 1) * BLOCK).min(count);
-            for first in (block * BLOCK..end).step_by(RUN) {
-                let run = &mut buffer[..RUN.min(end - first) * components];
-                weights_of_run(elements, first, run);
-                for sum in run.chunks_exact(components).filter_map(divisor) {
-                    vertices += 1;
-                    lowest = lowest.min(sum);
-                }
-            }
-            (vertices, lowest)
+    (0..count.div_ceil(BLOCK)).into_par_iter().any(|block| {
+        let mut buffer = [0.0; RUN * MAX_COMPONENTS];
+        let end = ((block + 1) * BLOCK).min(count);
+        (block * BLOCK..end).step_by(RUN).any(|first| {
+            let run = &mut buffer[..RUN.min(end - first) * components];
+            weights_of_run(elements, first, run);
+            run.chunks_exact(components)
+                .any(|vertex| divisor(vertex).is_some())
         })
-        .reduce(|| (0, f64::INFINITY), |a, b| (a.0 + b.0, a.1.min(b.1)));
-    (vertices > 0).then_some(Renormalised { vertices, lowest })
+    })
+}
+
+/// What renormalising changes, tallied by the runs as they are packed on all cores.
+struct Tally {
+    vertices: AtomicUsize,
+    /// The lowest sum divided by, as bits: sums divided by are finite and above 0, and
+    /// such doubles order as their bits do.
+    lowest: AtomicU64,
+}
+
+impl Tally {
+    fn new() -> Self {
+        Tally {
+            vertices: AtomicUsize::new(0),
+            lowest: AtomicU64::new(f64::INFINITY.to_bits()),
+        }
+    }
+
+    fn add(&self, vertices: usize, lowest: f64) {
+        self.vertices.fetch_add(vertices, Ordering::Relaxed);
+        self.lowest.fetch_min(lowest.to_bits(), Ordering::Relaxed);
+    }
+
+    fn into_renormalised(self) -> Renormalised {
+        Renormalised {
+            vertices: self.vertices.into_inner(),
+            lowest: f64::from_bits(self.lowest.into_inner()),
+        }
+    }
 }
 
 /// The weights of the vertices from `first` on that `out` has room for, as values in [0, 1].
@@ -234,20 +257,26 @@ fn divisor(vertex: &[f64]) -> Option<f64> {
     needed.then_some(sum)
 }
 
-/// The weights of a run of vertices, each vertex's divided by their sum when
-/// [`weights_to_renormalise`] would count it.
-fn renormalised_run(elements: Elements, first: usize, out: &mut [f64]) {
+/// The weights of a run of vertices, each vertex's divided by their sum when it is not 1
+/// (see [`divisor`]); what was divided is added to `tally`.
+fn renormalised_run(elements: Elements, first: usize, out: &mut [f64], tally: &Tally) {
     let components = elements.layout.components.max(1);
     weights_of_run(elements, first, out);
+    let (mut vertices, mut lowest) = (0, f64::INFINITY);
     for run in out.chunks_mut(RUN * components) {
         let mut divided = [false; RUN];
         for (vertex, divided) in run.chunks_exact_mut(components).zip(&mut divided) {
             if let Some(sum) = divisor(vertex) {
                 vertex.iter_mut().for_each(|w| *w /= sum);
                 *divided = true;
+                vertices += 1;
+                lowest = lowest.min(sum);
             }
         }
         settle_in_single_precision(run, components, &divided);
+    }
+    if vertices > 0 {
+        tally.add(vertices, lowest);
     }
 }
 
@@ -678,17 +707,16 @@ pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
         vertex: role.is_vertex(),
     };
     let converted_from = |to| (to != accessor.component_type).then_some(accessor.component_type);
-    if role == Role::Weights {
-        if let Some(renormalised) = weights_to_renormalise(accessor) {
-            // Floats: the quotients are not representable as normalised integers.
-            let elements = accessor.elements();
-            let mut packed = pack_elements(layout(FLOAT, false), out, |first, run| {
-                renormalised_run(elements, first, run)
-            });
-            packed.converted_from = converted_from(FLOAT);
-            packed.renormalised = Some(renormalised);
-            return packed;
-        }
+    if role == Role::Weights && some_weights_to_renormalise(accessor) {
+        // Floats: the quotients are not representable as normalised integers.
+        let elements = accessor.elements();
+        let tally = Tally::new();
+        let mut packed = pack_elements(layout(FLOAT, false), out, |first, run| {
+            renormalised_run(elements, first, run, &tally)
+        });
+        packed.converted_from = converted_from(FLOAT);
+        packed.renormalised = Some(tally.into_renormalised());
+        return packed;
     }
     let (component_type, normalized) = output_type(role, accessor.component_type);
     if component_type == accessor.component_type {
@@ -750,6 +778,59 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// `weights` (VEC4 floats) packed as skin weights: what renormalising changed, and
+    /// whether the output kept the input's bytes.
+    fn pack_weights(weights: &[[f32; 4]]) -> (Option<Renormalised>, bool) {
+        use base64::Engine;
+        let bin: Vec<u8> = weights
+            .iter()
+            .flatten()
+            .flat_map(|w| w.to_le_bytes())
+            .collect();
+        let uri = format!(
+            "data:application/octet-stream;base64,{}",
+            base64::engine::general_purpose::STANDARD.encode(&bin)
+        );
+        let asset = serde_json::json!({
+            "asset": {"version": "1.0"},
+            "buffers": {"b": {"uri": uri, "byteLength": bin.len()}},
+            "bufferViews": {"v": {"buffer": "b", "byteLength": bin.len()}},
+            "accessors": {"w": {"bufferView": "v", "componentType": FLOAT,
+                "count": weights.len(), "type": "VEC4"}}
+        });
+        let text = serde_json::to_vec(&asset).unwrap();
+        let loader = crate::document::uri::NoResources;
+        let source = crate::legacy::source::read(text.into(), &loader).unwrap();
+        let accessor = read(&source, "w").unwrap();
+        let mut binary = Binary::default();
+        let packed = pack(&accessor, Role::Weights, &mut binary);
+        (packed.renormalised, binary.to_vec() == bin)
+    }
+
+    #[test]
+    fn renormalising_counts_every_vertex_it_divides_and_the_lowest_sum_across_blocks() {
+        // Three blocks' worth of vertices; every seventh sums to 1 and is left alone.
+        let weights: Vec<[f32; 4]> = (0..2 * BLOCK + 1000)
+            .map(|i| match i % 7 {
+                0 => [0.25, 0.75, 0.0, 0.0],
+                _ => [0.1 + (i % 1009) as f32 / 1000.0, 0.08, 0.0, 0.0],
+            })
+            .collect();
+        let sums: Vec<f64> = (weights.iter())
+            .map(|w| w.iter().map(|&x| f64::from(x)).sum())
+            .filter(|s: &f64| (s - 1.0).abs() > WEIGHT_SUM_TOLERANCE)
+            .collect();
+        let lowest = sums.iter().copied().fold(f64::INFINITY, f64::min);
+        let (renormalised, kept) = pack_weights(&weights);
+        let renormalised = renormalised.expect("some sums are not 1");
+        assert_eq!(renormalised.vertices, sums.len());
+        assert_eq!(renormalised.lowest, lowest);
+        assert!(!kept, "divided weights are new data");
+        let (renormalised, kept) = pack_weights(&vec![[0.5, 0.25, 0.25, 0.0]; BLOCK + 3]);
+        assert!(renormalised.is_none(), "every sum is 1");
+        assert!(kept, "weights that sum to 1 are kept as they are");
     }
 
     #[test]
