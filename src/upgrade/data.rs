@@ -539,10 +539,24 @@ impl<R: Fn(usize, &mut [f64]) + Sync> Packing<R> {
                     *value = stored;
                 }
             }
-            // Then the run's bounds, a component at a time in local accumulators: updated in
-            // the array value by value, each update waited on the store before it. A
-            // comparison with NaN is false: NaN never becomes a bound.
-            for c in 0..n {
+            bound_run(&mut bounds, values, n);
+        }
+        bounds
+    }
+}
+
+/// Folds a run of values, `n` components an element, into per-component `bounds`, each
+/// component's values in order. A comparison with NaN is false: NaN never becomes a bound.
+fn bound_run(bounds: &mut Bounds, values: &[f64], n: usize) {
+    match n {
+        1 => bound_elements::<1>(bounds, values),
+        2 => bound_elements::<2>(bounds, values),
+        3 => bound_elements::<3>(bounds, values),
+        4 => bound_elements::<4>(bounds, values),
+        9 => bound_elements::<9>(bounds, values),
+        16 => bound_elements::<16>(bounds, values),
+        _ => {
+            for c in 0..n.min(MAX_COMPONENTS) {
                 let (mut low, mut high) = (bounds.0[c], bounds.1[c]);
                 for &v in values[c..].iter().step_by(n) {
                     low = if v < low { v } else { low };
@@ -551,8 +565,31 @@ impl<R: Fn(usize, &mut [f64]) + Sync> Packing<R> {
                 (bounds.0[c], bounds.1[c]) = (low, high);
             }
         }
-        bounds
     }
+}
+
+/// [`bound_run`] for `N` components known when compiled: the accumulators are registers,
+/// one chain of comparisons per component side by side (in an array indexed at run time
+/// each update waited on the store of the one before, and was most of a pack's time).
+fn bound_elements<const N: usize>(bounds: &mut Bounds, values: &[f64]) {
+    let mut low: [f64; N] = std::array::from_fn(|c| bounds.0[c]);
+    let mut high: [f64; N] = std::array::from_fn(|c| bounds.1[c]);
+    for element in values.chunks_exact(N) {
+        for c in 0..N {
+            low[c] = if element[c] < low[c] {
+                element[c]
+            } else {
+                low[c]
+            };
+            high[c] = if element[c] > high[c] {
+                element[c]
+            } else {
+                high[c]
+            };
+        }
+    }
+    bounds.0[..N].copy_from_slice(&low);
+    bounds.1[..N].copy_from_slice(&high);
 }
 
 /// Copies elements whose component type does not change, padding vertex elements to 4
@@ -831,6 +868,49 @@ mod tests {
         let (renormalised, kept) = pack_weights(&vec![[0.5, 0.25, 0.25, 0.0]; BLOCK + 3]);
         assert!(renormalised.is_none(), "every sum is 1");
         assert!(kept, "weights that sum to 1 are kept as they are");
+    }
+
+    #[test]
+    fn runs_are_bounded_per_component_as_one_fold_over_each_component_bounds_them() {
+        // Wide values, and zeros of both signs (which bound first wins) beside a NaN.
+        let wide = [
+            3.5,
+            -0.0,
+            0.0,
+            f64::NAN,
+            -7.25,
+            1e300,
+            -1e-300,
+            42.0,
+            f64::INFINITY,
+        ];
+        let zeros = [f64::NAN, -0.0, 0.0, 0.0, -0.0, f64::NAN, -0.0];
+        let cases = [1, 2, 3, 4, 5, 9, 16].map(|n| [(n, &wide[..]), (n, &zeros[..])]);
+        for (n, pool) in cases.into_iter().flatten() {
+            let values: Vec<f64> = (0..37 * n)
+                .map(|i| pool[(i * 5 + i / 7) % pool.len()])
+                .collect();
+            let mut bounds = no_bounds();
+            bound_run(&mut bounds, &values[..20 * n], n);
+            bound_run(&mut bounds, &values[20 * n..], n);
+            for c in 0..n {
+                let component = values[c..].iter().step_by(n);
+                let (low, high) = component
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
+                        (if v < l { v } else { l }, if v > h { v } else { h })
+                    });
+                assert_eq!(
+                    bounds.0[c].to_bits(),
+                    low.to_bits(),
+                    "low of component {c} of {n}"
+                );
+                assert_eq!(
+                    bounds.1[c].to_bits(),
+                    high.to_bits(),
+                    "high of component {c} of {n}"
+                );
+            }
+        }
     }
 
     #[test]
