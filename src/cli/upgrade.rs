@@ -68,7 +68,8 @@ pub fn run(args: UpgradeArgs) -> Outcome {
             SpecGlossArg::Extension => SpecularGlossiness::Extension,
         })
         .with_double_sided_default(args.double_sided);
-    let loader = FolderResources::beside(&args.input);
+    // One upgrade is short: large buffer files are mapped while leased, not read.
+    let loader = FolderResources::beside(&args.input).leasing_large_files();
     // The bytes go to the upgrade, which lets a `.gltf`'s text go once its tree is built;
     // the proof reads the file again, and proves nothing if it changed in between.
     let read = (!args.no_verify).then(|| Fingerprint::of(&bytes));

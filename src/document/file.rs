@@ -228,21 +228,23 @@ pub(crate) fn read_opened_with_id(file: File) -> Result<(Vec<u8>, Option<FileId>
 }
 
 /// An opened regular file's bytes, whole: from [`READ_IN_PARTS_FROM`] up mapped while
-/// leased (on Linux, where a lease can be had), read otherwise. Filling fresh memory is
+/// leased (on Linux, where a lease can be had), read otherwise (see
+/// [`super::uri::FolderResources::leasing_large_files`]). Filling fresh memory is
 /// most of a large read's cost (a 176 MB buffer: 55 to 270 ms here, mapped: 5 ms).
-pub(crate) fn read_or_lease(file: File) -> Result<(Bytes, Option<FileId>), FileError> {
+pub(crate) fn lease_or_read(file: File) -> Result<(Bytes, Option<FileId>), FileError> {
     #[cfg(target_os = "linux")]
-    {
+    let file = {
         let metadata = file.metadata()?;
         check_regular(&metadata)?;
-        if metadata.len() >= READ_IN_PARTS_FROM as u64 && metadata.len() <= MAX_FILE_BYTES {
-            let file = match Leased::of(file) {
+        if (READ_IN_PARTS_FROM as u64..=MAX_FILE_BYTES).contains(&metadata.len()) {
+            match Leased::of(file) {
                 Ok(leased) => return Ok((leased.into(), FileId::of(&metadata))),
                 Err(file) => file,
-            };
-            return read_opened_with_id(file).map(|(bytes, id)| (bytes.into(), id));
+            }
+        } else {
+            file
         }
-    }
+    };
     read_opened_with_id(file).map(|(bytes, id)| (bytes.into(), id))
 }
 
@@ -534,7 +536,7 @@ mod tests {
     fn a_large_file_nobody_writes_is_mapped_and_opening_it_for_writing_breaks_the_lease() {
         let folder = tempfile::tempdir().unwrap();
         let (path, content) = large_file(folder.path());
-        let (bytes, id) = read_or_lease(File::open(&path).unwrap()).unwrap();
+        let (bytes, id) = lease_or_read(File::open(&path).unwrap()).unwrap();
         assert_eq!(&bytes[..], &content[..]);
         assert_eq!(id, FileId::of_path(&path));
         if !leases_enabled() {
@@ -569,13 +571,13 @@ mod tests {
             .append(true)
             .open(&path)
             .unwrap();
-        let (bytes, _) = read_or_lease(File::open(&path).unwrap()).unwrap();
+        let (bytes, _) = lease_or_read(File::open(&path).unwrap()).unwrap();
         assert!(!bytes.is_leased());
         assert_eq!(&bytes[..], &content[..]);
         drop(writing);
         let small = folder.path().join("small.bin");
         std::fs::write(&small, &content[..1000]).unwrap();
-        let (bytes, _) = read_or_lease(File::open(&small).unwrap()).unwrap();
+        let (bytes, _) = lease_or_read(File::open(&small).unwrap()).unwrap();
         assert!(!bytes.is_leased());
         assert_eq!(&bytes[..], &content[..1000]);
     }

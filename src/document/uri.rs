@@ -1,7 +1,7 @@
 //! URIs in glTF: data URIs decoded in memory, relative references read from the asset's own
 //! folder only. Nothing is ever fetched from a network, and no path may leave the folder.
 
-use super::file::{read_or_lease, FileError, FileId, Kept};
+use super::file::{lease_or_read, read_opened_with_id, FileError, FileId, Kept};
 use super::{Bytes, Elsewhere};
 use base64::Engine;
 use std::collections::HashMap;
@@ -213,6 +213,8 @@ pub struct FolderResources {
     /// Files mapped while leased rather than read, by name, held to the end: whether each
     /// lease held is asked once the output is written ([`FolderResources::changed_since_read`]).
     leased: Mutex<Vec<(String, Arc<Bytes>)>>,
+    /// Whether large files read whole are mapped while leased ([`FolderResources::leasing_large_files`]).
+    lease_large: bool,
 }
 
 /// Whether a file was read whole ([`ResourceLoader::load`]) or as a buffer, perhaps left
@@ -256,7 +258,21 @@ impl FolderResources {
             read: Default::default(),
             shared: Default::default(),
             leased: Default::default(),
+            lease_large: false,
         }
+    }
+
+    /// Maps each file from 16 MiB up that is read whole while this process holds a read
+    /// lease on it, instead of reading it (Linux; elsewhere, or when no lease can be had, it
+    /// is read): for a short-lived process, such as one upgrade, far faster than filling
+    /// fresh memory. While a lease holds, another process that opens the file for writing
+    /// or truncates it waits, until the bytes are let go or for lease-break-time (45 s by
+    /// default), after which it goes ahead and a mapped page past a new end faults: ask
+    /// [`FolderResources::changed_since_read`] before keeping what was made of the bytes,
+    /// and do not hold them for long.
+    pub fn leasing_large_files(mut self) -> Self {
+        self.lease_large = true;
+        self
     }
 
     /// The first file mapped rather than read whose lease has broken since: another process
@@ -380,15 +396,25 @@ impl FolderResources {
     }
 }
 
-/// [`read_or_lease`] as a [`Kept`].
+/// [`read_opened_with_id`] as a [`Kept`].
 fn read_whole(file: std::fs::File) -> Result<(Kept, Option<FileId>), FileError> {
-    read_or_lease(file).map(|(bytes, id)| (Kept::Read(Arc::new(bytes)), id))
+    read_opened_with_id(file).map(|(bytes, id)| (Kept::Read(Arc::new(bytes.into())), id))
+}
+
+/// [`lease_or_read`] as a [`Kept`].
+fn lease_or_read_whole(file: std::fs::File) -> Result<(Kept, Option<FileId>), FileError> {
+    lease_or_read(file).map(|(bytes, id)| (Kept::Read(Arc::new(bytes)), id))
 }
 
 impl ResourceLoader for FolderResources {
     fn load(&self, relative: &str) -> Result<Arc<Bytes>, LoadError> {
         // A whole read (and what the cache holds of one) is never left in its file.
-        match self.read_with(relative, true, read_whole)? {
+        let read = if self.lease_large {
+            lease_or_read_whole
+        } else {
+            read_whole
+        };
+        match self.read_with(relative, true, read)? {
             Kept::Read(bytes) => Ok(bytes),
             Kept::Elsewhere(_) => Err(LoadError::Io(format!("{relative}: not read whole"))),
         }
@@ -504,5 +530,32 @@ mod tests {
         drop((first, buffer, again));
         std::fs::write(dir.path().join("a.bin"), b"second").unwrap();
         assert_eq!(&loader.load("a.bin").unwrap()[..], b"second");
+    }
+
+    #[test]
+    fn large_files_read_whole_are_leased_only_when_the_loader_is_asked_to() {
+        let dir = tempfile::tempdir().unwrap();
+        let content: Vec<u8> = (0..17 << 20).map(|i: u32| (i % 251) as u8).collect();
+        std::fs::write(dir.path().join("big.bin"), &content).unwrap();
+        let reading = FolderResources::new(dir.path());
+        let read = reading.load("big.bin").unwrap();
+        assert!(!read.is_leased());
+        assert_eq!(&read[..], &content[..]);
+        let leasing = FolderResources::new(dir.path()).leasing_large_files();
+        let mapped = leasing.load("big.bin").unwrap();
+        let leases =
+            std::fs::read_to_string("/proc/sys/fs/leases-enable").is_ok_and(|v| v.trim() == "1");
+        assert_eq!(mapped.is_leased(), cfg!(target_os = "linux") && leases);
+        assert_eq!(&mapped[..], &content[..]);
+        assert_eq!(leasing.changed_since_read(), None);
+        #[cfg(target_os = "linux")]
+        if mapped.is_leased() {
+            // Opened for writing by another (here without waiting, refused): the lease breaks.
+            let mut writer = std::fs::OpenOptions::new();
+            writer.write(true);
+            std::os::unix::fs::OpenOptionsExt::custom_flags(&mut writer, libc::O_NONBLOCK);
+            assert!(writer.open(dir.path().join("big.bin")).is_err());
+            assert_eq!(leasing.changed_since_read().as_deref(), Some("big.bin"));
+        }
     }
 }
