@@ -10,13 +10,9 @@ use std::ops::{Deref, Range};
 use std::sync::Arc;
 
 /// A file's bytes in memory: read, or mapped while leased.
-#[derive(Default)]
 pub struct Bytes(Storage);
 
-#[derive(Default)]
 enum Storage {
-    #[default]
-    Empty,
     Read(Vec<u8>),
     #[cfg(target_os = "linux")]
     Leased(super::file::Leased),
@@ -28,7 +24,7 @@ impl Bytes {
     /// writing or truncated it since).
     pub fn still_as_read(&self) -> bool {
         match &self.0 {
-            Storage::Empty | Storage::Read(_) => true,
+            Storage::Read(_) => true,
             #[cfg(target_os = "linux")]
             Storage::Leased(leased) => leased.unbroken(),
         }
@@ -37,7 +33,7 @@ impl Bytes {
     /// Whether they are mapped from a leased file rather than read.
     pub fn is_leased(&self) -> bool {
         match &self.0 {
-            Storage::Empty | Storage::Read(_) => false,
+            Storage::Read(_) => false,
             #[cfg(target_os = "linux")]
             Storage::Leased(_) => true,
         }
@@ -48,6 +44,12 @@ impl Bytes {
 impl From<super::file::Leased> for Bytes {
     fn from(leased: super::file::Leased) -> Self {
         Bytes(Storage::Leased(leased))
+    }
+}
+
+impl Default for Bytes {
+    fn default() -> Self {
+        Vec::new().into()
     }
 }
 
@@ -80,7 +82,6 @@ impl Deref for Bytes {
 
     fn deref(&self) -> &[u8] {
         match &self.0 {
-            Storage::Empty => &[],
             Storage::Read(bytes) => bytes,
             #[cfg(target_os = "linux")]
             Storage::Leased(leased) => leased,

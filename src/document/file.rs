@@ -456,6 +456,22 @@ pub(crate) fn kind(file_type: &FileType) -> &'static str {
     }
 }
 
+/// Whether this system grants file leases at all (`/proc/sys/fs/leases-enable`).
+#[cfg(all(test, target_os = "linux"))]
+pub(crate) fn leases_enabled() -> bool {
+    std::fs::read_to_string("/proc/sys/fs/leases-enable").is_ok_and(|v| v.trim() == "1")
+}
+
+/// Opens `path` for writing as another process would, but told not to wait for a lease:
+/// refused while one holds, and the lease's break has begun.
+#[cfg(all(test, target_os = "linux"))]
+pub(crate) fn open_for_writing_without_waiting(path: &Path) -> io::Result<File> {
+    let mut writer = std::fs::OpenOptions::new();
+    writer.write(true);
+    std::os::unix::fs::OpenOptionsExt::custom_flags(&mut writer, libc::O_NONBLOCK);
+    writer.open(path)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -515,12 +531,6 @@ mod tests {
         assert_eq!(refused.to_string(), "not a regular file (a FIFO)");
     }
 
-    /// Whether this system grants file leases at all (`/proc/sys/fs/leases-enable`).
-    #[cfg(target_os = "linux")]
-    fn leases_enabled() -> bool {
-        std::fs::read_to_string("/proc/sys/fs/leases-enable").is_ok_and(|v| v.trim() == "1")
-    }
-
     #[cfg(target_os = "linux")]
     fn large_file(folder: &Path) -> (std::path::PathBuf, Vec<u8>) {
         let path = folder.join("large.bin");
@@ -552,14 +562,14 @@ mod tests {
         // An opener for writing must break the lease first: without waiting it is told to
         // come back, and the break has begun (no signal reaches this process, which a
         // signal's default would end).
-        let mut writer = std::fs::OpenOptions::new();
-        writer.write(true);
-        std::os::unix::fs::OpenOptionsExt::custom_flags(&mut writer, libc::O_NONBLOCK);
-        let refused = writer.open(&path).unwrap_err();
+        let refused = open_for_writing_without_waiting(&path).unwrap_err();
         assert_eq!(refused.kind(), io::ErrorKind::WouldBlock, "{refused}");
         assert!(!bytes.still_as_read(), "the broken lease shows");
         drop(bytes);
-        assert!(writer.open(&path).is_ok(), "the lease went with the bytes");
+        assert!(
+            open_for_writing_without_waiting(&path).is_ok(),
+            "the lease went with the bytes"
+        );
     }
 
     #[cfg(target_os = "linux")]
