@@ -3,7 +3,7 @@
 # generated glTF 1.0 asset, in the same session, best of five runs each, and prints the ratio.
 # gltfmat runs with --no-verify (gltf-pipeline proves nothing; scripts/bench/verify.sh times the
 # proof) but still checks its output before writing it.
-#   scripts/bench/vs-pipeline.sh [vertices]     (default 2 000 000 vertices, 4 000 000 triangles, ~110 MB)
+#   scripts/bench/vs-pipeline.sh [vertices]     (default 2 000 000 vertices, 4 000 000 triangles, ~176 MB)
 source "$(dirname "$0")/common.sh"
 vertices=${1:-2000000}
 python3 scripts/bench/gen_gltf1.py "$work" "$vertices"
