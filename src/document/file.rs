@@ -282,15 +282,13 @@ impl Leased {
         let Some(length) = file.metadata().ok().map(|m| m.len() as usize) else {
             return Err(Self::let_go(file));
         };
+        // Not populated when mapped: its pages are mapped as the walks over it first read
+        // them, on all cores (a 176 MB file took 13 ms to populate on one, 10 ms to fault
+        // in on two; the upgrade's median fell from 173 to 166 ms over 61 runs).
         // SAFETY: while the lease holds, no process can shrink or rewrite the file; one that
         // breaks it waits lease-break-time first, and the break is reported before any
         // output is kept (`unbroken`).
-        let map = unsafe {
-            memmap2::MmapOptions::new()
-                .len(length)
-                .populate()
-                .map(&file)
-        };
+        let map = unsafe { memmap2::MmapOptions::new().len(length).map(&file) };
         match map {
             Ok(map) => Ok(Leased { map, file }),
             Err(_) => Err(Self::let_go(file)),
