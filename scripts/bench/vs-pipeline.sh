@@ -12,13 +12,12 @@ ours_cmd=(./target/release/gltfmat upgrade "$work/big.gltf" -o "$work/out-ours.g
 theirs_cmd=(node scripts/bench/node_modules/gltf-pipeline/bin/gltf-pipeline.js -i "$work/big.gltf" -o "$work/out-theirs.glb")
 # Five runs each, one of each tool in turn: this machine's speed drifts within minutes, and
 # runs taken in turn see the same drift, where five of one tool and then five of the other
-# may not. Each tool's fastest run counts.
-ours="" theirs=""
+# may not. Each tool's fastest run (with its peak memory) counts.
 for _ in 1 2 3 4 5; do
-  read -r s kb < <(best_of 1 "${ours_cmd[@]}")
-  if [ -z "$ours" ] || [ "$(echo "$s < $ours" | bc -l)" = 1 ]; then ours=$s ours_kb=$kb; fi
-  read -r s kb < <(best_of 1 "${theirs_cmd[@]}")
-  if [ -z "$theirs" ] || [ "$(echo "$s < $theirs" | bc -l)" = 1 ]; then theirs=$s theirs_kb=$kb; fi
+  best_of 1 "${ours_cmd[@]}" >>"$work/ours.times"
+  best_of 1 "${theirs_cmd[@]}" >>"$work/theirs.times"
 done
+read -r ours ours_kb < <(sort -g "$work/ours.times" | head -1)
+read -r theirs theirs_kb < <(sort -g "$work/theirs.times" | head -1)
 printf 'upgrade: gltfmat %.2fs %d MB (incl. checking its output)  gltf-pipeline %.2fs %d MB  ratio %.1fx\n' \
   "$ours" $((ours_kb / 1024)) "$theirs" $((theirs_kb / 1024)) "$(echo "$theirs / $ours" | bc -l)"
