@@ -6,7 +6,7 @@ use crate::document::Node;
 pub use crate::gltf::accessor::FLOAT;
 use crate::gltf::accessor::{
     component_count, component_size, decode, decode_component, normalise, FloatBounds, Layout,
-    BYTE, MAX_COMPONENTS, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
+    BYTE, MAX_COMPONENTS, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
 };
 use crate::legacy::source::Source;
 use rayon::prelude::*;
@@ -260,65 +260,54 @@ fn divisor(vertex: &[f64]) -> Option<f64> {
 /// The weights of a run of vertices, each vertex's divided by their sum when it is not 1
 /// (see [`divisor`]); what was divided is added to `tally`.
 fn renormalised_run(elements: Elements, first: usize, out: &mut [f64], tally: &Tally) {
-    let components = elements.layout.components.max(1);
     weights_of_run(elements, first, out);
-    let (mut vertices, mut lowest) = (0, f64::INFINITY);
-    for run in out.chunks_mut(RUN * components) {
-        let mut divided = [false; RUN];
-        for (vertex, divided) in run.chunks_exact_mut(components).zip(&mut divided) {
-            if let Some(sum) = divisor(vertex) {
-                vertex.iter_mut().for_each(|w| *w /= sum);
-                *divided = true;
-                vertices += 1;
-                lowest = lowest.min(sum);
-            }
-        }
-        settle_in_single_precision(run, components, &divided);
-    }
+    let (vertices, lowest) = match elements.layout.components {
+        // Skin weights are VEC4 (2.0 allows nothing else): with a vertex's size known when
+        // compiled, its loops are unrolled.
+        4 => renormalise_vertices::<4>(out, 4),
+        n => renormalise_vertices::<0>(out, n.max(1)),
+    };
     if vertices > 0 {
         tally.add(vertices, lowest);
     }
 }
 
-/// Rounds the weights of each `divided` vertex (they sum to 1) to single precision, as they
-/// are stored, and moves the rounding residue into its largest weight, so that their
-/// single-precision sum, added in order as the check adds them, is 1 too. `weights` holds
-/// `components` a vertex, at most [`RUN`] vertices. The vertices are settled together, a
-/// round at a time: one vertex's sum is a chain of dependent roundings, which done vertex
-/// after vertex made this the upgrade's slowest loop.
-fn settle_in_single_precision(weights: &mut [f64], components: usize, divided: &[bool]) {
-    let n = components.max(1);
-    let count = (weights.len() / n).min(divided.len()).min(RUN);
-    let mut largest = [0; RUN];
-    for (v, vertex) in weights.chunks_exact_mut(n).take(count).enumerate() {
-        if divided[v] {
-            vertex.iter_mut().for_each(|w| *w = f64::from(*w as f32));
-            largest[v] = (0..n)
-                .max_by(|&a, &b| vertex[a].total_cmp(&vertex[b]))
-                .unwrap_or(0);
+/// Divides the weights of each vertex (`N` of them, or `n` when `N` is 0) that needs it by
+/// their sum and settles them in single precision; returns how many vertices were divided
+/// and the lowest sum divided by.
+fn renormalise_vertices<const N: usize>(weights: &mut [f64], n: usize) -> (usize, f64) {
+    let n = if N == 0 { n } else { N };
+    let (mut vertices, mut lowest) = (0, f64::INFINITY);
+    for vertex in weights.chunks_exact_mut(n) {
+        if let Some(sum) = divisor(vertex) {
+            vertex.iter_mut().for_each(|w| *w /= sum);
+            settle_in_single_precision(vertex);
+            vertices += 1;
+            lowest = lowest.min(sum);
         }
     }
-    // A vertex whose sum is 1 is left as it is by later rounds: each round's result
-    // depends only on the weights, so this is one vertex's loop stopped when settled.
+    (vertices, lowest)
+}
+
+/// Rounds a vertex's weights (they sum to 1) to single precision, as they are stored, and
+/// moves the rounding residue into the largest weight, so that their single-precision sum,
+/// added in order as the check adds them, is 1 too. Most vertices settle in one round; the
+/// rounds stop there.
+#[inline(always)]
+fn settle_in_single_precision(weights: &mut [f64]) {
+    weights.iter_mut().for_each(|w| *w = f64::from(*w as f32));
+    // The last of equal largest weights, as `max_by` picks it: any would do, but one rule.
+    let largest =
+        (0..weights.len()).fold(0, |at, c| if weights[c] >= weights[at] { c } else { at });
     for _ in 0..3 {
-        let mut sums = [0f32; RUN];
-        for c in 0..n {
-            for (v, sum) in sums.iter_mut().take(count).enumerate() {
-                *sum = (f64::from(*sum) + weights[v * n + c]) as f32;
-            }
-        }
-        let mut settled = true;
-        for (v, sum) in sums.iter().take(count).enumerate() {
-            let residue = 1.0 - f64::from(*sum);
-            if divided[v] && residue != 0.0 {
-                let at = v * n + largest[v];
-                weights[at] = f64::from((weights[at] + residue) as f32);
-                settled = false;
-            }
-        }
-        if settled {
+        let sum = weights
+            .iter()
+            .fold(0f32, |sum, &w| (f64::from(sum) + w) as f32);
+        let residue = 1.0 - f64::from(sum);
+        if residue == 0.0 {
             break;
         }
+        weights[largest] = f64::from((weights[largest] + residue) as f32);
     }
 }
 
@@ -335,7 +324,8 @@ fn output_type(role: Role, input: u64) -> (u64, bool) {
     }
 }
 
-/// Appends values (`components` per element) to `out` with the given component type.
+/// Appends values (`components` per element) to `out` with the given component type (an
+/// unsigned type takes integers or single-precision floats: see [`to_unsigned`]).
 pub fn pack_values(
     values: &[f64],
     components: usize,
@@ -425,20 +415,15 @@ fn pack_elements(
     }
 }
 
-/// `v` rounded half away from zero and clamped to [`low`, `high`] (integers, as the
-/// bounds of an integer type are), ready for the cast to that type. The same integer as
-/// `v.round().clamp(low, high)` (clamping to integers and rounding commute; a zero's sign
-/// is lost in the cast), without the library call `round` is on the baseline x86-64: this
-/// runs once a value of every converted accessor.
-fn to_integer(v: f64, low: f64, high: f64) -> f64 {
-    let v = v.clamp(low, high);
-    // Within every integer type's range a truncating cast is exact, and so is `v - whole`.
-    let whole = v as i64 as f64;
-    match v - whole {
-        d if d >= 0.5 => whole + 1.0,
-        d if d <= -0.5 => whole - 1.0,
-        _ => whole,
-    }
+/// `v` clamped to [0, `high`] (an integer, as the top of an unsigned type is) and raised by
+/// a half, so that the cast to that type, which truncates, makes it `v` rounded half away
+/// from zero: the same integer as `v.round().clamp(0.0, high)` (NaN becomes 0 either way).
+/// Exact for every value that reaches it, which is a value a 1.0 accessor stores: an integer
+/// or a single-precision float, to which double precision adds a half without rounding.
+/// Without `round` (a library call on the baseline x86-64) or a branch, the compiler
+/// vectorises the loops this runs in, once a value of every converted accessor.
+fn to_unsigned(v: f64, high: f64) -> f64 {
+    v.clamp(0.0, high) + 0.5
 }
 
 /// Elements being written as one component type.
@@ -464,27 +449,19 @@ fn no_bounds() -> Bounds {
 impl<R: Fn(usize, &mut [f64]) + Sync> Packing<R> {
     /// Writes every element into `target` as `component_type`; returns the min/max of the
     /// values stored. One loop per component type: the type is matched once, not once per
-    /// value.
+    /// value. Converted data is stored unsigned or as floats (see `output_type`).
     fn encode(&self, component_type: u64, target: &mut [u8]) -> (Vec<f64>, Vec<f64>) {
         match component_type {
-            BYTE => self.all(target, |v| {
-                let x = to_integer(v, -128.0, 127.0) as i8;
-                (x.to_le_bytes(), f64::from(x))
-            }),
             UNSIGNED_BYTE => self.all(target, |v| {
-                let x = to_integer(v, 0.0, 255.0) as u8;
+                let x = to_unsigned(v, 255.0) as u8;
                 ([x], f64::from(x))
             }),
-            SHORT => self.all(target, |v| {
-                let x = to_integer(v, -32768.0, 32767.0) as i16;
-                (x.to_le_bytes(), f64::from(x))
-            }),
             UNSIGNED_SHORT => self.all(target, |v| {
-                let x = to_integer(v, 0.0, 65535.0) as u16;
+                let x = to_unsigned(v, 65535.0) as u16;
                 (x.to_le_bytes(), f64::from(x))
             }),
             UNSIGNED_INT => self.all(target, |v| {
-                let x = to_integer(v, 0.0, f64::from(u32::MAX)) as u32;
+                let x = to_unsigned(v, f64::from(u32::MAX)) as u32;
                 (x.to_le_bytes(), f64::from(x))
             }),
             _ => self.all(target, |v| {
@@ -784,13 +761,11 @@ mod tests {
 
     #[test]
     fn values_become_the_integers_rounding_and_clamping_make() {
-        let values = [
+        let mut values = vec![
             -1e300,
             -70000.5,
             -2.5,
-            -1.5,
             -0.5,
-            -0.49,
             -0.0,
             0.0,
             0.49,
@@ -805,21 +780,37 @@ mod tests {
             f64::NEG_INFINITY,
             f64::NAN,
         ];
-        for (low, high) in [(-128.0, 127.0), (0.0, 65535.0), (0.0, f64::from(u32::MAX))] {
-            for v in values {
-                let expected = v.round().clamp(low, high) as i64;
-                assert_eq!(
-                    to_integer(v, low, high) as i64,
-                    expected,
-                    "{v} in [{low}, {high}]"
-                );
+        // Single-precision values beside halves and where their spacing reaches 1 and 2.
+        let beside = [
+            0.5f32,
+            1.5,
+            255.5,
+            65535.5,
+            8_388_608.0,
+            16_777_216.0,
+            4_294_967_296.0,
+        ];
+        for at in beside {
+            values.extend([at.next_down(), at, at.next_up()].map(f64::from));
+        }
+        for (bits, step) in [
+            (0x3f00_0000_u32, 1),
+            (0x4700_0000, 97),
+            (0x4f00_0000, 9_973),
+        ] {
+            values.extend((0..2_000).map(|i| f64::from(f32::from_bits(bits + i * step))));
+        }
+        for high in [255.0, 65535.0, f64::from(u32::MAX)] {
+            for &v in &values {
+                let expected = v.round().clamp(0.0, high) as u64;
+                assert_eq!(to_unsigned(v, high) as u64, expected, "{v} in [0, {high}]");
             }
         }
     }
 
-    /// `weights` (VEC4 floats) packed as skin weights: what renormalising changed, and
-    /// whether the output kept the input's bytes.
-    fn pack_weights(weights: &[[f32; 4]]) -> (Option<Renormalised>, bool) {
+    /// `weights` (VEC4 floats) packed as skin weights: what renormalising changed, and the
+    /// weights written.
+    fn pack_weights(weights: &[[f32; 4]]) -> (Option<Renormalised>, Vec<[f32; 4]>) {
         use base64::Engine;
         let bin: Vec<u8> = weights
             .iter()
@@ -843,7 +834,12 @@ mod tests {
         let accessor = read(&source, "w").unwrap();
         let mut binary = Binary::default();
         let packed = pack(&accessor, Role::Weights, &mut binary);
-        (packed.renormalised, binary.to_vec() == bin)
+        let written = (binary.to_vec().chunks_exact(16))
+            .map(|v| {
+                std::array::from_fn(|c| f32::from_le_bytes(v[4 * c..][..4].try_into().unwrap()))
+            })
+            .collect();
+        (packed.renormalised, written)
     }
 
     #[test]
@@ -860,14 +856,18 @@ mod tests {
             .filter(|s: &f64| (s - 1.0).abs() > WEIGHT_SUM_TOLERANCE)
             .collect();
         let lowest = sums.iter().copied().fold(f64::INFINITY, f64::min);
-        let (renormalised, kept) = pack_weights(&weights);
+        let (renormalised, written) = pack_weights(&weights);
         let renormalised = renormalised.expect("some sums are not 1");
         assert_eq!(renormalised.vertices, sums.len());
         assert_eq!(renormalised.lowest, lowest);
-        assert!(!kept, "divided weights are new data");
-        let (renormalised, kept) = pack_weights(&vec![[0.5, 0.25, 0.25, 0.0]; BLOCK + 3]);
+        assert_ne!(written, weights, "divided weights are new data");
+        let normalised = vec![[0.5, 0.25, 0.25, 0.0]; BLOCK + 3];
+        let (renormalised, written) = pack_weights(&normalised);
         assert!(renormalised.is_none(), "every sum is 1");
-        assert!(kept, "weights that sum to 1 are kept as they are");
+        assert_eq!(
+            written, normalised,
+            "weights that sum to 1 are kept as they are"
+        );
     }
 
     #[test]
@@ -916,7 +916,7 @@ mod tests {
     #[test]
     fn weights_are_divided_by_their_sum_until_single_precision_sums_to_one() {
         let mut weights = [0.1, 0.05, 0.03, 0.0].map(|w: f64| w / 0.18);
-        settle_in_single_precision(&mut weights, 4, &[true]);
+        settle_in_single_precision(&mut weights);
         let single: f32 = weights.iter().fold(0f32, |s, &w| (f64::from(s) + w) as f32);
         assert_eq!(single, 1.0);
         assert!((weights[0] - 0.1 / 0.18).abs() < 1e-6);
@@ -924,53 +924,54 @@ mod tests {
     }
 
     #[test]
-    fn vertices_settled_together_end_as_each_settled_alone_would() {
-        // One vertex's weights settled on their own: rounded to single precision, then the
-        // residue of their single-precision sum moved into the largest, at most 3 times.
-        fn alone(weights: &mut [f64]) {
-            let single_sum = |w: &[f64]| w.iter().fold(0f32, |s, &v| (f64::from(s) + v) as f32);
-            weights.iter_mut().for_each(|w| *w = f64::from(*w as f32));
-            let largest = (0..4)
-                .max_by(|&a, &b| weights[a].total_cmp(&weights[b]))
-                .unwrap();
-            for _ in 0..3 {
-                let residue = 1.0 - f64::from(single_sum(weights));
-                if residue == 0.0 {
-                    break;
-                }
-                weights[largest] = f64::from((weights[largest] + residue) as f32);
-            }
-        }
+    fn renormalised_weights_are_the_single_precision_quotients_with_the_residue_in_the_largest() {
         let mut state = 88_172_645_463_325_252_u64;
         let mut next = || {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
+            (state >> 40) as f32 / (1u32 << 24) as f32
         };
-        let mut weights: Vec<f64> = (0..RUN * 4)
-            .map(|i| if i % 7 == 3 { 0.0 } else { next() })
+        // Two blocks and a bit of vertices, with zeros, sums from about 0.05 to 4.
+        let weights: Vec<[f32; 4]> = (0..2 * BLOCK + 77)
+            .map(|v| std::array::from_fn(|c| if (v + c) % 5 == 3 { 0.0 } else { next() }))
             .collect();
-        let divided: Vec<bool> = (0..RUN).map(|v| v % 5 != 0).collect();
-        for (vertex, &divided) in weights.chunks_exact_mut(4).zip(&divided) {
-            let sum: f64 = vertex.iter().sum();
-            if divided {
-                vertex.iter_mut().for_each(|w| *w /= sum);
+        let (renormalised, written) = pack_weights(&weights);
+        assert!(renormalised.unwrap().vertices > BLOCK);
+        let single = |w: &[f32; 4]| {
+            w.iter()
+                .fold(0f32, |s, &v| (f64::from(s) + f64::from(v)) as f32)
+        };
+        for (input, output) in weights.iter().zip(&written) {
+            let sum: f64 = input.iter().map(|&w| f64::from(w)).sum();
+            if (sum - 1.0).abs() <= WEIGHT_SUM_TOLERANCE || sum == 0.0 {
+                assert_eq!(input, output, "a vertex that sums to 1 (or to 0) is kept");
+                continue;
             }
-        }
-        let mut expected = weights.clone();
-        for (vertex, &divided) in expected.chunks_exact_mut(4).zip(&divided) {
-            if divided {
-                alone(vertex);
+            let quotient = input.map(|w| (f64::from(w) / sum) as f32);
+            let largest = (0..4)
+                .max_by(|&a, &b| quotient[a].total_cmp(&quotient[b]))
+                .unwrap();
+            for c in 0..4 {
+                if c == largest {
+                    let moved = f64::from(output[c]) - f64::from(quotient[c]);
+                    assert!(
+                        moved.abs() <= 4e-7,
+                        "{input:?} → {output:?}: the residue is rounding"
+                    );
+                } else {
+                    assert_eq!(
+                        output[c], quotient[c],
+                        "{input:?} → {output:?}: component {c}"
+                    );
+                }
             }
-        }
-        settle_in_single_precision(&mut weights, 4, &divided);
-        assert_eq!(weights, expected);
-        // Within the output check's allowance: a single-precision ulp near 1 per weight.
-        let single = |w: &[f64]| w.iter().fold(0f32, |s, &v| (f64::from(s) + v) as f32);
-        for (w, _) in weights.chunks_exact(4).zip(&divided).filter(|(_, &d)| d) {
-            let allowance = 2e-7 * w.iter().filter(|&&v| v != 0.0).count() as f64;
-            assert!((f64::from(single(w)) - 1.0).abs() <= allowance, "{w:?}");
+            // Within the output check's allowance: a single-precision ulp near 1 per weight.
+            let allowance = 2e-7 * output.iter().filter(|&&w| w != 0.0).count() as f64;
+            assert!(
+                (f64::from(single(output)) - 1.0).abs() <= allowance,
+                "{output:?}"
+            );
         }
     }
 
