@@ -48,6 +48,8 @@ pub(crate) mod gltf;
 pub(crate) mod legacy;
 pub mod report;
 pub mod shade;
+#[cfg(test)]
+mod test_random;
 pub mod upgrade;
 
 pub use check::{check_bytes, check_path, CheckOptions, Profile, Report};

@@ -925,13 +925,8 @@ mod tests {
 
     #[test]
     fn renormalised_weights_are_the_single_precision_quotients_with_the_residue_in_the_largest() {
-        let mut state = 88_172_645_463_325_252_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u32 << 24) as f32
-        };
+        let mut sequence = crate::test_random::Sequence::new(88_172_645_463_325_252);
+        let mut next = || sequence.unit();
         // Two blocks and a bit of vertices, with zeros, sums from about 0.05 to 4.
         let weights: Vec<[f32; 4]> = (0..2 * BLOCK + 77)
             .map(|v| std::array::from_fn(|c| if (v + c) % 5 == 3 { 0.0 } else { next() }))

@@ -397,13 +397,8 @@ mod tests {
 
     /// Vertices drawn from those values by a fixed generator, clean ones among them.
     fn vertices(count: usize) -> Vec<([f64; 4], [f64; 4])> {
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = |n: usize| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % n as u64) as usize
-        };
+        let mut sequence = crate::test_random::Sequence::new(0x2545_f491_4f6c_dd1d);
+        let mut next = |n: usize| sequence.below(n);
         let clean = [
             ([0.0, 1.0, 2.0, 0.0], [0.25, 0.25, 0.5, 0.0]),
             ([3.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0]),
@@ -479,13 +474,8 @@ mod tests {
 
     #[test]
     fn influences_read_as_stored_have_the_answer_they_have_as_doubles() {
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u32 << 24) as f32
-        };
+        let mut sequence = crate::test_random::Sequence::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = || sequence.unit();
         let (mut clean, mut reported) = (0, 0);
         for _ in 0..50_000 {
             // Weights that sum to about 1, off by up to a few single-precision steps, some
