@@ -187,7 +187,9 @@ fn check_primitive(sets: &[Set], at: &str, limit: JointLimit, out: &mut Findings
     }
 }
 
-/// Checks the influences of `vertices`; false when their bytes cannot be read.
+/// Checks the influences of `vertices`; false when their bytes cannot be read. A block of
+/// one set is first asked [`nothing_to_report`]: read as stored when its types allow (see
+/// [`Set::read_as_stored`]), else as the doubles the walk would read anyway.
 fn check_block(
     sets: &[Set],
     vertices: &Range<usize>,
@@ -195,22 +197,33 @@ fn check_block(
     limit: JointLimit,
     out: &mut Findings,
 ) -> bool {
-    let clean = match sets {
-        [set] => match set.nothing_to_report(vertices, limit.max_joint) {
-            Some(clean) => clean,
-            None => return false,
-        },
-        _ => false,
+    let one_set = match sets {
+        [set] => Some(set),
+        _ => None,
     };
-    if clean {
-        return true;
+    if let Some(set) = one_set.filter(|set| set.read_as_stored()) {
+        match set.stored_nothing_to_report(vertices, limit.max_joint) {
+            None => return false,
+            Some(true) => return true,
+            Some(false) => {}
+        }
     }
     let decoded: Option<Vec<(Vec<f64>, Vec<f64>)>> =
         (sets.iter()).map(|set| set.decode(vertices)).collect();
     let Some(decoded) = decoded else {
         return false;
     };
-    walk(&decoded, vertices, at, limit, out);
+    let clean = match (one_set, &decoded[..]) {
+        (Some(set), [(joints, weights)]) if !set.read_as_stored() => {
+            let vertices = (joints.chunks_exact(4).zip(weights.chunks_exact(4)))
+                .map(|(j, w)| (four(j), four(w)));
+            nothing_to_report(vertices, limit.max_joint, sum_as_the_walk_adds)
+        }
+        _ => false,
+    };
+    if !clean {
+        walk(&decoded, vertices, at, limit, out);
+    }
     true
 }
 
@@ -225,41 +238,32 @@ impl Set<'_> {
         Some((self.joints.decode(vertices)?, weights))
     }
 
-    /// Whether `vertices` have nothing to report (see [`nothing_to_report`]); None when their
-    /// bytes cannot be read. The usual kinds, unsigned joints with float weights, are read
-    /// as stored: in their own types a vertex's tests take half the time they take as
-    /// doubles.
-    fn nothing_to_report(&self, vertices: &Range<usize>, max_joint: f64) -> Option<bool> {
-        let float_weights = self.weights.layout.component_type == gl::FLOAT;
-        match (self.joints.layout.component_type, float_weights) {
-            (gl::UNSIGNED_BYTE, true) => {
-                self.stored_nothing_to_report(vertices, max_joint, |[b]| u16::from(b))
-            }
-            (gl::UNSIGNED_SHORT, true) => {
-                self.stored_nothing_to_report(vertices, max_joint, u16::from_le_bytes)
-            }
-            _ => {
-                let (joints, weights) = self.decode(vertices)?;
-                let vertices = (joints.chunks_exact(4).zip(weights.chunks_exact(4)))
-                    .map(|(j, w)| (four(j), four(w)));
-                Some(nothing_to_report(vertices, max_joint, sum_as_the_walk_adds))
-            }
-        }
+    /// Whether its influences are of the usual kinds, unsigned joints with float weights,
+    /// which are tested as stored: in their own types a vertex's tests take half the time
+    /// they take as doubles.
+    fn read_as_stored(&self) -> bool {
+        let joints = self.joints.layout.component_type;
+        self.weights.layout.component_type == gl::FLOAT
+            && matches!(joints, gl::UNSIGNED_BYTE | gl::UNSIGNED_SHORT)
     }
 
-    /// [`Set::nothing_to_report`] of float weights and joints of `SIZE` bytes, read by `joint`.
-    fn stored_nothing_to_report<const SIZE: usize>(
-        &self,
-        vertices: &Range<usize>,
-        max_joint: f64,
-        joint: impl Fn([u8; SIZE]) -> u16,
-    ) -> Option<bool> {
+    /// [`nothing_to_report`] of `vertices` read as stored (see [`Set::read_as_stored`]);
+    /// None when their bytes cannot be read.
+    fn stored_nothing_to_report(&self, vertices: &Range<usize>, max_joint: f64) -> Option<bool> {
         let (joints, weights) = (self.joints.bytes(vertices)?, self.weights.bytes(vertices)?);
-        let joints = self.joints.stored(&joints, joint);
         let weights = self.weights.stored(&weights, f32::from_le_bytes);
         // Every joint compared is an integer, and so is `max_joint`.
         let limit = max_joint.min(f64::from(u16::MAX)) as u16;
-        Some(nothing_to_report(joints.zip(weights), limit, sum_of_floats))
+        Some(match self.joints.layout.component_type {
+            gl::UNSIGNED_BYTE => {
+                let joints = self.joints.stored(&joints, |[b]| u16::from(b));
+                nothing_to_report(joints.zip(weights), limit, sum_of_floats)
+            }
+            _ => {
+                let joints = self.joints.stored(&joints, u16::from_le_bytes);
+                nothing_to_report(joints.zip(weights), limit, sum_of_floats)
+            }
+        })
     }
 }
 
