@@ -46,6 +46,7 @@ pub mod document;
 mod error;
 pub(crate) mod gltf;
 pub(crate) mod legacy;
+pub mod output;
 pub mod report;
 pub mod shade;
 #[cfg(test)]
@@ -56,5 +57,7 @@ pub use check::{check_bytes, check_path, CheckOptions, Profile, Report};
 pub use diagnostic::{Code, Diagnostic, Location, Severity};
 pub use document::uri::{FolderResources, MemoryResources, NoResources, ResourceLoader};
 pub use error::Error;
-pub use shade::pairing::{compare, render, CompareOptions, Outcome, Picture, RenderOptions};
+pub use shade::pairing::{
+    compare, render, CompareOptions, Compared, Outcome, Picture, RenderOptions,
+};
 pub use upgrade::{prove, upgrade, ProofError, UpgradeError, UpgradeOptions, Upgraded};

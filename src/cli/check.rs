@@ -239,10 +239,12 @@ pub fn run(args: CheckArgs) -> Outcome {
                 None
             }
         });
-    // Written as rendered; a reader that went away (`| head`) is not an error.
+    // Written as rendered; a reader that went away (`| head`) is not an error, a full disk is.
     let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
-    let _ = write_each(args.format.format(), reports, &style, &mut stdout)
-        .and_then(|()| stdout.flush());
+    crate::streams::note(
+        write_each(args.format.format(), reports, &style, &mut stdout)
+            .and_then(|()| stdout.flush()),
+    );
     progress.finish_and_clear();
     Ok(if unreadable.get() {
         ExitCode::from(2)

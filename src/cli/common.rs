@@ -52,3 +52,10 @@ pub fn threshold(text: &str) -> Result<f64, String> {
         Err(format!("'{text}' is not a finite number ≥ 0"))
     }
 }
+
+/// An image as PNG bytes (encoding into memory cannot fail for an RGB image).
+pub fn png(image: &image::RgbImage) -> Vec<u8> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    let _ = image.write_to(&mut bytes, image::ImageFormat::Png);
+    bytes.into_inner()
+}

@@ -5,7 +5,7 @@ use gltfmat::shade::compare::DIRECTIONS;
 use gltfmat::shade::render::heatmap;
 use gltfmat::{compare, CompareOptions};
 use serde_json::json;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(clap::Args)]
@@ -29,6 +29,9 @@ pub struct CompareArgs {
     /// the extension when several pairs are compared.
     #[arg(long)]
     heatmap: Option<PathBuf>,
+    /// Replace existing heat map files.
+    #[arg(long)]
+    force: bool,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -92,8 +95,15 @@ pub fn run(args: CompareArgs) -> Outcome {
     options.pairs = parse_map(&args.material_map).map_err(Failure::usage)?;
     options.grid = args.grid;
     options.heat_maps = args.heatmap.is_some();
-    let outcomes = compare(&args.a, &args.b, &options)?;
     if let Some(path) = &args.heatmap {
+        // Refused before comparing, which can take a while; asked again for every file.
+        gltfmat::output::may_write(path, &[], args.force)
+            .map_err(|e| Failure::usage(e.to_string()))?;
+    }
+    let comparison = compare(&args.a, &args.b, &options)?;
+    let outcomes = comparison.outcomes;
+    if let Some(path) = &args.heatmap {
+        let mut maps = Vec::new();
         for (k, o) in outcomes.iter().enumerate() {
             let target = if outcomes.len() == 1 {
                 path.clone()
@@ -106,10 +116,13 @@ pub fn run(args: CompareArgs) -> Outcome {
                 ))
             };
             let image = heatmap(&o.result.per_texel, o.result.grid, args.threshold);
-            image
-                .save(&target)
-                .map_err(|e| Failure::usage(format!("{}: {e}", target.display())))?;
+            maps.push((target, crate::common::png(&image)));
         }
+        let files: Vec<(&Path, &[u8])> = (maps.iter())
+            .map(|(target, png)| (target.as_path(), png.as_slice()))
+            .collect();
+        gltfmat::output::write_files(&files, &comparison.inputs, args.force)
+            .map_err(|e| Failure::usage(e.to_string()))?;
     }
     if args.format == CompareFormat::Json {
         let list: Vec<_> = outcomes

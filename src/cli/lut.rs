@@ -22,6 +22,9 @@ pub struct LutArgs {
     /// Output file (default: standard output for csv; required for png).
     #[arg(short, long)]
     output: Option<PathBuf>,
+    /// Replace an existing output file.
+    #[arg(long)]
+    force: bool,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -59,7 +62,9 @@ pub fn run(args: LutArgs) -> Outcome {
         LutFormat::Png => table.to_png(),
     };
     let written = match &args.output {
-        Some(path) => std::fs::write(path, &bytes).map_err(|e| format!("{}: {e}", path.display())),
+        Some(path) => gltfmat::output::write_file(path, &bytes, &[], args.force)
+            .map(drop)
+            .map_err(|e| e.to_string()),
         None if args.format == LutFormat::Png => Err("--format png needs -o PATH".to_string()),
         None => std::io::stdout()
             .lock()

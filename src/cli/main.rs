@@ -2,11 +2,12 @@
 
 /// Writes to a standard stream (`print!` / `eprint!` for the CLI). A reader that went away
 /// (`gltfmat … | head`) is ignored: it ends nothing in the middle (an upgrade still writes
-/// its files) and is no panic.
+/// its files) and is no panic. Any other failure (a full disk) is kept by
+/// [`streams::note`] and makes the run exit 2 when it ends.
 macro_rules! write_std {
     ($stream:expr, $($arg:tt)*) => {{
         use std::io::Write as _;
-        let _ = write!($stream.lock(), $($arg)*);
+        crate::streams::note(write!($stream.lock(), $($arg)*));
     }};
 }
 
@@ -38,6 +39,8 @@ mod lut;
 mod render;
 mod rules;
 mod shell;
+mod signals;
+mod streams;
 mod upgrade;
 
 use clap::{CommandFactory, Parser, Subcommand};
@@ -90,9 +93,7 @@ enum Command {
 
 fn main() -> ExitCode {
     return_large_blocks_when_freed();
-    // An interrupted upgrade leaves no temporary behind (they can be as large as the output).
-    // Without a handler (another one already set) a killed run's are removed by the next.
-    let _ = ctrlc::set_handler(|| gltfmat::upgrade::output::exit_removing_unfinished(130));
+    signals::remove_temporaries_when_ended();
     let outcome = match Cli::parse().command {
         Command::Check(args) => check::run(args),
         Command::Upgrade(args) => upgrade::run(args),
@@ -104,7 +105,8 @@ fn main() -> ExitCode {
         Command::Completions { shell } => shell::completions(Cli::command(), shell),
         Command::Man => shell::man(Cli::command()),
     };
-    outcome.unwrap_or_else(common::Failure::report)
+    let status = outcome.unwrap_or_else(common::Failure::report);
+    streams::status_after_flushing(status)
 }
 
 /// Gives every allocation from 1 MiB up its own mapping, returned to the system when freed.

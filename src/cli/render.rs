@@ -24,12 +24,9 @@ pub struct RenderArgs {
 }
 
 pub fn run(args: RenderArgs) -> Outcome {
-    if args.output.exists() && !args.force {
-        return Err(Failure::usage(format!(
-            "{} exists (use --force to replace it)",
-            args.output.display()
-        )));
-    }
+    // Refused before rendering, which can take a while; asked again when writing.
+    gltfmat::output::may_write(&args.output, &[], args.force)
+        .map_err(|e| Failure::usage(e.to_string()))?;
     let mut options = gltfmat::RenderOptions::default();
     options.material = args.material.clone();
     options.all = args.all;
@@ -47,8 +44,8 @@ pub fn run(args: RenderArgs) -> Outcome {
             gltfmat::shade::render::MAX_PIXELS
         );
     }
-    (picture.image)
-        .save(&args.output)
-        .map_err(|e| Failure::usage(format!("{}: {e}", args.output.display())))?;
+    let png = crate::common::png(&picture.image);
+    gltfmat::output::write_file(&args.output, &png, &picture.inputs, args.force)
+        .map_err(|e| Failure::usage(e.to_string()))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -1,79 +1,38 @@
-//! The bytes of an asset or resource. They are read, or mapped only while no other process
-//! can change them: a mapped file that another process truncates kills the reader with
-//! SIGBUS, and a stranger's upload may be rewritten while it is checked (see
-//! [`super::file::Leased`]). A large GLB's BIN chunk is read a range at a time from its
-//! opened file (a range the file no longer holds reads as nothing).
+//! The bytes of an asset or resource: read into memory. A large GLB's BIN chunk is read a
+//! range at a time from its opened file (a range the file no longer holds reads as nothing).
 
 use super::file::{FileChunk, Kept};
 use std::borrow::Cow;
 use std::ops::{Deref, Range};
 use std::sync::Arc;
 
-/// A file's bytes in memory: read, or mapped while leased.
-pub struct Bytes(Storage);
-
-enum Storage {
-    Read(Vec<u8>),
-    #[cfg(target_os = "linux")]
-    Leased(super::file::Leased),
-}
-
-impl Bytes {
-    /// Whether they are still the file's bytes as they were taken: always for bytes read;
-    /// for a leased file, whether the lease held (no other process opened the file for
-    /// writing or truncated it since).
-    pub fn still_as_read(&self) -> bool {
-        match &self.0 {
-            Storage::Read(_) => true,
-            #[cfg(target_os = "linux")]
-            Storage::Leased(leased) => leased.unbroken(),
-        }
-    }
-
-    /// Whether they are mapped from a leased file rather than read.
-    pub fn is_leased(&self) -> bool {
-        match &self.0 {
-            Storage::Read(_) => false,
-            #[cfg(target_os = "linux")]
-            Storage::Leased(_) => true,
-        }
-    }
-}
-
-#[cfg(target_os = "linux")]
-impl From<super::file::Leased> for Bytes {
-    fn from(leased: super::file::Leased) -> Self {
-        Bytes(Storage::Leased(leased))
-    }
-}
-
-impl Default for Bytes {
-    fn default() -> Self {
-        Vec::new().into()
-    }
-}
+/// A file's bytes in memory, read whole. Files are never mapped: a mapped file another
+/// process truncates ends the reader with SIGBUS, and one it rewrites changes bytes already
+/// checked.
+#[derive(Default)]
+pub struct Bytes(Vec<u8>);
 
 impl From<Vec<u8>> for Bytes {
     fn from(bytes: Vec<u8>) -> Self {
-        Bytes(Storage::Read(bytes))
+        Bytes(bytes)
     }
 }
 
 impl From<String> for Bytes {
     fn from(text: String) -> Self {
-        Bytes(Storage::Read(text.into_bytes()))
+        Bytes(text.into_bytes())
     }
 }
 
 impl From<&str> for Bytes {
     fn from(text: &str) -> Self {
-        Bytes(Storage::Read(text.as_bytes().to_vec()))
+        Bytes(text.as_bytes().to_vec())
     }
 }
 
 impl From<&[u8]> for Bytes {
     fn from(bytes: &[u8]) -> Self {
-        Bytes(Storage::Read(bytes.to_vec()))
+        Bytes(bytes.to_vec())
     }
 }
 
@@ -81,11 +40,7 @@ impl Deref for Bytes {
     type Target = [u8];
 
     fn deref(&self) -> &[u8] {
-        match &self.0 {
-            Storage::Read(bytes) => bytes,
-            #[cfg(target_os = "linux")]
-            Storage::Leased(leased) => leased,
-        }
+        &self.0
     }
 }
 
@@ -97,8 +52,7 @@ impl AsRef<[u8]> for Bytes {
 
 impl std::fmt::Debug for Bytes {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let how = if self.is_leased() { "leased" } else { "read" };
-        write!(f, "Bytes({} {how})", self.len())
+        write!(f, "Bytes({})", self.len())
     }
 }
 

@@ -227,99 +227,6 @@ pub(crate) fn read_opened_with_id(file: File) -> Result<(Vec<u8>, Option<FileId>
     Ok((bytes, FileId::of(&metadata)))
 }
 
-/// An opened regular file's bytes, whole: from [`READ_IN_PARTS_FROM`] up mapped while
-/// leased (on Linux, where a lease can be had), read otherwise (see
-/// [`super::uri::FolderResources::leasing_large_files`]). Filling fresh memory is
-/// most of a large read's cost (a 176 MB buffer: 55 to 270 ms here, mapped: 5 ms).
-pub(crate) fn lease_or_read(file: File) -> Result<(Bytes, Option<FileId>), FileError> {
-    #[cfg(target_os = "linux")]
-    let file = {
-        let metadata = file.metadata()?;
-        check_regular(&metadata)?;
-        if (READ_IN_PARTS_FROM as u64..=MAX_FILE_BYTES).contains(&metadata.len()) {
-            match Leased::of(file) {
-                Ok(leased) => return Ok((leased.into(), FileId::of(&metadata))),
-                Err(file) => file,
-            }
-        } else {
-            file
-        }
-    };
-    read_opened_with_id(file).map(|(bytes, id)| (bytes.into(), id))
-}
-
-/// A regular file mapped into memory while this process holds a read lease on it. Mapping
-/// a file is safe only while no other process shrinks it (reading a page past its end
-/// ends the reader with SIGBUS) or rewrites it (bytes checked could differ from bytes
-/// written). The lease is granted only when no process has the file open for writing,
-/// and any process that then opens it for writing or truncates it must first break the
-/// lease: it waits until the lease is let go, or for `/proc/sys/fs/lease-break-time`
-/// (45 s by default), and the breaking shows here ([`Leased::unbroken`]).
-#[cfg(target_os = "linux")]
-pub struct Leased {
-    map: memmap2::Mmap,
-    /// Holds the lease: it ends when the file is closed.
-    file: File,
-}
-
-#[cfg(target_os = "linux")]
-impl Leased {
-    /// The file mapped, or the file back when no lease can be had (another process has it
-    /// open for writing, this process neither owns it nor may lease others' files, its
-    /// file system has no leases) or mapping fails: the caller reads it instead.
-    fn of(file: File) -> Result<Leased, File> {
-        use std::os::fd::AsRawFd;
-        let fd = file.as_raw_fd();
-        // SAFETY: fcntl on a descriptor this function owns, with integer arguments only.
-        let leased = unsafe { libc::fcntl(fd, libc::F_SETLEASE, libc::F_RDLCK) } == 0;
-        // A lease names this process to be signalled when it is broken, and that signal
-        // (SIGIO) would end it: nobody is named, and the breaking is read from the lease.
-        // SAFETY: as above.
-        if !leased || unsafe { libc::fcntl(fd, libc::F_SETOWN, 0) } != 0 {
-            return Err(Self::let_go(file));
-        }
-        // The length is taken under the lease: before it, the file could still change.
-        let Some(length) = file.metadata().ok().map(|m| m.len() as usize) else {
-            return Err(Self::let_go(file));
-        };
-        // Not populated when mapped: its pages are mapped as the walks over it first read
-        // them, on all cores (a 176 MB file took 13 ms to populate on one, 10 ms to fault
-        // in on two; the upgrade's median fell from 173 to 166 ms over 61 runs).
-        // SAFETY: while the lease holds, no process can shrink or rewrite the file; one that
-        // breaks it waits lease-break-time first, and the break is reported before any
-        // output is kept (`unbroken`).
-        let map = unsafe { memmap2::MmapOptions::new().len(length).map(&file) };
-        match map {
-            Ok(map) => Ok(Leased { map, file }),
-            Err(_) => Err(Self::let_go(file)),
-        }
-    }
-
-    /// Whether the lease still holds: no process has opened the file for writing or
-    /// truncated it since it was taken (a break in progress reads as no lease).
-    pub fn unbroken(&self) -> bool {
-        use std::os::fd::AsRawFd;
-        // SAFETY: fcntl on the descriptor this value owns.
-        unsafe { libc::fcntl(self.file.as_raw_fd(), libc::F_GETLEASE) == libc::F_RDLCK }
-    }
-
-    fn let_go(file: File) -> File {
-        use std::os::fd::AsRawFd;
-        // SAFETY: as in `of`; undoing a lease that was not taken does nothing.
-        unsafe { libc::fcntl(file.as_raw_fd(), libc::F_SETLEASE, libc::F_UNLCK) };
-        file
-    }
-}
-
-#[cfg(target_os = "linux")]
-impl std::ops::Deref for Leased {
-    type Target = [u8];
-
-    fn deref(&self) -> &[u8] {
-        &self.map
-    }
-}
-
 /// From this size up a file is read in parts on all cores: filling fresh memory costs more
 /// in page faults than in copying, and faults on several cores at once take their share of
 /// the time each (a 176 MB buffer: 130 ms read in one part, 70 ms in two).
@@ -454,22 +361,6 @@ pub(crate) fn kind(file_type: &FileType) -> &'static str {
     }
 }
 
-/// Whether this system grants file leases at all (`/proc/sys/fs/leases-enable`).
-#[cfg(all(test, target_os = "linux"))]
-pub(crate) fn leases_enabled() -> bool {
-    std::fs::read_to_string("/proc/sys/fs/leases-enable").is_ok_and(|v| v.trim() == "1")
-}
-
-/// Opens `path` for writing as another process would, but told not to wait for a lease:
-/// refused while one holds, and the lease's break has begun.
-#[cfg(all(test, target_os = "linux"))]
-pub(crate) fn open_for_writing_without_waiting(path: &Path) -> io::Result<File> {
-    let mut writer = std::fs::OpenOptions::new();
-    writer.write(true);
-    std::os::unix::fs::OpenOptionsExt::custom_flags(&mut writer, libc::O_NONBLOCK);
-    writer.open(path)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -527,66 +418,5 @@ mod tests {
         assert_eq!(unsafe { libc::mkfifo(name.as_ptr(), 0o600) }, 0);
         let refused = read(&fifo).unwrap_err();
         assert_eq!(refused.to_string(), "not a regular file (a FIFO)");
-    }
-
-    #[cfg(target_os = "linux")]
-    fn large_file(folder: &Path) -> (std::path::PathBuf, Vec<u8>) {
-        let path = folder.join("large.bin");
-        let content: Vec<u8> = (0..READ_IN_PARTS_FROM + 4321)
-            .map(|i| (i * 13) as u8)
-            .collect();
-        std::fs::write(&path, &content).unwrap();
-        (path, content)
-    }
-
-    #[cfg(target_os = "linux")]
-    #[test]
-    fn a_large_file_nobody_writes_is_mapped_and_opening_it_for_writing_breaks_the_lease() {
-        let folder = tempfile::tempdir().unwrap();
-        let (path, content) = large_file(folder.path());
-        let (bytes, id) = lease_or_read(File::open(&path).unwrap()).unwrap();
-        assert_eq!(&bytes[..], &content[..]);
-        assert_eq!(id, FileId::of_path(&path));
-        if !leases_enabled() {
-            eprintln!("LEASES DISABLED ON THIS SYSTEM: the file was read, not mapped");
-            assert!(!bytes.is_leased());
-            return;
-        }
-        assert!(
-            bytes.is_leased(),
-            "this process owns the file and nobody writes it"
-        );
-        assert!(bytes.still_as_read());
-        // An opener for writing must break the lease first: without waiting it is told to
-        // come back, and the break has begun (no signal reaches this process, which a
-        // signal's default would end).
-        let refused = open_for_writing_without_waiting(&path).unwrap_err();
-        assert_eq!(refused.kind(), io::ErrorKind::WouldBlock, "{refused}");
-        assert!(!bytes.still_as_read(), "the broken lease shows");
-        drop(bytes);
-        assert!(
-            open_for_writing_without_waiting(&path).is_ok(),
-            "the lease went with the bytes"
-        );
-    }
-
-    #[cfg(target_os = "linux")]
-    #[test]
-    fn a_large_file_open_for_writing_and_a_small_file_are_read_not_mapped() {
-        let folder = tempfile::tempdir().unwrap();
-        let (path, content) = large_file(folder.path());
-        let writing = std::fs::OpenOptions::new()
-            .append(true)
-            .open(&path)
-            .unwrap();
-        let (bytes, _) = lease_or_read(File::open(&path).unwrap()).unwrap();
-        assert!(!bytes.is_leased());
-        assert_eq!(&bytes[..], &content[..]);
-        drop(writing);
-        let small = folder.path().join("small.bin");
-        std::fs::write(&small, &content[..1000]).unwrap();
-        let (bytes, _) = lease_or_read(File::open(&small).unwrap()).unwrap();
-        assert!(!bytes.is_leased());
-        assert_eq!(&bytes[..], &content[..1000]);
     }
 }

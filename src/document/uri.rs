@@ -1,7 +1,7 @@
 //! URIs in glTF: data URIs decoded in memory, relative references read from the asset's own
 //! folder only. Nothing is ever fetched from a network, and no path may leave the folder.
 
-use super::file::{lease_or_read, read_opened_with_id, FileError, FileId, Kept};
+use super::file::{read_opened_with_id, FileError, FileId, Kept};
 use super::{Bytes, Elsewhere};
 use base64::Engine;
 use std::collections::HashMap;
@@ -210,11 +210,6 @@ pub struct FolderResources {
     /// whole: a file many URIs name (under any spelling or link) is read once, not once
     /// for each (10^3 buffers naming one 1 MB file held 1 GB).
     shared: Mutex<HashMap<(FileId, Whole), Held>>,
-    /// Files mapped while leased rather than read, by name, held to the end: whether each
-    /// lease held is asked once the output is written ([`FolderResources::changed_since_read`]).
-    leased: Mutex<Vec<(String, Arc<Bytes>)>>,
-    /// Whether large files read whole are mapped while leased ([`FolderResources::leasing_large_files`]).
-    lease_large: bool,
 }
 
 /// Whether a file was read whole ([`ResourceLoader::load`]) or as a buffer, perhaps left
@@ -257,31 +252,7 @@ impl FolderResources {
                 .map_err(|e| format!("{}: {e}", folder.display())),
             read: Default::default(),
             shared: Default::default(),
-            leased: Default::default(),
-            lease_large: false,
         }
-    }
-
-    /// Maps each file from 16 MiB up that is read whole while this process holds a read
-    /// lease on it, instead of reading it (Linux; elsewhere, or when no lease can be had, it
-    /// is read): for a short-lived process, such as one upgrade, far faster than filling
-    /// fresh memory. While a lease holds, another process that opens the file for writing
-    /// or truncates it waits, until the bytes are let go or for lease-break-time (45 s by
-    /// default), after which it goes ahead and a mapped page past a new end faults: ask
-    /// [`FolderResources::changed_since_read`] before keeping what was made of the bytes,
-    /// and do not hold them for long.
-    pub fn leasing_large_files(mut self) -> Self {
-        self.lease_large = true;
-        self
-    }
-
-    /// The first file mapped rather than read whose lease has broken since: another process
-    /// opened it for writing or truncated it, so what was made of it may not be what it
-    /// held. Asked before an output is kept.
-    pub fn changed_since_read(&self) -> Option<String> {
-        let leased = self.leased.lock().ok()?;
-        let changed = leased.iter().find(|(_, bytes)| !bytes.still_as_read());
-        changed.map(|(name, _)| name.clone())
     }
 
     /// The files read so far, by identity.
@@ -379,11 +350,6 @@ impl FolderResources {
             return Ok(kept);
         }
         let (kept, id) = read(file).map_err(failed)?;
-        if let Kept::Read(bytes) = &kept {
-            if let (true, Ok(mut leased)) = (bytes.is_leased(), self.leased.lock()) {
-                leased.push((relative.to_string(), Arc::clone(bytes)));
-            }
-        }
         if let Some(id) = id {
             if let Ok(mut shared) = self.shared.lock() {
                 shared.insert((id, whole), Held::of(&kept));
@@ -401,20 +367,10 @@ fn read_whole(file: std::fs::File) -> Result<(Kept, Option<FileId>), FileError> 
     read_opened_with_id(file).map(|(bytes, id)| (Kept::Read(Arc::new(bytes.into())), id))
 }
 
-/// [`lease_or_read`] as a [`Kept`].
-fn lease_or_read_whole(file: std::fs::File) -> Result<(Kept, Option<FileId>), FileError> {
-    lease_or_read(file).map(|(bytes, id)| (Kept::Read(Arc::new(bytes)), id))
-}
-
 impl ResourceLoader for FolderResources {
     fn load(&self, relative: &str) -> Result<Arc<Bytes>, LoadError> {
         // A whole read (and what the cache holds of one) is never left in its file.
-        let read = if self.lease_large {
-            lease_or_read_whole
-        } else {
-            read_whole
-        };
-        match self.read_with(relative, true, read)? {
+        match self.read_with(relative, true, read_whole)? {
             Kept::Read(bytes) => Ok(bytes),
             Kept::Elsewhere(_) => Err(LoadError::Io(format!("{relative}: not read whole"))),
         }
@@ -530,31 +486,5 @@ mod tests {
         drop((first, buffer, again));
         std::fs::write(dir.path().join("a.bin"), b"second").unwrap();
         assert_eq!(&loader.load("a.bin").unwrap()[..], b"second");
-    }
-
-    #[test]
-    fn large_files_read_whole_are_leased_only_when_the_loader_is_asked_to() {
-        let dir = tempfile::tempdir().unwrap();
-        let content: Vec<u8> = (0..17 << 20).map(|i: u32| (i % 251) as u8).collect();
-        std::fs::write(dir.path().join("big.bin"), &content).unwrap();
-        let reading = FolderResources::new(dir.path());
-        let read = reading.load("big.bin").unwrap();
-        assert!(!read.is_leased());
-        assert_eq!(&read[..], &content[..]);
-        let leasing = FolderResources::new(dir.path()).leasing_large_files();
-        let mapped = leasing.load("big.bin").unwrap();
-        #[cfg(target_os = "linux")]
-        assert_eq!(mapped.is_leased(), super::super::file::leases_enabled());
-        #[cfg(not(target_os = "linux"))]
-        assert!(!mapped.is_leased());
-        assert_eq!(&mapped[..], &content[..]);
-        assert_eq!(leasing.changed_since_read(), None);
-        #[cfg(target_os = "linux")]
-        if mapped.is_leased() {
-            // Opened for writing by another (here without waiting, refused): the lease breaks.
-            let path = dir.path().join("big.bin");
-            assert!(super::super::file::open_for_writing_without_waiting(&path).is_err());
-            assert_eq!(leasing.changed_since_read().as_deref(), Some("big.bin"));
-        }
     }
 }

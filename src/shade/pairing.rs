@@ -11,6 +11,7 @@ use super::render::{contact_sheet, material_ball, SheetLayout, MAX_PIXELS};
 use super::sample::MaterialSource;
 pub use super::sample::AS_STORED;
 use super::sheen_table::SheenTable;
+use crate::document::file::FileId;
 use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::error::Error;
 use image::RgbImage;
@@ -159,17 +160,18 @@ pub struct CompareOptions {
 /// ```
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// let same = "fixtures/valid/sheen-triangle.gltf";
-/// let outcomes = gltfmat::compare(same, same, &gltfmat::CompareOptions::default())?;
-/// assert!(outcomes.iter().all(|o| o.result.max == 0.0));
+/// let comparison = gltfmat::compare(same, same, &gltfmat::CompareOptions::default())?;
+/// assert!(comparison.outcomes.iter().all(|o| o.result.max == 0.0));
 /// # Ok(()) }
 /// ```
 pub fn compare(
     a: impl AsRef<Path>,
     b: impl AsRef<Path>,
     options: &CompareOptions,
-) -> Result<Vec<Outcome>, Error> {
-    let a = materials_of(a.as_ref(), AS_STORED)?;
-    let b = materials_of(b.as_ref(), AS_STORED)?;
+) -> Result<Compared, Error> {
+    let (a, mut inputs) = materials_of(a.as_ref(), AS_STORED)?;
+    let (b, inputs_of_b) = materials_of(b.as_ref(), AS_STORED)?;
+    inputs.extend(inputs_of_b);
     let pairs = if options.pairs.is_empty() {
         (0..a.len().min(b.len())).map(|i| (i, i)).collect()
     } else {
@@ -180,22 +182,38 @@ pub fn compare(
     } else {
         TexelMap::Dropped
     };
-    Ok(compare_pairs(&a, &b, &pairs, options.grid, map))
+    Ok(Compared {
+        outcomes: compare_pairs(&a, &b, &pairs, options.grid, map),
+        inputs,
+    })
+}
+
+/// What [`compare`] found.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct Compared {
+    /// One outcome per material pair.
+    pub outcomes: Vec<Outcome>,
+    /// Every file both assets were read from, by identity: what an output must not replace.
+    pub inputs: Vec<FileId>,
 }
 
 /// The materials of an asset on disk, its resources read from its folder (textures no finer
-/// than `finest`, as in [`load_materials`]).
-pub fn materials_of(path: &Path, finest: u32) -> Result<Vec<Named>, Error> {
+/// than `finest`, as in [`load_materials`]), and every file read for them, by identity.
+fn materials_of(path: &Path, finest: u32) -> Result<(Vec<Named>, Vec<FileId>), Error> {
     let bytes = crate::document::file::read(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
     })?;
     let loader = FolderResources::beside(path);
     let name = path.display().to_string();
-    load_materials(bytes, &name, &loader, finest).map_err(|reason| Error::Unusable {
-        path: path.to_path_buf(),
-        reason,
-    })
+    let materials =
+        load_materials(bytes, &name, &loader, finest).map_err(|reason| Error::Unusable {
+            path: path.to_path_buf(),
+            reason,
+        })?;
+    let inputs = FileId::of_path(path).into_iter().chain(loader.files_read());
+    Ok((materials, inputs.collect()))
 }
 
 /// The finest texture detail a preview of `size` pixels a ball shows: the ball shows half
@@ -239,13 +257,15 @@ pub struct Picture {
     /// Where the cells are (one cell for a single ball); its cell may be smaller than the
     /// size asked for, when the sheet would pass [`MAX_PIXELS`].
     pub layout: SheetLayout,
+    /// Every file the asset was read from, by identity: what an output must not replace.
+    pub inputs: Vec<FileId>,
 }
 
 /// Renders a material ball (or a contact sheet of every material) of an asset.
 pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture, Error> {
     let path = path.as_ref();
     let size = options.size.clamp(8, 4096);
-    let materials = materials_of(path, finest_for_preview(size))?;
+    let (materials, inputs) = materials_of(path, finest_for_preview(size))?;
     let chosen: Vec<(usize, &String, &MaterialSource)> = materials
         .iter()
         .enumerate()
@@ -284,6 +304,7 @@ pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture
         image,
         drawn,
         layout,
+        inputs,
     })
 }
 

@@ -6,7 +6,8 @@
 //! values, range deletion/duplication, splices from another seed, JSON number swaps), or,
 //! for a glTF text seed, structural ones on its parsed JSON (numeric extremes into any
 //! number, indices permuted, arrays and objects duplicated to 10^3–10^4 elements, path-like
-//! strings into URIs: inputs byte mutation almost never makes), and
+//! strings into URIs, any member given a value of another JSON type: inputs byte mutation
+//! almost never makes), and
 //! runs the checker (default profile with `--deep`, and the Khronos profile) and the
 //! converter on the result. Images are also embedded into a glTF as data URIs so the image
 //! decoders are reached. One input in eight is also written to a folder where each file it
@@ -158,6 +159,18 @@ const PATHS: &[&str] = &[
     "\u{0}",
 ];
 
+/// One value of each JSON type, empty and wrongly shaped containers among them.
+const OTHER_TYPES: &[fn() -> serde_json::Value] = &[
+    || serde_json::Value::Null,
+    || serde_json::json!(true),
+    || serde_json::json!(-1.5),
+    || serde_json::json!("x"),
+    || serde_json::json!([]),
+    || serde_json::json!([1, "a", null]),
+    || serde_json::json!({}),
+    || serde_json::json!({"a": [1]}),
+];
+
 /// A structural mutation of a JSON document: one of its values, chosen at random, is
 /// replaced by an extreme number, a path, a duplicated container or a permuted array.
 fn mutate_json(rng: &mut Rng, root: &mut serde_json::Value) {
@@ -186,7 +199,7 @@ fn mutate_json(rng: &mut Rng, root: &mut serde_json::Value) {
     let Some(at) = root.pointer_mut(&path) else {
         return;
     };
-    match (rng.below(5), &mut *at) {
+    match (rng.below(7), &mut *at) {
         (0, Value::Number(_)) | (0, Value::Null) => {
             let extreme = EXTREMES[rng.below(EXTREMES.len())];
             *at = serde_json::json!(extreme);
@@ -210,6 +223,9 @@ fn mutate_json(rng: &mut Rng, root: &mut serde_json::Value) {
             let times = (1 + rng.below(1_000)).min(copies_within(&copy));
             *at = Value::Array(vec![copy; times]);
         }
+        // Any member may hold a value of any JSON type: readers that index into what they
+        // expect to be an object or array meet a number, a string, a boolean or null.
+        (5 | 6, value) => *value = OTHER_TYPES[rng.below(OTHER_TYPES.len())](),
         (_, value) => *value = serde_json::json!(EXTREMES[rng.below(EXTREMES.len())] as i64),
     }
 }

@@ -14,7 +14,20 @@ impl Builder<'_, '_> {
                 .and_then(Node::as_str)
                 .unwrap_or("perspective");
             out.insert("type".into(), json!(kind));
-            let mut projection = camera.get(kind).map_or_else(|| json!({}), Node::to_value);
+            let mut projection = match camera.get(kind) {
+                Some(given) if given.is_object() => given.to_value(),
+                Some(_) => {
+                    // Read as absent, as 2.0's schema reads a member of the wrong type.
+                    let at = format!("{}/{kind}", pointer("cameras", id));
+                    self.note(
+                        &at,
+                        NoteKind::Dropped,
+                        format!("'{kind}' is not an object: its projection is made anew."),
+                    );
+                    json!({})
+                }
+                None => json!({}),
+            };
             if kind == "perspective" {
                 self.fix_perspective(&mut projection, id);
             }

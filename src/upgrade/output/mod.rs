@@ -8,11 +8,11 @@ use crate::document::file::{FileId, Kept};
 use crate::document::uri::{LoadError, ResourceLoader};
 use crate::document::{Bytes, Elsewhere, Piece, Pieces};
 use serde_json::json;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
-mod temporary;
-use temporary::Temporary;
+use crate::output::Temporary;
+pub use crate::output::{may_write, write_parts, WriteError};
 
 /// One output file: its name (relative to the output folder) and its bytes, a head in one
 /// piece and then data in shared pieces, written one after the other. The geometry and
@@ -272,21 +272,6 @@ impl ResourceLoader for SideFiles<'_> {
     }
 }
 
-/// The most bytes one `write` call is given. Linux took 10 to 20 times longer to write a
-/// large asset's pieces each in one call than in calls of this size: 161 MB in 0.6 to 1.3 s
-/// against 0.06 s (and `dd` shows the same of one 200 MB write against 1 MB ones).
-const WRITE_AT_ONCE: usize = 1 << 20;
-
-/// Writes `parts` one after the other, in calls of at most [`WRITE_AT_ONCE`] bytes.
-pub fn write_parts<'p>(
-    out: &mut impl std::io::Write,
-    parts: impl IntoIterator<Item = &'p [u8]>,
-) -> std::io::Result<()> {
-    (parts.into_iter())
-        .flat_map(|part| part.chunks(WRITE_AT_ONCE))
-        .try_for_each(|chunk| out.write_all(chunk))
-}
-
 /// `Err(length)` when `main` is a GLB longer than its 32-bit length field can say: the
 /// header would name another length, and writing gigabytes only for the check to refuse
 /// them is not done.
@@ -299,33 +284,6 @@ pub fn fits_glb(main: &File) -> Result<(), u64> {
     }
 }
 
-/// Why the output was not written.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum WriteError {
-    /// The output would replace the input or a file the input reads.
-    #[error("{} is the input or a file it reads: those are never replaced", .0.display())]
-    WouldOverwriteInput(PathBuf),
-    /// A GLB's length would not fit its 32-bit length field.
-    #[error("{}: the GLB would be {} bytes, more than the 4 GiB a GLB can hold (write a .gltf instead)", .0.display(), .1)]
-    GlbTooLarge(PathBuf, u64),
-    /// A folder stands where a file is to be written.
-    #[error("{} is a folder", .0.display())]
-    IsFolder(PathBuf),
-    /// A file exists and `force` was not given.
-    #[error("{} exists (use --force to replace it)", .0.display())]
-    Exists(PathBuf),
-    /// A file the input reads was opened for writing or truncated by another process while
-    /// it was upgraded.
-    #[error(
-        "{0} was opened for writing or truncated while the upgrade read it: nothing was written"
-    )]
-    InputChanged(String),
-    /// Writing failed.
-    #[error("{}: {}", .0.display(), .1)]
-    Io(PathBuf, #[source] std::io::Error),
-}
-
 /// The outcome of `write_checked`: the check of the files, and whether they were kept.
 pub struct Checked {
     /// The check of the files as written.
@@ -334,46 +292,17 @@ pub struct Checked {
     pub written: bool,
 }
 
-/// Whether `target` may be written: never when it is one of the `protected` files (the
-/// input and everything it reads, by identity, so no other name or link for them gets
-/// past), and only with `force` when it exists. Called before converting, for the main
-/// file, and again for every file before writing.
-pub fn may_write(target: &Path, protected: &[FileId], force: bool) -> Result<(), WriteError> {
-    let Ok(existing) = std::fs::symlink_metadata(target) else {
-        return Ok(());
-    };
-    let reached = FileId::of_path(target).or(FileId::of(&existing));
-    if reached.is_some_and(|id| protected.contains(&id)) {
-        return Err(WriteError::WouldOverwriteInput(target.to_path_buf()));
-    }
-    if existing.is_dir() {
-        return Err(WriteError::IsFolder(target.to_path_buf()));
-    }
-    if !force {
-        return Err(WriteError::Exists(target.to_path_buf()));
-    }
-    Ok(())
-}
-
 /// Writes every file into `folder` under a temporary name while the same bytes are checked
 /// (the writing on a second thread: for a large asset both take about as long), and renames
-/// them into place only when the check finds no error and every file was written; otherwise
-/// the temporaries are removed and nothing is left behind. The bytes checked are the bytes
-/// written: both come from the one `files`.
-///
-/// Temporaries are created new (never through an existing name or symlink) under
-/// unpredictable names, and are removed when the process is interrupted (see
-/// [`exit_removing_unfinished`]); a later run into the same folder removes those a killed run left.
-/// Side files are renamed before the main file, so the main file never names missing data.
-/// Without `force` no existing file is replaced, even one created while this runs; with it,
-/// existing files are, except the `protected` ones (see [`may_write`]). Nothing is placed
-/// either when `changed_input` names an input file changed since it was read (see
-/// [`crate::document::uri::FolderResources::changed_since_read`]).
+/// them into place as one set (see [`crate::output::place_all`]) only when the check finds no
+/// error and every file was written; otherwise the temporaries are removed and nothing is
+/// left behind. The bytes checked are the bytes written: both come from the one `files`.
+/// Without `force` no existing file is replaced; with it, existing files are, except the
+/// `protected` ones (see [`may_write`]).
 pub fn write_checked(
     files: &Files,
     folder: &Path,
     protected: &[FileId],
-    changed_input: &dyn Fn() -> Option<String>,
     force: bool,
 ) -> Result<Checked, WriteError> {
     let all: Vec<&File> = std::iter::once(&files.main).chain(&files.side).collect();
@@ -382,7 +311,7 @@ pub fn write_checked(
     }
     fits_glb(&files.main)
         .map_err(|bytes| WriteError::GlbTooLarge(folder.join(&files.main.name), bytes))?;
-    temporary::remove_stale(folder, all.iter().map(|f| f.name.as_str()));
+    crate::output::remove_stale(folder);
     let (written, report) = std::thread::scope(|scope| {
         let writer = scope.spawn(|| {
             let write = |file: &File| Temporary::write(folder, &file.name, file.slices());
@@ -401,38 +330,20 @@ pub fn write_checked(
         (written, report)
     });
     let (side, main) = written?;
-    if let Some(changed) = changed_input() {
-        return Err(WriteError::InputChanged(changed));
-    }
     if report.has_errors() {
         return Ok(Checked {
             report,
             written: false,
         });
     }
-    let mut placed = Vec::new();
-    for temporary in side.into_iter().chain(std::iter::once(main)) {
-        match temporary.place(folder, force) {
-            Ok(target) => placed.push(target),
-            Err(e) => {
-                if !force {
-                    // Only files this run created were placed: taking them back leaves the
-                    // folder as it was.
-                    for target in &placed {
-                        let _ = std::fs::remove_file(target);
-                    }
-                }
-                return Err(e);
-            }
-        }
-    }
+    // Side files first: the main file never names missing data.
+    let temporaries: Vec<Temporary> = side.into_iter().chain(std::iter::once(main)).collect();
+    crate::output::place_all(folder, temporaries, force)?;
     Ok(Checked {
         report,
         written: true,
     })
 }
-
-pub use temporary::exit_removing_unfinished;
 
 #[cfg(test)]
 mod tests {
@@ -454,26 +365,10 @@ mod tests {
     }
 
     #[test]
-    fn nothing_is_placed_when_an_input_changed_while_it_was_read() {
-        let folder = tempfile::tempdir().unwrap();
-        let changed = || Some("big.bin".to_string());
-        let refused = write_checked(&file(b"{}", 1), folder.path(), &[], &changed, false).err();
-        assert!(
-            matches!(&refused, Some(WriteError::InputChanged(name)) if name == "big.bin"),
-            "{refused:?}"
-        );
-        assert_eq!(
-            std::fs::read_dir(folder.path()).unwrap().count(),
-            0,
-            "temporaries removed"
-        );
-    }
-
-    #[test]
     fn a_glb_past_4_gib_is_refused_before_anything_is_written() {
         let folder = tempfile::tempdir().unwrap();
         let too_long = file(b"glTF", 4096);
-        let refused = write_checked(&too_long, folder.path(), &[], &|| None, false).err();
+        let refused = write_checked(&too_long, folder.path(), &[], false).err();
         let expected = 4 + (4096u64 << 20);
         assert!(
             matches!(refused, Some(WriteError::GlbTooLarge(_, n)) if n == expected),

@@ -3,10 +3,10 @@
 //! random name and placed by rename: without `force` a
 //! rename that refuses to replace (`RENAME_NOREPLACE`, or link and unlink), so two runs
 //! writing the same new file cannot both succeed. Unfinished temporaries are removed on
-//! drop, on interruption ([`exit_removing_unfinished`]), and, after a kill, by the next run
+//! drop, on interruption ([`exit_removing_unfinished`]), and, after a kill, by any later run
 //! into the same folder ([`remove_stale`]).
 
-use super::WriteError;
+use super::{write_parts, WriteError};
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
@@ -31,7 +31,7 @@ pub fn exit_removing_unfinished(code: i32) -> ! {
 }
 
 /// One output file under its temporary name.
-pub(super) struct Temporary {
+pub(crate) struct Temporary {
     /// The name it will be placed under.
     pub name: String,
     file: tempfile::NamedTempFile,
@@ -60,13 +60,63 @@ impl Drop for Unfinished {
     }
 }
 
-/// `.NAME.gltfmat-PID-` starts every temporary for NAME, so that a later run can tell which
-/// were left by a process that no longer exists.
+/// `.NAME.gltfmat-PID.START-` starts every temporary for NAME: the process that made it, by
+/// its id and its start time (a later process may be given the same id), so that a later
+/// run can tell which were left by a process that no longer exists.
 fn prefix(name: &str) -> String {
-    format!(".{name}.gltfmat-{}-", std::process::id())
+    format!(".{name}{MARK}{}-", Creator::this().tag())
 }
 
+const MARK: &str = ".gltfmat-";
 const SUFFIX: &str = ".tmp";
+
+/// A process, as a temporary's name records it.
+#[derive(PartialEq, Eq)]
+struct Creator {
+    pid: u32,
+    /// Its start time in clock ticks since boot (Linux), or 0 where it is not known.
+    start: u64,
+}
+
+impl Creator {
+    fn this() -> Creator {
+        let pid = std::process::id();
+        Creator {
+            pid,
+            start: start_time(pid).unwrap_or(0),
+        }
+    }
+
+    fn tag(&self) -> String {
+        format!("{}.{}", self.pid, self.start)
+    }
+
+    /// The creator a temporary's file name records, if it is one of ours.
+    fn of_name(name: &str) -> Option<Creator> {
+        let rest = name.strip_suffix(SUFFIX)?;
+        let (rest, _random) = rest.rsplit_once('-')?;
+        let (_, tag) = rest.rsplit_once(MARK)?;
+        let (pid, start) = tag.split_once('.')?;
+        Some(Creator {
+            pid: pid.parse().ok()?,
+            start: start.parse().ok()?,
+        })
+    }
+
+    /// Whether the process is still running: the same id started at the same time.
+    fn alive(&self) -> bool {
+        start_time(self.pid).is_some_and(|start| self.start == 0 || start == self.start)
+    }
+}
+
+/// When process `pid` started (field 22 of `/proc/PID/stat`), or None when no such process
+/// runs (or the system has no `/proc`).
+fn start_time(pid: u32) -> Option<u64> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    // The command name (field 2) is in parentheses and may hold spaces: count after it.
+    let after_name = &stat[stat.rfind(')')? + 1..];
+    after_name.split_whitespace().nth(19)?.parse().ok()
+}
 
 impl Temporary {
     /// Creates a new temporary for `name` in `folder` and writes `parts` into it.
@@ -90,7 +140,7 @@ impl Temporary {
             file,
             _unfinished: unfinished,
         };
-        super::write_parts(&mut temporary.file.as_file(), parts).map_err(failed)?;
+        write_parts(&mut temporary.file.as_file(), parts).map_err(failed)?;
         Ok(temporary)
     }
 
@@ -113,36 +163,28 @@ impl Temporary {
     }
 }
 
-/// Removes temporaries for `names` in `folder` left by gltfmat processes that no longer
-/// run (killed before they could clean up). Only regular files owned by this user, named
-/// as a temporary for one of `names` by a process id that is not alive, are removed.
-pub(super) fn remove_stale<'n>(folder: &Path, names: impl Iterator<Item = &'n str>) {
+/// Removes the temporaries in `folder` left by gltfmat processes that no longer run (killed
+/// before they could clean up), whatever output they were for. Only regular files owned by
+/// this user, named as a temporary by a process that is not alive, are removed.
+pub(crate) fn remove_stale(folder: &Path) {
     #[cfg(target_os = "linux")]
     {
-        let prefixes: Vec<String> = names.map(|n| format!(".{n}.gltfmat-")).collect();
+        use std::os::unix::fs::MetadataExt;
         let Ok(entries) = std::fs::read_dir(folder) else {
             return;
         };
+        // SAFETY: geteuid has no preconditions and cannot fail.
+        let me = unsafe { libc::geteuid() };
         for entry in entries.flatten() {
             let name = entry.file_name();
-            let Some(name) = name.to_str() else { continue };
-            let Some(rest) = prefixes.iter().find_map(|p| name.strip_prefix(p.as_str())) else {
+            let Some(creator) = name.to_str().and_then(Creator::of_name) else {
                 continue;
             };
-            if !name.ends_with(SUFFIX) {
-                continue;
-            }
-            let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<u32>().ok()) else {
-                continue;
-            };
-            if pid == std::process::id() || Path::new(&format!("/proc/{pid}")).exists() {
+            if creator.alive() {
                 continue;
             }
             if let Ok(metadata) = entry.path().symlink_metadata() {
-                use std::os::unix::fs::MetadataExt;
-                // SAFETY: geteuid has no preconditions and cannot fail.
-                let mine = metadata.uid() == unsafe { libc::geteuid() };
-                if metadata.is_file() && mine {
+                if metadata.is_file() && metadata.uid() == me {
                     let _ = std::fs::remove_file(entry.path());
                 }
             }
@@ -150,6 +192,35 @@ pub(super) fn remove_stale<'n>(folder: &Path, names: impl Iterator<Item = &'n st
     }
     #[cfg(not(target_os = "linux"))]
     {
-        let _ = (folder, names.count());
+        let _ = folder;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_temporary_names_its_creator_and_only_a_gone_one_is_stale() {
+        let name = format!("{}abc123{SUFFIX}", prefix("x-1.gltf"));
+        let creator = Creator::of_name(&name).expect("our own name is read back");
+        assert!(creator == Creator::this());
+        #[cfg(target_os = "linux")]
+        {
+            assert!(creator.alive());
+            let reborn = Creator {
+                start: creator.start + 1,
+                ..creator
+            };
+            assert!(
+                !reborn.alive(),
+                "the same id started later is another process"
+            );
+        }
+        assert!(
+            Creator::of_name(".x.gltfmat-12-abc.tmp").is_none(),
+            "no start time"
+        );
+        assert!(Creator::of_name("x.gltf").is_none());
     }
 }
