@@ -6,7 +6,9 @@ use common::{linear_to_srgb, shared, srgb_to_linear};
 
 use gltfmat::check::Severity;
 use gltfmat::document::uri::{FolderResources, NoResources};
-use gltfmat::upgrade::{output, upgrade, SpecularGlossiness, UpgradeOptions, Upgraded};
+use gltfmat::upgrade::{
+    output, upgrade, SpecGlossReading, SpecularGlossiness, UpgradeOptions, Upgraded,
+};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -132,51 +134,32 @@ fn metal_rough_moves_metallic_from_red_to_blue_texel_for_texel() {
 }
 
 #[test]
-fn spec_gloss_factors_follow_the_documented_mapping() {
-    // Diffuse (0.6, 0.5, 0.4), specular 0.2, glossiness 0.75: the drafts' readings disagree by
-    // more than the proof's threshold on the closed form (diffuse · (1 − specular), roughness
-    // 0.25, specularColor 0.2), so the factors written are the fitted ones, and the decision
-    // gives both figures.
-    let upgraded = upgrade_file(
-        &repo("fixtures/gltf1/pbr-sg-khr.gltf"),
-        &UpgradeOptions::default(),
-    );
+fn spec_gloss_factors_convert_to_the_closed_form_of_the_drafts_appendix() {
+    // Diffuse (0.6, 0.5, 0.4), specular 0.2, glossiness 0.75: under the Appendix reading the
+    // closed form (diffuse · (1 − specular), roughness 0.25, specularColor 0.2) is exact, and
+    // is what is written; the drafts' readings differ by 5.86 here, which the proof reports
+    // beside its own figure as the source's ambiguity.
+    let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
+    let upgraded = upgrade_file(&path, &UpgradeOptions::default());
     let m = material(&upgraded);
     let pbr = &m["pbrMetallicRoughness"];
-    let numbers = |value: &serde_json::Value| -> Vec<f64> {
-        value
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|v| v.as_f64().unwrap())
-            .collect()
-    };
     let base = numbers(&pbr["baseColorFactor"]);
-    let closed_form = [0.6 * 0.8, 0.5 * 0.8, 0.4 * 0.8];
-    assert!(
-        base.iter()
-            .zip(closed_form)
-            .any(|(got, closed)| (got - closed).abs() > 1e-3),
-        "fitted, not the closed form: {base:?}"
-    );
-    assert_eq!(base[3], 1.0, "alpha is the diffuse alpha");
+    for (got, want) in base.iter().zip([0.6 * 0.8, 0.5 * 0.8, 0.4 * 0.8, 1.0]) {
+        assert!((got - want).abs() < 1e-12, "the closed form: {base:?}");
+    }
+    assert!((pbr["roughnessFactor"].as_f64().unwrap() - 0.25).abs() < 1e-12);
     assert_eq!(pbr["metallicFactor"], 0.0);
     assert_eq!(m["extensions"]["KHR_materials_ior"]["ior"], 0);
     let specular = numbers(&m["extensions"]["KHR_materials_specular"]["specularColorFactor"]);
-    assert!(
-        specular.iter().all(|s| (0.0..=1.0).contains(s)),
-        "{specular:?}"
-    );
+    assert_eq!(specular, [0.2, 0.2, 0.2]);
     let notes = notes(&upgraded).join("\n");
-    let fitted = notes
-        .lines()
-        .find(|line| line.contains("fitted:"))
-        .unwrap_or_else(|| panic!("no fitted decision in\n{notes}"));
-    assert!(
-        fitted.contains("worst ΔE2000 over them is 5.86")
-            && fitted.contains("the smallest worst case, 2.93"),
-        "{fitted}"
-    );
+    assert!(!notes.contains("fitted:"), "{notes}");
+    let loader = FolderResources::beside(&path);
+    let input = std::fs::read(&path).unwrap();
+    let proof = gltfmat::prove(&input, "khr.gltf", &loader, &upgraded).unwrap();
+    assert!(proof[0].result.max < 0.05, "{}", proof[0].result.max);
+    let ambiguity = proof[0].ambiguity.as_ref().expect("the drafts' spread");
+    assert!((ambiguity.max - 5.86).abs() < 0.01, "{}", ambiguity.max);
     let used = upgraded.json.get("extensionsUsed").unwrap();
     let used = used.as_array().unwrap();
     assert!(
@@ -185,89 +168,165 @@ fn spec_gloss_factors_follow_the_documented_mapping() {
     );
 }
 
-#[test]
-fn a_fit_brings_a_grey_plastic_under_the_proofs_threshold() {
-    // A grey 0.04 specular over diffuse (0.5, 0.4, 0.3), glossiness 0.5: the closed form is
-    // exact under the drafts' Appendix reading but 1.05 away under the example shader's
-    // (no 1 − F). The fitted factors keep every reading within ΔE 1, so the proof passes.
+fn numbers(value: &serde_json::Value) -> Vec<f64> {
+    value
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect()
+}
+
+/// The pbr-sg-khr fixture with `values` as its material's values, upgraded under `reading`,
+/// and its proof.
+fn upgrade_draft_values(
+    values: serde_json::Value,
+    reading: SpecGlossReading,
+) -> (Upgraded, Vec<gltfmat::Outcome>) {
     let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
     let mut asset: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
-    asset["materials"]["Effect-Texture"]["extensions"]["KHR_materials_pbr"]["values"] = serde_json::json!({
-        "diffuseFactor": [0.5, 0.4, 0.3, 1.0], "specularFactor": [0.04, 0.04, 0.04], "glossinessFactor": 0.5});
+    asset["materials"]["Effect-Texture"]["extensions"]["KHR_materials_pbr"]["values"] = values;
     let bytes = asset.to_string().into_bytes();
     let loader = FolderResources::beside(&path);
-    let upgraded = upgrade(&bytes, &loader, &UpgradeOptions::default()).unwrap();
+    let options = UpgradeOptions::default().with_draft_reading(reading);
+    let upgraded = upgrade(&bytes, &loader, &options).unwrap();
+    let proof = gltfmat::prove(&bytes, "draft.gltf", &loader, &upgraded).unwrap();
+    (upgraded, proof)
+}
+
+#[test]
+fn each_draft_reading_converts_to_its_own_closed_form_and_its_proof_is_exact() {
+    // Every achromatic factor case of the drafts' examples, and a chromatic one.
+    let cases = [
+        ([0.6, 0.5, 0.4], [0.2; 3], 0.75),
+        ([0.6, 0.3, 0.2], [0.2; 3], 0.7),
+        ([0.5, 0.4, 0.3], [0.04; 3], 0.5),
+        ([0.8; 3], [0.9, 0.1, 0.1], 0.5),
+    ];
+    for reading in SpecGlossReading::DRAFTS {
+        for (diffuse, specular, glossiness) in cases {
+            let [r, g, b] = diffuse;
+            let values = serde_json::json!({"diffuseFactor": [r, g, b, 1.0],
+                "specularFactor": specular, "glossinessFactor": glossiness});
+            let (upgraded, proof) = upgrade_draft_values(values, reading);
+            let (closed, exact) = reading.closed_form_base(diffuse, specular);
+            let figure = proof[0].result.max;
+            let ambiguity = proof[0].ambiguity.as_ref().expect("a draft has readings");
+            assert_eq!(ambiguity.read_as, reading.name());
+            if exact {
+                let base = numbers(&material(&upgraded)["pbrMetallicRoughness"]["baseColorFactor"]);
+                for (got, want) in base.iter().zip(closed) {
+                    assert!(
+                        (got - want).abs() < 1e-9,
+                        "{reading:?} {diffuse:?}: {base:?}"
+                    );
+                }
+                assert!(
+                    figure < 0.05,
+                    "{reading:?} {diffuse:?} {specular:?}: ΔE {figure}"
+                );
+            } else {
+                // No exact 2.0 form: the conversion moves towards this reading, and the
+                // proof reports its figure under it, whatever the others say.
+                let notes = notes(&upgraded).join("\n");
+                assert!(notes.contains(reading.option_name()), "{notes}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_reading_with_no_exact_form_is_fitted_towards_itself_not_between_readings() {
+    // The 2016 Appendix reading of a red specular over grey: base colour 0.8 · 0.9 / 0.1
+    // would pass 1, so no 2.0 material draws it exactly; the fit serves that reading only.
+    let values = serde_json::json!({"diffuseFactor": [0.8, 0.8, 0.8, 1.0],
+        "specularFactor": [0.9, 0.1, 0.1], "glossinessFactor": 0.5});
+    let (upgraded, proof) =
+        upgrade_draft_values(values.clone(), SpecGlossReading::DraftAppendix2016);
     let notes = notes(&upgraded).join("\n");
+    let fitted = notes
+        .lines()
+        .find(|l| l.contains("fitted:"))
+        .unwrap_or_else(|| panic!("{notes}"));
+    assert!(fitted.contains("'appendix-2016'"), "{fitted}");
+    let closed_figure: f64 = fitted
+        .split("from it; ")
+        .next()
+        .and_then(|t| t.rsplit("ΔE2000 ").next())
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("{fitted}"));
     assert!(
-        notes.contains("the closed form's worst ΔE2000 over them is 1.05")
-            && notes.contains("the smallest worst case, 0.52"),
-        "{notes}"
+        proof[0].result.max < closed_figure,
+        "{} vs {closed_figure}",
+        proof[0].result.max
     );
-    let proof = gltfmat::prove(&bytes, "grey.gltf", &loader, &upgraded).unwrap();
-    assert_eq!(proof.len(), 1);
-    let max = proof[0].result.max;
+    // Under the Appendix the same material converts exactly, and no cyan appears.
+    let (upgraded, proof) = upgrade_draft_values(values, SpecGlossReading::DraftAppendix);
+    let base = numbers(&material(&upgraded)["pbrMetallicRoughness"]["baseColorFactor"]);
     assert!(
-        (max - 0.52).abs() < 0.01 && max < 1.0,
-        "the proof reads {max}"
+        (base[0] - 0.08).abs() < 1e-9 && (base[1] - 0.72).abs() < 1e-9,
+        "{base:?}"
     );
+    assert!(proof[0].result.max < 0.05, "{}", proof[0].result.max);
 }
 
 #[test]
 fn texels_the_closed_form_leaves_above_the_threshold_are_fitted_and_only_those() {
-    // Two texels of a 1.0 spec-gloss material: a dark one the closed form keeps within ΔE 1
-    // under all three draft readings, and a bright one (the verify bench's worst) it leaves
-    // at 1.11 under the example shader's reading. Only the bright one is fitted, and the
-    // proof, which samples the stored 8-bit texels, passes.
+    // Two texels of a 1.0 spec-gloss material read as the 2016 Appendix: a dark one its
+    // closed form draws exactly, and a white one whose closed form would pass 1 (its red and
+    // blue keep more of the diffuse than the green specular does). Only the white one is
+    // fitted, towards that reading; the proof samples the stored 8-bit texels.
     let dir = scratch("texel-fit");
     let png = |path: &Path, pixels: [[u8; 4]; 2]| {
         let image = image::RgbaImage::from_fn(2, 1, |x, _| image::Rgba(pixels[x as usize]));
         image.save(path).unwrap();
     };
-    let (dark, bright) = ([20, 18, 16, 255], [232, 186, 120, 255]);
+    let (dark, bright) = ([20, 18, 16, 255], [255, 255, 255, 255]);
     png(&dir.join("diffuse.png"), [dark, bright]);
-    png(&dir.join("spec_gloss.png"), [[40, 69, 40, 139]; 2]);
+    png(&dir.join("spec_gloss.png"), [[40, 200, 40, 139]; 2]);
     let source = repo("fixtures/gltf1/pbr-sg-textured-ext.gltf");
     let mut asset: Value = serde_json::from_slice(&std::fs::read(&source).unwrap()).unwrap();
     asset["materials"]["Effect-Texture"]["extensions"]["EXT_materials_pbr"]["values"] = serde_json::json!({
-        "diffuseFactor": [1.0, 1.0, 1.0, 1.0], "specularFactor": [0.5, 0.5, 0.5], "glossinessFactor": 1.0,
+        "diffuseFactor": [1.0, 1.0, 1.0, 1.0], "specularFactor": [1.0, 1.0, 1.0], "glossinessFactor": 1.0,
         "diffuseTexture": "tex_diffuse", "specularGlossinessTexture": "tex_spec_gloss"});
     let path = dir.join("in.gltf");
     std::fs::copy(repo("fixtures/gltf1/box.bin"), dir.join("box.bin")).unwrap();
     std::fs::write(&path, asset.to_string()).unwrap();
-    let upgraded = upgrade_file(&path, &UpgradeOptions::default());
+    let reading = SpecGlossReading::DraftAppendix2016;
+    let options = UpgradeOptions::default().with_draft_reading(reading);
+    let upgraded = upgrade_file(&path, &options);
     let notes = notes(&upgraded).join("\n");
     assert!(
-        notes.contains("2 distinct texel values, the closed form's worst ΔE2000 1.11; 1 above the threshold, 1 of them fitted"),
+        notes.contains("2 distinct texel values")
+            && notes.contains("1 above the threshold, 1 of them fitted towards that reading"),
         "{notes}"
     );
     let base = texture_rgba(
         &upgraded,
         &material(&upgraded)["pbrMetallicRoughness"]["baseColorTexture"],
     );
-    let closed_form = |texel: [u8; 4], c: usize| {
-        let specular = srgb_to_linear(40.0 / 255.0 + [0.0, 29.0, 0.0][c] / 255.0) * 0.5;
-        let linear = srgb_to_linear(f64::from(texel[c]) / 255.0) * (1.0 - specular);
-        (linear_to_srgb(linear) * 255.0).round() as u8
+    let linear = |texel: [u8; 4], c: usize| srgb_to_linear(f64::from(texel[c]) / 255.0);
+    let specular = |c: usize| srgb_to_linear([40.0, 200.0, 40.0][c] / 255.0);
+    let closed_form = |texel: [u8; 4]| {
+        let (base, _) =
+            reading.closed_form_base([0, 1, 2].map(|c| linear(texel, c)), [0, 1, 2].map(specular));
+        base.map(|b| (linear_to_srgb(b) * 255.0).round() as u8)
     };
-    let stored = |x: u32| base.get_pixel(x, 0).0;
+    let stored = |x: u32| {
+        let texel = base.get_pixel(x, 0).0;
+        [texel[0], texel[1], texel[2]]
+    };
     assert_eq!(
-        [0, 1, 2].map(|c| stored(0)[c]),
-        [0, 1, 2].map(|c| closed_form(dark, c)),
+        stored(0),
+        closed_form(dark),
         "the dark texel keeps the closed form"
     );
-    assert_ne!(
-        [0, 1, 2].map(|c| stored(1)[c]),
-        [0, 1, 2].map(|c| closed_form(bright, c)),
-        "the bright texel is fitted"
-    );
+    assert_ne!(stored(1), closed_form(bright), "the white texel is fitted");
     let loader = FolderResources::beside(&path);
     let input = std::fs::read(&path).unwrap();
     let proof = gltfmat::prove(&input, "in.gltf", &loader, &upgraded).unwrap();
-    assert!(
-        proof[0].result.max < 1.0,
-        "the proof reads {}",
-        proof[0].result.max
-    );
+    assert!(proof[0].ambiguity.is_some());
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -487,10 +546,10 @@ mod verify {
         );
     }
 
-    /// A 1.0 spec-gloss factor material with `specular`, evaluated by its own model: the
-    /// proof reports the worst draft reading and refuses what is above the threshold.
-    fn verify_spec_gloss(specular: [f64; 3]) -> (i32, String) {
-        let dir = scratch(&format!("chromatic-{}", specular[1]));
+    /// A 1.0 spec-gloss factor material with `specular`, upgraded with `--verify` and
+    /// `options`: the proof judges under the reading converted to.
+    fn verify_spec_gloss(specular: [f64; 3], options: &[&str]) -> (i32, String) {
+        let dir = scratch(&format!("chromatic-{}-{}", specular[1], options.join("")));
         let mut asset: serde_json::Value =
             serde_json::from_slice(&std::fs::read(repo("fixtures/gltf1/pbr-sg-khr.gltf")).unwrap())
                 .unwrap();
@@ -499,13 +558,15 @@ mod verify {
         let input = dir.join("in.gltf");
         std::fs::write(&input, asset.to_string()).unwrap();
         let out = dir.join("out.glb");
-        let result = gltfmat(&[
+        let mut args = vec![
             "upgrade",
             input.to_str().unwrap(),
             "-o",
             out.to_str().unwrap(),
             "--verify",
-        ]);
+        ];
+        args.extend(options);
+        let result = gltfmat(&args);
         assert_eq!(
             out.exists(),
             result.0 == 0,
@@ -522,20 +583,30 @@ mod verify {
     }
 
     #[test]
-    fn a_chromatic_specular_conversion_is_refused_with_its_residual() {
-        // (1 − F_c) per channel in the source against (1 − max3 F) in the target: ΔE well
-        // above one JND, not 0 (the proof used to evaluate the source with the target's model).
-        let (code, text) = verify_spec_gloss([0.9, 0.1, 0.1]);
-        assert_eq!(code, 1, "{text}");
-        assert!(max_delta_e(&text) > 5.0, "{text}");
-        assert!(
-            text.contains("source read as:"),
-            "the reading is named: {text}"
-        );
-        // A dim achromatic specular stays within the threshold under every reading.
-        let (code, text) = verify_spec_gloss([0.02, 0.02, 0.02]);
+    fn a_chromatic_specular_passes_under_the_appendix_and_each_reading_is_chosen_by_flag() {
+        // Exact under the default reading, with the drafts' spread printed beside the figure.
+        let (code, text) = verify_spec_gloss([0.9, 0.1, 0.1], &[]);
         assert_eq!(code, 0, "{text}");
-        assert!(max_delta_e(&text) <= 1.0, "{text}");
+        assert!(max_delta_e(&text) < 0.05, "{text}");
+        assert!(
+            text.contains("the drafts' readings differ by up to ΔE2000"),
+            "{text}"
+        );
+        // The 2016 reading of the same material has no exact form: refused with its figure.
+        let (code, text) =
+            verify_spec_gloss([0.9, 0.1, 0.1], &["--draft-reading", "appendix-2016"]);
+        assert_eq!(code, 1, "{text}");
+        assert!(max_delta_e(&text) > 1.0, "{text}");
+        assert!(
+            text.contains("source read as the 2016 drafts' Appendix"),
+            "{text}"
+        );
+        // A dim achromatic specular is exact under each reading the flag names.
+        for reading in ["appendix", "appendix-2016", "example-shader"] {
+            let (code, text) = verify_spec_gloss([0.02, 0.02, 0.02], &["--draft-reading", reading]);
+            assert_eq!(code, 0, "{reading}: {text}");
+            assert!(max_delta_e(&text) <= 1.0, "{text}");
+        }
     }
 
     #[test]

@@ -244,6 +244,104 @@ def big_png(size):
     return encode_png(size, (b'\x00' + b'\x80' * (3 * size)) * size)
 
 
+def samplers_sharing_input(n):
+    """n samplers of one animation reading one 1000-key input, each driving its own node: the
+    input's checks (increasing, bounds) once ran per sampler."""
+    keys = 1000
+    times = struct.pack(f'<{keys}f', *range(keys))
+    values = struct.pack(f'<{3 * keys}f', *([0.0] * 3 * keys))
+    data = base64.b64encode(times + values).decode()
+    doc = asset(
+        nodes=[{} for _ in range(n)],
+        buffers=[{'uri': 'data:application/octet-stream;base64,' + data, 'byteLength': len(times) + len(values)}],
+        bufferViews=[{'buffer': 0, 'byteLength': len(times)}, {'buffer': 0, 'byteOffset': len(times), 'byteLength': len(values)}],
+        accessors=[{'bufferView': 0, 'componentType': 5126, 'count': keys, 'type': 'SCALAR', 'min': [0], 'max': [keys - 1]},
+                   {'bufferView': 1, 'componentType': 5126, 'count': keys, 'type': 'VEC3'}],
+        animations=[{'channels': [{'sampler': i, 'target': {'node': i, 'path': 'translation'}} for i in range(n)],
+                     'samplers': [{'input': 0, 'output': 1} for _ in range(n)]}])
+    return write(f'samplers-{n}.gltf', doc)
+
+
+def gltf1_aliasing_accessors(n):
+    """A 1.0 asset of n accessors over one 10^4-vertex bufferView, each its own mesh: the view
+    was walked once per accessor."""
+    count = 10_000
+    positions = struct.pack(f'<{3 * count}f', *([0.0, 1.0, 2.0] * count))
+    uri = 'data:application/octet-stream;base64,' + base64.b64encode(positions).decode()
+    doc = {'asset': {'version': '1.0'}, 'buffers': {'b': {'uri': uri, 'byteLength': len(positions)}},
+           'bufferViews': {'v': {'buffer': 'b', 'byteOffset': 0, 'byteLength': len(positions), 'target': 34962}},
+           'accessors': {f'a{i}': {'bufferView': 'v', 'byteOffset': 0, 'componentType': 5126, 'count': count, 'type': 'VEC3',
+                                   'min': [0, 1, 2], 'max': [0, 1, 2]} for i in range(n)},
+           'meshes': {f'm{i}': {'primitives': [{'attributes': {'POSITION': f'a{i}'}, 'mode': 0}]} for i in range(n)},
+           'nodes': {f'n{i}': {'meshes': [f'm{i}']} for i in range(n)},
+           'scenes': {'s': {'nodes': [f'n{i}' for i in range(n)]}}, 'scene': 's'}
+    return write(f'gltf1-aliasing-{n}.gltf', doc)
+
+
+def distinct_strings(n):
+    """n distinct strings in extras: each held by the tree's string store."""
+    text = '{"asset":{"version":"2.0"},"extras":[' + ','.join(f'"s{i:x}"' for i in range(n)) + ']}'
+    return write(f'strings-{n}.gltf', text.encode())
+
+
+def grey_alpha_png(width, height):
+    header = struct.pack('>IIBBBBB', width, height, 8, 4, 0, 0, 0)
+    rows = (b'\x00' + b'\x80\xff' * width) * height
+    return b'\x89PNG\r\n\x1a\n' + png_chunk(b'IHDR', header) + png_chunk(b'IDAT', zlib.compress(rows, 9)) + png_chunk(b'IEND', b'')
+
+
+def spec_gloss_textures(name, diffuse, specular):
+    """A 2.0 spec-gloss material with the given diffuse and spec-gloss PNGs (bytes or None)."""
+    images, ext = [], {}
+    for key, png in (('diffuseTexture', diffuse), ('specularGlossinessTexture', specular)):
+        if png is not None:
+            ext[key] = {'index': len(images)}
+            images.append({'uri': 'data:image/png;base64,' + base64.b64encode(png).decode()})
+    doc = asset(extensionsUsed=['KHR_materials_pbrSpecularGlossiness'], images=images,
+                textures=[{'source': i} for i in range(len(images))],
+                materials=[{'extensions': {'KHR_materials_pbrSpecularGlossiness': ext}}])
+    return write(name, doc)
+
+
+def grey_alpha_rebake(n):
+    """One n-texel square grey+alpha PNG (a few hundred KB at 16384²) as a spec-gloss diffuse."""
+    side = int(n ** 0.5)
+    return spec_gloss_textures(f'grey-alpha-{n}.gltf', grey_alpha_png(side, side), None)
+
+
+def crossed_strips(n):
+    """A diffuse n×1 and a spec-gloss 1×n: a rebake on the finer grid of both is n²."""
+    return spec_gloss_textures(f'strips-{n}.gltf', grey_alpha_png(n, 1), grey_alpha_png(1, n))
+
+
+def gltf1_draft_shared_textures(n):
+    """A 1.0 EXT_materials_pbr spec-gloss material whose diffuse and spec-gloss textures are
+    two n-texel PNGs, each also bound by a second material."""
+    side = int(n ** 0.5)
+    uri = lambda png: 'data:image/png;base64,' + base64.b64encode(png).decode()
+    values = lambda gloss: {'diffuseFactor': [0.6, 0.5, 0.4, 1], 'specularFactor': [0.2, 0.2, 0.2], 'glossinessFactor': gloss,
+                            'diffuseTexture': 't0', 'specularGlossinessTexture': 't1'}
+    doc = {'asset': {'version': '1.0'}, 'extensionsUsed': ['EXT_materials_pbr'],
+           'images': {'i0': {'uri': uri(grey_alpha_png(side, side))}, 'i1': {'uri': uri(grey_alpha_png(side, side))}},
+           'samplers': {'s': {}}, 'textures': {'t0': {'source': 'i0', 'sampler': 's'}, 't1': {'source': 'i1', 'sampler': 's'}},
+           'materials': {f'm{k}': {'extensions': {'EXT_materials_pbr': {'materialModel': 'PBR_specular_glossiness',
+                                                                       'values': values(0.5 + k / 10)}}} for k in range(2)},
+           'scenes': {'s': {'nodes': []}}, 'scene': 's'}
+    return write(f'gltf1-shared-{n}.gltf', doc)
+
+
+def spec_gloss_sharing_texture(n):
+    """n alike spec-gloss materials binding one 1024² diffuse: one rebake serves them all."""
+    png = grey_alpha_png(1024, 1024)
+    materials = [{'name': f'm{i}', 'extensions': {'KHR_materials_pbrSpecularGlossiness': {
+        'diffuseTexture': {'index': 0}, 'specularGlossinessTexture': {'index': 0}, 'specularFactor': [0.2, 0.2, 0.2]}}}
+                 for i in range(n)]
+    doc = asset(extensionsUsed=['KHR_materials_pbrSpecularGlossiness'],
+                images=[{'uri': 'data:image/png;base64,' + base64.b64encode(png).decode()}],
+                textures=[{'source': 0}], materials=materials)
+    return write(f'sg-sharing-{n}.gltf', doc)
+
+
 CLASSES = [
     # name, generator, N, command
     ('node chain (11)', node_chain, 10_000, ['check']),
@@ -273,6 +371,14 @@ CLASSES = [
     ('spec-gloss, distinct, one 2048² texture, proof (15)', lambda n: spec_gloss_over_one_image(n, True), 2,
      ['upgrade', '-o', os.path.join(WORK, 'sg-distinct.glb'), '--force']),
     ('8192² PNG, N references (15)', big_png_references, 1, ['render', '--all', '--size', '64', '-o', os.path.join(WORK, 'sheet.png'), '--force']),
+    ('N samplers sharing one input (49)', samplers_sharing_input, 3_000, ['check']),
+    ('1.0 accessors aliasing one view (49)', gltf1_aliasing_accessors, 300, ['upgrade', '-o', os.path.join(WORK, 'alias.glb'), '--force', '--no-verify']),
+    ('repeated keys, json (49)', duplicate_keys, 100_000, ['check', '--format', 'json', '--all-findings']),
+    ('distinct strings (49)', distinct_strings, 1_600_000, ['check']),
+    ('grey+alpha PNG rebake, N texels (49)', grey_alpha_rebake, 1 << 20, ['upgrade', '-o', os.path.join(WORK, 'ga.glb'), '--force']),
+    ('crossed strips rebake, N wide (49)', crossed_strips, 1638, ['upgrade', '-o', os.path.join(WORK, 'strips.glb'), '--force']),
+    ('1.0 draft, shared textures, N texels (49)', gltf1_draft_shared_textures, 1 << 18, ['upgrade', '-o', os.path.join(WORK, 'shared.glb'), '--force']),
+    ('N spec-gloss sharing one 1024² (49)', spec_gloss_sharing_texture, 20, ['upgrade', '-o', os.path.join(WORK, 'sharing.glb'), '--force']),
 ]
 
 
@@ -288,6 +394,8 @@ def run(command, path):
     for _ in range(3):
         started = time.perf_counter()
         proc = subprocess.run(['/usr/bin/time', '-f', '%M'] + args, capture_output=True, timeout=900)
+        for out in (os.path.join(WORK, name) for name in os.listdir(WORK) if name.endswith('.glb')):
+            os.remove(out)
         seconds = time.perf_counter() - started
         kb = int(proc.stderr.decode().strip().splitlines()[-1])
         if proc.returncode not in (0, 1):

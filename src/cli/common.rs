@@ -59,3 +59,28 @@ pub fn png(image: &image::RgbImage) -> Vec<u8> {
     let _ = image.write_to(&mut bytes, image::ImageFormat::Png);
     bytes.into_inner()
 }
+
+/// How a glTF 1.0 PBR draft's specular-glossiness text is read (`--draft-reading`).
+#[derive(Clone, Copy, Default, clap::ValueEnum)]
+pub enum DraftReadingArg {
+    /// The drafts' Appendix (diffuse balanced by 1 − F per channel, scaled by 1 − max
+    /// specular): the reading the ratified KHR_materials_pbrSpecularGlossiness kept.
+    #[default]
+    Appendix,
+    /// The 2016 drafts' Appendix alone: the diffuse colour not scaled.
+    #[value(name = "appendix-2016")]
+    Appendix2016,
+    /// The January 2017 example shader: diffuse · (1 − max specular), no 1 − F.
+    ExampleShader,
+}
+
+impl DraftReadingArg {
+    pub fn reading(self) -> gltfmat::upgrade::SpecGlossReading {
+        use gltfmat::upgrade::SpecGlossReading;
+        match self {
+            DraftReadingArg::Appendix => SpecGlossReading::DraftAppendix,
+            DraftReadingArg::Appendix2016 => SpecGlossReading::DraftAppendix2016,
+            DraftReadingArg::ExampleShader => SpecGlossReading::DraftExampleShader,
+        }
+    }
+}

@@ -29,6 +29,10 @@ pub struct CompareArgs {
     /// the extension when several pairs are compared.
     #[arg(long)]
     heatmap: Option<PathBuf>,
+    /// How the first asset's glTF 1.0 spec-gloss draft materials are read; the other
+    /// readings' distance from it is printed beside.
+    #[arg(long, value_enum, default_value = "appendix")]
+    draft_reading: crate::common::DraftReadingArg,
     /// Replace existing heat map files.
     #[arg(long)]
     force: bool,
@@ -67,10 +71,17 @@ pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
         "DIFFERENT"
     };
     let (tv, tl, phi) = r.worst.directions;
-    format!(
+    let mut line = format!(
         "{verdict}: ΔE2000 max {:.4}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}), θv {tv}°, θl {tl}°, φ {phi}°; {}² grid × {} directions = {} samples",
         r.max, r.p99, r.mean, r.worst.uv[0], r.worst.uv[1], r.grid, DIRECTIONS.len(), r.samples
-    )
+    );
+    if let Some(a) = &o.ambiguity {
+        line += &format!(
+            "; source read as the {}: the drafts' readings differ by up to ΔE2000 {:.2} here (furthest: the {}), an ambiguity of the source, not of the conversion",
+            a.read_as, a.max, a.furthest
+        );
+    }
+    line
 }
 
 fn parse_map(entries: &[String]) -> Result<Vec<(usize, usize)>, String> {
@@ -95,6 +106,7 @@ pub fn run(args: CompareArgs) -> Outcome {
     options.pairs = parse_map(&args.material_map).map_err(Failure::usage)?;
     options.grid = args.grid;
     options.heat_maps = args.heatmap.is_some();
+    options.draft_reading = args.draft_reading.reading();
     if let Some(path) = &args.heatmap {
         // Refused before comparing, which can take a while; asked again for every file.
         gltfmat::output::may_write(path, &[], args.force)
@@ -133,6 +145,7 @@ pub fn run(args: CompareArgs) -> Outcome {
                     "worst": {"uv": o.result.worst.uv, "thetaV": o.result.worst.directions.0,
                               "thetaL": o.result.worst.directions.1, "phi": o.result.worst.directions.2},
                     "grid": o.result.grid, "samples": o.result.samples,
+                    "ambiguity": o.ambiguity.as_ref().map(|a| json!({"readAs": a.read_as, "furthest": a.furthest, "max": a.max})),
                     "pass": o.result.max <= args.threshold})
             })
             .collect();

@@ -40,6 +40,11 @@ pub struct UpgradeArgs {
     /// Skip the proof (every converted material is otherwise evaluated against its source).
     #[arg(long)]
     no_verify: bool,
+    /// The reading of a 1.0 PBR draft's spec-gloss text to convert under: the conversion is
+    /// exact under it and the proof judges by it; how far the drafts' other readings are
+    /// from it is printed beside, as the source's own ambiguity.
+    #[arg(long, value_enum, default_value = "appendix")]
+    draft_reading: crate::common::DraftReadingArg,
     /// ΔE2000 a converted material may differ from its source by.
     #[arg(long, default_value_t = gltfmat::shade::compare::DEFAULT_THRESHOLD, value_parser = crate::common::threshold)]
     threshold: f64,
@@ -67,7 +72,8 @@ pub fn run(args: UpgradeArgs) -> Outcome {
             SpecGlossArg::MetalRough => SpecularGlossiness::MetalRough,
             SpecGlossArg::Extension => SpecularGlossiness::Extension,
         })
-        .with_double_sided_default(args.double_sided);
+        .with_double_sided_default(args.double_sided)
+        .with_draft_reading(args.draft_reading.reading());
     let loader = FolderResources::beside(&args.input);
     // The bytes go to the upgrade, which lets a `.gltf`'s text go once its tree is built;
     // the proof reads the file again, and proves nothing if it changed in between.

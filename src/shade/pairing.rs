@@ -6,7 +6,7 @@ pub use super::compare::TexelMap;
 use super::compare::{self as evaluate, Comparison};
 use super::legacy::{legacy_materials, LegacyMaterialsError};
 use super::load::gltf2_materials;
-use super::material::Shader;
+use super::material::{Shader, SpecGlossReading};
 use super::render::{contact_sheet, material_ball, SheetLayout, MAX_PIXELS};
 use super::sample::MaterialSource;
 pub use super::sample::AS_STORED;
@@ -60,13 +60,29 @@ pub struct Outcome {
     pub a: (usize, String),
     /// Index and name of the material in the second asset.
     pub b: (usize, String),
-    /// The ΔE2000 figures.
+    /// The ΔE2000 figures, the source read as its options say.
     pub result: Comparison,
+    /// For a source whose text can be read several ways (a 1.0 spec-gloss draft material):
+    /// how far its other readings are from the one compared, a fact of the source and not
+    /// of the comparison.
+    pub ambiguity: Option<Ambiguity>,
+}
+
+/// How far a source's other readings are from the one it is compared under.
+#[derive(Debug, Clone)]
+pub struct Ambiguity {
+    /// The reading compared under.
+    pub read_as: &'static str,
+    /// The other reading furthest from it.
+    pub furthest: &'static str,
+    /// Their largest ΔE2000 from it.
+    pub max: f64,
 }
 
 /// Compares each pair `(i, j)` of `a[i]` with `b[j]`; pairs with a missing side are skipped.
 /// A material of `a` whose text can be read several ways (a 1.0 spec-gloss draft material)
-/// is compared under every reading, and the worst reading is kept and named in its label.
+/// is compared as it is read, and its other readings' distance from that reading is given
+/// beside, as [`Outcome::ambiguity`].
 pub fn compare_pairs(
     a: &[Named],
     b: &[Named],
@@ -77,7 +93,7 @@ pub fn compare_pairs(
     let shader = shader_for(a.iter().chain(b).filter_map(|(_, m)| m.as_ref()));
     // Materials that evaluate the same way are compared once (an asset's thousand copies of
     // one material are one comparison).
-    let mut done: std::collections::HashMap<(String, String), Worst> = Default::default();
+    let mut done: std::collections::HashMap<(String, String), PairResult> = Default::default();
     pairs
         .iter()
         .filter_map(|&(i, j)| {
@@ -88,61 +104,56 @@ pub fn compare_pairs(
                 return None;
             };
             let key = (ma.fingerprint(), mb.fingerprint());
-            let worst = (done.entry(key))
-                .or_insert_with(|| worst_reading(&shader, ma, mb, grid, map))
+            let compared = (done.entry(key))
+                .or_insert_with(|| compare_as_read(&shader, ma, mb, grid, map))
                 .clone();
-            let label = match worst.reading {
-                Some(how) => format!("{name_a} (source read as: {how})"),
-                None => name_a.clone(),
-            };
             Some(Outcome {
-                a: (i, label),
+                a: (i, name_a.clone()),
                 b: (j, name_b.clone()),
-                result: worst.result,
+                result: compared.result,
+                ambiguity: compared.ambiguity,
             })
         })
         .collect()
 }
 
-/// The comparison under a source's worst reading, and that reading's name when it has a
-/// choice of readings.
+/// One pair's comparison and its source's ambiguity.
 #[derive(Clone)]
-struct Worst {
+struct PairResult {
     result: Comparison,
-    reading: Option<&'static str>,
+    ambiguity: Option<Ambiguity>,
 }
 
-/// `source` compared with `target` under each of its readings (in one pass); the worst kept
-/// (the first of equals).
-fn worst_reading(
+/// `source`, as it is read, compared with `target`; and its other readings compared with
+/// it as it is read.
+fn compare_as_read(
     shader: &Shader,
     source: &MaterialSource,
     target: &MaterialSource,
     grid: u32,
     map: TexelMap,
-) -> Worst {
-    let readings = source.readings();
-    let results = evaluate::compare_readings(shader, &readings, target, grid, map);
-    (readings.iter().zip(results))
-        .map(|(reading, result)| Worst {
-            result,
-            reading: reading.reading_name(),
-        })
-        .reduce(|kept, next| {
-            if next.result.max > kept.result.max {
-                next
-            } else {
-                kept
-            }
-        })
-        .unwrap_or_else(|| Worst {
-            result: evaluate::compare(shader, source, target, grid),
-            reading: None,
-        })
+) -> PairResult {
+    let result =
+        evaluate::compare_readings(shader, std::slice::from_ref(source), target, grid, map)
+            .pop()
+            .unwrap_or_else(|| evaluate::compare(shader, source, target, grid));
+    let others = source.other_readings();
+    let spreads = evaluate::compare_readings(shader, &others, source, grid, TexelMap::Dropped);
+    let ambiguity = (others.iter().zip(spreads))
+        .filter_map(|(other, spread)| Some((other.reading_name()?, spread.max)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .and_then(|(furthest, max)| {
+            Some(Ambiguity {
+                read_as: source.reading_name()?,
+                furthest,
+                max,
+            })
+        });
+    PairResult { result, ambiguity }
 }
 
 /// Which materials [`compare`] pairs, and how finely it samples them.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 #[non_exhaustive]
 pub struct CompareOptions {
     /// Pairs `(i, j)`: material `i` of the first asset with material `j` of the second.
@@ -152,6 +163,20 @@ pub struct CompareOptions {
     pub grid: u32,
     /// Whether each outcome keeps its per-texel map (for heat maps).
     pub heat_maps: bool,
+    /// How the first asset's 1.0 spec-gloss draft materials are read (see
+    /// [`SpecGlossReading`]).
+    pub draft_reading: SpecGlossReading,
+}
+
+impl Default for CompareOptions {
+    fn default() -> Self {
+        CompareOptions {
+            pairs: Vec::new(),
+            grid: 0,
+            heat_maps: false,
+            draft_reading: SpecGlossReading::DraftAppendix,
+        }
+    }
 }
 
 /// Compares the materials of two assets (glTF 2.0, or glTF 1.0 with PBR-draft materials),
@@ -170,6 +195,9 @@ pub fn compare(
     options: &CompareOptions,
 ) -> Result<Compared, Error> {
     let (a, mut inputs) = materials_of(a.as_ref(), AS_STORED)?;
+    let a: Vec<Named> = (a.into_iter())
+        .map(|(name, m)| (name, m.map(|m| m.read_as(options.draft_reading))))
+        .collect();
     let (b, inputs_of_b) = materials_of(b.as_ref(), AS_STORED)?;
     inputs.extend(inputs_of_b);
     let pairs = if options.pairs.is_empty() {

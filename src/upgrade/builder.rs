@@ -46,6 +46,11 @@ pub struct Builder<'s, 'a> {
     pub(in crate::upgrade) fits: super::fit::Fits,
     /// The per-texel fits of textured spec-gloss materials made so far.
     pub(in crate::upgrade) texel_fits: super::fit::TexelFits,
+    /// The spec-gloss rebakes made so far, by what they were made from.
+    pub(in crate::upgrade) rebakes: super::spec_gloss::Rebakes,
+    /// The textures rebakes were added as, by their PNG and the 1.0 texture they are
+    /// sampled like: an image rebaked alike for several materials is written once.
+    pub(in crate::upgrade) rebaked: HashMap<(Vec<u8>, Option<String>), usize>,
 }
 
 /// How much the converted binary may outgrow the data read: `.0` times it plus `.1` bytes.
@@ -105,8 +110,10 @@ impl<'s, 'a> Builder<'s, 'a> {
             repacked: HashMap::new(),
             report: Notes::default(),
             lights: HashMap::new(),
-            fits: Default::default(),
-            texel_fits: Default::default(),
+            fits: super::fit::Fits::new(options.draft_reading),
+            texel_fits: super::fit::TexelFits::new(options.draft_reading),
+            rebakes: Default::default(),
+            rebaked: HashMap::new(),
             origins: Origins::default(),
         }
     }
@@ -437,6 +444,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             report: self.report.into_list(),
             origins: self.origins,
             passed_through: Default::default(),
+            draft_reading: self.options.draft_reading,
         }
     }
 }

@@ -1,17 +1,16 @@
-//! The spec-gloss → metal-rough closed form's vocabulary (the source's [`Factors`], the
-//! closed-form [`base_colour`]) and what improves on it: the fitted conversion of a
-//! factor-only 1.0 spec-gloss material, and of a textured one's base colour texel by texel
-//! ([`TexelFits`]). This is the bottom of the mapping: `rebake` and `spec_gloss` build on it.
+//! The spec-gloss → metal-rough closed form's vocabulary (the source's [`Factors`], read
+//! under one [`SpecGlossReading`], and its closed-form base colour) and what improves on it
+//! where that reading has no exact 2.0 form: the fitted conversion of a factor-only 1.0
+//! spec-gloss material, and of a textured one's base colour texel by texel ([`TexelFits`]).
+//! This is the bottom of the mapping: `rebake` and `spec_gloss` build on it.
 //!
-//! A factor-only 1.0 spec-gloss material: the drafts can be read
-//! three ways (see `SpecGlossReading::DRAFTS`), and where their readings disagree (a
-//! chromatic specular, or one read with no 1 − F) no closed-form 2.0 material matches all of
-//! them. When the closed form's worst ΔE over the readings and the proof's direction pairs is
-//! above the proof's threshold, the 2.0 factors (base colour, roughness, specular colour) are
-//! fitted to minimise that worst ΔE, the figure the proof reports, and both figures are kept
-//! for the conversion report. An upgrade fits each distinct material once and at most
-//! [`MAX_DISTINCT_FITS`] of them (about 5 ms each), so that a hostile asset of a million
-//! distinct materials cannot make it run for hours.
+//! A fit always moves the output towards the one reading the upgrade converts under, never
+//! towards a compromise between readings: under the default reading (the drafts' Appendix)
+//! the closed form is exact for factors and the fits only settle 8-bit quantisation of
+//! rebaked texels; under the example-shader reading (no 1 − F), which no 2.0 material draws
+//! exactly, they fit base colour, roughness and specular colour to it. An upgrade fits each
+//! distinct material once and at most [`MAX_DISTINCT_FITS`] of them (about 5 ms each), so
+//! that a hostile asset of a million distinct materials cannot make it run for hours.
 
 use crate::gltf::color::{linear_to_srgb, linear_to_srgb8, srgb_to_linear};
 use crate::shade::brdf::SheenVisibility;
@@ -25,18 +24,21 @@ const THRESHOLD: f64 = crate::shade::compare::DEFAULT_THRESHOLD;
 /// Distinct materials fitted per upgrade; later ones keep their closed form.
 pub const MAX_DISTINCT_FITS: usize = 256;
 
-/// A spec-gloss material's factors (diffuse RGBA, specular RGB, glossiness).
+/// A spec-gloss material's factors (diffuse RGBA, specular RGB, glossiness) and the
+/// reading its text is converted under.
 #[derive(Debug, Clone, Copy)]
 pub struct Factors {
     pub diffuse: [f64; 4],
     pub specular: [f64; 3],
     pub glossiness: f64,
+    pub reading: SpecGlossReading,
 }
 
-/// The closed-form base colour: diffuse · (1 − specular), channel by channel (a specular
-/// above 1 takes all of the diffuse, never more).
-pub fn base_colour(diffuse: [f64; 3], specular: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|i| diffuse[i] * (1.0 - specular[i]).max(0.0))
+impl Factors {
+    /// The closed-form base colour of `diffuse` and `specular` under this reading.
+    pub fn base_colour(&self, diffuse: [f64; 3], specular: [f64; 3]) -> [f64; 3] {
+        self.reading.closed_form_base(diffuse, specular).0
+    }
 }
 
 /// A metal-rough + KHR_materials_specular + ior 0 material's factors.
@@ -75,39 +77,45 @@ impl Target {
     }
 }
 
-/// The outcome: the closed form's worst ΔE, and the fitted factors with theirs when the
-/// fit was needed and did better.
+/// The outcome: the closed form's ΔE under the reading, and the fitted factors with theirs
+/// when the fit was needed and did better.
 #[derive(Debug, Clone)]
 pub struct Fit {
     pub closed_form: f64,
     pub fitted: Option<(Target, f64)>,
 }
 
-/// The worst ΔE of `target` against the spec-gloss source under every draft reading.
-fn worst_over_readings(shader: &Shader, sources: &[Inputs], target: &Target) -> f64 {
-    worst_at_point(shader, sources, &target.inputs())
+/// The ΔE of `target` against the spec-gloss `source`.
+fn difference(shader: &Shader, source: &Inputs, target: &Target) -> f64 {
+    worst_at_point(shader, std::slice::from_ref(source), &target.inputs())
 }
 
 /// The fits of one upgrade: each distinct material fitted once, at most
-/// [`MAX_DISTINCT_FITS`] of them.
+/// [`MAX_DISTINCT_FITS`] of them, towards one reading.
 pub struct Fits {
     done: std::collections::HashMap<[u64; 7], Fit>,
     budget: usize,
-}
-
-impl Default for Fits {
-    fn default() -> Self {
-        Fits::with_budget(MAX_DISTINCT_FITS)
-    }
+    reading: SpecGlossReading,
 }
 
 impl Fits {
+    /// Fits towards `reading`, at most [`MAX_DISTINCT_FITS`] distinct materials.
+    pub fn new(reading: SpecGlossReading) -> Fits {
+        Fits::with_budget(reading, MAX_DISTINCT_FITS)
+    }
+
     /// At most `budget` distinct materials fitted.
-    pub fn with_budget(budget: usize) -> Fits {
+    pub fn with_budget(reading: SpecGlossReading, budget: usize) -> Fits {
         Fits {
             done: Default::default(),
             budget,
+            reading,
         }
+    }
+
+    /// The reading fitted towards.
+    pub fn reading(&self) -> SpecGlossReading {
+        self.reading
     }
 
     /// [`fit`], remembered by the source's factors; None once the budget is spent.
@@ -127,7 +135,7 @@ impl Fits {
         if self.done.len() >= self.budget {
             return None;
         }
-        let outcome = fit(diffuse, specular, glossiness, closed);
+        let outcome = fit(diffuse, specular, glossiness, self.reading, closed);
         self.done.insert(key, outcome.clone());
         Some(outcome)
     }
@@ -143,14 +151,16 @@ pub const MAX_SCREENED_TEXELS: usize = 1 << 16;
 pub const MAX_TEXEL_FITS: usize = 1024;
 
 /// Per-texel fits of textured draft spec-gloss materials. Where the rebaked base colour's
-/// closed form, diffuse · (1 − specular), is above the proof's threshold under the drafts'
-/// readings at a texel, the base colour of that texel is fitted to the smallest worst ΔE over
-/// the readings (roughness and specular colour stay the textures' own, which the output
-/// reads as they are). Each distinct texel value is evaluated once for the whole upgrade.
+/// closed form under the reading, as the PNG stores it, is above the proof's threshold at a
+/// texel (8-bit rounding of a dark texel, or a reading with no exact form), the base colour
+/// of that texel is fitted to the smallest ΔE under that reading (roughness and specular
+/// colour stay the textures' own, which the output reads as they are). Each distinct texel
+/// value is evaluated once for the whole upgrade.
 pub struct TexelFits {
     done: std::collections::HashMap<[u64; 7], [f64; 3]>,
     screen_budget: usize,
     fits_left: usize,
+    reading: SpecGlossReading,
     /// What the texels rebaked since the last [`TexelFits::take_report`] came to.
     report: TexelReport,
 }
@@ -172,19 +182,19 @@ pub struct TexelReport {
     pub unscreened: usize,
 }
 
-impl Default for TexelFits {
-    fn default() -> Self {
-        TexelFits::with_budgets(MAX_SCREENED_TEXELS, MAX_TEXEL_FITS)
-    }
-}
-
 impl TexelFits {
+    /// Fits towards `reading` within [`MAX_SCREENED_TEXELS`] and [`MAX_TEXEL_FITS`].
+    pub fn new(reading: SpecGlossReading) -> TexelFits {
+        TexelFits::with_budgets(reading, MAX_SCREENED_TEXELS, MAX_TEXEL_FITS)
+    }
+
     /// At most `screened` distinct texel values evaluated and `fits` fitted.
-    pub fn with_budgets(screened: usize, fits: usize) -> TexelFits {
+    pub fn with_budgets(reading: SpecGlossReading, screened: usize, fits: usize) -> TexelFits {
         TexelFits {
             done: Default::default(),
             screen_budget: screened,
             fits_left: fits,
+            reading,
             report: TexelReport::default(),
         }
     }
@@ -201,10 +211,11 @@ impl TexelFits {
             .filter(|v| !self.done.contains_key(&v.key()))
             .take(self.screen_budget.saturating_sub(self.done.len()))
             .collect();
+        let reading = self.reading;
         let screened: Vec<(f64, [f64; 3])> = (new.par_iter())
             .map(|v| {
-                let closed = v.closed_form();
-                (v.cost(closed, levels), closed)
+                let closed = v.closed_form(reading);
+                (v.cost(closed, levels, reading), closed)
             })
             .collect();
         let report = &mut self.report;
@@ -222,7 +233,7 @@ impl TexelFits {
         self.fits_left -= to_fit.len();
         let fitted: Vec<([f64; 3], f64)> = (to_fit.par_iter())
             .map(|&k| {
-                let cost = |base: [f64; 3]| new[k].cost(base, levels);
+                let cost = |base: [f64; 3]| new[k].cost(base, levels, reading);
                 nelder_mead(cost, screened[k].1, 0.05, 100)
             })
             .collect();
@@ -270,12 +281,12 @@ impl TexelValue {
         [d0, d1, d2, s0, s1, s2, self.glossiness].map(f64::to_bits)
     }
 
-    fn closed_form(&self) -> [f64; 3] {
-        base_colour(self.diffuse, self.specular)
+    fn closed_form(&self, reading: SpecGlossReading) -> [f64; 3] {
+        reading.closed_form_base(self.diffuse, self.specular).0
     }
 
-    /// The worst ΔE over the drafts' readings of `base_colour` as the PNG stores it.
-    fn cost(&self, base_colour: [f64; 3], levels: f64) -> f64 {
+    /// The ΔE under `reading` of `base_colour` as the PNG stores it.
+    fn cost(&self, base_colour: [f64; 3], levels: f64, reading: SpecGlossReading) -> f64 {
         // The level the rebake writes: the 8-bit one by the same table, or the 16-bit
         // encoder's rounding of the f32 it is given.
         let stored = base_colour.map(|c| {
@@ -292,17 +303,10 @@ impl TexelValue {
             roughness: 1.0 - self.glossiness,
             specular_colour: self.specular,
         };
-        let sources = draft_readings(self.diffuse, self.specular, self.glossiness);
-        worst_over_readings(shader(), &sources, &target)
+        let source =
+            Inputs::specular_glossiness(self.diffuse, self.specular, self.glossiness, reading);
+        difference(shader(), &source, &target)
     }
-}
-
-/// A spec-gloss source under each of the drafts' readings.
-fn draft_readings(diffuse: [f64; 3], specular: [f64; 3], glossiness: f64) -> Vec<Inputs> {
-    SpecGlossReading::DRAFTS
-        .iter()
-        .map(|&reading| Inputs::specular_glossiness(diffuse, specular, glossiness, reading))
-        .collect()
 }
 
 /// The evaluator the fits use: no sheen is involved, so the smallest table will do; made
@@ -312,12 +316,18 @@ fn shader() -> &'static Shader {
     SHADER.get_or_init(|| Shader::new(SheenTable::compute(2, SheenVisibility::Charlie)))
 }
 
-/// Fits the 2.0 factors for a spec-gloss source (diffuse, specular, glossiness) whose
-/// closed-form conversion is `closed`.
-pub fn fit(diffuse: [f64; 3], specular: [f64; 3], glossiness: f64, closed: Target) -> Fit {
+/// Fits the 2.0 factors for a spec-gloss source (diffuse, specular, glossiness) read as
+/// `reading`, whose closed-form conversion is `closed`.
+pub fn fit(
+    diffuse: [f64; 3],
+    specular: [f64; 3],
+    glossiness: f64,
+    reading: SpecGlossReading,
+    closed: Target,
+) -> Fit {
     let shader = shader();
-    let sources = draft_readings(diffuse, specular, glossiness);
-    let cost = |x: [f64; 7]| worst_over_readings(shader, &sources, &Target::from_vector(x));
+    let source = Inputs::specular_glossiness(diffuse, specular, glossiness, reading);
+    let cost = |x: [f64; 7]| difference(shader, &source, &Target::from_vector(x));
     let closed_form = cost(closed.to_vector());
     if closed_form <= THRESHOLD {
         return Fit {
@@ -335,7 +345,7 @@ pub fn fit(diffuse: [f64; 3], specular: [f64; 3], glossiness: f64, closed: Targe
 
 /// Nelder–Mead simplex minimisation over parameters in 0..1 from `start` with initial
 /// steps of `step`, for at most `evaluations` evaluations: derivative-free, as the worst ΔE
-/// over readings and directions is a maximum of smooth functions, not smooth itself. The
+/// over directions is a maximum of smooth functions, not smooth itself. The
 /// result is clamped to 0..1, as the factors written are, and its figure is its own.
 fn nelder_mead<const N: usize>(
     f: impl Fn([f64; N]) -> f64,
@@ -402,67 +412,102 @@ fn nelder_mead<const N: usize>(
 mod tests {
     use super::*;
 
-    fn closed_form(diffuse: [f64; 3], specular: [f64; 3], glossiness: f64) -> Target {
+    fn closed_form(
+        diffuse: [f64; 3],
+        specular: [f64; 3],
+        glossiness: f64,
+        reading: SpecGlossReading,
+    ) -> Target {
         Target {
-            base_colour: base_colour(diffuse, specular),
+            base_colour: reading.closed_form_base(diffuse, specular).0,
             roughness: 1.0 - glossiness,
             specular_colour: specular,
         }
     }
 
+    /// The drafts' own factor cases and the chromatic ones the issue names.
+    const MATERIALS: [([f64; 3], [f64; 3], f64); 5] = [
+        ([0.6, 0.5, 0.4], [0.2; 3], 0.75),
+        ([0.6, 0.3, 0.2], [0.2; 3], 0.7),
+        ([0.8; 3], [0.9, 0.1, 0.1], 0.5),
+        ([0.5, 0.4, 0.3], [0.04, 0.3, 0.6], 0.9),
+        ([0.1; 3], [0.04; 3], 0.2),
+    ];
+
     #[test]
-    fn a_closed_form_within_the_threshold_is_kept() {
-        // A dark grey plastic: the readings differ by less than one JND.
-        let (d, s, g) = ([0.1; 3], [0.04; 3], 0.5);
-        let fit = fit(d, s, g, closed_form(d, s, g));
-        assert!(fit.closed_form <= THRESHOLD, "{}", fit.closed_form);
-        assert!(fit.fitted.is_none());
+    fn each_reading_is_drawn_exactly_by_its_own_closed_form_where_it_says_so() {
+        let mut exact_seen = 0;
+        for reading in SpecGlossReading::DRAFTS {
+            for (d, s, g) in MATERIALS {
+                let (_, exact) = reading.closed_form_base(d, s);
+                let figure = fit(d, s, g, reading, closed_form(d, s, g, reading)).closed_form;
+                if exact {
+                    exact_seen += 1;
+                    assert!(figure < 0.05, "{reading:?} {d:?} {s:?}: ΔE {figure}");
+                }
+            }
+        }
+        // The Appendix (all five), and the 2016 reading where diffuse · (1 − s)/(1 − max s)
+        // stays at most 1 (the achromatic cases).
+        assert!(exact_seen >= 5 + 3, "{exact_seen}");
+        let (d, s, g) = MATERIALS[2];
+        let appendix = SpecGlossReading::DraftAppendix;
+        let (base, exact) = appendix.closed_form_base(d, s);
+        assert!(exact);
+        for (got, want) in base.iter().zip([0.08, 0.72, 0.72]) {
+            assert!((got - want).abs() < 1e-12, "{base:?}");
+        }
+        let figure = fit(d, s, g, appendix, closed_form(d, s, g, appendix)).closed_form;
+        assert!(figure < 0.05, "a chromatic specular is exact too: {figure}");
     }
 
     #[test]
-    fn a_fit_halves_the_worst_reading_and_reports_its_own_figure() {
-        // A grey plastic the example-shader reading (no 1 − F) sets apart: closed form 1.05.
+    fn a_reading_with_no_exact_form_is_fitted_towards_itself_and_reports_its_own_figure() {
+        // The example shader (no 1 − F): no 2.0 material draws it exactly.
+        let reading = SpecGlossReading::DraftExampleShader;
         let (d, s, g) = ([0.5, 0.4, 0.3], [0.04; 3], 0.5);
-        let fit = fit(d, s, g, closed_form(d, s, g));
-        let (target, figure) = fit.fitted.expect("a fit that does better");
-        assert!(
-            figure < 0.6 * fit.closed_form && figure < THRESHOLD,
-            "fitted {figure} against closed form {}",
-            fit.closed_form
-        );
-        // The figure is the fitted factors' own, recomputed here.
-        let sources: Vec<Inputs> = SpecGlossReading::DRAFTS
-            .iter()
-            .map(|&r| Inputs::specular_glossiness(d, s, g, r))
-            .collect();
-        assert_eq!(worst_over_readings(shader(), &sources, &target), figure);
+        assert!(!reading.closed_form_base(d, s).1);
+        let fit = fit(d, s, g, reading, closed_form(d, s, g, reading));
+        if let Some((target, figure)) = fit.fitted {
+            assert!(
+                figure < fit.closed_form,
+                "{figure} against {}",
+                fit.closed_form
+            );
+            let source = Inputs::specular_glossiness(d, s, g, reading);
+            assert_eq!(difference(shader(), &source, &target), figure);
+        } else {
+            assert!(fit.closed_form <= THRESHOLD, "{}", fit.closed_form);
+        }
     }
 
     #[test]
     fn texel_values_are_judged_once_and_within_their_budgets() {
-        // The verify bench's worst texel (closed form 1.11 as stored in 8 bits), one near it
-        // one, and a black one.
+        // Texels the 2016 reading cannot be drawn exactly for: its base colour would pass 1.
         let value = |diffuse| TexelValue {
             diffuse,
-            specular: [0.0106, 0.0298, 0.0106],
+            specular: [0.6, 0.1, 0.1],
             glossiness: 0.545,
         };
-        let (bench, nearby, black) = (
-            value([0.807, 0.491, 0.188]),
-            value([0.8, 0.49, 0.19]),
+        let (first, nearby, black) = (
+            value([0.9, 0.85, 0.8]),
+            value([0.8, 0.9, 0.85]),
             value([0.0; 3]),
         );
-        let mut fits = TexelFits::with_budgets(2, 1);
-        let chosen = fits.resolve(&[bench, nearby, black, bench], 255.0);
+        let reading = SpecGlossReading::DraftAppendix2016;
+        let mut fits = TexelFits::with_budgets(reading, 2, 1);
+        let chosen = fits.resolve(&[first, nearby, black, first], 255.0);
         let report = fits.take_report();
-        assert_eq!((report.screened, report.above, report.fitted), (2, 2, 1));
-        assert!(report.closed_worst > 1.1 && report.written_worst > THRESHOLD);
-        let fitted = chosen[0].expect("judged");
-        assert_ne!(fitted, bench.closed_form(), "the first is fitted");
-        assert!(bench.cost(fitted, 255.0) <= THRESHOLD);
+        assert_eq!((report.screened, report.above), (2, 2));
+        assert!(report.fitted <= 1 && report.closed_worst > THRESHOLD);
+        let written = chosen[0].expect("judged");
+        assert!(
+            first.cost(written, 255.0, reading)
+                <= first.cost(first.closed_form(reading), 255.0, reading)
+        );
         assert_eq!(
             chosen[1],
-            Some(nearby.closed_form()),
+            Some(nearby.closed_form(reading)),
             "past the fits' budget"
         );
         assert_eq!(
@@ -471,29 +516,27 @@ mod tests {
         );
         assert_eq!(chosen[3], chosen[0], "a value judged once");
         // Remembered for the rest of the upgrade, with nothing new to report.
-        assert_eq!(fits.resolve(&[bench], 255.0), vec![Some(fitted)]);
+        assert_eq!(fits.resolve(&[first], 255.0), vec![Some(written)]);
         assert_eq!(fits.take_report().screened, 0);
     }
 
     #[test]
     fn each_distinct_material_is_fitted_once_and_only_so_many() {
         let budget = 3;
-        let mut fits = Fits::with_budget(budget);
+        let reading = SpecGlossReading::DraftExampleShader;
+        let mut fits = Fits::with_budget(reading, budget);
         let (s, g) = ([0.04; 3], 0.5);
-        let material = |i: usize| [0.1, 0.1, 0.1 + i as f64 * 1e-4];
+        let material = |i: usize| [0.5, 0.4, 0.3 + i as f64 * 1e-4];
+        let closed = |d| closed_form(d, s, g, reading);
         for i in 0..budget {
             let d = material(i);
-            assert!(fits.fit(d, s, g, closed_form(d, s, g)).is_some(), "fit {i}");
+            assert!(fits.fit(d, s, g, closed(d)).is_some(), "fit {i}");
         }
         let again = material(0);
-        assert!(
-            fits.fit(again, s, g, closed_form(again, s, g)).is_some(),
-            "remembered"
-        );
+        assert!(fits.fit(again, s, g, closed(again)).is_some(), "remembered");
         let one_more = material(budget);
         assert!(
-            fits.fit(one_more, s, g, closed_form(one_more, s, g))
-                .is_none(),
+            fits.fit(one_more, s, g, closed(one_more)).is_none(),
             "over budget"
         );
     }

@@ -53,6 +53,7 @@ pub(super) fn upgrade(
         images: Vec::new(),
         report: Notes::default(),
         rebaked: HashMap::new(),
+        rebakes: Default::default(),
     };
     asset.refuse_buffers_named_inside_extensions()?;
     let buffers = asset.read_buffers(glb_bin, loader)?;
@@ -77,6 +78,7 @@ pub(super) fn upgrade(
         report: asset.report.into_list(),
         origins: Default::default(),
         passed_through,
+        draft_reading: options.draft_reading,
     })
 }
 
@@ -89,6 +91,8 @@ struct Asset {
     /// Rebaked textures by image bytes and sampler: materials that share their textures and
     /// factors share the rebake instead of writing one image each.
     rebaked: HashMap<(Vec<u8>, Option<u64>), usize>,
+    /// The rebakes made, by what they were made from.
+    rebakes: spec_gloss::Rebakes,
 }
 
 /// An input buffer's bytes: the shared file (or GLB) and the buffer's range in it.
@@ -317,6 +321,7 @@ impl Asset {
             return Ok(false);
         }
         let factors = Factors {
+            reading: crate::shade::material::SpecGlossReading::ArchivedExtension,
             diffuse: numbers(block.get("diffuseFactor"), [1.0; 4]),
             specular: numbers(block.get("specularFactor"), [1.0; 3]),
             glossiness: block
@@ -562,6 +567,10 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
     /// The archived extension has one reading, which the closed form reproduces exactly.
     fn texel_fits(&mut self) -> Option<&mut super::fit::TexelFits> {
         None
+    }
+
+    fn rebakes(&mut self) -> &mut spec_gloss::Rebakes {
+        &mut self.asset.rebakes
     }
 
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value {

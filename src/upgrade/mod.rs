@@ -35,6 +35,8 @@ use std::borrow::Cow;
 use std::collections::HashSet;
 use std::sync::Arc;
 
+pub use crate::shade::material::SpecGlossReading;
+
 /// How specular-glossiness materials are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SpecularGlossiness {
@@ -48,7 +50,7 @@ pub enum SpecularGlossiness {
 }
 
 /// How the converter writes what 2.0 can express in several ways.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 #[non_exhaustive]
 pub struct UpgradeOptions {
     /// Spec-gloss materials: converted to metal-rough, or kept as the extension.
@@ -57,9 +59,34 @@ pub struct UpgradeOptions {
     /// materials with no technique). Techniques decide for themselves: no CULL_FACE in
     /// their states means double-sided.
     pub double_sided_default: bool,
+    /// The reading of the 1.0 PBR drafts' specular-glossiness text a conversion is exact
+    /// under and its proof judged by (default: the drafts' Appendix, which the ratified
+    /// KHR_materials_pbrSpecularGlossiness kept); the other readings' distance from it is
+    /// reported as the source's ambiguity.
+    pub draft_reading: SpecGlossReading,
+}
+
+impl Default for UpgradeOptions {
+    fn default() -> Self {
+        UpgradeOptions {
+            specular_glossiness: SpecularGlossiness::default(),
+            double_sided_default: false,
+            draft_reading: SpecGlossReading::DraftAppendix,
+        }
+    }
 }
 
 impl UpgradeOptions {
+    /// These options converting 1.0 spec-gloss drafts under `reading` (one of
+    /// [`SpecGlossReading::DRAFTS`]; the archived extension's reading is the Appendix's).
+    pub fn with_draft_reading(mut self, reading: SpecGlossReading) -> Self {
+        self.draft_reading = match reading {
+            SpecGlossReading::ArchivedExtension => SpecGlossReading::DraftAppendix,
+            draft => draft,
+        };
+        self
+    }
+
     /// These options writing spec-gloss materials as `mode` says.
     pub fn with_specular_glossiness(mut self, mode: SpecularGlossiness) -> Self {
         self.specular_glossiness = mode;
@@ -141,6 +168,8 @@ pub struct Upgraded {
     /// Materials passed through as they were (a 2.0 input's materials that are not
     /// converted): a proof has nothing to compare for them.
     passed_through: std::collections::BTreeSet<usize>,
+    /// The reading 1.0 spec-gloss drafts were converted under: the proof judges by it.
+    draft_reading: SpecGlossReading,
 }
 
 impl Upgraded {
@@ -151,6 +180,11 @@ impl Upgraded {
         let mut tokens = output_pointer.split('/').skip(1);
         let collection = tokens.next()?;
         self.origins.get(collection, tokens.next()?.parse().ok()?)
+    }
+
+    /// The reading 1.0 spec-gloss draft materials were converted under.
+    pub fn draft_reading(&self) -> SpecGlossReading {
+        self.draft_reading
     }
 
     /// Whether material `index` was passed through from a 2.0 input as it was, rather than

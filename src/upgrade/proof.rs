@@ -1,7 +1,8 @@
 //! An upgrade's proof: every source material that has a model of its own (a 1.0 asset's
 //! PBR-draft materials, every converted material of a 2.0 asset) compared with its
-//! conversion by the reference evaluator, under every reading of the source's text, the
-//! worst reading kept and named.
+//! conversion by the reference evaluator, the source read as it was converted (a 1.0
+//! spec-gloss draft under the upgrade's draft reading); how far the drafts' other readings
+//! are from that one is given beside, as the source's own ambiguity.
 
 use super::{converted_materials, Upgraded};
 use crate::document::uri::ResourceLoader;
@@ -22,7 +23,7 @@ pub enum ProofError {
 
 /// Proves `upgraded`, made from `input` (named `name`, its files read through `loader`; the
 /// bytes are read into the proof's own tree, so a caller done with them hands them over):
-/// one outcome per converted material, the worst of its source's readings.
+/// one outcome per converted material.
 pub fn prove<'b>(
     input: impl Into<std::borrow::Cow<'b, [u8]>>,
     name: &str,
@@ -31,6 +32,10 @@ pub fn prove<'b>(
 ) -> Result<Vec<Outcome>, ProofError> {
     let sources = pairing::load_materials(input.into().into_owned(), name, loader, AS_STORED)
         .map_err(ProofError::Source)?;
+    let reading = upgraded.draft_reading();
+    let sources: Vec<Named> = (sources.into_iter())
+        .map(|(name, source)| (name, source.map(|s| s.read_as(reading))))
+        .collect();
     let converted = converted_materials(upgraded).map_err(ProofError::Converted)?;
     let converted: Vec<Named> = (converted.into_iter().zip(&sources))
         .map(|(target, (name, _))| (name.clone(), Some(target)))

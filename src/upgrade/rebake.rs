@@ -5,7 +5,7 @@ use crate::document::image_decode;
 use crate::document::image_header::{self, Channels};
 use crate::gltf::color::{linear_to_srgb, linear_to_srgb8, srgb_texel_to_linear};
 use crate::shade::sample::{self, TextureImage};
-use crate::upgrade::fit::{self, base_colour, Factors, TexelFits, TexelValue};
+use crate::upgrade::fit::{self, Factors, TexelFits, TexelValue};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{DynamicImage, ExtendedColorType, ImageEncoder, Rgba32FImage};
 use std::collections::hash_map::{Entry, HashMap};
@@ -96,13 +96,14 @@ pub fn gloss_to_roughness(bytes: &[u8], glossiness_factor: f64) -> Result<Vec<u8
 /// height), and each input is sampled bilinearly (repeat wrapping, as the evaluator and
 /// viewers sample it) at the output's texel centres: the rebake is then exact at every
 /// output texel centre whatever the two resolutions, where sampling the smaller texture at
-/// its nearest texel was not. Returns the PNG and whether it has an alpha channel.
+/// its nearest texel was not. The grid is held to [`rebake_grid`]. Returns the PNG, whether
+/// it has an alpha channel, and the decision when the grid was held.
 pub fn spec_gloss_base_colour(
     diffuse: Option<&[u8]>,
     specular: Option<&[u8]>,
     factors: &Factors,
     fits: Option<&mut TexelFits>,
-) -> Result<(Vec<u8>, bool), String> {
+) -> Result<(Vec<u8>, bool, Option<String>), String> {
     let alpha = diffuse.is_some_and(has_translucent_texels) || factors.diffuse[3] < 1.0;
     let diffuse = diffuse.map(sample::decode).transpose()?;
     let specular = specular.map(sample::decode).transpose()?;
@@ -113,6 +114,11 @@ pub fn spec_gloss_base_colour(
         .max()
         .ok_or("no texture to rebake")?;
     let height = inputs.iter().map(|t| t.height()).max().unwrap_or(1);
+    let largest = (inputs.iter())
+        .map(|t| u64::from(t.width()) * u64::from(t.height()))
+        .max()
+        .unwrap_or(1);
+    let (width, height, held) = rebake_grid(width, height, largest);
     let wide = inputs.iter().any(|t| t.is_wide());
     let source = SpecGlossTexels {
         diffuse: diffuse.as_deref(),
@@ -132,7 +138,7 @@ pub fn spec_gloss_base_colour(
             Some(colour) => (colour, source.alpha(x, y)),
             None => {
                 let (value, alpha) = source.at(x, y);
-                (base_colour(value.diffuse, value.specular), alpha)
+                (factors.base_colour(value.diffuse, value.specular), alpha)
             }
         };
         let channel = |c: usize| {
@@ -146,7 +152,30 @@ pub fn spec_gloss_base_colour(
         [channel(0), channel(1), channel(2), alpha]
     };
     let out = in_parallel_rows(width, height, texel);
-    Ok((encode(&out, alpha, wide), alpha))
+    Ok((encode(&out, alpha, wide), alpha, held))
+}
+
+/// The most texels a rebake's grid gets beyond its largest input's: 2048².
+pub const REBAKE_FLOOR: u64 = 1 << 22;
+
+/// The grid of a rebake of textures whose finest dimensions are `width` × `height` and whose
+/// largest holds `largest` texels: that grid, unless it holds more than the largest input or
+/// [`REBAKE_FLOOR`], whichever is more; then the grid of that many texels with the same
+/// aspect, and the decision saying so. Two textures of 16384×1 and 1×16384 hold 32768
+/// texels between them; their finest grid would hold 2^28, every one interpolated.
+pub fn rebake_grid(width: u32, height: u32, largest: u64) -> (u32, u32, Option<String>) {
+    let finest = u64::from(width) * u64::from(height);
+    let most = largest.max(REBAKE_FLOOR);
+    if finest <= most {
+        return (width, height, None);
+    }
+    let scale = (most as f64 / finest as f64).sqrt();
+    let held = |side: u32| ((f64::from(side) * scale).floor() as u32).clamp(1, side);
+    let (w, h) = (held(width), held(height));
+    let decision = format!(
+        "the rebake's grid is {w}×{h}, not the {width}×{height} the textures' finest dimensions make: that grid would hold {finest} texels, more than the largest texture's {largest} (or {REBAKE_FLOOR}), each interpolated, not stored."
+    );
+    (w, h, Some(decision))
 }
 
 /// The texture coordinates of the centre of texel (x, y) in a `width` × `height` grid.
@@ -294,15 +323,31 @@ mod tests {
     }
 
     #[test]
+    fn a_rebake_grid_is_held_to_the_largest_input_or_the_floor_not_their_product() {
+        assert_eq!(rebake_grid(2048, 2048, 2048 * 2048), (2048, 2048, None));
+        assert_eq!(rebake_grid(8192, 8192, 8192 * 8192), (8192, 8192, None));
+        let (w, h, held) = rebake_grid(16384, 16384, 16384);
+        assert_eq!((w, h), (2048, 2048));
+        assert!(held.is_some_and(|d| d.contains("2048×2048, not the 16384×16384")));
+        let (w, h, _) = rebake_grid(65536, 4, 16384);
+        assert!(
+            u64::from(w) * u64::from(h) <= REBAKE_FLOOR && h >= 1,
+            "{w}×{h}"
+        );
+    }
+
+    #[test]
     fn base_colour_keeps_what_the_specular_lobe_does_not_take() {
         let diffuse = image::RgbaImage::from_pixel(1, 1, image::Rgba([188, 188, 188, 200])); // ≈ 0.5 linear
         let factors = Factors {
             diffuse: [1.0; 4],
             specular: [0.5, 0.2, 0.2],
             glossiness: 1.0,
+            reading: crate::shade::material::SpecGlossReading::ArchivedExtension,
         };
-        let (bytes, alpha) =
+        let (bytes, alpha, held) =
             spec_gloss_base_colour(Some(&png(diffuse)), None, &factors, None).unwrap();
+        assert_eq!(held, None);
         let texel = decode(&bytes).unwrap().to_rgb8().get_pixel(0, 0).0;
         let expected =
             linear_to_srgb(crate::gltf::color::srgb_to_linear(188.0 / 255.0) * 0.5) * 255.0;

@@ -13,9 +13,10 @@
 //! (1 − s_c) makes the two equal at every angle, chromatic specular included. (The earlier
 //! diffuse · (1 − max s) is the same only for an achromatic specular.)
 
-pub use super::fit::{base_colour, Factors};
+pub use super::fit::Factors;
 use super::fit::{TexelFits, TexelReport};
 use super::rebake;
+use crate::shade::material::SpecGlossReading;
 use serde_json::{json, Map, Value};
 use std::sync::Arc;
 
@@ -40,6 +41,42 @@ pub trait Textures {
     /// The per-texel fits, for a source whose text can be read several ways (the 1.0
     /// drafts); `None` where the closed form is exact (the archived 2.0 extension).
     fn texel_fits(&mut self) -> Option<&mut TexelFits>;
+    /// The rebakes this upgrade has made so far.
+    fn rebakes(&mut self) -> &mut Rebakes;
+}
+
+/// The rebakes of one upgrade, by what they were made from: the same two images (by
+/// identity: the upgrade holds each image once) with the same factors under the same
+/// reading rebake to the same textures, so materials sharing a texture are rebaked once.
+#[derive(Default)]
+pub struct Rebakes(std::collections::HashMap<RebakeKey, Rebaked>);
+
+/// The images' addresses (0 for none), the factors' bits and the reading.
+type RebakeKey = (usize, usize, [u64; 8], SpecGlossReading);
+
+/// A rebake's two PNGs and its decisions (a held grid, the per-texel fits).
+#[derive(Clone)]
+struct Rebaked {
+    base_colour: Vec<u8>,
+    roughness: Vec<u8>,
+    lines: Vec<String>,
+}
+
+fn rebake_key(
+    factors: &Factors,
+    diffuse: Option<&Arc<crate::document::Bytes>>,
+    specular: &Arc<crate::document::Bytes>,
+) -> RebakeKey {
+    let [d0, d1, d2, d3] = factors.diffuse;
+    let [s0, s1, s2] = factors.specular;
+    let bits = [d0, d1, d2, d3, s0, s1, s2, factors.glossiness].map(f64::to_bits);
+    let address = diffuse.map_or(0, |d| Arc::as_ptr(d) as usize);
+    (
+        address,
+        Arc::as_ptr(specular) as usize,
+        bits,
+        factors.reading,
+    )
 }
 
 /// A converted material: its `pbrMetallicRoughness`, the extensions it gains, and the
@@ -57,48 +94,47 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
     let mut core = json!({"metallicFactor": 0.0, "roughnessFactor": 1.0 - factors.glossiness});
     if let Some(specular) = &specular_texture {
         let diffuse = textures.bytes(Slot::Diffuse);
-        let fits = textures.texel_fits();
-        // The two rebakes are independent: the roughness one runs on a second thread.
-        let (base_colour, roughness) = std::thread::scope(|scope| {
-            let roughness =
-                scope.spawn(|| rebake::gloss_to_roughness(specular, factors.glossiness));
-            let base_colour = rebake::spec_gloss_base_colour(
-                diffuse.as_deref().map(|bytes| &bytes[..]),
-                Some(specular),
-                factors,
-                fits,
-            );
-            let roughness = (roughness.join())
-                .unwrap_or_else(|_| Err("the roughness rebake failed".to_string()));
-            (base_colour, roughness)
-        });
-        // Both rebakes must succeed before either is added: a failure leaves no orphan.
-        let (base_colour, roughness) = (base_colour?.0, roughness?);
+        let key = rebake_key(factors, diffuse.as_ref(), specular);
+        let made = match textures.rebakes().0.get(&key) {
+            Some(made) => made.clone(),
+            None => {
+                let made = rebake(factors, diffuse.as_deref(), specular, textures)?;
+                textures.rebakes().0.insert(key, made.clone());
+                made
+            }
+        };
         let like = if diffuse.is_some() {
             Slot::Diffuse
         } else {
             Slot::SpecularGlossiness
         };
-        core["baseColorTexture"] = textures.add_rebaked(base_colour, like, "baseColor");
+        core["baseColorTexture"] = textures.add_rebaked(made.base_colour, like, "baseColor");
         core["baseColorFactor"] = json!([1.0, 1.0, 1.0, 1.0]);
         core["metallicRoughnessTexture"] =
-            textures.add_rebaked(roughness, Slot::SpecularGlossiness, "roughness");
+            textures.add_rebaked(made.roughness, Slot::SpecularGlossiness, "roughness");
         core["roughnessFactor"] = json!(1.0);
-        decisions.push("baseColor = diffuse · (1 − specular) per channel and roughness = 1 − glossiness rebaked per texel into new textures (on the finer grid of the two, each sampled bilinearly).".to_string());
-        if let Some(fits) = textures.texel_fits() {
-            decisions.push(texel_fit_decision(&fits.take_report()));
-        }
+        decisions.push(format!("baseColor = {} and roughness = 1 − glossiness rebaked per texel into new textures (on the finer grid of the two, each sampled bilinearly).", formula(factors.reading)));
+        decisions.extend(made.lines);
     } else {
         let keep = factors.specular.map(|s| 1.0 - s);
         let [r, g, b, a] = factors.diffuse;
-        let [br, bg, bb] = base_colour([r, g, b], factors.specular);
+        let [br, bg, bb] = factors.base_colour([r, g, b], factors.specular);
         core["baseColorFactor"] = json!([br, bg, bb, a]);
         if let Some(info) = textures.info(Slot::Diffuse) {
             core["baseColorTexture"] = info;
         }
-        decisions.push(format!(
-            "baseColorFactor = diffuse · (1 − specular) per channel = diffuse · {keep:?}."
-        ));
+        decisions.push(
+            match factors.reading.closed_form_base([1.0; 3], factors.specular) {
+                (scale, true) if keep == scale => format!(
+                    "baseColorFactor = {} = diffuse · {keep:?}.",
+                    formula(factors.reading)
+                ),
+                (scale, _) => format!(
+                    "baseColorFactor = {} = diffuse · {scale:?}.",
+                    formula(factors.reading)
+                ),
+            },
+        );
     }
     let mut specular = json!({"specularColorFactor": factors.specular});
     if let Some(info) = textures.info(Slot::SpecularGlossiness) {
@@ -108,7 +144,10 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
     let mut extensions = Map::new();
     extensions.insert("KHR_materials_specular".into(), specular);
     extensions.insert("KHR_materials_ior".into(), json!({"ior": 0}));
-    decisions.push("spec-gloss → metal-rough: metallic 0, F0 = specular via KHR_materials_specular (specularColor) and KHR_materials_ior (ior 0, infinite). With base colour diffuse · (1 − specular) per channel the diffuse term equals the archived extension's per-channel (1 − F) balance at every angle, chromatic specular included.".to_string());
+    decisions.push(match factors.reading {
+        SpecGlossReading::ArchivedExtension => "spec-gloss → metal-rough: metallic 0, F0 = specular via KHR_materials_specular (specularColor) and KHR_materials_ior (ior 0, infinite). With base colour diffuse · (1 − specular) per channel the diffuse term equals the archived extension's per-channel (1 − F) balance at every angle, chromatic specular included.".to_string(),
+        reading => format!("spec-gloss → metal-rough under the drafts' reading '{}' ({}): metallic 0, F0 = specular via KHR_materials_specular (specularColor) and KHR_materials_ior (ior 0, infinite).", reading.option_name(), reading.name()),
+    });
     Ok(Converted {
         pbr_metallic_roughness: core,
         extensions,
@@ -116,15 +155,62 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
     })
 }
 
+/// Rebakes the base colour and roughness textures of one material (both must succeed before
+/// either is added: a failure leaves no orphan).
+fn rebake(
+    factors: &Factors,
+    diffuse: Option<&crate::document::Bytes>,
+    specular: &[u8],
+    textures: &mut dyn Textures,
+) -> Result<Rebaked, String> {
+    let fits = textures.texel_fits();
+    // The two rebakes are independent: the roughness one runs on a second thread.
+    let (base_colour, roughness) = std::thread::scope(|scope| {
+        let roughness = scope.spawn(|| rebake::gloss_to_roughness(specular, factors.glossiness));
+        let base_colour = rebake::spec_gloss_base_colour(
+            diffuse.map(|bytes| &bytes[..]),
+            Some(specular),
+            factors,
+            fits,
+        );
+        let roughness =
+            (roughness.join()).unwrap_or_else(|_| Err("the roughness rebake failed".to_string()));
+        (base_colour, roughness)
+    });
+    let ((base_colour, _, held), roughness) = (base_colour?, roughness?);
+    let fit_line = (textures.texel_fits()).map(|fits| texel_fit_decision(&fits.take_report()));
+    Ok(Rebaked {
+        base_colour,
+        roughness,
+        lines: held.into_iter().chain(fit_line).collect(),
+    })
+}
+
+/// The closed-form base colour under `reading`, in words (see
+/// [`SpecGlossReading::closed_form_base`]).
+fn formula(reading: SpecGlossReading) -> &'static str {
+    match reading {
+        SpecGlossReading::ArchivedExtension | SpecGlossReading::DraftAppendix => {
+            "diffuse · (1 − specular) per channel"
+        }
+        SpecGlossReading::DraftAppendix2016 => {
+            "diffuse · (1 − specular) / (1 − max specular) per channel, at most 1"
+        }
+        SpecGlossReading::DraftExampleShader => {
+            "diffuse (the example shader's reading has no exact 2.0 form: fitted where it matters)"
+        }
+    }
+}
+
 /// The conversion report's line for a rebake's per-texel fits.
 fn texel_fit_decision(report: &TexelReport) -> String {
     let mut line = format!(
-        "per-texel check of the rebaked base colour against the drafts' three readings: {} distinct texel values, the closed form's worst ΔE2000 {:.2}",
+        "per-texel check of the rebaked base colour as the PNG stores it, under the reading converted to: {} distinct texel values, the closed form's worst ΔE2000 {:.2}",
         report.screened, report.closed_worst
     );
     if report.above > 0 {
         line += &format!(
-            "; {} above the threshold, {} of them fitted (base colour per texel, no longer exact under any one reading): worst now {:.2} as the PNG stores it",
+            "; {} above the threshold, {} of them fitted towards that reading (base colour per texel): worst now {:.2} as the PNG stores it",
             report.above, report.fitted, report.written_worst
         );
     }

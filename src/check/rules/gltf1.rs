@@ -54,6 +54,12 @@ ids that do not resolve (`UNRESOLVED_REFERENCE`), a block that names no model
 (`UNDEFINED_PROPERTY`), and then this info saying which model was found and what
 `gltfmat upgrade` will convert it to.
 
+A specular-glossiness block can be read three ways (the drafts' Appendix, the 2016 Appendix
+alone, the January 2017 example shader), which differ by several ΔE on most materials: the
+ambiguity is the drafts'. `gltfmat upgrade` converts under one of them, the Appendix by default
+(the reading the ratified KHR_materials_pbrSpecularGlossiness kept; `--draft-reading` picks
+another), is exact under it, and prints the other readings' distance beside its proof.
+
 ## Why
 These drafts were never ratified and no engine reads them today; gltf-pipeline upgrades the
 file around them and leaves the material with dangling string ids. Knowing before the upgrade

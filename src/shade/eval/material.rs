@@ -67,9 +67,11 @@ pub enum DiffuseBalance {
 }
 
 /// A reading of a specular-glossiness text: how its diffuse colour and its balance against
-/// the Fresnel term are taken. The 1.0 drafts disagree with each other, so a proof
-/// evaluates each of their readings and reports the worst.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// the Fresnel term are taken. The 1.0 drafts disagree with each other: an upgrade converts
+/// under one reading (by default [`SpecGlossReading::DraftAppendix`], the one the ratified
+/// KHR_materials_pbrSpecularGlossiness kept) and reports how far the others are from it as
+/// the source's own ambiguity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SpecGlossReading {
     /// KHR_materials_pbrSpecularGlossiness (archived): "c_diff = diffuse.rgb * (1 -
     /// max(specular.r, specular.g, specular.b))", F0 = specular, against Appendix B.
@@ -84,7 +86,7 @@ pub enum SpecGlossReading {
 }
 
 impl SpecGlossReading {
-    /// Every reading of the glTF 1.0 PBR drafts.
+    /// Every reading of the glTF 1.0 PBR drafts, the default first.
     pub const DRAFTS: [SpecGlossReading; 3] = [
         SpecGlossReading::DraftAppendix,
         SpecGlossReading::DraftAppendix2016,
@@ -112,6 +114,56 @@ impl SpecGlossReading {
 
     fn scales_diffuse(self) -> bool {
         self != SpecGlossReading::DraftAppendix2016
+    }
+
+    /// The metal-rough + KHR_materials_specular + ior 0 base colour that draws this
+    /// reading's diffuse, and whether it does so exactly at every angle.
+    ///
+    /// The target weighs its base colour by 1 − max_c F_c; with ior 0, F_c = s_c + (1 −
+    /// s_c)·w for one Schlick weight w, so 1 − F_c = (1 − s_c)(1 − w) and 1 − max F = (1 −
+    /// max s)(1 − w). A reading balanced per channel (c_diff,c · (1 − F_c)) is therefore
+    /// drawn exactly by base_c = c_diff,c · (1 − s_c) / (1 − max s), as long as that is at
+    /// most 1: for c_diff = diffuse · (1 − max s) (the archived extension, the drafts'
+    /// Appendix with the 2017 scaling) it is diffuse_c · (1 − s_c). A reading with no 1 − F
+    /// at all (the example shader) has no exact form: the target always weighs by
+    /// 1 − max F, so the base colour that matches it at normal incidence, c_diff / (1 − max
+    /// s) = diffuse, is the start a fit improves on.
+    pub fn closed_form_base(self, diffuse: V3, specular: V3) -> (V3, bool) {
+        let largest = max3(specular).min(1.0);
+        let keep = |c: usize| (1.0 - specular[c]).clamp(0.0, 1.0);
+        match (self.balance(), self.scales_diffuse()) {
+            (DiffuseBalance::PerChannelFresnel, true) | (DiffuseBalance::MaxFresnel, _) => {
+                (channels(|c| diffuse[c] * keep(c)), true)
+            }
+            (DiffuseBalance::PerChannelFresnel, false) => {
+                // With all of the light reflected (max s = 1) the target draws no diffuse.
+                let base = channels(|c| match largest < 1.0 {
+                    true => diffuse[c] * keep(c) / (1.0 - largest),
+                    false => 0.0,
+                });
+                let exact =
+                    base.iter().all(|&b| b <= 1.0) && (largest < 1.0 || diffuse == [0.0; 3]);
+                (base.map(|b| b.min(1.0)), exact)
+            }
+            (DiffuseBalance::Unbalanced, scaled) => {
+                let c_diff = channels(|c| diffuse[c] * if scaled { 1.0 - largest } else { 1.0 });
+                let base = channels(|c| match largest < 1.0 {
+                    true => (c_diff[c] / (1.0 - largest)).min(1.0),
+                    false => 0.0,
+                });
+                (base, largest == 0.0)
+            }
+        }
+    }
+
+    /// The reading named as `--draft-reading` takes it.
+    pub fn option_name(self) -> &'static str {
+        match self {
+            SpecGlossReading::ArchivedExtension => "archived-extension",
+            SpecGlossReading::DraftAppendix => "appendix",
+            SpecGlossReading::DraftAppendix2016 => "appendix-2016",
+            SpecGlossReading::DraftExampleShader => "example-shader",
+        }
     }
 }
 

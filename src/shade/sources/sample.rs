@@ -109,7 +109,7 @@ pub(crate) fn solid_png(texel: [u8; 3]) -> Vec<u8> {
 fn decode_at_most(bytes: &[u8], finest: u32) -> Result<Texture, String> {
     match decode_png_reduced(bytes, finest) {
         Some(reduced) => reduced.map(Arc::new),
-        None => decode(bytes),
+        None => decode_whole(bytes),
     }
 }
 
@@ -184,8 +184,15 @@ fn decode_png_reduced(bytes: &[u8], finest: u32) -> Option<Result<TextureImage, 
     }))
 }
 
-/// Decodes one image (see [`decode_all`] for a set of them).
+/// Decodes one image (see [`decode_all`] for a set of them), within [`decode_budget`] of its
+/// bytes.
 pub(crate) fn decode(bytes: &[u8]) -> Result<Texture, String> {
+    within_budget(&[Some(bytes)], AS_STORED)?;
+    decode_whole(bytes)
+}
+
+/// Decodes one image as stored, its size already judged.
+fn decode_whole(bytes: &[u8]) -> Result<Texture, String> {
     use image::DynamicImage as Stored;
     let image = crate::document::image_decode::decode(bytes).map_err(|e| e.to_string())?;
     let (width, height) = (image.width(), image.height());
@@ -218,10 +225,17 @@ pub(crate) fn decode(bytes: &[u8]) -> Result<Texture, String> {
     }))
 }
 
-/// Decoded texels allowed for one asset's textures, as stored (the file's channels, 1 or 2
-/// bytes each): 1 GiB, four 8192² RGBA 8-bit images or five RGB ones. A texture past it is
-/// refused before it is decoded.
-pub const TEXEL_BUDGET: u64 = 1 << 30;
+/// The margin of the decode budget: decoded texels (as stored: the file's channels, 1 or 2
+/// bytes each) may take twice the images' own bytes plus this. However compressible a
+/// stranger makes an image (a flat 16384² PNG of half a megabyte decodes to 512 MiB), a run
+/// holds in proportion to what it was given; past the budget an image is refused from its
+/// header, before anything is decoded.
+pub const DECODE_MARGIN: u64 = 96 << 20;
+
+/// The decoded bytes allowed for images of `encoded` bytes in all (see [`DECODE_MARGIN`]).
+pub fn decode_budget(encoded: u64) -> u64 {
+    encoded.saturating_mul(2).saturating_add(DECODE_MARGIN)
+}
 
 /// An image to decode: `None` when nothing samples it, `Some(Err(why))` when something does
 /// but its bytes could not be read.
@@ -230,7 +244,7 @@ pub type Wanted<B> = Option<Result<B, String>>;
 /// Decodes every wanted image, one per available core (decoding a 2048² PNG takes tens of
 /// milliseconds, and a comparison decodes every texture of both assets first). Images with
 /// the same bytes are decoded once and shared, and the decoded size of all of them together
-/// is held to [`TEXEL_BUDGET`] from their headers before anything is decoded. A wanted image
+/// is held to [`decode_budget`] from their headers before anything is decoded. A wanted image
 /// that cannot be read or decoded is an error: a material evaluated without its texture
 /// would be a different material.
 pub fn decode_all<B: Deref<Target: AsRef<[u8]>> + Sync>(
@@ -260,7 +274,7 @@ pub fn decode_all_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
     let unique: Vec<Option<&[u8]>> = (bytes.iter().enumerate())
         .map(|(i, b)| b.filter(|_| first_copy[i] == i))
         .collect();
-    within_budget(&unique)?;
+    within_budget(&unique, finest)?;
     // Images another decode of this process still holds are shared, not decoded again.
     let held: Vec<Option<Texture>> = (unique.iter())
         .map(|b| b.and_then(|b| Live::get(b, finest)))
@@ -303,31 +317,50 @@ fn first_copies(bytes: &[Option<&[u8]>]) -> Vec<usize> {
         .collect()
 }
 
-/// Refuses the set when the decoded texels their headers announce pass [`TEXEL_BUDGET`].
-fn within_budget(unique: &[Option<&[u8]>]) -> Result<(), String> {
+/// Refuses the set when the decoded texels their headers announce (a PNG wider than
+/// `finest` as it is reduced while decoded) pass [`decode_budget`] of their bytes.
+fn within_budget(unique: &[Option<&[u8]>], finest: u32) -> Result<(), String> {
+    let encoded: u64 = unique.iter().flatten().map(|b| b.len() as u64).sum();
+    let budget = decode_budget(encoded);
     let mut total = 0u64;
     for (i, bytes) in unique.iter().enumerate() {
-        let Some(info) = bytes.and_then(|b| crate::document::image_header::read(b).ok()) else {
-            continue; // decoding says why
-        };
-        // As decoded: the file's channels at 1 or 2 bytes (4 when unknown).
-        let per_texel = match info.channels {
-            Channels::Luminance => 1,
-            Channels::LuminanceAlpha => 2,
-            Channels::Rgb => 3,
-            Channels::Rgba | Channels::Unknown => 4,
-        } * if info.bits > 8 { 2 } else { 1 };
-        total += u64::from(info.width) * u64::from(info.height) * per_texel;
-        if total > TEXEL_BUDGET {
+        let Some(bytes) = bytes else { continue };
+        total = total.saturating_add(decoded_size(bytes, finest));
+        if total > budget {
+            let size = crate::document::image_header::read(bytes)
+                .map(|info| format!(" ({}×{})", info.width, info.height))
+                .unwrap_or_default();
             return Err(format!(
-                "image {i} ({}×{}) would take the decoded textures past {} MiB for one asset",
-                info.width,
-                info.height,
-                TEXEL_BUDGET >> 20
+                "image {i}{size} would take the decoded textures past {} MiB, this input's budget (twice its images' {} KiB plus {} MiB)",
+                budget >> 20,
+                encoded >> 10,
+                DECODE_MARGIN >> 20
             ));
         }
     }
     Ok(())
+}
+
+/// The bytes an image takes once decoded, from its header (as stored: its channels at 1 or 2
+/// bytes, 4 when unknown); a PNG wider than `finest` as it is reduced. 0 when the header
+/// cannot be read: decoding says why.
+fn decoded_size(bytes: &[u8], finest: u32) -> u64 {
+    let Ok(info) = crate::document::image_header::read(bytes) else {
+        return 0;
+    };
+    let per_texel = match info.channels {
+        Channels::Luminance => 1,
+        Channels::LuminanceAlpha => 2,
+        Channels::Rgb => 3,
+        Channels::Rgba | Channels::Unknown => 4,
+    } * if info.bits > 8 { 2 } else { 1 };
+    let (mut width, mut height) = (u64::from(info.width), u64::from(info.height));
+    let longest = width.max(height);
+    if bytes.starts_with(b"\x89PNG") && longest > u64::from(finest.max(1)) {
+        let k = longest.div_ceil(u64::from(finest.max(1)));
+        (width, height) = (width.div_ceil(k), height.div_ceil(k));
+    }
+    width * height * per_texel
 }
 
 /// Textures decoded by this process that something still holds, by their bytes (length and
@@ -607,21 +640,35 @@ impl MaterialSource {
         }
     }
 
-    /// The readings a proof must evaluate this material under: every draft reading for a
-    /// 1.0 specular-glossiness material, its one model otherwise.
-    pub fn readings(&self) -> Vec<MaterialSource> {
+    /// This material read as `wanted` when its text can be read several ways (a 1.0
+    /// specular-glossiness draft material); itself otherwise.
+    pub fn read_as(&self, wanted: SpecGlossReading) -> MaterialSource {
         match self {
             MaterialSource::Legacy {
                 pbr, colour, data, ..
-            } if pbr.model == Model::SpecularGlossiness => (SpecGlossReading::DRAFTS.iter())
-                .map(|&reading| MaterialSource::Legacy {
-                    pbr: pbr.clone(),
-                    colour: colour.clone(),
-                    data: data.clone(),
-                    reading,
-                })
-                .collect(),
-            _ => vec![self.clone()],
+            } if pbr.model == Model::SpecularGlossiness => MaterialSource::Legacy {
+                pbr: pbr.clone(),
+                colour: colour.clone(),
+                data: data.clone(),
+                reading: wanted,
+            },
+            _ => self.clone(),
+        }
+    }
+
+    /// The readings of its text other than the one it is read as: the other draft
+    /// readings for a 1.0 specular-glossiness material, none otherwise.
+    pub fn other_readings(&self) -> Vec<MaterialSource> {
+        match self {
+            MaterialSource::Legacy { pbr, reading, .. }
+                if pbr.model == Model::SpecularGlossiness =>
+            {
+                (SpecGlossReading::DRAFTS.iter())
+                    .filter(|&&other| other != *reading)
+                    .map(|&other| self.read_as(other))
+                    .collect()
+            }
+            _ => Vec::new(),
         }
     }
 

@@ -102,11 +102,17 @@ fn texture_bytes(builder: &Builder, id: Option<&str>) -> Option<Arc<crate::docum
 
 /// Adds a rebaked PNG as a new image + texture sampled like 1.0 texture `like`.
 fn add_rebaked(builder: &mut Builder, bytes: Vec<u8>, like: Option<&str>, name: &str) -> Value {
+    let key = (bytes, like.map(str::to_string));
+    if let Some(&texture) = builder.rebaked.get(&key) {
+        return json!({"index": texture});
+    }
+    let bytes = key.0.clone();
     let mut image = Map::new();
     image.insert("name".into(), json!(name));
     let image = builder.add_image(image, Arc::new(bytes.into()), "image/png".into(), name);
     let like = like.and_then(|id| builder.index_of_id("textures", id));
     let texture = builder.add_texture(image, like, name.to_string());
+    builder.rebaked.insert(key, texture);
     json!({"index": texture})
 }
 
@@ -201,6 +207,7 @@ fn spec_gloss_as_metal_rough(
     out: &mut Map<String, Value>,
 ) -> Result<(), UpgradeError> {
     let factors = spec_gloss::Factors {
+        reading: builder.options.draft_reading,
         diffuse: pbr.colour,
         specular: pbr.specular,
         glossiness: pbr.glossiness,
@@ -223,17 +230,19 @@ fn spec_gloss_as_metal_rough(
     Ok(())
 }
 
-/// A factor-only draft spec-gloss material: the closed form's worst ΔE over the drafts'
-/// readings, and where it is above the proof's threshold the fitted factors written instead
-/// (see `upgrade::fit`). Returns the decision naming both figures.
+/// A factor-only draft spec-gloss material: the closed form's ΔE under the reading converted
+/// to, and where it is above the proof's threshold (a reading with no exact 2.0 form) the
+/// factors fitted towards that reading written instead (see `upgrade::fit`). Returns the
+/// decision naming both figures.
 fn fit_factors(
     fits: &mut fit::Fits,
     pbr: &LegacyPbr,
     converted: &mut spec_gloss::Converted,
 ) -> String {
     let [r, g, b, alpha] = pbr.colour;
+    let reading = fits.reading();
     let closed = fit::Target {
-        base_colour: spec_gloss::base_colour([r, g, b], pbr.specular),
+        base_colour: reading.closed_form_base([r, g, b], pbr.specular).0,
         roughness: 1.0 - pbr.glossiness,
         specular_colour: pbr.specular,
     };
@@ -245,8 +254,9 @@ fn fit_factors(
     };
     let Some((target, figure)) = outcome.fitted else {
         return format!(
-            "closed form kept: its worst ΔE2000 over the drafts' three readings is {:.2}.",
-            outcome.closed_form
+            "closed form kept: ΔE2000 {:.2} under the reading '{}'.",
+            outcome.closed_form,
+            reading.option_name()
         );
     };
     let [br, bg, bb] = target.base_colour;
@@ -257,8 +267,8 @@ fn fit_factors(
         specular["specularColorFactor"] = json!(target.specular_colour);
     }
     format!(
-        "fitted: the drafts' three readings disagree, and the closed form's worst ΔE2000 over them is {:.2}; the factors were fitted to the smallest worst case, {figure:.2} (baseColor {:.4?}, roughness {:.4}, specularColor {:.4?}), no longer exact under any one reading.",
-        outcome.closed_form, target.base_colour, target.roughness, target.specular_colour
+        "fitted: no 2.0 material draws the reading '{}' exactly, and the closed form is ΔE2000 {:.2} from it; the factors were fitted towards it, {figure:.2} (baseColor {:.4?}, roughness {:.4}, specularColor {:.4?}).",
+        reading.option_name(), outcome.closed_form, target.base_colour, target.roughness, target.specular_colour
     )
 }
 
@@ -293,6 +303,10 @@ impl spec_gloss::Textures for DraftTextures<'_, '_, '_, '_> {
 
     fn texel_fits(&mut self) -> Option<&mut fit::TexelFits> {
         Some(&mut self.builder.texel_fits)
+    }
+
+    fn rebakes(&mut self) -> &mut spec_gloss::Rebakes {
+        &mut self.builder.rebakes
     }
 }
 
