@@ -648,11 +648,53 @@ fn render_all(gltf: &serde_json::Value) -> Result<(), String> {
 
 #[test]
 fn decoded_textures_are_held_to_a_budget_before_anything_is_decoded() {
-    // Finding 15: two headers announcing about 1 GiB each once decoded are refused from
-    // their headers; nothing is allocated for them. (Two identical images would be one.)
-    let error = render_all(&textured(&[png_header(16384), png_header(16383)])).unwrap_err();
-    assert!(error.contains("image 1 (16383×16383)"), "{error}");
-    assert!(error.contains("past 1024 MiB"), "{error}");
+    // Two headers announcing about 1 GiB each once decoded, in a file of a few hundred bytes:
+    // refused from their headers by a comparison (which needs every texel), nothing
+    // allocated for them. (Two identical images would be one.)
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("t.gltf");
+    let gltf = textured(&[png_header(16384), png_header(16383)]);
+    std::fs::write(&path, serde_json::to_vec(&gltf).unwrap()).unwrap();
+    let options = gltfmat::CompareOptions::default();
+    let error = gltfmat::compare(&path, &path, &options)
+        .unwrap_err()
+        .to_string();
+    assert!(error.contains("image 0 (16384×16384)"), "{error}");
+    assert!(
+        error.contains("past 96 MiB, this input's budget"),
+        "{error}"
+    );
+}
+
+#[test]
+fn a_rebake_of_a_texture_past_the_budget_is_refused_and_the_material_left_as_it_was() {
+    // A flat 16384² image compresses to half a megabyte and decodes to 1 GiB: the rebake's
+    // decode is held to the same budget, and the material stays spec-gloss, saying why.
+    let png = png_header(16384);
+    let uri = format!(
+        "data:image/png;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&png)
+    );
+    let gltf = json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_materials_pbrSpecularGlossiness"],
+        "images": [{"uri": uri}], "textures": [{"source": 0}],
+        "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+            "specularGlossinessTexture": {"index": 0}}}}]
+    });
+    let upgraded = upgrade(
+        serde_json::to_vec(&gltf).unwrap(),
+        &NoResources,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    let notes: Vec<&str> = upgraded.report.iter().map(|n| &*n.text).collect();
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("left as spec-gloss") && n.contains("budget")),
+        "{notes:?}"
+    );
 }
 
 #[test]
@@ -844,4 +886,52 @@ fn accessors_aliasing_one_corrupt_view_keep_a_bounded_list_and_a_complete_count(
     let listed = count(&report, "ACCESSOR_VECTOR3_NON_UNIT");
     assert!((90_000..=100_000).contains(&listed), "{listed} listed");
     assert_eq!(report.count(gltfmat::Severity::Error), accessors * elements);
+}
+
+#[test]
+fn crossed_strip_textures_rebake_on_a_grid_held_to_the_budget_not_their_product() {
+    // A diffuse 2100×1 and a spec-gloss 1×2100: their finest grid holds 2100², more than the
+    // largest input or 2048²; the rebake is held to 2048² texels and says so.
+    let png = |width: u32, height: u32| {
+        let image = image::GrayAlphaImage::from_pixel(width, height, image::LumaA([128, 255]));
+        let mut bytes = Vec::new();
+        image::DynamicImage::ImageLumaA8(image)
+            .write_to(
+                &mut std::io::Cursor::new(&mut bytes),
+                image::ImageFormat::Png,
+            )
+            .unwrap();
+        format!(
+            "data:image/png;base64,{}",
+            base64::engine::general_purpose::STANDARD.encode(&bytes)
+        )
+    };
+    let gltf = json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_materials_pbrSpecularGlossiness"],
+        "images": [{"uri": png(2100, 1)}, {"uri": png(1, 2100)}],
+        "textures": [{"source": 0}, {"source": 1}],
+        "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+            "diffuseTexture": {"index": 0}, "specularGlossinessTexture": {"index": 1}}}}]
+    });
+    let upgraded = upgrade(
+        serde_json::to_vec(&gltf).unwrap(),
+        &NoResources,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    let notes: Vec<&str> = upgraded.report.iter().map(|n| &*n.text).collect();
+    let held = notes
+        .iter()
+        .find(|n| n.contains("the rebake's grid is"))
+        .unwrap_or_else(|| panic!("{notes:?}"));
+    assert!(held.contains("not the 2100×2100"), "{held}");
+    let largest = upgraded
+        .images
+        .iter()
+        .filter_map(|i| image::load_from_memory(&i.bytes).ok())
+        .map(|i| u64::from(i.width()) * u64::from(i.height()))
+        .max()
+        .unwrap();
+    assert!(largest <= 1 << 22, "{largest} texels");
 }

@@ -217,11 +217,22 @@ fn memchr_all(needle: u8, text: &[u8]) -> impl Iterator<Item = usize> + '_ {
         .map(|(i, _)| i)
 }
 
-/// Pointers (and key offsets) of object keys that occur more than once in their object.
+/// A key that occurs more than once in its object: its pointer, where its first repeat
+/// starts in the text, and how many times it occurs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DuplicateKey {
+    pub pointer: String,
+    pub offset: usize,
+    pub occurrences: usize,
+}
+
+/// Object keys that occur more than once in their object, one entry per key and object
+/// however often it repeats (an object of 10^6 copies of one key is one finding, not 10^6),
+/// in the order of their first repeats.
 ///
 /// Each open container keeps only its own token, so memory stays linear in the nesting depth;
 /// a pointer is built only for a duplicate.
-pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
+pub fn duplicate_keys(text: &[u8]) -> Vec<DuplicateKey> {
     struct Frame<'t> {
         /// The token naming this container inside its parent.
         token: Cow<'t, str>,
@@ -282,9 +293,16 @@ pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
                 let in_object = matches!(stack.last(), Some(Frame { keys: Some(_), .. }));
                 if scanner.peek() == Some(b':') && in_object && pending_key.is_none() {
                     // A hash table: an object with 10^5 keys costs 10^5 lookups, not 10^10.
+                    let next = found.len();
                     let keys = stack.last_mut().and_then(|f| f.keys.as_mut());
-                    if keys.is_some_and(|keys| !keys.insert(text, &s, start)) {
-                        found.push((format!("{}/{}", pointer(&stack), escape_token(&s)), start));
+                    match keys.map(|keys| keys.insert(text, &s, start, next)) {
+                        Some(Seen::FirstRepeat) => found.push(DuplicateKey {
+                            pointer: format!("{}/{}", pointer(&stack), escape_token(&s)),
+                            offset: start,
+                            occurrences: 2,
+                        }),
+                        Some(Seen::RepeatedAgain(at)) => found[at].occurrences += 1,
+                        _ => {}
                     }
                     pending_key = Some(s);
                 } else {
@@ -302,37 +320,56 @@ pub fn duplicate_keys(text: &[u8]) -> Vec<(String, usize)> {
     found
 }
 
-/// The keys of one object seen so far, each by where it starts in the text (four bytes a
-/// key: an object of 10^6 members must not cost a string and a hash slot per member).
+/// The keys of one object seen so far, each by where it starts in the text and the index of
+/// its finding once it repeats (eight bytes a key: an object of 10^6 members must not cost
+/// a string and a hash slot per member).
 #[derive(Default)]
 struct KeysSeen {
-    starts: hashbrown::HashTable<u32>,
+    starts: hashbrown::HashTable<(u32, u32)>,
     hasher: hashbrown::DefaultHashBuilder,
 }
 
+/// What [`KeysSeen::insert`] found.
+enum Seen {
+    New,
+    /// The key's second occurrence: its finding is the next one.
+    FirstRepeat,
+    /// A later occurrence: its finding is at this index.
+    RepeatedAgain(usize),
+}
+
+/// No finding yet.
+const NOT_FOUND: u32 = u32::MAX;
+
 impl KeysSeen {
-    /// Notes `key`, which starts at `start` of `text`; false when the object had it already.
-    fn insert(&mut self, text: &[u8], key: &str, start: usize) -> bool {
-        let key_at = |at: &u32| {
+    /// Notes `key`, which starts at `start` of `text`; on its first repeat its finding is
+    /// to be `next`.
+    fn insert(&mut self, text: &[u8], key: &str, start: usize, next: usize) -> Seen {
+        let key_at = |at: u32| {
             Scanner {
                 text,
-                pos: *at as usize,
+                pos: at as usize,
             }
             .read_string()
         };
         let hash = self.hasher.hash_one(key);
-        if self
+        if let Some((_, finding)) = self
             .starts
-            .find(hash, |at| key_at(at).as_deref() == Some(key))
-            .is_some()
+            .find_mut(hash, |(at, _)| key_at(*at).as_deref() == Some(key))
         {
-            return false;
+            if *finding == NOT_FOUND {
+                *finding = next as u32;
+                return Seen::FirstRepeat;
+            }
+            return Seen::RepeatedAgain(*finding as usize);
         }
         let hasher = &self.hasher;
-        let rehash = |at: &u32| hasher.hash_one(key_at(at).as_deref().unwrap_or_default());
-        // Files are at most u32::MAX bytes (`file::MAX_FILE_BYTES`).
-        self.starts.insert_unique(hash, start as u32, rehash);
-        true
+        let rehash =
+            |(at, _): &(u32, u32)| hasher.hash_one(key_at(*at).as_deref().unwrap_or_default());
+        // Files are at most u32::MAX bytes (`file::MAX_FILE_BYTES`), and hold fewer keys.
+        self.starts
+            .insert_unique(hash, (start as u32, NOT_FOUND), rehash);
+        Seen::New
     }
 }
 
@@ -577,21 +614,41 @@ mod tests {
     #[test]
     fn duplicate_keys_are_reported_with_their_pointer() {
         let text = br#"{"a": 1, "b": {"c": [1, {"d": 0, "d": 1}]}, "a": 2}"#;
-        let dups: Vec<String> = duplicate_keys(text).into_iter().map(|d| d.0).collect();
+        let dups: Vec<String> = duplicate_keys(text)
+            .into_iter()
+            .map(|d| d.pointer)
+            .collect();
         assert_eq!(dups, vec!["/b/c/1/d".to_string(), "/a".to_string()]);
     }
 
     #[test]
     fn keys_are_compared_as_decoded_and_found_among_many() {
         let escaped = br#"{"a": 1, "\u0061": 2, "b\"": 3, "b\u0022": 4}"#;
-        let dups: Vec<String> = duplicate_keys(escaped).into_iter().map(|d| d.0).collect();
+        let dups: Vec<String> = duplicate_keys(escaped)
+            .into_iter()
+            .map(|d| d.pointer)
+            .collect();
         assert_eq!(dups, vec!["/a".to_string(), "/b\"".to_string()]);
         let mut many: String = (0..100_000).map(|i| format!("\"k{i}\": 0, ")).collect();
         many = format!("{{{many}\"k7\": 1, \"k99999\": 2}}");
         let found = duplicate_keys(many.as_bytes());
-        let pointers: Vec<&str> = found.iter().map(|d| d.0.as_str()).collect();
+        let pointers: Vec<&str> = found.iter().map(|d| d.pointer.as_str()).collect();
         assert_eq!(pointers, ["/k7", "/k99999"]);
-        assert_eq!(&many.as_bytes()[found[0].1..found[0].1 + 4], br#""k7""#);
+        assert_eq!(
+            &many.as_bytes()[found[0].offset..found[0].offset + 4],
+            br#""k7""#
+        );
+    }
+
+    #[test]
+    fn a_key_repeated_many_times_is_one_entry_with_its_count() {
+        let repeated: String = (0..100_000).map(|_| "\"k\": 0, ").collect();
+        let text = format!("{{{repeated}\"j\": 1, \"j\": 2, \"o\": {{\"k\": 1, \"k\": 2}}}}");
+        let found = duplicate_keys(text.as_bytes());
+        let summary: Vec<(&str, usize)> = (found.iter())
+            .map(|d| (d.pointer.as_str(), d.occurrences))
+            .collect();
+        assert_eq!(summary, [("/k", 100_000), ("/j", 2), ("/o/k", 2)]);
     }
 
     #[test]

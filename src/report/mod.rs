@@ -6,6 +6,7 @@ mod sarif;
 
 use crate::check::{Diagnostic, Location, Report, Severity};
 use crate::document::json;
+use serde::Serialize;
 use serde_json::{json, Map, Value};
 use std::borrow::Borrow;
 use std::cell::RefCell;
@@ -137,8 +138,12 @@ impl<I> KhronosReports<I> {
 
 impl<R: Borrow<Report>, I: Iterator<Item = R>> serde::Serialize for KhronosReports<I> {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let reports = self.0.borrow_mut().take().into_iter().flatten();
-        serializer.collect_seq(reports.map(|r| khronos_report(r.borrow())))
+        use serde::ser::SerializeSeq;
+        let mut list = serializer.serialize_seq(None)?;
+        for report in self.0.borrow_mut().take().into_iter().flatten() {
+            list.serialize_element(&khronos_report(report.borrow()))?;
+        }
+        list.end()
     }
 }
 
@@ -275,22 +280,7 @@ fn location_suffix(d: &Diagnostic) -> String {
 }
 
 /// A report in the Khronos `validation.schema.json` shape.
-pub fn khronos_report(report: &Report) -> Value {
-    let messages: Vec<Value> = report
-        .diagnostics
-        .iter()
-        .map(|d| {
-            let mut m = Map::new();
-            m.insert("code".into(), json!(d.code));
-            m.insert("message".into(), json!(d.message));
-            m.insert("severity".into(), json!(d.severity as u8));
-            match &d.location {
-                Location::Pointer(p) => m.insert("pointer".into(), json!(p)),
-                Location::Offset(o) => m.insert("offset".into(), json!(o)),
-            };
-            Value::Object(m)
-        })
-        .collect();
+pub fn khronos_report(report: &Report) -> KhronosReport<'_> {
     let info = &report.info;
     let mut info_map = Map::new();
     if let Some(v) = &info.version {
@@ -320,28 +310,86 @@ pub fn khronos_report(report: &Report) -> Value {
         };
         info_map.insert((*key).into(), v);
     }
-    let mut root = Map::new();
-    root.insert("uri".into(), json!(report.uri));
-    root.insert("mimeType".into(), json!(report.mime_type()));
-    root.insert(
-        "validatorVersion".into(),
-        json!(concat!("gltfmat ", env!("CARGO_PKG_VERSION"))),
-    );
-    root.insert(
-        "issues".into(),
-        json!({
-            "numErrors": report.count(Severity::Error),
-            "numWarnings": report.count(Severity::Warning),
-            "numInfos": report.count(Severity::Info),
-            "numHints": report.count(Severity::Hint),
-            "messages": messages,
-            "truncated": report.truncated,
-        }),
-    );
-    if report.document.root.is_some() {
-        root.insert("info".into(), Value::Object(info_map));
+    KhronosReport {
+        uri: &report.uri,
+        mime_type: report.mime_type(),
+        validator_version: concat!("gltfmat ", env!("CARGO_PKG_VERSION")),
+        issues: Issues {
+            num_errors: report.count(Severity::Error),
+            num_warnings: report.count(Severity::Warning),
+            num_infos: report.count(Severity::Info),
+            num_hints: report.count(Severity::Hint),
+            messages: Messages(&report.diagnostics),
+            truncated: report.truncated,
+        },
+        info: report
+            .document
+            .root
+            .is_some()
+            .then_some(Value::Object(info_map)),
     }
-    Value::Object(root)
+}
+
+/// A report in the Khronos validator's shape, written as it is serialised: its findings are
+/// read from the report one at a time, never gathered into a JSON tree (a tree of 3·10^5
+/// findings took 2 GB).
+#[derive(Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct KhronosReport<'r> {
+    uri: &'r str,
+    mime_type: &'static str,
+    validator_version: &'static str,
+    issues: Issues<'r>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    info: Option<Value>,
+}
+
+#[derive(Serialize)]
+#[serde(rename_all = "camelCase")]
+struct Issues<'r> {
+    num_errors: usize,
+    num_warnings: usize,
+    num_infos: usize,
+    num_hints: usize,
+    messages: Messages<'r>,
+    truncated: bool,
+}
+
+/// The findings, each serialised as it is reached.
+struct Messages<'r>(&'r [Diagnostic]);
+
+impl Serialize for Messages<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.0.iter().map(Message::of))
+    }
+}
+
+/// One finding as the Khronos validator writes it.
+#[derive(Serialize)]
+struct Message<'r> {
+    code: &'r str,
+    message: &'r str,
+    severity: u8,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pointer: Option<&'r str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    offset: Option<u64>,
+}
+
+impl<'r> Message<'r> {
+    fn of(d: &'r Diagnostic) -> Self {
+        let (pointer, offset) = match &d.location {
+            Location::Pointer(p) => (Some(p.as_str()), None),
+            Location::Offset(o) => (None, Some(*o)),
+        };
+        Message {
+            code: d.code.name(),
+            message: &d.message,
+            severity: d.severity as u8,
+            pointer,
+            offset,
+        }
+    }
 }
 
 fn resource_json(r: &crate::check::context::ResourceInfo) -> Value {

@@ -16,7 +16,8 @@ pub const RULE: Rule = Rule::new(
 
 const DOC: &str = "\
 ## What it does
-Reports an object key that appears twice in the same JSON object.
+Reports an object key that appears more than once in the same JSON object: one finding per
+key and object, at its first repeat, saying how many times it appears.
 
 ## Why
 The glTF 2.0 spec says keys SHOULD be unique. JSON parsers disagree on which copy wins (most keep
@@ -39,11 +40,14 @@ fn check(ctx: &mut Context) {
     {
         return;
     }
-    for (pointer, _) in json::duplicate_keys(ctx.document.json_text()) {
+    for duplicate in json::duplicate_keys(ctx.document.json_text()) {
         ctx.emit(
             RULE.code(),
-            pointer,
-            "Duplicate key: parsers disagree on which value wins (the last one was used).",
+            duplicate.pointer,
+            format!(
+                "Duplicate key ({} times in this object): parsers disagree on which value wins (the last one was used).",
+                duplicate.occurrences
+            ),
         );
     }
 }
