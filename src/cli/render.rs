@@ -18,8 +18,9 @@ pub struct RenderArgs {
     /// Replace an existing output file.
     #[arg(long)]
     force: bool,
-    /// Pixels per side (per material with --all), 8 to 4096.
-    #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u32).range(8..=4096))]
+    /// Pixels per side (per material with --all), 8 to 1024: a picture's time grows with its
+    /// pixels, and a contact sheet holds at most 1024² of them.
+    #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u32).range(8..=i64::from(gltfmat::shade::render::MAX_SIZE)))]
     size: u32,
 }
 

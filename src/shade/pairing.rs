@@ -7,7 +7,7 @@ use super::compare::{self as evaluate, Comparison};
 use super::legacy::{legacy_materials, LegacyMaterialsError};
 use super::load::gltf2_materials;
 use super::material::{Shader, SpecGlossReading};
-use super::render::{contact_sheet, material_ball, SheetLayout, MAX_PIXELS};
+use super::render::{contact_sheet, material_ball, SheetLayout, MAX_PIXELS, MAX_SIZE};
 use super::sample::MaterialSource;
 pub use super::sample::AS_STORED;
 use super::sheen_table::SheenTable;
@@ -260,7 +260,7 @@ pub struct RenderOptions {
     pub material: Option<String>,
     /// Every material on one contact sheet (four to a row, or a near-square grid past 16).
     pub all: bool,
-    /// Pixels per side (per material with `all`), clamped to 8–4096.
+    /// Pixels per side (per material with `all`), clamped to 8–[`MAX_SIZE`].
     pub size: u32,
 }
 
@@ -292,7 +292,7 @@ pub struct Picture {
 /// Renders a material ball (or a contact sheet of every material) of an asset.
 pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture, Error> {
     let path = path.as_ref();
-    let size = options.size.clamp(8, 4096);
+    let size = options.size.clamp(8, MAX_SIZE);
     let (materials, inputs) = materials_of(path, finest_for_preview(size))?;
     let chosen: Vec<(usize, &String, &MaterialSource)> = materials
         .iter()

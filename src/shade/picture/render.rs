@@ -247,10 +247,14 @@ fn ball_with_sky(
     image
 }
 
+/// The largest ball's side, in pixels. A picture's time grows with its pixels (every pixel
+/// integrates the sky), and a picture four times the default's side takes minutes.
+pub const MAX_SIZE: u32 = 1024;
+
 /// The most pixels a picture has: one ball of the largest size. A contact sheet shrinks its
 /// cells to stay within it, so that its time and memory do not grow with the number of
 /// materials times the size asked for.
-pub const MAX_PIXELS: u64 = 4096 * 4096;
+pub const MAX_PIXELS: u64 = MAX_SIZE as u64 * MAX_SIZE as u64;
 
 /// The smallest cell a contact sheet draws.
 const MIN_CELL: u32 = 8;
@@ -362,7 +366,7 @@ mod tests {
 
     #[test]
     fn a_sheet_shrinks_its_cells_to_its_pixel_limit_and_refuses_past_the_smallest_cell() {
-        for (n, size) in [(100, 4096), (100_000, 64), (262_144, 8)] {
+        for (n, size) in [(100, 1024), (10_000, 64), (16_384, 8)] {
             let layout = SheetLayout::new(n, size).unwrap();
             let (width, height) = (layout.columns * layout.cell, layout.rows * layout.cell);
             assert!(
@@ -372,11 +376,11 @@ mod tests {
             assert!(layout.columns as usize * layout.rows as usize >= n);
             assert!((MIN_CELL..=size).contains(&layout.cell), "{n}: {layout:?}");
         }
-        assert_eq!(SheetLayout::new(100, 4096).unwrap().cell, 409);
-        assert_eq!(SheetLayout::new(100_000, 64).unwrap().cell, 12);
-        assert_eq!(SheetLayout::new(262_144, 8).unwrap().cell, 8);
-        assert_eq!(SheetLayout::new(262_145, 8), None);
-        assert_eq!(SheetLayout::new(usize::MAX, 4096), None);
+        assert_eq!(SheetLayout::new(100, 1024).unwrap().cell, 102);
+        assert_eq!(SheetLayout::new(10_000, 64).unwrap().cell, 10);
+        assert_eq!(SheetLayout::new(16_384, 8).unwrap().cell, 8);
+        assert_eq!(SheetLayout::new(16_385, 8), None);
+        assert_eq!(SheetLayout::new(usize::MAX, 1024), None);
     }
 
     /// Root-mean-square difference, in 8-bit levels, between a ball as `render` draws it and
