@@ -1302,3 +1302,159 @@ fn an_attribute_whose_buffer_view_is_no_object_is_not_unaligned() {
         "{found:?}"
     );
 }
+
+/// A data URI of little-endian f32s.
+fn floats_uri(values: &[f32]) -> String {
+    use base64::Engine;
+    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+    format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(bytes)
+    )
+}
+
+#[test]
+fn a_nan_normal_is_an_invalid_float_only_and_an_infinite_one_also_not_unit() {
+    let data = [
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+        0.0, // positions
+        0.0,
+        0.0,
+        1.0,
+        f32::NAN,
+        0.0,
+        1.0,
+        f32::INFINITY,
+        0.0,
+        0.0, // normals
+    ];
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": floats_uri(&data), "byteLength": 72}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962},
+                        {"buffer": 0, "byteOffset": 36, "byteLength": 36, "target": 34962}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}}]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ACCESSOR_INVALID_FLOAT", "/accessors/1"),
+            ("ACCESSOR_INVALID_FLOAT", "/accessors/1"),
+            (
+                "ACCESSOR_VECTOR3_NON_UNIT",
+                "/meshes/0/primitives/0/attributes/NORMAL"
+            ),
+            ("UNUSED_OBJECT", "/meshes/0"),
+        ])
+    );
+}
+
+#[test]
+fn every_non_relative_uri_is_non_relative_and_not_read() {
+    // Other schemes, absolute paths, drive letters and network paths alike.
+    for uri in [
+        "/abs/x",
+        "file:///tmp/x",
+        "http://example.com/x",
+        "C:\\\\x",
+        "urn:x",
+        "//host/x",
+    ] {
+        let found = khronos_findings(json!({"asset": {"version": "2.0"},
+            "buffers": [{"uri": format!("{uri}.bin"), "byteLength": 4}],
+            "images": [{"uri": format!("{uri}.png")}]}));
+        assert_eq!(
+            found,
+            expected(&[
+                ("IO_ERROR", "/buffers/0/uri"),
+                ("IO_ERROR", "/images/0/uri"),
+                ("NON_RELATIVE_URI", "/buffers/0/uri"),
+                ("NON_RELATIVE_URI", "/images/0/uri"),
+                ("UNUSED_OBJECT", "/buffers/0"),
+                ("UNUSED_OBJECT", "/images/0"),
+            ]),
+            "{uri}"
+        );
+    }
+}
+
+#[test]
+fn data_uris_are_read_without_padding_and_refused_for_media_types_the_validator_does_not_know() {
+    const PNG: &str = "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg";
+    let case = |uri: String| {
+        khronos_findings(json!({"asset": {"version": "2.0"}, "images": [{"uri": uri}]}))
+    };
+    let unused = ("UNUSED_OBJECT", "/images/0");
+    let invalid = ("INVALID_URI", "/images/0/uri");
+    assert_eq!(
+        case(format!("data:image/png;base64,{PNG}")),
+        expected(&[unused]),
+        "no padding"
+    );
+    assert_eq!(
+        case(format!("data:image/png;base64,{PNG}==")),
+        expected(&[unused])
+    );
+    assert_eq!(
+        case(format!("data:image/png;base64,{PNG}===")),
+        expected(&[invalid, unused])
+    );
+    for media in [
+        "image/ktx2",
+        "image/basis",
+        "image/foo",
+        "application/octet-stream",
+    ] {
+        let found = case(format!("data:{media};base64,{PNG}=="));
+        assert_eq!(found, expected(&[invalid, unused]), "{media}");
+    }
+}
+
+#[test]
+fn the_khronos_profile_lists_every_data_finding_and_the_default_profile_caps_them() {
+    use base64::Engine;
+    let n = 12_000;
+    let mut bytes: Vec<u8> = [0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    bytes.extend((0..n).flat_map(|_| 7u16.to_le_bytes()));
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&bytes)
+    );
+    let document = json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": uri, "byteLength": bytes.len()}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962},
+                        {"buffer": 0, "byteOffset": 36, "byteLength": 2 * n, "target": 34963}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5123, "count": n, "type": "SCALAR"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 0}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0});
+    let bytes = serde_json::to_vec(&document).unwrap();
+    let listed = |profile| {
+        let options = CheckOptions::default().with_profile(profile);
+        let report = check_bytes("case.gltf", bytes.clone(), &NoResources, &options);
+        let listed = (report.diagnostics.iter())
+            .filter(|d| d.code.name() == "ACCESSOR_INDEX_OOB")
+            .count();
+        (listed, report.count(gltfmat::Severity::Error))
+    };
+    assert_eq!(
+        listed(Profile::Khronos),
+        (n, n),
+        "as the validator lists them"
+    );
+    assert_eq!(
+        listed(Profile::Default),
+        (10_000, n),
+        "kept to the cap, all counted"
+    );
+}

@@ -49,6 +49,13 @@ impl Profile {
         self == Profile::Default
     }
 
+    /// Whether the data walks keep a bounded number of findings per accessor and per pass
+    /// (the rest counted): the Khronos validator lists every one, and so does its profile
+    /// unless `--max-issues` says otherwise.
+    pub(crate) fn caps_data_findings(self) -> bool {
+        self == Profile::Default
+    }
+
     /// Whether a glTF 1.0 document gets the 1.0 checks instead of the 2.0 passes.
     pub(crate) fn checks_gltf1(self) -> bool {
         self == Profile::Default

@@ -61,6 +61,14 @@ pub fn classify(uri: &str) -> Result<UriKind, String> {
     percent_decode(&path.replace('\\', "/")).map(UriKind::Relative)
 }
 
+/// Standard base64 whose padding may be left out, as the Khronos validator (and browsers)
+/// read data URIs; padding that is written must be right.
+const BASE64: base64::engine::GeneralPurpose = base64::engine::GeneralPurpose::new(
+    &base64::alphabet::STANDARD,
+    base64::engine::GeneralPurposeConfig::new()
+        .with_decode_padding_mode(base64::engine::DecodePaddingMode::Indifferent),
+);
+
 fn parse_data(rest: &str) -> Result<UriKind, String> {
     let Some((header, payload)) = rest.split_once(',') else {
         return Err("Expecting ','".into());
@@ -76,7 +84,7 @@ fn parse_data(rest: &str) -> Result<UriKind, String> {
         }
     }
     let bytes = if base64 {
-        base64::engine::general_purpose::STANDARD
+        BASE64
             .decode(payload.trim_end())
             .map_err(|e| format!("Invalid base64: {e}"))?
     } else {

@@ -79,7 +79,7 @@ pub fn check(ctx: &mut Context) {
     // In batches, each walk with its share of what the pass may still keep: memory stays
     // bounded however many accessors alias one corrupt view, and the report does not
     // depend on the order the walks finish in.
-    let mut budget = Budget::new();
+    let mut budget = Budget::new(ctx.options.profile);
     let reading = Reading::default();
     let mut found: Vec<Findings> = Vec::with_capacity(work.len());
     for batch in work.chunks_mut(WALKS_PER_BATCH) {

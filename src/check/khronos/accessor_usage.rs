@@ -38,19 +38,29 @@ const KEPT_PER_PASS: usize = 100_000;
 /// walk finishes first: each walk of a batch may keep an equal share of what is left.
 pub(super) struct Budget {
     left: usize,
+    per_walk: usize,
 }
 
 impl Budget {
-    pub(super) fn new() -> Self {
-        Budget {
-            left: KEPT_PER_PASS,
+    /// The budget of a pass: [`KEPT_PER_PASS`] and [`KEPT_FINDINGS`] when the profile caps
+    /// data findings, otherwise every finding (the collector's `max_issues` still holds).
+    pub(super) fn new(profile: crate::check::Profile) -> Self {
+        match profile.caps_data_findings() {
+            true => Budget {
+                left: KEPT_PER_PASS,
+                per_walk: KEPT_FINDINGS,
+            },
+            false => Budget {
+                left: usize::MAX,
+                per_walk: usize::MAX,
+            },
         }
     }
 
     /// Findings for one of `walks` walks run together.
     pub(super) fn share(&self, walks: usize) -> Findings {
         Findings {
-            limit: KEPT_FINDINGS.min(self.left / walks.max(1)),
+            limit: self.per_walk.min(self.left / walks.max(1)),
             ..Findings::default()
         }
     }
@@ -296,6 +306,11 @@ impl Checker {
     }
 
     fn unit_length(&self, first: usize, element: &[f64], unit: fn(f64) -> f64, out: &mut Findings) {
+        // A NaN component is ACCESSOR_INVALID_FLOAT already; the validator says no more of
+        // it (an infinite one still makes a length, and is reported).
+        if element.iter().take(3).any(|v| v.is_nan()) {
+            return;
+        }
         let length = element
             .iter()
             .take(3)

@@ -15,7 +15,7 @@ use std::collections::HashMap;
 use std::ops::Range;
 
 pub fn check(ctx: &mut Context) {
-    let mut budget = Budget::new();
+    let mut budget = Budget::new(ctx.options.profile);
     let limits = limiting_skins(ctx);
     for (m, pointer, mesh) in ctx.objects("meshes") {
         let Some(&(max_joint, skin)) = limits.get(&m) else {

@@ -50,15 +50,17 @@ fn load_uri(
                 "data-uri",
             )
         }
-        Ok(UriKind::NonRelative) => {
+        // Neither is read: gltfmat reads only files inside the asset's folder. The Khronos
+        // validator says the URI is non-relative and then fails to read it.
+        Ok(UriKind::NonRelative | UriKind::AbsolutePath) => {
             ctx.emit(
                 khronos::NON_RELATIVE_URI,
                 pointer,
-                format!("Non-relative URI found: '{uri}'. It is not fetched."),
+                format!(
+                    "Non-relative URI found: '{}'. It is not read.",
+                    shorten(uri)
+                ),
             );
-            (None, None, "external")
-        }
-        Ok(UriKind::AbsolutePath) => {
             refuse_outside(ctx, pointer, uri);
             (None, None, "external")
         }
@@ -114,7 +116,7 @@ fn refuse_outside(ctx: &mut Context, pointer: &str, uri: &str) {
         pass_codes::URI_OUTSIDE_ASSET_FOLDER,
         pointer,
         format!(
-            "Refused to read '{}': it resolves outside the asset's folder.",
+            "Refused to read '{}': it is not a file inside the asset's folder.",
             shorten(uri)
         ),
     );
