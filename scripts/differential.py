@@ -6,19 +6,24 @@ and `gltfmat check --profile khronos` on every mutant, and prints how many repor
 and the differences by kind, each with one example. Not a test: a way to find where the
 Khronos profile departs from the validator on input nobody wrote by hand.
 
-    python3 scripts/differential.py SEEDS_FOLDER [COUNT] [SEED] [target/release/gltfmat]
+    python3 scripts/differential.py SEEDS_FOLDER [COUNT] [SEED] [target/release/gltfmat] [--edges]
 
 SEEDS_FOLDER is copied to a scratch folder (mutants sit beside their seed, so relative URIs
-still resolve); e.g. ../shared/conformance/khronos-glTF-Validator.
+still resolve); e.g. ../shared/conformance/khronos-glTF-Validator. With --edges the mutations
+go where hand-written edge cases and strangers' uploads probe: URIs of every form, data-URI
+media types and padding, NaN and infinities in buffer data, animation samplers of 0-2 keys,
+strides and offsets, sparse blocks, unknown members and extras on any object.
 """
-import collections, json, os, random, shutil, subprocess, sys, tempfile
+import base64, collections, json, math, os, random, shutil, struct, subprocess, sys, tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 NODE_MODULES = os.path.join(HERE, 'bench', 'node_modules')
-SEEDS = sys.argv[1]
-COUNT = int(sys.argv[2]) if len(sys.argv) > 2 else 300
-RNG = random.Random(int(sys.argv[3]) if len(sys.argv) > 3 else 1)
-EXE = os.path.abspath(sys.argv[4] if len(sys.argv) > 4 else 'target/release/gltfmat')
+EDGES = '--edges' in sys.argv
+ARGS = [a for a in sys.argv if a != '--edges']
+SEEDS = ARGS[1]
+COUNT = int(ARGS[2]) if len(ARGS) > 2 else 300
+RNG = random.Random(int(ARGS[3]) if len(ARGS) > 3 else 1)
+EXE = os.path.abspath(ARGS[4] if len(ARGS) > 4 else 'target/release/gltfmat')
 EXTREMES = [None, 0, -1, 1.5, -0.0, 2**31, 2**32, 2**53, 18446744073709551612, 1e308, -1e308,
             'x', '', True, [], {}, [1, 'a'], [None], {'a': 1}]
 KHRONOS = r"""
@@ -63,13 +68,110 @@ def mutate(document):
     return document
 
 
+URI_FORMS = ['/abs/x.bin', 'file:///tmp/x.bin', 'http://example.com/x.bin', 'C:\\x.bin', '//host/x.bin',
+             'urn:x', '../x.bin', 'a%20b.bin', 'sub\\x.bin', '', '?q', '#f', 'x.bin?q=1#f', '%zz.bin',
+             ':x', '1x:y']
+MEDIA_TYPES = ['image/png', 'image/jpeg', 'image/webp', 'image/ktx2', 'image/basis', 'image/foo',
+               'application/octet-stream', 'application/gltf-buffer', '', 'text/plain']
+PNG_1x1 = base64.b64decode('iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg==')
+
+
+def objects(value):
+    """Every JSON object in the document."""
+    if isinstance(value, dict):
+        yield value
+        for child in value.values():
+            yield from objects(child)
+    elif isinstance(value, list):
+        for child in value:
+            yield from objects(child)
+
+
+def data_uri(payload, media, padding):
+    text = base64.b64encode(payload).decode()
+    text = {'keep': text, 'none': text.rstrip('='), 'extra': text + '=', 'broken': text[:-3]}[padding]
+    return f'data:{media};base64,{text}'
+
+
+def buffer_bytes(document, seed_dir, index):
+    """The bytes of buffer `index` (a data URI or a file beside the seed), or None."""
+    buffer = (document.get('buffers') or [None])[index] if index < len(document.get('buffers') or []) else None
+    uri = buffer.get('uri') if isinstance(buffer, dict) else None
+    if not isinstance(uri, str):
+        return None
+    if uri.startswith('data:') and ',' in uri:
+        try:
+            return bytearray(base64.b64decode(uri.split(',', 1)[1]))
+        except ValueError:
+            return None
+    try:
+        with open(os.path.join(seed_dir, uri), 'rb') as f:
+            return bytearray(f.read())
+    except OSError:
+        return None
+
+
+def mutate_edges(document, seed_dir):
+    """One to three mutations where the validator's edge cases live."""
+    for _ in range(RNG.randint(1, 3)):
+        kind = RNG.choice(['uri', 'data-uri', 'float', 'sampler', 'stride', 'sparse', 'member'])
+        resources = [r for key in ('buffers', 'images') for r in (document.get(key) or []) if isinstance(r, dict)]
+        if kind == 'uri' and resources:
+            RNG.choice(resources)['uri'] = RNG.choice(URI_FORMS)
+        elif kind == 'data-uri' and document.get('images'):
+            image = RNG.choice(document['images'])
+            if isinstance(image, dict):
+                image.pop('bufferView', None)
+                image['uri'] = data_uri(PNG_1x1, RNG.choice(MEDIA_TYPES), RNG.choice(['keep', 'none', 'extra', 'broken']))
+        elif kind == 'float' and document.get('buffers'):
+            data = buffer_bytes(document, seed_dir, 0)
+            if data and len(data) >= 4:
+                for _ in range(RNG.randint(1, 4)):
+                    at = RNG.randrange(0, len(data) // 4) * 4
+                    data[at:at + 4] = struct.pack('<f', RNG.choice([math.nan, math.inf, -math.inf, 1e38, -0.0]))
+                document['buffers'][0]['uri'] = data_uri(bytes(data), 'application/octet-stream', 'keep')
+        elif kind == 'sampler':
+            samplers = [s for a in (document.get('animations') or []) if isinstance(a, dict)
+                        for s in (a.get('samplers') or []) if isinstance(s, dict)]
+            accessors = document.get('accessors') or []
+            if samplers:
+                sampler = RNG.choice(samplers)
+                sampler['interpolation'] = RNG.choice(['LINEAR', 'STEP', 'CUBICSPLINE'])
+                index = sampler.get('input')
+                if isinstance(index, int) and 0 <= index < len(accessors) and isinstance(accessors[index], dict):
+                    accessors[index]['count'] = RNG.choice([0, 1, 2])
+        elif kind == 'stride' and document.get('bufferViews'):
+            view = RNG.choice(document['bufferViews'])
+            if isinstance(view, dict):
+                view['byteStride'] = RNG.choice([0, 1, 2, 3, 4, 6, 252, 256])
+        elif kind == 'sparse' and document.get('accessors'):
+            accessor = RNG.choice(document['accessors'])
+            if isinstance(accessor, dict) and isinstance(accessor.get('count'), int) and accessor['count'] > 0:
+                n = RNG.randint(1, 3)
+                indices = [RNG.choice([0, accessor['count'] - 1, accessor['count'], 2**16]) for _ in range(n)]
+                payload = struct.pack(f'<{n}I', *[i % 2**32 for i in indices]) + bytes(64 * n)
+                document.setdefault('buffers', []).append({'uri': data_uri(payload, 'application/octet-stream', 'keep'),
+                                                           'byteLength': len(payload)})
+                b = len(document['buffers']) - 1
+                document.setdefault('bufferViews', []).extend([{'buffer': b, 'byteLength': 4 * n},
+                                                               {'buffer': b, 'byteOffset': 4 * n, 'byteLength': 64 * n}])
+                v = len(document['bufferViews']) - 2
+                accessor['sparse'] = {'count': n, 'indices': {'bufferView': v, 'componentType': 5125},
+                                      'values': {'bufferView': v + 1}}
+        elif kind == 'member':
+            target = RNG.choice(list(objects(document)))
+            key = RNG.choice(['extras', 'unknownMember', 'range', 'name'])
+            target[key] = RNG.choice(EXTREMES)
+    return document
+
+
 def main():
     if not os.path.isdir(os.path.join(NODE_MODULES, 'gltf-validator')):
         subprocess.run(['npm', 'install', '--prefix', os.path.join(HERE, 'bench'), '--no-save', '--silent',
                         'gltf-validator', 'gltf-pipeline'], check=True, stdout=subprocess.DEVNULL)
     work = tempfile.mkdtemp(prefix='gltfmat-differential-')
     shutil.copytree(SEEDS, work, dirs_exist_ok=True)
-    seeds = [os.path.join(d, f) for d, _, names in os.walk(work) for f in names if f.endswith('.gltf')]
+    seeds = sorted(os.path.join(d, f) for d, _, names in os.walk(work) for f in names if f.endswith('.gltf'))
     mutants = []
     for i in range(COUNT):
         seed = RNG.choice(seeds)
@@ -81,7 +183,7 @@ def main():
             continue
         path = os.path.join(os.path.dirname(seed), f'mutant-{i}.gltf')
         with open(path, 'w') as f:
-            json.dump(mutate(document), f)
+            json.dump(mutate_edges(document, os.path.dirname(seed)) if EDGES else mutate(document), f)
         mutants.append(path)
     khronos = json.loads(subprocess.run(['node', '-e', KHRONOS], input=json.dumps(mutants), capture_output=True,
                                         text=True, env={**os.environ, 'NODE_PATH': NODE_MODULES}).stdout)

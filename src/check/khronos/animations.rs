@@ -178,7 +178,8 @@ fn sampler_accessors(ctx: &mut Context, sampler: Node, at: &str) {
             "accessor.min and accessor.max must be defined for animation input accessor.",
         );
     }
-    if interpolation(sampler) == "CUBICSPLINE" && unsigned(input, "count").is_some_and(|n| n < 2) {
+    // A count that is missing or invalid reads as none at all, as the validator reads it.
+    if interpolation(sampler) == "CUBICSPLINE" && unsigned(input, "count").is_none_or(|n| n < 2) {
         ctx.emit(
             khronos::ANIMATION_SAMPLER_INPUT_ACCESSOR_TOO_FEW_ELEMENTS,
             at,

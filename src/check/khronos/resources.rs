@@ -50,9 +50,22 @@ fn load_uri(
                 "data-uri",
             )
         }
-        // Neither is read: gltfmat reads only files inside the asset's folder. The Khronos
-        // validator says the URI is non-relative and then fails to read it.
-        Ok(UriKind::NonRelative | UriKind::AbsolutePath) => {
+        // Another scheme is not fetched, and nothing more is said (as the validator's own
+        // harness, which fetches only files, reports it).
+        Ok(UriKind::NonRelative) => {
+            ctx.emit(
+                khronos::NON_RELATIVE_URI,
+                pointer,
+                format!(
+                    "Non-relative URI found: '{}'. It is not fetched.",
+                    shorten(uri)
+                ),
+            );
+            (None, None, "external")
+        }
+        // An absolute path is non-relative to the validator, which then fails to read it;
+        // gltfmat refuses to, as it leaves the asset's folder.
+        Ok(UriKind::AbsolutePath) => {
             ctx.emit(
                 khronos::NON_RELATIVE_URI,
                 pointer,
@@ -116,7 +129,7 @@ fn refuse_outside(ctx: &mut Context, pointer: &str, uri: &str) {
         pass_codes::URI_OUTSIDE_ASSET_FOLDER,
         pointer,
         format!(
-            "Refused to read '{}': it is not a file inside the asset's folder.",
+            "Refused to read '{}': it resolves outside the asset's folder.",
             shorten(uri)
         ),
     );

@@ -7,7 +7,7 @@ use crate::diagnostic::khronos;
 pub const RULE: Rule = Rule::documenting(
     URI_OUTSIDE_ASSET_FOLDER,
     "resources",
-    "A URI names something outside the asset's folder (another scheme, an absolute path, a `..` escape or a symlink) and was not read.",
+    "A URI resolves outside the asset's folder (absolute path, `..` escape or symlink) and was not read.",
     DOC,
     Run::CORE,
 )
@@ -18,9 +18,9 @@ pub const RULE: Rule = Rule::documenting(
 
 const DOC: &str = "\
 ## What it does
-Reports a buffer or image `uri` that names another scheme (`file:`, `http:`), is an absolute
-path, climbs out of the asset's folder with `..`, or reaches outside it through a symbolic
-link. Nothing is read or fetched.
+Reports a buffer or image `uri` that is an absolute path, climbs out of the asset's folder with
+`..`, or reaches outside it through a symbolic link. The file is not read. (A URI of another
+scheme, `http:` or `file:`, is NON_RELATIVE_URI and is not fetched either.)
 
 ## Why
 Assets come from strangers. A validator that follows `../../etc/passwd` or `/home/ci/.ssh/id_rsa`
