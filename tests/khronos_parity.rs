@@ -1495,3 +1495,64 @@ fn a_cubic_spline_input_of_no_valid_count_has_too_few_elements() {
         assert_eq!(too_few, ["/animations/0/samplers/1/input"], "count {count}");
     }
 }
+
+#[test]
+fn a_uri_with_a_query_or_fragment_is_non_relative_and_one_that_does_not_decode_is_not_read() {
+    for uri in ["#f", "?q", "x.bin?q=1#f", "x.bin#", "x.bin?"] {
+        let found = khronos_findings(json!({"asset": {"version": "2.0"},
+            "buffers": [{"uri": uri, "byteLength": 4}]}));
+        assert_eq!(
+            found,
+            expected(&[
+                ("IO_ERROR", "/buffers/0/uri"),
+                ("NON_RELATIVE_URI", "/buffers/0/uri"),
+                ("UNUSED_OBJECT", "/buffers/0"),
+            ]),
+            "{uri}"
+        );
+    }
+    // Percent escapes that do not decode name no file: a failed read, not an invalid URI.
+    for uri in ["%zz.bin", "a%2", "%ff.bin", "%e2%82.bin"] {
+        let found = khronos_findings(json!({"asset": {"version": "2.0"},
+            "buffers": [{"uri": uri, "byteLength": 4}]}));
+        assert_eq!(
+            found,
+            expected(&[
+                ("IO_ERROR", "/buffers/0/uri"),
+                ("UNUSED_OBJECT", "/buffers/0")
+            ]),
+            "{uri}"
+        );
+    }
+}
+
+#[test]
+fn an_infinite_value_is_an_invalid_float_and_the_actual_bound_it_makes() {
+    let data = [
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+        f32::NEG_INFINITY,
+        0.0,
+        0.0,
+        f32::NAN,
+        0.0,
+    ];
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": floats_uri(&data), "byteLength": 36}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 0, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND", "/accessors/0/min/1"),
+            ("ACCESSOR_INVALID_FLOAT", "/accessors/0"),
+            ("ACCESSOR_INVALID_FLOAT", "/accessors/0"),
+            ("ACCESSOR_MIN_MISMATCH", "/accessors/0/min/1"),
+            ("UNUSED_OBJECT", "/meshes/0"),
+        ])
+    );
+}

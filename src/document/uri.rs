@@ -24,6 +24,12 @@ pub enum UriKind {
     NonRelative,
     /// An absolute path (`/x`, `C:\x`, `\\server\x`): never read.
     AbsolutePath,
+    /// A relative reference with a query or fragment (`x.bin?v=2`, `#f`): not a file name,
+    /// never read (the Khronos validator calls it non-relative).
+    QueryOrFragment,
+    /// A relative reference whose percent escapes do not decode (`%zz`, or bytes that are
+    /// no UTF-8): it names no file that can be read.
+    Undecodable(String),
 }
 
 /// Classifies a URI; `Err` carries the parser's explanation for an invalid one.
@@ -54,11 +60,16 @@ pub fn classify(uri: &str) -> Result<UriKind, String> {
     if uri.starts_with('/') || uri.starts_with('\\') {
         return Ok(UriKind::AbsolutePath);
     }
-    let path = uri.split(['?', '#']).next().unwrap_or_default();
+    if uri.contains(['?', '#']) {
+        return Ok(UriKind::QueryOrFragment);
+    }
     // A backslash separates folders, as browsers (the WHATWG URL parser) and the Khronos
     // validator read it: assets written on Windows name `Textures\a.png`. An escaped one
     // (`%5C`) stays a character of the name.
-    percent_decode(&path.replace('\\', "/")).map(UriKind::Relative)
+    Ok(match percent_decode(&uri.replace('\\', "/")) {
+        Ok(path) => UriKind::Relative(path),
+        Err(why) => UriKind::Undecodable(why),
+    })
 }
 
 /// Standard base64 whose padding may be left out, as the Khronos validator (and browsers)
@@ -170,6 +181,8 @@ pub fn load_uri(uri: &str, loader: &dyn ResourceLoader) -> Result<Arc<Bytes>, St
         UriKind::Relative(path) => loader.load(&path).map_err(|e| e.to_string()),
         UriKind::NonRelative => Err(format!("'{uri}' is not a relative URI; not fetched")),
         UriKind::AbsolutePath => Err(format!("'{uri}' is an absolute path; not read")),
+        UriKind::QueryOrFragment => Err(format!("'{uri}' has a query or fragment; not read")),
+        UriKind::Undecodable(why) => Err(format!("'{uri}': {why}; not read")),
     }
 }
 

@@ -49,7 +49,9 @@ fn packed_layout(accessor: Node) -> Option<Layout> {
 }
 
 fn show(component_type: u64, v: f64) -> String {
-    if component_type == gl::FLOAT {
+    if v.is_infinite() {
+        (if v > 0.0 { "Infinity" } else { "-Infinity" }).to_string()
+    } else if component_type == gl::FLOAT {
         format!("{v:?}")
     } else {
         format!("{v}")
@@ -339,7 +341,8 @@ fn scan(work: &mut Work, reading: &Reading, mut findings: Findings) -> Findings 
 }
 
 /// The rare second walk of an accessor holding NaN or infinities: reports each and takes
-/// min/max over the finite values only.
+/// min/max over the values that are numbers, infinities included (as the validator does: an
+/// infinity makes its component's actual bound infinite).
 fn report_non_finite(
     layout: &Layout,
     bytes: &[u8],
@@ -353,9 +356,11 @@ fn report_non_finite(
     let n = layout.components;
     visit(layout, bytes, |first, values| {
         for (i, c, v) in components(first, values, n) {
-            if v.is_finite() {
+            if !v.is_nan() {
                 actual_min[c] = actual_min[c].min(*v);
                 actual_max[c] = actual_max[c].max(*v);
+            }
+            if v.is_finite() {
                 continue;
             }
             let what = if v.is_nan() {
@@ -406,8 +411,14 @@ impl Bounds<'_> {
             };
             let is_min = key == "min";
             let t = self.layout.component_type;
+            // A component of nothing but NaN has no actual bound (it stays at its start).
+            let none = if is_min {
+                f64::INFINITY
+            } else {
+                f64::NEG_INFINITY
+            };
             for (c, (&declared, &actual)) in declared.iter().zip(actual).enumerate() {
-                if !actual.is_finite() || self.as_stored(declared) == actual {
+                if actual == none || self.as_stored(declared) == actual {
                     continue;
                 }
                 let at = format!("{}/{key}/{c}", self.pointer);

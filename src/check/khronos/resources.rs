@@ -77,6 +77,30 @@ fn load_uri(
             refuse_outside(ctx, pointer, uri);
             (None, None, "external")
         }
+        Ok(UriKind::QueryOrFragment) => {
+            ctx.emit(
+                khronos::NON_RELATIVE_URI,
+                pointer,
+                format!(
+                    "Non-relative URI found: '{}'. It is not read.",
+                    shorten(uri)
+                ),
+            );
+            ctx.emit(
+                khronos::IO_ERROR,
+                pointer,
+                "Could not read resource: a URI with a query or fragment names no file.",
+            );
+            (None, None, "external")
+        }
+        Ok(UriKind::Undecodable(why)) => {
+            ctx.emit(
+                khronos::IO_ERROR,
+                pointer,
+                format!("Could not read resource '{}': {why}.", shorten(uri)),
+            );
+            (None, None, "external")
+        }
         Ok(UriKind::Relative(path)) => match read_relative(ctx.loader, &path, keep_large) {
             Ok(kept) => (Some(kept), None, "external"),
             Err(LoadError::OutsideFolder(_)) => {
