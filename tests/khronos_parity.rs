@@ -1556,3 +1556,30 @@ fn an_infinite_value_is_an_invalid_float_and_the_actual_bound_it_makes() {
         ])
     );
 }
+
+#[test]
+fn khr_node_visibility_is_unsupported_by_the_released_validator() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_node_visibility"],
+        "nodes": [{"extensions": {"KHR_node_visibility": {"visible": false}}}],
+        "scenes": [{"nodes": [0]}], "scene": 0}));
+    assert_eq!(
+        found,
+        expected(&[("UNSUPPORTED_EXTENSION", "/extensionsUsed/0")])
+    );
+}
+
+#[test]
+fn a_matrix_that_is_the_identity_in_single_precision_is_the_default() {
+    let almost = 0.9999999776482582;
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "nodes": [{"matrix": [almost, 0, 0, 0, 0, almost, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}],
+        "scenes": [{"nodes": [0]}], "scene": 0}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("NODE_EMPTY", "/nodes/0"),
+            ("NODE_MATRIX_DEFAULT", "/nodes/0/matrix")
+        ])
+    );
+}

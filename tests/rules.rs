@@ -465,6 +465,8 @@ fn cases() -> Vec<Case> {
             .expect("TEXTURE_ALPHA_MISSING", &at("/pbrMetallicRoughness/baseColorTexture")),
         near_miss("TEXTURE_ALPHA_MISSING", "opaque base colour from an RGB image", json!({
             "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0}}), vec![rgb([128, 128, 128])]),
+        near_miss("TEXTURE_ALPHA_MISSING", "blended base colour whose factor carries the alpha", json!({"alphaMode": "BLEND",
+            "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "baseColorFactor": [1.0, 1.0, 1.0, 0.41], "metallicFactor": 0.0}}), vec![rgb([128, 128, 128])]),
         case("metallic-roughness from a greyscale image", json!({
             "pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 0}, "baseColorFactor": [0.5, 0.5, 0.5, 1.0]}}), vec![grey(200)])
             .expect("TEXTURE_GREYSCALE_PACKED", &at("/pbrMetallicRoughness/metallicRoughnessTexture")),
@@ -702,4 +704,49 @@ fn every_rule_has_a_firing_fixture_and_a_near_miss() {
             "{code} has no near-miss fixture"
         );
     }
+}
+
+/// A skinned node under a transformed parent: the transform is lost only where it does not
+/// also reach every joint (a rig's root transform moves the joints, and so the mesh).
+#[test]
+fn a_parent_transform_is_reported_lost_only_where_it_does_not_reach_the_joints() {
+    let asset = |mesh_parent_reaches_joints: bool| {
+        // 0 Z_UP (rotated) → 1 Armature → {2 skinned mesh node, 3 joint → 4 joint}; or the
+        // mesh node under 5, a moved sibling of the armature.
+        let mut nodes = vec![
+            json!({"children": [1], "rotation": [0.7071068, 0, 0, 0.7071068]}),
+            json!({"children": [2, 3], "translation": [1, 0, 0]}),
+            json!({"mesh": 0, "skin": 0}),
+            json!({"children": [4], "translation": [0, 1, 0]}),
+            json!({"translation": [0, 1, 0]}),
+        ];
+        if !mesh_parent_reaches_joints {
+            nodes[1] = json!({"children": [3], "translation": [1, 0, 0]});
+            nodes[0] = json!({"children": [1, 5], "rotation": [0.7071068, 0, 0, 0.7071068]});
+            nodes.push(json!({"children": [2], "scale": [2, 2, 2]}));
+        }
+        let report = check_bytes(
+            "rig.gltf",
+            serde_json::to_vec(&json!({"asset": {"version": "2.0"}, "nodes": nodes,
+                "meshes": [{"primitives": [{"attributes": {}}]}],
+                "skins": [{"joints": [3, 4]}], "scenes": [{"nodes": [0]}], "scene": 0}))
+            .unwrap(),
+            &NoResources,
+            &CheckOptions::default(),
+        );
+        (report.diagnostics.iter())
+            .filter(|d| d.code.name() == "NODE_SKINNED_MESH_PARENT_TRANSFORMS")
+            .map(|d| d.pointer().unwrap_or_default().to_string())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        asset(true),
+        Vec::<String>::new(),
+        "the rig's transforms reach the joints"
+    );
+    assert_eq!(
+        asset(false),
+        ["/nodes/2"],
+        "a moved sibling of the armature is lost"
+    );
 }

@@ -9,7 +9,7 @@ use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::Array;
 use crate::document::Node;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// How far a matrix may be from its TRS recomposition.
 const TRS_TOLERANCE: f64 = 0.00005;
@@ -18,6 +18,7 @@ pub fn check(ctx: &mut Context) {
     let nodes = ctx.items("nodes");
     let parents = parents(ctx, nodes);
     let hierarchy = Hierarchy::of(nodes, &parents);
+    let mut lost = LostTransforms::default();
     for (i, pointer, node) in ctx.objects("nodes") {
         transforms(ctx, node, &pointer);
         dependencies(ctx, node, &pointer);
@@ -29,7 +30,7 @@ pub fn check(ctx: &mut Context) {
             );
         }
         if unsigned(node, "skin").is_some_and(|s| (s as usize) < ctx.items("skins").len()) {
-            skinned_placement(ctx, nodes, &parents, &hierarchy, i, &pointer);
+            skinned_placement(ctx, nodes, &parents, &hierarchy, &mut lost, i, &pointer);
         }
     }
     for (_, pointer, scene) in ctx.objects("scenes") {
@@ -176,6 +177,8 @@ fn transforms(ctx: &mut Context, node: Node, pointer: &str) {
     let Some(matrix) = numbers(node, "matrix", 16) else {
         return;
     };
+    // The validator holds a matrix in single precision: 0.9999999776482582 is 1 there.
+    let matrix: Vec<f64> = matrix.iter().map(|&v| f64::from(v as f32)).collect();
     let at = member(pointer, "matrix");
     if ["translation", "rotation", "scale"]
         .iter()
@@ -363,12 +366,15 @@ fn has_transform(node: Node) -> bool {
 /// A skinned mesh ignores its node's and its ancestors' transforms: say so. The Khronos
 /// profile follows the released validator (2.0.0-dev.3.10): a warning for every non-root
 /// skinned node. The default profile reports only what is lost, a parent's transform, as
-/// the next Khronos build does (NODE_SKINNED_MESH_PARENT_TRANSFORMS).
+/// the next Khronos build does (NODE_SKINNED_MESH_PARENT_TRANSFORMS), and only where it is
+/// lost: a transformed ancestor that is also an ancestor of every joint reaches the mesh
+/// through the joints (CesiumMan, BrainStem), so nothing is lost on screen.
 fn skinned_placement(
     ctx: &mut Context,
     nodes: Array,
     parents: &[Option<usize>],
     hierarchy: &Hierarchy,
+    lost: &mut LostTransforms,
     i: usize,
     pointer: &str,
 ) {
@@ -389,12 +395,123 @@ fn skinned_placement(
         pointer,
         "Node with a skinned mesh is not root. Parent transforms will not affect a skinned mesh.",
     );
-    if hierarchy.transformed_above.get(i) == Some(&true) {
+    let skin = unsigned(nodes.at(i), "skin").map(|s| s as usize);
+    let skins = ctx.items("skins");
+    let mut reaches_not_through_joints = || match skin.and_then(|s| Some((s, skins.get(s)?))) {
+        Some((s, skin)) => lost.above(nodes, parents, s, skin, i),
+        None => true,
+    };
+    if hierarchy.transformed_above.get(i) == Some(&true) && reaches_not_through_joints() {
         ctx.emit(
             khronos::NODE_SKINNED_MESH_PARENT_TRANSFORMS,
             pointer,
             "Node with a skinned mesh has parent nodes with transforms. Parent transforms will not affect a skinned mesh.",
         );
+    }
+}
+
+/// The nodes that are each joint or an ancestor of it, for every joint. They lie on the
+/// first joint's line to its root: each further joint can only cut that line from below,
+/// at the point where its own line meets it. Where a node's line meets the first line is
+/// remembered for every node climbed, so the whole search is linear in the nodes.
+pub(super) fn common_roots(parents: &[Option<usize>], joints: &[usize]) -> HashSet<usize> {
+    let Some(&first) = joints.first() else {
+        return HashSet::new();
+    };
+    // The first joint's line, bottom (the joint) to top; a loop is walked once.
+    let mut on_line = vec![usize::MAX; parents.len()];
+    let mut line = Vec::new();
+    let mut at = Some(first);
+    while let Some(node) = at.filter(|&n| on_line[n] == usize::MAX) {
+        on_line[node] = line.len();
+        line.push(node);
+        at = parents[node];
+    }
+    // Where each climbed node's line meets the first line (None: it never does).
+    let mut meets: Vec<Option<Option<usize>>> = vec![None; parents.len()];
+    let mut lowest = 0;
+    for &joint in &joints[1..] {
+        let mut climbed = Vec::new();
+        let mut at = Some(joint);
+        let met = loop {
+            let Some(node) = at else { break None };
+            if on_line[node] != usize::MAX {
+                break Some(on_line[node]);
+            }
+            if let Some(known) = meets[node] {
+                break known;
+            }
+            // Marked before the answer is known: meeting it again on this climb means a loop
+            // off the line, which never meets it.
+            meets[node] = Some(None);
+            climbed.push(node);
+            at = parents[node];
+        };
+        for node in climbed {
+            meets[node] = Some(met);
+        }
+        match met {
+            Some(position) => lowest = lowest.max(position),
+            None => return HashSet::new(),
+        }
+    }
+    line[lowest..].iter().copied().collect()
+}
+
+/// Per skin, the nodes that are an ancestor of every joint, and for each node climbed whether
+/// a transformed node lies between it and the first of those above it: a transform there
+/// moves the node but not the joints, and is lost to a skinned mesh. Each node is climbed
+/// once per skin.
+#[derive(Default)]
+struct LostTransforms {
+    per_skin: HashMap<usize, (HashSet<usize>, HashMap<usize, bool>)>,
+}
+
+impl LostTransforms {
+    /// Whether a transform above `node` (skinned by `skin`, index `s`) is lost.
+    fn above(
+        &mut self,
+        nodes: Array,
+        parents: &[Option<usize>],
+        s: usize,
+        skin: Node,
+        node: usize,
+    ) -> bool {
+        let (common, memo) = self.per_skin.entry(s).or_insert_with(|| {
+            let joints: Vec<usize> = elements(skin, "joints")
+                .filter_map(|(_, j)| {
+                    j.as_u64()
+                        .map(|j| j as usize)
+                        .filter(|j| *j < parents.len())
+                })
+                .collect();
+            (common_roots(parents, &joints), HashMap::new())
+        });
+        // Climb from the parent until a node every joint hangs from, or a known answer.
+        let mut climbed = Vec::new();
+        let mut on_climb = HashSet::new();
+        let mut at = parent_of(parents, node);
+        let answer = loop {
+            let Some(n) = at else { break false };
+            if common.contains(&n) {
+                break false;
+            }
+            if let Some(&known) = memo.get(&n) {
+                break known;
+            }
+            if has_transform(nodes.at(n)) {
+                break true;
+            }
+            if !on_climb.insert(n) {
+                break false; // a loop, reported as NODE_LOOP
+            }
+            climbed.push(n);
+            at = parent_of(parents, n);
+        };
+        for n in climbed {
+            memo.insert(n, answer);
+        }
+        answer
     }
 }
 

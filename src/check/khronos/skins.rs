@@ -2,12 +2,12 @@
 //! accessor (format, byteStride, count) and the joint hierarchy (a common root, a skeleton
 //! among the common roots).
 
-use super::nodes::parent_map;
+use super::nodes::{common_roots, parent_map};
 use super::primitives::Format;
 use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::{Array, Node};
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 pub fn check(ctx: &mut Context) {
     let nodes = ctx.items("nodes");
@@ -107,54 +107,6 @@ impl<'p> Roots<'p> {
         }
         root
     }
-}
-
-/// The nodes that are each joint or an ancestor of it, for every joint. They lie on the
-/// first joint's line to its root: each further joint can only cut that line from below,
-/// at the point where its own line meets it. Where a node's line meets the first line is
-/// remembered for every node climbed, so the whole search is linear in the nodes.
-fn common_roots(parents: &[Option<usize>], joints: &[usize]) -> HashSet<usize> {
-    let Some(&first) = joints.first() else {
-        return HashSet::new();
-    };
-    // The first joint's line, bottom (the joint) to top; a loop is walked once.
-    let mut on_line = vec![usize::MAX; parents.len()];
-    let mut line = Vec::new();
-    let mut at = Some(first);
-    while let Some(node) = at.filter(|&n| on_line[n] == usize::MAX) {
-        on_line[node] = line.len();
-        line.push(node);
-        at = parents[node];
-    }
-    // Where each climbed node's line meets the first line (None: it never does).
-    let mut meets: Vec<Option<Option<usize>>> = vec![None; parents.len()];
-    let mut lowest = 0;
-    for &joint in &joints[1..] {
-        let mut climbed = Vec::new();
-        let mut at = Some(joint);
-        let met = loop {
-            let Some(node) = at else { break None };
-            if on_line[node] != usize::MAX {
-                break Some(on_line[node]);
-            }
-            if let Some(known) = meets[node] {
-                break known;
-            }
-            // Marked before the answer is known: meeting it again on this climb means a loop
-            // off the line, which never meets it.
-            meets[node] = Some(None);
-            climbed.push(node);
-            at = parents[node];
-        };
-        for node in climbed {
-            meets[node] = Some(met);
-        }
-        match met {
-            Some(position) => lowest = lowest.max(position),
-            None => return HashSet::new(),
-        }
-    }
-    line[lowest..].iter().copied().collect()
 }
 
 fn inverse_binds(ctx: &mut Context, skin: Node, pointer: &str) {
