@@ -537,6 +537,11 @@ fn cases() -> Vec<Case> {
             .animated("/materials/0/pbrMetallicRoughness/metallicFactor")
             .expect("INCOMPLETE_EXTENSION_SUPPORT", "/animations/0/channels/0/target/extensions/KHR_animation_pointer"),
         near_miss("SPECULAR_ON_METAL", "ior on a dielectric", material(ext("KHR_materials_ior", json!({"ior": 1.45}))), vec![]),
+        case("glass that omits metallicFactor (so 1)", json!({"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.9, 0.9, 1.0]},
+            "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.76}}}), vec![])
+            .expect("TRANSMISSION_ON_METAL", &at("/extensions/KHR_materials_transmission/transmissionFactor")),
+        near_miss("TRANSMISSION_ON_METAL", "glass with metallicFactor 0", material(ext("KHR_materials_transmission",
+            json!({"transmissionFactor": 0.76}))), vec![]),
         // -- pixels (--deep)
         case("anisotropy texel with no direction", material(ext("KHR_materials_anisotropy",
             json!({"anisotropyStrength": 0.5, "anisotropyTexture": {"index": 0}}))),

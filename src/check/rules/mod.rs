@@ -26,6 +26,7 @@ mod sheen_zero_roughness;
 mod specular_on_metal;
 mod srgb_in_linear;
 pub mod texels;
+mod transmission_on_metal;
 mod undecodable;
 mod unlit_ignored;
 
@@ -180,6 +181,7 @@ pub static RULES: &[&Rule] = &[
     &anisotropy_zero_strength::RULE,
     &unlit_ignored::RULE,
     &specular_on_metal::RULE,
+    &transmission_on_metal::RULE,
     &undecodable::RULE,
     &decode_limit::RULE,
     &anisotropy_direction::RULE,

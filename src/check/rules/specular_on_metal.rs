@@ -5,6 +5,7 @@ use crate::check::context::{number, Context};
 use crate::check::khronos::animations::animated_pointers;
 use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
+use crate::document::Node;
 
 pub const RULE: Rule = Rule::new(
     "SPECULAR_ON_METAL",
@@ -38,17 +39,7 @@ glTF 2.0 §3.9.2 (metallicFactor default 1).
 ";
 
 fn check(ctx: &mut Context) {
-    let animated = animated_pointers(ctx.root);
-    for (_, pointer, material) in ctx.objects("materials") {
-        let pbr = material.get("pbrMetallicRoughness");
-        let metallic = pbr.map_or(1.0, |p| number(p, "metallicFactor", 1.0));
-        let factor_pointer = format!("{pointer}/pbrMetallicRoughness/metallicFactor");
-        if metallic < 1.0
-            || pbr.is_some_and(|p| p.get("metallicRoughnessTexture").is_some())
-            || animated.contains(factor_pointer.as_str())
-        {
-            continue;
-        }
+    for (pointer, material) in fully_metallic(ctx) {
         for name in ["KHR_materials_ior", "KHR_materials_specular"] {
             if extension(material, name).is_some() {
                 ctx.emit(
@@ -59,4 +50,22 @@ fn check(ctx: &mut Context) {
             }
         }
     }
+}
+
+/// The materials whose metallic value is 1 everywhere and always: `metallicFactor` 1 (its
+/// default when missing), no `metallicRoughnessTexture` that could lower it, and no animation
+/// channel (KHR_animation_pointer) targeting the factor.
+pub(super) fn fully_metallic<'a>(ctx: &Context<'a>) -> Vec<(String, Node<'a>)> {
+    let animated = animated_pointers(ctx.root);
+    (ctx.objects("materials"))
+        .filter(|(_, pointer, material)| {
+            let pbr = material.get("pbrMetallicRoughness");
+            let metallic = pbr.map_or(1.0, |p| number(p, "metallicFactor", 1.0));
+            let factor_pointer = format!("{pointer}/pbrMetallicRoughness/metallicFactor");
+            metallic >= 1.0
+                && !pbr.is_some_and(|p| p.get("metallicRoughnessTexture").is_some())
+                && !animated.contains(factor_pointer.as_str())
+        })
+        .map(|(_, pointer, material)| (pointer, material))
+        .collect()
 }
