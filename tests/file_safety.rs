@@ -478,6 +478,17 @@ fn a_folder_walk_finds_assets_in_any_case_and_leaves_out_what_the_user_excludes(
         "{}",
         stderr(&run)
     );
+    // Nor is one whose assets are all hidden, and it says it skipped them.
+    std::fs::create_dir_all(folder.join("only-hidden/.cache")).unwrap();
+    std::fs::write(folder.join("only-hidden/.cache/f.gltf"), &valid).unwrap();
+    let run = gltfmat(folder, &["check", "only-hidden"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        stderr(&run)
+            .contains("no .gltf or .glb file found (1 skipped: under hidden or ignored paths"),
+        "{}",
+        stderr(&run)
+    );
 }
 
 #[test]

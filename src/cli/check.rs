@@ -174,8 +174,15 @@ pub fn run(args: CheckArgs) -> Outcome {
                 let before = files.len();
                 unreadable |= !collect_assets(input, &args.exclude, &mut files)?;
                 if files.len() == before {
-                    // A gate that checked nothing must not pass.
-                    errln!("gltfmat: {}: no .gltf or .glb file found", input.display());
+                    // A gate that checked nothing must not pass, and says what it passed by.
+                    let skipped = match skipped_assets(input) {
+                        0 => String::new(),
+                        n => format!(" ({n} skipped: under hidden or ignored paths, or excluded; name a file or folder to check it)"),
+                    };
+                    errln!(
+                        "gltfmat: {}: no .gltf or .glb file found{skipped}",
+                        input.display()
+                    );
                     unreadable = true;
                 }
             }
@@ -300,6 +307,17 @@ fn check_file(
 /// are not followed. An entry that is not a regular file (a FIFO, a device, or a symlink to
 /// one) is skipped with a note; false when a folder could not be read (reported). `exclude`
 /// globs (gitignore syntax) leave matching paths out.
+/// How many asset files under `folder` the walk leaves out (hidden, ignored or excluded): the
+/// same walk with no filter, counted.
+fn skipped_assets(folder: &Path) -> usize {
+    (ignore::WalkBuilder::new(folder)
+        .standard_filters(false)
+        .build())
+    .flatten()
+    .filter(|entry| is_asset_name(entry.path()) && entry.path().is_file())
+    .count()
+}
+
 fn collect_assets(
     folder: &Path,
     exclude: &[String],
