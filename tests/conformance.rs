@@ -239,6 +239,12 @@ const REAL_PROBLEMS_IN_VALID_CORPUS_ASSETS: &[(&str, &str, &str, &str)] = &[
         "the sheen object holds only a texture: multiplied by the default sheenColorFactor [0, 0, 0], the layer is off",
     ),
     (
+        "ext/KHR_materials_transmission/data/material/valid.gltf",
+        "TRANSMISSION_ON_METAL",
+        "/materials/0/extensions/KHR_materials_transmission/transmissionFactor",
+        METAL_BY_DEFAULT,
+    ),
+    (
         "ext/KHR_materials_specular/data/material/valid.gltf",
         "SPECULAR_ON_METAL",
         "/materials/0/extensions/KHR_materials_specular",

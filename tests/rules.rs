@@ -542,6 +542,22 @@ fn cases() -> Vec<Case> {
             .expect("TRANSMISSION_ON_METAL", &at("/extensions/KHR_materials_transmission/transmissionFactor")),
         near_miss("TRANSMISSION_ON_METAL", "glass with metallicFactor 0", material(ext("KHR_materials_transmission",
             json!({"transmissionFactor": 0.76}))), vec![]),
+        case("clearcoat texture with the factor left at 0", material(ext("KHR_materials_clearcoat",
+            json!({"clearcoatTexture": {"index": 0}}))), vec![rgb([200, 0, 0])])
+            .expect("LAYER_TEXTURE_DISABLED", &at("/extensions/KHR_materials_clearcoat/clearcoatTexture")),
+        near_miss("LAYER_TEXTURE_DISABLED", "clearcoat texture with a factor", material(ext("KHR_materials_clearcoat",
+            json!({"clearcoatFactor": 1.0, "clearcoatTexture": {"index": 0}}))), vec![rgb([200, 0, 0])]),
+        case("thickness texture on a thin-walled volume", material(json!({"extensions": {
+            "KHR_materials_transmission": {"transmissionFactor": 1.0},
+            "KHR_materials_volume": {"thicknessTexture": {"index": 0}}}})), vec![rgb([0, 200, 0])])
+            .expect("LAYER_TEXTURE_DISABLED", &at("/extensions/KHR_materials_volume/thicknessTexture")),
+        case("dispersion on a thin-walled volume", material(json!({"extensions": {
+            "KHR_materials_transmission": {"transmissionFactor": 1.0},
+            "KHR_materials_volume": {}, "KHR_materials_dispersion": {"dispersion": 0.3}}})), vec![])
+            .expect("DISPERSION_THIN_WALLED", &at("/extensions/KHR_materials_dispersion")),
+        near_miss("DISPERSION_THIN_WALLED", "dispersion through a volume of some thickness", material(json!({"extensions": {
+            "KHR_materials_transmission": {"transmissionFactor": 1.0},
+            "KHR_materials_volume": {"thicknessFactor": 0.5}, "KHR_materials_dispersion": {"dispersion": 0.3}}})), vec![]),
         // -- pixels (--deep)
         case("anisotropy texel with no direction", material(ext("KHR_materials_anisotropy",
             json!({"anisotropyStrength": 0.5, "anisotropyTexture": {"index": 0}}))),

@@ -82,6 +82,14 @@ pub static READINGS: &[(Code, &str)] = &[
         "Reported for every skin whose joints share no root. The Khronos validator starts its intersection of the joints' lines afresh once it is empty, so joints in separate trees pass when the last ones share a tree.",
     ),
     (
+        khronos::UNSUPPORTED_EXTENSION,
+        "The default profile validates extensions the released Khronos validator (2.0.0-dev.3.10) does not know: KHR_materials_diffuse_transmission and KHR_node_visibility.",
+    ),
+    (
+        khronos::UNEXPECTED_EXTENSION_OBJECT,
+        "An extension the default profile knows (KHR_node_visibility, KHR_materials_diffuse_transmission) is also checked for the objects it may extend; the released validator knows neither.",
+    ),
+    (
         super::rules::gltf1::RULE.code(),
         "On a glTF 1.0 document the 2.0 passes do not run: every Khronos code is replaced by GLTF_1_0_ASSET and the 1.0 PBR checks.",
     ),

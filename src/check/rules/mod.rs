@@ -11,10 +11,12 @@ mod anisotropy_zero_strength;
 mod base_color_range;
 mod colour_space_conflict;
 mod decode_limit;
+mod dispersion_thin_walled;
 mod duplicate_key;
 pub mod exclusion;
 pub mod gltf1;
 mod greyscale_packed;
+mod layer_disabled;
 mod linear_in_srgb;
 mod lossy_direction;
 mod metallic_mixed;
@@ -182,6 +184,8 @@ pub static RULES: &[&Rule] = &[
     &unlit_ignored::RULE,
     &specular_on_metal::RULE,
     &transmission_on_metal::RULE,
+    &layer_disabled::RULE,
+    &dispersion_thin_walled::RULE,
     &undecodable::RULE,
     &decode_limit::RULE,
     &anisotropy_direction::RULE,
