@@ -1,5 +1,7 @@
 //! The `gltfmat` binary, end to end, on the bundled fixtures.
 
+mod common;
+
 use std::path::Path;
 use std::process::Command;
 
@@ -498,7 +500,7 @@ fn sarif_shows_well_in_code_scanning() {
             .contains(&uri),
             "{uri}"
         );
-        let fingerprint = result["partialFingerprints"]["gltfmat/v1"]
+        let fingerprint = result["partialFingerprints"]["gltfmat/v2"]
             .as_str()
             .unwrap();
         fingerprints.insert((
@@ -511,7 +513,7 @@ fn sarif_shows_well_in_code_scanning() {
                 location["region"]["byteOffset"].as_u64().is_some(),
                 "{location}"
             );
-            assert!(location["region"]["startLine"].is_null(), "{location}");
+            assert_eq!(location["region"]["startLine"], 1, "{location}");
         } else {
             assert!(
                 location["region"]["startLine"].as_u64().is_some(),
@@ -528,7 +530,7 @@ fn sarif_shows_well_in_code_scanning() {
             .map(|r| {
                 (
                     r["ruleId"].to_string(),
-                    r["partialFingerprints"]["gltfmat/v1"].to_string(),
+                    r["partialFingerprints"]["gltfmat/v2"].to_string(),
                 )
             })
             .collect();
@@ -776,4 +778,52 @@ fn a_2_0_input_with_errors_of_its_own_is_refused_saying_so() {
         "{stderr}"
     );
     assert!(!output.exists());
+}
+
+/// GitHub code scanning's documented rules for an uploaded SARIF, over every real exporter's
+/// file and the Khronos corpus: every result placed in a file has a `startLine`, no two
+/// results share a fingerprint, and files inside the repository are named relative to it.
+#[test]
+fn sarif_of_whole_corpora_meets_github_code_scanning_rules() {
+    for (relative, name) in [
+        ("real-world/gltf2", "sarif_real_world"),
+        (
+            "conformance/khronos-glTF-Validator/test",
+            "sarif_conformance",
+        ),
+    ] {
+        let Some(folder) = common::shared(relative, name) else {
+            continue;
+        };
+        let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(["check", "--format", "sarif", "--all-findings"])
+            .arg(&folder)
+            .current_dir(folder.parent().unwrap())
+            .output()
+            .unwrap();
+        let log: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let results = log["runs"][0]["results"].as_array().unwrap();
+        assert!(results.len() > 100, "{relative}: {} results", results.len());
+        let mut fingerprints = std::collections::HashSet::new();
+        for result in results {
+            let location = &result["locations"][0]["physicalLocation"];
+            assert!(
+                location["region"]["startLine"]
+                    .as_u64()
+                    .is_some_and(|l| l >= 1),
+                "{relative}: no startLine: {result}"
+            );
+            assert_eq!(
+                location["artifactLocation"]["uriBaseId"], "%SRCROOT%",
+                "{result}"
+            );
+            let uri = location["artifactLocation"]["uri"].as_str().unwrap();
+            assert!(!uri.starts_with("..") && !uri.starts_with('/'), "{uri}");
+            let fingerprint = (uri.to_string(), result["partialFingerprints"].to_string());
+            assert!(
+                fingerprints.insert(fingerprint),
+                "{relative}: a shared fingerprint: {result}"
+            );
+        }
+    }
 }

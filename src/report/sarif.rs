@@ -69,9 +69,16 @@ const PATH_SEGMENT: &AsciiSet = &NON_ALPHANUMERIC
     .remove(b'/');
 
 impl SourceRoot {
+    /// The repository the working folder is in (the nearest folder above it holding `.git`),
+    /// or the working folder: code scanning places results by paths from the repository's
+    /// root, wherever in it the check ran.
     fn current() -> SourceRoot {
+        let here = std::env::current_dir().ok();
+        let repository = (here.as_deref())
+            .and_then(|here| here.ancestors().find(|folder| folder.join(".git").exists()))
+            .map(std::path::Path::to_path_buf);
         SourceRoot {
-            folder: std::env::current_dir().ok(),
+            folder: repository.or(here),
         }
     }
 
@@ -90,7 +97,10 @@ impl SourceRoot {
     /// `a%20100%25.gltf`).
     fn artifact(&self, path: &str) -> Value {
         let file = std::path::Path::new(path);
-        let absolute = std::path::absolute(file).unwrap_or_else(|_| file.to_path_buf());
+        // Resolved as the working folder is (`..` and links followed), so that a file named
+        // through `../` is still found inside the root.
+        let absolute = (std::fs::canonicalize(file).or_else(|_| std::path::absolute(file)))
+            .unwrap_or_else(|_| file.to_path_buf());
         let inside = (self.folder.as_deref()).and_then(|root| absolute.strip_prefix(root).ok());
         match inside.and_then(|relative| relative.to_str()) {
             Some(relative) => json!({"uri": encode(relative), "uriBaseId": "%SRCROOT%"}),
@@ -139,8 +149,17 @@ impl<R: Borrow<Report>, I: Iterator<Item = R>> serde::Serialize for Results<'_, 
             let report = report.borrow();
             let positions = Positions::of(report);
             let artifact = self.1.artifact(&report.uri);
+            // How many times each (code, place, message) came before: two distinct findings of
+            // one code at one pointer get distinct fingerprints, the same run after run.
+            let mut seen: std::collections::HashMap<(&str, String, &str), usize> =
+                Default::default();
             for d in &report.diagnostics {
-                sequence.serialize_element(&result(report, &positions, &artifact, d))?;
+                let occurrence = seen
+                    .entry((d.code.name(), place(d), &d.message))
+                    .or_default();
+                let found = result(report, &positions, &artifact, d, *occurrence);
+                *occurrence += 1;
+                sequence.serialize_element(&found)?;
             }
         }
         sequence.end()
@@ -155,37 +174,57 @@ fn level(severity: Severity) -> &'static str {
     }
 }
 
-/// One SARIF result. A GLB's findings are placed by byte in the file (its JSON chunk is one
-/// line of a binary file); a .gltf's by line and column. The fingerprint names the finding by
-/// file, code and JSON pointer, so an alert keeps its identity when lines move.
-fn result(report: &Report, positions: &Positions, artifact: &Value, d: &Diagnostic) -> Value {
+/// Where a finding is, as its fingerprint names it: its JSON pointer or `@offset`.
+fn place(d: &Diagnostic) -> String {
+    match &d.location {
+        Location::Pointer(p) => p.clone(),
+        Location::Offset(o) => format!("@{o}"),
+    }
+}
+
+/// One SARIF result. Every result has a `startLine`, as GitHub code scanning requires of a
+/// result placed in a file: a .gltf's by line and column, a GLB's line 1 (its JSON chunk is
+/// one line of a binary file) with the byte region kept, a finding the text cannot place line
+/// 1. The fingerprint names the finding by file, code, JSON pointer, message and how many
+/// alike came before it, so an alert keeps its identity when lines move and two findings
+/// never share one.
+fn result(
+    report: &Report,
+    positions: &Positions,
+    artifact: &Value,
+    d: &Diagnostic,
+    occurrence: usize,
+) -> Value {
     let glb = report.document.container == Container::Glb;
+    let first_line = json!({"startLine": 1});
     let region = match (&d.location, positions.span(d)) {
-        (Location::Offset(offset), _) => json!({"byteOffset": offset}),
+        (Location::Offset(offset), _) => json!({"startLine": 1, "byteOffset": offset}),
         (Location::Pointer(_), Some(span)) if glb => json!({
+            "startLine": 1,
             "byteOffset": positions.text_start + span.start,
             "byteLength": span.len().max(1),
         }),
         (Location::Pointer(_), Some(_)) => match positions.line_col(d) {
             Some((line, column)) => json!({"startLine": line, "startColumn": column}),
-            None => Value::Null,
+            None => first_line,
         },
-        (Location::Pointer(_), None) => Value::Null,
+        (Location::Pointer(_), None) => first_line,
     };
-    let mut physical = json!({"artifactLocation": artifact});
-    if !region.is_null() {
-        physical["region"] = region;
-    }
-    let place = match &d.location {
-        Location::Pointer(p) => p.clone(),
-        Location::Offset(o) => format!("@{o}"),
-    };
+    let physical = json!({"artifactLocation": artifact, "region": region});
+    let occurrence = occurrence.to_string();
+    let identity = [
+        report.uri.as_str(),
+        d.code.name(),
+        &place(d),
+        &d.message,
+        &occurrence,
+    ];
     let mut result = json!({
         "ruleId": d.code,
         "level": level(d.severity),
         "message": {"text": format!("{}{}", d.message, location_suffix(d))},
         "locations": [{"physicalLocation": physical}],
-        "partialFingerprints": {"gltfmat/v1": fingerprint(&[&report.uri, d.code.name(), &place])},
+        "partialFingerprints": {"gltfmat/v2": fingerprint(&identity)},
     });
     if let Location::Pointer(p) = &d.location {
         result["locations"][0]["logicalLocations"] =
