@@ -827,3 +827,50 @@ fn sarif_of_whole_corpora_meets_github_code_scanning_rules() {
         }
     }
 }
+
+/// `--format github` annotates errors and warnings (infos and hints only with
+/// `--all-findings`), at most ten per file, and counts the rest in one notice: GitHub shows
+/// ten annotations of a kind per step, and the errors must be among them.
+#[test]
+fn github_annotations_are_the_errors_first_and_bounded_per_file() {
+    let folder = tempfile::tempdir().unwrap();
+    let nodes: Vec<_> = (0..30)
+        .map(|_| serde_json::json!({"rotation": [1, 1, 1, 1]}))
+        .collect();
+    let asset = serde_json::json!({"asset": {"version": "2.0"}, "nodes": nodes});
+    std::fs::write(folder.path().join("n.gltf"), asset.to_string()).unwrap();
+    let run = |extra: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(["check", "--format", "github", "n.gltf"])
+            .args(extra)
+            .current_dir(folder.path())
+            .output()
+            .unwrap();
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let out = run(&[]);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 11, "{out}");
+    assert!(
+        lines[..10]
+            .iter()
+            .all(|l| l.starts_with("::error file=n.gltf")),
+        "{out}"
+    );
+    assert!(
+        lines[10].starts_with(
+            "::notice file=n.gltf::20 more finding(s) not annotated (20 error(s), 0 warning(s))"
+        ),
+        "{out}"
+    );
+    // With --all-findings the infos count too, still after the errors.
+    let out = run(&["--all-findings"]);
+    assert!(
+        out.lines().take(10).all(|l| l.starts_with("::error")),
+        "{out}"
+    );
+    assert!(
+        out.contains("more finding(s) not annotated (20 error(s)"),
+        "{out}"
+    );
+}

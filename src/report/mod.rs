@@ -117,12 +117,7 @@ pub fn write_each<R: Borrow<Report>>(
             out.write_all(b"\n")
         }),
         Format::Sarif => sarif::write(reports, out),
-        Format::Github => reports.try_for_each(|r| {
-            let r = r.borrow();
-            let positions = Positions::of(r);
-            (r.diagnostics.iter())
-                .try_for_each(|d| out.write_all(github_line(r, &positions, d).as_bytes()))
-        }),
+        Format::Github => reports.try_for_each(|r| github(r.borrow(), options, out)),
     }
 }
 
@@ -246,6 +241,53 @@ fn locate_with_ancestors<'p>(
     (spans, enclosing)
 }
 
+/// The annotations GitHub shows for one file: at most this many. GitHub shows ten of each kind
+/// per step; a file's first errors and warnings are what a reviewer acts on.
+pub const GITHUB_ANNOTATIONS_PER_FILE: usize = 10;
+
+/// A report as GitHub Actions workflow commands: its errors and warnings (infos and hints too
+/// with `all_findings`), errors first, at most [`GITHUB_ANNOTATIONS_PER_FILE`], then one
+/// notice counting the rest, so the errors that matter are not drowned.
+fn github(report: &Report, options: &Style, out: &mut dyn Write) -> std::io::Result<()> {
+    let shown = |d: &&Diagnostic| {
+        options.all_findings || matches!(d.severity, Severity::Error | Severity::Warning)
+    };
+    let mut listed: Vec<&Diagnostic> = report.diagnostics.iter().filter(shown).collect();
+    listed.sort_by_key(|d| d.severity);
+    let positions = Positions::of_those(report, |d| {
+        options.all_findings || d.severity <= Severity::Warning
+    });
+    for d in listed.iter().take(GITHUB_ANNOTATIONS_PER_FILE) {
+        out.write_all(github_line(report, &positions, d).as_bytes())?;
+    }
+    let rest = listed.len().saturating_sub(GITHUB_ANNOTATIONS_PER_FILE);
+    if rest > 0 {
+        let counts = |s: Severity| {
+            listed[GITHUB_ANNOTATIONS_PER_FILE..]
+                .iter()
+                .filter(|d| d.severity == s)
+                .count()
+        };
+        writeln!(
+            out,
+            "::notice file={}::{rest} more finding(s) not annotated ({} error(s), {} warning(s)): `gltfmat check` lists them all",
+            github_file(&report.uri),
+            counts(Severity::Error),
+            counts(Severity::Warning)
+        )?;
+    }
+    Ok(())
+}
+
+/// A file name as a workflow command's property.
+fn github_file(uri: &str) -> String {
+    uri.replace('%', "%25")
+        .replace('\r', "%0D")
+        .replace('\n', "%0A")
+        .replace(',', "%2C")
+        .replace(':', "%3A")
+}
+
 fn github_line(report: &Report, positions: &Positions, d: &Diagnostic) -> String {
     let level = match d.severity {
         Severity::Error => "error",
@@ -264,7 +306,7 @@ fn github_line(report: &Report, positions: &Positions, d: &Diagnostic) -> String
     };
     format!(
         "::{level} file={}{position},title={}::{}{}\n",
-        escape(&report.uri).replace(',', "%2C").replace(':', "%3A"),
+        github_file(&report.uri),
         d.code,
         escape(&d.message),
         location_suffix(d)
