@@ -220,11 +220,31 @@ fn usage_errors_exit_2() {
 fn a_folder_is_walked_and_fails_on_one_broken_asset() {
     let (code, out) = gltfmat(&["check", "fixtures"]);
     assert_eq!(code, 1);
+    // A file with nothing to list prints nothing; one with findings its summary; the run
+    // one total line.
+    assert!(out.contains("fixtures/broken/truncated.glb:"), "{out}");
+    assert!(!out.contains("fixtures/valid/sheen-triangle.glb:"), "{out}");
     assert!(
-        out.contains("fixtures/valid/sheen-triangle.glb:")
-            && out.contains("fixtures/broken/truncated.glb:"),
+        out.lines().last().unwrap().contains("file(s) checked"),
         "{out}"
     );
+    let (_, verbose) = gltfmat(&["check", "fixtures", "--verbose"]);
+    assert!(
+        verbose.contains("fixtures/valid/sheen-triangle.glb:"),
+        "{verbose}"
+    );
+    // A folder of clean files is one line.
+    let clean = tempfile::tempdir().unwrap();
+    for name in ["a.gltf", "b.gltf", "c.gltf"] {
+        std::fs::copy(
+            "fixtures/valid/sheen-triangle.gltf",
+            clean.path().join(name),
+        )
+        .unwrap();
+    }
+    let (code, out) = gltfmat(&["check", clean.path().to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}");
+    assert_eq!(out.lines().count(), 1, "{out}");
 }
 
 #[test]

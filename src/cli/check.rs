@@ -56,6 +56,10 @@ pub struct CheckArgs {
     /// List infos and hints in human output too (they are counted in the summary otherwise).
     #[arg(long)]
     all_findings: bool,
+    /// In human output over several files, a summary line for every file (by default only
+    /// files with findings listed have one, and the run ends with one total line).
+    #[arg(long)]
+    verbose: bool,
     /// Colour in human output: `auto` follows the terminal, NO_COLOR, CLICOLOR_FORCE,
     /// FORCE_COLOR and TERM=dumb.
     #[arg(long, value_enum, default_value = "auto", value_name = "WHEN")]
@@ -223,7 +227,8 @@ pub fn run(args: CheckArgs) -> Outcome {
     let colour = args.format == FormatArg::Human && args.color.wanted();
     let style = Style::new(colour)
         .with_all_findings(all_findings)
-        .with_list(walked_a_folder || args.inputs.len() > 1);
+        .with_list(walked_a_folder || args.inputs.len() > 1)
+        .with_verbose(args.verbose);
     let failed = Cell::new(false);
     let unreadable = Cell::new(unreadable);
     let check_one = |(file, options): (&PathBuf, &Arc<CheckOptions>)| {

@@ -31,7 +31,9 @@ fn listed(severity: Severity, style: &Style) -> bool {
     style.all_findings || matches!(severity, Severity::Error | Severity::Warning)
 }
 
-/// Each report's findings and summary as it comes, then the total over all of them.
+/// Each report's findings and summary as it comes, then the total over all of them. In a list
+/// (a folder), a file with nothing listed prints nothing unless `verbose`: a folder of clean
+/// files is one line, as ruff and clippy print it.
 pub fn write<R: Borrow<Report>>(
     reports: impl Iterator<Item = R>,
     style: &Style,
@@ -40,10 +42,15 @@ pub fn write<R: Borrow<Report>>(
     let mut total = Total::default();
     for report in reports {
         let report = report.borrow();
-        out.write_all(render_one(report, style).as_bytes())?;
+        let quiet = style.list
+            && !style.verbose
+            && !report.diagnostics.iter().any(|d| listed(d.severity, style));
+        if !quiet {
+            out.write_all(render_one(report, style).as_bytes())?;
+        }
         total.add(report);
     }
-    if total.files > 1 {
+    if total.files > 1 || (style.list && total.files == 1) {
         out.write_all(total.line().as_bytes())?;
     }
     Ok(())

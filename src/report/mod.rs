@@ -43,6 +43,9 @@ pub struct Style {
     /// when the list holds one report: its shape must not depend on how many files a folder
     /// happened to hold.
     pub list: bool,
+    /// A summary line for every file of a list, not only for those with something listed
+    /// (human format).
+    pub verbose: bool,
 }
 
 impl Style {
@@ -52,12 +55,19 @@ impl Style {
             colour,
             all_findings: false,
             list: false,
+            verbose: false,
         }
     }
 
     /// This style listing infos and hints too (or not).
     pub fn with_all_findings(mut self, all: bool) -> Style {
         self.all_findings = all;
+        self
+    }
+
+    /// This style summarising every file of a list (or only those with findings listed).
+    pub fn with_verbose(mut self, verbose: bool) -> Style {
+        self.verbose = verbose;
         self
     }
 
