@@ -199,8 +199,13 @@ pub fn run(args: CheckArgs) -> Outcome {
         }
     }
     // Files are checked in parallel; reports keep the input order. The progress bar goes to
-    // stderr, only on a terminal and without --quiet.
-    let progress = if args.quiet || !std::io::stderr().is_terminal() || files.len() < 2 {
+    // stderr, only on a terminal, without --quiet, never in CI, and only when the report does
+    // not go to that terminal too (its lines would be broken by the bar's redraws; they show
+    // the progress themselves).
+    let bar_wanted = std::io::stderr().is_terminal()
+        && !std::io::stdout().is_terminal()
+        && std::env::var_os("CI").is_none();
+    let progress = if args.quiet || !bar_wanted || files.len() < 2 {
         indicatif::ProgressBar::hidden()
     } else {
         indicatif::ProgressBar::new(files.len() as u64)

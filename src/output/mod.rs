@@ -10,7 +10,7 @@
 //!   so two runs writing the same set leave one run's set, never a mix.
 //! - Temporaries are removed when a run fails, on every terminating signal the CLI catches
 //!   ([`exit_removing_unfinished`]), and, after a kill, by any later run into the folder
-//!   ([`remove_stale`]): each temporary's name says which process made it.
+//!   (`remove_stale`): each temporary's name says which process made it.
 
 use crate::document::file::FileId;
 use std::path::{Path, PathBuf};
@@ -164,7 +164,7 @@ impl Drop for FolderLock {
 /// against 0.06 s (and `dd` shows the same of one 200 MB write against 1 MB ones).
 const WRITE_AT_ONCE: usize = 1 << 20;
 
-/// Writes `parts` one after the other, in calls of at most [`WRITE_AT_ONCE`] bytes.
+/// Writes `parts` one after the other, in calls of at most `WRITE_AT_ONCE` (1 MiB) bytes.
 pub fn write_parts<'p>(
     out: &mut impl std::io::Write,
     parts: impl IntoIterator<Item = &'p [u8]>,

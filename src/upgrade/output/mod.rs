@@ -294,7 +294,7 @@ pub struct Checked {
 
 /// Writes every file into `folder` under a temporary name while the same bytes are checked
 /// (the writing on a second thread: for a large asset both take about as long), and renames
-/// them into place as one set (see [`crate::output::place_all`]) only when the check finds no
+/// them into place as one set, under a lock on the folder, only when the check finds no
 /// error and every file was written; otherwise the temporaries are removed and nothing is
 /// left behind. The bytes checked are the bytes written: both come from the one `files`.
 /// Without `force` no existing file is replaced; with it, existing files are, except the
