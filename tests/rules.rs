@@ -735,7 +735,7 @@ fn a_parent_transform_is_reported_lost_only_where_it_does_not_reach_the_joints()
         // 0 Z_UP (rotated) → 1 Armature → {2 skinned mesh node, 3 joint → 4 joint}; or the
         // mesh node under 5, a moved sibling of the armature.
         let mut nodes = vec![
-            json!({"children": [1], "rotation": [0.7071068, 0, 0, 0.7071068]}),
+            json!({"children": [1], "rotation": [0.6, 0, 0, 0.8]}),
             json!({"children": [2, 3], "translation": [1, 0, 0]}),
             json!({"mesh": 0, "skin": 0}),
             json!({"children": [4], "translation": [0, 1, 0]}),
@@ -743,7 +743,7 @@ fn a_parent_transform_is_reported_lost_only_where_it_does_not_reach_the_joints()
         ];
         if !mesh_parent_reaches_joints {
             nodes[1] = json!({"children": [3], "translation": [1, 0, 0]});
-            nodes[0] = json!({"children": [1, 5], "rotation": [0.7071068, 0, 0, 0.7071068]});
+            nodes[0] = json!({"children": [1, 5], "rotation": [0.6, 0, 0, 0.8]});
             nodes.push(json!({"children": [2], "scale": [2, 2, 2]}));
         }
         let report = check_bytes(

@@ -183,11 +183,11 @@ fn place(d: &Diagnostic) -> String {
 }
 
 /// One SARIF result. Every result has a `startLine`, as GitHub code scanning requires of a
-/// result placed in a file: a .gltf's by line and column, a GLB's line 1 (its JSON chunk is
-/// one line of a binary file) with the byte region kept, a finding the text cannot place line
-/// 1. The fingerprint names the finding by file, code, JSON pointer, message and how many
-/// alike came before it, so an alert keeps its identity when lines move and two findings
-/// never share one.
+/// result placed in a file: a .gltf's by line and column, a GLB's the first line (its JSON
+/// chunk is one line of a binary file) with the byte region kept, and so is a finding the text
+/// cannot place. The fingerprint names the finding by file, code, JSON pointer, message and
+/// how many alike came before it, so an alert keeps its identity when lines move and two
+/// findings never share one.
 fn result(
     report: &Report,
     positions: &Positions,

@@ -63,7 +63,7 @@ pub(super) fn fully_metallic<'a>(ctx: &Context<'a>) -> Vec<(String, Node<'a>)> {
             let metallic = pbr.map_or(1.0, |p| number(p, "metallicFactor", 1.0));
             let factor_pointer = format!("{pointer}/pbrMetallicRoughness/metallicFactor");
             metallic >= 1.0
-                && !pbr.is_some_and(|p| p.get("metallicRoughnessTexture").is_some())
+                && pbr.is_none_or(|p| p.get("metallicRoughnessTexture").is_none())
                 && !animated.contains(factor_pointer.as_str())
         })
         .map(|(_, pointer, material)| (pointer, material))
