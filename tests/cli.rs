@@ -894,3 +894,48 @@ fn github_annotations_are_the_errors_first_and_bounded_per_file() {
         "{out}"
     );
 }
+
+/// An asset with 2,098 findings of one code prints a few of them and one line counting the
+/// rest; `--all-findings` prints every one.
+#[test]
+fn many_findings_of_one_code_are_grouped_in_human_output() {
+    use base64::Engine;
+    let n = 2098;
+    let mut bytes: Vec<u8> = (0..n).flat_map(|_| 1f32.to_le_bytes()).collect();
+    bytes.extend(vec![0u8; 12 * n]);
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&bytes)
+    );
+    let asset = serde_json::json!({"asset": {"version": "2.0"}, "nodes": [{}],
+        "buffers": [{"uri": uri, "byteLength": bytes.len()}],
+        "bufferViews": [{"buffer": 0, "byteLength": 4 * n}, {"buffer": 0, "byteOffset": 4 * n, "byteLength": 12 * n}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": n, "type": "SCALAR", "min": [1], "max": [1]},
+                      {"bufferView": 1, "componentType": 5126, "count": n, "type": "VEC3"}],
+        "animations": [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+                        "samplers": [{"input": 0, "output": 1}]}],
+        "scenes": [{"nodes": [0]}], "scene": 0});
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("anim.gltf");
+    std::fs::write(&path, serde_json::to_string_pretty(&asset).unwrap()).unwrap();
+    let run = |extra: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(["check", "--color", "never"])
+            .arg(&path)
+            .args(extra)
+            .output()
+            .unwrap();
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let out = run(&[]);
+    assert!(out.lines().count() < 50, "{} lines", out.lines().count());
+    assert!(
+        out.contains("2094 more ACCESSOR_ANIMATION_INPUT_NON_INCREASING finding(s)"),
+        "{out}"
+    );
+    let all = run(&["--all-findings"]);
+    let listed = all
+        .matches("error[ACCESSOR_ANIMATION_INPUT_NON_INCREASING]")
+        .count();
+    assert_eq!(listed, n - 1, "every one with --all-findings");
+}

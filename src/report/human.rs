@@ -56,14 +56,67 @@ pub fn write<R: Borrow<Report>>(
     Ok(())
 }
 
+/// How many findings of one code a file shows in full before the rest are counted in one
+/// line (unless `--all-findings`): an asset's 2,098 non-increasing animation inputs are one
+/// mistake, and four lines each would bury every other finding.
+pub const SHOWN_PER_CODE: usize = 3;
+
 fn render_one(report: &Report, style: &Style) -> String {
     let mut out = String::new();
     let positions = Positions::of_those(report, |d| listed(d.severity, style));
+    // Per code, in the order codes first come: how many were shown and the places of the rest.
+    let mut per_code: Vec<(&str, usize, Vec<String>)> = Vec::new();
     for d in in_reading_order(report, &positions, style) {
-        out.push_str(&finding(report, &positions, d, style.colour));
+        let code = d.code.name();
+        let at = match per_code.iter().position(|(c, ..)| *c == code) {
+            Some(at) => at,
+            None => {
+                per_code.push((code, 0, Vec::new()));
+                per_code.len() - 1
+            }
+        };
+        let (_, shown, rest) = &mut per_code[at];
+        if style.all_findings || *shown < SHOWN_PER_CODE {
+            *shown += 1;
+            out.push_str(&finding(report, &positions, d, style.colour));
+        } else {
+            rest.push(place(report, &positions, d));
+        }
+    }
+    for (code, _, rest) in per_code.iter().filter(|(.., rest)| !rest.is_empty()) {
+        let mut first: Vec<&str> = Vec::new();
+        for place in rest {
+            if !first.contains(&place.as_str()) {
+                first.push(place);
+            }
+            if first.len() > SHOWN_PER_CODE {
+                break;
+            }
+        }
+        let more = if first.len() > SHOWN_PER_CODE {
+            ", …"
+        } else {
+            ""
+        };
+        first.truncate(SHOWN_PER_CODE);
+        out.push_str(&format!(
+            "{}: {} more {code} finding(s), at {}{more} (--all-findings lists them)\n",
+            report.uri,
+            rest.len(),
+            first.join(", "),
+        ));
     }
     out.push_str(&summary(report, style));
     out
+}
+
+/// Where a finding is, shortly: its line and column, or its pointer or byte.
+fn place(report: &Report, positions: &Positions, d: &Diagnostic) -> String {
+    match (positions.line_col(d), &d.location) {
+        (Some((l, c)), _) if report.document.container != Container::Glb => format!("{l}:{c}"),
+        (_, Location::Pointer(p)) => p.clone(),
+        (_, Location::Offset(o)) => format!("byte {o}"),
+    }
 }
 
 /// The listed findings by severity, then line and column; findings without a place in the
