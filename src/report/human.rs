@@ -144,7 +144,12 @@ fn finding(report: &Report, positions: &Positions, d: &Diagnostic, colour: bool)
         severity_colour(d.severity),
         colour,
     );
-    let mut out = format!("{position}: {label}: {}{}\n", d.message, location_suffix(d));
+    let mut out = format!(
+        "{position}: {label}: {}{}{}\n",
+        d.message,
+        location_suffix(d),
+        image_named(report, d)
+    );
     if let Some(range) = positions.span(d) {
         let byte = (report.document.container == Container::Glb
             && matches!(d.location, Location::Pointer(_)))
@@ -159,6 +164,32 @@ fn finding(report: &Report, positions: &Positions, d: &Diagnostic, colour: bool)
         ));
     }
     out
+}
+
+/// For a finding on an image (`/images/N…`), the image's URI or name, which says more than
+/// its index to a person looking at the asset's files; a data URI is shown by its media type.
+fn image_named(report: &Report, d: &Diagnostic) -> String {
+    let Location::Pointer(pointer) = &d.location else {
+        return String::new();
+    };
+    let Some(index) = (pointer.strip_prefix("/images/"))
+        .and_then(|rest| rest.split('/').next())
+        .filter(|i| i.bytes().all(|b| b.is_ascii_digit()))
+    else {
+        return String::new();
+    };
+    let image = (report.document.root.as_ref())
+        .and_then(|tree| tree.root().pointer(&format!("/images/{index}")));
+    let text = |key: &str| image.and_then(|i| i.get(key)).and_then(|v| v.as_str());
+    match (text("uri"), text("name")) {
+        (Some(uri), _) if uri.starts_with("data:") => {
+            let media = uri[5..].split([';', ',']).next().unwrap_or_default();
+            format!(" [image {index}: an embedded {media}]")
+        }
+        (Some(uri), _) => format!(" [image {index}: {uri}]"),
+        (None, Some(name)) => format!(" [image {index}: '{name}']"),
+        (None, None) => String::new(),
+    }
 }
 
 /// Bytes shown on each side of an offset in a binary container.
