@@ -939,3 +939,42 @@ fn many_findings_of_one_code_are_grouped_in_human_output() {
         .count();
     assert_eq!(listed, n - 1, "every one with --all-findings");
 }
+
+/// The README's Actions recipe as the action runs it, from the repository's root:
+/// `--exclude assets/third-party/` leaves that folder out of `check assets/`.
+#[test]
+fn the_readme_actions_recipe_excludes_what_it_says() {
+    let repository = tempfile::tempdir().unwrap();
+    let root = repository.path();
+    std::fs::create_dir(root.join(".git")).unwrap();
+    for (folder, fixture) in [
+        ("assets/third-party", "broken/bad-material.gltf"),
+        ("assets/mine", "valid/sheen-triangle.gltf"),
+    ] {
+        std::fs::create_dir_all(root.join(folder)).unwrap();
+        let from = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("fixtures")
+            .join(fixture);
+        std::fs::copy(from, root.join(folder).join("a.gltf")).unwrap();
+    }
+    let run = |format: &str| {
+        Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(["check", "--quiet", "--format", format])
+            .args(["--exclude", "assets/third-party/", "assets/"])
+            .current_dir(root)
+            .output()
+            .unwrap()
+    };
+    let sarif = run("sarif");
+    assert_eq!(
+        sarif.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&sarif.stderr)
+    );
+    let text = String::from_utf8(sarif.stdout).unwrap();
+    assert!(!text.contains("third-party"), "{text}");
+    let github = run("github");
+    assert_eq!(github.status.code(), Some(0));
+    assert!(!String::from_utf8_lossy(&github.stdout).contains("third-party"));
+}

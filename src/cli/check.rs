@@ -50,7 +50,8 @@ pub struct CheckArgs {
     #[arg(long = "enable-group", value_name = "GROUP")]
     enabled_groups: Vec<String>,
     /// Leave out walked files and folders matching this glob (gitignore syntax, relative
-    /// to each folder argument; repeatable).
+    /// to the working folder, as ripgrep's --glob: `--exclude assets/third-party/`; a glob
+    /// without an inner slash, `third-party/`, matches at any depth; repeatable).
     #[arg(long, value_name = "GLOB")]
     exclude: Vec<String>,
     /// List infos and hints in human output too (they are counted in the summary otherwise).
@@ -333,7 +334,11 @@ fn collect_assets(
     exclude: &[String],
     out: &mut Vec<PathBuf>,
 ) -> Result<bool, Failure> {
-    let mut overrides = ignore::overrides::OverrideBuilder::new(folder);
+    // Globs are matched from the working folder, as ripgrep matches them and as a CI recipe
+    // writes them (`check assets/ --exclude assets/third-party/`); a glob without an inner
+    // slash (`third-party/`) matches at any depth, under any folder argument.
+    let root = std::env::current_dir().unwrap_or_else(|_| folder.to_path_buf());
+    let mut overrides = ignore::overrides::OverrideBuilder::new(root);
     for glob in exclude {
         overrides
             .add(&format!("!{glob}"))
