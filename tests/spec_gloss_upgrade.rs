@@ -582,3 +582,54 @@ fn a_material_whose_texture_cannot_be_decoded_is_left_and_reported() {
         .is_none());
     assert_eq!(upgraded.images.len(), 1, "no rebake was added");
 }
+
+/// A 2.0 input with errors of its own that have nothing to do with its materials: the
+/// materials are converted and the output written with those errors passed through (and
+/// said); `--strict` refuses it.
+#[test]
+fn errors_the_input_had_are_passed_through_and_only_strict_refuses_them() {
+    let folder = tempfile::tempdir().unwrap();
+    let mut asset = input_json(&fixture("factors.gltf"));
+    asset["nodes"][0]["children"] = json!([]); // an error of the input's own
+    let source = fixture("factors.gltf");
+    for file in std::fs::read_dir(source.parent().unwrap())
+        .unwrap()
+        .flatten()
+    {
+        if file.path().extension().is_some_and(|e| e == "bin") {
+            std::fs::copy(file.path(), folder.path().join(file.file_name())).unwrap();
+        }
+    }
+    std::fs::write(folder.path().join("in.gltf"), asset.to_string()).unwrap();
+    let run = |extra: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(["upgrade", "in.gltf", "-o", "out.gltf", "--force"])
+            .args(extra)
+            .current_dir(folder.path())
+            .output()
+            .unwrap()
+    };
+    let passed = run(&[]);
+    let stdout = String::from_utf8_lossy(&passed.stdout);
+    assert_eq!(
+        passed.status.code(),
+        Some(0),
+        "{stdout}{}",
+        String::from_utf8_lossy(&passed.stderr)
+    );
+    assert!(
+        stdout.contains("the input has 1 error(s) of its own"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("(the input's own, passed through)"),
+        "{stdout}"
+    );
+    let written: Value =
+        serde_json::from_slice(&std::fs::read(folder.path().join("out.gltf")).unwrap()).unwrap();
+    assert!(written["materials"][0]["extensions"]["KHR_materials_specular"].is_object());
+    std::fs::remove_file(folder.path().join("out.gltf")).unwrap();
+    let strict = run(&["--strict"]);
+    assert_eq!(strict.status.code(), Some(1));
+    assert!(!folder.path().join("out.gltf").exists());
+}

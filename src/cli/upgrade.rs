@@ -45,6 +45,11 @@ pub struct UpgradeArgs {
     /// from it is printed beside, as the source's own ambiguity.
     #[arg(long, value_enum, default_value = "appendix")]
     draft_reading: crate::common::DraftReadingArg,
+    /// For a glTF 2.0 input: refuse an output with any error, also errors the input had
+    /// already (by default those are passed through, reported, and the output is written when
+    /// it has no error of its own).
+    #[arg(long)]
+    strict: bool,
     /// ΔE2000 a converted material may differ from its source by.
     #[arg(long, default_value_t = gltfmat::shade::compare::DEFAULT_THRESHOLD, value_parser = crate::common::threshold)]
     threshold: f64,
@@ -67,6 +72,7 @@ pub fn run(args: UpgradeArgs) -> Outcome {
     }
     let bytes = gltfmat::document::file::read(&args.input)
         .map_err(|e| Failure::usage(format!("{}: {e}", args.input.display())))?;
+    let tolerated = tolerated_errors(&args);
     let options = UpgradeOptions::default()
         .with_specular_glossiness(match args.specular_glossiness {
             SpecGlossArg::MetalRough => SpecularGlossiness::MetalRough,
@@ -92,20 +98,28 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         log.line(format_args!("warning: a converted material does not render like its source within ΔE2000 {} (the output is written; --verify refuses it)", args.threshold));
     }
     let (folder, name) = match destination {
-        Destination::Stdout => return write_to_stdout(&mut upgraded, &args.input),
+        Destination::Stdout => return write_to_stdout(&mut upgraded, &args.input, &tolerated),
         Destination::File { folder, name } => (folder, name),
     };
     let files = output::layout_releasing_json(&mut upgraded, &name);
     let protected: Vec<FileId> = input_id.into_iter().chain(loader.files_read()).collect();
-    let checked = output::write_checked(&files, &folder, &protected, args.force)
+    let checked = output::write_checked(&files, &folder, &protected, args.force, &tolerated)
         .map_err(|e| Failure::usage(e.to_string()))?;
     let report = checked.report;
     if !checked.written {
         return Err(refuse_failed_check(report, &upgraded, &args.input));
     }
-    let warnings = report.count(Severity::Warning);
+    let (errors, warnings) = (
+        report.count(Severity::Error),
+        report.count(Severity::Warning),
+    );
+    let passed = if errors > 0 {
+        " (the input's own, passed through)"
+    } else {
+        ""
+    };
     outln!(
-        "wrote {} ({} file(s)); check: 0 errors, {warnings} warning(s)",
+        "wrote {} ({} file(s)); check: {errors} error(s){passed}, {warnings} warning(s)",
         args.output.display(),
         1 + files.side.len()
     );
@@ -229,13 +243,17 @@ fn places<P: AsRef<str>>(places: &[P]) -> String {
 }
 
 /// `-o -`: the GLB, checked in memory, on stdout.
-fn write_to_stdout(upgraded: &mut Upgraded, input: &Path) -> Outcome {
+fn write_to_stdout(
+    upgraded: &mut Upgraded,
+    input: &Path,
+    tolerated: &output::Tolerated,
+) -> Outcome {
     let files = output::layout_releasing_json(upgraded, "-.glb");
     output::fits_glb(&files.main).map_err(|bytes| {
         Failure::usage(output::WriteError::GlbTooLarge("stdout".into(), bytes).to_string())
     })?;
     let report = output::verify(&files);
-    if report.has_errors() {
+    if !tolerated.accepts(&report) {
         return Err(refuse_failed_check(report, upgraded, input));
     }
     let mut stdout = std::io::stdout().lock();
@@ -273,6 +291,35 @@ fn refuse_failed_check(report: Report, upgraded: &Upgraded, input: &Path) -> Fai
         return Failure::refused(format!("the upgraded asset fails its own check; nothing was written. The input is glTF 2.0 with {inherited} error(s) of its own, which the upgrade passes through unchanged: `gltfmat check {}` lists them in the input.", input.display()));
     }
     Failure::refused("the upgraded asset fails its own check; nothing was written.")
+}
+
+/// The errors an output may keep: a glTF 2.0 input's own (checked before anything is
+/// converted), unless `--strict`; none for a 1.0 input, whose every object is rebuilt and
+/// must be valid.
+fn tolerated_errors(args: &UpgradeArgs) -> output::Tolerated {
+    if args.strict {
+        return output::Tolerated::none();
+    }
+    match gltfmat::check_path(&args.input, &CheckOptions::default()) {
+        Ok(report)
+            if report
+                .info
+                .version
+                .as_deref()
+                .is_some_and(|v| v.starts_with("2.")) =>
+        {
+            let tolerated = output::Tolerated::errors_of(&report);
+            if tolerated.count() > 0 {
+                outln!(
+                    "note: the input has {} error(s) of its own (`gltfmat check {}` lists them); they are passed through, and the output is written if it has no other (--strict refuses them).",
+                    tolerated.count(),
+                    args.input.display()
+                );
+            }
+            tolerated
+        }
+        _ => output::Tolerated::none(),
+    }
 }
 
 /// The errors a glTF 2.0 input has itself (0 for a 1.0 input, whose objects are all rebuilt).

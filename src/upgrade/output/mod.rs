@@ -284,6 +284,51 @@ pub fn fits_glb(main: &File) -> Result<(), u64> {
     }
 }
 
+/// The errors an output may have and still be written: those of the input it was made
+/// from, counted by code (a pass-through keeps them, and the user asked for the materials to
+/// be converted, not the asset repaired). An output with an error of a code the input did not
+/// have, or more of one, is refused.
+#[derive(Debug, Default, Clone)]
+pub struct Tolerated(std::collections::HashMap<&'static str, usize>);
+
+impl Tolerated {
+    /// No error at all.
+    pub fn none() -> Tolerated {
+        Tolerated::default()
+    }
+
+    /// The errors `input` (the report of the asset upgraded) has.
+    pub fn errors_of(input: &Report) -> Tolerated {
+        let mut counts = std::collections::HashMap::new();
+        for d in input
+            .diagnostics
+            .iter()
+            .filter(|d| d.severity == crate::Severity::Error)
+        {
+            *counts.entry(d.code.name()).or_default() += 1;
+        }
+        Tolerated(counts)
+    }
+
+    /// Whether `output` has no error beyond these.
+    pub fn accepts(&self, output: &Report) -> bool {
+        let mut counts: std::collections::HashMap<&str, usize> = Default::default();
+        for d in output
+            .diagnostics
+            .iter()
+            .filter(|d| d.severity == crate::Severity::Error)
+        {
+            *counts.entry(d.code.name()).or_default() += 1;
+        }
+        (counts.iter()).all(|(code, n)| self.0.get(code).is_some_and(|allowed| n <= allowed))
+    }
+
+    /// How many errors are tolerated.
+    pub fn count(&self) -> usize {
+        self.0.values().sum()
+    }
+}
+
 /// The outcome of `write_checked`: the check of the files, and whether they were kept.
 pub struct Checked {
     /// The check of the files as written.
@@ -298,12 +343,14 @@ pub struct Checked {
 /// error and every file was written; otherwise the temporaries are removed and nothing is
 /// left behind. The bytes checked are the bytes written: both come from the one `files`.
 /// Without `force` no existing file is replaced; with it, existing files are, except the
-/// `protected` ones (see [`may_write`]).
+/// `protected` ones (see [`may_write`]). `tolerated` says which errors the caller accepts
+/// (those a 2.0 input had already); with none tolerated any error refuses the output.
 pub fn write_checked(
     files: &Files,
     folder: &Path,
     protected: &[FileId],
     force: bool,
+    tolerated: &Tolerated,
 ) -> Result<Checked, WriteError> {
     let all: Vec<&File> = std::iter::once(&files.main).chain(&files.side).collect();
     for file in &all {
@@ -330,7 +377,7 @@ pub fn write_checked(
         (written, report)
     });
     let (side, main) = written?;
-    if report.has_errors() {
+    if !tolerated.accepts(&report) {
         return Ok(Checked {
             report,
             written: false,
@@ -368,7 +415,7 @@ mod tests {
     fn a_glb_past_4_gib_is_refused_before_anything_is_written() {
         let folder = tempfile::tempdir().unwrap();
         let too_long = file(b"glTF", 4096);
-        let refused = write_checked(&too_long, folder.path(), &[], false).err();
+        let refused = write_checked(&too_long, folder.path(), &[], false, &Tolerated::none()).err();
         let expected = 4 + (4096u64 << 20);
         assert!(
             matches!(refused, Some(WriteError::GlbTooLarge(_, n)) if n == expected),
