@@ -72,7 +72,9 @@ pub fn run(args: UpgradeArgs) -> Outcome {
     }
     let bytes = gltfmat::document::file::read(&args.input)
         .map_err(|e| Failure::usage(format!("{}: {e}", args.input.display())))?;
-    let tolerated = tolerated_errors(&args);
+    let inherited = input_errors(&args.input);
+    let tolerated = tolerated_errors(&args, inherited.as_ref());
+    let inherited = inherited.map_or(0, |errors| errors.count());
     let options = UpgradeOptions::default()
         .with_specular_glossiness(match args.specular_glossiness {
             SpecGlossArg::MetalRough => SpecularGlossiness::MetalRough,
@@ -98,7 +100,9 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         log.line(format_args!("warning: a converted material does not render like its source within ΔE2000 {} (the output is written; --verify refuses it)", args.threshold));
     }
     let (folder, name) = match destination {
-        Destination::Stdout => return write_to_stdout(&mut upgraded, &args.input, &tolerated),
+        Destination::Stdout => {
+            return write_to_stdout(&mut upgraded, &args.input, &tolerated, inherited)
+        }
         Destination::File { folder, name } => (folder, name),
     };
     let files = output::layout_releasing_json(&mut upgraded, &name);
@@ -107,7 +111,12 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         .map_err(|e| Failure::usage(e.to_string()))?;
     let report = checked.report;
     if !checked.written {
-        return Err(refuse_failed_check(report, &upgraded, &args.input));
+        return Err(refuse_failed_check(
+            report,
+            &upgraded,
+            &args.input,
+            inherited,
+        ));
     }
     let (errors, warnings) = (
         report.count(Severity::Error),
@@ -247,6 +256,7 @@ fn write_to_stdout(
     upgraded: &mut Upgraded,
     input: &Path,
     tolerated: &output::Tolerated,
+    inherited: usize,
 ) -> Outcome {
     let files = output::layout_releasing_json(upgraded, "-.glb");
     output::fits_glb(&files.main).map_err(|bytes| {
@@ -254,7 +264,7 @@ fn write_to_stdout(
     })?;
     let report = output::verify(&files);
     if !tolerated.accepts(&report) {
-        return Err(refuse_failed_check(report, upgraded, input));
+        return Err(refuse_failed_check(report, upgraded, input, inherited));
     }
     let mut stdout = std::io::stdout().lock();
     output::write_parts(&mut stdout, files.main.slices())
@@ -266,7 +276,12 @@ fn write_to_stdout(
 /// The refusal of an output that fails its own check: the findings, then for each error the
 /// 1.0 object its place was made from, so that the user knows which input construct to fix;
 /// of a 2.0 input, whether its own errors are what the upgrade passed through.
-fn refuse_failed_check(report: Report, upgraded: &Upgraded, input: &Path) -> Failure {
+fn refuse_failed_check(
+    report: Report,
+    upgraded: &Upgraded,
+    input: &Path,
+    inherited: usize,
+) -> Failure {
     let mut origins: Vec<String> = (report.diagnostics.iter())
         .filter(|d| d.severity == Severity::Error)
         .filter_map(|d| match &d.location {
@@ -286,55 +301,39 @@ fn refuse_failed_check(report: Report, upgraded: &Upgraded, input: &Path) -> Fai
             origins.join("\n")
         );
     }
-    let inherited = inherited_errors(input);
     if inherited > 0 {
         return Failure::refused(format!("the upgraded asset fails its own check; nothing was written. The input is glTF 2.0 with {inherited} error(s) of its own, which the upgrade passes through unchanged: `gltfmat check {}` lists them in the input.", input.display()));
     }
     Failure::refused("the upgraded asset fails its own check; nothing was written.")
 }
 
-/// The errors an output may keep: a glTF 2.0 input's own (checked before anything is
-/// converted), unless `--strict`; none for a 1.0 input, whose every object is rebuilt and
-/// must be valid.
-fn tolerated_errors(args: &UpgradeArgs) -> output::Tolerated {
-    if args.strict {
-        return output::Tolerated::none();
-    }
-    match gltfmat::check_path(&args.input, &CheckOptions::default()) {
-        Ok(report)
-            if report
-                .info
-                .version
-                .as_deref()
-                .is_some_and(|v| v.starts_with("2.")) =>
-        {
-            let tolerated = output::Tolerated::errors_of(&report);
-            if tolerated.count() > 0 {
-                outln!(
-                    "note: the input has {} error(s) of its own (`gltfmat check {}` lists them); they are passed through, and the output is written if it has no other (--strict refuses them).",
-                    tolerated.count(),
-                    args.input.display()
-                );
-            }
-            tolerated
-        }
-        _ => output::Tolerated::none(),
-    }
+/// A glTF 2.0 input's own errors, checked before anything is converted (None for a 1.0
+/// input, whose every object is rebuilt and must be valid).
+fn input_errors(input: &Path) -> Option<output::Tolerated> {
+    let report = gltfmat::check_path(input, &CheckOptions::default()).ok()?;
+    let gltf2 = report
+        .info
+        .version
+        .as_deref()
+        .is_some_and(|v| v.starts_with("2."));
+    gltf2.then(|| output::Tolerated::errors_of(&report))
 }
 
-/// The errors a glTF 2.0 input has itself (0 for a 1.0 input, whose objects are all rebuilt).
-fn inherited_errors(input: &Path) -> usize {
-    match gltfmat::check_path(input, &CheckOptions::default()) {
-        Ok(report)
-            if report
-                .info
-                .version
-                .as_deref()
-                .is_some_and(|v| v.starts_with("2.")) =>
-        {
-            report.count(Severity::Error)
+/// The errors an output may keep: a 2.0 input's own, said, unless `--strict`.
+fn tolerated_errors(
+    args: &UpgradeArgs,
+    inherited: Option<&output::Tolerated>,
+) -> output::Tolerated {
+    match inherited {
+        Some(errors) if !args.strict && errors.count() > 0 => {
+            outln!(
+                "note: the input has {} error(s) of its own (`gltfmat check {}` lists them); they are passed through, and the output is written if it has no other (--strict refuses them).",
+                errors.count(),
+                args.input.display()
+            );
+            errors.clone()
         }
-        _ => 0,
+        _ => output::Tolerated::none(),
     }
 }
 

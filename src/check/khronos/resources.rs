@@ -66,26 +66,12 @@ fn load_uri(
         // An absolute path is non-relative to the validator, which then fails to read it;
         // gltfmat refuses to, as it leaves the asset's folder.
         Ok(UriKind::AbsolutePath) => {
-            ctx.emit(
-                khronos::NON_RELATIVE_URI,
-                pointer,
-                format!(
-                    "Non-relative URI found: '{}'. It is not read.",
-                    shorten(uri)
-                ),
-            );
+            non_relative(ctx, pointer, uri);
             refuse_outside(ctx, pointer, uri);
             (None, None, "external")
         }
         Ok(UriKind::QueryOrFragment) => {
-            ctx.emit(
-                khronos::NON_RELATIVE_URI,
-                pointer,
-                format!(
-                    "Non-relative URI found: '{}'. It is not read.",
-                    shorten(uri)
-                ),
-            );
+            non_relative(ctx, pointer, uri);
             ctx.emit(
                 khronos::IO_ERROR,
                 pointer,
@@ -148,6 +134,18 @@ fn read_relative(
 }
 
 /// Absolute paths and `..` escapes are never read.
+/// NON_RELATIVE_URI for a URI gltfmat does not read.
+fn non_relative(ctx: &mut Context, pointer: &str, uri: &str) {
+    ctx.emit(
+        khronos::NON_RELATIVE_URI,
+        pointer,
+        format!(
+            "Non-relative URI found: '{}'. It is not read.",
+            shorten(uri)
+        ),
+    );
+}
+
 fn refuse_outside(ctx: &mut Context, pointer: &str, uri: &str) {
     ctx.emit(
         pass_codes::URI_OUTSIDE_ASSET_FOLDER,
