@@ -695,12 +695,7 @@ fn a_rebake_of_a_texture_past_the_budget_is_refused_and_the_material_left_as_it_
         "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {
             "specularGlossinessTexture": {"index": 0}}}}]
     });
-    let upgraded = upgrade(
-        serde_json::to_vec(&gltf).unwrap(),
-        &NoResources,
-        &UpgradeOptions::default(),
-    )
-    .unwrap();
+    let upgraded = upgrade_json(&gltf);
     let notes: Vec<&str> = upgraded.report.iter().map(|n| &*n.text).collect();
     assert!(
         notes
@@ -927,12 +922,7 @@ fn crossed_strip_textures_rebake_on_a_grid_held_to_the_budget_not_their_product(
         "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {
             "diffuseTexture": {"index": 0}, "specularGlossinessTexture": {"index": 1}}}}]
     });
-    let upgraded = upgrade(
-        serde_json::to_vec(&gltf).unwrap(),
-        &NoResources,
-        &UpgradeOptions::default(),
-    )
-    .unwrap();
+    let upgraded = upgrade_json(&gltf);
     let notes: Vec<&str> = upgraded.report.iter().map(|n| &*n.text).collect();
     let held = notes
         .iter()
@@ -947,4 +937,14 @@ fn crossed_strip_textures_rebake_on_a_grid_held_to_the_budget_not_their_product(
         .max()
         .unwrap();
     assert!(largest <= 1 << 22, "{largest} texels");
+}
+
+/// `gltf` upgraded with no resources and the default options.
+fn upgrade_json(gltf: &serde_json::Value) -> gltfmat::upgrade::Upgraded {
+    upgrade(
+        serde_json::to_vec(gltf).unwrap(),
+        &NoResources,
+        &UpgradeOptions::default(),
+    )
+    .unwrap()
 }

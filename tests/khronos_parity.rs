@@ -1498,31 +1498,27 @@ fn a_cubic_spline_input_of_no_valid_count_has_too_few_elements() {
 
 #[test]
 fn a_uri_with_a_query_or_fragment_is_non_relative_and_one_that_does_not_decode_is_not_read() {
-    for uri in ["#f", "?q", "x.bin?q=1#f", "x.bin#", "x.bin?"] {
-        let found = khronos_findings(json!({"asset": {"version": "2.0"},
-            "buffers": [{"uri": uri, "byteLength": 4}]}));
-        assert_eq!(
-            found,
-            expected(&[
-                ("IO_ERROR", "/buffers/0/uri"),
-                ("NON_RELATIVE_URI", "/buffers/0/uri"),
-                ("UNUSED_OBJECT", "/buffers/0"),
-            ]),
-            "{uri}"
-        );
-    }
-    // Percent escapes that do not decode name no file: a failed read, not an invalid URI.
-    for uri in ["%zz.bin", "a%2", "%ff.bin", "%e2%82.bin"] {
-        let found = khronos_findings(json!({"asset": {"version": "2.0"},
-            "buffers": [{"uri": uri, "byteLength": 4}]}));
-        assert_eq!(
-            found,
-            expected(&[
-                ("IO_ERROR", "/buffers/0/uri"),
-                ("UNUSED_OBJECT", "/buffers/0")
-            ]),
-            "{uri}"
-        );
+    let not_read = ("IO_ERROR", "/buffers/0/uri");
+    let unused = ("UNUSED_OBJECT", "/buffers/0");
+    let non_relative = ("NON_RELATIVE_URI", "/buffers/0/uri");
+    // A query or fragment: non-relative. Percent escapes that do not decode name no file: a
+    // failed read, not an invalid URI.
+    let cases = [
+        (
+            &["#f", "?q", "x.bin?q=1#f", "x.bin#", "x.bin?"][..],
+            vec![not_read, non_relative, unused],
+        ),
+        (
+            &["%zz.bin", "a%2", "%ff.bin", "%e2%82.bin"][..],
+            vec![not_read, unused],
+        ),
+    ];
+    for (uris, findings) in cases {
+        for uri in uris {
+            let found = khronos_findings(json!({"asset": {"version": "2.0"},
+                "buffers": [{"uri": uri, "byteLength": 4}]}));
+            assert_eq!(found, expected(&findings), "{uri}");
+        }
     }
 }
 
