@@ -776,7 +776,7 @@ fn a_reader_that_goes_away_ends_no_command_in_a_panic() {
 }
 
 #[test]
-fn a_2_0_input_with_errors_of_its_own_is_refused_saying_so() {
+fn a_2_0_input_with_errors_of_its_own_is_written_saying_so_and_refused_with_strict() {
     let folder = tempfile::tempdir().unwrap();
     let input = folder.path().join("broken.gltf");
     // A spec-gloss material to convert, and a node whose mesh does not exist: an error the
@@ -786,11 +786,24 @@ fn a_2_0_input_with_errors_of_its_own_is_refused_saying_so() {
         "nodes": [{"mesh": 7}], "scenes": [{"nodes": [0]}], "scene": 0}"#;
     std::fs::write(&input, asset).unwrap();
     let output = folder.path().join("out.glb");
-    let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
-        .args(["upgrade", input.to_str().unwrap(), "-o"])
-        .arg(&output)
-        .output()
-        .unwrap();
+    let run = |extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(["upgrade", input.to_str().unwrap(), "-o"])
+            .arg(&output)
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = run(&[]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains("the input has 1 error(s) of its own"),
+        "{stdout}"
+    );
+    assert!(output.exists());
+    std::fs::remove_file(&output).unwrap();
+    let out = run(&["--strict"]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(
