@@ -20,9 +20,12 @@ pub struct CheckArgs {
     /// Files or folders; folders are walked for .gltf and .glb.
     #[arg(required = true)]
     inputs: Vec<PathBuf>,
+    /// How the report is written: `human`, `json` (the Khronos validator's shape), `jsonl`,
+    /// `sarif` (code scanning), `github` (workflow annotations).
     #[arg(long, value_enum, default_value = "human")]
     format: FormatArg,
-    /// `khronos` reports exactly what the Khronos glTF-Validator reports.
+    /// `default`: the Khronos findings and gltfmat's material rules; `khronos`: exactly what
+    /// the released Khronos glTF-Validator reports [default: default, or gltfmat.toml's].
     #[arg(long, value_enum)]
     profile: Option<ProfileArg>,
     /// Never report this code (repeatable).

@@ -10,8 +10,9 @@ use std::process::ExitCode;
 
 #[derive(clap::Args)]
 pub struct CompareArgs {
-    /// Two assets (glTF 2.0, or glTF 1.0 with PBR-draft materials).
+    /// The source asset (glTF 2.0, or glTF 1.0 with PBR-draft materials).
     a: PathBuf,
+    /// The asset compared with it (its materials are paired with A's by index).
     b: PathBuf,
     /// Pair material I of A with material J of B (repeatable; default: same index).
     #[arg(long = "material-map", value_name = "I=J")]
@@ -23,6 +24,7 @@ pub struct CompareArgs {
     /// 16 and at most 4096).
     #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=4096))]
     grid: u32,
+    /// `human` for people, `json` for scripts.
     #[arg(long, value_enum, default_value = "human")]
     format: CompareFormat,
     /// Write a ΔE heat map per pair (black 0 → red at the threshold); `-N` is added before

@@ -15,8 +15,10 @@ pub struct LutArgs {
     /// Texels per side (rows: sheenRoughness, columns: NdotV, at texel centres).
     #[arg(long, default_value_t = 32)]
     size: usize,
+    /// The sheen visibility term the table is computed for.
     #[arg(long, value_enum, default_value = "charlie")]
     visibility: VisibilityArg,
+    /// `csv` (E as computed) or `png` (16-bit, E above 1 written as 65535).
     #[arg(long, value_enum, default_value = "csv")]
     format: LutFormat,
     /// Output file (default: standard output for csv; required for png).

@@ -61,7 +61,8 @@ struct Cli {
 enum Command {
     /// Check .gltf/.glb files or folders (use `-` for stdin).
     Check(check::CheckArgs),
-    /// Convert a glTF 1.0 asset (with WEB3D/KHR/FRAUNHOFER/EXT PBR materials) to glTF 2.0.
+    /// Convert a glTF 1.0 asset (with WEB3D/KHR/FRAUNHOFER/EXT PBR materials) to glTF 2.0, or
+    /// a glTF 2.0 asset's KHR_materials_pbrSpecularGlossiness materials to metallic-roughness.
     Upgrade(upgrade::UpgradeArgs),
     /// Render a material ball (or --all materials) to PNG.
     Render(render::RenderArgs),
@@ -84,7 +85,10 @@ enum Command {
         format: rules::ListFormat,
     },
     /// Show the full documentation of one code.
-    Explain { code: String },
+    Explain {
+        /// A code as `gltfmat rules` lists it, e.g. TEXTURE_ALPHA_MISSING.
+        code: String,
+    },
     /// Print a shell completion script (e.g. `gltfmat completions bash > /etc/bash_completion.d/gltfmat`).
     Completions { shell: clap_complete::Shell },
     /// Print the manual page (roff), e.g. `gltfmat man > gltfmat.1`.

@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 #[derive(clap::Args)]
 pub struct RenderArgs {
+    /// The asset whose material to draw (glTF 2.0, or glTF 1.0 with PBR-draft materials).
     asset: PathBuf,
     /// Material index or name (default: the first).
     #[arg(long)]
@@ -13,6 +14,7 @@ pub struct RenderArgs {
     /// Every material on one contact sheet, each with its name (also listed on stdout).
     #[arg(long)]
     all: bool,
+    /// The PNG to write (never over an existing file without --force).
     #[arg(short, long, default_value = "material.png")]
     output: PathBuf,
     /// Replace an existing output file.

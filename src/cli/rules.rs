@@ -32,9 +32,14 @@ fn origin(info: &registry::CodeInfo) -> &'static str {
     }
 }
 
+/// The width the table keeps to: a 100-column terminal.
+const WIDTH: usize = 100;
+
+/// A line of code, severity, group (`*` for an opt-in group) and origin per code, then its
+/// description wrapped beneath it, within [`WIDTH`] columns.
 fn table() -> String {
     let mut out = format!(
-        "{:<58} {:<8} {:<15} {:<8} DESCRIPTION\n",
+        "{:<58} {:<8} {:<15} {}\n",
         "CODE", "SEVERITY", "GROUP", "ORIGIN"
     );
     for info in registry::all() {
@@ -44,15 +49,37 @@ fn table() -> String {
             info.group.to_string()
         };
         out.push_str(&format!(
-            "{:<58} {:<8} {:<15} {:<8} {}\n",
+            "{:<58} {:<8} {:<15} {}\n",
             info.code.name(),
             info.severity().name(),
             group,
             origin(&info),
-            info.description()
         ));
+        out.push_str(&wrapped(&info.description(), "    "));
     }
     out.push_str("\n* opt-in group: runs only with --enable-group\n");
+    out
+}
+
+/// `text` in lines of at most [`WIDTH`] columns, each starting with `indent` (a word longer
+/// than a line gets a line of its own).
+fn wrapped(text: &str, indent: &str) -> String {
+    let mut out = String::new();
+    let mut line = String::from(indent);
+    for word in text.split_whitespace() {
+        let width = line.chars().count();
+        if width > indent.len() && width + 1 + word.chars().count() > WIDTH {
+            out.push_str(line.trim_end());
+            out.push('\n');
+            line = String::from(indent);
+        }
+        if line.len() > indent.len() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    out.push_str(line.trim_end());
+    out.push('\n');
     out
 }
 
