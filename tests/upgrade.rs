@@ -1288,3 +1288,24 @@ fn a_file_many_buffers_name_counts_once_in_the_data_read() {
     let read = format!("the {} bytes of data read", file.len());
     assert!(message.contains(&read), "{message}");
 }
+
+#[test]
+fn a_scene_listing_a_root_again_lists_it_once_and_says_so() {
+    let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
+    let mut asset: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    asset["scenes"]["defaultScene"]["nodes"] = serde_json::json!(["node_3", "node_3", "node_3"]);
+    let loader = FolderResources::beside(&path);
+    let upgraded = upgrade(
+        asset.to_string().as_bytes(),
+        &loader,
+        &UpgradeOptions::default(),
+    )
+    .expect("repaired, not refused");
+    let scenes = upgraded.json.get("scenes").unwrap();
+    assert_eq!(scenes[0]["nodes"].as_array().unwrap().len(), 1);
+    assert!(notes(&upgraded)
+        .iter()
+        .any(|n| n.contains("listed more than once: listed once")));
+    let files = output::layout(&upgraded, "out.glb");
+    assert!(!output::verify(&files).has_errors());
+}

@@ -72,8 +72,16 @@ impl Builder<'_, '_> {
             let mut out = Self::named(id, scene);
             let at = pointer("scenes", id);
             let mut nodes = Vec::new();
+            let mut listed = std::collections::HashSet::new();
             for node in id_list(scene.get("nodes")) {
                 match self.index_of_id("nodes", &node) {
+                    // A root listed again draws nothing more (one node, one place): 2.0
+                    // forbids the repeat, so it is listed once.
+                    Some(index) if !listed.insert(index) => self.note(
+                        format!("{at}/nodes"),
+                        NoteKind::Decision,
+                        format!("node '{node}' is listed more than once: listed once (it is drawn once either way)."),
+                    ),
                     Some(index) => nodes.push(index),
                     None => self.note(
                         format!("{at}/nodes"),
