@@ -1309,3 +1309,28 @@ fn a_scene_listing_a_root_again_lists_it_once_and_says_so() {
     let files = output::layout(&upgraded, "out.glb");
     assert!(!output::verify(&files).has_errors());
 }
+
+#[test]
+fn an_image_no_texture_samples_is_left_out_when_it_cannot_be_read() {
+    let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
+    let mut asset: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    asset["images"]["orphan"] = serde_json::json!({"uri": "missing.png"});
+    let loader = FolderResources::beside(&path);
+    let upgraded = upgrade(
+        asset.to_string().as_bytes(),
+        &loader,
+        &UpgradeOptions::default(),
+    )
+    .expect("nothing samples the missing image");
+    assert!(notes(&upgraded)
+        .iter()
+        .any(|n| n.contains("sampled by no texture: left out")));
+    // A sampled image that cannot be read still refuses the upgrade: a texture would be lost.
+    asset["textures"] = serde_json::json!({"t": {"source": "orphan"}});
+    assert!(upgrade(
+        asset.to_string().as_bytes(),
+        &loader,
+        &UpgradeOptions::default()
+    )
+    .is_err());
+}

@@ -34,15 +34,31 @@ impl Builder<'_, '_> {
     }
 
     pub(in crate::upgrade) fn images(&mut self) -> Result<(), UpgradeError> {
+        // The images some texture samples (looked up once: a stranger's asset may hold 10^5
+        // images and textures).
+        let sampled: std::collections::HashSet<String> = (self.source.dictionary("textures"))
+            .iter()
+            .filter_map(|(_, texture)| Some(texture.get("source")?.as_str()?.to_string()))
+            .collect();
         for (id, image) in self.source.dictionary("images") {
             let at = pointer("images", id);
-            let bytes =
-                self.source
-                    .image_bytes(image)
-                    .map_err(|reason| UpgradeError::Resource {
+            let bytes = match self.source.image_bytes(image) {
+                Ok(bytes) => bytes,
+                // An image no texture samples draws nothing: without it the output is exactly
+                // what the 1.0 asset drew.
+                Err(reason) if !sampled.contains(id) => {
+                    let text =
+                        format!("image not read ({reason}) and sampled by no texture: left out.");
+                    self.note(&at, NoteKind::Dropped, text);
+                    continue;
+                }
+                Err(reason) => {
+                    return Err(UpgradeError::Resource {
                         pointer: at.clone(),
                         reason,
-                    })?;
+                    })
+                }
+            };
             let format = image_header::read(&bytes).map_err(|e| UpgradeError::Resource {
                 pointer: at.clone(),
                 reason: format!("not a readable image ({e:?})"),
