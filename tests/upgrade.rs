@@ -1334,3 +1334,55 @@ fn an_image_no_texture_samples_is_left_out_when_it_cannot_be_read() {
     )
     .is_err());
 }
+
+#[test]
+fn a_material_that_is_no_object_is_refused_and_another_version_is_said() {
+    let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
+    let loader = FolderResources::beside(&path);
+    let mut asset: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    asset["asset"]["version"] = "1.1".into();
+    let upgraded = upgrade(
+        asset.to_string().as_bytes(),
+        &loader,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    assert!(notes(&upgraded)
+        .iter()
+        .any(|n| n.contains("asset.version is '1.1', not 1.0")));
+    asset["materials"]["meta"] = "a string".into();
+    let refused = upgrade(
+        asset.to_string().as_bytes(),
+        &loader,
+        &UpgradeOptions::default(),
+    )
+    .err()
+    .map(|e| e.to_string());
+    assert_eq!(
+        refused.as_deref(),
+        Some("/materials/meta: the material is not an object, so it says nothing to convert")
+    );
+}
+
+#[test]
+fn the_1_0_default_material_is_its_displayed_grey_linearised() {
+    let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
+    let loader = FolderResources::beside(&path);
+    let mut asset: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    asset["materials"]["plain"] = serde_json::json!({"name": "plain"});
+    let upgraded = upgrade(
+        asset.to_string().as_bytes(),
+        &loader,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    let materials = upgraded.json.get("materials").unwrap();
+    let plain = (materials.as_array().unwrap().iter())
+        .find(|m| m["name"] == "plain")
+        .unwrap();
+    let grey = plain["pbrMetallicRoughness"]["baseColorFactor"][0]
+        .as_f64()
+        .unwrap();
+    assert!((grey - srgb_to_linear(0.5)).abs() < 1e-12, "{grey}");
+    assert!(plain["extensions"]["KHR_materials_unlit"].is_object());
+}

@@ -16,6 +16,13 @@ use std::sync::Arc;
 
 pub fn convert(builder: &mut Builder, id: &str, material: Node) -> Result<Value, UpgradeError> {
     let at = pointer("materials", id);
+    // Nothing says what a material that is no object draws: it is refused, not invented.
+    if !material.is_object() {
+        return Err(UpgradeError::Invalid {
+            pointer: at,
+            reason: "the material is not an object, so it says nothing to convert".into(),
+        });
+    }
     let name = material.get("name").and_then(Node::as_str).unwrap_or(id);
     let mut out = Map::new();
     out.insert("name".into(), json!(name));
@@ -37,16 +44,19 @@ pub fn convert(builder: &mut Builder, id: &str, material: Node) -> Result<Value,
     } else if material.get("technique").is_some() {
         convert_technique_values(builder, material, &at, &mut out);
     } else {
-        // The 1.0 default material: constant emission of 50% grey.
+        // The 1.0 default material: constant emission of 50% grey, written to the framebuffer
+        // as it is (1.0 shaders did no colour management): 0.5 as the display encodes it,
+        // which a 2.0 linear factor is once linearised.
+        let grey = crate::gltf::color::srgb_to_linear(0.5);
         out.insert(
             "pbrMetallicRoughness".into(),
-            json!({"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0}),
+            json!({"baseColorFactor": [grey, grey, grey, 1.0], "metallicFactor": 0.0}),
         );
         out.insert("extensions".into(), json!({"KHR_materials_unlit": {}}));
         builder.note(
             &at,
             NoteKind::Decision,
-            "no technique: the 1.0 default material (50% grey, unlit).",
+            "no technique: the 1.0 default material (50% grey as displayed, so baseColorFactor 0.214 linear, unlit).",
         );
     }
     Ok(Value::Object(out))

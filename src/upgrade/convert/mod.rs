@@ -15,8 +15,26 @@ mod unused;
 use super::builder::{self, Builder};
 use super::{UpgradeError, Upgraded};
 
+/// An `asset.version` other than 1.0 (0.x, a 1.1 draft) is converted by the 1.0 text: what a
+/// draft changed is not read, and the report says so rather than convert it silently.
+fn note_version(builder: &mut Builder) {
+    let root = builder.source.root();
+    let version = (root.get("asset").and_then(|a| a.get("version"))).map(|v| {
+        v.as_str()
+            .map_or_else(|| v.to_value().to_string(), str::to_string)
+    });
+    if let Some(version) = version.filter(|v| !matches!(v.as_str(), "1.0" | "1" | "1.0.0")) {
+        builder.note(
+            "/asset/version",
+            super::NoteKind::Decision,
+            format!("asset.version is '{version}', not 1.0: converted as glTF 1.0; what that version changed from 1.0 is not read, so compare the output with the viewer the asset was made for."),
+        );
+    }
+}
+
 /// Runs every step on `builder` and finishes the asset.
 pub(super) fn run(mut builder: Builder) -> Result<Upgraded, UpgradeError> {
+    note_version(&mut builder);
     builder.samplers();
     builder.images()?;
     builder.textures();
