@@ -1,4 +1,4 @@
-//! JSON text → `serde_json::Value`, plus source locations found on demand.
+//! JSON text → the compact [`Tree`](super::tree::Tree), plus source locations found on demand.
 //!
 //! Values are parsed once with serde_json (fast, depth-limited, never overflows the stack).
 //! Spans are *not* stored per node: a pointer is resolved back to a byte range only when a
