@@ -329,6 +329,9 @@ impl fmt::Debug for Tree {
 
 /// A stored half hash spread over 64 bits, as the hash table wants them: its low bits
 /// place an entry, its top bits tag it.
+/// Distinct strings entered in the lookup table before string values stop being entered.
+const INTERNED_VALUES: usize = 1 << 20;
+
 fn spread(hash: u32) -> u64 {
     u64::from(hash).wrapping_mul(0x9E37_79B9_7F4A_7C15)
 }
@@ -922,7 +925,21 @@ impl Building<'_> {
         Slot::new(tag, self.tree.wide.len() as u64 - 1)
     }
 
+    /// The id of a key: every key is in the lookup table, since members are found by key.
     fn intern<E: de::Error>(&mut self, text: &str) -> Result<u32, E> {
+        self.store(text, true)
+    }
+
+    /// The id of a string value: stored once while the lookup table is small; past
+    /// [`INTERNED_VALUES`] distinct strings a new value is stored without entering the table
+    /// (nothing looks a value up by its text, and 10^7 distinct strings in one array made the
+    /// table the tree's largest part and its slowest).
+    fn value<E: de::Error>(&mut self, text: &str) -> Result<u32, E> {
+        let enter = self.tree.strings.len() < INTERNED_VALUES;
+        self.store(text, enter)
+    }
+
+    fn store<E: de::Error>(&mut self, text: &str, enter: bool) -> Result<u32, E> {
         let tree = &mut self.tree;
         let hash = tree.string_hash(text);
         if let Some(id) = tree.find_hashed(text, hash) {
@@ -933,8 +950,10 @@ impl Building<'_> {
         tree.arena.push_str(text);
         tree.ends.push(end);
         let id = tree.ends.len() as u32 - 1;
-        let rehash = |&(_, stored): &(u32, u32)| spread(stored);
-        tree.strings.insert_unique(spread(hash), (id, hash), rehash);
+        if enter {
+            let rehash = |&(_, stored): &(u32, u32)| spread(stored);
+            tree.strings.insert_unique(spread(hash), (id, hash), rehash);
+        }
         Ok(id)
     }
 }
@@ -990,7 +1009,7 @@ impl<'de> Visitor<'de> for Build<'_, '_> {
     }
 
     fn visit_str<E: de::Error>(self, value: &str) -> Result<Slot, E> {
-        let id = self.state.borrow_mut().intern(value)?;
+        let id = self.state.borrow_mut().value(value)?;
         Ok(Slot::new(Tag::String, u64::from(id)))
     }
 
@@ -1149,6 +1168,33 @@ mod tests {
 
     fn parsed(text: &str) -> Tree {
         Tree::parse(text.as_bytes()).unwrap()
+    }
+
+    #[test]
+    fn values_past_the_table_are_stored_apart_and_keys_are_still_found() {
+        // More distinct string values than the table takes, then keys with the same texts.
+        let n = INTERNED_VALUES + 10;
+        let values: Vec<String> = (0..n).map(|i| format!("\"s{i}\"")).collect();
+        let last = format!("s{}", n - 1);
+        let text = format!(r#"{{"v": [{}], "{last}": 7, "s0": 8}}"#, values.join(","));
+        let tree = parsed(&text);
+        let root = tree.root();
+        assert!(
+            tree.strings.len() <= INTERNED_VALUES + 4,
+            "{}",
+            tree.strings.len()
+        );
+        assert_eq!(root.get("v").unwrap().as_array().unwrap().len(), n);
+        assert_eq!(
+            root.get("v").unwrap().get(n - 1).unwrap().as_str(),
+            Some(last.as_str())
+        );
+        assert_eq!(root.get(last.as_str()).and_then(|v| v.as_u64()), Some(7));
+        assert_eq!(root.get("s0").and_then(|v| v.as_u64()), Some(8));
+        assert_eq!(
+            root.pointer(&format!("/{last}")).and_then(|v| v.as_u64()),
+            Some(7)
+        );
     }
 
     #[test]
