@@ -64,50 +64,62 @@ pub const SHOWN_PER_CODE: usize = 3;
 fn render_one(report: &Report, style: &Style) -> String {
     let mut out = String::new();
     let positions = Positions::of_those(report, |d| listed(d.severity, style));
-    // Per code, in the order codes first come: how many were shown and the places of the rest.
-    let mut per_code: Vec<(&str, usize, Vec<String>)> = Vec::new();
+    // Per code, in the order codes first come: how many were shown and hidden, and the first
+    // distinct places of the hidden ones (one more than are named, to know whether to say so).
+    let mut per_code: Vec<Grouped> = Vec::new();
     for d in in_reading_order(report, &positions, style) {
         let code = d.code.name();
-        let at = match per_code.iter().position(|(c, ..)| *c == code) {
+        let at = match per_code.iter().position(|g| g.code == code) {
             Some(at) => at,
             None => {
-                per_code.push((code, 0, Vec::new()));
+                per_code.push(Grouped {
+                    code,
+                    ..Grouped::default()
+                });
                 per_code.len() - 1
             }
         };
-        let (_, shown, rest) = &mut per_code[at];
-        if style.all_findings || *shown < SHOWN_PER_CODE {
-            *shown += 1;
+        let group = &mut per_code[at];
+        if style.all_findings || group.shown < SHOWN_PER_CODE {
+            group.shown += 1;
             out.push_str(&finding(report, &positions, d, style.colour));
-        } else {
-            rest.push(place(report, &positions, d));
+            continue;
+        }
+        group.hidden += 1;
+        if group.places.len() <= SHOWN_PER_CODE {
+            let place = place(report, &positions, d);
+            if !group.places.contains(&place) {
+                group.places.push(place);
+            }
         }
     }
-    for (code, _, rest) in per_code.iter().filter(|(.., rest)| !rest.is_empty()) {
-        let mut first: Vec<&str> = Vec::new();
-        for place in rest {
-            if !first.contains(&place.as_str()) {
-                first.push(place);
-            }
-            if first.len() > SHOWN_PER_CODE {
-                break;
-            }
-        }
-        let more = if first.len() > SHOWN_PER_CODE {
+    for group in per_code.iter().filter(|g| g.hidden > 0) {
+        let named = &group.places[..group.places.len().min(SHOWN_PER_CODE)];
+        let more = if group.places.len() > SHOWN_PER_CODE {
             ", …"
         } else {
             ""
         };
-        first.truncate(SHOWN_PER_CODE);
         out.push_str(&format!(
-            "{}: {} more {code} finding(s), at {}{more} (--all-findings lists them)\n",
+            "{}: {} more {} finding(s), at {}{more} (--all-findings lists them)\n",
             report.uri,
-            rest.len(),
-            first.join(", "),
+            group.hidden,
+            group.code,
+            named.join(", "),
         ));
     }
     out.push_str(&summary(report, style));
     out
+}
+
+/// The findings of one code in one file's human report.
+#[derive(Default)]
+struct Grouped<'r> {
+    code: &'r str,
+    shown: usize,
+    hidden: usize,
+    /// The first distinct places of the hidden ones, at most one more than are named.
+    places: Vec<String>,
 }
 
 /// Where a finding is, shortly: its line and column, or its pointer or byte.

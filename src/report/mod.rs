@@ -264,9 +264,7 @@ fn github(report: &Report, options: &Style, out: &mut dyn Write) -> std::io::Res
     };
     let mut listed: Vec<&Diagnostic> = report.diagnostics.iter().filter(shown).collect();
     listed.sort_by_key(|d| d.severity);
-    let positions = Positions::of_those(report, |d| {
-        options.all_findings || d.severity <= Severity::Warning
-    });
+    let positions = Positions::of_those(report, |d| shown(&d));
     for d in listed.iter().take(GITHUB_ANNOTATIONS_PER_FILE) {
         out.write_all(github_line(report, &positions, d).as_bytes())?;
     }

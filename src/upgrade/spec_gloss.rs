@@ -54,12 +54,17 @@ pub struct Rebakes(std::collections::HashMap<RebakeKey, Rebaked>);
 /// The images' addresses (0 for none), the factors' bits and the reading.
 type RebakeKey = (usize, usize, [u64; 8], SpecGlossReading);
 
-/// A rebake's two PNGs and its decisions (a held grid, the per-texel fits).
+/// A rebake's two PNGs and its decisions (a held grid, the per-texel fits), and the images it
+/// was made from, held so that their addresses (the key) cannot be taken by other images.
 #[derive(Clone)]
 struct Rebaked {
     base_colour: Vec<u8>,
     roughness: Vec<u8>,
     lines: Vec<String>,
+    _made_from: (
+        Option<Arc<crate::document::Bytes>>,
+        Arc<crate::document::Bytes>,
+    ),
 }
 
 fn rebake_key(
@@ -98,7 +103,7 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
         let made = match textures.rebakes().0.get(&key) {
             Some(made) => made.clone(),
             None => {
-                let made = rebake(factors, diffuse.as_deref(), specular, textures)?;
+                let made = rebake(factors, diffuse.as_ref(), specular, textures)?;
                 textures.rebakes().0.insert(key, made.clone());
                 made
             }
@@ -116,25 +121,17 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
         decisions.push(format!("baseColor = {} and roughness = 1 − glossiness rebaked per texel into new textures (on the finer grid of the two, each sampled bilinearly).", formula(factors.reading)));
         decisions.extend(made.lines);
     } else {
-        let keep = factors.specular.map(|s| 1.0 - s);
         let [r, g, b, a] = factors.diffuse;
         let [br, bg, bb] = factors.base_colour([r, g, b], factors.specular);
         core["baseColorFactor"] = json!([br, bg, bb, a]);
         if let Some(info) = textures.info(Slot::Diffuse) {
             core["baseColorTexture"] = info;
         }
-        decisions.push(
-            match factors.reading.closed_form_base([1.0; 3], factors.specular) {
-                (scale, true) if keep == scale => format!(
-                    "baseColorFactor = {} = diffuse · {keep:?}.",
-                    formula(factors.reading)
-                ),
-                (scale, _) => format!(
-                    "baseColorFactor = {} = diffuse · {scale:?}.",
-                    formula(factors.reading)
-                ),
-            },
-        );
+        let (scale, _) = factors.reading.closed_form_base([1.0; 3], factors.specular);
+        decisions.push(format!(
+            "baseColorFactor = {} = diffuse · {scale:?}.",
+            formula(factors.reading)
+        ));
     }
     let mut specular = json!({"specularColorFactor": factors.specular});
     if let Some(info) = textures.info(Slot::SpecularGlossiness) {
@@ -159,17 +156,18 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
 /// either is added: a failure leaves no orphan).
 fn rebake(
     factors: &Factors,
-    diffuse: Option<&crate::document::Bytes>,
-    specular: &[u8],
+    diffuse: Option<&Arc<crate::document::Bytes>>,
+    specular: &Arc<crate::document::Bytes>,
     textures: &mut dyn Textures,
 ) -> Result<Rebaked, String> {
     let fits = textures.texel_fits();
     // The two rebakes are independent: the roughness one runs on a second thread.
     let (base_colour, roughness) = std::thread::scope(|scope| {
-        let roughness = scope.spawn(|| rebake::gloss_to_roughness(specular, factors.glossiness));
+        let roughness =
+            scope.spawn(|| rebake::gloss_to_roughness(&specular[..], factors.glossiness));
         let base_colour = rebake::spec_gloss_base_colour(
             diffuse.map(|bytes| &bytes[..]),
-            Some(specular),
+            Some(&specular[..]),
             factors,
             fits,
         );
@@ -183,6 +181,7 @@ fn rebake(
         base_colour,
         roughness,
         lines: held.into_iter().chain(fit_line).collect(),
+        _made_from: (diffuse.cloned(), Arc::clone(specular)),
     })
 }
 
