@@ -706,6 +706,22 @@ fn a_rebake_of_a_texture_past_the_budget_is_refused_and_the_material_left_as_it_
 }
 
 #[test]
+fn a_preview_decodes_an_interlaced_png_whole_only_within_the_budget() {
+    // A preview reduces a large PNG row by row, but an interlaced one is decoded whole: that
+    // decode is held to the budget too, not to the reduced size the set was judged by.
+    let mut png = png_header(16384);
+    png[28] = 1; // IHDR's interlace method: Adam7
+    let crc_at = 8 + 8 + 13;
+    let crc = common::crc32(&png[12..crc_at]);
+    png[crc_at..crc_at + 4].copy_from_slice(&crc.to_be_bytes());
+    let error = render_all(&textured(&[png])).unwrap_err();
+    assert!(
+        error.contains("past 96 MiB, this input's budget"),
+        "{error}"
+    );
+}
+
+#[test]
 fn a_texture_that_cannot_be_decoded_is_an_error_not_an_untextured_material() {
     // Finding 18: a header claiming 60000² (past the decoder's limits), and a truncated one.
     for png in [png_header(60000), png_header(4)] {

@@ -109,7 +109,9 @@ pub(crate) fn solid_png(texel: [u8; 3]) -> Vec<u8> {
 fn decode_at_most(bytes: &[u8], finest: u32) -> Result<Texture, String> {
     match decode_png_reduced(bytes, finest) {
         Some(reduced) => reduced.map(Arc::new),
-        None => decode_whole(bytes),
+        // Decoded whole after all (an interlaced PNG, another format): the set's budget took
+        // it as reduced, so it is held to the budget on its own here.
+        None => decode(bytes),
     }
 }
 
