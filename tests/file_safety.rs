@@ -688,6 +688,18 @@ const WRITERS: &[&[&str]] = &[
     &["lut", "sheen", "--size", "4", "-o", "OUT"],
 ];
 
+/// Runs one of [`WRITERS`] onto `out` with `--force`, which must succeed (exit 0 or 1).
+fn forced(folder: &Path, args: &[&str], out: &str) {
+    let mut forced = with_output(args, out);
+    forced.push("--force");
+    let run = gltfmat(folder, &forced);
+    assert!(
+        run.status.code().is_some_and(|c| c < 2),
+        "{args:?}: {}",
+        stderr(&run)
+    );
+}
+
 fn with_output<'a>(args: &[&'a str], out: &'a str) -> Vec<&'a str> {
     args.iter()
         .map(|a| if *a == "OUT" { out } else { a })
@@ -707,14 +719,7 @@ fn render_compare_and_lut_replace_an_existing_file_only_with_force() {
             stderr(&run)
         );
         assert_eq!(std::fs::read(folder.join("taken.png")).unwrap(), b"mine");
-        let mut forced = with_output(args, "taken.png");
-        forced.push("--force");
-        let run = gltfmat(&folder, &forced);
-        assert!(
-            run.status.code().is_some_and(|c| c < 2),
-            "{args:?}: {}",
-            stderr(&run)
-        );
+        forced(&folder, args, "taken.png");
         assert_ne!(std::fs::read(folder.join("taken.png")).unwrap(), b"mine");
         assert!(temporaries(&folder).is_empty(), "{args:?}");
     }
@@ -738,14 +743,7 @@ fn render_compare_and_lut_never_write_through_a_symlink() {
         // A link to a file, replaced with --force: the link goes, the file stays.
         let _ = std::fs::remove_file(folder.join("link.png"));
         std::os::unix::fs::symlink(&victim, folder.join("link.png")).unwrap();
-        let mut forced = with_output(args, "link.png");
-        forced.push("--force");
-        let run = gltfmat(&folder, &forced);
-        assert!(
-            run.status.code().is_some_and(|c| c < 2),
-            "{args:?}: {}",
-            stderr(&run)
-        );
+        forced(&folder, args, "link.png");
         assert_eq!(std::fs::read(&victim).unwrap(), b"precious", "{args:?}");
         let link = folder.join("link.png").symlink_metadata().unwrap();
         assert!(

@@ -1289,18 +1289,26 @@ fn a_file_many_buffers_name_counts_once_in_the_data_read() {
     assert!(message.contains(&read), "{message}");
 }
 
-#[test]
-fn a_scene_listing_a_root_again_lists_it_once_and_says_so() {
-    let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
-    let mut asset: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
-    asset["scenes"]["defaultScene"]["nodes"] = serde_json::json!(["node_3", "node_3", "node_3"]);
-    let loader = FolderResources::beside(&path);
-    let upgraded = upgrade(
+/// The KHR draft fixture as JSON, to edit.
+fn khr_fixture() -> Value {
+    serde_json::from_slice(&std::fs::read(repo("fixtures/gltf1/pbr-sg-khr.gltf")).unwrap()).unwrap()
+}
+
+/// `asset` upgraded with the fixture's folder for its resources and the default options.
+fn upgrade_beside_fixture(asset: &Value) -> Result<Upgraded, gltfmat::UpgradeError> {
+    let loader = FolderResources::beside(&repo("fixtures/gltf1/pbr-sg-khr.gltf"));
+    upgrade(
         asset.to_string().as_bytes(),
         &loader,
         &UpgradeOptions::default(),
     )
-    .expect("repaired, not refused");
+}
+
+#[test]
+fn a_scene_listing_a_root_again_lists_it_once_and_says_so() {
+    let mut asset = khr_fixture();
+    asset["scenes"]["defaultScene"]["nodes"] = serde_json::json!(["node_3", "node_3", "node_3"]);
+    let upgraded = upgrade_beside_fixture(&asset).expect("repaired, not refused");
     let scenes = upgraded.json.get("scenes").unwrap();
     assert_eq!(scenes[0]["nodes"].as_array().unwrap().len(), 1);
     assert!(notes(&upgraded)
@@ -1312,52 +1320,27 @@ fn a_scene_listing_a_root_again_lists_it_once_and_says_so() {
 
 #[test]
 fn an_image_no_texture_samples_is_left_out_when_it_cannot_be_read() {
-    let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
-    let mut asset: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    let mut asset = khr_fixture();
     asset["images"]["orphan"] = serde_json::json!({"uri": "missing.png"});
-    let loader = FolderResources::beside(&path);
-    let upgraded = upgrade(
-        asset.to_string().as_bytes(),
-        &loader,
-        &UpgradeOptions::default(),
-    )
-    .expect("nothing samples the missing image");
+    let upgraded = upgrade_beside_fixture(&asset).expect("nothing samples the missing image");
     assert!(notes(&upgraded)
         .iter()
         .any(|n| n.contains("sampled by no texture: left out")));
     // A sampled image that cannot be read still refuses the upgrade: a texture would be lost.
     asset["textures"] = serde_json::json!({"t": {"source": "orphan"}});
-    assert!(upgrade(
-        asset.to_string().as_bytes(),
-        &loader,
-        &UpgradeOptions::default()
-    )
-    .is_err());
+    assert!(upgrade_beside_fixture(&asset).is_err());
 }
 
 #[test]
 fn a_material_that_is_no_object_is_refused_and_another_version_is_said() {
-    let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
-    let loader = FolderResources::beside(&path);
-    let mut asset: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    let mut asset = khr_fixture();
     asset["asset"]["version"] = "1.1".into();
-    let upgraded = upgrade(
-        asset.to_string().as_bytes(),
-        &loader,
-        &UpgradeOptions::default(),
-    )
-    .unwrap();
+    let upgraded = upgrade_beside_fixture(&asset).unwrap();
     assert!(notes(&upgraded)
         .iter()
         .any(|n| n.contains("asset.version is '1.1', not 1.0")));
     asset["materials"]["meta"] = "a string".into();
-    let refused = upgrade(
-        asset.to_string().as_bytes(),
-        &loader,
-        &UpgradeOptions::default(),
-    )
-    .err()
-    .map(|e| e.to_string());
+    let refused = upgrade_beside_fixture(&asset).err().map(|e| e.to_string());
     assert_eq!(
         refused.as_deref(),
         Some("/materials/meta: the material is not an object, so it says nothing to convert")
@@ -1366,16 +1349,9 @@ fn a_material_that_is_no_object_is_refused_and_another_version_is_said() {
 
 #[test]
 fn the_1_0_default_material_is_its_displayed_grey_linearised() {
-    let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
-    let loader = FolderResources::beside(&path);
-    let mut asset: Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    let mut asset = khr_fixture();
     asset["materials"]["plain"] = serde_json::json!({"name": "plain"});
-    let upgraded = upgrade(
-        asset.to_string().as_bytes(),
-        &loader,
-        &UpgradeOptions::default(),
-    )
-    .unwrap();
+    let upgraded = upgrade_beside_fixture(&asset).unwrap();
     let materials = upgraded.json.get("materials").unwrap();
     let plain = (materials.as_array().unwrap().iter())
         .find(|m| m["name"] == "plain")
