@@ -137,7 +137,7 @@ fn metal_rough_moves_metallic_from_red_to_blue_texel_for_texel() {
 fn spec_gloss_factors_convert_to_the_closed_form_of_the_drafts_appendix() {
     // Diffuse (0.6, 0.5, 0.4), specular 0.2, glossiness 0.75: under the Appendix reading the
     // closed form (diffuse · (1 − specular), roughness 0.25, specularColor 0.2) is exact, and
-    // is what is written; the drafts' readings differ by 5.86 here, which the proof reports
+    // is what is written; the drafts' readings differ by 7.71 here, which the proof reports
     // beside its own figure as the source's ambiguity.
     let path = repo("fixtures/gltf1/pbr-sg-khr.gltf");
     let upgraded = upgrade_file(&path, &UpgradeOptions::default());
@@ -159,7 +159,7 @@ fn spec_gloss_factors_convert_to_the_closed_form_of_the_drafts_appendix() {
     let proof = gltfmat::prove(&input, "khr.gltf", &loader, &upgraded).unwrap();
     assert!(proof[0].result.max < 0.05, "{}", proof[0].result.max);
     let ambiguity = proof[0].ambiguity.as_ref().expect("the drafts' spread");
-    assert!((ambiguity.max - 5.86).abs() < 0.01, "{}", ambiguity.max);
+    assert!((ambiguity.max - 7.71).abs() < 0.01, "{}", ambiguity.max);
     let used = upgraded.json.get("extensionsUsed").unwrap();
     let used = used.as_array().unwrap();
     assert!(
@@ -579,7 +579,12 @@ mod verify {
 
     fn max_delta_e(text: &str) -> f64 {
         let at = text.find("ΔE2000 max ").expect("a ΔE figure") + "ΔE2000 max ".len();
-        text[at..].split(',').next().unwrap().parse().unwrap()
+        text[at..]
+            .split([',', ' '])
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
     }
 
     #[test]
@@ -601,12 +606,22 @@ mod verify {
             text.contains("source read as the 2016 drafts' Appendix"),
             "{text}"
         );
-        // A dim achromatic specular is exact under each reading the flag names.
-        for reading in ["appendix", "appendix-2016", "example-shader"] {
+        // A dim achromatic specular is exact under both Appendix readings. The example
+        // shader's diffuse is not weighed by 1 − F at all, which no 2.0 material draws: its
+        // fit is close at the fixed directions and the specular peak, and the proof's dense
+        // search still finds it off by more than the threshold (view 15°, light 75°).
+        for reading in ["appendix", "appendix-2016"] {
             let (code, text) = verify_spec_gloss([0.02, 0.02, 0.02], &["--draft-reading", reading]);
             assert_eq!(code, 0, "{reading}: {text}");
             assert!(max_delta_e(&text) <= 1.0, "{text}");
         }
+        let (code, text) =
+            verify_spec_gloss([0.02, 0.02, 0.02], &["--draft-reading", "example-shader"]);
+        assert_eq!(code, 1, "{text}");
+        assert!(
+            max_delta_e(&text) > 1.0 && text.contains("January 2017 example shader"),
+            "{text}"
+        );
     }
 
     #[test]

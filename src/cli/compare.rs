@@ -67,15 +67,30 @@ pub fn pair(o: &gltfmat::Outcome) -> String {
 /// The verdict and the ΔE2000 figures of one comparison.
 pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
     let r = &o.result;
-    let verdict = if r.max <= threshold {
-        "same"
+    let verdict = if !o.not_evaluated.is_empty() {
+        format!(
+            "NOT EVALUATED ({}); of the rest",
+            o.not_evaluated.join("; ")
+        )
+    } else if r.max <= threshold {
+        "same".into()
     } else {
-        "DIFFERENT"
+        "DIFFERENT".into()
     };
-    let (tv, tl, phi) = r.worst.directions;
+    let w = &r.worst;
+    let [tv, pv] = w.directions.view;
+    let [tl, pl] = w.directions.light;
+    let over = match w.background > 0.0 {
+        true => ", over white",
+        false => "",
+    };
+    let dominated = r
+        .dominant
+        .map(|input| format!(" (mostly {input})"))
+        .unwrap_or_default();
     let mut line = format!(
-        "{verdict}: ΔE2000 max {:.4}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}), θv {tv}°, θl {tl}°, φ {phi}°; {}² grid × {} directions = {} samples",
-        r.max, r.p99, r.mean, r.worst.uv[0], r.worst.uv[1], r.grid, DIRECTIONS.len(), r.samples
+        "{verdict}: ΔE2000 max {:.4}{dominated}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}), view θ {tv:.2}° φ {pv:.2}°, light θ {tl:.2}° φ {pl:.2}°{over}; {}² texel centres and corners × {} directions = {} samples, and a dense search of directions where they differ most",
+        r.max, r.p99, r.mean, w.uv[0], w.uv[1], r.grid, DIRECTIONS.len(), r.samples
     );
     if let Some(a) = &o.ambiguity {
         line += &format!(
@@ -144,11 +159,14 @@ pub fn run(args: CompareArgs) -> Outcome {
             .map(|o| {
                 json!({"a": o.a.0, "aName": o.a.1, "b": o.b.0, "bName": o.b.1,
                     "max": o.result.max, "p99": o.result.p99, "mean": o.result.mean,
-                    "worst": {"uv": o.result.worst.uv, "thetaV": o.result.worst.directions.0,
-                              "thetaL": o.result.worst.directions.1, "phi": o.result.worst.directions.2},
+                    "worst": {"uv": o.result.worst.uv,
+                              "view": o.result.worst.directions.view, "light": o.result.worst.directions.light,
+                              "background": o.result.worst.background},
+                    "dominant": o.result.dominant,
+                    "notEvaluated": o.not_evaluated,
                     "grid": o.result.grid, "samples": o.result.samples,
                     "ambiguity": o.ambiguity.as_ref().map(|a| json!({"readAs": a.read_as, "furthest": a.furthest, "max": a.max})),
-                    "pass": o.result.max <= args.threshold})
+                    "pass": o.same(args.threshold)})
             })
             .collect();
         outln!(
@@ -161,7 +179,7 @@ pub fn run(args: CompareArgs) -> Outcome {
     if outcomes.is_empty() {
         return Err(Failure::usage("no material pairs to compare"));
     }
-    Ok(if outcomes.iter().all(|o| o.result.max <= args.threshold) {
+    Ok(if outcomes.iter().all(|o| o.same(args.threshold)) {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)

@@ -377,5 +377,5 @@ fn proved(read: Fingerprint, args: &UpgradeArgs, upgraded: &Upgraded, log: &mut 
     for (figures, pairs) in grouped(lines) {
         log.line(format_args!("proof: {}: {figures}", places(&pairs)));
     }
-    outcomes.iter().all(|o| o.result.max <= args.threshold)
+    outcomes.iter().all(|o| o.same(args.threshold))
 }

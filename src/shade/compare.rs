@@ -1,23 +1,33 @@
-//! Do two materials render the same? Both are evaluated on a UV grid (at least as fine as
-//! their finest texture) for a fixed, stratified set of view/light directions including
-//! grazing ones; each result becomes the colour a viewer shows and the two colours are
-//! compared with CIEDE2000.
+//! Do two materials render the same? Both are evaluated at points of a UV grid (at least as
+//! fine as their finest texture): every texel centre and every texel corner, where a
+//! bilinear filter mixes four texels and a conversion that is not linear differs most. At
+//! each point a fixed, stratified set of view/light directions including grazing ones is
+//! evaluated; the points where that set finds the largest differences, and those whose
+//! specular lobes are sharpest, are then searched over a dense set of directions around
+//! each view's mirror direction and beyond, and the worst one refined (see [`refine`]).
+//! Each result becomes the colour a viewer shows and the two colours are compared with
+//! CIEDE2000.
 //!
-//! The light: one directional light of irradiance π at normal incidence, so a white
-//! Lambertian surface lit head-on has radiance 1. Unlit materials emit their colour. The
-//! radiance is then exposed and tone-mapped with Khronos PBR Neutral ([`super::tone`]) before
-//! CIELAB, as a viewer shows it: L* stays within 0–100, so ΔE 1 is about one just-noticeable
-//! difference on a display. (CIELAB is taken of the tone-mapped linear colour, which is what
-//! decoding its sRGB encoding gives back.)
+//! The scene is [`super::appearance`]'s: a directional light of irradiance π at normal
+//! incidence, a uniform ambient light, emission, and what shows through from the
+//! backgrounds behind a translucent or transmissive surface (both are looked at, so coverage
+//! and colour cannot cancel). Unlit materials emit their colour. The radiance is exposed
+//! and tone-mapped with Khronos PBR Neutral ([`super::tone`]) before CIELAB, as a viewer
+//! shows it: L* stays within 0–100, so ΔE 1 is about one just-noticeable difference on a
+//! display. (CIELAB is taken of the tone-mapped linear colour, which is what decoding its
+//! sRGB encoding gives back.)
 
+use super::appearance::{seen, transmits, Seen, BACKGROUNDS};
 use super::brdf::{Geometry, V3};
 use super::delta_e::{ciede2000, lab_from_linear_srgb};
-use super::lanes::{channels, Lanes, Real};
+use super::lanes::{Lanes, Real};
 use super::material::{Inputs, Shader};
 use super::sample::MaterialSource;
 use super::tone::displayed;
-use std::f64::consts::PI;
 use std::sync::Arc;
+
+mod refine;
+pub use refine::dominant_input;
 
 /// The default verdict threshold: ΔE2000 1, about one just-noticeable difference on what a
 /// viewer shows (`compare --threshold`, the upgrade proof, the factor fit).
@@ -27,7 +37,8 @@ const DIRECTION_COUNT: usize = 8;
 
 /// (θ_v, θ_l, φ between them), degrees: head-on, off-specular, mirror, crossed (anisotropy)
 /// and grazing configurations; the view lies along the tangent (φ_v = 0), which is where an
-/// anisotropy angle of 0 points.
+/// anisotropy angle of 0 points. Every point is evaluated in these; the dense search of
+/// [`refine`] looks further at the points they find worst.
 pub const DIRECTIONS: [(f64, f64, f64); DIRECTION_COUNT] = [
     (0.0, 0.0, 0.0),
     (45.0, 45.0, 180.0),
@@ -49,6 +60,30 @@ const BINS: usize = 100_000;
 /// Bins per unit of ΔE: a multiplication per sample where a width of 0.001 would divide.
 const BINS_PER_UNIT: f64 = 1000.0;
 
+/// A view and a light direction, each as (θ from the normal, φ from the tangent), degrees.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Angles {
+    /// The direction to the viewer.
+    pub view: [f64; 2],
+    /// The direction to the light.
+    pub light: [f64; 2],
+}
+
+impl Angles {
+    /// The coarse set's pair (θ_v, θ_l, φ): the view at φ 0.
+    fn coarse((theta_v, theta_l, phi): (f64, f64, f64)) -> Angles {
+        Angles {
+            view: [theta_v, 0.0],
+            light: [theta_l, phi],
+        }
+    }
+
+    /// The two unit vectors, in the tangent frame.
+    pub fn vectors(&self) -> (V3, V3) {
+        (direction(self.view), direction(self.light))
+    }
+}
+
 /// Where the largest difference was found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Worst {
@@ -56,28 +91,34 @@ pub struct Worst {
     pub delta_e: f64,
     /// Its texture coordinates.
     pub uv: [f64; 2],
-    /// (θ_v, θ_l, φ) in degrees.
-    pub directions: (f64, f64, f64),
+    /// Its view and light directions.
+    pub directions: Angles,
+    /// The radiance of the background it was seen over (see [`BACKGROUNDS`]).
+    pub background: f64,
 }
 
 /// The ΔE2000 figures of one material pair.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Comparison {
-    /// Largest ΔE2000.
+    /// Largest ΔE2000, over every point and the directions searched there.
     pub max: f64,
-    /// 99th percentile ΔE2000.
+    /// 99th percentile ΔE2000 of the fixed directions at every point.
     pub p99: f64,
-    /// Mean ΔE2000.
+    /// Mean ΔE2000 of the fixed directions at every point.
     pub mean: f64,
     /// Where the largest was.
     pub worst: Worst,
-    /// Grid size per side and the number of (texel, direction) samples compared.
+    /// The input whose difference dominates the worst sample ("base colour", "coverage",
+    /// "emission", …): setting it to the second material's there removes most of the
+    /// difference. `None` when nothing differs.
+    pub dominant: Option<&'static str>,
+    /// Grid size per side and the number of (point, direction) samples compared.
     pub grid: u32,
-    /// Texels × directions evaluated.
+    /// Points × directions evaluated.
     pub samples: u64,
-    /// The largest ΔE over the directions, per texel (row-major), for heat maps; empty
-    /// unless [`TexelMap::Kept`]. Shared: the outcomes of an asset's many identical pairs
-    /// hold one map.
+    /// The largest ΔE over the directions, per texel (row-major; a texel's centre and its
+    /// top-left corner), for heat maps; empty unless [`TexelMap::Kept`]. Shared: the outcomes
+    /// of an asset's many identical pairs hold one map.
     pub per_texel: Arc<[f32]>,
 }
 
@@ -91,99 +132,174 @@ pub enum TexelMap {
     Dropped,
 }
 
-fn direction(theta: f64, phi: f64) -> V3 {
+/// A unit direction from (θ, φ) in degrees.
+fn direction([theta, phi]: [f64; 2]) -> V3 {
     let (t, p) = (theta.to_radians(), phi.to_radians());
     [t.sin() * p.cos(), t.sin() * p.sin(), t.cos()]
 }
 
-/// One texel's colours for every direction pair, channel by channel, direction per lane.
-type Colours = [Lanes<DIRECTION_COUNT>; 3];
+/// Both materials' inputs at one point.
+type Pair = (Inputs, Inputs);
+
+/// One point's colours for every direction pair, channel by channel, direction per lane:
+/// the radiance over black (RGB), then the share of the background shown (RGB).
+type Colours = [Lanes<DIRECTION_COUNT>; 6];
 
 /// The fixed direction pairs, evaluated together (one per lane).
 struct Directions {
     geometry: Geometry<Lanes<DIRECTION_COUNT>>,
-    /// π · NdotL: the exposure's light scaled by the cosine.
-    irradiance: Lanes<DIRECTION_COUNT>,
-    /// (θ_v, θ_l, φ) for reports.
-    angles: [(f64, f64, f64); DIRECTION_COUNT],
+    angles: [Angles; DIRECTION_COUNT],
 }
 
 impl Directions {
     fn new() -> Directions {
-        let pairs =
-            DIRECTIONS.map(|(tv, tl, phi)| Geometry::new(direction(tv, 0.0), direction(tl, phi)));
+        let angles = DIRECTIONS.map(Angles::coarse);
+        let pairs = angles.map(|a| {
+            let (v, l) = a.vectors();
+            Geometry::new(v, l)
+        });
         Directions {
             geometry: Geometry::lanes(&pairs),
-            irradiance: Lanes(pairs.map(|g| g.l[2] * PI)),
-            angles: DIRECTIONS,
+            angles,
         }
     }
 
-    /// The linear colour a material reflects towards each view from a unit light.
+    /// What a viewer sees of a material in each direction pair.
     #[inline(always)]
     fn colours(&self, shader: &Shader, m: &Inputs) -> Colours {
-        if m.unlit {
-            return channels(|i| Lanes::splat(m.base_color[i]));
-        }
-        let f = shader.brdf(m, &self.geometry);
-        channels(|i| f[i] * self.irradiance)
+        let Seen { own, through } = seen(shader, m, &self.geometry);
+        [own[0], own[1], own[2], through[0], through[1], through[2]]
     }
 }
 
-/// The largest ΔE2000 over the direction pairs between any of `sources` and `target` at one
-/// point (what `compare` computes per texel, for each reading of a source), for fitting
-/// factors.
-pub fn worst_at_point(shader: &Shader, sources: &[Inputs], target: &Inputs) -> f64 {
-    static DIRECTIONS: std::sync::OnceLock<Directions> = std::sync::OnceLock::new();
-    let directions = DIRECTIONS.get_or_init(Directions::new);
-    let lab = |inputs: &Inputs| {
-        let c = directions.colours(shader, inputs);
-        let mut lab = [[0.0; 3]; DIRECTION_COUNT];
-        for (d, lab) in lab.iter_mut().enumerate() {
-            *lab = lab_from_linear_srgb(displayed([c[0].0[d], c[1].0[d], c[2].0[d]]));
-        }
-        lab
+/// Whether either material lets the background show: then both backgrounds are looked at.
+fn translucent(a: &Inputs, b: &Inputs) -> bool {
+    a.coverage < 1.0 || b.coverage < 1.0 || transmits(a) || transmits(b)
+}
+
+/// ΔE2000 between what a viewer sees of two materials' [`Seen`] values over `background`.
+#[inline(always)]
+fn delta_over(a: &Seen<f64>, b: &Seen<f64>, background: f64) -> f64 {
+    ciede2000(
+        lab_from_linear_srgb(displayed(a.over(background))),
+        lab_from_linear_srgb(displayed(b.over(background))),
+    )
+}
+
+/// The largest ΔE2000 between `a` and `b` for one direction pair, over the backgrounds that
+/// matter, and the background it was found over.
+pub fn delta_at(shader: &Shader, a: &Inputs, b: &Inputs, angles: &Angles) -> (f64, f64) {
+    let (v, l) = angles.vectors();
+    let g = Geometry::new(v, l);
+    let (sa, sb) = (seen(shader, a, &g), seen(shader, b, &g));
+    let backgrounds = if translucent(a, b) {
+        &BACKGROUNDS[..]
+    } else {
+        &BACKGROUNDS[..1]
     };
-    let target = lab(target);
+    (backgrounds.iter())
+        .map(|&background| (delta_over(&sa, &sb, background), background))
+        .fold((0.0, BACKGROUNDS[0]), |worst, each| {
+            if each.0 > worst.0 {
+                each
+            } else {
+                worst
+            }
+        })
+}
+
+/// The largest ΔE2000 between any of `sources` and `target` at one point, over the fixed
+/// direction pairs and the specular peak (the mirror direction of views from head-on to
+/// 75°, and just off it): what a fit of factors minimises. Without the peak a fit trades
+/// roughness for the fixed directions' figures and misses the highlight the proof's dense
+/// search then finds.
+pub fn worst_at_point(shader: &Shader, sources: &[Inputs], target: &Inputs) -> f64 {
+    static PEAK: std::sync::OnceLock<Vec<Angles>> = std::sync::OnceLock::new();
+    let peak = PEAK.get_or_init(|| {
+        let views = [0.0, 30.0, 50.0, 65.0, 75.0];
+        let offsets = [0.0, 0.3, 1.0, 3.0, 8.0];
+        let mut set = Vec::new();
+        for theta in views {
+            for offset in offsets {
+                // Off the mirror in the plane of incidence and across it.
+                set.push(Angles {
+                    view: [theta, 0.0],
+                    light: [
+                        (theta - offset).abs(),
+                        if theta >= offset { 180.0 } else { 0.0 },
+                    ],
+                });
+                let across = offset / theta.to_radians().sin().max(0.05);
+                set.push(Angles {
+                    view: [theta, 0.0],
+                    light: [theta.max(offset), 180.0 + across],
+                });
+            }
+        }
+        set
+    });
     let mut worst = 0f64;
     for source in sources {
-        for (source, target) in lab(source).into_iter().zip(target) {
-            worst = worst.max(ciede2000(source, target));
+        for angles in DIRECTIONS.map(Angles::coarse).iter().chain(peak) {
+            worst = worst.max(delta_at(shader, source, target, angles).0);
         }
     }
     worst
 }
 
-/// Distinct texels whose samples are converted to ΔE together.
+/// Distinct points whose samples are converted to ΔE together.
 const BATCH_TEXELS: usize = 8;
 const BATCH: usize = BATCH_TEXELS * DIRECTION_COUNT;
 
-/// A batch's colours, channel by channel, sample by sample (texel-major).
+/// A batch's colours, channel by channel, sample by sample (point-major), and the points'
+/// inputs (for the search of [`refine`]).
 struct Batch {
-    a: [[f64; BATCH]; 3],
-    b: [[f64; BATCH]; 3],
+    a: [[f64; BATCH]; 6],
+    b: [[f64; BATCH]; 6],
+    /// Whether a point of the batch lets the background show.
+    translucent: bool,
+    pairs: Vec<(Inputs, Inputs)>,
 }
 
 impl Batch {
-    fn put(colours: &mut [[f64; BATCH]; 3], texel: usize, c: Colours) {
-        let at = texel * DIRECTION_COUNT;
+    fn new() -> Batch {
+        Batch {
+            a: [[0.0; BATCH]; 6],
+            b: [[0.0; BATCH]; 6],
+            translucent: false,
+            pairs: Vec::with_capacity(BATCH_TEXELS),
+        }
+    }
+
+    fn put(colours: &mut [[f64; BATCH]; 6], slot: usize, c: Colours) {
+        let at = slot * DIRECTION_COUNT;
         for (channel, lanes) in colours.iter_mut().zip(c) {
             channel[at..at + DIRECTION_COUNT].copy_from_slice(&lanes.0);
         }
     }
 
-    /// ΔE2000 of every sample: one scalar formula in a loop over independent samples, which
-    /// the compiler turns into vector code (its long dependency chains then overlap).
+    /// ΔE2000 of every sample (over both backgrounds when the batch is translucent): one
+    /// scalar formula in a loop over independent samples, which the compiler turns into
+    /// vector code (its long dependency chains then overlap).
     #[inline(always)]
     fn delta_e(&self) -> [f64; BATCH] {
         let mut out = [0.0; BATCH];
-        for (i, delta) in out.iter_mut().enumerate() {
-            let a = [self.a[0][i], self.a[1][i], self.a[2][i]];
-            let b = [self.b[0][i], self.b[1][i], self.b[2][i]];
-            *delta = ciede2000(
-                lab_from_linear_srgb(displayed(a)),
-                lab_from_linear_srgb(displayed(b)),
-            );
+        let over = |colours: &[[f64; BATCH]; 6], i: usize, background: f64| -> V3 {
+            std::array::from_fn(|c| colours[c][i] + colours[c + 3][i] * background)
+        };
+        let backgrounds = if self.translucent {
+            &BACKGROUNDS[..]
+        } else {
+            &BACKGROUNDS[..1]
+        };
+        for &background in backgrounds {
+            for (i, delta) in out.iter_mut().enumerate() {
+                let d = ciede2000(
+                    lab_from_linear_srgb(displayed(over(&self.a, i, background))),
+                    lab_from_linear_srgb(displayed(over(&self.b, i, background))),
+                );
+                *delta = delta.max(d);
+            }
         }
         out
     }
@@ -206,21 +322,25 @@ struct Partial {
     sum: f64,
     count: u64,
     worst: Worst,
+    /// The inputs of both materials at the worst point.
+    worst_pair: Option<Box<Pair>>,
     histogram: Vec<u32>,
+    candidates: refine::Candidates,
 }
 
-/// The finest UV grid compared: 4096² texel centres × every direction is already minutes.
+/// The finest UV grid compared: 4096² texels (each its centre and a corner) × every
+/// direction is already minutes.
 pub const MAX_GRID: u32 = 4096;
 
-/// Compares `a` with `b` on a `grid`² UV grid (texel centres, at most [`MAX_GRID`]); `grid` 0
-/// picks the finest texture resolution of either (at least 16).
+/// Compares `a` with `b` on a `grid`² UV grid (texel centres and corners, at most
+/// [`MAX_GRID`]); `grid` 0 picks the finest texture resolution of either (at least 16).
 pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u32) -> Comparison {
     let mut each = compare_readings(shader, std::slice::from_ref(a), b, grid, TexelMap::Kept);
-    each.pop().unwrap_or_else(|| merge(Vec::new(), 0))
+    each.pop().unwrap_or_else(|| merge(shader, Vec::new(), 0))
 }
 
 /// Compares each of `readings` (one material read several ways: the same textures and
-/// texture coordinates) with `b`, in one pass over the grid: `b` is sampled once per texel
+/// texture coordinates) with `b`, in one pass over the grid: `b` is sampled once per point
 /// for all of them. One comparison per reading, in order; the grid is as in [`compare`].
 pub fn compare_readings(
     shader: &Shader,
@@ -259,7 +379,7 @@ pub fn compare_readings(
     (0..readings.len())
         .map(|r| {
             let partials = by_thread.iter().filter_map(|each| each.get(r));
-            merge(partials, grid)
+            merge(shader, partials, grid)
         })
         .collect()
 }
@@ -299,6 +419,13 @@ unsafe fn compare_rows_avx2(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partia
     compare_rows_inline(job, rows)
 }
 
+/// Which points of a texel row are sampled: its centres, then its top-left corners.
+#[derive(Clone, Copy, PartialEq)]
+enum Points {
+    Centres,
+    Corners,
+}
+
 #[inline(always)]
 fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
     let Job {
@@ -313,82 +440,103 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
         .iter()
         .map(|_| Partial::new(rows.len() * grid as usize, map))
         .collect();
-    let mut batches: Vec<Batch> = readings
-        .iter()
-        .map(|_| Batch {
-            a: [[0.0; BATCH]; 3],
-            b: [[0.0; BATCH]; 3],
-        })
-        .collect();
-    let texel_uv = |x: u32, y: u32| {
-        [
-            (f64::from(x) + 0.5) / f64::from(grid),
-            (f64::from(y) + 0.5) / f64::from(grid),
-        ]
-    };
+    let mut batches: Vec<Batch> = readings.iter().map(|_| Batch::new()).collect();
+    let size = f64::from(grid);
     for y in rows {
-        let mut row_of: Vec<Row> = readings.iter().map(|_| Row::default()).collect();
-        for x in 0..grid {
-            let uv = texel_uv(x, y);
-            let target = b.inputs_at(&[uv, uv]);
-            let each = (readings.iter()).zip(&mut row_of).zip(&mut batches);
-            for (((a, row), batch), partial) in each.zip(&mut partials) {
-                let source = a.inputs_at(&[uv, uv]);
-                if source == target {
-                    // Identical inputs give identical colours, whose ΔE is exactly 0: added
-                    // at once unless texels before it wait for their batch. (The previous
-                    // texel is left as it was: no texel with differing inputs equals this.)
-                    match row.pending.is_empty() {
-                        true => partial.add_equal_texel(uv, &directions.angles),
-                        false => row.pending.push((x, Source::Zero)),
+        for points in [Points::Centres, Points::Corners] {
+            let offset = if points == Points::Centres { 0.5 } else { 0.0 };
+            let uv_of = |x: u32| {
+                [
+                    (f64::from(x) + offset) / size,
+                    (f64::from(y) + offset) / size,
+                ]
+            };
+            // Centres add their texel to the map, corners raise it.
+            let map_length = partials
+                .first()
+                .and_then(|p| p.per_texel.as_ref())
+                .map(Vec::len);
+            let row_start = map_length.map_or(0, |length| match points {
+                Points::Centres => length,
+                Points::Corners => length - grid as usize,
+            });
+            let place = |x: u32| Place {
+                uv: uv_of(x),
+                texel: (points == Points::Corners).then_some(row_start + x as usize),
+            };
+            let mut row_of: Vec<Row> = readings.iter().map(|_| Row::default()).collect();
+            for x in 0..grid {
+                let uv = uv_of(x);
+                let target = b.inputs_at(&[uv]);
+                let each = (readings.iter()).zip(&mut row_of).zip(&mut batches);
+                for (((a, row), batch), partial) in each.zip(&mut partials) {
+                    let source = a.inputs_at(&[uv]);
+                    if source == target {
+                        // Identical inputs give identical colours, whose ΔE is exactly 0:
+                        // added at once unless points before it wait for their batch. (The
+                        // previous point is left as it was: no point with differing inputs
+                        // equals this.)
+                        match row.pending.is_empty() {
+                            true => partial.add_equal_point(&place(x), &directions.angles),
+                            false => row.pending.push((x, Source::Zero)),
+                        }
+                        continue;
                     }
-                    continue;
-                }
-                let inputs = (source, target.clone());
-                let source = if let Some(same) = row.repeat_of(&inputs) {
-                    // A texel like the one before (a flat region of a texture) has its ΔE.
-                    same
-                } else {
-                    let slot = row.unique;
-                    Batch::put(&mut batch.a, slot, directions.colours(shader, &inputs.0));
-                    Batch::put(&mut batch.b, slot, directions.colours(shader, &inputs.1));
-                    row.unique += 1;
-                    Source::Slot(slot)
-                };
-                row.previous = Some((inputs, source));
-                row.pending.push((x, source));
-                if row.unique == BATCH_TEXELS {
-                    row.flush(batch, partial, |x| texel_uv(x, y), &directions.angles);
+                    let inputs = (source, target.clone());
+                    let source = if let Some(same) = row.repeat_of(&inputs) {
+                        // A point like the one before (a flat region of a texture) has its ΔE.
+                        same
+                    } else {
+                        let slot = row.unique;
+                        Batch::put(&mut batch.a, slot, directions.colours(shader, &inputs.0));
+                        Batch::put(&mut batch.b, slot, directions.colours(shader, &inputs.1));
+                        batch.translucent |= translucent(&inputs.0, &inputs.1);
+                        batch.pairs.push(inputs.clone());
+                        row.unique += 1;
+                        Source::Slot(slot)
+                    };
+                    row.previous = Some((inputs, source));
+                    row.pending.push((x, source));
+                    if row.unique == BATCH_TEXELS {
+                        row.flush(batch, partial, place, &directions.angles);
+                    }
                 }
             }
-        }
-        let each = (row_of.iter_mut()).zip(&batches).zip(&mut partials);
-        for ((row, batch), partial) in each {
-            row.flush(batch, partial, |x| texel_uv(x, y), &directions.angles);
+            let each = (row_of.iter_mut()).zip(&mut batches).zip(&mut partials);
+            for ((row, batch), partial) in each {
+                row.flush(batch, partial, place, &directions.angles);
+            }
         }
     }
     partials
 }
 
-/// Where a texel's ΔE samples come from.
+/// Where a point lies: its texture coordinates, and the texel of the map it raises (a
+/// corner) or `None` (a centre, which adds its texel).
+struct Place {
+    uv: [f64; 2],
+    texel: Option<usize>,
+}
+
+/// Where a point's ΔE samples come from.
 #[derive(Clone, Copy)]
 enum Source {
     /// Both materials have the same inputs there.
     Zero,
-    /// A texel of the batch being filled.
+    /// A point of the batch being filled.
     Slot(usize),
-    /// Already computed (a repeat of a texel of an earlier batch).
+    /// Already computed (a repeat of a point of an earlier batch).
     Known([f64; DIRECTION_COUNT]),
 }
 
-/// The texels of one grid row waiting for their batch's ΔE, in order.
+/// The points of one grid row waiting for their batch's ΔE, in order.
 #[derive(Default)]
 struct Row {
     /// (x, where its samples come from), in row order.
     pending: Vec<(u32, Source)>,
-    /// Texels put into the batch so far.
+    /// Points put into the batch so far.
     unique: usize,
-    /// The last texel's inputs and samples: equal inputs give equal colours.
+    /// The last point's inputs and samples: equal inputs give equal colours.
     previous: Option<((Inputs, Inputs), Source)>,
 }
 
@@ -398,15 +546,15 @@ impl Row {
         (previous == inputs).then_some(*source)
     }
 
-    /// Computes the batch's ΔE and hands every pending texel to `partial`, in row order.
+    /// Computes the batch's ΔE and hands every pending point to `partial`, in row order.
     /// Inlined so that the ΔE loop is compiled with the caller's vector instructions.
     #[inline(always)]
     fn flush(
         &mut self,
-        batch: &Batch,
+        batch: &mut Batch,
         partial: &mut Partial,
-        uv: impl Fn(u32) -> [f64; 2],
-        angles: &[(f64, f64, f64)],
+        place: impl Fn(u32) -> Place,
+        angles: &[Angles; DIRECTION_COUNT],
     ) {
         let deltas = if self.unique > 0 {
             batch.delta_e()
@@ -419,15 +567,21 @@ impl Row {
             Source::Known(known) => known,
         };
         for (x, source) in self.pending.drain(..) {
+            let at = place(x);
             match source {
-                Source::Zero => partial.add_equal_texel(uv(x), angles),
-                _ => partial.add_texel(uv(x), &samples(source), angles),
+                Source::Zero => partial.add_equal_point(&at, angles),
+                Source::Slot(k) => {
+                    partial.add_point(&at, &samples(source), angles, &batch.pairs[k])
+                }
+                Source::Known(_) => partial.add_repeat(&at, &samples(source)),
             }
         }
         if let Some((_, source)) = &mut self.previous {
             *source = Source::Known(samples(*source));
         }
         self.unique = 0;
+        batch.pairs.clear();
+        batch.translucent = false;
     }
 }
 
@@ -440,62 +594,97 @@ impl Partial {
             worst: Worst {
                 delta_e: -1.0,
                 uv: [0.0, 0.0],
-                directions: (0.0, 0.0, 0.0),
+                directions: Angles::coarse(DIRECTIONS[0]),
+                background: BACKGROUNDS[0],
             },
+            worst_pair: None,
             histogram: vec![0; BINS],
+            candidates: refine::Candidates::default(),
         }
     }
 
-    /// A texel where both materials have the same inputs: ΔE 0 in every direction. (Most
-    /// texels of an exact conversion; the general path would update the histogram one
+    /// A point where both materials have the same inputs: ΔE 0 in every direction. (Most
+    /// points of an exact conversion; the general path would update the histogram one
     /// sample at a time.)
-    fn add_equal_texel(&mut self, uv: [f64; 2], angles: &[(f64, f64, f64)]) {
+    fn add_equal_point(&mut self, at: &Place, angles: &[Angles; DIRECTION_COUNT]) {
         self.count += DIRECTION_COUNT as u64;
         self.histogram[0] += DIRECTION_COUNT as u32;
         if self.worst.delta_e < 0.0 {
             self.worst = Worst {
                 delta_e: 0.0,
-                uv,
+                uv: at.uv,
                 directions: angles[0],
+                background: BACKGROUNDS[0],
             };
         }
-        self.note_texel(0.0);
+        self.note_point(at, 0.0);
     }
 
-    fn note_texel(&mut self, max: f32) {
+    fn note_point(&mut self, at: &Place, max: f32) {
         if let Some(map) = &mut self.per_texel {
-            map.push(max);
+            match at.texel.and_then(|i| map.get_mut(i)) {
+                Some(texel) => *texel = texel.max(max),
+                None => map.push(max),
+            }
         }
     }
 
-    fn add_texel(&mut self, uv: [f64; 2], deltas: &[f64], angles: &[(f64, f64, f64)]) {
-        let mut texel_max = 0f64;
-        for (&delta, &angles) in deltas.iter().zip(angles) {
+    /// Adds a point's samples to the figures; returns its largest.
+    fn add_samples(&mut self, at: &Place, deltas: &[f64]) -> (f64, usize) {
+        let (mut point_max, mut arg) = (0f64, 0);
+        for (k, &delta) in deltas.iter().enumerate() {
             let delta = if delta.is_finite() { delta } else { f64::MAX };
-            texel_max = texel_max.max(delta);
+            if delta > point_max {
+                (point_max, arg) = (delta, k);
+            }
             self.sum += delta.min(1e6);
             self.count += 1;
             let bin = ((delta * BINS_PER_UNIT) as usize).min(BINS - 1);
             self.histogram[bin] += 1;
-            if delta > self.worst.delta_e {
-                self.worst = Worst {
-                    delta_e: delta,
-                    uv,
-                    directions: angles,
-                };
-            }
         }
-        self.note_texel(texel_max as f32);
+        self.note_point(at, point_max as f32);
+        (point_max, arg)
+    }
+
+    /// A point like the one before it: its figures count, and it cannot be a new worst.
+    fn add_repeat(&mut self, at: &Place, deltas: &[f64]) {
+        self.add_samples(at, deltas);
+    }
+
+    fn add_point(
+        &mut self,
+        at: &Place,
+        deltas: &[f64],
+        angles: &[Angles; DIRECTION_COUNT],
+        pair: &(Inputs, Inputs),
+    ) {
+        let (point_max, arg) = self.add_samples(at, deltas);
+        if point_max > self.worst.delta_e {
+            // Which background it was found over is settled once, for the final worst.
+            self.worst = Worst {
+                delta_e: point_max,
+                uv: at.uv,
+                directions: angles[arg],
+                background: BACKGROUNDS[0],
+            };
+            self.worst_pair = Some(Box::new(pair.clone()));
+        }
+        self.candidates.offer(point_max, at.uv, pair);
     }
 }
 
-fn merge<'p>(partials: impl IntoIterator<Item = &'p Partial>, grid: u32) -> Comparison {
+fn merge<'p>(
+    shader: &Shader,
+    partials: impl IntoIterator<Item = &'p Partial>,
+    grid: u32,
+) -> Comparison {
     let mut histogram = vec![0u64; BINS];
     let mut per_texel = Vec::new();
     let (mut sum, mut count) = (0.0, 0u64);
     // The first worst sample seen (in row order) wins ties, so a comparison with ΔE 0
-    // everywhere names a real texel.
-    let mut worst: Option<Worst> = None;
+    // everywhere names a real point.
+    let mut worst: Option<(Worst, Option<Box<Pair>>)> = None;
+    let mut candidates = refine::Candidates::default();
     // Partials come in row order: their texels concatenate into the grid.
     for p in partials {
         per_texel.extend(p.per_texel.iter().flatten());
@@ -504,15 +693,35 @@ fn merge<'p>(partials: impl IntoIterator<Item = &'p Partial>, grid: u32) -> Comp
         for (total, n) in histogram.iter_mut().zip(&p.histogram) {
             *total += u64::from(*n);
         }
-        if worst.as_ref().is_none_or(|w| p.worst.delta_e > w.delta_e) {
-            worst = Some(p.worst.clone());
+        if worst
+            .as_ref()
+            .is_none_or(|(w, _)| p.worst.delta_e > w.delta_e)
+        {
+            worst = Some((p.worst.clone(), p.worst_pair.clone()));
+        }
+        candidates.absorb(&p.candidates);
+    }
+    let (mut worst, mut pair) = worst.unwrap_or((
+        Worst {
+            delta_e: 0.0,
+            uv: [0.0, 0.0],
+            directions: Angles::coarse(DIRECTIONS[0]),
+            background: BACKGROUNDS[0],
+        },
+        None,
+    ));
+    if let Some(pair) = &pair {
+        worst.background = delta_at(shader, &pair.0, &pair.1, &worst.directions).1;
+    }
+    if let Some(found) = refine::search(shader, &candidates) {
+        if found.worst.delta_e > worst.delta_e {
+            worst = found.worst;
+            pair = Some(found.pair);
         }
     }
-    let worst = worst.unwrap_or(Worst {
-        delta_e: 0.0,
-        uv: [0.0, 0.0],
-        directions: (0.0, 0.0, 0.0),
-    });
+    let dominant = (pair.as_ref())
+        .filter(|_| worst.delta_e > 0.0)
+        .and_then(|pair| dominant_input(shader, &pair.0, &pair.1, &worst));
     let target = (count as f64 * 0.99).ceil() as u64;
     let mut seen = 0;
     let mut p99 = 0.0;
@@ -528,6 +737,7 @@ fn merge<'p>(partials: impl IntoIterator<Item = &'p Partial>, grid: u32) -> Comp
         p99: p99.min(worst.delta_e),
         mean: sum / count.max(1) as f64,
         worst,
+        dominant,
         grid,
         samples: count,
         per_texel: per_texel.into(),
@@ -584,9 +794,15 @@ mod tests {
         let result = compare(&shader, &a, &b, 48);
         for y in 0..48 {
             for x in 0..48 {
-                let uv = [(x as f64 + 0.5) / 48.0, (y as f64 + 0.5) / 48.0];
-                let alone =
-                    worst_at_point(&shader, &[a.inputs_at(&[uv, uv])], &b.inputs_at(&[uv, uv]));
+                // A texel's entry is the larger of its centre's and its corner's.
+                let at = |offset: f64| {
+                    let uv = [(x as f64 + offset) / 48.0, (y as f64 + offset) / 48.0];
+                    let (a, b) = (a.inputs_at(&[uv]), b.inputs_at(&[uv]));
+                    (DIRECTIONS.map(Angles::coarse).iter())
+                        .map(|angles| delta_at(&shader, &a, &b, angles).0)
+                        .fold(0.0, f64::max)
+                };
+                let alone = at(0.5).max(at(0.0));
                 assert_eq!(
                     result.per_texel[y * 48 + x],
                     alone as f32,
@@ -614,7 +830,11 @@ mod tests {
             [0.0625, 0.0625],
             "the worst sample is a real texel centre"
         );
-        assert_eq!(result.samples, 64 * DIRECTIONS.len() as u64);
+        assert_eq!(
+            result.samples,
+            2 * 64 * DIRECTIONS.len() as u64,
+            "every texel's centre and corner"
+        );
     }
 
     #[test]

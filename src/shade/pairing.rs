@@ -66,6 +66,16 @@ pub struct Outcome {
     /// how far its other readings are from the one compared, a fact of the source and not
     /// of the comparison.
     pub ambiguity: Option<Ambiguity>,
+    /// What the evaluator could not show of either material ("first: …", "second: …"):
+    /// when any, the figures cover the rest only and the pair is never the same.
+    pub not_evaluated: Vec<String>,
+}
+
+impl Outcome {
+    /// Whether the pair renders the same: everything evaluated, and within `threshold`.
+    pub fn same(&self, threshold: f64) -> bool {
+        self.not_evaluated.is_empty() && self.result.max <= threshold
+    }
 }
 
 /// How far a source's other readings are from the one it is compared under.
@@ -107,11 +117,15 @@ pub fn compare_pairs(
             let compared = (done.entry(key))
                 .or_insert_with(|| compare_as_read(&shader, ma, mb, grid, map))
                 .clone();
+            let not_evaluated = (ma.unmodelled().iter().map(|u| format!("first: {u}")))
+                .chain(mb.unmodelled().iter().map(|u| format!("second: {u}")))
+                .collect();
             Some(Outcome {
                 a: (i, name_a.clone()),
                 b: (j, name_b.clone()),
                 result: compared.result,
                 ambiguity: compared.ambiguity,
+                not_evaluated,
             })
         })
         .collect()
@@ -137,6 +151,7 @@ fn compare_as_read(
         evaluate::compare_readings(shader, std::slice::from_ref(source), target, grid, map)
             .pop()
             .unwrap_or_else(|| evaluate::compare(shader, source, target, grid));
+
     let others = source.other_readings();
     let spreads = evaluate::compare_readings(shader, &others, source, grid, TexelMap::Dropped);
     let ambiguity = (others.iter().zip(spreads))

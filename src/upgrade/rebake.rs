@@ -3,7 +3,7 @@
 
 use crate::document::image_decode;
 use crate::document::image_header::{self, Channels};
-use crate::gltf::color::{linear_to_srgb, linear_to_srgb8, srgb_texel_to_linear};
+use crate::gltf::color::{linear_to_srgb, linear_to_srgb8};
 use crate::shade::sample::{self, TextureImage};
 use crate::upgrade::fit::{self, Factors, TexelFits, TexelValue};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
@@ -120,13 +120,24 @@ pub fn spec_gloss_base_colour(
         .unwrap_or(1);
     let (width, height, held) = rebake_grid(width, height, largest);
     let wide = inputs.iter().any(|t| t.is_wide());
-    let source = SpecGlossTexels {
+    let at_grid = |width, height| SpecGlossTexels {
         diffuse: diffuse.as_deref(),
         specular: specular.as_deref(),
         factors,
         width,
         height,
     };
+    // A rebake fitted texel by texel (a reading without an exact form) keeps the inputs'
+    // grid: its fit is made for each stored texel, not for what lies between them.
+    let (source, finer) = match fits.is_some() {
+        true => (at_grid(width, height), None),
+        false => finest_needed(at_grid(width, height), at_grid),
+    };
+    let (width, height) = (source.width, source.height);
+    let held = held
+        .into_iter()
+        .chain(finer)
+        .reduce(|a, b| format!("{a} {b}"));
     // With fits, the distinct texel values are listed first so that they are judged
     // together (in parallel); the image is then written from their verdicts.
     let fitted = fits.map(|fits| judged(&source, fits, if wide { 65535.0 } else { 255.0 }));
@@ -157,6 +168,73 @@ pub fn spec_gloss_base_colour(
 
 /// The most texels a rebake's grid gets beyond its largest input's: 2048².
 pub const REBAKE_FLOOR: u64 = 1 << 22;
+
+/// The largest ΔE2000 allowed between a rebake read between its texel centres and the
+/// conversion of its inputs read there: half the proof's threshold, the rest of which is
+/// left to 8-bit storage and the proof's other directions.
+const BETWEEN_CENTRES: f64 = 0.5;
+
+/// The grid the base colour is rebaked at: `start`'s, or a multiple of it where the product
+/// diffuse · (1 − specular) is not linear enough between texel centres. A viewer mixes the
+/// rebake's texels, not the conversions of mixed inputs, and where the inputs change sharply
+/// the two differ at the texels' corners. The inputs' bilinear surfaces bend along the lines
+/// through their texel centres: an odd multiple of the grid puts those lines on the rebake's
+/// texel centres, where it is exact, and leaves a smooth product in between, whose error a
+/// tripled grid divides by nine (an even multiple would put them on texel edges, where the
+/// error only halves). Up to [`REBAKE_FLOOR`] texels. Returns the texels to rebake and the
+/// decision when the grid was refined; what is still above [`BETWEEN_CENTRES`] there the
+/// proof reports.
+fn finest_needed<'t>(
+    start: SpecGlossTexels<'t>,
+    at_grid: impl Fn(u32, u32) -> SpecGlossTexels<'t>,
+) -> (SpecGlossTexels<'t>, Option<String>) {
+    let first = between_centres_error(&start);
+    let (mut texels, mut error, mut scale) = (start, first, 1);
+    while error > BETWEEN_CENTRES
+        && u64::from(texels.width) * u64::from(texels.height) * 9 <= REBAKE_FLOOR
+    {
+        texels = at_grid(texels.width * 3, texels.height * 3);
+        error = between_centres_error(&texels);
+        scale *= 3;
+    }
+    let decision = (scale > 1).then(|| {
+        format!(
+            "the base colour is rebaked at {scale}× its inputs' grid ({}×{}): diffuse · (1 − specular) is not linear, and between the inputs' texel centres a rebake at their grid differed from the conversion of the interpolated inputs by ΔE2000 {first:.2} (at this grid {error:.2}).",
+            texels.width, texels.height
+        )
+    });
+    (texels, decision)
+}
+
+/// The largest ΔE2000, on the base colour as shown, between the mean of the converted
+/// colours at the four texel centres around each texel corner (what a viewer's bilinear
+/// filter gives there) and the conversion of the inputs read at that corner.
+fn between_centres_error(texels: &SpecGlossTexels) -> f64 {
+    use crate::shade::delta_e::{ciede2000, lab_from_linear_srgb};
+    use crate::shade::tone::displayed;
+    use rayon::prelude::*;
+    let (width, height) = (texels.width, texels.height);
+    let shown = |colour: [f64; 3]| lab_from_linear_srgb(displayed(colour));
+    let base_at = |value: TexelValue| texels.factors.base_colour(value.diffuse, value.specular);
+    (0..height)
+        .into_par_iter()
+        .map(|y| {
+            let mut worst = 0f64;
+            for x in 0..width {
+                let around = [(x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)]
+                    .map(|(i, j)| base_at(texels.at(i % width, j % height).0));
+                let mixed = std::array::from_fn(|c| around.iter().map(|a| a[c]).sum::<f64>() / 4.0);
+                let corner = [
+                    f64::from(x + 1) / f64::from(width),
+                    f64::from(y + 1) / f64::from(height),
+                ];
+                let exact = base_at(texels.value_at(corner));
+                worst = worst.max(ciede2000(shown(mixed), shown(exact)));
+            }
+            worst
+        })
+        .reduce(|| 0.0, f64::max)
+}
 
 /// The grid of a rebake of textures whose finest dimensions are `width` × `height` and whose
 /// largest holds `largest` texels: that grid, unless it holds more than the largest input or
@@ -268,12 +346,22 @@ impl SpecGlossTexels<'_> {
     /// The value at the centre of output texel (x, y) (linear, factors applied), and the
     /// diffuse alpha.
     fn at(&self, x: u32, y: u32) -> (TexelValue, f32) {
-        let centre = self.centre(x, y);
-        let sample = |t: Option<&TextureImage>| t.map_or([1.0; 4], |t| sample::bilinear(t, centre));
+        self.sampled(self.centre(x, y))
+    }
+
+    /// The value at texture coordinates `uv`.
+    fn value_at(&self, uv: [f64; 2]) -> TexelValue {
+        self.sampled(uv).0
+    }
+
+    /// The value and the diffuse alpha at texture coordinates `centre`.
+    fn sampled(&self, centre: [f64; 2]) -> (TexelValue, f32) {
+        // Colours decoded before they are mixed, as the evaluator and viewers sample them.
+        let sample =
+            |t: Option<&TextureImage>| t.map_or([1.0; 4], |t| sample::bilinear_srgb(t, centre));
         let (d, s) = (sample(self.diffuse), sample(self.specular));
-        let linear = |texel: [f64; 4], factor: &[f64]| {
-            std::array::from_fn(|c| srgb_texel_to_linear(texel[c]) * factor[c])
-        };
+        let linear =
+            |texel: [f64; 4], factor: &[f64]| std::array::from_fn(|c| texel[c] * factor[c]);
         let value = TexelValue {
             diffuse: linear(d, &self.factors.diffuse),
             specular: linear(s, &self.factors.specular),

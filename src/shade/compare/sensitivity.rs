@@ -134,3 +134,215 @@ fn differences_nobody_can_see_pass() {
         assert!(delta_e < 1.0, "{difference}: ΔE {delta_e} should pass");
     }
 }
+
+/// A grey dielectric with `extra` members merged in (and into its extensions).
+fn grey(extra: Value) -> Value {
+    let mut m = pbr([0.5; 3], 0.0, 0.5);
+    for (key, value) in extra.as_object().into_iter().flatten() {
+        m[key] = value.clone();
+    }
+    m
+}
+
+/// The pairs whole-material inputs make: the first of each is the grey dielectric.
+fn whole_material_changes() -> Vec<(&'static str, &'static str, Value, Vec<[u8; 3]>)> {
+    let mut blended = grey(json!({"alphaMode": "BLEND"}));
+    blended["pbrMetallicRoughness"]["baseColorFactor"][3] = json!(0.2);
+    vec![
+        ("base-colour alpha 0.2, BLEND", "coverage", blended, vec![]),
+        (
+            "emission 1 at strength 10",
+            "emission",
+            grey(json!({"emissiveFactor": [1.0, 1.0, 1.0],
+                "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 10.0}}})),
+            vec![],
+        ),
+        (
+            "a tilted normal map",
+            "normal",
+            grey(json!({"normalTexture": {"index": 0}})),
+            vec![[230, 128, 180]],
+        ),
+        (
+            "a clearcoat of roughness 0.05",
+            "clearcoat",
+            grey(json!({"extensions": {"KHR_materials_clearcoat":
+                {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.05}}})),
+            vec![],
+        ),
+        (
+            "transmission 1",
+            "transmission",
+            grey(
+                json!({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}}}),
+            ),
+            vec![],
+        ),
+        (
+            "occlusion texels of 40",
+            "occlusion",
+            grey(json!({"occlusionTexture": {"index": 0}})),
+            vec![[40, 40, 40]],
+        ),
+        (
+            "diffuse transmission 1",
+            "diffuse transmission",
+            grey(json!({"extensions": {"KHR_materials_diffuse_transmission":
+                {"diffuseTransmissionFactor": 1.0}}})),
+            vec![],
+        ),
+        (
+            "alpha 0.4 masked at the default cutoff",
+            "coverage",
+            {
+                let mut m = grey(json!({"alphaMode": "MASK"}));
+                m["pbrMetallicRoughness"]["baseColorFactor"][3] = json!(0.4);
+                m
+            },
+            vec![],
+        ),
+    ]
+}
+
+#[test]
+fn every_whole_material_input_that_changes_the_picture_is_caught_and_named() {
+    let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
+    let reference = material(grey(json!({})), &[]);
+    for (change, input, json, textures) in whole_material_changes() {
+        let changed = material(json, &textures);
+        let result = compare(&shader, &reference, &changed, 4);
+        println!(
+            "caught: {change}: ΔE {:.2}, mostly {:?}",
+            result.max, result.dominant
+        );
+        assert!(
+            result.max > 1.0,
+            "{change}: ΔE {} is not caught",
+            result.max
+        );
+        assert_eq!(result.dominant, Some(input), "{change}");
+    }
+}
+
+/// Layers whose own inputs change, each against the same layer otherwise.
+#[test]
+fn a_changed_layer_is_caught() {
+    let coat = |roughness: f64| {
+        grey(json!({"extensions": {"KHR_materials_clearcoat":
+            {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": roughness}}}))
+    };
+    let volume = |colour: [f64; 3]| {
+        grey(
+            json!({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
+            "KHR_materials_volume": {"thicknessFactor": 1.0, "attenuationDistance": 1.0,
+                "attenuationColor": colour}}}),
+        )
+    };
+    let strength = |s: f64| {
+        grey(json!({"emissiveFactor": [0.2, 0.1, 0.05],
+            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": s}}}))
+    };
+    let cutoff = |cutoff: f64| {
+        let mut m = grey(json!({"alphaMode": "MASK", "alphaCutoff": cutoff}));
+        m["pbrMetallicRoughness"]["baseColorFactor"][3] = json!(0.4);
+        m
+    };
+    let cases = [
+        ("clearcoat roughness 0.1 read as 0.4", coat(0.1), coat(0.4)),
+        (
+            "attenuation colour lost",
+            volume([0.5, 0.2, 0.2]),
+            volume([1.0, 1.0, 1.0]),
+        ),
+        (
+            "emissive strength 4 read as 1",
+            strength(4.0),
+            strength(1.0),
+        ),
+        ("alpha cutoff 0.5 read as 0.3", cutoff(0.5), cutoff(0.3)),
+    ];
+    for (change, a, b) in cases {
+        let delta_e = worst(&material(a, &[]), &material(b, &[]));
+        println!("caught: {change}: ΔE {delta_e:.2}");
+        assert!(delta_e > 1.0, "{change}: ΔE {delta_e} is not caught");
+    }
+}
+
+#[test]
+fn whole_material_differences_nobody_can_see_pass() {
+    let defaults = material(grey(json!({})), &[]);
+    let explicit = material(
+        grey(
+            json!({"alphaMode": "OPAQUE", "alphaCutoff": 0.5, "emissiveFactor": [0.0, 0.0, 0.0],
+            "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 0.0},
+                "KHR_materials_transmission": {"transmissionFactor": 0.0},
+                "KHR_materials_emissive_strength": {"emissiveStrength": 1.0},
+                "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.0},
+                "KHR_materials_volume": {"thicknessFactor": 0.0}}}),
+        ),
+        &[],
+    );
+    let flat_maps = material(
+        grey(json!({"normalTexture": {"index": 0}, "occlusionTexture": {"index": 1}})),
+        &[[128, 128, 255], [255, 255, 255]],
+    );
+    let emission = |level: f64| {
+        material(
+            grey(json!({"emissiveFactor": [srgb_to_linear(level / 255.0), 0.1, 0.1]})),
+            &[],
+        )
+    };
+    let alpha = |a: f64| {
+        let mut m = grey(json!({"alphaMode": "BLEND"}));
+        m["pbrMetallicRoughness"]["baseColorFactor"][3] = json!(a);
+        material(m, &[])
+    };
+    let cases = [
+        (
+            "explicit defaults of every layer",
+            worst(&defaults, &explicit),
+        ),
+        (
+            "a flat normal map and a white occlusion map",
+            worst(&defaults, &flat_maps),
+        ),
+        (
+            "half an 8-bit step of emission",
+            worst(&emission(100.0), &emission(100.5)),
+        ),
+        (
+            "half an 8-bit step of alpha",
+            worst(&alpha(0.5), &alpha(0.5 + 0.5 / 255.0)),
+        ),
+    ];
+    for (difference, delta_e) in cases {
+        println!("passes: {difference}: ΔE {delta_e:.2}");
+        assert!(delta_e < 1.0, "{difference}: ΔE {delta_e} should pass");
+    }
+}
+
+/// The specular peak: two smooth lobes of different widths differ just off the mirror
+/// direction, which the fixed directions never meet.
+#[test]
+fn smooth_lobes_of_different_widths_are_told_apart_and_equal_ones_are_not() {
+    let gold = |roughness: f64| material(pbr([1.0, 0.78, 0.34], 1.0, roughness), &[]);
+    let dielectric = |roughness: f64| material(pbr([0.3, 0.3, 0.6], 0.0, roughness), &[]);
+    for (pair, delta_e) in [
+        (
+            "gold mirror against roughness 0.05",
+            worst(&gold(0.0), &gold(0.05)),
+        ),
+        (
+            "dielectric roughness 0.10 against 0.15",
+            worst(&dielectric(0.1), &dielectric(0.15)),
+        ),
+    ] {
+        println!("caught: {pair}: ΔE {delta_e:.2}");
+        assert!(delta_e > 5.0, "{pair}: ΔE {delta_e}");
+    }
+    let control = worst(&gold(0.3), &gold(0.3 + 0.5 / 255.0));
+    assert!(
+        control < 1.0,
+        "half an 8-bit step of roughness: ΔE {control}"
+    );
+}

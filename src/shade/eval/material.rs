@@ -50,6 +50,32 @@ pub struct Inputs {
     pub unlit: bool,
     /// How the dielectric's diffuse is weighed against its Fresnel term.
     pub diffuse_balance: DiffuseBalance,
+    /// Emitted radiance, linear RGB: emissiveFactor × emissiveTexture ×
+    /// KHR_materials_emissive_strength.
+    pub emission: V3,
+    /// The fraction of the background the surface hides, 0–1: 1 for OPAQUE, the base colour's
+    /// alpha for BLEND, 0 or 1 by `alphaCutoff` for MASK.
+    pub coverage: f64,
+    /// The ambient light kept, 0–1: 1 + strength · (occlusion − 1).
+    pub occlusion: f64,
+    /// The shading normal in the tangent frame (normalTexture with its scale), unit length.
+    pub normal: V3,
+    /// KHR_materials_clearcoat: the layer's weight, perceptual roughness and normal.
+    pub clearcoat: f64,
+    /// The clearcoat layer's perceptual roughness.
+    pub clearcoat_roughness: f64,
+    /// The clearcoat layer's normal in the tangent frame, unit length.
+    pub clearcoat_normal: V3,
+    /// KHR_materials_transmission: the fraction of the dielectric base that is specular
+    /// transmission.
+    pub transmission: f64,
+    /// KHR_materials_volume: what light keeps crossing the volume beneath the surface,
+    /// attenuationColor^(thickness / attenuationDistance) per channel (1 when thin-walled).
+    pub volume_transmittance: V3,
+    /// KHR_materials_diffuse_transmission: the fraction of the diffuse base that transmits.
+    pub diffuse_transmission: f64,
+    /// The colour of the diffusely transmitted light, linear RGB.
+    pub diffuse_transmission_color: V3,
 }
 
 /// How a dielectric's diffuse term is weighed against the specular Fresnel term F (RGB).
@@ -182,7 +208,28 @@ impl Default for Inputs {
             anisotropy_angle: 0.0,
             unlit: false,
             diffuse_balance: DiffuseBalance::MaxFresnel,
+            emission: [0.0; 3],
+            coverage: 1.0,
+            occlusion: 1.0,
+            normal: [0.0, 0.0, 1.0],
+            clearcoat: 0.0,
+            clearcoat_roughness: 0.0,
+            clearcoat_normal: [0.0, 0.0, 1.0],
+            transmission: 0.0,
+            volume_transmittance: [1.0; 3],
+            diffuse_transmission: 0.0,
+            diffuse_transmission_color: [1.0; 3],
         }
+    }
+}
+
+impl Inputs {
+    /// The share of the dielectric's diffuse that is reflected: "mix(diffuse_bsdf,
+    /// specular_btdf · baseColor, transmission)" and "mix(diffuse_brdf, diffuse_btdf,
+    /// diffuseTransmission)" (KHR_materials_transmission, _diffuse_transmission); the
+    /// transmitted shares reach the viewer from behind the surface, not from the light.
+    pub fn diffuse_reflected(&self) -> f64 {
+        (1.0 - self.transmission) * (1.0 - self.diffuse_transmission)
     }
 }
 
@@ -278,8 +325,10 @@ pub fn base_brdf<R: Real>(m: &Inputs, g: &Geometry<R>) -> [R; 3] {
         DiffuseBalance::PerChannelFresnel => -dielectric_f[i] + 1.0,
         DiffuseBalance::Unbalanced => R::splat(1.0),
     };
+    let reflected = m.diffuse_reflected();
     channels(|i| {
-        let dielectric = dielectric_f[i] * specular + diffuse_weight(i) * (m.base_color[i] / PI);
+        let diffuse = m.base_color[i] * reflected / PI;
+        let dielectric = dielectric_f[i] * specular + diffuse_weight(i) * diffuse;
         let metal = fresnel(m.base_color[i], 1.0, g.fresnel_weight) * specular;
         dielectric * (1.0 - m.metallic) + metal * m.metallic
     })

@@ -1,5 +1,6 @@
 //! The equations: BRDF lobes, material inputs, and what they are computed with.
 
+pub mod appearance;
 pub mod brdf;
 pub(crate) mod elementary;
 pub(crate) mod lanes;

@@ -10,12 +10,18 @@
 //! when there is one),
 //! the pattern turned about the normal by a fixed per-pixel angle. The sphere's UVs are equirectangular
 //! (u = ½ + φ/2π, v = θ/π) with the analytic tangent along increasing u.
+//!
+//! Each light is seen through [`appearance::seen`]: normal and clearcoat-normal maps turn
+//! the frames on the ball's tangent frame, the clearcoat is layered, the sky is the ambient
+//! light that occlusion darkens, emission is added under the coat; behind the ball a
+//! checkerboard shows through what its coverage and transmission let pass.
 
 use crate::gltf::color::linear_to_srgb8;
+use crate::shade::appearance::{self, Seen};
 use crate::shade::brdf::{
     anisotropic_alphas, dot, ggx_aniso_d, into_anisotropy_frame, normalize, Geometry, V3,
 };
-use crate::shade::material::Shader;
+use crate::shade::material::{Inputs, Shader};
 use crate::shade::sample::MaterialSource;
 use crate::shade::tone::displayed;
 use image::{Rgb, RgbImage};
@@ -28,7 +34,19 @@ const LIGHTS: [(V3, f64); 3] = [
 ];
 const SKY_RADIANCE: f64 = 0.3;
 const SKY_SAMPLES_PER_SIDE: usize = 8;
-const BACKGROUND: [u8; 3] = [46, 46, 50];
+/// Between a contact sheet's cells.
+const SHEET_BACKGROUND: [u8; 3] = [46, 46, 50];
+
+/// The backdrop's two radiances and its squares per ball width: a pattern, so that what a
+/// surface lets through reads as such.
+const CHECKER: [f64; 2] = [0.02, 0.35];
+const CHECKER_SQUARES: f64 = 8.0;
+
+/// The backdrop's radiance at image position (x, y) in −1..1.
+fn backdrop(x: f64, y: f64) -> f64 {
+    let square = |c: f64| ((c + 1.0) * CHECKER_SQUARES / 2.0).floor() as i64;
+    CHECKER[(square(x) + square(y)).rem_euclid(2) as usize]
+}
 
 fn cross(a: V3, b: V3) -> V3 {
     [
@@ -120,14 +138,9 @@ impl Lobe {
 /// one cosine-weighted direction and one reflection of `v` about a visible normal sampled
 /// from the material's GGX lobe (anisotropic when it is), each weighted by
 /// 1 / (N·pdf_cos + N·pdf_ggx) at that direction.
-fn sky_radiance(
-    shader: &Shader,
-    inputs: &crate::shade::material::Inputs,
-    v: V3,
-    points: &[[f64; 2]],
-    turn: f64,
-) -> V3 {
+fn sky_radiance(shader: &Shader, inputs: &Inputs, v: V3, points: &[[f64; 2]], turn: f64) -> V3 {
     let lobe = Lobe::of(inputs);
+    let inputs = &reflecting(inputs);
     let n = points.len() as f64;
     let pdf_cos = |l: V3| l[2].max(0.0) / PI;
     let mut total = [0.0; 3];
@@ -142,17 +155,36 @@ fn sky_radiance(
             if l[2] <= 0.0 {
                 continue;
             }
-            let f = shader.brdf(inputs, &Geometry::new(v, l));
-            let weight = SKY_RADIANCE * l[2] / (n * pdf_cos(l) + n * lobe.pdf(v, l));
+            let reflected = lit(shader, inputs, v, l);
+            let weight = SKY_RADIANCE / PI / (n * pdf_cos(l) + n * lobe.pdf(v, l));
             for c in 0..3 {
-                total[c] += f[c] * weight;
+                total[c] += reflected[c] * weight;
             }
         }
     }
     total
 }
 
-/// Linear radiance of the ball at pixel (x, y) of a `size`² image, `None` off the sphere.
+/// `inputs` as they reflect a light and nothing else: nothing emitted, no ambient light,
+/// full coverage.
+fn reflecting(inputs: &Inputs) -> Inputs {
+    Inputs {
+        emission: [0.0; 3],
+        occlusion: 0.0,
+        coverage: 1.0,
+        ..inputs.clone()
+    }
+}
+
+/// The radiance `reflecting` inputs (see [`reflecting`]) send towards `v` from a light of
+/// irradiance π at normal incidence from `l` (both in the ball's tangent frame), with the
+/// maps' frames and the clearcoat, as [`appearance::seen`] has them.
+fn lit(shader: &Shader, reflecting: &Inputs, v: V3, l: V3) -> V3 {
+    appearance::seen(shader, reflecting, &Geometry::new(v, l)).own
+}
+
+/// Linear radiance of pixel (x, y) of a `size`² image: the ball where it is, the backdrop
+/// through and around it.
 fn shade_pixel(
     shader: &Shader,
     material: &MaterialSource,
@@ -160,46 +192,59 @@ fn shade_pixel(
     x: u32,
     y: u32,
     size: u32,
-) -> Option<V3> {
+) -> V3 {
     let px = (f64::from(x) + 0.5) / f64::from(size) * 2.0 - 1.0;
     let py = 1.0 - (f64::from(y) + 0.5) / f64::from(size) * 2.0;
+    let behind = backdrop(px, py);
     let r2 = px * px + py * py;
     if r2 >= 1.0 {
-        return None;
+        return [behind; 3];
     }
     let n = [px, py, (1.0 - r2).sqrt()];
     let phi = n[0].atan2(n[2]);
     let uv = [0.5 + phi / (2.0 * PI), n[1].clamp(-1.0, 1.0).acos() / PI];
-    let inputs = material.inputs_at(&[uv, uv]);
-    if inputs.unlit {
-        return Some(inputs.base_color);
-    }
+    let inputs = material.inputs_at(&[uv]);
     let t = normalize([phi.cos(), 0.0, -phi.sin()]);
     let b = cross(n, t);
     let local = |w: V3| [dot(w, t), dot(w, b), dot(w, n)];
     let v = local([0.0, 0.0, 1.0]);
-    let mut radiance = [0.0; 3];
-    let mut add = |l: V3, weight: f64| {
-        if l[2] > 0.0 {
-            let f = shader.brdf(&inputs, &Geometry::new(v, l));
-            for c in 0..3 {
-                radiance[c] += f[c] * weight;
+    // The surface's own parts, seen one at a time through the one appearance model.
+    let reflecting = reflecting(&inputs);
+    // With the light under the surface nothing is reflected: what is left is the emission
+    // (under the coat) and what shows through.
+    let rest: Seen<f64> = appearance::seen(
+        shader,
+        &Inputs {
+            occlusion: 0.0,
+            coverage: 1.0,
+            ..inputs.clone()
+        },
+        &Geometry::new(v, [0.0, 0.0, -1.0]),
+    );
+    let mut radiance = rest.own;
+    if !inputs.unlit {
+        for (direction, irradiance) in LIGHTS {
+            let l = local(normalize(direction));
+            if l[2] > 0.0 {
+                let reflected = lit(shader, &reflecting, v, l);
+                for c in 0..3 {
+                    radiance[c] += reflected[c] * irradiance / PI;
+                }
             }
         }
-    };
-    for (direction, irradiance) in LIGHTS {
-        let l = local(normalize(direction));
-        add(l, irradiance * l[2]);
+        // The sampling pattern is turned by a fixed per-pixel angle (from a hash of the
+        // pixel, so renders are reproducible): fine noise instead of bands.
+        let turn =
+            f64::from((x.wrapping_mul(0x9E37_79B9) ^ y.wrapping_mul(0x85EB_CA6B)) % 6283) / 1000.0;
+        let sky_light = sky_radiance(shader, &reflecting, v, sky, turn);
+        for c in 0..3 {
+            radiance[c] += sky_light[c] * inputs.occlusion;
+        }
     }
-    // The sampling pattern is turned by a fixed per-pixel angle (from a hash of the pixel,
-    // so renders are reproducible): fine noise instead of bands.
-    let turn =
-        f64::from((x.wrapping_mul(0x9E37_79B9) ^ y.wrapping_mul(0x85EB_CA6B)) % 6283) / 1000.0;
-    let sky_light = sky_radiance(shader, &inputs, v, sky, turn);
-    for c in 0..3 {
-        radiance[c] += sky_light[c];
-    }
-    Some(radiance)
+    let coverage = inputs.coverage;
+    std::array::from_fn(|c| {
+        radiance[c] * coverage + behind * (rest.through[c] * coverage + 1.0 - coverage)
+    })
 }
 
 fn encode(linear: V3) -> Rgb<u8> {
@@ -226,7 +271,7 @@ fn ball_with_sky(
     let size = size.max(8);
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u32;
     let rows_per_thread = size.div_ceil(threads);
-    let mut image = RgbImage::from_pixel(size, size, Rgb(BACKGROUND));
+    let mut image = RgbImage::new(size, size);
     let row_bytes = size as usize * 3;
     std::thread::scope(|scope| {
         for (chunk, rows) in image
@@ -237,9 +282,8 @@ fn ball_with_sky(
                 for (i, pixel) in rows.chunks_exact_mut(3).enumerate() {
                     let x = (i % size as usize) as u32;
                     let y = chunk as u32 * rows_per_thread + (i / size as usize) as u32;
-                    if let Some(radiance) = shade_pixel(shader, material, sky, x, y, size) {
-                        pixel.copy_from_slice(&encode(radiance).0);
-                    }
+                    let radiance = shade_pixel(shader, material, sky, x, y, size);
+                    pixel.copy_from_slice(&encode(radiance).0);
                 }
             });
         }
@@ -303,7 +347,7 @@ pub fn contact_sheet(
 ) -> RgbImage {
     let cell = layout.cell;
     let (width, height) = (layout.columns * cell, layout.rows * cell);
-    let mut sheet = RgbImage::from_pixel(width, height, Rgb(BACKGROUND));
+    let mut sheet = RgbImage::from_pixel(width, height, Rgb(SHEET_BACKGROUND));
     let scale = (cell / 96).max(1);
     for (i, (name, material)) in materials.iter().enumerate() {
         let ball = material_ball(shader, material, cell);
@@ -461,8 +505,8 @@ mod tests {
         let image = material_ball(&shader, &material, 32);
         assert_eq!(
             image.get_pixel(0, 0).0,
-            BACKGROUND,
-            "corners are background"
+            encode([backdrop(-1.0 + 1.0 / 32.0, 1.0 - 1.0 / 32.0); 3]).0,
+            "corners are backdrop"
         );
         let upper_left = image.get_pixel(10, 10).0[0];
         let lower_right = image.get_pixel(22, 22).0[0];

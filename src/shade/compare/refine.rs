@@ -1,0 +1,336 @@
+//! Where the fixed directions do not look: the specular peak. A smooth material's lobe is
+//! a fraction of a degree wide, and two lobes of different widths differ most just off the
+//! mirror direction, which no fixed set of eight directions meets. So the points where the
+//! fixed set found the largest differences, and the points whose lobes are sharpest (the
+//! smallest roughness of either material, base or clearcoat), are searched again over a
+//! dense set: views from head-on to 75° (see [`MAX_THETA`]), at three azimuths (an anisotropic lobe is not
+//! symmetric about the normal), each with its mirror direction, the mirror offset in four
+//! ways by angles from 0.03° to 20° (a GGX lobe of roughness r has its half width near r²
+//! radians: the offsets bracket every roughness from 0.02 up, and below that both lobes are
+//! narrower than any display's pixel), and a spread of lights over the hemisphere. The
+//! worst direction found is then refined by a pattern search that halves its step down to
+//! 0.001°. ΔE between two materials changes smoothly with direction outside the lobes, so
+//! the spread bounds it there; inside them the offsets and the refinement do.
+
+use super::{delta_at, Angles, Worst, BACKGROUNDS};
+use crate::shade::appearance::{seen, Seen};
+use crate::shade::brdf::Geometry;
+use crate::shade::delta_e::{ciede2000, lab_from_linear_srgb};
+use crate::shade::lanes::Lanes;
+use crate::shade::material::{Inputs, Shader};
+use crate::shade::tone::displayed;
+use std::sync::OnceLock;
+
+/// The most grazing view or light searched, degrees: the fixed set's. Past it a sphere
+/// shows the surface as a rim a few hundredths of its radius wide, and a normal map's
+/// slightest tilt puts the view under the shading horizon, where every viewer clamps.
+const MAX_THETA: f64 = 75.0;
+
+/// How many of the points the fixed directions found worst are searched again.
+const WORST_POINTS: usize = 4;
+/// How many of the points with the sharpest lobes are searched again.
+const SHARPEST_POINTS: usize = 2;
+
+/// A point to search, with both materials' inputs there.
+#[derive(Clone)]
+struct Candidate {
+    delta_e: f64,
+    uv: [f64; 2],
+    sharpness: f64,
+    pair: Box<(Inputs, Inputs)>,
+}
+
+/// The points worth a dense search, gathered as the grid is compared.
+#[derive(Clone, Default)]
+pub struct Candidates {
+    worst: Vec<Candidate>,
+    sharpest: Vec<Candidate>,
+}
+
+/// The smallest roughness a material's lobes have: the sharper, the narrower its peak.
+fn lobe_roughness(m: &Inputs) -> f64 {
+    let coat = if m.clearcoat > 0.0 {
+        m.clearcoat_roughness
+    } else {
+        1.0
+    };
+    m.roughness.min(coat)
+}
+
+/// Inserts `candidate` into `list` ordered by `key` (smallest first), keeping `keep`.
+fn keep_best(
+    list: &mut Vec<Candidate>,
+    candidate: Candidate,
+    keep: usize,
+    key: fn(&Candidate) -> f64,
+) {
+    let at = list.partition_point(|c| key(c) <= key(&candidate));
+    if at < keep {
+        list.insert(at, candidate);
+        list.truncate(keep);
+    }
+}
+
+impl Candidates {
+    /// Offers a point whose fixed directions found `delta_e` at most.
+    pub fn offer(&mut self, delta_e: f64, uv: [f64; 2], pair: &(Inputs, Inputs)) {
+        let sharpness = lobe_roughness(&pair.0).min(lobe_roughness(&pair.1));
+        let better_than =
+            |list: &Vec<Candidate>, keep: usize, wins: &dyn Fn(&Candidate) -> bool| {
+                list.len() < keep || list.last().is_some_and(wins)
+            };
+        let wanted_worst = better_than(&self.worst, WORST_POINTS, &|c| delta_e > c.delta_e);
+        let wanted_sharp = better_than(&self.sharpest, SHARPEST_POINTS, &|c| {
+            sharpness < c.sharpness
+        });
+        if !(wanted_worst || wanted_sharp) {
+            return;
+        }
+        let candidate = Candidate {
+            delta_e,
+            uv,
+            sharpness,
+            pair: Box::new(pair.clone()),
+        };
+        if wanted_worst {
+            keep_best(&mut self.worst, candidate.clone(), WORST_POINTS, |c| {
+                -c.delta_e
+            });
+        }
+        if wanted_sharp {
+            keep_best(&mut self.sharpest, candidate, SHARPEST_POINTS, |c| {
+                c.sharpness
+            });
+        }
+    }
+
+    /// Takes in another part's candidates.
+    pub fn absorb(&mut self, other: &Candidates) {
+        for c in other.worst.iter().chain(&other.sharpest) {
+            self.offer(c.delta_e, c.uv, &c.pair);
+        }
+    }
+}
+
+/// The dense direction set, eight pairs at a time.
+struct Dense {
+    groups: Vec<(Geometry<Lanes<8>>, [Angles; 8])>,
+}
+
+fn dense() -> &'static Dense {
+    static DENSE: OnceLock<Dense> = OnceLock::new();
+    DENSE.get_or_init(|| {
+        let angles = dense_angles();
+        let groups = angles
+            .chunks(8)
+            .map(|chunk| {
+                let group: [Angles; 8] = std::array::from_fn(|i| chunk[i.min(chunk.len() - 1)]);
+                let pairs = group.map(|a| {
+                    let (v, l) = a.vectors();
+                    Geometry::new(v, l)
+                });
+                (Geometry::lanes(&pairs), group)
+            })
+            .collect();
+        Dense { groups }
+    })
+}
+
+/// Views × (mirror, mirror offsets, spread), as the module's documentation gives them.
+fn dense_angles() -> Vec<Angles> {
+    const THETA_V: [f64; 8] = [0.0, 15.0, 30.0, 40.0, 50.0, 60.0, 68.0, 75.0];
+    const OFFSETS: [f64; 7] = [0.03, 0.1, 0.3, 1.0, 3.0, 8.0, 20.0];
+    const SPREAD_THETA: [f64; 5] = [0.0, 20.0, 40.0, 60.0, 75.0];
+    let mut out = Vec::new();
+    for theta_v in THETA_V {
+        let azimuths: &[f64] = if theta_v == 0.0 {
+            &[0.0]
+        } else {
+            &[0.0, 45.0, 90.0]
+        };
+        for &phi_v in azimuths {
+            let mirror = [theta_v, phi_v + 180.0];
+            let mut lights = vec![mirror];
+            for delta in OFFSETS {
+                for theta in [theta_v - delta, theta_v + delta] {
+                    lights.push(match theta < 0.0 {
+                        true => [-theta, phi_v],
+                        false => [theta, mirror[1]],
+                    });
+                }
+                let across = delta / theta_v.to_radians().sin().max(delta.to_radians().sin());
+                lights.push([theta_v.max(delta), mirror[1] + across]);
+                lights.push([theta_v.max(delta), mirror[1] - across]);
+            }
+            for theta in SPREAD_THETA {
+                let count = if theta == 0.0 { 1 } else { 6 };
+                lights.extend((0..count).map(|k| [theta, phi_v + 60.0 * k as f64]));
+            }
+            out.extend(
+                (lights.into_iter())
+                    .filter(|light| light[0] <= MAX_THETA)
+                    .map(|light| Angles {
+                        view: [theta_v, phi_v],
+                        light,
+                    }),
+            );
+        }
+    }
+    out
+}
+
+/// The worst sample the dense search and its refinement find.
+pub struct Found {
+    pub worst: Worst,
+    pub pair: Box<(Inputs, Inputs)>,
+}
+
+/// The largest ΔE over the dense set at each candidate point, refined around the worst.
+pub fn search(shader: &Shader, candidates: &Candidates) -> Option<Found> {
+    let mut best: Option<(f64, Angles, &Candidate)> = None;
+    for candidate in candidates.worst.iter().chain(&candidates.sharpest) {
+        let (a, b) = (&candidate.pair.0, &candidate.pair.1);
+        let both = super::translucent(a, b);
+        for (geometry, angles) in &dense().groups {
+            let (sa, sb) = (seen(shader, a, geometry), seen(shader, b, geometry));
+            for (lane, angles) in angles.iter().enumerate() {
+                let pick = |s: &Seen<Lanes<8>>| Seen {
+                    own: s.own.map(|c| c.0[lane]),
+                    through: s.through.map(|c| c.0[lane]),
+                };
+                let (pa, pb) = (pick(&sa), pick(&sb));
+                let backgrounds = if both {
+                    &BACKGROUNDS[..]
+                } else {
+                    &BACKGROUNDS[..1]
+                };
+                for &background in backgrounds {
+                    let d = ciede2000(
+                        lab_from_linear_srgb(displayed(pa.over(background))),
+                        lab_from_linear_srgb(displayed(pb.over(background))),
+                    );
+                    if best.as_ref().is_none_or(|(worst, ..)| d > *worst) {
+                        best = Some((d, *angles, candidate));
+                    }
+                }
+            }
+        }
+    }
+    let (_, start, candidate) = best?;
+    let (a, b) = (&candidate.pair.0, &candidate.pair.1);
+    let (angles, (delta_e, background)) =
+        pattern_search(start, |angles| delta_at(shader, a, b, angles));
+    Some(Found {
+        worst: Worst {
+            delta_e,
+            uv: candidate.uv,
+            directions: angles,
+            background,
+        },
+        pair: candidate.pair.clone(),
+    })
+}
+
+/// Climbs from `start` to a local maximum of `f` over (θ_v, φ_v, θ_l, φ_l), halving the step
+/// from 1° to 0.001°.
+fn pattern_search(start: Angles, f: impl Fn(&Angles) -> (f64, f64)) -> (Angles, (f64, f64)) {
+    let mut at = start;
+    let mut value = f(&at);
+    let mut step = 1.0;
+    while step >= 1e-3 {
+        let mut moved = false;
+        for coordinate in 0..4 {
+            for sign in [-1.0, 1.0] {
+                let mut next = at;
+                let slot = match coordinate {
+                    0 => &mut next.view[0],
+                    1 => &mut next.view[1],
+                    2 => &mut next.light[0],
+                    _ => &mut next.light[1],
+                };
+                *slot += sign * step;
+                let inside = |theta: f64| (0.0..=MAX_THETA).contains(&theta);
+                if !inside(next.view[0]) || !inside(next.light[0]) {
+                    continue;
+                }
+                let candidate = f(&next);
+                if candidate.0 > value.0 {
+                    (at, value, moved) = (next, candidate, true);
+                }
+            }
+        }
+        if !moved {
+            step /= 2.0;
+        }
+    }
+    (at, value)
+}
+
+/// Gives the first material the second's value of one input.
+type Take = fn(&mut Inputs, &Inputs);
+
+/// Each input a comparison can name, and how to give a material the other's value of it.
+const INPUTS: [(&str, Take); 17] = [
+    ("base colour", |a, b| a.base_color = b.base_color),
+    ("coverage", |a, b| a.coverage = b.coverage),
+    ("metallic", |a, b| a.metallic = b.metallic),
+    ("roughness", |a, b| a.roughness = b.roughness),
+    ("specular", |a, b| {
+        a.specular = b.specular;
+        a.specular_color = b.specular_color;
+    }),
+    ("ior", |a, b| a.ior = b.ior),
+    ("sheen", |a, b| {
+        a.sheen_color = b.sheen_color;
+        a.sheen_roughness = b.sheen_roughness;
+    }),
+    ("anisotropy", |a, b| {
+        a.anisotropy_strength = b.anisotropy_strength;
+        a.anisotropy_angle = b.anisotropy_angle;
+    }),
+    ("emission", |a, b| a.emission = b.emission),
+    ("occlusion", |a, b| a.occlusion = b.occlusion),
+    ("normal", |a, b| a.normal = b.normal),
+    ("clearcoat", |a, b| {
+        a.clearcoat = b.clearcoat;
+        a.clearcoat_roughness = b.clearcoat_roughness;
+        a.clearcoat_normal = b.clearcoat_normal;
+    }),
+    ("transmission", |a, b| a.transmission = b.transmission),
+    ("volume", |a, b| {
+        a.volume_transmittance = b.volume_transmittance
+    }),
+    ("diffuse transmission", |a, b| {
+        a.diffuse_transmission = b.diffuse_transmission;
+        a.diffuse_transmission_color = b.diffuse_transmission_color;
+    }),
+    ("unlit", |a, b| a.unlit = b.unlit),
+    ("diffuse balance", |a, b| {
+        a.diffuse_balance = b.diffuse_balance
+    }),
+];
+
+/// The input whose difference dominates the worst sample: the one that, set to `b`'s
+/// value in `a`, removes the most of the difference there. `None` when no single input
+/// removes any (the difference is several inputs' together).
+pub fn dominant_input(
+    shader: &Shader,
+    a: &Inputs,
+    b: &Inputs,
+    worst: &Worst,
+) -> Option<&'static str> {
+    let mut best: Option<(&'static str, f64)> = None;
+    for (name, take) in INPUTS {
+        let mut changed = a.clone();
+        take(&mut changed, b);
+        if changed == *a {
+            continue;
+        }
+        let left = delta_at(shader, &changed, b, &worst.directions).0;
+        let removed = worst.delta_e - left;
+        if removed > 0.0 && best.is_none_or(|(_, most)| removed > most) {
+            best = Some((name, removed));
+        }
+    }
+    best.map(|(name, _)| name)
+}
