@@ -482,20 +482,21 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                         }
                         continue;
                     }
-                    let inputs = (source, target.clone());
-                    let source = if let Some(same) = row.repeat_of(&inputs) {
-                        // A point like the one before (a flat region of a texture) has its ΔE.
+                    let source = if let Some(same) = row.repeat_of(&source, &target) {
+                        // A point like the one before (a flat region of a texture) has its
+                        // ΔE; nothing is copied.
                         same
                     } else {
                         let slot = row.unique;
-                        Batch::put(&mut batch.a, slot, directions.colours(shader, &inputs.0));
-                        Batch::put(&mut batch.b, slot, directions.colours(shader, &inputs.1));
-                        batch.translucent |= translucent(&inputs.0, &inputs.1);
+                        Batch::put(&mut batch.a, slot, directions.colours(shader, &source));
+                        Batch::put(&mut batch.b, slot, directions.colours(shader, &target));
+                        batch.translucent |= translucent(&source, &target);
+                        let inputs = (source, target.clone());
                         batch.pairs.push(inputs.clone());
                         row.unique += 1;
+                        row.previous = Some((inputs, Source::Slot(slot)));
                         Source::Slot(slot)
                     };
-                    row.previous = Some((inputs, source));
                     row.pending.push((x, source));
                     if row.unique == BATCH_TEXELS {
                         row.flush(batch, partial, place, &directions.angles);
@@ -541,9 +542,9 @@ struct Row {
 }
 
 impl Row {
-    fn repeat_of(&self, inputs: &(Inputs, Inputs)) -> Option<Source> {
-        let (previous, source) = self.previous.as_ref()?;
-        (previous == inputs).then_some(*source)
+    fn repeat_of(&self, a: &Inputs, b: &Inputs) -> Option<Source> {
+        let ((previous_a, previous_b), source) = self.previous.as_ref()?;
+        (previous_b == b && previous_a == a).then_some(*source)
     }
 
     /// Computes the batch's ΔE and hands every pending point to `partial`, in row order.

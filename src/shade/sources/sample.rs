@@ -50,15 +50,24 @@ impl TextureImage {
     }
 
     /// The texel at column `x`, row `y` (inside the image), or transparent black if the
-    /// texel data is short.
+    /// texel data is short; its colour decoded from sRGB when `SRGB` (alpha is always
+    /// linear), 8-bit texels through a table each.
     #[inline(always)]
-    fn texel(&self, x: i64, y: i64) -> [f64; 4] {
+    fn decoded<const SRGB: bool>(&self, x: i64, y: i64) -> [f64; 4] {
         let at = ((y * i64::from(self.width) + x) as usize) * self.channels;
-        let stored = match &self.texels {
-            Texels::Unorm8(raw) => raw.get(at..at + self.channels).map(|p| {
+        let texel = match &self.texels {
+            Texels::Unorm8(raw) => {
                 let unorm = unorm8_table();
-                rgba(p, |&b| unorm[usize::from(b)])
-            }),
+                let colour = if SRGB { srgb8_table() } else { unorm };
+                return (raw.get(at..at + self.channels)).map_or([0.0; 4], |p| {
+                    let [r, g, b, _] = rgba(p, |&b| colour[usize::from(b)]);
+                    let alpha = match p {
+                        [_, a] | [_, _, _, a, ..] => unorm[usize::from(*a)],
+                        _ => 1.0,
+                    };
+                    [r, g, b, alpha]
+                });
+            }
             // As the image crate's own widening (through f32), so 16-bit results do not
             // depend on where the conversion happens.
             Texels::Unorm16(raw) => (raw.get(at..at + self.channels))
@@ -67,7 +76,13 @@ impl TextureImage {
                 (raw.get(at..at + self.channels)).map(|p| rgba(p, |&v| f64::from(v)))
             }
         };
-        stored.unwrap_or([0.0; 4])
+        let texel = texel.unwrap_or([0.0; 4]);
+        if SRGB {
+            let [r, g, b] = srgb3(texel);
+            [r, g, b, texel[3]]
+        } else {
+            texel
+        }
     }
 }
 
@@ -82,6 +97,12 @@ fn rgba<T>(stored: &[T], value: impl Fn(&T) -> f64) -> [f64; 4] {
         [r, g, b, a, ..] => [value(r), value(g), value(b), value(a)],
         [] => [0.0; 4],
     }
+}
+
+/// The linear value of every sRGB-encoded byte.
+fn srgb8_table() -> &'static [f64; 256] {
+    static TABLE: std::sync::OnceLock<[f64; 256]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| std::array::from_fn(|b| srgb_texel_to_linear(b as f64 / 255.0)))
 }
 
 /// b / 255 for every byte: a lookup where sampling would divide four times per texel.
@@ -449,7 +470,7 @@ fn decode_in_parallel(
 /// Bilinear sample with repeat wrapping, texel centres at (i + ½) / size.
 #[inline(always)]
 pub fn bilinear(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
-    bilinear_by(texture, uv, |texel| texel)
+    bilinear_of::<false>(texture, uv)
 }
 
 /// Bilinear sample of an sRGB-encoded colour texture: RGB decoded to linear texel by texel
@@ -457,19 +478,12 @@ pub fn bilinear(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
 /// … is performed before filtering"), alpha as stored.
 #[inline(always)]
 pub fn bilinear_srgb(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
-    bilinear_by(texture, uv, |t| {
-        let [r, g, b] = srgb3(t);
-        [r, g, b, t[3]]
-    })
+    bilinear_of::<true>(texture, uv)
 }
 
-/// Bilinear sample of the texels as `decode` gives them.
+/// Bilinear sample of the texels, their colours decoded from sRGB when `SRGB`.
 #[inline(always)]
-fn bilinear_by(
-    texture: &TextureImage,
-    [u, v]: [f64; 2],
-    decode: impl Fn([f64; 4]) -> [f64; 4],
-) -> [f64; 4] {
+fn bilinear_of<const SRGB: bool>(texture: &TextureImage, [u, v]: [f64; 2]) -> [f64; 4] {
     let (w, h) = (
         texture.width().max(1) as i64,
         texture.height().max(1) as i64,
@@ -478,7 +492,7 @@ fn bilinear_by(
     let y = v * h as f64 - 0.5;
     let (x0, y0) = (floor(x), floor(y));
     let (fx, fy) = (x - x0 as f64, y - y0 as f64);
-    let texel = |i: i64, j: i64| decode(texture.texel(wrap(i, w), wrap(j, h)));
+    let texel = |i: i64, j: i64| texture.decoded::<SRGB>(wrap(i, w), wrap(j, h));
     if fx == 0.0 && fy == 0.0 {
         // Exactly on a texel centre (the comparison grid at texture resolution).
         return texel(x0, y0);
@@ -1338,7 +1352,7 @@ mod tests {
             let widened = image.to_rgba32f();
             for x in 0..2 {
                 let expected = widened.get_pixel(x, 0).0.map(f64::from);
-                let read = decoded.texel(i64::from(x), 0);
+                let read = decoded.decoded::<false>(i64::from(x), 0);
                 assert!(
                     (0..4).all(|c| (read[c] - expected[c]).abs() < 1e-7),
                     "{:?} texel {x}: {read:?} against {expected:?}",
