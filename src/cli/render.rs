@@ -35,9 +35,12 @@ pub fn run(args: RenderArgs) -> Outcome {
     options.all = args.all;
     options.size = args.size;
     let picture = gltfmat::render(&args.asset, &options)?;
-    for (k, (i, name)) in picture.drawn.iter().enumerate() {
+    for (k, ((i, name), missing)) in picture.drawn.iter().zip(&picture.not_drawn).enumerate() {
         let (row, column) = picture.layout.place(k);
         outln!("cell {k} (row {row}, column {column}): material {i} '{name}'");
+        for what in missing {
+            outln!("  not drawn: {what}");
+        }
     }
     if picture.layout.cell < args.size {
         outln!(

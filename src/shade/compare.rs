@@ -336,7 +336,8 @@ pub const MAX_GRID: u32 = 4096;
 /// [`MAX_GRID`]); `grid` 0 picks the finest texture resolution of either (at least 16).
 pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u32) -> Comparison {
     let mut each = compare_readings(shader, std::slice::from_ref(a), b, grid, TexelMap::Kept);
-    each.pop().unwrap_or_else(|| merge(shader, Vec::new(), 0))
+    each.pop()
+        .unwrap_or_else(|| merge(shader, Vec::new(), 0, &|_| None))
 }
 
 /// Compares each of `readings` (one material read several ways: the same textures and
@@ -379,7 +380,9 @@ pub fn compare_readings(
     (0..readings.len())
         .map(|r| {
             let partials = by_thread.iter().filter_map(|each| each.get(r));
-            merge(shader, partials, grid)
+            let reading = &readings[r];
+            let at = |uv: [f64; 2]| Some((reading.inputs_at(&[uv]), b.inputs_at(&[uv])));
+            merge(shader, partials, grid, &at)
         })
         .collect()
 }
@@ -674,10 +677,13 @@ impl Partial {
     }
 }
 
+/// The partials' figures together, and the search of [`refine`] around their worst points
+/// (`at` gives both materials' inputs anywhere).
 fn merge<'p>(
     shader: &Shader,
     partials: impl IntoIterator<Item = &'p Partial>,
     grid: u32,
+    at: &dyn Fn([f64; 2]) -> Option<Pair>,
 ) -> Comparison {
     let mut histogram = vec![0u64; BINS];
     let mut per_texel = Vec::new();
@@ -714,7 +720,8 @@ fn merge<'p>(
     if let Some(pair) = &pair {
         worst.background = delta_at(shader, &pair.0, &pair.1, &worst.directions).1;
     }
-    if let Some(found) = refine::search(shader, &candidates) {
+    let texel = 1.0 / f64::from(grid.max(1));
+    if let Some(found) = refine::search(shader, &candidates, texel, at) {
         if found.worst.delta_e > worst.delta_e {
             worst = found.worst;
             pair = Some(found.pair);
@@ -745,6 +752,8 @@ fn merge<'p>(
     }
 }
 
+#[cfg(test)]
+mod reference;
 #[cfg(test)]
 mod sensitivity;
 

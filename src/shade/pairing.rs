@@ -297,6 +297,9 @@ pub struct Picture {
     pub image: RgbImage,
     /// The `(index, name)` of each material drawn, in cell order.
     pub drawn: Vec<(usize, String)>,
+    /// What is not drawn of each material drawn, in the same order (see
+    /// [`MaterialSource::unmodelled`]): empty when the picture shows all of it.
+    pub not_drawn: Vec<Vec<String>>,
     /// Where the cells are (one cell for a single ball); its cell may be smaller than the
     /// size asked for, when the sheet would pass [`MAX_PIXELS`].
     pub layout: SheetLayout,
@@ -343,9 +346,14 @@ pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture
         material_ball(&shader, first.2, size)
     };
     let drawn = chosen.iter().map(|(i, n, _)| (*i, (*n).clone())).collect();
+    let not_drawn = chosen
+        .iter()
+        .map(|(_, _, m)| m.unmodelled().to_vec())
+        .collect();
     Ok(Picture {
         image,
         drawn,
+        not_drawn,
         layout,
         inputs,
     })

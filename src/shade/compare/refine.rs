@@ -24,7 +24,7 @@ use std::sync::OnceLock;
 /// The most grazing view or light searched, degrees: the fixed set's. Past it a sphere
 /// shows the surface as a rim a few hundredths of its radius wide, and a normal map's
 /// slightest tilt puts the view under the shading horizon, where every viewer clamps.
-const MAX_THETA: f64 = 75.0;
+pub(super) const MAX_THETA: f64 = 75.0;
 
 /// How many of the points the fixed directions found worst are searched again.
 const WORST_POINTS: usize = 4;
@@ -185,10 +185,63 @@ pub struct Found {
     pub pair: Box<(Inputs, Inputs)>,
 }
 
-/// The largest ΔE over the dense set at each candidate point, refined around the worst.
-pub fn search(shader: &Shader, candidates: &Candidates) -> Option<Found> {
+/// The point near `candidate` (within half a texel of the grid, in quarter-texel steps)
+/// where the fixed directions find the largest difference: a conversion that is not linear
+/// in its texels differs most somewhere between a texel's centre and its corner, and where
+/// depends on the colours (CIELAB is more sensitive in the dark).
+fn nearby_worst(
+    shader: &Shader,
+    candidate: &Candidate,
+    texel: f64,
+    at: &dyn Fn([f64; 2]) -> Option<(Inputs, Inputs)>,
+) -> Candidate {
+    let coarse = super::DIRECTIONS.map(Angles::coarse);
+    let worst_of = |pair: &(Inputs, Inputs)| {
+        (coarse.iter())
+            .map(|angles| delta_at(shader, &pair.0, &pair.1, angles).0)
+            .fold(0.0, f64::max)
+    };
+    let mut best = candidate.clone();
+    best.delta_e = worst_of(&best.pair);
+    let steps = [-0.5, -0.25, 0.0, 0.25, 0.5];
+    for dy in steps {
+        for dx in steps {
+            // Textures repeat: the point is named inside the unit square.
+            let uv = [
+                (candidate.uv[0] + dx * texel).rem_euclid(1.0),
+                (candidate.uv[1] + dy * texel).rem_euclid(1.0),
+            ];
+            let Some(pair) = at(uv) else {
+                return best;
+            };
+            let delta_e = worst_of(&pair);
+            if delta_e > best.delta_e {
+                best = Candidate {
+                    delta_e,
+                    uv,
+                    sharpness: candidate.sharpness,
+                    pair: Box::new(pair),
+                };
+            }
+        }
+    }
+    best
+}
+
+/// The largest ΔE over the dense set at each candidate point (moved to the worst point
+/// near it), refined around the worst. `texel` is the grid's spacing, and `at` gives both
+/// materials' inputs anywhere.
+pub fn search(
+    shader: &Shader,
+    candidates: &Candidates,
+    texel: f64,
+    at: &dyn Fn([f64; 2]) -> Option<(Inputs, Inputs)>,
+) -> Option<Found> {
+    let moved: Vec<Candidate> = (candidates.worst.iter().chain(&candidates.sharpest))
+        .map(|c| nearby_worst(shader, c, texel, at))
+        .collect();
     let mut best: Option<(f64, Angles, &Candidate)> = None;
-    for candidate in candidates.worst.iter().chain(&candidates.sharpest) {
+    for candidate in &moved {
         let (a, b) = (&candidate.pair.0, &candidate.pair.1);
         let both = super::translucent(a, b);
         for (geometry, angles) in &dense().groups {
@@ -218,8 +271,7 @@ pub fn search(shader: &Shader, candidates: &Candidates) -> Option<Found> {
     }
     let (_, start, candidate) = best?;
     let (a, b) = (&candidate.pair.0, &candidate.pair.1);
-    let (angles, (delta_e, background)) =
-        pattern_search(start, |angles| delta_at(shader, a, b, angles));
+    let (angles, (delta_e, background)) = climb(start, |angles| delta_at(shader, a, b, angles));
     Some(Found {
         worst: Worst {
             delta_e,
@@ -233,7 +285,7 @@ pub fn search(shader: &Shader, candidates: &Candidates) -> Option<Found> {
 
 /// Climbs from `start` to a local maximum of `f` over (θ_v, φ_v, θ_l, φ_l), halving the step
 /// from 1° to 0.001°.
-fn pattern_search(start: Angles, f: impl Fn(&Angles) -> (f64, f64)) -> (Angles, (f64, f64)) {
+pub(super) fn climb(start: Angles, f: impl Fn(&Angles) -> (f64, f64)) -> (Angles, (f64, f64)) {
     let mut at = start;
     let mut value = f(&at);
     let mut step = 1.0;

@@ -512,4 +512,79 @@ mod tests {
         let lower_right = image.get_pixel(22, 22).0[0];
         assert!(upper_left > lower_right, "{upper_left} vs {lower_right}");
     }
+
+    /// Mean absolute difference of two pictures, in 8-bit levels.
+    fn mean_difference(a: &RgbImage, b: &RgbImage) -> f64 {
+        let total: f64 = (a.as_raw().iter().zip(b.as_raw()))
+            .map(|(x, y)| (f64::from(*x) - f64::from(*y)).abs())
+            .sum();
+        total / a.as_raw().len() as f64
+    }
+
+    #[test]
+    fn each_layer_of_the_whole_material_is_drawn() {
+        use crate::shade::sample::{decode_all, solid_png};
+        let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
+        let grey = serde_json::json!({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0],
+            "metallicFactor": 0.0, "roughnessFactor": 0.5}});
+        let ball = |extra: serde_json::Value, texel: Option<[u8; 3]>| {
+            let mut json = grey.clone();
+            for (key, value) in extra.as_object().into_iter().flatten() {
+                json[key] = value.clone();
+            }
+            let textures = match texel {
+                Some(texel) => decode_all(&[Some(Ok(solid_png(texel)))]).unwrap(),
+                None => Vec::new(),
+            };
+            material_ball(&shader, &MaterialSource::gltf2(&json, &textures), 32)
+        };
+        let reference = ball(serde_json::json!({}), None);
+        let mut blended = grey.clone();
+        blended["alphaMode"] = "BLEND".into();
+        blended["pbrMetallicRoughness"]["baseColorFactor"][3] = 0.2.into();
+        let layers = [
+            ("coverage", blended, None),
+            (
+                "emission",
+                serde_json::json!({"emissiveFactor": [1.0, 1.0, 1.0],
+                    "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 10.0}}}),
+                None,
+            ),
+            (
+                "normal map",
+                serde_json::json!({"normalTexture": {"index": 0}}),
+                Some([230, 128, 180]),
+            ),
+            (
+                "clearcoat",
+                serde_json::json!({"extensions": {"KHR_materials_clearcoat":
+                    {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.05}}}),
+                None,
+            ),
+            (
+                "transmission",
+                serde_json::json!({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}}}),
+                None,
+            ),
+            (
+                "occlusion",
+                serde_json::json!({"occlusionTexture": {"index": 0}}),
+                Some([40, 40, 40]),
+            ),
+        ];
+        for (layer, extra, texel) in layers {
+            let difference = mean_difference(&reference, &ball(extra, texel));
+            println!("{layer}: {difference:.1} levels from the plain ball");
+            assert!(difference > 2.0, "{layer}: {difference:.2} levels");
+        }
+        // The backdrop shows through a clear ball and not through an opaque one.
+        let mut clear = grey.clone();
+        clear["alphaMode"] = "BLEND".into();
+        clear["pbrMetallicRoughness"]["baseColorFactor"][3] = 0.0.into();
+        let clear = material_ball(&shader, &MaterialSource::gltf2(&clear, &[]), 32);
+        assert_eq!(
+            clear.get_pixel(16, 16).0,
+            encode([backdrop(1.0 / 32.0, -1.0 / 32.0); 3]).0
+        );
+    }
 }
