@@ -445,7 +445,12 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
         .collect();
     let mut batches: Vec<Batch> = readings.iter().map(|_| Batch::new()).collect();
     let size = f64::from(grid);
+    // Where both materials are linear in texels of this grid, a corner between four
+    // centres whose inputs agree has agreeing inputs too: it is not sampled.
+    let linear = readings.iter().all(|a| a.linear_on(grid)) && b.linear_on(grid);
+    let (mut above, mut here): (Option<Vec<bool>>, Vec<bool>) = (None, Vec::new());
     for y in rows {
+        here.clear();
         for points in [Points::Centres, Points::Corners] {
             let offset = if points == Points::Centres { 0.5 } else { 0.0 };
             let uv_of = |x: u32| {
@@ -470,10 +475,30 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
             let mut row_of: Vec<Row> = readings.iter().map(|_| Row::default()).collect();
             for x in 0..grid {
                 let uv = uv_of(x);
+                if points == Points::Corners && linear {
+                    let left = (x + grid - 1) % grid;
+                    let agree = |row: &[bool]| row[x as usize] && row[left as usize];
+                    if above.as_deref().is_some_and(agree) && agree(&here) {
+                        let each = row_of.iter_mut().zip(&mut partials);
+                        for (row, partial) in each {
+                            match row.pending.is_empty() {
+                                true => partial.add_equal_point(&place(x), &directions.angles),
+                                false => row.pending.push((x, Source::Zero)),
+                            }
+                        }
+                        continue;
+                    }
+                }
                 let target = b.inputs_at(&[uv]);
+                if points == Points::Centres {
+                    here.push(true);
+                }
                 let each = (readings.iter()).zip(&mut row_of).zip(&mut batches);
                 for (((a, row), batch), partial) in each.zip(&mut partials) {
                     let source = a.inputs_at(&[uv]);
+                    if source != target && points == Points::Centres {
+                        here[x as usize] = false;
+                    }
                     if source == target {
                         // Identical inputs give identical colours, whose ΔE is exactly 0:
                         // added at once unless points before it wait for their batch. (The
@@ -511,6 +536,7 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                 row.flush(batch, partial, place, &directions.angles);
             }
         }
+        above = Some(std::mem::take(&mut here));
     }
     partials
 }
@@ -936,5 +962,42 @@ mod tests {
             bad.max > 1.0,
             "baseColor = diffuse without (1 − max specular) must be caught: {bad:?}"
         );
+    }
+
+    /// A corner is skipped only where both materials are linear in the grid's texels and
+    /// its four centres agree; a corner of a bent material is still sampled, and finds what
+    /// lies between agreeing centres.
+    #[test]
+    fn corners_between_agreeing_centres_are_skipped_only_for_linear_materials() {
+        use crate::shade::sample::{decode_all, solid_png};
+        let textures = decode_all(&[Some(Ok(solid_png([200, 100, 50])))]).unwrap();
+        let textured = json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}});
+        let linear = MaterialSource::gltf2(&textured, &textures);
+        assert!(linear.linear_on(2), "a 2² texture read as stored");
+        assert!(!linear.linear_on(4), "another grid");
+        let mut moved = textured.clone();
+        moved["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] =
+            json!({"KHR_texture_transform": {"offset": [0.5, 0.0]}});
+        assert!(!MaterialSource::gltf2(&moved, &textures).linear_on(2));
+        let normal = json!({"normalTexture": {"index": 0}});
+        assert!(!MaterialSource::gltf2(&normal, &textures).linear_on(2));
+        // Two normal maps whose texels agree at every centre of a 4² grid but not between:
+        // a 2² map of two tilts against the same tilts repeated on a 4² map.
+        let tilts = |side: u32| {
+            let image = image::RgbImage::from_fn(side, side, |x, _| match x * 2 / side {
+                0 => image::Rgb([230, 128, 180]),
+                _ => image::Rgb([30, 128, 180]),
+            });
+            let mut png = Vec::new();
+            (image::DynamicImage::ImageRgb8(image))
+                .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+                .unwrap();
+            decode_all(&[Some(Ok(png))]).unwrap()
+        };
+        let (coarse, fine) = (tilts(2), tilts(4));
+        let a = MaterialSource::gltf2(&normal, &coarse);
+        let b = MaterialSource::gltf2(&normal, &fine);
+        let result = compare(&shader(), &a, &b, 4);
+        assert!(result.max > 1.0, "between the centres: {}", result.max);
     }
 }

@@ -801,6 +801,34 @@ impl MaterialSource {
         }
     }
 
+    /// Whether every input is an affine function of texels stored on a `grid`² grid: every
+    /// texture is `grid`² and read without a transform, and no input bends its texels (a
+    /// normal normalised, an anisotropy direction's angle, a MASK threshold on a texture's
+    /// alpha, a volume's power, spec-gloss's diffuse · (1 − max specular)). Then its inputs
+    /// at a texel corner are the mean of those at the four centres around it.
+    pub fn linear_on(&self, grid: u32) -> bool {
+        let on_grid = |t: &TextureImage| t.width() == grid && t.height() == grid;
+        match self {
+            MaterialSource::Gltf2(p) => {
+                let identity = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+                let bends = p.spec_gloss.is_some()
+                    || p.anisotropy.is_some()
+                    || p.normal.is_some()
+                    || p.clearcoat_normal.is_some()
+                    || p.volume.texture.is_some()
+                    || (matches!(p.alpha_mode, AlphaMode::Mask(_)) && p.base_colour.is_some());
+                !bends
+                    && p.bindings()
+                        .all(|b| on_grid(&b.texture) && b.transform == identity)
+            }
+            MaterialSource::Legacy {
+                pbr, colour, data, ..
+            } => {
+                pbr.model == Model::MetalRoughness && colour.iter().chain(data).all(|t| on_grid(t))
+            }
+        }
+    }
+
     /// What the evaluator cannot show of this material, each with the reason: extensions it
     /// does not model and texture slots whose image it cannot read. A comparison involving
     /// such a material is reported as not evaluated, never as the same.
