@@ -340,6 +340,10 @@ pub fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, S
     let textures: Vec<Value> = (upgraded.json.items("textures").into_iter())
         .flat_map(Items::iter)
         .collect();
+    let samplers: Vec<Value> = (upgraded.json.items("samplers").into_iter())
+        .flat_map(Items::iter)
+        .collect();
+    let samplers = crate::shade::load::samplers_of(&textures, &samplers);
     let needed = crate::shade::load::used_images(materials(), &textures);
     let encoded: Vec<sample::Wanted<&[u8]>> = upgraded
         .images
@@ -358,5 +362,6 @@ pub fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, S
     Ok(crate::shade::load::prepare_materials(
         materials(),
         &textures,
+        &samplers,
     ))
 }

@@ -346,3 +346,51 @@ fn smooth_lobes_of_different_widths_are_told_apart_and_equal_ones_are_not() {
         "half an 8-bit step of roughness: ΔE {control}"
     );
 }
+
+/// A sharp 2² base colour read through `sampler` (a glTF sampler object).
+fn sampled(sampler: Value) -> MaterialSource {
+    use crate::shade::sample::Sampler;
+    let image = image::RgbImage::from_fn(2, 2, |x, y| match (x + y) % 2 {
+        0 => image::Rgb([240, 230, 220]),
+        _ => image::Rgb([20, 30, 40]),
+    });
+    let mut png = Vec::new();
+    (image::DynamicImage::ImageRgb8(image))
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    let textures = decode_all(&[Some(Ok(png))]).unwrap();
+    let mut m = pbr([1.0; 3], 0.0, 0.5);
+    m["pbrMetallicRoughness"]["baseColorTexture"] = json!({"index": 0});
+    MaterialSource::gltf2_sampled(&m, &textures, &[Sampler::of(Some(&sampler))])
+}
+
+#[test]
+fn the_sampler_a_texture_is_read_through_is_seen() {
+    let linear = sampled(json!({}));
+    let cases = [
+        (
+            "magnified NEAREST against LINEAR",
+            sampled(json!({"magFilter": 9728})),
+        ),
+        (
+            "CLAMP_TO_EDGE against REPEAT",
+            sampled(json!({"wrapS": 33071, "wrapT": 33071})),
+        ),
+        (
+            "MIRRORED_REPEAT against REPEAT",
+            sampled(json!({"wrapS": 33648})),
+        ),
+    ];
+    for (change, other) in cases {
+        let delta_e = worst(&linear, &other);
+        println!("caught: {change}: ΔE {delta_e:.2}");
+        assert!(delta_e > 1.0, "{change}: ΔE {delta_e}");
+    }
+    let explicit =
+        sampled(json!({"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}));
+    assert_eq!(
+        worst(&linear, &explicit),
+        0.0,
+        "explicit default sampler values"
+    );
+}

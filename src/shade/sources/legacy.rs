@@ -64,12 +64,21 @@ pub(crate) fn legacy_materials(
     let texture = |id: &Option<String>| -> Option<Texture> {
         decoded[*position.get(id.as_deref()?)?].clone()
     };
+    // 1.0 samplers use the GL enums and defaults of 2.0's (LINEAR, REPEAT).
+    let sampler = |id: &Option<String>| {
+        let sampler = (id.as_deref())
+            .and_then(|id| source.object("textures", id)?.get("sampler")?.as_str())
+            .and_then(|sampler| source.object("samplers", sampler))
+            .map(|sampler| sampler.to_value());
+        sample::Sampler::of(sampler.as_ref())
+    };
     Ok(parsed
         .into_iter()
         .map(|(id, pbr)| {
             let sampled = pbr.map(|pbr| MaterialSource::Legacy {
                 colour: texture(&pbr.colour_texture),
                 data: texture(&pbr.data_texture),
+                samplers: [sampler(&pbr.colour_texture), sampler(&pbr.data_texture)],
                 pbr: Box::new(pbr),
                 reading: SpecGlossReading::DraftAppendix,
             });

@@ -124,36 +124,54 @@ pub fn gltf2_materials(
     let names = nodes("materials").enumerate().map(|(i, material)| {
         (material.get("name").and_then(Node::as_str)).map_or_else(|| i.to_string(), str::to_string)
     });
-    let prepared = prepare_materials(nodes("materials").map(Node::to_value), &textures);
+    let samplers = samplers_of(&list("textures"), &list("samplers"));
+    let prepared = prepare_materials(nodes("materials").map(Node::to_value), &textures, &samplers);
     Ok(names.zip(prepared).collect())
 }
 
-/// Each material prepared for the evaluator with the document's textures (by texture
-/// index). An asset's copies of one material share one prepared source, so 10^5 alike
-/// materials are prepared, held and compared once; copies that name different textures of
-/// the same image are copies too (the evaluator reads the image, not the texture object).
+/// The sampler each texture (by index) reads its image through.
+pub fn samplers_of(textures: &[Value], samplers: &[Value]) -> Vec<sample::Sampler> {
+    (textures.iter())
+        .map(|texture| {
+            let index = texture.get("sampler").and_then(Value::as_u64);
+            sample::Sampler::of(index.and_then(|i| samplers.get(usize::try_from(i).ok()?)))
+        })
+        .collect()
+}
+
+/// Each material prepared for the evaluator with the document's textures and their samplers
+/// (by texture index). An asset's copies of one material share one prepared source, so 10^5
+/// alike materials are prepared, held and compared once; copies that name different textures
+/// of the same image and sampler are copies too (the evaluator reads the image, not the
+/// texture object).
 pub fn prepare_materials(
     materials: impl IntoIterator<Item = Value>,
     textures: &[Option<Texture>],
+    samplers: &[sample::Sampler],
 ) -> Vec<MaterialSource> {
-    let first_alike = first_alike_textures(textures);
+    let first_alike = first_alike_textures(textures, samplers);
     let mut prepared: HashMap<String, MaterialSource> = HashMap::new();
     (materials.into_iter())
         .map(|mut material| {
             reindex_textures(&mut material, &first_alike);
             (prepared.entry(sample::shading_text(&material)))
-                .or_insert_with(|| MaterialSource::gltf2(&material, textures))
+                .or_insert_with(|| MaterialSource::gltf2_sampled(&material, textures, samplers))
                 .clone()
         })
         .collect()
 }
 
-/// For each texture index, the first index whose texture is the same decoded image.
-fn first_alike_textures(textures: &[Option<Texture>]) -> Vec<usize> {
-    let mut first: HashMap<*const sample::TextureImage, usize> = HashMap::new();
+/// For each texture index, the first index whose texture is the same decoded image read
+/// through the same sampler.
+fn first_alike_textures(textures: &[Option<Texture>], samplers: &[sample::Sampler]) -> Vec<usize> {
+    type Key = (*const sample::TextureImage, sample::Sampler);
+    let mut first: HashMap<Key, usize> = HashMap::new();
     (textures.iter().enumerate())
         .map(|(i, texture)| match texture {
-            Some(texture) => *first.entry(Arc::as_ptr(texture)).or_insert(i),
+            Some(texture) => {
+                let sampler = samplers.get(i).copied().unwrap_or_default();
+                *first.entry((Arc::as_ptr(texture), sampler)).or_insert(i)
+            }
             None => i,
         })
         .collect()

@@ -481,18 +481,32 @@ pub fn bilinear_srgb(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
     bilinear_of::<true>(texture, uv)
 }
 
-/// Bilinear sample of the texels, their colours decoded from sRGB when `SRGB`.
+/// Bilinear sample of the texels, their colours decoded from sRGB when `SRGB`, repeating.
 #[inline(always)]
-fn bilinear_of<const SRGB: bool>(texture: &TextureImage, [u, v]: [f64; 2]) -> [f64; 4] {
+fn bilinear_of<const SRGB: bool>(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
+    sample_of::<SRGB>(texture, uv, Sampler::default())
+}
+
+/// A sample as `sampler` filters and wraps it, colours decoded from sRGB when `SRGB`.
+#[inline(always)]
+fn sample_of<const SRGB: bool>(
+    texture: &TextureImage,
+    [u, v]: [f64; 2],
+    sampler: Sampler,
+) -> [f64; 4] {
     let (w, h) = (
         texture.width().max(1) as i64,
         texture.height().max(1) as i64,
     );
+    let [wrap_s, wrap_t] = sampler.wrap;
+    let texel = |i: i64, j: i64| texture.decoded::<SRGB>(wrap_s.texel(i, w), wrap_t.texel(j, h));
+    if sampler.nearest {
+        return texel(floor(u * w as f64), floor(v * h as f64));
+    }
     let x = u * w as f64 - 0.5;
     let y = v * h as f64 - 0.5;
     let (x0, y0) = (floor(x), floor(y));
     let (fx, fy) = (x - x0 as f64, y - y0 as f64);
-    let texel = |i: i64, j: i64| texture.decoded::<SRGB>(wrap(i, w), wrap(j, h));
     if fx == 0.0 && fy == 0.0 {
         // Exactly on a texel centre (the comparison grid at texture resolution).
         return texel(x0, y0);
@@ -532,10 +546,70 @@ fn wrap(i: i64, size: i64) -> i64 {
     }
 }
 
+/// How a texture coordinate outside 0..1 reads the texture (glTF 2.0 `wrapS` / `wrapT`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Wrap {
+    /// 10497 REPEAT, the default.
+    #[default]
+    Repeat,
+    /// 33071 CLAMP_TO_EDGE.
+    Clamp,
+    /// 33648 MIRRORED_REPEAT.
+    Mirror,
+}
+
+impl Wrap {
+    fn from_gl(value: Option<u64>) -> Wrap {
+        match value {
+            Some(33071) => Wrap::Clamp,
+            Some(33648) => Wrap::Mirror,
+            _ => Wrap::Repeat,
+        }
+    }
+
+    #[inline(always)]
+    fn texel(self, i: i64, size: i64) -> i64 {
+        match self {
+            Wrap::Repeat => wrap(i, size),
+            Wrap::Clamp => i.clamp(0, size - 1),
+            Wrap::Mirror => {
+                let m = i.rem_euclid(2 * size);
+                if m < size {
+                    m
+                } else {
+                    2 * size - 1 - m
+                }
+            }
+        }
+    }
+}
+
+/// A texture's sampler as the evaluator reads it: its magnification filter and wrap modes.
+/// (The comparison's grid is as fine as the finest texture, so no texture is minified.)
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Sampler {
+    /// `magFilter` 9728 NEAREST: the nearest texel, not the four around.
+    pub nearest: bool,
+    /// `wrapS`, `wrapT`.
+    pub wrap: [Wrap; 2],
+}
+
+impl Sampler {
+    /// A glTF 2.0 sampler object (absent members at their defaults: LINEAR, REPEAT).
+    pub fn of(sampler: Option<&Value>) -> Sampler {
+        let gl = |key: &str| sampler.and_then(|s| s.get(key)).and_then(Value::as_u64);
+        Sampler {
+            nearest: gl("magFilter") == Some(9728),
+            wrap: [Wrap::from_gl(gl("wrapS")), Wrap::from_gl(gl("wrapT"))],
+        }
+    }
+}
+
 /// A textureInfo of a 2.0 material: its texture and its UV transform.
 #[derive(Clone)]
 struct Binding {
     texture: Texture,
+    sampler: Sampler,
     texcoord: u64,
     /// 2×3 affine matrix from KHR_texture_transform (identity when absent).
     transform: [f64; 6],
@@ -545,12 +619,12 @@ impl Binding {
     /// A colour slot's sample: linear RGB and alpha (see [`bilinear_srgb`]).
     #[inline(always)]
     fn sample_srgb(&self, uvs: &[[f64; 2]]) -> [f64; 4] {
-        bilinear_srgb(&self.texture, self.coordinates(uvs))
+        sample_of::<true>(&self.texture, self.coordinates(uvs), self.sampler)
     }
 
     #[inline(always)]
     fn sample(&self, uvs: &[[f64; 2]]) -> [f64; 4] {
-        bilinear(&self.texture, self.coordinates(uvs))
+        sample_of::<false>(&self.texture, self.coordinates(uvs), self.sampler)
     }
 
     /// Where this binding reads a point whose coordinates per set are `uvs`.
@@ -597,6 +671,8 @@ pub enum MaterialSource {
         colour: Option<Texture>,
         /// Its data texture (metallic-roughness or specular-glossiness).
         data: Option<Texture>,
+        /// The samplers of its colour and data textures.
+        samplers: [Sampler; 2],
         /// How a specular-glossiness draft is read (see [`SpecGlossReading::DRAFTS`]).
         reading: SpecGlossReading,
     },
@@ -703,7 +779,17 @@ const MODELLED_EXTENSIONS: [&str; 11] = [
 impl MaterialSource {
     /// Prepares a glTF 2.0 material; `textures` are the document's, by texture index.
     pub fn gltf2(material: &Value, textures: &[Option<Texture>]) -> MaterialSource {
-        MaterialSource::Gltf2(Arc::new(prepare(material, textures)))
+        MaterialSource::Gltf2(Arc::new(prepare(material, textures, &[])))
+    }
+
+    /// Prepares a glTF 2.0 material whose textures are read through `samplers` (by texture
+    /// index; a texture without one has the default sampler).
+    pub fn gltf2_sampled(
+        material: &Value,
+        textures: &[Option<Texture>],
+        samplers: &[Sampler],
+    ) -> MaterialSource {
+        MaterialSource::Gltf2(Arc::new(prepare(material, textures, samplers)))
     }
 }
 
@@ -760,9 +846,10 @@ impl MaterialSource {
                 pbr,
                 colour,
                 data,
+                samplers,
                 reading,
             } => format!(
-                "{pbr:?}|{:?}|{:?}|{reading:?}",
+                "{pbr:?}|{:?}|{:?}|{samplers:?}|{reading:?}",
                 colour.as_ref().map(Arc::as_ptr),
                 data.as_ref().map(Arc::as_ptr)
             ),
@@ -774,11 +861,16 @@ impl MaterialSource {
     pub fn read_as(&self, wanted: SpecGlossReading) -> MaterialSource {
         match self {
             MaterialSource::Legacy {
-                pbr, colour, data, ..
+                pbr,
+                colour,
+                data,
+                samplers,
+                ..
             } if pbr.model == Model::SpecularGlossiness => MaterialSource::Legacy {
                 pbr: pbr.clone(),
                 colour: colour.clone(),
                 data: data.clone(),
+                samplers: *samplers,
                 reading: wanted,
             },
             _ => self.clone(),
@@ -822,9 +914,15 @@ impl MaterialSource {
                         .all(|b| on_grid(&b.texture) && b.transform == identity)
             }
             MaterialSource::Legacy {
-                pbr, colour, data, ..
+                pbr,
+                colour,
+                data,
+                samplers,
+                ..
             } => {
-                pbr.model == Model::MetalRoughness && colour.iter().chain(data).all(|t| on_grid(t))
+                pbr.model == Model::MetalRoughness
+                    && colour.iter().chain(data).all(|t| on_grid(t))
+                    && samplers.iter().all(|s| !s.nearest)
             }
         }
     }
@@ -861,18 +959,27 @@ impl MaterialSource {
                 pbr,
                 colour,
                 data,
+                samplers: [colour_sampler, data_sampler],
                 reading,
-            } => legacy_inputs(pbr, colour.as_deref(), data.as_deref(), uvs[0], *reading),
+            } => {
+                let colour = colour.as_deref().map(|t| (t, *colour_sampler));
+                let data = data.as_deref().map(|t| (t, *data_sampler));
+                legacy_inputs(pbr, colour, data, uvs[0], *reading)
+            }
         }
     }
 }
 
-fn prepare(material: &Value, textures: &[Option<Texture>]) -> Prepared {
+fn prepare(material: &Value, textures: &[Option<Texture>], samplers: &[Sampler]) -> Prepared {
     let mut unmodelled = Vec::new();
     let mut bind = |info: Option<&Value>, slot: &str| -> Option<Binding> {
         let info = info?;
-        let texture = (info.get("index").and_then(Value::as_u64))
-            .and_then(|i| textures.get(i as usize)?.clone());
+        let index = info
+            .get("index")
+            .and_then(Value::as_u64)
+            .map(|i| i as usize);
+        let texture = index.and_then(|i| textures.get(i)?.clone());
+        let sampler = (index.and_then(|i| samplers.get(i)).copied()).unwrap_or_default();
         if texture.is_none() {
             unmodelled.push(format!(
                 "{slot} (its texture has no image the evaluator reads)"
@@ -880,6 +987,7 @@ fn prepare(material: &Value, textures: &[Option<Texture>]) -> Prepared {
         }
         Some(Binding {
             texture: texture?,
+            sampler,
             texcoord: effective_texcoord(info),
             transform: transform_of(info),
         })
@@ -1009,7 +1117,7 @@ fn prepare(material: &Value, textures: &[Option<Texture>]) -> Prepared {
     prepared.unmodelled.extend(unmodelled_extensions(material));
     let bound: Vec<_> = prepared
         .bindings()
-        .map(|b| Arc::as_ptr(&b.texture))
+        .map(|b| (Arc::as_ptr(&b.texture), b.sampler))
         .collect();
     prepared.fingerprint = format!("{}|{bound:?}", shading_text(material));
     prepared
@@ -1211,12 +1319,12 @@ fn tangent_normal(t: [f64; 4], scale: f64) -> V3 {
 #[inline(always)]
 fn legacy_inputs(
     pbr: &LegacyPbr,
-    colour: Option<&TextureImage>,
-    data: Option<&TextureImage>,
+    colour: Option<(&TextureImage, Sampler)>,
+    data: Option<(&TextureImage, Sampler)>,
     uv: [f64; 2],
     reading: SpecGlossReading,
 ) -> Inputs {
-    let colour_texel = colour.map(|t| bilinear_srgb(t, uv));
+    let colour_texel = colour.map(|(t, sampler)| sample_of::<true>(t, uv, sampler));
     let mut rgb = [pbr.colour[0], pbr.colour[1], pbr.colour[2]];
     // The drafts blend by the colour's alpha (the upgrade writes BLEND where it is below 1).
     let mut alpha = pbr.colour[3];
@@ -1227,7 +1335,7 @@ fn legacy_inputs(
     let inputs = match pbr.model {
         Model::MetalRoughness => {
             let (mut metallic, mut roughness) = (pbr.metallic, pbr.roughness);
-            if let Some(t) = data.map(|t| bilinear(t, uv)) {
+            if let Some(t) = data.map(|(t, sampler)| sample_of::<false>(t, uv, sampler)) {
                 metallic *= t[0];
                 roughness *= t[1];
             }
@@ -1240,7 +1348,7 @@ fn legacy_inputs(
         }
         Model::SpecularGlossiness => {
             let (mut specular, mut gloss) = (pbr.specular, pbr.glossiness);
-            if let Some(t) = data.map(|t| bilinear_srgb(t, uv)) {
+            if let Some(t) = data.map(|(t, sampler)| sample_of::<true>(t, uv, sampler)) {
                 specular = times(specular, self::rgb(t));
                 gloss *= t[3];
             }
