@@ -77,7 +77,19 @@ struct Lobe {
 }
 
 impl Lobe {
+    /// The sharpest specular lobe of `inputs`: a clearcoat smoother than the base is
+    /// sampled instead of it (the cosine samples cover the broader one), so that a glossy
+    /// coat over a rough base reflects the sky without sparkles.
     fn of(inputs: &crate::shade::material::Inputs) -> Lobe {
+        let coat = inputs.clearcoat > 0.0 && inputs.clearcoat_roughness < inputs.roughness;
+        if coat {
+            let alpha = (inputs.clearcoat_roughness.powi(2)).max(1e-3);
+            return Lobe {
+                alpha_t: alpha,
+                alpha_b: alpha,
+                angle: 0.0,
+            };
+        }
         let alpha = (inputs.roughness * inputs.roughness).max(1e-3);
         let (alpha_t, alpha_b) = anisotropic_alphas(alpha, inputs.anisotropy_strength);
         Lobe {
