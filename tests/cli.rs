@@ -993,3 +993,182 @@ fn the_readme_actions_recipe_excludes_what_it_says() {
     assert_eq!(github.status.code(), Some(0));
     assert!(!String::from_utf8_lossy(&github.stdout).contains("third-party"));
 }
+
+/// `asset` (a glTF 2.0 JSON with one material, `material`) written into `dir` as `name`.
+fn one_material(dir: &Path, name: &str, material: serde_json::Value, images: serde_json::Value) {
+    let mut asset = serde_json::json!({"asset": {"version": "2.0"}, "materials": [material]});
+    if let Some(images) = images.as_array().filter(|i| !i.is_empty()) {
+        asset["images"] = images.clone().into();
+        asset["textures"] = (0..images.len())
+            .map(|i| serde_json::json!({"source": i}))
+            .collect();
+    }
+    let used: Vec<String> = (material_extensions(&asset["materials"][0]).into_iter()).collect();
+    if !used.is_empty() {
+        asset["extensionsUsed"] = used.into();
+    }
+    std::fs::write(dir.join(name), asset.to_string()).unwrap();
+}
+
+fn material_extensions(material: &serde_json::Value) -> Vec<String> {
+    (material["extensions"].as_object().into_iter())
+        .flat_map(|e| e.keys().cloned())
+        .collect()
+}
+
+/// A data URI of a 2×2 PNG of one colour.
+fn png_uri(texel: [u8; 3]) -> String {
+    use base64::Engine;
+    let image = image::RgbImage::from_pixel(2, 2, image::Rgb(texel));
+    let mut png = Vec::new();
+    (image::DynamicImage::ImageRgb8(image))
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    format!(
+        "data:image/png;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(png)
+    )
+}
+
+/// The pairs a viewer draws differently that a slice of the material called the same: each
+/// is DIFFERENT, named by the input that dominates it, and each layer renders a different
+/// ball. An extension the evaluator does not model is NOT EVALUATED, never the same.
+#[test]
+fn compare_tells_every_layer_of_a_material_apart_and_names_it() {
+    let dir = std::env::temp_dir().join(format!("gltfmat-layers-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let grey = serde_json::json!({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0],
+        "metallicFactor": 0.0, "roughnessFactor": 0.5}});
+    let with = |extra: serde_json::Value| {
+        let mut m = grey.clone();
+        for (key, value) in extra.as_object().into_iter().flatten() {
+            m[key] = value.clone();
+        }
+        m
+    };
+    one_material(&dir, "grey.gltf", grey.clone(), serde_json::json!([]));
+    let mut blended = with(serde_json::json!({"alphaMode": "BLEND"}));
+    blended["pbrMetallicRoughness"]["baseColorFactor"][3] = 0.2.into();
+    let pairs = [
+        ("blend", "coverage", blended, None),
+        (
+            "emission",
+            "emission",
+            with(serde_json::json!({"emissiveFactor": [1.0, 1.0, 1.0],
+                "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 10.0}}})),
+            None,
+        ),
+        (
+            "normal",
+            "normal",
+            with(serde_json::json!({"normalTexture": {"index": 0}})),
+            Some([230, 128, 180]),
+        ),
+        (
+            "clearcoat",
+            "clearcoat",
+            with(serde_json::json!({"extensions": {"KHR_materials_clearcoat":
+                {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.05}}})),
+            None,
+        ),
+        (
+            "transmission",
+            "transmission",
+            with(
+                serde_json::json!({"extensions": {"KHR_materials_transmission":
+                {"transmissionFactor": 1.0}}}),
+            ),
+            None,
+        ),
+        (
+            "occlusion",
+            "occlusion",
+            with(serde_json::json!({"occlusionTexture": {"index": 0}})),
+            Some([40, 40, 40]),
+        ),
+    ];
+    let render = |name: &str| {
+        let out = dir.join(format!("{name}.png"));
+        let (code, text) = gltfmat(&[
+            "render",
+            dir.join(format!("{name}.gltf")).to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--size",
+            "32",
+            "--force",
+        ]);
+        assert_eq!(code, 0, "{text}");
+        image::open(out).unwrap().to_rgb8()
+    };
+    let plain = render("grey");
+    for (name, input, material, texel) in pairs {
+        let images = match texel {
+            Some(texel) => serde_json::json!([{"uri": png_uri(texel)}]),
+            None => serde_json::json!([]),
+        };
+        one_material(&dir, &format!("{name}.gltf"), material, images);
+        let (code, text) = gltfmat(&[
+            "compare",
+            dir.join("grey.gltf").to_str().unwrap(),
+            dir.join(format!("{name}.gltf")).to_str().unwrap(),
+        ]);
+        assert_eq!(code, 1, "{name}: {text}");
+        assert!(
+            text.contains("DIFFERENT") && text.contains(&format!("(mostly {input})")),
+            "{name}: {text}"
+        );
+        assert_ne!(render(name), plain, "{name} renders like the plain ball");
+    }
+    // Iridescence is not modelled: not evaluated, exit 1, and render says what it left out.
+    let iridescent = with(
+        serde_json::json!({"extensions": {"KHR_materials_iridescence":
+        {"iridescenceFactor": 1.0}}}),
+    );
+    one_material(&dir, "iridescent.gltf", iridescent, serde_json::json!([]));
+    let (code, text) = gltfmat(&[
+        "compare",
+        dir.join("grey.gltf").to_str().unwrap(),
+        dir.join("iridescent.gltf").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("NOT EVALUATED (second: KHR_materials_iridescence"),
+        "{text}"
+    );
+    let (code, text) = gltfmat(&[
+        "render",
+        dir.join("iridescent.gltf").to_str().unwrap(),
+        "-o",
+        dir.join("iridescent.png").to_str().unwrap(),
+        "--force",
+        "--size",
+        "16",
+    ]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("not drawn: KHR_materials_iridescence"),
+        "{text}"
+    );
+    // An image the evaluator cannot decode leaves its material not evaluated, not the asset.
+    let ktx2 =
+        with(serde_json::json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}));
+    one_material(
+        &dir,
+        "ktx2.gltf",
+        ktx2,
+        serde_json::json!([{"uri": "data:image/ktx2;base64,q0tUWCAyMLsNChoK"}]),
+    );
+    let (code, text) = gltfmat(&[
+        "compare",
+        dir.join("grey.gltf").to_str().unwrap(),
+        dir.join("ktx2.gltf").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("NOT EVALUATED (second: baseColorTexture"),
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

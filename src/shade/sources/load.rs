@@ -116,10 +116,17 @@ pub fn gltf2_materials(
             ),
         })
         .collect();
-    let decoded = sample::decode_all_at_most(&encoded, finest)?;
+    // An image that cannot be read or decoded (a format the evaluator does not decode, a
+    // broken file) leaves the materials that use it not evaluated, not the whole asset.
+    let decoded = sample::decode_each_at_most(&encoded, finest)?;
     let textures: Vec<Option<Texture>> = textures
         .iter()
-        .map(|texture| decoded.get(texture_source(texture)? as usize)?.clone())
+        .map(|texture| {
+            decoded
+                .get(texture_source(texture)? as usize)?
+                .clone()
+                .ok()?
+        })
         .collect();
     let names = nodes("materials").enumerate().map(|(i, material)| {
         (material.get("name").and_then(Node::as_str)).map_or_else(|| i.to_string(), str::to_string)

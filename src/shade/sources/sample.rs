@@ -286,13 +286,28 @@ pub fn decode_all_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
     sources: &[Wanted<B>],
     finest: u32,
 ) -> Result<Vec<Option<Texture>>, String> {
-    let bytes: Vec<Option<&[u8]>> = (sources.iter().enumerate())
+    decode_each_at_most(sources, finest)?.into_iter().collect()
+}
+
+/// [`decode_all_at_most`] with each image's failure its own (`Err` in its place), for uses
+/// that can go on without it; the outer error is the decoding budget's, which no image may
+/// pass.
+pub fn decode_each_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
+    sources: &[Wanted<B>],
+    finest: u32,
+) -> Result<Vec<Result<Option<Texture>, String>>, String> {
+    let unread: Vec<Option<String>> = (sources.iter().enumerate())
         .map(|(i, source)| match source {
-            None => Ok(None),
-            Some(Ok(bytes)) => Ok(Some((**bytes).as_ref())),
-            Some(Err(why)) => Err(format!("image {i}: {why}")),
+            Some(Err(why)) => Some(format!("image {i}: {why}")),
+            _ => None,
         })
-        .collect::<Result<_, _>>()?;
+        .collect();
+    let bytes: Vec<Option<&[u8]>> = (sources.iter())
+        .map(|source| match source {
+            Some(Ok(bytes)) => Some((**bytes).as_ref()),
+            _ => None,
+        })
+        .collect();
     let first_copy = first_copies(&bytes);
     let unique: Vec<Option<&[u8]>> = (bytes.iter().enumerate())
         .map(|(i, b)| b.filter(|_| first_copy[i] == i))
@@ -305,17 +320,20 @@ pub fn decode_all_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
     let to_decode: Vec<Option<&[u8]>> = (unique.iter().zip(&held))
         .map(|(bytes, held)| bytes.filter(|_| held.is_none()))
         .collect();
-    let mut decoded = decode_in_parallel(&to_decode, finest)?;
+    let mut decoded = decode_in_parallel(&to_decode, finest);
     for (i, held) in held.into_iter().enumerate() {
         match (held, &decoded[i], to_decode[i]) {
-            (Some(texture), _, _) => decoded[i] = Some(texture),
-            (None, Some(texture), Some(bytes)) => Live::put(bytes, finest, texture),
+            (Some(texture), _, _) => decoded[i] = Ok(Some(texture)),
+            (None, Ok(Some(texture)), Some(bytes)) => Live::put(bytes, finest, texture),
             _ => {}
         }
     }
     for (i, &first) in first_copy.iter().enumerate() {
         if first != i {
             decoded[i] = decoded[first].clone();
+        }
+        if let Some(why) = &unread[i] {
+            decoded[i] = Err(why.clone());
         }
     }
     Ok(decoded)
@@ -431,7 +449,7 @@ impl Live {
 fn decode_in_parallel(
     sources: &[Option<&[u8]>],
     finest: u32,
-) -> Result<Vec<Option<Texture>>, String> {
+) -> Vec<Result<Option<Texture>, String>> {
     use std::sync::atomic::{AtomicUsize, Ordering};
     let next = AtomicUsize::new(0);
     let threads = std::thread::available_parallelism()
@@ -460,11 +478,11 @@ fn decode_in_parallel(
     });
     let mut outcomes: Done = finished.into_iter().flatten().collect();
     outcomes.sort_by_key(|(i, _)| *i);
-    let mut decoded: Vec<Option<Texture>> = vec![None; sources.len()];
+    let mut decoded: Vec<Result<Option<Texture>, String>> = vec![Ok(None); sources.len()];
     for (i, outcome) in outcomes {
-        decoded[i] = Some(outcome.map_err(|why| format!("image {i}: {why}"))?);
+        decoded[i] = outcome.map(Some).map_err(|why| format!("image {i}: {why}"));
     }
-    Ok(decoded)
+    decoded
 }
 
 /// Bilinear sample with repeat wrapping, texel centres at (i + ½) / size.
