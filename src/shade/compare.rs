@@ -988,11 +988,7 @@ mod tests {
                 0 => image::Rgb([230, 128, 180]),
                 _ => image::Rgb([30, 128, 180]),
             });
-            let mut png = Vec::new();
-            (image::DynamicImage::ImageRgb8(image))
-                .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-                .unwrap();
-            decode_all(&[Some(Ok(png))]).unwrap()
+            vec![Some(crate::shade::sample::texture_of(image))]
         };
         let (coarse, fine) = (tilts(2), tilts(4));
         let a = MaterialSource::gltf2(&normal, &coarse);

@@ -8,7 +8,7 @@ use super::refine::MAX_THETA;
 use super::{compare, delta_at, Angles};
 use crate::shade::brdf::SheenVisibility;
 use crate::shade::material::Shader;
-use crate::shade::sample::{decode_all, MaterialSource, Texture};
+use crate::shade::sample::{texture_of, MaterialSource, Texture};
 use crate::shade::sheen_table::SheenTable;
 use serde_json::{json, Value};
 
@@ -86,12 +86,9 @@ fn reference_max(shader: &Shader, a: &MaterialSource, b: &MaterialSource, texels
 
 /// A `side`² texture whose texel (x, y) is `texel(x, y)`.
 fn texture(side: u32, texel: impl Fn(u32, u32) -> [u8; 4]) -> Texture {
-    let image = image::RgbaImage::from_fn(side, side, |x, y| image::Rgba(texel(x, y)));
-    let mut png = Vec::new();
-    (image::DynamicImage::ImageRgba8(image))
-        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .unwrap();
-    decode_all(&[Some(Ok(png))]).unwrap().remove(0).unwrap()
+    texture_of(image::RgbaImage::from_fn(side, side, |x, y| {
+        image::Rgba(texel(x, y))
+    }))
 }
 
 fn with(json: Value, textures: &[&Texture]) -> MaterialSource {

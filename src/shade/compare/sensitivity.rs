@@ -354,11 +354,7 @@ fn sampled(sampler: Value) -> MaterialSource {
         0 => image::Rgb([240, 230, 220]),
         _ => image::Rgb([20, 30, 40]),
     });
-    let mut png = Vec::new();
-    (image::DynamicImage::ImageRgb8(image))
-        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .unwrap();
-    let textures = decode_all(&[Some(Ok(png))]).unwrap();
+    let textures = [Some(crate::shade::sample::texture_of(image))];
     let mut m = pbr([1.0; 3], 0.0, 0.5);
     m["pbrMetallicRoughness"]["baseColorTexture"] = json!({"index": 0});
     MaterialSource::gltf2_sampled(&m, &textures, &[Sampler::of(Some(&sampler))])

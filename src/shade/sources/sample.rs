@@ -111,6 +111,19 @@ fn unorm8_table() -> &'static [f64; 256] {
     TABLE.get_or_init(|| std::array::from_fn(|b| b as f64 / 255.0))
 }
 
+/// `image` encoded as a PNG and decoded as the evaluator decodes it, for tests.
+#[cfg(test)]
+pub(crate) fn texture_of(image: impl Into<image::DynamicImage>) -> Texture {
+    let mut png = Vec::new();
+    (image.into())
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .expect("a PNG in memory");
+    decode_all(&[Some(Ok(png))])
+        .expect("a PNG decodes")
+        .remove(0)
+        .expect("one image")
+}
+
 /// A 2×2 RGB PNG of one colour, for tests that need a decoded texture.
 #[cfg(test)]
 pub(crate) fn solid_png(texel: [u8; 3]) -> Vec<u8> {
