@@ -4,7 +4,7 @@
 //! each point a fixed, stratified set of view/light directions including grazing ones is
 //! evaluated; the points where that set finds the largest differences, and those whose
 //! specular lobes are sharpest, are then searched over a dense set of directions around
-//! each view's mirror direction and beyond, and the worst one refined (see [`refine`]).
+//! each view's mirror direction and beyond, and the worst one refined (`compare/refine.rs`).
 //! Each result becomes the colour a viewer shows and the two colours are compared with
 //! CIEDE2000.
 //!
@@ -37,8 +37,8 @@ const DIRECTION_COUNT: usize = 8;
 
 /// (θ_v, θ_l, φ between them), degrees: head-on, off-specular, mirror, crossed (anisotropy)
 /// and grazing configurations; the view lies along the tangent (φ_v = 0), which is where an
-/// anisotropy angle of 0 points. Every point is evaluated in these; the dense search of
-/// [`refine`] looks further at the points they find worst.
+/// anisotropy angle of 0 points. Every point is evaluated in these; the dense direction
+/// search (`compare/refine.rs`) looks further at the points they find worst.
 pub const DIRECTIONS: [(f64, f64, f64); DIRECTION_COUNT] = [
     (0.0, 0.0, 0.0),
     (45.0, 45.0, 180.0),
