@@ -1087,6 +1087,15 @@ fn compare_tells_every_layer_of_a_material_apart_and_names_it() {
             with(serde_json::json!({"occlusionTexture": {"index": 0}})),
             Some([40, 40, 40]),
         ),
+        (
+            "iridescence",
+            "iridescence",
+            with(
+                serde_json::json!({"extensions": {"KHR_materials_iridescence":
+                {"iridescenceFactor": 1.0}}}),
+            ),
+            None,
+        ),
     ];
     let render = |name: &str| {
         let out = dir.join(format!("{name}.png"));
@@ -1121,34 +1130,35 @@ fn compare_tells_every_layer_of_a_material_apart_and_names_it() {
         );
         assert_ne!(render(name), plain, "{name} renders like the plain ball");
     }
-    // Iridescence is not modelled: not evaluated, exit 1, and render says what it left out.
-    let iridescent = with(
-        serde_json::json!({"extensions": {"KHR_materials_iridescence":
-        {"iridescenceFactor": 1.0}}}),
-    );
-    one_material(&dir, "iridescent.gltf", iridescent, serde_json::json!([]));
+    // Dispersion is not modelled (its fringes need a structured background): not evaluated,
+    // exit 1, even against itself, and render says what it left out.
+    let dispersive = with(serde_json::json!({"extensions": {
+        "KHR_materials_transmission": {"transmissionFactor": 1.0},
+        "KHR_materials_volume": {"thicknessFactor": 1.0},
+        "KHR_materials_dispersion": {"dispersion": 5.0}}}));
+    one_material(&dir, "dispersive.gltf", dispersive, serde_json::json!([]));
     let (code, text) = gltfmat(&[
         "compare",
-        dir.join("grey.gltf").to_str().unwrap(),
-        dir.join("iridescent.gltf").to_str().unwrap(),
+        dir.join("dispersive.gltf").to_str().unwrap(),
+        dir.join("dispersive.gltf").to_str().unwrap(),
     ]);
     assert_eq!(code, 1, "{text}");
     assert!(
-        text.contains("NOT EVALUATED (second: KHR_materials_iridescence"),
+        text.contains("NOT EVALUATED (first: KHR_materials_dispersion"),
         "{text}"
     );
     let (code, text) = gltfmat(&[
         "render",
-        dir.join("iridescent.gltf").to_str().unwrap(),
+        dir.join("dispersive.gltf").to_str().unwrap(),
         "-o",
-        dir.join("iridescent.png").to_str().unwrap(),
+        dir.join("dispersive.png").to_str().unwrap(),
         "--force",
         "--size",
         "16",
     ]);
     assert_eq!(code, 0, "{text}");
     assert!(
-        text.contains("not drawn: KHR_materials_iridescence"),
+        text.contains("not drawn: KHR_materials_dispersion"),
         "{text}"
     );
     // An image the evaluator cannot decode leaves its material not evaluated, not the asset.

@@ -647,7 +647,8 @@ fn textured(images: &[Vec<u8>]) -> serde_json::Value {
     json!({"asset": {"version": "2.0"}, "images": images, "textures": textures, "materials": materials})
 }
 
-fn render_all(gltf: &serde_json::Value) -> Result<(), String> {
+/// Renders every material of `gltf`: what the picture could not draw, or why it was refused.
+fn render_all(gltf: &serde_json::Value) -> Result<Vec<String>, String> {
     let folder = tempfile::tempdir().unwrap();
     let path = folder.path().join("t.gltf");
     std::fs::write(&path, serde_json::to_vec(gltf).unwrap()).unwrap();
@@ -655,7 +656,7 @@ fn render_all(gltf: &serde_json::Value) -> Result<(), String> {
     options.all = true;
     options.size = 8;
     gltfmat::render(&path, &options)
-        .map(|_| ())
+        .map(|picture| picture.not_drawn.concat())
         .map_err(|e| e.to_string())
 }
 
@@ -714,19 +715,45 @@ fn a_preview_decodes_an_interlaced_png_whole_only_within_the_budget() {
     let crc_at = 8 + 8 + 13;
     let crc = common::crc32(&png[12..crc_at]);
     png[crc_at..crc_at + 4].copy_from_slice(&crc.to_be_bytes());
-    let error = render_all(&textured(&[png])).unwrap_err();
+    // The image is not decoded; its material is drawn without it and says why.
+    let not_drawn = render_all(&textured(&[png])).unwrap();
     assert!(
-        error.contains("past 96 MiB, this input's budget"),
-        "{error}"
+        not_drawn
+            .iter()
+            .any(|n| n.contains("image 0") && n.contains("past 96 MiB, this input's budget")),
+        "{not_drawn:?}"
     );
 }
 
 #[test]
-fn a_texture_that_cannot_be_decoded_is_an_error_not_an_untextured_material() {
+fn a_texture_that_cannot_be_decoded_is_named_not_silently_dropped() {
     // Finding 18: a header claiming 60000² (past the decoder's limits), and a truncated one.
+    // The material is never shown as if untextured without a word: the picture names the
+    // slot and the image, and a comparison refuses the asset or calls the pair not evaluated.
     for png in [png_header(60000), png_header(4)] {
-        let error = render_all(&textured(&[png])).unwrap_err();
-        assert!(error.contains("image 0"), "{error}");
+        let gltf = textured(&[png]);
+        let not_drawn = render_all(&gltf).unwrap();
+        assert!(
+            not_drawn.iter().any(|n| n.contains("image 0")),
+            "{not_drawn:?}"
+        );
+        let folder = tempfile::tempdir().unwrap();
+        let path = folder.path().join("t.gltf");
+        std::fs::write(&path, serde_json::to_vec(&gltf).unwrap()).unwrap();
+        // A comparison needs every texel: an image past the budget refuses the asset from
+        // its header; one that fails to decode leaves its material not evaluated.
+        match gltfmat::compare(&path, &path, &gltfmat::CompareOptions::default()) {
+            Err(e) => assert!(e.to_string().contains("image 0"), "{e}"),
+            Ok(compared) => assert!(
+                (compared.outcomes.iter()).all(|o| !o.not_evaluated.is_empty() && !o.same(1.0)),
+                "{:?}",
+                compared
+                    .outcomes
+                    .iter()
+                    .map(|o| &o.not_evaluated)
+                    .collect::<Vec<_>>()
+            ),
+        }
     }
 }
 

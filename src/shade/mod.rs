@@ -22,7 +22,7 @@ pub(crate) mod delta_e;
 pub mod pairing;
 pub mod tone;
 
-pub use eval::{appearance, brdf, material, sheen_table};
+pub use eval::{appearance, brdf, iridescence, material, sheen_table};
 pub(crate) use eval::{elementary, lanes};
 pub use picture::render;
 pub(crate) use sources::{legacy, load, sample};

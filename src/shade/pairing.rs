@@ -403,7 +403,8 @@ mod tests {
         // Textures 0 and 1 read image 0; texture 2 reads image 1.
         let textures = [&textures[0], &textures[0], &textures[1]].map(Clone::clone);
         let reading = |index: usize| json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": index}}, "name": index});
-        let prepared = crate::shade::load::prepare_materials((0..3).map(reading), &textures, &[]);
+        let prepared =
+            crate::shade::load::prepare_materials((0..3).map(reading), &textures, &[], &[]);
         let [first, second, other] = &prepared[..] else {
             panic!("three materials")
         };

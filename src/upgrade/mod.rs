@@ -363,5 +363,6 @@ pub fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, S
         materials(),
         &textures,
         &samplers,
+        &[],
     ))
 }

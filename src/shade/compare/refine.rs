@@ -322,7 +322,7 @@ pub(super) fn climb(start: Angles, f: impl Fn(&Angles) -> (f64, f64)) -> (Angles
 type Take = fn(&mut Inputs, &Inputs);
 
 /// Each input a comparison can name, and how to give a material the other's value of it.
-const INPUTS: [(&str, Take); 17] = [
+const INPUTS: [(&str, Take); 18] = [
     ("base colour", |a, b| a.base_color = b.base_color),
     ("coverage", |a, b| a.coverage = b.coverage),
     ("metallic", |a, b| a.metallic = b.metallic),
@@ -355,6 +355,10 @@ const INPUTS: [(&str, Take); 17] = [
     ("diffuse transmission", |a, b| {
         a.diffuse_transmission = b.diffuse_transmission;
         a.diffuse_transmission_color = b.diffuse_transmission_color;
+    }),
+    ("iridescence", |a, b| {
+        a.iridescence = b.iridescence;
+        a.iridescence_film = b.iridescence_film;
     }),
     ("unlit", |a, b| a.unlit = b.unlit),
     ("diffuse balance", |a, b| {

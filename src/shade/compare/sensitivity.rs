@@ -192,6 +192,12 @@ fn whole_material_changes() -> Vec<(&'static str, &'static str, Value, Vec<[u8; 
             vec![],
         ),
         (
+            "an iridescent film",
+            "iridescence",
+            grey(json!({"extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 1.0}}})),
+            vec![],
+        ),
+        (
             "alpha 0.4 masked at the default cutoff",
             "coverage",
             {
@@ -238,6 +244,10 @@ fn a_changed_layer_is_caught() {
                 "attenuationColor": colour}}}),
         )
     };
+    let film = |thickness: f64| {
+        grey(json!({"extensions": {"KHR_materials_iridescence":
+            {"iridescenceFactor": 1.0, "iridescenceThicknessMaximum": thickness}}}))
+    };
     let strength = |s: f64| {
         grey(json!({"emissiveFactor": [0.2, 0.1, 0.05],
             "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": s}}}))
@@ -260,6 +270,11 @@ fn a_changed_layer_is_caught() {
             strength(1.0),
         ),
         ("alpha cutoff 0.5 read as 0.3", cutoff(0.5), cutoff(0.3)),
+        (
+            "film thickness 400 nm read as 300",
+            film(400.0),
+            film(300.0),
+        ),
     ];
     for (change, a, b) in cases {
         let delta_e = worst(&material(a, &[]), &material(b, &[]));
@@ -357,7 +372,7 @@ fn sampled(sampler: Value) -> MaterialSource {
     let textures = [Some(crate::shade::sample::texture_of(image))];
     let mut m = pbr([1.0; 3], 0.0, 0.5);
     m["pbrMetallicRoughness"]["baseColorTexture"] = json!({"index": 0});
-    MaterialSource::gltf2_sampled(&m, &textures, &[Sampler::of(Some(&sampler))])
+    MaterialSource::gltf2_sampled(&m, &textures, &[Sampler::of(Some(&sampler))], &[])
 }
 
 #[test]

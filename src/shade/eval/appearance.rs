@@ -27,6 +27,7 @@
 //! the base's frame and a clearcoat normal map the coat's.
 
 use super::brdf::{f0_from_ior, fresnel, ggx_d, max3, smith_vis, Geometry, V3};
+use super::iridescence::fresnel_lanes;
 use super::lanes::{channels, Real};
 use super::material::{DiffuseBalance, Inputs, Shader};
 use std::f64::consts::PI;
@@ -122,14 +123,18 @@ fn environment_scale_bias<R: Real>(roughness: f64, n_dot_v: R) -> (R, R) {
 }
 
 /// The dielectric's Fresnel term at the view's incidence (the ambient light's and the
-/// transmitted light's), per channel.
+/// transmitted light's), per channel, with the thin film's where there is one.
 #[inline(always)]
-fn view_fresnel<R: Real>(m: &Inputs, weight: R) -> [R; 3] {
+fn view_fresnel<R: Real>(m: &Inputs, n_dot_v: R) -> [R; 3] {
     let f0_ior = f0_from_ior(m.ior);
-    channels(|c| {
-        let f0 = (f0_ior * m.specular_color[c]).min(1.0) * m.specular;
-        fresnel(f0, m.specular, weight)
-    })
+    let f0: V3 = channels(|c| (f0_ior * m.specular_color[c]).min(1.0) * m.specular);
+    let weight = schlick_weight_of(n_dot_v);
+    let plain = channels(|c| fresnel(f0[c], m.specular, weight));
+    if m.iridescence == 0.0 {
+        return plain;
+    }
+    let film = fresnel_lanes(m.iridescence_film, f0, n_dot_v);
+    channels(|c| plain[c] * (1.0 - m.iridescence) + film[c] * m.iridescence)
 }
 
 /// The base's reflection of the uniform ambient light of radiance 1.
@@ -138,19 +143,26 @@ fn ambient_reflection<R: Real>(m: &Inputs, n_dot_v: R, fresnel_v: &[R; 3]) -> [R
     let (scale, bias) = environment_scale_bias(m.roughness, n_dot_v);
     let f0_ior = f0_from_ior(m.ior);
     let max_f = max3(*fresnel_v);
-    let reflected = m.diffuse_reflected();
-    channels(|c| {
+    let kept = m.diffuse_reflected();
+    let reflected: [R; 3] = channels(|c| {
         let f0 = (f0_ior * m.specular_color[c]).min(1.0) * m.specular;
         let diffuse_weight = match m.diffuse_balance {
             DiffuseBalance::MaxFresnel => -max_f + 1.0,
             DiffuseBalance::PerChannelFresnel => -fresnel_v[c] + 1.0,
             DiffuseBalance::Unbalanced => R::splat(1.0),
         };
-        let dielectric =
-            scale * f0 + bias * m.specular + diffuse_weight * (m.base_color[c] * reflected);
+        let dielectric = scale * f0 + bias * m.specular + diffuse_weight * (m.base_color[c] * kept);
         let metal = scale * m.base_color[c] + bias;
         dielectric * (1.0 - m.metallic) + metal * m.metallic
-    })
+    });
+    if m.iridescence == 0.0 || m.metallic == 0.0 {
+        return reflected;
+    }
+    // A metal's film reflects F_film · (A + B) of the split sum, mixed by its strength.
+    let film = fresnel_lanes(m.iridescence_film, m.base_color, n_dot_v);
+    let metal_film: [R; 3] =
+        channels(|c| (film[c] * (scale + bias) - (scale * m.base_color[c] + bias)) * m.iridescence);
+    channels(|c| reflected[c] + metal_film[c] * m.metallic)
 }
 
 /// What the base passes from a uniform background behind it, per channel.
@@ -187,7 +199,7 @@ pub fn seen<R: Real>(shader: &Shader, m: &Inputs, g: &Geometry<R>) -> Seen<R> {
     let f = shader.brdf(m, &base);
     let n_dot_l = base.l[2].max(zero);
     let n_dot_v = base.v[2].max(zero).min(R::splat(1.0));
-    let fresnel_v = view_fresnel(m, schlick_weight_of(n_dot_v));
+    let fresnel_v = view_fresnel(m, n_dot_v);
     let ambient = ambient_reflection(m, n_dot_v, &fresnel_v);
     let lit = AMBIENT * m.occlusion;
     let mut own: [R; 3] = channels(|c| f[c] * n_dot_l * PI + ambient[c] * lit + m.emission[c]);

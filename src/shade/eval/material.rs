@@ -19,6 +19,7 @@ use super::brdf::{
     anisotropic_alphas, f0_from_ior, fresnel, ggx_aniso_d, ggx_d, into_anisotropy_frame, max3,
     sheen_lobe, smith_vis, smith_vis_aniso, Geometry, SheenVisibility, V3,
 };
+use super::iridescence::{fresnel_lanes, Film};
 use super::lanes::{channels, Real};
 use super::sheen_table::SheenTable;
 use std::f64::consts::PI;
@@ -76,6 +77,10 @@ pub struct Inputs {
     pub diffuse_transmission: f64,
     /// The colour of the diffusely transmitted light, linear RGB.
     pub diffuse_transmission_color: V3,
+    /// KHR_materials_iridescence: the thin film's strength (0 switches it off).
+    pub iridescence: f64,
+    /// The thin film's index of refraction and thickness (nanometres).
+    pub iridescence_film: Film,
 }
 
 /// How a dielectric's diffuse term is weighed against the specular Fresnel term F (RGB).
@@ -219,6 +224,11 @@ impl Default for Inputs {
             volume_transmittance: [1.0; 3],
             diffuse_transmission: 0.0,
             diffuse_transmission_color: [1.0; 3],
+            iridescence: 0.0,
+            iridescence_film: Film {
+                ior: 1.3,
+                thickness: 400.0,
+            },
         }
     }
 }
@@ -312,13 +322,28 @@ pub fn base_brdf<R: Real>(m: &Inputs, g: &Geometry<R>) -> [R; 3] {
         ggx_d(alpha, g.h[2]) * smith_vis(alpha, g.l[2], g.v[2])
     };
     let f0_ior = f0_from_ior(m.ior);
-    let dielectric_f: [R; 3] = channels(|i| {
+    let mut dielectric_f: [R; 3] = channels(|i| {
         fresnel(
             (f0_ior * m.specular_color[i]).min(1.0) * m.specular,
             m.specular,
             g.fresnel_weight,
         )
     });
+    let mut metal_f: [R; 3] = channels(|i| fresnel(m.base_color[i], 1.0, g.fresnel_weight));
+    if m.iridescence > 0.0 {
+        // KHR_materials_iridescence: "mix(specular_weight * fr, iridescent_f,
+        // iridescence_strength)" over the dielectric's F0 times its specular weight, and
+        // "mix(conductor_fresnel(base_f0), … iridescent_fresnel(…, base_f0, …))" over the
+        // metal's base colour, at the viewing angle.
+        let cos_view = g.v[2].max(R::splat(0.0));
+        let film_f0 = channels(|i| (f0_ior * m.specular_color[i]).min(1.0) * m.specular);
+        let (strength, film) = (m.iridescence, m.iridescence_film);
+        let over_dielectric = fresnel_lanes(film, film_f0, cos_view);
+        let over_metal = fresnel_lanes(film, m.base_color, cos_view);
+        dielectric_f =
+            channels(|i| dielectric_f[i] * (1.0 - strength) + over_dielectric[i] * strength);
+        metal_f = channels(|i| metal_f[i] * (1.0 - strength) + over_metal[i] * strength);
+    }
     let max_f = max3(dielectric_f);
     let diffuse_weight = |i: usize| match m.diffuse_balance {
         DiffuseBalance::MaxFresnel => -max_f + 1.0,
@@ -329,7 +354,7 @@ pub fn base_brdf<R: Real>(m: &Inputs, g: &Geometry<R>) -> [R; 3] {
     channels(|i| {
         let diffuse = m.base_color[i] * reflected / PI;
         let dielectric = dielectric_f[i] * specular + diffuse_weight(i) * diffuse;
-        let metal = fresnel(m.base_color[i], 1.0, g.fresnel_weight) * specular;
+        let metal = metal_f[i] * specular;
         dielectric * (1.0 - m.metallic) + metal * m.metallic
     })
 }

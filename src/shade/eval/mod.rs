@@ -3,6 +3,7 @@
 pub mod appearance;
 pub mod brdf;
 pub(crate) mod elementary;
+pub mod iridescence;
 pub(crate) mod lanes;
 pub mod material;
 pub(crate) mod quadrature;

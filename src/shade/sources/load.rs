@@ -119,20 +119,24 @@ pub fn gltf2_materials(
     // An image that cannot be read or decoded (a format the evaluator does not decode, a
     // broken file) leaves the materials that use it not evaluated, not the whole asset.
     let decoded = sample::decode_each_at_most(&encoded, finest)?;
-    let textures: Vec<Option<Texture>> = textures
-        .iter()
+    let each: Vec<Result<Option<Texture>, String>> = (textures.iter())
         .map(|texture| {
-            decoded
-                .get(texture_source(texture)? as usize)?
-                .clone()
-                .ok()?
+            let image = texture_source(texture).and_then(|i| decoded.get(i as usize));
+            image.cloned().unwrap_or(Ok(None))
         })
         .collect();
+    let unreadable: Vec<Option<String>> = each.iter().map(|t| t.clone().err()).collect();
+    let textures: Vec<Option<Texture>> = each.into_iter().map(|t| t.ok().flatten()).collect();
     let names = nodes("materials").enumerate().map(|(i, material)| {
         (material.get("name").and_then(Node::as_str)).map_or_else(|| i.to_string(), str::to_string)
     });
     let samplers = samplers_of(&list("textures"), &list("samplers"));
-    let prepared = prepare_materials(nodes("materials").map(Node::to_value), &textures, &samplers);
+    let prepared = prepare_materials(
+        nodes("materials").map(Node::to_value),
+        &textures,
+        &samplers,
+        &unreadable,
+    );
     Ok(names.zip(prepared).collect())
 }
 
@@ -146,8 +150,8 @@ pub fn samplers_of(textures: &[Value], samplers: &[Value]) -> Vec<sample::Sample
         .collect()
 }
 
-/// Each material prepared for the evaluator with the document's textures and their samplers
-/// (by texture index). An asset's copies of one material share one prepared source, so 10^5
+/// Each material prepared for the evaluator with the document's textures, their samplers and
+/// why a texture's image could not be had (by texture index). An asset's copies of one material share one prepared source, so 10^5
 /// alike materials are prepared, held and compared once; copies that name different textures
 /// of the same image and sampler are copies too (the evaluator reads the image, not the
 /// texture object).
@@ -155,6 +159,7 @@ pub fn prepare_materials(
     materials: impl IntoIterator<Item = Value>,
     textures: &[Option<Texture>],
     samplers: &[sample::Sampler],
+    unreadable: &[Option<String>],
 ) -> Vec<MaterialSource> {
     let first_alike = first_alike_textures(textures, samplers);
     let mut prepared: HashMap<String, MaterialSource> = HashMap::new();
@@ -162,7 +167,9 @@ pub fn prepare_materials(
         .map(|mut material| {
             reindex_textures(&mut material, &first_alike);
             (prepared.entry(sample::shading_text(&material)))
-                .or_insert_with(|| MaterialSource::gltf2_sampled(&material, textures, samplers))
+                .or_insert_with(|| {
+                    MaterialSource::gltf2_sampled(&material, textures, samplers, unreadable)
+                })
                 .clone()
         })
         .collect()

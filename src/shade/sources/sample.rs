@@ -8,6 +8,7 @@ use crate::gltf::color::srgb_texel_to_linear;
 use crate::gltf::material::{effective_texcoord, texture_transform};
 use crate::legacy::pbr::{LegacyPbr, Model};
 use crate::shade::brdf::V3;
+use crate::shade::iridescence::Film;
 use crate::shade::lanes::channels;
 use crate::shade::material::{Inputs, SpecGlossReading};
 use serde_json::Value;
@@ -733,6 +734,9 @@ pub struct Prepared {
     diffuse_transmission: Option<Binding>,
     diffuse_transmission_colour: Option<Binding>,
     volume: Volume,
+    iridescence: Option<Binding>,
+    /// KHR_materials_iridescence's thickness range (nanometres) and texture (G).
+    film_thickness: ([f64; 2], Option<Binding>),
     pub has_sheen: bool,
     /// What the evaluator cannot show of this material (see [`MaterialSource::unmodelled`]).
     unmodelled: Vec<String>,
@@ -793,7 +797,8 @@ struct SpecGloss {
 
 /// The material extensions the evaluator draws. Any other extension on a material is
 /// reported as not evaluated.
-const MODELLED_EXTENSIONS: [&str; 11] = [
+const MODELLED_EXTENSIONS: [&str; 12] = [
+    "KHR_materials_iridescence",
     "KHR_materials_pbrSpecularGlossiness",
     "KHR_materials_unlit",
     "KHR_materials_specular",
@@ -810,17 +815,24 @@ const MODELLED_EXTENSIONS: [&str; 11] = [
 impl MaterialSource {
     /// Prepares a glTF 2.0 material; `textures` are the document's, by texture index.
     pub fn gltf2(material: &Value, textures: &[Option<Texture>]) -> MaterialSource {
-        MaterialSource::Gltf2(Arc::new(prepare(material, textures, &[])))
+        MaterialSource::gltf2_sampled(material, textures, &[], &[])
     }
 
     /// Prepares a glTF 2.0 material whose textures are read through `samplers` (by texture
-    /// index; a texture without one has the default sampler).
+    /// index; a texture without one has the default sampler); `unreadable` says why a
+    /// texture has no image (by texture index), for what the material cannot show.
     pub fn gltf2_sampled(
         material: &Value,
         textures: &[Option<Texture>],
         samplers: &[Sampler],
+        unreadable: &[Option<String>],
     ) -> MaterialSource {
-        MaterialSource::Gltf2(Arc::new(prepare(material, textures, samplers)))
+        let set = TextureSet {
+            images: textures,
+            samplers,
+            unreadable,
+        };
+        MaterialSource::Gltf2(Arc::new(prepare(material, &set)))
     }
 }
 
@@ -1001,20 +1013,25 @@ impl MaterialSource {
     }
 }
 
-fn prepare(material: &Value, textures: &[Option<Texture>], samplers: &[Sampler]) -> Prepared {
+/// A document's textures by index: their decoded images, their samplers, and why an image
+/// could not be had.
+struct TextureSet<'t> {
+    images: &'t [Option<Texture>],
+    samplers: &'t [Sampler],
+    unreadable: &'t [Option<String>],
+}
+
+fn prepare(material: &Value, textures: &TextureSet) -> Prepared {
     let mut unmodelled = Vec::new();
     let mut bind = |info: Option<&Value>, slot: &str| -> Option<Binding> {
         let info = info?;
-        let index = info
-            .get("index")
-            .and_then(Value::as_u64)
-            .map(|i| i as usize);
-        let texture = index.and_then(|i| textures.get(i)?.clone());
-        let sampler = (index.and_then(|i| samplers.get(i)).copied()).unwrap_or_default();
+        let index = (info.get("index").and_then(Value::as_u64)).map(|i| i as usize);
+        let texture = index.and_then(|i| textures.images.get(i)?.clone());
+        let sampler = (index.and_then(|i| textures.samplers.get(i)).copied()).unwrap_or_default();
         if texture.is_none() {
-            unmodelled.push(format!(
-                "{slot} (its texture has no image the evaluator reads)"
-            ));
+            let why = (index.and_then(|i| textures.unreadable.get(i)?.as_deref()))
+                .unwrap_or("its texture has no image the evaluator reads");
+            unmodelled.push(format!("{slot} ({why})"));
         }
         Some(Binding {
             texture: texture?,
@@ -1033,6 +1050,7 @@ fn prepare(material: &Value, textures: &[Option<Texture>], samplers: &[Sampler])
     let transmission = extension("KHR_materials_transmission");
     let volume = extension("KHR_materials_volume");
     let diffuse_transmission = extension("KHR_materials_diffuse_transmission");
+    let iridescence = extension("KHR_materials_iridescence");
     let strength = number(
         extension("KHR_materials_emissive_strength"),
         "emissiveStrength",
@@ -1059,6 +1077,11 @@ fn prepare(material: &Value, textures: &[Option<Texture>], samplers: &[Sampler])
             member(diffuse_transmission, "diffuseTransmissionColorFactor"),
             [1.0; 3],
         ),
+        iridescence: number(iridescence, "iridescenceFactor", 0.0),
+        iridescence_film: Film {
+            ior: number(iridescence, "iridescenceIor", 1.3),
+            thickness: number(iridescence, "iridescenceThicknessMaximum", 400.0),
+        },
         ..Inputs::default()
     };
     let sg = extension("KHR_materials_pbrSpecularGlossiness");
@@ -1141,6 +1164,20 @@ fn prepare(material: &Value, textures: &[Option<Texture>], samplers: &[Sampler])
             attenuation_colour: colour3(member(volume, "attenuationColor"), [1.0; 3]),
             attenuation_distance: number(volume, "attenuationDistance", f64::INFINITY),
         },
+        iridescence: bind(
+            member(iridescence, "iridescenceTexture"),
+            "iridescenceTexture",
+        ),
+        film_thickness: (
+            [
+                number(iridescence, "iridescenceThicknessMinimum", 100.0),
+                number(iridescence, "iridescenceThicknessMaximum", 400.0),
+            ],
+            bind(
+                member(iridescence, "iridescenceThicknessTexture"),
+                "iridescenceThicknessTexture",
+            ),
+        ),
         has_sheen: sheen.is_some(),
         unmodelled,
         fingerprint: String::new(),
@@ -1165,10 +1202,6 @@ fn unmodelled_extensions(material: &Value) -> Vec<String> {
     for name in extensions.keys() {
         match name.as_str() {
             known if MODELLED_EXTENSIONS.contains(&known) => {}
-            "KHR_materials_iridescence" if factor(name, "iridescenceFactor") == 0.0 => {}
-            "KHR_materials_iridescence" => list.push(format!(
-                "{name} (the thin film's interference colours are not modelled)"
-            )),
             "KHR_materials_dispersion" if factor(name, "dispersion") == 0.0 => {}
             "KHR_materials_dispersion" => list.push(format!(
                 "{name} (its colour fringes show only against a structured background; the figure's backgrounds are uniform)"
@@ -1218,6 +1251,8 @@ impl Prepared {
             &self.diffuse_transmission,
             &self.diffuse_transmission_colour,
             &self.volume.texture,
+            &self.iridescence,
+            &self.film_thickness.1,
         ]
         .into_iter()
         .chain(
@@ -1318,6 +1353,15 @@ impl Prepared {
         }
         if let Some(t) = colour(&self.diffuse_transmission_colour) {
             m.diffuse_transmission_color = times(m.diffuse_transmission_color, rgb(t));
+        }
+        if let Some(t) = sample(&self.iridescence) {
+            m.iridescence *= t[0];
+        }
+        if let Some(t) = sample(&self.film_thickness.1) {
+            // "thickness = mix(iridescenceThicknessMinimum, iridescenceThicknessMaximum,
+            // iridescenceThicknessTexture.g)"; without the texture, the maximum.
+            let [least, most] = self.film_thickness.0;
+            m.iridescence_film.thickness = least + (most - least) * t[1];
         }
         let thickness = self.volume.thickness * sample(&self.volume.texture).map_or(1.0, |t| t[1]);
         m.volume_transmittance = self.volume.transmittance(thickness);
