@@ -139,7 +139,7 @@ fn direction([theta, phi]: [f64; 2]) -> V3 {
 }
 
 /// Both materials' inputs at one point.
-type Pair = (Inputs, Inputs);
+pub(crate) type Pair = (Inputs, Inputs);
 
 /// One point's colours for every direction pair, channel by channel, direction per lane:
 /// the radiance over black (RGB), then the share of the background shown (RGB).
@@ -199,13 +199,8 @@ pub fn delta_at(shader: &Shader, a: &Inputs, b: &Inputs, angles: &Angles) -> (f6
     };
     (backgrounds.iter())
         .map(|&background| (delta_over(&sa, &sb, background), background))
-        .fold((0.0, BACKGROUNDS[0]), |worst, each| {
-            if each.0 > worst.0 {
-                each
-            } else {
-                worst
-            }
-        })
+        .reduce(|worst, each| if each.0 > worst.0 { each } else { worst })
+        .unwrap_or((0.0, BACKGROUNDS[0]))
 }
 
 /// The largest ΔE2000 between any of `sources` and `target` at one point, over the fixed
@@ -214,33 +209,13 @@ pub fn delta_at(shader: &Shader, a: &Inputs, b: &Inputs, angles: &Angles) -> (f6
 /// roughness for the fixed directions' figures and misses the highlight the proof's dense
 /// search then finds.
 pub fn worst_at_point(shader: &Shader, sources: &[Inputs], target: &Inputs) -> f64 {
-    static PEAK: std::sync::OnceLock<Vec<Angles>> = std::sync::OnceLock::new();
-    let peak = PEAK.get_or_init(|| {
-        let views = [0.0, 30.0, 50.0, 65.0, 75.0];
-        let offsets = [0.0, 0.3, 1.0, 3.0, 8.0];
-        let mut set = Vec::new();
-        for theta in views {
-            for offset in offsets {
-                // Off the mirror in the plane of incidence and across it.
-                set.push(Angles {
-                    view: [theta, 0.0],
-                    light: [
-                        (theta - offset).abs(),
-                        if theta >= offset { 180.0 } else { 0.0 },
-                    ],
-                });
-                let across = offset / theta.to_radians().sin().max(0.05);
-                set.push(Angles {
-                    view: [theta, 0.0],
-                    light: [theta.max(offset), 180.0 + across],
-                });
-            }
-        }
-        set
-    });
     let mut worst = 0f64;
     for source in sources {
-        for angles in DIRECTIONS.map(Angles::coarse).iter().chain(peak) {
+        for angles in DIRECTIONS
+            .map(Angles::coarse)
+            .iter()
+            .chain(refine::peak_angles())
+        {
             worst = worst.max(delta_at(shader, source, target, angles).0);
         }
     }
@@ -258,7 +233,7 @@ struct Batch {
     b: [[f64; BATCH]; 6],
     /// Whether a point of the batch lets the background show.
     translucent: bool,
-    pairs: Vec<(Inputs, Inputs)>,
+    pairs: Vec<Pair>,
 }
 
 impl Batch {
@@ -322,8 +297,6 @@ struct Partial {
     sum: f64,
     count: u64,
     worst: Worst,
-    /// The inputs of both materials at the worst point.
-    worst_pair: Option<Box<Pair>>,
     histogram: Vec<u32>,
     candidates: refine::Candidates,
 }
@@ -496,10 +469,11 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                 let each = (readings.iter()).zip(&mut row_of).zip(&mut batches);
                 for (((a, row), batch), partial) in each.zip(&mut partials) {
                     let source = a.inputs_at(&[uv]);
-                    if source != target && points == Points::Centres {
+                    let equal = source == target;
+                    if !equal && points == Points::Centres {
                         here[x as usize] = false;
                     }
-                    if source == target {
+                    if equal {
                         // Identical inputs give identical colours, whose ΔE is exactly 0:
                         // added at once unless points before it wait for their batch. (The
                         // previous point is left as it was: no point with differing inputs
@@ -567,7 +541,7 @@ struct Row {
     /// Points put into the batch so far.
     unique: usize,
     /// The last point's inputs and samples: equal inputs give equal colours.
-    previous: Option<((Inputs, Inputs), Source)>,
+    previous: Option<(Pair, Source)>,
 }
 
 impl Row {
@@ -603,7 +577,11 @@ impl Row {
                 Source::Slot(k) => {
                     partial.add_point(&at, &samples(source), angles, &batch.pairs[k])
                 }
-                Source::Known(_) => partial.add_repeat(&at, &samples(source)),
+                // A repeat of the point before: its figures count, and it cannot be a new
+                // worst (the point it repeats was offered).
+                Source::Known(_) => {
+                    partial.add_samples(&at, &samples(source));
+                }
             }
         }
         if let Some((_, source)) = &mut self.previous {
@@ -627,7 +605,6 @@ impl Partial {
                 directions: Angles::coarse(DIRECTIONS[0]),
                 background: BACKGROUNDS[0],
             },
-            worst_pair: None,
             histogram: vec![0; BINS],
             candidates: refine::Candidates::default(),
         }
@@ -676,17 +653,12 @@ impl Partial {
         (point_max, arg)
     }
 
-    /// A point like the one before it: its figures count, and it cannot be a new worst.
-    fn add_repeat(&mut self, at: &Place, deltas: &[f64]) {
-        self.add_samples(at, deltas);
-    }
-
     fn add_point(
         &mut self,
         at: &Place,
         deltas: &[f64],
         angles: &[Angles; DIRECTION_COUNT],
-        pair: &(Inputs, Inputs),
+        pair: &Pair,
     ) {
         let (point_max, arg) = self.add_samples(at, deltas);
         if point_max > self.worst.delta_e {
@@ -697,7 +669,6 @@ impl Partial {
                 directions: angles[arg],
                 background: BACKGROUNDS[0],
             };
-            self.worst_pair = Some(Box::new(pair.clone()));
         }
         self.candidates.offer(point_max, at.uv, pair);
     }
@@ -716,7 +687,7 @@ fn merge<'p>(
     let (mut sum, mut count) = (0.0, 0u64);
     // The first worst sample seen (in row order) wins ties, so a comparison with ΔE 0
     // everywhere names a real point.
-    let mut worst: Option<(Worst, Option<Box<Pair>>)> = None;
+    let mut worst: Option<Worst> = None;
     let mut candidates = refine::Candidates::default();
     // Partials come in row order: their texels concatenate into the grid.
     for p in partials {
@@ -726,23 +697,19 @@ fn merge<'p>(
         for (total, n) in histogram.iter_mut().zip(&p.histogram) {
             *total += u64::from(*n);
         }
-        if worst
-            .as_ref()
-            .is_none_or(|(w, _)| p.worst.delta_e > w.delta_e)
-        {
-            worst = Some((p.worst.clone(), p.worst_pair.clone()));
+        if worst.as_ref().is_none_or(|w| p.worst.delta_e > w.delta_e) {
+            worst = Some(p.worst.clone());
         }
         candidates.absorb(&p.candidates);
     }
-    let (mut worst, mut pair) = worst.unwrap_or((
-        Worst {
-            delta_e: 0.0,
-            uv: [0.0, 0.0],
-            directions: Angles::coarse(DIRECTIONS[0]),
-            background: BACKGROUNDS[0],
-        },
-        None,
-    ));
+    let mut worst = worst.unwrap_or(Worst {
+        delta_e: 0.0,
+        uv: [0.0, 0.0],
+        directions: Angles::coarse(DIRECTIONS[0]),
+        background: BACKGROUNDS[0],
+    });
+    // The worst point is the first of the candidates (offered in row order, ties kept first).
+    let mut pair = candidates.worst_pair().cloned();
     if let Some(pair) = &pair {
         worst.background = delta_at(shader, &pair.0, &pair.1, &worst.directions).1;
     }
@@ -750,7 +717,7 @@ fn merge<'p>(
     if let Some(found) = refine::search(shader, &candidates, texel, at) {
         if found.worst.delta_e > worst.delta_e {
             worst = found.worst;
-            pair = Some(found.pair);
+            pair = Some(*found.pair);
         }
     }
     let dominant = (pair.as_ref())

@@ -12,7 +12,7 @@
 //! 0.001°. ΔE between two materials changes smoothly with direction outside the lobes, so
 //! the spread bounds it there; inside them the offsets and the refinement do.
 
-use super::{delta_at, Angles, Worst, BACKGROUNDS};
+use super::{delta_at, Angles, Pair, Worst, BACKGROUNDS};
 use crate::shade::appearance::{seen, Seen};
 use crate::shade::brdf::Geometry;
 use crate::shade::delta_e::{ciede2000, lab_from_linear_srgb};
@@ -37,7 +37,7 @@ struct Candidate {
     delta_e: f64,
     uv: [f64; 2],
     sharpness: f64,
-    pair: Box<(Inputs, Inputs)>,
+    pair: Box<Pair>,
 }
 
 /// The points worth a dense search, gathered as the grid is compared.
@@ -73,7 +73,7 @@ fn keep_best(
 
 impl Candidates {
     /// Offers a point whose fixed directions found `delta_e` at most.
-    pub fn offer(&mut self, delta_e: f64, uv: [f64; 2], pair: &(Inputs, Inputs)) {
+    pub fn offer(&mut self, delta_e: f64, uv: [f64; 2], pair: &Pair) {
         let sharpness = lobe_roughness(&pair.0).min(lobe_roughness(&pair.1));
         let better_than =
             |list: &Vec<Candidate>, keep: usize, wins: &dyn Fn(&Candidate) -> bool| {
@@ -102,6 +102,11 @@ impl Candidates {
                 c.sharpness
             });
         }
+    }
+
+    /// Both materials' inputs at the point the fixed directions found worst.
+    pub fn worst_pair(&self) -> Option<&Pair> {
+        self.worst.first().map(|c| &*c.pair)
     }
 
     /// Takes in another part's candidates.
@@ -136,6 +141,42 @@ fn dense() -> &'static Dense {
     })
 }
 
+/// The mirror direction of `view` (θ, φ in degrees) and, for each of `offsets`, the four
+/// lights that far off it: nearer and further from the normal, and to either side.
+fn mirror_lights([theta_v, phi_v]: [f64; 2], offsets: &[f64]) -> Vec<[f64; 2]> {
+    let mirror = [theta_v, phi_v + 180.0];
+    let mut lights = vec![mirror];
+    for &delta in offsets {
+        for theta in [theta_v - delta, theta_v + delta] {
+            lights.push(match theta < 0.0 {
+                true => [-theta, phi_v],
+                false => [theta, mirror[1]],
+            });
+        }
+        let across = delta / theta_v.to_radians().sin().max(delta.to_radians().sin());
+        lights.push([theta_v.max(delta), mirror[1] + across]);
+        lights.push([theta_v.max(delta), mirror[1] - across]);
+    }
+    lights
+}
+
+/// The specular peak for fitting factors: the mirror direction of views from head-on to
+/// [`MAX_THETA`] and lights just off it (a fit needs the peak, not the whole dense set).
+pub(super) fn peak_angles() -> &'static [Angles] {
+    static PEAK: OnceLock<Vec<Angles>> = OnceLock::new();
+    PEAK.get_or_init(|| {
+        let views = [0.0, 30.0, 50.0, 65.0, MAX_THETA];
+        (views.into_iter())
+            .flat_map(|theta| {
+                let view = [theta, 0.0];
+                (mirror_lights(view, &[0.3, 1.0, 3.0, 8.0]).into_iter())
+                    .filter(|light| light[0] <= MAX_THETA)
+                    .map(move |light| Angles { view, light })
+            })
+            .collect()
+    })
+}
+
 /// Views × (mirror, mirror offsets, spread), as the module's documentation gives them.
 fn dense_angles() -> Vec<Angles> {
     const THETA_V: [f64; 8] = [0.0, 15.0, 30.0, 40.0, 50.0, 60.0, 68.0, 75.0];
@@ -149,19 +190,7 @@ fn dense_angles() -> Vec<Angles> {
             &[0.0, 45.0, 90.0]
         };
         for &phi_v in azimuths {
-            let mirror = [theta_v, phi_v + 180.0];
-            let mut lights = vec![mirror];
-            for delta in OFFSETS {
-                for theta in [theta_v - delta, theta_v + delta] {
-                    lights.push(match theta < 0.0 {
-                        true => [-theta, phi_v],
-                        false => [theta, mirror[1]],
-                    });
-                }
-                let across = delta / theta_v.to_radians().sin().max(delta.to_radians().sin());
-                lights.push([theta_v.max(delta), mirror[1] + across]);
-                lights.push([theta_v.max(delta), mirror[1] - across]);
-            }
+            let mut lights = mirror_lights([theta_v, phi_v], &OFFSETS);
             for theta in SPREAD_THETA {
                 let count = if theta == 0.0 { 1 } else { 6 };
                 lights.extend((0..count).map(|k| [theta, phi_v + 60.0 * k as f64]));
@@ -182,7 +211,7 @@ fn dense_angles() -> Vec<Angles> {
 /// The worst sample the dense search and its refinement find.
 pub struct Found {
     pub worst: Worst,
-    pub pair: Box<(Inputs, Inputs)>,
+    pub pair: Box<Pair>,
 }
 
 /// The point near `candidate` (within half a texel of the grid, in quarter-texel steps)
@@ -193,10 +222,10 @@ fn nearby_worst(
     shader: &Shader,
     candidate: &Candidate,
     texel: f64,
-    at: &dyn Fn([f64; 2]) -> Option<(Inputs, Inputs)>,
+    at: &dyn Fn([f64; 2]) -> Option<Pair>,
 ) -> Candidate {
     let coarse = super::DIRECTIONS.map(Angles::coarse);
-    let worst_of = |pair: &(Inputs, Inputs)| {
+    let worst_of = |pair: &Pair| {
         (coarse.iter())
             .map(|angles| delta_at(shader, &pair.0, &pair.1, angles).0)
             .fold(0.0, f64::max)
@@ -235,7 +264,7 @@ pub fn search(
     shader: &Shader,
     candidates: &Candidates,
     texel: f64,
-    at: &dyn Fn([f64; 2]) -> Option<(Inputs, Inputs)>,
+    at: &dyn Fn([f64; 2]) -> Option<Pair>,
 ) -> Option<Found> {
     let moved: Vec<Candidate> = (candidates.worst.iter().chain(&candidates.sharpest))
         .map(|c| nearby_worst(shader, c, texel, at))
