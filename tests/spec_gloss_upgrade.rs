@@ -659,3 +659,40 @@ fn errors_the_input_had_are_passed_through_and_only_strict_refuses_them() {
     assert_eq!(strict.status.code(), Some(1));
     assert!(!folder.path().join("out.gltf").exists());
 }
+
+#[test]
+fn a_material_the_evaluator_cannot_show_is_not_evaluated_and_verify_refuses_it() {
+    // factors.gltf with an extension no evaluator knows on its material: the conversion
+    // carries it, the proof cannot show it, so it proves nothing and --verify writes nothing.
+    let dir = std::env::temp_dir().join(format!("gltfmat-sg-unknown-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut asset = input_json(&fixture("factors.gltf"));
+    asset["materials"][0]["extensions"]["VENDOR_materials_glow"] = json!({"glow": 1.0});
+    let used = asset["extensionsUsed"].as_array_mut().unwrap();
+    used.push(json!("VENDOR_materials_glow"));
+    for (key, value) in asset["buffers"].as_array().unwrap().iter().enumerate() {
+        if let Some(uri) = value["uri"].as_str().filter(|u| !u.starts_with("data:")) {
+            let from = fixture("factors.gltf").parent().unwrap().join(uri);
+            std::fs::copy(from, dir.join(uri)).unwrap_or_else(|e| panic!("buffer {key}: {e}"));
+        }
+    }
+    let input = dir.join("in.gltf");
+    std::fs::write(&input, asset.to_string()).unwrap();
+    let out = dir.join("out.glb");
+    let (code, stdout, stderr) = gltfmat(&[
+        "upgrade",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--verify",
+    ]);
+    let stdout = String::from_utf8_lossy(&stdout);
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    assert!(
+        stdout.contains("NOT EVALUATED (first: VENDOR_materials_glow"),
+        "{stdout}"
+    );
+    assert!(!out.exists(), "nothing is written");
+    let _ = std::fs::remove_dir_all(&dir);
+}
