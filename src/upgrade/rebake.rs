@@ -216,13 +216,19 @@ fn between_centres_error(texels: &SpecGlossTexels) -> f64 {
     let (width, height) = (texels.width, texels.height);
     let shown = |colour: [f64; 3]| lab_from_linear_srgb(displayed(colour));
     let base_at = |value: TexelValue| texels.factors.base_colour(value.diffuse, value.specular);
+    // Each centre converted once; every corner reads the four around it.
+    let centres: Vec<[f64; 3]> = (0..height)
+        .into_par_iter()
+        .flat_map_iter(|y| (0..width).map(move |x| base_at(texels.at(x, y).0)))
+        .collect();
+    let centre = |x: u32, y: u32| centres[((y % height) * width + x % width) as usize];
     (0..height)
         .into_par_iter()
         .map(|y| {
             let mut worst = 0f64;
             for x in 0..width {
-                let around = [(x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)]
-                    .map(|(i, j)| base_at(texels.at(i % width, j % height).0));
+                let around =
+                    [(x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)].map(|(i, j)| centre(i, j));
                 let mixed = std::array::from_fn(|c| around.iter().map(|a| a[c]).sum::<f64>() / 4.0);
                 let corner = [
                     f64::from(x + 1) / f64::from(width),

@@ -502,7 +502,7 @@ fn decode_in_parallel(
 /// Bilinear sample with repeat wrapping, texel centres at (i + ½) / size.
 #[inline(always)]
 pub fn bilinear(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
-    bilinear_of::<false>(texture, uv)
+    sample_of::<false>(texture, uv, Sampler::default())
 }
 
 /// Bilinear sample of an sRGB-encoded colour texture: RGB decoded to linear texel by texel
@@ -510,13 +510,7 @@ pub fn bilinear(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
 /// … is performed before filtering"), alpha as stored.
 #[inline(always)]
 pub fn bilinear_srgb(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
-    bilinear_of::<true>(texture, uv)
-}
-
-/// Bilinear sample of the texels, their colours decoded from sRGB when `SRGB`, repeating.
-#[inline(always)]
-fn bilinear_of<const SRGB: bool>(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
-    sample_of::<SRGB>(texture, uv, Sampler::default())
+    sample_of::<true>(texture, uv, Sampler::default())
 }
 
 /// A sample as `sampler` filters and wraps it, colours decoded from sRGB when `SRGB`.
