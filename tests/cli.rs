@@ -1182,3 +1182,32 @@ fn compare_tells_every_layer_of_a_material_apart_and_names_it() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_shards_of_a_walk_cover_every_file_exactly_once() {
+    let uris = |args: &[&str]| -> Vec<String> {
+        let (_, out) = gltfmat(&[&["check", "fixtures", "--format", "jsonl"], args].concat());
+        (out.lines())
+            .map(|line| {
+                serde_json::from_str::<serde_json::Value>(line).unwrap()["uri"]
+                    .as_str()
+                    .unwrap()
+                    .to_string()
+            })
+            .collect()
+    };
+    let whole = uris(&[]);
+    assert!(whole.len() >= 10, "{whole:?}");
+    for n in [2, 3, 5] {
+        let mut union: Vec<String> = (1..=n)
+            .flat_map(|k| uris(&["--shard", &format!("{k}/{n}")]))
+            .collect();
+        assert!((1..=n).all(|k| uris(&["--shard", &format!("{k}/{n}")]).len() < whole.len()));
+        union.sort();
+        let mut expected = whole.clone();
+        expected.sort();
+        assert_eq!(union, expected, "{n} shards");
+    }
+    let (status, _) = gltfmat(&["check", "fixtures", "--shard", "4/3"]);
+    assert_eq!(status, 2);
+}

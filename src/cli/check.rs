@@ -78,6 +78,12 @@ pub struct CheckArgs {
     /// No progress bar (it is shown only on a terminal, on stderr).
     #[arg(long, short)]
     quiet: bool,
+    /// Check only part K of N of the files (1 ≤ K ≤ N): a CI matrix of N jobs, each given
+    /// its own K and the same other arguments, checks every file exactly once, and their
+    /// jsonl outputs concatenate into the whole run's. A file's part is fixed by its path
+    /// as the run names it, not by the order the file system lists it in.
+    #[arg(long, value_name = "K/N", value_parser = crate::shard::Shard::parse)]
+    shard: Option<crate::shard::Shard>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -201,6 +207,9 @@ pub fn run(args: CheckArgs) -> Outcome {
                 unreadable = true;
             }
         }
+    }
+    if let Some(shard) = args.shard {
+        files.retain(|file| shard.contains(file));
     }
     // Files are checked in parallel; reports keep the input order. The progress bar goes to
     // stderr, only on a terminal, without --quiet, never in CI, and only when the report does

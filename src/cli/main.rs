@@ -38,6 +38,7 @@ mod config;
 mod lut;
 mod render;
 mod rules;
+mod shard;
 mod shell;
 mod signals;
 mod streams;
