@@ -53,13 +53,6 @@ pub fn threshold(text: &str) -> Result<f64, String> {
     }
 }
 
-/// An image as PNG bytes (encoding into memory cannot fail for an RGB image).
-pub fn png(image: &image::RgbImage) -> Vec<u8> {
-    let mut bytes = std::io::Cursor::new(Vec::new());
-    let _ = image.write_to(&mut bytes, image::ImageFormat::Png);
-    bytes.into_inner()
-}
-
 /// How a glTF 1.0 PBR draft's specular-glossiness text is read (`--draft-reading`).
 #[derive(Clone, Copy, Default, clap::ValueEnum)]
 pub enum DraftReadingArg {

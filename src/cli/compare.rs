@@ -4,7 +4,6 @@ use crate::common::{Failure, Outcome};
 use gltfmat::shade::compare::DIRECTIONS;
 use gltfmat::shade::render::heatmap;
 use gltfmat::{compare, CompareOptions};
-use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -145,7 +144,7 @@ pub fn run(args: CompareArgs) -> Outcome {
                 ))
             };
             let image = heatmap(&o.result.per_texel, o.result.grid, args.threshold);
-            maps.push((target, crate::common::png(&image)));
+            maps.push((target, gltfmat::shade::render::png(&image)));
         }
         let files: Vec<(&Path, &[u8])> = (maps.iter())
             .map(|(target, png)| (target.as_path(), png.as_slice()))
@@ -154,20 +153,8 @@ pub fn run(args: CompareArgs) -> Outcome {
             .map_err(|e| Failure::usage(e.to_string()))?;
     }
     if args.format == CompareFormat::Json {
-        let list: Vec<_> = outcomes
-            .iter()
-            .map(|o| {
-                json!({"a": o.a.0, "aName": o.a.1, "b": o.b.0, "bName": o.b.1,
-                    "max": o.result.max, "p99": o.result.p99, "mean": o.result.mean,
-                    "worst": {"uv": o.result.worst.uv,
-                              "view": o.result.worst.directions.view, "light": o.result.worst.directions.light,
-                              "background": o.result.worst.background},
-                    "dominant": o.result.dominant,
-                    "notEvaluated": o.not_evaluated,
-                    "grid": o.result.grid, "samples": o.result.samples,
-                    "ambiguity": o.ambiguity.as_ref().map(|a| json!({"readAs": a.read_as, "furthest": a.furthest, "max": a.max})),
-                    "pass": o.same(args.threshold)})
-            })
+        let list: Vec<_> = (outcomes.iter())
+            .map(|o| o.to_json(args.threshold))
             .collect();
         outln!(
             "{}",

@@ -50,7 +50,7 @@ pub fn run(args: RenderArgs) -> Outcome {
             gltfmat::shade::render::MAX_PIXELS
         );
     }
-    let png = crate::common::png(&picture.image);
+    let png = gltfmat::shade::render::png(&picture.image);
     gltfmat::output::write_file(&args.output, &png, &picture.inputs, args.force)
         .map_err(|e| Failure::usage(e.to_string()))?;
     Ok(ExitCode::SUCCESS)

@@ -329,6 +329,15 @@ fn location_suffix(d: &Diagnostic) -> String {
     }
 }
 
+/// Each finding's 1-based line and column in the asset's JSON text (of a GLB: in its JSON
+/// chunk), in the report's order; `None` for a finding that lies in binary data.
+pub fn line_columns(report: &Report) -> Vec<Option<(usize, usize)>> {
+    let positions = Positions::of(report);
+    (report.diagnostics.iter())
+        .map(|d| positions.line_col(d))
+        .collect()
+}
+
 /// A report in the Khronos `validation.schema.json` shape.
 pub fn khronos_report(report: &Report) -> KhronosReport<'_> {
     let info = &report.info;

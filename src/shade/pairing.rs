@@ -76,6 +76,21 @@ impl Outcome {
     pub fn same(&self, threshold: f64) -> bool {
         self.not_evaluated.is_empty() && self.result.max <= threshold
     }
+
+    /// The outcome as `compare --format json` writes it (`pass`: [`same`](Self::same) at
+    /// `threshold`).
+    pub fn to_json(&self, threshold: f64) -> serde_json::Value {
+        let (result, worst) = (&self.result, &self.result.worst);
+        serde_json::json!({"a": self.a.0, "aName": self.a.1, "b": self.b.0, "bName": self.b.1,
+            "max": result.max, "p99": result.p99, "mean": result.mean,
+            "worst": {"uv": worst.uv, "view": worst.directions.view,
+                      "light": worst.directions.light, "background": worst.background},
+            "dominant": result.dominant,
+            "notEvaluated": self.not_evaluated,
+            "grid": result.grid, "samples": result.samples,
+            "ambiguity": self.ambiguity.as_ref().map(|a| serde_json::json!({"readAs": a.read_as, "furthest": a.furthest, "max": a.max})),
+            "pass": self.same(threshold)})
+    }
 }
 
 /// How far a source's other readings are from the one it is compared under.

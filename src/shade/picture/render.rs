@@ -380,6 +380,13 @@ pub fn contact_sheet(
     sheet
 }
 
+/// An image as PNG bytes (encoding an RGB image into memory cannot fail).
+pub fn png(image: &RgbImage) -> Vec<u8> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    let _ = image.write_to(&mut bytes, image::ImageFormat::Png);
+    bytes.into_inner()
+}
+
 /// A ΔE heat map: black at 0, through blue and yellow, red at `threshold` and above.
 pub fn heatmap(per_texel: &[f32], grid: u32, threshold: f64) -> RgbImage {
     RgbImage::from_fn(grid, grid, |x, y| {
