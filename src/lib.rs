@@ -47,6 +47,7 @@ mod error;
 pub(crate) mod gltf;
 pub(crate) mod legacy;
 pub mod output;
+pub mod page;
 pub mod report;
 pub mod shade;
 #[cfg(test)]
@@ -58,6 +59,6 @@ pub use diagnostic::{Code, Diagnostic, Location, Severity};
 pub use document::uri::{FolderResources, MemoryResources, NoResources, ResourceLoader};
 pub use error::Error;
 pub use shade::pairing::{
-    compare, render, CompareOptions, Compared, Outcome, Picture, RenderOptions,
+    compare, render, render_each, Ball, CompareOptions, Compared, Outcome, Picture, RenderOptions,
 };
 pub use upgrade::{prove, upgrade, ProofError, UpgradeError, UpgradeOptions, Upgraded};

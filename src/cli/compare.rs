@@ -34,7 +34,10 @@ pub struct CompareArgs {
     /// readings' distance from it is printed beside.
     #[arg(long, value_enum, default_value = "appendix")]
     draft_reading: crate::common::DraftReadingArg,
-    /// Replace existing heat map files.
+    /// Write an HTML page showing each pair side by side with its figures and heat map.
+    #[arg(long, value_name = "HTML")]
+    report: Option<PathBuf>,
+    /// Replace existing heat map and report files.
     #[arg(long)]
     force: bool,
 }
@@ -121,8 +124,12 @@ pub fn run(args: CompareArgs) -> Outcome {
     let mut options = CompareOptions::default();
     options.pairs = parse_map(&args.material_map).map_err(Failure::usage)?;
     options.grid = args.grid;
-    options.heat_maps = args.heatmap.is_some();
+    options.heat_maps = args.heatmap.is_some() || args.report.is_some();
     options.draft_reading = args.draft_reading.reading();
+    if let Some(path) = &args.report {
+        gltfmat::output::may_write(path, &[], args.force)
+            .map_err(|e| Failure::usage(e.to_string()))?;
+    }
     if let Some(path) = &args.heatmap {
         // Refused before comparing, which can take a while; asked again for every file.
         gltfmat::output::may_write(path, &[], args.force)
@@ -152,6 +159,16 @@ pub fn run(args: CompareArgs) -> Outcome {
         gltfmat::output::write_files(&files, &comparison.inputs, args.force)
             .map_err(|e| Failure::usage(e.to_string()))?;
     }
+    if let Some(path) = &args.report {
+        write_report(
+            path,
+            (&args.a, &args.b),
+            &outcomes,
+            args.threshold,
+            &comparison.inputs,
+            args.force,
+        )?;
+    }
     if args.format == CompareFormat::Json {
         let list: Vec<_> = (outcomes.iter())
             .map(|o| o.to_json(args.threshold))
@@ -171,4 +188,21 @@ pub fn run(args: CompareArgs) -> Outcome {
     } else {
         ExitCode::from(1)
     })
+}
+
+/// An HTML page of compared pairs: both balls, the figures and the heat map of each.
+pub fn write_report(
+    path: &Path,
+    assets: (&Path, &Path),
+    outcomes: &[gltfmat::Outcome],
+    threshold: f64,
+    inputs: &[gltfmat::document::file::FileId],
+    force: bool,
+) -> Result<(), Failure> {
+    let mut page = gltfmat::page::Page::new("gltfmat comparison");
+    let lines: Vec<String> = outcomes.iter().map(|o| figures(o, threshold)).collect();
+    page.add_comparison(assets, outcomes, &lines, threshold);
+    gltfmat::output::write_file(path, page.html().as_bytes(), inputs, force)
+        .map(|_| ())
+        .map_err(|e| Failure::usage(e.to_string()))
 }

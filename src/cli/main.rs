@@ -37,12 +37,14 @@ mod compare;
 mod config;
 mod lut;
 mod render;
+mod report;
 mod rules;
 mod shard;
 mod shell;
 mod signals;
 mod streams;
 mod upgrade;
+mod walk;
 
 use clap::{CommandFactory, Parser, Subcommand};
 use std::process::ExitCode;
@@ -69,6 +71,8 @@ enum Command {
     Render(render::RenderArgs),
     /// Do two materials render the same? ΔE2000 over a UV grid and a set of directions.
     Compare(compare::CompareArgs),
+    /// Write one HTML page of the findings, the materials rendered and the textures shown.
+    Report(report::ReportArgs),
     /// Export a lookup table of the shading evaluator (the sheen albedo E).
     ///
     /// Row i holds sheenRoughness (i + 0.5)/N, column j NdotV (j + 0.5)/N. E is not bounded
@@ -105,6 +109,7 @@ fn main() -> ExitCode {
         Command::Lut(args) => lut::run(args),
         Command::Compare(args) => compare::run(args),
         Command::Render(args) => render::run(args),
+        Command::Report(args) => report::run(args),
         Command::Rules { format } => rules::list(format),
         Command::Explain { code } => rules::explain(&code),
         Command::Completions { shell } => shell::completions(Cli::command(), shell),

@@ -50,6 +50,10 @@ pub struct UpgradeArgs {
     /// it has no error of its own).
     #[arg(long)]
     strict: bool,
+    /// Write an HTML page showing each converted material beside its source, with the
+    /// proof's figures and a heat map of where they differ (needs a file output).
+    #[arg(long, value_name = "HTML", conflicts_with = "no_verify")]
+    report: Option<PathBuf>,
     /// ΔE2000 a converted material may differ from its source by.
     #[arg(long, default_value_t = gltfmat::shade::compare::DEFAULT_THRESHOLD, value_parser = crate::common::threshold)]
     threshold: f64,
@@ -63,6 +67,14 @@ enum SpecGlossArg {
 
 pub fn run(args: UpgradeArgs) -> Outcome {
     let destination = Destination::of(&args.output)?;
+    if let Some(report) = &args.report {
+        if matches!(destination, Destination::Stdout) {
+            return Err(Failure::usage(
+                "--report needs the output in a file, not on stdout",
+            ));
+        }
+        output::may_write(report, &[], args.force).map_err(|e| Failure::usage(e.to_string()))?;
+    }
     let input_id = FileId::of_path(&args.input);
     // Refused before converting: a conversion can take minutes.
     if let Destination::File { folder, name } = &destination {
@@ -132,6 +144,9 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         args.output.display(),
         1 + files.side.len()
     );
+    if let Some(page) = &args.report {
+        write_report(&args, page)?;
+    }
     Ok(ExitCode::SUCCESS)
 }
 
@@ -378,4 +393,23 @@ fn proved(read: Fingerprint, args: &UpgradeArgs, upgraded: &Upgraded, log: &mut 
         log.line(format_args!("proof: {}: {figures}", places(&pairs)));
     }
     outcomes.iter().all(|o| o.same(args.threshold))
+}
+
+/// The `--report` page: the source and its upgrade compared as the proof compares them, with
+/// heat maps, read back from the files just written.
+fn write_report(args: &UpgradeArgs, page: &Path) -> Result<(), Failure> {
+    let mut options = gltfmat::CompareOptions::default();
+    options.heat_maps = true;
+    options.draft_reading = args.draft_reading.reading();
+    let compared = gltfmat::compare(&args.input, &args.output, &options)?;
+    crate::compare::write_report(
+        page,
+        (&args.input, &args.output),
+        &compared.outcomes,
+        args.threshold,
+        &compared.inputs,
+        args.force,
+    )?;
+    outln!("wrote {}", page.display());
+    Ok(())
 }

@@ -322,6 +322,38 @@ pub struct Picture {
     pub inputs: Vec<FileId>,
 }
 
+/// One material's ball, drawn by [`render_each`].
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct Ball {
+    /// The material's index and name.
+    pub material: (usize, String),
+    /// The ball; `None` when the material cannot be read for the evaluator (then `not_drawn`
+    /// says why).
+    pub image: Option<RgbImage>,
+    /// What is not drawn of it (see [`MaterialSource::unmodelled`]).
+    pub not_drawn: Vec<String>,
+}
+
+/// Every material of an asset drawn as its own ball of `size` pixels (clamped to
+/// 8–[`MAX_SIZE`]), the asset read once: for pages that show each material beside what is
+/// said of it.
+pub fn render_each(path: impl AsRef<Path>, size: u32) -> Result<Vec<Ball>, Error> {
+    let size = size.clamp(8, MAX_SIZE);
+    let (materials, _) = materials_of(path.as_ref(), finest_for_preview(size))?;
+    let shader = shader_for(materials.iter().filter_map(|(_, m)| m.as_ref()));
+    Ok((materials.iter().enumerate())
+        .map(|(index, (name, material))| Ball {
+            material: (index, name.clone()),
+            image: material.as_ref().map(|m| material_ball(&shader, m, size)),
+            not_drawn: match material {
+                Some(m) => m.unmodelled().to_vec(),
+                None => vec!["its model is not one the evaluator reads".into()],
+            },
+        })
+        .collect())
+}
+
 /// Renders a material ball (or a contact sheet of every material) of an asset.
 pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture, Error> {
     let path = path.as_ref();

@@ -45,6 +45,18 @@ impl TextureImage {
         self.height
     }
 
+    /// The image as the file stores it (no transfer function applied), reduced to at most
+    /// `size` texels a side by taking the nearest texel: a thumbnail shows what the file holds.
+    pub fn thumbnail(&self, size: u32) -> image::RgbaImage {
+        let scale = (f64::from(self.width.max(self.height)) / f64::from(size.max(1))).max(1.0);
+        let side = |n: u32| ((f64::from(n) / scale).round() as u32).max(1);
+        image::RgbaImage::from_fn(side(self.width), side(self.height), |x, y| {
+            let at = |i: u32, n: u32| (((f64::from(i) + 0.5) * scale) as i64).min(i64::from(n) - 1);
+            let texel = self.decoded::<false>(at(x, self.width), at(y, self.height));
+            image::Rgba(texel.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
+        })
+    }
+
     /// Whether its texels have more than 8 bits (a rebake from it keeps 16 bits).
     pub fn is_wide(&self) -> bool {
         !matches!(self.texels, Texels::Unorm8(_))
