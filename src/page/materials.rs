@@ -35,11 +35,11 @@ pub fn cards(
     };
     let root = tree.root();
     let items = |key: &str| root.get(key).and_then(Node::as_array);
-    let Some(materials) = items("materials").filter(|m| m.len() > 0) else {
+    let Some(materials) = items("materials").filter(|m| !m.is_empty()) else {
         return String::new();
     };
     let balls: Vec<Ball> = match (draw, path) {
-        (true, Some(path)) => render_each(path, ball).unwrap_or_default(),
+        (true, Some(path)) => render_each(path, ball, MATERIALS_SHOWN).unwrap_or_default(),
         _ => Vec::new(),
     };
     let folder: Box<dyn ResourceLoader> = match path {
@@ -230,12 +230,18 @@ impl Thumbnails<'_> {
             return made.clone();
         }
         let html = match self.decode(image) {
-            Ok(thumbnail) => format!(
-                "<img src=\"{}\" width=\"{}\" height=\"{}\" class=\"pixelated\" alt=\"image {image}, as the file stores it, read by {slot}\">",
-                png_data_uri(&thumbnail),
-                thumbnail.width(),
-                thumbnail.height()
-            ),
+            Ok(thumbnail) => {
+                // Shown at the thumbnail's size whatever the image's: a 4² image is not a dot.
+                let (w, h) = (thumbnail.width(), thumbnail.height());
+                let scale = f64::from(self.size) / f64::from(w.max(h));
+                let shown = |n: u32| ((f64::from(n) * scale).round() as u32).max(1);
+                format!(
+                    "<img src=\"{}\" width=\"{}\" height=\"{}\" class=\"pixelated\" alt=\"image {image}, as the file stores it, read by {slot}\">",
+                    png_data_uri(&thumbnail),
+                    shown(w),
+                    shown(h)
+                )
+            }
             Err(why) => format!("no preview: {}", escape(&why)),
         };
         self.made.insert(image, html.clone());

@@ -36,7 +36,7 @@ pub enum Renders {
 /// readable and small; the counts are always whole.
 const FINDINGS_SHOWN: usize = 200;
 /// Pixels a side of a material ball on the page.
-const BALL: u32 = 128;
+const BALL: u32 = 96;
 /// Texels a side of a texture thumbnail.
 const THUMBNAIL: u32 = 64;
 
@@ -141,8 +141,9 @@ impl Page {
         lines: &[String],
         threshold: f64,
     ) {
-        let balls =
-            |path: &Path| crate::shade::pairing::render_each(path, BALL).unwrap_or_default();
+        let balls = |path: &Path| {
+            crate::shade::pairing::render_each(path, BALL, usize::MAX).unwrap_or_default()
+        };
         let (balls_a, balls_b) = (balls(a), balls(b));
         let mut section = format!(
             "<section class=\"comparison\"><h2>{} ↔ {}</h2>",

@@ -335,17 +335,24 @@ pub struct Ball {
     pub not_drawn: Vec<String>,
 }
 
-/// Every material of an asset drawn as its own ball of `size` pixels (clamped to
-/// 8–[`MAX_SIZE`]), the asset read once: for pages that show each material beside what is
-/// said of it.
-pub fn render_each(path: impl AsRef<Path>, size: u32) -> Result<Vec<Ball>, Error> {
+/// The first `at_most` materials of an asset, each drawn as its own ball of `size` pixels
+/// (clamped to 8–[`MAX_SIZE`]), the asset read once and alike materials drawn once: for pages
+/// that show each material beside what is said of it.
+pub fn render_each(path: impl AsRef<Path>, size: u32, at_most: usize) -> Result<Vec<Ball>, Error> {
     let size = size.clamp(8, MAX_SIZE);
     let (materials, _) = materials_of(path.as_ref(), finest_for_preview(size))?;
+    let materials = &materials[..materials.len().min(at_most)];
     let shader = shader_for(materials.iter().filter_map(|(_, m)| m.as_ref()));
+    let mut drawn: std::collections::HashMap<_, RgbImage> = std::collections::HashMap::new();
+    let mut ball = |m: &MaterialSource| {
+        (drawn.entry(m.fingerprint()))
+            .or_insert_with(|| material_ball(&shader, m, size))
+            .clone()
+    };
     Ok((materials.iter().enumerate())
         .map(|(index, (name, material))| Ball {
             material: (index, name.clone()),
-            image: material.as_ref().map(|m| material_ball(&shader, m, size)),
+            image: material.as_ref().map(&mut ball),
             not_drawn: match material {
                 Some(m) => m.unmodelled().to_vec(),
                 None => vec!["its model is not one the evaluator reads".into()],
