@@ -186,13 +186,9 @@ impl Page {
             (0..4).for_each(|i| t[i] += r.counts[i]);
             t
         });
-        let mut body = format!(
-            "<h1>{}</h1><p>{} file(s): {}</p>",
-            escape(&self.title),
-            self.rows.len(),
-            counts_text(totals)
-        );
+        let mut body = format!("<h1>{}</h1>", escape(&self.title));
         if !self.rows.is_empty() {
+            let _ = write!(body, "<p>{} file(s): {}</p>", self.rows.len(), counts_text(totals));
             body += "<table class=\"summary\"><caption>Files, most errors first</caption><thead><tr><th scope=\"col\">file</th><th scope=\"col\">errors</th><th scope=\"col\">warnings</th><th scope=\"col\">infos</th><th scope=\"col\">hints</th></tr></thead><tbody>";
             for row in rows {
                 let name = match (&row.failure, row.anchor.is_empty()) {
@@ -219,7 +215,9 @@ impl Page {
         for section in &self.sections {
             body += section;
         }
-        body += &glossary(self.codes.iter());
+        if !self.codes.is_empty() {
+            body += &glossary(self.codes.iter());
+        }
         html::document(&self.title, &body)
     }
 }
@@ -369,7 +367,7 @@ fn heat_map_figure(outcome: &Outcome, threshold: f64) -> String {
     let map =
         crate::shade::render::heatmap(&outcome.result.per_texel, outcome.result.grid, threshold);
     format!(
-        "<figure><img src=\"{}\" width=\"{BALL}\" height=\"{BALL}\" class=\"pixelated\" alt=\"where the pair differs over the texture square: black is the same, red is ΔE2000 {threshold} or more; the largest difference is {:.2}\"><figcaption>ΔE2000 over UV (red ≥ {threshold})</figcaption></figure>",
+        "<figure><img src=\"{}\" width=\"{BALL}\" height=\"{BALL}\" class=\"pixelated\" alt=\"where the pair differs over the texture square: black is the same, through blue and yellow to red at ΔE2000 {threshold} or more; the largest difference is {:.2}\"><figcaption>ΔE2000 over UV: black 0, blue, yellow, red ≥ {threshold}</figcaption></figure>",
         png_data_uri(&map),
         outcome.result.max
     )
