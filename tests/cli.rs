@@ -1211,3 +1211,34 @@ fn the_shards_of_a_walk_cover_every_file_exactly_once() {
     let (status, _) = gltfmat(&["check", "fixtures", "--shard", "4/3"]);
     assert_eq!(status, 2);
 }
+
+#[test]
+fn man_writes_one_page_per_subcommand_and_replaces_none_without_force() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().to_str().unwrap();
+    let (status, _) = gltfmat(&["man", "--dir", folder]);
+    assert_eq!(status, 0);
+    for sub in [
+        "check", "upgrade", "render", "compare", "report", "rules", "explain",
+    ] {
+        let page = std::fs::read_to_string(dir.path().join(format!("gltfmat-{sub}.1"))).unwrap();
+        assert!(
+            page.contains(&format!("gltfmat\\-{sub}")),
+            "{sub}'s page names itself"
+        );
+    }
+    let check = std::fs::read_to_string(dir.path().join("gltfmat-check.1")).unwrap();
+    assert!(
+        check.contains("shard") && check.contains("exclude"),
+        "options documented"
+    );
+    let main = std::fs::read_to_string(dir.path().join("gltfmat.1")).unwrap();
+    assert!(
+        main.contains("gltfmat\\-check(1)"),
+        "the main page names the subcommands' pages"
+    );
+    let (status, _) = gltfmat(&["man", "--dir", folder]);
+    assert_eq!(status, 2, "existing pages are not replaced without --force");
+    let (status, _) = gltfmat(&["man", "--dir", folder, "--force"]);
+    assert_eq!(status, 0);
+}

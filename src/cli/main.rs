@@ -96,8 +96,16 @@ enum Command {
     },
     /// Print a shell completion script (e.g. `gltfmat completions bash > /etc/bash_completion.d/gltfmat`).
     Completions { shell: clap_complete::Shell },
-    /// Print the manual page (roff), e.g. `gltfmat man > gltfmat.1`.
-    Man,
+    /// Print the manual page (roff), e.g. `gltfmat man > gltfmat.1`, or write one page per
+    /// subcommand with --dir.
+    Man {
+        /// Write gltfmat.1 and a page per subcommand (gltfmat-check.1, …) into this folder.
+        #[arg(long, value_name = "FOLDER")]
+        dir: Option<std::path::PathBuf>,
+        /// Replace existing pages.
+        #[arg(long, requires = "dir")]
+        force: bool,
+    },
 }
 
 fn main() -> ExitCode {
@@ -113,7 +121,7 @@ fn main() -> ExitCode {
         Command::Rules { format } => rules::list(format),
         Command::Explain { code } => rules::explain(&code),
         Command::Completions { shell } => shell::completions(Cli::command(), shell),
-        Command::Man => shell::man(Cli::command()),
+        Command::Man { dir, force } => shell::man(Cli::command(), dir.as_deref(), force),
     };
     let status = outcome.unwrap_or_else(common::Failure::report);
     streams::status_after_flushing(status)

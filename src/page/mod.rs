@@ -188,7 +188,12 @@ impl Page {
         });
         let mut body = format!("<h1>{}</h1>", escape(&self.title));
         if !self.rows.is_empty() {
-            let _ = write!(body, "<p>{} file(s): {}</p>", self.rows.len(), counts_text(totals));
+            let _ = write!(
+                body,
+                "<p>{} file(s): {}</p>",
+                self.rows.len(),
+                counts_text(totals)
+            );
             body += "<table class=\"summary\"><caption>Files, most errors first</caption><thead><tr><th scope=\"col\">file</th><th scope=\"col\">errors</th><th scope=\"col\">warnings</th><th scope=\"col\">infos</th><th scope=\"col\">hints</th></tr></thead><tbody>";
             for row in rows {
                 let name = match (&row.failure, row.anchor.is_empty()) {
