@@ -1242,3 +1242,44 @@ fn man_writes_one_page_per_subcommand_and_replaces_none_without_force() {
     let (status, _) = gltfmat(&["man", "--dir", folder, "--force"]);
     assert_eq!(status, 0);
 }
+
+/// On a real terminal (util-linux `script`), a folder check's screen holds the report's lines
+/// whole: the progress bar is not drawn into them. With the report sent to a file, the bar may
+/// show on the terminal, and the file holds no trace of it.
+#[test]
+fn the_progress_bar_never_breaks_a_report_line() {
+    if Command::new("script").arg("--version").output().is_err() {
+        eprintln!("SKIPPED LOUDLY: util-linux `script` is needed for a real terminal");
+        assert!(std::env::var_os("CI").is_none(), "script is missing in CI");
+        return;
+    }
+    let exe = env!("CARGO_BIN_EXE_gltfmat");
+    let on_screen = |command: String| -> String {
+        let out = Command::new("script")
+            .args(["-qec", &command, "/dev/null"])
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .env_remove("CI")
+            .output()
+            .expect("script runs");
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let screen = on_screen(format!("{exe} check fixtures --color never"));
+    assert!(
+        screen.contains("error[") && screen.lines().count() > 5,
+        "{screen}"
+    );
+    for line in screen.split("\r\n") {
+        assert!(
+            !line.contains('\r') && !line.contains('\x1b'),
+            "a line broken by a redraw: {line:?}"
+        );
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("report.txt");
+    on_screen(format!(
+        "{exe} check fixtures --color never > {}",
+        file.display()
+    ));
+    let report = std::fs::read_to_string(&file).unwrap();
+    assert!(report.contains("error[") && !report.contains('\r') && !report.contains('\x1b'));
+}
