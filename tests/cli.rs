@@ -1283,3 +1283,24 @@ fn the_progress_bar_never_breaks_a_report_line() {
     let report = std::fs::read_to_string(&file).unwrap();
     assert!(report.contains("error[") && !report.contains('\r') && !report.contains('\x1b'));
 }
+
+#[test]
+fn explain_puts_every_code_in_words() {
+    let (_, listed) = gltfmat(&["rules", "--format", "json"]);
+    let rules: Vec<serde_json::Value> = serde_json::from_str(&listed).unwrap();
+    assert!(rules.len() > 190);
+    for rule in &rules {
+        let code = rule["code"].as_str().unwrap();
+        let (status, text) = gltfmat(&["explain", code]);
+        assert_eq!(status, 0, "{code}");
+        assert!(!regex_like_placeholder(&text), "{code}: {text}");
+        assert!(text.lines().count() >= 3, "{code}: {text}");
+    }
+}
+
+/// A message template's placeholder: `%` and a digit or a lower-case letter.
+fn regex_like_placeholder(text: &str) -> bool {
+    text.as_bytes()
+        .windows(2)
+        .any(|w| w[0] == b'%' && (w[1].is_ascii_digit() || w[1].is_ascii_lowercase()))
+}

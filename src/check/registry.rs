@@ -3,7 +3,7 @@
 
 pub use super::code_info::{CodeInfo, Origin};
 pub use super::rules::{is_opt_in, OPT_IN_GROUPS};
-use crate::diagnostic::{khronos, Severity};
+use crate::diagnostic::{khronos, khronos_words, Severity};
 
 impl CodeInfo {
     /// The code's default severity.
@@ -12,30 +12,34 @@ impl CodeInfo {
     }
 
     /// One sentence saying what the code reports, without the message's placeholders: for
-    /// headings such as SARIF's descriptions. A gltfmat rule's summary; for a Khronos code its
-    /// template with each value left out ("…"), or its name when the template is only a value.
+    /// headings such as SARIF's descriptions. A gltfmat rule's summary; a Khronos code's
+    /// meaning in words ([`khronos_words`]).
     pub fn description(&self) -> String {
-        if self.origin == Origin::Gltfmat {
-            return self.summary.to_string();
+        match (self.origin, khronos_words::of(self.code.name())) {
+            (Origin::Khronos, Some(words)) => words.meaning.to_string(),
+            _ => self.summary.to_string(),
         }
-        let text = without_placeholders(self.summary);
-        if text.chars().filter(|c| c.is_alphabetic()).count() < 8 {
-            return format!("{}.", sentence_case(self.code.name()));
-        }
-        text
     }
 
     /// The documentation as Markdown: a gltfmat rule's own; for a Khronos code, what it
-    /// means, where the Khronos validator lists it, and how the default profile differs.
+    /// means, why it matters and how to fix it, the validator's message with its values left
+    /// out, and how the default profile differs.
     pub fn help_markdown(&self) -> String {
-        if self.origin == Origin::Gltfmat {
+        let words = khronos_words::of(self.code.name());
+        let (Origin::Khronos, Some(words)) = (self.origin, words) else {
             return self.doc.to_string();
-        }
+        };
+        let message = without_placeholders(self.summary);
+        let message = match message.chars().filter(|c| c.is_alphabetic()).count() {
+            0..8 => "Its message gives the details.".to_string(),
+            _ => format!(
+                "Its message names the values found: \"{}\"",
+                message.trim_end()
+            ),
+        };
         let mut help = format!(
-            "**{}**\n\nA check of the Khronos glTF-Validator ({} group), reported with its code, severity and meaning; the message names the values found, e.g. \"{}\".\n\nSee the validator's [list of issues]({KHRONOS_ISSUES}).",
-            self.description(),
-            self.group,
-            self.summary
+            "**{}**\n\n{}\n\nA check of the Khronos glTF-Validator ({} group). {message} See the validator's [list of issues]({KHRONOS_ISSUES}).",
+            words.meaning, words.advice, self.group,
         );
         if let Some(why) = supersession(self.code.name()) {
             help.push_str(&format!("\n\nIn gltfmat's default profile: {why}"));
@@ -65,19 +69,6 @@ fn without_placeholders(template: &str) -> String {
         out = out.replace(quoted, "(…)");
     }
     out
-}
-
-/// `IO_ERROR` → "IO error", `EMPTY_ENTITY` → "Empty entity".
-fn sentence_case(name: &str) -> String {
-    const ACRONYMS: &[&str] = &["IO", "URI", "GLB", "JSON", "KHR", "PNG", "JPEG"];
-    let words: Vec<String> = (name.split('_').enumerate())
-        .map(|(i, word)| match word {
-            _ if ACRONYMS.contains(&word) => word.to_string(),
-            _ if i == 0 => word[..1].to_string() + &word[1..].to_ascii_lowercase(),
-            _ => word.to_ascii_lowercase(),
-        })
-        .collect();
-    words.join(" ")
 }
 
 const fn from_catalogue(entry: &khronos::Entry) -> CodeInfo {
@@ -144,6 +135,24 @@ mod tests {
                     info.code
                 );
             }
+        }
+    }
+
+    /// `explain`, `rules` and SARIF's rule descriptions and help all come from these two.
+    #[test]
+    fn every_code_is_explained_in_words_without_placeholders() {
+        let placeholder = regex::Regex::new(r"%[0-9a-z]").unwrap();
+        for info in all() {
+            let (description, help) = (info.description(), info.help_markdown());
+            for text in [&description, &help] {
+                assert!(!placeholder.is_match(text), "{}: {text}", info.code);
+            }
+            assert!(description.len() > 20, "{}: {description}", info.code);
+            assert!(
+                help.len() > description.len() + 40,
+                "{}: no help beyond the description",
+                info.code
+            );
         }
     }
 }

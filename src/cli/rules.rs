@@ -99,24 +99,12 @@ fn entry(info: registry::CodeInfo) -> serde_json::Value {
 pub fn explain(code: &str) -> Outcome {
     let info = registry::find(code)
         .ok_or_else(|| Failure::usage(format!("unknown code '{code}' (see `gltfmat rules`)")))?;
-    let mut body = if info.doc.is_empty() {
-        info.summary.to_string()
-    } else {
-        info.doc.to_string()
-    };
-    // A Khronos code that the default profile reports differently says how and why.
-    let departure = (info.origin == registry::Origin::Khronos)
-        .then(|| registry::supersession(info.code.name()))
-        .flatten();
-    if let Some(why) = departure {
-        body.push_str(&format!("\n\nIn gltfmat's default profile: {why}"));
-    }
     outln!(
         "# {} ({}, {})\n\n{}",
         info.code,
         info.severity().name(),
         info.group,
-        body
+        info.help_markdown()
     );
     Ok(ExitCode::SUCCESS)
 }

@@ -2,6 +2,7 @@
 //! Nothing here knows the validator, the terminal or the rule registry.
 
 pub mod khronos;
+pub mod khronos_words;
 
 use serde::Serialize;
 use std::fmt;

@@ -390,4 +390,20 @@ mod tests {
         assert_eq!(read(&bytes[..20]), Err(HeaderError::UnexpectedEnd));
         assert_eq!(read(b"GIF89a"), Err(HeaderError::Unrecognized));
     }
+
+    #[test]
+    fn a_ktx1_file_is_not_taken_for_ktx2() {
+        let mut ktx1 = b"\xABKTX 11\xBB\r\n\x1A\n".to_vec();
+        ktx1.extend([0; 64]);
+        assert_eq!(read(&ktx1), Err(HeaderError::Unrecognized));
+        let mut ktx2 = b"\xABKTX 20\xBB\r\n\x1A\n".to_vec();
+        ktx2.extend([0; 8]);
+        ktx2.extend(4u32.to_le_bytes());
+        ktx2.extend(2u32.to_le_bytes());
+        let info = read(&ktx2).unwrap();
+        assert_eq!(
+            (info.format.mime_type(), info.width, info.height),
+            ("image/ktx2", 4, 2)
+        );
+    }
 }
