@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The three ratios of issue 6, each measured in this session against the npm oracles:
+# The speed ratios against the npm oracles, each peer run in the same invocation:
 # corpus vs the Khronos validator (target ≥ 5x), the large GLB vs the Khronos validator
 # (≥ 10x, ≤ 1/3 of its peak memory), upgrade vs gltf-pipeline (≥ 10x), and the 2.0 spec-gloss
 # conversion vs glTF-Transform's metalRough() (ΔE of both outputs and time).
