@@ -1579,3 +1579,84 @@ fn a_matrix_that_is_the_identity_in_single_precision_is_the_default() {
         ])
     );
 }
+
+#[test]
+fn a_wrong_value_in_the_attributes_leaves_its_name_to_be_judged() {
+    // The validator reads the names before the values: an unknown name with a value that is
+    // no index is both an invalid attribute and an invalid index, and a numbered set whose
+    // value is wrong still counts for the sets' continuity (TEXCOORD_1 without TEXCOORD_0).
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [{"count": 3, "componentType": 5126, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]}],
+        "meshes": [{"primitives": [{"attributes":
+            {"POSITION": 0, "unknownMember": [1, "a"], "TEXCOORD_1": "x", "_CUSTOM": -1}}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}));
+    let at = "/meshes/0/primitives/0/attributes";
+    assert_eq!(
+        found,
+        expected(&[
+            ("INVALID_INDEX", &format!("{at}/TEXCOORD_1")),
+            ("INVALID_INDEX", &format!("{at}/_CUSTOM")),
+            ("INVALID_INDEX", &format!("{at}/unknownMember")),
+            ("MESH_PRIMITIVE_INDEXED_SEMANTIC_CONTINUITY", at),
+            (
+                "MESH_PRIMITIVE_INVALID_ATTRIBUTE",
+                &format!("{at}/unknownMember")
+            ),
+        ])
+    );
+}
+
+#[test]
+fn sparse_values_are_substituted_up_to_the_first_index_out_of_order_or_range() {
+    // Indices [3, 1]: element 3 takes (1, 1, 1), element 1 keeps its zeros (the max is 1).
+    // Indices [7, 2] on 4 elements: nothing is substituted, not even the valid 2.
+    let data = [
+        [3u32, 1, 7, 2]
+            .iter()
+            .flat_map(|i| i.to_le_bytes())
+            .collect::<Vec<u8>>(),
+        [1f32, 1., 1., 2., 2., 2.]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect(),
+    ]
+    .concat();
+    use base64::Engine as _;
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&data)
+    );
+    let sparse = |view: u32| {
+        json!({"count": 4, "componentType": 5126, "type": "VEC3",
+        "min": [0, 0, 0], "max": [0, 0, 0],
+        "sparse": {"count": 2, "indices": {"bufferView": view, "componentType": 5125}, "values": {"bufferView": 2}}})
+    };
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 40, "uri": uri}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 8},
+            {"buffer": 0, "byteOffset": 8, "byteLength": 8},
+            {"buffer": 0, "byteOffset": 16, "byteLength": 24}],
+        "accessors": [sparse(0), sparse(1)]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND", "/accessors/0/max/0"),
+            ("ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND", "/accessors/0/max/1"),
+            ("ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND", "/accessors/0/max/2"),
+            ("ACCESSOR_MAX_MISMATCH", "/accessors/0/max/0"),
+            ("ACCESSOR_MAX_MISMATCH", "/accessors/0/max/1"),
+            ("ACCESSOR_MAX_MISMATCH", "/accessors/0/max/2"),
+            ("ACCESSOR_SPARSE_INDEX_OOB", "/accessors/1/sparse"),
+            (
+                "ACCESSOR_SPARSE_INDICES_NON_INCREASING",
+                "/accessors/0/sparse"
+            ),
+            (
+                "ACCESSOR_SPARSE_INDICES_NON_INCREASING",
+                "/accessors/1/sparse"
+            ),
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("UNUSED_OBJECT", "/accessors/1"),
+        ])
+    );
+}

@@ -196,9 +196,17 @@ fn substituted(ctx: &Context, accessor: Node) -> Option<(Layout, Vec<u8>)> {
     let sparse_count = usize::try_from(unsigned(sparse, "count")?).ok()?;
     let length = sparse_count.checked_mul(element)?;
     let value_bytes = value_bytes.get(start..start.checked_add(length)?)?;
+    let mut previous = None;
     for (index, value) in
         super::sparse::readable_indices(ctx, sparse)?.zip(value_bytes.chunks_exact(element))
     {
+        // A loader merges the indices into the elements in one ascending pass: the values
+        // are substituted up to the first index out of order or out of range (reported by
+        // the sparse pass), and none after it, as the Khronos validator reads them.
+        if index >= layout.count as u64 || previous.is_some_and(|p| index <= p) {
+            break;
+        }
+        previous = Some(index);
         let at = usize::try_from(index)
             .ok()
             .and_then(|i| i.checked_mul(element));

@@ -414,10 +414,13 @@ impl Sink for AbsentMembers<'_> {
             is_integer_member(name)
                 || diagnostic.code == khronos::INVALID_INDEX && name.parse::<u64>().is_err()
         };
+        // A wrong value in a map of accessor indices stays: the validator reads the map's
+        // names before their values, so the name is still judged (MESH_PRIMITIVE_INVALID_ATTRIBUTE).
         let member = Some(&diagnostic)
             .filter(|d| is_value_finding(d))
             .and_then(Diagnostic::pointer)
-            .filter(integer);
+            .filter(integer)
+            .filter(|p| !is_index_map_value(p));
         if let Some(pointer) = member {
             self.out_of_range.insert(pointer.to_string());
         }
