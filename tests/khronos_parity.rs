@@ -1660,3 +1660,27 @@ fn sparse_values_are_substituted_up_to_the_first_index_out_of_order_or_range() {
         ])
     );
 }
+
+#[test]
+fn a_nan_in_the_first_element_makes_its_components_bounds_nan_and_a_later_one_does_not() {
+    // The validator starts each component's bounds at the first element and moves them by
+    // comparisons: component 0 starts at NaN and stays there; component 1's later NaN moves
+    // nothing, so its declared bounds still match.
+    let data = [f32::NAN, 0.0, 0.0, 1.0, f32::NAN, 0.0, 0.5, 0.0, 0.0];
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": floats_uri(&data), "byteLength": 36}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 0, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ACCESSOR_INVALID_FLOAT", "/accessors/0"),
+            ("ACCESSOR_INVALID_FLOAT", "/accessors/0"),
+            ("ACCESSOR_MAX_MISMATCH", "/accessors/0/max/0"),
+            ("ACCESSOR_MIN_MISMATCH", "/accessors/0/min/0"),
+            ("UNUSED_OBJECT", "/meshes/0"),
+        ])
+    );
+}

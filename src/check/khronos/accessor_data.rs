@@ -349,8 +349,8 @@ fn scan(work: &mut Work, reading: &Reading, mut findings: Findings) -> Findings 
 }
 
 /// The rare second walk of an accessor holding NaN or infinities: reports each and takes
-/// min/max over the values that are numbers, infinities included (as the validator does: an
-/// infinity makes its component's actual bound infinite).
+/// min/max as the validator does: an infinity makes its component's actual bound infinite,
+/// and a NaN in the first element makes both of its component's bounds NaN.
 fn report_non_finite(
     layout: &Layout,
     bytes: &[u8],
@@ -364,9 +364,22 @@ fn report_non_finite(
     let n = layout.components;
     visit(layout, bytes, |first, values| {
         for (i, c, v) in components(first, values, n) {
-            if !v.is_nan() {
-                actual_min[c] = actual_min[c].min(*v);
-                actual_max[c] = actual_max[c].max(*v);
+            // The validator starts each component's bounds at the first element and moves
+            // them by comparisons, which are false for NaN: a NaN first element leaves both
+            // bounds NaN (which no declared bound matches), a later NaN moves neither.
+            if i == 0 {
+                (actual_min[c], actual_max[c]) = (*v, *v);
+            } else {
+                actual_min[c] = if *v < actual_min[c] {
+                    *v
+                } else {
+                    actual_min[c]
+                };
+                actual_max[c] = if *v > actual_max[c] {
+                    *v
+                } else {
+                    actual_max[c]
+                };
             }
             if v.is_finite() {
                 continue;
