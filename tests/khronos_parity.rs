@@ -1684,3 +1684,30 @@ fn a_nan_in_the_first_element_makes_its_components_bounds_nan_and_a_later_one_do
         ])
     );
 }
+
+#[test]
+fn an_index_written_as_a_float_is_that_index_everywhere() {
+    // The released validator runs as JavaScript, where 0.0, -0.0 and 1.0 are integers: an
+    // attribute, a child and a scene root written so are read as the indices they name.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [{"count": 3, "componentType": 5126, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0.0, "TEXCOORD_0": -0.0}}]}],
+        "nodes": [{"children": [1.0]}, {"mesh": 0, "children": [1.0]}],
+        "scenes": [{"nodes": [0.0, 1.0]}], "scene": 0}));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT",
+                "/meshes/0/primitives/0/attributes/TEXCOORD_0"
+            ),
+            ("NODE_LOOP", "/nodes/1"),
+            ("NODE_PARENT_OVERRIDE", "/nodes/1/children/0"),
+            ("SCENE_NON_ROOT_NODE", "/scenes/0/nodes/1"),
+            (
+                "UNUSED_OBJECT",
+                "/meshes/0/primitives/0/attributes/TEXCOORD_0"
+            ),
+        ])
+    );
+}

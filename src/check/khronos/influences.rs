@@ -8,6 +8,7 @@ use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::{Array, Node};
 use crate::gltf::accessor::{decode, Layout};
+use crate::gltf::as_index;
 use crate::gltf::gl;
 use rayon::prelude::*;
 use std::borrow::Cow;
@@ -139,15 +140,16 @@ fn influence_sets<'c>(ctx: &'c Context, primitive: Node) -> Option<Vec<Set<'c>>>
         .as_object()?
         .values()
         .next()
-        .and_then(|a| accessors.get(a.as_u64()? as usize))
+        .and_then(|a| accessors.get(usize::try_from(as_index(a)?).ok()?))
         .and_then(|a| unsigned(a, "count"))?;
     let mut sets = Vec::new();
     for n in 0.. {
         let Some(joints) = attributes.get(format!("JOINTS_{n}")) else {
             break;
         };
-        let joints = accessors.get(joints.as_u64()? as usize)?;
-        let weights = accessors.get(attributes.get(format!("WEIGHTS_{n}"))?.as_u64()? as usize)?;
+        let joints = accessors.get(usize::try_from(as_index(joints)?).ok()?)?;
+        let weights = accessors
+            .get(usize::try_from(as_index(attributes.get(format!("WEIGHTS_{n}"))?)?).ok()?)?;
         let readable = |a: Node<'c>| {
             let (layout, view) = scannable(ctx, a)?;
             let fits = layout.count as u64 == vertex_count && layout.components == 4;

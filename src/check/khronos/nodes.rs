@@ -9,6 +9,7 @@ use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::Array;
 use crate::document::Node;
+use crate::gltf::as_index;
 use std::collections::{HashMap, HashSet};
 
 /// How far a matrix may be from its TRS recomposition.
@@ -35,7 +36,7 @@ pub fn check(ctx: &mut Context) {
     }
     for (_, pointer, scene) in ctx.objects("scenes") {
         for (k, root) in elements(scene, "nodes") {
-            let index = root.as_u64().map(|n| n as usize);
+            let index = as_index(root).map(|n| n as usize);
             if index.is_some_and(|n| parent_of(&parents, n).is_some()) {
                 ctx.emit(
                     khronos::SCENE_NON_ROOT_NODE,
@@ -56,8 +57,7 @@ fn walk_parents(nodes: Array, mut relisted: impl FnMut(usize, usize, usize)) -> 
     let mut parent = Vec::new();
     for (i, node) in nodes.iter().enumerate() {
         for (k, child) in elements(node, "children") {
-            let Some(c) = child
-                .as_u64()
+            let Some(c) = as_index(child)
                 .map(|c| c as usize)
                 .filter(|c| *c < nodes.len())
             else {
@@ -480,7 +480,7 @@ impl LostTransforms {
         let (common, memo) = self.per_skin.entry(s).or_insert_with(|| {
             let joints: Vec<usize> = elements(skin, "joints")
                 .filter_map(|(_, j)| {
-                    j.as_u64()
+                    as_index(j)
                         .map(|j| j as usize)
                         .filter(|j| *j < parents.len())
                 })

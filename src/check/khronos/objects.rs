@@ -7,6 +7,7 @@ use crate::check::context::{elements, member, unsigned, Context, MaterialNeeds};
 use crate::diagnostic::{khronos, Diagnostic, Sink};
 use crate::document::{Array, Node, Tree};
 use crate::gltf::accessor::{component_count, component_size};
+use crate::gltf::as_index;
 use crate::gltf::gl;
 use std::collections::{BTreeSet, HashSet};
 
@@ -459,7 +460,7 @@ fn check_variant_mappings(
         }
         for (v, variant) in elements(mapping, "variants") {
             let vp = format!("{mp}/variants/{v}");
-            let Some(index) = variant.as_u64() else {
+            let Some(index) = as_index(variant) else {
                 continue;
             };
             if index as usize >= variant_count {
@@ -488,7 +489,7 @@ pub fn check_nodes_and_scenes(ctx: &mut Context) {
         .items("skins")
         .iter()
         .flat_map(|skin| elements(skin, "joints"))
-        .filter_map(|(_, joint)| joint.as_u64())
+        .filter_map(|(_, joint)| as_index(joint))
         .collect();
     for (index, pointer, node) in ctx.objects("nodes") {
         let mesh = ctx.reference(node, "mesh", &pointer, "meshes");

@@ -7,6 +7,7 @@ use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::{Array, Node, Object};
 use crate::gltf::accessor::{component_count, component_size};
+use crate::gltf::as_index;
 use std::collections::{HashMap, HashSet};
 
 use crate::gltf::gl::{BYTE, FLOAT, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT};
@@ -377,7 +378,7 @@ impl<'a> Walk<'_, 'a> {
         }
         if let (Some(view), false) = (view, strided) {
             let seen = self.view_accessors.entry(view).or_default();
-            if seen.insert(index.as_u64().unwrap_or(u64::MAX)) && seen.len() > 1 {
+            if seen.insert(as_index(index).unwrap_or(u64::MAX)) && seen.len() > 1 {
                 self.ctx.emit(
                     khronos::MESH_PRIMITIVE_ACCESSOR_WITHOUT_BYTESTRIDE,
                     at,
@@ -481,7 +482,7 @@ impl<'a> Walk<'_, 'a> {
     fn accessor(&self, value: Node) -> Option<Node<'a>> {
         self.ctx
             .items("accessors")
-            .get(value.as_u64()? as usize)
+            .get(usize::try_from(as_index(value)?).ok()?)
             .filter(|a| a.is_object())
     }
 }
@@ -490,6 +491,6 @@ impl<'a> Walk<'_, 'a> {
 /// an attribute that names an accessor (an unreadable count leaves it to the next one).
 pub(super) fn vertex_count(attributes: Node, accessors: Array) -> Option<u64> {
     (attributes.as_object().into_iter().flat_map(|a| a.values()))
-        .filter_map(|v| accessors.get(usize::try_from(v.as_u64()?).ok()?))
+        .filter_map(|v| accessors.get(usize::try_from(as_index(v)?).ok()?))
         .find_map(|accessor| unsigned(accessor, "count"))
 }

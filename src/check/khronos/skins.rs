@@ -7,6 +7,7 @@ use super::primitives::Format;
 use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::{Array, Node};
+use crate::gltf::as_index;
 use std::collections::HashMap;
 
 pub fn check(ctx: &mut Context) {
@@ -14,7 +15,7 @@ pub fn check(ctx: &mut Context) {
     let parents = parent_map(nodes);
     for (_, pointer, skin) in ctx.objects("skins") {
         let joints: Vec<usize> = elements(skin, "joints")
-            .filter_map(|(_, j)| j.as_u64().map(|j| j as usize).filter(|j| *j < nodes.len()))
+            .filter_map(|(_, j)| as_index(j).map(|j| j as usize).filter(|j| *j < nodes.len()))
             .collect();
         inverse_binds(ctx, skin, &pointer);
         // An empty list is a schema error; the hierarchy is then not checked.

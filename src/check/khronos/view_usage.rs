@@ -8,6 +8,7 @@ use crate::check::context::{elements, member, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::json::escape_token;
 use crate::document::Node;
+use crate::gltf::as_index;
 use crate::gltf::gl;
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -92,7 +93,7 @@ impl Walk<'_, '_> {
         view: Usage,
         at: String,
     ) {
-        let accessor = index.and_then(Node::as_u64);
+        let accessor = index.and_then(as_index);
         let linked = accessor.filter(|&a| self.ctx.element("accessors", a).is_some());
         if let Some((a, usage)) = linked.zip(usage) {
             let slot = &mut self.accessor_usages[a as usize];
@@ -151,7 +152,10 @@ impl Walk<'_, '_> {
 
     /// The bufferView of the accessor that `index` names.
     fn view_of(&self, index: Option<Node>) -> Option<u64> {
-        let accessor = self.ctx.items("accessors").get(index?.as_u64()? as usize)?;
+        let accessor = self
+            .ctx
+            .items("accessors")
+            .get(usize::try_from(as_index(index?)?).ok()?)?;
         unsigned(accessor, "bufferView")
     }
 
