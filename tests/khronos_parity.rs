@@ -1711,3 +1711,47 @@ fn an_index_written_as_a_float_is_that_index_everywhere() {
         ])
     );
 }
+
+#[test]
+fn a_sparse_accessor_with_more_substitutions_than_elements_has_no_data_read() {
+    // Three substitutions of 9.0 into two elements declared within 3..4: the validator reads
+    // no element, so nothing is out of bounds.
+    let indices: Vec<u8> = [2u32, 1, 0].iter().flat_map(|i| i.to_le_bytes()).collect();
+    let values: Vec<u8> = [9f32; 9].iter().flat_map(|v| v.to_le_bytes()).collect();
+    let base: Vec<u8> = [3f32, 3., 3., 4., 4., 4.]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    use base64::Engine as _;
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode([indices, values, base].concat())
+    );
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 72, "uri": uri}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 48, "byteLength": 24},
+            {"buffer": 0, "byteOffset": 0, "byteLength": 12},
+            {"buffer": 0, "byteOffset": 12, "byteLength": 36}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 2, "type": "VEC3",
+            "min": [3, 3, 3], "max": [4, 4, 4],
+            "sparse": {"count": 3, "indices": {"bufferView": 1, "componentType": 5125}, "values": {"bufferView": 2}}}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "ACCESSOR_SPARSE_COUNT_OUT_OF_RANGE",
+                "/accessors/0/sparse/count"
+            ),
+            ("ACCESSOR_SPARSE_INDEX_OOB", "/accessors/0/sparse"),
+            (
+                "ACCESSOR_SPARSE_INDICES_NON_INCREASING",
+                "/accessors/0/sparse"
+            ),
+            (
+                "ACCESSOR_SPARSE_INDICES_NON_INCREASING",
+                "/accessors/0/sparse"
+            ),
+            ("UNUSED_OBJECT", "/accessors/0"),
+        ])
+    );
+}

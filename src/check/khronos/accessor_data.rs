@@ -193,7 +193,11 @@ fn substituted(ctx: &Context, accessor: Node) -> Option<(Layout, Vec<u8>)> {
     let values = sparse.get("values")?;
     let value_bytes = view_bytes(ctx, unsigned(values, "bufferView")? as usize)?;
     let start = usize::try_from(crate::gltf::byte_offset(values)?).ok()?;
-    let sparse_count = usize::try_from(unsigned(sparse, "count")?).ok()?;
+    // More substitutions than elements (ACCESSOR_SPARSE_COUNT_OUT_OF_RANGE): the validator
+    // reads no element of such an accessor.
+    let sparse_count = usize::try_from(unsigned(sparse, "count")?)
+        .ok()
+        .filter(|&n| n <= layout.count)?;
     let length = sparse_count.checked_mul(element)?;
     let value_bytes = value_bytes.get(start..start.checked_add(length)?)?;
     let mut previous = None;
