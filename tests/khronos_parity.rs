@@ -1305,12 +1305,31 @@ fn an_attribute_whose_buffer_view_is_no_object_is_not_unaligned() {
 
 /// A data URI of little-endian f32s.
 fn floats_uri(values: &[f32]) -> String {
+    bytes_uri(
+        &values
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect::<Vec<u8>>(),
+    )
+}
+
+/// `bytes` as a buffer's data URI.
+fn bytes_uri(bytes: &[u8]) -> String {
     use base64::Engine;
-    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
     format!(
         "data:application/octet-stream;base64,{}",
         base64::engine::general_purpose::STANDARD.encode(bytes)
     )
+}
+
+/// The findings of three POSITION elements declared within (0, 0, 0)..(1, 0, 0).
+fn three_positions_declared_0_to_x1(data: &[f32; 9]) -> Vec<(String, String)> {
+    khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": floats_uri(data), "byteLength": 36}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 0, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]}))
 }
 
 #[test]
@@ -1535,12 +1554,7 @@ fn an_infinite_value_is_an_invalid_float_and_the_actual_bound_it_makes() {
         f32::NAN,
         0.0,
     ];
-    let found = khronos_findings(json!({"asset": {"version": "2.0"},
-        "buffers": [{"uri": floats_uri(&data), "byteLength": 36}],
-        "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962}],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                       "min": [0, 0, 0], "max": [1, 0, 0]}],
-        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]}));
+    let found = three_positions_declared_0_to_x1(&data);
     assert_eq!(
         found,
         expected(&[
@@ -1621,11 +1635,7 @@ fn sparse_values_are_substituted_up_to_the_first_index_out_of_order_or_range() {
             .collect(),
     ]
     .concat();
-    use base64::Engine as _;
-    let uri = format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(&data)
-    );
+    let uri = bytes_uri(&data);
     let sparse = |view: u32| {
         json!({"count": 4, "componentType": 5126, "type": "VEC3",
         "min": [0, 0, 0], "max": [0, 0, 0],
@@ -1667,12 +1677,7 @@ fn a_nan_in_the_first_element_makes_its_components_bounds_nan_and_a_later_one_do
     // comparisons: component 0 starts at NaN and stays there; component 1's later NaN moves
     // nothing, so its declared bounds still match.
     let data = [f32::NAN, 0.0, 0.0, 1.0, f32::NAN, 0.0, 0.5, 0.0, 0.0];
-    let found = khronos_findings(json!({"asset": {"version": "2.0"},
-        "buffers": [{"uri": floats_uri(&data), "byteLength": 36}],
-        "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962}],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                       "min": [0, 0, 0], "max": [1, 0, 0]}],
-        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]}));
+    let found = three_positions_declared_0_to_x1(&data);
     assert_eq!(
         found,
         expected(&[
@@ -1722,11 +1727,7 @@ fn a_sparse_accessor_with_more_substitutions_than_elements_has_no_data_read() {
         .iter()
         .flat_map(|v| v.to_le_bytes())
         .collect();
-    use base64::Engine as _;
-    let uri = format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode([indices, values, base].concat())
-    );
+    let uri = bytes_uri(&[indices, values, base].concat());
     let found = khronos_findings(json!({"asset": {"version": "2.0"},
         "buffers": [{"byteLength": 72, "uri": uri}],
         "bufferViews": [{"buffer": 0, "byteOffset": 48, "byteLength": 24},
