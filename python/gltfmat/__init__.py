@@ -225,7 +225,7 @@ def upgrade(
     force: bool = False,
     verify: bool = False,
     prove: bool = True,
-    threshold: float = 1.0,
+    threshold: Optional[float] = None,
     specular_glossiness: str = "metal-rough",
     double_sided: bool = False,
     draft_reading: str = "appendix",
@@ -249,12 +249,12 @@ def upgrade(
         force=force,
         verify=verify,
         prove=prove,
-        threshold=threshold,
         specular_glossiness=specular_glossiness,
         double_sided=double_sided,
         draft_reading=draft_reading,
         strict=strict,
         resources=resources,
+        **_given(threshold=threshold),
     )
     result = json.loads(text)
     check = result["check"]
@@ -271,14 +271,14 @@ def compare(
     a: Union[str, "os.PathLike[str]"],
     b: Union[str, "os.PathLike[str]"],
     *,
-    threshold: float = 1.0,
+    threshold: Optional[float] = None,
     pairs: Iterable[Tuple[int, int]] = (),
     draft_reading: str = "appendix",
 ) -> List[Comparison]:
     """Compares the materials of two assets on disk, paired by index (or by ``pairs``), as
     ``gltfmat compare`` does."""
     text = _gltfmat.compare(
-        os.fspath(a), os.fspath(b), threshold=threshold, pairs=list(pairs), draft_reading=draft_reading
+        os.fspath(a), os.fspath(b), pairs=list(pairs), draft_reading=draft_reading, **_given(threshold=threshold)
     )
     return [Comparison._of(o) for o in json.loads(text)]
 
@@ -304,6 +304,11 @@ def render(
         os.fspath(asset), material=None if material is None else str(material), all=all, size=size
     )
     return Picture(png=png, drawn=[(i, n, list(m)) for i, n, m in drawn])
+
+
+def _given(**options: Any) -> dict:
+    """The options the caller set: the others keep the library's defaults (one place)."""
+    return {k: v for k, v in options.items() if v is not None}
 
 
 def _source(source: Source) -> Union[str, bytes, bytearray]:
