@@ -4,6 +4,8 @@
 //! promise each test states: a diagnostic or a clean refusal (exit 0, 1 or 2, never a
 //! signal), nothing outside the output folder touched, the input's files byte-identical.
 
+mod common;
+
 use gltfmat::check::{check_path, CheckOptions};
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -81,7 +83,7 @@ fn a_large_input_truncated_while_it_is_checked_gives_an_exit_status_not_a_signal
     let folder = tempfile::tempdir().unwrap();
     let path = folder.path().join("big.glb");
     let json = br#"{"asset":{"version":"2.0"},"buffers":[{"byteLength":8388608}]}"#;
-    let glb = glb_of(json, &vec![7u8; 8 << 20]);
+    let glb = common::glb(json, Some(&vec![7u8; 8 << 20]));
     for _ in 0..5 {
         truncate_while_checked(&path, &glb, Duration::ZERO);
     }
@@ -151,24 +153,6 @@ fn truncate_while_checked(path: &Path, glb: &[u8], delay: Duration) {
         .unwrap();
     let status = child.wait_with_output().unwrap().status;
     assert!(status.code().is_some(), "killed by a signal: {status:?}");
-}
-
-/// A GLB of one JSON chunk and one BIN chunk.
-fn glb_of(json: &[u8], bin: &[u8]) -> Vec<u8> {
-    let chunks = [common_chunk(b"JSON", json), common_chunk(b"BIN\0", bin)].concat();
-    let mut glb = b"glTF\x02\0\0\0".to_vec();
-    glb.extend(((12 + chunks.len()) as u32).to_le_bytes());
-    glb.extend(chunks);
-    glb
-}
-
-fn common_chunk(kind: &[u8; 4], data: &[u8]) -> Vec<u8> {
-    let mut padded = data.to_vec();
-    padded.resize(data.len().div_ceil(4) * 4, b' ');
-    let mut chunk = (padded.len() as u32).to_le_bytes().to_vec();
-    chunk.extend(kind);
-    chunk.extend(padded);
-    chunk
 }
 
 #[cfg(unix)]
@@ -546,7 +530,7 @@ fn large_data_with_findings(uri: Option<&str>) -> (String, Vec<u8>) {
 /// A GLB past `LARGE_FILE_BYTES` (see [`large_data_with_findings`]).
 fn large_glb_with_data_findings() -> Vec<u8> {
     let (json, data) = large_data_with_findings(None);
-    glb_of(json.as_bytes(), &data)
+    common::glb(json.as_bytes(), Some(&data))
 }
 
 /// Its findings, sorted, with a check that the walk over the data made them.

@@ -3,6 +3,8 @@
 //! cover. Each expected list is the validator's own report of the same document (code and
 //! pointer, every finding), recorded when the case was written.
 
+mod common;
+
 use gltfmat::check::{check_bytes, CheckOptions, Profile};
 use gltfmat::document::uri::NoResources;
 use serde_json::{json, Value};
@@ -1755,4 +1757,44 @@ fn a_sparse_accessor_with_more_substitutions_than_elements_has_no_data_read() {
             ("UNUSED_OBJECT", "/accessors/0"),
         ])
     );
+}
+
+#[test]
+fn a_glb_buffer_is_resolved_only_with_a_valid_byte_length_and_a_non_empty_chunk() {
+    let options = CheckOptions::default().with_profile(Profile::Khronos);
+    let found = |json: &str, bin: Option<&[u8]>| {
+        let glb = common::glb(json.as_bytes(), bin);
+        sorted_findings(&check_bytes("case.glb", glb, &NoResources, &options))
+    };
+    let buffers = |b: &str| format!(r#"{{"asset": {{"version": "2.0"}}, "buffers": [{b}]}}"#);
+    // No BIN chunk: the buffer misses its data.
+    assert_eq!(
+        found(&buffers(r#"{"byteLength": 4}"#), None),
+        expected(&[
+            ("BUFFER_MISSING_GLB_DATA", "/buffers/0"),
+            ("UNUSED_OBJECT", "/buffers/0")
+        ])
+    );
+    // A byteLength that is no valid length: the buffer is not resolved at all.
+    for (buffer, why) in [
+        (
+            r#"{"byteLength": 0}"#,
+            ("VALUE_NOT_IN_RANGE", "/buffers/0/byteLength"),
+        ),
+        (
+            r#"{"byteLength": "x"}"#,
+            ("TYPE_MISMATCH", "/buffers/0/byteLength"),
+        ),
+        ("{}", ("UNDEFINED_PROPERTY", "/buffers/0")),
+    ] {
+        assert_eq!(
+            found(&buffers(buffer), None),
+            expected(&[why, ("UNUSED_OBJECT", "/buffers/0")]),
+            "{buffer}"
+        );
+    }
+    // An empty BIN chunk is said to be empty, and the buffer is read as having no data.
+    let empty = found(&buffers(r#"{"byteLength": 4}"#), Some(b""));
+    let codes: Vec<&str> = empty.iter().map(|(code, _)| code.as_str()).collect();
+    assert_eq!(codes, ["GLB_EMPTY_BIN_CHUNK", "UNUSED_OBJECT"]);
 }

@@ -70,3 +70,23 @@ pub fn linear_to_srgb(linear: f64) -> f64 {
         1.055 * linear.powf(1.0 / 2.4) - 0.055
     }
 }
+
+/// A GLB of a JSON chunk and, when given, a BIN chunk (each padded to 4 bytes with spaces).
+pub fn glb(json: &[u8], bin: Option<&[u8]>) -> Vec<u8> {
+    let chunk = |kind: &[u8; 4], data: &[u8]| {
+        let mut padded = data.to_vec();
+        padded.resize(data.len().div_ceil(4) * 4, b' ');
+        let mut chunk = (padded.len() as u32).to_le_bytes().to_vec();
+        chunk.extend(kind);
+        chunk.extend(padded);
+        chunk
+    };
+    let mut chunks = chunk(b"JSON", json);
+    if let Some(bin) = bin {
+        chunks.extend(chunk(b"BIN\0", bin));
+    }
+    let mut glb = b"glTF\x02\0\0\0".to_vec();
+    glb.extend(((12 + chunks.len()) as u32).to_le_bytes());
+    glb.extend(chunks);
+    glb
+}

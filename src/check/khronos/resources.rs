@@ -196,7 +196,12 @@ pub fn check_buffers(ctx: &mut Context) {
                 let uri = (storage == "external").then(|| uri.to_string());
                 (data.map(BufferData::from), storage, uri)
             }
-            None if i == 0 && crate::check::is_glb(ctx.document) => {
+            // A buffer whose byteLength is not a valid length is not resolved at all (the
+            // validator ignores it), so it cannot miss its chunk.
+            None if i == 0
+                && crate::check::is_glb(ctx.document)
+                && declared.is_some_and(|n| n >= 1) =>
+            {
                 let Some(bin) = ctx.document.bin_data() else {
                     ctx.emit(
                         khronos::BUFFER_MISSING_GLB_DATA,
@@ -205,20 +210,26 @@ pub fn check_buffers(ctx: &mut Context) {
                     );
                     continue;
                 };
-                if let Some(length) = declared {
-                    let padded = align4(length);
-                    if bin.len() as u64 > padded {
-                        ctx.emit(
-                            khronos::BUFFER_GLB_CHUNK_TOO_BIG,
-                            pointer.clone(),
-                            format!(
-                                "GLB-stored BIN chunk contains {} extra padding byte(s).",
-                                bin.len() as u64 - padded
-                            ),
-                        );
+                // An empty BIN chunk (GLB_EMPTY_BIN_CHUNK) is read as no data, and nothing
+                // more is said of the buffer, as the validator reads it.
+                if bin.len() == 0 {
+                    (None, "glb", None)
+                } else {
+                    if let Some(length) = declared {
+                        let padded = align4(length);
+                        if bin.len() as u64 > padded {
+                            ctx.emit(
+                                khronos::BUFFER_GLB_CHUNK_TOO_BIG,
+                                pointer.clone(),
+                                format!(
+                                    "GLB-stored BIN chunk contains {} extra padding byte(s).",
+                                    bin.len() as u64 - padded
+                                ),
+                            );
+                        }
                     }
+                    (declared.map(|_| bin), "glb", None)
                 }
-                (declared.map(|_| bin), "glb", None)
             }
             None => (None, "buffer", None),
         };
