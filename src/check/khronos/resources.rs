@@ -212,7 +212,7 @@ pub fn check_buffers(ctx: &mut Context) {
                 };
                 // An empty BIN chunk (GLB_EMPTY_BIN_CHUNK) is read as no data, and nothing
                 // more is said of the buffer, as the validator reads it.
-                if bin.len() == 0 {
+                if bin.is_empty() {
                     (None, "glb", None)
                 } else {
                     if let Some(length) = declared {
