@@ -209,97 +209,132 @@ const IDENTITY: [f64; 16] = [
     1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
 ];
 
-/// Whether a column-major matrix is translation × rotation × scale: an affine last row, an
-/// invertible 3×3 part, and a recomposition from its decomposition within tolerance (shear
-/// fails it).
+/// Whether a column-major matrix is translation × rotation × scale, decided as the Khronos
+/// validator decides it (its vector_math library, single-precision storage): an affine last
+/// row, a non-zero determinant, then the matrix decomposed, recomposed, and the two compared
+/// by their largest column sums (`absoluteError` < 5·10⁻⁵). Every value the library stores
+/// is rounded to single precision, which is what makes a large scale fail; the comparison of
+/// norms is what lets some shears pass.
 fn is_trs_decomposable(m: &[f64]) -> bool {
     if m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0 {
         return false;
     }
-    let column = |c: usize| [m[4 * c], m[4 * c + 1], m[4 * c + 2]];
-    let (x, y, z) = (column(0), column(1), column(2));
-    let det = x[0] * (y[1] * z[2] - z[1] * y[2]) - y[0] * (x[1] * z[2] - z[1] * x[2])
-        + z[0] * (x[1] * y[2] - y[1] * x[2]);
+    let det = determinant(m);
     if det == 0.0 {
         return false;
     }
-    let length = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    let mut scale = [length(x), length(y), length(z)];
+    let length = |c: usize| {
+        (m[4 * c] * m[4 * c] + m[4 * c + 1] * m[4 * c + 1] + m[4 * c + 2] * m[4 * c + 2]).sqrt()
+    };
+    let mut scale = [length(0), length(1), length(2)];
     if det < 0.0 {
         scale[0] = -scale[0];
     }
-    let r: Vec<[f64; 3]> = [x, y, z]
-        .iter()
-        .zip(scale)
-        .map(|(c, s)| c.map(|v| v / s))
-        .collect();
-    let rotation = rotation_matrix(quaternion(&r));
-    // Recomposed columns: rotation column c × scale c; the translation is kept exactly.
-    (0..3).all(|c| {
-        (0..3).all(|row| (rotation[c][row] * scale[c] - m[4 * c + row]).abs() < TRS_TOLERANCE)
-    })
-}
-
-/// The quaternion of a rotation matrix given by columns (Shepperd's method).
-fn quaternion(r: &[[f64; 3]]) -> [f64; 4] {
-    let at = |row: usize, col: usize| r[col][row];
-    let trace = at(0, 0) + at(1, 1) + at(2, 2);
-    if trace > 0.0 {
-        let s = (trace + 1.0).sqrt() * 2.0;
-        [
-            (at(2, 1) - at(1, 2)) / s,
-            (at(0, 2) - at(2, 0)) / s,
-            (at(1, 0) - at(0, 1)) / s,
-            s / 4.0,
-        ]
-    } else if at(0, 0) > at(1, 1) && at(0, 0) > at(2, 2) {
-        let s = (1.0 + at(0, 0) - at(1, 1) - at(2, 2)).sqrt() * 2.0;
-        [
-            s / 4.0,
-            (at(0, 1) + at(1, 0)) / s,
-            (at(0, 2) + at(2, 0)) / s,
-            (at(2, 1) - at(1, 2)) / s,
-        ]
-    } else if at(1, 1) > at(2, 2) {
-        let s = (1.0 + at(1, 1) - at(0, 0) - at(2, 2)).sqrt() * 2.0;
-        [
-            (at(0, 1) + at(1, 0)) / s,
-            s / 4.0,
-            (at(1, 2) + at(2, 1)) / s,
-            (at(0, 2) - at(2, 0)) / s,
-        ]
-    } else {
-        let s = (1.0 + at(2, 2) - at(0, 0) - at(1, 1)).sqrt() * 2.0;
-        [
-            (at(0, 2) + at(2, 0)) / s,
-            (at(1, 2) + at(2, 1)) / s,
-            s / 4.0,
-            (at(1, 0) - at(0, 1)) / s,
-        ]
+    // The rotation part: each column divided by its scale, stored.
+    let mut r = [0.0; 9];
+    for c in 0..3 {
+        let inverse = 1.0 / scale[c];
+        for row in 0..3 {
+            r[3 * c + row] = single(m[4 * c + row] * inverse);
+        }
     }
+    let q = quaternion(&r).map(single);
+    let scale = scale.map(single);
+    let mut recomposed = [0.0; 16];
+    recomposed[..12].copy_from_slice(&rotation_columns(q));
+    recomposed[12..].copy_from_slice(&m[12..16]);
+    for c in 0..3 {
+        for row in 0..4 {
+            recomposed[4 * c + row] = single(single(recomposed[4 * c + row]) * scale[c]);
+        }
+    }
+    (largest_column_sum(&recomposed) - largest_column_sum(m)).abs() < TRS_TOLERANCE
 }
 
-/// The rotation matrix (columns) of a quaternion, normalised first.
-fn rotation_matrix(q: [f64; 4]) -> [[f64; 3]; 3] {
-    let n = q.iter().map(|v| v * v).sum::<f64>().sqrt();
-    let [x, y, z, w] = q.map(|v| v / n);
+/// A value as single-precision storage holds it.
+fn single(v: f64) -> f64 {
+    f64::from(v as f32)
+}
+
+/// The determinant of a column-major 4×4 matrix, expanded as vector_math expands it.
+fn determinant(m: &[f64]) -> f64 {
+    let d01_01 = m[0] * m[5] - m[1] * m[4];
+    let d01_02 = m[0] * m[6] - m[2] * m[4];
+    let d01_03 = m[0] * m[7] - m[3] * m[4];
+    let d01_12 = m[1] * m[6] - m[2] * m[5];
+    let d01_13 = m[1] * m[7] - m[3] * m[5];
+    let d01_23 = m[2] * m[7] - m[3] * m[6];
+    let d201_012 = m[8] * d01_12 - m[9] * d01_02 + m[10] * d01_01;
+    let d201_013 = m[8] * d01_13 - m[9] * d01_03 + m[11] * d01_01;
+    let d201_023 = m[8] * d01_23 - m[10] * d01_03 + m[11] * d01_02;
+    let d201_123 = m[9] * d01_23 - m[10] * d01_13 + m[11] * d01_12;
+    -d201_123 * m[12] + d201_023 * m[13] - d201_013 * m[14] + d201_012 * m[15]
+}
+
+/// The quaternion (x, y, z, w) of a column-major 3×3 rotation, as vector_math's
+/// `setFromRotation` computes it.
+fn quaternion(r: &[f64; 9]) -> [f64; 4] {
+    let at = |row: usize, col: usize| r[3 * col + row];
+    let trace = r[0] + r[4] + r[8];
+    let mut q = [0.0; 4];
+    if trace > 0.0 {
+        let s = (trace + 1.0).sqrt();
+        q[3] = s * 0.5;
+        let s = 0.5 / s;
+        q[0] = (r[5] - r[7]) * s;
+        q[1] = (r[6] - r[2]) * s;
+        q[2] = (r[1] - r[3]) * s;
+    } else {
+        let i = if r[0] < r[4] {
+            if r[4] < r[8] {
+                2
+            } else {
+                1
+            }
+        } else if r[0] < r[8] {
+            2
+        } else {
+            0
+        };
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let s = (at(i, i) - at(j, j) - at(k, k) + 1.0).sqrt();
+        q[i] = s * 0.5;
+        let s = 0.5 / s;
+        q[3] = (at(k, j) - at(j, k)) * s;
+        q[j] = (at(j, i) + at(i, j)) * s;
+        q[k] = (at(k, i) + at(i, k)) * s;
+    }
+    q
+}
+
+/// The first three columns (with their zero fourth row) of the rotation a quaternion
+/// gives, as vector_math's `setFromTranslationRotation` writes them (not normalised).
+fn rotation_columns([x, y, z, w]: [f64; 4]) -> [f64; 12] {
+    let (x2, y2, z2) = (x + x, y + y, z + z);
+    let (xx, xy, xz) = (x * x2, x * y2, x * z2);
+    let (yy, yz, zz) = (y * y2, y * z2, z * z2);
+    let (wx, wy, wz) = (w * x2, w * y2, w * z2);
     [
-        [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y + z * w),
-            2.0 * (x * z - y * w),
-        ],
-        [
-            2.0 * (x * y - z * w),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z + x * w),
-        ],
-        [
-            2.0 * (x * z + y * w),
-            2.0 * (y * z - x * w),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
+        1.0 - (yy + zz),
+        xy + wz,
+        xz - wy,
+        0.0,
+        xy - wz,
+        1.0 - (xx + zz),
+        yz + wx,
+        0.0,
+        xz + wy,
+        yz - wx,
+        1.0 - (xx + yy),
+        0.0,
     ]
+}
+
+/// The largest sum of absolute values over the four columns (vector_math's `infinityNorm`).
+fn largest_column_sum(m: &[f64]) -> f64 {
+    (0..4)
+        .map(|c| m[4 * c..4 * c + 4].iter().map(|v| v.abs()).sum::<f64>())
+        .fold(0.0, f64::max)
 }
 
 /// A skin or morph weights need a mesh; weights must match its morph targets; a skin needs
