@@ -1377,3 +1377,92 @@ fn the_1_0_default_material_is_its_displayed_grey_linearised() {
     assert!((grey - srgb_to_linear(0.5)).abs() < 1e-12, "{grey}");
     assert!(plain["extensions"]["KHR_materials_unlit"].is_object());
 }
+
+#[test]
+fn a_large_scale_node_matrix_is_written_as_the_same_translation_rotation_and_scale() {
+    // One of the validator's recorded non-TRS matrices: a rotation and a scale of ~4000 that
+    // single precision cannot recompose. Written as a 2.0 matrix it would fail the output's
+    // check; as TRS it is the same transform.
+    let m = [
+        912.7795587304951,
+        31.039033519971312,
+        -3912.4999751812566,
+        0.0,
+        2790.6016780864275,
+        4220.354149104466,
+        684.5239358991782,
+        0.0,
+        3369.4692482889354,
+        -2352.4494684724755,
+        767.428732204424,
+        0.0,
+        -1.2636329459581064,
+        -112.69371148489978,
+        5806.86561226066,
+        1.0,
+    ];
+    let as_2_0 = serde_json::json!({"asset": {"version": "2.0"}, "nodes": [{"matrix": m}],
+        "scenes": [{"nodes": [0]}], "scene": 0});
+    let check = gltfmat::check_bytes(
+        "m.gltf",
+        as_2_0.to_string(),
+        &NoResources,
+        &Default::default(),
+    );
+    assert!(check
+        .diagnostics
+        .iter()
+        .any(|d| d.code.name() == "NODE_MATRIX_NON_TRS"));
+
+    let gltf1 = serde_json::json!({"asset": {"version": "1.0"}, "scene": "s",
+        "scenes": {"s": {"nodes": ["n"]}}, "nodes": {"n": {"matrix": m}}});
+    let upgraded = upgrade(
+        gltf1.to_string().as_bytes(),
+        &NoResources,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    let node = upgraded.json.items("nodes").unwrap().get(0).unwrap();
+    assert!(node.get("matrix").is_none(), "{node}");
+    assert!(upgraded
+        .report
+        .iter()
+        .any(|n| n.text.contains("matrix written as translation")));
+    let output = gltfmat::check_bytes(
+        "out.glb",
+        upgraded.to_glb(),
+        &NoResources,
+        &Default::default(),
+    );
+    assert!(!output.has_errors(), "{:?}", output.diagnostics);
+    // T · R · S gives the 1.0 matrix back.
+    let v = |key: &str| numbers(&node[key]);
+    let (t, q, s) = (v("translation"), v("rotation"), v("scale"));
+    let [x, y, z, w] = [q[0], q[1], q[2], q[3]];
+    let r = [
+        [
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y + z * w),
+            2.0 * (x * z - y * w),
+        ],
+        [
+            2.0 * (x * y - z * w),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z + x * w),
+        ],
+        [
+            2.0 * (x * z + y * w),
+            2.0 * (y * z - x * w),
+            1.0 - 2.0 * (x * x + y * y),
+        ],
+    ];
+    for c in 0..3 {
+        for row in 0..3 {
+            assert!(
+                (r[c][row] * s[c] - m[4 * c + row]).abs() < 1e-6,
+                "column {c} row {row}"
+            );
+        }
+        assert_eq!(t[c], m[12 + c]);
+    }
+}

@@ -9,6 +9,7 @@ pub(crate) mod schema;
 mod collector;
 pub(crate) mod context;
 mod khronos;
+pub(crate) use khronos::is_trs_decomposable;
 mod pass_codes;
 pub(crate) mod profile;
 

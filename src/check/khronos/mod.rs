@@ -13,6 +13,7 @@ mod extensions;
 mod influences;
 pub(crate) mod materials;
 mod nodes;
+pub(crate) use nodes::is_trs_decomposable;
 mod objects;
 pub(crate) mod primitives;
 pub(crate) mod resources;

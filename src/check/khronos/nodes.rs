@@ -215,7 +215,7 @@ const IDENTITY: [f64; 16] = [
 /// by their largest column sums (`absoluteError` < 5·10⁻⁵). Every value the library stores
 /// is rounded to single precision, which is what makes a large scale fail; the comparison of
 /// norms is what lets some shears pass.
-fn is_trs_decomposable(m: &[f64]) -> bool {
+pub(crate) fn is_trs_decomposable(m: &[f64]) -> bool {
     if m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0 {
         return false;
     }

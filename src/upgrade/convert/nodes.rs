@@ -19,7 +19,13 @@ impl Builder<'_, '_> {
                 .filter_map(|c| self.index_of_id("nodes", c))
                 .map(|i| json!(i))
                 .collect();
-            copy_transform(node, &mut out);
+            if copy_transform(node, &mut out) == Transform::Decomposed {
+                self.note(
+                    pointer("nodes", id),
+                    NoteKind::Decision,
+                    "matrix written as translation, rotation and scale: a glTF 2.0 reader recomposing it in single precision (the Khronos validator) would not find it decomposable.",
+                );
+            }
             if let Some(camera) = self.index_of("cameras", node.get("camera")) {
                 out.insert("camera".into(), json!(camera));
             }
@@ -232,11 +238,34 @@ fn multiply(a: &[f64], b: &[f64; 16]) -> [f64; 16] {
     out
 }
 
-/// matrix or translation/rotation/scale; an identity matrix is left out.
-fn copy_transform(node: Node, out: &mut Map<String, Value>) {
+/// How a node's transform was written.
+#[derive(PartialEq)]
+enum Transform {
+    /// As the 1.0 node had it (or none: an identity matrix is left out).
+    AsWritten,
+    /// Its matrix as translation, rotation and scale.
+    Decomposed,
+}
+
+/// The matrix, or translation/rotation/scale, of a 1.0 node. A matrix that is a rotation and
+/// a scale but that a single-precision reader cannot recompose (a large scale) is written as
+/// its translation, rotation and scale, which describe the same transform: 2.0 requires a
+/// node matrix to be decomposable, and the output must pass its own check.
+fn copy_transform(node: Node, out: &mut Map<String, Value>) -> Transform {
     match matrix(node.get("matrix")) {
         Some(m) if m != IDENTITY => {
-            out.insert("matrix".into(), json!(m));
+            let single: Vec<f64> = m.iter().map(|&v| f64::from(v as f32)).collect();
+            match (crate::check::is_trs_decomposable(&single), decomposed(&m)) {
+                (false, Some((translation, rotation, scale))) => {
+                    out.insert("translation".into(), json!(translation));
+                    out.insert("rotation".into(), json!(rotation));
+                    out.insert("scale".into(), json!(scale));
+                    return Transform::Decomposed;
+                }
+                _ => {
+                    out.insert("matrix".into(), json!(m));
+                }
+            }
         }
         _ => {
             for key in ["translation", "rotation", "scale"] {
@@ -246,11 +275,149 @@ fn copy_transform(node: Node, out: &mut Map<String, Value>) {
             }
         }
     }
+    Transform::AsWritten
+}
+
+/// A column-major affine matrix as translation, unit rotation quaternion (x, y, z, w) and
+/// scale, when its 3×3 part is a rotation times a scale (columns orthogonal to within 10⁻⁹
+/// of their lengths); `None` for a shear, a projection or a singular matrix.
+#[allow(clippy::type_complexity)]
+fn decomposed(m: &[f64; 16]) -> Option<([f64; 3], [f64; 4], [f64; 3])> {
+    if m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0 {
+        return None;
+    }
+    let column = |c: usize| [m[4 * c], m[4 * c + 1], m[4 * c + 2]];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let columns = [column(0), column(1), column(2)];
+    let mut scale = columns.map(|c| dot(c, c).sqrt());
+    if scale.iter().any(|&s| s == 0.0 || !s.is_finite()) {
+        return None;
+    }
+    let unit = [0, 1, 2].map(|c| columns[c].map(|v| v / scale[c]));
+    let orthogonal = (0..3).all(|a| ((a + 1)..3).all(|b| dot(unit[a], unit[b]).abs() < 1e-9));
+    if !orthogonal {
+        return None;
+    }
+    let [x, y, z] = unit;
+    let det = x[0] * (y[1] * z[2] - z[1] * y[2]) - y[0] * (x[1] * z[2] - z[1] * x[2])
+        + z[0] * (x[1] * y[2] - y[1] * x[2]);
+    let mut r = unit;
+    if det < 0.0 {
+        // A mirror: the negative scale goes on x, as readers decompose it.
+        scale[0] = -scale[0];
+        r[0] = r[0].map(|v| -v);
+    }
+    Some(([m[12], m[13], m[14]], quaternion_of(r), scale))
+}
+
+/// The unit quaternion (x, y, z, w) of a rotation given by its columns.
+fn quaternion_of(r: [[f64; 3]; 3]) -> [f64; 4] {
+    let at = |row: usize, col: usize| r[col][row];
+    let trace = at(0, 0) + at(1, 1) + at(2, 2);
+    let q = if trace > 0.0 {
+        let s = (trace + 1.0).sqrt() * 2.0;
+        [
+            (at(2, 1) - at(1, 2)) / s,
+            (at(0, 2) - at(2, 0)) / s,
+            (at(1, 0) - at(0, 1)) / s,
+            s / 4.0,
+        ]
+    } else if at(0, 0) > at(1, 1) && at(0, 0) > at(2, 2) {
+        let s = (1.0 + at(0, 0) - at(1, 1) - at(2, 2)).sqrt() * 2.0;
+        [
+            s / 4.0,
+            (at(0, 1) + at(1, 0)) / s,
+            (at(0, 2) + at(2, 0)) / s,
+            (at(2, 1) - at(1, 2)) / s,
+        ]
+    } else if at(1, 1) > at(2, 2) {
+        let s = (1.0 + at(1, 1) - at(0, 0) - at(2, 2)).sqrt() * 2.0;
+        [
+            (at(0, 1) + at(1, 0)) / s,
+            s / 4.0,
+            (at(1, 2) + at(2, 1)) / s,
+            (at(0, 2) - at(2, 0)) / s,
+        ]
+    } else {
+        let s = (1.0 + at(2, 2) - at(0, 0) - at(1, 1)).sqrt() * 2.0;
+        [
+            (at(0, 2) + at(2, 0)) / s,
+            (at(1, 2) + at(2, 1)) / s,
+            s / 4.0,
+            (at(1, 0) - at(0, 1)) / s,
+        ]
+    };
+    let n = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+    q.map(|v| v / n)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// T · R · S of a decomposition, column-major.
+    fn recomposed((t, [x, y, z, w], s): ([f64; 3], [f64; 4], [f64; 3])) -> [f64; 16] {
+        let r = [
+            [
+                1.0 - 2.0 * (y * y + z * z),
+                2.0 * (x * y + z * w),
+                2.0 * (x * z - y * w),
+            ],
+            [
+                2.0 * (x * y - z * w),
+                1.0 - 2.0 * (x * x + z * z),
+                2.0 * (y * z + x * w),
+            ],
+            [
+                2.0 * (x * z + y * w),
+                2.0 * (y * z - x * w),
+                1.0 - 2.0 * (x * x + y * y),
+            ],
+        ];
+        let mut m = IDENTITY;
+        for c in 0..3 {
+            for row in 0..3 {
+                m[4 * c + row] = r[c][row] * s[c];
+            }
+            m[12 + c] = t[c];
+        }
+        m
+    }
+
+    #[test]
+    fn a_rotation_and_scale_matrix_decomposes_to_the_same_transform_and_a_shear_does_not() {
+        let (c, s) = (0.3f64.cos(), 0.3f64.sin());
+        for (scale, mirror) in [(1.0, 1.0), (1000.0, 1.0), (2500.0, -1.0), (0.001, 1.0)] {
+            let m = [
+                c * scale * mirror,
+                s * scale * mirror,
+                0.0,
+                0.0,
+                -s * scale,
+                c * scale,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                3.0 * scale,
+                0.0,
+                5.0,
+                -6.0,
+                7.0,
+                1.0,
+            ];
+            let parts = decomposed(&m).expect("a rotation and a scale");
+            let back = recomposed(parts);
+            let error = (0..16).map(|i| (back[i] - m[i]).abs()).fold(0.0, f64::max);
+            assert!(error < 1e-9 * scale.max(1.0), "{scale} {mirror}: {error}");
+        }
+        let mut shear = IDENTITY;
+        shear[4] = 0.5;
+        assert!(decomposed(&shear).is_none());
+        let mut projection = IDENTITY;
+        projection[3] = 0.1;
+        assert!(decomposed(&projection).is_none());
+    }
 
     #[test]
     fn bind_shape_is_folded_on_the_right() {
