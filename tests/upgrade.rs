@@ -1466,3 +1466,42 @@ fn a_large_scale_node_matrix_is_written_as_the_same_translation_rotation_and_sca
         assert_eq!(t[c], m[12 + c]);
     }
 }
+
+#[test]
+fn khr_materials_common_values_in_the_early_type_value_form_are_read() {
+    let converted = |values: serde_json::Value| {
+        let gltf1 = serde_json::json!({"asset": {"version": "1.0"}, "scene": "s",
+            "scenes": {"s": {"nodes": []}}, "extensionsUsed": ["KHR_materials_common"],
+            "materials": {"m": {"extensions": {"KHR_materials_common": {"technique": "BLINN", "values": values}}}}});
+        let upgraded = upgrade(
+            gltf1.to_string().as_bytes(),
+            &NoResources,
+            &UpgradeOptions::default(),
+        )
+        .unwrap();
+        let early = upgraded
+            .report
+            .iter()
+            .any(|n| n.text.contains("early {type, value} form"));
+        (material(&upgraded), early)
+    };
+    let (plain, said) =
+        material(serde_json::json!({"diffuse": [0.5, 0.25, 1.0, 1.0], "shininess": 50.0}));
+    assert!(!said);
+    let (typed, said) = converted(serde_json::json!({
+        "diffuse": {"type": 35666, "value": [0.5, 0.25, 1.0, 1.0]},
+        "shininess": {"type": 5126, "value": 50.0}}));
+    assert!(said, "the reading is said");
+    assert_eq!(typed["pbrMetallicRoughness"], plain["pbrMetallicRoughness"]);
+    assert!(
+        numbers(&typed["pbrMetallicRoughness"]["baseColorFactor"])[0] < 0.5,
+        "linearised"
+    );
+    assert!(
+        typed["pbrMetallicRoughness"]["roughnessFactor"]
+            .as_f64()
+            .unwrap()
+            < 1.0,
+        "from shininess"
+    );
+}

@@ -410,9 +410,16 @@ fn convert_common(builder: &mut Builder, common: Node, at: &str, out: &mut Map<S
         .get("technique")
         .and_then(Node::as_str)
         .unwrap_or("BLINN");
-    let values = common
+    let mut values = common
         .get("values")
         .map_or_else(|| json!({}), Node::to_value);
+    if unwrap_typed_values(&mut values) {
+        builder.note(
+            at,
+            NoteKind::Decision,
+            "KHR_materials_common values in the early {type, value} form read by their value.",
+        );
+    }
     lit_material(builder, &values, at, out);
     if technique == "CONSTANT" {
         out.insert("extensions".into(), json!({"KHR_materials_unlit": {}}));
@@ -437,6 +444,27 @@ fn convert_common(builder: &mut Builder, common: Node, at: &str, out: &mut Map<S
     if common.get("doubleSided").and_then(Node::as_bool) == Some(true) {
         out.insert("doubleSided".into(), json!(true));
     }
+}
+
+/// Replaces each value written in the extension's early form, `{"type": GL type, "value": v}`,
+/// by `v`; true when any was.
+fn unwrap_typed_values(values: &mut Value) -> bool {
+    let mut any = false;
+    for value in values
+        .as_object_mut()
+        .into_iter()
+        .flat_map(|m| m.values_mut())
+    {
+        let typed = value
+            .as_object()
+            .filter(|o| o.contains_key("type"))
+            .and_then(|o| o.get("value"));
+        if let Some(inner) = typed.cloned() {
+            *value = inner;
+            any = true;
+        }
+    }
+    any
 }
 
 /// Technique values by name (material values over the technique's parameter defaults, which
