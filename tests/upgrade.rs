@@ -1486,7 +1486,7 @@ fn khr_materials_common_values_in_the_early_type_value_form_are_read() {
         (material(&upgraded), early)
     };
     let (plain, said) =
-        material(serde_json::json!({"diffuse": [0.5, 0.25, 1.0, 1.0], "shininess": 50.0}));
+        converted(serde_json::json!({"diffuse": [0.5, 0.25, 1.0, 1.0], "shininess": 50.0}));
     assert!(!said);
     let (typed, said) = converted(serde_json::json!({
         "diffuse": {"type": 35666, "value": [0.5, 0.25, 1.0, 1.0]},
