@@ -1805,27 +1805,7 @@ fn a_node_matrix_is_trs_decomposable_as_the_validators_single_precision_makes_it
     // single-precision storage (the first three), and sheared matrices whose largest column
     // sums agree pass it (the next three); the last is a shear both readings refuse.
     let cases: [(bool, [f64; 16]); 7] = [
-        (
-            true,
-            [
-                912.7795587304951,
-                31.039033519971312,
-                -3912.4999751812566,
-                0.0,
-                2790.6016780864275,
-                4220.354149104466,
-                684.5239358991782,
-                0.0,
-                3369.4692482889354,
-                -2352.4494684724755,
-                767.428732204424,
-                0.0,
-                -1.2636329459581064,
-                -112.69371148489978,
-                5806.86561226066,
-                1.0,
-            ],
-        ),
+        (true, common::LARGE_SCALE_MATRIX),
         (
             true,
             [

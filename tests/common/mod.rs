@@ -90,3 +90,24 @@ pub fn glb(json: &[u8], bin: Option<&[u8]>) -> Vec<u8> {
     glb.extend(chunks);
     glb
 }
+
+/// A node matrix the Khronos validator calls NODE_MATRIX_NON_TRS (recorded from it): a rotation
+/// and a scale of about 4000, which its single-precision recomposition cannot give back.
+pub const LARGE_SCALE_MATRIX: [f64; 16] = [
+    912.7795587304951,
+    31.039033519971312,
+    -3912.4999751812566,
+    0.0,
+    2790.6016780864275,
+    4220.354149104466,
+    684.5239358991782,
+    0.0,
+    3369.4692482889354,
+    -2352.4494684724755,
+    767.428732204424,
+    0.0,
+    -1.2636329459581064,
+    -112.69371148489978,
+    5806.86561226066,
+    1.0,
+];
