@@ -542,6 +542,14 @@ fn cases() -> Vec<Case> {
             .expect("TRANSMISSION_ON_METAL", &at("/extensions/KHR_materials_transmission/transmissionFactor")),
         near_miss("TRANSMISSION_ON_METAL", "glass with metallicFactor 0", material(ext("KHR_materials_transmission",
             json!({"transmissionFactor": 0.76}))), vec![]),
+        // As TransmissionTest's "…Metal" spheres: the factor is left at 1 and a texture sets the metal.
+        near_miss("TRANSMISSION_ON_METAL", "glass whose metallic comes from a texture", json!({
+            "pbrMetallicRoughness": {"roughnessFactor": 0.0, "metallicRoughnessTexture": {"index": 0}},
+            "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}}}), vec![rgb([0, 0, 0])]),
+        // As DiffuseTransmissionTest's "ColorTexture 0.0" row.
+        case("diffuse transmission colour texture with the factor left at 0", material(ext("KHR_materials_diffuse_transmission",
+            json!({"diffuseTransmissionColorTexture": {"index": 0}}))), vec![rgb([200, 0, 0])])
+            .expect("LAYER_TEXTURE_DISABLED", &at("/extensions/KHR_materials_diffuse_transmission/diffuseTransmissionColorTexture")),
         case("clearcoat texture with the factor left at 0", material(ext("KHR_materials_clearcoat",
             json!({"clearcoatTexture": {"index": 0}}))), vec![rgb([200, 0, 0])])
             .expect("LAYER_TEXTURE_DISABLED", &at("/extensions/KHR_materials_clearcoat/clearcoatTexture")),
