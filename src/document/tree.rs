@@ -557,6 +557,10 @@ impl<'t> crate::gltf::Json<'t> for Node<'t> {
     fn member_values(self) -> Box<dyn Iterator<Item = Self> + 't> {
         Box::new(self.as_object().into_iter().flat_map(Object::values))
     }
+
+    fn item(self, index: usize) -> Option<Self> {
+        self.as_array()?.get(index)
+    }
 }
 
 /// An array's index as a pointer token spells it: no sign, no leading zero.

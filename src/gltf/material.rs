@@ -18,6 +18,24 @@ pub fn texture_transform<'a, J: Json<'a>>(info: J) -> Option<J> {
     info.get("extensions")?.get("KHR_texture_transform")
 }
 
+/// The UV matrix a textureInfo applies, row-major `[a, b, c, d, e, f]` for
+/// `(a·u + b·v + c, d·u + e·v + f)`: KHR_texture_transform's T · R · S, the identity without it.
+pub fn uv_transform<'a, J: Json<'a>>(info: J) -> [f64; 6] {
+    let Some(t) = texture_transform(info) else {
+        return [1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+    };
+    let pair = |key: &str, default: [f64; 2]| {
+        t.get(key).map_or(default, |a| {
+            [0, 1].map(|i| a.item(i).and_then(J::as_f64).unwrap_or(default[i]))
+        })
+    };
+    let [ox, oy] = pair("offset", [0.0, 0.0]);
+    let [sx, sy] = pair("scale", [1.0, 1.0]);
+    let r = t.get("rotation").and_then(J::as_f64).unwrap_or(0.0);
+    let (s, c) = r.sin_cos();
+    [c * sx, s * sy, ox, -s * sx, c * sy, oy]
+}
+
 /// The texCoord set a textureInfo reads: KHR_texture_transform's `texCoord` override when
 /// present, else its own `texCoord`, else 0.
 pub fn effective_texcoord<'a>(info: impl Json<'a>) -> u64 {

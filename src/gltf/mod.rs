@@ -40,6 +40,8 @@ pub trait Json<'a>: Copy + 'a {
     fn is_object(self) -> bool;
     /// The values of an object's members (none for anything else).
     fn member_values(self) -> Box<dyn Iterator<Item = Self> + 'a>;
+    /// Element `index`, when this is an array that long.
+    fn item(self, index: usize) -> Option<Self>;
 }
 
 impl<'a> Json<'a> for &'a Value {
@@ -69,6 +71,10 @@ impl<'a> Json<'a> for &'a Value {
                 .into_iter()
                 .flat_map(|members| members.values()),
         )
+    }
+
+    fn item(self, index: usize) -> Option<Self> {
+        Value::get(self, index)
     }
 }
 

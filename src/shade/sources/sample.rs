@@ -5,7 +5,7 @@
 
 use crate::document::image_header::Channels;
 use crate::gltf::color::srgb_texel_to_linear;
-use crate::gltf::material::{effective_texcoord, texture_transform};
+use crate::gltf::material::{effective_texcoord, uv_transform};
 use crate::legacy::pbr::{LegacyPbr, Model};
 use crate::shade::brdf::V3;
 use crate::shade::iridescence::Film;
@@ -677,24 +677,6 @@ impl Binding {
     }
 }
 
-/// KHR_texture_transform's UV matrix (identity without the extension).
-fn transform_of(info: &Value) -> [f64; 6] {
-    let Some(t) = texture_transform(info) else {
-        return [1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
-    };
-    let pair = |key: &str, default: [f64; 2]| {
-        t.get(key).and_then(Value::as_array).map_or(default, |a| {
-            [0, 1].map(|i| a.get(i).and_then(Value::as_f64).unwrap_or(default[i]))
-        })
-    };
-    let [ox, oy] = pair("offset", [0.0, 0.0]);
-    let [sx, sy] = pair("scale", [1.0, 1.0]);
-    let r = t.get("rotation").and_then(Value::as_f64).unwrap_or(0.0);
-    let (s, c) = r.sin_cos();
-    // T · R · S as in the KHR_texture_transform README.
-    [c * sx, s * sy, ox, -s * sx, c * sy, oy]
-}
-
 /// What a material is made of, ready to be sampled.
 #[derive(Clone)]
 pub enum MaterialSource {
@@ -1043,7 +1025,7 @@ fn prepare(material: &Value, textures: &TextureSet) -> Prepared {
             texture: texture?,
             sampler,
             texcoord: effective_texcoord(info),
-            transform: transform_of(info),
+            transform: uv_transform(info),
         })
     };
     let extension = |name: &str| material.get("extensions").and_then(|e| e.get(name));
