@@ -126,6 +126,25 @@ fn grey(level: u8) -> Vec<u8> {
     png(GrayImage::from_pixel(4, 4, image::Luma([level])))
 }
 
+/// A `size`² RGBA image of `fill` with the texels `at` set to `odd`.
+fn rgba_with_some(size: u32, fill: [u8; 4], odd: [u8; 4], at: &[(u32, u32)]) -> Vec<u8> {
+    png(RgbaImage::from_fn(size, size, |x, y| {
+        image::Rgba(if at.contains(&(x, y)) { odd } else { fill })
+    }))
+}
+
+/// Nine texels of a 16² image about (0.7, 0.7): beyond u + v = 1.3, far from the base
+/// triangle (u + v ≤ 1) and from the edges that the REPEAT filter blends into it.
+fn gutter() -> Vec<(u32, u32)> {
+    patch_3x3(10, 10)
+}
+
+fn patch_3x3(x: u32, y: u32) -> Vec<(u32, u32)> {
+    (x..x + 3)
+        .flat_map(|x| (y..y + 3).map(move |y| (x, y)))
+        .collect()
+}
+
 /// A 4×4 RGBA image of `fill` with texel (1, 2) set to `odd`.
 fn rgba_with_one(fill: [u8; 4], odd: [u8; 4]) -> Vec<u8> {
     png(RgbaImage::from_fn(4, 4, |x, y| {
@@ -581,6 +600,19 @@ fn cases() -> Vec<Case> {
             vec![rgba_with_one([128, 128, 255, 255], [218, 128, 218, 255])]).patch(with_tangents()).deep(),
         near_miss("NORMAL_TEXEL_BELOW_SURFACE", "normals longer than 1, as a renderer normalises them", material(json!({"normalTexture": {"index": 0}})),
             vec![rgba_with_one([189, 188, 254, 255], [128, 128, 255, 255])]).patch(with_tangents()).deep(),
+        // The triangle's UVs cover u + v ≤ 1: the texels about (0.7, 0.7) are a gutter nothing samples.
+        near_miss("NORMAL_TEXEL_BELOW_SURFACE", "texels into the surface only where the mesh's UVs never reach", material(json!({"normalTexture": {"index": 0}})),
+            vec![rgba_with_some(16, [128, 128, 255, 255], [128, 128, 0, 255], &gutter())]).patch(with_tangents()).deep(),
+        case("the same texels read through a transform that brings them under the triangle",
+            material(json!({"normalTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"offset": [0.6, 0.6]}}}})),
+            vec![rgba_with_some(16, [128, 128, 255, 255], [128, 128, 0, 255], &gutter())])
+            .patch(with_tangents()).patch(json!({"extensionsUsed": ["KHR_texture_transform"]})).deep()
+            .expect("NORMAL_TEXEL_BELOW_SURFACE", &at("/normalTexture")),
+        near_miss("NORMAL_TEXEL_BELOW_SURFACE", "one texel into the surface among the 2,000 a mesh samples", material(json!({"normalTexture": {"index": 0}})),
+            vec![rgba_with_some(64, [128, 128, 255, 255], [128, 128, 0, 255], &[(10, 10)])]).patch(with_tangents()).deep(),
+        case("a patch of 9 texels into the surface among the 2,000 a mesh samples", material(json!({"normalTexture": {"index": 0}})),
+            vec![rgba_with_some(64, [128, 128, 255, 255], [128, 128, 0, 255], &patch_3x3(10, 10))]).patch(with_tangents()).deep()
+            .expect("NORMAL_TEXEL_BELOW_SURFACE", &at("/normalTexture")),
         case("constant alpha read as sheen roughness", material(ext("KHR_materials_sheen", json!({"sheenColorFactor": [1.0, 1.0, 1.0],
             "sheenRoughnessFactor": 0.5, "sheenRoughnessTexture": {"index": 0}}))), vec![rgba([9, 9, 9, 200])]).deep()
             .expect("TEXTURE_ALPHA_CONSTANT", &at("/extensions/KHR_materials_sheen/sheenRoughnessTexture")),

@@ -119,7 +119,7 @@ enum Data<'c> {
 
 /// The accessor's layout and the part of its view it reads, when it is plain (not sparse)
 /// data that fits its view (otherwise ACCESSOR_TOO_LONG or a schema code was reported).
-pub(super) fn scannable<'c>(ctx: &'c Context, accessor: Node) -> Option<(Layout, ViewData<'c>)> {
+pub(crate) fn scannable<'c>(ctx: &'c Context, accessor: Node) -> Option<(Layout, ViewData<'c>)> {
     if accessor.get("sparse").is_some() {
         return None; // see `substituted`
     }
@@ -504,7 +504,7 @@ impl Bounds<'_> {
 
 /// What maps a stored value to the value a shader sees (the glTF normalisation rules for
 /// `normalized` integers); None when they are the same (floats and plain integers).
-pub(super) fn unit_scale(component_type: u64, accessor: Node) -> Option<fn(f64) -> f64> {
+pub(crate) fn unit_scale(component_type: u64, accessor: Node) -> Option<fn(f64) -> f64> {
     let normalized = accessor.get("normalized").and_then(Node::as_bool) == Some(true);
     normalise(component_type).filter(|_| normalized)
 }

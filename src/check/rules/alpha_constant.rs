@@ -1,6 +1,6 @@
 //! An alpha channel that a slot reads is the same everywhere (`--deep`).
 
-use super::texels::Texels;
+use super::texels::Sampled;
 use super::{Rule, Run};
 use crate::check::context::Context;
 use crate::check::khronos::materials::SlotUse;
@@ -37,7 +37,7 @@ fn applies(slot_use: &SlotUse) -> bool {
     slot_use.reads().1 & A != 0
 }
 
-fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
+fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Sampled) {
     if !texels.has_alpha() {
         return; // TEXTURE_ALPHA_MISSING reports it from the header.
     }

@@ -1,6 +1,6 @@
 //! Anisotropy texels with no direction (`--deep`).
 
-use super::texels::Texels;
+use super::texels::Sampled;
 use super::{Rule, Run};
 use crate::check::context::Context;
 use crate::check::khronos::materials::SlotUse;
@@ -19,7 +19,9 @@ const DOC: &str = "\
 ## What it does
 With `--deep`, decodes each `anisotropyTexture` and counts texels whose strength (B) is not
 zero while their direction, (R, G) mapped to [-1, 1], is shorter than 1/64 — for 8-bit data,
-the texels at or next to (128, 128). Reports the count and the first such texel.
+the texels at or next to (128, 128). As for NORMAL_TEXEL_BELOW_SURFACE, only the texels the
+material's meshes sample are counted, and it reports when they are at least 0.1% of those.
+Reports the count and the first such texel.
 
 ## Why
 The spec normalises the direction vector; a zero vector has no direction, so engines divide
@@ -41,12 +43,12 @@ fn applies(slot_use: &SlotUse) -> bool {
         && slot_use.extension_number("anisotropyStrength", 0.0) > 0.0
 }
 
-fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
+fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Sampled) {
     let tally = texels.tally(|[r, g, b, _]| {
         let (x, y) = (2.0 * r - 1.0, 2.0 * g - 1.0);
         b > 0.0 && x.hypot(y) < MIN_DIRECTION
     });
-    if tally.count > 0 {
+    if tally.visible() {
         ctx.emit(
             RULE.code(),
             slot_use.pointer(),

@@ -1,6 +1,6 @@
 //! Dielectric base colours outside the plausible albedo range.
 
-use super::texels::Texels;
+use super::texels::Sampled;
 use super::{Rule, Run, LARGE_AREA};
 use crate::check::context::{number, Context};
 use crate::check::khronos::materials::{extension, SlotUse};
@@ -114,7 +114,7 @@ fn applies(slot_use: &SlotUse) -> bool {
     slot_use.slot.key == "baseColorTexture" && judged(slot_use.material)
 }
 
-fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
+fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Sampled) {
     let [fr, fg, fb] = factor(slot_use.material);
     // Compare in linear space, with the sRGB decode tabulated: 16 M powf calls per 4096²
     // texture would dominate `--deep`. 4096 steps are finer than any 8- or 12-bit source.

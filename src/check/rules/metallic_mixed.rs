@@ -1,6 +1,6 @@
 //! Metallic values between metal and dielectric.
 
-use super::texels::Texels;
+use super::texels::Sampled;
 use super::{Rule, Run, LARGE_AREA};
 use crate::check::context::{number, Context};
 use crate::check::khronos::materials::SlotUse;
@@ -68,7 +68,7 @@ fn applies(slot_use: &SlotUse) -> bool {
     slot_use.slot.key == "metallicRoughnessTexture"
 }
 
-fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
+fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Sampled) {
     let factor = metallic_factor(slot_use.material);
     let tally = texels.tally(|[_, _, b, _]| is_mixed(f64::from(b) * factor));
     if tally.fraction() > LARGE_AREA {

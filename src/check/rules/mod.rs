@@ -23,6 +23,7 @@ mod metallic_mixed;
 mod normal_below_surface;
 pub(crate) mod outside_folder;
 pub(crate) mod resource_not_read;
+mod seen;
 mod sheen_disabled;
 mod sheen_zero_roughness;
 mod specular_on_metal;
@@ -37,7 +38,7 @@ use super::context::Context;
 use super::khronos::materials::{by_image, slot_uses, SlotUse};
 use crate::diagnostic::{Code, Diagnostic, Severity};
 use crate::document::image_header::ImageInfo;
-use texels::Texels;
+use texels::Sampled;
 
 pub struct Rule {
     pub info: CodeInfo,
@@ -71,7 +72,7 @@ pub struct Run {
 
 pub struct PixelCheck {
     pub applies: fn(&SlotUse) -> bool,
-    pub inspect: fn(&mut Context, &SlotUse, &Texels),
+    pub inspect: fn(&mut Context, &SlotUse, &Sampled),
 }
 
 impl Run {
@@ -89,7 +90,7 @@ impl Run {
 
     pub const fn pixels(
         applies: fn(&SlotUse) -> bool,
-        inspect: fn(&mut Context, &SlotUse, &Texels),
+        inspect: fn(&mut Context, &SlotUse, &Sampled),
     ) -> Run {
         Run {
             document: None,
@@ -101,7 +102,7 @@ impl Run {
     pub const fn both(
         check: fn(&mut Context),
         applies: fn(&SlotUse) -> bool,
-        inspect: fn(&mut Context, &SlotUse, &Texels),
+        inspect: fn(&mut Context, &SlotUse, &Sampled),
     ) -> Run {
         Run {
             document: Some(check),
@@ -237,18 +238,19 @@ fn run_pixel_rules(ctx: &mut Context) {
         .map(|check| (check.applies, check.inspect))
         .collect();
     let uses = slot_uses(ctx);
+    let mut sight = seen::Sight::new(ctx);
     for (image, on_image) in by_image(&uses, ctx.items("images").len())
         .into_iter()
         .enumerate()
     {
-        let wanted: Vec<_> = on_image
-            .into_iter()
-            .flat_map(|u| {
-                pixel_rules
-                    .iter()
+        let wanted: Vec<(&SlotUse, Vec<_>)> = (on_image.into_iter())
+            .map(|u| {
+                let inspections = (pixel_rules.iter())
                     .filter(|(applies, _)| applies(u))
-                    .map(move |(_, inspect)| (u, *inspect))
+                    .map(|(_, inspect)| *inspect);
+                (u, inspections.collect())
             })
+            .filter(|(_, inspections): &(_, Vec<_>)| !inspections.is_empty())
             .collect();
         if wanted.is_empty() {
             continue;
@@ -257,8 +259,12 @@ fn run_pixel_rules(ctx: &mut Context) {
         let Some(texels) = texels::decode(ctx, image) else {
             continue;
         };
-        for (slot_use, inspect) in wanted {
-            inspect(ctx, slot_use, &texels);
+        let (width, height) = texels.size();
+        for (slot_use, inspections) in wanted {
+            let seen = sight.seen(ctx, slot_use, width, height);
+            for inspect in inspections {
+                inspect(ctx, slot_use, &texels.as_seen(seen.as_ref()));
+            }
         }
     }
 }

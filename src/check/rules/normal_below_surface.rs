@@ -1,6 +1,6 @@
 //! Normal-map texels pointing below the surface (`--deep`).
 
-use super::texels::Texels;
+use super::texels::Sampled;
 use super::{Rule, Run};
 use crate::check::context::Context;
 use crate::check::khronos::materials::SlotUse;
@@ -19,7 +19,11 @@ const DOC: &str = "\
 ## What it does
 With `--deep`, decodes each `normalTexture` and `clearcoatNormalTexture` and counts texels
 whose blue value is 0.5 or less, which maps to Z ≤ 0: a tangent-space normal that points into
-the surface or lies in it. Reports the count and the first such texel. The length of the
+the surface or lies in it. Only the texels the material's meshes sample are counted (their
+UVs through the binding's texCoord set, texture transform and wrap modes, with the bilinear
+filter's neighbours); the black gutters between UV islands are never seen. It reports when
+such texels are at least 0.1% of those sampled: fewer are isolated texels (seams, compression
+noise) that filtering and mipmaps average away. Reports the count and the first one. The length of the
 vectors is not judged: renderers normalise every normal before lighting, so a map whose
 texels are longer or shorter than 1 shades as its directions say.
 
@@ -39,9 +43,9 @@ fn applies(slot_use: &SlotUse) -> bool {
     slot_use.slot.is_normal()
 }
 
-fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Texels) {
+fn inspect(ctx: &mut Context, slot_use: &SlotUse, texels: &Sampled) {
     let tally = texels.tally(|[_, _, blue, _]| blue <= 0.5);
-    if tally.count > 0 {
+    if tally.visible() {
         ctx.emit(
             RULE.code(),
             slot_use.pointer(),

@@ -1,6 +1,7 @@
 //! Decoding textures for the pixel rules (`--deep`), within fixed limits, and the counting
 //! helper those rules share.
 
+use super::seen::Seen;
 use crate::check::context::Context;
 use crate::document::image_decode::{self, DecodeError};
 use image::DynamicImage;
@@ -10,11 +11,26 @@ pub struct Texels {
     image: DynamicImage,
 }
 
+/// A decoded image as one texture binding samples it: where the binding's meshes are known,
+/// only the texels they read are visited.
+pub struct Sampled<'t> {
+    texels: &'t Texels,
+    seen: Option<&'t Seen>,
+}
+
+/// The share of the texels a mesh samples below which a defect found in a few texels is not
+/// reported: one in a thousand. Fewer are isolated texels (compression noise, seams) that the
+/// bilinear filter and the mip chain average with their neighbours; a real defect — a wrong map,
+/// a flipped channel, a painted patch — covers far more.
+pub const VISIBLE_SHARE: f64 = 0.001;
+
 /// How many texels matched a predicate, with the first one as an example.
 pub struct Tally {
     pub count: u64,
     pub total: u64,
     pub example: Option<(u32, u32, [f32; 4])>,
+    /// Whether `total` counts only the texels a mesh samples.
+    pub of_seen: bool,
 }
 
 /// Decodes image `index`, reporting IMAGE_UNDECODABLE or IMAGE_DECODE_LIMIT on failure.
@@ -60,6 +76,16 @@ impl Texels {
         self.image.color().has_alpha()
     }
 
+    /// Width and height in texels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.image.width(), self.image.height())
+    }
+
+    /// This image as a binding samples it (`seen` None: every texel).
+    pub fn as_seen<'t>(&'t self, seen: Option<&'t Seen>) -> Sampled<'t> {
+        Sampled { texels: self, seen }
+    }
+
     /// Calls `f(x, y, rgba)` for every texel, channels normalised to 0..1; greyscale is
     /// expanded to RGB and a missing alpha reads 1, as a renderer samples it.
     pub fn visit(&self, mut f: impl FnMut(u32, u32, [f32; 4])) {
@@ -98,11 +124,35 @@ impl Texels {
     }
 
     /// Counts the texels for which `matches` holds.
+    pub fn tally(&self, matches: impl FnMut([f32; 4]) -> bool) -> Tally {
+        self.as_seen(None).tally(matches)
+    }
+}
+
+impl Sampled<'_> {
+    pub fn has_alpha(&self) -> bool {
+        self.texels.has_alpha()
+    }
+
+    /// [`Texels::visit`] over the texels the binding samples.
+    pub fn visit(&self, mut f: impl FnMut(u32, u32, [f32; 4])) {
+        match self.seen {
+            None => self.texels.visit(f),
+            Some(seen) => self.texels.visit(|x, y, rgba| {
+                if seen.contains(x, y) {
+                    f(x, y, rgba)
+                }
+            }),
+        }
+    }
+
+    /// Counts the sampled texels for which `matches` holds.
     pub fn tally(&self, mut matches: impl FnMut([f32; 4]) -> bool) -> Tally {
         let mut tally = Tally {
             count: 0,
             total: 0,
             example: None,
+            of_seen: self.seen.is_some(),
         };
         self.visit(|x, y, rgba| {
             tally.total += 1;
@@ -120,6 +170,12 @@ impl Tally {
         self.count as f64 / self.total.max(1) as f64
     }
 
+    /// Whether the matching texels are enough to be seen: at least [`VISIBLE_SHARE`] of those
+    /// counted, and at least one.
+    pub fn visible(&self) -> bool {
+        self.count > 0 && self.fraction() >= VISIBLE_SHARE
+    }
+
     /// "3 of 16 texels (18.8%), e.g. texel (2, 0) = RGBA 8-bit (128, 128, 255, 255)".
     pub fn describe(&self) -> String {
         let example = self.example.map_or(String::new(), |(x, y, rgba)| {
@@ -127,9 +183,14 @@ impl Tally {
             format!(", e.g. texel ({x}, {y}) = RGBA 8-bit ({r}, {g}, {b}, {a})")
         });
         format!(
-            "{} of {} texels ({:.1}%){example}",
+            "{} of {} texels{} ({:.1}%){example}",
             self.count,
             self.total,
+            if self.of_seen {
+                " the meshes sample"
+            } else {
+                ""
+            },
             100.0 * self.fraction()
         )
     }
