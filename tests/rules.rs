@@ -78,6 +78,23 @@ fn with_tangents() -> Value {
     json!({"meshes": full["meshes"], "accessors": full["accessors"], "bufferViews": full["bufferViews"]})
 }
 
+/// The base asset with TANGENT, whose only image is a small KTX2 file in a bufferView, sampled
+/// through KHR_texture_basisu.
+fn ktx2_image() -> Value {
+    let ktx2 = common::ktx2();
+    let full = asset(true);
+    let mut views = full["bufferViews"].as_array().unwrap().clone();
+    views.push(json!({"buffer": 1, "byteLength": ktx2.len()}));
+    let mut buffers = full["buffers"].as_array().unwrap().clone();
+    buffers.push(
+        json!({"uri": data_uri("application/octet-stream", &ktx2), "byteLength": ktx2.len()}),
+    );
+    json!({"meshes": full["meshes"], "accessors": full["accessors"], "bufferViews": views, "buffers": buffers,
+        "images": [{"bufferView": views.len() - 1, "mimeType": "image/ktx2"}],
+        "textures": [{"extensions": {"KHR_texture_basisu": {"source": 0}}}],
+        "extensionsUsed": ["KHR_texture_basisu"]})
+}
+
 /// RFC 7386 JSON merge patch.
 fn merge(target: &mut Value, patch: &Value) {
     match (target, patch) {
@@ -623,6 +640,11 @@ fn cases() -> Vec<Case> {
         case("damaged PNG data", material(json!({"normalTexture": {"index": 0}})), vec![corrupt_png()]).patch(with_tangents()).deep()
             .expect("IMAGE_UNDECODABLE", "/images/0"),
         near_miss("IMAGE_UNDECODABLE", "damaged PNG data without --deep", material(json!({"normalTexture": {"index": 0}})), vec![corrupt_png()]).patch(with_tangents()),
+        case("a KTX2 normal map, which gltfmat does not transcode", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_image()).deep()
+            .expect("IMAGE_NOT_DECODED", "/images/0"),
+        near_miss("IMAGE_NOT_DECODED", "a KTX2 normal map without --deep", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_image()),
         case("PNG claiming 32768² texels", material(json!({"normalTexture": {"index": 0}})), vec![huge_png_header()]).patch(with_tangents()).deep()
             .expect("IMAGE_DECODE_LIMIT", "/images/0"),
         // -- plausibility

@@ -111,3 +111,14 @@ pub const LARGE_SCALE_MATRIX: [f64; 16] = [
     5806.86561226066,
     1.0,
 ];
+
+/// A 4×4 KTX2 file: the header gltfmat and viewers read (format undefined, one level, one
+/// layer, one face) and zeros for the rest.
+pub fn ktx2() -> Vec<u8> {
+    let mut ktx2 = b"\xABKTX 20\xBB\r\n\x1A\n".to_vec();
+    for word in [0u32, 1, 4, 4, 0, 0, 1, 1, 0] {
+        ktx2.extend(word.to_le_bytes());
+    }
+    ktx2.extend([0; 64]);
+    ktx2
+}

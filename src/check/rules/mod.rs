@@ -21,6 +21,7 @@ mod linear_in_srgb;
 mod lossy_direction;
 mod metallic_mixed;
 mod normal_below_surface;
+mod not_decoded;
 pub(crate) mod outside_folder;
 pub(crate) mod resource_not_read;
 mod seen;
@@ -189,6 +190,7 @@ pub static RULES: &[&Rule] = &[
     &dispersion_thin_walled::RULE,
     &undecodable::RULE,
     &decode_limit::RULE,
+    &not_decoded::RULE,
     &anisotropy_direction::RULE,
     &normal_below_surface::RULE,
     &alpha_constant::RULE,

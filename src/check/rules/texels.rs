@@ -4,6 +4,7 @@
 use super::seen::Seen;
 use crate::check::context::Context;
 use crate::document::image_decode::{self, DecodeError};
+use crate::document::image_header::{self, ImageFormat};
 use image::DynamicImage;
 
 /// A decoded image.
@@ -33,9 +34,19 @@ pub struct Tally {
     pub of_seen: bool,
 }
 
-/// Decodes image `index`, reporting IMAGE_UNDECODABLE or IMAGE_DECODE_LIMIT on failure.
+/// Decodes image `index`, reporting IMAGE_UNDECODABLE or IMAGE_DECODE_LIMIT on failure, and
+/// IMAGE_NOT_DECODED for a KTX2 image (its header is read; its texels are not transcoded).
 pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
-    match image_decode::decode(encoded(ctx, index)?) {
+    let bytes = encoded(ctx, index)?;
+    if image_header::read(bytes).is_ok_and(|info| info.format == ImageFormat::Ktx2) {
+        ctx.emit(
+            crate::check::rules::not_decoded::RULE.code(),
+            format!("/images/{index}"),
+            "Image is KTX2, whose texels gltfmat does not transcode; its pixel rules did not run.",
+        );
+        return None;
+    }
+    match image_decode::decode(bytes) {
         Ok(image) => Some(Texels { image }),
         Err(error @ DecodeError::Limit) => {
             ctx.emit(
