@@ -936,12 +936,7 @@ fn a_ktx2_image_is_an_unrecognized_format_to_the_khronos_profile_only() {
     // source is KTX2 without KHR_texture_basisu then names the problem.
     let folder = std::env::temp_dir().join(format!("gltfmat-ktx2-{}", std::process::id()));
     std::fs::create_dir_all(&folder).unwrap();
-    let mut ktx2 = b"\xABKTX 20\xBB\r\n\x1A\n".to_vec();
-    for word in [0u32, 1, 4, 4, 0, 0, 1, 1, 0] {
-        ktx2.extend(word.to_le_bytes());
-    }
-    ktx2.extend([0; 64]);
-    std::fs::write(folder.join("k.ktx2"), ktx2).unwrap();
+    std::fs::write(folder.join("k.ktx2"), common::ktx2()).unwrap();
     let asset = folder.join("k.gltf");
     let document = json!({"asset": {"version": "2.0"}, "images": [{"uri": "k.ktx2"}], "textures": [{"source": 0}]});
     std::fs::write(&asset, serde_json::to_vec(&document).unwrap()).unwrap();
@@ -969,6 +964,40 @@ fn a_ktx2_image_is_an_unrecognized_format_to_the_khronos_profile_only() {
     assert!(!default
         .iter()
         .any(|(code, _)| code == "IMAGE_UNRECOGNIZED_FORMAT"));
+}
+
+#[test]
+fn the_default_profile_knows_khr_texture_basisu_and_the_khronos_profile_does_not() {
+    // The released validator does not implement KHR_texture_basisu; its schema makes
+    // image/ktx2 a valid mimeType and `source` a use of the image.
+    let folder = std::env::temp_dir().join(format!("gltfmat-basisu-{}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    std::fs::write(folder.join("k.ktx2"), common::ktx2()).unwrap();
+    let asset = folder.join("k.gltf");
+    let document = json!({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_texture_basisu"],
+        "images": [{"uri": "k.ktx2", "mimeType": "image/ktx2"}],
+        "textures": [{"extensions": {"KHR_texture_basisu": {"source": 0}}}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]});
+    std::fs::write(&asset, serde_json::to_vec(&document).unwrap()).unwrap();
+    let findings = |profile| {
+        let options = CheckOptions::default().with_profile(profile);
+        sorted_findings(&gltfmat::check::check_path(&asset, &options).unwrap())
+    };
+    let (khronos, default) = (findings(Profile::Khronos), findings(Profile::Default));
+    std::fs::remove_dir_all(&folder).unwrap();
+    for wrong in [
+        ("UNSUPPORTED_EXTENSION", "/extensionsUsed/0"),
+        ("VALUE_NOT_IN_LIST", "/images/0/mimeType"),
+    ] {
+        let wrong = (wrong.0.to_string(), wrong.1.to_string());
+        assert!(khronos.contains(&wrong), "{khronos:?}");
+        assert!(!default.contains(&wrong), "{default:?}");
+    }
+    let unused_image = ("UNUSED_OBJECT".to_string(), "/images/0".to_string());
+    assert!(
+        khronos.contains(&unused_image) && !default.contains(&unused_image),
+        "{khronos:?} {default:?}"
+    );
 }
 
 #[test]

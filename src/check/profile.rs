@@ -78,16 +78,20 @@ pub static READINGS: &[(Code, &str)] = &[
         "A KTX2 image is read as KTX2 (a texture then says that its source needs KHR_texture_basisu); the released Khronos validator recognises no KTX2 and reports the image's format as unrecognized.",
     ),
     (
+        khronos::VALUE_NOT_IN_LIST,
+        "An image's mimeType 'image/ktx2' is valid where KHR_texture_basisu is used, as that extension's schema adds it; the released Khronos validator knows only PNG, JPEG and (with EXT_texture_webp) WebP.",
+    ),
+    (
         khronos::SKIN_NO_COMMON_ROOT,
         "Reported for every skin whose joints share no root. The Khronos validator starts its intersection of the joints' lines afresh once it is empty, so joints in separate trees pass when the last ones share a tree.",
     ),
     (
         khronos::UNSUPPORTED_EXTENSION,
-        "The default profile validates extensions the released Khronos validator (2.0.0-dev.3.10) does not know: KHR_materials_diffuse_transmission and KHR_node_visibility.",
+        "The default profile validates extensions the released Khronos validator (2.0.0-dev.3.10) does not know: KHR_materials_diffuse_transmission, KHR_node_visibility and KHR_texture_basisu.",
     ),
     (
         khronos::UNEXPECTED_EXTENSION_OBJECT,
-        "An extension the default profile knows (KHR_node_visibility, KHR_materials_diffuse_transmission) is also checked for the objects it may extend; the released validator knows neither.",
+        "An extension the default profile knows (KHR_node_visibility, KHR_materials_diffuse_transmission, KHR_texture_basisu) is also checked for the objects it may extend; the released validator knows none of them.",
     ),
     (
         super::rules::gltf1::RULE.code(),

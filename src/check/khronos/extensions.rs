@@ -35,6 +35,7 @@ const KHRONOS_SUPPORTED: &[(&str, &[Host])] = &[
 const GLTFMAT_SUPPORTED: &[(&str, &[Host])] = &[
     ("KHR_materials_diffuse_transmission", &[Host::Material]),
     ("KHR_node_visibility", &[Host::Node]),
+    ("KHR_texture_basisu", &[Host::Texture]),
 ];
 
 /// The kinds of object that can carry `extensions`.

@@ -22,18 +22,19 @@ pub fn check_textures(ctx: &mut Context) {
                 &["image/jpeg", "image/png"],
             );
         }
-        let webp = texture
-            .get("extensions")
-            .and_then(|e| e.get("EXT_texture_webp"));
-        if let Some(webp) = webp.filter(|w| w.is_object()) {
-            let webp_pointer = format!("{pointer}/extensions/EXT_texture_webp");
-            if let Some(image) = ctx.reference(webp, "source", &webp_pointer, "images") {
-                check_texture_source_mime(
-                    ctx,
-                    image,
-                    &member(&webp_pointer, "source"),
-                    &["image/webp"],
-                );
+        let mut sources = vec![("EXT_texture_webp", "image/webp")];
+        if ctx.options.profile.knows_extensions_beyond_khronos() {
+            sources.push(("KHR_texture_basisu", "image/ktx2"));
+        }
+        for (name, mime) in sources {
+            let Some(holder) =
+                (texture.get("extensions").and_then(|e| e.get(name))).filter(|h| h.is_object())
+            else {
+                continue;
+            };
+            let holder_pointer = format!("{pointer}/extensions/{name}");
+            if let Some(image) = ctx.reference(holder, "source", &holder_pointer, "images") {
+                check_texture_source_mime(ctx, image, &member(&holder_pointer, "source"), &[mime]);
             }
         }
     }

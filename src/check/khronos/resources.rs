@@ -413,6 +413,10 @@ pub fn check_images(ctx: &mut Context) {
     ctx.images = vec![None; ctx.items("images").len()];
     ctx.image_bytes = ctx.items("images").iter().map(|_| None).collect();
     let webp_enabled = ctx.uses_extension("EXT_texture_webp");
+    // KHR_texture_basisu's schema adds image/ktx2 to image.mimeType; the released validator
+    // does not know it.
+    let ktx2_enabled =
+        ctx.options.profile.recognises_ktx2() && ctx.uses_extension("KHR_texture_basisu");
     let mut read_views = HashMap::new();
     for (i, pointer, image) in ctx.objects("images") {
         // Counted on the members as read: one of the wrong type is absent, so `{"uri": 5}`
@@ -430,8 +434,9 @@ pub fn check_images(ctx: &mut Context) {
         }
         let mime_type = image.get("mimeType").and_then(Node::as_str);
         if let Some(m) = mime_type {
-            let allowed =
-                matches!(m, "image/png" | "image/jpeg") || (m == "image/webp" && webp_enabled);
+            let allowed = matches!(m, "image/png" | "image/jpeg")
+                || (m == "image/webp" && webp_enabled)
+                || (m == "image/ktx2" && ktx2_enabled);
             if !allowed {
                 ctx.emit(
                     khronos::VALUE_NOT_IN_LIST,

@@ -85,6 +85,10 @@ const EXTENSIONS: &[(&str, &str)] = &[
         include_str!("../../../schema/extensions/EXT_texture_webp.schema.json"),
     ),
     (
+        "KHR_texture_basisu",
+        include_str!("../../../schema/extensions/KHR_texture_basisu.schema.json"),
+    ),
+    (
         "KHR_node_visibility",
         include_str!("../../../schema/extensions/KHR_node_visibility.schema.json"),
     ),
@@ -108,7 +112,7 @@ const EXTENSIONS: &[(&str, &str)] = &[
 
 /// Extensions the Khronos validator does not implement: in its profile their objects are not
 /// validated (it reports UNSUPPORTED_EXTENSION instead).
-pub const NOT_IN_KHRONOS: &[&str] = &["KHR_materials_diffuse_transmission"];
+pub const NOT_IN_KHRONOS: &[&str] = &["KHR_materials_diffuse_transmission", "KHR_texture_basisu"];
 
 fn build(skip: &[&str]) -> Compiled {
     let mut root: Value =
