@@ -1304,3 +1304,73 @@ fn regex_like_placeholder(text: &str) -> bool {
         .windows(2)
         .any(|w| w[0] == b'%' && (w[1].is_ascii_digit() || w[1].is_ascii_lowercase()))
 }
+
+/// One triangle whose two texCoord sets read different parts of a texture split red | blue,
+/// drawn with `material`.
+fn two_set_triangle(dir: &Path, name: &str, material: serde_json::Value) {
+    use base64::Engine;
+    let mut data = Vec::new();
+    let floats: [&[f32]; 3] = [
+        &[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], // POSITION
+        &[0.0, 0.0, 1.0, 0.0, 0.0, 1.0],                // TEXCOORD_0: the red half, mostly
+        &[1.0, 1.0, 0.6, 1.0, 1.0, 0.6],                // TEXCOORD_1: the blue half only
+    ];
+    for values in floats {
+        values.iter().for_each(|v| data.extend(v.to_le_bytes()));
+    }
+    let texture = image::RgbImage::from_fn(4, 4, |x, _| {
+        image::Rgb(if x < 2 { [200, 30, 30] } else { [30, 60, 220] })
+    });
+    let mut png = Vec::new();
+    (image::DynamicImage::ImageRgb8(texture))
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    let base64 = |bytes: &[u8]| base64::engine::general_purpose::STANDARD.encode(bytes);
+    let asset = serde_json::json!({
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 2}, "material": 0}]}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 0.0]},
+            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"},
+            {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": 36},
+            {"buffer": 0, "byteOffset": 36, "byteLength": 24},
+            {"buffer": 0, "byteOffset": 60, "byteLength": 24}],
+        "buffers": [{"byteLength": data.len(), "uri": format!("data:application/octet-stream;base64,{}", base64(&data))}],
+        "images": [{"uri": format!("data:image/png;base64,{}", base64(&png))}],
+        "textures": [{"source": 0}],
+        "materials": [material]
+    });
+    std::fs::write(dir.join(name), asset.to_string()).unwrap();
+}
+
+/// A texture read through texCoord 1 instead of 0 is a different picture wherever the mesh's
+/// sets differ: compare reads each slot through its own set at points on the mesh, says where,
+/// and still calls the same material the same.
+#[test]
+fn compare_reads_each_texture_through_its_own_texcoord_set_on_the_mesh() {
+    let dir = std::env::temp_dir().join(format!("gltfmat-texcoords-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let through = |set: u32| {
+        serde_json::json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": set},
+            "metallicFactor": 0.0, "roughnessFactor": 0.5}})
+    };
+    two_set_triangle(&dir, "set0.gltf", through(0));
+    two_set_triangle(&dir, "set1.gltf", through(1));
+    two_set_triangle(&dir, "set0-again.gltf", through(0));
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let (code, text) = gltfmat(&["compare", &path("set0.gltf"), &path("set1.gltf")]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("DIFFERENT")
+            && text.contains("(mostly base colour)")
+            && text.contains("on the mesh, TEXCOORD_1"),
+        "{text}"
+    );
+    let (code, text) = gltfmat(&["compare", &path("set0.gltf"), &path("set0-again.gltf")]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("same: ΔE2000 max 0.0000"), "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

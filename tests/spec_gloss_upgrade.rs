@@ -225,7 +225,7 @@ fn delta_e(path: &Path, upgraded: &Upgraded, grid: u32) -> Vec<f64> {
         .map(|m| ("converted".to_string(), Some(m)))
         .collect();
     let pairs: Vec<(usize, usize)> = (0..sources.len()).map(|i| (i, i)).collect();
-    compare_pairs(&sources, &converted, &pairs, grid, TexelMap::Dropped)
+    compare_pairs(&sources, &converted, &pairs, &[], grid, TexelMap::Dropped)
         .into_iter()
         .map(|o| o.result.max)
         .collect()

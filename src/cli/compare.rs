@@ -90,8 +90,19 @@ pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
         .dominant
         .map(|input| format!(" (mostly {input})"))
         .unwrap_or_default();
+    // A point on the mesh whose sets differ names its coordinates in each.
+    let on_mesh = match w.sets.len() {
+        0 | 1 => String::new(),
+        _ => {
+            let sets = (w.sets.iter().enumerate().skip(1))
+                .map(|(n, [u, v])| format!("TEXCOORD_{n} ({u:.4}, {v:.4})"))
+                .collect::<Vec<_>>()
+                .join(", ");
+            format!(" on the mesh, {sets}")
+        }
+    };
     let mut line = format!(
-        "{verdict}: ΔE2000 max {:.4}{dominated}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}), view θ {tv:.2}° φ {pv:.2}°, light θ {tl:.2}° φ {pl:.2}°{over}; {}² texel centres and corners × {} directions = {} samples, and a dense search of directions where they differ most",
+        "{verdict}: ΔE2000 max {:.4}{dominated}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}){on_mesh}, view θ {tv:.2}° φ {pv:.2}°, light θ {tl:.2}° φ {pl:.2}°{over}; {}² texel centres and corners × {} directions = {} samples, and a dense search of directions where they differ most",
         r.max, r.p99, r.mean, w.uv[0], w.uv[1], r.grid, DIRECTIONS.len(), r.samples
     );
     if let Some(a) = &o.ambiguity {

@@ -5,6 +5,7 @@ pub mod accessor;
 pub mod color;
 pub mod gl;
 pub(crate) mod material;
+pub(crate) mod mesh;
 
 use serde_json::Value;
 

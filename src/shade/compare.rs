@@ -89,8 +89,11 @@ impl Angles {
 pub struct Worst {
     /// Its ΔE2000.
     pub delta_e: f64,
-    /// Its texture coordinates.
+    /// Its texture coordinates (in set 0 for a point on a mesh).
     pub uv: [f64; 2],
+    /// For a point on a mesh whose texCoord sets differ, its coordinates in each set; empty
+    /// for a point of the UV grid (every set reads `uv` there).
+    pub sets: Vec<[f64; 2]>,
     /// Its view and light directions.
     pub directions: Angles,
     /// The radiance of the background it was seen over (see [`BACKGROUNDS`]).
@@ -220,6 +223,48 @@ pub fn worst_at_point(shader: &Shader, sources: &[Inputs], target: &Inputs) -> f
         }
     }
     worst
+}
+
+/// Where two materials differ most at `points` on a mesh (each its UV per texCoord set): each
+/// point in the fixed directions and at the specular peak, the worst refined by a climb over
+/// the directions. When that exceeds `result`'s maximum, `result` takes it as its worst (and
+/// its dominant input); its grid statistics (p99, mean) are kept.
+pub fn on_surface(
+    shader: &Shader,
+    a: &MaterialSource,
+    b: &MaterialSource,
+    points: &[Vec<[f64; 2]>],
+    result: &mut Comparison,
+) {
+    let mut best: Option<(f64, Angles, usize, Pair)> = None;
+    for (i, point) in points.iter().enumerate() {
+        let pair = (a.inputs_at(point), b.inputs_at(point));
+        let angles = DIRECTIONS.map(Angles::coarse);
+        for angles in angles.iter().chain(refine::peak_angles()) {
+            let (d, _) = delta_at(shader, &pair.0, &pair.1, angles);
+            if best.as_ref().is_none_or(|(worst, ..)| d > *worst) {
+                best = Some((d, *angles, i, pair.clone()));
+            }
+        }
+    }
+    let Some((_, start, i, pair)) = best else {
+        return;
+    };
+    let (directions, (delta_e, background)) =
+        refine::climb(start, |angles| delta_at(shader, &pair.0, &pair.1, angles));
+    if delta_e <= result.max {
+        return;
+    }
+    let worst = Worst {
+        delta_e,
+        uv: points[i][0],
+        sets: points[i].clone(),
+        directions,
+        background,
+    };
+    result.dominant = dominant_input(shader, &pair.0, &pair.1, &worst);
+    result.max = delta_e;
+    result.worst = worst;
 }
 
 /// Distinct points whose samples are converted to ΔE together.
@@ -601,6 +646,7 @@ impl Partial {
             count: 0,
             worst: Worst {
                 delta_e: -1.0,
+                sets: Vec::new(),
                 uv: [0.0, 0.0],
                 directions: Angles::coarse(DIRECTIONS[0]),
                 background: BACKGROUNDS[0],
@@ -619,6 +665,7 @@ impl Partial {
         if self.worst.delta_e < 0.0 {
             self.worst = Worst {
                 delta_e: 0.0,
+                sets: Vec::new(),
                 uv: at.uv,
                 directions: angles[0],
                 background: BACKGROUNDS[0],
@@ -665,6 +712,7 @@ impl Partial {
             // Which background it was found over is settled once, for the final worst.
             self.worst = Worst {
                 delta_e: point_max,
+                sets: Vec::new(),
                 uv: at.uv,
                 directions: angles[arg],
                 background: BACKGROUNDS[0],
@@ -704,6 +752,7 @@ fn merge<'p>(
     }
     let mut worst = worst.unwrap_or(Worst {
         delta_e: 0.0,
+        sets: Vec::new(),
         uv: [0.0, 0.0],
         directions: Angles::coarse(DIRECTIONS[0]),
         background: BACKGROUNDS[0],

@@ -11,6 +11,7 @@ use super::render::{contact_sheet, material_ball, SheetLayout, MAX_PIXELS, MAX_S
 use super::sample::MaterialSource;
 pub use super::sample::AS_STORED;
 use super::sheen_table::SheenTable;
+use super::surface::Point;
 use crate::document::file::FileId;
 use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::error::Error;
@@ -29,11 +30,25 @@ pub fn load_materials(
     loader: &dyn ResourceLoader,
     finest: u32,
 ) -> Result<Vec<Named>, String> {
+    Ok(load_materials_on(bytes, name, loader, finest, false)?.0)
+}
+
+/// [`load_materials`], and with `surfaces` the points on a glTF 2.0 asset's meshes where each
+/// material's texCoord sets differ: the comparison reads each slot through its own set there.
+/// A glTF 1.0 asset has none (the PBR drafts bind one set).
+pub(crate) fn load_materials_on(
+    bytes: Vec<u8>,
+    name: &str,
+    loader: &dyn ResourceLoader,
+    finest: u32,
+    surfaces: bool,
+) -> Result<(Vec<Named>, Vec<Vec<Point>>), String> {
     match legacy_materials(&bytes, loader, finest) {
-        Ok(materials) => Ok(materials),
+        Ok(materials) => Ok((materials, Vec::new())),
         Err(LegacyMaterialsError::NotGltf1(_)) => {
-            let materials = gltf2_materials(bytes, name, loader, finest)?;
-            Ok(materials.into_iter().map(|(n, m)| (n, Some(m))).collect())
+            let (materials, points) = gltf2_materials(bytes, name, loader, finest, surfaces)?;
+            let named = materials.into_iter().map(|(n, m)| (n, Some(m))).collect();
+            Ok((named, points))
         }
         Err(e) => Err(e.to_string()),
     }
@@ -83,7 +98,7 @@ impl Outcome {
         let (result, worst) = (&self.result, &self.result.worst);
         serde_json::json!({"a": self.a.0, "aName": self.a.1, "b": self.b.0, "bName": self.b.1,
             "max": result.max, "p99": result.p99, "mean": result.mean,
-            "worst": {"uv": worst.uv, "view": worst.directions.view,
+            "worst": {"uv": worst.uv, "texcoords": worst.sets, "view": worst.directions.view,
                       "light": worst.directions.light, "background": worst.background},
             "dominant": result.dominant,
             "notEvaluated": self.not_evaluated,
@@ -112,6 +127,7 @@ pub fn compare_pairs(
     a: &[Named],
     b: &[Named],
     pairs: &[(usize, usize)],
+    surfaces: &[Vec<Point>],
     grid: u32,
     map: TexelMap,
 ) -> Vec<Outcome> {
@@ -119,6 +135,9 @@ pub fn compare_pairs(
     // Materials that evaluate the same way are compared once (an asset's thousand copies of
     // one material are one comparison).
     let mut done: std::collections::HashMap<(String, String), PairResult> = Default::default();
+    // Surface points are evaluated per pair (two alike materials may lie on different meshes),
+    // up to this many in one run; past it the pairs keep the grid's figure.
+    let mut points_left: usize = 1 << 16;
     pairs
         .iter()
         .filter_map(|&(i, j)| {
@@ -129,9 +148,14 @@ pub fn compare_pairs(
                 return None;
             };
             let key = (ma.fingerprint(), mb.fingerprint());
-            let compared = (done.entry(key))
+            let mut compared = (done.entry(key))
                 .or_insert_with(|| compare_as_read(&shader, ma, mb, grid, map))
                 .clone();
+            let points = surfaces.get(j).map_or(&[][..], Vec::as_slice);
+            points_left = points_left.saturating_sub(points.len());
+            if points_left > 0 {
+                evaluate::on_surface(&shader, ma, mb, points, &mut compared.result);
+            }
             let not_evaluated = (ma.unmodelled().iter().map(|u| format!("first: {u}")))
                 .chain(mb.unmodelled().iter().map(|u| format!("second: {u}")))
                 .collect();
@@ -224,11 +248,12 @@ pub fn compare(
     b: impl AsRef<Path>,
     options: &CompareOptions,
 ) -> Result<Compared, Error> {
-    let (a, mut inputs) = materials_of(a.as_ref(), AS_STORED)?;
+    let ((a, _), mut inputs) = materials_of(a.as_ref(), AS_STORED, false)?;
     let a: Vec<Named> = (a.into_iter())
         .map(|(name, m)| (name, m.map(|m| m.read_as(options.draft_reading))))
         .collect();
-    let (b, inputs_of_b) = materials_of(b.as_ref(), AS_STORED)?;
+    // Where the texCoord sets differ, the points are on the second asset's meshes.
+    let ((b, surfaces), inputs_of_b) = materials_of(b.as_ref(), AS_STORED, true)?;
     inputs.extend(inputs_of_b);
     let pairs = if options.pairs.is_empty() {
         (0..a.len().min(b.len())).map(|i| (i, i)).collect()
@@ -241,7 +266,7 @@ pub fn compare(
         TexelMap::Dropped
     };
     Ok(Compared {
-        outcomes: compare_pairs(&a, &b, &pairs, options.grid, map),
+        outcomes: compare_pairs(&a, &b, &pairs, &surfaces, options.grid, map),
         inputs,
     })
 }
@@ -258,7 +283,9 @@ pub struct Compared {
 
 /// The materials of an asset on disk, its resources read from its folder (textures no finer
 /// than `finest`, as in [`load_materials`]), and every file read for them, by identity.
-fn materials_of(path: &Path, finest: u32) -> Result<(Vec<Named>, Vec<FileId>), Error> {
+type Loaded = (Vec<Named>, Vec<Vec<Point>>);
+
+fn materials_of(path: &Path, finest: u32, surfaces: bool) -> Result<(Loaded, Vec<FileId>), Error> {
     let bytes = crate::document::file::read(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
@@ -266,9 +293,11 @@ fn materials_of(path: &Path, finest: u32) -> Result<(Vec<Named>, Vec<FileId>), E
     let loader = FolderResources::beside(path);
     let name = path.display().to_string();
     let materials =
-        load_materials(bytes, &name, &loader, finest).map_err(|reason| Error::Unusable {
-            path: path.to_path_buf(),
-            reason,
+        load_materials_on(bytes, &name, &loader, finest, surfaces).map_err(|reason| {
+            Error::Unusable {
+                path: path.to_path_buf(),
+                reason,
+            }
         })?;
     let inputs = FileId::of_path(path).into_iter().chain(loader.files_read());
     Ok((materials, inputs.collect()))
@@ -340,7 +369,7 @@ pub struct Ball {
 /// that show each material beside what is said of it.
 pub fn render_each(path: impl AsRef<Path>, size: u32, at_most: usize) -> Result<Vec<Ball>, Error> {
     let size = size.clamp(8, MAX_SIZE);
-    let (materials, _) = materials_of(path.as_ref(), finest_for_preview(size))?;
+    let ((materials, _), _) = materials_of(path.as_ref(), finest_for_preview(size), false)?;
     let materials = &materials[..materials.len().min(at_most)];
     let shader = shader_for(materials.iter().filter_map(|(_, m)| m.as_ref()));
     let mut drawn: std::collections::HashMap<_, RgbImage> = std::collections::HashMap::new();
@@ -365,7 +394,7 @@ pub fn render_each(path: impl AsRef<Path>, size: u32, at_most: usize) -> Result<
 pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture, Error> {
     let path = path.as_ref();
     let size = options.size.clamp(8, MAX_SIZE);
-    let (materials, inputs) = materials_of(path, finest_for_preview(size))?;
+    let ((materials, _), inputs) = materials_of(path, finest_for_preview(size), false)?;
     let chosen: Vec<(usize, &String, &MaterialSource)> = materials
         .iter()
         .enumerate()
@@ -436,12 +465,12 @@ mod tests {
         let named = |m: &MaterialSource| ("m".to_string(), Some(m.clone()));
         let a = [named(&dark), named(&dark), named(&light)];
         let b = [named(&light), named(&light), named(&light)];
-        let outcomes = compare_pairs(&a, &b, &[(0, 0), (1, 1), (2, 2)], 4, TexelMap::Kept);
+        let outcomes = compare_pairs(&a, &b, &[(0, 0), (1, 1), (2, 2)], &[], 4, TexelMap::Kept);
         assert_eq!(outcomes[0].result.max, outcomes[1].result.max);
         assert!(outcomes[0].result.max > 10.0, "dark against light");
         assert_eq!(outcomes[2].result.max, 0.0, "light against itself");
         // Without the maps, the same figures and no map held.
-        let lean = compare_pairs(&a, &b, &[(0, 0), (2, 2)], 4, TexelMap::Dropped);
+        let lean = compare_pairs(&a, &b, &[(0, 0), (2, 2)], &[], 4, TexelMap::Dropped);
         assert_eq!(lean[0].result.max, outcomes[0].result.max);
         assert_eq!(lean[1].result.mean, outcomes[2].result.mean);
         assert_eq!(outcomes[0].result.per_texel.len(), 16);

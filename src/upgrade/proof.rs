@@ -30,8 +30,10 @@ pub fn prove<'b>(
     loader: &dyn ResourceLoader,
     upgraded: &Upgraded,
 ) -> Result<Vec<Outcome>, ProofError> {
-    let sources = pairing::load_materials(input.into().into_owned(), name, loader, AS_STORED)
-        .map_err(ProofError::Source)?;
+    // Conversions keep the geometry: where texCoord sets differ, the points are the source's.
+    let (sources, surfaces) =
+        pairing::load_materials_on(input.into().into_owned(), name, loader, AS_STORED, true)
+            .map_err(ProofError::Source)?;
     let reading = upgraded.draft_reading();
     let sources: Vec<Named> = (sources.into_iter())
         .map(|(name, source)| (name, source.map(|s| s.read_as(reading))))
@@ -48,6 +50,7 @@ pub fn prove<'b>(
         &sources,
         &converted,
         &pairs,
+        &surfaces,
         0,
         TexelMap::Dropped,
     ))

@@ -6,6 +6,7 @@ use crate::check::khronos::accessor_data::{scannable, unit_scale};
 use crate::document::tree::Node;
 use crate::gltf::accessor::decode;
 use crate::gltf::material::{effective_texcoord, uv_transform};
+use crate::gltf::mesh::{drawn_materials, triangles};
 use crate::gltf::{as_index, unsigned};
 
 /// The texels a binding's meshes may read, bilinear neighbours included.
@@ -47,19 +48,7 @@ impl<'a> Sight<'a> {
             .filter_map(|mesh| mesh.get("primitives")?.as_array())
             .flat_map(|primitives| primitives.iter());
         for primitive in primitives {
-            // Its own material and each variant's, once each.
-            let variants = (primitive.pointer("/extensions/KHR_materials_variants/mappings"))
-                .and_then(|m| m.as_array())
-                .into_iter()
-                .flat_map(|mappings| mappings.iter())
-                .filter_map(|m| unsigned(m, "material"));
-            let mut materials: Vec<u64> = unsigned(primitive, "material")
-                .into_iter()
-                .chain(variants)
-                .collect();
-            materials.sort_unstable();
-            materials.dedup();
-            for material in materials {
+            for material in drawn_materials(primitive) {
                 if let Some(list) = drawing.get_mut(material as usize) {
                     list.push(primitive);
                 }
@@ -152,35 +141,10 @@ impl Mesh {
         [self.uvs[2 * vertex], self.uvs[2 * vertex + 1]]
     }
 
-    /// Vertex triples: triangles as the mode assembles them; a line is a thin triangle and a
-    /// point a degenerate one, so that what they sample is marked too.
     fn triangles(&self) -> impl Iterator<Item = [usize; 3]> + '_ {
         let n = self.indices.as_ref().map_or(self.uvs.len() / 2, Vec::len);
         let at = move |i: usize| self.indices.as_ref().map_or(i, |list| list[i] as usize);
-        let (count, triple): (usize, Box<dyn Fn(usize) -> [usize; 3] + '_>) = match self.mode {
-            0 => (n, Box::new(move |i| [at(i); 3])),
-            1 => (
-                n / 2,
-                Box::new(move |i| [at(2 * i), at(2 * i + 1), at(2 * i + 1)]),
-            ),
-            2 | 3 => (
-                n.saturating_sub(1),
-                Box::new(move |i| [at(i), at(i + 1), at(i + 1)]),
-            ),
-            5 => (
-                n.saturating_sub(2),
-                Box::new(move |i| [at(i), at(i + 1), at(i + 2)]),
-            ),
-            6 => (
-                n.saturating_sub(2),
-                Box::new(move |i| [at(0), at(i + 1), at(i + 2)]),
-            ),
-            _ => (
-                n / 3,
-                Box::new(move |i| [at(3 * i), at(3 * i + 1), at(3 * i + 2)]),
-            ),
-        };
-        (0..count).map(triple)
+        triangles(self.mode, n, at)
     }
 }
 

@@ -304,6 +304,7 @@ pub fn search(
     Some(Found {
         worst: Worst {
             delta_e,
+            sets: Vec::new(),
             uv: candidate.uv,
             directions: angles,
             background,

@@ -1,0 +1,178 @@
+//! Points on an asset's meshes for the comparison: each point carries its texture coordinates
+//! in every TEXCOORD_n set, so that each slot is read through its own set, as a viewer reads
+//! it. Only points whose sets differ are kept: where every set agrees, the comparison's UV
+//! grid already holds the point.
+
+use super::load::Views;
+use crate::document::Node;
+use crate::gltf::accessor::{component_count, component_size, decode, normalise, Layout};
+use crate::gltf::mesh::{drawn_materials, triangles};
+use crate::gltf::{as_index, unsigned};
+
+/// A point's UV in each texCoord set, set 0 first.
+pub type Point = Vec<[f64; 2]>;
+
+/// Texture coordinate sets read per primitive (the spec's minimum a viewer supports is 2).
+const SETS: usize = 4;
+/// Triangles looked at per material: spread evenly over its primitives' triangles.
+const TRIANGLES_PER_MATERIAL: usize = 1024;
+/// Vertex elements read for one asset at most; past it the remaining materials keep the grid.
+const MAX_ELEMENTS: usize = 1 << 22;
+/// Where in a triangle the points lie (barycentric): its centroid and a point towards each
+/// corner, so that a sharp texture is read between its texel centres too.
+const WEIGHTS: [[f64; 3]; 4] = [
+    [1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0],
+    [0.7, 0.15, 0.15],
+    [0.15, 0.7, 0.15],
+    [0.15, 0.15, 0.7],
+];
+
+/// For each material of a glTF 2.0 document, points on the triangles of the primitives that
+/// draw it whose texCoord sets differ. Empty for a material no mesh draws, meshes with one set,
+/// or what cannot be read.
+pub(super) fn surface_points(root: Node, views: &Views) -> Vec<Vec<Point>> {
+    let items = |key: &str| root.get(key).and_then(Node::as_array);
+    let material_count = items("materials").map_or(0, |a| a.len());
+    let mut points = vec![Vec::new(); material_count];
+    let reader = Reader {
+        accessors: items("accessors")
+            .map(|a| a.iter().collect())
+            .unwrap_or_default(),
+        views,
+    };
+    let mut budget = MAX_ELEMENTS;
+    let primitives = (items("meshes").into_iter().flat_map(|a| a.iter()))
+        .filter_map(|mesh| mesh.get("primitives")?.as_array())
+        .flat_map(|primitives| primitives.iter());
+    let mut drawn: Vec<Vec<Node>> = vec![Vec::new(); material_count];
+    for primitive in primitives {
+        for material in drawn_materials(primitive) {
+            if let Some(list) = drawn.get_mut(material as usize) {
+                list.push(primitive);
+            }
+        }
+    }
+    for (material, primitives) in drawn.iter().enumerate() {
+        let meshes: Option<Vec<Sets>> = (primitives.iter())
+            .map(|p| reader.sets(*p, &mut budget))
+            .collect();
+        let Some(meshes) = meshes.filter(|m| m.iter().any(|s| s.uvs.len() > 1)) else {
+            continue;
+        };
+        let total: usize = meshes.iter().map(Sets::triangle_count).sum();
+        let step = total.div_ceil(TRIANGLES_PER_MATERIAL).max(1);
+        for mesh in &meshes {
+            for [a, b, c] in mesh.triangles().step_by(step) {
+                for w in WEIGHTS {
+                    let point: Point = (mesh.uvs.iter())
+                        .map(|uv| {
+                            [0, 1].map(|k| w[0] * uv[a][k] + w[1] * uv[b][k] + w[2] * uv[c][k])
+                        })
+                        .collect();
+                    if point
+                        .iter()
+                        .any(|uv| (uv[0] - point[0][0]).abs() + (uv[1] - point[0][1]).abs() > 1e-9)
+                    {
+                        points[material].push(point);
+                    }
+                }
+            }
+        }
+    }
+    points
+}
+
+/// A primitive's texture coordinate sets and how its vertices make triangles.
+struct Sets {
+    uvs: Vec<Vec<[f64; 2]>>,
+    indices: Option<Vec<usize>>,
+    mode: u64,
+}
+
+impl Sets {
+    fn vertex_count(&self) -> usize {
+        self.indices.as_ref().map_or(self.uvs[0].len(), Vec::len)
+    }
+
+    fn triangle_count(&self) -> usize {
+        self.triangles().count()
+    }
+
+    fn triangles(&self) -> impl Iterator<Item = [usize; 3]> + '_ {
+        let at = |i: usize| self.indices.as_ref().map_or(i, |list| list[i]);
+        triangles(self.mode, self.vertex_count(), at)
+    }
+}
+
+struct Reader<'d, 't> {
+    accessors: Vec<Node<'t>>,
+    views: &'d Views<'d>,
+}
+
+impl Reader<'_, '_> {
+    /// The primitive's sets TEXCOORD_0, TEXCOORD_1 … (as many as it has, up to [`SETS`]),
+    /// or None when one cannot be read.
+    fn sets(&self, primitive: Node, budget: &mut usize) -> Option<Sets> {
+        let attributes = primitive.get("attributes")?;
+        let mut uvs = Vec::new();
+        for set in 0..SETS {
+            let Some(accessor) = attributes.get(format!("TEXCOORD_{set}").as_str()) else {
+                break;
+            };
+            let values = self.read(accessor, budget)?;
+            uvs.push(
+                values
+                    .chunks_exact(2)
+                    .map(|p| [p[0], p[1]])
+                    .collect::<Vec<_>>(),
+            );
+        }
+        let vertices = uvs.first()?.len();
+        if uvs.iter().any(|set| set.len() != vertices) {
+            return None;
+        }
+        let indices = match primitive.get("indices") {
+            None => None,
+            Some(node) => {
+                let values = self.read(node, budget)?;
+                let fits = |v: f64| (v >= 0.0 && v < vertices as f64).then_some(v as usize);
+                Some(values.into_iter().map(fits).collect::<Option<Vec<_>>>()?)
+            }
+        };
+        let mode = unsigned(primitive, "mode").unwrap_or(4);
+        Some(Sets { uvs, indices, mode })
+    }
+
+    /// Every component of a plain (not sparse) accessor, normalised as a shader reads it.
+    fn read(&self, index: Node, budget: &mut usize) -> Option<Vec<f64>> {
+        let accessor = *self
+            .accessors
+            .get(usize::try_from(as_index(index)?).ok()?)?;
+        if accessor.get("sparse").is_some() {
+            return None;
+        }
+        let view = unsigned(accessor, "bufferView")?;
+        let component_type = unsigned(accessor, "componentType")?;
+        let size = component_size(component_type)?;
+        let components = component_count(accessor.get("type")?.as_str()?)?;
+        let count = usize::try_from(unsigned(accessor, "count")?).ok()?;
+        *budget = budget.checked_sub(count.checked_mul(components)?)?;
+        let layout = Layout {
+            component_type,
+            size,
+            components,
+            stride: self.views.stride(view).unwrap_or(size * components),
+            offset: usize::try_from(unsigned(accessor, "byteOffset").unwrap_or(0)).ok()?,
+            count,
+        };
+        let mut values = vec![0.0; count * components];
+        if !decode(&layout, self.views.bytes(view)?, 0, &mut values) {
+            return None;
+        }
+        let normalized = accessor.get("normalized").and_then(Node::as_bool) == Some(true);
+        if let Some(scale) = normalise(component_type).filter(|_| normalized) {
+            values.iter_mut().for_each(|v| *v = scale(*v));
+        }
+        Some(values)
+    }
+}
