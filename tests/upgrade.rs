@@ -1464,3 +1464,91 @@ fn khr_materials_common_values_in_the_early_type_value_form_are_read() {
         "from shininess"
     );
 }
+
+/// 3D Tiles' glTF 1.0 conventions (Cesium): a NORMAL of two signed bytes is an octahedron
+/// encoding, decoded to unit floats; CESIUM_RTC is kept, so positions stay offsets from it.
+#[test]
+fn cesium_oct_encoded_normals_are_decoded_and_cesium_rtc_is_kept() {
+    use base64::Engine;
+    let positions: [[f32; 3]; 4] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 1.0, 0.0],
+    ];
+    // Stored as the city tiles store them; their shader decodes v / 127, then folds the lower
+    // half: (100, 100) lies past |x| + |y| = 1, so its z is negative.
+    let encoded: [[i8; 2]; 4] = [[0, 0], [127, 0], [0, -127], [100, 100]];
+    let mut bin: Vec<u8> = positions
+        .iter()
+        .flatten()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    bin.extend(encoded.iter().flatten().map(|&v| v as u8));
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&bin)
+    );
+    let center = [
+        1_214_939.908_552_622_4,
+        -4_736_421.803_714_806,
+        4_081_493.671_397_794_5,
+    ];
+    let gltf1 = serde_json::json!({
+        "asset": {"version": "1.0"},
+        "extensionsUsed": ["CESIUM_RTC"],
+        "extensions": {"CESIUM_RTC": {"center": center}},
+        "buffers": {"b": {"uri": uri, "byteLength": bin.len()}},
+        "bufferViews": {
+            "p": {"buffer": "b", "byteOffset": 0, "byteLength": 48, "target": 34962},
+            "n": {"buffer": "b", "byteOffset": 48, "byteLength": 8, "target": 34962}},
+        "accessors": {
+            "position": {"bufferView": "p", "byteOffset": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]},
+            "normal": {"bufferView": "n", "byteOffset": 0, "byteStride": 2, "componentType": 5120, "count": 4, "type": "VEC2"}},
+        "meshes": {"m": {"primitives": [{"attributes": {"POSITION": "position", "NORMAL": "normal"}, "mode": 0}]}},
+        "nodes": {"node": {"meshes": ["m"]}},
+        "scenes": {"s": {"nodes": ["node"]}},
+        "scene": "s"
+    });
+    let upgraded = upgrade_json(gltf1);
+    assert_passes_its_check(&upgraded);
+    let json = upgraded.json.to_value();
+    assert_eq!(
+        json["extensions"]["CESIUM_RTC"]["center"],
+        serde_json::json!(center)
+    );
+    assert!(json["extensionsUsed"]
+        .as_array()
+        .unwrap()
+        .contains(&"CESIUM_RTC".into()));
+    assert!(
+        notes(&upgraded).iter().any(|n| n.contains("octahedron")),
+        "{:?}",
+        notes(&upgraded)
+    );
+    let glb = gltf::Gltf::from_slice(&upgraded.to_glb()).unwrap();
+    let primitive = glb.meshes().next().unwrap().primitives().next().unwrap();
+    let reader = primitive.reader(|_| glb.blob.as_deref());
+    let read_positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+    assert_eq!(
+        read_positions, positions,
+        "positions stay offsets from the kept centre"
+    );
+    let normals: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
+    let folded = {
+        let (x, y) = (1.0 - 100.0 / 127.0, 1.0 - 100.0 / 127.0);
+        let z = 1.0 - 200.0 / 127.0;
+        let length = (x * x + y * y + z * z as f64).sqrt();
+        [x / length, y / length, z / length]
+    };
+    let expected = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0], folded];
+    for (got, want) in normals.iter().zip(expected) {
+        for c in 0..3 {
+            assert!(
+                (f64::from(got[c]) - want[c]).abs() < 1e-6,
+                "{normals:?} against {expected:?}"
+            );
+        }
+    }
+}

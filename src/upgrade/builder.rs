@@ -245,8 +245,27 @@ impl<'s, 'a> Builder<'s, 'a> {
             Some((packed, view)) => (packed.clone(), Some(*view)),
             None => (self.repack(&input, role, quantization, &at)?, None),
         };
+        let octahedral =
+            role == Role::Normal && input.components == 2 && packed.converted_from.is_some();
+        let (kind, components) = match octahedral {
+            true => ("VEC3".to_string(), 3),
+            false => (input.kind.clone(), input.components),
+        };
         if let (Some(view), true) = (view, role.is_vertex()) {
-            self.declare_stride(view, &packed, input.components);
+            self.declare_stride(view, &packed, components);
+        }
+        if octahedral {
+            self.note(
+                &at,
+                NoteKind::Decision,
+                format!(
+                    "NORMAL of two {} components read as an octahedron encoding (Cesium's 3D Tiles convention: the only one for two-component normals) and decoded to the unit float VEC3 glTF 2.0 requires.",
+                    match input.component_type {
+                        crate::gltf::gl::BYTE | crate::gltf::gl::SHORT => "signed",
+                        _ => "unsigned",
+                    }
+                ),
+            );
         }
         if quantization.is_some() {
             self.note(
@@ -255,7 +274,7 @@ impl<'s, 'a> Builder<'s, 'a> {
                 "WEB3D_quantized_attributes decoded with its decodeMatrix to floats (glTF 2.0 core has no decode matrix).",
             );
         }
-        if let Some(from) = packed.converted_from {
+        if let Some(from) = packed.converted_from.filter(|_| !octahedral) {
             self.note(
                 &at,
                 NoteKind::Decision,
@@ -275,7 +294,7 @@ impl<'s, 'a> Builder<'s, 'a> {
                 ),
             );
         }
-        let (kind, count) = (input.kind.clone(), input.count);
+        let count = input.count;
         let view = view.unwrap_or_else(|| self.add_view(&packed, role));
         self.repacked
             .entry(same)
@@ -296,6 +315,12 @@ impl<'s, 'a> Builder<'s, 'a> {
         quantization: Option<Node>,
         at: &str,
     ) -> Result<data::Packed, UpgradeError> {
+        if let Some(decoded) = data::oct_decoded(input, role) {
+            let mut packed =
+                data::pack_values(&decoded, 3, data::FLOAT, false, true, &mut self.binary);
+            packed.converted_from = Some(input.component_type);
+            return Ok(packed);
+        }
         let packed = match data::dequantized(input, quantization) {
             None => data::pack(input, role, &mut self.binary),
             Some(decoded) => {
@@ -393,8 +418,13 @@ impl<'s, 'a> Builder<'s, 'a> {
         self.push("accessors", accessor)
     }
 
-    /// The finished asset; `extensions_used` comes from the converted materials.
-    pub fn finish(mut self, extensions_used: Vec<String>) -> Upgraded {
+    /// The finished asset; `extensions_used` comes from the conversions, `extensions` holds
+    /// the root extension objects they made (the lights are added here).
+    pub fn finish(
+        mut self,
+        extensions_used: Vec<String>,
+        mut extensions: serde_json::Map<String, Value>,
+    ) -> Upgraded {
         let mut root = Json::default();
         let source_asset = self.source.root().get("asset");
         let mut asset = json!({"version": "2.0", "generator": concat!("gltfmat ", env!("CARGO_PKG_VERSION"), " upgrade")});
@@ -407,10 +437,10 @@ impl<'s, 'a> Builder<'s, 'a> {
         }
         if let Some(lights) = self.arrays.remove("lights") {
             let lights = Value::Array(lights.iter().collect());
-            root.insert(
-                "extensions",
-                &json!({"KHR_lights_punctual": {"lights": lights}}),
-            );
+            extensions.insert("KHR_lights_punctual".into(), json!({"lights": lights}));
+        }
+        if !extensions.is_empty() {
+            root.insert("extensions", &Value::Object(extensions));
         }
         if let Some(scene) = self.index_of("scenes", self.source.root().get("scene")) {
             root.insert("scene", &json!(scene));

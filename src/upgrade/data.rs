@@ -6,7 +6,7 @@ use crate::document::Node;
 pub use crate::gltf::accessor::FLOAT;
 use crate::gltf::accessor::{
     component_count, component_size, decode, decode_component, normalise, FloatBounds, Layout,
-    BYTE, MAX_COMPONENTS, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
+    BYTE, MAX_COMPONENTS, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
 };
 use crate::legacy::source::Source;
 use rayon::prelude::*;
@@ -27,8 +27,10 @@ pub struct Accessor<'a> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Role {
     Indices,
-    /// POSITION, NORMAL, TANGENT: float only.
+    /// POSITION, TANGENT: float only.
     FloatAttribute,
+    /// NORMAL: float only; two integers are an octahedron encoding (see [`oct_decoded`]).
+    Normal,
     /// TEXCOORD_n, COLOR_n: float (integer 1.0 data is converted, keeping its values).
     TexcoordOrColour,
     /// JOINTS_n: unsigned byte or short.
@@ -45,7 +47,8 @@ impl Role {
     pub fn of_semantic(semantic: &str) -> Role {
         let base = semantic.split('_').next().unwrap_or(semantic);
         match base {
-            "POSITION" | "NORMAL" | "TANGENT" => Role::FloatAttribute,
+            "NORMAL" => Role::Normal,
+            "POSITION" | "TANGENT" => Role::FloatAttribute,
             "TEXCOORD" | "COLOR" => Role::TexcoordOrColour,
             "JOINTS" => Role::Joints,
             "WEIGHTS" => Role::Weights,
@@ -313,7 +316,7 @@ fn settle_in_single_precision(weights: &mut [f64]) {
 
 fn output_type(role: Role, input: u64) -> (u64, bool) {
     match (role, input) {
-        (Role::FloatAttribute | Role::TexcoordOrColour, _) => (FLOAT, false),
+        (Role::FloatAttribute | Role::Normal | Role::TexcoordOrColour, _) => (FLOAT, false),
         (Role::Joints, UNSIGNED_BYTE | UNSIGNED_SHORT) => (input, false),
         (Role::Joints, _) => (UNSIGNED_SHORT, false),
         (Role::Weights, UNSIGNED_BYTE | UNSIGNED_SHORT) => (input, true),
@@ -709,6 +712,39 @@ pub fn dequantized(
         }
     }
     Some(Ok(decoded))
+}
+
+/// A 1.0 NORMAL of two integer components, decoded to unit VEC3 floats. Two components can only
+/// be an octahedron encoding (Cigolle et al. 2014), the convention of Cesium's 3D Tiles
+/// content: each component normalised (a signed one by its maximum, as the tiles' own shaders
+/// do with `1/127`; an unsigned one to [-1, 1], as Cesium's `czm_octDecode` does), then
+/// (x, y, 1 − |x| − |y|), its lower half folded over, normalised. None for any other accessor.
+pub fn oct_decoded(accessor: &Accessor, role: Role) -> Option<Vec<f64>> {
+    if role != Role::Normal || accessor.components != 2 {
+        return None;
+    }
+    let unit: fn(f64) -> f64 = match accessor.component_type {
+        BYTE => |v| (v / 127.0).clamp(-1.0, 1.0),
+        SHORT => |v| (v / 32767.0).clamp(-1.0, 1.0),
+        UNSIGNED_BYTE => |v| v / 255.0 * 2.0 - 1.0,
+        UNSIGNED_SHORT => |v| v / 65535.0 * 2.0 - 1.0,
+        _ => return None,
+    };
+    let stored = accessor.values();
+    let mut decoded = Vec::with_capacity(stored.len() / 2 * 3);
+    for pair in stored.chunks_exact(2) {
+        let (x, y) = (unit(pair[0]), unit(pair[1]));
+        let z = 1.0 - x.abs() - y.abs();
+        let sign = |v: f64| if v >= 0.0 { 1.0 } else { -1.0 };
+        let (x, y) = if z < 0.0 {
+            ((1.0 - y.abs()) * sign(x), (1.0 - x.abs()) * sign(y))
+        } else {
+            (x, y)
+        };
+        let length = (x * x + y * y + z * z).sqrt();
+        decoded.extend([x / length, y / length, z / length]);
+    }
+    Some(decoded)
 }
 
 /// Appends an accessor's data to `out`, repacked for its role.

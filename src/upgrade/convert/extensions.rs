@@ -15,9 +15,42 @@ const CONVERTED: &[&str] = &[
     "KHR_binary_glTF",
     "KHR_materials_common",
     "WEB3D_quantized_attributes",
+    CESIUM_RTC,
 ];
 
+/// Cesium's relative-to-centre extension: positions are offsets from `center`.
+pub const CESIUM_RTC: &str = "CESIUM_RTC";
+
 impl Builder<'_, '_> {
+    /// The root CESIUM_RTC object to write, kept as it is: CesiumJS, which 3D Tiles content is
+    /// made for, applies it to glTF 2.0 as to 1.0, so every vertex stays where it was. A node
+    /// translation would not be the same thing there: the 3D Tiles transform order applies the
+    /// centre after the glTF's y-up to z-up rotation, and 10^6 m in a float32 model matrix
+    /// jitters. A centre that is not three finite numbers is dropped, and said.
+    pub(in crate::upgrade) fn cesium_rtc(&mut self) -> Option<serde_json::Value> {
+        let rtc = self.source.root().get("extensions")?.get(CESIUM_RTC)?;
+        let pointer = format!("/extensions/{CESIUM_RTC}");
+        let center: Option<Vec<f64>> = (rtc.get("center").and_then(Node::as_array))
+            .filter(|c| c.len() == 3)
+            .and_then(|c| c.iter().map(Node::as_f64).collect())
+            .filter(|c: &Vec<f64>| c.iter().all(|v| v.is_finite()));
+        let Some(center) = center else {
+            self.note(
+                pointer,
+                NoteKind::Dropped,
+                "CESIUM_RTC without a center of three numbers: dropped; the positions are written as stored, relative to no centre.",
+            );
+            return None;
+        };
+        self.note(
+            pointer,
+            NoteKind::Decision,
+            format!(
+                "CESIUM_RTC kept with its center {center:?}: positions stay offsets from it, as CesiumJS reads them in glTF 2.0 too (declared in extensionsUsed, not required: a viewer without it shows the geometry about the origin, as it showed the 1.0 asset)."
+            ),
+        );
+        Some(serde_json::json!({"center": center}))
+    }
     pub(in crate::upgrade) fn unconverted_extensions(&mut self) {
         let mut found: BTreeMap<String, (usize, String)> = BTreeMap::new();
         collect_extensions(self.source.root(), &mut String::new(), &mut found);

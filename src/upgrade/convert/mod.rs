@@ -54,7 +54,12 @@ pub(super) fn run(mut builder: Builder) -> Result<Upgraded, UpgradeError> {
     let mut used = materials::extensions_used(builder.arrays.get("materials"));
     if builder.arrays.contains_key("lights") {
         used.push(lights::PUNCTUAL.to_string());
-        used.sort();
     }
-    Ok(builder.finish(used))
+    let mut root_extensions = serde_json::Map::new();
+    if let Some(rtc) = builder.cesium_rtc() {
+        used.push(extensions::CESIUM_RTC.to_string());
+        root_extensions.insert(extensions::CESIUM_RTC.to_string(), rtc);
+    }
+    used.sort();
+    Ok(builder.finish(used, root_extensions))
 }
