@@ -1537,9 +1537,9 @@ fn cesium_oct_encoded_normals_are_decoded_and_cesium_rtc_is_kept() {
     );
     let normals: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
     let folded = {
-        let (x, y) = (1.0 - 100.0 / 127.0, 1.0 - 100.0 / 127.0);
-        let z = 1.0 - 200.0 / 127.0;
-        let length = (x * x + y * y + z * z as f64).sqrt();
+        let (x, y): (f64, f64) = (1.0 - 100.0 / 127.0, 1.0 - 100.0 / 127.0);
+        let z: f64 = 1.0 - 200.0 / 127.0;
+        let length = (x * x + y * y + z * z).sqrt();
         [x / length, y / length, z / length]
     };
     let expected = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, -1.0, 0.0], folded];
