@@ -666,6 +666,11 @@ mod structure {
     /// two meshes, a bind shape matrix, a camera with znear 0, a blending technique without
     /// culling, and a KHR_materials_common CONSTANT material.
     fn asset() -> serde_json::Value {
+        asset_weighted([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0])
+    }
+
+    /// [`asset`] with each vertex's four WEIGHT values given (every JOINT value is 0).
+    fn asset_weighted(weights: [f32; 12]) -> serde_json::Value {
         let mut data = Vec::new();
         for v in [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0] {
             data.extend(v.to_le_bytes()); // POSITION
@@ -675,9 +680,7 @@ mod structure {
         ] {
             data.extend(v.to_le_bytes()); // JOINT (3 × VEC4)
         }
-        for v in [
-            1.0f32, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0,
-        ] {
+        for v in weights {
             data.extend(v.to_le_bytes()); // WEIGHT
         }
         let identity = [
@@ -718,6 +721,34 @@ mod structure {
     fn upgraded() -> Upgraded {
         let bytes = serde_json::to_vec(&asset()).unwrap();
         upgrade(&bytes, &NoResources, &UpgradeOptions::default()).unwrap()
+    }
+
+    /// 1.0 let a vertex name a joint twice; 2.0 forbids it. Merged with the summed weight, the
+    /// vertex skins the same, and both meshes sharing the pair share the merged one.
+    #[test]
+    fn a_joint_listed_twice_in_a_vertex_is_merged_into_one_with_the_summed_weight() {
+        let halves = [0.5, 0.5, 0.0, 0.0, 0.25, 0.75, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0];
+        let bytes = serde_json::to_vec(&asset_weighted(halves)).unwrap();
+        let up = upgrade(&bytes, &NoResources, &UpgradeOptions::default()).unwrap();
+        let report =
+            gltfmat::upgrade::output::verify(&gltfmat::upgrade::output::layout(&up, "out.glb"));
+        assert!(!report.has_errors(), "{:?}", report.diagnostics);
+        let json = up.json.to_value();
+        let attributes = |mesh: usize| json["meshes"][mesh]["primitives"][0]["attributes"].clone();
+        assert_eq!(
+            attributes(0)["WEIGHTS_0"],
+            attributes(1)["WEIGHTS_0"],
+            "one merged pair"
+        );
+        let glb = gltf::Gltf::from_slice(&up.to_glb()).unwrap();
+        let primitive = glb.meshes().next().unwrap().primitives().next().unwrap();
+        let reader = primitive.reader(|_| glb.blob.as_deref());
+        let weights: Vec<[f32; 4]> = reader.read_weights(0).unwrap().into_f32().collect();
+        assert_eq!(weights, [[1.0, 0.0, 0.0, 0.0]; 3]);
+        assert!(up
+            .report
+            .iter()
+            .any(|n| n.text.contains("2 of 3 vertices list a joint twice")));
     }
 
     #[test]
@@ -1116,7 +1147,7 @@ fn unknown_extensions_are_named_and_unused_textures_are_not_written() {
     }));
     let notes = notes(&upgraded).join("\n");
     for expected in [
-        "Dropped /extensions/CESIUM_RTC extension CESIUM_RTC (on 1 object(s))",
+        "Decision /extensions/CESIUM_RTC CESIUM_RTC kept with its center [1.0, 2.0, 3.0]",
         "Dropped /extensionsUsed/1 extension EXT_declared_only (declared in extensionsUsed but used by no object)",
         "Dropped /nodes/n/extensions/VENDOR_thing extension VENDOR_thing (on 1 object(s))",
     ] {

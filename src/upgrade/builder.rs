@@ -35,6 +35,9 @@ pub struct Builder<'s, 'a> {
     pub(in crate::upgrade) images: Vec<EncodedImage>,
     pub(in crate::upgrade) binary: Binary,
     pub(in crate::upgrade) packed_accessors: HashMap<(&'s str, Role), usize>,
+    /// JOINT/WEIGHT accessor pairs with repeated joints merged, by their 1.0 ids: primitives
+    /// sharing a pair share the merged one.
+    pub(in crate::upgrade) merged_influences: HashMap<(&'s str, &'s str), Option<(usize, usize)>>,
     /// Data repacked so far, with its bufferView, by what makes it the same.
     repacked: HashMap<SameData, (data::Packed, usize)>,
     pub(in crate::upgrade) report: Notes,
@@ -107,6 +110,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             images: Vec::new(),
             binary: Binary::default(),
             packed_accessors: HashMap::new(),
+            merged_influences: HashMap::new(),
             repacked: HashMap::new(),
             report: Notes::default(),
             lights: HashMap::new(),

@@ -36,11 +36,22 @@ impl<'s> Builder<'s, '_> {
         if let Some(index) = tangents {
             attributes.insert("TANGENT".into(), json!(index));
         }
+        let merged = match source_attributes {
+            Some(source) => self.merged_influences(source, at)?,
+            None => None,
+        };
+        if let Some((joints, weights)) = merged {
+            attributes.insert("JOINTS_0".into(), json!(joints));
+            attributes.insert("WEIGHTS_0".into(), json!(weights));
+        }
         for (semantic, accessor) in source_attributes.into_iter().flat_map(|a| a.iter()) {
             let Some(accessor) = accessor.as_str() else {
                 continue;
             };
             if tangents.is_some() && matches!(semantic, "TANGENT" | "BINORMAL") {
+                continue;
+            }
+            if merged.is_some() && matches!(semantic, "JOINT" | "WEIGHT" | "JOINT_0" | "WEIGHT_0") {
                 continue;
             }
             let renamed = rename_semantic(semantic);
@@ -72,7 +83,83 @@ impl<'s> Builder<'s, '_> {
     }
 }
 
-impl Builder<'_, '_> {
+impl<'s> Builder<'s, '_> {
+    /// A primitive's JOINT/WEIGHT pair with every joint a vertex lists twice (with weight) merged
+    /// into one entry carrying the summed weight, each vertex's weights divided by their sum as
+    /// the other skinned vertices' are: the blend Σ wᵢ·M(jᵢ) is unchanged, and glTF 2.0 forbids a
+    /// joint twice in one vertex. None when no vertex repeats a joint (the pair is converted as
+    /// it is) or the pair is not four float weights per vertex.
+    fn merged_influences(
+        &mut self,
+        source: Object<'s>,
+        at: &str,
+    ) -> Result<Option<(usize, usize)>, UpgradeError> {
+        let id = |semantic: &str| source.get(semantic).and_then(Node::as_str);
+        let (Some(joints_id), Some(weights_id)) = (
+            id("JOINT").or(id("JOINT_0")),
+            id("WEIGHT").or(id("WEIGHT_0")),
+        ) else {
+            return Ok(None);
+        };
+        if let Some(done) = self.merged_influences.get(&(joints_id, weights_id)) {
+            return Ok(*done);
+        }
+        let merged = self.merge_influences(joints_id, weights_id, at)?;
+        self.merged_influences
+            .insert((joints_id, weights_id), merged);
+        Ok(merged)
+    }
+
+    fn merge_influences(
+        &mut self,
+        joints_id: &'s str,
+        weights_id: &'s str,
+        at: &str,
+    ) -> Result<Option<(usize, usize)>, UpgradeError> {
+        let read = |id: &str| {
+            data::read(self.source, id).map_err(|reason| UpgradeError::Resource {
+                pointer: pointer("accessors", id),
+                reason,
+            })
+        };
+        let (joints, weights) = (read(joints_id)?, read(weights_id)?);
+        let fits = joints.components == 4
+            && weights.components == 4
+            && weights.component_type == data::FLOAT
+            && joints.count == weights.count;
+        if !fits {
+            return Ok(None);
+        }
+        let (mut j, mut w) = (joints.values(), weights.values());
+        let mut merged_vertices = 0;
+        for (vj, vw) in j.chunks_exact_mut(4).zip(w.chunks_exact_mut(4)) {
+            if merge_repeated_joints(vj, vw) {
+                merged_vertices += 1;
+            }
+        }
+        if merged_vertices == 0 {
+            return Ok(None);
+        }
+        let count = joints.count;
+        let joint_type = match j.iter().copied().fold(0.0, f64::max) {
+            m if m <= 255.0 => crate::gltf::gl::UNSIGNED_BYTE,
+            _ => crate::gltf::gl::UNSIGNED_SHORT,
+        };
+        let packed = data::pack_values(&j, 4, joint_type, false, true, &mut self.binary);
+        let joints_index = self.add_accessor(packed, "VEC4", count, Role::Joints, Some(joints_id));
+        self.record_origin("accessors", joints_index, pointer("accessors", joints_id));
+        let packed = data::pack_values(&w, 4, data::FLOAT, false, true, &mut self.binary);
+        let weights_index =
+            self.add_accessor(packed, "VEC4", count, Role::Weights, Some(weights_id));
+        self.record_origin("accessors", weights_index, pointer("accessors", weights_id));
+        self.note(
+            format!("{at}/attributes"),
+            NoteKind::Decision,
+            format!("{merged_vertices} of {count} vertices list a joint twice with weight (glTF 2.0 forbids it): each repeat merged into one entry with the weights summed, which skins the same (the blend adds w·M per entry)."),
+        );
+        Ok(Some((joints_index, weights_index)))
+    }
+
     /// 2.0 tangents for 1.0 VEC3 ones: VEC4 with w = ±1, the sign of dot(cross(N, T), B) with
     /// the 1.0 BINORMAL (the bitangent 2.0 rebuilds as cross(N, T) · w), or +1 without one.
     /// None when the tangents are not VEC3 (they are converted as they are).
@@ -148,6 +235,27 @@ impl Builder<'_, '_> {
         );
         Ok(Some(index))
     }
+}
+
+/// Merges the entries of one vertex that name the same joint with weight: the first keeps the
+/// summed weight, the others become joint 0 with weight 0; the weights are then divided by
+/// their sum. Whether anything was merged.
+fn merge_repeated_joints(joints: &mut [f64], weights: &mut [f64]) -> bool {
+    let mut merged = false;
+    for a in 0..joints.len() {
+        for b in a + 1..joints.len() {
+            if weights[a] != 0.0 && weights[b] != 0.0 && joints[a] == joints[b] {
+                weights[a] += weights[b];
+                (joints[b], weights[b]) = (0.0, 0.0);
+                merged = true;
+            }
+        }
+    }
+    let sum: f64 = weights.iter().sum();
+    if merged && sum > 0.0 {
+        weights.iter_mut().for_each(|w| *w /= sum);
+    }
+    merged
 }
 
 /// 1.0 attribute semantics → 2.0: TEXCOORD → TEXCOORD_0, COLOR → COLOR_0, JOINT(_n) →
