@@ -10,11 +10,19 @@ use std::collections::BinaryHeap;
 
 pub(crate) struct Collector<'o> {
     options: &'o CheckOptions,
-    /// The kept findings; with a limit, a max-heap whose top is the one to drop first.
-    kept: BinaryHeap<Ranked>,
+    /// The kept findings.
+    kept: Kept,
     counts: [usize; 4],
     emitted: usize,
     truncated: bool,
+}
+
+/// Without a limit every finding is kept as it comes, already in emission order (no ranks, no
+/// sort and its scratch: a report of 10^6 findings costs their own memory only); with one, a
+/// max-heap whose top is the one to drop first.
+enum Kept {
+    All(Vec<Diagnostic>),
+    Best(BinaryHeap<Ranked>),
 }
 
 /// A finding with its place in report order: severity, then emission.
@@ -48,9 +56,13 @@ impl Ord for Ranked {
 
 impl<'o> Collector<'o> {
     pub fn new(options: &'o CheckOptions) -> Self {
+        let kept = match options.max_issues {
+            0 => Kept::All(Vec::new()),
+            _ => Kept::Best(BinaryHeap::new()),
+        };
         Collector {
             options,
-            kept: BinaryHeap::new(),
+            kept,
             counts: [0; 4],
             emitted: 0,
             truncated: false,
@@ -60,13 +72,19 @@ impl<'o> Collector<'o> {
     /// The kept findings (in emission order, or in report order when some were dropped),
     /// the full per-severity counts, and whether some were dropped.
     pub fn finish(self) -> (Vec<Diagnostic>, [usize; 4], bool) {
-        let mut kept = self.kept.into_vec();
-        if self.truncated {
-            kept.sort();
-        } else {
-            kept.sort_by_key(|r| r.1);
-        }
-        let kept = kept.into_iter().map(|r| r.0).collect();
+        let kept = match self.kept {
+            Kept::All(all) => all,
+            Kept::Best(best) => {
+                // Ranks are unique, so the unstable sort is the order, without scratch memory.
+                let mut best = best.into_vec();
+                if self.truncated {
+                    best.sort_unstable();
+                } else {
+                    best.sort_unstable_by_key(|r| r.1);
+                }
+                best.into_iter().map(|r| r.0).collect()
+            }
+        };
         (kept, self.counts, self.truncated)
     }
 
@@ -109,17 +127,20 @@ impl Sink for Collector<'_> {
         if (self.options.lowest_kept).is_some_and(|lowest| diagnostic.severity > lowest) {
             return;
         }
+        let heap = match &mut self.kept {
+            Kept::All(all) => return all.push(diagnostic),
+            Kept::Best(heap) => heap,
+        };
         let ranked = Ranked(diagnostic, self.emitted);
         self.emitted += 1;
-        let limit = self.options.max_issues;
-        if limit == 0 || self.kept.len() < limit {
-            self.kept.push(ranked);
+        if heap.len() < self.options.max_issues {
+            heap.push(ranked);
             return;
         }
         self.truncated = true;
-        if self.kept.peek().is_some_and(|worst| ranked < *worst) {
-            self.kept.pop();
-            self.kept.push(ranked);
+        if heap.peek().is_some_and(|worst| ranked < *worst) {
+            heap.pop();
+            heap.push(ranked);
         }
     }
 }
