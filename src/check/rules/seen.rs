@@ -24,9 +24,10 @@ impl Seen {
     }
 }
 
-/// Vertex elements (UVs and indices) read in one run at most; past it every texel counts as
-/// seen. With a mesh read once per binding, this bounds the time and memory the masks take.
-const MAX_ELEMENTS: usize = 1 << 24;
+/// Vertex components (UVs and indices) read in one run at most, 32 MB as f64; past it every
+/// texel counts as seen. With a mesh read once per binding, this bounds the masks' time and
+/// memory.
+const MAX_ELEMENTS: usize = 1 << 22;
 /// Texel writes per texel of the image at most (triangles that tile the texture many times
 /// cost a row each); past it every texel counts as seen.
 const MAX_WRITES_PER_TEXEL: usize = 16;
@@ -72,6 +73,9 @@ impl<'a> Sight<'a> {
         width: u32,
         height: u32,
     ) -> Option<Seen> {
+        if width == 0 || height == 0 {
+            return None;
+        }
         let info = slot_use.slot.lookup(slot_use.material)?;
         let set = effective_texcoord(info);
         let grid = Grid {
@@ -151,7 +155,7 @@ impl Mesh {
 /// Every element of a plain accessor as f64 components, within `budget` elements.
 fn read_all(ctx: &Context, accessor: Node, budget: &mut usize) -> Option<Vec<f64>> {
     let (layout, view) = scannable(ctx, accessor)?;
-    *budget = budget.checked_sub(layout.count)?;
+    *budget = budget.checked_sub(layout.count.checked_mul(layout.components)?)?;
     let bytes = view.read()?;
     let mut values = vec![0.0; layout.count * layout.components];
     decode(&layout, &bytes, 0, &mut values).then_some(values)
@@ -176,11 +180,22 @@ impl Grid {
     /// The column indices from `first` to `last` worth visiting: no more than one period of
     /// the wrap (every column is read once a span covers it), clamped to the edges for
     /// CLAMP_TO_EDGE.
-    fn columns(&self, first: i64, last: i64) -> (i64, i64) {
-        let width = self.width as i64;
+    fn columns(&self, left: f64, right: f64) -> (i64, i64) {
+        let width = self.width as f64;
         match self.wrap[0] {
-            CLAMP_TO_EDGE => (first.clamp(0, width - 1), last.clamp(0, width - 1)),
-            _ => (first, last.min(first + 2 * width - 1)),
+            CLAMP_TO_EDGE => {
+                let clamp = |x: f64| x.clamp(0.0, width - 1.0) as i64;
+                (clamp(left.floor()), clamp(right.ceil()))
+            }
+            _ => {
+                // Moved into the first period, so that far-off UVs stay small integers.
+                let period = 2.0 * width;
+                if right - left >= period {
+                    return (0, 2 * self.width as i64 - 1);
+                }
+                let shift = (left / period).floor() * period;
+                ((left - shift).floor() as i64, (right - shift).ceil() as i64)
+            }
         }
     }
 
@@ -218,16 +233,16 @@ impl Painter {
         let ys = corners.map(|[_, y]| y);
         let low = ys.iter().copied().fold(f64::MAX, f64::min);
         let high = ys.iter().copied().fold(f64::MIN, f64::max);
-        let rows = (low.floor() as i64)..=(high.ceil() as i64);
-        if rows.end() - rows.start() > 4 * grid.height as i64 {
+        if high - low > 4.0 * grid.height as f64 {
             return None;
         }
+        let rows = (low.floor() as i64)..=(high.ceil() as i64);
         for row in rows {
             let Some((left, right)) = extent(corners, row as f64 - 1.0, row as f64 + 1.0) else {
                 continue;
             };
             let y = Grid::wrapped(row, grid.height, grid.wrap[1]);
-            let (first, last) = grid.columns(left.floor() as i64, right.ceil() as i64);
+            let (first, last) = grid.columns(left, right);
             self.writes_left = self.writes_left.checked_sub((last - first + 1) as usize)?;
             for x in first..=last {
                 let x = Grid::wrapped(x, grid.width, grid.wrap[0]);
@@ -320,6 +335,16 @@ mod tests {
     fn a_triangle_tiling_the_texture_many_times_gives_up_rather_than_paint_forever() {
         let huge = [[0.0, 0.0], [1e6, 0.0], [0.0, 1e6]];
         assert!(painted(&grid(8, 10497), &[huge]).is_none());
+    }
+
+    #[test]
+    fn uvs_far_from_the_texture_neither_overflow_nor_paint_forever() {
+        for far in [1e12, -1e12, 1e300, f64::MAX] {
+            // Far along u only: its rows are ordinary, so its columns are computed.
+            let small = [[far, 0.1], [far + 1e-3, 0.1], [far, 0.2]];
+            let _ = painted(&grid(8, 10497), &[small]);
+            let _ = painted(&grid(8, CLAMP_TO_EDGE), &[small]);
+        }
     }
 
     #[test]
