@@ -1372,5 +1372,20 @@ fn compare_reads_each_texture_through_its_own_texcoord_set_on_the_mesh() {
     let (code, text) = gltfmat(&["compare", &path("set0.gltf"), &path("set0-again.gltf")]);
     assert_eq!(code, 0, "{text}");
     assert!(text.contains("same: ΔE2000 max 0.0000"), "{text}");
+    // TEXCOORD_1 without a bufferView (zeros, as compressed data reads before decoding): the
+    // mesh cannot be read, so texCoord 1 is not evaluated, never called the same.
+    let unread = std::fs::read_to_string(dir.join("set1.gltf")).unwrap();
+    let mut unread: serde_json::Value = serde_json::from_str(&unread).unwrap();
+    unread["accessors"][2]
+        .as_object_mut()
+        .unwrap()
+        .remove("bufferView");
+    std::fs::write(dir.join("unread.gltf"), unread.to_string()).unwrap();
+    let (code, text) = gltfmat(&["compare", &path("set0.gltf"), &path("unread.gltf")]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("NOT EVALUATED") && text.contains("texCoord sets on the mesh"),
+        "{text}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

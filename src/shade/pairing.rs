@@ -11,7 +11,7 @@ use super::render::{contact_sheet, material_ball, SheetLayout, MAX_PIXELS, MAX_S
 use super::sample::MaterialSource;
 pub use super::sample::AS_STORED;
 use super::sheen_table::SheenTable;
-use super::surface::Point;
+use super::surface::Surface;
 use crate::document::file::FileId;
 use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::error::Error;
@@ -42,7 +42,7 @@ pub(crate) fn load_materials_on(
     loader: &dyn ResourceLoader,
     finest: u32,
     surfaces: bool,
-) -> Result<(Vec<Named>, Vec<Vec<Point>>), String> {
+) -> Result<(Vec<Named>, Vec<Surface>), String> {
     match legacy_materials(&bytes, loader, finest) {
         Ok(materials) => Ok((materials, Vec::new())),
         Err(LegacyMaterialsError::NotGltf1(_)) => {
@@ -119,15 +119,21 @@ pub struct Ambiguity {
     pub max: f64,
 }
 
+/// Surface points evaluated in one run: they are evaluated per pair (two alike materials may lie
+/// on different meshes); past it a pair that needs them is not evaluated.
+const SURFACE_POINTS: usize = 1 << 16;
+
 /// Compares each pair `(i, j)` of `a[i]` with `b[j]`; pairs with a missing side are skipped.
 /// A material of `a` whose text can be read several ways (a 1.0 spec-gloss draft material)
 /// is compared as it is read, and its other readings' distance from that reading is given
-/// beside, as [`Outcome::ambiguity`].
+/// beside, as [`Outcome::ambiguity`]. Where a material reads a texCoord set other than 0,
+/// `surfaces[j]` (the points on the mesh whose sets differ) are evaluated too, and when they
+/// cannot be, the pair is not evaluated.
 pub fn compare_pairs(
     a: &[Named],
     b: &[Named],
     pairs: &[(usize, usize)],
-    surfaces: &[Vec<Point>],
+    surfaces: &[Surface],
     grid: u32,
     map: TexelMap,
 ) -> Vec<Outcome> {
@@ -135,9 +141,7 @@ pub fn compare_pairs(
     // Materials that evaluate the same way are compared once (an asset's thousand copies of
     // one material are one comparison).
     let mut done: std::collections::HashMap<(String, String), PairResult> = Default::default();
-    // Surface points are evaluated per pair (two alike materials may lie on different meshes),
-    // up to this many in one run; past it the pairs keep the grid's figure.
-    let mut points_left: usize = 1 << 16;
+    let mut points_left = SURFACE_POINTS;
     pairs
         .iter()
         .filter_map(|&(i, j)| {
@@ -151,13 +155,27 @@ pub fn compare_pairs(
             let mut compared = (done.entry(key))
                 .or_insert_with(|| compare_as_read(&shader, ma, mb, grid, map))
                 .clone();
-            let points = surfaces.get(j).map_or(&[][..], Vec::as_slice);
-            points_left = points_left.saturating_sub(points.len());
-            if points_left > 0 {
-                evaluate::on_surface(&shader, ma, mb, points, &mut compared.result);
+            // Only a material that reads a set other than 0 can differ where the sets do.
+            let surface = surfaces
+                .get(j)
+                .filter(|_| ma.reads_other_sets() || mb.reads_other_sets());
+            let mut unseen = surface.and_then(|s| s.unread.clone());
+            if let Some(points) = surface.map(|s| &s.points).filter(|_| unseen.is_none()) {
+                match points_left.checked_sub(points.len()) {
+                    Some(left) => {
+                        points_left = left;
+                        evaluate::on_surface(&shader, ma, mb, points, &mut compared.result);
+                    }
+                    None => {
+                        unseen = Some(format!(
+                            "the run's {SURFACE_POINTS} surface points were used up"
+                        ))
+                    }
+                }
             }
             let not_evaluated = (ma.unmodelled().iter().map(|u| format!("first: {u}")))
                 .chain(mb.unmodelled().iter().map(|u| format!("second: {u}")))
+                .chain(unseen.map(|why| format!("texCoord sets on the mesh: {why}")))
                 .collect();
             Some(Outcome {
                 a: (i, name_a.clone()),
@@ -283,7 +301,7 @@ pub struct Compared {
 
 /// The materials of an asset on disk, its resources read from its folder (textures no finer
 /// than `finest`, as in [`load_materials`]), and every file read for them, by identity.
-type Loaded = (Vec<Named>, Vec<Vec<Point>>);
+type Loaded = (Vec<Named>, Vec<Surface>);
 
 fn materials_of(path: &Path, finest: u32, surfaces: bool) -> Result<(Loaded, Vec<FileId>), Error> {
     let bytes = crate::document::file::read(path).map_err(|source| Error::Io {

@@ -59,7 +59,7 @@ pub fn texture_source(texture: &Value) -> Option<u64> {
 }
 
 /// An asset's materials by name, and the surface points of each (see [`gltf2_materials`]).
-pub type MaterialsOn = (Vec<(String, MaterialSource)>, Vec<Vec<surface::Point>>);
+pub type MaterialsOn = (Vec<(String, MaterialSource)>, Vec<surface::Surface>);
 
 /// A document's buffer views with the buffers they read, loaded once.
 pub(super) struct Views<'d> {

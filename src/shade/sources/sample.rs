@@ -924,6 +924,14 @@ impl MaterialSource {
         }
     }
 
+    /// Whether a texture is read through a texCoord set other than 0 (a 1.0 draft's never is).
+    pub fn reads_other_sets(&self) -> bool {
+        match self {
+            MaterialSource::Gltf2(p) => p.bindings().any(|b| b.texcoord > 0),
+            MaterialSource::Legacy { .. } => false,
+        }
+    }
+
     /// Whether every input is an affine function of texels stored on a `grid`² grid: every
     /// texture is `grid`² and read without a transform, and no input bends its texels (a
     /// normal normalised, an anisotropy direction's angle, a MASK threshold on a texture's

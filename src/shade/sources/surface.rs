@@ -12,6 +12,14 @@ use crate::gltf::{as_index, unsigned};
 /// A point's UV in each texCoord set, set 0 first.
 pub type Point = Vec<[f64; 2]>;
 
+/// The points of one material, and why some of its primitives gave none (their texture
+/// coordinates could not be read as plain accessors).
+#[derive(Clone, Debug, Default)]
+pub struct Surface {
+    pub points: Vec<Point>,
+    pub unread: Option<String>,
+}
+
 /// Texture coordinate sets read per primitive (the spec's minimum a viewer supports is 2).
 const SETS: usize = 4;
 /// Triangles looked at per material: spread evenly over its primitives' triangles.
@@ -30,10 +38,10 @@ const WEIGHTS: [[f64; 3]; 4] = [
 /// For each material of a glTF 2.0 document, points on the triangles of the primitives that
 /// draw it whose texCoord sets differ. Empty for a material no mesh draws, meshes with one set,
 /// or what cannot be read.
-pub(super) fn surface_points(root: Node, views: &Views) -> Vec<Vec<Point>> {
+pub(super) fn surface_points(root: Node, views: &Views) -> Vec<Surface> {
     let items = |key: &str| root.get(key).and_then(Node::as_array);
     let material_count = items("materials").map_or(0, |a| a.len());
-    let mut points = vec![Vec::new(); material_count];
+    let mut surfaces = vec![Surface::default(); material_count];
     let reader = Reader {
         accessors: items("accessors")
             .map(|a| a.iter().collect())
@@ -53,12 +61,22 @@ pub(super) fn surface_points(root: Node, views: &Views) -> Vec<Vec<Point>> {
         }
     }
     for (material, primitives) in drawn.iter().enumerate() {
-        let meshes: Option<Vec<Sets>> = (primitives.iter())
-            .map(|p| reader.sets(*p, &mut budget))
-            .collect();
-        let Some(meshes) = meshes.filter(|m| m.iter().any(|s| s.uvs.len() > 1)) else {
+        let mut meshes = Vec::new();
+        for primitive in primitives {
+            match reader.sets(*primitive, &mut budget) {
+                Some(sets) => meshes.push(sets),
+                None => {
+                    surfaces[material].unread = Some(format!(
+                        "the texture coordinates of {} primitive(s) drawing it cannot be read as plain accessors (compressed, sparse, invalid or past the read budget)",
+                        primitives.len() - meshes.len()
+                    ));
+                    break;
+                }
+            }
+        }
+        if surfaces[material].unread.is_some() || !meshes.iter().any(|s| s.uvs.len() > 1) {
             continue;
-        };
+        }
         let total: usize = meshes.iter().map(Sets::triangle_count).sum();
         let step = total.div_ceil(TRIANGLES_PER_MATERIAL).max(1);
         for mesh in &meshes {
@@ -73,13 +91,13 @@ pub(super) fn surface_points(root: Node, views: &Views) -> Vec<Vec<Point>> {
                         .iter()
                         .any(|uv| (uv[0] - point[0][0]).abs() + (uv[1] - point[0][1]).abs() > 1e-9)
                     {
-                        points[material].push(point);
+                        surfaces[material].points.push(point);
                     }
                 }
             }
         }
     }
-    points
+    surfaces
 }
 
 /// A primitive's texture coordinate sets and how its vertices make triangles.
