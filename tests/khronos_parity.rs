@@ -930,23 +930,32 @@ fn data_at_a_misaligned_total_offset_is_not_read() {
     );
 }
 
-#[test]
-fn a_ktx2_image_is_an_unrecognized_format_to_the_khronos_profile_only() {
-    // The released validator recognises no KTX2; gltfmat reads it, and a texture whose
-    // source is KTX2 without KHR_texture_basisu then names the problem.
-    let folder = std::env::temp_dir().join(format!("gltfmat-ktx2-{}", std::process::id()));
+/// Findings as (code, pointer), sorted.
+type Findings = Vec<(String, String)>;
+
+/// The findings of `document` in the Khronos and the default profile, checked from a folder
+/// beside a small KTX2 file `k.ktx2`.
+fn beside_a_ktx2(name: &str, document: Value) -> (Findings, Findings) {
+    let folder = std::env::temp_dir().join(format!("gltfmat-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&folder).unwrap();
     std::fs::write(folder.join("k.ktx2"), common::ktx2()).unwrap();
     let asset = folder.join("k.gltf");
-    let document = json!({"asset": {"version": "2.0"}, "images": [{"uri": "k.ktx2"}], "textures": [{"source": 0}]});
     std::fs::write(&asset, serde_json::to_vec(&document).unwrap()).unwrap();
     let findings = |profile| {
         let options = CheckOptions::default().with_profile(profile);
         sorted_findings(&gltfmat::check::check_path(&asset, &options).unwrap())
     };
-    let khronos = findings(Profile::Khronos);
-    let default = findings(Profile::Default);
+    let both = (findings(Profile::Khronos), findings(Profile::Default));
     std::fs::remove_dir_all(&folder).unwrap();
+    both
+}
+
+#[test]
+fn a_ktx2_image_is_an_unrecognized_format_to_the_khronos_profile_only() {
+    // The released validator recognises no KTX2; gltfmat reads it, and a texture whose
+    // source is KTX2 without KHR_texture_basisu then names the problem.
+    let document = json!({"asset": {"version": "2.0"}, "images": [{"uri": "k.ktx2"}], "textures": [{"source": 0}]});
+    let (khronos, default) = beside_a_ktx2("ktx2", document);
     assert_eq!(
         khronos,
         expected(&[
@@ -970,21 +979,11 @@ fn a_ktx2_image_is_an_unrecognized_format_to_the_khronos_profile_only() {
 fn the_default_profile_knows_khr_texture_basisu_and_the_khronos_profile_does_not() {
     // The released validator does not implement KHR_texture_basisu; its schema makes
     // image/ktx2 a valid mimeType and `source` a use of the image.
-    let folder = std::env::temp_dir().join(format!("gltfmat-basisu-{}", std::process::id()));
-    std::fs::create_dir_all(&folder).unwrap();
-    std::fs::write(folder.join("k.ktx2"), common::ktx2()).unwrap();
-    let asset = folder.join("k.gltf");
     let document = json!({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_texture_basisu"],
         "images": [{"uri": "k.ktx2", "mimeType": "image/ktx2"}],
         "textures": [{"extensions": {"KHR_texture_basisu": {"source": 0}}}],
         "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]});
-    std::fs::write(&asset, serde_json::to_vec(&document).unwrap()).unwrap();
-    let findings = |profile| {
-        let options = CheckOptions::default().with_profile(profile);
-        sorted_findings(&gltfmat::check::check_path(&asset, &options).unwrap())
-    };
-    let (khronos, default) = (findings(Profile::Khronos), findings(Profile::Default));
-    std::fs::remove_dir_all(&folder).unwrap();
+    let (khronos, default) = beside_a_ktx2("basisu", document);
     for wrong in [
         ("UNSUPPORTED_EXTENSION", "/extensionsUsed/0"),
         ("VALUE_NOT_IN_LIST", "/images/0/mimeType"),
