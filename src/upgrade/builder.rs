@@ -249,8 +249,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             Some((packed, view)) => (packed.clone(), Some(*view)),
             None => (self.repack(&input, role, quantization, &at)?, None),
         };
-        let octahedral =
-            role == Role::Normal && input.components == 2 && packed.converted_from.is_some();
+        let octahedral = data::is_octahedral(&input, role);
         let (kind, components) = match octahedral {
             true => ("VEC3".to_string(), 3),
             false => (input.kind.clone(), input.components),

@@ -720,16 +720,7 @@ pub fn dequantized(
 /// do with `1/127`; an unsigned one to [-1, 1], as Cesium's `czm_octDecode` does), then
 /// (x, y, 1 − |x| − |y|), its lower half folded over, normalised. None for any other accessor.
 pub fn oct_decoded(accessor: &Accessor, role: Role) -> Option<Vec<f64>> {
-    if role != Role::Normal || accessor.components != 2 {
-        return None;
-    }
-    let unit: fn(f64) -> f64 = match accessor.component_type {
-        BYTE => |v| (v / 127.0).clamp(-1.0, 1.0),
-        SHORT => |v| (v / 32767.0).clamp(-1.0, 1.0),
-        UNSIGNED_BYTE => |v| v / 255.0 * 2.0 - 1.0,
-        UNSIGNED_SHORT => |v| v / 65535.0 * 2.0 - 1.0,
-        _ => return None,
-    };
+    let unit = oct_unit(accessor, role)?;
     let stored = accessor.values();
     let mut decoded = Vec::with_capacity(stored.len() / 2 * 3);
     for pair in stored.chunks_exact(2) {
@@ -745,6 +736,25 @@ pub fn oct_decoded(accessor: &Accessor, role: Role) -> Option<Vec<f64>> {
         decoded.extend([x / length, y / length, z / length]);
     }
     Some(decoded)
+}
+
+/// Whether [`oct_decoded`] decodes this accessor.
+pub fn is_octahedral(accessor: &Accessor, role: Role) -> bool {
+    oct_unit(accessor, role).is_some()
+}
+
+/// How an octahedron-encoded NORMAL's components map to [-1, 1]; None for any other accessor.
+fn oct_unit(accessor: &Accessor, role: Role) -> Option<fn(f64) -> f64> {
+    if role != Role::Normal || accessor.components != 2 {
+        return None;
+    }
+    Some(match accessor.component_type {
+        BYTE => |v| (v / 127.0).clamp(-1.0, 1.0),
+        SHORT => |v| (v / 32767.0).clamp(-1.0, 1.0),
+        UNSIGNED_BYTE => |v| v / 255.0 * 2.0 - 1.0,
+        UNSIGNED_SHORT => |v| v / 65535.0 * 2.0 - 1.0,
+        _ => return None,
+    })
 }
 
 /// Appends an accessor's data to `out`, repacked for its role.
