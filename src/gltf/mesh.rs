@@ -20,6 +20,17 @@ pub fn drawn_materials<'a, J: Json<'a>>(primitive: J) -> Vec<u64> {
     materials
 }
 
+/// How many vertex triples [`triangles`] gives for `n` vertices.
+pub fn triangle_count(mode: u64, n: usize) -> usize {
+    match mode {
+        0 => n,
+        1 => n / 2,
+        2 | 3 => n.saturating_sub(1),
+        5 | 6 => n.saturating_sub(2),
+        _ => n / 3,
+    }
+}
+
 /// The vertex triples a primitive of `mode` draws from `n` vertices (`at(i)` the i-th index):
 /// triangles as the mode assembles them; a line is a thin triangle and a point a degenerate
 /// one, so that a caller looking at what a primitive covers sees them too.
@@ -28,14 +39,7 @@ pub fn triangles(
     n: usize,
     at: impl Fn(usize) -> usize,
 ) -> impl Iterator<Item = [usize; 3]> {
-    let count = match mode {
-        0 => n,
-        1 => n / 2,
-        2 | 3 => n.saturating_sub(1),
-        5 | 6 => n.saturating_sub(2),
-        _ => n / 3,
-    };
-    (0..count).map(move |i| match mode {
+    (0..triangle_count(mode, n)).map(move |i| match mode {
         0 => [at(i); 3],
         1 => [at(2 * i), at(2 * i + 1), at(2 * i + 1)],
         2 | 3 => [at(i), at(i + 1), at(i + 1)],

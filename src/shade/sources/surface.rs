@@ -6,7 +6,7 @@
 use super::load::Views;
 use crate::document::Node;
 use crate::gltf::accessor::{component_count, component_size, decode, normalise, Layout};
-use crate::gltf::mesh::{drawn_materials, triangles};
+use crate::gltf::mesh::{drawn_materials, triangle_count, triangles};
 use crate::gltf::{as_index, unsigned};
 
 /// A point's UV in each texCoord set, set 0 first.
@@ -113,7 +113,7 @@ impl Sets {
     }
 
     fn triangle_count(&self) -> usize {
-        self.triangles().count()
+        triangle_count(self.mode, self.vertex_count())
     }
 
     fn triangles(&self) -> impl Iterator<Item = [usize; 3]> + '_ {
