@@ -57,9 +57,16 @@ impl<R: Real> Seen<R> {
     }
 }
 
+/// The least N·V a shading normal gives: Filament's `MIN_N_DOT_V` (its `clampNoV`); the
+/// Sample Viewer clamps to 0, which the visibility terms' own floors make the same.
+pub const MIN_N_DOT_V: f64 = 1e-4;
+
 /// `g` seen in the frame whose normal is `normal` (a unit vector in the tangent frame),
-/// its tangent the geometric tangent made orthogonal to it. Both directions must also lie
-/// above the geometric surface.
+/// its tangent the geometric tangent made orthogonal to it. Both directions must lie above
+/// the geometric surface, and the light above the shading normal's horizon. A view below
+/// that horizon (a normal map tilting the surface away from a grazing viewer) is still
+/// seen, with N·V clamped to [`MIN_N_DOT_V`], as viewers shade it: a BRDF switched off
+/// there would make shading jump as a texel crosses the horizon, which no viewer shows.
 #[inline(always)]
 pub fn in_frame<R: Real>(g: &Geometry<R>, normal: V3) -> Geometry<R> {
     if normal == [0.0, 0.0, 1.0] {
@@ -86,14 +93,14 @@ pub fn in_frame<R: Real>(g: &Geometry<R>, normal: V3) -> Geometry<R> {
         let along = |axis: V3| w[0] * axis[0] + w[1] * axis[1] + w[2] * axis[2];
         [along(t), along(b), along(n)]
     };
-    let (v, l) = (rotate(g.v), rotate(g.l));
-    let zero = R::splat(0.0);
+    let (mut v, l) = (rotate(g.v), rotate(g.l));
+    v[2] = v[2].max(R::splat(MIN_N_DOT_V));
     Geometry {
         v,
         l,
         // V·H is the same in every frame: the Fresnel weight is kept.
         h: rotate(g.h),
-        above: g.above & v[2].gt(zero) & l[2].gt(zero),
+        above: g.above & l[2].gt(R::splat(0.0)),
         fresnel_weight: g.fresnel_weight,
     }
 }
@@ -307,5 +314,33 @@ mod tests {
         let towards = in_frame(&g, [tilt.sin(), 0.0, tilt.cos()]);
         assert!((towards.l[2] - (0.6f64 - tilt).cos()).abs() < 1e-12);
         assert!((towards.v[2] - tilt.cos()).abs() < 1e-12);
+    }
+
+    /// A normal map tilting the surface away from a grazing viewer: as the tilt carries the
+    /// view across the shading normal's horizon, what is seen changes smoothly, as in viewers
+    /// (which clamp N·V), instead of the direct light going out.
+    #[test]
+    fn shading_is_continuous_as_a_normal_tilts_the_view_below_its_horizon() {
+        let s = shader();
+        let grazing = 88f64.to_radians();
+        let g = Geometry::new(view(grazing), view(-grazing));
+        let seen_with = |n_dot_v: f64| {
+            // Tilted about the bitangent, away from the viewer, until N·V is `n_dot_v`.
+            let tilt = n_dot_v.acos() - grazing;
+            let m = Inputs {
+                normal: [-tilt.sin(), 0.0, tilt.cos()],
+                roughness: 0.5,
+                metallic: 0.0,
+                ..Inputs::default()
+            };
+            assert!((in_frame(&g, m.normal).v[2].max(0.0) - n_dot_v.max(0.0)).abs() < 2e-4);
+            seen(&s, &m, &g).own[0]
+        };
+        let (above, below) = (seen_with(1e-3), seen_with(-1e-3));
+        assert!(above > 1.0, "a lit grazing highlight: {above}");
+        assert!(
+            (above - below).abs() < 0.02 * above,
+            "{above} above the horizon, {below} below"
+        );
     }
 }
