@@ -81,18 +81,51 @@ fn with_tangents() -> Value {
 /// The base asset with TANGENT, whose only image is a small KTX2 file in a bufferView, sampled
 /// through KHR_texture_basisu.
 fn ktx2_image() -> Value {
-    let ktx2 = common::ktx2();
+    ktx2_images(&[common::ktx2()])
+}
+
+/// The base asset with TANGENT, whose images are `files` of `fixtures/ktx2`, each sampled
+/// through KHR_texture_basisu by the texture of the same index.
+fn ktx2_fixtures(files: &[&str]) -> Value {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/ktx2");
+    let bytes: Vec<Vec<u8>> = (files.iter())
+        .map(|f| std::fs::read(folder.join(f)).unwrap())
+        .collect();
+    ktx2_images(&bytes)
+}
+
+/// The base asset with TANGENT, whose images are KTX2 `files` in one buffer (a data URI), each
+/// sampled through KHR_texture_basisu by the texture of the same index.
+fn ktx2_images(files: &[Vec<u8>]) -> Value {
+    let ktx2: Vec<u8> = files.concat();
     let full = asset(true);
     let mut views = full["bufferViews"].as_array().unwrap().clone();
-    views.push(json!({"buffer": 1, "byteLength": ktx2.len()}));
+    let first_view = views.len();
+    let mut offset = 0;
+    for file in files {
+        views.push(json!({"buffer": 1, "byteOffset": offset, "byteLength": file.len()}));
+        offset += file.len();
+    }
     let mut buffers = full["buffers"].as_array().unwrap().clone();
     buffers.push(
         json!({"uri": data_uri("application/octet-stream", &ktx2), "byteLength": ktx2.len()}),
     );
+    let images: Vec<Value> = (0..files.len())
+        .map(|i| json!({"bufferView": first_view + i, "mimeType": "image/ktx2"}))
+        .collect();
+    let textures: Vec<Value> = (0..files.len())
+        .map(|i| json!({"extensions": {"KHR_texture_basisu": {"source": i}}}))
+        .collect();
     json!({"meshes": full["meshes"], "accessors": full["accessors"], "bufferViews": views, "buffers": buffers,
-        "images": [{"bufferView": views.len() - 1, "mimeType": "image/ktx2"}],
-        "textures": [{"extensions": {"KHR_texture_basisu": {"source": 0}}}],
-        "extensionsUsed": ["KHR_texture_basisu"]})
+        "images": images, "textures": textures, "extensionsUsed": ["KHR_texture_basisu"]})
+}
+
+/// A KTX2 fixture whose level data ends early (its header and index intact).
+fn truncated_fixture(file: &str) -> Vec<u8> {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/ktx2");
+    let mut bytes = std::fs::read(folder.join(file)).unwrap();
+    bytes.truncate(bytes.len() - 64);
+    bytes
 }
 
 /// RFC 7386 JSON merge patch.
@@ -640,11 +673,26 @@ fn cases() -> Vec<Case> {
         case("damaged PNG data", material(json!({"normalTexture": {"index": 0}})), vec![corrupt_png()]).patch(with_tangents()).deep()
             .expect("IMAGE_UNDECODABLE", "/images/0"),
         near_miss("IMAGE_UNDECODABLE", "damaged PNG data without --deep", material(json!({"normalTexture": {"index": 0}})), vec![corrupt_png()]).patch(with_tangents()),
-        case("a KTX2 normal map, which gltfmat does not transcode", material(json!({"normalTexture": {"index": 0}})), vec![])
+        case("a KTX2 normal map in a plain Vulkan format, which gltfmat does not transcode", material(json!({"normalTexture": {"index": 0}})), vec![])
             .patch(ktx2_image()).deep()
             .expect("IMAGE_NOT_DECODED", "/images/0"),
-        near_miss("IMAGE_NOT_DECODED", "a KTX2 normal map without --deep", material(json!({"normalTexture": {"index": 0}})), vec![])
-            .patch(ktx2_image()),
+        near_miss("IMAGE_NOT_DECODED", "a Basis Universal (UASTC) KTX2 normal map, transcoded", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_fixtures(&["normal-uastc.ktx2"])).deep(),
+        case("a KTX2 normal map whose texels point into the surface, read through ETC1S", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_fixtures(&["inward-normal-etc1s.ktx2"])).deep()
+            .expect("NORMAL_TEXEL_BELOW_SURFACE", &at("/normalTexture")),
+        case("a Basis Universal KTX2 whose data is cut short", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_images(&[truncated_fixture("normal-uastc.ktx2")])).deep()
+            .expect("IMAGE_UNDECODABLE", "/images/0"),
+        case("a KTX2 normal map declared sRGB", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_fixtures(&["normal-etc1s-srgb.ktx2"]))
+            .expect("KTX2_TRANSFER_MISMATCH", &at("/normalTexture")),
+        case("a KTX2 base colour declared linear", material(json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "normalTexture": {"index": 1}})), vec![])
+            .patch(ktx2_fixtures(&["normal-uastc.ktx2", "normal-uastc.ktx2"]))
+            .expect("KTX2_TRANSFER_MISMATCH", &at("/pbrMetallicRoughness/baseColorTexture")),
+        near_miss("KTX2_TRANSFER_MISMATCH", "an sRGB KTX2 base colour and a linear KTX2 normal map",
+            material(json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "normalTexture": {"index": 1}})), vec![])
+            .patch(ktx2_fixtures(&["base-uastc.ktx2", "normal-uastc.ktx2"])),
         case("PNG claiming 32768² texels", material(json!({"normalTexture": {"index": 0}})), vec![huge_png_header()]).patch(with_tangents()).deep()
             .expect("IMAGE_DECODE_LIMIT", "/images/0"),
         // -- plausibility

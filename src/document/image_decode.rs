@@ -18,9 +18,16 @@ pub enum DecodeError {
     /// Not decodable: the reason.
     #[error("{0}")]
     Invalid(String),
+    /// A valid image in an encoding gltfmat does not transcode (a KTX2 that is not Basis
+    /// Universal LDR): which one.
+    #[error("{0}")]
+    NotTranscoded(String),
 }
 
 pub fn decode(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
+    if bytes.starts_with(super::image_header::KTX2_MAGIC) {
+        return decode_ktx2(bytes);
+    }
     let mut limits = Limits::default();
     limits.max_image_width = Some(MAX_DIMENSION);
     limits.max_image_height = Some(MAX_DIMENSION);
@@ -33,4 +40,46 @@ pub fn decode(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
         image::ImageError::Limits(_) => DecodeError::Limit,
         other => DecodeError::Invalid(other.to_string()),
     })
+}
+
+/// A KTX2 image's first level as 8-bit RGBA, transcoded from Basis Universal (ETC1S or UASTC,
+/// with or without Zstandard) to uncompressed texels: what its blocks hold, as a viewer's
+/// uncompressed fallback samples it. The stored encoding is kept (an sRGB texture stays
+/// sRGB-encoded, as a PNG's texels do), and channels the file lacks read as the transcoder
+/// fills them (RGB → alpha 1; RRR → grey).
+fn decode_ktx2(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
+    use basisu::{DecodeFlags, TargetFormat, Transcoder};
+    // vkFormat 0 (VK_FORMAT_UNDEFINED) is how KTX2 marks a Basis Universal payload; any other
+    // is a plain GPU format, which KHR_texture_basisu does not allow.
+    let vk_format = bytes
+        .get(12..16)
+        .map_or(0, |b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+    if vk_format != 0 {
+        return Err(DecodeError::NotTranscoded(format!(
+            "a KTX2 texture in Vulkan format {vk_format}, not Basis Universal"
+        )));
+    }
+    let transcoder = Transcoder::new(bytes).map_err(|e| {
+        DecodeError::Invalid(format!("not a readable Basis Universal KTX2 ({e:?})"))
+    })?;
+    if !transcoder.supports(TargetFormat::Rgba32) {
+        return Err(DecodeError::NotTranscoded(format!(
+            "a KTX2 texture in {:?}, which has no 8-bit form",
+            transcoder.source_format()
+        )));
+    }
+    let (width, height) = transcoder.base_dimensions();
+    let bytes_needed = u64::from(width) * u64::from(height) * 4;
+    if width > MAX_DIMENSION || height > MAX_DIMENSION || bytes_needed > MAX_ALLOC {
+        return Err(DecodeError::Limit);
+    }
+    let texels =
+        (transcoder.transcode(0, TargetFormat::Rgba32, DecodeFlags::NONE)).map_err(|e| {
+            DecodeError::Invalid(format!(
+                "its Basis Universal data cannot be transcoded ({e:?})"
+            ))
+        })?;
+    image::RgbaImage::from_raw(width, height, texels)
+        .map(DynamicImage::ImageRgba8)
+        .ok_or_else(|| DecodeError::Invalid("its first level is smaller than its size".into()))
 }

@@ -119,6 +119,9 @@ pub enum HeaderError {
     Invalid(String),
 }
 
+/// The identifier a KTX 2.0 file starts with.
+pub const KTX2_MAGIC: &[u8] = b"\xABKTX 20\xBB\r\n\x1A\n";
+
 pub fn read(bytes: &[u8]) -> Result<ImageInfo, HeaderError> {
     if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
         png(bytes)
@@ -126,7 +129,7 @@ pub fn read(bytes: &[u8]) -> Result<ImageInfo, HeaderError> {
         jpeg(bytes)
     } else if bytes.len() >= 12 && &bytes[..4] == b"RIFF" && &bytes[8..12] == b"WEBP" {
         webp(bytes)
-    } else if bytes.starts_with(b"\xABKTX 20\xBB\r\n\x1A\n") {
+    } else if bytes.starts_with(KTX2_MAGIC) {
         ktx2(bytes)
     } else {
         Err(HeaderError::Unrecognized)
@@ -336,14 +339,63 @@ fn webp(b: &[u8]) -> Result<ImageInfo, HeaderError> {
     Ok(info)
 }
 
+/// A KTX2 header: its size, and from its data format descriptor (when the container is whole)
+/// the channels a texel holds and the transfer function, which a viewer applies as it samples
+/// (an sRGB KTX2 is decoded to linear by the GPU, whatever slot it is bound to).
 fn ktx2(b: &[u8]) -> Result<ImageInfo, HeaderError> {
-    Ok(ImageInfo::plain(
+    let (width, height) = (le32(b, 20)?, le32(b, 24)?);
+    let descriptor = ktx2::Reader::new(b)
+        .ok()
+        .and_then(|reader| reader.basic_dfd().cloned());
+    let Some(descriptor) = descriptor else {
+        return Ok(ImageInfo::plain(
+            ImageFormat::Ktx2,
+            width,
+            height,
+            Channels::Unknown,
+            8,
+        ));
+    };
+    let mut info = ImageInfo::plain(
         ImageFormat::Ktx2,
-        le32(b, 20)?,
-        le32(b, 24)?,
-        Channels::Unknown,
+        width,
+        height,
+        ktx2_channels(&descriptor),
         8,
-    ))
+    );
+    info.transfer = match descriptor.transfer_function {
+        Some(ktx2::TransferFunction::SRGB) => Some(Transfer::Srgb),
+        Some(ktx2::TransferFunction::Linear) => Some(Transfer::Linear),
+        _ => None,
+    };
+    Ok(info)
+}
+
+/// The channels of a KTX2 texel as decoded to RGBA, from the descriptor's samples: their
+/// channel ids per colour model (KTX 2.0 specification, "Basis Universal" DFD sections; the
+/// Khronos Data Format specification for RGBSDA).
+fn ktx2_channels(descriptor: &ktx2::dfd::Basic) -> Channels {
+    use ktx2::ColorModel;
+    let ids: Vec<u8> = (descriptor.sample_information.iter())
+        .map(|sample| sample.channel_type)
+        .collect();
+    match (descriptor.color_model, ids.as_slice()) {
+        // ETC1S: one slice of RGB (0) or RRR (3), and an optional second of AAA (15) or GGG (4),
+        // which the transcoder puts in alpha.
+        (Some(ColorModel::ETC1S), [0]) => Channels::Rgb,
+        (Some(ColorModel::ETC1S), [0, 15]) => Channels::Rgba,
+        (Some(ColorModel::ETC1S), [3]) => Channels::Luminance,
+        (Some(ColorModel::ETC1S), [3, 4 | 15]) => Channels::LuminanceAlpha,
+        // UASTC: one sample, RGB (0), RGBA (3), RRR (4), RRRG (5).
+        (Some(ColorModel::UASTC), [0]) => Channels::Rgb,
+        (Some(ColorModel::UASTC), [3]) => Channels::Rgba,
+        (Some(ColorModel::UASTC), [4]) => Channels::Luminance,
+        (Some(ColorModel::UASTC), [5]) => Channels::LuminanceAlpha,
+        // Uncompressed: R (0), G (1), B (2), A (15) samples.
+        (Some(ColorModel::RGBSDA), [0, 1, 2]) => Channels::Rgb,
+        (Some(ColorModel::RGBSDA), [0, 1, 2, 15]) => Channels::Rgba,
+        _ => Channels::Unknown,
+    }
 }
 
 #[cfg(test)]

@@ -338,7 +338,8 @@ impl Asset {
         let converted = match spec_gloss::to_metal_rough(&factors, &mut textures) {
             Ok(converted) => converted,
             Err(why) => {
-                // A texture gltfmat cannot decode (KTX2, a broken file): that material only.
+                // A texture gltfmat cannot decode (a broken file, a KTX2 it does not transcode): that
+                // material only.
                 let text = format!("left as spec-gloss: its textures cannot be rebaked: {why}");
                 self.note(&at, NoteKind::Decision, text);
                 return Ok(false);

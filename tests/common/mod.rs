@@ -112,11 +112,11 @@ pub const LARGE_SCALE_MATRIX: [f64; 16] = [
     1.0,
 ];
 
-/// A 4×4 KTX2 file: the header gltfmat and viewers read (format undefined, one level, one
-/// layer, one face) and zeros for the rest.
+/// A 4×4 KTX2 file: the header gltfmat and viewers read (VK_FORMAT_R8G8B8A8_UNORM, not
+/// Basis Universal; one level, one layer, one face) and zeros for the rest.
 pub fn ktx2() -> Vec<u8> {
     let mut ktx2 = b"\xABKTX 20\xBB\r\n\x1A\n".to_vec();
-    for word in [0u32, 1, 4, 4, 0, 0, 1, 1, 0] {
+    for word in [37u32, 1, 4, 4, 0, 0, 1, 1, 0] {
         ktx2.extend(word.to_le_bytes());
     }
     ktx2.extend([0; 64]);

@@ -16,6 +16,7 @@ mod duplicate_key;
 pub mod exclusion;
 pub mod gltf1;
 mod greyscale_packed;
+mod ktx2_transfer;
 mod layer_disabled;
 mod linear_in_srgb;
 mod lossy_direction;
@@ -180,6 +181,7 @@ pub static RULES: &[&Rule] = &[
     &colour_space_conflict::RULE,
     &linear_in_srgb::RULE,
     &srgb_in_linear::RULE,
+    &ktx2_transfer::RULE,
     &sheen_disabled::RULE,
     &sheen_zero_roughness::RULE,
     &anisotropy_zero_strength::RULE,

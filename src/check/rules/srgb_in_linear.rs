@@ -3,7 +3,7 @@
 use super::{bound_images, Rule, Run};
 use crate::check::context::Context;
 use crate::diagnostic::Severity;
-use crate::document::image_header::Transfer;
+use crate::document::image_header::{ImageFormat, Transfer};
 
 pub const RULE: Rule = Rule::new(
     "IMAGE_SRGB_IN_LINEAR_SLOT",
@@ -34,7 +34,11 @@ fn check(ctx: &mut Context) {
     let bound = bound_images(ctx);
     for (slot_use, image, info) in bound.iter() {
         let (srgb, linear) = slot_use.reads();
-        if srgb == 0 && linear != 0 && info.transfer == Some(Transfer::Srgb) {
+        if info.format != ImageFormat::Ktx2
+            && srgb == 0
+            && linear != 0
+            && info.transfer == Some(Transfer::Srgb)
+        {
             ctx.emit(
                 RULE.code(),
                 slot_use.pointer(),

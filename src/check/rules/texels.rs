@@ -4,7 +4,6 @@
 use super::seen::Seen;
 use crate::check::context::Context;
 use crate::document::image_decode::{self, DecodeError};
-use crate::document::image_header::{self, ImageFormat};
 use image::DynamicImage;
 
 /// A decoded image.
@@ -35,36 +34,25 @@ pub struct Tally {
 }
 
 /// Decodes image `index`, reporting IMAGE_UNDECODABLE or IMAGE_DECODE_LIMIT on failure, and
-/// IMAGE_NOT_DECODED for a KTX2 image (its header is read; its texels are not transcoded).
+/// IMAGE_NOT_DECODED for a valid image in an encoding gltfmat does not transcode.
 pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
-    let bytes = encoded(ctx, index)?;
-    if image_header::read(bytes).is_ok_and(|info| info.format == ImageFormat::Ktx2) {
-        ctx.emit(
+    let (code, message) = match image_decode::decode(encoded(ctx, index)?) {
+        Ok(image) => return Some(Texels { image }),
+        Err(error @ DecodeError::Limit) => (
+            crate::check::rules::decode_limit::RULE.code(),
+            format!("Image is {error}; its pixel rules were skipped."),
+        ),
+        Err(DecodeError::NotTranscoded(what)) => (
             crate::check::rules::not_decoded::RULE.code(),
-            format!("/images/{index}"),
-            "Image is KTX2, whose texels gltfmat does not transcode; its pixel rules did not run.",
-        );
-        return None;
-    }
-    match image_decode::decode(bytes) {
-        Ok(image) => Some(Texels { image }),
-        Err(error @ DecodeError::Limit) => {
-            ctx.emit(
-                crate::check::rules::decode_limit::RULE.code(),
-                format!("/images/{index}"),
-                format!("Image is {error}; its pixel rules were skipped."),
-            );
-            None
-        }
-        Err(error) => {
-            ctx.emit(
-                crate::check::rules::undecodable::RULE.code(),
-                format!("/images/{index}"),
-                format!("Image data cannot be decoded: {error}."),
-            );
-            None
-        }
-    }
+            format!("Image is {what}, whose texels gltfmat does not transcode; its pixel rules did not run."),
+        ),
+        Err(error) => (
+            crate::check::rules::undecodable::RULE.code(),
+            format!("Image data cannot be decoded: {error}."),
+        ),
+    };
+    ctx.emit(code, format!("/images/{index}"), message);
+    None
 }
 
 /// Decodes image `index` without reporting a failure: for a document rule that only looks
