@@ -13,7 +13,7 @@ const v = require('gltf-validator'); const fs = require('fs');
 v.validateBytes(new Uint8Array(fs.readFileSync(process.argv[2])), { maxIssues: 0 })
   .then((r) => console.log(`khronos: ${r.issues.numErrors} errors`));
 JS
-read -r ours_s ours_kb < <(best_of 3 ./target/release/gltfmat check "$work/big.glb" --quiet)
+read -r ours_s ours_kb _ < <(best_of 3 ./target/release/gltfmat check "$work/big.glb" --quiet)
 read -r theirs_s theirs_kb < <(NODE_PATH=scripts/bench/node_modules best_of 3 node "$work/khronos.js" "$work/big.glb")
 printf 'large GLB: gltfmat %.2fs %d MB   khronos(npm) %.2fs %d MB   speed %.1fx   memory %.2f of theirs\n' \
   "$ours_s" $((ours_kb / 1024)) "$theirs_s" $((theirs_kb / 1024)) \
