@@ -107,8 +107,8 @@ pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
     );
     if let Some(a) = &o.ambiguity {
         line += &format!(
-            "; source read as the {}: the drafts' readings differ by up to ΔE2000 {:.2} here (furthest: the {}), an ambiguity of the source, not of the conversion",
-            a.read_as, a.max, a.furthest
+            "; source read as the {}: the drafts' readings differ by up to ΔE2000 {:.2} here (on a {}² grid; furthest: the {}), an ambiguity of the source, not of the conversion",
+            a.read_as, a.max, a.grid, a.furthest
         );
     }
     line

@@ -368,13 +368,7 @@ pub fn compare_readings(
     grid: u32,
     map: TexelMap,
 ) -> Vec<Comparison> {
-    let finest = (readings.iter().map(MaterialSource::max_resolution)).fold(1, u32::max);
-    let grid = if grid == 0 {
-        finest.max(b.max_resolution()).max(16)
-    } else {
-        grid
-    }
-    .min(MAX_GRID);
+    let grid = chosen_grid(readings, b, grid);
     let job = Job {
         shader,
         readings,
@@ -403,6 +397,18 @@ pub fn compare_readings(
             merge(shader, partials, grid, &at)
         })
         .collect()
+}
+
+/// The grid [`compare_readings`] samples for `grid` (0: the finest texture resolution of
+/// either side, at least 16), at most [`MAX_GRID`].
+pub fn chosen_grid(readings: &[MaterialSource], b: &MaterialSource, grid: u32) -> u32 {
+    let finest = (readings.iter().map(MaterialSource::max_resolution)).fold(1, u32::max);
+    let grid = if grid == 0 {
+        finest.max(b.max_resolution()).max(16)
+    } else {
+        grid
+    };
+    grid.min(MAX_GRID)
 }
 
 /// The rows' samples, with the widest vector instructions the CPU has: the texel loop is

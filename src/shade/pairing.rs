@@ -103,7 +103,7 @@ impl Outcome {
             "dominant": result.dominant,
             "notEvaluated": self.not_evaluated,
             "grid": result.grid, "samples": result.samples,
-            "ambiguity": self.ambiguity.as_ref().map(|a| serde_json::json!({"readAs": a.read_as, "furthest": a.furthest, "max": a.max})),
+            "ambiguity": self.ambiguity.as_ref().map(|a| serde_json::json!({"readAs": a.read_as, "furthest": a.furthest, "max": a.max, "grid": a.grid})),
             "pass": self.same(threshold)})
     }
 }
@@ -117,7 +117,12 @@ pub struct Ambiguity {
     pub furthest: &'static str,
     /// Their largest ΔE2000 from it.
     pub max: f64,
+    /// The UV grid it was found on (at most [`AMBIGUITY_GRID`]).
+    pub grid: u32,
 }
+
+/// The finest grid the spread between a source's readings is sampled on.
+pub const AMBIGUITY_GRID: u32 = 512;
 
 /// Surface points evaluated in one run: they are evaluated per pair (two alike materials may lie
 /// on different meshes); past it a pair that needs them is not evaluated.
@@ -210,7 +215,12 @@ fn compare_as_read(
             .unwrap_or_else(|| evaluate::compare(shader, source, target, grid));
 
     let others = source.other_readings();
-    let spreads = evaluate::compare_readings(shader, &others, source, grid, TexelMap::Dropped);
+    // The readings' spread is a statement about the source beside the figure, not part of
+    // the verdict: it is sampled no finer than AMBIGUITY_GRID, which bounds its cost to a
+    // fraction of the comparison's on large textures.
+    let spread_grid = evaluate::chosen_grid(&others, source, grid).min(AMBIGUITY_GRID);
+    let spreads =
+        evaluate::compare_readings(shader, &others, source, spread_grid, TexelMap::Dropped);
     let ambiguity = (others.iter().zip(spreads))
         .filter_map(|(other, spread)| Some((other.reading_name()?, spread.max)))
         .max_by(|a, b| a.1.total_cmp(&b.1))
@@ -219,6 +229,7 @@ fn compare_as_read(
                 read_as: source.reading_name()?,
                 furthest,
                 max,
+                grid: spread_grid,
             })
         });
     PairResult { result, ambiguity }
