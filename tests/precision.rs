@@ -114,3 +114,57 @@ fn every_default_profile_finding_on_real_exporters_files_is_listed_with_its_reas
 fn every_deep_finding_on_real_exporters_files_is_listed_with_its_reason() {
     compare(true);
 }
+
+/// The Khronos sample models (CesiumMan, RiggedSimple, RiggedFigure, Monster, VC … as
+/// ../shared/real-world keeps them, in glTF 1.0) upgraded to 2.0 GLBs: with and without
+/// `--deep`, the default profile reports nothing of its own on them, only what the Khronos
+/// profile reports (skinned meshes under transformed ancestors, textures, animations: a
+/// false report here fails well-made assets).
+#[test]
+fn the_default_profile_adds_nothing_on_the_khronos_sample_models_upgraded() {
+    use gltfmat::check::Profile;
+    use gltfmat::document::uri::NoResources;
+    use gltfmat::upgrade::{upgrade, UpgradeOptions};
+    let Some(root) = shared("real-world/gltf1/sample-models", "sample-model precision") else {
+        return;
+    };
+    let mut models = 0;
+    for model in std::fs::read_dir(&root).unwrap() {
+        let folder = model.unwrap().path().join("glTF");
+        let Some(source) = (std::fs::read_dir(&folder).into_iter().flatten())
+            .filter_map(Result::ok)
+            .map(|e| e.path())
+            .find(|p| p.extension().is_some_and(|e| e == "gltf"))
+        else {
+            continue;
+        };
+        let bytes = std::fs::read(&source).unwrap();
+        let loader = FolderResources::beside(&source);
+        let Ok(upgraded) = upgrade(&bytes, &loader, &UpgradeOptions::default()) else {
+            continue;
+        };
+        let glb = upgraded.to_glb();
+        for deep in [false, true] {
+            let findings = |profile| {
+                let options = CheckOptions::default()
+                    .with_deep(deep)
+                    .with_profile(profile);
+                let report = check_bytes("model.glb", glb.clone(), &NoResources, &options);
+                let mut codes: Vec<String> = (report.diagnostics.iter())
+                    .map(|d| format!("{} {:?}", d.code, d.location))
+                    .collect();
+                codes.sort();
+                codes
+            };
+            let (default, khronos) = (findings(Profile::Default), findings(Profile::Khronos));
+            let own: Vec<&String> = default.iter().filter(|f| !khronos.contains(f)).collect();
+            assert!(
+                own.is_empty(),
+                "{} (--deep {deep}): {own:?}",
+                source.display()
+            );
+        }
+        models += 1;
+    }
+    assert!(models >= 10, "only {models} sample models upgraded");
+}
