@@ -191,3 +191,22 @@ fn the_pixel_and_colour_space_rules_read_ktx2_textures() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A texture with a PNG fallback and a KTX2 through KHR_texture_basisu is drawn from the KTX2,
+/// as viewers that support the extension draw it.
+#[test]
+fn a_texture_with_a_fallback_is_evaluated_from_its_ktx2() {
+    let dir = scratch("fallback");
+    let mut doc = read_json(&dir.join("etc1s.gltf"));
+    let images = doc["images"].as_array_mut().unwrap();
+    images.push(serde_json::json!({"uri": "base.png"}));
+    doc["textures"][0]["source"] = Value::from(images.len() - 1);
+    doc.as_object_mut().unwrap().remove("extensionsRequired");
+    let with_fallback = dir.join("with-fallback.gltf");
+    std::fs::write(&with_fallback, doc.to_string()).unwrap();
+    let pair = compare_json(&dir.join("etc1s.gltf"), &with_fallback);
+    assert_eq!(pair["max"], 0.0, "{pair}");
+    let pair = compare_json(&dir.join("png.gltf"), &with_fallback);
+    assert!(pair["p99"].as_f64().unwrap() > 1.0, "{pair}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -4,13 +4,26 @@
 
 use super::{unsigned, Json};
 
-/// Every image a texture may sample, in the order a viewer prefers them: `source`, then each
-/// extension's `source` (KHR_texture_basisu, EXT_texture_webp, …).
+/// Every image a texture may sample: `source`, then each extension's `source`
+/// (KHR_texture_basisu, EXT_texture_webp, …).
 pub fn texture_images<'a, J: Json<'a>>(texture: J) -> impl Iterator<Item = u64> + 'a {
     let extensions = (texture.get("extensions").into_iter()).flat_map(J::member_values);
     std::iter::once(texture)
         .chain(extensions)
         .filter_map(|holder| unsigned(holder, "source"))
+}
+
+/// The image-format extensions whose images gltfmat decodes, in the order it prefers them.
+const DRAWN_EXTENSIONS: [&str; 2] = ["KHR_texture_basisu", "EXT_texture_webp"];
+
+/// The image a viewer that supports KHR_texture_basisu and EXT_texture_webp draws for a
+/// texture: such an extension's `source` (the fallback `source` is for viewers without it),
+/// else `source`, else any other extension's.
+pub fn drawn_image<'a, J: Json<'a>>(texture: J) -> Option<u64> {
+    let extensions = texture.get("extensions");
+    let known =
+        (DRAWN_EXTENSIONS.iter()).find_map(|name| unsigned(extensions?.get(name)?, "source"));
+    known.or_else(|| texture_images(texture).next())
 }
 
 /// The KHR_texture_transform object of a textureInfo.

@@ -6,7 +6,7 @@ use super::html::{anchor_of, escape, png_data_uri};
 use crate::check::Report;
 use crate::document::uri::{load_uri, FolderResources, NoResources, ResourceLoader};
 use crate::document::{Container, Node};
-use crate::gltf::material::{texture_images, Channels, TEXTURE_SLOTS};
+use crate::gltf::material::{drawn_image, Channels, TEXTURE_SLOTS};
 use crate::shade::pairing::{render_each, Ball};
 use crate::shade::sample::{decode_each_at_most, Wanted};
 use serde_json::Value;
@@ -139,7 +139,7 @@ fn card(
         let texture_node = texture
             .and_then(|t| root.get("textures")?.as_array()?.get(t as usize))
             .map(Node::to_value);
-        let image = texture_node.as_ref().and_then(|t| texture_images(t).next());
+        let image = texture_node.as_ref().and_then(drawn_image);
         let (srgb, linear) = slot.reads(material);
         let space = match (srgb, linear) {
             (0, _) => format!("{} as data (linear)", channel_names(linear)),

@@ -14,7 +14,9 @@ use super::{Binary, EncodedImage, NoteKind, Notes, SpecularGlossiness, UpgradeEr
 use super::{UpgradeOptions, Upgraded};
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::{self, image_header, Bytes, Container};
-use crate::gltf::material::{combination, effective_texcoord, texture_images, texture_transform};
+use crate::gltf::material::{
+    combination, drawn_image, effective_texcoord, texture_images, texture_transform,
+};
 use crate::gltf::material::{Combination, SPEC_GLOSS, UNLIT};
 use crate::gltf::unsigned;
 use serde_json::{json, Map, Value};
@@ -561,7 +563,7 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
     }
 
     fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>> {
-        let image = texture_images(&self.texture(slot)?).next()?;
+        let image = drawn_image(&self.texture(slot)?)?;
         Some(self.asset.images.get(image as usize)?.bytes.clone())
     }
 

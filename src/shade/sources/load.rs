@@ -4,7 +4,7 @@ use super::sample::{self, MaterialSource, Texture};
 use super::surface;
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::{self, BufferData, Bytes, Container, Node};
-use crate::gltf::material::texture_images;
+use crate::gltf::material::drawn_image;
 use serde_json::Value;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -53,9 +53,9 @@ pub fn used_images(
         .collect()
 }
 
-/// A texture's image: the first it may sample (see [`texture_images`]).
+/// A texture's image: the one a viewer draws (see [`drawn_image`]).
 pub fn texture_source(texture: &Value) -> Option<u64> {
-    texture_images(texture).next()
+    drawn_image(texture)
 }
 
 /// An asset's materials by name, and the surface points of each (see [`gltf2_materials`]).
