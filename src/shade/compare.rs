@@ -206,23 +206,64 @@ pub fn delta_at(shader: &Shader, a: &Inputs, b: &Inputs, angles: &Angles) -> (f6
         .unwrap_or((0.0, BACKGROUNDS[0]))
 }
 
-/// The largest ΔE2000 between any of `sources` and `target` at one point, over the fixed
-/// direction pairs and the specular peak (the mirror direction of views from head-on to
-/// 75°, and just off it): what a fit of factors minimises. Without the peak a fit trades
-/// roughness for the fixed directions' figures and misses the highlight the proof's dense
-/// search then finds.
-pub fn worst_at_point(shader: &Shader, sources: &[Inputs], target: &Inputs) -> f64 {
-    let mut worst = 0f64;
-    for source in sources {
-        for angles in DIRECTIONS
-            .map(Angles::coarse)
-            .iter()
+/// The fixed direction pairs and the specular peak's (the mirror direction of views from
+/// head-on to 75°, and just off it), in lanes: what one point is judged in outside the grid.
+struct PointDirections {
+    angles: Vec<Angles>,
+    /// `angles` a lane each, the last repeated to fill the last group.
+    groups: Vec<Geometry<Lanes<DIRECTION_COUNT>>>,
+}
+
+fn point_directions() -> &'static PointDirections {
+    static SET: std::sync::OnceLock<PointDirections> = std::sync::OnceLock::new();
+    SET.get_or_init(|| {
+        let angles: Vec<Angles> = (DIRECTIONS.map(Angles::coarse).iter())
             .chain(refine::peak_angles())
-        {
-            worst = worst.max(delta_at(shader, source, target, angles).0);
+            .copied()
+            .collect();
+        let groups = (angles.chunks(DIRECTION_COUNT))
+            .map(|group| {
+                let lane = |i: usize| {
+                    let (v, l) = group[i.min(group.len() - 1)].vectors();
+                    Geometry::new(v, l)
+                };
+                Geometry::lanes(&std::array::from_fn(lane))
+            })
+            .collect();
+        PointDirections { angles, groups }
+    })
+}
+
+/// ΔE2000 between `a` and `b` in each of the [`point_directions`] (over the backgrounds that
+/// matter), as [`delta_at`] gives them one at a time, computed lane-wise.
+fn deltas_at_point(shader: &Shader, a: &Inputs, b: &Inputs) -> Vec<f64> {
+    let set = point_directions();
+    let (mut colours_a, mut colours_b) = ([[0.0; BATCH]; 6], [[0.0; BATCH]; 6]);
+    let mut deltas = Vec::with_capacity(set.groups.len() * DIRECTION_COUNT);
+    for batch in set.groups.chunks(BATCH_TEXELS) {
+        for (slot, geometry) in batch.iter().enumerate() {
+            let colours = |m: &Inputs| {
+                let Seen { own, through } = seen(shader, m, geometry);
+                [own[0], own[1], own[2], through[0], through[1], through[2]]
+            };
+            Batch::put(&mut colours_a, slot, colours(a));
+            Batch::put(&mut colours_b, slot, colours(b));
         }
+        let each = delta_e_of(&colours_a, &colours_b, translucent(a, b));
+        deltas.extend_from_slice(&each[..batch.len() * DIRECTION_COUNT]);
     }
-    worst
+    deltas.truncate(set.angles.len());
+    deltas
+}
+
+/// The largest ΔE2000 between any of `sources` and `target` at one point, over the fixed
+/// direction pairs and the specular peak: what a fit of factors minimises. Without the peak
+/// a fit trades roughness for the fixed directions' figures and misses the highlight the
+/// proof's dense search then finds.
+pub fn worst_at_point(shader: &Shader, sources: &[Inputs], target: &Inputs) -> f64 {
+    (sources.iter())
+        .flat_map(|source| deltas_at_point(shader, source, target))
+        .fold(0.0, f64::max)
 }
 
 /// Where two materials differ most at `points` on a mesh (each its UV per texCoord set): each
@@ -237,11 +278,13 @@ pub fn on_surface(
     result: &mut Comparison,
 ) {
     let mut best: Option<(f64, Angles, usize, Pair)> = None;
+    let angles = &point_directions().angles;
     for (i, point) in points.iter().enumerate() {
         let pair = (a.inputs_at(point), b.inputs_at(point));
-        let angles = DIRECTIONS.map(Angles::coarse);
-        for angles in angles.iter().chain(refine::peak_angles()) {
-            let (d, _) = delta_at(shader, &pair.0, &pair.1, angles);
+        for (d, angles) in deltas_at_point(shader, &pair.0, &pair.1)
+            .into_iter()
+            .zip(angles)
+        {
             if best.as_ref().is_none_or(|(worst, ..)| d > *worst) {
                 best = Some((d, *angles, i, pair.clone()));
             }
@@ -298,31 +341,37 @@ impl Batch {
         }
     }
 
-    /// ΔE2000 of every sample (over both backgrounds when the batch is translucent): one
-    /// scalar formula in a loop over independent samples, which the compiler turns into
-    /// vector code (its long dependency chains then overlap).
+    /// ΔE2000 of every sample (see [`delta_e_of`]).
     #[inline(always)]
     fn delta_e(&self) -> [f64; BATCH] {
-        let mut out = [0.0; BATCH];
-        let over = |colours: &[[f64; BATCH]; 6], i: usize, background: f64| -> V3 {
-            std::array::from_fn(|c| colours[c][i] + colours[c + 3][i] * background)
-        };
-        let backgrounds = if self.translucent {
-            &BACKGROUNDS[..]
-        } else {
-            &BACKGROUNDS[..1]
-        };
-        for &background in backgrounds {
-            for (i, delta) in out.iter_mut().enumerate() {
-                let d = ciede2000(
-                    lab_from_linear_srgb(displayed(over(&self.a, i, background))),
-                    lab_from_linear_srgb(displayed(over(&self.b, i, background))),
-                );
-                *delta = delta.max(d);
-            }
-        }
-        out
+        delta_e_of(&self.a, &self.b, self.translucent)
     }
+}
+
+/// ΔE2000 of every sample of two batches of colours (over both backgrounds when
+/// `translucent`): one scalar formula in a loop over independent samples, which the
+/// compiler turns into vector code (its long dependency chains then overlap).
+#[inline(always)]
+fn delta_e_of(a: &[[f64; BATCH]; 6], b: &[[f64; BATCH]; 6], translucent: bool) -> [f64; BATCH] {
+    let mut out = [0.0; BATCH];
+    let over = |colours: &[[f64; BATCH]; 6], i: usize, background: f64| -> V3 {
+        std::array::from_fn(|c| colours[c][i] + colours[c + 3][i] * background)
+    };
+    let backgrounds = if translucent {
+        &BACKGROUNDS[..]
+    } else {
+        &BACKGROUNDS[..1]
+    };
+    for &background in backgrounds {
+        for (i, delta) in out.iter_mut().enumerate() {
+            let d = ciede2000(
+                lab_from_linear_srgb(displayed(over(a, i, background))),
+                lab_from_linear_srgb(displayed(over(b, i, background))),
+            );
+            *delta = delta.max(d);
+        }
+    }
+    out
 }
 
 /// One comparison: the readings of the first material, the second material, the grid
