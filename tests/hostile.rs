@@ -81,6 +81,44 @@ fn asset_with_image(uri: String) -> Vec<u8> {
     .unwrap()
 }
 
+/// KTX2 files whose header claims what no texture of their size holds: a Zstandard level
+/// of a terabyte uncompressed (the transcoder would allocate it and abort the process), and
+/// a million array layers. Each is an undecodable image, at once.
+#[test]
+fn ktx2_bombs_are_reported_not_allocated() {
+    let fixture =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/ktx2/normal-uastc.ktx2");
+    let valid = std::fs::read(fixture).unwrap();
+    let claiming = |at: usize, value: &[u8]| {
+        let mut bytes = valid.clone();
+        bytes[at..at + value.len()].copy_from_slice(value);
+        bytes
+    };
+    let terabyte_level = claiming(80 + 16, &(1u64 << 40).to_le_bytes());
+    let million_layers = claiming(32, &1_000_000u32.to_le_bytes());
+    for (what, bytes) in [
+        ("terabyte level", terabyte_level),
+        ("million layers", million_layers),
+    ] {
+        let uri = format!(
+            "data:image/ktx2;base64,{}",
+            base64::engine::general_purpose::STANDARD.encode(bytes)
+        );
+        let start = std::time::Instant::now();
+        let report = check_bytes("bomb.gltf", asset_with_image(uri), &NoResources, &deep());
+        assert!(
+            codes(&report).contains(&"IMAGE_UNDECODABLE"),
+            "{what}: {:?}",
+            codes(&report)
+        );
+        assert!(
+            start.elapsed().as_secs() < 5,
+            "{what}: {:?}",
+            start.elapsed()
+        );
+    }
+}
+
 #[test]
 fn decompression_bombs_are_reported_not_decoded() {
     let uri = format!(

@@ -59,6 +59,7 @@ fn decode_ktx2(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
             "a KTX2 texture in Vulkan format {vk_format}, not Basis Universal"
         )));
     }
+    check_ktx2_sizes(bytes)?;
     let transcoder = Transcoder::new(bytes).map_err(|e| {
         DecodeError::Invalid(format!("not a readable Basis Universal KTX2 ({e:?})"))
     })?;
@@ -82,4 +83,39 @@ fn decode_ktx2(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
     image::RgbaImage::from_raw(width, height, texels)
         .map(DynamicImage::ImageRgba8)
         .ok_or_else(|| DecodeError::Invalid("its first level is smaller than its size".into()))
+}
+
+/// What a KTX2's header and first level entry claim, held to what glTF allows and its size
+/// can hold, before the transcoder allocates by them: a 2D texture (KHR_texture_basisu: "MUST
+/// be of 2D type"), and a Zstandard level no larger uncompressed than UASTC's 16 bytes per
+/// 4×4 block of its texels (what a valid one is exactly). A stranger's file claiming a
+/// terabyte is refused here, not allocated.
+fn check_ktx2_sizes(bytes: &[u8]) -> Result<(), DecodeError> {
+    let word = |at: usize| {
+        bytes
+            .get(at..at + 4)
+            .map(|b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])))
+            .ok_or_else(|| DecodeError::Invalid("its KTX2 header ends early".into()))
+    };
+    let long = |at: usize| Ok::<u64, DecodeError>(word(at)? | (word(at + 4)? << 32));
+    let (width, height) = (word(20)?, word(24)?);
+    let (depth, layers, faces) = (word(28)?, word(32)?, word(36)?);
+    if depth > 1 || layers > 1 || faces != 1 {
+        return Err(DecodeError::Invalid(format!(
+            "a KTX2 texture of {}×{} layers and {faces} faces is not the 2D texture KHR_texture_basisu requires",
+            depth.max(1),
+            layers.max(1)
+        )));
+    }
+    const ZSTANDARD: u64 = 2;
+    if word(44)? == ZSTANDARD {
+        let claimed = long(80 + 16)?;
+        let most = width.div_ceil(4) * height.div_ceil(4) * 16;
+        if claimed > most {
+            return Err(DecodeError::Invalid(format!(
+                "its first level claims {claimed} bytes uncompressed, more than the {most} its {width}×{height} texels hold"
+            )));
+        }
+    }
+    Ok(())
 }

@@ -248,23 +248,31 @@ fn mutate_structure(rng: &mut Rng, input: &[u8]) -> Option<Vec<u8>> {
         .filter(|text| text.len() <= 16 << 20)
 }
 
-/// Image bytes become a one-texture glTF, so mutated images reach the decoders.
+/// Image bytes become a one-texture glTF, so mutated images reach the decoders (a KTX2
+/// through KHR_texture_basisu).
 fn as_asset(input: &[u8]) -> Vec<u8> {
-    let is_image = input.starts_with(b"\x89PNG")
+    let ktx2 = input.starts_with(b"\xABKTX 20");
+    let is_image = ktx2
+        || input.starts_with(b"\x89PNG")
         || input.starts_with(&[0xFF, 0xD8])
         || input.starts_with(b"RIFF");
     if !is_image {
         return input.to_vec();
     }
     let uri = format!(
-        "data:image/png;base64,{}",
+        "data:image/{};base64,{}",
+        if ktx2 { "ktx2" } else { "png" },
         base64::engine::general_purpose::STANDARD.encode(input)
     );
+    let texture = match ktx2 {
+        true => serde_json::json!({"extensions": {"KHR_texture_basisu": {"source": 0}}}),
+        false => serde_json::json!({"source": 0}),
+    };
     serde_json::to_vec(&serde_json::json!({
-        "asset": {"version": "2.0"}, "images": [{"uri": uri}], "textures": [{"source": 0}],
+        "asset": {"version": "2.0"}, "images": [{"uri": uri}], "textures": [texture],
         "materials": [{"normalTexture": {"index": 0}, "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0},
             "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenRoughnessFactor": 0.5, "sheenRoughnessTexture": {"index": 0}}}}],
-        "extensionsUsed": ["KHR_materials_sheen"]
+        "extensionsUsed": ["KHR_materials_sheen", "KHR_texture_basisu"]
     }))
     .unwrap_or_default()
 }
