@@ -415,7 +415,12 @@ fn decoded_size(bytes: &[u8], finest: u32) -> u64 {
     let Ok(info) = crate::document::image_header::read(bytes) else {
         return 0;
     };
-    let per_texel = match info.channels {
+    // A KTX2 is transcoded to 8-bit RGBA whatever channels it holds.
+    let channels = match info.format {
+        crate::document::image_header::ImageFormat::Ktx2 => Channels::Rgba,
+        _ => info.channels,
+    };
+    let per_texel = match channels {
         Channels::Luminance => 1,
         Channels::LuminanceAlpha => 2,
         Channels::Rgb => 3,
@@ -1435,6 +1440,19 @@ fn legacy_inputs(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The decode budget counts a KTX2 as what it is transcoded to (8-bit RGBA), not as the
+    /// RGB its descriptor declares.
+    #[test]
+    fn a_ktx2_is_budgeted_as_the_rgba_it_decodes_to() {
+        let rgb = include_bytes!("../../../fixtures/ktx2/base-uastc.ktx2");
+        assert_eq!(decoded_size(rgb, 1024), 64 * 64 * 4);
+        let texture = decode(rgb).unwrap();
+        assert_eq!(
+            (texture.width(), texture.height(), texture.channels),
+            (64, 64, 4)
+        );
+    }
 
     /// `image` encoded as a PNG.
     fn png_of(image: image::DynamicImage) -> Vec<u8> {
