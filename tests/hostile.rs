@@ -119,6 +119,35 @@ fn ktx2_bombs_are_reported_not_allocated() {
     }
 }
 
+/// Every byte of a KTX2's data format descriptor block set to 255 in turn (the fuzzer found
+/// a texel block dimension of 255 panicking a descriptor parser): the header is still read,
+/// with or without --deep, and nothing panics.
+#[test]
+fn every_descriptor_byte_at_its_extreme_is_read_without_panic() {
+    let fixture =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/ktx2/normal-uastc.ktx2");
+    let valid = std::fs::read(fixture).unwrap();
+    let descriptor = u32::from_le_bytes(valid[48..52].try_into().unwrap()) as usize;
+    for at in descriptor..descriptor + 44 {
+        for value in [0u8, 255] {
+            let mut bytes = valid.clone();
+            bytes[at] = value;
+            let uri = format!(
+                "data:image/ktx2;base64,{}",
+                base64::engine::general_purpose::STANDARD.encode(bytes)
+            );
+            for options in [deep(), CheckOptions::default()] {
+                let _ = check_bytes(
+                    "dfd.gltf",
+                    asset_with_image(uri.clone()),
+                    &NoResources,
+                    &options,
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn decompression_bombs_are_reported_not_decoded() {
     let uri = format!(

@@ -339,61 +339,71 @@ fn webp(b: &[u8]) -> Result<ImageInfo, HeaderError> {
     Ok(info)
 }
 
-/// A KTX2 header: its size, and from its data format descriptor (when the container is whole)
-/// the channels a texel holds and the transfer function, which a viewer applies as it samples
+/// A KTX2 header: its size, and from its data format descriptor (when it can be read) the
+/// channels a texel holds and the transfer function, which a viewer applies as it samples
 /// (an sRGB KTX2 is decoded to linear by the GPU, whatever slot it is bound to).
 fn ktx2(b: &[u8]) -> Result<ImageInfo, HeaderError> {
     let (width, height) = (le32(b, 20)?, le32(b, 24)?);
-    let descriptor = ktx2::Reader::new(b)
-        .ok()
-        .and_then(|reader| reader.basic_dfd().cloned());
-    let Some(descriptor) = descriptor else {
-        return Ok(ImageInfo::plain(
-            ImageFormat::Ktx2,
-            width,
-            height,
-            Channels::Unknown,
-            8,
-        ));
-    };
-    let mut info = ImageInfo::plain(
-        ImageFormat::Ktx2,
-        width,
-        height,
-        ktx2_channels(&descriptor),
-        8,
-    );
-    info.transfer = match descriptor.transfer_function {
-        Some(ktx2::TransferFunction::SRGB) => Some(Transfer::Srgb),
-        Some(ktx2::TransferFunction::Linear) => Some(Transfer::Linear),
-        _ => None,
-    };
+    let mut info = ImageInfo::plain(ImageFormat::Ktx2, width, height, Channels::Unknown, 8);
+    if let Some(descriptor) = ktx2_descriptor(b) {
+        info.channels = ktx2_channels(descriptor.model, &descriptor.channel_ids);
+        info.transfer = match descriptor.transfer {
+            KHR_DF_TRANSFER_SRGB => Some(Transfer::Srgb),
+            KHR_DF_TRANSFER_LINEAR => Some(Transfer::Linear),
+            _ => None,
+        };
+    }
     Ok(info)
 }
 
-/// The channels of a KTX2 texel as decoded to RGBA, from the descriptor's samples: their
-/// channel ids per colour model (KTX 2.0 specification, "Basis Universal" DFD sections; the
-/// Khronos Data Format specification for RGBSDA).
-fn ktx2_channels(descriptor: &ktx2::dfd::Basic) -> Channels {
-    use ktx2::ColorModel;
-    let ids: Vec<u8> = (descriptor.sample_information.iter())
-        .map(|sample| sample.channel_type)
-        .collect();
-    match (descriptor.color_model, ids.as_slice()) {
+const KHR_DF_TRANSFER_LINEAR: u8 = 1;
+const KHR_DF_TRANSFER_SRGB: u8 = 2;
+const KHR_DF_MODEL_RGBSDA: u8 = 1;
+const KHR_DF_MODEL_ETC1S: u8 = 163;
+const KHR_DF_MODEL_UASTC: u8 = 166;
+
+/// What gltfmat reads of a KTX2's basic data format descriptor block.
+struct Descriptor {
+    model: u8,
+    transfer: u8,
+    /// Each sample's channel id (its channelType without the qualifier bits).
+    channel_ids: Vec<u8>,
+}
+
+/// The first descriptor block (KTX 2.0 §3.10 and the Khronos Data Format specification's
+/// basic block: model, primaries, transfer and flags at byte 8 of the block, then 16-byte
+/// samples from byte 24, their channel type at byte 3), or None where the file does not hold
+/// one within its bytes.
+fn ktx2_descriptor(b: &[u8]) -> Option<Descriptor> {
+    let offset = le32(b, 48).ok()? as usize;
+    let block = b.get(offset.checked_add(4)?..)?;
+    let size = usize::from(u16::from_le_bytes([*block.get(6)?, *block.get(7)?]));
+    let block = block.get(..size)?;
+    let samples = block.get(24..)?.chunks_exact(16);
+    Some(Descriptor {
+        model: *block.get(8)?,
+        transfer: *block.get(10)?,
+        channel_ids: samples.map(|sample| sample[3] & 0x0F).collect(),
+    })
+}
+
+/// The channels of a KTX2 texel as decoded to RGBA, from the descriptor's channel ids per
+/// colour model (KHR_texture_basisu's layouts; RGBSDA's R, G, B, A for plain formats).
+fn ktx2_channels(model: u8, ids: &[u8]) -> Channels {
+    match (model, ids) {
         // ETC1S: one slice of RGB (0) or RRR (3), and an optional second of AAA (15) or GGG (4),
         // which the transcoder puts in alpha.
-        (Some(ColorModel::ETC1S), [0]) => Channels::Rgb,
-        (Some(ColorModel::ETC1S), [0, 15]) => Channels::Rgba,
-        (Some(ColorModel::ETC1S), [3]) => Channels::Luminance,
-        (Some(ColorModel::ETC1S), [3, 4 | 15]) => Channels::LuminanceAlpha,
+        (KHR_DF_MODEL_ETC1S, [0]) => Channels::Rgb,
+        (KHR_DF_MODEL_ETC1S, [0, 15]) => Channels::Rgba,
+        (KHR_DF_MODEL_ETC1S, [3]) => Channels::Luminance,
+        (KHR_DF_MODEL_ETC1S, [3, 4 | 15]) => Channels::LuminanceAlpha,
         // UASTC: one sample, RGB (0), RGBA (3), RRR (4), RRRG (5).
-        (Some(ColorModel::UASTC), [0]) => Channels::Rgb,
-        (Some(ColorModel::UASTC), [3]) => Channels::Rgba,
-        (Some(ColorModel::UASTC), [4]) => Channels::Luminance,
-        (Some(ColorModel::UASTC), [5]) => Channels::LuminanceAlpha,
-        // Uncompressed: R (0), G (1), B (2), A (15) samples.
-        (Some(ColorModel::RGBSDA), [0, 1, 2]) => Channels::Rgb,
-        (Some(ColorModel::RGBSDA), [0, 1, 2, 15]) => Channels::Rgba,
+        (KHR_DF_MODEL_UASTC, [0]) => Channels::Rgb,
+        (KHR_DF_MODEL_UASTC, [3]) => Channels::Rgba,
+        (KHR_DF_MODEL_UASTC, [4]) => Channels::Luminance,
+        (KHR_DF_MODEL_UASTC, [5]) => Channels::LuminanceAlpha,
+        (KHR_DF_MODEL_RGBSDA, [0, 1, 2]) => Channels::Rgb,
+        (KHR_DF_MODEL_RGBSDA, [0, 1, 2, 15]) => Channels::Rgba,
         _ => Channels::Unknown,
     }
 }
