@@ -113,11 +113,22 @@ fn ktx2_images(files: &[Vec<u8>]) -> Value {
     let images: Vec<Value> = (0..files.len())
         .map(|i| json!({"bufferView": first_view + i, "mimeType": "image/ktx2"}))
         .collect();
+    // Sampled without mipmaps (minFilter LINEAR): each case is about its own rule, and a
+    // one-level KTX2 under a mipmap filter is KTX2_MIPMAPS_MISSING's.
     let textures: Vec<Value> = (0..files.len())
-        .map(|i| json!({"extensions": {"KHR_texture_basisu": {"source": i}}}))
+        .map(|i| json!({"sampler": 0, "extensions": {"KHR_texture_basisu": {"source": i}}}))
         .collect();
     json!({"meshes": full["meshes"], "accessors": full["accessors"], "bufferViews": views, "buffers": buffers,
-        "images": images, "textures": textures, "extensionsUsed": ["KHR_texture_basisu"]})
+        "images": images, "textures": textures, "samplers": [{"minFilter": 9729}],
+        "extensionsUsed": ["KHR_texture_basisu"]})
+}
+
+/// The plain 4×4 KTX2 of the common helpers, claiming `width` × `height` texels.
+fn ktx2_sized(width: u32, height: u32) -> Vec<u8> {
+    let mut bytes = common::ktx2();
+    bytes[20..24].copy_from_slice(&width.to_le_bytes());
+    bytes[24..28].copy_from_slice(&height.to_le_bytes());
+    bytes
 }
 
 /// A KTX2 fixture whose level data ends early (its header and index intact).
@@ -690,6 +701,19 @@ fn cases() -> Vec<Case> {
         case("a KTX2 base colour declared linear", material(json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "normalTexture": {"index": 1}})), vec![])
             .patch(ktx2_fixtures(&["normal-uastc.ktx2", "normal-uastc.ktx2"]))
             .expect("KTX2_TRANSFER_MISMATCH", &at("/pbrMetallicRoughness/baseColorTexture")),
+        case("a one-level KTX2 minified through mipmaps", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_image()).patch(json!({"samplers": [{"minFilter": 9987}]}))
+            .expect("KTX2_MIPMAPS_MISSING", "/textures/0"),
+        case("a one-level KTX2 with no sampler", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_image()).patch(json!({"textures": [{"extensions": {"KHR_texture_basisu": {"source": 0}}}], "samplers": null}))
+            .expect("KTX2_MIPMAPS_MISSING", "/textures/0"),
+        near_miss("KTX2_MIPMAPS_MISSING", "a KTX2 with its full mip chain, minified through mipmaps", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_fixtures(&["normal-uastc.ktx2"])).patch(json!({"samplers": [{"minFilter": 9987}]})),
+        case("a KTX2 of 6×4 texels", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_images(&[ktx2_sized(6, 4)]))
+            .expect("KTX2_DIMENSIONS_NOT_MULTIPLE_OF_4", "/images/0"),
+        near_miss("KTX2_DIMENSIONS_NOT_MULTIPLE_OF_4", "a KTX2 of 8×4 texels", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_images(&[ktx2_sized(8, 4)])),
         near_miss("KTX2_TRANSFER_MISMATCH", "an sRGB KTX2 base colour and a linear KTX2 normal map",
             material(json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "normalTexture": {"index": 1}})), vec![])
             .patch(ktx2_fixtures(&["base-uastc.ktx2", "normal-uastc.ktx2"])),

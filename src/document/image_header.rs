@@ -80,6 +80,9 @@ pub struct ImageInfo {
     pub custom_primaries: bool,
     /// PNG pHYs with different horizontal and vertical densities.
     pub non_square_pixels: bool,
+    /// Mip levels stored: a KTX2's levelCount (0: "the loader generates them"), 1 for other
+    /// formats.
+    pub levels: u32,
 }
 
 impl ImageInfo {
@@ -95,7 +98,13 @@ impl ImageInfo {
             animated: false,
             custom_primaries: false,
             non_square_pixels: false,
+            levels: 1,
         }
+    }
+
+    /// Whether every mip level down to 1×1 is stored.
+    pub fn has_full_mip_chain(&self) -> bool {
+        self.levels >= 32 - self.width.max(self.height).max(1).leading_zeros()
     }
 
     /// What the Khronos validator calls unsupported features: custom colour information,
@@ -345,6 +354,7 @@ fn webp(b: &[u8]) -> Result<ImageInfo, HeaderError> {
 fn ktx2(b: &[u8]) -> Result<ImageInfo, HeaderError> {
     let (width, height) = (le32(b, 20)?, le32(b, 24)?);
     let mut info = ImageInfo::plain(ImageFormat::Ktx2, width, height, Channels::Unknown, 8);
+    info.levels = le32(b, 40).unwrap_or(0);
     if let Some(descriptor) = ktx2_descriptor(b) {
         info.channels = ktx2_channels(descriptor.model, &descriptor.channel_ids);
         info.transfer = match descriptor.transfer {

@@ -16,6 +16,8 @@ mod duplicate_key;
 pub mod exclusion;
 pub mod gltf1;
 mod greyscale_packed;
+mod ktx2_dimensions;
+mod ktx2_mipmaps;
 mod ktx2_transfer;
 mod layer_disabled;
 mod linear_in_srgb;
@@ -182,6 +184,8 @@ pub static RULES: &[&Rule] = &[
     &linear_in_srgb::RULE,
     &srgb_in_linear::RULE,
     &ktx2_transfer::RULE,
+    &ktx2_dimensions::RULE,
+    &ktx2_mipmaps::RULE,
     &sheen_disabled::RULE,
     &sheen_zero_roughness::RULE,
     &anisotropy_zero_strength::RULE,
