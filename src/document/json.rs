@@ -7,7 +7,7 @@
 //! The same scanner reports duplicate object keys, which serde_json silently collapses.
 
 use std::borrow::Cow;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::hash::BuildHasher;
 
 /// A JSON syntax error with its 1-based position.
@@ -63,18 +63,6 @@ fn offset_of(bytes: &[u8], line: usize, column: usize) -> usize {
     (start + column.saturating_sub(1)).min(bytes.len())
 }
 
-/// Splits an RFC 6901 pointer into unescaped tokens.
-pub fn pointer_tokens(pointer: &str) -> Vec<String> {
-    if pointer.is_empty() || pointer == "/" {
-        return Vec::new();
-    }
-    pointer
-        .trim_start_matches('/')
-        .split('/')
-        .map(|token| unescape_token(token).into_owned())
-        .collect()
-}
-
 /// Unescapes one token of a JSON pointer (borrowed when it has no escape: a pointer is
 /// resolved on every lookup).
 pub fn unescape_token(token: &str) -> Cow<'_, str> {
@@ -103,43 +91,45 @@ pub fn locate_all<'p>(
     text: &[u8],
     pointers: impl IntoIterator<Item = &'p str>,
 ) -> HashMap<&'p str, std::ops::Range<usize>> {
-    let mut trie = vec![TrieNode::default()];
-    // Each pointer once: a thousand findings at one place are one place to find.
-    let unique: std::collections::HashSet<&str> = pointers.into_iter().collect();
-    for pointer in unique {
-        let mut at = 0;
-        for token in pointer_tokens(pointer) {
-            let next = trie.len();
-            at = match trie[at].members.get(&token) {
-                Some(&child) => child,
-                None => {
-                    trie.push(TrieNode::default());
-                    if let Ok(index) = token.parse::<usize>() {
-                        trie[at].elements.insert(index, next);
-                    }
-                    trie[at].members.insert(token, next);
-                    next
-                }
-            };
-        }
-        trie[at].ends.push(pointer);
+    // Each pointer once (a thousand findings at one place are one place to find), and the
+    // paths the walk goes through: every pointer's prefixes up to a '/', slices of the
+    // pointers themselves, so that 10^6 pointers cost two sets of slices, nothing copied.
+    let ends: HashSet<&str> = pointers.into_iter().collect();
+    let mut through: HashSet<&str> = HashSet::new();
+    for pointer in &ends {
+        let inner = pointer
+            .match_indices('/')
+            .map(|(i, _)| i)
+            .filter(|&i| i > 0);
+        through.extend(inner.map(|i| &pointer[..i]));
     }
+    let wanted = Wanted { ends, through };
     let mut found = HashMap::new();
     let mut scanner = Scanner { text, pos: 0 };
     scanner.skip_ws();
     let start = scanner.pos;
     // Malformed text ends the walk; what was found before stays found.
-    let _ = scanner.locate_in(&trie, 0, start, &mut found);
+    let mut path = String::new();
+    let _ = scanner.locate_in(&wanted, &mut path, start, &mut found);
     found
 }
 
-/// A step of the pointers being located: the members and elements they go on through, and
-/// the pointers that end here.
-#[derive(Default)]
-struct TrieNode<'p> {
-    members: HashMap<String, usize>,
-    elements: HashMap<usize, usize>,
-    ends: Vec<&'p str>,
+/// The pointers being located, and the paths leading to them.
+struct Wanted<'p> {
+    ends: HashSet<&'p str>,
+    through: HashSet<&'p str>,
+}
+
+impl Wanted<'_> {
+    /// Whether the walk goes into the value at `path`.
+    fn enters(&self, path: &str) -> bool {
+        self.through.contains(path) || self.ends.contains(path)
+    }
+
+    /// Whether something lies below the value at `path` (the document at "").
+    fn goes_below(&self, path: &str) -> bool {
+        path.is_empty() || self.through.contains(path)
+    }
 }
 
 /// 1-based line and column of byte offsets in one text, from an index built once: line
@@ -465,16 +455,16 @@ impl<'a> Scanner<'a> {
     /// along the pointers' tokens, so its depth is that of the deepest pointer.
     fn locate_in<'p>(
         &mut self,
-        trie: &[TrieNode<'p>],
-        node: usize,
+        wanted: &Wanted<'p>,
+        path: &mut String,
         found_start: usize,
         found: &mut HashMap<&'p str, std::ops::Range<usize>>,
     ) -> Option<()> {
         self.skip_ws();
         let value_start = self.pos;
-        let step = &trie[node];
+        let below = wanted.goes_below(path);
         match self.peek()? {
-            b'{' if !step.members.is_empty() => {
+            b'{' if below => {
                 self.pos += 1;
                 loop {
                     self.skip_ws();
@@ -489,34 +479,40 @@ impl<'a> Scanner<'a> {
                                 return None;
                             }
                             self.pos += 1;
-                            match step.members.get(name.as_ref()) {
-                                Some(&child) => self.locate_in(trie, child, key_start, found)?,
-                                None => {
-                                    self.skip_ws();
-                                    self.skip_value()?;
-                                }
+                            let length = path.len();
+                            path.push('/');
+                            path.push_str(&escape_token(&name));
+                            if wanted.enters(path) {
+                                self.locate_in(wanted, path, key_start, found)?;
+                            } else {
+                                self.skip_ws();
+                                self.skip_value()?;
                             }
+                            path.truncate(length);
                         }
                         _ => return None,
                     }
                 }
                 self.pos += 1;
             }
-            b'[' if !step.elements.is_empty() => {
+            b'[' if below => {
                 self.pos += 1;
-                let mut index = 0;
+                let mut index = 0usize;
                 loop {
                     self.skip_ws();
                     if self.peek()? == b']' {
                         break;
                     }
-                    match step.elements.get(&index) {
-                        Some(&child) => {
-                            let at = self.pos;
-                            self.locate_in(trie, child, at, found)?
-                        }
-                        None => self.skip_value()?,
+                    let length = path.len();
+                    path.push('/');
+                    path.push_str(&index.to_string());
+                    if wanted.enters(path) {
+                        let at = self.pos;
+                        self.locate_in(wanted, path, at, found)?;
+                    } else {
+                        self.skip_value()?;
                     }
+                    path.truncate(length);
                     self.skip_ws();
                     match self.peek()? {
                         b',' => {
@@ -531,8 +527,12 @@ impl<'a> Scanner<'a> {
             }
             _ => self.skip_value()?,
         }
-        for pointer in &step.ends {
-            found.insert(pointer, found_start.min(value_start)..self.pos);
+        let root = path.is_empty();
+        let ends = [path.as_str(), if root { "/" } else { "" }];
+        for candidate in ends.into_iter().filter(|c| root || !c.is_empty()) {
+            if let Some(&pointer) = wanted.ends.get(candidate) {
+                found.insert(pointer, found_start.min(value_start)..self.pos);
+            }
         }
         Some(())
     }
@@ -583,6 +583,22 @@ mod tests {
             assert!(alone.is_some(), "{pointer}");
         }
         assert_eq!(&TEXT[all["/asset/version"].clone()], br#""version": "2.0""#);
+    }
+
+    /// Keys holding '/' and '~' are reached through their escaped tokens (RFC 6901), and a
+    /// pointer through a key nothing has is found nowhere, not at a neighbour.
+    #[test]
+    fn escaped_keys_are_located_and_absent_ones_are_not() {
+        let text = br#"{"a/b": {"~x": [7, 8]}, "ab": 1}"#;
+        assert_eq!(&text[locate(text, "/a~1b/~0x/1").unwrap()], b"8");
+        assert_eq!(
+            &text[locate(text, "/a~1b").unwrap()],
+            br#""a/b": {"~x": [7, 8]}"#
+        );
+        for absent in ["/a/b", "/a~1b/~x", "/a~1b/~0x/2", "/ab/0"] {
+            assert_eq!(locate(text, absent), None, "{absent}");
+        }
+        assert_eq!(locate(text, "/").map(|r| r.start), Some(0));
     }
 
     #[test]

@@ -264,8 +264,10 @@ fn github(report: &Report, options: &Style, out: &mut dyn Write) -> std::io::Res
     };
     let mut listed: Vec<&Diagnostic> = report.diagnostics.iter().filter(shown).collect();
     listed.sort_by_key(|d| d.severity);
-    let positions = Positions::of_those(report, |d| shown(&d));
-    for d in listed.iter().take(GITHUB_ANNOTATIONS_PER_FILE) {
+    // Only the annotated findings are located: 10^5 listed ones are counted, not placed.
+    let annotated = &listed[..listed.len().min(GITHUB_ANNOTATIONS_PER_FILE)];
+    let positions = Positions::of_those(report, |d| annotated.iter().any(|a| std::ptr::eq(*a, d)));
+    for d in annotated {
         out.write_all(github_line(report, &positions, d).as_bytes())?;
     }
     let rest = listed.len().saturating_sub(GITHUB_ANNOTATIONS_PER_FILE);

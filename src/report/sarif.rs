@@ -151,11 +151,11 @@ impl<R: Borrow<Report>, I: Iterator<Item = R>> serde::Serialize for Results<'_, 
             let artifact = self.1.artifact(&report.uri);
             // How many times each (code, place, message) came before: two distinct findings of
             // one code at one pointer get distinct fingerprints, the same run after run.
-            let mut seen: std::collections::HashMap<(&str, String, &str), usize> =
+            let mut seen: std::collections::HashMap<(&str, &Location, &str), usize> =
                 Default::default();
             for d in &report.diagnostics {
                 let occurrence = seen
-                    .entry((d.code.name(), place(d), &d.message))
+                    .entry((d.code.name(), &d.location, &d.message))
                     .or_default();
                 let found = result(report, &positions, &artifact, d, *occurrence);
                 *occurrence += 1;
