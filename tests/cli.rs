@@ -1,22 +1,10 @@
 //! The `gltfmat` binary, end to end, on the bundled fixtures.
 
 mod common;
+use common::gltfmat;
 
 use std::path::Path;
 use std::process::Command;
-
-fn gltfmat(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("gltfmat runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-    )
-}
 
 #[test]
 fn a_valid_asset_passes_in_both_containers() {

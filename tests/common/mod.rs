@@ -3,6 +3,20 @@
 
 use std::path::{Path, PathBuf};
 
+/// Runs the gltfmat binary from the repository root (no colour): its exit code and stdout.
+pub fn gltfmat(args: &[&str]) -> (i32, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("gltfmat runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+    )
+}
+
 /// CRC-32 (ISO-HDLC), as PNG chunks need.
 pub fn crc32(bytes: &[u8]) -> u32 {
     let mut crc = !0u32;
