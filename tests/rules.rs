@@ -123,11 +123,12 @@ fn ktx2_images(files: &[Vec<u8>]) -> Value {
         "extensionsUsed": ["KHR_texture_basisu"]})
 }
 
-/// The plain 4×4 KTX2 of the common helpers, claiming `width` × `height` texels.
-fn ktx2_sized(width: u32, height: u32) -> Vec<u8> {
-    let mut bytes = common::ktx2();
-    bytes[20..24].copy_from_slice(&width.to_le_bytes());
-    bytes[24..28].copy_from_slice(&height.to_le_bytes());
+/// A KTX2 fixture whose header word at `at` claims `value` (levelCount at 40, pixelWidth
+/// at 20): header rules judge what the header says.
+fn fixture_claiming(file: &str, at: usize, value: u32) -> Vec<u8> {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/ktx2");
+    let mut bytes = std::fs::read(folder.join(file)).unwrap();
+    bytes[at..at + 4].copy_from_slice(&value.to_le_bytes());
     bytes
 }
 
@@ -686,7 +687,11 @@ fn cases() -> Vec<Case> {
         near_miss("IMAGE_UNDECODABLE", "damaged PNG data without --deep", material(json!({"normalTexture": {"index": 0}})), vec![corrupt_png()]).patch(with_tangents()),
         case("a KTX2 normal map in a plain Vulkan format, which gltfmat does not transcode", material(json!({"normalTexture": {"index": 0}})), vec![])
             .patch(ktx2_image()).deep()
-            .expect("IMAGE_NOT_DECODED", "/images/0"),
+            .expect("IMAGE_NOT_DECODED", "/images/0")
+            .expect("KTX2_LAYOUT_INVALID", "/images/0"),
+        near_miss("KTX2_LAYOUT_INVALID", "a UASTC (Zstandard) and an ETC1S (BasisLZ) KTX2, each 2D with an allowed channel layout",
+            material(json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "normalTexture": {"index": 1}})), vec![])
+            .patch(ktx2_fixtures(&["base-etc1s.ktx2", "normal-uastc.ktx2"])),
         near_miss("IMAGE_NOT_DECODED", "a Basis Universal (UASTC) KTX2 normal map, transcoded", material(json!({"normalTexture": {"index": 0}})), vec![])
             .patch(ktx2_fixtures(&["normal-uastc.ktx2"])).deep(),
         case("a KTX2 normal map whose texels point into the surface, read through ETC1S", material(json!({"normalTexture": {"index": 0}})), vec![])
@@ -702,18 +707,19 @@ fn cases() -> Vec<Case> {
             .patch(ktx2_fixtures(&["normal-uastc.ktx2", "normal-uastc.ktx2"]))
             .expect("KTX2_TRANSFER_MISMATCH", &at("/pbrMetallicRoughness/baseColorTexture")),
         case("a one-level KTX2 minified through mipmaps", material(json!({"normalTexture": {"index": 0}})), vec![])
-            .patch(ktx2_image()).patch(json!({"samplers": [{"minFilter": 9987}]}))
+            .patch(ktx2_images(&[fixture_claiming("normal-uastc.ktx2", 40, 1)])).patch(json!({"samplers": [{"minFilter": 9987}]}))
             .expect("KTX2_MIPMAPS_MISSING", "/textures/0"),
         case("a one-level KTX2 with no sampler", material(json!({"normalTexture": {"index": 0}})), vec![])
-            .patch(ktx2_image()).patch(json!({"textures": [{"extensions": {"KHR_texture_basisu": {"source": 0}}}], "samplers": null}))
+            .patch(ktx2_images(&[fixture_claiming("normal-uastc.ktx2", 40, 1)]))
+            .patch(json!({"textures": [{"extensions": {"KHR_texture_basisu": {"source": 0}}}], "samplers": null}))
             .expect("KTX2_MIPMAPS_MISSING", "/textures/0"),
         near_miss("KTX2_MIPMAPS_MISSING", "a KTX2 with its full mip chain, minified through mipmaps", material(json!({"normalTexture": {"index": 0}})), vec![])
             .patch(ktx2_fixtures(&["normal-uastc.ktx2"])).patch(json!({"samplers": [{"minFilter": 9987}]})),
-        case("a KTX2 of 6×4 texels", material(json!({"normalTexture": {"index": 0}})), vec![])
-            .patch(ktx2_images(&[ktx2_sized(6, 4)]))
+        case("a KTX2 of 6 texels' width", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_images(&[fixture_claiming("normal-uastc.ktx2", 20, 6)]))
             .expect("KTX2_DIMENSIONS_NOT_MULTIPLE_OF_4", "/images/0"),
-        near_miss("KTX2_DIMENSIONS_NOT_MULTIPLE_OF_4", "a KTX2 of 8×4 texels", material(json!({"normalTexture": {"index": 0}})), vec![])
-            .patch(ktx2_images(&[ktx2_sized(8, 4)])),
+        near_miss("KTX2_DIMENSIONS_NOT_MULTIPLE_OF_4", "a KTX2 of 8 texels' width", material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_images(&[fixture_claiming("normal-uastc.ktx2", 20, 8)])),
         near_miss("KTX2_TRANSFER_MISMATCH", "an sRGB KTX2 base colour and a linear KTX2 normal map",
             material(json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "normalTexture": {"index": 1}})), vec![])
             .patch(ktx2_fixtures(&["base-uastc.ktx2", "normal-uastc.ktx2"])),

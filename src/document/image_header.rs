@@ -83,6 +83,24 @@ pub struct ImageInfo {
     /// Mip levels stored: a KTX2's levelCount (0: "the loader generates them"), 1 for other
     /// formats.
     pub levels: u32,
+    /// A KTX2's container fields that KHR_texture_basisu constrains.
+    pub ktx2: Option<Ktx2Layout>,
+}
+
+/// What a KTX2 header and data format descriptor say of its layout.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ktx2Layout {
+    /// vkFormat: 0 (undefined) for Basis Universal.
+    pub vk_format: u32,
+    /// supercompressionScheme: 1 BasisLZ, 2 Zstandard, 0 none.
+    pub supercompression: u32,
+    /// pixelDepth, layerCount, faceCount.
+    pub depth: u32,
+    pub layers: u32,
+    pub faces: u32,
+    /// The descriptor's colour model and each sample's channel id, when it could be read.
+    pub model: Option<u8>,
+    pub channel_ids: Vec<u8>,
 }
 
 impl ImageInfo {
@@ -99,6 +117,7 @@ impl ImageInfo {
             custom_primaries: false,
             non_square_pixels: false,
             levels: 1,
+            ktx2: None,
         }
     }
 
@@ -355,6 +374,16 @@ fn ktx2(b: &[u8]) -> Result<ImageInfo, HeaderError> {
     let (width, height) = (le32(b, 20)?, le32(b, 24)?);
     let mut info = ImageInfo::plain(ImageFormat::Ktx2, width, height, Channels::Unknown, 8);
     info.levels = le32(b, 40).unwrap_or(0);
+    let word = |at| le32(b, at).unwrap_or(0);
+    let mut layout = Ktx2Layout {
+        vk_format: word(12),
+        supercompression: word(44),
+        depth: word(28),
+        layers: word(32),
+        faces: word(36),
+        model: None,
+        channel_ids: Vec::new(),
+    };
     if let Some(descriptor) = ktx2_descriptor(b) {
         info.channels = ktx2_channels(descriptor.model, &descriptor.channel_ids);
         info.transfer = match descriptor.transfer {
@@ -362,15 +391,18 @@ fn ktx2(b: &[u8]) -> Result<ImageInfo, HeaderError> {
             KHR_DF_TRANSFER_LINEAR => Some(Transfer::Linear),
             _ => None,
         };
+        layout.model = Some(descriptor.model);
+        layout.channel_ids = descriptor.channel_ids;
     }
+    info.ktx2 = Some(layout);
     Ok(info)
 }
 
 const KHR_DF_TRANSFER_LINEAR: u8 = 1;
 const KHR_DF_TRANSFER_SRGB: u8 = 2;
 const KHR_DF_MODEL_RGBSDA: u8 = 1;
-const KHR_DF_MODEL_ETC1S: u8 = 163;
-const KHR_DF_MODEL_UASTC: u8 = 166;
+pub const KHR_DF_MODEL_ETC1S: u8 = 163;
+pub const KHR_DF_MODEL_UASTC: u8 = 166;
 
 /// What gltfmat reads of a KTX2's basic data format descriptor block.
 struct Descriptor {

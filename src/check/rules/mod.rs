@@ -17,6 +17,7 @@ pub mod exclusion;
 pub mod gltf1;
 mod greyscale_packed;
 mod ktx2_dimensions;
+mod ktx2_layout;
 mod ktx2_mipmaps;
 mod ktx2_transfer;
 mod layer_disabled;
@@ -185,6 +186,7 @@ pub static RULES: &[&Rule] = &[
     &srgb_in_linear::RULE,
     &ktx2_transfer::RULE,
     &ktx2_dimensions::RULE,
+    &ktx2_layout::RULE,
     &ktx2_mipmaps::RULE,
     &sheen_disabled::RULE,
     &sheen_zero_roughness::RULE,
