@@ -49,17 +49,21 @@ pub fn decode(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
 /// fills them (RGB → alpha 1; RRR → grey).
 fn decode_ktx2(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
     use basisu::{DecodeFlags, TargetFormat, Transcoder};
+    let header = super::image_header::read(bytes).ok();
+    let layout = (header.as_ref().and_then(|info| info.ktx2.as_ref()))
+        .ok_or_else(|| DecodeError::Invalid("its KTX2 header ends early".into()))?;
     // vkFormat 0 (VK_FORMAT_UNDEFINED) is how KTX2 marks a Basis Universal payload; any other
     // is a plain GPU format, which KHR_texture_basisu does not allow.
-    let vk_format = bytes
-        .get(12..16)
-        .map_or(0, |b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
-    if vk_format != 0 {
+    if layout.vk_format != 0 {
         return Err(DecodeError::NotTranscoded(format!(
-            "a KTX2 texture in Vulkan format {vk_format}, not Basis Universal"
+            "a KTX2 texture in Vulkan format {}, not Basis Universal",
+            layout.vk_format
         )));
     }
-    check_ktx2_sizes(bytes)?;
+    check_ktx2_sizes(
+        layout,
+        header.as_ref().map_or((0, 0), |i| (i.width, i.height)),
+    )?;
     let transcoder = Transcoder::new(bytes).map_err(|e| {
         DecodeError::Invalid(format!("not a readable Basis Universal KTX2 ({e:?})"))
     })?;
@@ -90,32 +94,23 @@ fn decode_ktx2(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
 /// be of 2D type"), and a Zstandard level no larger uncompressed than UASTC's 16 bytes per
 /// 4×4 block of its texels (what a valid one is exactly). A stranger's file claiming a
 /// terabyte is refused here, not allocated.
-fn check_ktx2_sizes(bytes: &[u8]) -> Result<(), DecodeError> {
-    let word = |at: usize| {
-        bytes
-            .get(at..at + 4)
-            .map(|b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])))
-            .ok_or_else(|| DecodeError::Invalid("its KTX2 header ends early".into()))
-    };
-    let long = |at: usize| Ok::<u64, DecodeError>(word(at)? | (word(at + 4)? << 32));
-    let (width, height) = (word(20)?, word(24)?);
-    let (depth, layers, faces) = (word(28)?, word(32)?, word(36)?);
-    if depth > 1 || layers > 1 || faces != 1 {
+fn check_ktx2_sizes(
+    layout: &super::image_header::Ktx2Layout,
+    (width, height): (u32, u32),
+) -> Result<(), DecodeError> {
+    if !layout.is_2d() {
         return Err(DecodeError::Invalid(format!(
-            "a KTX2 texture of {}×{} layers and {faces} faces is not the 2D texture KHR_texture_basisu requires",
-            depth.max(1),
-            layers.max(1)
+            "a KTX2 texture of depth {}, {} layers and {} faces is not the 2D texture KHR_texture_basisu requires",
+            layout.depth, layout.layers, layout.faces
         )));
     }
-    const ZSTANDARD: u64 = 2;
-    if word(44)? == ZSTANDARD {
-        let claimed = long(80 + 16)?;
-        let most = width.div_ceil(4) * height.div_ceil(4) * 16;
-        if claimed > most {
-            return Err(DecodeError::Invalid(format!(
-                "its first level claims {claimed} bytes uncompressed, more than the {most} its {width}×{height} texels hold"
-            )));
-        }
+    const ZSTANDARD: u32 = 2;
+    let most = u64::from(width.div_ceil(4)) * u64::from(height.div_ceil(4)) * 16;
+    let claimed = layout.first_level_uncompressed;
+    if layout.supercompression == ZSTANDARD && claimed > most {
+        return Err(DecodeError::Invalid(format!(
+            "its first level claims {claimed} bytes uncompressed, more than the {most} its {width}×{height} texels hold"
+        )));
     }
     Ok(())
 }

@@ -80,9 +80,6 @@ pub struct ImageInfo {
     pub custom_primaries: bool,
     /// PNG pHYs with different horizontal and vertical densities.
     pub non_square_pixels: bool,
-    /// Mip levels stored: a KTX2's levelCount (0: "the loader generates them"), 1 for other
-    /// formats.
-    pub levels: u32,
     /// A KTX2's container fields that KHR_texture_basisu constrains.
     pub ktx2: Option<Ktx2Layout>,
 }
@@ -98,9 +95,21 @@ pub struct Ktx2Layout {
     pub depth: u32,
     pub layers: u32,
     pub faces: u32,
+    /// levelCount (0: "the loader generates them").
+    pub levels: u32,
+    /// The first level's uncompressedByteLength (what a Zstandard level inflates to).
+    pub first_level_uncompressed: u64,
     /// The descriptor's colour model and each sample's channel id, when it could be read.
     pub model: Option<u8>,
     pub channel_ids: Vec<u8>,
+}
+
+impl Ktx2Layout {
+    /// A 2D texture: no depth, array layers or cube faces (KHR_texture_basisu: "MUST be of 2D
+    /// type").
+    pub fn is_2d(&self) -> bool {
+        self.depth <= 1 && self.layers <= 1 && self.faces == 1
+    }
 }
 
 impl ImageInfo {
@@ -116,14 +125,13 @@ impl ImageInfo {
             animated: false,
             custom_primaries: false,
             non_square_pixels: false,
-            levels: 1,
             ktx2: None,
         }
     }
 
-    /// Whether every mip level down to 1×1 is stored.
-    pub fn has_full_mip_chain(&self) -> bool {
-        self.levels >= 32 - self.width.max(self.height).max(1).leading_zeros()
+    /// The mip levels from this size down to 1×1.
+    pub fn full_mip_levels(&self) -> u32 {
+        32 - self.width.max(self.height).max(1).leading_zeros()
     }
 
     /// What the Khronos validator calls unsupported features: custom colour information,
@@ -373,7 +381,6 @@ fn webp(b: &[u8]) -> Result<ImageInfo, HeaderError> {
 fn ktx2(b: &[u8]) -> Result<ImageInfo, HeaderError> {
     let (width, height) = (le32(b, 20)?, le32(b, 24)?);
     let mut info = ImageInfo::plain(ImageFormat::Ktx2, width, height, Channels::Unknown, 8);
-    info.levels = le32(b, 40).unwrap_or(0);
     let word = |at| le32(b, at).unwrap_or(0);
     let mut layout = Ktx2Layout {
         vk_format: word(12),
@@ -381,6 +388,9 @@ fn ktx2(b: &[u8]) -> Result<ImageInfo, HeaderError> {
         depth: word(28),
         layers: word(32),
         faces: word(36),
+        levels: word(40),
+        // The level index starts at byte 80: byteOffset, byteLength, uncompressedByteLength.
+        first_level_uncompressed: u64::from(word(96)) | u64::from(word(100)) << 32,
         model: None,
         channel_ids: Vec::new(),
     };

@@ -69,7 +69,7 @@ fn reasons(info: &ImageInfo) -> Vec<String> {
     } else if let Some(model) = layout.model {
         reasons.extend(model_reasons(layout, model, info.transfer));
     }
-    if layout.depth > 1 || layout.layers > 1 || layout.faces != 1 {
+    if !layout.is_2d() {
         reasons.push(format!(
             "it is not 2D (depth {}, {} layers, {} faces)",
             layout.depth, layout.layers, layout.faces
@@ -138,13 +138,14 @@ mod tests {
             animated: false,
             custom_primaries: false,
             non_square_pixels: false,
-            levels: 4,
             ktx2: Some(Ktx2Layout {
                 vk_format: 0,
                 supercompression,
                 depth: 0,
                 layers: 0,
                 faces: 1,
+                levels: 4,
+                first_level_uncompressed: 0,
                 model: Some(model),
                 channel_ids: ids.to_vec(),
             }),

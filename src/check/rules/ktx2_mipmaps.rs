@@ -3,7 +3,6 @@
 use super::{Rule, Run};
 use crate::check::context::Context;
 use crate::diagnostic::Severity;
-use crate::document::image_header::ImageFormat;
 use crate::gltf::unsigned;
 
 pub const RULE: Rule = Rule::new(
@@ -47,7 +46,10 @@ fn check(ctx: &mut Context) {
         let Some(info) = source.and_then(|i| ctx.images.get(i as usize)?.as_ref()) else {
             continue;
         };
-        if info.format != ImageFormat::Ktx2 || info.has_full_mip_chain() {
+        let Some(layout) = info.ktx2.as_ref() else {
+            continue;
+        };
+        if layout.levels >= info.full_mip_levels() {
             continue;
         }
         let min_filter = unsigned(texture, "sampler").map(|s| {
@@ -64,8 +66,8 @@ fn check(ctx: &mut Context) {
                 "Texture {index} is minified through mipmaps but its KTX2 image ({}×{}) stores {} of its {} mip levels.",
                 info.width,
                 info.height,
-                info.levels,
-                32 - info.width.max(info.height).max(1).leading_zeros()
+                layout.levels,
+                info.full_mip_levels()
             );
             ctx.emit(RULE.code(), format!("/textures/{index}"), message);
         }
