@@ -869,6 +869,40 @@ mod tests {
         MaterialSource::gltf2(&material, &[])
     }
 
+    /// The lane-wise figure of a point's fixed and peak directions is, direction by direction,
+    /// what [`delta_at`] gives one at a time: opaque and translucent pairs, a sheen and a
+    /// clearcoat among them.
+    #[test]
+    fn a_points_directions_in_lanes_equal_their_one_at_a_time_figures() {
+        let inputs = |roughness, coverage, sheen: f64, clearcoat| Inputs {
+            base_color: [0.6, 0.3, 0.2],
+            metallic: 0.2,
+            roughness,
+            coverage,
+            sheen_color: [sheen; 3],
+            sheen_roughness: 0.4,
+            clearcoat,
+            clearcoat_roughness: 0.1,
+            ..Inputs::default()
+        };
+        let s = shader();
+        let pairs = [
+            (inputs(0.5, 1.0, 0.0, 0.0), inputs(0.2, 1.0, 0.0, 0.0)),
+            (inputs(0.3, 0.4, 0.8, 0.0), inputs(0.3, 0.9, 0.2, 1.0)),
+        ];
+        let angles = &point_directions().angles;
+        for (a, b) in &pairs {
+            let lanes = deltas_at_point(&s, a, b);
+            assert_eq!(lanes.len(), angles.len());
+            for (lane, angle) in lanes.iter().zip(angles) {
+                assert_eq!(*lane, delta_at(&s, a, b, angle).0, "{angle:?}");
+            }
+            let worst = worst_at_point(&s, std::slice::from_ref(a), b);
+            assert_eq!(worst, lanes.iter().copied().fold(0.0, f64::max));
+            assert!(worst > 1.0, "{worst}");
+        }
+    }
+
     #[test]
     fn repeated_texels_reuse_their_samples_exactly() {
         // A 48² base colour in runs of three texels (16 distinct per row, so a run continues
