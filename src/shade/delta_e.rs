@@ -101,6 +101,17 @@ pub fn ciede2000<R: Real>([l1, a1, b1]: [R; 3], [l2, a2, b2]: [R; 3]) -> R {
     (l * l + c * c + h * h + rt * c * h).sqrt()
 }
 
+/// An upper bound on [`ciede2000`] from the plain Lab distance (ΔE76), for skipping pairs
+/// that cannot change a maximum: ΔE00 ≤ √4.5 · ΔE76. Why: S_L, S_C, S_H ≥ 1 (T is at
+/// least 1 − 0.93, positive); |R_T| ≤ 2, so R_T·x·y ≤ x² + y²; ΔC′² + ΔH′² is the squared
+/// distance of the a′b′ vectors, and a′ = (1 + G)·a with one G ≤ ½ for both colours. Hence
+/// ΔE00² ≤ ΔL² + 2·(2.25·Δa² + Δb²) ≤ 4.5·ΔE76². The factor is rounded up past rounding
+/// error.
+pub fn ciede2000_bound([l1, a1, b1]: [f64; 3], [l2, a2, b2]: [f64; 3]) -> f64 {
+    let (dl, da, db) = (l1 - l2, a1 - a2, b1 - b2);
+    2.1214 * (dl * dl + da * da + db * db).sqrt()
+}
+
 /// What `f64::to_radians` multiplies by.
 const RADIANS_PER_DEGREE: f64 = std::f64::consts::PI / 180.0;
 
@@ -267,6 +278,40 @@ mod tests {
             0.9082,
         ),
     ];
+
+    #[test]
+    fn ciede2000_never_exceeds_its_bound_from_the_lab_distance() {
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = |scale: f64| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1);
+            ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * scale
+        };
+        let mut tightest = 0f64;
+        let pairs = PAIRS.iter().map(|&(a, b, _)| (a, b));
+        let random = (0..200_000).map(|_| {
+            let a = [50.0 + next(100.0), next(200.0), next(200.0)];
+            // Near pairs (where the bound is used) and far ones.
+            let spread = if next(1.0) > 0.0 { 2.0 } else { 100.0 };
+            (
+                a,
+                [
+                    a[0] + next(spread),
+                    a[1] + next(spread),
+                    a[2] + next(spread),
+                ],
+            )
+        });
+        for (a, b) in pairs.chain(random) {
+            let ratio = ciede2000(a, b) / ciede2000_bound(a, b);
+            assert!(ratio <= 1.0, "{a:?} {b:?}: ΔE00 is {ratio} of its bound");
+            tightest = tightest.max(ratio);
+        }
+        // Near-neutral colours scale Δa by 1.5: ΔE00 exceeds ΔE76 there, so the bound must be
+        // above 1.
+        assert!(tightest > 1.0 / 2.1214, "tightest {tightest}");
+    }
 
     #[test]
     fn ciede2000_reproduces_the_sharma_test_pairs() {

@@ -210,36 +210,79 @@ fn finest_needed<'t>(
 /// colours at the four texel centres around each texel corner (what a viewer's bilinear
 /// filter gives there) and the conversion of the inputs read at that corner.
 fn between_centres_error(texels: &SpecGlossTexels) -> f64 {
-    use crate::shade::delta_e::{ciede2000, lab_from_linear_srgb};
-    use crate::shade::tone::displayed;
     use rayon::prelude::*;
-    let (width, height) = (texels.width, texels.height);
-    let shown = |colour: [f64; 3]| lab_from_linear_srgb(displayed(colour));
-    let base_at = |value: TexelValue| texels.factors.base_colour(value.diffuse, value.specular);
-    // Each centre converted once; every corner reads the four around it.
-    let centres: Vec<[f64; 3]> = (0..height)
+    // Rows in bands, each converting its own centres (one row beyond it): no image-sized
+    // buffer, whatever the grid.
+    let band = 16;
+    (0..texels.height.div_ceil(band))
         .into_par_iter()
-        .flat_map_iter(|y| (0..width).map(move |x| base_at(texels.at(x, y).0)))
-        .collect();
-    let centre = |x: u32, y: u32| centres[((y % height) * width + x % width) as usize];
-    (0..height)
-        .into_par_iter()
-        .map(|y| {
-            let mut worst = 0f64;
-            for x in 0..width {
-                let around =
-                    [(x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)].map(|(i, j)| centre(i, j));
-                let mixed = std::array::from_fn(|c| around.iter().map(|a| a[c]).sum::<f64>() / 4.0);
-                let corner = [
-                    f64::from(x + 1) / f64::from(width),
-                    f64::from(y + 1) / f64::from(height),
-                ];
-                let exact = base_at(texels.value_at(corner));
-                worst = worst.max(ciede2000(shown(mixed), shown(exact)));
-            }
-            worst
+        .map(|b| {
+            let rows = b * band..((b + 1) * band).min(texels.height);
+            corners_error(texels, rows)
         })
         .reduce(|| 0.0, f64::max)
+}
+
+/// A texel centre's value and its conversion.
+struct Centre {
+    value: TexelValue,
+    base: [f64; 3],
+}
+
+/// [`between_centres_error`] at the corners below and right of the centres in `rows`.
+fn corners_error(texels: &SpecGlossTexels, rows: std::ops::Range<u32>) -> f64 {
+    use crate::shade::delta_e::{ciede2000, ciede2000_bound, lab_from_linear_srgb};
+    use crate::shade::tone::displayed;
+    let (width, height) = (texels.width, texels.height);
+    let shown = |colour: [f64; 3]| lab_from_linear_srgb(displayed(colour));
+    let base_at = |value: &TexelValue| texels.factors.base_colour(value.diffuse, value.specular);
+    // Where the grid is every input's own, a corner lies midway between four stored texels
+    // and each input reads there as their mean: the corner's value is the mean of the four
+    // centres' values, with no texture read.
+    let on_input_grid = texels
+        .inputs()
+        .all(|t| (t.width(), t.height()) == (width, height));
+    let row = |y: u32| -> Vec<Centre> {
+        (0..width)
+            .map(|x| {
+                let value = texels.at(x, y % height).0;
+                let base = base_at(&value);
+                Centre { value, base }
+            })
+            .collect()
+    };
+    let mut below = row(rows.start);
+    let mut worst = 0f64;
+    for y in rows {
+        let above = std::mem::replace(&mut below, row(y + 1));
+        for x in 0..width as usize {
+            let next = (x + 1) % width as usize;
+            let around = [&above[x], &above[next], &below[x], &below[next]];
+            let mean = |f: fn(&Centre) -> [f64; 3]| -> [f64; 3] {
+                std::array::from_fn(|c| around.iter().map(|a| f(a)[c]).sum::<f64>() / 4.0)
+            };
+            let mixed = mean(|a| a.base);
+            let value = if on_input_grid {
+                TexelValue {
+                    diffuse: mean(|a| a.value.diffuse),
+                    specular: mean(|a| a.value.specular),
+                    glossiness: around.iter().map(|a| a.value.glossiness).sum::<f64>() / 4.0,
+                }
+            } else {
+                let corner = [
+                    (x + 1) as f64 / f64::from(width),
+                    f64::from(y + 1) / f64::from(height),
+                ];
+                texels.value_at(corner)
+            };
+            let (mixed, exact) = (shown(mixed), shown(base_at(&value)));
+            // Only a pair that could raise the maximum is measured in full.
+            if ciede2000_bound(mixed, exact) > worst {
+                worst = worst.max(ciede2000(mixed, exact));
+            }
+        }
+    }
+    worst
 }
 
 /// The grid of a rebake of textures whose finest dimensions are `width` × `height` and whose
@@ -339,6 +382,11 @@ struct SpecGlossTexels<'t> {
 }
 
 impl SpecGlossTexels<'_> {
+    /// The textures read.
+    fn inputs(&self) -> impl Iterator<Item = &TextureImage> {
+        self.diffuse.into_iter().chain(self.specular)
+    }
+
     fn centre(&self, x: u32, y: u32) -> [f64; 2] {
         centre(x, y, self.width, self.height)
     }
@@ -453,6 +501,58 @@ mod tests {
             alpha,
             "a diffuse with a texel below full alpha keeps its alpha channel"
         );
+    }
+
+    #[test]
+    fn on_the_inputs_grid_a_texel_corner_reads_as_the_mean_of_its_four_centres() {
+        // The premise of `corners_error`'s shortcut: bilinear filtering midway between four
+        // texel centres (sRGB decoded first, repeat wrapping at the edges) is their mean.
+        let noise = |seed: u32| {
+            png(image::RgbaImage::from_fn(7, 5, |x, y| {
+                let h = (x * 73 + y * 151 + seed).wrapping_mul(2_654_435_761);
+                image::Rgba([(h >> 8) as u8, (h >> 16) as u8, (h >> 24) as u8, h as u8])
+            }))
+        };
+        let (diffuse, specular) = (
+            sample::decode(&noise(1)).unwrap(),
+            sample::decode(&noise(2)).unwrap(),
+        );
+        let factors = Factors {
+            diffuse: [0.9, 0.8, 1.0, 1.0],
+            specular: [0.5, 0.7, 0.2],
+            glossiness: 1.0,
+            reading: crate::shade::material::SpecGlossReading::ArchivedExtension,
+        };
+        let texels = SpecGlossTexels {
+            diffuse: Some(&diffuse),
+            specular: Some(&specular),
+            factors: &factors,
+            width: 7,
+            height: 5,
+        };
+        for (x, y) in (0..5).flat_map(|y| (0..7).map(move |x| (x, y))) {
+            let around = [
+                (x, y),
+                ((x + 1) % 7, y),
+                (x, (y + 1) % 5),
+                ((x + 1) % 7, (y + 1) % 5),
+            ]
+            .map(|(i, j)| texels.at(i, j).0);
+            let corner = texels.value_at([f64::from(x + 1) / 7.0, f64::from(y + 1) / 5.0]);
+            for c in 0..3 {
+                let mean = |f: fn(&TexelValue) -> [f64; 3]| {
+                    around.iter().map(|v| f(v)[c]).sum::<f64>() / 4.0
+                };
+                assert!(
+                    (mean(|v| v.diffuse) - corner.diffuse[c]).abs() < 1e-12,
+                    "({x}, {y})"
+                );
+                assert!(
+                    (mean(|v| v.specular) - corner.specular[c]).abs() < 1e-12,
+                    "({x}, {y})"
+                );
+            }
+        }
     }
 
     #[test]
