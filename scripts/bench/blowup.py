@@ -394,8 +394,10 @@ def run(command, path):
     for _ in range(3):
         started = time.perf_counter()
         proc = subprocess.run(['/usr/bin/time', '-f', '%M'] + args, capture_output=True, timeout=900)
-        for out in (os.path.join(WORK, name) for name in os.listdir(WORK) if name.endswith('.glb')):
-            os.remove(out)
+        # Each run writes its output anew (the inputs stay: an input may be a .glb too).
+        for out in (command[i + 1] for i, arg in enumerate(command) if arg == '-o'):
+            if os.path.exists(out):
+                os.remove(out)
         seconds = time.perf_counter() - started
         kb = int(proc.stderr.decode().strip().splitlines()[-1])
         if proc.returncode not in (0, 1):
