@@ -124,7 +124,9 @@ fn environment_scale_bias<R: Real>(roughness: f64, n_dot_v: R) -> (R, R) {
         1.04 - 0.572 * roughness,
         0.022 * roughness - 0.04,
     ];
-    let falloff = (n_dot_v * -9.28).map(f64::exp2);
+    // 2^(−9.28 · N·V) by the branch-free e^x, which vectorises; exp2 is a library call per
+    // lane.
+    let falloff = super::elementary::exp(n_dot_v * (-9.28 * std::f64::consts::LN_2));
     let a004 = falloff.min(R::splat(r[0] * r[0])) * r[0] + r[1];
     (a004 * -1.04 + r[2], a004 * 1.04 + r[3])
 }
