@@ -1377,3 +1377,36 @@ fn compare_reads_each_texture_through_its_own_texcoord_set_on_the_mesh() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A 1.0 material drawn by KHR_materials_common: the upgrade's proof and `compare` each say
+/// it is not evaluated; `--verify` keeps the output (the conversion's change of lighting
+/// model is what its decision line states), `compare` exits 1 (not the same), not 2.
+#[test]
+fn a_material_without_a_model_is_said_to_be_not_evaluated_by_the_proof_and_compare() {
+    let folder = tempfile::tempdir().unwrap();
+    let input = folder.path().join("common.gltf");
+    let asset = serde_json::json!({
+        "asset": {"version": "1.0"},
+        "extensionsUsed": ["KHR_materials_common"],
+        "materials": {"lit": {"extensions": {"KHR_materials_common": {
+            "technique": "BLINN", "values": {"diffuse": [0.8, 0.2, 0.1, 1.0], "shininess": 20}}}}},
+    });
+    std::fs::write(&input, asset.to_string()).unwrap();
+    let output = folder.path().join("out.glb");
+    let (input, output) = (input.to_str().unwrap(), output.to_str().unwrap());
+    let (code, out) = gltfmat(&["upgrade", input, "-o", output, "--verify"]);
+    assert_eq!(code, 0, "{out}");
+    let proof: Vec<&str> = out.lines().filter(|l| l.starts_with("proof:")).collect();
+    assert_eq!(proof.len(), 1, "{out}");
+    assert!(
+        proof[0].starts_with("proof: material 0 (lit) ↔ 0 (lit): NOT EVALUATED (first: ")
+            && !proof[0].contains("ΔE2000"),
+        "{out}"
+    );
+    let (code, out) = gltfmat(&["compare", input, output]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("NOT EVALUATED") && out.contains("KHR_materials_common"),
+        "{out}"
+    );
+}

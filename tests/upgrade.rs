@@ -751,6 +751,29 @@ mod structure {
             .any(|n| n.text.contains("2 of 3 vertices list a joint twice")));
     }
 
+    /// A technique's material and a KHR_materials_common one have no model the evaluator
+    /// shades: the proof names each as not evaluated, with no figure, instead of leaving it
+    /// out (before, the proof said nothing of them and `compare` found no pair at all).
+    #[test]
+    fn the_proof_names_materials_without_a_model_as_not_evaluated() {
+        let bytes = serde_json::to_vec(&asset()).unwrap();
+        let up = upgrade(&bytes, &NoResources, &UpgradeOptions::default()).unwrap();
+        let proof = gltfmat::prove(&bytes, "asset.gltf", &NoResources, &up).unwrap();
+        let named: Vec<&str> = proof.iter().map(|o| o.a.1.as_str()).collect();
+        assert_eq!(named, ["blended", "flat"]);
+        for outcome in &proof {
+            assert!(!outcome.is_evaluated(), "{}", outcome.a.1);
+            assert!(!outcome.same(1.0), "never the same: {}", outcome.a.1);
+            let [why] = &outcome.not_evaluated[..] else {
+                panic!("one reason: {:?}", outcome.not_evaluated);
+            };
+            assert!(
+                why.starts_with("first: ") && why.contains("KHR_materials_common"),
+                "{why}"
+            );
+        }
+    }
+
     #[test]
     fn technique_states_become_blending_and_double_sidedness() {
         let up = upgraded();

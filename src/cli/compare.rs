@@ -69,6 +69,9 @@ pub fn pair(o: &gltfmat::Outcome) -> String {
 /// The verdict and the ΔE2000 figures of one comparison.
 pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
     let r = &o.result;
+    if !o.is_evaluated() {
+        return format!("NOT EVALUATED ({})", o.not_evaluated.join("; "));
+    }
     let verdict = if !o.not_evaluated.is_empty() {
         format!(
             "NOT EVALUATED ({}); of the rest",
@@ -150,7 +153,9 @@ pub fn run(args: CompareArgs) -> Outcome {
     let outcomes = comparison.outcomes;
     if let Some(path) = &args.heatmap {
         let mut maps = Vec::new();
-        for (k, o) in outcomes.iter().enumerate() {
+        // A pair with nothing evaluated has no map (the others keep their numbers).
+        let evaluated = (outcomes.iter().enumerate()).filter(|(_, o)| o.is_evaluated());
+        for (k, o) in evaluated {
             let target = if outcomes.len() == 1 {
                 path.clone()
             } else {

@@ -74,7 +74,7 @@ li.error .sev{color:#b00020}li.warning .sev{color:#8a5a00}li.info .sev,li.hint .
 figure{margin:0;text-align:center;font-size:.85em;max-width:12em}
 img{background:repeating-conic-gradient(#ddd 0 25%,#fff 0 50%) 0 0/12px 12px;border:1px solid #ccc}
 img.pixelated{image-rendering:pixelated}
-.pair.different h3{color:#b00020}.pair.same h3{color:#0a6b2c}
+.pair.different h3,.pair.not-evaluated h3{color:#b00020}.pair.same h3{color:#0a6b2c}
 dl dt{font-family:ui-monospace,monospace;font-weight:600;margin-top:.6em}
 pre{white-space:pre-wrap;font-size:.85em;background:#f6f6f6;padding:.5em}
 footer{margin-top:3em;color:#777;font-size:.85em}

@@ -151,14 +151,15 @@ impl Page {
             escape(&b.display().to_string())
         );
         for (outcome, line) in outcomes.iter().zip(lines) {
-            let verdict = if outcome.same(threshold) {
-                "same"
-            } else {
-                "different"
+            let verdict = match (outcome.is_evaluated(), outcome.same(threshold)) {
+                (false, _) => "not evaluated",
+                (true, true) => "same",
+                (true, false) => "different",
             };
             let _ = write!(
                 section,
-                "<div class=\"pair {verdict}\"><h3>material {} ({}) ↔ {} ({}): {verdict}</h3><div class=\"row\">{}{}{}</div><p>{}</p></div>",
+                "<div class=\"pair {}\"><h3>material {} ({}) ↔ {} ({}): {verdict}</h3><div class=\"row\">{}{}{}</div><p>{}</p></div>",
+                verdict.replace(' ', "-"),
                 outcome.a.0,
                 escape(&outcome.a.1),
                 outcome.b.0,

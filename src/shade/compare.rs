@@ -125,6 +125,35 @@ pub struct Comparison {
     pub per_texel: Arc<[f32]>,
 }
 
+impl Comparison {
+    /// No comparison: nothing evaluated, no sample taken (a material without a model).
+    pub fn nothing() -> Comparison {
+        Comparison {
+            max: 0.0,
+            p99: 0.0,
+            mean: 0.0,
+            worst: Worst::nowhere(),
+            dominant: None,
+            grid: 0,
+            samples: 0,
+            per_texel: Arc::new([]),
+        }
+    }
+}
+
+impl Worst {
+    /// The first point and direction, where a comparison that finds no difference says it was.
+    fn nowhere() -> Worst {
+        Worst {
+            delta_e: 0.0,
+            sets: Vec::new(),
+            uv: [0.0, 0.0],
+            directions: Angles::coarse(DIRECTIONS[0]),
+            background: BACKGROUNDS[0],
+        }
+    }
+}
+
 /// Whether a comparison keeps its per-texel map, for a heat map: grid² floats (16 MB for a
 /// 2048² texture), which a proof of 10^3 distinct materials could not hold for each.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -805,13 +834,7 @@ fn merge<'p>(
         }
         candidates.absorb(&p.candidates);
     }
-    let mut worst = worst.unwrap_or(Worst {
-        delta_e: 0.0,
-        sets: Vec::new(),
-        uv: [0.0, 0.0],
-        directions: Angles::coarse(DIRECTIONS[0]),
-        background: BACKGROUNDS[0],
-    });
+    let mut worst = worst.unwrap_or_else(Worst::nowhere);
     // The worst point is the first of the candidates (offered in row order, ties kept first).
     let mut pair = candidates.worst_pair().cloned();
     if let Some(pair) = &pair {

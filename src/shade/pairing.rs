@@ -68,6 +68,10 @@ pub fn shader_for<'m>(materials: impl IntoIterator<Item = &'m MaterialSource>) -
     })
 }
 
+/// Why a material has no model: the evaluator shades glTF 2.0 materials and the 1.0 PBR
+/// drafts, not a 1.0 technique's shaders or KHR_materials_common's lighting models.
+pub const NO_MODEL: &str = "a glTF 1.0 material drawn by its technique's shaders or by KHR_materials_common's Blinn, Phong, Lambert or constant lighting, which the evaluator does not shade";
+
 /// One compared pair of materials.
 #[derive(Debug, Clone)]
 pub struct Outcome {
@@ -92,6 +96,12 @@ impl Outcome {
         self.not_evaluated.is_empty() && self.result.max <= threshold
     }
 
+    /// Whether anything of the pair was evaluated: false for a material without a model,
+    /// whose outcome has no figures at all.
+    pub fn is_evaluated(&self) -> bool {
+        self.result.samples > 0
+    }
+
     /// The outcome as `compare --format json` writes it (`pass`: [`same`](Self::same) at
     /// `threshold`).
     pub fn to_json(&self, threshold: f64) -> serde_json::Value {
@@ -100,7 +110,7 @@ impl Outcome {
             "max": result.max, "p99": result.p99, "mean": result.mean,
             "worst": {"uv": worst.uv, "texcoords": worst.sets, "view": worst.directions.view,
                       "light": worst.directions.light, "background": worst.background},
-            "dominant": result.dominant,
+            "dominant": result.dominant, "evaluated": self.is_evaluated(),
             "notEvaluated": self.not_evaluated,
             "grid": result.grid, "samples": result.samples,
             "ambiguity": self.ambiguity.as_ref().map(|a| serde_json::json!({"readAs": a.read_as, "furthest": a.furthest, "max": a.max, "grid": a.grid})),
@@ -150,11 +160,19 @@ pub fn compare_pairs(
     pairs
         .iter()
         .filter_map(|&(i, j)| {
-            let (name_a, Some(ma)) = a.get(i)? else {
-                return None;
-            };
-            let (name_b, Some(mb)) = b.get(j)? else {
-                return None;
+            let ((name_a, ma), (name_b, mb)) = (a.get(i)?, b.get(j)?);
+            let (Some(ma), Some(mb)) = (ma, mb) else {
+                // Said, never skipped: a pair without a model on a side is not evaluated.
+                let sides = [("first", ma.is_none()), ("second", mb.is_none())];
+                return Some(Outcome {
+                    a: (i, name_a.clone()),
+                    b: (j, name_b.clone()),
+                    result: Comparison::nothing(),
+                    ambiguity: None,
+                    not_evaluated: (sides.iter().filter(|(_, none)| *none))
+                        .map(|(side, _)| format!("{side}: {NO_MODEL}"))
+                        .collect(),
+                });
             };
             let key = (ma.fingerprint(), mb.fingerprint());
             let mut compared = (done.entry(key))
