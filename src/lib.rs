@@ -39,6 +39,7 @@
 //! ```
 
 #![warn(missing_docs)]
+#![deny(unsafe_code)]
 
 pub mod check;
 pub mod diagnostic;
@@ -50,6 +51,7 @@ pub mod output;
 pub mod page;
 pub mod report;
 pub mod shade;
+pub mod system;
 #[cfg(test)]
 mod test_random;
 pub mod upgrade;

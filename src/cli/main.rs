@@ -1,4 +1,5 @@
 //! The `gltfmat` command line: one file per subcommand, all on top of the library's façade.
+#![deny(unsafe_code)]
 
 /// Writes to a standard stream (`print!` / `eprint!` for the CLI). A reader that went away
 /// (`gltfmat … | head`) is ignored: it ends nothing in the middle (an upgrade still writes
@@ -109,7 +110,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    return_large_blocks_when_freed();
+    gltfmat::system::return_large_blocks_when_freed();
     signals::remove_temporaries_when_ended();
     let outcome = match Cli::parse().command {
         Command::Check(args) => check::run(args),
@@ -125,17 +126,4 @@ fn main() -> ExitCode {
     };
     let status = outcome.unwrap_or_else(common::Failure::report);
     streams::status_after_flushing(status)
-}
-
-/// Gives every allocation from 1 MiB up its own mapping, returned to the system when freed.
-/// glibc raises that threshold to 32 MiB once such a block is freed, after which the trees
-/// and texts of one phase (an upgrade's conversion, its proof) stay resident, freed but
-/// scattered, while the next (the check of the output) maps its own: an upgrade of 10^5
-/// meshes peaked at 170 MB instead of 143.
-fn return_large_blocks_when_freed() {
-    #[cfg(all(target_os = "linux", target_env = "gnu"))]
-    // SAFETY: mallopt only sets a tuning parameter, before any thread is started.
-    unsafe {
-        libc::mallopt(libc::M_MMAP_THRESHOLD, 1 << 20);
-    }
 }

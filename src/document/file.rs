@@ -241,7 +241,7 @@ fn read_parts(file: &File, length: usize) -> io::Result<Vec<u8>> {
         return Ok(Vec::new());
     }
     let mut bytes = vec![0u8; length];
-    huge_pages(&mut bytes);
+    crate::system::advise_huge_pages(&mut bytes);
     let part = length.div_ceil(rayon::current_num_threads().max(1));
     let filled: Vec<usize> = (bytes.par_chunks_mut(part).enumerate())
         .map(|(i, place)| fill_at(file, place, (i * part) as u64))
@@ -254,32 +254,6 @@ fn read_parts(file: &File, length: usize) -> io::Result<Vec<u8>> {
     bytes.truncate(whole.min(length));
     io::Seek::seek(&mut &*file, io::SeekFrom::Start(bytes.len() as u64))?;
     Ok(bytes)
-}
-
-/// Asks for the buffer to be backed by huge pages where the system offers them on request
-/// (transparent huge pages in `madvise` mode): filling fresh memory is mostly page faults, and
-/// a 2 MiB page takes one where 4 KiB pages take 512.
-fn huge_pages(bytes: &mut [u8]) {
-    #[cfg(target_os = "linux")]
-    {
-        const HUGE: usize = 2 << 20;
-        let start = bytes.as_mut_ptr() as usize;
-        let aligned = start.div_ceil(HUGE) * HUGE;
-        let end = (start + bytes.len()) / HUGE * HUGE;
-        if end > aligned {
-            // SAFETY: the range lies inside `bytes`, which this function borrows mutably;
-            // MADV_HUGEPAGE changes how its pages are backed, never their contents.
-            unsafe {
-                libc::madvise(
-                    aligned as *mut libc::c_void,
-                    end - aligned,
-                    libc::MADV_HUGEPAGE,
-                )
-            };
-        }
-    }
-    #[cfg(not(target_os = "linux"))]
-    let _ = bytes;
 }
 
 /// Reads into `place` from `offset` until it is full or the file ends; how many bytes.
@@ -440,9 +414,8 @@ mod tests {
         assert_eq!(refused.to_string(), "not a regular file (a device)");
         let folder = tempfile::tempdir().unwrap();
         let fifo = folder.path().join("pipe.gltf");
-        let name = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
-        // SAFETY: a valid NUL-terminated path; mkfifo only creates the node.
-        assert_eq!(unsafe { libc::mkfifo(name.as_ptr(), 0o600) }, 0);
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        assert!(made.is_ok_and(|status| status.success()), "mkfifo {fifo:?}");
         let refused = read(&fifo).unwrap_err();
         assert_eq!(refused.to_string(), "not a regular file (a FIFO)");
     }

@@ -173,8 +173,7 @@ pub(crate) fn remove_stale(folder: &Path) {
         let Ok(entries) = std::fs::read_dir(folder) else {
             return;
         };
-        // SAFETY: geteuid has no preconditions and cannot fail.
-        let me = unsafe { libc::geteuid() };
+        let me = crate::system::effective_user();
         for entry in entries.flatten() {
             let name = entry.file_name();
             let Some(creator) = name.to_str().and_then(Creator::of_name) else {

@@ -490,38 +490,12 @@ pub fn chosen_grid(readings: &[MaterialSource], b: &MaterialSource, grid: u32) -
 }
 
 /// The rows' samples, with the widest vector instructions the CPU has: the texel loop is
-/// plain arithmetic, so compiling it for AVX-512 or AVX2 changes its speed, not its results
-/// (no fused multiply-adds are formed; each lane rounds exactly as scalar `f64` does).
+/// plain arithmetic, so compiling it for AVX-512 or AVX2 changes its speed, not its results.
 fn compare_rows(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::is_x86_feature_detected as has;
-        if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
-            // SAFETY: the CPU has just been found to support these features.
-            return unsafe { compare_rows_avx512(job, rows) };
-        }
-        if has!("avx2") {
-            // SAFETY: as above.
-            return unsafe { compare_rows_avx2(job, rows) };
-        }
-    }
-    compare_rows_inline(job, rows)
-}
-
-/// # Safety
-/// The CPU must support AVX-512 F, DQ and VL.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f,avx512dq,avx512vl")]
-unsafe fn compare_rows_avx512(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
-    compare_rows_inline(job, rows)
-}
-
-/// # Safety
-/// The CPU must support AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn compare_rows_avx2(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
-    compare_rows_inline(job, rows)
+    crate::system::with_widest_vectors(
+        #[inline(always)]
+        || compare_rows_inline(job, rows),
+    )
 }
 
 /// Which points of a texel row are sampled: its centres, then its top-left corners.
@@ -1022,7 +996,7 @@ mod tests {
     #[cfg(target_arch = "x86_64")]
     #[test]
     fn the_vector_instruction_paths_give_the_portable_results_bit_for_bit() {
-        use std::arch::is_x86_feature_detected as has;
+        use crate::system::{compiled_for, Vectors};
         let sheen = gltf2(
             json!({"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.3, 0.2, 1.0], "metallicFactor": 0.2, "roughnessFactor": 0.4},
             "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.5, 0.9], "sheenRoughnessFactor": 0.5},
@@ -1047,15 +1021,16 @@ mod tests {
                 panic!("one reading, one partial");
             };
             assert!(portable.sum > 1.0, "the materials differ: {}", portable.sum);
-            let mut vector = Vec::new();
-            if has!("avx2") {
-                // SAFETY: AVX2 support was checked.
-                vector.extend(unsafe { compare_rows_avx2(&job, 0..3) });
-            }
-            if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
-                // SAFETY: AVX-512 support was checked.
-                vector.extend(unsafe { compare_rows_avx512(&job, 0..3) });
-            }
+            let vector: Vec<Partial> = (Vectors::ALL.into_iter())
+                .filter_map(|vectors| {
+                    compiled_for(
+                        vectors,
+                        #[inline(always)]
+                        || compare_rows_inline(&job, 0..3),
+                    )
+                })
+                .flatten()
+                .collect();
             for v in &vector {
                 assert_eq!(portable.sum.to_bits(), v.sum.to_bits());
                 assert_eq!(portable.per_texel, v.per_texel);
