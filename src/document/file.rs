@@ -229,7 +229,7 @@ pub(crate) fn read_opened_with_id(file: File) -> Result<(Vec<u8>, Option<FileId>
 
 /// From this size up a file is read in parts on all cores: filling fresh memory costs more
 /// in page faults than in copying, and faults on several cores at once take their share of
-/// the time each (a 176 MB buffer: 130 ms read in one part, 70 ms in two).
+/// the time each (the figures are in docs/performance.md).
 const READ_IN_PARTS_FROM: usize = 16 << 20;
 
 /// The first `length` bytes of the file, or as many as it still holds (it may have been

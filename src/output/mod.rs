@@ -159,9 +159,8 @@ impl Drop for FolderLock {
     }
 }
 
-/// The most bytes one `write` call is given. Linux took 10 to 20 times longer to write a
-/// large asset's pieces each in one call than in calls of this size: 161 MB in 0.6 to 1.3 s
-/// against 0.06 s (and `dd` shows the same of one 200 MB write against 1 MB ones).
+/// The most bytes one `write` call is given: Linux writes a large buffer given in one call
+/// many times slower than the same bytes in calls of this size (`dd` shows it too).
 const WRITE_AT_ONCE: usize = 1 << 20;
 
 /// Writes `parts` one after the other, in calls of at most `WRITE_AT_ONCE` (1 MiB) bytes.

@@ -392,8 +392,8 @@ pub fn khronos_report(report: &Report) -> KhronosReport<'_> {
 }
 
 /// A report in the Khronos validator's shape, written as it is serialised: its findings are
-/// read from the report one at a time, never gathered into a JSON tree (a tree of 3·10^5
-/// findings took 2 GB).
+/// read from the report one at a time, never gathered into a JSON tree (which costs tens of
+/// times the findings' own size).
 #[derive(Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct KhronosReport<'r> {

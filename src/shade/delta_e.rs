@@ -1,8 +1,8 @@
 //! Colour difference: linear sRGB → CIELAB (D65) and CIEDE2000 (Sharma, Wu & Dalal 2005).
 //!
 //! Branch-free and generic over [`Real`]. The comparison evaluates it as plain `f64` in a
-//! loop over a batch of samples, which the compiler vectorises whole: measured faster than
-//! [`Lanes`](super::lanes::Lanes), whose element-wise form it vectorises only in part.
+//! loop over a batch of samples, which the compiler vectorises whole, where
+//! [`Lanes`](super::lanes::Lanes)' element-wise form is vectorised only in part.
 
 use super::elementary;
 use super::lanes::Real;
@@ -52,8 +52,8 @@ fn lab_f<R: Real>(t: R) -> R {
 /// exponent bits (good to 3.4%; the constant is tuned for the smallest worst case), four
 /// Newton steps y ← y·(4 − a·y³)/3 (each squares the error), then ∛a = a·y². Within a few
 /// ulps of `cbrt`, several times faster, and the high-word guess needs only a 32-bit
-/// division by 3, done as a multiplication, which vectorises. (Halley's method on ∛a, three
-/// divisions, measured 10–20% slower for the whole comparison.)
+/// division by 3, done as a multiplication, which vectorises. (Halley's method on ∛a needs
+/// three divisions.)
 #[inline(always)]
 fn cube_root<R: Real>(a: R) -> R {
     const MAGIC: u64 = 0x553E_F0F0;

@@ -1,10 +1,9 @@
 //! The upgraded asset's JSON, held as text: every element of a root array, and every other
 //! root member, as its own compact text.
 //!
-//! A `serde_json::Value` costs 80 bytes a value and a map per object: an upgrade of 10^5
-//! 1.0 meshes held 300 MB of them for a 30 MB output, and a 2.0 asset of 10^5 spec-gloss
-//! materials 250 MB for 17 MB of text. Held as text, the output costs about its own size,
-//! and a step that reads or changes one object parses just that object.
+//! A `serde_json::Value` costs 80 bytes a value and a map per object, ten times or more the
+//! text it stands for. Held as text, the output costs about its own size, and a step that
+//! reads or changes one object parses just that object.
 
 use crate::document::Node;
 use serde::Serialize;

@@ -1,8 +1,9 @@
 //! Where each output object came from: a JSON pointer into the 1.0 input per output
 //! object, for telling a user which input construct an output finding comes from.
 //!
-//! An upgrade of 10^5 meshes has 4·10^5 output objects; a map of pointer strings to pointer
-//! strings held 70 MB for them. Here each origin is a range of one shared text.
+//! An upgrade of 10^5 meshes has 4·10^5 output objects: a map of pointer strings to pointer
+//! strings would hold two allocations for each. Here each origin is a range of one shared
+//! text.
 
 use std::collections::HashMap;
 use std::ops::Range;

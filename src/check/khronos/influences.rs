@@ -336,9 +336,9 @@ fn walk(
 /// weights as a shader sees them) have nothing the walk in [`check_block`] reports: every
 /// joint at most `max_joint`, joint 0 wherever the weight is 0, no joint twice among the
 /// weighted ones, no negative (or NaN) weight, and a single-precision sum (`sum`) within the
-/// walk's allowance (a zero weight adds nothing to it). Real data is like this, and this,
-/// without a finding to make or a list of joints seen, is several times faster; whenever it
-/// says no, the walk runs and finds what there is. Joints and weights may be of any type
+/// walk's allowance (a zero weight adds nothing to it). Real data is like this, and this
+/// needs neither a finding to make nor a list of joints seen; whenever it says no, the walk
+/// runs and finds what there is. Joints and weights may be of any type
 /// that holds their values exactly: doubles, or the types they are stored in.
 fn nothing_to_report<J, W>(
     vertices: impl Iterator<Item = ([J; 4], [W; 4])>,

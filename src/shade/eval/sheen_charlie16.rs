@@ -1,7 +1,7 @@
 //! The sheen albedo table the evaluator shades with ([`SheenTable::standard`]): 16² texels,
 //! Charlie visibility, exactly the values [`SheenTable::compute`] gives. Computing them takes
-//! 6.7 million lobe evaluations, about 2 s, which every compare, render and upgrade proof of
-//! a sheen material paid once per process; a test recomputes them and fails on any bit that
+//! 6.7 million lobe evaluations, which every compare, render and upgrade proof of a sheen
+//! material would pay once per process; a test recomputes them and fails on any bit that
 //! differs, printing the values to paste here.
 //!
 //! [`SheenTable::standard`]: super::sheen_table::SheenTable::standard
