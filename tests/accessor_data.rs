@@ -215,7 +215,7 @@ fn large_data_read_in_parallel_runs_is_bounded_and_counted_as_one_walk_would() {
     let degenerate = report(&large_mesh(vertices, &spread, 1.0, [0.0, middle]));
     let messages: Vec<&str> = (degenerate.diagnostics.iter())
         .filter(|d| d.code == "ACCESSOR_INDEX_TRIANGLE_DEGENERATE")
-        .map(|d| d.message.as_str())
+        .map(|d| &*d.message)
         .collect();
     assert_eq!(
         messages,
@@ -227,7 +227,7 @@ fn large_data_read_in_parallel_runs_is_bounded_and_counted_as_one_walk_would() {
     let wrong_bounds = report(&large_mesh(vertices, &[], 1.0, [1.0, middle - 1.0]));
     let actual: Vec<String> = (wrong_bounds.diagnostics.iter())
         .filter(|d| d.code.to_string().starts_with("ACCESSOR_M"))
-        .map(|d| d.message.clone())
+        .map(|d| d.message.to_string())
         .collect();
     assert_eq!(actual.len(), 2, "{actual:?}");
     assert!(actual[0].contains("actual minimum (0.0)"), "{}", actual[0]);
@@ -265,11 +265,7 @@ fn declared_bounds_of_integer_joints_are_held_against_the_data() {
     );
     let bytes = serde_json::to_vec(&gltf).unwrap();
     let report = check_bytes("case.gltf", bytes, &NoResources, &CheckOptions::default());
-    let messages: Vec<&str> = report
-        .diagnostics
-        .iter()
-        .map(|d| d.message.as_str())
-        .collect();
+    let messages: Vec<&str> = report.diagnostics.iter().map(|d| &*d.message).collect();
     assert!(
         messages.contains(
             &"Declared maximum value for this component (0) does not match actual maximum (1)."

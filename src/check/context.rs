@@ -152,7 +152,12 @@ impl<'a> Context<'a> {
     }
 
     /// Reports a finding, as the profile reports it (see `check::profile`).
-    pub fn emit(&mut self, code: Code, pointer: impl Into<String>, message: impl Into<String>) {
+    pub fn emit(
+        &mut self,
+        code: Code,
+        pointer: impl Into<String>,
+        message: impl Into<std::borrow::Cow<'static, str>>,
+    ) {
         let found = Diagnostic::at(code, pointer, message);
         if let Some(reported) = self.reporting.report(self, found) {
             self.diagnostics.push(reported);

@@ -5,6 +5,7 @@ pub mod khronos;
 pub mod khronos_words;
 
 use serde::Serialize;
+use std::borrow::Cow;
 use std::fmt;
 
 /// Severity levels, numbered as in the Khronos report format.
@@ -133,8 +134,9 @@ pub struct Diagnostic {
     /// The code's default severity until the check's collector, the one place that decides
     /// it, stamps the severity of the code the profile reports (or the user's override).
     pub severity: Severity,
-    /// A sentence for a person.
-    pub message: String,
+    /// A sentence for a person: most are fixed texts, held without a copy of their own
+    /// (a file of 10^6 alike findings holds 10^6 messages).
+    pub message: Cow<'static, str>,
     /// Where it was found.
     pub location: Location,
     /// A byte offset into the JSON text when the pointer cannot say it (syntax errors).
@@ -143,7 +145,7 @@ pub struct Diagnostic {
 
 impl Diagnostic {
     /// A diagnostic at `location` with the code's default severity.
-    pub fn new(code: Code, location: Location, message: impl Into<String>) -> Self {
+    pub fn new(code: Code, location: Location, message: impl Into<Cow<'static, str>>) -> Self {
         Diagnostic {
             code,
             severity: code.default_severity(),
@@ -154,7 +156,11 @@ impl Diagnostic {
     }
 
     /// A diagnostic at a JSON pointer.
-    pub fn at(code: Code, pointer: impl Into<String>, message: impl Into<String>) -> Self {
+    pub fn at(
+        code: Code,
+        pointer: impl Into<String>,
+        message: impl Into<Cow<'static, str>>,
+    ) -> Self {
         Self::new(code, Location::Pointer(pointer.into()), message)
     }
 

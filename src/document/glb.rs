@@ -23,7 +23,7 @@ pub struct GlbParts {
     pub bin: Option<Range<usize>>,
 }
 
-fn at(code: Code, offset: usize, message: impl Into<String>) -> Diagnostic {
+fn at(code: Code, offset: usize, message: impl Into<std::borrow::Cow<'static, str>>) -> Diagnostic {
     Diagnostic::new(code, Location::Offset(offset as u64), message)
 }
 
