@@ -149,15 +149,15 @@ impl<R: Borrow<Report>, I: Iterator<Item = R>> serde::Serialize for Results<'_, 
             let report = report.borrow();
             let positions = Positions::of(report);
             let artifact = self.1.artifact(&report.uri);
-            // How many times each (code, place, message) came before: two distinct findings of
-            // one code at one pointer get distinct fingerprints, the same run after run.
-            let mut seen: std::collections::HashMap<(&str, &Location, &str), usize> =
-                Default::default();
+            // How many times each (code, place, message) came before, by the hash of those:
+            // two distinct findings of one code at one pointer get distinct fingerprints, the
+            // same run after run. (Two identities of one hash only number each other's
+            // occurrences on: their fingerprints stay distinct.)
+            let mut seen: std::collections::HashMap<u64, usize> = Default::default();
             for d in &report.diagnostics {
-                let occurrence = seen
-                    .entry((d.code.name(), &d.location, &d.message))
-                    .or_default();
-                let found = result(report, &positions, &artifact, d, *occurrence);
+                let identity = [report.uri.as_str(), d.code.name(), &place(d), &d.message];
+                let occurrence = seen.entry(fnv(&identity)).or_default();
+                let found = result(report, &positions, &artifact, d, identity, *occurrence);
                 *occurrence += 1;
                 sequence.serialize_element(&found)?;
             }
@@ -188,57 +188,140 @@ fn place(d: &Diagnostic) -> String {
 /// cannot place. The fingerprint names the finding by file, code, JSON pointer, message and
 /// how many alike came before it, so an alert keeps its identity when lines move and two
 /// findings never share one.
-fn result(
+fn result<'r>(
     report: &Report,
     positions: &Positions,
-    artifact: &Value,
-    d: &Diagnostic,
+    artifact: &'r Value,
+    d: &'r Diagnostic,
+    identity: [&str; 4],
     occurrence: usize,
-) -> Value {
+) -> SarifResult<'r> {
     let glb = report.document.container == Container::Glb;
-    let first_line = json!({"startLine": 1});
+    let first_line = Region::line(1);
     let region = match (&d.location, positions.span(d)) {
-        (Location::Offset(offset), _) => json!({"startLine": 1, "byteOffset": offset}),
-        (Location::Pointer(_), Some(span)) if glb => json!({
-            "startLine": 1,
-            "byteOffset": positions.text_start + span.start,
-            "byteLength": span.len().max(1),
-        }),
+        (Location::Offset(offset), _) => Region {
+            byte_offset: Some(*offset),
+            ..first_line
+        },
+        (Location::Pointer(_), Some(span)) if glb => Region {
+            byte_offset: Some((positions.text_start + span.start) as u64),
+            byte_length: Some(span.len().max(1)),
+            ..first_line
+        },
         (Location::Pointer(_), Some(_)) => match positions.line_col(d) {
-            Some((line, column)) => json!({"startLine": line, "startColumn": column}),
+            Some((line, column)) => Region {
+                start_column: Some(column),
+                ..Region::line(line)
+            },
             None => first_line,
         },
         (Location::Pointer(_), None) => first_line,
     };
-    let physical = json!({"artifactLocation": artifact, "region": region});
     let occurrence = occurrence.to_string();
-    let identity = [
-        report.uri.as_str(),
-        d.code.name(),
-        &place(d),
-        &d.message,
-        &occurrence,
-    ];
-    let mut result = json!({
-        "ruleId": d.code,
-        "level": level(d.severity),
-        "message": {"text": format!("{}{}", d.message, location_suffix(d))},
-        "locations": [{"physicalLocation": physical}],
-        "partialFingerprints": {"gltfmat/v2": fingerprint(&identity)},
-    });
-    if let Location::Pointer(p) = &d.location {
-        result["locations"][0]["logicalLocations"] =
-            json!([{"fullyQualifiedName": p, "kind": "member"}]);
+    let [uri, code, place, message] = identity;
+    let logical = match &d.location {
+        Location::Pointer(p) => Some([LogicalLocation {
+            fully_qualified_name: p,
+            kind: "member",
+        }]),
+        Location::Offset(_) => None,
+    };
+    SarifResult {
+        rule_id: d.code.name(),
+        level: level(d.severity),
+        message: Text {
+            text: format!("{}{}", d.message, location_suffix(d)),
+        },
+        locations: [SarifLocation {
+            physical_location: PhysicalLocation {
+                artifact_location: artifact,
+                region,
+            },
+            logical_locations: logical,
+        }],
+        partial_fingerprints: Fingerprints {
+            gltfmat_v2: fingerprint(&[uri, code, place, message, &occurrence]),
+        },
     }
-    result
+}
+
+#[derive(serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+struct SarifResult<'r> {
+    rule_id: &'static str,
+    level: &'static str,
+    message: Text,
+    locations: [SarifLocation<'r>; 1],
+    partial_fingerprints: Fingerprints,
+}
+
+#[derive(serde::Serialize)]
+struct Text {
+    text: String,
+}
+
+#[derive(serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+struct SarifLocation<'r> {
+    physical_location: PhysicalLocation<'r>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    logical_locations: Option<[LogicalLocation<'r>; 1]>,
+}
+
+#[derive(serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+struct PhysicalLocation<'r> {
+    artifact_location: &'r Value,
+    region: Region,
+}
+
+#[derive(serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+struct Region {
+    start_line: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    start_column: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    byte_offset: Option<u64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    byte_length: Option<usize>,
+}
+
+impl Region {
+    fn line(line: usize) -> Region {
+        Region {
+            start_line: line,
+            start_column: None,
+            byte_offset: None,
+            byte_length: None,
+        }
+    }
+}
+
+#[derive(serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+struct LogicalLocation<'r> {
+    fully_qualified_name: &'r str,
+    kind: &'static str,
+}
+
+#[derive(serde::Serialize)]
+struct Fingerprints {
+    #[serde(rename = "gltfmat/v2")]
+    gltfmat_v2: String,
 }
 
 /// FNV-1a over the parts (each followed by a 0 byte), as 16 hex digits: stable across runs,
 /// platforms and versions, which a std hasher does not promise.
 fn fingerprint(parts: &[&str]) -> String {
+    format!("{:016x}", fnv(parts))
+}
+
+/// FNV-1a over the parts, each followed by a 0 byte.
+fn fnv(parts: &[&str]) -> u64 {
     let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
     for byte in parts.iter().flat_map(|p| p.bytes().chain([0])) {
         hash = (hash ^ u64::from(byte)).wrapping_mul(0x0100_0000_01b3);
     }
-    format!("{hash:016x}")
+    hash
 }
