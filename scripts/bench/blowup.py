@@ -393,7 +393,10 @@ def run(command, path):
     best = None
     for _ in range(3):
         started = time.perf_counter()
-        proc = subprocess.run(['/usr/bin/time', '-f', '%M'] + args, capture_output=True, timeout=900)
+        # The report is discarded as it is written: holding a 1 GB report here would time this
+        # script's memory, not gltfmat.
+        proc = subprocess.run(['/usr/bin/time', '-f', '%M'] + args, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.PIPE, timeout=900)
         # Each run writes its output anew (the inputs stay: an input may be a .glb too).
         for out in (command[i + 1] for i, arg in enumerate(command) if arg == '-o'):
             if os.path.exists(out):
