@@ -1410,3 +1410,45 @@ fn a_material_without_a_model_is_said_to_be_not_evaluated_by_the_proof_and_compa
         "{out}"
     );
 }
+
+/// `render` names a material it cannot draw (no model) rather than leaving it out: alone, the
+/// refusal says which and why; in a sheet, a line says it was not drawn.
+#[test]
+fn render_names_a_material_without_a_model() {
+    let folder = tempfile::tempdir().unwrap();
+    let fixture = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/gltf1");
+    let mut asset: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(fixture.join("pbr-mr-web3d.gltf")).unwrap()).unwrap();
+    std::fs::copy(fixture.join("box.bin"), folder.path().join("box.bin")).unwrap();
+    let common = serde_json::json!({"extensions": {"KHR_materials_common": {
+        "technique": "LAMBERT", "values": {"diffuse": [0.8, 0.2, 0.1, 1.0]}}}});
+    asset["materials"]["lit"] = common.clone();
+    asset["extensionsUsed"] = serde_json::json!(["WEB3D_materials_pbr", "KHR_materials_common"]);
+    let mixed = folder.path().join("mixed.gltf");
+    std::fs::write(&mixed, asset.to_string()).unwrap();
+    let only = folder.path().join("only.gltf");
+    asset["materials"] = serde_json::json!({ "lit": common });
+    std::fs::write(&only, asset.to_string()).unwrap();
+    let sheet = folder.path().join("sheet.png");
+    let (mixed, only, sheet) = (
+        mixed.to_str().unwrap(),
+        only.to_str().unwrap(),
+        sheet.to_str().unwrap(),
+    );
+    let (code, out) = gltfmat(&["render", mixed, "--all", "-o", sheet]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.contains("material 1 'lit': not drawn: ") && out.contains("KHR_materials_common"),
+        "{out}"
+    );
+    let refused = std::process::Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(["render", only, "-o", sheet, "--force"])
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{said}");
+    assert!(
+        said.contains("material 0 (lit) cannot be drawn: "),
+        "{said}"
+    );
+}

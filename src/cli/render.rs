@@ -42,6 +42,12 @@ pub fn run(args: RenderArgs) -> Outcome {
             outln!("  not drawn: {what}");
         }
     }
+    for (i, name) in &picture.skipped {
+        outln!(
+            "material {i} '{name}': not drawn: {}",
+            gltfmat::shade::pairing::NO_MODEL
+        );
+    }
     if picture.layout.cell < args.size {
         outln!(
             "cells drawn at {} pixels, not {}: a sheet holds at most {} pixels",

@@ -391,6 +391,9 @@ pub struct Picture {
     /// What is not drawn of each material drawn, in the same order (see
     /// [`MaterialSource::unmodelled`]): empty when the picture shows all of it.
     pub not_drawn: Vec<Vec<String>>,
+    /// The `(index, name)` of each material wanted but not drawn at all, having no model
+    /// ([`NO_MODEL`]).
+    pub skipped: Vec<(usize, String)>,
     /// Where the cells are (one cell for a single ball); its cell may be smaller than the
     /// size asked for, when the sheet would pass [`MAX_PIXELS`].
     pub layout: SheetLayout,
@@ -431,7 +434,7 @@ pub fn render_each(path: impl AsRef<Path>, size: u32, at_most: usize) -> Result<
             image: material.as_ref().map(&mut ball),
             not_drawn: match material {
                 Some(m) => m.unmodelled().to_vec(),
-                None => vec!["its model is not one the evaluator reads".into()],
+                None => vec![NO_MODEL.into()],
             },
         })
         .collect())
@@ -442,22 +445,32 @@ pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture
     let path = path.as_ref();
     let size = options.size.clamp(8, MAX_SIZE);
     let ((materials, _), inputs) = materials_of(path, finest_for_preview(size), false)?;
-    let chosen: Vec<(usize, &String, &MaterialSource)> = materials
-        .iter()
-        .enumerate()
-        .filter_map(|(i, (name, m))| Some((i, name, m.as_ref()?)))
-        .filter(|(i, name, _)| match (&options.material, options.all) {
+    let wanted = (materials.iter().enumerate()).filter(|(i, (name, _))| {
+        match (&options.material, options.all) {
             (_, true) | (None, false) => true,
-            (Some(wanted), false) => wanted == *name || wanted.parse() == Ok(*i),
-        })
-        .take(if options.all { usize::MAX } else { 1 })
-        .collect();
+            (Some(wanted), false) => wanted == name || wanted.parse() == Ok(*i),
+        }
+    });
+    // Without --all, the first material wanted that has a model (or the one named).
+    let (mut chosen, mut skipped) = (Vec::new(), Vec::new());
+    for (i, (name, m)) in wanted {
+        if !options.all && !chosen.is_empty() {
+            break;
+        }
+        match m {
+            Some(m) => chosen.push((i, name, m)),
+            None => skipped.push((i, name.clone())),
+        }
+    }
     let unusable = |reason: String| Error::Unusable {
         path: path.to_path_buf(),
         reason,
     };
     let Some(first) = chosen.first() else {
-        return Err(unusable("no such material to render".into()));
+        return Err(unusable(match skipped.first() {
+            Some((i, name)) => format!("material {i} ({name}) cannot be drawn: {NO_MODEL}"),
+            None => "no such material to render".into(),
+        }));
     };
     let shader = shader_for(chosen.iter().map(|(_, _, m)| *m));
     let layout = SheetLayout::new(chosen.len(), size).ok_or_else(|| {
@@ -484,6 +497,7 @@ pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture
         image,
         drawn,
         not_drawn,
+        skipped,
         layout,
         inputs,
     })
