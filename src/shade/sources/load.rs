@@ -2,8 +2,9 @@
 
 use super::sample::{self, MaterialSource, Texture};
 use super::surface;
+use super::views::Views;
 use crate::document::uri::{load_uri, ResourceLoader};
-use crate::document::{self, BufferData, Bytes, Container, Node};
+use crate::document::{self, Bytes, Node};
 use crate::gltf::material::drawn_image;
 use serde_json::Value;
 use std::collections::HashMap;
@@ -60,59 +61,6 @@ pub fn texture_source(texture: &Value) -> Option<u64> {
 
 /// An asset's materials by name, and the surface points of each (see [`gltf2_materials`]).
 pub type MaterialsOn = (Vec<(String, MaterialSource)>, Vec<surface::Surface>);
-
-/// A document's buffer views with the buffers they read, loaded once.
-pub(super) struct Views<'d> {
-    views: Vec<Value>,
-    buffers: Vec<Option<BufferData<'d>>>,
-}
-
-impl<'d> Views<'d> {
-    pub(super) fn of(doc: &'d document::Document, loader: &dyn ResourceLoader) -> Views<'d> {
-        let root = doc.root.as_ref().map(|tree| tree.root());
-        let list = |key: &str| -> Vec<Value> {
-            (root
-                .and_then(|r| r.get(key))
-                .and_then(Node::as_array)
-                .into_iter())
-            .flat_map(|a| a.iter())
-            .map(Node::to_value)
-            .collect()
-        };
-        let buffers = (list("buffers").iter().enumerate())
-            .map(
-                |(i, buffer)| match buffer.get("uri").and_then(Value::as_str) {
-                    Some(uri) => load_uri(uri, loader).ok().map(BufferData::Loaded),
-                    None if i == 0 && doc.container == Container::Glb => {
-                        doc.bin().map(BufferData::Glb)
-                    }
-                    None => None,
-                },
-            )
-            .collect();
-        Views {
-            views: list("bufferViews"),
-            buffers,
-        }
-    }
-
-    /// The bytes of buffer view `index`, when its buffer was read and holds them.
-    pub(super) fn bytes(&self, index: u64) -> Option<&[u8]> {
-        let view = self.views.get(index as usize)?;
-        let buffer = (self.buffers)
-            .get(view.get("buffer")?.as_u64()? as usize)?
-            .as_ref()?;
-        let start = view.get("byteOffset").and_then(Value::as_u64).unwrap_or(0) as usize;
-        let end = start.checked_add(view.get("byteLength")?.as_u64()? as usize)?;
-        buffer.in_memory()?.get(start..end)
-    }
-
-    /// A view's byteStride, when it sets one.
-    pub(super) fn stride(&self, index: u64) -> Option<usize> {
-        let view = self.views.get(index as usize)?;
-        Some(view.get("byteStride")?.as_u64()? as usize)
-    }
-}
 
 /// Every material of a glTF 2.0 asset with its decoded textures (no finer than `finest`, see
 /// [`sample::decode_all_at_most`]), and the material names; with `surfaces`, also the points

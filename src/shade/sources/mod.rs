@@ -5,3 +5,4 @@ pub(crate) mod legacy;
 pub(crate) mod load;
 pub(crate) mod sample;
 pub(crate) mod surface;
+mod views;

@@ -3,7 +3,7 @@
 //! it. Only points whose sets differ are kept: where every set agrees, the comparison's UV
 //! grid already holds the point.
 
-use super::load::Views;
+use super::views::Views;
 use crate::document::Node;
 use crate::gltf::accessor::{component_count, component_size, decode, normalise, Layout};
 use crate::gltf::mesh::{drawn_materials, triangle_count, triangles};
