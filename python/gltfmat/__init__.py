@@ -185,6 +185,10 @@ class Comparison:
     """The input that dominates the worst difference ("emission", "coverage", …)."""
     not_evaluated: List[str]
     """What the evaluator could not show of either material: the pair is then never same."""
+    evaluated: bool
+    """False for a glTF 1.0 material without a model (a technique's shaders,
+    KHR_materials_common): nothing was evaluated, the figures are 0, and an upgrade's proof is
+    not failed by it."""
     worst: Mapping[str, Any]
     details: Mapping[str, Any] = field(repr=False)
 
@@ -199,6 +203,7 @@ class Comparison:
             same=o["pass"],
             dominant=o["dominant"],
             not_evaluated=list(o["notEvaluated"]),
+            evaluated=o["evaluated"],
             worst=o["worst"],
             details=o,
         )

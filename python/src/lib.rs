@@ -331,7 +331,7 @@ impl Plan {
                 .map_err(|e| refused(format!("proof: {e}")))?,
             false => Vec::new(),
         };
-        if self.verify && !proof.iter().all(|o| o.same(self.threshold)) {
+        if self.verify && !gltfmat::upgrade::proof_holds(&proof, self.threshold) {
             return Err(refused(format!(
                 "a converted material does not render like its source within ΔE2000 {}; nothing was written",
                 self.threshold

@@ -123,6 +123,19 @@ def test_verify_refuses_a_conversion_whose_proof_fails():
         gltfmat.upgrade(source, verify=True, draft_reading="example-shader", threshold=0.01)
 
 
+def test_a_material_without_a_model_is_named_not_evaluated_and_does_not_fail_verify():
+    asset = {
+        "asset": {"version": "1.0"},
+        "extensionsUsed": ["KHR_materials_common"],
+        "materials": {"lit": {"extensions": {"KHR_materials_common": {
+            "technique": "BLINN", "values": {"diffuse": [0.8, 0.2, 0.1, 1.0]}}}}},
+    }
+    upgraded = gltfmat.upgrade(json.dumps(asset).encode(), name="common.gltf", verify=True)
+    [proof] = upgraded.proof
+    assert proof.a == (0, "lit") and not proof.evaluated and not proof.same
+    assert "KHR_materials_common" in proof.not_evaluated[0]
+
+
 def test_compare_and_render():
     textured = TEXTURED
     factors = FIXTURES / "spec-gloss" / "factors.gltf"

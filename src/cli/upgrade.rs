@@ -354,10 +354,7 @@ fn tolerated_errors(
 
 /// The proof: every source material that has a model of its own (a 1.0 asset's PBR-draft
 /// materials, every material of a 2.0 asset) compared with its conversion, one line each in
-/// the log. False when one differs by more than the threshold or cannot be evaluated in
-/// full. A 1.0 material without a model (a technique's shaders, KHR_materials_common's
-/// lighting) gets its line saying so and does not fail the proof: its conversion changes
-/// the lighting model, as its decision line states, and no figure could judge that.
+/// the log. False when the proof does not hold ([`gltfmat::upgrade::proof_holds`]).
 fn proved(read: Fingerprint, args: &UpgradeArgs, upgraded: &Upgraded, log: &mut Log) -> bool {
     // No material, nothing to compare: the input is not read again.
     if upgraded.json.items("materials").is_none_or(Items::is_empty) {
@@ -395,9 +392,7 @@ fn proved(read: Fingerprint, args: &UpgradeArgs, upgraded: &Upgraded, log: &mut 
     for (figures, pairs) in grouped(lines) {
         log.line(format_args!("proof: {}: {figures}", places(&pairs)));
     }
-    (outcomes.iter())
-        .filter(|o| o.is_evaluated())
-        .all(|o| o.same(args.threshold))
+    gltfmat::upgrade::proof_holds(&outcomes, args.threshold)
 }
 
 /// The `--report` page: the source and its upgrade compared as the proof compares them, with

@@ -55,3 +55,14 @@ pub fn prove<'b>(
         TexelMap::Dropped,
     ))
 }
+
+/// Whether a proof holds at `threshold`: every pair that was evaluated is the same. A 1.0
+/// material without a model (a technique's shaders, KHR_materials_common's lighting) is said
+/// to be not evaluated and does not fail it: its conversion changes the lighting model by
+/// design, as its decision line states, and no figure could judge that. A pair evaluated in
+/// part (an input the evaluator does not model) is never the same, and fails it.
+pub fn holds(proof: &[Outcome], threshold: f64) -> bool {
+    (proof.iter())
+        .filter(|o| o.is_evaluated())
+        .all(|o| o.same(threshold))
+}
