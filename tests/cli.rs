@@ -1409,6 +1409,23 @@ fn a_material_without_a_model_is_said_to_be_not_evaluated_by_the_proof_and_compa
         out.contains("NOT EVALUATED") && out.contains("KHR_materials_common"),
         "{out}"
     );
+    // As JSON it says nothing was evaluated; a heat map of nothing is not written.
+    let heatmap = folder.path().join("heat.png");
+    let heatmap = heatmap.to_str().unwrap();
+    let (code, out) = gltfmat(&[
+        "compare",
+        input,
+        output,
+        "--format",
+        "json",
+        "--heatmap",
+        heatmap,
+    ]);
+    assert_eq!(code, 1, "{out}");
+    let pairs: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(pairs[0]["evaluated"], false, "{out}");
+    assert_eq!(pairs[0]["pass"], false, "{out}");
+    assert!(!std::path::Path::new(heatmap).exists());
 }
 
 /// `render` names a material it cannot draw (no model) rather than leaving it out: alone, the

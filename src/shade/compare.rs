@@ -127,7 +127,7 @@ pub struct Comparison {
 
 impl Comparison {
     /// No comparison: nothing evaluated, no sample taken (a material without a model).
-    pub fn nothing() -> Comparison {
+    pub(crate) fn nothing() -> Comparison {
         Comparison {
             max: 0.0,
             p99: 0.0,

@@ -29,7 +29,7 @@ use crate::legacy::source::{self, NotGltf1};
 use crate::shade::sample::{self, MaterialSource, Texture};
 pub use binary::Binary;
 pub use json::{Items, Json};
-pub use proof::{holds as proof_holds, prove, ProofError};
+pub use proof::{proof_holds, prove, ProofError};
 use serde_json::Value;
 use std::borrow::Cow;
 use std::collections::HashSet;

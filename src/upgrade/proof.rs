@@ -61,7 +61,7 @@ pub fn prove<'b>(
 /// to be not evaluated and does not fail it: its conversion changes the lighting model by
 /// design, as its decision line states, and no figure could judge that. A pair evaluated in
 /// part (an input the evaluator does not model) is never the same, and fails it.
-pub fn holds(proof: &[Outcome], threshold: f64) -> bool {
+pub fn proof_holds(proof: &[Outcome], threshold: f64) -> bool {
     (proof.iter())
         .filter(|o| o.is_evaluated())
         .all(|o| o.same(threshold))
