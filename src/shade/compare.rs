@@ -446,6 +446,9 @@ pub fn compare_readings(
     grid: u32,
     map: TexelMap,
 ) -> Vec<Comparison> {
+    if readings.is_empty() {
+        return Vec::new();
+    }
     let grid = chosen_grid(readings, b, grid);
     let job = Job {
         shader,
@@ -465,7 +468,11 @@ pub fn compare_readings(
                 scope.spawn(move || compare_rows(job, rows))
             })
             .collect();
-        handles.into_iter().filter_map(|h| h.join().ok()).collect()
+        // A worker's panic is the comparison's: its rows must not silently go missing.
+        let joined = handles.into_iter().map(|h| h.join());
+        joined
+            .map(|rows| rows.unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+            .collect()
     });
     (0..readings.len())
         .map(|r| {
@@ -524,6 +531,9 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
     // Where both materials are linear in texels of this grid, a corner between four
     // centres whose inputs agree has agreeing inputs too: it is not sampled.
     let linear = readings.iter().all(|a| a.linear_on(grid)) && b.linear_on(grid);
+    // Where every texture is read as stored, a point whose texels equal its left
+    // neighbour's (a flat region) has that point's inputs: it is not sampled again.
+    let as_stored = readings.iter().all(|a| a.texels_on(grid)) && b.texels_on(grid);
     let (mut above, mut here): (Option<Vec<bool>>, Vec<bool>) = (None, Vec::new());
     for y in rows {
         here.clear();
@@ -557,13 +567,28 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                     if above.as_deref().is_some_and(agree) && agree(&here) {
                         let each = row_of.iter_mut().zip(&mut partials);
                         for (row, partial) in each {
-                            match row.pending.is_empty() {
-                                true => partial.add_equal_point(&place(x), &directions.angles),
-                                false => row.pending.push((x, Source::Zero)),
-                            }
+                            row.add_equal(partial, x, place, &directions.angles);
                         }
                         continue;
                     }
+                }
+                let corner = points == Points::Corners;
+                if as_stored
+                    && x > 0
+                    && row_of.iter().all(|r| r.last_equal || r.previous.is_some())
+                    && b.reads_as_left(x, y, corner)
+                    && readings.iter().all(|a| a.reads_as_left(x, y, corner))
+                {
+                    if points == Points::Centres {
+                        here.push(here[x as usize - 1]);
+                    }
+                    for (row, partial) in row_of.iter_mut().zip(&mut partials) {
+                        match &row.previous {
+                            Some((_, source)) if !row.last_equal => row.pending.push((x, *source)),
+                            _ => row.add_equal(partial, x, place, &directions.angles),
+                        }
+                    }
+                    continue;
                 }
                 let target = b.inputs_at(&[uv]);
                 if points == Points::Centres {
@@ -577,16 +602,13 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                         here[x as usize] = false;
                     }
                     if equal {
-                        // Identical inputs give identical colours, whose ΔE is exactly 0:
-                        // added at once unless points before it wait for their batch. (The
-                        // previous point is left as it was: no point with differing inputs
-                        // equals this.)
-                        match row.pending.is_empty() {
-                            true => partial.add_equal_point(&place(x), &directions.angles),
-                            false => row.pending.push((x, Source::Zero)),
-                        }
+                        // Identical inputs give identical colours, whose ΔE is exactly 0.
+                        // (The previous point is left as it was: no point with differing
+                        // inputs equals this.)
+                        row.add_equal(partial, x, place, &directions.angles);
                         continue;
                     }
+                    row.last_equal = false;
                     let source = if let Some(same) = row.repeat_of(&source, &target) {
                         // A point like the one before (a flat region of a texture) has its
                         // ΔE; nothing is copied.
@@ -643,11 +665,30 @@ struct Row {
     pending: Vec<(u32, Source)>,
     /// Points put into the batch so far.
     unique: usize,
-    /// The last point's inputs and samples: equal inputs give equal colours.
+    /// The last point with differing inputs: its inputs and samples (equal inputs give equal
+    /// colours).
     previous: Option<(Pair, Source)>,
+    /// Whether the last point had equal inputs on both sides.
+    last_equal: bool,
 }
 
 impl Row {
+    /// A point with the same inputs on both sides: ΔE 0, added at once unless points before
+    /// it wait for their batch.
+    fn add_equal(
+        &mut self,
+        partial: &mut Partial,
+        x: u32,
+        place: impl Fn(u32) -> Place,
+        angles: &[Angles; DIRECTION_COUNT],
+    ) {
+        self.last_equal = true;
+        match self.pending.is_empty() {
+            true => partial.add_equal_point(&place(x), angles),
+            false => self.pending.push((x, Source::Zero)),
+        }
+    }
+
     fn repeat_of(&self, a: &Inputs, b: &Inputs) -> Option<Source> {
         let ((previous_a, previous_b), source) = self.previous.as_ref()?;
         (previous_b == b && previous_a == a).then_some(*source)
@@ -900,11 +941,9 @@ mod tests {
         }
     }
 
-    #[test]
-    fn repeated_texels_reuse_their_samples_exactly() {
-        // A 48² base colour in runs of three texels (16 distinct per row, so a run continues
-        // after its batch of 8 is converted), against the same with another roughness: each
-        // texel's ΔE, computed alone, must equal what the row-wise reuse reports.
+    /// A `size`² PNG in runs of `run` texels of five colours; rows that `changed` picks are
+    /// shifted by one colour.
+    fn runs_png(size: u32, run: u32, changed: impl Fn(u32) -> bool) -> Vec<u8> {
         let palette = [
             [200, 40, 40],
             [40, 200, 40],
@@ -912,29 +951,28 @@ mod tests {
             [128, 128, 128],
             [10, 10, 10],
         ];
-        let image = image::RgbImage::from_fn(48, 48, |x, y| {
-            image::Rgb(palette[((x / 3 + y) % 5) as usize])
+        let image = image::RgbImage::from_fn(size, size, |x, y| {
+            let shift = u32::from(changed(y));
+            image::Rgb(palette[((x / run + y + shift) % 5) as usize])
         });
         let mut png = Vec::new();
         image::DynamicImage::ImageRgb8(image)
             .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
             .unwrap();
-        let textures = crate::shade::sample::decode_all(&[Some(Ok(png))]).unwrap();
-        let textured = |roughness: f64| {
-            MaterialSource::gltf2(
-                &json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
-                    "metallicFactor": 0.0, "roughnessFactor": roughness}}),
-                &textures,
-            )
-        };
-        let (a, b) = (textured(0.5), textured(0.6));
+        png
+    }
+
+    /// Each texel's entry in `a` against `b` on a `size`² grid equals the ΔE of its centre and
+    /// its corner computed alone; returns the comparison.
+    fn assert_each_texel_as_alone(a: &MaterialSource, b: &MaterialSource, size: u32) -> Comparison {
         let shader = shader();
-        let result = compare(&shader, &a, &b, 48);
-        for y in 0..48 {
-            for x in 0..48 {
+        let result = compare(&shader, a, b, size);
+        let n = f64::from(size);
+        for y in 0..size {
+            for x in 0..size {
                 // A texel's entry is the larger of its centre's and its corner's.
                 let at = |offset: f64| {
-                    let uv = [(x as f64 + offset) / 48.0, (y as f64 + offset) / 48.0];
+                    let uv = [(f64::from(x) + offset) / n, (f64::from(y) + offset) / n];
                     let (a, b) = (a.inputs_at(&[uv]), b.inputs_at(&[uv]));
                     (DIRECTIONS.map(Angles::coarse).iter())
                         .map(|angles| delta_at(&shader, &a, &b, angles).0)
@@ -942,16 +980,54 @@ mod tests {
                 };
                 let alone = at(0.5).max(at(0.0));
                 assert_eq!(
-                    result.per_texel[y * 48 + x],
+                    result.per_texel[(y * size + x) as usize],
                     alone as f32,
                     "texel ({x}, {y})"
                 );
             }
         }
+        result
+    }
+
+    fn base_coloured(png: Vec<u8>, roughness: f64) -> MaterialSource {
+        let textures = crate::shade::sample::decode_all(&[Some(Ok(png))]).unwrap();
+        MaterialSource::gltf2(
+            &json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                "metallicFactor": 0.0, "roughnessFactor": roughness}}),
+            &textures,
+        )
+    }
+
+    #[test]
+    fn repeated_texels_reuse_their_samples_exactly() {
+        // Runs of three texels (16 distinct per row, so a run continues after its batch of 8
+        // is converted), against the same with another roughness: on a 48² grid, where a
+        // point's inputs are sampled and then found to repeat, and on a 64² grid, where
+        // equal stored texels say so before sampling.
+        for size in [48, 64] {
+            let png = || runs_png(size, 3, |_| false);
+            let (a, b) = (base_coloured(png(), 0.5), base_coloured(png(), 0.6));
+            let result = assert_each_texel_as_alone(&a, &b, size);
+            assert!(
+                result.max > 1.0,
+                "the roughness change shows: {}",
+                result.max
+            );
+        }
+    }
+
+    #[test]
+    fn flat_regions_read_from_stored_texels_keep_equal_and_differing_points_apart() {
+        // Every third row of the second texture differs: rows of equal inputs, rows that
+        // differ, and corners between them, each run read once.
+        let a = base_coloured(runs_png(64, 4, |_| false), 0.5);
+        let b = base_coloured(runs_png(64, 4, |y| y % 3 == 0), 0.5);
+        assert!(a.texels_on(64) && !a.texels_on(32) && !a.texels_on(48));
+        let result = assert_each_texel_as_alone(&a, &b, 64);
+        assert!(result.max > 1.0, "the changed rows show: {}", result.max);
         assert!(
-            result.max > 1.0,
-            "the roughness change shows: {}",
-            result.max
+            result.per_texel.iter().filter(|&&d| d == 0.0).count() > 64 * 20,
+            "the rows between are equal"
         );
     }
 
@@ -990,6 +1066,8 @@ mod tests {
             assert_eq!(result, &compare(&shader(), reading, &target, 8));
         }
         assert_eq!(together[1].max, 0.0);
+        let none = compare_readings(&shader(), &[], &target, 8, TexelMap::Kept);
+        assert!(none.is_empty(), "no reading, no comparison");
         assert!(together[2].max > together[0].max && together[0].max > 0.0);
     }
 

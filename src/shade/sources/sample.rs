@@ -57,6 +57,19 @@ impl TextureImage {
         })
     }
 
+    /// Whether texel (x, y) holds what texel (x − 1, y) holds, as stored (`x` ≥ 1).
+    #[inline(always)]
+    fn same_as_left(&self, x: u32, y: u32) -> bool {
+        let n = self.channels;
+        let at = (y as usize * self.width as usize + x as usize) * n;
+        let pair = |raw_len: usize| at >= n && at + n <= raw_len;
+        match &self.texels {
+            Texels::Unorm8(raw) => pair(raw.len()) && raw[at - n..at] == raw[at..at + n],
+            Texels::Unorm16(raw) => pair(raw.len()) && raw[at - n..at] == raw[at..at + n],
+            Texels::Float(raw) => pair(raw.len()) && raw[at - n..at] == raw[at..at + n],
+        }
+    }
+
     /// Whether its texels have more than 8 bits (a rebake from it keeps 16 bits).
     pub fn is_wide(&self) -> bool {
         !matches!(self.texels, Texels::Unorm8(_))
@@ -967,6 +980,60 @@ impl MaterialSource {
                 pbr.model == Model::MetalRoughness
                     && colour.iter().chain(data).all(|t| on_grid(t))
                     && samplers.iter().all(|s| !s.nearest)
+            }
+        }
+    }
+
+    /// Whether each of its textures is read on the `grid`² comparison grid as stored: every
+    /// texture is `grid`², read without a transform and filtered linearly, and `grid` is a
+    /// power of two (so a texel centre and a corner are exact coordinates: a centre reads one
+    /// texel, a corner the mean of four). Then [`MaterialSource::reads_as_left`] can tell,
+    /// from the stored texels alone, that a point's inputs are its left neighbour's.
+    pub fn texels_on(&self, grid: u32) -> bool {
+        let as_stored = |t: &TextureImage, sampler: Sampler| {
+            t.width() == grid && t.height() == grid && !sampler.nearest
+        };
+        grid.is_power_of_two()
+            && match self {
+                MaterialSource::Gltf2(p) => {
+                    let identity = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+                    p.bindings()
+                        .all(|b| as_stored(&b.texture, b.sampler) && b.transform == identity)
+                }
+                MaterialSource::Legacy {
+                    colour,
+                    data,
+                    samplers,
+                    ..
+                } => [colour, data]
+                    .into_iter()
+                    .zip(samplers)
+                    .all(|(t, sampler)| t.as_deref().is_none_or(|t| as_stored(t, *sampler))),
+            }
+    }
+
+    /// For a material whose textures are [`MaterialSource::texels_on`] the grid: whether the
+    /// grid point at column `x` of row `y` (a texel centre, or with `corner` the texel's
+    /// top-left corner) reads texels equal to those the point at `x − 1` reads, so that its
+    /// inputs are that point's. Points whose reads wrap around an edge are never said to.
+    #[inline(always)]
+    pub fn reads_as_left(&self, x: u32, y: u32, corner: bool) -> bool {
+        let same = |t: &TextureImage| {
+            if corner {
+                // A corner reads the texels left and right of it in the rows above and below.
+                x >= 2
+                    && y >= 1
+                    && [(x, y), (x - 1, y), (x, y - 1), (x - 1, y - 1)]
+                        .into_iter()
+                        .all(|(x, y)| t.same_as_left(x, y))
+            } else {
+                x >= 1 && t.same_as_left(x, y)
+            }
+        };
+        match self {
+            MaterialSource::Gltf2(p) => p.bindings().all(|b| same(&b.texture)),
+            MaterialSource::Legacy { colour, data, .. } => {
+                colour.iter().chain(data).all(|t| same(t))
             }
         }
     }
