@@ -1378,18 +1378,115 @@ fn compare_reads_each_texture_through_its_own_texcoord_set_on_the_mesh() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// A 1.0 material drawn by KHR_materials_common: the upgrade's proof and `compare` each say
-/// it is not evaluated; `--verify` keeps the output (the conversion's change of lighting
-/// model is what its decision line states), `compare` exits 1 (not the same), not 2.
+/// A 1.0 material drawn by KHR_materials_common's lighting is proved by what can be read of
+/// it, its emission and coverage: its lighting is said not to be evaluated (so `compare`
+/// never calls the pair the same, exit 1), and a faithful upgrade holds under `--verify`.
+/// Against an output that lost its emission or its blending, `compare` says DIFFERENT and
+/// names the input; a change of the lit colour alone is not seen (the lighting is not read).
 #[test]
-fn a_material_without_a_model_is_said_to_be_not_evaluated_by_the_proof_and_compare() {
+fn a_lit_1_0_material_is_proved_by_its_emission_and_coverage() {
     let folder = tempfile::tempdir().unwrap();
     let input = folder.path().join("common.gltf");
+    let common = |technique: &str, values: serde_json::Value, transparent: bool| {
+        serde_json::json!({"extensions": {"KHR_materials_common": {
+            "technique": technique, "transparent": transparent, "values": values}}})
+    };
     let asset = serde_json::json!({
         "asset": {"version": "1.0"},
         "extensionsUsed": ["KHR_materials_common"],
-        "materials": {"lit": {"extensions": {"KHR_materials_common": {
-            "technique": "BLINN", "values": {"diffuse": [0.8, 0.2, 0.1, 1.0], "shininess": 20}}}}},
+        "materials": {
+            "glow": common("BLINN", serde_json::json!({"diffuse": [0.8, 0.2, 0.1, 1.0],
+                "emission": [0.2, 0.6, 0.1, 1.0], "shininess": 20}), false),
+            "glass": common("PHONG", serde_json::json!({"diffuse": [0.3, 0.3, 0.9, 1.0],
+                "transparency": 0.4}), true),
+            // Blended with ONE, ONE_MINUS_SRC_ALPHA, its emission is added whole.
+            "lamp": common("LAMBERT", serde_json::json!({"emission": [0.9, 0.9, 0.9, 1.0],
+                "transparency": 0.3}), true),
+            // The constant model's colour is its emission; diffuse does not apply.
+            "sign": common("CONSTANT", serde_json::json!({"diffuse": [0.1, 0.1, 0.9, 1.0],
+                "emission": [0.9, 0.5, 0.1, 1.0]}), false),
+        },
+    });
+    std::fs::write(&input, asset.to_string()).unwrap();
+    let output = folder.path().join("out.gltf");
+    let (input, output) = (input.to_str().unwrap(), output.to_str().unwrap());
+    let (code, out) = gltfmat(&["upgrade", input, "-o", output, "--verify"]);
+    assert_eq!(code, 0, "{out}");
+    let proof: Vec<&str> = out.lines().filter(|l| l.starts_with("proof:")).collect();
+    assert_eq!(
+        proof.len(),
+        1,
+        "one line for the four alike verdicts: {out}"
+    );
+    assert!(
+        proof[0].contains("NOT EVALUATED (first: its lighting")
+            && proof[0].contains("only its emission and coverage are compared")
+            && proof[0].contains("of the rest: ΔE2000 max 0.0000"),
+        "{out}"
+    );
+    let (code, out) = gltfmat(&["compare", input, output, "--format", "json"]);
+    assert_eq!(code, 1, "never the same: {out}");
+    let pairs: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for pair in pairs.as_array().unwrap() {
+        assert_eq!(pair["evaluated"], true, "{out}");
+        assert_eq!(pair["pass"], false, "{out}");
+        assert_eq!(pair["max"], 0.0, "{out}");
+    }
+    let converted: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(output).unwrap()).unwrap();
+    let variant = |name: &str, change: &dyn Fn(&mut serde_json::Value)| {
+        let mut changed = converted.clone();
+        change(&mut changed["materials"]);
+        let path = folder.path().join(name);
+        std::fs::write(&path, changed.to_string()).unwrap();
+        let (code, out) = gltfmat(&["compare", input, path.to_str().unwrap()]);
+        assert_eq!(code, 1, "{out}");
+        out
+    };
+    let unlit = variant("no-emission.gltf", &|m| {
+        m[0].as_object_mut().unwrap().remove("emissiveFactor");
+    });
+    assert!(
+        unlit.contains("material 0 (glow) ↔ 0 (glow): DIFFERENT in what is evaluated")
+            && unlit.contains("(mostly emission)"),
+        "{unlit}"
+    );
+    let opaque = variant("opaque.gltf", &|m| {
+        m[1].as_object_mut().unwrap().remove("alphaMode");
+    });
+    assert!(
+        opaque.contains("material 1 (glass) ↔ 1 (glass): DIFFERENT in what is evaluated")
+            && opaque.contains("(mostly coverage)"),
+        "{opaque}"
+    );
+    let dimmed = variant("dimmed.gltf", &|m| {
+        m[2].as_object_mut().unwrap().remove("extensions");
+    });
+    assert!(
+        dimmed.contains("material 2 (lamp) ↔ 2 (lamp): DIFFERENT in what is evaluated"),
+        "{dimmed}"
+    );
+    let recoloured = variant("recoloured.gltf", &|m| {
+        m[0]["pbrMetallicRoughness"]["baseColorFactor"] = serde_json::json!([0.0, 1.0, 0.0, 1.0]);
+        m[3]["pbrMetallicRoughness"]["baseColorFactor"] = serde_json::json!([0.0, 0.0, 1.0, 1.0]);
+    });
+    assert!(
+        recoloured.contains("material 0 (glow) ↔ 0 (glow): NOT EVALUATED")
+            && recoloured.contains("material 3 (sign) ↔ 3 (sign): DIFFERENT in what is evaluated"),
+        "the lit colour is not read, the constant one is its emission: {recoloured}"
+    );
+}
+
+/// A 1.0 material nothing can be read of (its technique names no technique): the proof and
+/// `compare` say it is not evaluated, with no figure; `--verify` keeps the output, `compare`
+/// exits 1 (not the same), not 2, and writes no heat map of nothing.
+#[test]
+fn a_material_without_a_model_is_said_to_be_not_evaluated_by_the_proof_and_compare() {
+    let folder = tempfile::tempdir().unwrap();
+    let input = folder.path().join("technique.gltf");
+    let asset = serde_json::json!({
+        "asset": {"version": "1.0"},
+        "materials": {"lit": {"technique": "missing", "values": {"diffuse": [0.8, 0.2, 0.1, 1.0]}}},
     });
     std::fs::write(&input, asset.to_string()).unwrap();
     let output = folder.path().join("out.glb");
@@ -1403,13 +1500,6 @@ fn a_material_without_a_model_is_said_to_be_not_evaluated_by_the_proof_and_compa
             && !proof[0].contains("ΔE2000"),
         "{out}"
     );
-    let (code, out) = gltfmat(&["compare", input, output]);
-    assert_eq!(code, 1, "{out}");
-    assert!(
-        out.contains("NOT EVALUATED") && out.contains("KHR_materials_common"),
-        "{out}"
-    );
-    // As JSON it says nothing was evaluated; a heat map of nothing is not written.
     let heatmap = folder.path().join("heat.png");
     let heatmap = heatmap.to_str().unwrap();
     let (code, out) = gltfmat(&[

@@ -697,7 +697,7 @@ mod structure {
             "buffers": {"b": {"uri": uri, "byteLength": data.len()}},
             "bufferViews": {"v": {"buffer": "b", "byteOffset": 0, "byteLength": data.len()}},
             "accessors": {"pos": accessor(0, 3, "VEC3"), "joint": accessor(36, 3, "VEC4"), "weight": accessor(84, 3, "VEC4"), "ibm": accessor(132, 1, "MAT4")},
-            "techniques": {"t": {"states": {"enable": [3042, 2929]}}},
+            "techniques": {"t": {"states": {"enable": [3042, 2929], "functions": {"blendFuncSeparate": [1, 771, 1, 771]}}}},
             "materials": {
                 "blended": {"technique": "t", "values": {"diffuse": [1.0, 0.5, 0.25, 1.0]}},
                 "flat": {"extensions": {"KHR_materials_common": {"technique": "CONSTANT", "values": {"diffuse": [0.5, 0.5, 0.5, 1.0]}}}}
@@ -751,27 +751,28 @@ mod structure {
             .any(|n| n.text.contains("2 of 3 vertices list a joint twice")));
     }
 
-    /// A technique's material and a KHR_materials_common one have no model the evaluator
-    /// shades: the proof names each as not evaluated, with no figure, instead of leaving it
-    /// out (before, the proof said nothing of them and `compare` found no pair at all).
+    /// A technique's material and a KHR_materials_common one are drawn by lighting models the
+    /// evaluator does not shade: the proof compares what can be read of them (emission and
+    /// coverage), says their lighting is not evaluated, and holds (before, the proof said
+    /// nothing of them and `compare` found no pair at all).
     #[test]
-    fn the_proof_names_materials_without_a_model_as_not_evaluated() {
+    fn the_proof_compares_lit_materials_by_emission_and_coverage() {
         let bytes = serde_json::to_vec(&asset()).unwrap();
         let up = upgrade(&bytes, &NoResources, &UpgradeOptions::default()).unwrap();
         let proof = gltfmat::prove(&bytes, "asset.gltf", &NoResources, &up).unwrap();
         let named: Vec<&str> = proof.iter().map(|o| o.a.1.as_str()).collect();
         assert_eq!(named, ["blended", "flat"]);
         for outcome in &proof {
-            assert!(!outcome.is_evaluated(), "{}", outcome.a.1);
+            assert!(outcome.is_evaluated(), "{}", outcome.a.1);
             assert!(!outcome.same(1.0), "never the same: {}", outcome.a.1);
-            let [why] = &outcome.not_evaluated[..] else {
-                panic!("one reason: {:?}", outcome.not_evaluated);
-            };
             assert!(
-                why.starts_with("first: ") && why.contains("KHR_materials_common"),
-                "{why}"
+                outcome.only_lighting_unread(),
+                "{:?}",
+                outcome.not_evaluated
             );
+            assert_eq!(outcome.result.max, 0.0, "{}", outcome.a.1);
         }
+        assert!(gltfmat::upgrade::proof_holds(&proof, 1.0));
     }
 
     #[test]
@@ -1094,20 +1095,45 @@ fn materials_common_lights_become_punctual_lights_on_their_nodes() {
 
 #[test]
 fn technique_transparency_multiplies_alpha_where_the_technique_blends() {
-    let technique = |blend: bool| {
+    let technique = |blend: bool, functions: serde_json::Value| {
         let enable = if blend { vec![2929, 3042] } else { vec![2929] };
         serde_json::json!({"parameters": {"transparency": {"type": 5126}, "diffuse": {"type": 35666}},
-            "states": {"enable": enable}})
+            "states": {"enable": enable, "functions": functions}})
     };
-    let upgraded = upgrade_json(serde_json::json!({
+    let premultiplied = serde_json::json!({"blendFuncSeparate": [1, 771, 1, 771]});
+    let asset = serde_json::json!({
         "asset": {"version": "1.0"},
-        "techniques": {"blends": technique(true), "opaque": technique(false)},
+        "techniques": {"blends": technique(true, premultiplied.clone()), "opaque": technique(false, premultiplied),
+            // BLEND enabled with the specification's default functions, ONE, ZERO: the colour
+            // replaces what is behind.
+            "replaces": technique(true, serde_json::json!({}))},
         "materials": {
-            "glass": {"technique": "blends", "values": {"diffuse": [1, 1, 1, 0.5], "transparency": 0.9}},
-            "solid": {"technique": "opaque", "values": {"diffuse": [1, 1, 1, 1], "transparency": 0.9}}
+            "glass": {"technique": "blends", "values": {"diffuse": [1, 1, 1, 0.5], "transparency": 0.9,
+                "emission": [0.2, 0.3, 0.4, 1]}},
+            "solid": {"technique": "opaque", "values": {"diffuse": [1, 1, 1, 1], "transparency": 0.9}},
+            "plate": {"technique": "replaces", "values": {"diffuse": [1, 1, 1, 0.5], "transparency": 0.9}}
         },
         "scenes": {"s": {"nodes": []}}, "scene": "s"
-    }));
+    });
+    let upgraded = upgrade_json(asset.clone());
+    // The proof reads the techniques' emission and coverage the same way: the glass adds its
+    // emission whole (ONE, ONE_MINUS_SRC_ALPHA), which its conversion keeps.
+    let bytes = serde_json::to_vec(&asset).unwrap();
+    let proof = gltfmat::prove(&bytes, "asset.gltf", &NoResources, &upgraded).unwrap();
+    assert_eq!(proof.len(), 3);
+    for outcome in &proof {
+        assert!(
+            outcome.only_lighting_unread(),
+            "{:?}",
+            outcome.not_evaluated
+        );
+        assert!(
+            outcome.result.max < 1e-6,
+            "{}: {}",
+            outcome.a.1,
+            outcome.result.max
+        );
+    }
     let material = |i: usize| upgraded.json.to_value()["materials"][i].clone();
     assert_eq!(material(0)["alphaMode"], "BLEND");
     let alpha = material(0)["pbrMetallicRoughness"]["baseColorFactor"][3]
@@ -1121,6 +1147,11 @@ fn technique_transparency_multiplies_alpha_where_the_technique_blends() {
         material(1)["alphaMode"],
         Value::Null,
         "no blending: alpha is not seen"
+    );
+    assert_eq!(
+        material(2)["alphaMode"],
+        Value::Null,
+        "GL's default blend functions replace: alpha is not seen"
     );
     assert_eq!(
         material(1)["pbrMetallicRoughness"]["baseColorFactor"][3],

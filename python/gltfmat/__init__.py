@@ -186,9 +186,10 @@ class Comparison:
     not_evaluated: List[str]
     """What the evaluator could not show of either material: the pair is then never same."""
     evaluated: bool
-    """False for a glTF 1.0 material without a model (a technique's shaders,
-    KHR_materials_common): nothing was evaluated, the figures are 0, and an upgrade's proof is
-    not failed by it."""
+    """False for a glTF 1.0 material nothing can be read of (a technique id naming nothing, an
+    unreadable texture): nothing was evaluated, the figures are 0, and an upgrade's proof is
+    not failed by it. A 1.0 material drawn by a technique's shaders or KHR_materials_common is
+    evaluated by its emission and coverage, its lighting named in ``not_evaluated``."""
     worst: Mapping[str, Any]
     details: Mapping[str, Any] = field(repr=False)
 

@@ -123,17 +123,32 @@ def test_verify_refuses_a_conversion_whose_proof_fails():
         gltfmat.upgrade(source, verify=True, draft_reading="example-shader", threshold=0.01)
 
 
-def test_a_material_without_a_model_is_named_not_evaluated_and_does_not_fail_verify():
+def test_a_lit_material_is_proved_by_its_emission_and_coverage_and_verify_holds():
     asset = {
         "asset": {"version": "1.0"},
         "extensionsUsed": ["KHR_materials_common"],
         "materials": {"lit": {"extensions": {"KHR_materials_common": {
-            "technique": "BLINN", "values": {"diffuse": [0.8, 0.2, 0.1, 1.0]}}}}},
+            "technique": "BLINN", "transparent": True,
+            "values": {"diffuse": [0.8, 0.2, 0.1, 1.0], "emission": [0.3, 0.3, 0.3, 1.0],
+                       "transparency": 0.5}}}}},
     }
     upgraded = gltfmat.upgrade(json.dumps(asset).encode(), name="common.gltf", verify=True)
     [proof] = upgraded.proof
-    assert proof.a == (0, "lit") and not proof.evaluated and not proof.same
+    assert proof.a == (0, "lit") and proof.evaluated and not proof.same
+    assert proof.max == 0
     assert "KHR_materials_common" in proof.not_evaluated[0]
+    assert "emission and coverage" in proof.not_evaluated[0]
+
+
+def test_a_material_nothing_is_read_of_is_named_not_evaluated_and_does_not_fail_verify():
+    asset = {
+        "asset": {"version": "1.0"},
+        "materials": {"lit": {"technique": "missing", "values": {"diffuse": [0.8, 0.2, 0.1, 1.0]}}},
+    }
+    upgraded = gltfmat.upgrade(json.dumps(asset).encode(), name="technique.gltf", verify=True)
+    [proof] = upgraded.proof
+    assert proof.a == (0, "lit") and not proof.evaluated and not proof.same
+    assert proof.not_evaluated[0].startswith("first: ")
 
 
 def test_compare_and_render():

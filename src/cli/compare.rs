@@ -72,15 +72,17 @@ pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
     if !o.is_evaluated() {
         return format!("NOT EVALUATED ({})", o.not_evaluated.join("; "));
     }
-    let verdict = if !o.not_evaluated.is_empty() {
-        format!(
+    let verdict = match (o.not_evaluated.is_empty(), r.max <= threshold) {
+        (true, true) => "same".into(),
+        (true, false) => "DIFFERENT".into(),
+        (false, true) => format!(
             "NOT EVALUATED ({}); of the rest",
             o.not_evaluated.join("; ")
-        )
-    } else if r.max <= threshold {
-        "same".into()
-    } else {
-        "DIFFERENT".into()
+        ),
+        (false, false) => format!(
+            "DIFFERENT in what is evaluated; NOT EVALUATED ({}); of the rest",
+            o.not_evaluated.join("; ")
+        ),
     };
     let w = &r.worst;
     let [tv, pv] = w.directions.view;

@@ -87,6 +87,7 @@ const MATERIAL_MEMBERS: &[&str] = &[
     "version",
     "extensionsUsed",
     "materials",
+    "techniques",
     "textures",
     "images",
     "samplers",

@@ -151,10 +151,13 @@ impl Page {
             escape(&b.display().to_string())
         );
         for (outcome, line) in outcomes.iter().zip(lines) {
-            let verdict = match (outcome.is_evaluated(), outcome.same(threshold)) {
-                (false, _) => "not evaluated",
-                (true, true) => "same",
-                (true, false) => "different",
+            let within = outcome.result.max <= threshold;
+            let verdict = match (outcome.is_evaluated(), outcome.same(threshold), within) {
+                (false, _, _) => "not evaluated",
+                (true, true, _) => "same",
+                // Evaluated in part, and that part within the threshold.
+                (true, false, true) => "not evaluated",
+                (true, false, false) => "different",
             };
             let _ = write!(
                 section,

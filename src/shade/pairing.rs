@@ -8,8 +8,8 @@ use super::legacy::{legacy_materials, LegacyMaterialsError};
 use super::load::gltf2_materials;
 use super::material::{Shader, SpecGlossReading};
 use super::render::{contact_sheet, material_ball, SheetLayout, MAX_PIXELS, MAX_SIZE};
-use super::sample::MaterialSource;
 pub use super::sample::AS_STORED;
+use super::sample::{MaterialSource, LIGHTING_UNREAD};
 use super::sheen_table::SheenTable;
 use super::surface::Surface;
 use crate::document::file::FileId;
@@ -91,6 +91,17 @@ pub struct Outcome {
 }
 
 impl Outcome {
+    /// Whether all that is not evaluated of the pair is the lighting of a glTF 1.0 material
+    /// (see [`LIGHTING_UNREAD`]): its figures are of emission and coverage.
+    pub fn only_lighting_unread(&self) -> bool {
+        let lighting = |n: &String| {
+            ["first", "second"]
+                .iter()
+                .any(|side| *n == format!("{side}: {LIGHTING_UNREAD}"))
+        };
+        !self.not_evaluated.is_empty() && self.not_evaluated.iter().all(lighting)
+    }
+
     /// Whether the pair renders the same: everything evaluated, and within `threshold`.
     pub fn same(&self, threshold: f64) -> bool {
         self.not_evaluated.is_empty() && self.result.max <= threshold
@@ -173,6 +184,15 @@ pub fn compare_pairs(
                         .map(|(side, _)| format!("{side}: {NO_MODEL}"))
                         .collect(),
                 });
+            };
+            // A 1.0 material whose lighting is not read is compared by its emission and
+            // coverage, and the other material is seen the same way.
+            let masked;
+            let (ma, mb) = if ma.lighting_unread() || mb.lighting_unread() {
+                masked = (ma.emission_and_coverage(), mb.emission_and_coverage());
+                (&masked.0, &masked.1)
+            } else {
+                (ma, mb)
             };
             let key = (ma.fingerprint(), mb.fingerprint());
             let mut compared = (done.entry(key))
@@ -429,15 +449,24 @@ pub fn render_each(path: impl AsRef<Path>, size: u32, at_most: usize) -> Result<
             .clone()
     };
     Ok((materials.iter().enumerate())
-        .map(|(index, (name, material))| Ball {
-            material: (index, name.clone()),
-            image: material.as_ref().map(&mut ball),
-            not_drawn: match material {
-                Some(m) => m.unmodelled().to_vec(),
-                None => vec![NO_MODEL.into()],
-            },
+        .map(|(index, (name, material))| {
+            let drawable = drawable(material);
+            Ball {
+                material: (index, name.clone()),
+                image: drawable.map(&mut ball),
+                not_drawn: match drawable {
+                    Some(m) => m.unmodelled().to_vec(),
+                    None => vec![NO_MODEL.into()],
+                },
+            }
         })
         .collect())
+}
+
+/// The material, if a ball can show it: not one without a model, nor a 1.0 material whose
+/// emission and coverage alone are read (a ball of those would show a lighting it has not).
+fn drawable(material: &Option<MaterialSource>) -> Option<&MaterialSource> {
+    material.as_ref().filter(|m| !m.lighting_unread())
 }
 
 /// Renders a material ball (or a contact sheet of every material) of an asset.
@@ -457,7 +486,7 @@ pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture
         if !options.all && !chosen.is_empty() {
             break;
         }
-        match m {
+        match drawable(m) {
             Some(m) => chosen.push((i, name, m)),
             None => skipped.push((i, name.clone())),
         }

@@ -57,12 +57,18 @@ pub fn prove<'b>(
 }
 
 /// Whether a proof holds at `threshold`: every pair that was evaluated is the same. A 1.0
-/// material without a model (a technique's shaders, KHR_materials_common's lighting) is said
-/// to be not evaluated and does not fail it: its conversion changes the lighting model by
-/// design, as its decision line states, and no figure could judge that. A pair evaluated in
-/// part (an input the evaluator does not model) is never the same, and fails it.
+/// material drawn by a technique's shaders or KHR_materials_common's lighting is compared by
+/// its emission and coverage alone, and holds when those are within `threshold`: its
+/// conversion changes the lighting model by design, as its decision line states, and no
+/// figure could judge that. A 1.0 material nothing can be read of (a technique id that
+/// names nothing, an unreadable texture) is not evaluated and does not fail it. A pair
+/// evaluated in part for any other reason (an input the evaluator does not model) is never
+/// the same, and fails it.
 pub fn proof_holds(proof: &[Outcome], threshold: f64) -> bool {
     (proof.iter())
         .filter(|o| o.is_evaluated())
-        .all(|o| o.same(threshold))
+        .all(|o| match o.only_lighting_unread() {
+            true => o.result.max <= threshold,
+            false => o.same(threshold),
+        })
 }

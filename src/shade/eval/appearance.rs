@@ -230,8 +230,9 @@ pub fn seen<R: Real>(shader: &Shader, m: &Inputs, g: &Geometry<R>) -> Seen<R> {
         own = channels(|c| own[c] * kept + layer * weight);
         through = channels(|c| through[c] * kept);
     }
+    let weight = if m.premultiplied { 1.0 } else { coverage };
     Seen {
-        own: channels(|c| own[c] * coverage),
+        own: channels(|c| own[c] * weight),
         through: channels(|c| through[c] * coverage + (1.0 - coverage)),
     }
 }

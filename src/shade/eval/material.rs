@@ -57,6 +57,11 @@ pub struct Inputs {
     /// The fraction of the background the surface hides, 0–1: 1 for OPAQUE, the base colour's
     /// alpha for BLEND, 0 or 1 by `alphaCutoff` for MASK.
     pub coverage: f64,
+    /// Whether the surface's colour is added whole where it covers part of the background,
+    /// as glTF 1.0 blends it (blend functions ONE, ONE_MINUS_SRC_ALPHA: "properly blended RGB
+    /// and alpha values", KHR_materials_common's implementation note), rather than weighed
+    /// by the coverage as glTF 2.0's BLEND does.
+    pub premultiplied: bool,
     /// The ambient light kept, 0–1: 1 + strength · (occlusion − 1).
     pub occlusion: f64,
     /// The shading normal in the tangent frame (normalTexture with its scale), unit length.
@@ -215,6 +220,7 @@ impl Default for Inputs {
             diffuse_balance: DiffuseBalance::MaxFresnel,
             emission: [0.0; 3],
             coverage: 1.0,
+            premultiplied: false,
             occlusion: 1.0,
             normal: [0.0, 0.0, 1.0],
             clearcoat: 0.0,

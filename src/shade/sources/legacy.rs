@@ -1,7 +1,10 @@
 //! A glTF 1.0 asset's PBR-draft materials, sampled by their own model.
 
-use super::sample::{self, MaterialSource, Texture};
+use super::sample::{self, LitLegacy, MaterialSource, Texture};
+use crate::document::tree::Node;
 use crate::document::uri::ResourceLoader;
+use crate::gltf::color::srgb_to_linear;
+use crate::legacy::blend::{technique_blend, Blend};
 use crate::legacy::pbr;
 use crate::legacy::source::{self, NotGltf1};
 use crate::shade::material::SpecGlossReading;
@@ -49,16 +52,15 @@ pub(crate) fn legacy_materials(
     let position: HashMap<&str, usize> = (texture_ids.iter().enumerate())
         .map(|(at, id)| (id.as_str(), at))
         .collect();
-    let encoded: Vec<sample::Wanted<_>> = texture_ids
-        .iter()
-        .map(|id| {
-            let image = (source.object("textures", id))
-                .and_then(|texture| texture.get("source")?.as_str())
-                .and_then(|image| source.object("images", image))
-                .ok_or_else(|| format!("texture '{id}' names no image"));
-            Some(image.and_then(|image| source.image_bytes(image)))
-        })
-        .collect();
+    let image_of = |id: &str| {
+        let image = (source.object("textures", id))
+            .and_then(|texture| texture.get("source")?.as_str())
+            .and_then(|image| source.object("images", image))
+            .ok_or_else(|| format!("texture '{id}' names no image"));
+        image.and_then(|image| source.image_bytes(image))
+    };
+    let encoded: Vec<sample::Wanted<_>> =
+        (texture_ids.iter()).map(|id| Some(image_of(id))).collect();
     let decoded =
         sample::decode_all_at_most(&encoded, finest).map_err(LegacyMaterialsError::Textures)?;
     let texture = |id: &Option<String>| -> Option<Texture> {
@@ -72,17 +74,172 @@ pub(crate) fn legacy_materials(
             .map(|sampler| sampler.to_value());
         sample::Sampler::of(sampler.as_ref())
     };
+    // A lit material's textures may fail alone: that material is then not evaluated.
+    let lit: Vec<Option<LitText>> = (source.dictionary("materials").into_iter())
+        .zip(&parsed)
+        .map(|((_, material), (_, pbr))| match pbr {
+            Some(_) => None,
+            None => lit_text(&source, material),
+        })
+        .collect();
+    let lit_ids: Vec<&String> = (lit.iter().flatten())
+        .flat_map(|l| [&l.emission_texture, &l.alpha_texture])
+        .flatten()
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
+    let lit_position: HashMap<&str, usize> = (lit_ids.iter().enumerate())
+        .map(|(at, id)| (id.as_str(), at))
+        .collect();
+    let lit_encoded: Vec<sample::Wanted<_>> =
+        (lit_ids.iter()).map(|id| Some(image_of(id))).collect();
+    let lit_decoded = sample::decode_each_at_most(&lit_encoded, finest)
+        .map_err(LegacyMaterialsError::Textures)?;
+    let lit_texture = |id: &Option<String>| -> Result<Option<(Texture, sample::Sampler)>, ()> {
+        let Some(id) = id else { return Ok(None) };
+        let at = *lit_position.get(id.as_str()).ok_or(())?;
+        match &lit_decoded[at] {
+            Ok(Some(texture)) => Ok(Some((texture.clone(), sampler(&Some(id.clone()))))),
+            _ => Err(()),
+        }
+    };
+    let lit_source = |text: &LitText| -> Option<MaterialSource> {
+        Some(MaterialSource::lit_legacy(LitLegacy {
+            emission: text.emission,
+            emission_texture: lit_texture(&text.emission_texture).ok()?,
+            alpha: text.alpha,
+            alpha_texture: lit_texture(&text.alpha_texture).ok()?,
+            blend: text.blend,
+        }))
+    };
     Ok(parsed
         .into_iter()
-        .map(|(id, pbr)| {
-            let sampled = pbr.map(|pbr| MaterialSource::Legacy {
-                colour: texture(&pbr.colour_texture),
-                data: texture(&pbr.data_texture),
-                samplers: [sampler(&pbr.colour_texture), sampler(&pbr.data_texture)],
-                pbr: Box::new(pbr),
-                reading: SpecGlossReading::DraftAppendix,
-            });
+        .zip(&lit)
+        .map(|((id, pbr), lit)| {
+            let sampled = match pbr {
+                Some(pbr) => Some(MaterialSource::Legacy {
+                    colour: texture(&pbr.colour_texture),
+                    data: texture(&pbr.data_texture),
+                    samplers: [sampler(&pbr.colour_texture), sampler(&pbr.data_texture)],
+                    pbr: Box::new(pbr),
+                    reading: SpecGlossReading::DraftAppendix,
+                }),
+                None => lit.as_ref().and_then(lit_source),
+            };
             (id.to_string(), sampled)
         })
         .collect())
+}
+
+/// What a lit 1.0 material says of its emission and coverage (see [`LitLegacy`]), its
+/// textures by id.
+struct LitText {
+    emission: [f64; 3],
+    emission_texture: Option<String>,
+    alpha: f64,
+    alpha_texture: Option<String>,
+    blend: Option<Blend>,
+}
+
+/// Reads a 1.0 material without a PBR block: KHR_materials_common's values, a technique's
+/// (material values over the technique's parameter defaults, named as COLLADA2GLTF names
+/// them: `emission`, `diffuse`, `transparency`), or the default material ("50% gray emissive
+/// color", written to the framebuffer as it is). Colours are display values, linearised.
+/// Coverage is the diffuse alpha times `transparency` where the material blends.
+fn lit_text(source: &source::Source, material: Node) -> Option<LitText> {
+    let common = (material.get("extensions")).and_then(|e| e.get("KHR_materials_common"));
+    let technique = (material.get("technique").and_then(Node::as_str))
+        .and_then(|t| source.object("techniques", t));
+    let mut values: HashMap<&str, serde_json::Value> = HashMap::new();
+    let blend = match (common, technique) {
+        (Some(common), _) => {
+            let own = common.get("values").and_then(Node::as_object);
+            values.extend(
+                own.into_iter()
+                    .flat_map(|o| o.iter())
+                    .map(|(k, v)| (k, v.to_value())),
+            );
+            // The early form {type, value} holds its value one level down.
+            for value in values.values_mut() {
+                if let Some(inner) = value.get("value").filter(|_| value.get("type").is_some()) {
+                    *value = inner.clone();
+                }
+            }
+            // "Applies To": the constant model reads no diffuse.
+            if common.get("technique").and_then(Node::as_str) == Some("CONSTANT") {
+                values.remove("diffuse");
+            }
+            let transparent = common.get("transparent").and_then(Node::as_bool) == Some(true);
+            let opacity = values
+                .get("transparency")
+                .and_then(serde_json::Value::as_f64);
+            // "transparent … corresponds to enabling the BLEND render state", with the
+            // implementation note's functions ONE, ONE_MINUS_SRC_ALPHA; an opacity below 1 is
+            // read as asking for the same.
+            (transparent || opacity.is_some_and(|o| o < 1.0)).then_some(Blend::Premultiplied)
+        }
+        (None, Some(technique)) => {
+            let parameters = technique.get("parameters").and_then(Node::as_object);
+            for (name, parameter) in parameters.into_iter().flat_map(|p| p.iter()) {
+                if let Some(value) = parameter.get("value") {
+                    values.insert(name, value.to_value());
+                }
+            }
+            let own = material.get("values").and_then(Node::as_object);
+            values.extend(
+                own.into_iter()
+                    .flat_map(|o| o.iter())
+                    .map(|(k, v)| (k, v.to_value())),
+            );
+            technique_blend(technique)
+        }
+        (None, None) if material.get("technique").is_none() => {
+            return Some(LitText {
+                emission: [srgb_to_linear(0.5); 3],
+                emission_texture: None,
+                alpha: 1.0,
+                alpha_texture: None,
+                blend: None,
+            });
+        }
+        // A technique id that names nothing: nothing says what it draws.
+        (None, None) => return None,
+    };
+    let colour = |name: &str| match values.get(name) {
+        Some(serde_json::Value::String(texture)) => (None, Some(texture.clone())),
+        Some(serde_json::Value::Array(c)) => {
+            let at = |i: usize, default: f64| {
+                c.get(i)
+                    .and_then(serde_json::Value::as_f64)
+                    .unwrap_or(default)
+            };
+            let linear = [0, 1, 2].map(|i| srgb_to_linear(at(i, 0.0)));
+            (Some((linear, at(3, 1.0))), None)
+        }
+        _ => (None, None),
+    };
+    let (emission, emission_texture) = colour("emission");
+    let (diffuse, diffuse_texture) = colour("diffuse");
+    let opacity = values
+        .get("transparency")
+        .and_then(serde_json::Value::as_f64)
+        .unwrap_or(1.0);
+    let diffuse_alpha = diffuse.map_or(1.0, |(_, alpha)| alpha);
+    let emission = match (emission, &emission_texture) {
+        (Some((colour, _)), _) => colour,
+        // A texture alone is the emission.
+        (None, Some(_)) => [1.0; 3],
+        (None, None) => [0.0; 3],
+    };
+    Some(LitText {
+        emission,
+        emission_texture,
+        alpha: if blend.is_some() {
+            diffuse_alpha * opacity
+        } else {
+            1.0
+        },
+        alpha_texture: diffuse_texture.filter(|_| blend.is_some()),
+        blend,
+    })
 }

@@ -6,6 +6,7 @@
 use crate::document::image_header::Channels;
 use crate::gltf::color::srgb_texel_to_linear;
 use crate::gltf::material::{effective_texcoord, uv_transform};
+use crate::legacy::blend::Blend;
 use crate::legacy::pbr::{LegacyPbr, Model};
 use crate::shade::brdf::V3;
 use crate::shade::iridescence::Film;
@@ -744,12 +745,34 @@ pub struct Prepared {
     /// KHR_materials_iridescence's thickness range (nanometres) and texture (G).
     film_thickness: ([f64; 2], Option<Binding>),
     pub has_sheen: bool,
+    /// Only its emission and coverage are read (see [`MaterialSource::lit_legacy`]).
+    lighting_unread: bool,
     /// What the evaluator cannot show of this material (see [`MaterialSource::unmodelled`]).
     unmodelled: Vec<String>,
     /// The material's JSON and the identities of its decoded textures (see
     /// [`MaterialSource::fingerprint`]).
     fingerprint: String,
 }
+
+/// What is said of a glTF 1.0 material drawn by its technique's shaders or by
+/// KHR_materials_common's lighting ("color = <emission> + <ambient> * al + …"): the light it
+/// emits and how much of the background it hides. Its lighting is a model the evaluator
+/// does not shade.
+pub struct LitLegacy {
+    /// The emission's colour, linear (1.0 colours are display values, linearised).
+    pub emission: V3,
+    /// The emission's texture (sRGB), multiplying the colour.
+    pub emission_texture: Option<(Texture, Sampler)>,
+    /// The opacity: the diffuse colour's alpha times `transparency`.
+    pub alpha: f64,
+    /// The diffuse texture, whose alpha multiplies `alpha`.
+    pub alpha_texture: Option<(Texture, Sampler)>,
+    /// How it is blended; `None` when it is not (opaque).
+    pub blend: Option<Blend>,
+}
+
+/// What a [`LitLegacy`] material leaves out, as [`MaterialSource::unmodelled`] says it.
+pub const LIGHTING_UNREAD: &str = "its lighting (a glTF 1.0 technique's shaders or KHR_materials_common's Blinn, Phong, Lambert or constant model, which the evaluator does not shade): only its emission and coverage are compared";
 
 /// glTF 2.0 `alphaMode`: how the base colour's alpha becomes coverage.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -818,7 +841,161 @@ const MODELLED_EXTENSIONS: [&str; 12] = [
     "KHR_materials_diffuse_transmission",
 ];
 
+/// A texture read through texCoord 0, untransformed.
+fn plain_binding((texture, sampler): (Texture, Sampler)) -> Binding {
+    Binding {
+        texture,
+        sampler,
+        texcoord: 0,
+        transform: [1.0, 0.0, 0.0, 0.0, 1.0, 0.0],
+    }
+}
+
+impl Prepared {
+    /// A material that emits `factors.emission` (times `emissive`), hides the background by
+    /// `alpha` (times `base_colour`'s alpha) as `alpha_mode` says, and reflects nothing:
+    /// black, no specular lobe.
+    fn emitting_only(
+        emission: V3,
+        emissive: Option<Binding>,
+        alpha: f64,
+        base_colour: Option<Binding>,
+        alpha_mode: AlphaMode,
+    ) -> Prepared {
+        let factors = Inputs {
+            base_color: [0.0; 3],
+            metallic: 0.0,
+            specular: 0.0,
+            emission,
+            ..Inputs::default()
+        };
+        let mut prepared = Prepared {
+            factors,
+            alpha,
+            alpha_mode,
+            spec_gloss: None,
+            base_colour,
+            metallic_roughness: None,
+            specular: None,
+            specular_colour: None,
+            sheen_colour: None,
+            sheen_roughness: None,
+            anisotropy: None,
+            emissive,
+            occlusion: None,
+            normal: None,
+            clearcoat: None,
+            clearcoat_roughness: None,
+            clearcoat_normal: None,
+            transmission: None,
+            diffuse_transmission: None,
+            diffuse_transmission_colour: None,
+            volume: Volume {
+                thickness: 0.0,
+                texture: None,
+                attenuation_colour: [1.0; 3],
+                attenuation_distance: f64::INFINITY,
+            },
+            iridescence: None,
+            film_thickness: ([100.0, 400.0], None),
+            has_sheen: false,
+            lighting_unread: false,
+            unmodelled: Vec::new(),
+            fingerprint: String::new(),
+        };
+        let bound: Vec<_> = (prepared.bindings())
+            .map(|b| (Arc::as_ptr(&b.texture), b.sampler, b.texcoord, b.transform))
+            .collect();
+        prepared.fingerprint = format!(
+            "emitting only|{emission:?}|{alpha}|{alpha_mode:?}|{bound:?}|{}",
+            prepared.factors.unlit
+        );
+        prepared
+    }
+}
+
 impl MaterialSource {
+    /// A glTF 1.0 material drawn by a technique's shaders or by KHR_materials_common: its
+    /// emission and coverage, nothing reflected. Compared with another material, that one is
+    /// seen the same way ([`MaterialSource::emission_and_coverage`]), and the pair is never
+    /// the same: its lighting is [`LIGHTING_UNREAD`].
+    pub fn lit_legacy(lit: LitLegacy) -> MaterialSource {
+        let alpha_mode = match lit.blend {
+            None => AlphaMode::Opaque,
+            Some(_) => AlphaMode::Blend,
+        };
+        let mut prepared = Prepared::emitting_only(
+            lit.emission,
+            lit.emission_texture.map(plain_binding),
+            lit.alpha,
+            lit.alpha_texture.map(plain_binding),
+            alpha_mode,
+        );
+        prepared.factors.premultiplied = lit.blend == Some(Blend::Premultiplied);
+        prepared.lighting_unread = true;
+        prepared.unmodelled.push(LIGHTING_UNREAD.into());
+        prepared.fingerprint += &format!("|{:?}", lit.blend);
+        MaterialSource::Gltf2(Arc::new(prepared))
+    }
+
+    /// Whether only this material's emission and coverage are read
+    /// ([`MaterialSource::lit_legacy`]).
+    pub fn lighting_unread(&self) -> bool {
+        matches!(self, MaterialSource::Gltf2(p) if p.lighting_unread)
+    }
+
+    /// This material seen as a [`MaterialSource::lit_legacy`] one is: its emission (an unlit
+    /// material's colour, which is what it emits) and its coverage, nothing reflected.
+    pub fn emission_and_coverage(&self) -> MaterialSource {
+        let prepared = match self {
+            MaterialSource::Gltf2(p) if p.lighting_unread => return self.clone(),
+            MaterialSource::Gltf2(p) if p.factors.unlit => {
+                // KHR_materials_unlit: "the base color is the final color".
+                let mut emitting = Prepared::emitting_only(
+                    p.factors.base_color,
+                    p.base_colour.clone(),
+                    p.alpha,
+                    None,
+                    p.alpha_mode,
+                );
+                // The base colour texture gives both the colour and the alpha.
+                emitting.base_colour = p.base_colour.clone();
+                emitting.unmodelled = p.unmodelled.clone();
+                emitting.fingerprint += "|unlit";
+                emitting
+            }
+            MaterialSource::Gltf2(p) => {
+                let colour_texture = match &p.spec_gloss {
+                    Some(sg) => sg.diffuse_texture.clone(),
+                    None => p.base_colour.clone(),
+                };
+                let mut emitting = Prepared::emitting_only(
+                    p.factors.emission,
+                    p.emissive.clone(),
+                    p.alpha,
+                    colour_texture,
+                    p.alpha_mode,
+                );
+                // What could not be read of it still is not (an emissive texture, say).
+                emitting.unmodelled = p.unmodelled.clone();
+                emitting
+            }
+            MaterialSource::Legacy {
+                pbr,
+                colour,
+                samplers,
+                ..
+            } => Prepared::emitting_only(
+                [0.0; 3],
+                None,
+                pbr.colour[3],
+                colour.clone().map(|t| plain_binding((t, samplers[0]))),
+                AlphaMode::Blend,
+            ),
+        };
+        MaterialSource::Gltf2(Arc::new(prepared))
+    }
+
     /// Prepares a glTF 2.0 material; `textures` are the document's, by texture index.
     pub fn gltf2(material: &Value, textures: &[Option<Texture>]) -> MaterialSource {
         MaterialSource::gltf2_sampled(material, textures, &[], &[])
@@ -1247,6 +1424,7 @@ fn prepare(material: &Value, textures: &TextureSet) -> Prepared {
             ),
         ),
         has_sheen: sheen.is_some(),
+        lighting_unread: false,
         unmodelled,
         fingerprint: String::new(),
     };
@@ -1507,6 +1685,50 @@ fn legacy_inputs(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A lit 1.0 material's stand-in emits its emission and reflects nothing: over black it
+    /// shows its emission exactly, in every direction, whatever it is lit by; blended with
+    /// ONE, ONE_MINUS_SRC_ALPHA the emission is added whole, straight it is weighed by alpha.
+    #[test]
+    fn a_lit_1_0_material_is_seen_by_its_emission_and_coverage_alone() {
+        use crate::shade::appearance::seen;
+        use crate::shade::brdf::{Geometry, SheenVisibility};
+        use crate::shade::material::Shader;
+        use crate::shade::sheen_table::SheenTable;
+        let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
+        let lit = |blend| {
+            MaterialSource::lit_legacy(LitLegacy {
+                emission: [0.3, 0.2, 0.1],
+                emission_texture: None,
+                alpha: 0.25,
+                alpha_texture: None,
+                blend,
+            })
+        };
+        let direction = |theta: f64| [theta.sin(), 0.0, theta.cos()];
+        for (blend, weight, coverage) in [
+            (None, 1.0, 1.0),
+            (Some(Blend::Premultiplied), 1.0, 0.25),
+            (Some(Blend::Straight), 0.25, 0.25),
+        ] {
+            let m = lit(blend);
+            assert!(m.lighting_unread() && m.unmodelled() == [LIGHTING_UNREAD]);
+            let inputs = m.inputs_at(&[[0.3, 0.7]]);
+            for (view, light) in [(0.0, 0.0), (0.4, -0.9), (1.2, 0.3), (1.5, 1.5)] {
+                let g = Geometry::new(direction(view), direction(light));
+                let s = seen(&shader, &inputs, &g);
+                for c in 0..3 {
+                    let emitted = [0.3, 0.2, 0.1][c] * weight;
+                    assert!(
+                        (s.own[c] - emitted).abs() < 1e-12,
+                        "{blend:?} {view} {light}: {:?}",
+                        s.own
+                    );
+                    assert!((s.through[c] - (1.0 - coverage)).abs() < 1e-12);
+                }
+            }
+        }
+    }
 
     /// The decode budget counts a KTX2 as what it is transcoded to (8-bit RGBA), not as the
     /// RGB its descriptor declares.

@@ -3,7 +3,8 @@
 
 use crate::document::Node;
 use crate::gltf::color::srgb_to_linear;
-use crate::gltf::gl::{BLEND, CULL_FACE};
+use crate::gltf::gl::CULL_FACE;
+use crate::legacy::blend::{technique_blend, Blend};
 use crate::legacy::pbr::{self, LegacyPbr, Model};
 use crate::upgrade::builder::{pointer, Builder};
 use crate::upgrade::fit;
@@ -81,7 +82,8 @@ fn apply_technique_states(
                 .and_then(Node::as_array)
                 .map(|a| a.iter().filter_map(Node::as_u64).collect())
                 .unwrap_or_default();
-            if enabled.contains(&BLEND) {
+            // BLEND enabled with GL's default functions (ONE, ZERO) replaces what is behind.
+            if technique_blend(technique).is_some() {
                 out.insert("alphaMode".into(), json!("BLEND"));
             }
             // 1.0 states default to nothing enabled: no CULL_FACE means no culling.
@@ -420,14 +422,10 @@ fn convert_common(builder: &mut Builder, common: Node, at: &str, out: &mut Map<S
             "KHR_materials_common values in the early {type, value} form read by their value.",
         );
     }
-    lit_material(builder, &values, at, out);
     if technique == "CONSTANT" {
-        out.insert("extensions".into(), json!({"KHR_materials_unlit": {}}));
-        builder.note(
-            at,
-            NoteKind::Decision,
-            "KHR_materials_common CONSTANT → KHR_materials_unlit.",
-        );
+        constant_material(builder, &values, at, out);
+    } else {
+        lit_material(builder, &values, at, out);
     }
     let transparency = values
         .get("transparency")
@@ -440,6 +438,8 @@ fn convert_common(builder: &mut Builder, common: Node, at: &str, out: &mut Map<S
     if transparent || transparency < 1.0 {
         out.insert("alphaMode".into(), json!("BLEND"));
         scale_alpha(out, transparency);
+        // The implementation note's blend functions: ONE, ONE_MINUS_SRC_ALPHA.
+        keep_emission_whole(builder, at, out);
     }
     if common.get("doubleSided").and_then(Node::as_bool) == Some(true) {
         out.insert("doubleSided".into(), json!(true));
@@ -497,6 +497,7 @@ fn convert_technique_values(
         );
     }
     let transparency = values.get("transparency").and_then(Value::as_f64);
+    let premultiplied = technique.and_then(technique_blend) == Some(Blend::Premultiplied);
     lit_material(builder, &Value::Object(values), at, out);
     // COLLADA2GLTF's shaders write alpha = diffuse.a · u_transparency; it matters only where
     // the technique blends.
@@ -506,6 +507,94 @@ fn convert_technique_values(
             builder.note(at, NoteKind::Decision, format!("technique value transparency {opacity} multiplied into the base colour's alpha (BLEND). The 1.0 shaders blended premultiplied (ONE, ONE_MINUS_SRC_ALPHA) without scaling the colour by it; 2.0 blends straight alpha, so the surface's own colour is scaled too."));
         }
     }
+    if premultiplied && out.get("alphaMode") == Some(&json!("BLEND")) {
+        keep_emission_whole(builder, at, out);
+    }
+}
+
+/// KHR_materials_common CONSTANT: "color = <emission> + <ambient> * al", the emission
+/// (colour or texture) becoming an unlit material's colour; diffuse, which the model does not
+/// read, is not carried over.
+fn constant_material(
+    builder: &mut Builder,
+    values: &Value,
+    at: &str,
+    out: &mut Map<String, Value>,
+) {
+    let mut core = json!({"metallicFactor": 0.0, "baseColorFactor": [0.0, 0.0, 0.0, 1.0]});
+    match values.get("emission") {
+        Some(Value::String(texture)) => {
+            if let Some(info) = texture_info(builder, Some(texture)) {
+                core["baseColorTexture"] = info;
+                core["baseColorFactor"] = json!([1.0, 1.0, 1.0, 1.0]);
+            }
+        }
+        Some(colour) => {
+            if let Some([r, g, b, _]) = linear_colour(colour) {
+                core["baseColorFactor"] = json!([r, g, b, 1.0]);
+            }
+        }
+        None => {}
+    }
+    out.insert("pbrMetallicRoughness".into(), core);
+    out.insert("extensions".into(), json!({"KHR_materials_unlit": {}}));
+    builder.note(
+        at,
+        NoteKind::Decision,
+        "KHR_materials_common CONSTANT → KHR_materials_unlit, its emission (linearised) the colour; ambient is not carried over.",
+    );
+}
+
+/// A 1.0 material blended with ONE, ONE_MINUS_SRC_ALPHA adds its emission whole; 2.0's BLEND
+/// weighs the colour by alpha. With one alpha for the whole material (no texture's), the
+/// emission (an unlit material's colour) is divided by it, above 1 through
+/// KHR_materials_emissive_strength; otherwise the difference is said.
+fn keep_emission_whole(builder: &mut Builder, at: &str, out: &mut Map<String, Value>) {
+    let core = out.get("pbrMetallicRoughness");
+    let alpha = (core.and_then(|c| c["baseColorFactor"][3].as_f64())).unwrap_or(1.0);
+    let textured = core.is_some_and(|c| c.get("baseColorTexture").is_some());
+    let unlit = out
+        .get("extensions")
+        .is_some_and(|e| e.get("KHR_materials_unlit").is_some());
+    let emission: Option<[f64; 3]> = match unlit {
+        true => core.and_then(|c| rgb_of(&c["baseColorFactor"])),
+        false => out.get("emissiveFactor").and_then(rgb_of),
+    };
+    let Some(emission) = emission.filter(|e| e.iter().any(|c| *c > 0.0) && alpha < 1.0) else {
+        return;
+    };
+    if textured || alpha <= 0.0 {
+        let why = if textured {
+            "the diffuse texture's alpha varies"
+        } else {
+            "the opacity is 0"
+        };
+        builder.note(at, NoteKind::Decision, format!("emission under BLEND is weighed by alpha in 2.0 where 1.0 added it whole (ONE, ONE_MINUS_SRC_ALPHA), and {why}: it shows dimmer."));
+        return;
+    }
+    let whole = emission.map(|c| c / alpha);
+    let most = whole.iter().copied().fold(0.0, f64::max);
+    if unlit {
+        if most > 1.0 {
+            builder.note(at, NoteKind::Decision, format!("the unlit colour under BLEND is weighed by alpha {alpha} in 2.0 where 1.0 added it whole, and divided by it would pass 1: it shows dimmer."));
+            return;
+        }
+        if let Some(core) = out.get_mut("pbrMetallicRoughness") {
+            core["baseColorFactor"] = json!([whole[0], whole[1], whole[2], alpha]);
+        }
+    } else if most > 1.0 {
+        out.insert("emissiveFactor".into(), json!(whole.map(|c| c / most)));
+        let extensions = out.entry("extensions").or_insert_with(|| json!({}));
+        extensions["KHR_materials_emissive_strength"] = json!({"emissiveStrength": most});
+    } else {
+        out.insert("emissiveFactor".into(), json!(whole));
+    }
+    builder.note(at, NoteKind::Decision, format!("emission divided by the opacity {alpha}: 1.0 added it whole under its blend (ONE, ONE_MINUS_SRC_ALPHA), 2.0's BLEND weighs it by alpha."));
+}
+
+fn rgb_of(value: &Value) -> Option<[f64; 3]> {
+    let c = |i: usize| value.get(i).and_then(Value::as_f64);
+    Some([c(0)?, c(1)?, c(2)?])
 }
 
 /// Multiplies the base colour's alpha by `opacity` (over a white factor when none is written).
