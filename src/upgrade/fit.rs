@@ -146,6 +146,25 @@ impl Fits {
 /// (or a hostile 8192² texture) add well under a second.
 pub const MAX_SCREENED_TEXELS: usize = 1 << 16;
 
+/// A texel whose nearest 8-bit levels are this far (ΔE2000) from its source has its
+/// neighbouring levels tried: half the proof's threshold, the rest left to what lies between
+/// texel centres.
+pub const LEVELS_TRIED_ABOVE: f64 = 0.5;
+
+/// How far (ΔE2000, the base colour alone) rounding a base colour to its nearest 8-bit
+/// levels may move it before the texel is evaluated in the scene: below it, the scene's
+/// figure stays under [`LEVELS_TRIED_ABOVE`] (a test holds this over the colour cube).
+pub const ROUNDING_SEEN_ABOVE: f64 = 0.3;
+
+/// Whether rounding `base` to its nearest 8-bit levels moves it more than
+/// [`ROUNDING_SEEN_ABOVE`]: a texel of an exact closed form whose rounding does not is not
+/// evaluated (an evaluation costs tens of microseconds, this one CIEDE2000).
+fn rounding_shows(base: [f64; 3]) -> bool {
+    use crate::shade::delta_e::{ciede2000, lab_from_linear_srgb};
+    let rounded = base.map(|c| srgb_to_linear(f64::from(linear_to_srgb8(c)) / 255.0));
+    ciede2000(lab_from_linear_srgb(base), lab_from_linear_srgb(rounded)) > ROUNDING_SEEN_ABOVE
+}
+
 /// Distinct texel values fitted per upgrade (about 0.5 ms each); later ones above the
 /// threshold keep the closed form.
 pub const MAX_TEXEL_FITS: usize = 1024;
@@ -158,6 +177,10 @@ pub const MAX_TEXEL_FITS: usize = 1024;
 /// value is evaluated once for the whole upgrade.
 pub struct TexelFits {
     done: std::collections::HashMap<[u64; 7], [f64; 3]>,
+    /// Whether the rebake keeps the inputs' grid for these fits (a reading without an exact
+    /// form, fitted per stored texel) or may refine it first, checking the texels only where
+    /// it does not.
+    keeps_grid: bool,
     screen_budget: usize,
     fits_left: usize,
     reading: SpecGlossReading,
@@ -170,6 +193,9 @@ pub struct TexelFits {
 pub struct TexelReport {
     /// Distinct texel values evaluated.
     pub screened: usize,
+    /// Of those, not evaluated in the scene: their rounding does not show (see
+    /// [`TexelFits::for_exact_form`]).
+    pub unseen_rounding: usize,
     /// Of those, above the threshold under the closed form.
     pub above: usize,
     /// Of those, fitted to a smaller worst ΔE.
@@ -192,11 +218,28 @@ impl TexelFits {
     pub fn with_budgets(reading: SpecGlossReading, screened: usize, fits: usize) -> TexelFits {
         TexelFits {
             done: Default::default(),
+            keeps_grid: true,
             screen_budget: screened,
             fits_left: fits,
             reading,
             report: TexelReport::default(),
         }
+    }
+
+    /// The check of a glTF 2.0 asset's rebakes (the archived extension's reading, which has an
+    /// exact form): it settles each texel's 8-bit levels where the rebake keeps the inputs'
+    /// grid, and leaves a refined grid to the closed form.
+    pub fn for_exact_form() -> TexelFits {
+        TexelFits {
+            keeps_grid: false,
+            ..TexelFits::new(SpecGlossReading::ArchivedExtension)
+        }
+    }
+
+    /// Whether a rebake checked by these fits keeps its inputs' grid (see
+    /// [`TexelFits::for_exact_form`]).
+    pub fn keeps_grid(&self) -> bool {
+        self.keeps_grid
     }
 
     /// The base colour written for each distinct texel value (linear diffuse, specular,
@@ -212,17 +255,28 @@ impl TexelFits {
             .take(self.screen_budget.saturating_sub(self.done.len()))
             .collect();
         let reading = self.reading;
-        let screened: Vec<(f64, [f64; 3])> = (new.par_iter())
+        // (the closed form's figure, the figure and base colour of the best 8-bit levels)
+        let exact_form = !self.keeps_grid;
+        let screened: Vec<(f64, f64, [f64; 3])> = (new.par_iter())
             .map(|v| {
                 let closed = v.closed_form(reading);
-                (v.cost(closed, levels, reading), closed)
+                if exact_form && levels == 255.0 && !rounding_shows(closed) {
+                    return (-1.0, 0.0, closed);
+                }
+                let figure = v.cost(closed, levels, reading);
+                let (best, base) = match figure > LEVELS_TRIED_ABOVE && levels == 255.0 {
+                    true => v.best_levels(closed, figure, reading),
+                    false => (figure, closed),
+                };
+                (figure, best, base)
             })
             .collect();
         let report = &mut self.report;
         report.screened += new.len();
         let mut to_fit = Vec::new();
-        for (k, &(figure, _)) in screened.iter().enumerate() {
-            report.closed_worst = report.closed_worst.max(figure);
+        for (k, &(closed, figure, _)) in screened.iter().enumerate() {
+            report.unseen_rounding += usize::from(closed < 0.0);
+            report.closed_worst = report.closed_worst.max(closed);
             if figure > THRESHOLD {
                 report.above += 1;
                 if to_fit.len() < self.fits_left {
@@ -234,10 +288,12 @@ impl TexelFits {
         let fitted: Vec<([f64; 3], f64)> = (to_fit.par_iter())
             .map(|&k| {
                 let cost = |base: [f64; 3]| new[k].cost(base, levels, reading);
-                nelder_mead(cost, screened[k].1, 0.05, 100)
+                nelder_mead(cost, screened[k].2, 0.05, 100)
             })
             .collect();
-        let mut chosen = screened;
+        let mut chosen: Vec<(f64, [f64; 3])> = (screened.iter())
+            .map(|&(_, figure, base)| (figure, base))
+            .collect();
         for (&k, &(base, figure)) in to_fit.iter().zip(&fitted) {
             if figure < chosen[k].0 - 1e-3 {
                 report.fitted += 1;
@@ -283,6 +339,43 @@ impl TexelValue {
 
     fn closed_form(&self, reading: SpecGlossReading) -> [f64; 3] {
         reading.closed_form_base(self.diffuse, self.specular).0
+    }
+
+    /// The 8-bit levels around `closed`'s (each channel's nearest, one below and one above)
+    /// whose colour is nearest `closed` itself (CIEDE2000 of the base colour, cheap), kept
+    /// when the scene under `reading` shows it nearer than the nearest levels (whose ΔE is
+    /// `nearest`): that ΔE and the base colour. Rounding each channel alone can turn a
+    /// near-grey texel's hue where the eye is most sensitive to it; a neighbouring level
+    /// restores it.
+    fn best_levels(
+        &self,
+        closed: [f64; 3],
+        nearest: f64,
+        reading: SpecGlossReading,
+    ) -> (f64, [f64; 3]) {
+        use crate::shade::delta_e::{ciede2000, lab_from_linear_srgb};
+        let level = closed.map(|c| i32::from(linear_to_srgb8(c)));
+        let wanted = lab_from_linear_srgb(closed);
+        let candidate = |k: i32| -> [f64; 3] {
+            let step = [k % 3, (k / 3) % 3, k / 9].map(|d| d - 1);
+            std::array::from_fn(|c| {
+                srgb_to_linear(f64::from((level[c] + step[c]).clamp(0, 255)) / 255.0)
+            })
+        };
+        let distance = |base: [f64; 3]| ciede2000(wanted, lab_from_linear_srgb(base));
+        let nearest_base = candidate(13);
+        let best = (0..27)
+            .map(candidate)
+            .min_by(|a, b| distance(*a).total_cmp(&distance(*b)))
+            .unwrap_or(nearest_base);
+        if best == nearest_base {
+            return (nearest, closed);
+        }
+        let figure = self.cost(best, 255.0, reading);
+        match figure < nearest {
+            true => (figure, best),
+            false => (nearest, closed),
+        }
     }
 
     /// The ΔE under `reading` of `base_colour` as the PNG stores it.
@@ -481,6 +574,66 @@ mod tests {
         }
     }
 
+    /// Rounding each channel of a near-grey texel to its nearest 8-bit level turns its hue
+    /// by about one just-noticeable difference; the evaluator's choice among the neighbouring
+    /// levels brings it well under half of one, one level away at most per channel.
+    #[test]
+    fn a_near_grey_texel_takes_the_neighbouring_8_bit_levels_the_evaluator_prefers() {
+        let reading = SpecGlossReading::ArchivedExtension;
+        let value = TexelValue {
+            diffuse: [42, 45, 42].map(|v| srgb_to_linear(f64::from(v) / 255.0)),
+            specular: [0.1; 3],
+            glossiness: 0.95,
+        };
+        let closed = value.closed_form(reading);
+        let nearest = value.cost(closed, 255.0, reading);
+        assert!(nearest > 1.0, "the nearest levels: {nearest}");
+        let mut fits = TexelFits::for_exact_form();
+        let [Some(base)] = fits.resolve(&[value], 255.0)[..] else {
+            panic!("checked");
+        };
+        let chosen = value.cost(base, 255.0, reading);
+        assert!(chosen < 0.5, "the chosen levels: {chosen}");
+        for c in 0..3 {
+            let (from, to) = (linear_to_srgb8(closed[c]), linear_to_srgb8(base[c]));
+            assert!(from.abs_diff(to) <= 1, "channel {c}: {from} → {to}");
+        }
+        let report = fits.take_report();
+        assert_eq!((report.screened, report.above, report.fitted), (1, 0, 0));
+        assert!((report.closed_worst - nearest).abs() < 1e-12 && report.written_worst == chosen);
+    }
+
+    /// Over the colour cube (every ninth, eleventh and thirteenth level) and a spread of
+    /// specular colours and glossiness, a texel whose nearest 8-bit levels move its base
+    /// colour by at most [`ROUNDING_SEEN_ABOVE`] shows at most [`LEVELS_TRIED_ABOVE`] in the
+    /// scene: the check of an exact closed form may skip it.
+    #[test]
+    fn a_rounding_that_does_not_move_the_base_colour_does_not_show_in_the_scene() {
+        let reading = SpecGlossReading::ArchivedExtension;
+        let mut skipped = 0;
+        for r in (0..=255u8).step_by(9) {
+            for g in (0..=255u8).step_by(11) {
+                for b in (0..=255u8).step_by(13) {
+                    for (s, glossiness) in [(0.02, 0.2), (0.04, 0.95), (0.1, 0.6), (0.3, 0.95)] {
+                        let value = TexelValue {
+                            diffuse: [r, g, b].map(|v| srgb_to_linear(f64::from(v) / 255.0)),
+                            specular: [s; 3],
+                            glossiness,
+                        };
+                        let closed = value.closed_form(reading);
+                        if rounding_shows(closed) {
+                            continue;
+                        }
+                        skipped += 1;
+                        let figure = value.cost(closed, 255.0, reading);
+                        assert!(figure <= LEVELS_TRIED_ABOVE, "{r} {g} {b} {s}: {figure}");
+                    }
+                }
+            }
+        }
+        assert!(skipped > 20_000, "most texels are skipped: {skipped}");
+    }
+
     #[test]
     fn texel_values_are_judged_once_and_within_their_budgets() {
         // Texels the 2016 reading cannot be drawn exactly for: its base colour would pass 1.
@@ -505,11 +658,16 @@ mod tests {
             first.cost(written, 255.0, reading)
                 <= first.cost(first.closed_form(reading), 255.0, reading)
         );
-        assert_eq!(
-            chosen[1],
-            Some(nearby.closed_form(reading)),
-            "past the fits' budget"
-        );
+        // Past the fits' budget: the closed form's own or neighbouring 8-bit levels.
+        let (kept, closed) = (chosen[1].expect("judged"), nearby.closed_form(reading));
+        for c in 0..3 {
+            let (from, to) = (linear_to_srgb8(closed[c]), linear_to_srgb8(kept[c]));
+            assert!(
+                from.abs_diff(to) <= 1,
+                "past the fits' budget: {from} → {to}"
+            );
+        }
+        assert!(nearby.cost(kept, 255.0, reading) <= nearby.cost(closed, 255.0, reading));
         assert_eq!(
             chosen[2], None,
             "past the check's budget: the closed form, unchecked"

@@ -56,6 +56,7 @@ pub(super) fn upgrade(
         report: Notes::default(),
         rebaked: HashMap::new(),
         rebakes: Default::default(),
+        texel_fits: super::fit::TexelFits::for_exact_form(),
     };
     asset.refuse_buffers_named_inside_extensions()?;
     let buffers = asset.read_buffers(glb_bin, loader)?;
@@ -95,6 +96,8 @@ struct Asset {
     rebaked: HashMap<(Vec<u8>, Option<u64>), usize>,
     /// The rebakes made, by what they were made from.
     rebakes: spec_gloss::Rebakes,
+    /// The 8-bit levels of rebaked texels, settled by the evaluator.
+    texel_fits: super::fit::TexelFits,
 }
 
 /// An input buffer's bytes: the shared file (or GLB) and the buffer's range in it.
@@ -569,7 +572,7 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
 
     /// The archived extension has one reading, which the closed form reproduces exactly.
     fn texel_fits(&mut self) -> Option<&mut super::fit::TexelFits> {
-        None
+        Some(&mut self.asset.texel_fits)
     }
 
     fn rebakes(&mut self) -> &mut spec_gloss::Rebakes {

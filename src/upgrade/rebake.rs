@@ -128,11 +128,14 @@ pub fn spec_gloss_base_colour(
         height,
     };
     // A rebake fitted texel by texel (a reading without an exact form) keeps the inputs'
-    // grid: its fit is made for each stored texel, not for what lies between them.
-    let (source, finer) = match fits.is_some() {
+    // grid: its fit is made for each stored texel, not for what lies between them. One
+    // with an exact form may refine its grid first; its texels' 8-bit levels are settled
+    // only on the inputs' grid.
+    let (source, finer) = match fits.as_ref().is_some_and(|f| f.keeps_grid()) {
         true => (at_grid(width, height), None),
         false => finest_needed(at_grid(width, height), at_grid),
     };
+    let fits = fits.filter(|_| finer.is_none());
     let (width, height) = (source.width, source.height);
     let held = held
         .into_iter()

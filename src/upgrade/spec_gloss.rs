@@ -207,6 +207,14 @@ fn texel_fit_decision(report: &TexelReport) -> String {
         "per-texel check of the rebaked base colour as the PNG stores it, under the reading converted to: {} distinct texel values, the closed form's worst ΔE2000 {:.2}",
         report.screened, report.closed_worst
     );
+    if report.unseen_rounding > 0 {
+        line += &format!(
+            " ({} of them not evaluated in the scene: rounding moves their base colour by at most ΔE2000 {}, which shows at most {})",
+            report.unseen_rounding,
+            super::fit::ROUNDING_SEEN_ABOVE,
+            super::fit::LEVELS_TRIED_ABOVE
+        );
+    }
     if report.above > 0 {
         line += &format!(
             "; {} above the threshold, {} of them fitted towards that reading (base colour per texel): worst now {:.2} as the PNG stores it",
