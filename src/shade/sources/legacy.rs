@@ -74,7 +74,8 @@ pub(crate) fn legacy_materials(
             .map(|sampler| sampler.to_value());
         sample::Sampler::of(sampler.as_ref())
     };
-    // A lit material's textures may fail alone: that material is then not evaluated.
+    // A lit material's textures may fail alone, the decoding budget included: that
+    // material is then not evaluated, the others are.
     let lit: Vec<Option<LitText>> = (source.dictionary("materials").into_iter())
         .zip(&parsed)
         .map(|((_, material), (_, pbr))| match pbr {
@@ -94,7 +95,7 @@ pub(crate) fn legacy_materials(
     let lit_encoded: Vec<sample::Wanted<_>> =
         (lit_ids.iter()).map(|id| Some(image_of(id))).collect();
     let lit_decoded = sample::decode_each_at_most(&lit_encoded, finest)
-        .map_err(LegacyMaterialsError::Textures)?;
+        .unwrap_or_else(|why| vec![Err(why); lit_ids.len()]);
     let lit_texture = |id: &Option<String>| -> Result<Option<(Texture, sample::Sampler)>, ()> {
         let Some(id) = id else { return Ok(None) };
         let at = *lit_position.get(id.as_str()).ok_or(())?;
