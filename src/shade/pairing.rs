@@ -92,7 +92,7 @@ pub struct Outcome {
 
 impl Outcome {
     /// Whether all that is not evaluated of the pair is the lighting of a glTF 1.0 material
-    /// (see [`LIGHTING_UNREAD`]): its figures are of emission and coverage.
+    /// (see `LIGHTING_UNREAD`): its figures are of emission and coverage.
     pub fn only_lighting_unread(&self) -> bool {
         let lighting = |n: &String| {
             ["first", "second"]

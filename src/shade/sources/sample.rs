@@ -918,7 +918,7 @@ impl MaterialSource {
     /// A glTF 1.0 material drawn by a technique's shaders or by KHR_materials_common: its
     /// emission and coverage, nothing reflected. Compared with another material, that one is
     /// seen the same way ([`MaterialSource::emission_and_coverage`]), and the pair is never
-    /// the same: its lighting is [`LIGHTING_UNREAD`].
+    /// the same: its lighting is `LIGHTING_UNREAD`.
     pub fn lit_legacy(lit: LitLegacy) -> MaterialSource {
         let alpha_mode = match lit.blend {
             None => AlphaMode::Opaque,
