@@ -1637,3 +1637,47 @@ fn cesium_oct_encoded_normals_are_decoded_and_cesium_rtc_is_kept() {
         }
     }
 }
+
+/// A 2.0 spec-gloss texture of one near-grey value: rounding each channel of its rebaked
+/// base colour to the nearest 8-bit level turns its hue in the proof's scene; the rebake
+/// takes the neighbouring levels the evaluator sees nearer, says it checked the texels, and
+/// the proof stays well under the threshold.
+#[test]
+fn a_2_0_rebake_takes_the_8_bit_levels_the_evaluator_sees_nearest() {
+    use base64::Engine;
+    let png = |image: image::DynamicImage| {
+        let mut bytes = Vec::new();
+        image
+            .write_to(
+                &mut std::io::Cursor::new(&mut bytes),
+                image::ImageFormat::Png,
+            )
+            .unwrap();
+        let encoded = base64::engine::general_purpose::STANDARD.encode(&bytes);
+        serde_json::json!({"uri": format!("data:image/png;base64,{encoded}")})
+    };
+    let diffuse = image::RgbImage::from_pixel(4, 4, image::Rgb([42, 45, 42]));
+    let spec_gloss = image::RgbaImage::from_pixel(4, 4, image::Rgba([255; 4]));
+    let sg = "KHR_materials_pbrSpecularGlossiness";
+    let asset = serde_json::to_vec(&serde_json::json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": [sg],
+        "images": [png(diffuse.into()), png(spec_gloss.into())],
+        "textures": [{"source": 0}, {"source": 1}],
+        "materials": [{"extensions": {sg: {"diffuseTexture": {"index": 0},
+            "specularGlossinessTexture": {"index": 1}, "specularFactor": [0.1, 0.1, 0.1],
+            "glossinessFactor": 0.6}}}],
+    }))
+    .unwrap();
+    let upgraded = upgrade(&asset, &NoResources, &UpgradeOptions::default()).unwrap();
+    assert!(
+        (upgraded.report.iter()).any(|n| n.text.contains("per-texel check of the rebaked")),
+        "{:?}",
+        notes(&upgraded)
+    );
+    let proof = gltfmat::prove(&asset, "asset.gltf", &NoResources, &upgraded).unwrap();
+    let [outcome] = &proof[..] else {
+        panic!("one material");
+    };
+    assert!(outcome.result.max < 0.5, "{}", outcome.result.max);
+}

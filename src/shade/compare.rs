@@ -575,7 +575,7 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                 let corner = points == Points::Corners;
                 if as_stored
                     && x > 0
-                    && row_of.iter().all(|r| r.last_equal || r.previous.is_some())
+                    && row_of.iter().all(|row| row.last().is_some())
                     && b.reads_as_left(x, y, corner)
                     && readings.iter().all(|a| a.reads_as_left(x, y, corner))
                 {
@@ -583,9 +583,11 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                         here.push(here[x as usize - 1]);
                     }
                     for (row, partial) in row_of.iter_mut().zip(&mut partials) {
-                        match &row.previous {
-                            Some((_, source)) if !row.last_equal => row.pending.push((x, *source)),
-                            _ => row.add_equal(partial, x, place, &directions.angles),
+                        match row.last() {
+                            Some(Source::Zero) | None => {
+                                row.add_equal(partial, x, place, &directions.angles)
+                            }
+                            Some(source) => row.pending.push((x, source)),
                         }
                     }
                     continue;
@@ -686,6 +688,14 @@ impl Row {
         match self.pending.is_empty() {
             true => partial.add_equal_point(&place(x), angles),
             false => self.pending.push((x, Source::Zero)),
+        }
+    }
+
+    /// Where the row's last point's samples come from (`None` before its first point).
+    fn last(&self) -> Option<Source> {
+        match self.last_equal {
+            true => Some(Source::Zero),
+            false => self.previous.as_ref().map(|(_, source)| *source),
         }
     }
 

@@ -255,28 +255,29 @@ impl TexelFits {
             .take(self.screen_budget.saturating_sub(self.done.len()))
             .collect();
         let reading = self.reading;
-        // (the closed form's figure, the figure and base colour of the best 8-bit levels)
+        // (the closed form's figure, `None` where its rounding does not show; the figure and
+        // base colour of the best 8-bit levels)
         let exact_form = !self.keeps_grid;
-        let screened: Vec<(f64, f64, [f64; 3])> = (new.par_iter())
+        let screened: Vec<(Option<f64>, f64, [f64; 3])> = (new.par_iter())
             .map(|v| {
                 let closed = v.closed_form(reading);
                 if exact_form && levels == 255.0 && !rounding_shows(closed) {
-                    return (-1.0, 0.0, closed);
+                    return (None, 0.0, closed);
                 }
                 let figure = v.cost(closed, levels, reading);
                 let (best, base) = match figure > LEVELS_TRIED_ABOVE && levels == 255.0 {
                     true => v.best_levels(closed, figure, reading),
                     false => (figure, closed),
                 };
-                (figure, best, base)
+                (Some(figure), best, base)
             })
             .collect();
         let report = &mut self.report;
         report.screened += new.len();
         let mut to_fit = Vec::new();
         for (k, &(closed, figure, _)) in screened.iter().enumerate() {
-            report.unseen_rounding += usize::from(closed < 0.0);
-            report.closed_worst = report.closed_worst.max(closed);
+            report.unseen_rounding += usize::from(closed.is_none());
+            report.closed_worst = report.closed_worst.max(closed.unwrap_or(0.0));
             if figure > THRESHOLD {
                 report.above += 1;
                 if to_fit.len() < self.fits_left {

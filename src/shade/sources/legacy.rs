@@ -31,26 +31,18 @@ pub(crate) fn legacy_materials(
     finest: u32,
 ) -> Result<Vec<Named>, LegacyMaterialsError> {
     let source = source::read_for_materials(bytes.into(), loader)?;
-    let parsed: Vec<(&str, Option<pbr::LegacyPbr>)> = source
+    // Each material's PBR block, or what a lit one says of its emission and coverage.
+    let parsed: Vec<(&str, Option<pbr::LegacyPbr>, Option<LitText>)> = source
         .dictionary("materials")
         .into_iter()
         .map(|(id, material)| {
             let pbr = pbr::find(material).and_then(|(name, block)| pbr::parse(name, block));
-            (id, pbr)
+            let lit = match pbr {
+                Some(_) => None,
+                None => lit_text(&source, material),
+            };
+            (id, pbr, lit)
         })
-        .collect();
-    // Every texture the materials use, decoded once and all together.
-    let texture_ids: Vec<String> = parsed
-        .iter()
-        .filter_map(|(_, pbr)| pbr.as_ref())
-        .flat_map(|pbr| [&pbr.colour_texture, &pbr.data_texture])
-        .flatten()
-        .cloned()
-        .collect::<std::collections::BTreeSet<_>>()
-        .into_iter()
-        .collect();
-    let position: HashMap<&str, usize> = (texture_ids.iter().enumerate())
-        .map(|(at, id)| (id.as_str(), at))
         .collect();
     let image_of = |id: &str| {
         let image = (source.object("textures", id))
@@ -59,8 +51,11 @@ pub(crate) fn legacy_materials(
             .ok_or_else(|| format!("texture '{id}' names no image"));
         image.and_then(|image| source.image_bytes(image))
     };
-    let encoded: Vec<sample::Wanted<_>> =
-        (texture_ids.iter()).map(|id| Some(image_of(id))).collect();
+    // Every texture the PBR materials use, decoded once and all together.
+    let pbr_ids = (parsed.iter().filter_map(|(_, pbr, _)| pbr.as_ref()))
+        .flat_map(|pbr| [&pbr.colour_texture, &pbr.data_texture]);
+    let (ids, position) = distinct(pbr_ids);
+    let encoded: Vec<sample::Wanted<_>> = (ids.iter()).map(|id| Some(image_of(id))).collect();
     let decoded =
         sample::decode_all_at_most(&encoded, finest).map_err(LegacyMaterialsError::Textures)?;
     let texture = |id: &Option<String>| -> Option<Texture> {
@@ -76,47 +71,35 @@ pub(crate) fn legacy_materials(
     };
     // A lit material's textures may fail alone, the decoding budget included: that
     // material is then not evaluated, the others are.
-    let lit: Vec<Option<LitText>> = (source.dictionary("materials").into_iter())
-        .zip(&parsed)
-        .map(|((_, material), (_, pbr))| match pbr {
-            Some(_) => None,
-            None => lit_text(&source, material),
-        })
-        .collect();
-    let lit_ids: Vec<&String> = (lit.iter().flatten())
-        .flat_map(|l| [&l.emission_texture, &l.alpha_texture])
-        .flatten()
-        .collect::<std::collections::BTreeSet<_>>()
-        .into_iter()
-        .collect();
-    let lit_position: HashMap<&str, usize> = (lit_ids.iter().enumerate())
-        .map(|(at, id)| (id.as_str(), at))
-        .collect();
+    let lit_ids = (parsed.iter().filter_map(|(_, _, lit)| lit.as_ref()))
+        .flat_map(|lit| [&lit.emission_texture, &lit.alpha_texture]);
+    let (lit_ids, lit_position) = distinct(lit_ids);
     let lit_encoded: Vec<sample::Wanted<_>> =
         (lit_ids.iter()).map(|id| Some(image_of(id))).collect();
     let lit_decoded = sample::decode_each_at_most(&lit_encoded, finest)
         .unwrap_or_else(|why| vec![Err(why); lit_ids.len()]);
-    let lit_texture = |id: &Option<String>| -> Result<Option<(Texture, sample::Sampler)>, ()> {
-        let Some(id) = id else { return Ok(None) };
-        let at = *lit_position.get(id.as_str()).ok_or(())?;
-        match &lit_decoded[at] {
-            Ok(Some(texture)) => Ok(Some((texture.clone(), sampler(&Some(id.clone()))))),
-            _ => Err(()),
+    // `None`: the texture could not be had.
+    let lit_texture = |id: &Option<String>| -> Option<Option<(Texture, sample::Sampler)>> {
+        let Some(at) = id.as_deref().map(|id| lit_position.get(id)) else {
+            return Some(None);
+        };
+        match lit_decoded.get(*at?) {
+            Some(Ok(Some(texture))) => Some(Some((texture.clone(), sampler(id)))),
+            _ => None,
         }
     };
     let lit_source = |text: &LitText| -> Option<MaterialSource> {
         Some(MaterialSource::lit_legacy(LitLegacy {
             emission: text.emission,
-            emission_texture: lit_texture(&text.emission_texture).ok()?,
+            emission_texture: lit_texture(&text.emission_texture)?,
             alpha: text.alpha,
-            alpha_texture: lit_texture(&text.alpha_texture).ok()?,
+            alpha_texture: lit_texture(&text.alpha_texture)?,
             blend: text.blend,
         }))
     };
     Ok(parsed
         .into_iter()
-        .zip(&lit)
-        .map(|((id, pbr), lit)| {
+        .map(|(id, pbr, lit)| {
             let sampled = match pbr {
                 Some(pbr) => Some(MaterialSource::Legacy {
                     colour: texture(&pbr.colour_texture),
@@ -130,6 +113,20 @@ pub(crate) fn legacy_materials(
             (id.to_string(), sampled)
         })
         .collect())
+}
+
+/// The distinct texture ids among `ids` (in order), and the position of each.
+fn distinct<'a>(
+    ids: impl Iterator<Item = &'a Option<String>>,
+) -> (Vec<String>, HashMap<String, usize>) {
+    let ids: Vec<String> = (ids.flatten().cloned())
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
+    let position = (ids.iter().enumerate())
+        .map(|(at, id)| (id.clone(), at))
+        .collect();
+    (ids, position)
 }
 
 /// What a lit 1.0 material says of its emission and coverage (see [`LitLegacy`]), its

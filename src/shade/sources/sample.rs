@@ -906,10 +906,8 @@ impl Prepared {
         let bound: Vec<_> = (prepared.bindings())
             .map(|b| (Arc::as_ptr(&b.texture), b.sampler, b.texcoord, b.transform))
             .collect();
-        prepared.fingerprint = format!(
-            "emitting only|{emission:?}|{alpha}|{alpha_mode:?}|{bound:?}|{}",
-            prepared.factors.unlit
-        );
+        prepared.fingerprint =
+            format!("emitting only|{emission:?}|{alpha}|{alpha_mode:?}|{bound:?}");
         prepared
     }
 }
@@ -949,29 +947,20 @@ impl MaterialSource {
     pub fn emission_and_coverage(&self) -> MaterialSource {
         let prepared = match self {
             MaterialSource::Gltf2(p) if p.lighting_unread => return self.clone(),
-            MaterialSource::Gltf2(p) if p.factors.unlit => {
-                // KHR_materials_unlit: "the base color is the final color".
-                let mut emitting = Prepared::emitting_only(
-                    p.factors.base_color,
-                    p.base_colour.clone(),
-                    p.alpha,
-                    None,
-                    p.alpha_mode,
-                );
-                // The base colour texture gives both the colour and the alpha.
-                emitting.base_colour = p.base_colour.clone();
-                emitting.unmodelled = p.unmodelled.clone();
-                emitting.fingerprint += "|unlit";
-                emitting
-            }
             MaterialSource::Gltf2(p) => {
+                // KHR_materials_unlit: "the base color is the final color", which is what it
+                // emits.
+                let (emission, emissive) = match p.factors.unlit {
+                    true => (p.factors.base_color, p.base_colour.clone()),
+                    false => (p.factors.emission, p.emissive.clone()),
+                };
                 let colour_texture = match &p.spec_gloss {
                     Some(sg) => sg.diffuse_texture.clone(),
                     None => p.base_colour.clone(),
                 };
                 let mut emitting = Prepared::emitting_only(
-                    p.factors.emission,
-                    p.emissive.clone(),
+                    emission,
+                    emissive,
                     p.alpha,
                     colour_texture,
                     p.alpha_mode,
