@@ -146,3 +146,52 @@ fn upgrade_and_compare_reports_show_both_materials_side_by_side() {
     ]);
     assert_eq!(status, 2, "a report needs a file output");
 }
+
+/// A 1.0 KHR_materials_common material against its upgrade: its lighting is not evaluated, so
+/// the page marks the pair "not evaluated" while its emission and coverage agree, and
+/// "different" once the upgrade's emission is lost.
+#[test]
+fn a_pair_evaluated_in_part_is_marked_not_evaluated_or_different_by_what_was_evaluated() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("common.gltf");
+    std::fs::write(
+        &input,
+        serde_json::json!({"asset": {"version": "1.0"}, "extensionsUsed": ["KHR_materials_common"],
+            "materials": {"glow": {"extensions": {"KHR_materials_common": {"technique": "LAMBERT",
+                "values": {"diffuse": [0.8, 0.2, 0.1, 1.0], "emission": [0.2, 0.6, 0.1, 1.0]}}}}}})
+        .to_string(),
+    )
+    .unwrap();
+    let out = dir.path().join("out.gltf");
+    let path = |p: &Path| p.to_str().unwrap().to_string();
+    let (status, _, stderr) = gltfmat(&["upgrade", &path(&input), "-o", &path(&out)]);
+    assert_eq!(status, 0, "{stderr}");
+    let page = dir.path().join("faithful.html");
+    gltfmat(&[
+        "compare",
+        &path(&input),
+        &path(&out),
+        "--report",
+        &path(&page),
+    ]);
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(html.contains("class=\"pair not-evaluated\""), "{html}");
+    let mut dimmed: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    dimmed["materials"][0]
+        .as_object_mut()
+        .unwrap()
+        .remove("emissiveFactor");
+    let dimmed_path = dir.path().join("dimmed.gltf");
+    std::fs::write(&dimmed_path, dimmed.to_string()).unwrap();
+    let page = dir.path().join("dimmed.html");
+    gltfmat(&[
+        "compare",
+        &path(&input),
+        &path(&dimmed_path),
+        "--report",
+        &path(&page),
+    ]);
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(html.contains("class=\"pair different\""), "{html}");
+}
