@@ -57,7 +57,7 @@ mod test_random;
 pub mod upgrade;
 
 pub use check::{check_bytes, check_path, CheckOptions, Profile, Report};
-pub use diagnostic::{Code, Diagnostic, Location, Severity};
+pub use diagnostic::{Code, Diagnostic, Finding, Findings, Location, Place, Severity};
 pub use document::uri::{FolderResources, MemoryResources, NoResources, ResourceLoader};
 pub use error::Error;
 pub use shade::pairing::{

@@ -2,7 +2,7 @@
 //! defect at a time, each reported with its Khronos code at the pointer that uses the data.
 
 use base64::Engine;
-use gltfmat::check::{check_bytes, CheckOptions, Location, Profile};
+use gltfmat::check::{check_bytes, CheckOptions, Place, Profile};
 use gltfmat::document::uri::NoResources;
 use serde_json::Value;
 
@@ -46,9 +46,9 @@ fn findings(gltf: &Value) -> Vec<(String, String)> {
             .diagnostics
             .iter()
             .map(|d| {
-                let at = match &d.location {
-                    Location::Pointer(p) => p.clone(),
-                    Location::Offset(o) => format!("@{o}"),
+                let at = match d.location {
+                    Place::Pointer(p) => p.to_string(),
+                    Place::Offset(o) => format!("@{o}"),
                 };
                 (d.code.to_string(), at)
             })
@@ -215,7 +215,7 @@ fn large_data_read_in_parallel_runs_is_bounded_and_counted_as_one_walk_would() {
     let degenerate = report(&large_mesh(vertices, &spread, 1.0, [0.0, middle]));
     let messages: Vec<&str> = (degenerate.diagnostics.iter())
         .filter(|d| d.code == "ACCESSOR_INDEX_TRIANGLE_DEGENERATE")
-        .map(|d| &*d.message)
+        .map(|d| d.message)
         .collect();
     assert_eq!(
         messages,
@@ -265,7 +265,7 @@ fn declared_bounds_of_integer_joints_are_held_against_the_data() {
     );
     let bytes = serde_json::to_vec(&gltf).unwrap();
     let report = check_bytes("case.gltf", bytes, &NoResources, &CheckOptions::default());
-    let messages: Vec<&str> = report.diagnostics.iter().map(|d| &*d.message).collect();
+    let messages: Vec<&str> = report.diagnostics.iter().map(|d| d.message).collect();
     assert!(
         messages.contains(
             &"Declared maximum value for this component (0) does not match actual maximum (1)."

@@ -10,7 +10,7 @@ mod common;
 use common::shared;
 
 use gltfmat::check::registry::{self, Origin};
-use gltfmat::check::{check_bytes, CheckOptions, Location, Profile};
+use gltfmat::check::{check_bytes, CheckOptions, Place, Profile};
 use gltfmat::document::uri::FolderResources;
 use serde_json::Value;
 use std::collections::BTreeMap;
@@ -125,9 +125,9 @@ fn diagnose(asset: &Path, profile: Profile) -> BTreeMap<Key, usize> {
     );
     let mut found = BTreeMap::new();
     for d in &report.diagnostics {
-        let location = match &d.location {
-            Location::Pointer(p) => p.clone(),
-            Location::Offset(o) => format!("@{o}"),
+        let location = match d.location {
+            Place::Pointer(p) => p.to_string(),
+            Place::Offset(o) => format!("@{o}"),
         };
         *found
             .entry((d.code.to_string(), location, d.severity as u64))

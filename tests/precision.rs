@@ -7,7 +7,7 @@
 mod common;
 use common::shared;
 
-use gltfmat::check::{check_bytes, CheckOptions, Location};
+use gltfmat::check::{check_bytes, CheckOptions, Place};
 use gltfmat::document::uri::FolderResources;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -62,9 +62,9 @@ fn found(root: &Path, deep: bool) -> Findings {
         let bytes = std::fs::read(&path).unwrap();
         let report = check_bytes(name, bytes, &loader, &options);
         for d in &report.diagnostics {
-            let location = match &d.location {
-                Location::Pointer(p) => p.clone(),
-                Location::Offset(o) => format!("@{o}"),
+            let location = match d.location {
+                Place::Pointer(p) => p.to_string(),
+                Place::Offset(o) => format!("@{o}"),
             };
             *findings
                 .entry((name.to_string(), d.code.to_string(), location))

@@ -9,7 +9,7 @@ mod common;
 use base64::Engine;
 use common::chunk;
 use gltfmat::check::registry::{self, Origin};
-use gltfmat::check::{check_bytes, CheckOptions, Location};
+use gltfmat::check::{check_bytes, CheckOptions, Place};
 use gltfmat::document::uri::{FolderResources, NoResources};
 use image::{DynamicImage, GrayImage, ImageFormat, RgbImage, RgbaImage};
 use serde_json::{json, Value};
@@ -414,9 +414,9 @@ fn issues(
     };
     // The base primitive carries two UV sets for the cases that need them; which of them a
     // case leaves unused is not what these tests are about.
-    let unused_uv_set = |d: &&gltfmat::check::Diagnostic| {
+    let unused_uv_set = |d: &gltfmat::check::Finding| {
         d.code == "UNUSED_OBJECT"
-            && matches!(&d.location, Location::Pointer(p) if p.contains("/attributes/TEXCOORD_"))
+            && matches!(d.location, Place::Pointer(p) if p.contains("/attributes/TEXCOORD_"))
     };
     let mut found: Vec<_> = report
         .diagnostics
@@ -429,9 +429,9 @@ fn issues(
                 "{uri}: {} has its registered severity",
                 d.code
             );
-            let at = match &d.location {
-                Location::Pointer(p) => p.clone(),
-                Location::Offset(o) => format!("@{o}"),
+            let at = match d.location {
+                Place::Pointer(p) => p.to_string(),
+                Place::Offset(o) => format!("@{o}"),
             };
             (d.code.to_string(), at)
         })

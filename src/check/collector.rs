@@ -4,7 +4,7 @@
 //! findings costs the memory of N; with `lowest_kept`, the less severe ones are only counted.
 
 use super::CheckOptions;
-use crate::diagnostic::{Diagnostic, Severity, Sink};
+use crate::diagnostic::{Diagnostic, Findings, Severity, Sink};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -17,11 +17,11 @@ pub(crate) struct Collector<'o> {
     truncated: bool,
 }
 
-/// Without a limit every finding is kept as it comes, already in emission order (no ranks, no
-/// sort and its scratch: a report of 10^6 findings costs their own memory only); with one, a
-/// max-heap whose top is the one to drop first.
+/// Without a limit every finding is kept as it comes, compactly and already in emission order
+/// (no ranks, no sort and its scratch: a report of 10^6 findings costs their own memory
+/// only); with one, a max-heap whose top is the one to drop first.
 enum Kept {
-    All(Vec<Diagnostic>),
+    All(Box<Findings>),
     Best(BinaryHeap<Ranked>),
 }
 
@@ -57,7 +57,7 @@ impl Ord for Ranked {
 impl<'o> Collector<'o> {
     pub fn new(options: &'o CheckOptions) -> Self {
         let kept = match options.max_issues {
-            0 => Kept::All(Vec::new()),
+            0 => Kept::All(Box::default()),
             _ => Kept::Best(BinaryHeap::new()),
         };
         Collector {
@@ -71,9 +71,9 @@ impl<'o> Collector<'o> {
 
     /// The kept findings (in emission order, or in report order when some were dropped),
     /// the full per-severity counts, and whether some were dropped.
-    pub fn finish(self) -> (Vec<Diagnostic>, [usize; 4], bool) {
+    pub fn finish(self) -> (Findings, [usize; 4], bool) {
         let kept = match self.kept {
-            Kept::All(all) => all,
+            Kept::All(all) => *all,
             Kept::Best(best) => {
                 // Ranks are unique, so the unstable sort is the order, without scratch memory.
                 let mut best = best.into_vec();

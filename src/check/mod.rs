@@ -13,7 +13,7 @@ pub(crate) use khronos::is_trs_decomposable;
 mod pass_codes;
 pub(crate) mod profile;
 
-pub use crate::diagnostic::{Code, Diagnostic, Location, Severity};
+pub use crate::diagnostic::{Code, Diagnostic, Finding, Findings, Location, Place, Severity};
 pub(crate) use context::Context;
 pub use context::{AssetInfo, ResourceInfo};
 
@@ -106,8 +106,8 @@ pub struct Report {
     pub uri: String,
     /// The document as read (bytes, container, JSON), for locating findings.
     pub document: Document,
-    /// The findings, in pass order.
-    pub diagnostics: Vec<Diagnostic>,
+    /// The findings, in pass order (or, cut by `max_issues`, in report order).
+    pub diagnostics: Findings,
     /// True when `max_issues` cut the list.
     pub truncated: bool,
     /// Findings per severity (error, warning, info, hint), counted before `max_issues` cut

@@ -2,7 +2,7 @@
 //! the conversion report.
 
 use crate::common::{Failure, Outcome};
-use gltfmat::check::{Location, Report};
+use gltfmat::check::Report;
 use gltfmat::document::file::FileId;
 use gltfmat::document::uri::folder_of;
 use gltfmat::report::{render, Format, Style};
@@ -299,13 +299,13 @@ fn refuse_failed_check(
 ) -> Failure {
     let mut origins: Vec<String> = (report.diagnostics.iter())
         .filter(|d| d.severity == Severity::Error)
-        .filter_map(|d| match &d.location {
-            Location::Pointer(at) => Some(format!(
+        .filter_map(|d| {
+            let at = d.pointer()?;
+            Some(format!(
                 "  {at} ({}) was made from 1.0 {}",
                 d.code,
                 upgraded.origin_of(at)?
-            )),
-            Location::Offset(_) => None,
+            ))
         })
         .collect();
     origins.dedup();

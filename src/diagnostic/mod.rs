@@ -1,9 +1,11 @@
 //! The bottom layer: one finding is a [`Code`], a [`Severity`], a message and a [`Location`].
 //! Nothing here knows the validator, the terminal or the rule registry.
 
+mod findings;
 pub mod khronos;
 pub mod khronos_words;
 
+pub use findings::{Finding, Findings, Place};
 use serde::Serialize;
 use std::borrow::Cow;
 use std::fmt;

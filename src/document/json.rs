@@ -7,7 +7,6 @@
 //! The same scanner reports duplicate object keys, which serde_json silently collapses.
 
 use std::borrow::Cow;
-use std::collections::{HashMap, HashSet};
 use std::hash::BuildHasher;
 
 /// A JSON syntax error with its 1-based position.
@@ -82,64 +81,94 @@ pub fn escape_token(token: &str) -> Cow<'_, str> {
     }
 }
 
-/// Byte range of the value each pointer names; for an object member the range starts at
-/// its key, so a snippet shows the property name (of a repeated key, the last one, whose
-/// value parsers keep). All pointers are found in one pass over the text, skipping the
-/// subtrees no pointer enters, so the cost is one scan however many diagnostics are
-/// located. Pointers that name nothing are absent from the map.
-pub fn locate_all<'p>(
+/// Byte range of the value each pointer of `sorted` names (sorted and each once), in its
+/// order; for an object member the range starts at its key, so a snippet shows the property
+/// name (of a repeated key, the last one, whose value parsers keep). A pointer that names
+/// nothing has `None`. See [`locate_each`].
+pub fn locate_all(text: &[u8], sorted: &[&str]) -> Vec<Option<std::ops::Range<usize>>> {
+    let mut found = vec![None; sorted.len()];
+    locate_each(
+        text,
+        sorted.len(),
+        |i| sorted[i],
+        |i, range| found[i] = Some(range),
+    );
+    found
+}
+
+/// Calls `found(i, range)` for each of `count` pointers (the `i`th is `pointer(i)`, in sorted
+/// order, each once) that names a value of `text`, with the byte range of that value. All
+/// are found in one pass over the text, skipping the subtrees no pointer enters, so the cost
+/// is one scan however many findings are located, and no memory per pointer.
+pub fn locate_each<'p>(
     text: &[u8],
-    pointers: impl IntoIterator<Item = &'p str>,
-) -> HashMap<&'p str, std::ops::Range<usize>> {
-    // Each pointer once (a thousand findings at one place are one place to find), and the
-    // paths the walk goes through: every pointer's prefixes up to a '/', slices of the
-    // pointers themselves, so that 10^6 pointers cost two sets of slices, nothing copied.
-    let ends: HashSet<&str> = pointers.into_iter().collect();
-    let mut through: HashSet<&str> = HashSet::new();
-    for pointer in &ends {
-        let inner = pointer
-            .match_indices('/')
-            .map(|(i, _)| i)
-            .filter(|&i| i > 0);
-        through.extend(inner.map(|i| &pointer[..i]));
-    }
-    let wanted = Wanted { ends, through };
-    let mut found = HashMap::new();
+    count: usize,
+    pointer: impl Fn(usize) -> &'p str,
+    mut found: impl FnMut(usize, std::ops::Range<usize>),
+) {
     let mut scanner = Scanner { text, pos: 0 };
     scanner.skip_ws();
     let start = scanner.pos;
     // Malformed text ends the walk; what was found before stays found.
     let mut path = String::new();
-    let _ = scanner.locate_in(&wanted, &mut path, start, &mut found);
-    found
-}
-
-/// The pointers being located, and the paths leading to them.
-struct Wanted<'p> {
-    ends: HashSet<&'p str>,
-    through: HashSet<&'p str>,
-}
-
-impl Wanted<'_> {
-    /// Whether the walk goes into the value at `path`.
-    fn enters(&self, path: &str) -> bool {
-        self.through.contains(path) || self.ends.contains(path)
-    }
-
-    /// Whether something lies below the value at `path` (the document at "").
-    fn goes_below(&self, path: &str) -> bool {
-        path.is_empty() || self.through.contains(path)
+    let wanted = Wanted { pointer: &pointer };
+    if (scanner.locate_in(&wanted, 0..count, &mut path, &mut found)).is_some() {
+        // The root is named by "" and, as the report prints it, "/".
+        for root in ["", "/"] {
+            if let Some(at) = wanted.exactly(root, &(0..count)) {
+                found(at, start..scanner.pos);
+            }
+        }
     }
 }
 
-/// 1-based line and column of byte offsets in one text, from an index built once: line
-/// starts, and the number of characters before every 256-byte boundary (so a column in a
-/// large single-line file, where a report may place 10^6 findings, costs at most 256 bytes
-/// of counting, and the index a sixty-fourth of the text).
+/// The pointers being located, in sorted order: those below a path are the ones between the
+/// path followed by '/' and the path followed by '0' (the byte after '/').
+struct Wanted<'w, 'p> {
+    pointer: &'w dyn Fn(usize) -> &'p str,
+}
+
+impl Wanted<'_, '_> {
+    /// Where in `within` the first pointer not before `path` is.
+    fn first_from(&self, path: &str, within: &std::ops::Range<usize>) -> usize {
+        let (mut low, mut high) = (within.start, within.end);
+        while low < high {
+            let middle = low + (high - low) / 2;
+            if (self.pointer)(middle) < path {
+                low = middle + 1;
+            } else {
+                high = middle;
+            }
+        }
+        low
+    }
+
+    /// The place of `path` itself among the pointers of `within`.
+    fn exactly(&self, path: &str, within: &std::ops::Range<usize>) -> Option<usize> {
+        let at = self.first_from(path, within);
+        (at < within.end && (self.pointer)(at) == path).then_some(at)
+    }
+
+    /// The pointers of `within` that lie below `path` (start with it and a '/').
+    fn below(&self, path: &mut String, within: &std::ops::Range<usize>) -> std::ops::Range<usize> {
+        path.push('/');
+        let start = self.first_from(path, within);
+        path.pop();
+        path.push('0');
+        let end = self.first_from(path, &(start..within.end));
+        path.pop();
+        start..end
+    }
+}
+
+/// 1-based line and column of byte offsets in one text, from an index built once: the number
+/// of line breaks and of characters before every 256-byte boundary. A line or a column then
+/// costs at most 256 bytes of counting (in a large single-line file a report may place 10^6
+/// findings), and the index is a thirty-second of the text, however many lines it has.
 pub struct LineIndex<'t> {
     text: &'t [u8],
-    line_starts: Vec<usize>,
-    /// Fits in 32 bits: no text read is longer (`file::MAX_FILE_BYTES`).
+    /// Fit in 32 bits: no text read is longer (`file::MAX_FILE_BYTES`).
+    breaks_before_block: Vec<u32>,
     chars_before_block: Vec<u32>,
 }
 
@@ -148,18 +177,21 @@ const BLOCK: usize = 1 << 8;
 impl<'t> LineIndex<'t> {
     /// Indexes `text`.
     pub fn new(text: &'t [u8]) -> Self {
-        let mut line_starts = vec![0];
-        line_starts.extend(memchr_all(b'\n', text).map(|p| p + 1));
-        let mut chars_before_block = Vec::with_capacity(text.len() / BLOCK + 1);
-        let mut chars = 0u32;
+        let blocks = text.len() / BLOCK + 2;
+        let mut breaks_before_block = Vec::with_capacity(blocks);
+        let mut chars_before_block = Vec::with_capacity(blocks);
+        let (mut breaks, mut chars) = (0u32, 0u32);
         for block in text.chunks(BLOCK) {
+            breaks_before_block.push(breaks);
             chars_before_block.push(chars);
+            breaks = breaks.saturating_add(count_breaks(block) as u32);
             chars = chars.saturating_add(count_chars(block) as u32);
         }
+        breaks_before_block.push(breaks);
         chars_before_block.push(chars);
         LineIndex {
             text,
-            line_starts,
+            breaks_before_block,
             chars_before_block,
         }
     }
@@ -167,27 +199,50 @@ impl<'t> LineIndex<'t> {
     /// The line and column (in characters) of `offset`.
     pub fn line_col(&self, offset: usize) -> (usize, usize) {
         let offset = offset.min(self.text.len());
-        let line = self.line_starts.partition_point(|&start| start <= offset);
-        let line_start = self.line_starts[line - 1];
+        let block = offset / BLOCK;
+        let line = self.breaks_before_block[block] as usize
+            + count_breaks(&self.text[block * BLOCK..offset])
+            + 1;
+        let line_start = self.line_start(line);
         (
             line,
             self.chars_before(offset) - self.chars_before(line_start) + 1,
         )
     }
 
-    /// The byte offset at which line `line` (1-based) starts.
+    /// The byte offset at which line `line` (1-based) starts: just after the text's
+    /// (`line` − 1)th line break (the end of the text past the last line).
     pub fn line_start(&self, line: usize) -> usize {
-        (self.line_starts.get(line.saturating_sub(1)).copied()).unwrap_or(self.text.len())
+        let Some(nth) = line.checked_sub(1).filter(|&n| n > 0) else {
+            return 0;
+        };
+        let breaks = self.breaks_before_block.last().copied().unwrap_or(0) as usize;
+        if nth > breaks {
+            return self.text.len();
+        }
+        // The last block with fewer breaks before it than `nth` holds the `nth` break.
+        let before = self
+            .breaks_before_block
+            .partition_point(|&b| (b as usize) < nth);
+        let Some(block) = before.checked_sub(1) else {
+            return 0;
+        };
+        let wanted = nth - self.breaks_before_block[block] as usize;
+        let start = block * BLOCK;
+        let end = (start + BLOCK).min(self.text.len());
+        (memchr::memchr_iter(b'\n', &self.text[start..end]).nth(wanted - 1))
+            .map_or(self.text.len(), |i| start + i + 1)
     }
 
     /// The bytes of line `line` (1-based), without its line break.
     pub fn line(&self, line: usize) -> &'t [u8] {
-        let start = self
-            .line_starts
-            .get(line - 1)
-            .copied()
-            .unwrap_or(self.text.len());
-        let end = (self.line_starts.get(line)).map_or(self.text.len(), |&next| next - 1);
+        let start = self.line_start(line);
+        let next = self.line_start(line + 1);
+        let end = if next > start && self.text.get(next - 1) == Some(&b'\n') {
+            next - 1
+        } else {
+            next
+        };
         &self.text[start..end.max(start)]
     }
 
@@ -202,11 +257,8 @@ fn count_chars(bytes: &[u8]) -> usize {
     bytes.iter().filter(|&&b| b & 0xC0 != 0x80).count()
 }
 
-fn memchr_all(needle: u8, text: &[u8]) -> impl Iterator<Item = usize> + '_ {
-    text.iter()
-        .enumerate()
-        .filter(move |(_, &b)| b == needle)
-        .map(|(i, _)| i)
+fn count_breaks(bytes: &[u8]) -> usize {
+    memchr::memchr_iter(b'\n', bytes).count()
 }
 
 /// A key that occurs more than once in its object: its pointer, where its first repeat
@@ -451,22 +503,20 @@ impl<'a> Scanner<'a> {
         }
     }
 
-    /// Positioned on a value reached through `trie[node]` (its member key, if any, at
-    /// `found_start`): records the range of every pointer ending here and walks on into the
-    /// members and elements some pointer goes through, skipping the rest. It recurses only
-    /// along the pointers' tokens, so its depth is that of the deepest pointer.
-    fn locate_in<'p>(
+    /// Positioned on a value whose descendants some pointers of `below` name: walks into the
+    /// members and elements they go through, skipping the rest. It recurses only along the
+    /// pointers' tokens, so its depth is that of the deepest pointer.
+    fn locate_in(
         &mut self,
-        wanted: &Wanted<'p>,
+        wanted: &Wanted,
+        below: std::ops::Range<usize>,
         path: &mut String,
-        found_start: usize,
-        found: &mut HashMap<&'p str, std::ops::Range<usize>>,
+        found: &mut dyn FnMut(usize, std::ops::Range<usize>),
     ) -> Option<()> {
         self.skip_ws();
-        let value_start = self.pos;
-        let below = wanted.goes_below(path);
+        let has_below = !below.is_empty();
         match self.peek()? {
-            b'{' if below => {
+            b'{' if has_below => {
                 self.pos += 1;
                 loop {
                     self.skip_ws();
@@ -484,12 +534,7 @@ impl<'a> Scanner<'a> {
                             let length = path.len();
                             path.push('/');
                             path.push_str(&escape_token(&name));
-                            if wanted.enters(path) {
-                                self.locate_in(wanted, path, key_start, found)?;
-                            } else {
-                                self.skip_ws();
-                                self.skip_value()?;
-                            }
+                            self.member(wanted, &below, path, key_start, found)?;
                             path.truncate(length);
                         }
                         _ => return None,
@@ -497,7 +542,7 @@ impl<'a> Scanner<'a> {
                 }
                 self.pos += 1;
             }
-            b'[' if below => {
+            b'[' if has_below => {
                 self.pos += 1;
                 let mut index = 0usize;
                 loop {
@@ -508,12 +553,8 @@ impl<'a> Scanner<'a> {
                     let length = path.len();
                     path.push('/');
                     path.push_str(&index.to_string());
-                    if wanted.enters(path) {
-                        let at = self.pos;
-                        self.locate_in(wanted, path, at, found)?;
-                    } else {
-                        self.skip_value()?;
-                    }
+                    let at = self.pos;
+                    self.member(wanted, &below, path, at, found)?;
                     path.truncate(length);
                     self.skip_ws();
                     match self.peek()? {
@@ -529,12 +570,31 @@ impl<'a> Scanner<'a> {
             }
             _ => self.skip_value()?,
         }
-        let root = path.is_empty();
-        let ends = [path.as_str(), if root { "/" } else { "" }];
-        for candidate in ends.into_iter().filter(|c| root || !c.is_empty()) {
-            if let Some(&pointer) = wanted.ends.get(candidate) {
-                found.insert(pointer, found_start.min(value_start)..self.pos);
-            }
+        Some(())
+    }
+
+    /// Walks the member or element at `path` (whose text starts at `start`), one of the
+    /// values below its parent's pointers `within`: into it when some pointer enters it,
+    /// recording its range when a pointer names it, otherwise skipping it.
+    fn member(
+        &mut self,
+        wanted: &Wanted,
+        within: &std::ops::Range<usize>,
+        path: &mut String,
+        start: usize,
+        found: &mut dyn FnMut(usize, std::ops::Range<usize>),
+    ) -> Option<()> {
+        let named = wanted.exactly(path, within);
+        let below = wanted.below(path, within);
+        if named.is_none() && below.is_empty() {
+            self.skip_ws();
+            return self.skip_value();
+        }
+        self.skip_ws();
+        let value_start = self.pos;
+        self.locate_in(wanted, below, path, found)?;
+        if let Some(at) = named {
+            found(at, start.min(value_start)..self.pos);
         }
         Some(())
     }
@@ -550,7 +610,7 @@ mod tests {
 }"#;
 
     fn locate(text: &[u8], pointer: &str) -> Option<std::ops::Range<usize>> {
-        locate_all(text, [pointer]).remove(pointer)
+        locate_all(text, &[pointer]).remove(0)
     }
 
     #[test]
@@ -568,6 +628,72 @@ mod tests {
         );
     }
 
+    /// Lines and columns from the blocked index are those of counting from the start, at
+    /// every offset of texts with short and long lines, multi-byte characters and breaks on
+    /// block boundaries.
+    #[test]
+    fn lines_and_columns_are_those_counted_from_the_start() {
+        let mut random = crate::test_random::Sequence::new(7);
+        for _ in 0..40 {
+            let length = random.below(1200);
+            let text: String = (0..length)
+                .map(|_| match random.below(40) {
+                    0..=2 => '\n',
+                    3 => 'é',
+                    4 => '€',
+                    _ => 'a',
+                })
+                .collect();
+            let bytes = text.as_bytes();
+            let index = LineIndex::new(bytes);
+            let lines: Vec<&[u8]> = bytes.split(|&b| b == b'\n').collect();
+            for (n, line) in lines.iter().enumerate() {
+                assert_eq!(index.line(n + 1), *line, "line {}", n + 1);
+            }
+            assert_eq!(index.line(lines.len() + 1), b"");
+            for offset in (0..=bytes.len()).filter(|&o| text.is_char_boundary(o)) {
+                let before = &text[..offset];
+                let line = before.matches('\n').count() + 1;
+                let column = before.rsplit('\n').next().unwrap().chars().count() + 1;
+                assert_eq!(index.line_col(offset), (line, column), "offset {offset}");
+            }
+        }
+    }
+
+    /// A pointer and its neighbours in sorted order that share its text ("/nodes/1",
+    /// "/nodes/1/mesh", "/nodes/10") are each found at their own value.
+    #[test]
+    fn pointers_sharing_a_prefix_are_each_found_at_their_own_value() {
+        let text = format!(
+            r#"{{"nodes": [{}]}}"#,
+            (0..12)
+                .map(|i| format!(r#"{{"mesh": {i}}}"#))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        let sorted = [
+            "/nodes/1",
+            "/nodes/1/mesh",
+            "/nodes/10",
+            "/nodes/10/mesh",
+            "/nodes/2/mesh",
+        ];
+        let found = locate_all(text.as_bytes(), &sorted);
+        let shown: Vec<&str> = (found.iter())
+            .map(|range| &text[range.clone().unwrap()])
+            .collect();
+        assert_eq!(
+            shown,
+            [
+                r#"{"mesh": 1}"#,
+                r#""mesh": 1"#,
+                r#"{"mesh": 10}"#,
+                r#""mesh": 10"#,
+                r#""mesh": 2"#
+            ]
+        );
+    }
+
     #[test]
     fn many_pointers_are_located_in_one_pass_each_as_alone() {
         let pointers = [
@@ -578,13 +704,18 @@ mod tests {
             "/nodes",
             "",
         ];
-        let all = locate_all(TEXT, pointers);
-        for pointer in pointers {
-            let alone = locate_all(TEXT, [pointer]).remove(pointer);
-            assert_eq!(all.get(pointer).cloned(), alone, "{pointer}");
+        let mut sorted = pointers.to_vec();
+        sorted.sort_unstable();
+        let all = locate_all(TEXT, &sorted);
+        for (pointer, together) in sorted.iter().zip(&all) {
+            let alone = locate(TEXT, pointer);
+            assert_eq!(*together, alone, "{pointer}");
             assert!(alone.is_some(), "{pointer}");
         }
-        assert_eq!(&TEXT[all["/asset/version"].clone()], br#""version": "2.0""#);
+        assert_eq!(
+            &TEXT[locate(TEXT, "/asset/version").unwrap()],
+            br#""version": "2.0""#
+        );
     }
 
     /// Keys holding '/' and '~' are reached through their escaped tokens (RFC 6901), and a

@@ -155,10 +155,10 @@ fn card(
         let pointers_of =
             |key: String| -> Vec<usize> { groups.get(&key).cloned().unwrap_or_default() };
         for i in pointers_of(group.clone()) {
-            if let crate::diagnostic::Location::Pointer(p) = &images.report.diagnostics[i].location
-            {
+            let finding = images.report.diagnostics.get(i);
+            if let Some(p) = finding.and_then(|f| f.pointer()) {
                 if p.starts_with(&slot_pointer) {
-                    concerns.push(images.report.diagnostics[i].code.name().to_string());
+                    concerns.extend(finding.map(|f| f.code.name().to_string()));
                 }
             }
         }
@@ -172,7 +172,8 @@ fn card(
             concerns.extend(
                 pointers_of(key)
                     .iter()
-                    .map(|&i| images.report.diagnostics[i].code.name().to_string()),
+                    .filter_map(|&i| images.report.diagnostics.get(i))
+                    .map(|f| f.code.name().to_string()),
             );
         }
         concerns.sort();

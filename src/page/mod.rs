@@ -13,7 +13,7 @@ mod materials;
 
 use crate::check::registry;
 use crate::check::Report;
-use crate::diagnostic::{Location, Severity};
+use crate::diagnostic::{Place, Severity};
 use crate::shade::pairing::{Ball, Outcome};
 use html::{escape, png_data_uri};
 use std::collections::BTreeMap;
@@ -236,15 +236,15 @@ impl Page {
 fn group_findings(report: &Report) -> BTreeMap<String, Vec<usize>> {
     let mut groups: BTreeMap<String, Vec<usize>> = BTreeMap::new();
     for (i, d) in report.diagnostics.iter().enumerate() {
-        groups.entry(group_of(&d.location)).or_default().push(i);
+        groups.entry(group_of(d.location)).or_default().push(i);
     }
     groups
 }
 
-fn group_of(location: &Location) -> String {
+fn group_of(location: Place) -> String {
     match location {
-        Location::Offset(_) => "binary data".into(),
-        Location::Pointer(pointer) => {
+        Place::Offset(_) => "binary data".into(),
+        Place::Pointer(pointer) => {
             let mut tokens = pointer.split('/').skip(1);
             match (tokens.next(), tokens.next()) {
                 (Some(c), Some(i)) if !c.is_empty() && i.parse::<usize>().is_ok() => {
@@ -301,23 +301,25 @@ fn findings_html(report: &Report, groups: &BTreeMap<String, Vec<usize>>) -> Stri
 }
 
 fn finding_item(report: &Report, index: usize, place: Option<(usize, usize)>) -> String {
-    let d = &report.diagnostics[index];
+    let Some(d) = report.diagnostics.get(index) else {
+        return String::new();
+    };
     let severity = match d.severity {
         Severity::Error => "error",
         Severity::Warning => "warning",
         Severity::Info => "info",
         Severity::Hint => "hint",
     };
-    let location = match (&d.location, place) {
-        (Location::Offset(o), _) => format!("byte {o}"),
-        (Location::Pointer(p), Some((line, column))) => {
+    let location = match (d.location, place) {
+        (Place::Offset(o), _) => format!("byte {o}"),
+        (Place::Pointer(p), Some((line, column))) => {
             format!("{}:{line}:{column} {p}", report.uri)
         }
-        (Location::Pointer(p), None) => p.clone(),
+        (Place::Pointer(p), None) => p.to_string(),
     };
     format!(
         "<li class=\"{severity}\"><span class=\"sev\">{severity}</span> <a class=\"code\" href=\"#code-{code}\">{code}</a> {} <span class=\"where\">{}</span></li>",
-        escape(&d.message),
+        escape(d.message),
         escape(&location),
         code = d.code.name()
     )

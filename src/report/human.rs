@@ -3,7 +3,7 @@
 //! exporters' files carry by the dozen, are counted in the summary unless asked for.
 
 use super::{location_suffix, Positions, Style};
-use crate::check::{Diagnostic, Location, Report, Severity};
+use crate::check::{Finding, Place, Report, Severity};
 use crate::document::json::LineIndex;
 use crate::document::Container;
 use std::borrow::Borrow;
@@ -46,7 +46,7 @@ pub fn write<R: Borrow<Report>>(
             && !style.verbose
             && !report.diagnostics.iter().any(|d| listed(d.severity, style));
         if !quiet {
-            out.write_all(render_one(report, style).as_bytes())?;
+            write_one(report, style, out)?;
         }
         total.add(report);
     }
@@ -61,8 +61,8 @@ pub fn write<R: Borrow<Report>>(
 /// mistake, and four lines each would bury every other finding.
 pub const SHOWN_PER_CODE: usize = 3;
 
-fn render_one(report: &Report, style: &Style) -> String {
-    let mut out = String::new();
+/// One report's findings, each written as it is rendered (10^6 of them are never one string).
+fn write_one(report: &Report, style: &Style, out: &mut dyn Write) -> std::io::Result<()> {
     let positions = Positions::of_those(report, |d| listed(d.severity, style));
     // Per code, in the order codes first come: how many were shown and hidden, and the first
     // distinct places of the hidden ones (one more than are named, to know whether to say so).
@@ -82,12 +82,12 @@ fn render_one(report: &Report, style: &Style) -> String {
         let group = &mut per_code[at];
         if style.all_findings || group.shown < SHOWN_PER_CODE {
             group.shown += 1;
-            out.push_str(&finding(report, &positions, d, style.colour));
+            out.write_all(finding(report, &positions, &d, style.colour).as_bytes())?;
             continue;
         }
         group.hidden += 1;
         if group.places.len() <= SHOWN_PER_CODE {
-            let place = place(report, &positions, d);
+            let place = place(report, &positions, &d);
             if !group.places.contains(&place) {
                 group.places.push(place);
             }
@@ -100,16 +100,16 @@ fn render_one(report: &Report, style: &Style) -> String {
         } else {
             ""
         };
-        out.push_str(&format!(
-            "{}: {} more {} finding(s), at {}{more} (--all-findings lists them)\n",
+        writeln!(
+            out,
+            "{}: {} more {} finding(s), at {}{more} (--all-findings lists them)",
             report.uri,
             group.hidden,
             group.code,
             named.join(", "),
-        ));
+        )?;
     }
-    out.push_str(&summary(report, style));
-    out
+    out.write_all(summary(report, style).as_bytes())
 }
 
 /// The findings of one code in one file's human report.
@@ -123,31 +123,41 @@ struct Grouped<'r> {
 }
 
 /// Where a finding is, shortly: its line and column, or its pointer or byte.
-fn place(report: &Report, positions: &Positions, d: &Diagnostic) -> String {
-    match (positions.line_col(d), &d.location) {
+fn place(report: &Report, positions: &Positions, d: &Finding) -> String {
+    match (positions.line_col(d), d.location) {
         (Some((l, c)), _) if report.document.container != Container::Glb => format!("{l}:{c}"),
-        (_, Location::Pointer(p)) => p.clone(),
-        (_, Location::Offset(o)) => format!("byte {o}"),
+        (_, Place::Pointer(p)) => p.to_string(),
+        (_, Place::Offset(o)) => format!("byte {o}"),
     }
 }
 
-/// The listed findings by severity, then line and column; findings without a place in the
+/// The listed findings by severity, then place in the text; findings without a place in the
 /// text (GLB container offsets, the whole file) after those that have one, in report order.
+/// Sorted as one 128-bit key each (severity, whether placed, byte offset — which orders as
+/// line and column do — and index), each finding read again as it is written.
 fn in_reading_order<'r>(
     report: &'r Report,
     positions: &Positions,
     style: &Style,
-) -> Vec<&'r Diagnostic> {
-    let mut shown: Vec<(&Diagnostic, Option<(usize, usize)>)> = (report.diagnostics.iter())
+) -> impl Iterator<Item = Finding<'r>> {
+    let mut order: Vec<u128> = (report.diagnostics.iter())
         .filter(|d| listed(d.severity, style))
-        .map(|d| (d, positions.line_col(d)))
+        .map(|d| {
+            let at = positions.span(&d).map(|s| s.start as u64);
+            (d.severity as u128) << 100
+                | u128::from(at.is_none()) << 96
+                | u128::from(at.unwrap_or(0) as u32) << 64
+                | d.index as u128
+        })
         .collect();
-    shown.sort_by_key(|(d, at)| (d.severity, at.is_none(), *at));
-    shown.into_iter().map(|(d, _)| d).collect()
+    order.sort_unstable();
+    (order.into_iter()).filter_map(|key| report.diagnostics.get(key as u64 as usize))
 }
 
-fn finding(report: &Report, positions: &Positions, d: &Diagnostic, colour: bool) -> String {
-    let position = match positions.line_col(d) {
+fn finding(report: &Report, positions: &Positions, d: &Finding, colour: bool) -> String {
+    let span = positions.span(d);
+    let line_col = span.as_ref().map(|s| positions.lines.line_col(s.start));
+    let position = match line_col {
         Some((l, c)) => format!("{}:{l}:{c}", report.uri),
         None => report.uri.clone(),
     };
@@ -162,13 +172,13 @@ fn finding(report: &Report, positions: &Positions, d: &Diagnostic, colour: bool)
         location_suffix(d),
         image_named(report, d)
     );
-    if let Some(range) = positions.span(d) {
+    if let (Some(range), Some((line, _))) = (span, line_col) {
         let byte = (report.document.container == Container::Glb
-            && matches!(d.location, Location::Pointer(_)))
+            && matches!(d.location, Place::Pointer(_)))
         .then(|| positions.text_start + range.start);
         out.push_str(&notes(positions.shown_at(d), byte));
-        out.push_str(&snippet(&positions.lines, range.start, colour));
-    } else if let Location::Offset(offset) = d.location {
+        out.push_str(&snippet(&positions.lines, line, range.start, colour));
+    } else if let Place::Offset(offset) = d.location {
         out.push_str(&hex_snippet(
             &report.document.bytes,
             offset as usize,
@@ -180,8 +190,8 @@ fn finding(report: &Report, positions: &Positions, d: &Diagnostic, colour: bool)
 
 /// For a finding on an image (`/images/N…`), the image's URI or name, which says more than
 /// its index to a person looking at the asset's files; a data URI is shown by its media type.
-fn image_named(report: &Report, d: &Diagnostic) -> String {
-    let Location::Pointer(pointer) = &d.location else {
+fn image_named(report: &Report, d: &Finding) -> String {
+    let Place::Pointer(pointer) = d.location else {
         return String::new();
     };
     let Some(index) = (pointer.strip_prefix("/images/"))
@@ -247,11 +257,10 @@ fn notes(shown_at: Option<&str>, byte: Option<usize>) -> String {
 /// Characters of a long line shown on each side of the column.
 const WINDOW: usize = 60;
 
-/// The source line holding `offset`, with a caret under the column. A long line (minified
+/// Line `line_no`, which holds `offset`, with a caret under the column. A long line (minified
 /// JSON, a GLB's JSON chunk) is cut to a window around the column; tabs before the column are
 /// repeated under it, so the caret lands where the terminal draws the character.
-fn snippet(lines: &LineIndex, offset: usize, colour: bool) -> String {
-    let (line_no, _) = lines.line_col(offset);
+fn snippet(lines: &LineIndex, line_no: usize, offset: usize, colour: bool) -> String {
     let line = lines.line(line_no);
     let at = offset
         .saturating_sub(lines.line_start(line_no))
@@ -367,7 +376,8 @@ mod tests {
         // Continuation bytes with no character start: the window cannot snap past the column.
         let text = b"\x80\x80\x80abc";
         for offset in 0..text.len() {
-            let shown = snippet(&LineIndex::new(text), offset, false);
+            let lines = LineIndex::new(text);
+            let shown = snippet(&lines, lines.line_col(offset).0, offset, false);
             assert_eq!(shown.lines().count(), 2, "{shown}");
             assert!(shown.lines().nth(1).unwrap().ends_with('^'), "{shown}");
         }
@@ -386,13 +396,15 @@ mod tests {
             &CheckOptions::default(),
         );
         report.diagnostics = (findings.iter())
-            .map(|(code, pointer)| Diagnostic::at(*code, *pointer, "m."))
+            .map(|(code, pointer)| crate::check::Diagnostic::at(*code, *pointer, "m."))
             .collect();
         report
     }
 
     fn plain(report: &Report, all: bool) -> String {
-        render_one(report, &Style::new(false).with_all_findings(all))
+        let mut out = Vec::new();
+        write_one(report, &Style::new(false).with_all_findings(all), &mut out).unwrap();
+        String::from_utf8(out).unwrap()
     }
 
     #[test]

@@ -4,13 +4,12 @@
 mod human;
 mod sarif;
 
-use crate::check::{Diagnostic, Location, Report, Severity};
+use crate::check::{Finding, Findings, Place, Report, Severity};
 use crate::document::json;
 use serde::Serialize;
 use serde_json::{json, Map, Value};
 use std::borrow::Borrow;
 use std::cell::RefCell;
-use std::collections::HashMap;
 use std::io::Write;
 use std::ops::Range;
 
@@ -152,42 +151,69 @@ impl<R: Borrow<Report>, I: Iterator<Item = R>> serde::Serialize for KhronosRepor
     }
 }
 
-/// Where a report's diagnostics lie in its JSON text: every pointer located in one pass and
-/// lines indexed once, so that rendering N diagnostics costs one scan of the file, not N.
-/// A pointer to a member that is not written (a default) is placed at its nearest enclosing
-/// value that is.
+/// Where a report's findings lie in its JSON text: every pointer located in one pass and
+/// lines indexed once, so that rendering N findings costs one scan of the file, not N, and
+/// four bytes per finding and eight per distinct pointer. A pointer to a member that is not written (a default)
+/// is placed at its nearest enclosing value that is.
 pub(crate) struct Positions<'r> {
-    spans: HashMap<&'r str, Range<usize>>,
-    /// For pointers not in the text: the nearest ancestor that is, and where.
-    enclosing: HashMap<&'r str, (&'r str, Range<usize>)>,
+    /// Each finding's place in `spans` (`UNPLACED` for one not located).
+    places: Vec<u32>,
+    /// Where each distinct pointer's value lies (or its nearest enclosing value's) in the
+    /// text, as start and end (`NOWHERE` when not found; a text is shorter than 4 GiB).
+    spans: Vec<[u32; 2]>,
+    /// The pointers placed at an enclosing value: their place in `spans` and that value's
+    /// pointer, in order.
+    enclosing: Vec<(usize, &'r str)>,
     /// The JSON text's lines.
     pub lines: json::LineIndex<'r>,
     /// Where the JSON text starts in the file (the JSON chunk of a GLB).
     pub text_start: usize,
 }
 
+const NOWHERE: [u32; 2] = [u32::MAX, u32::MAX];
+const UNPLACED: u32 = u32::MAX;
+
 impl<'r> Positions<'r> {
     pub fn of(report: &'r Report) -> Self {
         Self::of_those(report, |_| true)
     }
 
-    /// The positions of the diagnostics `wanted` picks (those a format shows: a summary of
+    /// The positions of the findings `wanted` picks (those a format shows: a summary of
     /// 10^5 counted infos locates none of them).
-    pub fn of_those(report: &'r Report, wanted: impl Fn(&Diagnostic) -> bool) -> Self {
+    pub fn of_those(report: &'r Report, wanted: impl Fn(&Finding) -> bool) -> Self {
         let text = report.document.json_text();
-        let pointers: Vec<&str> = (report.diagnostics.iter())
-            .filter(|d| wanted(d))
-            .filter_map(|d| match &d.location {
-                Location::Pointer(pointer) if d.span_hint.is_none() => Some(pointer.as_str()),
-                _ => None,
-            })
+        let findings = &report.diagnostics;
+        let pointer = |i: u32| findings.pointer_at(i as usize).unwrap_or_default();
+        let mut by_pointer: Vec<u32> = (findings.iter())
+            .filter(|f| f.span_hint.is_none() && f.pointer().is_some() && wanted(f))
+            .map(|f| f.index as u32)
             .collect();
-        let (spans, enclosing) = if report.document.root.is_some() {
-            locate_with_ancestors(text, &pointers)
-        } else {
-            Default::default()
-        };
+        by_pointer.sort_unstable_by(|&a, &b| pointer(a).cmp(pointer(b)));
+        // Each distinct pointer once (the first finding naming it stands for it), and each
+        // finding's place among them.
+        let mut places = vec![UNPLACED; findings.len()];
+        let mut distinct: Vec<u32> = Vec::new();
+        for &index in &by_pointer {
+            if distinct
+                .last()
+                .is_none_or(|&last| pointer(last) != pointer(index))
+            {
+                distinct.push(index);
+            }
+            places[index as usize] = (distinct.len() - 1) as u32;
+        }
+        drop(by_pointer);
+        let mut spans = vec![NOWHERE; distinct.len()];
+        let mut enclosing = Vec::new();
+        if report.document.root.is_some() && u32::try_from(text.len()).is_ok() {
+            let at = |i: usize| pointer(distinct[i]);
+            json::locate_each(text, distinct.len(), at, |i, range| {
+                spans[i] = [range.start as u32, range.end as u32];
+            });
+            enclosing = place_at_ancestors(text, at, &mut spans);
+        }
         Positions {
+            places,
             spans,
             enclosing,
             lines: json::LineIndex::new(text),
@@ -195,60 +221,67 @@ impl<'r> Positions<'r> {
         }
     }
 
-    /// Byte range in the JSON text that a diagnostic points at, or, for a member that is not
+    /// The place in `spans` of a finding of the report these positions are of.
+    fn place_of(&self, finding: &Finding) -> Option<usize> {
+        let place = *self.places.get(finding.index)?;
+        (place != UNPLACED).then_some(place as usize)
+    }
+
+    /// Byte range in the JSON text that a finding points at, or, for a member that is not
     /// written, at its nearest enclosing value.
-    pub fn span(&self, diagnostic: &Diagnostic) -> Option<Range<usize>> {
-        if let Some(offset) = diagnostic.span_hint {
+    pub fn span(&self, finding: &Finding) -> Option<Range<usize>> {
+        if let Some(offset) = finding.span_hint {
             return Some(offset..offset);
         }
-        match &diagnostic.location {
-            Location::Pointer(pointer) => (self.spans.get(pointer.as_str()).cloned())
-                .or_else(|| Some(self.enclosing.get(pointer.as_str())?.1.clone())),
-            Location::Offset(_) => None,
-        }
+        let [start, end] = self.spans[self.place_of(finding)?];
+        ([start, end] != NOWHERE).then_some(start as usize..end as usize)
     }
 
-    /// The enclosing value a diagnostic is shown at when its own pointer is not in the text.
-    pub fn shown_at(&self, diagnostic: &Diagnostic) -> Option<&'r str> {
-        match &diagnostic.location {
-            Location::Pointer(p) if diagnostic.span_hint.is_none() => {
-                Some(self.enclosing.get(p.as_str())?.0)
-            }
-            _ => None,
+    /// The enclosing value a finding is shown at when its own pointer is not in the text.
+    pub fn shown_at(&self, finding: &Finding) -> Option<&'r str> {
+        if self.enclosing.is_empty() {
+            return None;
         }
+        let place = self.place_of(finding)?;
+        let at = (self.enclosing)
+            .binary_search_by_key(&place, |(p, _)| *p)
+            .ok()?;
+        Some(self.enclosing[at].1)
     }
 
-    /// 1-based line and column of a diagnostic, when it can be located in the source.
-    pub fn line_col(&self, diagnostic: &Diagnostic) -> Option<(usize, usize)> {
-        Some(self.lines.line_col(self.span(diagnostic)?.start))
+    /// 1-based line and column of a finding, when it can be located in the source.
+    pub fn line_col(&self, finding: &Finding) -> Option<(usize, usize)> {
+        Some(self.lines.line_col(self.span(finding)?.start))
     }
 }
 
-/// Locates `pointers` in `text`, and for those not found, their nearest ancestor that is.
-#[allow(clippy::type_complexity)]
-fn locate_with_ancestors<'p>(
+/// Places each pointer not found (`NOWHERE` in `spans`) at its nearest ancestor that is
+/// found, and lists those with their ancestor.
+fn place_at_ancestors<'p>(
     text: &[u8],
-    pointers: &[&'p str],
-) -> (
-    HashMap<&'p str, Range<usize>>,
-    HashMap<&'p str, (&'p str, Range<usize>)>,
-) {
-    let spans = json::locate_all(text, pointers.iter().copied());
-    let missing: Vec<&str> = (pointers.iter().copied())
-        .filter(|p| !spans.contains_key(p))
-        .collect();
+    pointer: impl Fn(usize) -> &'p str,
+    spans: &mut [[u32; 2]],
+) -> Vec<(usize, &'p str)> {
+    let missing: Vec<usize> = (0..spans.len()).filter(|&i| spans[i] == NOWHERE).collect();
     let ancestors = |pointer: &'p str| {
         std::iter::successors(Some(pointer), |p| p.rfind('/').map(|i| &p[..i])).skip(1)
     };
-    let found = json::locate_all(text, missing.iter().flat_map(|&p| ancestors(p)));
-    let enclosing = missing
-        .into_iter()
-        .filter_map(|p| {
-            let ancestor = ancestors(p).find(|a| found.contains_key(a))?;
-            Some((p, (ancestor, found[ancestor].clone())))
-        })
+    let mut through: Vec<&str> = (missing.iter())
+        .flat_map(|&i| ancestors(pointer(i)))
         .collect();
-    (spans, enclosing)
+    through.sort_unstable();
+    through.dedup();
+    let found = json::locate_all(text, &through);
+    let found_at = |ancestor: &str| found[through.binary_search(&ancestor).ok()?].clone();
+    let mut enclosing = Vec::new();
+    for i in missing {
+        let nearest = ancestors(pointer(i)).find_map(|a| Some((a, found_at(a)?)));
+        if let Some((ancestor, span)) = nearest {
+            spans[i] = [span.start as u32, span.end as u32];
+            enclosing.push((i, ancestor));
+        }
+    }
+    enclosing
 }
 
 /// The annotations GitHub shows for one file: at most this many. GitHub shows ten of each kind
@@ -259,31 +292,35 @@ pub const GITHUB_ANNOTATIONS_PER_FILE: usize = 10;
 /// with `all_findings`), errors first, at most [`GITHUB_ANNOTATIONS_PER_FILE`], then one
 /// notice counting the rest, so the errors that matter are not drowned.
 fn github(report: &Report, options: &Style, out: &mut dyn Write) -> std::io::Result<()> {
-    let shown = |d: &&Diagnostic| {
-        options.all_findings || matches!(d.severity, Severity::Error | Severity::Warning)
+    let shown = |f: &Finding| {
+        options.all_findings || matches!(f.severity, Severity::Error | Severity::Warning)
     };
-    let mut listed: Vec<&Diagnostic> = report.diagnostics.iter().filter(shown).collect();
-    listed.sort_by_key(|d| d.severity);
-    // Only the annotated findings are located: 10^5 listed ones are counted, not placed.
-    let annotated = &listed[..listed.len().min(GITHUB_ANNOTATIONS_PER_FILE)];
-    let positions = Positions::of_those(report, |d| annotated.iter().any(|a| std::ptr::eq(*a, d)));
-    for d in annotated {
-        out.write_all(github_line(report, &positions, d).as_bytes())?;
+    // The first annotated, most severe first then in report order, found without gathering
+    // the 10^5 others: only they are located.
+    let mut annotated: Vec<Finding> = Vec::new();
+    for severity in Severity::ALL {
+        let room = GITHUB_ANNOTATIONS_PER_FILE - annotated.len();
+        let of_severity = report.diagnostics.iter().filter(|f| f.severity == severity);
+        annotated.extend(of_severity.filter(shown).take(room));
     }
-    let rest = listed.len().saturating_sub(GITHUB_ANNOTATIONS_PER_FILE);
+    let positions = Positions::of_those(report, |f| annotated.iter().any(|a| a.index == f.index));
+    for f in &annotated {
+        out.write_all(github_line(report, &positions, f).as_bytes())?;
+    }
+    let listed =
+        |s: Severity| (report.diagnostics.iter()).filter(move |f| f.severity == s && shown(f));
+    let rest_of = |s: Severity| {
+        let annotated = annotated.iter().filter(|a| a.severity == s).count();
+        listed(s).count() - annotated
+    };
+    let rest: usize = Severity::ALL.into_iter().map(rest_of).sum();
     if rest > 0 {
-        let counts = |s: Severity| {
-            listed[GITHUB_ANNOTATIONS_PER_FILE..]
-                .iter()
-                .filter(|d| d.severity == s)
-                .count()
-        };
         writeln!(
             out,
             "::notice file={}::{rest} more finding(s) not annotated ({} error(s), {} warning(s)): `gltfmat check` lists them all",
             github_file(&report.uri),
-            counts(Severity::Error),
-            counts(Severity::Warning)
+            rest_of(Severity::Error),
+            rest_of(Severity::Warning)
         )?;
     }
     Ok(())
@@ -298,7 +335,7 @@ fn github_file(uri: &str) -> String {
         .replace(':', "%3A")
 }
 
-fn github_line(report: &Report, positions: &Positions, d: &Diagnostic) -> String {
+fn github_line(report: &Report, positions: &Positions, d: &Finding) -> String {
     let level = match d.severity {
         Severity::Error => "error",
         Severity::Warning => "warning",
@@ -318,16 +355,16 @@ fn github_line(report: &Report, positions: &Positions, d: &Diagnostic) -> String
         "::{level} file={}{position},title={}::{}{}\n",
         github_file(&report.uri),
         d.code,
-        escape(&d.message),
+        escape(d.message),
         location_suffix(d)
     )
 }
 
-fn location_suffix(d: &Diagnostic) -> String {
-    match &d.location {
-        Location::Pointer(p) if !p.is_empty() => format!(" ({p})"),
-        Location::Pointer(_) => String::new(),
-        Location::Offset(o) => format!(" (byte {o})"),
+fn location_suffix(f: &Finding) -> String {
+    match f.location {
+        Place::Pointer("") => String::new(),
+        Place::Pointer(p) => format!(" ({p})"),
+        Place::Offset(o) => format!(" (byte {o})"),
     }
 }
 
@@ -336,7 +373,7 @@ fn location_suffix(d: &Diagnostic) -> String {
 pub fn line_columns(report: &Report) -> Vec<Option<(usize, usize)>> {
     let positions = Positions::of(report);
     (report.diagnostics.iter())
-        .map(|d| positions.line_col(d))
+        .map(|f| positions.line_col(&f))
         .collect()
 }
 
@@ -417,7 +454,7 @@ struct Issues<'r> {
 }
 
 /// The findings, each serialised as it is reached.
-struct Messages<'r>(&'r [Diagnostic]);
+struct Messages<'r>(&'r Findings);
 
 impl Serialize for Messages<'_> {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -438,14 +475,14 @@ struct Message<'r> {
 }
 
 impl<'r> Message<'r> {
-    fn of(d: &'r Diagnostic) -> Self {
-        let (pointer, offset) = match &d.location {
-            Location::Pointer(p) => (Some(p.as_str()), None),
-            Location::Offset(o) => (None, Some(*o)),
+    fn of(d: Finding<'r>) -> Self {
+        let (pointer, offset) = match d.location {
+            Place::Pointer(p) => (Some(p), None),
+            Place::Offset(o) => (None, Some(o)),
         };
         Message {
             code: d.code.name(),
-            message: &d.message,
+            message: d.message,
             severity: d.severity as u8,
             pointer,
             offset,
