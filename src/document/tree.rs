@@ -38,6 +38,9 @@ pub struct Tree {
     arena: String,
     /// Where each string ends in `arena`; string `i` starts where `i - 1` ends.
     ends: Vec<u32>,
+    /// The string values stored past the lookup table, one after the other, each read by
+    /// where its `Text` slot says it lies.
+    texts: String,
     /// The string ids, by the hash of their text (for lookups by key), each beside that
     /// hash's low half: growing the table then reads no text again (the arena, read in no
     /// order), and a text is compared only when its hash matches.
@@ -85,13 +88,17 @@ enum Tag {
     WideFloat,
     /// Payload: the string's id.
     String,
+    /// A string value stored past the lookup table's [`INTERNED_VALUES`], without an id
+    /// (payload: where it starts in `texts` above [`LEN_BITS`], its length below), so that
+    /// 10^7 distinct strings cost no list of where each ends.
+    Text,
     Array,
     Object,
     /// An object member taken out of the tree (in the key's slot; its value stays unread).
     Removed,
 }
 
-const TAGS: [Tag; 12] = [
+const TAGS: [Tag; 13] = [
     Tag::Null,
     Tag::False,
     Tag::True,
@@ -101,6 +108,7 @@ const TAGS: [Tag; 12] = [
     Tag::Float,
     Tag::WideFloat,
     Tag::String,
+    Tag::Text,
     Tag::Array,
     Tag::Object,
     Tag::Removed,
@@ -126,7 +134,7 @@ impl Slot {
         self.0 & PAYLOAD
     }
 
-    /// A container's elements: (first slot, count).
+    /// A container's elements (first slot, count), or a `Text`'s place (start, length).
     fn range(self) -> (usize, usize) {
         let payload = self.payload();
         (
@@ -162,6 +170,7 @@ impl Tree {
                 wide: Vec::new(),
                 arena: String::new(),
                 ends: Vec::new(),
+                texts: String::new(),
                 strings: HashTable::new(),
                 hasher: DefaultHashBuilder::default(),
                 member_index: Vec::new(),
@@ -181,6 +190,7 @@ impl Tree {
         tree.wide.shrink_to_fit();
         tree.arena.shrink_to_fit();
         tree.ends.shrink_to_fit();
+        tree.texts.shrink_to_fit();
         Ok(tree)
     }
 
@@ -327,11 +337,12 @@ impl fmt::Debug for Tree {
     }
 }
 
+/// Distinct strings entered in the lookup table before string values stop being entered:
+/// the most a table of 2^20 buckets holds (it fills seven eighths before it doubles).
+const INTERNED_VALUES: usize = 7 << 17;
+
 /// A stored half hash spread over 64 bits, as the hash table wants them: its low bits
 /// place an entry, its top bits tag it.
-/// Distinct strings entered in the lookup table before string values stop being entered.
-const INTERNED_VALUES: usize = 1 << 20;
-
 fn spread(hash: u32) -> u64 {
     u64::from(hash).wrapping_mul(0x9E37_79B9_7F4A_7C15)
 }
@@ -443,7 +454,14 @@ impl<'t> Node<'t> {
 
     /// The text, when it is a string.
     pub fn as_str(self) -> Option<&'t str> {
-        (self.slot.tag() == Tag::String).then(|| self.tree.string(self.slot.payload() as u32))
+        match self.slot.tag() {
+            Tag::String => Some(self.tree.string(self.slot.payload() as u32)),
+            Tag::Text => {
+                let (start, len) = self.slot.range();
+                Some(&self.tree.texts[start..start + len])
+            }
+            _ => None,
+        }
     }
 
     /// The truth value, when it is a boolean.
@@ -501,7 +519,7 @@ impl<'t> Node<'t> {
 
     /// Whether it is a string.
     pub fn is_string(self) -> bool {
-        self.slot.tag() == Tag::String
+        matches!(self.slot.tag(), Tag::String | Tag::Text)
     }
 
     /// Whether it is `true` or `false`.
@@ -728,7 +746,7 @@ impl Serialize for Node<'_> {
             Tag::Small | Tag::Large => serializer.serialize_u64(node.as_u64().unwrap_or(0)),
             Tag::Negative => serializer.serialize_i64(node.as_i64().unwrap_or(0)),
             Tag::Float | Tag::WideFloat => serializer.serialize_f64(node.as_f64().unwrap_or(0.0)),
-            Tag::String => serializer.serialize_str(node.as_str().unwrap_or_default()),
+            Tag::String | Tag::Text => serializer.serialize_str(node.as_str().unwrap_or_default()),
             Tag::Array => {
                 let elements = node.as_array().into_iter().flat_map(Array::iter);
                 let mut seq = serializer.serialize_seq(None)?;
@@ -934,13 +952,21 @@ impl Building<'_> {
         self.store(text, true)
     }
 
-    /// The id of a string value: stored once while the lookup table is small; past
+    /// A string value's slot: stored once while the lookup table is small; past
     /// [`INTERNED_VALUES`] distinct strings a new value is stored without entering the table
     /// (nothing looks a value up by its text, and 10^7 distinct strings in one array made the
-    /// table the tree's largest part and its slowest).
-    fn value<E: de::Error>(&mut self, text: &str) -> Result<u32, E> {
+    /// table the tree's largest part and its slowest), and without an id: its slot says where
+    /// it lies in `texts`.
+    fn value<E: de::Error>(&mut self, text: &str) -> Result<Slot, E> {
         let enter = self.tree.strings.len() < INTERNED_VALUES;
-        self.store(text, enter)
+        let tree = &mut self.tree;
+        let start = tree.texts.len();
+        let placed = start < 1 << (PAYLOAD_BITS - LEN_BITS) && text.len() < 1 << LEN_BITS;
+        if enter || !placed || tree.find_hashed(text, tree.string_hash(text)).is_some() {
+            return Ok(Slot::new(Tag::String, u64::from(self.store(text, enter)?)));
+        }
+        tree.texts.push_str(text);
+        Ok(Slot::container(Tag::Text, start, text.len()))
     }
 
     fn store<E: de::Error>(&mut self, text: &str, enter: bool) -> Result<u32, E> {
@@ -1013,8 +1039,7 @@ impl<'de> Visitor<'de> for Build<'_, '_> {
     }
 
     fn visit_str<E: de::Error>(self, value: &str) -> Result<Slot, E> {
-        let id = self.state.borrow_mut().value(value)?;
-        Ok(Slot::new(Tag::String, u64::from(id)))
+        self.state.borrow_mut().value(value)
     }
 
     fn visit_unit<E: de::Error>(self) -> Result<Slot, E> {
@@ -1176,9 +1201,11 @@ mod tests {
 
     #[test]
     fn values_past_the_table_are_stored_apart_and_keys_are_still_found() {
-        // More distinct string values than the table takes, then keys with the same texts.
+        // More distinct string values than the table takes (an empty one and one with an
+        // escape among those past it), then keys with the same texts.
         let n = INTERNED_VALUES + 10;
-        let values: Vec<String> = (0..n).map(|i| format!("\"s{i}\"")).collect();
+        let mut values: Vec<String> = (0..n).map(|i| format!("\"s{i}\"")).collect();
+        values.extend([r#""""#, r#""a\"b""#, r#""s5""#].map(String::from));
         let last = format!("s{}", n - 1);
         let text = format!(r#"{{"v": [{}], "{last}": 7, "s0": 8}}"#, values.join(","));
         let tree = parsed(&text);
@@ -1188,10 +1215,28 @@ mod tests {
             "{}",
             tree.strings.len()
         );
-        assert_eq!(root.get("v").unwrap().as_array().unwrap().len(), n);
-        assert_eq!(
-            root.get("v").unwrap().get(n - 1).unwrap().as_str(),
-            Some(last.as_str())
+        // Values past the table have no id, so no list of where each ends.
+        assert!(
+            tree.ends.len() <= INTERNED_VALUES + 4,
+            "{}",
+            tree.ends.len()
+        );
+        let read: Vec<&str> = (root.get("v").unwrap().as_array().unwrap().iter())
+            .map(|v| v.as_str().unwrap())
+            .collect();
+        let expected: Vec<String> = (0..n)
+            .map(|i| format!("s{i}"))
+            .chain(["", "a\"b", "s5"].map(String::from))
+            .collect();
+        assert_eq!(read, expected);
+        let written = serde_json::to_value(root).unwrap();
+        let expected_value = serde_json::from_str::<Value>(&text).unwrap();
+        // Keys stored after those values read as written (not shown whole: 10^6 values).
+        let keys = |v: &Value| v.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
+        assert_eq!(keys(&written), keys(&expected_value));
+        assert!(
+            written == expected_value,
+            "the tree writes the text's values"
         );
         assert_eq!(root.get(last.as_str()).and_then(|v| v.as_u64()), Some(7));
         assert_eq!(root.get("s0").and_then(|v| v.as_u64()), Some(8));
