@@ -377,12 +377,14 @@ fn rebaked_texels_follow_the_formula() {
                     <= 0.5 + 1e-9
             );
         }
+        // Stored on the scale of the roughnessFactor: within half a step of that scale.
+        let scale = pbr["roughnessFactor"].as_f64().unwrap();
         for (x, y, texel) in roughness.enumerate_pixels() {
             let gloss = f64::from(specular.get_pixel(x, y).0[3]) / 255.0
                 * block["glossinessFactor"].as_f64().unwrap_or(1.0);
             assert!(
-                (f64::from(texel.0[1]) - (1.0 - gloss) * 255.0).abs() <= 0.5 + 1e-9,
-                "{name} roughness ({x}, {y})"
+                (scale * f64::from(texel.0[1]) - (1.0 - gloss) * 255.0).abs() <= 0.5 * scale + 1e-6,
+                "{name} roughness ({x}, {y}) on the scale {scale}"
             );
             assert_eq!(texel.0[2], 0, "dielectric: metallic 0");
         }

@@ -1644,25 +1644,13 @@ fn cesium_oct_encoded_normals_are_decoded_and_cesium_rtc_is_kept() {
 /// the proof stays well under the threshold.
 #[test]
 fn a_2_0_rebake_takes_the_8_bit_levels_the_evaluator_sees_nearest() {
-    use base64::Engine;
-    let png = |image: image::DynamicImage| {
-        let mut bytes = Vec::new();
-        image
-            .write_to(
-                &mut std::io::Cursor::new(&mut bytes),
-                image::ImageFormat::Png,
-            )
-            .unwrap();
-        let encoded = base64::engine::general_purpose::STANDARD.encode(&bytes);
-        serde_json::json!({"uri": format!("data:image/png;base64,{encoded}")})
-    };
     let diffuse = image::RgbImage::from_pixel(4, 4, image::Rgb([42, 45, 42]));
     let spec_gloss = image::RgbaImage::from_pixel(4, 4, image::Rgba([255; 4]));
     let sg = "KHR_materials_pbrSpecularGlossiness";
     let asset = serde_json::to_vec(&serde_json::json!({
         "asset": {"version": "2.0"},
         "extensionsUsed": [sg],
-        "images": [png(diffuse.into()), png(spec_gloss.into())],
+        "images": [embedded_png(diffuse.into()), embedded_png(spec_gloss.into())],
         "textures": [{"source": 0}, {"source": 1}],
         "materials": [{"extensions": {sg: {"diffuseTexture": {"index": 0},
             "specularGlossinessTexture": {"index": 1}, "specularFactor": [0.1, 0.1, 0.1],
@@ -1672,6 +1660,55 @@ fn a_2_0_rebake_takes_the_8_bit_levels_the_evaluator_sees_nearest() {
     let upgraded = upgrade(&asset, &NoResources, &UpgradeOptions::default()).unwrap();
     assert!(
         (upgraded.report.iter()).any(|n| n.text.contains("per-texel check of the rebaked")),
+        "{:?}",
+        notes(&upgraded)
+    );
+    let proof = gltfmat::prove(&asset, "asset.gltf", &NoResources, &upgraded).unwrap();
+    let [outcome] = &proof[..] else {
+        panic!("one material");
+    };
+    assert!(outcome.result.max < 0.5, "{}", outcome.result.max);
+}
+
+/// An image entry holding `image` as a PNG data URI.
+fn embedded_png(image: image::DynamicImage) -> serde_json::Value {
+    use base64::Engine;
+    let mut bytes = Vec::new();
+    (image.write_to(
+        &mut std::io::Cursor::new(&mut bytes),
+        image::ImageFormat::Png,
+    ))
+    .unwrap();
+    let encoded = base64::engine::general_purpose::STANDARD.encode(&bytes);
+    serde_json::json!({"uri": format!("data:image/png;base64,{encoded}")})
+}
+
+/// A smooth surface's roughness (glossiness 0.95 → 0.05) lies between two 8-bit levels, and
+/// its specular peak shows the step (ΔE 1.7): the rebake stores it scaled by its largest
+/// value, which the roughnessFactor carries, and the conversion proves faithful.
+#[test]
+fn a_smooth_rebaked_roughness_is_stored_on_its_own_scale() {
+    let diffuse = image::RgbImage::from_pixel(4, 4, image::Rgb([128, 128, 128]));
+    let spec_gloss = image::RgbaImage::from_pixel(4, 4, image::Rgba([255; 4]));
+    let sg = "KHR_materials_pbrSpecularGlossiness";
+    let asset = serde_json::to_vec(&serde_json::json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": [sg],
+        "images": [embedded_png(diffuse.into()), embedded_png(spec_gloss.into())],
+        "textures": [{"source": 0}, {"source": 1}],
+        "materials": [{"extensions": {sg: {"diffuseTexture": {"index": 0},
+            "specularGlossinessTexture": {"index": 1}, "specularFactor": [0.04, 0.04, 0.04],
+            "glossinessFactor": 0.95}}}],
+    }))
+    .unwrap();
+    let upgraded = upgrade(&asset, &NoResources, &UpgradeOptions::default()).unwrap();
+    let json = upgraded.json.to_value();
+    let factor = json["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"].as_f64();
+    assert!((factor.unwrap() - 0.05).abs() < 1e-6, "{factor:?}");
+    assert!(
+        (upgraded.report.iter()).any(|n| n
+            .text
+            .contains("stored divided by its largest value, 0.05,")),
         "{:?}",
         notes(&upgraded)
     );

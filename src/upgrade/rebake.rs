@@ -81,12 +81,36 @@ pub fn metal_rough_swizzle(bytes: &[u8]) -> Result<Vec<u8>, String> {
 }
 
 /// Spec-gloss glossiness (A × factor) → a metal-rough texture: G = 1 − glossiness, B = 0
-/// (dielectric), R = 1.
-pub fn gloss_to_roughness(bytes: &[u8], glossiness_factor: f64) -> Result<Vec<u8>, String> {
-    let (out, wide) = mapped(bytes, |[_, _, _, a]| {
+/// (dielectric), R = 1; and the `roughnessFactor` it is read with. That factor is 1, or the
+/// largest roughness when G scaled by it is stored more exactly: a smooth surface's
+/// roughness 0.05 lies between two 8-bit levels, a step its specular peak shows, but is
+/// exactly the largest level of its own scale. (With glossiness factor 1 the values are
+/// 8-bit levels already, and stay unscaled.)
+pub fn gloss_to_roughness(bytes: &[u8], glossiness_factor: f64) -> Result<(Vec<u8>, f32), String> {
+    let (mut out, wide) = mapped(bytes, |[_, _, _, a]| {
         [1.0, (1.0 - a * glossiness_factor) as f32, 0.0, 1.0]
     })?;
-    Ok(encode(&out, false, wide))
+    let levels = if wide { 65535.0 } else { 255.0 };
+    let roughness = || out.pixels().map(|p| f64::from(p[1]));
+    // As written in the JSON (a float's shortest text), so the texels are divided by the
+    // very factor a viewer multiplies them by.
+    let largest = f64::from(roughness().fold(0.0, f64::max) as f32);
+    let error = |scale: f64| {
+        let stored = |r: f64| scale * ((r / scale).clamp(0.0, 1.0) * levels + 0.5).floor() / levels;
+        roughness()
+            .map(|r| (stored(r) - r).abs())
+            .fold(0.0, f64::max)
+    };
+    let scale = if largest > 0.0 && error(largest) < error(1.0) {
+        largest
+    } else {
+        1.0
+    };
+    if scale != 1.0 {
+        out.pixels_mut()
+            .for_each(|p| p[1] = (f64::from(p[1]) / scale) as f32);
+    }
+    Ok((encode(&out, false, wide), scale as f32))
 }
 
 /// Spec-gloss base colour, per texel, in linear space: diffuse · (1 − specular) per channel

@@ -60,6 +60,8 @@ type RebakeKey = (usize, usize, [u64; 8], SpecGlossReading);
 struct Rebaked {
     base_colour: Vec<u8>,
     roughness: Vec<u8>,
+    /// The factor the roughness texture is read with.
+    roughness_factor: f32,
     lines: Vec<String>,
     _made_from: (
         Option<Arc<crate::document::Bytes>>,
@@ -117,7 +119,7 @@ pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<
         core["baseColorFactor"] = json!([1.0, 1.0, 1.0, 1.0]);
         core["metallicRoughnessTexture"] =
             textures.add_rebaked(made.roughness, Slot::SpecularGlossiness, "roughness");
-        core["roughnessFactor"] = json!(1.0);
+        core["roughnessFactor"] = json!(made.roughness_factor);
         decisions.push(format!("baseColor = {} and roughness = 1 − glossiness rebaked per texel into new textures (on the finer grid of the two, each sampled bilinearly).", formula(factors.reading)));
         decisions.extend(made.lines);
     } else {
@@ -175,12 +177,14 @@ fn rebake(
             (roughness.join()).unwrap_or_else(|_| Err("the roughness rebake failed".to_string()));
         (base_colour, roughness)
     });
-    let ((base_colour, _, held), roughness) = (base_colour?, roughness?);
+    let ((base_colour, _, held), (roughness, roughness_factor)) = (base_colour?, roughness?);
     let fit_line = (textures.texel_fits()).map(|fits| texel_fit_decision(&fits.take_report()));
+    let scaled = (roughness_factor != 1.0).then(|| format!("Roughness is stored divided by its largest value, {roughness_factor}, which the roughnessFactor multiplies back: steps of {roughness_factor}/255, not 1/255, store it nearer (a smooth surface's specular peak shows the coarser step)."));
     Ok(Rebaked {
         base_colour,
         roughness,
-        lines: held.into_iter().chain(fit_line).collect(),
+        roughness_factor,
+        lines: held.into_iter().chain(fit_line).chain(scaled).collect(),
         _made_from: (diffuse.cloned(), Arc::clone(specular)),
     })
 }
