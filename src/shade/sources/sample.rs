@@ -513,13 +513,16 @@ fn decode_in_parallel(
                             return done;
                         };
                         if let Some(bytes) = source {
-                            done.push((i, decode_at_most(bytes, finest)));
+                            done.push((i, decode_caught(bytes, finest)));
                         }
                     }
                 })
             })
             .collect();
-        workers.into_iter().filter_map(|w| w.join().ok()).collect()
+        // A worker's own failure is not an image's: it is raised, never a texture left out.
+        (workers.into_iter())
+            .map(|w| w.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+            .collect()
     });
     let mut outcomes: Done = finished.into_iter().flatten().collect();
     outcomes.sort_by_key(|(i, _)| *i);
@@ -528,6 +531,14 @@ fn decode_in_parallel(
         decoded[i] = outcome.map(Some).map_err(|why| format!("image {i}: {why}"));
     }
     decoded
+}
+
+/// [`decode_at_most`], with a panic inside the image libraries (hostile bytes they do not
+/// survive) made that image's error rather than a texture silently missing.
+fn decode_caught(bytes: &[u8], finest: u32) -> Result<Texture, String> {
+    let decode = std::panic::AssertUnwindSafe(|| decode_at_most(bytes, finest));
+    std::panic::catch_unwind(decode)
+        .unwrap_or_else(|_| Err("its decoder failed on these bytes".to_string()))
 }
 
 /// Bilinear sample with repeat wrapping, texel centres at (i + ½) / size.
