@@ -70,36 +70,12 @@ pub enum Place<'f> {
     Offset(u64),
 }
 
-impl fmt::Display for Place<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Place::Pointer("") => f.write_str("/"),
-            Place::Pointer(pointer) => f.write_str(pointer),
-            Place::Offset(offset) => write!(f, "byte {offset}"),
-        }
-    }
-}
-
 impl<'f> Finding<'f> {
     /// The JSON pointer, when the location is one.
     pub fn pointer(&self) -> Option<&'f str> {
         match self.location {
             Place::Pointer(p) => Some(p),
             Place::Offset(_) => None,
-        }
-    }
-
-    /// The finding as an owned [`Diagnostic`].
-    pub fn to_diagnostic(&self) -> Diagnostic {
-        Diagnostic {
-            code: self.code,
-            severity: self.severity,
-            message: self.message.to_string().into(),
-            location: match self.location {
-                Place::Pointer(p) => Location::Pointer(p.to_string()),
-                Place::Offset(o) => Location::Offset(o),
-            },
-            span_hint: self.span_hint,
         }
     }
 }
@@ -246,12 +222,6 @@ fn within(text: &str, limit: usize) -> &str {
 impl fmt::Debug for Findings {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_list().entries(self.iter()).finish()
-    }
-}
-
-impl PartialEq for Findings {
-    fn eq(&self, other: &Self) -> bool {
-        self.iter().eq(other.iter())
     }
 }
 

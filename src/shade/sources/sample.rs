@@ -521,7 +521,10 @@ fn decode_in_parallel(
             .collect();
         // A worker's own failure is not an image's: it is raised, never a texture left out.
         (workers.into_iter())
-            .map(|w| w.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+            .map(|w| {
+                w.join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+            })
             .collect()
     });
     let mut outcomes: Done = finished.into_iter().flatten().collect();
