@@ -267,8 +267,9 @@ fn snippet(lines: &LineIndex, line_no: usize, offset: usize, colour: bool) -> St
         .min(line.len());
     // Only a window of bytes around the column is decoded: a minified file is one line, and
     // decoding all of it for each finding made reports quadratic in the file's size.
-    let reach = 4 * WINDOW; // a character is at most 4 bytes
-                            // Snapped to character starts, but never past the column (invalid UTF-8 has no starts).
+    // A character is at most 4 bytes. The window is snapped to character starts, but never
+    // past the column (invalid UTF-8 has no starts).
+    let reach = 4 * WINDOW;
     let from_byte = char_boundary(line, at.saturating_sub(reach)).min(at);
     let to_byte = char_boundary(line, (at + reach).min(line.len())).max(at);
     let before: Vec<char> = String::from_utf8_lossy(&line[from_byte..at])

@@ -153,8 +153,8 @@ impl<R: Borrow<Report>, I: Iterator<Item = R>> serde::Serialize for KhronosRepor
 
 /// Where a report's findings lie in its JSON text: every pointer located in one pass and
 /// lines indexed once, so that rendering N findings costs one scan of the file, not N, and
-/// four bytes per finding and eight per distinct pointer. A pointer to a member that is not written (a default)
-/// is placed at its nearest enclosing value that is.
+/// four bytes per finding and eight per distinct pointer. A pointer to a member that is not
+/// written (a default) is placed at its nearest enclosing value that is.
 pub(crate) struct Positions<'r> {
     /// Each finding's place in `spans` (`UNPLACED` for one not located).
     places: Vec<u32>,
