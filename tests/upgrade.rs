@@ -1644,30 +1644,43 @@ fn cesium_oct_encoded_normals_are_decoded_and_cesium_rtc_is_kept() {
 /// the proof stays well under the threshold.
 #[test]
 fn a_2_0_rebake_takes_the_8_bit_levels_the_evaluator_sees_nearest() {
-    let diffuse = image::RgbImage::from_pixel(4, 4, image::Rgb([42, 45, 42]));
-    let spec_gloss = image::RgbaImage::from_pixel(4, 4, image::Rgba([255; 4]));
-    let sg = "KHR_materials_pbrSpecularGlossiness";
-    let asset = serde_json::to_vec(&serde_json::json!({
-        "asset": {"version": "2.0"},
-        "extensionsUsed": [sg],
-        "images": [embedded_png(diffuse.into()), embedded_png(spec_gloss.into())],
-        "textures": [{"source": 0}, {"source": 1}],
-        "materials": [{"extensions": {sg: {"diffuseTexture": {"index": 0},
-            "specularGlossinessTexture": {"index": 1}, "specularFactor": [0.1, 0.1, 0.1],
-            "glossinessFactor": 0.6}}}],
-    }))
-    .unwrap();
+    let asset = flat_spec_gloss_asset([42, 45, 42], 0.1, 0.6);
     let upgraded = upgrade(&asset, &NoResources, &UpgradeOptions::default()).unwrap();
     assert!(
         (upgraded.report.iter()).any(|n| n.text.contains("per-texel check of the rebaked")),
         "{:?}",
         notes(&upgraded)
     );
-    let proof = gltfmat::prove(&asset, "asset.gltf", &NoResources, &upgraded).unwrap();
+    let max = only_proof_max(&asset, &upgraded);
+    assert!(max < 0.5, "{max}");
+}
+
+/// A 2.0 spec-gloss asset of one material whose two 4² textures are flat: a diffuse of
+/// `diffuse` (sRGB levels) and a specular-glossiness texture of full white, scaled by a grey
+/// `specular` factor and `glossiness`.
+fn flat_spec_gloss_asset(diffuse: [u8; 3], specular: f64, glossiness: f64) -> Vec<u8> {
+    let diffuse = image::RgbImage::from_pixel(4, 4, image::Rgb(diffuse));
+    let spec_gloss = image::RgbaImage::from_pixel(4, 4, image::Rgba([255; 4]));
+    let sg = "KHR_materials_pbrSpecularGlossiness";
+    serde_json::to_vec(&serde_json::json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": [sg],
+        "images": [embedded_png(diffuse.into()), embedded_png(spec_gloss.into())],
+        "textures": [{"source": 0}, {"source": 1}],
+        "materials": [{"extensions": {sg: {"diffuseTexture": {"index": 0},
+            "specularGlossinessTexture": {"index": 1}, "specularFactor": [specular, specular, specular],
+            "glossinessFactor": glossiness}}}],
+    }))
+    .unwrap()
+}
+
+/// The proof's largest ΔE2000 for an asset of one material and its upgrade.
+fn only_proof_max(asset: &[u8], upgraded: &Upgraded) -> f64 {
+    let proof = gltfmat::prove(asset, "asset.gltf", &NoResources, upgraded).unwrap();
     let [outcome] = &proof[..] else {
         panic!("one material");
     };
-    assert!(outcome.result.max < 0.5, "{}", outcome.result.max);
+    outcome.result.max
 }
 
 /// An image entry holding `image` as a PNG data URI.
@@ -1688,19 +1701,7 @@ fn embedded_png(image: image::DynamicImage) -> serde_json::Value {
 /// value, which the roughnessFactor carries, and the conversion proves faithful.
 #[test]
 fn a_smooth_rebaked_roughness_is_stored_on_its_own_scale() {
-    let diffuse = image::RgbImage::from_pixel(4, 4, image::Rgb([128, 128, 128]));
-    let spec_gloss = image::RgbaImage::from_pixel(4, 4, image::Rgba([255; 4]));
-    let sg = "KHR_materials_pbrSpecularGlossiness";
-    let asset = serde_json::to_vec(&serde_json::json!({
-        "asset": {"version": "2.0"},
-        "extensionsUsed": [sg],
-        "images": [embedded_png(diffuse.into()), embedded_png(spec_gloss.into())],
-        "textures": [{"source": 0}, {"source": 1}],
-        "materials": [{"extensions": {sg: {"diffuseTexture": {"index": 0},
-            "specularGlossinessTexture": {"index": 1}, "specularFactor": [0.04, 0.04, 0.04],
-            "glossinessFactor": 0.95}}}],
-    }))
-    .unwrap();
+    let asset = flat_spec_gloss_asset([128, 128, 128], 0.04, 0.95);
     let upgraded = upgrade(&asset, &NoResources, &UpgradeOptions::default()).unwrap();
     let json = upgraded.json.to_value();
     let factor = json["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"].as_f64();
@@ -1712,9 +1713,6 @@ fn a_smooth_rebaked_roughness_is_stored_on_its_own_scale() {
         "{:?}",
         notes(&upgraded)
     );
-    let proof = gltfmat::prove(&asset, "asset.gltf", &NoResources, &upgraded).unwrap();
-    let [outcome] = &proof[..] else {
-        panic!("one material");
-    };
-    assert!(outcome.result.max < 0.5, "{}", outcome.result.max);
+    let max = only_proof_max(&asset, &upgraded);
+    assert!(max < 0.5, "{max}");
 }

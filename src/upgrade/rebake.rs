@@ -539,6 +539,31 @@ mod tests {
         );
     }
 
+    /// Factors that scale every channel differently, read as the archived extension.
+    fn chromatic() -> Factors {
+        Factors {
+            diffuse: [0.9, 0.8, 1.0, 1.0],
+            specular: [0.5, 0.7, 0.2],
+            glossiness: 1.0,
+            reading: crate::shade::material::SpecGlossReading::ArchivedExtension,
+        }
+    }
+
+    /// Both textures, on the grid of the diffuse (the two are alike in size here).
+    fn both<'t>(
+        diffuse: &'t TextureImage,
+        specular: &'t TextureImage,
+        factors: &'t Factors,
+    ) -> SpecGlossTexels<'t> {
+        SpecGlossTexels {
+            diffuse: Some(diffuse),
+            specular: Some(specular),
+            factors,
+            width: diffuse.width(),
+            height: diffuse.height(),
+        }
+    }
+
     /// The between-centres check skips a corner whose four centres equal those of the corner
     /// before it; its maximum is still every corner's, measured one by one through bilinear
     /// reads. Rows alternate flat and split in two, so that a corner under a flat row and
@@ -561,19 +586,8 @@ mod tests {
                 sample::decode(&image(1)).unwrap(),
                 sample::decode(&image(2)).unwrap(),
             );
-            let factors = Factors {
-                diffuse: [0.9, 0.8, 1.0, 1.0],
-                specular: [0.5, 0.7, 0.2],
-                glossiness: 1.0,
-                reading: crate::shade::material::SpecGlossReading::ArchivedExtension,
-            };
-            let texels = SpecGlossTexels {
-                diffuse: Some(&diffuse),
-                specular: Some(&specular),
-                factors: &factors,
-                width,
-                height,
-            };
+            let factors = chromatic();
+            let texels = both(&diffuse, &specular, &factors);
             let base = |v: TexelValue| factors.base_colour(v.diffuse, v.specular);
             let shown = |colour: [f64; 3]| lab_from_linear_srgb(displayed(colour));
             let mut every = 0f64;
@@ -610,19 +624,8 @@ mod tests {
             sample::decode(&noise(1)).unwrap(),
             sample::decode(&noise(2)).unwrap(),
         );
-        let factors = Factors {
-            diffuse: [0.9, 0.8, 1.0, 1.0],
-            specular: [0.5, 0.7, 0.2],
-            glossiness: 1.0,
-            reading: crate::shade::material::SpecGlossReading::ArchivedExtension,
-        };
-        let texels = SpecGlossTexels {
-            diffuse: Some(&diffuse),
-            specular: Some(&specular),
-            factors: &factors,
-            width: 7,
-            height: 5,
-        };
+        let factors = chromatic();
+        let texels = both(&diffuse, &specular, &factors);
         for (x, y) in (0..5).flat_map(|y| (0..7).map(move |x| (x, y))) {
             let around = [
                 (x, y),
