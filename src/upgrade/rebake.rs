@@ -19,10 +19,7 @@ pub fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
 fn encode(image: &Rgba32FImage, alpha: bool, wide: bool) -> Vec<u8> {
     let (width, height) = image.dimensions();
     let channels = if alpha { 4 } else { 3 };
-    // The image crate's float → integer rule: clamp to 0..1, scale, round (half away from
-    // zero, which for these non-negative values is + ½ and truncation, in f64 so that no
-    // value just below a half rounds up; `f32::round` is a library call per sample).
-    let quantise = |v: f32, max: f64| (f64::from(v.clamp(0.0, 1.0)) * max + 0.5) as u16;
+    let quantise = |v: f32, max: f64| level(f64::from(v), max) as u16;
     let values = image.as_raw().chunks_exact(4).flat_map(|p| &p[..channels]);
     let samples = width as usize * height as usize * channels;
     let (bytes, color) = if wide {
@@ -58,6 +55,14 @@ fn encode(image: &Rgba32FImage, alpha: bool, wide: bool) -> Vec<u8> {
         .write_image(&bytes, width, height, color)
         .map(|()| png)
         .unwrap_or_default()
+}
+
+/// The level of `max` a value 0..1 is stored as: the image crate's float → integer rule,
+/// clamp, scale, round (half away from zero, which for these non-negative values is + ½ and
+/// truncation, in f64 so that no value just below a half rounds up; `f32::round` is a library
+/// call per sample).
+fn level(value: f64, max: f64) -> f64 {
+    (value.clamp(0.0, 1.0) * max + 0.5).floor()
 }
 
 /// Each texel of the image in `bytes` (values 0..1 as stored) mapped by `f`, computed on
@@ -96,7 +101,7 @@ pub fn gloss_to_roughness(bytes: &[u8], glossiness_factor: f64) -> Result<(Vec<u
     // very factor a viewer multiplies them by.
     let largest = f64::from(roughness().fold(0.0, f64::max) as f32);
     let error = |scale: f64| {
-        let stored = |r: f64| scale * ((r / scale).clamp(0.0, 1.0) * levels + 0.5).floor() / levels;
+        let stored = |r: f64| scale * level(r / scale, levels) / levels;
         roughness()
             .map(|r| (stored(r) - r).abs())
             .fold(0.0, f64::max)
