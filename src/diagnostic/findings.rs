@@ -241,3 +241,47 @@ impl<'f> IntoIterator for &'f Findings {
         Box::new(self.iter())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnostic::khronos;
+
+    /// Every kind of finding reads back as it was kept: pointers and offsets, fixed and own
+    /// messages, with and without a span hint, in order.
+    #[test]
+    fn findings_read_back_as_they_were_kept() {
+        let own = |text: &str| std::borrow::Cow::Owned(text.to_string());
+        let mut hinted = Diagnostic::at(khronos::TYPE_MISMATCH, "", own("made for it"));
+        hinted.span_hint = Some(17);
+        let kept = vec![
+            Diagnostic::at(khronos::TYPE_MISMATCH, "/nodes/0", "fixed"),
+            Diagnostic::new(
+                khronos::TYPE_MISMATCH,
+                Location::Offset(12),
+                own("at a byte"),
+            ),
+            hinted,
+            Diagnostic::new(khronos::UNUSED_OBJECT, Location::Offset(40), "fixed"),
+            Diagnostic::at(khronos::UNUSED_OBJECT, "/a~1b/0", own("")),
+        ];
+        let findings: Findings = kept.iter().cloned().collect();
+        assert_eq!(findings.len(), kept.len());
+        for (i, (finding, diagnostic)) in findings.iter().zip(&kept).enumerate() {
+            let place = match &diagnostic.location {
+                Location::Pointer(p) => Place::Pointer(p),
+                Location::Offset(o) => Place::Offset(*o),
+            };
+            let expected = Finding {
+                index: i,
+                code: diagnostic.code,
+                severity: diagnostic.severity,
+                message: &diagnostic.message,
+                location: place,
+                span_hint: diagnostic.span_hint,
+            };
+            assert_eq!(finding, expected);
+            assert_eq!(findings.pointer_at(i), diagnostic.pointer());
+        }
+    }
+}
