@@ -6,12 +6,53 @@
 # extension's own model), and both tools timed in the same run, best of five each; gltfmat's
 # time includes its own proof (every converted material evaluated) and its output check.
 #   scripts/bench/vs-gltf-transform.sh [ASSET…]
+#   scripts/bench/vs-gltf-transform.sh --generated [SIZE]   (a quad with SIZE² textures, 2048 by default)
 source "$(dirname "$0")/common.sh"
 if [ ! -d "$bench_dir/node_modules/@gltf-transform/functions" ] || [ ! -d "$bench_dir/node_modules/ndarray-pixels" ]; then
   npm install --prefix "$bench_dir" --no-save --silent gltf-validator gltf-pipeline \
     @gltf-transform/core @gltf-transform/extensions @gltf-transform/functions ndarray-pixels >/dev/null
 fi
 assets=("$@")
+if [ "${1:-}" = "--generated" ]; then
+  # A quad whose diffuse and specular-glossiness textures vary in every texel (smooth waves
+  # and sharp steps), so that neither tool's work shrinks to flat runs.
+  python3 - "$work" "${2:-2048}" <<'PY'
+import base64, json, math, struct, sys, zlib
+work, n = sys.argv[1], int(sys.argv[2])
+def png(path, channels, pixel):
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    rows = b"".join(b"\x00" + bytes(v for x in range(n) for v in pixel(x, y)) for y in range(n))
+    kind = {3: 2, 4: 6}[channels]
+    open(f"{work}/{path}", "wb").write(b"\x89PNG\r\n\x1a\n"
+        + chunk(b"IHDR", struct.pack(">IIBBBBB", n, n, 8, kind, 0, 0, 0))
+        + chunk(b"IDAT", zlib.compress(rows, 1)) + chunk(b"IEND", b""))
+wave = lambda x, y: int(127 + 120 * math.sin(x / 37.0) * math.cos(y / 23.0))
+step = lambda x, y: 60 * (((x >> 4) + (y >> 4)) & 1)
+png("diffuse.png", 3, lambda x, y: (wave(x, y), 80 + step(x, y), 200 - wave(x, y) // 2))
+png("specgloss.png", 4, lambda x, y: (30 + step(x, y) // 2, 40 + wave(x, y) // 8, 40, 255 - wave(y, x) // 2))
+quad = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0) + struct.pack("<12f", *[0, 0, 1] * 4) \
+    + struct.pack("<8f", 0, 1, 1, 1, 1, 0, 0, 0) + struct.pack("<6H", 0, 1, 2, 0, 2, 3)
+views = [(0, 48, 34962), (48, 48, 34962), (96, 32, 34962), (128, 12, 34963)]
+asset = {
+  "asset": {"version": "2.0"}, "extensionsUsed": ["KHR_materials_pbrSpecularGlossiness"],
+  "buffers": [{"byteLength": len(quad), "uri": "data:application/octet-stream;base64," + base64.b64encode(quad).decode()}],
+  "bufferViews": [{"buffer": 0, "byteOffset": o, "byteLength": l, "target": t} for o, l, t in views],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+    {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
+    {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": 0}]}],
+  "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0,
+  "images": [{"uri": "diffuse.png"}, {"uri": "specgloss.png"}], "textures": [{"source": 0}, {"source": 1}],
+  "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+    "diffuseTexture": {"index": 0}, "specularGlossinessTexture": {"index": 1}, "glossinessFactor": 0.9}}}],
+}
+json.dump(asset, open(f"{work}/specgloss-{n}.gltf", "w"))
+PY
+  assets=("$work/specgloss-${2:-2048}.gltf")
+fi
 if [ ${#assets[@]} -eq 0 ]; then
   assets=(fixtures/spec-gloss/*.gltf fixtures/spec-gloss/*.glb)
   while IFS= read -r file; do assets+=("$file"); done < <(grep -l KHR_materials_pbrSpecularGlossiness ../shared/real-world/gltf2/*/*/*.gltf 2>/dev/null | sort)
