@@ -106,8 +106,14 @@ pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
             format!(" on the mesh, {sets}")
         }
     };
+    let blends = match r.blended_corners {
+        0 => String::new(),
+        n => {
+            format!(" ({n} corners, where both are blends of the centres around them, not sampled)")
+        }
+    };
     let mut line = format!(
-        "{verdict}: ΔE2000 max {:.4}{dominated}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}){on_mesh}, view θ {tv:.2}° φ {pv:.2}°, light θ {tl:.2}° φ {pl:.2}°{over}; {}² texel centres and corners × {} directions = {} samples, and a dense search of directions where they differ most",
+        "{verdict}: ΔE2000 max {:.4}{dominated}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}){on_mesh}, view θ {tv:.2}° φ {pv:.2}°, light θ {tl:.2}° φ {pl:.2}°{over}; {}² texel centres and corners{blends} × {} directions = {} samples, and a dense search of directions where they differ most",
         r.max, r.p99, r.mean, w.uv[0], w.uv[1], r.grid, DIRECTIONS.len(), r.samples
     );
     if let Some(a) = &o.ambiguity {

@@ -1,6 +1,8 @@
 //! Do two materials render the same? Both are evaluated at points of a UV grid (at least as
 //! fine as their finest texture): every texel centre and every texel corner, where a
-//! bilinear filter mixes four texels and a conversion that is not linear differs most. At
+//! bilinear filter mixes four texels and a conversion that is not linear differs most (a
+//! corner where both materials' inputs are the mean of the four centres' is a blend of what
+//! those centres compared, and is not sampled: see `Centres`). At
 //! each point a fixed, stratified set of view/light directions including grazing ones is
 //! evaluated; the points where that set finds the largest differences, and those whose
 //! specular lobes are sharpest, are then searched over a dense set of directions around
@@ -119,6 +121,9 @@ pub struct Comparison {
     pub grid: u32,
     /// Points × directions evaluated.
     pub samples: u64,
+    /// Texel corners not sampled because every side's inputs there are the mean of its four
+    /// centres' (a blend of pairs the centres compared; see the module's documentation).
+    pub blended_corners: u64,
     /// The largest ΔE over the directions, per texel (row-major; a texel's centre and its
     /// top-left corner), for heat maps; empty unless [`TexelMap::Kept`]. Shared: the outcomes
     /// of an asset's many identical pairs hold one map.
@@ -136,6 +141,7 @@ impl Comparison {
             dominant: None,
             grid: 0,
             samples: 0,
+            blended_corners: 0,
             per_texel: Arc::new([]),
         }
     }
@@ -343,14 +349,91 @@ pub fn on_surface(
 const BATCH_TEXELS: usize = 8;
 const BATCH: usize = BATCH_TEXELS * DIRECTION_COUNT;
 
-/// A batch's colours, channel by channel, sample by sample (point-major), and the points'
-/// inputs (for the search of [`refine`]).
+/// How many sampled points a [`Memo`] holds before it starts again.
+const MEMO_POINTS: usize = 1 << 17;
+
+/// Texel centres already sampled, by the stored texels both materials read there: a
+/// texture's repeated values (its flat regions, a palette, a pattern's rows) are sampled
+/// once. Equal texels give equal inputs, so a repeat's samples are exactly its first's.
+struct Memo {
+    /// Entry numbers, by their key's hash.
+    table: hashbrown::HashTable<u32>,
+    /// Words per key (a material's keys all have one length).
+    width: usize,
+    words: Vec<u64>,
+    samples: Vec<[f64; DIRECTION_COUNT]>,
+}
+
+impl Memo {
+    fn new() -> Memo {
+        Memo {
+            table: hashbrown::HashTable::new(),
+            width: 0,
+            words: Vec::new(),
+            samples: Vec::new(),
+        }
+    }
+
+    /// A multiply-rotate hash: the words are texels, not chosen by an adversary who could
+    /// profit from clashes (a clash costs a comparison, never a wrong answer).
+    fn hash(key: &[u64]) -> u64 {
+        let mixed = key.iter().fold(0u64, |h, &w| {
+            (h.rotate_left(26) ^ w).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        });
+        mixed ^ mixed >> 29
+    }
+
+    fn key(&self, entry: u32) -> &[u64] {
+        let at = entry as usize * self.width;
+        &self.words[at..at + self.width]
+    }
+
+    fn same(a: &[u64], b: &[u64]) -> bool {
+        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x == y)
+    }
+
+    fn get(&self, key: &[u64]) -> Option<[f64; DIRECTION_COUNT]> {
+        let found = self
+            .table
+            .find(Memo::hash(key), |&e| Memo::same(self.key(e), key))?;
+        Some(self.samples[*found as usize])
+    }
+
+    fn put(&mut self, key: &[u64], samples: [f64; DIRECTION_COUNT]) {
+        if self.width == 0 {
+            self.width = key.len();
+        }
+        if key.len() != self.width || key.is_empty() || self.get(key).is_some() {
+            return;
+        }
+        if self.samples.len() == MEMO_POINTS {
+            self.table.clear();
+            self.words.clear();
+            self.samples.clear();
+        }
+        let (words, width) = (&self.words, self.width);
+        let rehash = |&e: &u32| Memo::hash(&words[e as usize * width..][..width]);
+        self.table
+            .insert_unique(Memo::hash(key), self.samples.len() as u32, rehash);
+        self.words.extend_from_slice(key);
+        self.samples.push(samples);
+    }
+}
+
+/// A batch's colours, channel by channel, sample by sample (point-major), the points'
+/// inputs (for the search of [`refine`]), and the points sampled before.
 struct Batch {
     a: [[f64; BATCH]; 6],
     b: [[f64; BATCH]; 6],
     /// Whether a point of the batch lets the background show.
     translucent: bool,
     pairs: Vec<Pair>,
+    /// Each slot's texel key (a centre read as stored), as a range of `key_words`.
+    keys: Vec<Option<std::ops::Range<usize>>>,
+    key_words: Vec<u64>,
+    memo: Memo,
+    /// The key of the point at hand.
+    key: Vec<u64>,
 }
 
 impl Batch {
@@ -360,6 +443,10 @@ impl Batch {
             b: [[0.0; BATCH]; 6],
             translucent: false,
             pairs: Vec::with_capacity(BATCH_TEXELS),
+            keys: Vec::with_capacity(BATCH_TEXELS),
+            key_words: Vec::new(),
+            memo: Memo::new(),
+            key: Vec::new(),
         }
     }
 
@@ -419,6 +506,7 @@ struct Partial {
     per_texel: Option<Vec<f32>>,
     sum: f64,
     count: u64,
+    blended: u64,
     worst: Worst,
     histogram: Vec<u32>,
     candidates: refine::Candidates,
@@ -534,9 +622,13 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
     // Where every texture is read as stored, a point whose texels equal its left
     // neighbour's (a flat region) has that point's inputs: it is not sampled again.
     let as_stored = readings.iter().all(|a| a.texels_on(grid)) && b.texels_on(grid);
+    let mut centres = Centres::new(readings, b, grid, as_stored, rows.start);
+    // The other material's texels at the centre at hand (part of every reading's key).
+    let mut key_b = Vec::new();
     let (mut above, mut here): (Option<Vec<bool>>, Vec<bool>) = (None, Vec::new());
     for y in rows {
         here.clear();
+        centres.next_row();
         for points in [Points::Centres, Points::Corners] {
             let offset = if points == Points::Centres { 0.5 } else { 0.0 };
             let uv_of = |x: u32| {
@@ -561,6 +653,13 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
             let mut row_of: Vec<Row> = readings.iter().map(|_| Row::default()).collect();
             for x in 0..grid {
                 let uv = uv_of(x);
+                if points == Points::Corners && centres.blend_at(x, uv) {
+                    for (row, partial) in row_of.iter_mut().zip(&mut partials) {
+                        row.forget_last();
+                        partial.blended += 1;
+                    }
+                    continue;
+                }
                 if points == Points::Corners && linear {
                     let left = (x + grid - 1) % grid;
                     let agree = |row: &[bool]| row[x as usize] && row[left as usize];
@@ -581,6 +680,7 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                 {
                     if points == Points::Centres {
                         here.push(here[x as usize - 1]);
+                        centres.repeat_left();
                     }
                     for (row, partial) in row_of.iter_mut().zip(&mut partials) {
                         match row.last() {
@@ -592,14 +692,39 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                     }
                     continue;
                 }
-                let target = b.inputs_at(&[uv]);
-                if points == Points::Centres {
+                let centre = points == Points::Centres;
+                let mut target = None;
+                if centre {
                     here.push(true);
+                    key_b.clear();
+                    if as_stored {
+                        b.centre_texels(x, y, &mut |w| key_b.push(w));
+                    }
                 }
                 let each = (readings.iter()).zip(&mut row_of).zip(&mut batches);
-                for (((a, row), batch), partial) in each.zip(&mut partials) {
+                for (r, (((a, row), batch), partial)) in each.zip(&mut partials).enumerate() {
+                    let keyed = centre && as_stored;
+                    if keyed {
+                        batch.key.clear();
+                        a.centre_texels(x, y, &mut |w| batch.key.push(w));
+                        batch.key.extend_from_slice(&key_b);
+                        if let Some(known) = batch.memo.get(&batch.key) {
+                            // Known texels: no input is read but what a corner needs.
+                            here[x as usize] = false;
+                            centres.keep_with(r, || a.inputs_at(&[uv]));
+                            let known = Source::Known(known);
+                            row.last_equal = false;
+                            row.previous = Some((None, known));
+                            row.pending.push((x, known));
+                            continue;
+                        }
+                    }
+                    let target = &*target.get_or_insert_with(|| b.inputs_at(&[uv]));
                     let source = a.inputs_at(&[uv]);
-                    let equal = source == target;
+                    if centre {
+                        centres.keep(r, &source);
+                    }
+                    let equal = source == *target;
                     if !equal && points == Points::Centres {
                         here[x as usize] = false;
                     }
@@ -611,25 +736,34 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                         continue;
                     }
                     row.last_equal = false;
-                    let source = if let Some(same) = row.repeat_of(&source, &target) {
+                    let source = if let Some(same) = row.repeat_of(&source, target) {
                         // A point like the one before (a flat region of a texture) has its
                         // ΔE; nothing is copied.
                         same
                     } else {
                         let slot = row.unique;
                         Batch::put(&mut batch.a, slot, directions.colours(shader, &source));
-                        Batch::put(&mut batch.b, slot, directions.colours(shader, &target));
-                        batch.translucent |= translucent(&source, &target);
+                        Batch::put(&mut batch.b, slot, directions.colours(shader, target));
+                        batch.translucent |= translucent(&source, target);
                         let inputs = (source, target.clone());
                         batch.pairs.push(inputs.clone());
+                        let start = batch.key_words.len();
+                        batch.key_words.extend_from_slice(&batch.key);
+                        batch
+                            .keys
+                            .push(keyed.then_some(start..batch.key_words.len()));
                         row.unique += 1;
-                        row.previous = Some((inputs, Source::Slot(slot)));
+                        row.previous = Some((Some(inputs), Source::Slot(slot)));
                         Source::Slot(slot)
                     };
                     row.pending.push((x, source));
                     if row.unique == BATCH_TEXELS {
                         row.flush(batch, partial, place, &directions.angles);
                     }
+                }
+                if centre {
+                    let side = readings.len();
+                    centres.keep_with(side, || target.unwrap_or_else(|| b.inputs_at(&[uv])));
                 }
             }
             let each = (row_of.iter_mut()).zip(&mut batches).zip(&mut partials);
@@ -640,6 +774,117 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
         above = Some(std::mem::take(&mut here));
     }
     partials
+}
+
+/// How far (relative to each number's size, at least 1) a corner's inputs may be from the
+/// mean of its four centres' and still be called their blend: a sixteenth of an 8-bit step,
+/// less than storing any input in a texture moves it.
+const BLEND_TOLERANCE: f64 = 1.0 / 4096.0;
+
+/// Which corners need sampling, on a grid whose textures are all read as stored (see
+/// [`MaterialSource::texels_on`]). There a corner reads the mean of the four texels around
+/// it in every texture, so a side whose inputs are affine in its texels
+/// ([`MaterialSource::linear_on`]) has at the corner the mean of its four centres' inputs,
+/// and a side that bends them (spec-gloss's diffuse · (1 − max specular), a normalised
+/// normal) is checked against the centres of this row and the row above. Where every side
+/// has its centres' mean, the viewer's interpolation of one material's texels shows what the
+/// other's shows: the corner is a blend of the pairs its four centres compared, and is not
+/// sampled. Where a side bends, the corner is where a conversion that is not linear differs
+/// most, and it is sampled.
+struct Centres<'a> {
+    /// Whether corners are screened at all (every texture read as stored).
+    active: bool,
+    /// The sides that bend their texels, and for each side (readings, then the other
+    /// material) its place among them.
+    bending: Vec<&'a MaterialSource>,
+    slot: Vec<Option<usize>>,
+    /// Each bending side's inputs at the centres of the row above and of this row.
+    above: Option<Vec<Vec<Inputs>>>,
+    here: Vec<Vec<Inputs>>,
+    started: bool,
+}
+
+impl<'a> Centres<'a> {
+    /// The screen for rows from `first` on: the centres of the row above `first` are read
+    /// here, so that which corners are sampled does not depend on how the grid's rows are
+    /// shared out.
+    fn new(
+        readings: &'a [MaterialSource],
+        b: &'a MaterialSource,
+        grid: u32,
+        active: bool,
+        first: u32,
+    ) -> Self {
+        let sides = readings.iter().chain(std::iter::once(b));
+        let mut bending = Vec::new();
+        let slot = sides
+            .map(|side| {
+                (active && !side.linear_on(grid)).then(|| {
+                    bending.push(side);
+                    bending.len() - 1
+                })
+            })
+            .collect();
+        let size = f64::from(grid);
+        let row_above = |side: &&MaterialSource| {
+            let v = (f64::from(first) - 0.5) / size;
+            let at = |x: u32| side.inputs_at(&[[(f64::from(x) + 0.5) / size, v]]);
+            (0..grid).map(at).collect()
+        };
+        let here = bending.iter().map(|_| Vec::new()).collect();
+        Centres {
+            active,
+            above: (first > 0).then(|| bending.iter().map(row_above).collect()),
+            bending,
+            slot,
+            here,
+            started: false,
+        }
+    }
+
+    fn next_row(&mut self) {
+        if self.started {
+            let empty = self.bending.iter().map(|_| Vec::new()).collect();
+            self.above = Some(std::mem::replace(&mut self.here, empty));
+        }
+        self.started = true;
+    }
+
+    /// Keeps side `side`'s inputs at this row's next centre (if it bends).
+    fn keep(&mut self, side: usize, inputs: &Inputs) {
+        self.keep_with(side, || inputs.clone());
+    }
+
+    /// As [`Centres::keep`], the inputs read only if the side bends.
+    fn keep_with(&mut self, side: usize, inputs: impl FnOnce() -> Inputs) {
+        if let Some(Some(k)) = self.slot.get(side) {
+            self.here[*k].push(inputs());
+        }
+    }
+
+    /// This row's next centre reads what the one before it read.
+    fn repeat_left(&mut self) {
+        for centres in &mut self.here {
+            if let Some(last) = centres.last() {
+                centres.push(last.clone());
+            }
+        }
+    }
+
+    /// Whether the corner at column `x` of this row (texture coordinates `uv`) is a blend of
+    /// the four centres around it on every side. Corners on the grid's first row and column
+    /// read texels across the texture's edge, as its wrap mode says: they are sampled.
+    #[inline(always)]
+    fn blend_at(&self, x: u32, uv: [f64; 2]) -> bool {
+        let Some(above) = self.above.as_ref().filter(|_| self.active && x >= 1) else {
+            return false;
+        };
+        let x = x as usize;
+        (self.bending.iter().zip(above).zip(&self.here)).all(|((side, above), here)| {
+            let four = [&above[x - 1], &above[x], &here[x - 1], &here[x]];
+            side.inputs_at(&[uv]).is_mean_of(four, BLEND_TOLERANCE)
+        })
+    }
 }
 
 /// Where a point lies: its texture coordinates, and the texel of the map it raises (a
@@ -667,9 +912,9 @@ struct Row {
     pending: Vec<(u32, Source)>,
     /// Points put into the batch so far.
     unique: usize,
-    /// The last point with differing inputs: its inputs and samples (equal inputs give equal
-    /// colours).
-    previous: Option<(Pair, Source)>,
+    /// The last point with differing inputs: its inputs (unless it was known by its texels)
+    /// and samples (equal inputs give equal colours).
+    previous: Option<(Option<Pair>, Source)>,
     /// Whether the last point had equal inputs on both sides.
     last_equal: bool,
 }
@@ -699,8 +944,16 @@ impl Row {
         }
     }
 
+    /// The point before was not sampled: the next one cannot take its samples.
+    fn forget_last(&mut self) {
+        self.previous = None;
+        self.last_equal = false;
+    }
+
     fn repeat_of(&self, a: &Inputs, b: &Inputs) -> Option<Source> {
-        let ((previous_a, previous_b), source) = self.previous.as_ref()?;
+        let (Some((previous_a, previous_b)), source) = self.previous.as_ref()? else {
+            return None;
+        };
         (previous_b == b && previous_a == a).then_some(*source)
     }
 
@@ -742,7 +995,16 @@ impl Row {
             *source = Source::Known(samples(*source));
         }
         self.unique = 0;
+        for (k, key) in batch.keys.iter().enumerate() {
+            if let Some(key) = key {
+                batch
+                    .memo
+                    .put(&batch.key_words[key.clone()], samples(Source::Slot(k)));
+            }
+        }
         batch.pairs.clear();
+        batch.keys.clear();
+        batch.key_words.clear();
         batch.translucent = false;
     }
 }
@@ -753,6 +1015,7 @@ impl Partial {
             per_texel: (map == TexelMap::Kept).then(|| Vec::with_capacity(texels)),
             sum: 0.0,
             count: 0,
+            blended: 0,
             worst: Worst {
                 delta_e: -1.0,
                 sets: Vec::new(),
@@ -841,7 +1104,7 @@ fn merge<'p>(
 ) -> Comparison {
     let mut histogram = vec![0u64; BINS];
     let mut per_texel = Vec::new();
-    let (mut sum, mut count) = (0.0, 0u64);
+    let (mut sum, mut count, mut blended) = (0.0, 0u64, 0u64);
     // The first worst sample seen (in row order) wins ties, so a comparison with ΔE 0
     // everywhere names a real point.
     let mut worst: Option<Worst> = None;
@@ -851,6 +1114,7 @@ fn merge<'p>(
         per_texel.extend(p.per_texel.iter().flatten());
         sum += p.sum;
         count += p.count;
+        blended += p.blended;
         for (total, n) in histogram.iter_mut().zip(&p.histogram) {
             *total += u64::from(*n);
         }
@@ -893,6 +1157,7 @@ fn merge<'p>(
         dominant,
         grid,
         samples: count,
+        blended_corners: blended,
         per_texel: per_texel.into(),
     }
 }
@@ -973,14 +1238,20 @@ mod tests {
     }
 
     /// Each texel's entry in `a` against `b` on a `size`² grid equals the ΔE of its centre and
-    /// its corner computed alone; returns the comparison.
+    /// (where it is sampled) its corner computed alone; returns the comparison. Where both
+    /// materials are linear in texels read as stored, only the corners of the first row and
+    /// column are sampled: the others are blends of their centres.
     fn assert_each_texel_as_alone(a: &MaterialSource, b: &MaterialSource, size: u32) -> Comparison {
         let shader = shader();
         let result = compare(&shader, a, b, size);
         let n = f64::from(size);
+        let screened = [a, b]
+            .iter()
+            .all(|m| m.texels_on(size) && m.linear_on(size));
         for y in 0..size {
             for x in 0..size {
-                // A texel's entry is the larger of its centre's and its corner's.
+                let corner_sampled = !screened || x == 0 || y == 0;
+                // A texel's entry is the larger of its centre's and its sampled corner's.
                 let at = |offset: f64| {
                     let uv = [(f64::from(x) + offset) / n, (f64::from(y) + offset) / n];
                     let (a, b) = (a.inputs_at(&[uv]), b.inputs_at(&[uv]));
@@ -988,7 +1259,11 @@ mod tests {
                         .map(|angles| delta_at(&shader, &a, &b, angles).0)
                         .fold(0.0, f64::max)
                 };
-                let alone = at(0.5).max(at(0.0));
+                let alone = if corner_sampled {
+                    at(0.5).max(at(0.0))
+                } else {
+                    at(0.5)
+                };
                 assert_eq!(
                     result.per_texel[(y * size + x) as usize],
                     alone as f32,
@@ -1055,9 +1330,10 @@ mod tests {
             "the worst sample is a real texel centre"
         );
         assert_eq!(
-            result.samples,
-            2 * 64 * DIRECTIONS.len() as u64,
-            "every texel's centre and corner"
+            (result.samples, result.blended_corners),
+            ((64 + 15) * DIRECTIONS.len() as u64, 64 - 15),
+            "every texel's centre, and the corners of the first row and column (the others \
+             are blends of their centres)"
         );
     }
 
@@ -1186,5 +1462,97 @@ mod tests {
         let b = MaterialSource::gltf2(&normal, &fine);
         let result = compare(&shader(), &a, &b, 4);
         assert!(result.max > 1.0, "between the centres: {}", result.max);
+    }
+
+    /// A spec-gloss material (its base colour, diffuse times a function of specular, bends its texels)
+    /// against its texel-by-texel metal-rough conversion: the same at every centre but for
+    /// 8-bit steps, different between centres where diffuse and specular change together.
+    /// Those corners are sampled; the corners that are blends of their centres are not, and
+    /// none of them shows more than its centres do.
+    #[test]
+    fn corners_are_sampled_where_a_side_bends_its_texels_and_a_skipped_one_hides_nothing() {
+        use crate::gltf::color::{linear_to_srgb8, srgb_to_linear};
+        use crate::shade::sample::texture_of;
+        let size = 16;
+        // Diffuse in squares of 4 texels, specular in squares of 8 offset by 4: at some edges
+        // diffuse and specular change together, at others (the texture's own edges among
+        // them) only diffuse does.
+        let square = |x: u32, y: u32, side: u32| ((x / side + y / side) % 2) as usize;
+        let diffuse = |x, y| [[200, 60, 60], [40, 40, 160]][square(x, y, 4)];
+        let specular = |x, y| [[230, 230, 200], [20, 30, 20]][square(x + 4, y + 4, 8)];
+        let sg = image::RgbaImage::from_fn(size, size, |x, y| {
+            let [r, g, b] = specular(x, y);
+            image::Rgba([r, g, b, 160])
+        });
+        // The converter's base colour: diffuse · (1 − specular), channel by channel.
+        let base = image::RgbImage::from_fn(size, size, |x, y| {
+            let linear = |c: u8| srgb_to_linear(f64::from(c) / 255.0);
+            let (d, s) = (diffuse(x, y), specular(x, y));
+            image::Rgb(std::array::from_fn(|c| {
+                linear_to_srgb8(linear(d[c]) * (1.0 - linear(s[c])))
+            }))
+        });
+        let diffuse = image::RgbImage::from_fn(size, size, |x, y| image::Rgb(diffuse(x, y)));
+        let source = MaterialSource::gltf2(
+            &json!({"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+                "diffuseTexture": {"index": 0}, "specularGlossinessTexture": {"index": 1}}}}),
+            &[Some(texture_of(diffuse)), Some(texture_of(sg.clone()))],
+        );
+        let converted = MaterialSource::gltf2(
+            &json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0,
+                "roughnessFactor": 1.0 - 160.0 / 255.0},
+                "extensions": {"KHR_materials_specular": {"specularColorTexture": {"index": 1}},
+                    "KHR_materials_ior": {"ior": 0}}}),
+            &[Some(texture_of(base)), Some(texture_of(sg))],
+        );
+        assert!(!source.linear_on(size) && converted.linear_on(size));
+        let shader = shader();
+        let result = compare(&shader, &source, &converted, size);
+        let n = f64::from(size);
+        let alone = |x: u32, y: u32, offset: f64| {
+            let uv = [(f64::from(x) + offset) / n, (f64::from(y) + offset) / n];
+            let (a, b) = (source.inputs_at(&[uv]), converted.inputs_at(&[uv]));
+            (DIRECTIONS.map(Angles::coarse).iter())
+                .map(|angles| delta_at(&shader, &a, &b, angles).0)
+                .fold(0.0, f64::max)
+        };
+        let centres_max = (0..size * size)
+            .map(|i| alone(i % size, i / size, 0.5))
+            .fold(0.0, f64::max);
+        let mut corners_max: f64 = 0.0;
+        for (x, y) in (1..size).flat_map(|y| (1..size).map(move |x| (x, y))) {
+            let corner = alone(x, y, 0.0);
+            corners_max = corners_max.max(corner);
+            let around = [(x - 1, y - 1), (x, y - 1), (x - 1, y), (x, y)];
+            if around
+                .iter()
+                .all(|&(i, j)| specular(i, j) == specular(x, y))
+            {
+                // Only diffuse changes here: a blend, which shows no more than its centres.
+                let most = around
+                    .map(|(x, y)| alone(x, y, 0.5))
+                    .into_iter()
+                    .fold(0.0, f64::max);
+                assert!(
+                    corner <= most + 0.05,
+                    "corner ({x}, {y}): {corner} against {most}"
+                );
+            }
+        }
+        assert!(
+            corners_max > 2.0 * centres_max.max(0.5),
+            "the difference lies between centres: corners {corners_max}, centres {centres_max}"
+        );
+        assert!(
+            result.max >= corners_max,
+            "the worst corner is sampled: {} against {corners_max}",
+            result.max
+        );
+        let corners = u64::from(size * size);
+        assert!(
+            result.blended_corners > corners / 2 && result.blended_corners < corners - 2 * 16,
+            "most corners are blends, not all: {} of {corners}",
+            result.blended_corners
+        );
     }
 }

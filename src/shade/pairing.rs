@@ -123,7 +123,7 @@ impl Outcome {
                       "light": worst.directions.light, "background": worst.background},
             "dominant": result.dominant, "evaluated": self.is_evaluated(),
             "notEvaluated": self.not_evaluated,
-            "grid": result.grid, "samples": result.samples,
+            "grid": result.grid, "samples": result.samples, "blendedCorners": result.blended_corners,
             "ambiguity": self.ambiguity.as_ref().map(|a| serde_json::json!({"readAs": a.read_as, "furthest": a.furthest, "max": a.max, "grid": a.grid})),
             "pass": self.same(threshold)})
     }

@@ -240,6 +240,78 @@ impl Default for Inputs {
 }
 
 impl Inputs {
+    /// Whether these inputs are the mean of `four`'s, each number to within `tolerance` of
+    /// its size (at least 1), with the same switches: what a material whose inputs are
+    /// affine in its texels has at the corner between four texel centres.
+    pub fn is_mean_of(&self, four: [&Inputs; 4], tolerance: f64) -> bool {
+        // Every field, named: a field added to the inputs must be added below.
+        let Inputs {
+            base_color: _,
+            metallic: _,
+            roughness: _,
+            ior: _,
+            specular: _,
+            specular_color: _,
+            sheen_color: _,
+            sheen_roughness: _,
+            anisotropy_strength: _,
+            anisotropy_angle: _,
+            unlit: _,
+            diffuse_balance: _,
+            emission: _,
+            coverage: _,
+            premultiplied: _,
+            occlusion: _,
+            normal: _,
+            clearcoat: _,
+            clearcoat_roughness: _,
+            clearcoat_normal: _,
+            transmission: _,
+            volume_transmittance: _,
+            diffuse_transmission: _,
+            diffuse_transmission_color: _,
+            iridescence: _,
+            iridescence_film:
+                Film {
+                    ior: _,
+                    thickness: _,
+                },
+        } = self;
+        let switches = |m: &Inputs| (m.unlit, m.premultiplied, m.diffuse_balance);
+        let near = |here: f64, each: [f64; 4]| {
+            let mean = (each[0] + each[1] + each[2] + each[3]) / 4.0;
+            (here - mean).abs() <= tolerance * mean.abs().max(1.0)
+        };
+        let one = |get: fn(&Inputs) -> f64| near(get(self), four.map(get));
+        let three =
+            |get: fn(&Inputs) -> V3| (0..3).all(|i| near(get(self)[i], four.map(|m| get(m)[i])));
+        four.iter().all(|m| switches(m) == switches(self))
+            && three(|m| m.base_color)
+            && one(|m| m.metallic)
+            && one(|m| m.roughness)
+            && one(|m| m.ior)
+            && one(|m| m.specular)
+            && three(|m| m.specular_color)
+            && three(|m| m.sheen_color)
+            && one(|m| m.sheen_roughness)
+            && one(|m| m.anisotropy_strength)
+            && one(|m| m.anisotropy_angle)
+            && three(|m| m.emission)
+            && one(|m| m.coverage)
+            && one(|m| m.occlusion)
+            && three(|m| m.normal)
+            && one(|m| m.clearcoat)
+            && one(|m| m.clearcoat_roughness)
+            && three(|m| m.clearcoat_normal)
+            && one(|m| m.transmission)
+            && three(|m| m.volume_transmittance)
+            && one(|m| m.diffuse_transmission)
+            && three(|m| m.diffuse_transmission_color)
+            && one(|m| m.iridescence)
+            && one(|m| m.iridescence_film.ior)
+            && one(|m| m.iridescence_film.thickness)
+    }
+
     /// The share of the dielectric's diffuse that is reflected: "mix(diffuse_bsdf,
     /// specular_btdf · baseColor, transmission)" and "mix(diffuse_brdf, diffuse_btdf,
     /// diffuseTransmission)" (KHR_materials_transmission, _diffuse_transmission); the

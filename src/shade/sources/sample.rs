@@ -71,6 +71,32 @@ impl TextureImage {
         }
     }
 
+    /// Whether it holds every texel its size says (a decoder may hand over fewer).
+    fn complete(&self) -> bool {
+        let wanted = self.width as usize * self.height as usize * self.channels;
+        match &self.texels {
+            Texels::Unorm8(raw) => raw.len() == wanted,
+            Texels::Unorm16(raw) => raw.len() == wanted,
+            Texels::Float(raw) => raw.len() == wanted,
+        }
+    }
+
+    /// Texel (x, y) of a [`complete`](Self::complete) image as stored, its channels' bits
+    /// packed into 64-bit words, handed to `push`.
+    #[inline(always)]
+    fn stored_words(&self, x: u32, y: u32, push: &mut impl FnMut(u64)) {
+        let n = self.channels;
+        let at = (y as usize * self.width as usize + x as usize) * n;
+        match &self.texels {
+            Texels::Unorm8(raw) => (raw.get(at..at + n).into_iter())
+                .for_each(|t| push(t.iter().fold(0, |w, &c| w << 8 | u64::from(c)))),
+            Texels::Unorm16(raw) => (raw.get(at..at + n).into_iter())
+                .for_each(|t| push(t.iter().fold(0, |w, &c| w << 16 | u64::from(c)))),
+            Texels::Float(raw) => (raw.get(at..at + n).into_iter().flatten())
+                .for_each(|c| push(u64::from(c.to_bits()))),
+        }
+    }
+
     /// Whether its texels have more than 8 bits (a rebake from it keeps 16 bits).
     pub fn is_wide(&self) -> bool {
         !matches!(self.texels, Texels::Unorm8(_))
@@ -1165,13 +1191,13 @@ impl MaterialSource {
     }
 
     /// Whether each of its textures is read on the `grid`² comparison grid as stored: every
-    /// texture is `grid`², read without a transform and filtered linearly, and `grid` is a
+    /// texture is `grid`² (every texel held), read without a transform and filtered linearly, and `grid` is a
     /// power of two (so a texel centre and a corner are exact coordinates: a centre reads one
     /// texel, a corner the mean of four). Then [`MaterialSource::reads_as_left`] can tell,
     /// from the stored texels alone, that a point's inputs are its left neighbour's.
     pub fn texels_on(&self, grid: u32) -> bool {
         let as_stored = |t: &TextureImage, sampler: Sampler| {
-            t.width() == grid && t.height() == grid && !sampler.nearest
+            t.width() == grid && t.height() == grid && !sampler.nearest && t.complete()
         };
         grid.is_power_of_two()
             && match self {
@@ -1214,6 +1240,21 @@ impl MaterialSource {
             MaterialSource::Gltf2(p) => p.bindings().all(|b| same(&b.texture)),
             MaterialSource::Legacy { colour, data, .. } => {
                 colour.iter().chain(data).all(|t| same(t))
+            }
+        }
+    }
+
+    /// For a material whose textures are [`MaterialSource::texels_on`] the grid: the stored
+    /// texels the centre of texel (x, y) reads, every texture's in turn, handed to `push` as
+    /// 64-bit words. Two centres whose words are equal have equal inputs.
+    #[inline(always)]
+    pub fn centre_texels(&self, x: u32, y: u32, push: &mut impl FnMut(u64)) {
+        match self {
+            MaterialSource::Gltf2(p) => {
+                (p.bindings()).for_each(|b| b.texture.stored_words(x, y, push))
+            }
+            MaterialSource::Legacy { colour, data, .. } => {
+                (colour.iter().chain(data)).for_each(|t| t.stored_words(x, y, push))
             }
         }
     }
