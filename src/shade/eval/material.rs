@@ -243,6 +243,7 @@ impl Inputs {
     /// Whether these inputs are the mean of `four`'s, each number to within `tolerance` of
     /// its size (at least 1), with the same switches: what a material whose inputs are
     /// affine in its texels has at the corner between four texel centres.
+    #[inline(always)]
     pub fn is_mean_of(&self, four: [&Inputs; 4], tolerance: f64) -> bool {
         // Every field, named: a field added to the inputs must be added below.
         let Inputs {
@@ -283,8 +284,10 @@ impl Inputs {
             (here - mean).abs() <= tolerance * mean.abs().max(1.0)
         };
         let one = |get: fn(&Inputs) -> f64| near(get(self), four.map(get));
-        let three =
-            |get: fn(&Inputs) -> V3| (0..3).all(|i| near(get(self)[i], four.map(|m| get(m)[i])));
+        let three = |get: fn(&Inputs) -> V3| {
+            let (here, each) = (get(self), four.map(get));
+            (0..3).all(|i| near(here[i], each.map(|v| v[i])))
+        };
         four.iter().all(|m| switches(m) == switches(self))
             && three(|m| m.base_color)
             && one(|m| m.metallic)

@@ -63,11 +63,16 @@ impl TextureImage {
     fn same_as_left(&self, x: u32, y: u32) -> bool {
         let n = self.channels;
         let at = (y as usize * self.width as usize + x as usize) * n;
-        let pair = |raw_len: usize| at >= n && at + n <= raw_len;
+        // Channel by channel: a texel is a few values, too short for a call to memcmp.
+        fn same<T: PartialEq>(raw: &[T], at: usize, n: usize) -> bool {
+            at >= n
+                && at + n <= raw.len()
+                && (raw[at - n..at].iter().zip(&raw[at..at + n])).all(|(a, b)| a == b)
+        }
         match &self.texels {
-            Texels::Unorm8(raw) => pair(raw.len()) && raw[at - n..at] == raw[at..at + n],
-            Texels::Unorm16(raw) => pair(raw.len()) && raw[at - n..at] == raw[at..at + n],
-            Texels::Float(raw) => pair(raw.len()) && raw[at - n..at] == raw[at..at + n],
+            Texels::Unorm8(raw) => same(raw, at, n),
+            Texels::Unorm16(raw) => same(raw, at, n),
+            Texels::Float(raw) => same(raw, at, n),
         }
     }
 
