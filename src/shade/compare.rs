@@ -349,8 +349,10 @@ pub fn on_surface(
 const BATCH_TEXELS: usize = 8;
 const BATCH: usize = BATCH_TEXELS * DIRECTION_COUNT;
 
-/// How many sampled points a [`Memo`] holds before it starts again.
-const MEMO_POINTS: usize = 1 << 17;
+/// How many 8-byte words (keys and samples) a [`Memo`] holds before it starts again: 16 MiB,
+/// about 130 thousand points of a material with a few 8-bit textures, fewer where a point
+/// reads many wide texels.
+const MEMO_WORDS: usize = 1 << 21;
 
 /// Texel centres already sampled, by the stored texels both materials read there: a
 /// texture's repeated values (its flat regions, a palette, a pattern's rows) are sampled
@@ -406,7 +408,7 @@ impl Memo {
         if key.len() != self.width || key.is_empty() || self.get(key).is_some() {
             return;
         }
-        if self.samples.len() == MEMO_POINTS {
+        if (self.samples.len() + 1) * (self.width + DIRECTION_COUNT) > MEMO_WORDS {
             self.table.clear();
             self.words.clear();
             self.samples.clear();
@@ -1481,6 +1483,21 @@ mod tests {
         let b = MaterialSource::gltf2(&normal, &fine);
         let result = compare(&shader(), &a, &b, 4);
         assert!(result.max > 1.0, "between the centres: {}", result.max);
+    }
+
+    #[test]
+    fn the_memo_of_sampled_centres_stays_within_its_words_and_keeps_what_it_holds() {
+        let mut memo = Memo::new();
+        let samples = |i: u64| std::array::from_fn(|k| (i * 8 + k as u64) as f64);
+        for i in 0..100_000u64 {
+            // Wide keys: a point that reads many float textures.
+            memo.put(&[i; 60], samples(i));
+            let held = memo.words.len() + memo.samples.len() * DIRECTION_COUNT;
+            assert!(held <= MEMO_WORDS, "{held} words after {i} points");
+        }
+        assert_eq!(memo.get(&[99_999; 60]), Some(samples(99_999)));
+        assert_eq!(memo.get(&[12; 60]), None, "started again when full");
+        assert_eq!(memo.get(&[99_999; 59]), None, "another width");
     }
 
     /// A spec-gloss material (its base colour, diffuse times a function of specular, bends its texels)
