@@ -107,9 +107,10 @@ pub struct Worst {
 pub struct Comparison {
     /// Largest ΔE2000, over every point and the directions searched there.
     pub max: f64,
-    /// 99th percentile ΔE2000 of the fixed directions at every point.
+    /// 99th percentile ΔE2000 of the fixed directions at every point sampled (texel centres,
+    /// and the corners that are not blends of their centres).
     pub p99: f64,
-    /// Mean ΔE2000 of the fixed directions at every point.
+    /// Mean ΔE2000 of the fixed directions at every point sampled.
     pub mean: f64,
     /// Where the largest was.
     pub worst: Worst,
