@@ -1559,3 +1559,43 @@ fn render_names_a_material_without_a_model() {
         "{said}"
     );
 }
+
+#[test]
+fn upgrade_timings_name_each_stage_on_stderr_only() {
+    let folder = tempfile::tempdir().unwrap();
+    let input = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/spec-gloss/textured.gltf");
+    let run = |extra: &[&str], output: &str| {
+        let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .arg("upgrade")
+            .arg(&input)
+            .args(["-o", &folder.path().join(output).to_string_lossy()])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{out:?}");
+        let line = |text: &[u8]| {
+            (String::from_utf8_lossy(text).lines())
+                .find(|l| l.starts_with("timings: "))
+                .map(str::to_owned)
+        };
+        assert_eq!(line(&out.stdout), None, "stdout keeps the notes alone");
+        line(&out.stderr)
+    };
+    let stages = |line: String| -> Vec<String> {
+        (line["timings: ".len()..].split(", "))
+            .map(|stage| {
+                let (name, seconds) = stage.rsplit_once(' ').unwrap().0.rsplit_once(' ').unwrap();
+                assert!(seconds.parse::<f64>().unwrap() >= 0.0, "{stage}");
+                name.to_owned()
+            })
+            .collect()
+    };
+    let with_proof = run(&["--timings"], "a.glb").expect("a timings line");
+    assert_eq!(
+        stages(with_proof),
+        ["conversion", "proof", "output check and write"]
+    );
+    let without = run(&["--timings", "--no-verify"], "b.glb").expect("a timings line");
+    assert_eq!(stages(without), ["conversion", "output check and write"]);
+    assert_eq!(run(&[], "c.glb"), None, "only when asked");
+}

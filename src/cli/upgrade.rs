@@ -57,6 +57,41 @@ pub struct UpgradeArgs {
     /// ΔE2000 a converted material may differ from its source by.
     #[arg(long, default_value_t = gltfmat::shade::compare::DEFAULT_THRESHOLD, value_parser = crate::common::threshold)]
     threshold: f64,
+    /// Print to stderr how long the conversion, the proof and the output's check and write
+    /// each took (wall-clock seconds).
+    #[arg(long)]
+    timings: bool,
+}
+
+/// Wall-clock time of the upgrade's three stages, for `--timings`.
+struct Timings {
+    enabled: bool,
+    since: std::time::Instant,
+    stages: Vec<(&'static str, f64)>,
+}
+
+impl Timings {
+    fn new(enabled: bool) -> Timings {
+        Timings {
+            enabled,
+            since: std::time::Instant::now(),
+            stages: Vec::new(),
+        }
+    }
+
+    /// Ends the stage `name` (begun when the one before ended).
+    fn stage(&mut self, name: &'static str) {
+        let now = std::time::Instant::now();
+        self.stages.push((name, (now - self.since).as_secs_f64()));
+        self.since = now;
+    }
+
+    fn print(&self) {
+        if self.enabled {
+            let each = (self.stages.iter()).map(|(name, s)| format!("{name} {s:.3} s"));
+            eprintln!("timings: {}", each.collect::<Vec<_>>().join(", "));
+        }
+    }
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -98,11 +133,17 @@ pub fn run(args: UpgradeArgs) -> Outcome {
     // The bytes go to the upgrade, which lets a `.gltf`'s text go once its tree is built;
     // the proof reads the file again, and proves nothing if it changed in between.
     let read = (!args.no_verify).then(|| Fingerprint::of(&bytes));
+    let mut timings = Timings::new(args.timings);
     let mut upgraded = upgrade(bytes, &loader, &options)
         .map_err(|e| Failure::refused(format!("{}: {e}", args.input.display())))?;
+    timings.stage("conversion");
     let mut log = Log::to(&destination);
     print_notes(&upgraded.report, &mut log);
+    let proving = read.is_some();
     let disproved = read.is_some_and(|read| !proved(read, &args, &upgraded, &mut log));
+    if proving {
+        timings.stage("proof");
+    }
     if disproved {
         if args.verify {
             return Err(Failure::refused(
@@ -113,7 +154,10 @@ pub fn run(args: UpgradeArgs) -> Outcome {
     }
     let (folder, name) = match destination {
         Destination::Stdout => {
-            return write_to_stdout(&mut upgraded, &args.input, &tolerated, inherited)
+            let written = write_to_stdout(&mut upgraded, &args.input, &tolerated, inherited);
+            timings.stage("output check and write");
+            timings.print();
+            return written;
         }
         Destination::File { folder, name } => (folder, name),
     };
@@ -121,6 +165,8 @@ pub fn run(args: UpgradeArgs) -> Outcome {
     let protected: Vec<FileId> = input_id.into_iter().chain(loader.files_read()).collect();
     let checked = output::write_checked(&files, &folder, &protected, args.force, &tolerated)
         .map_err(|e| Failure::usage(e.to_string()))?;
+    timings.stage("output check and write");
+    timings.print();
     let report = checked.report;
     if !checked.written {
         return Err(refuse_failed_check(
