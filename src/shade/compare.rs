@@ -460,6 +460,22 @@ impl Batch {
         }
     }
 
+    /// Makes the key of the centre of texel (x, y) as reading `a` reads it (`key_b`: the
+    /// other material's words), and gives its samples if they are known.
+    fn known(
+        &mut self,
+        a: &MaterialSource,
+        x: u32,
+        y: u32,
+        key_b: &[u64],
+    ) -> Option<[f64; DIRECTION_COUNT]> {
+        let key = &mut self.key;
+        key.clear();
+        a.centre_texels(x, y, &mut |w| key.push(w));
+        key.extend_from_slice(key_b);
+        self.memo.get(key)
+    }
+
     /// ΔE2000 of every sample (see [`delta_e_of`]).
     #[inline(always)]
     fn delta_e(&self) -> [f64; BATCH] {
@@ -660,15 +676,8 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
             for x in 0..grid {
                 let uv = uv_of(x);
                 if points == Points::Corners {
-                    let as_left = || {
-                        as_stored
-                            && b.reads_as_left(x, y, true)
-                            && readings.iter().all(|a| a.reads_as_left(x, y, true))
-                    };
-                    left_blended = match centres.bends() {
-                        true => (left_blended && as_left()) || centres.blend_at(x, uv),
-                        false => centres.blend_at(x, uv),
-                    };
+                    let as_left = || as_stored && reads_as_left(readings, b, x, y, true);
+                    left_blended = centres.skips(x, uv, left_blended, as_left);
                     if left_blended {
                         for (row, partial) in row_of.iter_mut().zip(&mut partials) {
                             row.forget_last();
@@ -692,8 +701,7 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                 if as_stored
                     && x > 0
                     && row_of.iter().all(|row| row.last().is_some())
-                    && b.reads_as_left(x, y, corner)
-                    && readings.iter().all(|a| a.reads_as_left(x, y, corner))
+                    && reads_as_left(readings, b, x, y, corner)
                 {
                     if points == Points::Centres {
                         here.push(here[x as usize - 1]);
@@ -721,20 +729,12 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                 let each = (readings.iter()).zip(&mut row_of).zip(&mut batches);
                 for (r, (((a, row), batch), partial)) in each.zip(&mut partials).enumerate() {
                     let keyed = centre && as_stored;
-                    if keyed {
-                        batch.key.clear();
-                        a.centre_texels(x, y, &mut |w| batch.key.push(w));
-                        batch.key.extend_from_slice(&key_b);
-                        if let Some(known) = batch.memo.get(&batch.key) {
-                            // Known texels: no input is read but what a corner needs.
-                            here[x as usize] = false;
-                            centres.keep_with(r, || a.inputs_at(&[uv]));
-                            let known = Source::Known(known);
-                            row.last_equal = false;
-                            row.previous = Some((None, known));
-                            row.pending.push((x, known));
-                            continue;
-                        }
+                    if let Some(known) = keyed.then(|| batch.known(a, x, y, &key_b)).flatten() {
+                        // Known texels: no input is read but what a corner needs.
+                        here[x as usize] = false;
+                        centres.keep_with(r, || a.inputs_at(&[uv]));
+                        row.take_known(x, known);
+                        continue;
                     }
                     let target = &*target.get_or_insert_with(|| b.inputs_at(&[uv]));
                     let source = a.inputs_at(&[uv]);
@@ -888,9 +888,21 @@ impl<'a> Centres<'a> {
         }
     }
 
-    /// Whether a side bends its texels (else [`Centres::blend_at`] reads nothing).
-    fn bends(&self) -> bool {
-        !self.bending.is_empty()
+    /// Whether the corner at column `x` (texture coordinates `uv`) is not sampled, given
+    /// whether the corner before it was not and whether it reads that one's texels
+    /// (`as_left`, asked only where a side bends: otherwise the screen reads nothing).
+    #[inline(always)]
+    fn skips(
+        &self,
+        x: u32,
+        uv: [f64; 2],
+        left_blended: bool,
+        as_left: impl FnOnce() -> bool,
+    ) -> bool {
+        match self.bending.is_empty() {
+            true => self.blend_at(x, uv),
+            false => (left_blended && as_left()) || self.blend_at(x, uv),
+        }
     }
 
     /// Whether the corner at column `x` of this row (texture coordinates `uv`) is a blend of
@@ -907,6 +919,19 @@ impl<'a> Centres<'a> {
             side.inputs_at(&[uv]).is_mean_of(four, BLEND_TOLERANCE)
         })
     }
+}
+
+/// Whether the point at column `x` of row `y` (a centre, or with `corner` a corner) reads on
+/// every side the texels its left neighbour reads (see [`MaterialSource::reads_as_left`]).
+#[inline(always)]
+fn reads_as_left(
+    readings: &[MaterialSource],
+    b: &MaterialSource,
+    x: u32,
+    y: u32,
+    corner: bool,
+) -> bool {
+    b.reads_as_left(x, y, corner) && readings.iter().all(|a| a.reads_as_left(x, y, corner))
 }
 
 /// Where a point lies: its texture coordinates, and the texel of the map it raises (a
@@ -964,6 +989,14 @@ impl Row {
             true => Some(Source::Zero),
             false => self.previous.as_ref().map(|(_, source)| *source),
         }
+    }
+
+    /// A point whose samples are known (by its texels), not by its inputs.
+    fn take_known(&mut self, x: u32, samples: [f64; DIRECTION_COUNT]) {
+        let known = Source::Known(samples);
+        self.last_equal = false;
+        self.previous = Some((None, known));
+        self.pending.push((x, known));
     }
 
     /// The point before was not sampled: the next one cannot take its samples.
