@@ -1599,3 +1599,45 @@ fn upgrade_timings_name_each_stage_on_stderr_only() {
     assert_eq!(stages(without), ["conversion", "output check and write"]);
     assert_eq!(run(&[], "c.glb"), None, "only when asked");
 }
+
+#[test]
+fn compare_counts_the_corners_it_does_not_sample_in_both_formats() {
+    // A spec-gloss material whose two textures are 16², read as stored on a 16² grid,
+    // against itself: the corners that are blends of their centres are counted, not sampled.
+    let folder = tempfile::tempdir().unwrap();
+    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/spec-gloss");
+    for png in ["diffuse16.png", "specgloss16.png"] {
+        std::fs::copy(fixtures.join(png), folder.path().join(png)).unwrap();
+    }
+    let asset = serde_json::json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_materials_pbrSpecularGlossiness"],
+        "images": [{"uri": "diffuse16.png"}, {"uri": "specgloss16.png"}],
+        "textures": [{"source": 0}, {"source": 1}],
+        "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+            "diffuseTexture": {"index": 0}, "specularGlossinessTexture": {"index": 1}}}}]});
+    let input = folder.path().join("a.gltf");
+    std::fs::write(&input, asset.to_string()).unwrap();
+    let input = input.to_str().unwrap();
+    let (_, out) = gltfmat(&["compare", input, input, "--format", "json"]);
+    let pairs: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let pair = &pairs[0];
+    let (grid, samples, blended) = (
+        pair["grid"].as_u64().unwrap(),
+        pair["samples"].as_u64().unwrap(),
+        pair["blendedCorners"].as_u64().unwrap(),
+    );
+    assert_eq!(grid, 16, "{out}");
+    assert!(blended > 0 && blended < grid * grid, "{out}");
+    assert_eq!(
+        samples,
+        8 * (2 * grid * grid - blended),
+        "every centre and every corner not counted as a blend, in 8 directions: {out}"
+    );
+    let (_, human) = gltfmat(&["compare", input, input]);
+    assert!(
+        human.contains(&format!(
+            "({blended} corners, where both are blends of the centres around them, not sampled)"
+        )),
+        "{human}"
+    );
+}
