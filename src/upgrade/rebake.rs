@@ -544,6 +544,16 @@ mod tests {
         );
     }
 
+    /// A `width` × `height` RGBA texture, decoded from its PNG, whose texel (x, y) holds the
+    /// bytes of a multiplicative hash of `key(x, y)`: noise, equal where the keys are.
+    fn hashed(width: u32, height: u32, key: impl Fn(u32, u32) -> u32) -> sample::Texture {
+        let image = image::RgbaImage::from_fn(width, height, |x, y| {
+            let h = key(x, y).wrapping_mul(2_654_435_761);
+            image::Rgba([(h >> 8) as u8, (h >> 16) as u8, (h >> 24) as u8, h as u8])
+        });
+        sample::decode(&png(image)).unwrap()
+    }
+
     /// Factors that scale every channel differently, read as the archived extension.
     fn chromatic() -> Factors {
         Factors {
@@ -580,17 +590,12 @@ mod tests {
         let (width, height) = (23, 6);
         for seed in 0..12 {
             let image = |layer: u32| {
-                png(image::RgbaImage::from_fn(width, height, |x, y| {
+                hashed(width, height, |x, y| {
                     let part = u32::from(y % 2 == 1 && x >= 5 + 2 * y);
-                    let h = (part * 73 + y * 151 + layer * 7919 + seed * 104_729)
-                        .wrapping_mul(2_654_435_761);
-                    image::Rgba([(h >> 8) as u8, (h >> 16) as u8, (h >> 24) as u8, h as u8])
-                }))
+                    part * 73 + y * 151 + layer * 7919 + seed * 104_729
+                })
             };
-            let (diffuse, specular) = (
-                sample::decode(&image(1)).unwrap(),
-                sample::decode(&image(2)).unwrap(),
-            );
+            let (diffuse, specular) = (image(1), image(2));
             let factors = chromatic();
             let texels = both(&diffuse, &specular, &factors);
             let base = |v: TexelValue| factors.base_colour(v.diffuse, v.specular);
@@ -619,16 +624,8 @@ mod tests {
     fn on_the_inputs_grid_a_texel_corner_reads_as_the_mean_of_its_four_centres() {
         // The premise of `corners_error`'s shortcut: bilinear filtering midway between four
         // texel centres (sRGB decoded first, repeat wrapping at the edges) is their mean.
-        let noise = |seed: u32| {
-            png(image::RgbaImage::from_fn(7, 5, |x, y| {
-                let h = (x * 73 + y * 151 + seed).wrapping_mul(2_654_435_761);
-                image::Rgba([(h >> 8) as u8, (h >> 16) as u8, (h >> 24) as u8, h as u8])
-            }))
-        };
-        let (diffuse, specular) = (
-            sample::decode(&noise(1)).unwrap(),
-            sample::decode(&noise(2)).unwrap(),
-        );
+        let noise = |seed: u32| hashed(7, 5, |x, y| x * 73 + y * 151 + seed);
+        let (diffuse, specular) = (noise(1), noise(2));
         let factors = chromatic();
         let texels = both(&diffuse, &specular, &factors);
         for (x, y) in (0..5).flat_map(|y| (0..7).map(move |x| (x, y))) {
