@@ -4,8 +4,8 @@
 //! map and a 4096² base colour, all PNG with varied content so compression is realistic,
 //! then prints the best of three runs of the full check with pixel rules, per texture.
 
-use gltfmat::check::{check_bytes, CheckOptions};
-use gltfmat::document::uri::FolderResources;
+use gltfmat::FolderResources;
+use gltfmat::{check_bytes, CheckOptions};
 use image::{ImageFormat, RgbImage, RgbaImage};
 use std::time::Instant;
 

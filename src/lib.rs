@@ -2,8 +2,11 @@
 //! materials with a reference shading model.
 //!
 //! The façade is this page: [`check_path`] / [`check_bytes`], [`upgrade()`] and its proof
-//! [`prove`], [`compare`] and [`render`], their options, [`Report`] and [`Error`]. Data flows one way: bytes →
-//! [`document`] → check / upgrade / shade → [`report`].
+//! [`prove`], [`compare`] and [`render`], their options, [`Report`] and [`Error`], and the
+//! types they take and give. Four modules name what a report and an upgrade are made of:
+//! [`diagnostic`] (codes and findings), [`report`] (output formats), [`registry`] (every code
+//! and rule) and [`upgrade_output`] (an upgraded asset's files). Everything else is private.
+//! Data flows one way: bytes → document → check / upgrade / shade → [`report`].
 //!
 //! Check a file (its external `.bin` and images are read from its folder):
 //! ```
@@ -41,26 +44,52 @@
 #![warn(missing_docs)]
 #![deny(unsafe_code)]
 
-pub mod check;
+mod check;
 pub mod diagnostic;
-pub mod document;
+mod document;
 mod error;
-pub(crate) mod gltf;
-pub(crate) mod legacy;
-pub mod output;
-pub mod page;
+mod gltf;
+mod legacy;
+mod output;
+mod page;
 pub mod report;
-pub mod shade;
-pub mod system;
+mod shade;
+mod system;
 #[cfg(test)]
 mod test_random;
-pub mod upgrade;
+mod upgrade;
 
-pub use check::{check_bytes, check_path, CheckOptions, Profile, Report};
+// Checking: a file or bytes in, a report out; the rules and codes it can report.
+pub use check::registry;
+pub use check::{check_bytes, check_path, AssetInfo, CheckOptions, Profile, Report, ResourceInfo};
 pub use diagnostic::{Code, Diagnostic, Finding, Findings, Location, Place, Severity};
-pub use document::uri::{FolderResources, MemoryResources, NoResources, ResourceLoader};
+
+// Input: reading a file within bounds, and the files an asset names.
+pub use document::bytes::{Bytes, Elsewhere};
+pub use document::file::{read_file, read_stream, FileError, FileId, Kept, MAX_FILE_BYTES};
+pub use document::uri::{
+    folder_of, FolderResources, LoadError, MemoryResources, NoResources, ResourceLoader,
+};
 pub use error::Error;
+
+// Upgrading and its proof; the upgraded asset's files, checked as written.
+pub use upgrade::output as upgrade_output;
+pub use upgrade::{
+    proof_holds, prove, upgrade, Items, Json, Note, NoteKind, ProofError, SpecGlossReading,
+    SpecularGlossiness, UpgradeError, UpgradeOptions, Upgraded,
+};
+
+// Comparing and drawing materials with the reference evaluator.
+pub use shade::brdf::SheenVisibility;
+pub use shade::compare::{DEFAULT_THRESHOLD, DIRECTIONS};
 pub use shade::pairing::{
     compare, render, render_each, Ball, CompareOptions, Compared, Outcome, Picture, RenderOptions,
+    NO_MODEL,
 };
-pub use upgrade::{prove, upgrade, ProofError, UpgradeError, UpgradeOptions, Upgraded};
+pub use shade::render::{heatmap, png, SheetLayout, MAX_PIXELS, MAX_SIZE};
+pub use shade::sheen_table::SheenTable;
+
+// Writing outputs the one safe way, and the HTML report page.
+pub use output::{exit_removing_unfinished, may_write, write_file, write_files, WriteError};
+pub use page::{Page, Part, Renders};
+pub use system::return_large_blocks_when_freed;

@@ -2,8 +2,8 @@
 //! defect at a time, each reported with its Khronos code at the pointer that uses the data.
 
 use base64::Engine;
-use gltfmat::check::{check_bytes, CheckOptions, Place, Profile};
-use gltfmat::document::uri::NoResources;
+use gltfmat::NoResources;
+use gltfmat::{check_bytes, CheckOptions, Place, Profile};
 use serde_json::Value;
 
 const FIXTURE: &str = "fixtures/valid/skinned-animated.gltf";

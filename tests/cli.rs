@@ -274,11 +274,8 @@ fn lut_sheen_writes_the_table_the_evaluator_uses() {
         assert_eq!(row.len(), 4);
         for (j, value) in row.iter().enumerate() {
             let (mu, roughness) = ((j as f64 + 0.5) / 4.0, (i as f64 + 0.5) / 4.0);
-            let exact = gltfmat::shade::sheen_table::albedo(
-                gltfmat::shade::brdf::SheenVisibility::Ashikhmin,
-                mu,
-                roughness,
-            );
+            let exact =
+                gltfmat::SheenTable::albedo(gltfmat::SheenVisibility::Ashikhmin, mu, roughness);
             assert!(
                 (value - exact).abs() < 1e-6,
                 "E({mu}, {roughness}) = {value} vs {exact}"

@@ -9,9 +9,9 @@
 mod common;
 use common::shared;
 
-use gltfmat::check::registry::{self, Origin};
-use gltfmat::check::{check_bytes, CheckOptions, Place, Profile};
-use gltfmat::document::uri::FolderResources;
+use gltfmat::registry::{self, Origin};
+use gltfmat::FolderResources;
+use gltfmat::{check_bytes, CheckOptions, Place, Profile};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -425,8 +425,8 @@ fn real_skinned_gltf1_assets_upgrade_with_renormalised_weights() {
                 .iter()
                 .any(|n| n.text.starts_with("skin weights renormalised"));
             renormalised_count += usize::from(renormalised);
-            let files = gltfmat::upgrade::output::layout(&result, "out.glb");
-            let report = gltfmat::upgrade::output::verify(&files);
+            let files = gltfmat::upgrade_output::layout(&result, "out.glb");
+            let report = gltfmat::upgrade_output::verify(&files);
             assert!(
                 !report.has_errors(),
                 "{}: {:?}",

@@ -5,9 +5,9 @@
 mod common;
 
 use base64::Engine;
-use gltfmat::check::{check_bytes, CheckOptions, Report};
-use gltfmat::document::uri::{FolderResources, NoResources};
-use gltfmat::upgrade::{upgrade, UpgradeOptions};
+use gltfmat::{check_bytes, CheckOptions, Report};
+use gltfmat::{upgrade, UpgradeOptions};
+use gltfmat::{FolderResources, NoResources};
 use serde_json::json;
 
 fn codes(report: &Report) -> Vec<&'static str> {
@@ -1050,7 +1050,7 @@ fn crossed_strip_textures_rebake_on_a_grid_held_to_the_budget_not_their_product(
 }
 
 /// `gltf` upgraded with no resources and the default options.
-fn upgrade_json(gltf: &serde_json::Value) -> gltfmat::upgrade::Upgraded {
+fn upgrade_json(gltf: &serde_json::Value) -> gltfmat::Upgraded {
     upgrade(
         serde_json::to_vec(gltf).unwrap(),
         &NoResources,

@@ -5,8 +5,8 @@
 
 mod common;
 
-use gltfmat::check::{check_bytes, CheckOptions, Profile};
-use gltfmat::document::uri::NoResources;
+use gltfmat::NoResources;
+use gltfmat::{check_bytes, CheckOptions, Profile};
 use serde_json::{json, Value};
 
 /// Every finding of the Khronos profile, as (code, pointer), sorted.
@@ -17,7 +17,7 @@ fn khronos_findings(document: Value) -> Vec<(String, String)> {
 }
 
 /// Every finding of a report, as (code, pointer), sorted.
-fn sorted_findings(report: &gltfmat::check::Report) -> Vec<(String, String)> {
+fn sorted_findings(report: &gltfmat::Report) -> Vec<(String, String)> {
     let mut found: Vec<(String, String)> = (report.diagnostics.iter())
         .map(|d| {
             (
@@ -943,7 +943,7 @@ fn beside_a_ktx2(name: &str, document: Value) -> (Findings, Findings) {
     std::fs::write(&asset, serde_json::to_vec(&document).unwrap()).unwrap();
     let findings = |profile| {
         let options = CheckOptions::default().with_profile(profile);
-        sorted_findings(&gltfmat::check::check_path(&asset, &options).unwrap())
+        sorted_findings(&gltfmat::check_path(&asset, &options).unwrap())
     };
     let both = (findings(Profile::Khronos), findings(Profile::Default));
     std::fs::remove_dir_all(&folder).unwrap();
@@ -1092,7 +1092,7 @@ fn a_backslash_in_a_uri_separates_folders_and_an_escaped_one_is_part_of_the_name
         {"uri": "Textures%5Ca.bin", "byteLength": 4}]});
     std::fs::write(&asset, serde_json::to_vec(&document).unwrap()).unwrap();
     let options = CheckOptions::default().with_profile(Profile::Khronos);
-    let findings = sorted_findings(&gltfmat::check::check_path(&asset, &options).unwrap());
+    let findings = sorted_findings(&gltfmat::check_path(&asset, &options).unwrap());
     std::fs::remove_dir_all(&folder).unwrap();
     assert_eq!(
         findings,

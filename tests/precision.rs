@@ -7,8 +7,8 @@
 mod common;
 use common::shared;
 
-use gltfmat::check::{check_bytes, CheckOptions, Place};
-use gltfmat::document::uri::FolderResources;
+use gltfmat::FolderResources;
+use gltfmat::{check_bytes, CheckOptions, Place};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -122,9 +122,9 @@ fn every_deep_finding_on_real_exporters_files_is_listed_with_its_reason() {
 /// false report here fails well-made assets).
 #[test]
 fn the_default_profile_adds_nothing_on_the_khronos_sample_models_upgraded() {
-    use gltfmat::check::Profile;
-    use gltfmat::document::uri::NoResources;
-    use gltfmat::upgrade::{upgrade, UpgradeOptions};
+    use gltfmat::NoResources;
+    use gltfmat::Profile;
+    use gltfmat::{upgrade, UpgradeOptions};
     let Some(root) = shared("real-world/gltf1/sample-models", "sample-model precision") else {
         return;
     };

@@ -11,8 +11,9 @@
 mod common;
 use common::shared;
 
-use gltfmat::upgrade::{output, upgrade, UpgradeOptions};
+use gltfmat::upgrade_output as output;
 use gltfmat::FolderResources;
+use gltfmat::{upgrade, UpgradeOptions};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -8,9 +8,9 @@ mod common;
 
 use base64::Engine;
 use common::chunk;
-use gltfmat::check::registry::{self, Origin};
-use gltfmat::check::{check_bytes, CheckOptions, Place};
-use gltfmat::document::uri::{FolderResources, NoResources};
+use gltfmat::registry::{self, Origin};
+use gltfmat::{check_bytes, CheckOptions, Place};
+use gltfmat::{FolderResources, NoResources};
 use image::{DynamicImage, GrayImage, ImageFormat, RgbImage, RgbaImage};
 use serde_json::{json, Value};
 use std::collections::BTreeSet;
@@ -414,7 +414,7 @@ fn issues(
     };
     // The base primitive carries two UV sets for the cases that need them; which of them a
     // case leaves unused is not what these tests are about.
-    let unused_uv_set = |d: &gltfmat::check::Finding| {
+    let unused_uv_set = |d: &gltfmat::Finding| {
         d.code == "UNUSED_OBJECT"
             && matches!(d.location, Place::Pointer(p) if p.contains("/attributes/TEXCOORD_"))
     };

@@ -6,9 +6,9 @@ mod common;
 
 use common::{linear_to_srgb, srgb_to_linear};
 
-use gltfmat::document::uri::{FolderResources, NoResources};
-use gltfmat::shade::pairing::{compare_pairs, load_materials, TexelMap, AS_STORED};
-use gltfmat::upgrade::{converted_materials, output, upgrade, UpgradeOptions, Upgraded};
+use gltfmat::upgrade_output as output;
+use gltfmat::{prove, upgrade, UpgradeOptions, Upgraded};
+use gltfmat::{FolderResources, NoResources};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
@@ -215,20 +215,14 @@ fn upgraded_image_bytes(upgraded: &Upgraded) -> impl Fn(u64) -> Vec<u8> + '_ {
     }
 }
 
-/// The worst ΔE2000 of each material of `path` against its conversion, on a `grid` (0: the
-/// comparison's own choice).
-fn delta_e(path: &Path, upgraded: &Upgraded, grid: u32) -> Vec<f64> {
+/// The worst ΔE2000 of each material of `path` against its conversion, as the upgrade's proof
+/// finds it (every texel centre of the finest texture, the corners between them, the mesh).
+fn delta_e(path: &Path, upgraded: &Upgraded) -> Vec<f64> {
     let loader = FolderResources::new(path.parent().unwrap());
     let bytes = std::fs::read(path).unwrap();
-    let sources = load_materials(bytes, &path.to_string_lossy(), &loader, AS_STORED).unwrap();
-    let converted: Vec<_> = (converted_materials(upgraded).unwrap().into_iter())
-        .map(|m| ("converted".to_string(), Some(m)))
-        .collect();
-    let pairs: Vec<(usize, usize)> = (0..sources.len()).map(|i| (i, i)).collect();
-    compare_pairs(&sources, &converted, &pairs, &[], grid, TexelMap::Dropped)
-        .into_iter()
-        .map(|o| o.result.max)
-        .collect()
+    let name = path.to_string_lossy();
+    let proof = prove(bytes, &name, &loader, upgraded).unwrap();
+    proof.into_iter().map(|o| o.result.max).collect()
 }
 
 #[test]
@@ -241,7 +235,7 @@ fn conversions_prove_and_the_proof_catches_a_naive_one() {
     ] {
         let path = fixture(name);
         let upgraded = upgrade_path(&path, &UpgradeOptions::default());
-        for (i, worst) in delta_e(&path, &upgraded, 0).into_iter().enumerate() {
+        for (i, worst) in delta_e(&path, &upgraded).into_iter().enumerate() {
             assert!(worst < 1.0, "{name} material {i}: ΔE {worst}");
         }
     }
@@ -260,19 +254,19 @@ fn conversions_prove_and_the_proof_catches_a_naive_one() {
             material["pbrMetallicRoughness"]["baseColorFactor"] =
                 json!([base[0], base[1], base[2], 1.0]);
         });
-        let worst = delta_e(&path, &upgraded, 0)[0];
+        let worst = delta_e(&path, &upgraded)[0];
         assert!(worst > 1.0, "{mapping}: ΔE {worst}");
     }
 }
 
 #[test]
 fn mixed_resolutions_render_like_their_source_at_the_inputs_texel_centres_and_corners() {
-    // mixed.glb: an 8×8 diffuse with a 4×4 spec-gloss texture, and the reverse. An 8²
-    // comparison grid samples the inputs' texel centres and corners, where the rebakes
-    // (on an odd multiple of the 8×8 grid) must agree with the conversion of the inputs.
+    // mixed.glb: an 8×8 diffuse with a 4×4 spec-gloss texture, and the reverse. The rebakes
+    // lie on an odd multiple of the 8×8 grid, so the proof's grid holds the inputs' texel
+    // centres and corners, where the rebakes must agree with the conversion of the inputs.
     let path = fixture("mixed.glb");
     let upgraded = upgrade_path(&path, &UpgradeOptions::default());
-    for (i, worst) in delta_e(&path, &upgraded, 8).into_iter().enumerate() {
+    for (i, worst) in delta_e(&path, &upgraded).into_iter().enumerate() {
         assert!(
             worst < 1.0,
             "material {i}: ΔE {worst} at the texel centres and corners"
@@ -462,8 +456,8 @@ fn the_extension_leaves_the_extension_lists_when_no_material_uses_it() {
 #[test]
 fn extension_mode_leaves_a_2_0_asset_as_it_was() {
     let path = fixture("textured.gltf");
-    let options = UpgradeOptions::default()
-        .with_specular_glossiness(gltfmat::upgrade::SpecularGlossiness::Extension);
+    let options =
+        UpgradeOptions::default().with_specular_glossiness(gltfmat::SpecularGlossiness::Extension);
     let upgraded = upgrade_path(&path, &options);
     let before = input_json(&path);
     assert_eq!(upgraded.json.to_value()["materials"], before["materials"]);

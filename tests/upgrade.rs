@@ -4,11 +4,10 @@
 mod common;
 use common::{linear_to_srgb, shared, srgb_to_linear};
 
-use gltfmat::check::Severity;
-use gltfmat::document::uri::{FolderResources, NoResources};
-use gltfmat::upgrade::{
-    output, upgrade, SpecGlossReading, SpecularGlossiness, UpgradeOptions, Upgraded,
-};
+use gltfmat::upgrade_output as output;
+use gltfmat::Severity;
+use gltfmat::{upgrade, SpecGlossReading, SpecularGlossiness, UpgradeOptions, Upgraded};
+use gltfmat::{FolderResources, NoResources};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -497,24 +496,17 @@ fn an_output_that_fails_the_check_is_not_written() {
 
 mod verify {
     use super::*;
-    use gltfmat::shade::brdf::SheenVisibility;
-    use gltfmat::shade::compare::compare;
-    use gltfmat::shade::material::Shader;
-    use gltfmat::shade::pairing::{load_materials, AS_STORED};
-    use gltfmat::shade::sheen_table::SheenTable;
-    use gltfmat::upgrade::converted_materials;
 
+    /// The proof's worst ΔE2000 of the fixture's first material against its conversion,
+    /// corrupted by `corrupt` first.
     fn worst_delta_e(fixture: &str, corrupt: impl FnOnce(&mut Upgraded)) -> f64 {
         let path = repo(&format!("fixtures/gltf1/{fixture}"));
         let mut upgraded = upgrade_file(&path, &UpgradeOptions::default());
         corrupt(&mut upgraded);
         let bytes = std::fs::read(&path).unwrap();
         let loader = FolderResources::new(path.parent().unwrap());
-        let sources = load_materials(bytes, fixture, &loader, AS_STORED).unwrap();
-        let source = sources[0].1.clone().expect("a PBR material");
-        let converted = converted_materials(&upgraded).unwrap().remove(0);
-        let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
-        compare(&shader, &source, &converted, 0).max
+        let proof = gltfmat::prove(bytes, fixture, &loader, &upgraded).unwrap();
+        proof[0].result.max
     }
 
     #[test]
@@ -659,7 +651,7 @@ mod verify {
 mod structure {
     use super::*;
     use base64::Engine;
-    use gltfmat::document::uri::NoResources;
+    use gltfmat::NoResources;
     use serde_json::json;
 
     /// A hand-written 1.0 asset exercising the structural conversions: a skinned node with
@@ -731,7 +723,7 @@ mod structure {
         let bytes = serde_json::to_vec(&asset_weighted(halves)).unwrap();
         let up = upgrade(&bytes, &NoResources, &UpgradeOptions::default()).unwrap();
         let report =
-            gltfmat::upgrade::output::verify(&gltfmat::upgrade::output::layout(&up, "out.glb"));
+            gltfmat::upgrade_output::verify(&gltfmat::upgrade_output::layout(&up, "out.glb"));
         assert!(!report.has_errors(), "{:?}", report.diagnostics);
         let json = up.json.to_value();
         let attributes = |mesh: usize| json["meshes"][mesh]["primitives"][0]["attributes"].clone();
@@ -772,7 +764,7 @@ mod structure {
             );
             assert_eq!(outcome.result.max, 0.0, "{}", outcome.a.1);
         }
-        assert!(gltfmat::upgrade::proof_holds(&proof, 1.0));
+        assert!(gltfmat::proof_holds(&proof, 1.0));
     }
 
     #[test]
@@ -1362,7 +1354,7 @@ fn a_file_many_buffers_name_counts_once_in_the_data_read() {
         .flat_map(|i| [(i % 7) as f32, 1.0, 0.0])
         .flat_map(f32::to_le_bytes)
         .collect();
-    let mut loader = gltfmat::document::uri::MemoryResources::default();
+    let mut loader = gltfmat::MemoryResources::default();
     loader
         .files
         .insert("one.bin".into(), std::sync::Arc::new(file.clone().into()));

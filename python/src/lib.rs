@@ -3,11 +3,12 @@
 //! so that Python sees exactly the CLI's report shapes; the Python half (`gltfmat/`) wraps
 //! them in classes.
 
-use gltfmat::document::file::FileId;
-use gltfmat::document::uri::{LoadError, ResourceLoader};
-use gltfmat::document::Bytes;
-use gltfmat::upgrade::{output, Items, NoteKind, SpecularGlossiness};
+use gltfmat::upgrade_output as output;
+use gltfmat::Bytes;
+use gltfmat::FileId;
 use gltfmat::{CheckOptions, FolderResources, NoResources, Profile, Severity, UpgradeOptions};
+use gltfmat::{Items, NoteKind, SpecularGlossiness};
+use gltfmat::{LoadError, ResourceLoader};
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyByteArray, PyBytes};
@@ -53,7 +54,7 @@ impl Source {
         match self {
             Source::Bytes(bytes) => Ok((bytes, name.unwrap_or_else(|| "<bytes>".into()), None)),
             Source::Path(path) => {
-                let bytes = gltfmat::document::file::read(&path)
+                let bytes = gltfmat::read_file(&path)
                     .map_err(|e| GltfmatError::new_err(format!("{}: {e}", path.display())))?;
                 let name = name.unwrap_or_else(|| path.display().to_string());
                 Ok((bytes, name, Some(path)))
@@ -105,7 +106,7 @@ impl PythonResources {
                 )));
             };
             match bytes.len() as u64 {
-                n if n > gltfmat::document::file::MAX_FILE_BYTES => Err(LoadError::TooLarge(n)),
+                n if n > gltfmat::MAX_FILE_BYTES => Err(LoadError::TooLarge(n)),
                 _ => Ok(bytes),
             }
         })
@@ -223,7 +224,7 @@ type UpgradeResult = (String, Option<Vec<u8>>);
 /// Upgrades an asset as `gltfmat upgrade` does: converted, proved, checked, and written
 /// atomically to `output` (or returned as GLB bytes).
 #[pyfunction]
-#[pyo3(signature = (source, output=None, *, name=None, force=false, verify=false, prove=true, threshold=gltfmat::shade::compare::DEFAULT_THRESHOLD, specular_glossiness="metal-rough", double_sided=false, draft_reading="appendix", strict=false, resources=None))]
+#[pyo3(signature = (source, output=None, *, name=None, force=false, verify=false, prove=true, threshold=gltfmat::DEFAULT_THRESHOLD, specular_glossiness="metal-rough", double_sided=false, draft_reading="appendix", strict=false, resources=None))]
 #[allow(clippy::too_many_arguments)]
 fn upgrade(
     py: Python<'_>,
@@ -272,8 +273,8 @@ fn upgrade(
     Ok((json, glb.map(|glb| PyBytes::new(py, &glb).unbind())))
 }
 
-fn reading(name: &str) -> PyResult<gltfmat::upgrade::SpecGlossReading> {
-    use gltfmat::upgrade::SpecGlossReading;
+fn reading(name: &str) -> PyResult<gltfmat::SpecGlossReading> {
+    use gltfmat::SpecGlossReading;
     match name {
         "appendix" => Ok(SpecGlossReading::DraftAppendix),
         "appendix-2016" => Ok(SpecGlossReading::DraftAppendix2016),
@@ -306,7 +307,7 @@ impl Plan {
         let protected: Vec<FileId> = path.and_then(FileId::of_path).into_iter().collect();
         let target = self.output.as_deref().map(target_of).transpose()?;
         if let Some((folder, file)) = &target {
-            output::may_write(&folder.join(file), &protected, self.force)
+            gltfmat::may_write(&folder.join(file), &protected, self.force)
                 .map_err(|e| GltfmatError::new_err(e.to_string()))?;
         }
         let tolerated = self.tolerated(&bytes, name, loader.get());
@@ -331,7 +332,7 @@ impl Plan {
                 .map_err(|e| refused(format!("proof: {e}")))?,
             false => Vec::new(),
         };
-        if self.verify && !gltfmat::upgrade::proof_holds(&proof, self.threshold) {
+        if self.verify && !gltfmat::proof_holds(&proof, self.threshold) {
             return Err(refused(format!(
                 "a converted material does not render like its source within ΔE2000 {}; nothing was written",
                 self.threshold
@@ -342,7 +343,7 @@ impl Plan {
                 let files = output::layout_releasing_json(&mut upgraded, "asset.glb");
                 output::fits_glb(&files.main).map_err(|bytes| {
                     GltfmatError::new_err(
-                        output::WriteError::GlbTooLarge("asset.glb".into(), bytes).to_string(),
+                        gltfmat::WriteError::GlbTooLarge("asset.glb".into(), bytes).to_string(),
                     )
                 })?;
                 (output::verify(&files), Some(files.main.bytes()), Vec::new())
@@ -411,7 +412,7 @@ fn target_of(output: &Path) -> PyResult<(PathBuf, String)> {
                 output.display()
             ))
         })?;
-    let folder = gltfmat::document::uri::folder_of(output);
+    let folder = gltfmat::folder_of(output);
     if !folder.is_dir() {
         return Err(GltfmatError::new_err(format!(
             "{}: the output folder {} does not exist (or is not a folder)",
@@ -425,7 +426,7 @@ fn target_of(output: &Path) -> PyResult<(PathBuf, String)> {
 /// Compares the materials of two assets on disk: each pair's outcome as
 /// `compare --format json` writes it.
 #[pyfunction]
-#[pyo3(signature = (a, b, *, threshold=gltfmat::shade::compare::DEFAULT_THRESHOLD, pairs=Vec::new(), draft_reading="appendix"))]
+#[pyo3(signature = (a, b, *, threshold=gltfmat::DEFAULT_THRESHOLD, pairs=Vec::new(), draft_reading="appendix"))]
 fn compare(
     py: Python<'_>,
     a: PathBuf,
@@ -469,7 +470,7 @@ fn render(
         let drawn = (picture.drawn.into_iter().zip(picture.not_drawn))
             .map(|((index, name), missing)| (index, name, missing))
             .collect::<Vec<_>>();
-        PyResult::Ok((gltfmat::shade::render::png(&picture.image), drawn))
+        PyResult::Ok((gltfmat::png(&picture.image), drawn))
     })?;
     Ok((PyBytes::new(py, &png).unbind(), drawn))
 }

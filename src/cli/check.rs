@@ -3,9 +3,9 @@
 
 use crate::common::{Failure, Outcome};
 use crate::config;
-use gltfmat::check::registry;
-use gltfmat::document::uri::FolderResources;
+use gltfmat::registry;
 use gltfmat::report::{write_each, Format, Style};
+use gltfmat::FolderResources;
 use gltfmat::{check_bytes, check_path, CheckOptions, NoResources, Profile, Report, Severity};
 use rayon::prelude::*;
 use std::cell::Cell;
@@ -280,8 +280,8 @@ fn check_file(
     options: &CheckOptions,
 ) -> Result<Report, String> {
     if path.as_os_str() == "-" {
-        let bytes = gltfmat::document::file::read_stream(std::io::stdin().lock())
-            .map_err(|e| format!("stdin: {e}"))?;
+        let bytes =
+            gltfmat::read_stream(std::io::stdin().lock()).map_err(|e| format!("stdin: {e}"))?;
         return Ok(match stdin_name {
             Some(name) => {
                 let loader = FolderResources::beside(name);

@@ -68,8 +68,8 @@ pub enum DraftReadingArg {
 }
 
 impl DraftReadingArg {
-    pub fn reading(self) -> gltfmat::upgrade::SpecGlossReading {
-        use gltfmat::upgrade::SpecGlossReading;
+    pub fn reading(self) -> gltfmat::SpecGlossReading {
+        use gltfmat::SpecGlossReading;
         match self {
             DraftReadingArg::Appendix => SpecGlossReading::DraftAppendix,
             DraftReadingArg::Appendix2016 => SpecGlossReading::DraftAppendix2016,

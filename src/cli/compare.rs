@@ -1,8 +1,8 @@
 //! `gltfmat compare A B`: ΔE2000 of paired materials, human or JSON, optional heat maps.
 
 use crate::common::{Failure, Outcome};
-use gltfmat::shade::compare::DIRECTIONS;
-use gltfmat::shade::render::heatmap;
+use gltfmat::heatmap;
+use gltfmat::DIRECTIONS;
 use gltfmat::{compare, CompareOptions};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -17,7 +17,7 @@ pub struct CompareArgs {
     #[arg(long = "material-map", value_name = "I=J")]
     material_map: Vec<String>,
     /// Largest ΔE2000 allowed (1.0 ≈ one just-noticeable difference).
-    #[arg(long, default_value_t = gltfmat::shade::compare::DEFAULT_THRESHOLD, value_parser = crate::common::threshold)]
+    #[arg(long, default_value_t = gltfmat::DEFAULT_THRESHOLD, value_parser = crate::common::threshold)]
     threshold: f64,
     /// UV grid per side, at most 4096 (0: the finest texture resolution involved, at least
     /// 16 and at most 4096).
@@ -149,13 +149,11 @@ pub fn run(args: CompareArgs) -> Outcome {
     options.heat_maps = args.heatmap.is_some() || args.report.is_some();
     options.draft_reading = args.draft_reading.reading();
     if let Some(path) = &args.report {
-        gltfmat::output::may_write(path, &[], args.force)
-            .map_err(|e| Failure::usage(e.to_string()))?;
+        gltfmat::may_write(path, &[], args.force).map_err(|e| Failure::usage(e.to_string()))?;
     }
     if let Some(path) = &args.heatmap {
         // Refused before comparing, which can take a while; asked again for every file.
-        gltfmat::output::may_write(path, &[], args.force)
-            .map_err(|e| Failure::usage(e.to_string()))?;
+        gltfmat::may_write(path, &[], args.force).map_err(|e| Failure::usage(e.to_string()))?;
     }
     let comparison = compare(&args.a, &args.b, &options)?;
     let outcomes = comparison.outcomes;
@@ -175,12 +173,12 @@ pub fn run(args: CompareArgs) -> Outcome {
                 ))
             };
             let image = heatmap(&o.result.per_texel, o.result.grid, args.threshold);
-            maps.push((target, gltfmat::shade::render::png(&image)));
+            maps.push((target, gltfmat::png(&image)));
         }
         let files: Vec<(&Path, &[u8])> = (maps.iter())
             .map(|(target, png)| (target.as_path(), png.as_slice()))
             .collect();
-        gltfmat::output::write_files(&files, &comparison.inputs, args.force)
+        gltfmat::write_files(&files, &comparison.inputs, args.force)
             .map_err(|e| Failure::usage(e.to_string()))?;
     }
     if let Some(path) = &args.report {
@@ -220,13 +218,13 @@ pub fn write_report(
     assets: (&Path, &Path),
     outcomes: &[gltfmat::Outcome],
     threshold: f64,
-    inputs: &[gltfmat::document::file::FileId],
+    inputs: &[gltfmat::FileId],
     force: bool,
 ) -> Result<(), Failure> {
-    let mut page = gltfmat::page::Page::new("gltfmat comparison");
+    let mut page = gltfmat::Page::new("gltfmat comparison");
     let lines: Vec<String> = outcomes.iter().map(|o| figures(o, threshold)).collect();
     page.add_comparison(assets, outcomes, &lines, threshold);
-    gltfmat::output::write_file(path, page.html().as_bytes(), inputs, force)
+    gltfmat::write_file(path, page.html().as_bytes(), inputs, force)
         .map(|_| ())
         .map_err(|e| Failure::usage(e.to_string()))
 }

@@ -1,8 +1,8 @@
 //! `gltfmat lut sheen`: the sheen albedo table the evaluator uses, exported for engines.
 
 use crate::common::{Failure, Outcome};
-use gltfmat::shade::brdf::SheenVisibility;
-use gltfmat::shade::sheen_table::SheenTable;
+use gltfmat::SheenTable;
+use gltfmat::SheenVisibility;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -64,7 +64,7 @@ pub fn run(args: LutArgs) -> Outcome {
         LutFormat::Png => table.to_png(),
     };
     let written = match &args.output {
-        Some(path) => gltfmat::output::write_file(path, &bytes, &[], args.force)
+        Some(path) => gltfmat::write_file(path, &bytes, &[], args.force)
             .map(drop)
             .map_err(|e| e.to_string()),
         None if args.format == LutFormat::Png => Err("--format png needs -o PATH".to_string()),

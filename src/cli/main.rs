@@ -110,7 +110,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    gltfmat::system::return_large_blocks_when_freed();
+    gltfmat::return_large_blocks_when_freed();
     signals::remove_temporaries_when_ended();
     let outcome = match Cli::parse().command {
         Command::Check(args) => check::run(args),

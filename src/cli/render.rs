@@ -22,14 +22,13 @@ pub struct RenderArgs {
     force: bool,
     /// Pixels per side (per material with --all), 8 to 1024: a picture's time grows with its
     /// pixels, and a contact sheet holds at most 1024² of them.
-    #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u32).range(8..=i64::from(gltfmat::shade::render::MAX_SIZE)))]
+    #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u32).range(8..=i64::from(gltfmat::MAX_SIZE)))]
     size: u32,
 }
 
 pub fn run(args: RenderArgs) -> Outcome {
     // Refused before rendering, which can take a while; asked again when writing.
-    gltfmat::output::may_write(&args.output, &[], args.force)
-        .map_err(|e| Failure::usage(e.to_string()))?;
+    gltfmat::may_write(&args.output, &[], args.force).map_err(|e| Failure::usage(e.to_string()))?;
     let mut options = gltfmat::RenderOptions::default();
     options.material = args.material.clone();
     options.all = args.all;
@@ -43,21 +42,18 @@ pub fn run(args: RenderArgs) -> Outcome {
         }
     }
     for (i, name) in &picture.skipped {
-        outln!(
-            "material {i} '{name}': not drawn: {}",
-            gltfmat::shade::pairing::NO_MODEL
-        );
+        outln!("material {i} '{name}': not drawn: {}", gltfmat::NO_MODEL);
     }
     if picture.layout.cell < args.size {
         outln!(
             "cells drawn at {} pixels, not {}: a sheet holds at most {} pixels",
             picture.layout.cell,
             args.size,
-            gltfmat::shade::render::MAX_PIXELS
+            gltfmat::MAX_PIXELS
         );
     }
-    let png = gltfmat::shade::render::png(&picture.image);
-    gltfmat::output::write_file(&args.output, &png, &picture.inputs, args.force)
+    let png = gltfmat::png(&picture.image);
+    gltfmat::write_file(&args.output, &png, &picture.inputs, args.force)
         .map_err(|e| Failure::usage(e.to_string()))?;
     Ok(ExitCode::SUCCESS)
 }

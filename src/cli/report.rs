@@ -2,9 +2,9 @@
 //! the materials rendered and the textures shown.
 
 use crate::common::{Failure, Outcome};
-use gltfmat::document::file::FileId;
-use gltfmat::page::{Page, Part, Renders};
+use gltfmat::FileId;
 use gltfmat::{check_path, CheckOptions, Profile};
+use gltfmat::{Page, Part, Renders};
 use rayon::prelude::*;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -51,8 +51,7 @@ enum ProfileArg {
 }
 
 pub fn run(args: ReportArgs) -> Outcome {
-    gltfmat::output::may_write(&args.output, &[], args.force)
-        .map_err(|e| Failure::usage(e.to_string()))?;
+    gltfmat::may_write(&args.output, &[], args.force).map_err(|e| Failure::usage(e.to_string()))?;
     let walked = crate::walk::assets(&args.inputs, &args.exclude)?;
     let files: Vec<PathBuf> = (walked.files.into_iter())
         .filter(|f| f.as_os_str() != "-")
@@ -90,7 +89,7 @@ pub fn run(args: ReportArgs) -> Outcome {
         }
     }
     let read: Vec<FileId> = files.iter().filter_map(|f| FileId::of_path(f)).collect();
-    gltfmat::output::write_file(&args.output, page.html().as_bytes(), &read, args.force)
+    gltfmat::write_file(&args.output, page.html().as_bytes(), &read, args.force)
         .map_err(|e| Failure::usage(e.to_string()))?;
     outln!("wrote {} ({} file(s))", args.output.display(), files.len());
     Ok(if unreadable {

@@ -1,7 +1,7 @@
 //! `gltfmat rules` and `gltfmat explain CODE`: generated from the registry.
 
 use crate::common::{Failure, Outcome};
-use gltfmat::check::registry;
+use gltfmat::registry;
 use std::process::ExitCode;
 
 /// How `gltfmat rules` prints the list.

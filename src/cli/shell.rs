@@ -28,7 +28,7 @@ pub fn man(command: clap::Command, dir: Option<&Path>, force: bool) -> Outcome {
     let files: Vec<(&Path, &[u8])> = (pages.iter())
         .map(|(p, b)| (p.as_path(), b.as_slice()))
         .collect();
-    gltfmat::output::write_files(&files, &[], force).map_err(|e| Failure::usage(e.to_string()))?;
+    gltfmat::write_files(&files, &[], force).map_err(|e| Failure::usage(e.to_string()))?;
     outln!("wrote {} pages into {}", pages.len(), dir.display());
     Ok(ExitCode::SUCCESS)
 }

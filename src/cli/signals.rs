@@ -34,7 +34,7 @@ pub fn remove_temporaries_when_ended() {
         };
         std::thread::spawn(move || {
             if let Some(signal) = signals.forever().next() {
-                gltfmat::output::exit_removing_unfinished(128 + signal);
+                gltfmat::exit_removing_unfinished(128 + signal);
             }
         });
     }

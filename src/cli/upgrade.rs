@@ -2,12 +2,13 @@
 //! the conversion report.
 
 use crate::common::{Failure, Outcome};
-use gltfmat::check::Report;
-use gltfmat::document::file::FileId;
-use gltfmat::document::uri::folder_of;
+use gltfmat::folder_of;
 use gltfmat::report::{render, Format, Style};
-use gltfmat::upgrade::{output, Items, Note, NoteKind, SpecularGlossiness};
+use gltfmat::upgrade_output as output;
+use gltfmat::FileId;
+use gltfmat::Report;
 use gltfmat::{upgrade, CheckOptions, FolderResources, Severity, UpgradeOptions, Upgraded};
+use gltfmat::{Items, Note, NoteKind, SpecularGlossiness};
 use std::collections::HashMap;
 use std::hash::Hash;
 use std::io::Write;
@@ -55,7 +56,7 @@ pub struct UpgradeArgs {
     #[arg(long, value_name = "HTML", conflicts_with = "no_verify")]
     report: Option<PathBuf>,
     /// ΔE2000 a converted material may differ from its source by.
-    #[arg(long, default_value_t = gltfmat::shade::compare::DEFAULT_THRESHOLD, value_parser = crate::common::threshold)]
+    #[arg(long, default_value_t = gltfmat::DEFAULT_THRESHOLD, value_parser = crate::common::threshold)]
     threshold: f64,
     /// Print to stderr how long the conversion, the proof and the output's check and write
     /// each took (wall-clock seconds).
@@ -108,16 +109,16 @@ pub fn run(args: UpgradeArgs) -> Outcome {
                 "--report needs the output in a file, not on stdout",
             ));
         }
-        output::may_write(report, &[], args.force).map_err(|e| Failure::usage(e.to_string()))?;
+        gltfmat::may_write(report, &[], args.force).map_err(|e| Failure::usage(e.to_string()))?;
     }
     let input_id = FileId::of_path(&args.input);
     // Refused before converting: a conversion can take minutes.
     if let Destination::File { folder, name } = &destination {
         let protected: Vec<FileId> = input_id.into_iter().collect();
-        output::may_write(&folder.join(name), &protected, args.force)
+        gltfmat::may_write(&folder.join(name), &protected, args.force)
             .map_err(|e| Failure::usage(e.to_string()))?;
     }
-    let bytes = gltfmat::document::file::read(&args.input)
+    let bytes = gltfmat::read_file(&args.input)
         .map_err(|e| Failure::usage(format!("{}: {e}", args.input.display())))?;
     let inherited = input_errors(&args.input);
     let tolerated = tolerated_errors(&args, inherited.as_ref());
@@ -321,14 +322,16 @@ fn write_to_stdout(
 ) -> Outcome {
     let files = output::layout_releasing_json(upgraded, "-.glb");
     output::fits_glb(&files.main).map_err(|bytes| {
-        Failure::usage(output::WriteError::GlbTooLarge("stdout".into(), bytes).to_string())
+        Failure::usage(gltfmat::WriteError::GlbTooLarge("stdout".into(), bytes).to_string())
     })?;
     let report = output::verify(&files);
     if !tolerated.accepts(&report) {
         return Err(refuse_failed_check(report, upgraded, input, inherited));
     }
     let mut stdout = std::io::stdout().lock();
-    output::write_parts(&mut stdout, files.main.slices())
+    files
+        .main
+        .write_to(&mut stdout)
         .and_then(|()| stdout.flush())
         .map_err(|e| Failure::usage(format!("stdout: {e}")))?;
     Ok(ExitCode::SUCCESS)
@@ -400,13 +403,13 @@ fn tolerated_errors(
 
 /// The proof: every source material that has a model of its own (a 1.0 asset's PBR-draft
 /// materials, every material of a 2.0 asset) compared with its conversion, one line each in
-/// the log. False when the proof does not hold ([`gltfmat::upgrade::proof_holds`]).
+/// the log. False when the proof does not hold ([`gltfmat::proof_holds`]).
 fn proved(read: Fingerprint, args: &UpgradeArgs, upgraded: &Upgraded, log: &mut Log) -> bool {
     // No material, nothing to compare: the input is not read again.
     if upgraded.json.items("materials").is_none_or(Items::is_empty) {
         return true;
     }
-    let bytes = match gltfmat::document::file::read(&args.input) {
+    let bytes = match gltfmat::read_file(&args.input) {
         Ok(bytes) if Fingerprint::of(&bytes) == read => bytes,
         Ok(_) => {
             log.line(format_args!(
@@ -421,7 +424,7 @@ fn proved(read: Fingerprint, args: &UpgradeArgs, upgraded: &Upgraded, log: &mut 
     };
     let loader = FolderResources::beside(&args.input);
     let name = args.input.to_string_lossy();
-    let outcomes = match gltfmat::upgrade::prove(bytes, &name, &loader, upgraded) {
+    let outcomes = match gltfmat::prove(bytes, &name, &loader, upgraded) {
         Ok(outcomes) => outcomes,
         Err(why) => {
             log.line(format_args!("proof: {why}"));
@@ -438,7 +441,7 @@ fn proved(read: Fingerprint, args: &UpgradeArgs, upgraded: &Upgraded, log: &mut 
     for (figures, pairs) in grouped(lines) {
         log.line(format_args!("proof: {}: {figures}", places(&pairs)));
     }
-    gltfmat::upgrade::proof_holds(&outcomes, args.threshold)
+    gltfmat::proof_holds(&outcomes, args.threshold)
 }
 
 /// The `--report` page: the source and its upgrade compared as the proof compares them, with

@@ -29,7 +29,7 @@ pub enum FileError {
 }
 
 /// Reads the regular file at `path` (a symlink is followed: the caller named it).
-pub fn read(path: &Path) -> Result<Vec<u8>, FileError> {
+pub fn read_file(path: &Path) -> Result<Vec<u8>, FileError> {
     read_opened(open(path)?)
 }
 
@@ -381,7 +381,7 @@ mod tests {
         let folder = tempfile::tempdir().unwrap();
         let path = folder.path().join("a.bin");
         std::fs::write(&path, b"abc").unwrap();
-        assert_eq!(read(&path).unwrap(), b"abc");
+        assert_eq!(read_file(&path).unwrap(), b"abc");
     }
 
     #[test]
@@ -391,7 +391,7 @@ mod tests {
         let length = READ_IN_PARTS_FROM + 12_345;
         let content: Vec<u8> = (0..length).map(|i| (i * 7 + i / 4096) as u8).collect();
         std::fs::write(&path, &content).unwrap();
-        assert_eq!(read(&path).unwrap(), content);
+        assert_eq!(read_file(&path).unwrap(), content);
         // A file shorter than its length said (truncated meanwhile) is read as it is.
         let opened = File::open(&path).unwrap();
         assert_eq!(read_parts(&opened, length + (1 << 20)).unwrap(), content);
@@ -403,20 +403,20 @@ mod tests {
     #[test]
     fn folders_are_refused_as_not_regular() {
         let folder = tempfile::tempdir().unwrap();
-        let refused = read(folder.path()).unwrap_err();
+        let refused = read_file(folder.path()).unwrap_err();
         assert_eq!(refused.to_string(), "not a regular file (a folder)");
     }
 
     #[cfg(unix)]
     #[test]
     fn devices_and_fifos_are_refused_without_reading_or_waiting() {
-        let refused = read(Path::new("/dev/zero")).unwrap_err();
+        let refused = read_file(Path::new("/dev/zero")).unwrap_err();
         assert_eq!(refused.to_string(), "not a regular file (a device)");
         let folder = tempfile::tempdir().unwrap();
         let fifo = folder.path().join("pipe.gltf");
         let made = std::process::Command::new("mkfifo").arg(&fifo).status();
         assert!(made.is_ok_and(|status| status.success()), "mkfifo {fifo:?}");
-        let refused = read(&fifo).unwrap_err();
+        let refused = read_file(&fifo).unwrap_err();
         assert_eq!(refused.to_string(), "not a regular file (a FIFO)");
     }
 }

@@ -11,7 +11,6 @@ pub mod uri;
 
 use crate::diagnostic::{khronos, Diagnostic, Sink};
 pub use bytes::{BufferData, Bytes, Elsewhere, Piece, Pieces};
-pub use image_header::ImageInfo;
 use std::ops::Range;
 use std::sync::Arc;
 pub use tree::{Array, Node, Object, StringId, Tree};
@@ -212,5 +211,62 @@ fn parse_json<R>(
             diagnostics.push(d);
             None
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A GLB whose BIN chunk is past [`file::LARGE_FILE_BYTES`] (zeros).
+    fn large_glb(folder: &std::path::Path) -> std::path::PathBuf {
+        let length = file::LARGE_FILE_BYTES as usize + (1 << 20);
+        let mut json =
+            format!(r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":{length}}}]}}"#);
+        while json.len() % 4 != 0 {
+            json.push(' ');
+        }
+        let mut glb = b"glTF\x02\0\0\0".to_vec();
+        glb.extend(((12 + 8 + json.len() + 8 + length) as u32).to_le_bytes());
+        glb.extend((json.len() as u32).to_le_bytes());
+        glb.extend(b"JSON");
+        glb.extend(json.as_bytes());
+        glb.extend((length as u32).to_le_bytes());
+        glb.extend(b"BIN\0");
+        glb.resize(glb.len() + length, 0);
+        let path = folder.join("large.glb");
+        std::fs::write(&path, glb).unwrap();
+        path
+    }
+
+    #[test]
+    fn a_large_glbs_bin_chunk_is_left_in_its_file_and_read_in_parts() {
+        let folder = tempfile::tempdir().unwrap();
+        let path = large_glb(folder.path());
+        let mut findings = Vec::new();
+        let document = read_path(&path, &mut findings).unwrap();
+        assert!(findings.is_empty(), "{findings:?}");
+        assert!(matches!(document.bin_elsewhere, Some(Elsewhere::File(_))));
+        assert!(
+            document.bytes.len() < 1 << 20,
+            "{} bytes held",
+            document.bytes.len()
+        );
+        assert_eq!(
+            document.bin_data().unwrap().get(0..12).map(|b| b.len()),
+            Some(12)
+        );
+    }
+
+    #[test]
+    fn a_large_glb_truncated_after_it_was_opened_reads_as_nothing_not_a_fault() {
+        let folder = tempfile::tempdir().unwrap();
+        let path = large_glb(folder.path());
+        let document = read_path(&path, &mut Vec::new()).unwrap();
+        let bin = document.bin_data().unwrap();
+        assert_eq!(bin.get(0..12).map(|b| b.len()), Some(12));
+        let file = std::fs::OpenOptions::new().write(true).open(&path).unwrap();
+        file.set_len(100).unwrap();
+        assert!(bin.get(0..12).is_none());
     }
 }

@@ -167,7 +167,7 @@ pub trait ResourceLoader: Sync {
     fn load(&self, relative_path: &str) -> Result<Arc<Bytes>, LoadError>;
 
     /// Reads a buffer's file as [`load`](Self::load) does, or leaves a large one in its
-    /// opened file to be read a range at a time (see [`super::file::LARGE_FILE_BYTES`]).
+    /// opened file to be read a range at a time (from 32 MiB on).
     fn load_buffer(&self, relative_path: &str) -> Result<Kept, LoadError> {
         self.load(relative_path).map(Kept::Read)
     }

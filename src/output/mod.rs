@@ -164,7 +164,7 @@ impl Drop for FolderLock {
 const WRITE_AT_ONCE: usize = 1 << 20;
 
 /// Writes `parts` one after the other, in calls of at most `WRITE_AT_ONCE` (1 MiB) bytes.
-pub fn write_parts<'p>(
+pub(crate) fn write_parts<'p>(
     out: &mut impl std::io::Write,
     parts: impl IntoIterator<Item = &'p [u8]>,
 ) -> std::io::Result<()> {

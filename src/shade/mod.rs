@@ -26,5 +26,3 @@ pub use eval::{appearance, brdf, iridescence, material, sheen_table};
 pub(crate) use eval::{elementary, lanes};
 pub use picture::render;
 pub(crate) use sources::{legacy, load, sample, surface};
-
-pub use sample::MaterialSource;

@@ -23,20 +23,11 @@ use std::path::Path;
 pub type Named = (String, Option<MaterialSource>);
 
 /// An asset's materials: a 1.0 asset's PBR-draft materials, otherwise a 2.0 asset's; their
-/// textures no finer than `finest` texels a side ([`AS_STORED`]: as the files store them).
-pub fn load_materials(
-    bytes: Vec<u8>,
-    name: &str,
-    loader: &dyn ResourceLoader,
-    finest: u32,
-) -> Result<Vec<Named>, String> {
-    Ok(load_materials_on(bytes, name, loader, finest, false)?.0)
-}
-
-/// [`load_materials`], and with `surfaces` the points on a glTF 2.0 asset's meshes where each
+/// textures no finer than `finest` texels a side ([`AS_STORED`]: as the files store them);
+/// and with `surfaces` the points on a glTF 2.0 asset's meshes where each
 /// material's texCoord sets differ: the comparison reads each slot through its own set there.
 /// A glTF 1.0 asset has none (the PBR drafts bind one set).
-pub(crate) fn load_materials_on(
+pub(crate) fn load_materials(
     bytes: Vec<u8>,
     name: &str,
     loader: &dyn ResourceLoader,
@@ -353,19 +344,18 @@ pub struct Compared {
 type Loaded = (Vec<Named>, Vec<Surface>);
 
 fn materials_of(path: &Path, finest: u32, surfaces: bool) -> Result<(Loaded, Vec<FileId>), Error> {
-    let bytes = crate::document::file::read(path).map_err(|source| Error::Io {
+    let bytes = crate::document::file::read_file(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
     })?;
     let loader = FolderResources::beside(path);
     let name = path.display().to_string();
-    let materials =
-        load_materials_on(bytes, &name, &loader, finest, surfaces).map_err(|reason| {
-            Error::Unusable {
-                path: path.to_path_buf(),
-                reason,
-            }
-        })?;
+    let materials = load_materials(bytes, &name, &loader, finest, surfaces).map_err(|reason| {
+        Error::Unusable {
+            path: path.to_path_buf(),
+            reason,
+        }
+    })?;
     let inputs = FileId::of_path(path).into_iter().chain(loader.files_read());
     Ok((materials, inputs.collect()))
 }
@@ -408,8 +398,8 @@ pub struct Picture {
     pub image: RgbImage,
     /// The `(index, name)` of each material drawn, in cell order.
     pub drawn: Vec<(usize, String)>,
-    /// What is not drawn of each material drawn, in the same order (see
-    /// [`MaterialSource::unmodelled`]): empty when the picture shows all of it.
+    /// What is not drawn of each material drawn, in the same order (inputs
+    /// the evaluator does not model): empty when the picture shows all of it.
     pub not_drawn: Vec<Vec<String>>,
     /// The `(index, name)` of each material wanted but not drawn at all, having no model
     /// ([`NO_MODEL`]).
@@ -430,7 +420,7 @@ pub struct Ball {
     /// The ball; `None` when the material cannot be read for the evaluator (then `not_drawn`
     /// says why).
     pub image: Option<RgbImage>,
-    /// What is not drawn of it (see [`MaterialSource::unmodelled`]).
+    /// What is not drawn of it (inputs the evaluator does not model).
     pub not_drawn: Vec<String>,
 }
 

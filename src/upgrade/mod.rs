@@ -287,8 +287,7 @@ impl From<NotGltf1> for UpgradeError {
 /// through `loader` (the CLI confines it to the asset's folder).
 ///
 /// ```
-/// use gltfmat::document::uri::NoResources;
-/// use gltfmat::upgrade::{upgrade, UpgradeOptions};
+/// use gltfmat::{upgrade, NoResources, UpgradeOptions};
 ///
 /// let gltf1 = br#"{"asset": {"version": "1.0"}, "scene": "s", "scenes": {"s": {"nodes": []}},
 ///   "materials": {"gold": {"extensions": {"FRAUNHOFER_materials_pbr": {
@@ -335,7 +334,7 @@ pub fn upgrade<'b>(
 
 /// The materials of an upgraded asset as the shading evaluator samples them (an error when
 /// one of its textures cannot be decoded).
-pub fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, String> {
+pub(crate) fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, String> {
     let materials = || (upgraded.json.items("materials").into_iter()).flat_map(Items::iter);
     let textures: Vec<Value> = (upgraded.json.items("textures").into_iter())
         .flat_map(Items::iter)

@@ -32,7 +32,7 @@ pub fn prove<'b>(
 ) -> Result<Vec<Outcome>, ProofError> {
     // Conversions keep the geometry: where texCoord sets differ, the points are the source's.
     let (sources, surfaces) =
-        pairing::load_materials_on(input.into().into_owned(), name, loader, AS_STORED, true)
+        pairing::load_materials(input.into().into_owned(), name, loader, AS_STORED, true)
             .map_err(ProofError::Source)?;
     let reading = upgraded.draft_reading();
     let sources: Vec<Named> = (sources.into_iter())

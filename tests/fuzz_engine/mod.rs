@@ -18,9 +18,9 @@
 //! and the process exits 1.
 
 use base64::Engine;
-use gltfmat::check::{check_bytes, CheckOptions, Profile};
-use gltfmat::document::uri::NoResources;
-use gltfmat::upgrade::{upgrade, UpgradeOptions};
+use gltfmat::NoResources;
+use gltfmat::{check_bytes, CheckOptions, Profile};
+use gltfmat::{upgrade, UpgradeOptions};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
@@ -291,9 +291,8 @@ fn exercise(input: &[u8]) {
     }
     let _ = check_bytes("fuzz.glb", asset.clone(), &NoResources, &deep);
     if let Ok(upgraded) = upgrade(&asset, &NoResources, &UpgradeOptions::default()) {
-        let _ = gltfmat::upgrade::output::verify(&gltfmat::upgrade::output::layout(
-            &upgraded, "out.glb",
-        ));
+        let _ =
+            gltfmat::upgrade_output::verify(&gltfmat::upgrade_output::layout(&upgraded, "out.glb"));
     }
 }
 
@@ -382,8 +381,8 @@ fn exercise_on_disk(rng: &mut Rng, input: &[u8], corpus: &[Vec<u8>], scratch: &P
     for file in files.iter().take(8) {
         plant(rng, &folder, file, corpus);
     }
-    let _ = gltfmat::check::check_path(&path, &CheckOptions::default().with_deep(true));
-    let resources = gltfmat::document::uri::FolderResources::beside(&path);
+    let _ = gltfmat::check_path(&path, &CheckOptions::default().with_deep(true));
+    let resources = gltfmat::FolderResources::beside(&path);
     let _ = upgrade(&asset, &resources, &UpgradeOptions::default());
     2
 }

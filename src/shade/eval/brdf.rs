@@ -98,6 +98,7 @@ pub fn fresnel<R: Real>(f0: f64, f90: f64, weight: R) -> R {
 }
 
 /// Schlick's Fresnel, F = f0 + (f90 − f0)(1 − |VdotH|)⁵.
+#[cfg(test)]
 pub fn schlick(f0: f64, f90: f64, v_dot_h: f64) -> f64 {
     fresnel(f0, f90, schlick_weight(v_dot_h))
 }
@@ -134,6 +135,7 @@ pub fn smith_vis<R: Real>(alpha: f64, n_dot_l: R, n_dot_v: R) -> R {
 }
 
 /// Smith Λ for the isotropic GGX lobe, for the Λ-form cross-check and the furnace tests.
+#[cfg(test)]
 pub fn smith_lambda(alpha: f64, n_dot_w: f64) -> f64 {
     let c2 = n_dot_w * n_dot_w;
     let tan2 = (1.0 - c2).max(0.0) / c2.max(1e-300);

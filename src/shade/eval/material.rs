@@ -715,7 +715,6 @@ mod tests {
     /// base is scaled by 1 − E (clamped at 0) from the table.
     #[test]
     fn a_white_sheen_on_a_white_lambert_base_reflects_at_most_what_arrives() {
-        use crate::shade::sheen_table::albedo as sheen_albedo;
         let shader = Shader::new(SheenTable::compute(16, SheenVisibility::Charlie));
         let mut above_one = 0;
         for sheen_roughness in [0.05, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0] {
@@ -732,7 +731,7 @@ mod tests {
                 let albedo = crate::shade::eval::quadrature::hemisphere(384, 64, |l| {
                     shader.brdf(&material, &Geometry::new(v, l))[0] * l[2]
                 });
-                let lobe = sheen_albedo(SheenVisibility::Charlie, v[2], sheen_roughness);
+                let lobe = SheenTable::albedo(SheenVisibility::Charlie, v[2], sheen_roughness);
                 assert!(
                     albedo <= lobe.max(1.0) + 1e-3,
                     "sheen roughness {sheen_roughness}, θv {theta_v}: albedo {albedo}, lobe {lobe}"

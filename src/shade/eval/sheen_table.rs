@@ -13,15 +13,6 @@ use super::sheen_charlie16;
 const NODES_MU: usize = 384;
 const NODES_PHI: usize = 64;
 
-/// The exact albedo of the sheen lobe at one (μ, sheenRoughness).
-pub fn albedo(visibility: SheenVisibility, mu: f64, sheen_roughness: f64) -> f64 {
-    let mu = mu.clamp(1e-4, 1.0);
-    let v = [(1.0 - mu * mu).sqrt(), 0.0, mu];
-    hemisphere(NODES_MU, NODES_PHI, |l| {
-        sheen_lobe(visibility, sheen_roughness, &Geometry::new(v, l)) * l[2]
-    })
-}
-
 /// The directional albedo E(μ, sheenRoughness) of the sheen lobe, on a square grid.
 #[derive(Debug, Clone)]
 pub struct SheenTable {
@@ -41,6 +32,16 @@ pub struct SheenTable {
 }
 
 impl SheenTable {
+    /// The exact albedo of the sheen lobe at one (μ, sheenRoughness), which the table
+    /// holds at its texel centres.
+    pub fn albedo(visibility: SheenVisibility, mu: f64, sheen_roughness: f64) -> f64 {
+        let mu = mu.clamp(1e-4, 1.0);
+        let v = [(1.0 - mu * mu).sqrt(), 0.0, mu];
+        hemisphere(NODES_MU, NODES_PHI, |l| {
+            sheen_lobe(visibility, sheen_roughness, &Geometry::new(v, l)) * l[2]
+        })
+    }
+
     /// The side of the table the evaluator shades sheen with.
     pub const STANDARD_SIZE: usize = 16;
 
@@ -69,13 +70,13 @@ impl SheenTable {
                 scope.spawn(move || {
                     for (k, value) in out.iter_mut().enumerate() {
                         let k = chunk * rows_per_chunk * size + k;
-                        *value = albedo(visibility, centre(k % size), centre(k / size));
+                        *value = SheenTable::albedo(visibility, centre(k % size), centre(k / size));
                     }
                 });
             }
         });
         let limit = (0..size)
-            .map(|j| albedo(visibility, centre(j), 0.0))
+            .map(|j| SheenTable::albedo(visibility, centre(j), 0.0))
             .collect();
         SheenTable {
             size,
@@ -152,12 +153,12 @@ mod tests {
             (1.0, 0.1, 0.7205, 0.4940),
             (1.0, 0.9, 0.1943, 0.1674),
         ] {
-            let e = albedo(SheenVisibility::Charlie, mu, roughness);
+            let e = SheenTable::albedo(SheenVisibility::Charlie, mu, roughness);
             assert!(
                 (e - charlie).abs() < 1e-3,
                 "Charlie E({mu}, {roughness}) = {e}"
             );
-            let e = albedo(SheenVisibility::Ashikhmin, mu, roughness);
+            let e = SheenTable::albedo(SheenVisibility::Ashikhmin, mu, roughness);
             assert!(
                 (e - ashikhmin).abs() < 1e-3,
                 "Ashikhmin E({mu}, {roughness}) = {e}"

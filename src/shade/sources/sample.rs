@@ -1031,6 +1031,7 @@ impl MaterialSource {
     }
 
     /// Prepares a glTF 2.0 material; `textures` are the document's, by texture index.
+    #[cfg(test)]
     pub fn gltf2(material: &Value, textures: &[Option<Texture>]) -> MaterialSource {
         MaterialSource::gltf2_sampled(material, textures, &[], &[])
     }

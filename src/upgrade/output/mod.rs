@@ -12,7 +12,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use crate::output::Temporary;
-pub use crate::output::{may_write, write_parts, WriteError};
+use crate::output::{may_write, WriteError};
 
 /// One output file: its name (relative to the output folder) and its bytes, a head in one
 /// piece and then data in shared pieces, written one after the other. The geometry and
@@ -49,6 +49,11 @@ impl File {
     /// The file's bytes, piece by piece, in order.
     pub fn slices(&self) -> impl Iterator<Item = &[u8]> {
         std::iter::once(&self.head[..]).chain(self.data.slices())
+    }
+
+    /// Writes the file's bytes to `out`, piece by piece.
+    pub fn write_to(&self, out: &mut impl std::io::Write) -> std::io::Result<()> {
+        crate::output::write_parts(out, self.slices())
     }
 
     /// The file's bytes in one piece (a copy).
