@@ -5,10 +5,10 @@ use crate::check::context::{member, unsigned, Context, ResourceInfo};
 use crate::check::pass_codes;
 use crate::diagnostic::khronos;
 use crate::document::file::Kept;
-use crate::document::image_header::{self, HeaderError, ImageFormat};
+use crate::document::image_header::{self, HeaderError, ImageFormat, ImageInfo};
 use crate::document::uri::{classify, LoadError, ResourceLoader, UriKind};
-use crate::document::BufferData;
 use crate::document::Node;
+use crate::document::{BufferData, Bytes};
 use crate::gltf::gl::ELEMENT_ARRAY_BUFFER;
 use std::borrow::Cow;
 use std::collections::HashMap;
@@ -412,163 +412,224 @@ pub fn declared_mime(image: Node) -> Option<String> {
 pub fn check_images(ctx: &mut Context) {
     ctx.images = vec![None; ctx.items("images").len()];
     ctx.image_bytes = ctx.items("images").iter().map(|_| None).collect();
-    let webp_enabled = ctx.uses_extension("EXT_texture_webp");
-    // KHR_texture_basisu's schema adds image/ktx2 to image.mimeType; the released validator
-    // does not know it.
-    let ktx2_enabled =
-        ctx.options.profile.recognises_ktx2() && ctx.uses_extension("KHR_texture_basisu");
+    let enabled = EnabledFormats {
+        webp: ctx.uses_extension("EXT_texture_webp"),
+        // KHR_texture_basisu's schema adds image/ktx2 to image.mimeType; the released
+        // validator does not know it.
+        ktx2: ctx.options.profile.recognises_ktx2() && ctx.uses_extension("KHR_texture_basisu"),
+    };
     let mut read_views = HashMap::new();
     for (i, pointer, image) in ctx.objects("images") {
-        // Counted on the members as read: one of the wrong type is absent, so `{"uri": 5}`
-        // defines neither and `{"uri": 5, "bufferView": 0}` one (the schema's `oneOf` would
-        // count what is written).
-        let defined = ["uri", "bufferView"]
-            .iter()
-            .filter(|m| image.get(**m).is_some());
-        if defined.count() != 1 {
-            ctx.emit(
-                khronos::ONE_OF_MISMATCH,
-                pointer.clone(),
-                "Exactly one of ('uri', 'bufferView') properties must be defined.",
-            );
-        }
-        let mime_type = image.get("mimeType").and_then(Node::as_str);
-        if let Some(m) = mime_type {
-            let allowed = matches!(m, "image/png" | "image/jpeg")
-                || (m == "image/webp" && webp_enabled)
-                || (m == "image/ktx2" && ktx2_enabled);
-            if !allowed {
-                ctx.emit(
-                    khronos::VALUE_NOT_IN_LIST,
-                    member(&pointer, "mimeType"),
-                    format!("Invalid value '{m}'. Valid values are ('image/jpeg', 'image/png')."),
-                );
-            }
-        }
-        let (bytes, media_type, storage, uri, mime_pointer) =
-            if let Some(uri) = image.get("uri").and_then(Node::as_str) {
-                let uri_pointer = member(&pointer, "uri");
-                let (kept, media, storage) = load_uri(ctx, uri, &uri_pointer, false);
-                let bytes = kept.and_then(|kept| match kept {
-                    Kept::Read(bytes) => Some(bytes),
-                    Kept::Elsewhere(_) => None,
-                });
-                let uri = (storage == "external").then(|| uri.to_string());
-                (bytes, media, storage, uri, uri_pointer)
-            } else if let Some(view) = ctx.reference(image, "bufferView", &pointer, "bufferViews") {
-                if ctx
-                    .items("bufferViews")
-                    .at(view)
-                    .get("byteStride")
-                    .is_some()
-                {
-                    ctx.emit(
-                        khronos::IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE,
-                        member(&pointer, "bufferView"),
-                        "Buffer view used by an image must not have byteStride.",
-                    );
-                }
-                // Read once however many images share the view.
-                let bytes = match read_views.get(&view) {
-                    Some(bytes) => Some(Arc::clone(bytes)),
-                    None => view_bytes(ctx, view).map(|bytes| Arc::new(bytes.into_owned().into())),
-                };
-                if let Some(bytes) = &bytes {
-                    read_views.insert(view, Arc::clone(bytes));
-                }
-                (
-                    bytes,
-                    None,
-                    "buffer-view",
-                    None,
-                    member(&pointer, "mimeType"),
-                )
-            } else {
-                continue;
-            };
+        let mime_type = check_image_members(ctx, &pointer, image, enabled);
+        let Some(source) = image_source(ctx, &pointer, image, &mut read_views) else {
+            continue;
+        };
         let mut resource = ResourceInfo {
             pointer: pointer.clone(),
-            storage,
+            storage: source.storage,
             mime_type: mime_type.map(str::to_string),
-            byte_length: bytes.as_ref().map(|b| b.len()),
-            uri,
+            byte_length: source.bytes.as_ref().map(|b| b.len()),
+            uri: source.uri.clone(),
             image: None,
         };
-        if let Some(bytes) = bytes {
-            let header = image_header::read(&bytes).and_then(|info| {
-                let known =
-                    info.format != ImageFormat::Ktx2 || ctx.options.profile.recognises_ktx2();
-                known.then_some(info).ok_or(HeaderError::Unrecognized)
-            });
-            match header {
-                Ok(info) => {
-                    let found = info.format.mime_type();
-                    if let Some(media) = media_type.as_deref().filter(|m| *m != found) {
-                        ctx.emit(
-                            khronos::INVALID_URI,
-                            mime_pointer.clone(),
-                            format!("Invalid URI. Parser output: the declared media type '{media}' does not match the embedded content ({found})."),
-                        );
-                    }
-                    if let Some(declared) = mime_type.filter(|m| *m != found) {
-                        ctx.emit(
-                            khronos::IMAGE_MIME_TYPE_INVALID,
-                            mime_pointer,
-                            format!("Recognized image format '{found}' does not match declared image format '{declared}'."),
-                        );
-                    }
-                    if info.format == ImageFormat::Webp && !webp_enabled {
-                        ctx.emit(
-                            khronos::IMAGE_NON_ENABLED_MIME_TYPE,
-                            pointer.clone(),
-                            "Image format 'image/webp' not enabled (declare EXT_texture_webp).",
-                        );
-                    }
-                    if info.has_unsupported_features() {
-                        ctx.emit(
-                            khronos::IMAGE_FEATURES_UNSUPPORTED,
-                            pointer.clone(),
-                            "Image contains unsupported features like non-default colorspace information, non-square pixels, or animation.",
-                        );
-                    }
-                    if info.format != ImageFormat::Ktx2
-                        && (!info.width.is_power_of_two() || !info.height.is_power_of_two())
-                    {
-                        ctx.emit(
-                            khronos::IMAGE_NPOT_DIMENSIONS,
-                            pointer.clone(),
-                            format!(
-                                "Image has non-power-of-two dimensions: {}x{}.",
-                                info.width, info.height
-                            ),
-                        );
-                    }
-                    resource.mime_type = Some(found.to_string());
-                    resource.image = Some(info.clone());
-                    ctx.images[i] = Some(info);
-                    // Kept for gltfmat's rules: the pixel rules, and the colour-space
-                    // rule, which decodes an image two slots read differently.
-                    if ctx.options.profile.runs_rules() {
-                        ctx.image_bytes[i] = Some(bytes);
-                    }
+        if let Some(bytes) = &source.bytes {
+            if let Some(info) =
+                check_image_header(ctx, &pointer, bytes, mime_type, &source, enabled)
+            {
+                resource.mime_type = Some(info.format.mime_type().to_string());
+                resource.image = Some(info.clone());
+                ctx.images[i] = Some(info);
+                // Kept for gltfmat's rules: the pixel rules, and the colour-space rule, which
+                // decodes an image two slots read differently.
+                if ctx.options.profile.runs_rules() {
+                    ctx.image_bytes[i] = Some(Arc::clone(bytes));
                 }
-                Err(HeaderError::Unrecognized) => ctx.emit(
-                    khronos::IMAGE_UNRECOGNIZED_FORMAT,
-                    pointer.clone(),
-                    "Image format not recognized.",
-                ),
-                Err(HeaderError::UnexpectedEnd) => ctx.emit(
-                    khronos::IMAGE_UNEXPECTED_EOS,
-                    pointer.clone(),
-                    "Unexpected end of image stream.",
-                ),
-                Err(HeaderError::Invalid(why)) => ctx.emit(
-                    khronos::IMAGE_DATA_INVALID,
-                    pointer.clone(),
-                    format!("Image data is invalid: {why}."),
-                ),
             }
         }
         ctx.resources.push(resource);
     }
+}
+
+/// The image formats other than PNG and JPEG that an asset's extensions enable.
+#[derive(Clone, Copy)]
+struct EnabledFormats {
+    webp: bool,
+    ktx2: bool,
+}
+
+/// Checks that an image defines exactly one of `uri` and `bufferView` and names a known
+/// `mimeType`; returns the `mimeType`.
+fn check_image_members<'t>(
+    ctx: &mut Context,
+    pointer: &str,
+    image: Node<'t>,
+    enabled: EnabledFormats,
+) -> Option<&'t str> {
+    // Counted on the members as read: one of the wrong type is absent, so `{"uri": 5}`
+    // defines neither and `{"uri": 5, "bufferView": 0}` one (the schema's `oneOf` would
+    // count what is written).
+    let defined = ["uri", "bufferView"]
+        .iter()
+        .filter(|m| image.get(**m).is_some());
+    if defined.count() != 1 {
+        ctx.emit(
+            khronos::ONE_OF_MISMATCH,
+            pointer.to_string(),
+            "Exactly one of ('uri', 'bufferView') properties must be defined.",
+        );
+    }
+    let mime_type = image.get("mimeType").and_then(Node::as_str);
+    if let Some(m) = mime_type {
+        let allowed = matches!(m, "image/png" | "image/jpeg")
+            || (m == "image/webp" && enabled.webp)
+            || (m == "image/ktx2" && enabled.ktx2);
+        if !allowed {
+            ctx.emit(
+                khronos::VALUE_NOT_IN_LIST,
+                member(pointer, "mimeType"),
+                format!("Invalid value '{m}'. Valid values are ('image/jpeg', 'image/png')."),
+            );
+        }
+    }
+    mime_type
+}
+
+/// Where an image's bytes come from, and the bytes when they could be read.
+struct ImageSource {
+    bytes: Option<Arc<Bytes>>,
+    /// A `data:` URI's media type.
+    media_type: Option<String>,
+    storage: &'static str,
+    /// An external file's URI.
+    uri: Option<String>,
+    /// Where a format that does not match is reported: the URI, or the `mimeType`.
+    mime_pointer: String,
+}
+
+/// Reads an image from its URI or its buffer view (a view shared by several images is read
+/// once); `None` when it has neither.
+fn image_source(
+    ctx: &mut Context,
+    pointer: &str,
+    image: Node,
+    read_views: &mut HashMap<usize, Arc<Bytes>>,
+) -> Option<ImageSource> {
+    if let Some(uri) = image.get("uri").and_then(Node::as_str) {
+        let uri_pointer = member(pointer, "uri");
+        let (kept, media_type, storage) = load_uri(ctx, uri, &uri_pointer, false);
+        let bytes = kept.and_then(|kept| match kept {
+            Kept::Read(bytes) => Some(bytes),
+            Kept::Elsewhere(_) => None,
+        });
+        let uri = (storage == "external").then(|| uri.to_string());
+        return Some(ImageSource {
+            bytes,
+            media_type,
+            storage,
+            uri,
+            mime_pointer: uri_pointer,
+        });
+    }
+    let view = ctx.reference(image, "bufferView", pointer, "bufferViews")?;
+    if (ctx.items("bufferViews").at(view).get("byteStride")).is_some() {
+        ctx.emit(
+            khronos::IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE,
+            member(pointer, "bufferView"),
+            "Buffer view used by an image must not have byteStride.",
+        );
+    }
+    let bytes = match read_views.get(&view) {
+        Some(bytes) => Some(Arc::clone(bytes)),
+        None => view_bytes(ctx, view).map(|bytes| Arc::new(bytes.into_owned().into())),
+    };
+    if let Some(bytes) = &bytes {
+        read_views.insert(view, Arc::clone(bytes));
+    }
+    Some(ImageSource {
+        bytes,
+        media_type: None,
+        storage: "buffer-view",
+        uri: None,
+        mime_pointer: member(pointer, "mimeType"),
+    })
+}
+
+/// Reads an image's header and checks its format against what the asset declares and
+/// enables; the header when the format is one the profile recognises.
+fn check_image_header(
+    ctx: &mut Context,
+    pointer: &str,
+    bytes: &[u8],
+    mime_type: Option<&str>,
+    source: &ImageSource,
+    enabled: EnabledFormats,
+) -> Option<ImageInfo> {
+    let header = image_header::read(bytes).and_then(|info| {
+        let known = info.format != ImageFormat::Ktx2 || ctx.options.profile.recognises_ktx2();
+        known.then_some(info).ok_or(HeaderError::Unrecognized)
+    });
+    let info = match header {
+        Ok(info) => info,
+        Err(HeaderError::Unrecognized) => {
+            let message = "Image format not recognized.";
+            ctx.emit(
+                khronos::IMAGE_UNRECOGNIZED_FORMAT,
+                pointer.to_string(),
+                message,
+            );
+            return None;
+        }
+        Err(HeaderError::UnexpectedEnd) => {
+            let message = "Unexpected end of image stream.";
+            ctx.emit(khronos::IMAGE_UNEXPECTED_EOS, pointer.to_string(), message);
+            return None;
+        }
+        Err(HeaderError::Invalid(why)) => {
+            let message = format!("Image data is invalid: {why}.");
+            ctx.emit(khronos::IMAGE_DATA_INVALID, pointer.to_string(), message);
+            return None;
+        }
+    };
+    let found = info.format.mime_type();
+    if let Some(media) = source.media_type.as_deref().filter(|m| *m != found) {
+        ctx.emit(
+            khronos::INVALID_URI,
+            source.mime_pointer.clone(),
+            format!("Invalid URI. Parser output: the declared media type '{media}' does not match the embedded content ({found})."),
+        );
+    }
+    if let Some(declared) = mime_type.filter(|m| *m != found) {
+        ctx.emit(
+            khronos::IMAGE_MIME_TYPE_INVALID,
+            source.mime_pointer.clone(),
+            format!("Recognized image format '{found}' does not match declared image format '{declared}'."),
+        );
+    }
+    if info.format == ImageFormat::Webp && !enabled.webp {
+        ctx.emit(
+            khronos::IMAGE_NON_ENABLED_MIME_TYPE,
+            pointer.to_string(),
+            "Image format 'image/webp' not enabled (declare EXT_texture_webp).",
+        );
+    }
+    if info.has_unsupported_features() {
+        ctx.emit(
+            khronos::IMAGE_FEATURES_UNSUPPORTED,
+            pointer.to_string(),
+            "Image contains unsupported features like non-default colorspace information, non-square pixels, or animation.",
+        );
+    }
+    if info.format != ImageFormat::Ktx2
+        && (!info.width.is_power_of_two() || !info.height.is_power_of_two())
+    {
+        ctx.emit(
+            khronos::IMAGE_NPOT_DIMENSIONS,
+            pointer.to_string(),
+            format!(
+                "Image has non-power-of-two dimensions: {}x{}.",
+                info.width, info.height
+            ),
+        );
+    }
+    Some(info)
 }
