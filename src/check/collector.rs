@@ -2,6 +2,8 @@
 //! severity overrides), every finding counted per severity, and, with `max_issues`, only the
 //! first N kept in report order (errors first, then by emission), so that a file with 10^6
 //! findings costs the memory of N; with `lowest_kept`, the less severe ones are only counted.
+//! It also hands each data pass its [`WalkBudget`]: how many findings the pass's walks over
+//! accessor data may list before the collector sees them.
 
 use super::CheckOptions;
 use crate::diagnostic::{Diagnostic, Findings, Severity, Sink};
@@ -95,7 +97,52 @@ impl<'o> Collector<'o> {
     }
 }
 
+/// At most this many findings of one walk over an accessor's (or a skinned primitive's) data
+/// are listed: a corrupt buffer of millions of elements must not turn into millions of
+/// diagnostics in memory. The rest are counted. Real assets stay below it (an exporter's 10^3
+/// slightly non-normalised weights are all listed, as the Khronos validator lists them).
+const LISTED_PER_WALK: usize = 10_000;
+
+/// At most this many findings are listed by one data pass over all its walks: accessors that
+/// alias one corrupt view (10^3 accessors × 10^4 elements in a 300 KB file) must not add up
+/// to 10^7 diagnostics either.
+const LISTED_PER_PASS: usize = 100_000;
+
+/// What a data pass may still list, handed out so that the report does not depend on which
+/// walk finishes first: each walk of a batch may list an equal share of what is left.
+pub(crate) struct WalkBudget {
+    left: usize,
+    per_walk: usize,
+}
+
+impl WalkBudget {
+    /// How many findings each of `walks` walks run together may list.
+    pub fn share(&self, walks: usize) -> usize {
+        self.per_walk.min(self.left / walks.max(1))
+    }
+
+    /// Takes what a walk listed from the budget.
+    pub fn spend(&mut self, listed: usize) {
+        self.left = self.left.saturating_sub(listed);
+    }
+}
+
 impl Collector<'_> {
+    /// The budget of one data pass: [`LISTED_PER_PASS`] and [`LISTED_PER_WALK`] when the
+    /// profile caps data findings, otherwise every finding (`max_issues` still holds).
+    pub fn walk_budget(&self) -> WalkBudget {
+        match self.options.profile.caps_data_findings() {
+            true => WalkBudget {
+                left: LISTED_PER_PASS,
+                per_walk: LISTED_PER_WALK,
+            },
+            false => WalkBudget {
+                left: usize::MAX,
+                per_walk: usize::MAX,
+            },
+        }
+    }
+
     /// The severity a finding is reported with, or `None` when the user's filters drop it.
     /// The one place a finding's severity is decided: the user's override, else its code's.
     fn severity(&self, diagnostic: &Diagnostic) -> Option<Severity> {

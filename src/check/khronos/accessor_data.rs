@@ -3,7 +3,7 @@
 //! bounds, animation inputs…, see `accessor_usage`): the Khronos ACCESSOR_* data codes.
 
 use super::accessor_fast;
-use super::accessor_usage::{self, Budget, Checker, Findings};
+use super::accessor_usage::{self, Checker, Findings};
 use super::resources::{view_bytes, view_data, ViewData};
 use crate::check::context::{unsigned, Context};
 use crate::diagnostic::khronos;
@@ -81,17 +81,15 @@ pub fn check(ctx: &mut Context) {
     // In batches, each walk with its share of what the pass may still keep: memory stays
     // bounded however many accessors alias one corrupt view, and the report does not
     // depend on the order the walks finish in.
-    let mut budget = Budget::new(ctx.options.profile);
+    let mut budget = ctx.diagnostics.walk_budget();
     let reading = Reading::default();
     let mut found: Vec<Findings> = Vec::with_capacity(work.len());
     for batch in work.chunks_mut(WALKS_PER_BATCH) {
         let walks = batch.len();
         let batch_found: Vec<Findings> = (batch.par_iter_mut())
-            .map(|work| scan(work, &reading, budget.share(walks)))
+            .map(|work| scan(work, &reading, Findings::listing(budget.share(walks))))
             .collect();
-        batch_found
-            .iter()
-            .for_each(|findings| budget.spend(findings));
+        (batch_found.iter()).for_each(|findings| budget.spend(findings.listed()));
         found.extend(batch_found);
     }
     for findings in found {

@@ -23,56 +23,8 @@ pub(super) const UNIT_TOLERANCE_VEC4: f64 = 0.00769;
 /// (code, pointer, message)
 pub(super) type Finding = (Code, String, String);
 
-/// At most this many findings are kept per accessor (or skinned primitive): a corrupt
-/// buffer of millions of elements must not turn into millions of diagnostics in memory. The
-/// rest are still counted. Real assets stay below it (an exporter's 10^3 slightly
-/// non-normalised weights are all listed, as the Khronos validator lists them).
-const KEPT_FINDINGS: usize = 10_000;
-
-/// At most this many findings are kept by one data pass over all its walks: accessors that
-/// alias one corrupt view (10^3 accessors × 10^4 elements in a 300 KB file) must not add up
-/// to 10^7 diagnostics either.
-const KEPT_PER_PASS: usize = 100_000;
-
-/// What a data pass may still keep, handed out so that the report does not depend on which
-/// walk finishes first: each walk of a batch may keep an equal share of what is left.
-pub(super) struct Budget {
-    left: usize,
-    per_walk: usize,
-}
-
-impl Budget {
-    /// The budget of a pass: [`KEPT_PER_PASS`] and [`KEPT_FINDINGS`] when the profile caps
-    /// data findings, otherwise every finding (the collector's `max_issues` still holds).
-    pub(super) fn new(profile: crate::check::Profile) -> Self {
-        match profile.caps_data_findings() {
-            true => Budget {
-                left: KEPT_PER_PASS,
-                per_walk: KEPT_FINDINGS,
-            },
-            false => Budget {
-                left: usize::MAX,
-                per_walk: usize::MAX,
-            },
-        }
-    }
-
-    /// Findings for one of `walks` walks run together.
-    pub(super) fn share(&self, walks: usize) -> Findings {
-        Findings {
-            limit: self.per_walk.min(self.left / walks.max(1)),
-            ..Findings::default()
-        }
-    }
-
-    /// Takes what a walk's findings kept from the budget.
-    pub(super) fn spend(&mut self, findings: &Findings) {
-        self.left = self.left.saturating_sub(findings.kept.len());
-    }
-}
-
-/// The findings of one walk, bounded by [`KEPT_FINDINGS`] or the walk's share of a
-/// [`Budget`].
+/// The findings of one walk, bounded by its share of the pass's
+/// [`WalkBudget`](crate::check::collector::WalkBudget).
 pub(super) struct Findings {
     kept: Vec<Finding>,
     limit: usize,
@@ -82,15 +34,25 @@ pub(super) struct Findings {
 
 impl Default for Findings {
     fn default() -> Self {
-        Findings {
-            kept: Vec::new(),
-            limit: KEPT_FINDINGS,
-            dropped: Vec::new(),
-        }
+        Findings::listing(usize::MAX)
     }
 }
 
 impl Findings {
+    /// Findings that list at most `limit` and count the rest.
+    pub(super) fn listing(limit: usize) -> Findings {
+        Findings {
+            kept: Vec::new(),
+            limit,
+            dropped: Vec::new(),
+        }
+    }
+
+    /// How many are listed.
+    pub(super) fn listed(&self) -> usize {
+        self.kept.len()
+    }
+
     pub(super) fn push(&mut self, finding: Finding) {
         let (code, pointer, message) = finding;
         self.record(code, || pointer, || message);
@@ -117,10 +79,7 @@ impl Findings {
     /// Empty findings that may keep what these still have room for: those of a later part
     /// of the same walk, made apart (on another core) and then [`absorb`](Self::absorb)ed.
     pub(super) fn room(&self) -> Findings {
-        Findings {
-            limit: self.limit.saturating_sub(self.kept.len()),
-            ..Findings::default()
-        }
+        Findings::listing(self.limit.saturating_sub(self.kept.len()))
     }
 
     /// Takes in the findings of the part of the walk that follows these, as if they had

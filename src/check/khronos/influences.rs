@@ -2,7 +2,7 @@
 //! ACCESSOR_JOINTS_* and ACCESSOR_WEIGHTS_* codes).
 
 use super::accessor_data::{scannable, unit_scale};
-use super::accessor_usage::{Budget, Findings};
+use super::accessor_usage::Findings;
 use super::resources::ViewData;
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;
@@ -15,7 +15,7 @@ use std::collections::HashMap;
 use std::ops::Range;
 
 pub fn check(ctx: &mut Context) {
-    let mut budget = Budget::new(ctx.options.profile);
+    let mut budget = ctx.diagnostics.walk_budget();
     let limits = limiting_skins(ctx);
     for (m, pointer, mesh) in ctx.objects("meshes") {
         let Some(&(max_joint, skin)) = limits.get(&m) else {
@@ -25,9 +25,9 @@ pub fn check(ctx: &mut Context) {
             if let Some(sets) = influence_sets(ctx, primitive) {
                 let at = format!("{pointer}/primitives/{p}/attributes");
                 let limit = JointLimit { max_joint, skin };
-                let mut found = budget.share(1);
+                let mut found = Findings::listing(budget.share(1));
                 check_primitive(&sets, &at, limit, &mut found);
-                budget.spend(&found);
+                budget.spend(found.listed());
                 found.report(ctx);
             }
         }
