@@ -79,44 +79,9 @@ pub fn looks_like_glb(bytes: &[u8]) -> bool {
 /// Reads the container; every problem goes to `diags`.
 pub fn read(bytes: &(impl GlbBytes + ?Sized), diags: &mut dyn Sink) -> GlbParts {
     let mut parts = GlbParts::default();
-    if bytes.len() < HEADER_LEN {
-        diags.push(at(
-            khronos::GLB_UNEXPECTED_END_OF_HEADER,
-            bytes.len(),
-            "Unexpected end of header.",
-        ));
+    let Some(declared) = read_header(bytes, &mut parts, diags) else {
         return parts;
-    }
-    if [0, 1, 2, 3].map(|i| bytes.byte(i)) != *MAGIC {
-        diags.push(at(
-            khronos::GLB_INVALID_MAGIC,
-            0,
-            "Invalid GLB magic value.",
-        ));
-        return parts;
-    }
-    parts.version = read_u32(bytes, 4);
-    if parts.version != 2 {
-        let hint = if parts.version == 1 {
-            " This is a glTF 1.0 binary (KHR_binary_glTF): run `gltfmat upgrade` to convert it."
-        } else {
-            ""
-        };
-        diags.push(at(
-            khronos::GLB_INVALID_VERSION,
-            4,
-            format!("Invalid GLB version value {}.{hint}", parts.version),
-        ));
-        return parts;
-    }
-    let declared = read_u32(bytes, 8) as usize;
-    if declared <= HEADER_LEN {
-        diags.push(at(
-            khronos::GLB_LENGTH_TOO_SMALL,
-            8,
-            format!("Declared GLB length ({declared}) is too small."),
-        ));
-    }
+    };
     let mut pos = HEADER_LEN;
     let mut index = 0usize;
     let mut saw_empty_json = false;
@@ -153,45 +118,10 @@ pub fn read(bytes: &(impl GlbBytes + ?Sized), diags: &mut dyn Sink) -> GlbParts 
         let range = complete.then_some(data_start..data_end);
         match chunk.kind {
             CHUNK_JSON => {
-                if chunk.length == 0 {
-                    diags.push(at(
-                        khronos::GLB_EMPTY_CHUNK,
-                        chunk.start,
-                        "Chunk (JSON) cannot have zero length.",
-                    ));
-                }
-                if parts.json.is_some() || saw_empty_json {
-                    chunk.duplicate("JSON", diags);
-                } else if chunk.length == 0 {
-                    saw_empty_json = true;
-                    // The validator feeds an empty chunk to its JSON parser (which then
-                    // reports INVALID_JSON) only when more bytes follow it.
-                    parts.json = (data_end < bytes.len()).then_some(range).flatten();
-                } else {
-                    parts.json = range;
-                }
+                let more_follows = data_end < bytes.len();
+                chunk.take_json(range, more_follows, &mut parts, &mut saw_empty_json, diags);
             }
-            CHUNK_BIN => {
-                if chunk.index > 1 && parts.bin.is_none() {
-                    diags.push(at(
-                        khronos::GLB_UNEXPECTED_BIN_CHUNK,
-                        chunk.start,
-                        "BIN chunk must be the second chunk.",
-                    ));
-                }
-                if chunk.length == 0 {
-                    diags.push(at(
-                        khronos::GLB_EMPTY_BIN_CHUNK,
-                        chunk.start,
-                        "Empty BIN chunk should be omitted.",
-                    ));
-                }
-                if parts.bin.is_some() {
-                    chunk.duplicate("BIN", diags);
-                } else {
-                    parts.bin = range;
-                }
-            }
+            CHUNK_BIN => chunk.take_bin(range, &mut parts, diags),
             _ => diags.push(at(
                 khronos::GLB_UNKNOWN_CHUNK_TYPE,
                 chunk.start,
@@ -219,6 +149,54 @@ pub fn read(bytes: &(impl GlbBytes + ?Sized), diags: &mut dyn Sink) -> GlbParts 
     parts
 }
 
+/// Reads the 12-byte header into `parts` (its version); the declared length, or `None` when
+/// the header is cut short, not a GLB's or of another version, and nothing more is read.
+fn read_header(
+    bytes: &(impl GlbBytes + ?Sized),
+    parts: &mut GlbParts,
+    diags: &mut dyn Sink,
+) -> Option<usize> {
+    if bytes.len() < HEADER_LEN {
+        diags.push(at(
+            khronos::GLB_UNEXPECTED_END_OF_HEADER,
+            bytes.len(),
+            "Unexpected end of header.",
+        ));
+        return None;
+    }
+    if [0, 1, 2, 3].map(|i| bytes.byte(i)) != *MAGIC {
+        diags.push(at(
+            khronos::GLB_INVALID_MAGIC,
+            0,
+            "Invalid GLB magic value.",
+        ));
+        return None;
+    }
+    parts.version = read_u32(bytes, 4);
+    if parts.version != 2 {
+        let hint = if parts.version == 1 {
+            " This is a glTF 1.0 binary (KHR_binary_glTF): run `gltfmat upgrade` to convert it."
+        } else {
+            ""
+        };
+        diags.push(at(
+            khronos::GLB_INVALID_VERSION,
+            4,
+            format!("Invalid GLB version value {}.{hint}", parts.version),
+        ));
+        return None;
+    }
+    let declared = read_u32(bytes, 8) as usize;
+    if declared <= HEADER_LEN {
+        diags.push(at(
+            khronos::GLB_LENGTH_TOO_SMALL,
+            8,
+            format!("Declared GLB length ({declared}) is too small."),
+        ));
+    }
+    Some(declared)
+}
+
 /// A chunk header as read.
 struct Chunk {
     start: usize,
@@ -229,6 +207,59 @@ struct Chunk {
 }
 
 impl Chunk {
+    /// Takes a JSON chunk's data `range` (`None`: cut short) as the asset's JSON, unless
+    /// one came before.
+    fn take_json(
+        &self,
+        range: Option<Range<usize>>,
+        more_follows: bool,
+        parts: &mut GlbParts,
+        saw_empty_json: &mut bool,
+        diags: &mut dyn Sink,
+    ) {
+        if self.length == 0 {
+            diags.push(at(
+                khronos::GLB_EMPTY_CHUNK,
+                self.start,
+                "Chunk (JSON) cannot have zero length.",
+            ));
+        }
+        if parts.json.is_some() || *saw_empty_json {
+            self.duplicate("JSON", diags);
+        } else if self.length == 0 {
+            *saw_empty_json = true;
+            // The validator feeds an empty chunk to its JSON parser (which then reports
+            // INVALID_JSON) only when more bytes follow it.
+            parts.json = more_follows.then_some(range).flatten();
+        } else {
+            parts.json = range;
+        }
+    }
+
+    /// Takes a BIN chunk's data `range` (`None`: cut short) as the binary buffer, unless
+    /// one came before.
+    fn take_bin(&self, range: Option<Range<usize>>, parts: &mut GlbParts, diags: &mut dyn Sink) {
+        if self.index > 1 && parts.bin.is_none() {
+            diags.push(at(
+                khronos::GLB_UNEXPECTED_BIN_CHUNK,
+                self.start,
+                "BIN chunk must be the second chunk.",
+            ));
+        }
+        if self.length == 0 {
+            diags.push(at(
+                khronos::GLB_EMPTY_BIN_CHUNK,
+                self.start,
+                "Empty BIN chunk should be omitted.",
+            ));
+        }
+        if parts.bin.is_some() {
+            self.duplicate("BIN", diags);
+        } else {
+            parts.bin = range;
+        }
+    }
+
     fn duplicate(&self, name: &str, diags: &mut dyn Sink) {
         diags.push(at(
             khronos::GLB_DUPLICATE_CHUNK,
