@@ -57,7 +57,7 @@ impl Ord for Ranked {
 }
 
 impl<'o> Collector<'o> {
-    pub fn new(options: &'o CheckOptions) -> Self {
+    pub(crate) fn new(options: &'o CheckOptions) -> Self {
         let kept = match options.max_issues {
             0 => Kept::All(Box::default()),
             _ => Kept::Best(BinaryHeap::new()),
@@ -73,7 +73,7 @@ impl<'o> Collector<'o> {
 
     /// The kept findings (in emission order, or in report order when some were dropped),
     /// the full per-severity counts, and whether some were dropped.
-    pub fn finish(self) -> (Findings, [usize; 4], bool) {
+    pub(crate) fn finish(self) -> (Findings, [usize; 4], bool) {
         let kept = match self.kept {
             Kept::All(all) => *all,
             Kept::Best(best) => {
@@ -117,12 +117,12 @@ pub(crate) struct WalkBudget {
 
 impl WalkBudget {
     /// How many findings each of `walks` walks run together may list.
-    pub fn share(&self, walks: usize) -> usize {
+    pub(crate) fn share(&self, walks: usize) -> usize {
         self.per_walk.min(self.left / walks.max(1))
     }
 
     /// Takes what a walk listed from the budget.
-    pub fn spend(&mut self, listed: usize) {
+    pub(crate) fn spend(&mut self, listed: usize) {
         self.left = self.left.saturating_sub(listed);
     }
 }
@@ -130,7 +130,7 @@ impl WalkBudget {
 impl Collector<'_> {
     /// The budget of one data pass: [`LISTED_PER_PASS`] and [`LISTED_PER_WALK`] when the
     /// profile caps data findings, otherwise every finding (`max_issues` still holds).
-    pub fn walk_budget(&self) -> WalkBudget {
+    pub(crate) fn walk_budget(&self) -> WalkBudget {
         match self.options.profile.caps_data_findings() {
             true => WalkBudget {
                 left: LISTED_PER_PASS,
@@ -156,7 +156,7 @@ impl Collector<'_> {
     }
 
     /// Counts `n` findings like `diagnostic` that are not listed.
-    pub fn count_unlisted(&mut self, diagnostic: &Diagnostic, n: u64) {
+    pub(crate) fn count_unlisted(&mut self, diagnostic: &Diagnostic, n: u64) {
         if let Some(severity) = self.severity(diagnostic) {
             let count = &mut self.counts[severity as usize];
             *count = count.saturating_add(usize::try_from(n).unwrap_or(usize::MAX));

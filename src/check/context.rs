@@ -53,7 +53,7 @@ pub struct AssetInfo {
 
 /// What a material demands of the primitives that use it.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct MaterialNeeds {
+pub(crate) struct MaterialNeeds {
     /// Each texture binding with the texCoord set it reads.
     pub texcoords: Vec<TexcoordNeed>,
     /// A normal, clearcoat-normal or anisotropy texture needs a tangent space.
@@ -67,7 +67,7 @@ pub struct MaterialNeeds {
 /// A texture binding's texCoord set. Its pointer is made only for a finding: 10^5
 /// materials hold no pointer strings.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TexcoordNeed {
+pub(crate) struct TexcoordNeed {
     /// The binding's slot, an index into [`TEXTURE_SLOTS`].
     pub slot: usize,
     /// The set comes from the binding's KHR_texture_transform (which the Khronos validator
@@ -78,7 +78,7 @@ pub struct TexcoordNeed {
 
 impl TexcoordNeed {
     /// Pointer to the binding (or its KHR_texture_transform) in material `material`.
-    pub fn binding(&self, material: usize) -> String {
+    pub(crate) fn binding(&self, material: usize) -> String {
         let transform = if self.from_transform {
             "/extensions/KHR_texture_transform"
         } else {
@@ -124,7 +124,7 @@ pub(crate) struct Context<'a> {
 }
 
 impl<'a> Context<'a> {
-    pub fn new(
+    pub(crate) fn new(
         root: Node<'a>,
         document: &'a Document,
         loader: &'a dyn ResourceLoader,
@@ -152,7 +152,7 @@ impl<'a> Context<'a> {
     }
 
     /// Reports a finding, as the profile reports it (see `check::profile`).
-    pub fn emit(
+    pub(crate) fn emit(
         &mut self,
         code: Code,
         pointer: impl Into<String>,
@@ -166,7 +166,7 @@ impl<'a> Context<'a> {
 
     /// Counts `n` findings of `code` at `pointer` that a pass does not list (it keeps a
     /// bounded number of one walk's findings): the report's counts stay complete.
-    pub fn count_unlisted(&mut self, code: Code, pointer: impl Into<String>, n: u64) {
+    pub(crate) fn count_unlisted(&mut self, code: Code, pointer: impl Into<String>, n: u64) {
         let found = Diagnostic::at(code, pointer, String::new());
         if let Some(reported) = self.reporting.report(self, found) {
             self.diagnostics.count_unlisted(&reported, n);
@@ -174,7 +174,7 @@ impl<'a> Context<'a> {
     }
 
     /// The elements of a top-level array, or nothing when it is missing or not an array.
-    pub fn items(&self, collection: &str) -> Array<'a> {
+    pub(crate) fn items(&self, collection: &str) -> Array<'a> {
         self.root
             .get(collection)
             .and_then(Node::as_array)
@@ -182,14 +182,14 @@ impl<'a> Context<'a> {
     }
 
     /// Whether an accessor's bufferView declares a byteStride (false when it has no view).
-    pub fn has_strided_view(&self, accessor: Node) -> bool {
+    pub(crate) fn has_strided_view(&self, accessor: Node) -> bool {
         unsigned(accessor, "bufferView")
             .and_then(|v| self.items("bufferViews").get(v as usize))
             .is_some_and(|v| v.get("byteStride").is_some())
     }
 
     /// Object elements of a top-level array, with their index and pointer.
-    pub fn objects(
+    pub(crate) fn objects(
         &self,
         collection: &'static str,
     ) -> impl Iterator<Item = (usize, String, Node<'a>)> + 'a {
@@ -205,7 +205,7 @@ impl<'a> Context<'a> {
 
     /// Resolves `object[key]` as an index into `collection`, marking the target used.
     /// A missing or mistyped member gives `None` silently (the schema pass reported it).
-    pub fn reference(
+    pub(crate) fn reference(
         &mut self,
         object: Node,
         key: &str,
@@ -217,7 +217,7 @@ impl<'a> Context<'a> {
     }
 
     /// Resolves an index value at `pointer` into `collection`.
-    pub fn reference_value(
+    pub(crate) fn reference_value(
         &mut self,
         value: Node,
         pointer: &str,
@@ -246,22 +246,22 @@ impl<'a> Context<'a> {
 
     /// The element at `index` of a top-level collection, when it is an object: what a
     /// reference can resolve to (an element of another type is read as missing).
-    pub fn element(&self, collection: &str, index: u64) -> Option<Node<'a>> {
+    pub(crate) fn element(&self, collection: &str, index: u64) -> Option<Node<'a>> {
         let element = self.items(collection).get(usize::try_from(index).ok()?)?;
         element.is_object().then_some(element)
     }
 
-    pub fn mark_used(&mut self, collection: &'static str, index: usize) {
+    pub(crate) fn mark_used(&mut self, collection: &'static str, index: usize) {
         self.used.insert((collection, index));
     }
 
-    pub fn is_used(&self, collection: &'static str, index: usize) -> bool {
+    pub(crate) fn is_used(&self, collection: &'static str, index: usize) -> bool {
         self.used.contains(&(collection, index))
     }
 
     /// Whether `extensionsUsed` names `extension`: a set built once, since an asset may
     /// declare 10^5 names and hold as many extension objects.
-    pub fn uses_extension(&self, extension: &str) -> bool {
+    pub(crate) fn uses_extension(&self, extension: &str) -> bool {
         let used = self.extensions_used.get_or_init(|| {
             (self.items("extensionsUsed").iter())
                 .filter_map(Node::as_str)
@@ -270,7 +270,7 @@ impl<'a> Context<'a> {
         used.contains(extension)
     }
 
-    pub fn info(&self) -> AssetInfo {
+    pub(crate) fn info(&self) -> AssetInfo {
         let asset = self.root.get("asset");
         let text = |key: &str| {
             asset
@@ -313,13 +313,13 @@ impl<'a> Context<'a> {
 }
 
 /// `pointer/key`, with the key escaped.
-pub fn member(pointer: &str, key: &str) -> String {
+pub(crate) fn member(pointer: &str, key: &str) -> String {
     format!("{pointer}/{}", escape_token(key))
 }
 
 /// The elements of an array member with their indices; nothing when missing or mistyped
 /// (the schema pass reports that).
-pub fn elements<'v>(object: Node<'v>, key: &str) -> impl Iterator<Item = (usize, Node<'v>)> {
+pub(crate) fn elements<'v>(object: Node<'v>, key: &str) -> impl Iterator<Item = (usize, Node<'v>)> {
     object
         .get(key)
         .and_then(Node::as_array)
@@ -329,14 +329,14 @@ pub fn elements<'v>(object: Node<'v>, key: &str) -> impl Iterator<Item = (usize,
 }
 
 /// A number member, falling back to `default` when missing or mistyped.
-pub fn number(object: Node, key: &str, default: f64) -> f64 {
+pub(crate) fn number(object: Node, key: &str, default: f64) -> f64 {
     object.get(key).and_then(Node::as_f64).unwrap_or(default)
 }
 
-pub use crate::gltf::{as_index, unsigned};
+pub(crate) use crate::gltf::{as_index, unsigned};
 
 /// A material's extension object by name.
-pub fn extension<'v>(material: Node<'v>, name: &str) -> Option<Node<'v>> {
+pub(crate) fn extension<'v>(material: Node<'v>, name: &str) -> Option<Node<'v>> {
     material
         .get("extensions")?
         .get(name)
@@ -346,7 +346,7 @@ pub fn extension<'v>(material: Node<'v>, name: &str) -> Option<Node<'v>> {
 /// One texture bound to one slot of one material. Small and allocation-free: an asset
 /// may hold 10^5 of them, and its pointer and images are made when asked for.
 #[derive(Clone)]
-pub struct SlotUse<'a> {
+pub(crate) struct SlotUse<'a> {
     pub material: Node<'a>,
     /// The material's index.
     pub material_index: usize,
@@ -359,24 +359,24 @@ pub struct SlotUse<'a> {
 
 impl SlotUse<'_> {
     /// Pointer to the textureInfo.
-    pub fn pointer(&self) -> String {
+    pub(crate) fn pointer(&self) -> String {
         format!("/materials/{}{}", self.material_index, self.slot.pointer())
     }
 
     /// Images the texture may sample: `source` and any extension's `source` (WebP, KTX2 …).
-    pub fn images(&self) -> impl Iterator<Item = usize> + '_ {
+    pub(crate) fn images(&self) -> impl Iterator<Item = usize> + '_ {
         (texture_images(self.texture))
             .filter(|&i| i < self.image_count as u64)
             .map(|i| i as usize)
     }
 
     /// The channels this use reads: (sRGB, linear).
-    pub fn reads(&self) -> (Channels, Channels) {
+    pub(crate) fn reads(&self) -> (Channels, Channels) {
         self.slot.reads(self.material)
     }
 
     /// A member of the slot's extension object (or of the material for core slots).
-    pub fn extension_number(&self, key: &str, default: f64) -> f64 {
+    pub(crate) fn extension_number(&self, key: &str, default: f64) -> f64 {
         self.slot
             .extension
             .and_then(|name| extension(self.material, name))

@@ -13,7 +13,7 @@ pub(crate) use khronos::is_trs_decomposable;
 mod pass_codes;
 pub(crate) mod profile;
 
-pub use crate::diagnostic::{Diagnostic, Finding, Findings, Place, Severity};
+pub(crate) use crate::diagnostic::{Diagnostic, Finding, Findings, Place, Severity};
 pub(crate) use context::Context;
 pub use context::{AssetInfo, ResourceInfo};
 

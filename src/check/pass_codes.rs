@@ -6,8 +6,9 @@
 use crate::diagnostic::{Code, Severity};
 
 /// A URI that resolves outside the asset's folder, refused unread.
-pub const URI_OUTSIDE_ASSET_FOLDER: Code = Code::new("URI_OUTSIDE_ASSET_FOLDER", Severity::Error);
+pub(super) const URI_OUTSIDE_ASSET_FOLDER: Code =
+    Code::new("URI_OUTSIDE_ASSET_FOLDER", Severity::Error);
 
 /// A relative URI of an asset given without a folder to resolve it in.
-pub const EXTERNAL_RESOURCE_NOT_READ: Code =
+pub(super) const EXTERNAL_RESOURCE_NOT_READ: Code =
     Code::new("EXTERNAL_RESOURCE_NOT_READ", Severity::Info);

@@ -64,7 +64,7 @@ impl Profile {
 
 /// The Khronos codes whose findings differ in the default profile because it reads the
 /// document differently, and why.
-pub static READINGS: &[(Code, &str)] = &[
+pub(crate) static READINGS: &[(Code, &str)] = &[
     (
         khronos::KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD,
         "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",
@@ -111,7 +111,7 @@ enum Treatment {
 pub(crate) struct Filters(HashMap<Code, Treatment>);
 
 impl Filters {
-    pub fn of(profile: Profile) -> Filters {
+    pub(crate) fn of(profile: Profile) -> Filters {
         let treatments: Vec<(Code, Treatment)> = match profile {
             Profile::Khronos => (RULES.iter())
                 .map(|rule| match rule.khronos_name {
@@ -149,7 +149,7 @@ impl Reporting for Filters {
 }
 
 /// Why the default profile reports `code` differently from the Khronos validator, if it does.
-pub fn why_different(code: &str) -> Option<&'static str> {
+pub(crate) fn why_different(code: &str) -> Option<&'static str> {
     let superseded = (RULES.iter().flat_map(|rule| rule.supersedes))
         .find(|s| s.code.name() == code)
         .map(|s| s.why);

@@ -44,7 +44,7 @@ pub(crate) fn open(path: &Path) -> Result<File, FileError> {
 /// Binary data from this size up is not read whole: a GLB's BIN chunk data, or an external
 /// buffer file, stays in its file and each view is read as it is walked, so checking a
 /// 160 MB asset does not hold 160 MB.
-pub const LARGE_FILE_BYTES: u64 = 32 << 20;
+pub(crate) const LARGE_FILE_BYTES: u64 = 32 << 20;
 
 /// A large GLB read but for its BIN chunk's data: the bytes before that data, where it lies
 /// and the bytes after it (see [`LARGE_FILE_BYTES`]).
@@ -201,7 +201,7 @@ impl NonBlocking for cap_std::fs::OpenOptions {
 
 /// Reads an opened file when it is a regular file of at most [`MAX_FILE_BYTES`]. A file
 /// that grows while it is read is cut at that bound; one that shrinks is read as it now is.
-pub fn read_opened(file: File) -> Result<Vec<u8>, FileError> {
+pub(crate) fn read_opened(file: File) -> Result<Vec<u8>, FileError> {
     read_opened_with_id(file).map(|(bytes, _)| bytes)
 }
 

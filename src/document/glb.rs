@@ -15,7 +15,7 @@ const CHUNK_BIN: u32 = 0x004E_4942;
 
 /// What a GLB holds: where its JSON and BIN chunks are, and what was wrong on the way.
 #[derive(Debug, Default)]
-pub struct GlbParts {
+pub(crate) struct GlbParts {
     pub version: u32,
     /// The JSON chunk's bytes (empty when the chunk was empty and more bytes followed it:
     /// the Khronos validator then parses an empty document, which is INVALID_JSON).
@@ -33,7 +33,7 @@ fn read_u32(bytes: &(impl GlbBytes + ?Sized), pos: usize) -> u32 {
 
 /// What the reader needs of a GLB's bytes: its length and the bytes of its headers. A GLB
 /// whose BIN chunk was left in its file ([`Holed`]) is read as the whole file is.
-pub trait GlbBytes {
+pub(crate) trait GlbBytes {
     /// The length of the whole file.
     fn len(&self) -> usize;
     /// The byte at `pos` (< `len`), which the reader asks only of headers.
@@ -52,7 +52,7 @@ impl GlbBytes for [u8] {
 
 /// A GLB read but for one chunk's data (the BIN chunk of a large file, read only as its
 /// views are walked): the bytes before it, those after it, and where it lies.
-pub struct Holed<'b> {
+pub(crate) struct Holed<'b> {
     pub before: &'b [u8],
     pub hole: Range<usize>,
     pub after: &'b [u8],
@@ -72,12 +72,12 @@ impl GlbBytes for Holed<'_> {
 }
 
 /// True when the bytes start like a GLB file (magic `glTF`).
-pub fn looks_like_glb(bytes: &[u8]) -> bool {
+pub(crate) fn looks_like_glb(bytes: &[u8]) -> bool {
     bytes.starts_with(MAGIC)
 }
 
 /// Reads the container; every problem goes to `diags`.
-pub fn read(bytes: &(impl GlbBytes + ?Sized), diags: &mut dyn Sink) -> GlbParts {
+pub(crate) fn read(bytes: &(impl GlbBytes + ?Sized), diags: &mut dyn Sink) -> GlbParts {
     let mut parts = GlbParts::default();
     let Some(declared) = read_header(bytes, &mut parts, diags) else {
         return parts;

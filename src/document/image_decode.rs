@@ -5,13 +5,13 @@ use image::{DynamicImage, ImageReader, Limits};
 use std::io::Cursor;
 
 /// Largest width or height decoded.
-pub const MAX_DIMENSION: u32 = 16384;
+pub(crate) const MAX_DIMENSION: u32 = 16384;
 /// Largest decoder allocation: an 8192² RGBA16 image.
-pub const MAX_ALLOC: u64 = 512 * 1024 * 1024;
+pub(crate) const MAX_ALLOC: u64 = 512 * 1024 * 1024;
 
 /// Why an image was not decoded.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum DecodeError {
+pub(crate) enum DecodeError {
     /// Larger than the limits above.
     #[error("larger than the decoding limits ({MAX_DIMENSION}² texels, {} MiB)", MAX_ALLOC >> 20)]
     Limit,
@@ -24,7 +24,7 @@ pub enum DecodeError {
     NotTranscoded(String),
 }
 
-pub fn decode(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
+pub(crate) fn decode(bytes: &[u8]) -> Result<DynamicImage, DecodeError> {
     if bytes.starts_with(super::image_header::KTX2_MAGIC) {
         return decode_ktx2(bytes);
     }

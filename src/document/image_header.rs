@@ -149,16 +149,16 @@ impl ImageInfo {
 const SRGB_CHROMATICITIES: [u32; 8] = [31270, 32900, 64000, 33000, 30000, 60000, 15000, 6000];
 
 #[derive(Debug, Clone, PartialEq)]
-pub enum HeaderError {
+pub(crate) enum HeaderError {
     Unrecognized,
     UnexpectedEnd,
     Invalid(String),
 }
 
 /// The identifier a KTX 2.0 file starts with.
-pub const KTX2_MAGIC: &[u8] = b"\xABKTX 20\xBB\r\n\x1A\n";
+pub(crate) const KTX2_MAGIC: &[u8] = b"\xABKTX 20\xBB\r\n\x1A\n";
 
-pub fn read(bytes: &[u8]) -> Result<ImageInfo, HeaderError> {
+pub(crate) fn read(bytes: &[u8]) -> Result<ImageInfo, HeaderError> {
     if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
         png(bytes)
     } else if bytes.starts_with(&[0xFF, 0xD8]) {
@@ -411,8 +411,8 @@ fn ktx2(b: &[u8]) -> Result<ImageInfo, HeaderError> {
 const KHR_DF_TRANSFER_LINEAR: u8 = 1;
 const KHR_DF_TRANSFER_SRGB: u8 = 2;
 const KHR_DF_MODEL_RGBSDA: u8 = 1;
-pub const KHR_DF_MODEL_ETC1S: u8 = 163;
-pub const KHR_DF_MODEL_UASTC: u8 = 166;
+pub(crate) const KHR_DF_MODEL_ETC1S: u8 = 163;
+pub(crate) const KHR_DF_MODEL_UASTC: u8 = 166;
 
 /// What gltfmat reads of a KTX2's basic data format descriptor block.
 struct Descriptor {

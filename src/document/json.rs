@@ -11,14 +11,14 @@ use std::hash::BuildHasher;
 
 /// A JSON syntax error with its 1-based position.
 #[derive(Debug, Clone, PartialEq)]
-pub struct SyntaxError {
+pub(crate) struct SyntaxError {
     pub message: String,
     pub offset: usize,
 }
 
 /// Parses JSON text into a compact tree. A UTF-8 byte-order mark is an error, as in the
 /// glTF spec.
-pub fn parse(bytes: &[u8]) -> Result<super::Tree, SyntaxError> {
+pub(crate) fn parse(bytes: &[u8]) -> Result<super::Tree, SyntaxError> {
     parse_with(bytes, super::Tree::parse)
 }
 
@@ -64,7 +64,7 @@ fn offset_of(bytes: &[u8], line: usize, column: usize) -> usize {
 
 /// Unescapes one token of a JSON pointer (borrowed when it has no escape: a pointer is
 /// resolved on every lookup).
-pub fn unescape_token(token: &str) -> Cow<'_, str> {
+pub(crate) fn unescape_token(token: &str) -> Cow<'_, str> {
     if token.contains('~') {
         Cow::Owned(token.replace("~1", "/").replace("~0", "~"))
     } else {
@@ -73,7 +73,7 @@ pub fn unescape_token(token: &str) -> Cow<'_, str> {
 }
 
 /// Escapes one token for use in a JSON pointer (borrowed when nothing needs escaping).
-pub fn escape_token(token: &str) -> Cow<'_, str> {
+pub(crate) fn escape_token(token: &str) -> Cow<'_, str> {
     if token.contains(['~', '/']) {
         Cow::Owned(token.replace('~', "~0").replace('/', "~1"))
     } else {
@@ -85,7 +85,7 @@ pub fn escape_token(token: &str) -> Cow<'_, str> {
 /// order; for an object member the range starts at its key, so a snippet shows the property
 /// name (of a repeated key, the last one, whose value parsers keep). A pointer that names
 /// nothing has `None`. See [`locate_each`].
-pub fn locate_all(text: &[u8], sorted: &[&str]) -> Vec<Option<std::ops::Range<usize>>> {
+pub(crate) fn locate_all(text: &[u8], sorted: &[&str]) -> Vec<Option<std::ops::Range<usize>>> {
     let mut found = vec![None; sorted.len()];
     locate_each(
         text,
@@ -100,7 +100,7 @@ pub fn locate_all(text: &[u8], sorted: &[&str]) -> Vec<Option<std::ops::Range<us
 /// order, each once) that names a value of `text`, with the byte range of that value. All
 /// are found in one pass over the text, skipping the subtrees no pointer enters, so the cost
 /// is one scan however many findings are located, and no memory per pointer.
-pub fn locate_each<'p>(
+pub(crate) fn locate_each<'p>(
     text: &[u8],
     count: usize,
     pointer: impl Fn(usize) -> &'p str,
@@ -165,7 +165,7 @@ impl Wanted<'_, '_> {
 /// of line breaks and of characters before every 256-byte boundary. A line or a column then
 /// costs at most 256 bytes of counting (in a large single-line file a report may place 10^6
 /// findings), and the index is a thirty-second of the text, however many lines it has.
-pub struct LineIndex<'t> {
+pub(crate) struct LineIndex<'t> {
     text: &'t [u8],
     /// Fit in 32 bits: no text read is longer (`file::MAX_FILE_BYTES`).
     breaks_before_block: Vec<u32>,
@@ -176,7 +176,7 @@ const BLOCK: usize = 1 << 8;
 
 impl<'t> LineIndex<'t> {
     /// Indexes `text`.
-    pub fn new(text: &'t [u8]) -> Self {
+    pub(crate) fn new(text: &'t [u8]) -> Self {
         let blocks = text.len() / BLOCK + 2;
         let mut breaks_before_block = Vec::with_capacity(blocks);
         let mut chars_before_block = Vec::with_capacity(blocks);
@@ -197,7 +197,7 @@ impl<'t> LineIndex<'t> {
     }
 
     /// The line and column (in characters) of `offset`.
-    pub fn line_col(&self, offset: usize) -> (usize, usize) {
+    pub(crate) fn line_col(&self, offset: usize) -> (usize, usize) {
         let offset = offset.min(self.text.len());
         let block = offset / BLOCK;
         let line = self.breaks_before_block[block] as usize
@@ -212,7 +212,7 @@ impl<'t> LineIndex<'t> {
 
     /// The byte offset at which line `line` (1-based) starts: just after the text's
     /// (`line` − 1)th line break (the end of the text past the last line).
-    pub fn line_start(&self, line: usize) -> usize {
+    pub(crate) fn line_start(&self, line: usize) -> usize {
         let Some(nth) = line.checked_sub(1).filter(|&n| n > 0) else {
             return 0;
         };
@@ -235,7 +235,7 @@ impl<'t> LineIndex<'t> {
     }
 
     /// The bytes of line `line` (1-based), without its line break.
-    pub fn line(&self, line: usize) -> &'t [u8] {
+    pub(crate) fn line(&self, line: usize) -> &'t [u8] {
         let start = self.line_start(line);
         let next = self.line_start(line + 1);
         let end = if next > start && self.text.get(next - 1) == Some(&b'\n') {
@@ -264,7 +264,7 @@ fn count_breaks(bytes: &[u8]) -> usize {
 /// A key that occurs more than once in its object: its pointer, where its first repeat
 /// starts in the text, and how many times it occurs.
 #[derive(Debug, Clone, PartialEq)]
-pub struct DuplicateKey {
+pub(crate) struct DuplicateKey {
     pub pointer: String,
     pub offset: usize,
     pub occurrences: usize,
@@ -276,7 +276,7 @@ pub struct DuplicateKey {
 ///
 /// Each open container keeps only its own token, so memory stays linear in the nesting depth;
 /// a pointer is built only for a duplicate.
-pub fn duplicate_keys(text: &[u8]) -> Vec<DuplicateKey> {
+pub(crate) fn duplicate_keys(text: &[u8]) -> Vec<DuplicateKey> {
     struct Frame<'t> {
         /// The token naming this container inside its parent.
         token: Cow<'t, str>,

@@ -1,19 +1,19 @@
 //! Bytes → document: container detection, GLB chunks, JSON, and external resources.
 
-pub mod bytes;
-pub mod file;
+pub(crate) mod bytes;
+pub(crate) mod file;
 pub(crate) mod glb;
 pub(crate) mod image_decode;
 pub(crate) mod image_header;
 pub(crate) mod json;
-pub mod tree;
-pub mod uri;
+pub(crate) mod tree;
+pub(crate) mod uri;
 
 use crate::diagnostic::{khronos, Diagnostic, Sink};
-pub use bytes::{BufferData, Bytes, Elsewhere, Piece, Pieces};
+pub(crate) use bytes::{BufferData, Bytes, Elsewhere, Piece, Pieces};
 use std::ops::Range;
 use std::sync::Arc;
-pub use tree::{Array, Node, Object, StringId, Tree};
+pub(crate) use tree::{Array, Node, Object, StringId, Tree};
 
 /// How the asset is stored.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -93,13 +93,13 @@ impl Document<Tree> {
 /// Reads a `.gltf` or `.glb` from its bytes. The container is recognised by its magic, or by
 /// the name's `.glb` ending (so a broken GLB is reported as one, not as invalid JSON).
 /// Problems with the container and the JSON go to `diagnostics`.
-pub fn read(bytes: impl Into<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> Document {
+pub(crate) fn read(bytes: impl Into<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> Document {
     read_shared(Arc::new(bytes.into()), name, diagnostics)
 }
 
 /// [`read`] of bytes shared with their owner (an upgrade's output, checked as it is
 /// written).
-pub fn read_shared(bytes: Arc<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> Document {
+pub(crate) fn read_shared(bytes: Arc<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> Document {
     read_with(bytes, name, diagnostics, json::parse)
 }
 
@@ -133,7 +133,7 @@ fn read_with<R>(
 /// Reads the asset at `path` as [`read`] reads its bytes, except that a large GLB's BIN
 /// chunk data is left in the file (see [`file::LARGE_FILE_BYTES`]): its views are read as
 /// they are walked. Fails only when the file cannot be opened or read.
-pub fn read_path(
+pub(crate) fn read_path(
     path: &std::path::Path,
     diagnostics: &mut dyn Sink,
 ) -> Result<Document, file::FileError> {
@@ -156,7 +156,11 @@ pub fn read_path(
 /// Reads a GLB whose BIN chunk's data is in `pieces`, `head` being everything before it (up
 /// to and with the BIN chunk's header): an upgrade's output is checked as it is written,
 /// without joining its geometry and images into one copy first.
-pub fn read_glb_pieces(head: Arc<Bytes>, pieces: Pieces, diagnostics: &mut dyn Sink) -> Document {
+pub(crate) fn read_glb_pieces(
+    head: Arc<Bytes>,
+    pieces: Pieces,
+    diagnostics: &mut dyn Sink,
+) -> Document {
     let start = head.len();
     read_holed(head, start, Elsewhere::Pieces(pieces), &[], diagnostics)
 }

@@ -26,7 +26,7 @@ use std::hash::BuildHasher;
 
 /// The most values one document's tree holds (128 MB of slots). Real glTF JSON stays far
 /// below: 10^5 nodes with a name, a mesh and a full transform are about 2·10^6 values.
-pub const MAX_VALUES: usize = 1 << 24;
+pub(crate) const MAX_VALUES: usize = 1 << 24;
 
 /// A parsed JSON document.
 pub struct Tree {

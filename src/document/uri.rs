@@ -10,7 +10,7 @@ use std::sync::{Arc, Mutex, Weak};
 
 /// What a `uri` string is.
 #[derive(Debug, PartialEq)]
-pub enum UriKind {
+pub(crate) enum UriKind {
     /// `data:[<media type>][;base64],<data>`
     Data {
         /// The media type, `text/plain;charset=US-ASCII` when absent.
@@ -33,7 +33,7 @@ pub enum UriKind {
 }
 
 /// Classifies a URI; `Err` carries the parser's explanation for an invalid one.
-pub fn classify(uri: &str) -> Result<UriKind, String> {
+pub(crate) fn classify(uri: &str) -> Result<UriKind, String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         return parse_data(rest);
     }
@@ -175,7 +175,7 @@ pub trait ResourceLoader: Sync {
 
 /// The bytes a `uri` names: a data URI's own, or a file read through `loader`. Non-relative
 /// URIs are not fetched and absolute paths not read (both are errors saying so).
-pub fn load_uri(uri: &str, loader: &dyn ResourceLoader) -> Result<Arc<Bytes>, String> {
+pub(crate) fn load_uri(uri: &str, loader: &dyn ResourceLoader) -> Result<Arc<Bytes>, String> {
     match classify(uri)? {
         UriKind::Data { bytes, .. } => Ok(Arc::new(bytes.into())),
         UriKind::Relative(path) => loader.load(&path).map_err(|e| e.to_string()),

@@ -3,10 +3,10 @@
 
 use std::ops::Range;
 
-pub use super::gl::{BYTE, FLOAT, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT};
+pub(crate) use super::gl::{BYTE, FLOAT, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT};
 
 /// Bytes per component of a `componentType`.
-pub fn component_size(component_type: u64) -> Option<usize> {
+pub(crate) fn component_size(component_type: u64) -> Option<usize> {
     match component_type {
         BYTE | UNSIGNED_BYTE => Some(1),
         SHORT | UNSIGNED_SHORT => Some(2),
@@ -16,7 +16,7 @@ pub fn component_size(component_type: u64) -> Option<usize> {
 }
 
 /// Components per element of a `type` (`"VEC3"` → 3).
-pub fn component_count(kind: &str) -> Option<usize> {
+pub(crate) fn component_count(kind: &str) -> Option<usize> {
     match kind {
         "SCALAR" => Some(1),
         "VEC2" => Some(2),
@@ -31,7 +31,7 @@ pub fn component_count(kind: &str) -> Option<usize> {
 /// One little-endian component as stored (integers not normalised); `bytes` holds at least
 /// `component_size(component_type)` bytes, and an unknown type reads as a float.
 #[inline(always)]
-pub fn decode_component(component_type: u64, bytes: &[u8]) -> f64 {
+pub(crate) fn decode_component(component_type: u64, bytes: &[u8]) -> f64 {
     let word = |n: usize| {
         let mut b = [0u8; 4];
         b[..n].copy_from_slice(&bytes[..n]);
@@ -50,7 +50,7 @@ pub fn decode_component(component_type: u64, bytes: &[u8]) -> f64 {
 /// The glTF 2.0 normalisation of a `normalized` integer component (§3.11): what makes a
 /// stored value the value a shader sees. None for the types whose values are not changed
 /// (floats, unsigned ints), so that callers pay no call per value for them.
-pub fn normalise(component_type: u64) -> Option<fn(f64) -> f64> {
+pub(crate) fn normalise(component_type: u64) -> Option<fn(f64) -> f64> {
     match component_type {
         BYTE => Some(|v| (v / 127.0).max(-1.0)),
         UNSIGNED_BYTE => Some(|v| v / 255.0),
@@ -63,7 +63,7 @@ pub fn normalise(component_type: u64) -> Option<fn(f64) -> f64> {
 /// Where an accessor's elements lie in its bytes (from `offset`, `stride` apart), and how each
 /// is stored (`components` of `size` bytes as `component_type`).
 #[derive(Clone, Copy, Debug)]
-pub struct Layout {
+pub(crate) struct Layout {
     pub component_type: u64,
     pub size: usize,
     pub components: usize,
@@ -73,7 +73,7 @@ pub struct Layout {
 }
 
 /// The most components an element has (MAT4).
-pub const MAX_COMPONENTS: usize = 16;
+pub(crate) const MAX_COMPONENTS: usize = 16;
 /// Elements decoded per batch: small enough for L1, large enough that each check's
 /// dispatch is paid once per batch rather than once per element; a multiple of 3 so that
 /// triangles rarely straddle batches.
@@ -82,7 +82,7 @@ const BATCH: usize = 240;
 /// Calls `f(first element index, values)` for consecutive batches of elements, `values`
 /// holding `components` numbers per element, as stored (integers not normalised); stops
 /// at the first batch whose bytes `bytes` does not hold.
-pub fn visit(layout: &Layout, bytes: &[u8], mut f: impl FnMut(usize, &[f64])) {
+pub(crate) fn visit(layout: &Layout, bytes: &[u8], mut f: impl FnMut(usize, &[f64])) {
     let n = layout.components.clamp(1, MAX_COMPONENTS);
     let mut values = [0.0; BATCH * MAX_COMPONENTS];
     let mut first = 0;
@@ -100,7 +100,7 @@ pub fn visit(layout: &Layout, bytes: &[u8], mut f: impl FnMut(usize, &[f64])) {
 /// each, as stored: integers not normalised); false when `bytes` does not hold them all.
 /// Dispatching on the component type once, outside the loop, keeps the inner loop a plain
 /// load: the check and the upgrade run this over every byte of large assets.
-pub fn decode(layout: &Layout, bytes: &[u8], first: usize, out: &mut [f64]) -> bool {
+pub(crate) fn decode(layout: &Layout, bytes: &[u8], first: usize, out: &mut [f64]) -> bool {
     match layout.component_type {
         BYTE => decode_as::<BYTE, 1>(layout, bytes, first, out),
         UNSIGNED_BYTE => decode_as::<UNSIGNED_BYTE, 1>(layout, bytes, first, out),
@@ -154,7 +154,7 @@ fn decode_as<const TYPE: u64, const SIZE: usize>(
 }
 
 /// Per-component bounds of tightly packed little-endian `f32` elements of `N` components.
-pub struct FloatBounds<const N: usize> {
+pub(crate) struct FloatBounds<const N: usize> {
     /// The least value of each component (+∞ when there is none).
     pub low: [f32; N],
     /// The greatest value of each component (−∞ when there is none).
@@ -172,7 +172,7 @@ impl<const N: usize> FloatBounds<N> {
     /// The bounds of `data`, and whether `valid` rejects some element. Compared as `f32`,
     /// which is exact (every `f32` is an `f64`); compare-and-select on fixed-size arrays
     /// lets the compiler vectorise the loop.
-    pub fn of(data: &[u8], valid: impl Fn(&[f32; N]) -> bool + Sync) -> Self {
+    pub(crate) fn of(data: &[u8], valid: impl Fn(&[f32; N]) -> bool + Sync) -> Self {
         use rayon::prelude::*;
         (data.par_chunks(4 * N * ELEMENTS_AT_ONCE))
             .map(|run| Self::of_run(run, &valid))
@@ -226,7 +226,7 @@ impl<const N: usize> FloatBounds<N> {
     }
 
     /// The bounds as glTF's `min` / `max` arrays.
-    pub fn min_max(&self) -> (Vec<f64>, Vec<f64>) {
+    pub(crate) fn min_max(&self) -> (Vec<f64>, Vec<f64>) {
         (
             self.low.map(f64::from).to_vec(),
             self.high.map(f64::from).to_vec(),

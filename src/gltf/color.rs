@@ -1,7 +1,7 @@
 //! Colour transfer functions shared by the checker, the converter and the shading evaluator.
 
 /// sRGB-encoded value (0..1) to linear, IEC 61966-2-1.
-pub fn srgb_to_linear(encoded: f64) -> f64 {
+pub(crate) fn srgb_to_linear(encoded: f64) -> f64 {
     if encoded <= 0.04045 {
         encoded / 12.92
     } else {
@@ -12,7 +12,7 @@ pub fn srgb_to_linear(encoded: f64) -> f64 {
 /// `srgb_to_linear` for sampled texture values: an exact 8-bit level (most texels) is
 /// looked up in a table of the same function instead of calling `powf`.
 #[inline(always)]
-pub fn srgb_texel_to_linear(encoded: f64) -> f64 {
+pub(crate) fn srgb_texel_to_linear(encoded: f64) -> f64 {
     static TABLE: std::sync::OnceLock<[f64; 256]> = std::sync::OnceLock::new();
     let table = TABLE.get_or_init(|| std::array::from_fn(|i| srgb_to_linear(i as f64 / 255.0)));
     let scaled = encoded * 255.0;
@@ -26,7 +26,7 @@ pub fn srgb_texel_to_linear(encoded: f64) -> f64 {
 }
 
 /// Linear value (0..1) to sRGB-encoded, IEC 61966-2-1.
-pub fn linear_to_srgb(linear: f64) -> f64 {
+pub(crate) fn linear_to_srgb(linear: f64) -> f64 {
     if linear <= 0.0031308 {
         linear * 12.92
     } else {
@@ -38,7 +38,7 @@ pub fn linear_to_srgb(linear: f64) -> f64 {
 /// `powf` (rebaking and rendering encode millions of texels): the level is the number of
 /// level boundaries (linear values where the rounded level changes) at or below the value,
 /// counted from a bucket table that starts within two levels of the answer.
-pub fn linear_to_srgb8(linear: f64) -> u8 {
+pub(crate) fn linear_to_srgb8(linear: f64) -> u8 {
     const BUCKETS: usize = 4096;
     struct Tables {
         boundaries: [f64; 255],
@@ -65,7 +65,7 @@ pub fn linear_to_srgb8(linear: f64) -> u8 {
 }
 
 /// Relative luminance of linear Rec.709 / sRGB primaries.
-pub fn luminance([r, g, b]: [f64; 3]) -> f64 {
+pub(crate) fn luminance([r, g, b]: [f64; 3]) -> f64 {
     0.2126 * r + 0.7152 * g + 0.0722 * b
 }
 

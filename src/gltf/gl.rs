@@ -1,16 +1,16 @@
 //! The OpenGL enum values glTF (1.0 and 2.0) stores as numbers, in one place.
 
 /// `componentType` values.
-pub const BYTE: u64 = 5120;
-pub const UNSIGNED_BYTE: u64 = 5121;
-pub const SHORT: u64 = 5122;
-pub const UNSIGNED_SHORT: u64 = 5123;
-pub const UNSIGNED_INT: u64 = 5125;
-pub const FLOAT: u64 = 5126;
+pub(crate) const BYTE: u64 = 5120;
+pub(crate) const UNSIGNED_BYTE: u64 = 5121;
+pub(crate) const SHORT: u64 = 5122;
+pub(crate) const UNSIGNED_SHORT: u64 = 5123;
+pub(crate) const UNSIGNED_INT: u64 = 5125;
+pub(crate) const FLOAT: u64 = 5126;
 
 /// The name and the range of values of an integer component type (`None` for FLOAT and
 /// for what is no component type).
-pub fn integer_range(component_type: u64) -> Option<(&'static str, f64, f64)> {
+pub(crate) fn integer_range(component_type: u64) -> Option<(&'static str, f64, f64)> {
     match component_type {
         BYTE => Some(("BYTE", -128.0, 127.0)),
         UNSIGNED_BYTE => Some(("UNSIGNED_BYTE", 0.0, 255.0)),
@@ -22,14 +22,14 @@ pub fn integer_range(component_type: u64) -> Option<(&'static str, f64, f64)> {
 }
 
 /// `bufferView.target` values.
-pub const ARRAY_BUFFER: u64 = 34962;
-pub const ELEMENT_ARRAY_BUFFER: u64 = 34963;
+pub(crate) const ARRAY_BUFFER: u64 = 34962;
+pub(crate) const ELEMENT_ARRAY_BUFFER: u64 = 34963;
 
 /// Sampler filters and wrap modes.
-pub const LINEAR: u64 = 9729;
-pub const NEAREST_MIPMAP_LINEAR: u64 = 9986;
-pub const REPEAT: u64 = 10497;
+pub(crate) const LINEAR: u64 = 9729;
+pub(crate) const NEAREST_MIPMAP_LINEAR: u64 = 9986;
+pub(crate) const REPEAT: u64 = 10497;
 
 /// glTF 1.0 technique states (`technique.states.enable`).
-pub const BLEND: u64 = 3042;
-pub const CULL_FACE: u64 = 2884;
+pub(crate) const BLEND: u64 = 3042;
+pub(crate) const CULL_FACE: u64 = 2884;

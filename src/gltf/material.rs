@@ -6,7 +6,7 @@ use super::{unsigned, Json};
 
 /// Every image a texture may sample: `source`, then each extension's `source`
 /// (KHR_texture_basisu, EXT_texture_webp, …).
-pub fn texture_images<'a, J: Json<'a>>(texture: J) -> impl Iterator<Item = u64> + 'a {
+pub(crate) fn texture_images<'a, J: Json<'a>>(texture: J) -> impl Iterator<Item = u64> + 'a {
     let extensions = (texture.get("extensions").into_iter()).flat_map(J::member_values);
     std::iter::once(texture)
         .chain(extensions)
@@ -19,7 +19,7 @@ const DRAWN_EXTENSIONS: [&str; 2] = ["KHR_texture_basisu", "EXT_texture_webp"];
 /// The image a viewer that supports KHR_texture_basisu and EXT_texture_webp draws for a
 /// texture: such an extension's `source` (the fallback `source` is for viewers without it),
 /// else `source`, else any other extension's.
-pub fn drawn_image<'a, J: Json<'a>>(texture: J) -> Option<u64> {
+pub(crate) fn drawn_image<'a, J: Json<'a>>(texture: J) -> Option<u64> {
     let extensions = texture.get("extensions");
     let known =
         (DRAWN_EXTENSIONS.iter()).find_map(|name| unsigned(extensions?.get(name)?, "source"));
@@ -27,13 +27,13 @@ pub fn drawn_image<'a, J: Json<'a>>(texture: J) -> Option<u64> {
 }
 
 /// The KHR_texture_transform object of a textureInfo.
-pub fn texture_transform<'a, J: Json<'a>>(info: J) -> Option<J> {
+pub(crate) fn texture_transform<'a, J: Json<'a>>(info: J) -> Option<J> {
     info.get("extensions")?.get("KHR_texture_transform")
 }
 
 /// The UV matrix a textureInfo applies, row-major `[a, b, c, d, e, f]` for
 /// `(a·u + b·v + c, d·u + e·v + f)`: KHR_texture_transform's T · R · S, the identity without it.
-pub fn uv_transform<'a, J: Json<'a>>(info: J) -> [f64; 6] {
+pub(crate) fn uv_transform<'a, J: Json<'a>>(info: J) -> [f64; 6] {
     let Some(t) = texture_transform(info) else {
         return [1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
     };
@@ -51,7 +51,7 @@ pub fn uv_transform<'a, J: Json<'a>>(info: J) -> [f64; 6] {
 
 /// The texCoord set a textureInfo reads: KHR_texture_transform's `texCoord` override when
 /// present, else its own `texCoord`, else 0.
-pub fn effective_texcoord<'a>(info: impl Json<'a>) -> u64 {
+pub(crate) fn effective_texcoord<'a>(info: impl Json<'a>) -> u64 {
     texture_transform(info)
         .and_then(|t| unsigned(t, "texCoord"))
         .or_else(|| unsigned(info, "texCoord"))
@@ -59,9 +59,9 @@ pub fn effective_texcoord<'a>(info: impl Json<'a>) -> u64 {
 }
 
 /// The archived specular-glossiness extension.
-pub const SPEC_GLOSS: &str = "KHR_materials_pbrSpecularGlossiness";
+pub(crate) const SPEC_GLOSS: &str = "KHR_materials_pbrSpecularGlossiness";
 /// The unlit extension.
-pub const UNLIT: &str = "KHR_materials_unlit";
+pub(crate) const UNLIT: &str = "KHR_materials_unlit";
 
 /// The material extensions that extend the metallic-roughness BRDF: each one's README
 /// excludes KHR_materials_pbrSpecularGlossiness and KHR_materials_unlit on the same material.
@@ -81,13 +81,13 @@ const EXTENDS_METAL_ROUGH: &[&str] = &[
 /// What the specs say about `other` on a material that has the standalone extension
 /// `standalone` (specular-glossiness or unlit).
 #[derive(Debug, PartialEq, Eq)]
-pub enum Combination {
+pub(crate) enum Combination {
     Excluded,
     Allowed,
     Unknown,
 }
 
-pub fn combination(standalone: &str, other: &str) -> Combination {
+pub(crate) fn combination(standalone: &str, other: &str) -> Combination {
     if EXTENDS_METAL_ROUGH.contains(&other)
         || (standalone == UNLIT && other == "KHR_materials_emissive_strength")
     {
@@ -100,18 +100,18 @@ pub fn combination(standalone: &str, other: &str) -> Combination {
 }
 
 /// Colour channels as a bit mask.
-pub type Channels = u8;
-pub const R: Channels = 1;
-pub const G: Channels = 2;
-pub const B: Channels = 4;
-pub const A: Channels = 8;
-pub const RGB: Channels = R | G | B;
+pub(crate) type Channels = u8;
+pub(crate) const R: Channels = 1;
+pub(crate) const G: Channels = 2;
+pub(crate) const B: Channels = 4;
+pub(crate) const A: Channels = 8;
+pub(crate) const RGB: Channels = R | G | B;
 
 /// Every texture slot a material can have: where it sits and which channels it reads how.
 /// This is the one table the tangent, channel and colour-space rules read; the channel and
 /// transfer columns come from each extension's spec (summarised in validator-anchors.md §5).
 #[derive(Debug)]
-pub struct TextureSlot {
+pub(crate) struct TextureSlot {
     pub extension: Option<&'static str>,
     /// Core slots nested in `pbrMetallicRoughness`.
     pub in_pbr: bool,
@@ -162,7 +162,7 @@ const SPEC_GLOSS_SLOT: Option<&str> = Some(SPEC_GLOSS);
 const SHEEN: Option<&str> = Some("KHR_materials_sheen");
 const SPECULAR: Option<&str> = Some("KHR_materials_specular");
 
-pub static TEXTURE_SLOTS: &[TextureSlot] = &[
+pub(crate) static TEXTURE_SLOTS: &[TextureSlot] = &[
     in_pbr(colour_with_coverage(core("baseColorTexture", RGB, 0))),
     in_pbr(core("metallicRoughnessTexture", 0, G | B)),
     core("normalTexture", 0, RGB),
@@ -198,19 +198,19 @@ pub static TEXTURE_SLOTS: &[TextureSlot] = &[
 
 impl TextureSlot {
     /// Normal maps: they need a tangent space, and their texels are unit vectors.
-    pub fn is_normal(&self) -> bool {
+    pub(crate) fn is_normal(&self) -> bool {
         matches!(self.key, "normalTexture" | "clearcoatNormalTexture")
     }
 
     /// The channels this slot reads in `material`: (sRGB, linear).
-    pub fn reads<'a, J: Json<'a>>(&self, material: J) -> (Channels, Channels) {
+    pub(crate) fn reads<'a, J: Json<'a>>(&self, material: J) -> (Channels, Channels) {
         let mode = material.get("alphaMode").and_then(J::as_str);
         let coverage = self.coverage_alpha && mode.is_some_and(|m| m != "OPAQUE");
         (self.srgb, self.linear | if coverage { A } else { 0 })
     }
 
     /// The slot's pointer relative to its material.
-    pub fn pointer(&self) -> String {
+    pub(crate) fn pointer(&self) -> String {
         match (self.extension, self.in_pbr) {
             (Some(ext), _) => format!("/extensions/{ext}/{}", self.key),
             (None, true) => format!("/pbrMetallicRoughness/{}", self.key),
@@ -219,7 +219,7 @@ impl TextureSlot {
     }
 
     /// The slot's textureInfo object in a material, if present.
-    pub fn lookup<'a, J: Json<'a>>(&self, material: J) -> Option<J> {
+    pub(crate) fn lookup<'a, J: Json<'a>>(&self, material: J) -> Option<J> {
         let parent = match (self.extension, self.in_pbr) {
             (Some(ext), _) => material.get("extensions")?.get(ext)?,
             (None, true) => material.get("pbrMetallicRoughness")?,

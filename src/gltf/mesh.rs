@@ -4,7 +4,7 @@ use super::{unsigned, Json};
 
 /// The materials a primitive draws with: its own and each KHR_materials_variants mapping's,
 /// once each, in increasing order.
-pub fn drawn_materials<'a, J: Json<'a>>(primitive: J) -> Vec<u64> {
+pub(crate) fn drawn_materials<'a, J: Json<'a>>(primitive: J) -> Vec<u64> {
     let mappings = (primitive.get("extensions"))
         .and_then(|e| e.get("KHR_materials_variants"))
         .and_then(|v| v.get("mappings"));
@@ -21,7 +21,7 @@ pub fn drawn_materials<'a, J: Json<'a>>(primitive: J) -> Vec<u64> {
 }
 
 /// How many vertex triples [`triangles`] gives for `n` vertices.
-pub fn triangle_count(mode: u64, n: usize) -> usize {
+pub(crate) fn triangle_count(mode: u64, n: usize) -> usize {
     match mode {
         0 => n,
         1 => n / 2,
@@ -34,7 +34,7 @@ pub fn triangle_count(mode: u64, n: usize) -> usize {
 /// The vertex triples a primitive of `mode` draws from `n` vertices (`at(i)` the i-th index):
 /// triangles as the mode assembles them; a line is a thin triangle and a point a degenerate
 /// one, so that a caller looking at what a primitive covers sees them too.
-pub fn triangles(
+pub(crate) fn triangles(
     mode: u64,
     n: usize,
     at: impl Fn(usize) -> usize,

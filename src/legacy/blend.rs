@@ -5,7 +5,7 @@ use crate::gltf::gl::BLEND;
 
 /// How a 1.0 material's colour meets what is behind it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Blend {
+pub(crate) enum Blend {
     /// Source factor ONE: the colour is added whole, the background kept by 1 − alpha
     /// (premultiplied colour, KHR_materials_common's implementation note).
     Premultiplied,
@@ -17,7 +17,7 @@ pub enum Blend {
 /// source factor is neither ONE nor SRC_ALPHA; without blend functions, GL's own (ONE,
 /// ZERO, the specification's default) add the colour whole and keep nothing behind, which
 /// is no blend either.
-pub fn technique_blend(technique: Node) -> Option<Blend> {
+pub(crate) fn technique_blend(technique: Node) -> Option<Blend> {
     const ONE: u64 = 1;
     const SRC_ALPHA: u64 = 770;
     let states = technique.get("states")?;

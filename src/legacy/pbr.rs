@@ -14,7 +14,7 @@
 use crate::document::Node;
 
 /// The four names of the extension, newest last.
-pub const EXTENSION_NAMES: &[&str] = &[
+pub(crate) const EXTENSION_NAMES: &[&str] = &[
     "WEB3D_materials_pbr",
     "KHR_materials_pbr",
     "FRAUNHOFER_materials_pbr",
@@ -22,14 +22,14 @@ pub const EXTENSION_NAMES: &[&str] = &[
 ];
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Model {
+pub(crate) enum Model {
     MetalRoughness,
     SpecularGlossiness,
 }
 
 /// Where the model came from, for the conversion report.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ModelSource {
+pub(crate) enum ModelSource {
     /// `technique` or `materialModel` named it.
     Declared,
     /// Neither member was present: inferred from the value names.
@@ -38,7 +38,7 @@ pub enum ModelSource {
 
 /// A parsed PBR block, factors defaulted as the drafts say.
 #[derive(Debug, Clone, PartialEq)]
-pub struct LegacyPbr {
+pub(crate) struct LegacyPbr {
     pub extension: &'static str,
     pub model: Model,
     pub model_source: ModelSource,
@@ -59,7 +59,7 @@ pub struct LegacyPbr {
 }
 
 /// The PBR block of a 1.0 material, if it has one: (extension name, object).
-pub fn find<'t>(material: Node<'t>) -> Option<(&'static str, Node<'t>)> {
+pub(crate) fn find<'t>(material: Node<'t>) -> Option<(&'static str, Node<'t>)> {
     let extensions = material.get("extensions")?;
     EXTENSION_NAMES
         .iter()
@@ -67,7 +67,7 @@ pub fn find<'t>(material: Node<'t>) -> Option<(&'static str, Node<'t>)> {
 }
 
 /// Reads a model name as the drafts spelled it.
-pub fn model_from_name(name: &str) -> Option<Model> {
+pub(crate) fn model_from_name(name: &str) -> Option<Model> {
     let flat: String = name
         .chars()
         .filter(char::is_ascii_alphanumeric)
@@ -83,7 +83,7 @@ pub fn model_from_name(name: &str) -> Option<Model> {
 }
 
 /// The declared model name, from `materialModel` or `technique`.
-pub fn declared_model<'t>(block: Node<'t>) -> Option<&'t str> {
+pub(crate) fn declared_model<'t>(block: Node<'t>) -> Option<&'t str> {
     ["materialModel", "technique"]
         .iter()
         .find_map(|key| block.get(*key).and_then(Node::as_str))
@@ -112,7 +112,7 @@ fn model_of_stem(stem: &str) -> Option<Model> {
 }
 
 /// Parses a PBR block; `None` when no model can be declared or inferred.
-pub fn parse(extension: &'static str, block: Node) -> Option<LegacyPbr> {
+pub(crate) fn parse(extension: &'static str, block: Node) -> Option<LegacyPbr> {
     let values = block.get("values").and_then(Node::as_object);
     let entries: Vec<(&str, Node)> = values.into_iter().flat_map(|v| v.iter()).collect();
     let (model, model_source) = match declared_model(block).and_then(model_from_name) {

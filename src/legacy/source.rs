@@ -19,7 +19,7 @@ const BINARY_BUFFER_IDS: &[&str] = &["binary_glTF", "KHR_binary_glTF"];
 #[error("not a glTF 1.0 asset: {0}")]
 pub struct NotGltf1(pub String);
 
-pub struct Source<'a> {
+pub(crate) struct Source<'a> {
     /// The JSON, as the compact tree the checker reads (a `serde_json::Value` costs about ten
     /// times as much per value, and a stranger's 1.0 asset may hold millions of them).
     json: Tree,
@@ -51,7 +51,7 @@ impl Body {
 
 /// Whether `bytes` declare glTF 2.x: a GLB of version 2, or JSON whose `asset.version` is
 /// 2.x. Only `asset` is looked at, so this costs a scan, not a parse into values.
-pub fn declares_gltf2(bytes: &[u8]) -> bool {
+pub(crate) fn declares_gltf2(bytes: &[u8]) -> bool {
     if bytes.starts_with(b"glTF") {
         return bytes.get(4..8) == Some(&2u32.to_le_bytes()[..]);
     }
@@ -74,7 +74,7 @@ pub fn declares_gltf2(bytes: &[u8]) -> bool {
 /// Reads a glTF 1.0 asset. A 2.x asset is told apart by a scan, before any tree is built.
 /// Bytes handed over are let go as soon as they are not needed (a `.gltf`'s once its tree is
 /// built); borrowed ones are copied only for a GLB, whose body the source keeps.
-pub fn read<'a>(
+pub(crate) fn read<'a>(
     bytes: Cow<'_, [u8]>,
     loader: &'a dyn ResourceLoader,
 ) -> Result<Source<'a>, NotGltf1> {
@@ -97,7 +97,7 @@ const MATERIAL_MEMBERS: &[&str] = &[
 
 /// [`read`] for reading materials only: the root members their reading needs, not the
 /// geometry, nodes and animations (10^5 meshes cost a proof nothing).
-pub fn read_for_materials<'a>(
+pub(crate) fn read_for_materials<'a>(
     bytes: Cow<'_, [u8]>,
     loader: &'a dyn ResourceLoader,
 ) -> Result<Source<'a>, NotGltf1> {
@@ -206,7 +206,7 @@ fn check_version(root: Node) -> Result<(), NotGltf1> {
 
 impl Source<'_> {
     /// The asset's JSON root.
-    pub fn root(&self) -> Node<'_> {
+    pub(crate) fn root(&self) -> Node<'_> {
         self.json.root()
     }
 
@@ -244,7 +244,7 @@ impl Source<'_> {
 
     /// The held bytes (a loaded buffer, or the GLB file) that hold `part`, and where: such
     /// bytes can go to the output by reference. None for foreign slices.
-    pub fn shared(&self, part: &[u8]) -> Option<(Arc<Bytes>, Range<usize>)> {
+    pub(crate) fn shared(&self, part: &[u8]) -> Option<(Arc<Bytes>, Range<usize>)> {
         let start = part.as_ptr() as usize;
         let loaded = self
             .buffers
@@ -261,28 +261,28 @@ impl Source<'_> {
     /// How many distinct bytes of data are loaded: what the buffers read so far (a file
     /// that several buffers name, once), and a GLB's body. Kept as buffers load: the
     /// upgrade asks once an accessor.
-    pub fn loaded_bytes(&self) -> usize {
+    pub(crate) fn loaded_bytes(&self) -> usize {
         self.loaded.borrow().1 + self.body.as_ref().map_or(0, |body| body.range.len())
     }
 
     /// Reads a data URI or a file inside the asset's folder.
-    pub fn load_uri(&self, uri: &str) -> Result<Arc<Bytes>, String> {
+    pub(crate) fn load_uri(&self, uri: &str) -> Result<Arc<Bytes>, String> {
         load_uri(uri, self.loader)
     }
 
     /// A 1.0 dictionary (`accessors`, `nodes`, …) in document order.
-    pub fn dictionary(&self, name: &str) -> Vec<(&str, Node<'_>)> {
+    pub(crate) fn dictionary(&self, name: &str) -> Vec<(&str, Node<'_>)> {
         (self.root().get(name).and_then(Node::as_object))
             .map(|map| map.iter().collect())
             .unwrap_or_default()
     }
 
-    pub fn object(&self, collection: &str, id: &str) -> Option<Node<'_>> {
+    pub(crate) fn object(&self, collection: &str, id: &str) -> Option<Node<'_>> {
         self.root().get(collection)?.get(id)
     }
 
     /// The bytes of a bufferView.
-    pub fn view(&self, id: &str) -> Result<&[u8], String> {
+    pub(crate) fn view(&self, id: &str) -> Result<&[u8], String> {
         let view = self
             .object("bufferViews", id)
             .ok_or_else(|| format!("bufferView '{id}' does not exist"))?;
@@ -323,7 +323,7 @@ impl Source<'_> {
     }
 
     /// The bytes of a 1.0 image: KHR_binary_glTF bufferView, data URI or file.
-    pub fn image_bytes(&self, image: Node) -> Result<Arc<Bytes>, String> {
+    pub(crate) fn image_bytes(&self, image: Node) -> Result<Arc<Bytes>, String> {
         let binary = image
             .get("extensions")
             .and_then(|e| e.get("KHR_binary_glTF"));

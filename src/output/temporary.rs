@@ -120,7 +120,7 @@ fn start_time(pid: u32) -> Option<u64> {
 
 impl Temporary {
     /// Creates a new temporary for `name` in `folder` and writes `parts` into it.
-    pub fn write<'p>(
+    pub(crate) fn write<'p>(
         folder: &Path,
         name: &str,
         parts: impl IntoIterator<Item = &'p [u8]>,
@@ -146,7 +146,7 @@ impl Temporary {
 
     /// Renames the temporary to its name in `folder`; an existing file is replaced only with
     /// `force`. On failure the temporary is removed.
-    pub fn place(self, folder: &Path, force: bool) -> Result<PathBuf, WriteError> {
+    pub(crate) fn place(self, folder: &Path, force: bool) -> Result<PathBuf, WriteError> {
         let target = folder.join(&self.name);
         let placed = if force {
             self.file.persist(&target)

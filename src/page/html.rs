@@ -3,7 +3,7 @@
 use base64::Engine as _;
 
 /// `text` safe in HTML text and in a quoted attribute.
-pub fn escape(text: &str) -> String {
+pub(super) fn escape(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
         match c {
@@ -19,7 +19,7 @@ pub fn escape(text: &str) -> String {
 }
 
 /// An image as a `data:image/png;base64,…` URI.
-pub fn png_data_uri<P, C>(image: &image::ImageBuffer<P, C>) -> String
+pub(super) fn png_data_uri<P, C>(image: &image::ImageBuffer<P, C>) -> String
 where
     P: image::PixelWithColorType,
     [P::Subpixel]: image::EncodableLayout,
@@ -34,7 +34,7 @@ where
 }
 
 /// An id for a group of an asset's findings, unique on the page.
-pub fn anchor_of(uri: &str, group: &str) -> String {
+pub(super) fn anchor_of(uri: &str, group: &str) -> String {
     let safe = |s: &str| -> String {
         s.chars()
             .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
@@ -44,7 +44,7 @@ pub fn anchor_of(uri: &str, group: &str) -> String {
 }
 
 /// The whole page around `body`.
-pub fn document(title: &str, body: &str) -> String {
+pub(super) fn document(title: &str, body: &str) -> String {
     format!(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>{}</title><style>{STYLE}</style></head><body>{body}<footer>Made by gltfmat {}.</footer></body></html>\n",
         escape(title),

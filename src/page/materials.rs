@@ -22,7 +22,7 @@ const MATERIALS_SHOWN: usize = 64;
 const PARAMETERS_SHOWN: usize = 2000;
 
 /// The asset's material cards: balls only when `draw` and the asset is a file.
-pub fn cards(
+pub(super) fn cards(
     report: &Report,
     path: Option<&Path>,
     groups: &BTreeMap<String, Vec<usize>>,

@@ -34,7 +34,7 @@ fn listed(severity: Severity, style: &Style) -> bool {
 /// Each report's findings and summary as it comes, then the total over all of them. In a list
 /// (a folder), a file with nothing listed prints nothing unless `verbose`: a folder of clean
 /// files is one line, as ruff and clippy print it.
-pub fn write<R: Borrow<Report>>(
+pub(super) fn write<R: Borrow<Report>>(
     reports: impl Iterator<Item = R>,
     style: &Style,
     out: &mut dyn Write,
@@ -59,7 +59,7 @@ pub fn write<R: Borrow<Report>>(
 /// How many findings of one code a file shows in full before the rest are counted in one
 /// line (unless `--all-findings`): an asset's 2,098 non-increasing animation inputs are one
 /// mistake, and four lines each would bury every other finding.
-pub const SHOWN_PER_CODE: usize = 3;
+pub(super) const SHOWN_PER_CODE: usize = 3;
 
 /// One report's findings, each written as it is rendered (10^6 of them are never one string).
 fn write_one(report: &Report, style: &Style, out: &mut dyn Write) -> std::io::Result<()> {

@@ -174,13 +174,13 @@ const NOWHERE: [u32; 2] = [u32::MAX, u32::MAX];
 const UNPLACED: u32 = u32::MAX;
 
 impl<'r> Positions<'r> {
-    pub fn of(report: &'r Report) -> Self {
+    pub(crate) fn of(report: &'r Report) -> Self {
         Self::of_those(report, |_| true)
     }
 
     /// The positions of the findings `wanted` picks (those a format shows: a summary of
     /// 10^5 counted infos locates none of them).
-    pub fn of_those(report: &'r Report, wanted: impl Fn(&Finding) -> bool) -> Self {
+    pub(crate) fn of_those(report: &'r Report, wanted: impl Fn(&Finding) -> bool) -> Self {
         let text = report.document.json_text();
         let findings = &report.diagnostics;
         let pointer = |i: u32| findings.pointer_at(i as usize).unwrap_or_default();
@@ -229,7 +229,7 @@ impl<'r> Positions<'r> {
 
     /// Byte range in the JSON text that a finding points at, or, for a member that is not
     /// written, at its nearest enclosing value.
-    pub fn span(&self, finding: &Finding) -> Option<Range<usize>> {
+    pub(crate) fn span(&self, finding: &Finding) -> Option<Range<usize>> {
         if let Some(offset) = finding.span_hint {
             return Some(offset..offset);
         }
@@ -238,7 +238,7 @@ impl<'r> Positions<'r> {
     }
 
     /// The enclosing value a finding is shown at when its own pointer is not in the text.
-    pub fn shown_at(&self, finding: &Finding) -> Option<&'r str> {
+    pub(crate) fn shown_at(&self, finding: &Finding) -> Option<&'r str> {
         if self.enclosing.is_empty() {
             return None;
         }
@@ -250,7 +250,7 @@ impl<'r> Positions<'r> {
     }
 
     /// 1-based line and column of a finding, when it can be located in the source.
-    pub fn line_col(&self, finding: &Finding) -> Option<(usize, usize)> {
+    pub(crate) fn line_col(&self, finding: &Finding) -> Option<(usize, usize)> {
         Some(self.lines.line_col(self.span(finding)?.start))
     }
 }

@@ -8,7 +8,7 @@ use serde_json::{json, Value};
 use std::borrow::Borrow;
 use std::cell::RefCell;
 
-pub fn write<R: Borrow<Report>>(
+pub(super) fn write<R: Borrow<Report>>(
     reports: impl Iterator<Item = R>,
     out: &mut dyn std::io::Write,
 ) -> std::io::Result<()> {

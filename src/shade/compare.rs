@@ -29,7 +29,7 @@ use super::tone::displayed;
 use std::sync::Arc;
 
 mod refine;
-pub use refine::dominant_input;
+pub(crate) use refine::dominant_input;
 
 /// The default verdict threshold: ΔE2000 1, about one just-noticeable difference on what a
 /// viewer shows (`compare --threshold`, the upgrade proof, the factor fit).
@@ -164,7 +164,7 @@ impl Worst {
 /// Whether a comparison keeps its per-texel map, for a heat map: grid² floats (16 MB for a
 /// 2048² texture), which a proof of 10^3 distinct materials could not hold for each.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum TexelMap {
+pub(crate) enum TexelMap {
     /// Kept in [`Comparison::per_texel`].
     Kept,
     /// Not kept: `per_texel` is empty.
@@ -227,7 +227,7 @@ fn delta_over(a: &Seen<f64>, b: &Seen<f64>, background: f64) -> f64 {
 
 /// The largest ΔE2000 between `a` and `b` for one direction pair, over the backgrounds that
 /// matter, and the background it was found over.
-pub fn delta_at(shader: &Shader, a: &Inputs, b: &Inputs, angles: &Angles) -> (f64, f64) {
+pub(crate) fn delta_at(shader: &Shader, a: &Inputs, b: &Inputs, angles: &Angles) -> (f64, f64) {
     let (v, l) = angles.vectors();
     let g = Geometry::new(v, l);
     let (sa, sb) = (seen(shader, a, &g), seen(shader, b, &g));
@@ -296,7 +296,7 @@ fn deltas_at_point(shader: &Shader, a: &Inputs, b: &Inputs) -> Vec<f64> {
 /// direction pairs and the specular peak: what a fit of factors minimises. Without the peak
 /// a fit trades roughness for the fixed directions' figures and misses the highlight the
 /// proof's dense search then finds.
-pub fn worst_at_point(shader: &Shader, sources: &[Inputs], target: &Inputs) -> f64 {
+pub(crate) fn worst_at_point(shader: &Shader, sources: &[Inputs], target: &Inputs) -> f64 {
     (sources.iter())
         .flat_map(|source| deltas_at_point(shader, source, target))
         .fold(0.0, f64::max)
@@ -306,7 +306,7 @@ pub fn worst_at_point(shader: &Shader, sources: &[Inputs], target: &Inputs) -> f
 /// point in the fixed directions and at the specular peak, the worst refined by a climb over
 /// the directions. When that exceeds `result`'s maximum, `result` takes it as its worst (and
 /// its dominant input); its grid statistics (p99, mean) are kept.
-pub fn on_surface(
+pub(crate) fn on_surface(
     shader: &Shader,
     a: &MaterialSource,
     b: &MaterialSource,
@@ -476,6 +476,33 @@ impl Batch {
         self.memo.get(key)
     }
 
+    /// Shades a pair of inputs in the next slot of `row`: both sides' colours in every
+    /// direction, the pair (for the search around the worst), and the point's texel key
+    /// when it is `keyed` (a centre read as stored, remembered once its samples are known).
+    #[inline(always)]
+    fn shade(
+        &mut self,
+        row: &mut Row,
+        shader: &Shader,
+        directions: &Directions,
+        source: Inputs,
+        target: &Inputs,
+        keyed: bool,
+    ) -> Source {
+        let slot = row.unique;
+        Batch::put(&mut self.a, slot, directions.colours(shader, &source));
+        Batch::put(&mut self.b, slot, directions.colours(shader, target));
+        self.translucent |= translucent(&source, target);
+        let inputs = (source, target.clone());
+        self.pairs.push(inputs.clone());
+        let start = self.key_words.len();
+        self.key_words.extend_from_slice(&self.key);
+        self.keys.push(keyed.then_some(start..self.key_words.len()));
+        row.unique += 1;
+        row.previous = Some((Some(inputs), Source::Slot(slot)));
+        Source::Slot(slot)
+    }
+
     /// ΔE2000 of every sample (see [`delta_e_of`]).
     #[inline(always)]
     fn delta_e(&self) -> [f64; BATCH] {
@@ -533,11 +560,16 @@ struct Partial {
 
 /// The finest UV grid compared: 4096² texels (each its centre and a corner) × every
 /// direction is already minutes.
-pub const MAX_GRID: u32 = 4096;
+pub(crate) const MAX_GRID: u32 = 4096;
 
 /// Compares `a` with `b` on a `grid`² UV grid (texel centres and corners, at most
 /// [`MAX_GRID`]); `grid` 0 picks the finest texture resolution of either (at least 16).
-pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u32) -> Comparison {
+pub(crate) fn compare(
+    shader: &Shader,
+    a: &MaterialSource,
+    b: &MaterialSource,
+    grid: u32,
+) -> Comparison {
     let mut each = compare_readings(shader, std::slice::from_ref(a), b, grid, TexelMap::Kept);
     each.pop()
         .unwrap_or_else(|| merge(shader, Vec::new(), 0, &|_| None))
@@ -546,7 +578,7 @@ pub fn compare(shader: &Shader, a: &MaterialSource, b: &MaterialSource, grid: u3
 /// Compares each of `readings` (one material read several ways: the same textures and
 /// texture coordinates) with `b`, in one pass over the grid: `b` is sampled once per point
 /// for all of them. One comparison per reading, in order; the grid is as in [`compare`].
-pub fn compare_readings(
+pub(crate) fn compare_readings(
     shader: &Shader,
     readings: &[MaterialSource],
     b: &MaterialSource,
@@ -593,7 +625,7 @@ pub fn compare_readings(
 
 /// The grid [`compare_readings`] samples for `grid` (0: the finest texture resolution of
 /// either side, at least 16), at most [`MAX_GRID`].
-pub fn chosen_grid(readings: &[MaterialSource], b: &MaterialSource, grid: u32) -> u32 {
+pub(crate) fn chosen_grid(readings: &[MaterialSource], b: &MaterialSource, grid: u32) -> u32 {
     let finest = (readings.iter().map(MaterialSource::max_resolution)).fold(1, u32::max);
     let grid = if grid == 0 {
         finest.max(b.max_resolution()).max(16)
@@ -753,25 +785,11 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
                         continue;
                     }
                     row.last_equal = false;
-                    let source = if let Some(same) = row.repeat_of(&source, target) {
-                        // A point like the one before (a flat region of a texture) has its
-                        // ΔE; nothing is copied.
-                        same
-                    } else {
-                        let slot = row.unique;
-                        Batch::put(&mut batch.a, slot, directions.colours(shader, &source));
-                        Batch::put(&mut batch.b, slot, directions.colours(shader, target));
-                        batch.translucent |= translucent(&source, target);
-                        let inputs = (source, target.clone());
-                        batch.pairs.push(inputs.clone());
-                        let start = batch.key_words.len();
-                        batch.key_words.extend_from_slice(&batch.key);
-                        batch
-                            .keys
-                            .push(keyed.then_some(start..batch.key_words.len()));
-                        row.unique += 1;
-                        row.previous = Some((Some(inputs), Source::Slot(slot)));
-                        Source::Slot(slot)
+                    // A point like the one before (a flat region of a texture) has its ΔE;
+                    // nothing is copied.
+                    let source = match row.repeat_of(&source, target) {
+                        Some(same) => same,
+                        None => batch.shade(row, shader, directions, source, target, keyed),
                     };
                     row.pending.push((x, source));
                     if row.unique == BATCH_TEXELS {

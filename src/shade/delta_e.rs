@@ -31,7 +31,7 @@ const RGB_TO_XYZ_OVER_WHITE: [[f64; 3]; 3] = {
 
 /// CIELAB of a linear sRGB colour (D65 white, Y of white = 1).
 #[inline(always)]
-pub fn lab_from_linear_srgb<R: Real>([r, g, b]: [R; 3]) -> [R; 3] {
+pub(crate) fn lab_from_linear_srgb<R: Real>([r, g, b]: [R; 3]) -> [R; 3] {
     let [x, y, z] = RGB_TO_XYZ_OVER_WHITE;
     let fx = lab_f(r * x[0] + g * x[1] + b * x[2]);
     let fy = lab_f(r * y[0] + g * y[1] + b * y[2]);
@@ -78,7 +78,7 @@ fn cube_root<R: Real>(a: R) -> R {
 /// - h̄′ is the direction bisecting the two hue vectors along the shorter arc, which is the
 ///   mean the paper's case analysis selects.
 #[inline(always)]
-pub fn ciede2000<R: Real>([l1, a1, b1]: [R; 3], [l2, a2, b2]: [R; 3]) -> R {
+pub(crate) fn ciede2000<R: Real>([l1, a1, b1]: [R; 3], [l2, a2, b2]: [R; 3]) -> R {
     let g = (-chroma_ratio((length(a1, b1) + length(a2, b2)) * 0.5) + 1.0) * 0.5;
     let (a1p, a2p) = (a1 * (g + 1.0), a2 * (g + 1.0));
     let (c1p, c2p) = (length(a1p, b1), length(a2p, b2));
@@ -107,7 +107,7 @@ pub fn ciede2000<R: Real>([l1, a1, b1]: [R; 3], [l2, a2, b2]: [R; 3]) -> R {
 /// distance of the a′b′ vectors, and a′ = (1 + G)·a with one G ≤ ½ for both colours. Hence
 /// ΔE00² ≤ ΔL² + 2·(2.25·Δa² + Δb²) ≤ 4.5·ΔE76². The factor is rounded up past rounding
 /// error.
-pub fn ciede2000_bound([l1, a1, b1]: [f64; 3], [l2, a2, b2]: [f64; 3]) -> f64 {
+pub(crate) fn ciede2000_bound([l1, a1, b1]: [f64; 3], [l2, a2, b2]: [f64; 3]) -> f64 {
     let (dl, da, db) = (l1 - l2, a1 - a2, b1 - b2);
     2.1214 * (dl * dl + da * da + db * db).sqrt()
 }

@@ -17,12 +17,12 @@ mod eval;
 mod picture;
 mod sources;
 
-pub mod compare;
+pub(crate) mod compare;
 pub(crate) mod delta_e;
-pub mod pairing;
-pub mod tone;
+pub(crate) mod pairing;
+pub(crate) mod tone;
 
-pub use eval::{appearance, brdf, iridescence, material, sheen_table};
+pub(crate) use eval::{appearance, brdf, iridescence, material, sheen_table};
 pub(crate) use eval::{elementary, lanes};
-pub use picture::render;
+pub(crate) use picture::render;
 pub(crate) use sources::{legacy, load, sample, surface};

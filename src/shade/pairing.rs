@@ -2,13 +2,13 @@
 //! `upgrade --verify` share, so that no caller builds a shader or a sheen table by hand.
 
 use super::brdf::SheenVisibility;
-pub use super::compare::TexelMap;
+pub(crate) use super::compare::TexelMap;
 use super::compare::{self as evaluate, Comparison};
 use super::legacy::{legacy_materials, LegacyMaterialsError};
 use super::load::gltf2_materials;
 use super::material::{Shader, SpecGlossReading};
 use super::render::{contact_sheet, material_ball, SheetLayout, MAX_PIXELS, MAX_SIZE};
-pub use super::sample::AS_STORED;
+pub(crate) use super::sample::AS_STORED;
 use super::sample::{MaterialSource, LIGHTING_UNREAD};
 use super::sheen_table::SheenTable;
 use super::surface::Surface;
@@ -20,7 +20,7 @@ use std::path::Path;
 
 /// A material's name with what the evaluator samples (`None`: a 1.0 material that is not a
 /// PBR-draft material, so it has no model to evaluate).
-pub type Named = (String, Option<MaterialSource>);
+pub(crate) type Named = (String, Option<MaterialSource>);
 
 /// An asset's materials: a 1.0 asset's PBR-draft materials, otherwise a 2.0 asset's; their
 /// textures no finer than `finest` texels a side ([`AS_STORED`]: as the files store them);
@@ -47,7 +47,7 @@ pub(crate) fn load_materials(
 
 /// A shader whose sheen table covers the materials (the standard table only when one has
 /// sheen).
-pub fn shader_for<'m>(materials: impl IntoIterator<Item = &'m MaterialSource>) -> Shader {
+pub(crate) fn shader_for<'m>(materials: impl IntoIterator<Item = &'m MaterialSource>) -> Shader {
     let sheen = materials.into_iter().any(|m| match m {
         MaterialSource::Gltf2(prepared) => prepared.has_sheen,
         MaterialSource::Legacy { .. } => false,
@@ -134,7 +134,7 @@ pub struct Ambiguity {
 }
 
 /// The finest grid the spread between a source's readings is sampled on.
-pub const AMBIGUITY_GRID: u32 = 512;
+pub(crate) const AMBIGUITY_GRID: u32 = 512;
 
 /// Surface points evaluated in one run: they are evaluated per pair (two alike materials may lie
 /// on different meshes); past it a pair that needs them is not evaluated.
@@ -146,7 +146,7 @@ const SURFACE_POINTS: usize = 1 << 16;
 /// beside, as [`Outcome::ambiguity`]. Where a material reads a texCoord set other than 0,
 /// `surfaces[j]` (the points on the mesh whose sets differ) are evaluated too, and when they
 /// cannot be, the pair is not evaluated.
-pub fn compare_pairs(
+pub(crate) fn compare_pairs(
     a: &[Named],
     b: &[Named],
     pairs: &[(usize, usize)],

@@ -8,12 +8,12 @@ use super::brdf::V3;
 /// The exposure both use: radiance is multiplied by 1 before tone mapping. With `compare`'s
 /// light (irradiance π at normal incidence) a white Lambertian surface lit head-on has
 /// radiance 1, which PBR Neutral shows at 0.87 (L* 95).
-pub const EXPOSURE: f64 = 1.0;
+pub(crate) const EXPOSURE: f64 = 1.0;
 
 /// Khronos PBR Neutral tone mapping (linear in, linear out, 0..1), written without branches
 /// so that `compare`'s per-sample loop stays vector code.
 #[inline(always)]
-pub fn pbr_neutral(colour: V3) -> V3 {
+pub(crate) fn pbr_neutral(colour: V3) -> V3 {
     const START_COMPRESSION: f64 = 0.8 - 0.04;
     const DESATURATION: f64 = 0.15;
     let x = colour[0].min(colour[1]).min(colour[2]);
@@ -39,7 +39,7 @@ pub fn pbr_neutral(colour: V3) -> V3 {
 
 /// The displayed linear colour of a radiance: negative parts cut, exposed, tone-mapped.
 #[inline(always)]
-pub fn displayed(radiance: V3) -> V3 {
+pub(crate) fn displayed(radiance: V3) -> V3 {
     pbr_neutral(radiance.map(|c| c.max(0.0) * EXPOSURE))
 }
 

@@ -28,7 +28,7 @@ const MAPPED: &[&str] = &[
 
 /// The 2.0 asset under construction: collections by name, the 1.0 id → 2.0 index maps, the
 /// output binary and the conversion report.
-pub struct Builder<'s, 'a> {
+pub(super) struct Builder<'s, 'a> {
     pub(in crate::upgrade) source: &'s Source<'a>,
     pub(in crate::upgrade) options: &'s UpgradeOptions,
     pub(in crate::upgrade) arrays: HashMap<&'static str, Items>,
@@ -88,12 +88,12 @@ impl SameData {
 }
 
 /// `/collection/id` with the id escaped as a JSON pointer token.
-pub fn pointer(collection: &str, id: &str) -> String {
+pub(super) fn pointer(collection: &str, id: &str) -> String {
     format!("/{collection}/{}", crate::document::json::escape_token(id))
 }
 
 /// A 1.0 list of ids.
-pub fn id_list(value: Option<Node>) -> Vec<String> {
+pub(super) fn id_list(value: Option<Node>) -> Vec<String> {
     (value.and_then(Node::as_array).into_iter())
         .flat_map(|a| a.iter())
         .filter_map(Node::as_str)
@@ -102,7 +102,7 @@ pub fn id_list(value: Option<Node>) -> Vec<String> {
 }
 
 impl<'s, 'a> Builder<'s, 'a> {
-    pub fn new(source: &'s Source<'a>, options: &'s UpgradeOptions) -> Self {
+    pub(super) fn new(source: &'s Source<'a>, options: &'s UpgradeOptions) -> Self {
         Builder {
             source,
             options,
@@ -122,18 +122,23 @@ impl<'s, 'a> Builder<'s, 'a> {
         }
     }
 
-    pub fn note(&mut self, pointer: impl Into<String>, kind: NoteKind, text: impl Into<String>) {
+    pub(super) fn note(
+        &mut self,
+        pointer: impl Into<String>,
+        kind: NoteKind,
+        text: impl Into<String>,
+    ) {
         self.report.push(pointer.into(), kind, text.into());
     }
 
     /// The 2.0 index of a 1.0 id in a mapped collection.
-    pub fn index_of(&self, collection: &'static str, id: Option<Node>) -> Option<usize> {
+    pub(super) fn index_of(&self, collection: &'static str, id: Option<Node>) -> Option<usize> {
         self.index_of_id(collection, id?.as_str()?)
     }
 
     /// [`Builder::index_of`] for an id at hand: the id's place in its dictionary, which
     /// is where the step made its object (the source tree finds it without a map of ids).
-    pub fn index_of_id(&self, collection: &'static str, id: &str) -> Option<usize> {
+    pub(super) fn index_of_id(&self, collection: &'static str, id: &str) -> Option<usize> {
         debug_assert!(MAPPED.contains(&collection));
         let dictionary = self.source.root().get(collection)?.as_object()?;
         dictionary.position(id)
@@ -188,7 +193,7 @@ impl<'s, 'a> Builder<'s, 'a> {
     }
 
     /// Adds an image (and returns its index); `stem` names its file in `.gltf` output.
-    pub fn add_image(
+    pub(super) fn add_image(
         &mut self,
         json: Map<String, Value>,
         bytes: impl Into<std::sync::Arc<crate::document::Bytes>>,
@@ -201,7 +206,7 @@ impl<'s, 'a> Builder<'s, 'a> {
     }
 
     /// A texture reading `image` with the sampler of 1.0 texture `like` (for rebaked images).
-    pub fn add_texture(&mut self, image: usize, like: Option<usize>, name: String) -> usize {
+    pub(super) fn add_texture(&mut self, image: usize, like: Option<usize>, name: String) -> usize {
         let mut out = Map::new();
         out.insert("name".into(), json!(name));
         let sampler =
@@ -214,7 +219,7 @@ impl<'s, 'a> Builder<'s, 'a> {
     }
 
     /// The image a 2.0 texture reads.
-    pub fn texture_image(&self, texture: usize) -> Option<&EncodedImage> {
+    pub(super) fn texture_image(&self, texture: usize) -> Option<&EncodedImage> {
         let source = self
             .arrays
             .get("textures")?
@@ -423,7 +428,7 @@ impl<'s, 'a> Builder<'s, 'a> {
 
     /// The finished asset; `extensions_used` comes from the conversions, `extensions` holds
     /// the root extension objects they made (the lights are added here).
-    pub fn finish(
+    pub(super) fn finish(
         mut self,
         extensions_used: Vec<String>,
         mut extensions: serde_json::Map<String, Value>,

@@ -3,7 +3,7 @@
 
 use super::binary::Binary;
 use crate::document::Node;
-pub use crate::gltf::accessor::FLOAT;
+pub(super) use crate::gltf::accessor::FLOAT;
 use crate::gltf::accessor::{
     component_count, component_size, decode, decode_component, normalise, FloatBounds, Layout,
     BYTE, MAX_COMPONENTS, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
@@ -13,7 +13,7 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
 /// A 1.0 accessor resolved to its bytes.
-pub struct Accessor<'a> {
+pub(super) struct Accessor<'a> {
     pub component_type: u64,
     pub kind: String,
     pub components: usize,
@@ -25,7 +25,7 @@ pub struct Accessor<'a> {
 
 /// What an accessor is used for, which decides its 2.0 component type and alignment.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Role {
+pub(super) enum Role {
     Indices,
     /// POSITION, TANGENT: float only.
     FloatAttribute,
@@ -44,7 +44,7 @@ pub enum Role {
 }
 
 impl Role {
-    pub fn of_semantic(semantic: &str) -> Role {
+    pub(super) fn of_semantic(semantic: &str) -> Role {
         let base = semantic.split('_').next().unwrap_or(semantic);
         match base {
             "NORMAL" => Role::Normal,
@@ -56,12 +56,12 @@ impl Role {
         }
     }
 
-    pub fn is_vertex(self) -> bool {
+    pub(super) fn is_vertex(self) -> bool {
         !matches!(self, Role::Indices | Role::Data)
     }
 }
 
-pub fn read<'a>(source: &'a Source, id: &str) -> Result<Accessor<'a>, String> {
+pub(super) fn read<'a>(source: &'a Source, id: &str) -> Result<Accessor<'a>, String> {
     let accessor = source
         .object("accessors", id)
         .ok_or_else(|| format!("accessor '{id}' does not exist"))?;
@@ -109,12 +109,12 @@ pub fn read<'a>(source: &'a Source, id: &str) -> Result<Accessor<'a>, String> {
 impl Accessor<'_> {
     /// Where its bytes lie in the loaded input (address and length) and how far apart its
     /// elements are: accessors with the same place read the same data.
-    pub fn place(&self) -> (usize, usize, usize) {
+    pub(super) fn place(&self) -> (usize, usize, usize) {
         (self.bytes.as_ptr() as usize, self.bytes.len(), self.stride)
     }
 
     /// Component `c` of element `i`, as stored (integers are not normalised).
-    pub fn get(&self, i: usize, c: usize) -> f64 {
+    pub(super) fn get(&self, i: usize, c: usize) -> f64 {
         let size = component_size(self.component_type).unwrap_or(4);
         let at = i * self.stride + c * size;
         decode_component(self.component_type, &self.bytes[at..at + size])
@@ -136,7 +136,7 @@ impl Accessor<'_> {
     }
 
     /// Every element's components, in order.
-    pub fn values(&self) -> Vec<f64> {
+    pub(super) fn values(&self) -> Vec<f64> {
         let mut out = vec![0.0; self.count * self.components];
         self.elements().read_run(0, &mut out);
         out
@@ -162,7 +162,7 @@ impl Elements<'_> {
 /// Repacked data, appended to the output binary, ready to become one bufferView + one
 /// accessor.
 #[derive(Clone)]
-pub struct Packed {
+pub(super) struct Packed {
     /// Where the data starts in the output binary (4-byte aligned).
     pub offset: usize,
     pub length: usize,
@@ -180,7 +180,7 @@ pub struct Packed {
 
 /// What renormalising skin weights changed.
 #[derive(Debug, Clone, Copy)]
-pub struct Renormalised {
+pub(super) struct Renormalised {
     /// Vertices whose weights did not sum to 1.
     pub vertices: usize,
     /// The smallest such sum.
@@ -329,7 +329,7 @@ fn output_type(role: Role, input: u64) -> (u64, bool) {
 
 /// Appends values (`components` per element) to `out` with the given component type (an
 /// unsigned type takes integers or single-precision floats: see [`to_unsigned`]).
-pub fn pack_values(
+pub(super) fn pack_values(
     values: &[f64],
     components: usize,
     component_type: u64,
@@ -686,7 +686,7 @@ fn bounds_of(
 /// The values of an accessor quantized with WEB3D_quantized_attributes, decoded: each element
 /// v (n components) becomes the first n rows of `decodeMatrix` · [v, 1] (column-major, of
 /// size (n + 1)²). None without the extension; `Err` when its matrix has the wrong size.
-pub fn dequantized(
+pub(super) fn dequantized(
     accessor: &Accessor,
     extension: Option<Node>,
 ) -> Option<Result<Vec<f64>, String>> {
@@ -719,7 +719,7 @@ pub fn dequantized(
 /// content: each component normalised (a signed one by its maximum, as the tiles' own shaders
 /// do with `1/127`; an unsigned one to [-1, 1], as Cesium's `czm_octDecode` does), then
 /// (x, y, 1 − |x| − |y|), its lower half folded over, normalised. None for any other accessor.
-pub fn oct_decoded(accessor: &Accessor, role: Role) -> Option<Vec<f64>> {
+pub(super) fn oct_decoded(accessor: &Accessor, role: Role) -> Option<Vec<f64>> {
     let unit = oct_unit(accessor, role)?;
     let stored = accessor.values();
     let mut decoded = Vec::with_capacity(stored.len() / 2 * 3);
@@ -739,7 +739,7 @@ pub fn oct_decoded(accessor: &Accessor, role: Role) -> Option<Vec<f64>> {
 }
 
 /// Whether [`oct_decoded`] decodes this accessor.
-pub fn is_octahedral(accessor: &Accessor, role: Role) -> bool {
+pub(super) fn is_octahedral(accessor: &Accessor, role: Role) -> bool {
     oct_unit(accessor, role).is_some()
 }
 
@@ -758,7 +758,7 @@ fn oct_unit(accessor: &Accessor, role: Role) -> Option<fn(f64) -> f64> {
 }
 
 /// Appends an accessor's data to `out`, repacked for its role.
-pub fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
+pub(super) fn pack(accessor: &Accessor, role: Role, out: &mut Binary) -> Packed {
     let layout = |component_type, normalized| PackingLayout {
         count: accessor.count,
         components: accessor.components,

@@ -22,12 +22,12 @@ use crate::shade::sheen_table::SheenTable;
 const THRESHOLD: f64 = crate::shade::compare::DEFAULT_THRESHOLD;
 
 /// Distinct materials fitted per upgrade; later ones keep their closed form.
-pub const MAX_DISTINCT_FITS: usize = 256;
+pub(super) const MAX_DISTINCT_FITS: usize = 256;
 
 /// A spec-gloss material's factors (diffuse RGBA, specular RGB, glossiness) and the
 /// reading its text is converted under.
 #[derive(Debug, Clone, Copy)]
-pub struct Factors {
+pub(super) struct Factors {
     pub diffuse: [f64; 4],
     pub specular: [f64; 3],
     pub glossiness: f64,
@@ -36,14 +36,14 @@ pub struct Factors {
 
 impl Factors {
     /// The closed-form base colour of `diffuse` and `specular` under this reading.
-    pub fn base_colour(&self, diffuse: [f64; 3], specular: [f64; 3]) -> [f64; 3] {
+    pub(super) fn base_colour(&self, diffuse: [f64; 3], specular: [f64; 3]) -> [f64; 3] {
         self.reading.closed_form_base(diffuse, specular).0
     }
 }
 
 /// A metal-rough + KHR_materials_specular + ior 0 material's factors.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Target {
+pub(super) struct Target {
     pub base_colour: [f64; 3],
     pub roughness: f64,
     pub specular_colour: [f64; 3],
@@ -80,7 +80,7 @@ impl Target {
 /// The outcome: the closed form's ΔE under the reading, and the fitted factors with theirs
 /// when the fit was needed and did better.
 #[derive(Debug, Clone)]
-pub struct Fit {
+pub(super) struct Fit {
     pub closed_form: f64,
     pub fitted: Option<(Target, f64)>,
 }
@@ -92,7 +92,7 @@ fn difference(shader: &Shader, source: &Inputs, target: &Target) -> f64 {
 
 /// The fits of one upgrade: each distinct material fitted once, at most
 /// [`MAX_DISTINCT_FITS`] of them, towards one reading.
-pub struct Fits {
+pub(super) struct Fits {
     done: std::collections::HashMap<[u64; 7], Fit>,
     budget: usize,
     reading: SpecGlossReading,
@@ -100,12 +100,12 @@ pub struct Fits {
 
 impl Fits {
     /// Fits towards `reading`, at most [`MAX_DISTINCT_FITS`] distinct materials.
-    pub fn new(reading: SpecGlossReading) -> Fits {
+    pub(super) fn new(reading: SpecGlossReading) -> Fits {
         Fits::with_budget(reading, MAX_DISTINCT_FITS)
     }
 
     /// At most `budget` distinct materials fitted.
-    pub fn with_budget(reading: SpecGlossReading, budget: usize) -> Fits {
+    pub(super) fn with_budget(reading: SpecGlossReading, budget: usize) -> Fits {
         Fits {
             done: Default::default(),
             budget,
@@ -114,12 +114,12 @@ impl Fits {
     }
 
     /// The reading fitted towards.
-    pub fn reading(&self) -> SpecGlossReading {
+    pub(super) fn reading(&self) -> SpecGlossReading {
         self.reading
     }
 
     /// [`fit`], remembered by the source's factors; None once the budget is spent.
-    pub fn fit(
+    pub(super) fn fit(
         &mut self,
         diffuse: [f64; 3],
         specular: [f64; 3],
@@ -144,17 +144,17 @@ impl Fits {
 /// Distinct texel values whose closed form is evaluated per upgrade (about 5 µs each); texels
 /// past it keep the closed form unchecked, so that a photograph's million distinct texels
 /// (or a hostile 8192² texture) add well under a second.
-pub const MAX_SCREENED_TEXELS: usize = 1 << 16;
+pub(super) const MAX_SCREENED_TEXELS: usize = 1 << 16;
 
 /// A texel whose nearest 8-bit levels are this far (ΔE2000) from its source has its
 /// neighbouring levels tried: half the proof's threshold, the rest left to what lies between
 /// texel centres.
-pub const LEVELS_TRIED_ABOVE: f64 = 0.5;
+pub(super) const LEVELS_TRIED_ABOVE: f64 = 0.5;
 
 /// How far (ΔE2000, the base colour alone) rounding a base colour to its nearest 8-bit
 /// levels may move it before the texel is evaluated in the scene: below it, the scene's
 /// figure stays under [`LEVELS_TRIED_ABOVE`] (a test holds this over the colour cube).
-pub const ROUNDING_SEEN_ABOVE: f64 = 0.3;
+pub(super) const ROUNDING_SEEN_ABOVE: f64 = 0.3;
 
 /// Whether rounding `base` to its nearest 8-bit levels moves it more than
 /// [`ROUNDING_SEEN_ABOVE`]: a texel of an exact closed form whose rounding does not is not
@@ -167,7 +167,7 @@ fn rounding_shows(base: [f64; 3]) -> bool {
 
 /// Distinct texel values fitted per upgrade (about 0.5 ms each); later ones above the
 /// threshold keep the closed form.
-pub const MAX_TEXEL_FITS: usize = 1024;
+pub(super) const MAX_TEXEL_FITS: usize = 1024;
 
 /// Per-texel fits of textured draft spec-gloss materials. Where the rebaked base colour's
 /// closed form under the reading, as the PNG stores it, is above the proof's threshold at a
@@ -175,7 +175,7 @@ pub const MAX_TEXEL_FITS: usize = 1024;
 /// of that texel is fitted to the smallest ΔE under that reading (roughness and specular
 /// colour stay the textures' own, which the output reads as they are). Each distinct texel
 /// value is evaluated once for the whole upgrade.
-pub struct TexelFits {
+pub(super) struct TexelFits {
     done: std::collections::HashMap<[u64; 7], [f64; 3]>,
     /// Whether the rebake keeps the inputs' grid for these fits (a reading without an exact
     /// form, fitted per stored texel) or may refine it first, checking the texels only where
@@ -190,7 +190,7 @@ pub struct TexelFits {
 
 /// The figures of one material's texels (distinct texel values, each counted once).
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct TexelReport {
+pub(super) struct TexelReport {
     /// Distinct texel values evaluated.
     pub screened: usize,
     /// Of those, not evaluated in the scene: their rounding does not show (see
@@ -210,12 +210,16 @@ pub struct TexelReport {
 
 impl TexelFits {
     /// Fits towards `reading` within [`MAX_SCREENED_TEXELS`] and [`MAX_TEXEL_FITS`].
-    pub fn new(reading: SpecGlossReading) -> TexelFits {
+    pub(super) fn new(reading: SpecGlossReading) -> TexelFits {
         TexelFits::with_budgets(reading, MAX_SCREENED_TEXELS, MAX_TEXEL_FITS)
     }
 
     /// At most `screened` distinct texel values evaluated and `fits` fitted.
-    pub fn with_budgets(reading: SpecGlossReading, screened: usize, fits: usize) -> TexelFits {
+    pub(super) fn with_budgets(
+        reading: SpecGlossReading,
+        screened: usize,
+        fits: usize,
+    ) -> TexelFits {
         TexelFits {
             done: Default::default(),
             keeps_grid: true,
@@ -229,7 +233,7 @@ impl TexelFits {
     /// The check of a glTF 2.0 asset's rebakes (the archived extension's reading, which has an
     /// exact form): it settles each texel's 8-bit levels where the rebake keeps the inputs'
     /// grid, and leaves a refined grid to the closed form.
-    pub fn for_exact_form() -> TexelFits {
+    pub(super) fn for_exact_form() -> TexelFits {
         TexelFits {
             keeps_grid: false,
             ..TexelFits::new(SpecGlossReading::ArchivedExtension)
@@ -238,7 +242,7 @@ impl TexelFits {
 
     /// Whether a rebake checked by these fits keeps its inputs' grid (see
     /// [`TexelFits::for_exact_form`]).
-    pub fn keeps_grid(&self) -> bool {
+    pub(super) fn keeps_grid(&self) -> bool {
         self.keeps_grid
     }
 
@@ -248,7 +252,7 @@ impl TexelFits {
     /// from the PNG: its sRGB encoding rounded to `levels` (255 or 65535) steps. New values
     /// are evaluated in parallel; which of them are checked and fitted depends only on their
     /// order.
-    pub fn resolve(&mut self, values: &[TexelValue], levels: f64) -> Vec<Option<[f64; 3]>> {
+    pub(super) fn resolve(&mut self, values: &[TexelValue], levels: f64) -> Vec<Option<[f64; 3]>> {
         use rayon::prelude::*;
         let new: Vec<&TexelValue> = (values.iter())
             .filter(|v| !self.done.contains_key(&v.key()))
@@ -311,13 +315,13 @@ impl TexelFits {
     }
 
     /// Counts `texels` left with the closed form unchecked.
-    pub fn unchecked(&mut self, texels: usize) {
+    pub(super) fn unchecked(&mut self, texels: usize) {
         self.report.unscreened += texels;
     }
 
     /// The figures since the last call, and a fresh start for the next material (the
     /// values evaluated are remembered).
-    pub fn take_report(&mut self) -> TexelReport {
+    pub(super) fn take_report(&mut self) -> TexelReport {
         std::mem::take(&mut self.report)
     }
 }
@@ -325,7 +329,7 @@ impl TexelFits {
 /// One texel of a spec-gloss source: linear diffuse and specular colours and glossiness,
 /// factors applied.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TexelValue {
+pub(super) struct TexelValue {
     pub diffuse: [f64; 3],
     pub specular: [f64; 3],
     pub glossiness: f64,
@@ -333,7 +337,7 @@ pub struct TexelValue {
 
 impl TexelValue {
     /// Equal exactly for equal values.
-    pub fn key(&self) -> [u64; 7] {
+    pub(super) fn key(&self) -> [u64; 7] {
         let ([d0, d1, d2], [s0, s1, s2]) = (self.diffuse, self.specular);
         [d0, d1, d2, s0, s1, s2, self.glossiness].map(f64::to_bits)
     }
@@ -412,7 +416,7 @@ fn shader() -> &'static Shader {
 
 /// Fits the 2.0 factors for a spec-gloss source (diffuse, specular, glossiness) read as
 /// `reading`, whose closed-form conversion is `closed`.
-pub fn fit(
+pub(super) fn fit(
     diffuse: [f64; 3],
     specular: [f64; 3],
     glossiness: f64,

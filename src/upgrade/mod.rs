@@ -10,13 +10,13 @@
 //! every 2.0 alignment and byteStride rule by construction and splits 1.0 views shared by
 //! accessors of different strides, at the price of de-interleaving interleaved vertices.
 
-pub mod binary;
+pub(crate) mod binary;
 mod builder;
 mod convert;
 mod data;
 mod fit;
 mod gltf2;
-pub mod json;
+pub(crate) mod json;
 mod origins;
 pub mod output;
 mod proof;
@@ -27,7 +27,7 @@ mod spec_gloss;
 use crate::document::uri::ResourceLoader;
 use crate::legacy::source::{self, NotGltf1};
 use crate::shade::sample::{self, MaterialSource, Texture};
-pub use binary::Binary;
+pub(crate) use binary::Binary;
 pub use json::{Items, Json};
 pub use proof::{proof_holds, prove, ProofError};
 use serde_json::Value;

@@ -11,7 +11,7 @@ use image::{DynamicImage, ExtendedColorType, ImageEncoder, Rgba32FImage};
 use std::collections::hash_map::{Entry, HashMap};
 use std::io::Cursor;
 
-pub fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
+pub(super) fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
     image_decode::decode(bytes).map_err(|e| e.to_string())
 }
 
@@ -80,7 +80,7 @@ fn mapped(
 
 /// 1.0 metal-rough texture (R metallic, G roughness) → 2.0 (G roughness, B metallic).
 /// R is written as 1 (no occlusion) for engines that pack occlusion there.
-pub fn metal_rough_swizzle(bytes: &[u8]) -> Result<Vec<u8>, String> {
+pub(super) fn metal_rough_swizzle(bytes: &[u8]) -> Result<Vec<u8>, String> {
     let (out, wide) = mapped(bytes, |[r, g, _, _]| [1.0, g as f32, r as f32, 1.0])?;
     Ok(encode(&out, false, wide))
 }
@@ -91,7 +91,10 @@ pub fn metal_rough_swizzle(bytes: &[u8]) -> Result<Vec<u8>, String> {
 /// roughness 0.05 lies between two 8-bit levels, a step its specular peak shows, but is
 /// exactly the largest level of its own scale. (With glossiness factor 1 the values are
 /// 8-bit levels already, and stay unscaled.)
-pub fn gloss_to_roughness(bytes: &[u8], glossiness_factor: f64) -> Result<(Vec<u8>, f32), String> {
+pub(super) fn gloss_to_roughness(
+    bytes: &[u8],
+    glossiness_factor: f64,
+) -> Result<(Vec<u8>, f32), String> {
     let (mut out, wide) = mapped(bytes, |[_, _, _, a]| {
         [1.0, (1.0 - a * glossiness_factor) as f32, 0.0, 1.0]
     })?;
@@ -127,7 +130,7 @@ pub fn gloss_to_roughness(bytes: &[u8], glossiness_factor: f64) -> Result<(Vec<u
 /// output texel centre whatever the two resolutions, where sampling the smaller texture at
 /// its nearest texel was not. The grid is held to [`rebake_grid`]. Returns the PNG, whether
 /// it has an alpha channel, and the decision when the grid was held.
-pub fn spec_gloss_base_colour(
+pub(super) fn spec_gloss_base_colour(
     diffuse: Option<&[u8]>,
     specular: Option<&[u8]>,
     factors: &Factors,
@@ -199,7 +202,7 @@ pub fn spec_gloss_base_colour(
 }
 
 /// The most texels a rebake's grid gets beyond its largest input's: 2048².
-pub const REBAKE_FLOOR: u64 = 1 << 22;
+pub(super) const REBAKE_FLOOR: u64 = 1 << 22;
 
 /// The largest ΔE2000 allowed between a rebake read between its texel centres and the
 /// conversion of its inputs read there: half the proof's threshold, the rest of which is
@@ -331,7 +334,7 @@ fn corners_error(texels: &SpecGlossTexels, rows: std::ops::Range<u32>) -> f64 {
 /// [`REBAKE_FLOOR`], whichever is more; then the grid of that many texels with the same
 /// aspect, and the decision saying so. Two textures of 16384×1 and 1×16384 hold 32768
 /// texels between them; their finest grid would hold 2^28, every one interpolated.
-pub fn rebake_grid(width: u32, height: u32, largest: u64) -> (u32, u32, Option<String>) {
+pub(super) fn rebake_grid(width: u32, height: u32, largest: u64) -> (u32, u32, Option<String>) {
     let finest = u64::from(width) * u64::from(height);
     let most = largest.max(REBAKE_FLOOR);
     if finest <= most {
@@ -468,7 +471,7 @@ impl SpecGlossTexels<'_> {
 
 /// Whether any texel has alpha below 1 (the material then needs alpha blending). An image
 /// whose header declares no alpha (tRNS included) is not decoded.
-pub fn has_translucent_texels(bytes: &[u8]) -> bool {
+pub(super) fn has_translucent_texels(bytes: &[u8]) -> bool {
     let header = image_header::read(bytes).map(|info| info.channels);
     if matches!(header, Ok(Channels::Rgb | Channels::Luminance)) {
         return false;

@@ -5,7 +5,7 @@ use serde_json::{json, Value};
 
 /// Every texture index a material reads (the `index` of each member named `…Texture`, in the
 /// core object and in any extension), handed to `found`, which may change it.
-pub fn visit_texture_indices(value: &mut Value, found: &mut impl FnMut(&mut usize)) {
+pub(super) fn visit_texture_indices(value: &mut Value, found: &mut impl FnMut(&mut usize)) {
     match value {
         Value::Object(members) => {
             for (key, member) in members.iter_mut() {
@@ -30,7 +30,7 @@ pub fn visit_texture_indices(value: &mut Value, found: &mut impl FnMut(&mut usiz
 }
 
 /// The texture indices a material reads.
-pub fn texture_indices(material: &Value) -> Vec<usize> {
+pub(super) fn texture_indices(material: &Value) -> Vec<usize> {
     let mut found = Vec::new();
     visit_texture_indices(&mut material.clone(), &mut |index| found.push(*index));
     found
@@ -38,7 +38,7 @@ pub fn texture_indices(material: &Value) -> Vec<usize> {
 
 /// Gives each texture index a material reads its new number (`map[old]`; indices the map
 /// does not cover are left alone).
-pub fn renumber_textures(material: &mut Value, map: &[Option<usize>]) {
+pub(super) fn renumber_textures(material: &mut Value, map: &[Option<usize>]) {
     visit_texture_indices(material, &mut |index| {
         if let Some(Some(new)) = map.get(*index) {
             *index = *new;
@@ -48,7 +48,7 @@ pub fn renumber_textures(material: &mut Value, map: &[Option<usize>]) {
 
 /// Gives a texture's image (`source`, also inside its extensions) and sampler their new
 /// numbers.
-pub fn renumber_texture_members(
+pub(super) fn renumber_texture_members(
     texture: &mut Value,
     images: &[Option<usize>],
     samplers: &[Option<usize>],

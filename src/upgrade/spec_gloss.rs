@@ -13,7 +13,7 @@
 //! (1 − s_c) makes the two equal at every angle, chromatic specular included. (The earlier
 //! diffuse · (1 − max s) is the same only for an achromatic specular.)
 
-pub use super::fit::Factors;
+pub(super) use super::fit::Factors;
 use super::fit::{TexelFits, TexelReport};
 use super::rebake;
 use crate::shade::material::SpecGlossReading;
@@ -22,7 +22,7 @@ use std::sync::Arc;
 
 /// The two textures of a spec-gloss material.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Slot {
+pub(super) enum Slot {
     /// The diffuse colour (sRGB RGB, alpha).
     Diffuse,
     /// Specular (sRGB RGB) and glossiness (A).
@@ -30,7 +30,7 @@ pub enum Slot {
 }
 
 /// The material's textures as the output asset holds them.
-pub trait Textures {
+pub(super) trait Textures {
     /// The textureInfo that reads the slot's texture as it is, if the material has one.
     fn info(&self, slot: Slot) -> Option<Value>;
     /// The encoded image of the slot's texture.
@@ -49,7 +49,7 @@ pub trait Textures {
 /// identity: the upgrade holds each image once) with the same factors under the same
 /// reading rebake to the same textures, so materials sharing a texture are rebaked once.
 #[derive(Default)]
-pub struct Rebakes(std::collections::HashMap<RebakeKey, Rebaked>);
+pub(super) struct Rebakes(std::collections::HashMap<RebakeKey, Rebaked>);
 
 /// The images' addresses (0 for none), the factors' bits and the reading.
 type RebakeKey = (usize, usize, [u64; 8], SpecGlossReading);
@@ -88,14 +88,17 @@ fn rebake_key(
 
 /// A converted material: its `pbrMetallicRoughness`, the extensions it gains, and the
 /// decisions made, for the conversion report.
-pub struct Converted {
+pub(super) struct Converted {
     pub pbr_metallic_roughness: Value,
     pub extensions: Map<String, Value>,
     pub decisions: Vec<String>,
 }
 
 /// Converts one material; an error says why a texture could not be rebaked.
-pub fn to_metal_rough(factors: &Factors, textures: &mut dyn Textures) -> Result<Converted, String> {
+pub(super) fn to_metal_rough(
+    factors: &Factors,
+    textures: &mut dyn Textures,
+) -> Result<Converted, String> {
     let mut decisions = Vec::new();
     let specular_texture = textures.bytes(Slot::SpecularGlossiness);
     let mut core = json!({"metallicFactor": 0.0, "roughnessFactor": 1.0 - factors.glossiness});
@@ -243,4 +246,4 @@ fn texel_fit_decision(report: &TexelReport) -> String {
 }
 
 /// The extensions a converted material gains, for `extensionsUsed`.
-pub const EXTENSIONS_ADDED: [&str; 2] = ["KHR_materials_specular", "KHR_materials_ior"];
+pub(super) const EXTENSIONS_ADDED: [&str; 2] = ["KHR_materials_specular", "KHR_materials_ior"];

@@ -58,7 +58,7 @@ fn show(component_type: u64, v: f64) -> String {
     }
 }
 
-pub fn check(ctx: &mut Context) {
+pub(crate) fn check(ctx: &mut Context) {
     let mut uses = accessor_usage::checkers(ctx);
     // Accessors are independent and read-only here: scanned in parallel, reported in order.
     let mut work: Vec<Work> = ctx

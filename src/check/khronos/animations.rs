@@ -9,7 +9,7 @@ use crate::document::Array;
 use crate::document::Node;
 use std::collections::HashMap;
 
-pub fn check(ctx: &mut Context) {
+pub(crate) fn check(ctx: &mut Context) {
     let pointer_paths = ctx.uses_extension("KHR_animation_pointer");
     for (_, pointer, animation) in ctx.objects("animations") {
         for (c, channel) in elements(animation, "channels") {
@@ -54,7 +54,7 @@ pub(crate) fn linked(animation: Node) -> Option<(Array, Array)> {
 }
 
 /// Every JSON pointer an animation channel targets through KHR_animation_pointer.
-pub fn animated_pointers(root: Node<'_>) -> std::collections::HashSet<&str> {
+pub(crate) fn animated_pointers(root: Node<'_>) -> std::collections::HashSet<&str> {
     let channels = root
         .get("animations")
         .and_then(Node::as_array)

@@ -6,7 +6,7 @@ use crate::check::context::{member, Context};
 use crate::diagnostic::khronos;
 use crate::document::Node;
 
-pub fn check(ctx: &mut Context) {
+pub(super) fn check(ctx: &mut Context) {
     for (_, pointer, camera) in ctx.objects("cameras") {
         let kind = camera.get("type").and_then(Node::as_str);
         if camera.get("perspective").is_some() && camera.get("orthographic").is_some() {

@@ -86,7 +86,7 @@ fn nested(collection: &str) -> &'static [&'static str] {
     }
 }
 
-pub fn check(ctx: &mut Context) {
+pub(super) fn check(ctx: &mut Context) {
     check_declarations(ctx);
     // Taken out of the document before the passes, as the Khronos validator reads nothing
     // of them; said here, where it says it.
@@ -102,7 +102,7 @@ pub fn check(ctx: &mut Context) {
 
 /// The extension objects on the objects the Khronos validator reads extensions on whose
 /// names `declared` does not hold (it reports them, and reads nothing in them).
-pub fn undeclared_extensions(root: Node, declared: &HashSet<&str>) -> Undeclared {
+pub(crate) fn undeclared_extensions(root: Node, declared: &HashSet<&str>) -> Undeclared {
     let mut found = Undeclared::default();
     walk(root, "", Host::Root, &mut |object, pointer, _| {
         let extensions = object.get("extensions").and_then(Node::as_object);
@@ -122,7 +122,7 @@ pub fn undeclared_extensions(root: Node, declared: &HashSet<&str>) -> Undeclared
 /// Undeclared extension objects, each as the object holding it and its name's id in the
 /// tree: 10^6 of them on one node are 10^6 pairs, not 10^6 pointers.
 #[derive(Debug, Default)]
-pub struct Undeclared {
+pub(crate) struct Undeclared {
     /// The `extensions` objects holding them, by pointer.
     hosts: Vec<String>,
     /// Each one's host (an index into `hosts`) and name.
@@ -131,18 +131,18 @@ pub struct Undeclared {
 
 impl Undeclared {
     /// How many there are.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.members.len()
     }
 
     /// The pointer of the `i`th (`tree` is the one they were found in).
-    pub fn pointer(&self, i: usize, tree: &Tree) -> String {
+    pub(crate) fn pointer(&self, i: usize, tree: &Tree) -> String {
         let (host, name) = self.members[i];
         member(&self.hosts[host], tree.text(name))
     }
 
     /// Takes out of `tree` those whose value `taken` accepts.
-    pub fn remove_where(&self, tree: &mut Tree, mut taken: impl FnMut(Node) -> bool) {
+    pub(crate) fn remove_where(&self, tree: &mut Tree, mut taken: impl FnMut(Node) -> bool) {
         // Found host by host: each host's members are one run.
         for run in self.members.chunk_by(|a, b| a.0 == b.0) {
             let names = run.iter().map(|&(_, name)| name);
@@ -151,7 +151,7 @@ impl Undeclared {
     }
 
     /// Their pointers, made one at a time.
-    pub fn pointers<'a>(&'a self, tree: &'a Tree) -> impl Iterator<Item = String> + 'a {
+    pub(crate) fn pointers<'a>(&'a self, tree: &'a Tree) -> impl Iterator<Item = String> + 'a {
         (0..self.len()).map(|i| self.pointer(i, tree))
     }
 }
@@ -193,7 +193,7 @@ fn valid_name(name: &str) -> bool {
 const MUST_BE_REQUIRED: &[&str] = &["KHR_mesh_quantization"];
 
 /// `extensionsUsed` and `extensionsRequired`: names, support, and what must be required.
-pub fn check_declarations(ctx: &mut Context) {
+pub(crate) fn check_declarations(ctx: &mut Context) {
     let required: Vec<&str> = ctx
         .items("extensionsRequired")
         .iter()

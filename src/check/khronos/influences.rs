@@ -14,7 +14,7 @@ use std::borrow::Cow;
 use std::collections::HashMap;
 use std::ops::Range;
 
-pub fn check(ctx: &mut Context) {
+pub(super) fn check(ctx: &mut Context) {
     let mut budget = ctx.diagnostics.walk_budget();
     let limits = limiting_skins(ctx);
     for (m, pointer, mesh) in ctx.objects("meshes") {

@@ -4,14 +4,14 @@
 use super::resources::declared_mime;
 use crate::check::context::{member, number, unsigned, Context, MaterialNeeds, TexcoordNeed};
 // Defined beside the context, which caches the slot uses; named here, where they are made.
-pub use crate::check::context::{extension, SlotUse};
+pub(crate) use crate::check::context::{extension, SlotUse};
 use crate::diagnostic::khronos;
 use crate::document::Node;
 use crate::gltf::material::TEXTURE_SLOTS;
 use crate::gltf::material::{effective_texcoord, texture_transform};
 use std::sync::Arc;
 
-pub fn check_textures(ctx: &mut Context) {
+pub(crate) fn check_textures(ctx: &mut Context) {
     for (_, pointer, texture) in ctx.objects("textures") {
         ctx.reference(texture, "sampler", &pointer, "samplers");
         if let Some(image) = ctx.reference(texture, "source", &pointer, "images") {
@@ -55,7 +55,7 @@ fn check_texture_source_mime(ctx: &mut Context, image: usize, pointer: &str, val
     }
 }
 
-pub fn check_materials(ctx: &mut Context) {
+pub(crate) fn check_materials(ctx: &mut Context) {
     ctx.material_needs.clear();
     for (i, pointer, material) in ctx.objects("materials") {
         let needs = texture_needs(ctx, material, &pointer);
@@ -239,7 +239,7 @@ fn check_texcoord_pairs(ctx: &mut Context, material: Node, pointer: &str) {
 
 /// Every resolvable texture binding in the document, in material and slot order.
 /// Computed once per document (the rules share it); see [`collect_slot_uses`].
-pub fn slot_uses<'a>(ctx: &Context<'a>) -> Arc<[SlotUse<'a>]> {
+pub(crate) fn slot_uses<'a>(ctx: &Context<'a>) -> Arc<[SlotUse<'a>]> {
     ctx.slot_uses
         .get_or_init(|| collect_slot_uses(ctx).into())
         .clone()
@@ -247,7 +247,10 @@ pub fn slot_uses<'a>(ctx: &Context<'a>) -> Arc<[SlotUse<'a>]> {
 
 /// The texture uses of each image, in document order: `by_image(uses, n)[i]` are the uses
 /// that may sample image `i` (one pass over the uses, not one per image).
-pub fn by_image<'u, 'a>(uses: &'u [SlotUse<'a>], image_count: usize) -> Vec<Vec<&'u SlotUse<'a>>> {
+pub(crate) fn by_image<'u, 'a>(
+    uses: &'u [SlotUse<'a>],
+    image_count: usize,
+) -> Vec<Vec<&'u SlotUse<'a>>> {
     let mut grouped: Vec<Vec<&SlotUse>> = vec![Vec::new(); image_count];
     for slot_use in uses {
         for image in slot_use.images() {

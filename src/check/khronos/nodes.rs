@@ -15,7 +15,7 @@ use std::collections::{HashMap, HashSet};
 /// How far a matrix may be from its TRS recomposition.
 const TRS_TOLERANCE: f64 = 0.00005;
 
-pub fn check(ctx: &mut Context) {
+pub(super) fn check(ctx: &mut Context) {
     let nodes = ctx.items("nodes");
     let parents = parents(ctx, nodes);
     let hierarchy = Hierarchy::of(nodes, &parents);

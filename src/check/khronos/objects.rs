@@ -17,7 +17,7 @@ fn version(text: &str) -> Option<(u64, u64)> {
 }
 
 /// Whether `asset.version` says glTF 2.x: the other passes assume it.
-pub fn has_supported_version(root: Node) -> bool {
+pub(crate) fn has_supported_version(root: Node) -> bool {
     root.get("asset")
         .and_then(|a| a.get("version"))
         .and_then(Node::as_str)
@@ -30,7 +30,7 @@ pub fn has_supported_version(root: Node) -> bool {
 /// stops. So: unexpected root members, anything of `extensionsUsed` / `extensionsRequired`,
 /// anything inside `asset`, and, when it is missing, the root's one missing member (the
 /// root schema requires `asset` alone).
-pub fn read_before_asset(root: Node) -> impl Fn(&Diagnostic) -> bool {
+pub(crate) fn read_before_asset(root: Node) -> impl Fn(&Diagnostic) -> bool {
     let missing = root.get("asset").is_none();
     move |diagnostic| {
         let Some(pointer) = diagnostic.pointer() else {
@@ -55,7 +55,7 @@ pub fn read_before_asset(root: Node) -> impl Fn(&Diagnostic) -> bool {
 }
 
 /// The `asset` object: version and minVersion (run alone when the version is not 2.x).
-pub fn check_asset(ctx: &mut Context) {
+pub(crate) fn check_asset(ctx: &mut Context) {
     let Some(asset) = ctx.root.get("asset") else {
         return;
     };
@@ -95,7 +95,7 @@ pub fn check_asset(ctx: &mut Context) {
     }
 }
 
-pub fn check_accessors(ctx: &mut Context) {
+pub(super) fn check_accessors(ctx: &mut Context) {
     for (_, pointer, accessor) in ctx.objects("accessors") {
         check_accessor_format(ctx, accessor, &pointer);
         if !is_linked(accessor) {
@@ -122,7 +122,7 @@ pub(super) fn is_linked(accessor: Node) -> bool {
 /// (nothing is reported),
 /// and one whose length is not the type's component count (reported here, as the only
 /// finding about that array).
-pub fn take_unread_bounds(tree: &mut Tree, sink: &mut dyn Sink) {
+pub(crate) fn take_unread_bounds(tree: &mut Tree, sink: &mut dyn Sink) {
     let mut unread = Vec::new();
     let accessors = tree.root().get("accessors").and_then(Node::as_array);
     for (i, accessor) in accessors.into_iter().flatten().enumerate() {
@@ -282,7 +282,7 @@ fn check_accessor_fits(ctx: &mut Context, accessor: Node, view: usize, pointer: 
     fits_in_view(ctx, pointer, view, offset, component_size as u64, length);
 }
 
-pub fn check_meshes(ctx: &mut Context) {
+pub(super) fn check_meshes(ctx: &mut Context) {
     let variant_count = ctx
         .root
         .get("extensions")
@@ -484,7 +484,7 @@ fn check_variant_mappings(
     mapped
 }
 
-pub fn check_nodes_and_scenes(ctx: &mut Context) {
+pub(super) fn check_nodes_and_scenes(ctx: &mut Context) {
     let joints: HashSet<u64> = ctx
         .items("skins")
         .iter()
@@ -531,7 +531,7 @@ pub fn check_nodes_and_scenes(ctx: &mut Context) {
     }
 }
 
-pub fn check_skins_animations_cameras(ctx: &mut Context) {
+pub(super) fn check_skins_animations_cameras(ctx: &mut Context) {
     for (_, pointer, skin) in ctx.objects("skins") {
         ctx.reference(skin, "inverseBindMatrices", &pointer, "accessors");
         ctx.reference(skin, "skeleton", &pointer, "nodes");

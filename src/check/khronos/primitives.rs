@@ -184,7 +184,7 @@ pub(super) fn joint_sets(attributes: Object) -> u64 {
     }
 }
 
-pub fn check(ctx: &mut Context) {
+pub(crate) fn check(ctx: &mut Context) {
     let quantized = ctx.uses_extension("KHR_mesh_quantization");
     let mut walk = Walk {
         ctx,

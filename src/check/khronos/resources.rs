@@ -169,7 +169,7 @@ fn align4(n: u64) -> u64 {
     n.div_ceil(4) * 4
 }
 
-pub fn check_buffers(ctx: &mut Context) {
+pub(crate) fn check_buffers(ctx: &mut Context) {
     let buffers = ctx.items("buffers");
     ctx.buffers = buffers.iter().map(|_| None).collect();
     for (i, pointer, buffer) in ctx.objects("buffers") {
@@ -254,7 +254,7 @@ pub fn check_buffers(ctx: &mut Context) {
     }
 }
 
-pub fn check_buffer_views(ctx: &mut Context) {
+pub(crate) fn check_buffer_views(ctx: &mut Context) {
     for (_, pointer, view) in ctx.objects("bufferViews") {
         let buffer = ctx.reference(view, "buffer", &pointer, "buffers");
         let offset = unsigned(view, "byteOffset").unwrap_or(0);
@@ -298,18 +298,18 @@ pub fn check_buffer_views(ctx: &mut Context) {
 
 /// A buffer view's bytes, when its buffer was read and the range fits: read (from a large
 /// GLB's file) only when asked, so a pass holds a view's bytes only while it walks them.
-pub struct ViewData<'c> {
+pub(crate) struct ViewData<'c> {
     buffer: &'c BufferData<'c>,
     range: std::ops::Range<usize>,
 }
 
 impl<'c> ViewData<'c> {
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.range.len()
     }
 
     /// The bytes at `part` of the view (what one accessor needs of it).
-    pub fn part(&self, part: std::ops::Range<usize>) -> Option<ViewData<'c>> {
+    pub(crate) fn part(&self, part: std::ops::Range<usize>) -> Option<ViewData<'c>> {
         (part.start <= part.end && part.end <= self.len()).then(|| ViewData {
             buffer: self.buffer,
             range: self.range.start + part.start..self.range.start + part.end,
@@ -317,18 +317,18 @@ impl<'c> ViewData<'c> {
     }
 
     /// Whether reading makes a copy (the bytes are in a file, not in memory).
-    pub fn is_in_file(&self) -> bool {
+    pub(crate) fn is_in_file(&self) -> bool {
         self.buffer.in_memory().is_none()
     }
 
     /// The bytes, borrowed when in memory; `None` when a file no longer holds them.
-    pub fn read(&self) -> Option<Cow<'c, [u8]>> {
+    pub(crate) fn read(&self) -> Option<Cow<'c, [u8]>> {
         self.buffer.get(self.range.clone())
     }
 }
 
 /// A buffer view's bytes, unread (see [`ViewData`]).
-pub fn view_data<'c>(ctx: &'c Context, view_index: usize) -> Option<ViewData<'c>> {
+pub(crate) fn view_data<'c>(ctx: &'c Context, view_index: usize) -> Option<ViewData<'c>> {
     let view = ctx.items("bufferViews").get(view_index)?;
     let buffer = ctx
         .buffers
@@ -343,7 +343,7 @@ pub fn view_data<'c>(ctx: &'c Context, view_index: usize) -> Option<ViewData<'c>
 }
 
 /// The bytes of a buffer view, read now (see [`view_data`]).
-pub fn view_bytes<'c>(ctx: &'c Context, view_index: usize) -> Option<Cow<'c, [u8]>> {
+pub(crate) fn view_bytes<'c>(ctx: &'c Context, view_index: usize) -> Option<Cow<'c, [u8]>> {
     view_data(ctx, view_index)?.read()
 }
 
@@ -402,14 +402,14 @@ pub(super) fn fits_in_view(
 /// The MIME type an image declares in its `mimeType`. (A data URI's media type is not
 /// one: the validator reads one it does not accept as INVALID_URI, and an accepted one is
 /// checked against the content instead.)
-pub fn declared_mime(image: Node) -> Option<String> {
+pub(crate) fn declared_mime(image: Node) -> Option<String> {
     image
         .get("mimeType")
         .and_then(Node::as_str)
         .map(str::to_string)
 }
 
-pub fn check_images(ctx: &mut Context) {
+pub(crate) fn check_images(ctx: &mut Context) {
     ctx.images = vec![None; ctx.items("images").len()];
     ctx.image_bytes = ctx.items("images").iter().map(|_| None).collect();
     let enabled = EnabledFormats {

@@ -10,7 +10,7 @@ use crate::document::{Array, Node};
 use crate::gltf::as_index;
 use std::collections::HashMap;
 
-pub fn check(ctx: &mut Context) {
+pub(super) fn check(ctx: &mut Context) {
     let nodes = ctx.items("nodes");
     let parents = parent_map(nodes);
     for (_, pointer, skin) in ctx.objects("skins") {

@@ -9,7 +9,7 @@ use crate::document::Node;
 use crate::gltf::accessor::{component_count, component_size};
 
 /// The sparse count and the placement of both parts (from the accessors pass).
-pub fn check_structure(ctx: &mut Context, accessor: Node, pointer: &str) {
+pub(super) fn check_structure(ctx: &mut Context, accessor: Node, pointer: &str) {
     let Some(sparse) = accessor.get("sparse").filter(|s| s.is_object()) else {
         return;
     };
@@ -71,7 +71,7 @@ pub fn check_structure(ctx: &mut Context, accessor: Node, pointer: &str) {
 
 /// The sparse indices of every accessor: strictly increasing, each naming an element the
 /// accessor has (a pass after the buffers are read).
-pub fn check_indices(ctx: &mut Context) {
+pub(super) fn check_indices(ctx: &mut Context) {
     for (_, pointer, accessor) in ctx.objects("accessors") {
         let Some(sparse) = accessor.get("sparse") else {
             continue;

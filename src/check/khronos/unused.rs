@@ -10,7 +10,7 @@ fn may_be_unused(collection: &str) -> bool {
     !matches!(collection, "animations" | "scenes")
 }
 
-pub fn check(ctx: &mut Context) {
+pub(super) fn check(ctx: &mut Context) {
     for collection in crate::gltf::COLLECTIONS.iter().filter(|c| may_be_unused(c)) {
         for (i, pointer, _) in ctx.objects(collection) {
             if !ctx.is_used(collection, i) {

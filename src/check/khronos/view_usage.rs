@@ -54,7 +54,7 @@ impl AccessorUsage {
     }
 }
 
-pub fn check(ctx: &mut Context) {
+pub(super) fn check(ctx: &mut Context) {
     let usages = ctx
         .items("bufferViews")
         .iter()

@@ -7,7 +7,7 @@ use crate::check::khronos::materials::SlotUse;
 use crate::diagnostic::Severity;
 use crate::gltf::material::A;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "TEXTURE_ALPHA_CONSTANT",
     Severity::Info,
     "pixels",

@@ -6,7 +6,7 @@ use crate::check::context::Context;
 use crate::check::khronos::materials::SlotUse;
 use crate::diagnostic::Severity;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "ANISOTROPY_DIRECTION_UNDEFINED",
     Severity::Warning,
     "pixels",

@@ -5,7 +5,7 @@ use crate::check::context::{unsigned, Context};
 use crate::diagnostic::{khronos, Diagnostic, Severity};
 use crate::document::Node;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "ANISOTROPY_NO_TANGENT_SPACE",
     Severity::Error,
     "materials",

@@ -5,7 +5,7 @@ use crate::check::context::Context;
 use crate::check::khronos::materials::slot_uses;
 use crate::diagnostic::Severity;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "ANISOTROPY_TEXTURE_ZERO_STRENGTH",
     Severity::Warning,
     "materials",

@@ -9,7 +9,7 @@ use crate::document::Array;
 use crate::document::Node;
 use crate::gltf::color::{linear_to_srgb, luminance, srgb_to_linear};
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "PBR_BASE_COLOR_RANGE",
     Severity::Hint,
     "plausibility",

@@ -7,7 +7,7 @@ use crate::check::khronos::materials::{by_image, slot_uses, SlotUse};
 use crate::diagnostic::Severity;
 use crate::gltf::material::{Channels, A, B, G, R};
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "IMAGE_COLOR_SPACE_CONFLICT",
     Severity::Warning,
     "colour-space",

@@ -3,7 +3,7 @@
 use super::{Rule, Run};
 use crate::diagnostic::Severity;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "IMAGE_DECODE_LIMIT",
     Severity::Info,
     "pixels",

@@ -5,7 +5,7 @@ use crate::check::context::Context;
 use crate::diagnostic::Severity;
 use crate::document::json;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "JSON_DUPLICATE_KEY",
     Severity::Warning,
     "json",

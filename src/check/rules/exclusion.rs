@@ -6,7 +6,7 @@ use crate::diagnostic::{khronos, Diagnostic, Severity};
 use crate::document::Node;
 use crate::gltf::material::{combination, Combination, SPEC_GLOSS, UNLIT};
 
-pub const RULE: Rule = Rule::new(
+pub(crate) const RULE: Rule = Rule::new(
     "MATERIAL_EXTENSION_EXCLUDED",
     Severity::Error,
     "materials",

@@ -9,7 +9,7 @@ use crate::diagnostic::Severity;
 use crate::document::Node;
 use crate::legacy::pbr::{self, Model, EXTENSION_NAMES};
 
-pub const RULE: Rule = Rule::new(
+pub(crate) const RULE: Rule = Rule::new(
     "GLTF_1_0_ASSET",
     Severity::Error,
     "gltf1",
@@ -35,7 +35,7 @@ are shader techniques. Reporting hundreds of 2.0 schema errors would hide the on
 ```
 ";
 
-pub const PBR_RULE: Rule = Rule::new(
+pub(crate) const PBR_RULE: Rule = Rule::new(
     "GLTF_1_0_PBR_MATERIAL",
     Severity::Info,
     "gltf1",
@@ -74,7 +74,7 @@ reports `VALUE_NOT_IN_RANGE` at `/materials/gold/extensions/FRAUNHOFER_materials
 ";
 
 /// The whole 1.0 check (default profile).
-pub fn check(ctx: &mut Context) {
+pub(crate) fn check(ctx: &mut Context) {
     ctx.emit(
         RULE.code(),
         "/asset/version",

@@ -5,7 +5,7 @@ use crate::check::context::Context;
 use crate::diagnostic::Severity;
 use crate::gltf::material::RGB;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "TEXTURE_GREYSCALE_PACKED",
     Severity::Warning,
     "channels",

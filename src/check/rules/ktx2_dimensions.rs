@@ -5,7 +5,7 @@ use crate::check::context::Context;
 use crate::diagnostic::Severity;
 use crate::document::image_header::ImageFormat;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "KTX2_DIMENSIONS_NOT_MULTIPLE_OF_4",
     Severity::Error,
     "channels",

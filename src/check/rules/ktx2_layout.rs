@@ -7,7 +7,7 @@ use crate::document::image_header::{
     ImageInfo, Ktx2Layout, Transfer, KHR_DF_MODEL_ETC1S, KHR_DF_MODEL_UASTC,
 };
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "KTX2_LAYOUT_INVALID",
     Severity::Error,
     "channels",

@@ -5,7 +5,7 @@ use crate::check::context::Context;
 use crate::diagnostic::Severity;
 use crate::gltf::unsigned;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "KTX2_MIPMAPS_MISSING",
     Severity::Warning,
     "channels",

@@ -6,7 +6,7 @@ use crate::check::khronos::animations::animated_pointers;
 use crate::check::khronos::materials::{extension, slot_uses};
 use crate::diagnostic::Severity;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "LAYER_TEXTURE_DISABLED",
     Severity::Warning,
     "materials",

@@ -5,7 +5,7 @@ use crate::check::context::Context;
 use crate::diagnostic::Severity;
 use crate::document::image_header::ImageFormat;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "TEXTURE_LOSSY_DIRECTION",
     Severity::Hint,
     "channels",

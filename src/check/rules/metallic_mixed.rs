@@ -7,7 +7,7 @@ use crate::check::khronos::materials::SlotUse;
 use crate::diagnostic::Severity;
 use crate::document::Node;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "PBR_METALLIC_MIXED",
     Severity::Hint,
     "plausibility",

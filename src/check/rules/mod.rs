@@ -13,8 +13,8 @@ mod colour_space_conflict;
 mod decode_limit;
 mod dispersion_thin_walled;
 mod duplicate_key;
-pub mod exclusion;
-pub mod gltf1;
+pub(crate) mod exclusion;
+pub(crate) mod gltf1;
 mod greyscale_packed;
 mod ktx2_dimensions;
 mod ktx2_layout;
@@ -33,7 +33,7 @@ mod sheen_disabled;
 mod sheen_zero_roughness;
 mod specular_on_metal;
 mod srgb_in_linear;
-pub mod texels;
+pub(crate) mod texels;
 mod transmission_on_metal;
 mod undecodable;
 mod unlit_ignored;
@@ -45,7 +45,7 @@ use crate::diagnostic::{Code, Diagnostic, Severity};
 use crate::document::image_header::ImageInfo;
 use texels::Sampled;
 
-pub struct Rule {
+pub(crate) struct Rule {
     pub info: CodeInfo,
     pub run: Run,
     /// The Khronos findings this rule corrects, each with the filter the default profile
@@ -58,7 +58,7 @@ pub struct Rule {
 
 /// A Khronos finding that gltfmat's default profile reports only where `keeps` says so,
 /// declared by the rule that corrects it (and applied by `check::profile`).
-pub struct Supersession {
+pub(crate) struct Supersession {
     /// The Khronos code.
     pub code: Code,
     /// Why the default profile differs, for `gltfmat explain` and the conformance test.
@@ -68,32 +68,32 @@ pub struct Supersession {
 }
 
 /// How a rule runs. A rule with neither part is emitted by a core pass (reading, resources).
-pub struct Run {
+pub(crate) struct Run {
     /// Reads the document.
     pub document: Option<fn(&mut Context)>,
     /// With `--deep`: inspects the decoded texels of each texture binding it applies to.
     pub pixels: Option<PixelCheck>,
 }
 
-pub struct PixelCheck {
+pub(crate) struct PixelCheck {
     pub applies: fn(&SlotUse) -> bool,
     pub inspect: fn(&mut Context, &SlotUse, &Sampled),
 }
 
 impl Run {
-    pub const CORE: Run = Run {
+    pub(crate) const CORE: Run = Run {
         document: None,
         pixels: None,
     };
 
-    pub const fn document(check: fn(&mut Context)) -> Run {
+    pub(crate) const fn document(check: fn(&mut Context)) -> Run {
         Run {
             document: Some(check),
             pixels: None,
         }
     }
 
-    pub const fn pixels(
+    pub(crate) const fn pixels(
         applies: fn(&SlotUse) -> bool,
         inspect: fn(&mut Context, &SlotUse, &Sampled),
     ) -> Run {
@@ -104,7 +104,7 @@ impl Run {
     }
 
     /// A document check (factors) plus a pixel check (`--deep`, textures) under one code.
-    pub const fn both(
+    pub(crate) const fn both(
         check: fn(&mut Context),
         applies: fn(&SlotUse) -> bool,
         inspect: fn(&mut Context, &SlotUse, &Sampled),
@@ -118,11 +118,11 @@ impl Run {
 
 impl Rule {
     /// The code this rule emits.
-    pub const fn code(&self) -> Code {
+    pub(crate) const fn code(&self) -> Code {
         self.info.code
     }
 
-    pub const fn new(
+    pub(crate) const fn new(
         name: &'static str,
         severity: Severity,
         group: &'static str,
@@ -134,7 +134,7 @@ impl Rule {
     }
 
     /// The rule of a code defined where a core pass can name it (see `check::pass_codes`).
-    pub const fn documenting(
+    pub(crate) const fn documenting(
         code: Code,
         group: &'static str,
         summary: &'static str,
@@ -157,12 +157,12 @@ impl Rule {
     }
 
     /// The rule, correcting the Khronos findings `supersedes`.
-    pub const fn superseding(self, supersedes: &'static [Supersession]) -> Rule {
+    pub(crate) const fn superseding(self, supersedes: &'static [Supersession]) -> Rule {
         Rule { supersedes, ..self }
     }
 
     /// The rule, whose findings the Khronos validator reports as `code` (for the reason `why`).
-    pub const fn khronos_name(self, code: Code, why: &'static str) -> Rule {
+    pub(crate) const fn khronos_name(self, code: Code, why: &'static str) -> Rule {
         Rule {
             khronos_name: Some((code, why)),
             ..self
@@ -170,7 +170,7 @@ impl Rule {
     }
 }
 
-pub static RULES: &[&Rule] = &[
+pub(crate) static RULES: &[&Rule] = &[
     &duplicate_key::RULE,
     &outside_folder::RULE,
     &resource_not_read::RULE,
@@ -226,7 +226,7 @@ fn enabled(ctx: &Context, rule: &Rule) -> bool {
 }
 
 /// Runs every enabled document rule, then (with `--deep`) every enabled pixel rule.
-pub fn run_all(ctx: &mut Context) {
+pub(crate) fn run_all(ctx: &mut Context) {
     let checks: Vec<_> = RULES
         .iter()
         .filter(|r| enabled(ctx, r))

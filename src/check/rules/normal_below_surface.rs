@@ -6,7 +6,7 @@ use crate::check::context::Context;
 use crate::check::khronos::materials::SlotUse;
 use crate::diagnostic::Severity;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "NORMAL_TEXEL_BELOW_SURFACE",
     Severity::Warning,
     "pixels",

@@ -3,7 +3,7 @@
 use super::{Rule, Run};
 use crate::diagnostic::Severity;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "IMAGE_NOT_DECODED",
     Severity::Info,
     "pixels",

@@ -4,7 +4,7 @@ use super::{Rule, Run};
 use crate::check::pass_codes::URI_OUTSIDE_ASSET_FOLDER;
 use crate::diagnostic::khronos;
 
-pub const RULE: Rule = Rule::documenting(
+pub(crate) const RULE: Rule = Rule::documenting(
     URI_OUTSIDE_ASSET_FOLDER,
     "resources",
     "A URI resolves outside the asset's folder (absolute path, `..` escape or symlink) and was not read.",

@@ -4,7 +4,7 @@
 use super::{Rule, Run};
 use crate::check::pass_codes::EXTERNAL_RESOURCE_NOT_READ;
 
-pub const RULE: Rule = Rule::documenting(
+pub(crate) const RULE: Rule = Rule::documenting(
     EXTERNAL_RESOURCE_NOT_READ,
     "resources",
     "An external buffer or image was not read, so it was not checked: the asset came without a folder (stdin, or bytes in memory).",

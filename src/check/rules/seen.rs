@@ -10,13 +10,13 @@ use crate::gltf::mesh::{drawn_materials, triangles};
 use crate::gltf::{as_index, unsigned};
 
 /// The texels a binding's meshes may read, bilinear neighbours included.
-pub struct Seen {
+pub(crate) struct Seen {
     width: usize,
     mask: Vec<bool>,
 }
 
 impl Seen {
-    pub fn contains(&self, x: u32, y: u32) -> bool {
+    pub(crate) fn contains(&self, x: u32, y: u32) -> bool {
         self.mask
             .get(y as usize * self.width + x as usize)
             .copied()
@@ -37,13 +37,13 @@ const MIRRORED_REPEAT: u64 = 33648;
 
 /// What a run needs to tell the texels each binding samples: the primitives drawing each
 /// material, found once, and what is left of the run's element budget.
-pub struct Sight<'a> {
+pub(super) struct Sight<'a> {
     drawing: Vec<Vec<Node<'a>>>,
     elements_left: usize,
 }
 
 impl<'a> Sight<'a> {
-    pub fn new(ctx: &Context<'a>) -> Sight<'a> {
+    pub(super) fn new(ctx: &Context<'a>) -> Sight<'a> {
         let mut drawing = vec![Vec::new(); ctx.items("materials").len()];
         let primitives = (ctx.items("meshes").iter())
             .filter_map(|mesh| mesh.get("primitives")?.as_array())
@@ -66,7 +66,7 @@ impl<'a> Sight<'a> {
     /// binding's texCoord set, texture transform and wrap modes. None when that cannot be
     /// told — a primitive's UVs are compressed, unreadable or past the limits above — and every
     /// texel then counts as seen.
-    pub fn seen(
+    pub(super) fn seen(
         &mut self,
         ctx: &Context,
         slot_use: &SlotUse,

@@ -6,7 +6,7 @@ use crate::check::khronos::materials::{extension, slot_uses};
 use crate::diagnostic::Severity;
 use crate::document::Node;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "SHEEN_TEXTURE_DISABLED",
     Severity::Warning,
     "materials",
@@ -38,7 +38,7 @@ is zero, the whole sheen layer is disabled.\"
 ";
 
 /// The sheen colour factor, [0, 0, 0] when missing.
-pub fn sheen_colour_is_zero(sheen: Node) -> bool {
+pub(super) fn sheen_colour_is_zero(sheen: Node) -> bool {
     sheen
         .get("sheenColorFactor")
         .and_then(Node::as_array)

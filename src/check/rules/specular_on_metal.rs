@@ -7,7 +7,7 @@ use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
 use crate::document::Node;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "SPECULAR_ON_METAL",
     Severity::Warning,
     "materials",

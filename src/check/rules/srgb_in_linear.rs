@@ -5,7 +5,7 @@ use crate::check::context::Context;
 use crate::diagnostic::Severity;
 use crate::document::image_header::{ImageFormat, Transfer};
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "IMAGE_SRGB_IN_LINEAR_SLOT",
     Severity::Hint,
     "colour-space",

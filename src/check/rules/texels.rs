@@ -7,13 +7,13 @@ use crate::document::image_decode::{self, DecodeError};
 use image::DynamicImage;
 
 /// A decoded image.
-pub struct Texels {
+pub(crate) struct Texels {
     image: DynamicImage,
 }
 
 /// A decoded image as one texture binding samples it: where the binding's meshes are known,
 /// only the texels they read are visited.
-pub struct Sampled<'t> {
+pub(crate) struct Sampled<'t> {
     texels: &'t Texels,
     seen: Option<&'t Seen>,
 }
@@ -22,10 +22,10 @@ pub struct Sampled<'t> {
 /// reported: one in a thousand. Fewer are isolated texels (compression noise, seams) that the
 /// bilinear filter and the mip chain average with their neighbours; a real defect — a wrong map,
 /// a flipped channel, a painted patch — covers far more.
-pub const VISIBLE_SHARE: f64 = 0.001;
+pub(crate) const VISIBLE_SHARE: f64 = 0.001;
 
 /// How many texels matched a predicate, with the first one as an example.
-pub struct Tally {
+pub(crate) struct Tally {
     pub count: u64,
     pub total: u64,
     pub example: Option<(u32, u32, [f32; 4])>,
@@ -35,7 +35,7 @@ pub struct Tally {
 
 /// Decodes image `index`, reporting IMAGE_UNDECODABLE or IMAGE_DECODE_LIMIT on failure, and
 /// IMAGE_NOT_DECODED for a valid image in an encoding gltfmat does not transcode.
-pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
+pub(crate) fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
     let (code, message) = match image_decode::decode(encoded(ctx, index)?) {
         Ok(image) => return Some(Texels { image }),
         Err(error @ DecodeError::Limit) => (
@@ -57,7 +57,7 @@ pub fn decode(ctx: &mut Context, index: usize) -> Option<Texels> {
 
 /// Decodes image `index` without reporting a failure: for a document rule that only looks
 /// closer when it can (the pixel rules report what cannot be decoded).
-pub fn decode_quietly(ctx: &Context, index: usize) -> Option<Texels> {
+pub(crate) fn decode_quietly(ctx: &Context, index: usize) -> Option<Texels> {
     let image = image_decode::decode(encoded(ctx, index)?).ok()?;
     Some(Texels { image })
 }
@@ -71,23 +71,23 @@ fn encoded<'c>(ctx: &'c Context, index: usize) -> Option<&'c [u8]> {
 }
 
 impl Texels {
-    pub fn has_alpha(&self) -> bool {
+    pub(crate) fn has_alpha(&self) -> bool {
         self.image.color().has_alpha()
     }
 
     /// Width and height in texels.
-    pub fn size(&self) -> (u32, u32) {
+    pub(crate) fn size(&self) -> (u32, u32) {
         (self.image.width(), self.image.height())
     }
 
     /// This image as a binding samples it (`seen` None: every texel).
-    pub fn as_seen<'t>(&'t self, seen: Option<&'t Seen>) -> Sampled<'t> {
+    pub(crate) fn as_seen<'t>(&'t self, seen: Option<&'t Seen>) -> Sampled<'t> {
         Sampled { texels: self, seen }
     }
 
     /// Calls `f(x, y, rgba)` for every texel, channels normalised to 0..1; greyscale is
     /// expanded to RGB and a missing alpha reads 1, as a renderer samples it.
-    pub fn visit(&self, mut f: impl FnMut(u32, u32, [f32; 4])) {
+    pub(crate) fn visit(&self, mut f: impl FnMut(u32, u32, [f32; 4])) {
         let width = self.image.width() as usize;
         if width == 0 {
             return;
@@ -123,18 +123,18 @@ impl Texels {
     }
 
     /// Counts the texels for which `matches` holds.
-    pub fn tally(&self, matches: impl FnMut([f32; 4]) -> bool) -> Tally {
+    pub(crate) fn tally(&self, matches: impl FnMut([f32; 4]) -> bool) -> Tally {
         self.as_seen(None).tally(matches)
     }
 }
 
 impl Sampled<'_> {
-    pub fn has_alpha(&self) -> bool {
+    pub(crate) fn has_alpha(&self) -> bool {
         self.texels.has_alpha()
     }
 
     /// [`Texels::visit`] over the texels the binding samples.
-    pub fn visit(&self, mut f: impl FnMut(u32, u32, [f32; 4])) {
+    pub(crate) fn visit(&self, mut f: impl FnMut(u32, u32, [f32; 4])) {
         match self.seen {
             None => self.texels.visit(f),
             Some(seen) => self.texels.visit(|x, y, rgba| {
@@ -146,7 +146,7 @@ impl Sampled<'_> {
     }
 
     /// Counts the sampled texels for which `matches` holds.
-    pub fn tally(&self, mut matches: impl FnMut([f32; 4]) -> bool) -> Tally {
+    pub(crate) fn tally(&self, mut matches: impl FnMut([f32; 4]) -> bool) -> Tally {
         let mut tally = Tally {
             count: 0,
             total: 0,
@@ -165,18 +165,18 @@ impl Sampled<'_> {
 }
 
 impl Tally {
-    pub fn fraction(&self) -> f64 {
+    pub(crate) fn fraction(&self) -> f64 {
         self.count as f64 / self.total.max(1) as f64
     }
 
     /// Whether the matching texels are enough to be seen: at least [`VISIBLE_SHARE`] of those
     /// counted, and at least one.
-    pub fn visible(&self) -> bool {
+    pub(crate) fn visible(&self) -> bool {
         self.count > 0 && self.fraction() >= VISIBLE_SHARE
     }
 
     /// "3 of 16 texels (18.8%), e.g. texel (2, 0) = RGBA 8-bit (128, 128, 255, 255)".
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         let example = self.example.map_or(String::new(), |(x, y, rgba)| {
             let [r, g, b, a] = rgba.map(|c| (c * 255.0).round() as u32);
             format!(", e.g. texel ({x}, {y}) = RGBA 8-bit ({r}, {g}, {b}, {a})")

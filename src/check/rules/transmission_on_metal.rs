@@ -6,7 +6,7 @@ use crate::check::context::{number, Context};
 use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "TRANSMISSION_ON_METAL",
     Severity::Warning,
     "materials",

@@ -5,7 +5,7 @@ use crate::check::context::Context;
 use crate::check::khronos::materials::{extension, slot_uses};
 use crate::diagnostic::Severity;
 
-pub const RULE: Rule = Rule::new(
+pub(super) const RULE: Rule = Rule::new(
     "UNLIT_IGNORED_TEXTURE",
     Severity::Warning,
     "materials",

@@ -17,7 +17,7 @@ use serde_json::Value;
 use std::collections::{HashMap, HashSet};
 
 /// A compiled schema document: its root and its `$defs`, one arena.
-pub struct Compiled {
+pub(super) struct Compiled {
     schemas: Vec<Schema>,
     root: usize,
     /// The `$defs` names, by the index a schema's `definition` holds.
@@ -26,7 +26,7 @@ pub struct Compiled {
 
 /// What failed, as the mapping to Khronos codes needs it.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Kind {
+pub(super) enum Kind {
     /// Not of the type named.
     Type(String),
     /// Members neither declared nor allowed, in the instance's order.
@@ -58,7 +58,7 @@ pub enum Kind {
 }
 
 /// One failure: what, on which value, where, and in which `$defs` entry the keyword is.
-pub struct Failure<'c, 't> {
+pub(super) struct Failure<'c, 't> {
     pub kind: Kind,
     pub instance: Node<'t>,
     pub pointer: String,
@@ -118,7 +118,7 @@ const ANNOTATIONS: &[&str] = &[
 
 impl Compiled {
     /// Compiles a schema document; an error names what it cannot read.
-    pub fn new(document: &Value) -> Result<Compiled, String> {
+    pub(super) fn new(document: &Value) -> Result<Compiled, String> {
         let mut compiler = Compiler {
             schemas: Vec::new(),
             definitions: HashMap::new(),
@@ -146,7 +146,7 @@ impl Compiled {
     }
 
     /// Evaluates `instance`, whose pointer is `prefix`, calling `fail` on each failure.
-    pub fn evaluate<'c, 't>(
+    pub(super) fn evaluate<'c, 't>(
         &'c self,
         instance: Node<'t>,
         prefix: &str,

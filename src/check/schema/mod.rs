@@ -112,7 +112,8 @@ const EXTENSIONS: &[(&str, &str)] = &[
 
 /// Extensions the Khronos validator does not implement: in its profile their objects are not
 /// validated (it reports UNSUPPORTED_EXTENSION instead).
-pub const NOT_IN_KHRONOS: &[&str] = &["KHR_materials_diffuse_transmission", "KHR_texture_basisu"];
+pub(crate) const NOT_IN_KHRONOS: &[&str] =
+    &["KHR_materials_diffuse_transmission", "KHR_texture_basisu"];
 
 fn build(skip: &[&str]) -> Compiled {
     let mut root: Value =
@@ -152,7 +153,7 @@ fn validator(khronos: bool) -> &'static Compiled {
 /// Validates the document into `found` (Khronos-coded findings); returns the members the
 /// Khronos validator reads as absent: those of the wrong type and the arrays a wrongly typed
 /// element makes unreadable (see [`AbsentMembers`]).
-pub fn validate(doc: Node, khronos: bool, found: &mut dyn Sink) -> HashSet<String> {
+pub(crate) fn validate(doc: Node, khronos: bool, found: &mut dyn Sink) -> HashSet<String> {
     let mut absent = AbsentMembers::new(found);
     diagnostics(validator(khronos), doc, "", &mut absent);
     absent.finish()
@@ -161,7 +162,12 @@ pub fn validate(doc: Node, khronos: bool, found: &mut dyn Sink) -> HashSet<Strin
 /// The Khronos validator reads a `null` member as both of the wrong type and missing: once
 /// such members are out of the tree (`nulls`), the findings of those that are required.
 /// Validates again only when there are any.
-pub fn required_nulls(doc: Node, khronos: bool, nulls: &HashSet<String>, sink: &mut dyn Sink) {
+pub(crate) fn required_nulls(
+    doc: Node,
+    khronos: bool,
+    nulls: &HashSet<String>,
+    sink: &mut dyn Sink,
+) {
     if nulls.is_empty() {
         return;
     }
@@ -175,7 +181,7 @@ pub fn required_nulls(doc: Node, khronos: bool, nulls: &HashSet<String>, sink: &
 }
 
 /// Validates a glTF 1.0 PBR material extension object found at `pointer`.
-pub fn validate_gltf1_pbr(extension: Node, pointer: &str) -> Vec<Diagnostic> {
+pub(crate) fn validate_gltf1_pbr(extension: Node, pointer: &str) -> Vec<Diagnostic> {
     static PBR: OnceLock<Compiled> = OnceLock::new();
     let validator = PBR.get_or_init(|| {
         let schema: Value = serde_json::from_str(GLTF1_PBR).expect("1.0 PBR schema is valid JSON");

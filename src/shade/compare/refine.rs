@@ -42,7 +42,7 @@ struct Candidate {
 
 /// The points worth a dense search, gathered as the grid is compared.
 #[derive(Clone, Default)]
-pub struct Candidates {
+pub(super) struct Candidates {
     worst: Vec<Candidate>,
     sharpest: Vec<Candidate>,
 }
@@ -73,7 +73,7 @@ fn keep_best(
 
 impl Candidates {
     /// Offers a point whose fixed directions found `delta_e` at most.
-    pub fn offer(&mut self, delta_e: f64, uv: [f64; 2], pair: &Pair) {
+    pub(super) fn offer(&mut self, delta_e: f64, uv: [f64; 2], pair: &Pair) {
         let sharpness = lobe_roughness(&pair.0).min(lobe_roughness(&pair.1));
         let better_than =
             |list: &Vec<Candidate>, keep: usize, wins: &dyn Fn(&Candidate) -> bool| {
@@ -105,12 +105,12 @@ impl Candidates {
     }
 
     /// Both materials' inputs at the point the fixed directions found worst.
-    pub fn worst_pair(&self) -> Option<&Pair> {
+    pub(super) fn worst_pair(&self) -> Option<&Pair> {
         self.worst.first().map(|c| &*c.pair)
     }
 
     /// Takes in another part's candidates.
-    pub fn absorb(&mut self, other: &Candidates) {
+    pub(super) fn absorb(&mut self, other: &Candidates) {
         for c in other.worst.iter().chain(&other.sharpest) {
             self.offer(c.delta_e, c.uv, &c.pair);
         }
@@ -209,7 +209,7 @@ fn dense_angles() -> Vec<Angles> {
 }
 
 /// The worst sample the dense search and its refinement find.
-pub struct Found {
+pub(super) struct Found {
     pub worst: Worst,
     pub pair: Box<Pair>,
 }
@@ -260,7 +260,7 @@ fn nearby_worst(
 /// The largest ΔE over the dense set at each candidate point (moved to the worst point
 /// near it), refined around the worst. `texel` is the grid's spacing, and `at` gives both
 /// materials' inputs anywhere.
-pub fn search(
+pub(super) fn search(
     shader: &Shader,
     candidates: &Candidates,
     texel: f64,
@@ -399,7 +399,7 @@ const INPUTS: [(&str, Take); 18] = [
 /// The input whose difference dominates the worst sample: the one that, set to `b`'s
 /// value in `a`, removes the most of the difference there. `None` when no single input
 /// removes any (the difference is several inputs' together).
-pub fn dominant_input(
+pub(crate) fn dominant_input(
     shader: &Shader,
     a: &Inputs,
     b: &Inputs,

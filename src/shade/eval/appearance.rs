@@ -34,15 +34,15 @@ use std::f64::consts::PI;
 
 /// The ambient light's radiance, a quarter of what the directional light gives a white
 /// Lambertian surface head-on.
-pub const AMBIENT: f64 = 0.25;
+pub(crate) const AMBIENT: f64 = 0.25;
 
 /// The backgrounds a comparison looks at a translucent surface over: black and a white
 /// of radiance 1 (what a white Lambertian surface lit head-on shows).
-pub const BACKGROUNDS: [f64; 2] = [0.0, 1.0];
+pub(crate) const BACKGROUNDS: [f64; 2] = [0.0, 1.0];
 
 /// What a viewer sees at a point over a background of radiance B: `own + B · through`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Seen<R> {
+pub(crate) struct Seen<R> {
     /// Radiance the surface itself sends: reflected and emitted light, times its coverage.
     pub own: [R; 3],
     /// The share of the background's radiance that reaches the viewer, per channel.
@@ -52,14 +52,14 @@ pub struct Seen<R> {
 impl<R: Real> Seen<R> {
     /// The radiance shown over a background of radiance `background`.
     #[inline(always)]
-    pub fn over(&self, background: f64) -> [R; 3] {
+    pub(crate) fn over(&self, background: f64) -> [R; 3] {
         channels(|c| self.through[c] * background + self.own[c])
     }
 }
 
 /// The least N·V a shading normal gives: Filament's `MIN_N_DOT_V` (its `clampNoV`); the
 /// Sample Viewer clamps to 0, which the visibility terms' own floors make the same.
-pub const MIN_N_DOT_V: f64 = 1e-4;
+pub(crate) const MIN_N_DOT_V: f64 = 1e-4;
 
 /// `g` seen in the frame whose normal is `normal` (a unit vector in the tangent frame),
 /// its tangent the geometric tangent made orthogonal to it. Both directions must lie above
@@ -68,7 +68,7 @@ pub const MIN_N_DOT_V: f64 = 1e-4;
 /// seen, with N·V clamped to [`MIN_N_DOT_V`], as viewers shade it: a BRDF switched off
 /// there would make shading jump as a texel crosses the horizon, which no viewer shows.
 #[inline(always)]
-pub fn in_frame<R: Real>(g: &Geometry<R>, normal: V3) -> Geometry<R> {
+pub(crate) fn in_frame<R: Real>(g: &Geometry<R>, normal: V3) -> Geometry<R> {
     if normal == [0.0, 0.0, 1.0] {
         return *g;
     }
@@ -188,13 +188,13 @@ fn transmitted<R: Real>(m: &Inputs, fresnel_v: &[R; 3]) -> [R; 3] {
 }
 
 /// Whether the material passes anything from behind it (besides what its coverage leaves).
-pub fn transmits(m: &Inputs) -> bool {
+pub(crate) fn transmits(m: &Inputs) -> bool {
     !m.unlit && m.metallic < 1.0 && (m.transmission > 0.0 || m.diffuse_transmission > 0.0)
 }
 
 /// What a viewer sees of material `m` for the view/light pairs of `g` (tangent frame).
 #[inline(always)]
-pub fn seen<R: Real>(shader: &Shader, m: &Inputs, g: &Geometry<R>) -> Seen<R> {
+pub(crate) fn seen<R: Real>(shader: &Shader, m: &Inputs, g: &Geometry<R>) -> Seen<R> {
     let coverage = m.coverage;
     let zero = R::splat(0.0);
     if m.unlit {

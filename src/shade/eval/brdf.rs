@@ -12,18 +12,18 @@ use super::lanes::{Lanes, Mask, Real};
 use std::f64::consts::PI;
 
 /// A 3-vector (directions, RGB).
-pub type V3 = [f64; 3];
+pub(crate) type V3 = [f64; 3];
 
 /// Appendix B forbids evaluating GGX at α = 0 (a Dirac lobe); below this α is clamped.
-pub const MIN_ALPHA: f64 = 1e-4;
+pub(crate) const MIN_ALPHA: f64 = 1e-4;
 
 /// The dot product.
-pub fn dot(a: V3, b: V3) -> f64 {
+pub(crate) fn dot(a: V3, b: V3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// `a` scaled to unit length.
-pub fn normalize(a: V3) -> V3 {
+pub(crate) fn normalize(a: V3) -> V3 {
     let length = dot(a, a).sqrt();
     if length == 0.0 {
         [0.0, 0.0, 1.0]
@@ -33,18 +33,18 @@ pub fn normalize(a: V3) -> V3 {
 }
 
 /// The half vector of `v` and `l`.
-pub fn half(v: V3, l: V3) -> V3 {
+pub(crate) fn half(v: V3, l: V3) -> V3 {
     normalize([v[0] + l[0], v[1] + l[1], v[2] + l[2]])
 }
 
 /// The largest of three values.
-pub fn max3<R: Real>([a, b, c]: [R; 3]) -> R {
+pub(crate) fn max3<R: Real>([a, b, c]: [R; 3]) -> R {
     a.max(b).max(c)
 }
 
 /// A view/light pair and what every lobe derives from it, computed once per pair.
 #[derive(Debug, Clone, Copy)]
-pub struct Geometry<R: Real> {
+pub(crate) struct Geometry<R: Real> {
     /// Direction to the viewer.
     pub v: [R; 3],
     /// Direction to the light.
@@ -59,7 +59,7 @@ pub struct Geometry<R: Real> {
 
 impl Geometry<f64> {
     /// The geometry of one view/light pair (unit vectors in the shading frame).
-    pub fn new(v: V3, l: V3) -> Geometry<f64> {
+    pub(crate) fn new(v: V3, l: V3) -> Geometry<f64> {
         let h = half(v, l);
         Geometry {
             v,
@@ -73,7 +73,7 @@ impl Geometry<f64> {
 
 impl<const N: usize> Geometry<Lanes<N>> {
     /// N pairs, one per lane.
-    pub fn lanes(pairs: &[Geometry<f64>; N]) -> Geometry<Lanes<N>> {
+    pub(crate) fn lanes(pairs: &[Geometry<f64>; N]) -> Geometry<Lanes<N>> {
         let lanes = |f: &dyn Fn(&Geometry<f64>) -> f64| Lanes(pairs.each_ref().map(f));
         let vector = |f: &dyn Fn(&Geometry<f64>) -> V3| [0, 1, 2].map(|i| lanes(&|g| f(g)[i]));
         Geometry {
@@ -87,25 +87,25 @@ impl<const N: usize> Geometry<Lanes<N>> {
 }
 
 /// Schlick's (1 − |VdotH|)⁵, clamped to 0..1.
-pub fn schlick_weight(v_dot_h: f64) -> f64 {
+pub(crate) fn schlick_weight(v_dot_h: f64) -> f64 {
     (1.0 - v_dot_h.abs()).clamp(0.0, 1.0).powi(5)
 }
 
 /// Schlick's Fresnel from its weight: F = f0 + (f90 − f0)·weight.
 #[inline(always)]
-pub fn fresnel<R: Real>(f0: f64, f90: f64, weight: R) -> R {
+pub(crate) fn fresnel<R: Real>(f0: f64, f90: f64, weight: R) -> R {
     weight * (f90 - f0) + f0
 }
 
 /// Schlick's Fresnel, F = f0 + (f90 − f0)(1 − |VdotH|)⁵.
 #[cfg(test)]
-pub fn schlick(f0: f64, f90: f64, v_dot_h: f64) -> f64 {
+pub(crate) fn schlick(f0: f64, f90: f64, v_dot_h: f64) -> f64 {
     fresnel(f0, f90, schlick_weight(v_dot_h))
 }
 
 /// f0 of a dielectric with index of refraction `ior` against air; ior 0 means infinite
 /// (KHR_materials_ior's compatibility mode), giving 1.
-pub fn f0_from_ior(ior: f64) -> f64 {
+pub(crate) fn f0_from_ior(ior: f64) -> f64 {
     if ior == 0.0 {
         1.0
     } else {
@@ -115,7 +115,7 @@ pub fn f0_from_ior(ior: f64) -> f64 {
 
 /// Isotropic GGX (Trowbridge-Reitz) distribution, α = roughness².
 #[inline(always)]
-pub fn ggx_d<R: Real>(alpha: f64, n_dot_h: R) -> R {
+pub(crate) fn ggx_d<R: Real>(alpha: f64, n_dot_h: R) -> R {
     let a2 = alpha.max(MIN_ALPHA).powi(2);
     let f = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
     let d = R::splat(a2) / (f * f * PI);
@@ -124,7 +124,7 @@ pub fn ggx_d<R: Real>(alpha: f64, n_dot_h: R) -> R {
 
 /// Height-correlated Smith visibility V = G2 / (4 |NdotL| |NdotV|), Appendix B.
 #[inline(always)]
-pub fn smith_vis<R: Real>(alpha: f64, n_dot_l: R, n_dot_v: R) -> R {
+pub(crate) fn smith_vis<R: Real>(alpha: f64, n_dot_l: R, n_dot_v: R) -> R {
     let a2 = alpha.max(MIN_ALPHA).powi(2);
     let (l, v) = (n_dot_l.abs(), n_dot_v.abs());
     let ggx_v = l * (v * v * (1.0 - a2) + a2).sqrt();
@@ -136,14 +136,14 @@ pub fn smith_vis<R: Real>(alpha: f64, n_dot_l: R, n_dot_v: R) -> R {
 
 /// Smith Λ for the isotropic GGX lobe, for the Λ-form cross-check and the furnace tests.
 #[cfg(test)]
-pub fn smith_lambda(alpha: f64, n_dot_w: f64) -> f64 {
+pub(crate) fn smith_lambda(alpha: f64, n_dot_w: f64) -> f64 {
     let c2 = n_dot_w * n_dot_w;
     let tan2 = (1.0 - c2).max(0.0) / c2.max(1e-300);
     (-1.0 + (1.0 + alpha.max(MIN_ALPHA).powi(2) * tan2).sqrt()) / 2.0
 }
 
 /// KHR_materials_anisotropy roughnesses: α_t = mix(α, 1, strength²), α_b = α.
-pub fn anisotropic_alphas(alpha: f64, strength: f64) -> (f64, f64) {
+pub(crate) fn anisotropic_alphas(alpha: f64, strength: f64) -> (f64, f64) {
     let s2 = strength.clamp(0.0, 1.0).powi(2);
     let alpha = alpha.max(MIN_ALPHA);
     (alpha + (1.0 - alpha) * s2, alpha)
@@ -152,14 +152,14 @@ pub fn anisotropic_alphas(alpha: f64, strength: f64) -> (f64, f64) {
 /// `w` in the anisotropy frame: t along the direction at `angle` in the tangent plane, b
 /// perpendicular to it, the normal unchanged (an angle of −a turns it back).
 #[inline(always)]
-pub fn into_anisotropy_frame<R: Real>(w: [R; 3], angle: f64) -> [R; 3] {
+pub(crate) fn into_anisotropy_frame<R: Real>(w: [R; 3], angle: f64) -> [R; 3] {
     let (s, c) = angle.sin_cos();
     [w[0] * c + w[1] * s, w[1] * c - w[0] * s, w[2]]
 }
 
 /// Anisotropic GGX with (t, b) the anisotropy direction and its perpendicular in the
 /// tangent plane (an orthonormal frame with the normal).
-pub fn ggx_aniso_d<R: Real>(alpha_t: f64, alpha_b: f64, h: [R; 3]) -> R {
+pub(crate) fn ggx_aniso_d<R: Real>(alpha_t: f64, alpha_b: f64, h: [R; 3]) -> R {
     let (at, ab) = (alpha_t.max(MIN_ALPHA), alpha_b.max(MIN_ALPHA));
     let (x, y) = (h[0] / at, h[1] / ab);
     let f = x * x + y * y + h[2] * h[2];
@@ -168,7 +168,7 @@ pub fn ggx_aniso_d<R: Real>(alpha_t: f64, alpha_b: f64, h: [R; 3]) -> R {
 }
 
 /// Anisotropic height-correlated visibility (KHR_materials_anisotropy).
-pub fn smith_vis_aniso<R: Real>(alpha_t: f64, alpha_b: f64, v: [R; 3], l: [R; 3]) -> R {
+pub(crate) fn smith_vis_aniso<R: Real>(alpha_t: f64, alpha_b: f64, v: [R; 3], l: [R; 3]) -> R {
     let (at, ab) = (alpha_t.max(MIN_ALPHA), alpha_b.max(MIN_ALPHA));
     let length = |w: [R; 3]| {
         let (x, y) = (w[0] * at, w[1] * ab);
@@ -193,14 +193,14 @@ pub enum SheenVisibility {
 }
 
 /// The Charlie sheen distribution with r = sheenRoughness².
-pub fn charlie_d<R: Real>(sheen_roughness: f64, n_dot_h: R) -> R {
+pub(crate) fn charlie_d<R: Real>(sheen_roughness: f64, n_dot_h: R) -> R {
     let r = (sheen_roughness * sheen_roughness).max(1e-7);
     let sin2 = (-(n_dot_h * n_dot_h) + 1.0).max(R::splat(0.0));
     sin2.map(|s| s.powf(0.5 / r)) * ((2.0 + 1.0 / r) / (2.0 * PI))
 }
 
 /// Conty-Kulla's fit of the Charlie Λ.
-pub fn charlie_lambda(sheen_roughness: f64, cos_theta: f64) -> f64 {
+pub(crate) fn charlie_lambda(sheen_roughness: f64, cos_theta: f64) -> f64 {
     const P0: [f64; 5] = [25.3245, 3.32435, 0.16801, -1.27393, -4.85967];
     const P1: [f64; 5] = [21.5473, 3.82987, 0.19823, -1.97760, -4.32054];
     let r = sheen_roughness * sheen_roughness;
@@ -216,7 +216,7 @@ pub fn charlie_lambda(sheen_roughness: f64, cos_theta: f64) -> f64 {
 }
 
 /// Sheen visibility for the chosen term.
-pub fn sheen_vis<R: Real>(
+pub(crate) fn sheen_vis<R: Real>(
     visibility: SheenVisibility,
     sheen_roughness: f64,
     n_dot_l: R,
@@ -237,7 +237,7 @@ pub fn sheen_vis<R: Real>(
 }
 
 /// The sheen lobe for a unit sheen colour: D_s · V_s (0 below the horizon).
-pub fn sheen_lobe<R: Real>(
+pub(crate) fn sheen_lobe<R: Real>(
     visibility: SheenVisibility,
     sheen_roughness: f64,
     g: &Geometry<R>,

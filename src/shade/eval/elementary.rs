@@ -53,7 +53,7 @@ const ATAN_THRESHOLDS: [f64; 4] = [
 /// The angle of the vector (x, y) in degrees, in [0, 360); 0 for the zero vector. Equals
 /// `y.atan2(x).to_degrees().rem_euclid(360.0)`, without the branch for negative angles.
 #[inline(always)]
-pub fn atan2_degrees<R: Real>(y: R, x: R) -> R {
+pub(crate) fn atan2_degrees<R: Real>(y: R, x: R) -> R {
     let zero = R::splat(0.0);
     let (ax, ay) = (x.abs(), y.abs());
     let (small, large) = (ax.min(ay), ax.max(ay));
@@ -99,7 +99,7 @@ const LN_2_LOW: f64 = 1.908_214_929_270_587_7e-10;
 
 /// e^x for x in [−700, 700] (clamped there).
 #[inline(always)]
-pub fn exp<R: Real>(x: R) -> R {
+pub(crate) fn exp<R: Real>(x: R) -> R {
     // Adding 1.5 · 2⁵² rounds to an integer that lands in the low mantissa bits.
     const SHIFTER: f64 = 6_755_399_441_055_744.0;
     let x = x.max(R::splat(-700.0)).min(R::splat(700.0));
@@ -125,7 +125,7 @@ const SIN_SERIES: [f64; 12] = {
 
 /// sin x for |x| ≤ π/2.
 #[inline(always)]
-pub fn sin_small<R: Real>(x: R) -> R {
+pub(crate) fn sin_small<R: Real>(x: R) -> R {
     x * polynomial(&SIN_SERIES, x * x)
 }
 

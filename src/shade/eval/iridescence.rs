@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 
 /// A thin film: its index of refraction and its thickness in nanometres.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Film {
+pub(crate) struct Film {
     /// `iridescenceIor`.
     pub ior: f64,
     /// Nanometres: `iridescenceThicknessMaximum`, or the texture's place between the minimum
@@ -59,7 +59,7 @@ fn sensitivity(opd: f64, shift: V3) -> V3 {
 
 /// The film's Fresnel reflectance over a base of normal-incidence reflectance `base_f0`
 /// (per channel), seen from outside (air) at `cos_theta1`.
-pub fn fresnel(film: Film, base_f0: V3, cos_theta1: f64) -> V3 {
+pub(crate) fn fresnel(film: Film, base_f0: V3, cos_theta1: f64) -> V3 {
     const OUTSIDE: f64 = 1.0;
     // "mix(outsideIOR, eta2, smoothstep(0.0, 0.03, thinFilmThickness))" is the Sample
     // Viewer's; the README takes the film's index as it is.
@@ -97,7 +97,7 @@ pub fn fresnel(film: Film, base_f0: V3, cos_theta1: f64) -> V3 {
 
 /// [`fresnel`] for one or several view angles (one per lane).
 #[inline(always)]
-pub fn fresnel_lanes<R: Real>(film: Film, base_f0: V3, cos_theta1: R) -> [R; 3] {
+pub(crate) fn fresnel_lanes<R: Real>(film: Film, base_f0: V3, cos_theta1: R) -> [R; 3] {
     std::array::from_fn(|i| cos_theta1.map(|c| fresnel(film, base_f0, c)[i]))
 }
 

@@ -8,7 +8,7 @@
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
 /// A number type for branch-free formulas: arithmetic, comparisons to masks, and selects.
-pub trait Real:
+pub(crate) trait Real:
     Copy
     + Add<Output = Self>
     + Sub<Output = Self>
@@ -100,17 +100,17 @@ impl Real for f64 {
 
 /// N values evaluated together.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Lanes<const N: usize>(pub [f64; N]);
+pub(crate) struct Lanes<const N: usize>(pub [f64; N]);
 
 /// Per-lane truth values of a comparison, all ones or all zeros per lane as vector compare
 /// instructions produce them (a `bool` per lane kept the optimiser from vectorising
 /// selects).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Mask<const N: usize>([u64; N]);
+pub(crate) struct Mask<const N: usize>([u64; N]);
 
 impl<const N: usize> Mask<N> {
     #[inline(always)]
-    pub fn from_bools(truth: [bool; N]) -> Self {
+    pub(crate) fn from_bools(truth: [bool; N]) -> Self {
         Mask(each(|i| if truth[i] { u64::MAX } else { 0 }))
     }
 }
@@ -128,7 +128,7 @@ fn each<T: Copy + Default, const N: usize>(f: impl Fn(usize) -> T) -> [T; N] {
 
 /// `[f(0), f(1), f(2)]`, written out, for the colour channels (see [`each`]).
 #[inline(always)]
-pub fn channels<T>(f: impl Fn(usize) -> T) -> [T; 3] {
+pub(crate) fn channels<T>(f: impl Fn(usize) -> T) -> [T; 3] {
     [f(0), f(1), f(2)]
 }
 

@@ -26,7 +26,7 @@ use std::f64::consts::PI;
 
 /// Every input of the BRDF at one surface point, linear values.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Inputs {
+pub(crate) struct Inputs {
     /// Base colour, linear RGB.
     pub base_color: V3,
     /// Metalness, 0–1.
@@ -90,7 +90,7 @@ pub struct Inputs {
 
 /// How a dielectric's diffuse term is weighed against the specular Fresnel term F (RGB).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum DiffuseBalance {
+pub(crate) enum DiffuseBalance {
     /// `(1 − max3(F)) · diffuse`: glTF 2.0 with KHR_materials_specular ("dielectric_brdf =
     /// … (1 - max_value(dielectric_fresnel)) * diffuse_brdf").
     MaxFresnel,
@@ -244,7 +244,7 @@ impl Inputs {
     /// its size (at least 1), with the same switches: what a material whose inputs are
     /// affine in its texels has at the corner between four texel centres.
     #[inline(always)]
-    pub fn is_mean_of(&self, four: [&Inputs; 4], tolerance: f64) -> bool {
+    pub(crate) fn is_mean_of(&self, four: [&Inputs; 4], tolerance: f64) -> bool {
         // Every field, named: a field added to the inputs must be added below.
         let Inputs {
             base_color: _,
@@ -319,7 +319,7 @@ impl Inputs {
     /// specular_btdf · baseColor, transmission)" and "mix(diffuse_brdf, diffuse_btdf,
     /// diffuseTransmission)" (KHR_materials_transmission, _diffuse_transmission); the
     /// transmitted shares reach the viewer from behind the surface, not from the light.
-    pub fn diffuse_reflected(&self) -> f64 {
+    pub(crate) fn diffuse_reflected(&self) -> f64 {
         (1.0 - self.transmission) * (1.0 - self.diffuse_transmission)
     }
 }
@@ -328,7 +328,7 @@ impl Inputs {
     /// A specular-glossiness material under `reading`, in the evaluator's terms: a
     /// dielectric whose F0 is the specular colour (ior 0 makes f0_ior = 1), α = (1 −
     /// glossiness)², and whose diffuse and its balance are the reading's.
-    pub fn specular_glossiness(
+    pub(crate) fn specular_glossiness(
         diffuse: V3,
         specular: V3,
         glossiness: f64,
@@ -352,26 +352,26 @@ impl Inputs {
 }
 
 /// Evaluates materials; holds the sheen albedo table for its visibility term.
-pub struct Shader {
+pub(crate) struct Shader {
     /// The sheen albedo table of its visibility term.
     pub sheen_table: SheenTable,
 }
 
 impl Shader {
     /// A shader using `sheen_table`.
-    pub fn new(sheen_table: SheenTable) -> Shader {
+    pub(crate) fn new(sheen_table: SheenTable) -> Shader {
         Shader { sheen_table }
     }
 
     /// The sheen visibility term its table was computed for.
-    pub fn visibility(&self) -> SheenVisibility {
+    pub(crate) fn visibility(&self) -> SheenVisibility {
         self.sheen_table.visibility
     }
 
     /// The BRDF f(v, l) (not multiplied by NdotL), RGB, directions in the shading frame.
     /// Unlit materials return their colour as radiance-like value: callers treat them apart.
     #[inline(always)]
-    pub fn brdf<R: Real>(&self, m: &Inputs, g: &Geometry<R>) -> [R; 3] {
+    pub(crate) fn brdf<R: Real>(&self, m: &Inputs, g: &Geometry<R>) -> [R; 3] {
         let base = base_brdf(m, g);
         let c = max3(m.sheen_color);
         let layered = if c == 0.0 {
@@ -392,7 +392,7 @@ impl Shader {
 
 /// The metal-roughness BRDF with specular, ior and anisotropy, before sheen.
 #[inline(always)]
-pub fn base_brdf<R: Real>(m: &Inputs, g: &Geometry<R>) -> [R; 3] {
+pub(crate) fn base_brdf<R: Real>(m: &Inputs, g: &Geometry<R>) -> [R; 3] {
     let alpha = m.roughness * m.roughness;
     let specular = if m.anisotropy_strength > 0.0 {
         let (alpha_t, alpha_b) = anisotropic_alphas(alpha, m.anisotropy_strength);

@@ -4,7 +4,7 @@ use super::brdf::V3;
 use std::f64::consts::PI;
 
 /// Gauss-Legendre nodes and weights on [0, 1].
-pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+pub(crate) fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     (1..=n)
         .map(|i| {
             // Newton iteration on P_n from the Chebyshev-like initial guess.
@@ -32,7 +32,7 @@ pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
 }
 
 /// ∫ f(ω) dω over the upper hemisphere, with `n_mu` × `n_phi` nodes.
-pub fn hemisphere(n_mu: usize, n_phi: usize, mut f: impl FnMut(V3) -> f64) -> f64 {
+pub(crate) fn hemisphere(n_mu: usize, n_phi: usize, mut f: impl FnMut(V3) -> f64) -> f64 {
     let nodes = gauss_legendre(n_mu);
     let d_phi = 2.0 * PI / n_phi as f64;
     let mut total = 0.0;

@@ -59,7 +59,13 @@ fn glyph(c: char) -> &'static str {
 
 /// Draws `text` with its top-left corner at (x, y), `scale` pixels per font pixel, clipped
 /// to the image and to `max_width` pixels.
-pub fn draw(image: &mut RgbImage, text: &str, (x, y): (u32, u32), scale: u32, max_width: u32) {
+pub(crate) fn draw(
+    image: &mut RgbImage,
+    text: &str,
+    (x, y): (u32, u32),
+    scale: u32,
+    max_width: u32,
+) {
     let advance = 4 * scale;
     for (i, c) in text.chars().enumerate() {
         let left = x + i as u32 * advance;

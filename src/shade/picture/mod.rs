@@ -1,4 +1,4 @@
 //! Pictures of materials: balls under a sky, contact sheets, heat maps, and their labels.
 
 pub(crate) mod label;
-pub mod render;
+pub(crate) mod render;

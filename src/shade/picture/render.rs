@@ -264,7 +264,7 @@ fn encode(linear: V3) -> Rgb<u8> {
 }
 
 /// Renders one material ball.
-pub fn material_ball(shader: &Shader, material: &MaterialSource, size: u32) -> RgbImage {
+pub(crate) fn material_ball(shader: &Shader, material: &MaterialSource, size: u32) -> RgbImage {
     ball_with_sky(
         shader,
         material,
@@ -352,7 +352,7 @@ impl SheetLayout {
 
 /// Every material's ball on one sheet laid out by `layout`, in material order, each with its
 /// name written under it.
-pub fn contact_sheet(
+pub(crate) fn contact_sheet(
     shader: &Shader,
     materials: &[(&str, &MaterialSource)],
     layout: SheetLayout,

@@ -30,7 +30,7 @@ impl std::ops::Deref for Encoded<'_> {
 /// The images the materials sample (through their textureInfo objects, the only objects
 /// in a material with an `index`): the others, such as originals a converter kept, are not
 /// decoded.
-pub fn used_images(
+pub(crate) fn used_images(
     materials: impl IntoIterator<Item = Value>,
     textures: &[Value],
 ) -> std::collections::BTreeSet<usize> {
@@ -55,17 +55,17 @@ pub fn used_images(
 }
 
 /// A texture's image: the one a viewer draws (see [`drawn_image`]).
-pub fn texture_source(texture: &Value) -> Option<u64> {
+pub(crate) fn texture_source(texture: &Value) -> Option<u64> {
     drawn_image(texture)
 }
 
 /// An asset's materials by name, and the surface points of each (see [`gltf2_materials`]).
-pub type MaterialsOn = (Vec<(String, MaterialSource)>, Vec<surface::Surface>);
+pub(crate) type MaterialsOn = (Vec<(String, MaterialSource)>, Vec<surface::Surface>);
 
 /// Every material of a glTF 2.0 asset with its decoded textures (no finer than `finest`, see
 /// [`sample::decode_all_at_most`]), and the material names; with `surfaces`, also the points
 /// on its meshes where each material's texCoord sets differ (see [`surface::surface_points`]).
-pub fn gltf2_materials(
+pub(crate) fn gltf2_materials(
     bytes: Vec<u8>,
     name: &str,
     loader: &dyn ResourceLoader,
@@ -134,7 +134,7 @@ pub fn gltf2_materials(
 }
 
 /// The sampler each texture (by index) reads its image through.
-pub fn samplers_of(textures: &[Value], samplers: &[Value]) -> Vec<sample::Sampler> {
+pub(crate) fn samplers_of(textures: &[Value], samplers: &[Value]) -> Vec<sample::Sampler> {
     (textures.iter())
         .map(|texture| {
             let index = texture.get("sampler").and_then(Value::as_u64);
@@ -148,7 +148,7 @@ pub fn samplers_of(textures: &[Value], samplers: &[Value]) -> Vec<sample::Sample
 /// alike materials are prepared, held and compared once; copies that name different textures
 /// of the same image and sampler are copies too (the evaluator reads the image, not the
 /// texture object).
-pub fn prepare_materials(
+pub(crate) fn prepare_materials(
     materials: impl IntoIterator<Item = Value>,
     textures: &[Option<Texture>],
     samplers: &[sample::Sampler],

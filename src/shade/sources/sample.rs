@@ -17,13 +17,13 @@ use std::ops::Deref;
 use std::sync::Arc;
 
 /// A decoded texture, shared by the materials that bind it.
-pub type Texture = Arc<TextureImage>;
+pub(crate) type Texture = Arc<TextureImage>;
 
 /// Texels as the file stores them (its channels, 8 or 16 bits), read as RGBA values 0..1
 /// (transfer functions are applied per slot). Nothing is widened when decoded: an 8192²
 /// RGB PNG holds 201 MB, not the 268 MB of RGBA bytes (or 1 GiB of RGBA floats) on top of
 /// the decoder's own buffer.
-pub struct TextureImage {
+pub(crate) struct TextureImage {
     width: u32,
     height: u32,
     /// 1 (luminance), 2 (luminance, alpha), 3 (RGB) or 4 (RGBA).
@@ -38,17 +38,17 @@ enum Texels {
 }
 
 impl TextureImage {
-    pub fn width(&self) -> u32 {
+    pub(crate) fn width(&self) -> u32 {
         self.width
     }
 
-    pub fn height(&self) -> u32 {
+    pub(crate) fn height(&self) -> u32 {
         self.height
     }
 
     /// The image as the file stores it (no transfer function applied), reduced to at most
     /// `size` texels a side by taking the nearest texel: a thumbnail shows what the file holds.
-    pub fn thumbnail(&self, size: u32) -> image::RgbaImage {
+    pub(crate) fn thumbnail(&self, size: u32) -> image::RgbaImage {
         let scale = (f64::from(self.width.max(self.height)) / f64::from(size.max(1))).max(1.0);
         let side = |n: u32| ((f64::from(n) / scale).round() as u32).max(1);
         image::RgbaImage::from_fn(side(self.width), side(self.height), |x, y| {
@@ -103,7 +103,7 @@ impl TextureImage {
     }
 
     /// Whether its texels have more than 8 bits (a rebake from it keeps 16 bits).
-    pub fn is_wide(&self) -> bool {
+    pub(crate) fn is_wide(&self) -> bool {
         !matches!(self.texels, Texels::Unorm8(_))
     }
 
@@ -324,16 +324,16 @@ fn decode_whole(bytes: &[u8]) -> Result<Texture, String> {
 /// stranger makes an image (a flat 16384² PNG of half a megabyte decodes to 512 MiB), a run
 /// holds in proportion to what it was given; past the budget an image is refused from its
 /// header, before anything is decoded.
-pub const DECODE_MARGIN: u64 = 96 << 20;
+pub(crate) const DECODE_MARGIN: u64 = 96 << 20;
 
 /// The decoded bytes allowed for images of `encoded` bytes in all (see [`DECODE_MARGIN`]).
-pub fn decode_budget(encoded: u64) -> u64 {
+pub(crate) fn decode_budget(encoded: u64) -> u64 {
     encoded.saturating_mul(2).saturating_add(DECODE_MARGIN)
 }
 
 /// An image to decode: `None` when nothing samples it, `Some(Err(why))` when something does
 /// but its bytes could not be read.
-pub type Wanted<B> = Option<Result<B, String>>;
+pub(crate) type Wanted<B> = Option<Result<B, String>>;
 
 /// Decodes every wanted image, one per available core (decoding a 2048² PNG takes tens of
 /// milliseconds, and a comparison decodes every texture of both assets first). Images with
@@ -341,7 +341,7 @@ pub type Wanted<B> = Option<Result<B, String>>;
 /// is held to [`decode_budget`] from their headers before anything is decoded. A wanted image
 /// that cannot be read or decoded is an error: a material evaluated without its texture
 /// would be a different material.
-pub fn decode_all<B: Deref<Target: AsRef<[u8]>> + Sync>(
+pub(crate) fn decode_all<B: Deref<Target: AsRef<[u8]>> + Sync>(
     sources: &[Wanted<B>],
 ) -> Result<Vec<Option<Texture>>, String> {
     decode_all_at_most(sources, AS_STORED)
@@ -349,11 +349,11 @@ pub fn decode_all<B: Deref<Target: AsRef<[u8]>> + Sync>(
 
 /// The finest detail wanted when every texel counts (comparisons, proofs): images decoded
 /// as stored.
-pub const AS_STORED: u32 = u32::MAX;
+pub(crate) const AS_STORED: u32 = u32::MAX;
 
 /// [`decode_all`] for a use that shows no detail finer than `finest` texels a side (a
 /// preview): larger images may be decoded reduced to it (see [`decode_png_reduced`]).
-pub fn decode_all_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
+pub(crate) fn decode_all_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
     sources: &[Wanted<B>],
     finest: u32,
 ) -> Result<Vec<Option<Texture>>, String> {
@@ -363,7 +363,7 @@ pub fn decode_all_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
 /// [`decode_all_at_most`] with each image's failure its own (`Err` in its place), for uses
 /// that can go on without it; the outer error is the decoding budget's, which no image may
 /// pass.
-pub fn decode_each_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
+pub(crate) fn decode_each_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
     sources: &[Wanted<B>],
     finest: u32,
 ) -> Result<Vec<Result<Option<Texture>, String>>, String> {
@@ -577,7 +577,7 @@ fn decode_caught(bytes: &[u8], finest: u32) -> Result<Texture, String> {
 
 /// Bilinear sample with repeat wrapping, texel centres at (i + ½) / size.
 #[inline(always)]
-pub fn bilinear(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
+pub(crate) fn bilinear(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
     sample_of::<false>(texture, uv, Sampler::default())
 }
 
@@ -585,7 +585,7 @@ pub fn bilinear(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
 /// before the texels are mixed, as a GPU samples an sRGB texture format ("the conversion
 /// … is performed before filtering"), alpha as stored.
 #[inline(always)]
-pub fn bilinear_srgb(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
+pub(crate) fn bilinear_srgb(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
     sample_of::<true>(texture, uv, Sampler::default())
 }
 
@@ -650,7 +650,7 @@ fn wrap(i: i64, size: i64) -> i64 {
 
 /// How a texture coordinate outside 0..1 reads the texture (glTF 2.0 `wrapS` / `wrapT`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Wrap {
+pub(crate) enum Wrap {
     /// 10497 REPEAT, the default.
     #[default]
     Repeat,
@@ -689,7 +689,7 @@ impl Wrap {
 /// A texture's sampler as the evaluator reads it: its magnification filter and wrap modes.
 /// (The comparison's grid is as fine as the finest texture, so no texture is minified.)
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct Sampler {
+pub(crate) struct Sampler {
     /// `magFilter` 9728 NEAREST: the nearest texel, not the four around.
     pub nearest: bool,
     /// `wrapS`, `wrapT`.
@@ -698,7 +698,7 @@ pub struct Sampler {
 
 impl Sampler {
     /// A glTF 2.0 sampler object (absent members at their defaults: LINEAR, REPEAT).
-    pub fn of(sampler: Option<&Value>) -> Sampler {
+    pub(crate) fn of(sampler: Option<&Value>) -> Sampler {
         let gl = |key: &str| sampler.and_then(|s| s.get(key)).and_then(Value::as_u64);
         Sampler {
             nearest: gl("magFilter") == Some(9728),
@@ -743,7 +743,7 @@ impl Binding {
 
 /// What a material is made of, ready to be sampled.
 #[derive(Clone)]
-pub enum MaterialSource {
+pub(crate) enum MaterialSource {
     /// A glTF 2.0 material, its JSON resolved once into factors and texture bindings.
     Gltf2(Arc<Prepared>),
     /// A glTF 1.0 PBR-draft material with its two textures.
@@ -763,7 +763,7 @@ pub enum MaterialSource {
 }
 
 /// A glTF 2.0 material with every member looked up once (sampling runs per texel).
-pub struct Prepared {
+pub(crate) struct Prepared {
     factors: Inputs,
     /// baseColorFactor's (or diffuseFactor's) alpha.
     alpha: f64,
@@ -803,7 +803,7 @@ pub struct Prepared {
 /// KHR_materials_common's lighting ("color = <emission> + <ambient> * al + …"): the light it
 /// emits and how much of the background it hides. Its lighting is a model the evaluator
 /// does not shade.
-pub struct LitLegacy {
+pub(crate) struct LitLegacy {
     /// The emission's colour, linear (1.0 colours are display values, linearised).
     pub emission: V3,
     /// The emission's texture (sRGB), multiplying the colour.
@@ -817,7 +817,7 @@ pub struct LitLegacy {
 }
 
 /// What a [`LitLegacy`] material leaves out, as [`MaterialSource::unmodelled`] says it.
-pub const LIGHTING_UNREAD: &str = "its lighting (a glTF 1.0 technique's shaders or KHR_materials_common's Blinn, Phong, Lambert or constant model, which the evaluator does not shade): only its emission and coverage are compared";
+pub(crate) const LIGHTING_UNREAD: &str = "its lighting (a glTF 1.0 technique's shaders or KHR_materials_common's Blinn, Phong, Lambert or constant model, which the evaluator does not shade): only its emission and coverage are compared";
 
 /// glTF 2.0 `alphaMode`: how the base colour's alpha becomes coverage.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -962,7 +962,7 @@ impl MaterialSource {
     /// emission and coverage, nothing reflected. Compared with another material, that one is
     /// seen the same way ([`MaterialSource::emission_and_coverage`]), and the pair is never
     /// the same: its lighting is `LIGHTING_UNREAD`.
-    pub fn lit_legacy(lit: LitLegacy) -> MaterialSource {
+    pub(crate) fn lit_legacy(lit: LitLegacy) -> MaterialSource {
         let alpha_mode = match lit.blend {
             None => AlphaMode::Opaque,
             Some(_) => AlphaMode::Blend,
@@ -983,13 +983,13 @@ impl MaterialSource {
 
     /// Whether only this material's emission and coverage are read
     /// ([`MaterialSource::lit_legacy`]).
-    pub fn lighting_unread(&self) -> bool {
+    pub(crate) fn lighting_unread(&self) -> bool {
         matches!(self, MaterialSource::Gltf2(p) if p.lighting_unread)
     }
 
     /// This material seen as a [`MaterialSource::lit_legacy`] one is: its emission (an unlit
     /// material's colour, which is what it emits) and its coverage, nothing reflected.
-    pub fn emission_and_coverage(&self) -> MaterialSource {
+    pub(crate) fn emission_and_coverage(&self) -> MaterialSource {
         let prepared = match self {
             MaterialSource::Gltf2(p) if p.lighting_unread => return self.clone(),
             MaterialSource::Gltf2(p) => {
@@ -1032,14 +1032,14 @@ impl MaterialSource {
 
     /// Prepares a glTF 2.0 material; `textures` are the document's, by texture index.
     #[cfg(test)]
-    pub fn gltf2(material: &Value, textures: &[Option<Texture>]) -> MaterialSource {
+    pub(crate) fn gltf2(material: &Value, textures: &[Option<Texture>]) -> MaterialSource {
         MaterialSource::gltf2_sampled(material, textures, &[], &[])
     }
 
     /// Prepares a glTF 2.0 material whose textures are read through `samplers` (by texture
     /// index; a texture without one has the default sampler); `unreadable` says why a
     /// texture has no image (by texture index), for what the material cannot show.
-    pub fn gltf2_sampled(
+    pub(crate) fn gltf2_sampled(
         material: &Value,
         textures: &[Option<Texture>],
         samplers: &[Sampler],
@@ -1085,7 +1085,7 @@ fn rgb(t: [f64; 4]) -> V3 {
 
 impl MaterialSource {
     /// The highest texture resolution involved (for the comparison grid).
-    pub fn max_resolution(&self) -> u32 {
+    pub(crate) fn max_resolution(&self) -> u32 {
         let textures: Vec<&Texture> = match self {
             MaterialSource::Gltf2(p) => p.bindings().map(|b| &b.texture).collect(),
             MaterialSource::Legacy { colour, data, .. } => colour.iter().chain(data).collect(),
@@ -1100,7 +1100,7 @@ impl MaterialSource {
     /// A key equal for two sources that evaluate the same way (the same JSON or parameters,
     /// the same decoded textures, the same reading), so that a comparison of identical pairs
     /// is made once.
-    pub fn fingerprint(&self) -> String {
+    pub(crate) fn fingerprint(&self) -> String {
         match self {
             MaterialSource::Gltf2(prepared) => prepared.fingerprint.clone(),
             MaterialSource::Legacy {
@@ -1119,7 +1119,7 @@ impl MaterialSource {
 
     /// This material read as `wanted` when its text can be read several ways (a 1.0
     /// specular-glossiness draft material); itself otherwise.
-    pub fn read_as(&self, wanted: SpecGlossReading) -> MaterialSource {
+    pub(crate) fn read_as(&self, wanted: SpecGlossReading) -> MaterialSource {
         match self {
             MaterialSource::Legacy {
                 pbr,
@@ -1140,7 +1140,7 @@ impl MaterialSource {
 
     /// The readings of its text other than the one it is read as: the other draft
     /// readings for a 1.0 specular-glossiness material, none otherwise.
-    pub fn other_readings(&self) -> Vec<MaterialSource> {
+    pub(crate) fn other_readings(&self) -> Vec<MaterialSource> {
         match self {
             MaterialSource::Legacy { pbr, reading, .. }
                 if pbr.model == Model::SpecularGlossiness =>
@@ -1155,7 +1155,7 @@ impl MaterialSource {
     }
 
     /// Whether a texture is read through a texCoord set other than 0 (a 1.0 draft's never is).
-    pub fn reads_other_sets(&self) -> bool {
+    pub(crate) fn reads_other_sets(&self) -> bool {
         match self {
             MaterialSource::Gltf2(p) => p.bindings().any(|b| b.texcoord > 0),
             MaterialSource::Legacy { .. } => false,
@@ -1167,7 +1167,7 @@ impl MaterialSource {
     /// normal normalised, an anisotropy direction's angle, a MASK threshold on a texture's
     /// alpha, a volume's power, spec-gloss's diffuse · (1 − max specular)). Then its inputs
     /// at a texel corner are the mean of those at the four centres around it.
-    pub fn linear_on(&self, grid: u32) -> bool {
+    pub(crate) fn linear_on(&self, grid: u32) -> bool {
         let on_grid = |t: &TextureImage| t.width() == grid && t.height() == grid;
         match self {
             MaterialSource::Gltf2(p) => {
@@ -1201,7 +1201,7 @@ impl MaterialSource {
     /// power of two (so a texel centre and a corner are exact coordinates: a centre reads one
     /// texel, a corner the mean of four). Then [`MaterialSource::reads_as_left`] can tell,
     /// from the stored texels alone, that a point's inputs are its left neighbour's.
-    pub fn texels_on(&self, grid: u32) -> bool {
+    pub(crate) fn texels_on(&self, grid: u32) -> bool {
         let as_stored = |t: &TextureImage, sampler: Sampler| {
             t.width() == grid && t.height() == grid && !sampler.nearest && t.complete()
         };
@@ -1229,7 +1229,7 @@ impl MaterialSource {
     /// top-left corner) reads texels equal to those the point at `x − 1` reads, so that its
     /// inputs are that point's. Points whose reads wrap around an edge are never said to.
     #[inline(always)]
-    pub fn reads_as_left(&self, x: u32, y: u32, corner: bool) -> bool {
+    pub(crate) fn reads_as_left(&self, x: u32, y: u32, corner: bool) -> bool {
         let same = |t: &TextureImage| {
             if corner {
                 // A corner reads the texels left and right of it in the rows above and below.
@@ -1254,7 +1254,7 @@ impl MaterialSource {
     /// texels the centre of texel (x, y) reads, every texture's in turn, handed to `push` as
     /// 64-bit words. Two centres whose words are equal have equal inputs.
     #[inline(always)]
-    pub fn centre_texels(&self, x: u32, y: u32, push: &mut impl FnMut(u64)) {
+    pub(crate) fn centre_texels(&self, x: u32, y: u32, push: &mut impl FnMut(u64)) {
         match self {
             MaterialSource::Gltf2(p) => {
                 (p.bindings()).for_each(|b| b.texture.stored_words(x, y, push))
@@ -1268,7 +1268,7 @@ impl MaterialSource {
     /// What the evaluator cannot show of this material, each with the reason: extensions it
     /// does not model and texture slots whose image it cannot read. A comparison involving
     /// such a material is reported as not evaluated, never as the same.
-    pub fn unmodelled(&self) -> &[String] {
+    pub(crate) fn unmodelled(&self) -> &[String] {
         match self {
             MaterialSource::Gltf2(prepared) => &prepared.unmodelled,
             MaterialSource::Legacy { .. } => &[],
@@ -1276,7 +1276,7 @@ impl MaterialSource {
     }
 
     /// The name of the reading this material is evaluated under, when there is a choice.
-    pub fn reading_name(&self) -> Option<&'static str> {
+    pub(crate) fn reading_name(&self) -> Option<&'static str> {
         match self {
             MaterialSource::Legacy { pbr, reading, .. }
                 if pbr.model == Model::SpecularGlossiness =>
@@ -1290,7 +1290,7 @@ impl MaterialSource {
     /// The BRDF inputs at texture coordinates `uvs` (one pair per TEXCOORD set). Inlined
     /// into the comparison's texel loop, which is compiled for the CPU's vector width.
     #[inline(always)]
-    pub fn inputs_at(&self, uvs: &[[f64; 2]]) -> Inputs {
+    pub(crate) fn inputs_at(&self, uvs: &[[f64; 2]]) -> Inputs {
         match self {
             MaterialSource::Gltf2(prepared) => prepared.inputs_at(uvs),
             MaterialSource::Legacy {
@@ -1510,7 +1510,7 @@ fn unmodelled_extensions(material: &Value) -> Vec<String> {
 
 /// A material's JSON without the members that do not change how it shades (`name`,
 /// `extras`): equal for two materials that evaluate the same way with the same textures.
-pub fn shading_text(material: &Value) -> String {
+pub(crate) fn shading_text(material: &Value) -> String {
     let Some(members) = material.as_object() else {
         return material.to_string();
     };

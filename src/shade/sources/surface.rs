@@ -10,12 +10,12 @@ use crate::gltf::mesh::{drawn_materials, triangle_count, triangles};
 use crate::gltf::{as_index, unsigned};
 
 /// A point's UV in each texCoord set, set 0 first.
-pub type Point = Vec<[f64; 2]>;
+pub(crate) type Point = Vec<[f64; 2]>;
 
 /// The points of one material, and why some of its primitives gave none (their texture
 /// coordinates could not be read as plain accessors).
 #[derive(Clone, Debug, Default)]
-pub struct Surface {
+pub(crate) struct Surface {
     pub points: Vec<Point>,
     pub unread: Option<String>,
 }

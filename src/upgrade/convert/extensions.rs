@@ -19,7 +19,7 @@ const CONVERTED: &[&str] = &[
 ];
 
 /// Cesium's relative-to-centre extension: positions are offsets from `center`.
-pub const CESIUM_RTC: &str = "CESIUM_RTC";
+pub(super) const CESIUM_RTC: &str = "CESIUM_RTC";
 
 impl Builder<'_, '_> {
     /// The root CESIUM_RTC object to write, kept as it is: CesiumJS, which 3D Tiles content is

@@ -15,7 +15,11 @@ use crate::upgrade::{NoteKind, SpecularGlossiness, UpgradeError};
 use serde_json::{json, Map, Value};
 use std::sync::Arc;
 
-pub fn convert(builder: &mut Builder, id: &str, material: Node) -> Result<Value, UpgradeError> {
+pub(crate) fn convert(
+    builder: &mut Builder,
+    id: &str,
+    material: Node,
+) -> Result<Value, UpgradeError> {
     let at = pointer("materials", id);
     // Nothing says what a material that is no object draws: it is refused, not invented.
     if !material.is_object() {
@@ -609,7 +613,7 @@ fn scale_alpha(out: &mut Map<String, Value>, opacity: f64) {
 }
 
 /// The KHR extensions the converted materials use.
-pub fn extensions_used(materials: Option<&Items>) -> Vec<String> {
+pub(crate) fn extensions_used(materials: Option<&Items>) -> Vec<String> {
     let mut used: Vec<String> = (materials.into_iter().flat_map(Items::iter))
         .flat_map(|material| match material.get("extensions") {
             Some(Value::Object(extensions)) => extensions.keys().cloned().collect(),

@@ -7,7 +7,7 @@ use crate::document::{Array, Node};
 
 const EXTENSION: &str = "KHR_lights_punctual";
 
-pub fn check(ctx: &mut Context) {
+pub(crate) fn check(ctx: &mut Context) {
     let root = ctx.root.get("extensions").and_then(|e| e.get(EXTENSION));
     let lights: Array = root
         .and_then(|r| r.get("lights"))
