@@ -66,7 +66,7 @@ pub use check::{check_bytes, check_path, AssetInfo, CheckOptions, Profile, Repor
 pub use diagnostic::{Code, Diagnostic, Finding, Findings, Location, Place, Severity};
 
 // Input: reading a file within bounds, and the files an asset names.
-pub use document::bytes::{Bytes, Elsewhere};
+pub use document::bytes::Bytes;
 pub use document::file::{read_file, read_stream, FileError, FileId, Kept, MAX_FILE_BYTES};
 pub use document::uri::{
     folder_of, FolderResources, LoadError, MemoryResources, NoResources, ResourceLoader,

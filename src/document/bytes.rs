@@ -1,7 +1,6 @@
-//! The bytes of an asset or resource: read into memory. A large GLB's BIN chunk is read a
-//! range at a time from its opened file (a range the file no longer holds reads as nothing).
+//! Bytes in memory: a file's, read whole, and shared pieces of them laid end to end (an
+//! upgrade's output, checked without being joined first).
 
-use super::file::{FileChunk, Kept};
 use std::borrow::Cow;
 use std::ops::{Deref, Range};
 use std::sync::Arc;
@@ -53,99 +52,6 @@ impl AsRef<[u8]> for Bytes {
 impl std::fmt::Debug for Bytes {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "Bytes({})", self.len())
-    }
-}
-
-/// A buffer's bytes: borrowed from the document (the GLB BIN chunk), held (an external file
-/// or a data URI), or elsewhere: left in a file, or in pieces.
-pub enum BufferData<'a> {
-    /// Borrowed from the GLB BIN chunk.
-    Glb(&'a [u8]),
-    /// Read from an external file or a data URI (shared by every buffer naming the file).
-    Loaded(Arc<Bytes>),
-    /// The BIN chunk of a large GLB, still in its file, or of an upgrade's output, in pieces.
-    Elsewhere(&'a Elsewhere),
-    /// A large external file, still in the file, or an upgrade's output buffer, in pieces.
-    LoadedElsewhere(Arc<Elsewhere>),
-}
-
-impl From<Kept> for BufferData<'_> {
-    fn from(kept: Kept) -> Self {
-        match kept {
-            Kept::Read(bytes) => BufferData::Loaded(bytes),
-            Kept::Elsewhere(elsewhere) => BufferData::LoadedElsewhere(elsewhere),
-        }
-    }
-}
-
-impl BufferData<'_> {
-    /// How many bytes the buffer holds.
-    pub fn len(&self) -> usize {
-        match self {
-            BufferData::Glb(bytes) => bytes.len(),
-            BufferData::Loaded(bytes) => bytes.len(),
-            BufferData::Elsewhere(elsewhere) => elsewhere.len(),
-            BufferData::LoadedElsewhere(elsewhere) => elsewhere.len(),
-        }
-    }
-
-    /// Whether the buffer holds no byte.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// The bytes at `range`: borrowed when they are in memory in one piece, read now when
-    /// they are in a file; `None` when the range is outside the buffer (or the file no
-    /// longer holds it).
-    pub fn get(&self, range: Range<usize>) -> Option<Cow<'_, [u8]>> {
-        match self {
-            BufferData::Glb(bytes) => bytes.get(range).map(Cow::Borrowed),
-            BufferData::Loaded(bytes) => bytes.get(range).map(Cow::Borrowed),
-            BufferData::Elsewhere(elsewhere) => elsewhere.get(range),
-            BufferData::LoadedElsewhere(elsewhere) => elsewhere.get(range),
-        }
-    }
-
-    /// The whole buffer when it is in memory in one piece.
-    pub fn in_memory(&self) -> Option<&[u8]> {
-        match self {
-            BufferData::Glb(bytes) => Some(bytes),
-            BufferData::Loaded(bytes) => Some(bytes),
-            BufferData::Elsewhere(_) | BufferData::LoadedElsewhere(_) => None,
-        }
-    }
-}
-
-/// Bytes not held in one piece of memory.
-#[derive(Debug)]
-pub enum Elsewhere {
-    /// Left in a file, read a range at a time.
-    File(FileChunk),
-    /// In pieces: an upgrade's output, checked without being joined first.
-    Pieces(Pieces),
-}
-
-impl Elsewhere {
-    /// How many bytes there are.
-    pub fn len(&self) -> usize {
-        match self {
-            Elsewhere::File(chunk) => chunk.len(),
-            Elsewhere::Pieces(pieces) => pieces.len(),
-        }
-    }
-
-    /// Whether there is no byte.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// The bytes at `range`, or `None` when it is outside them (or the file no longer holds
-    /// them).
-    pub fn get(&self, range: Range<usize>) -> Option<Cow<'_, [u8]>> {
-        match self {
-            Elsewhere::File(chunk) => chunk.read(range).map(Cow::Owned),
-            Elsewhere::Pieces(pieces) => pieces.get(range),
-        }
     }
 }
 

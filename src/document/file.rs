@@ -3,7 +3,8 @@
 //! handle, never by a name looked at before opening, so a file swapped in between cannot be
 //! read in its place. Reads are bounded by the largest file a glTF asset can use.
 
-use super::bytes::{Bytes, Elsewhere};
+use super::bytes::{Bytes, Pieces};
+use std::borrow::Cow;
 use std::fs::{File, FileType, Metadata};
 use std::io::{self, Read};
 use std::path::Path;
@@ -118,23 +119,59 @@ pub(crate) fn read_or_keep(file: File) -> Result<(Kept, Option<FileId>), FileErr
             offset: 0,
             length: metadata.len() as usize,
         };
-        return Ok((
-            Kept::Elsewhere(Arc::new(Elsewhere::File(chunk))),
-            FileId::of(&metadata),
-        ));
+        return Ok((Kept::File(Arc::new(chunk)), FileId::of(&metadata)));
     }
     let (bytes, id) = read_opened_with_id(file)?;
     Ok((Kept::Read(Arc::new(bytes.into())), id))
 }
 
-/// A buffer's bytes as a loader gives them (a file from `LARGE_FILE_BYTES` up stays in it),
-/// shared: every URI naming the same file gets the same bytes.
+/// The bytes of an input file, or of a buffer, as gltfmat holds them, shared (every URI
+/// naming the same file gets the same bytes): read whole into memory, left in the opened file
+/// (a file from [`LARGE_FILE_BYTES`] up, a large GLB's BIN chunk) and read a range at a time,
+/// or in pieces (an upgrade's output, checked without being joined first).
 #[derive(Debug, Clone)]
 pub enum Kept {
     /// Read whole.
     Read(Arc<Bytes>),
-    /// Left in the file, or in pieces.
-    Elsewhere(Arc<Elsewhere>),
+    /// Left in the file.
+    File(Arc<FileChunk>),
+    /// In pieces.
+    Pieces(Arc<Pieces>),
+}
+
+impl Kept {
+    /// How many bytes there are.
+    pub fn len(&self) -> usize {
+        match self {
+            Kept::Read(bytes) => bytes.len(),
+            Kept::File(chunk) => chunk.len(),
+            Kept::Pieces(pieces) => pieces.len(),
+        }
+    }
+
+    /// Whether there is no byte.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The bytes at `range`: borrowed when they are in memory in one piece, read now when
+    /// they are in a file; `None` when the range is outside them (or the file no longer
+    /// holds it).
+    pub fn get(&self, range: std::ops::Range<usize>) -> Option<Cow<'_, [u8]>> {
+        match self {
+            Kept::Read(bytes) => bytes.get(range).map(Cow::Borrowed),
+            Kept::File(chunk) => chunk.read(range).map(Cow::Owned),
+            Kept::Pieces(pieces) => pieces.get(range),
+        }
+    }
+
+    /// All the bytes, when they are in memory in one piece.
+    pub fn in_memory(&self) -> Option<&[u8]> {
+        match self {
+            Kept::Read(bytes) => Some(bytes),
+            Kept::File(_) | Kept::Pieces(_) => None,
+        }
+    }
 }
 
 impl FileChunk {

@@ -10,7 +10,9 @@ pub(crate) mod tree;
 pub(crate) mod uri;
 
 use crate::diagnostic::{khronos, Diagnostic, Sink};
-pub(crate) use bytes::{BufferData, Bytes, Elsewhere, Piece, Pieces};
+pub(crate) use bytes::{Bytes, Piece, Pieces};
+use file::Kept;
+use std::borrow::Cow;
 use std::ops::Range;
 use std::sync::Arc;
 pub(crate) use tree::{Array, Node, Object, StringId, Tree};
@@ -52,7 +54,54 @@ pub struct Document<R = Tree> {
     /// The GLB BIN chunk's data when it is not in `bytes`, which then holds what comes
     /// before it: left in the file (a large GLB read by [`read_path`]), or in pieces (an
     /// upgrade's output, see [`read_glb_pieces`]).
-    pub bin_elsewhere: Option<Elsewhere>,
+    pub bin_elsewhere: Option<Kept>,
+}
+
+/// A buffer's bytes: borrowed from the document (a GLB's BIN chunk in memory, or left in its
+/// file or in pieces), or as a loader gave them (an external file or a data URI).
+pub(crate) enum BufferData<'a> {
+    /// The GLB BIN chunk, in memory with the document.
+    Glb(&'a [u8]),
+    /// The GLB BIN chunk, held apart from the document's bytes.
+    Bin(&'a Kept),
+    /// An external file or a data URI (shared by every buffer naming the file).
+    Loaded(Kept),
+}
+
+impl BufferData<'_> {
+    fn kept(&self) -> Result<&Kept, &[u8]> {
+        match self {
+            BufferData::Glb(bytes) => Err(bytes),
+            BufferData::Bin(kept) => Ok(kept),
+            BufferData::Loaded(kept) => Ok(kept),
+        }
+    }
+
+    /// How many bytes the buffer holds.
+    pub(crate) fn len(&self) -> usize {
+        self.kept().map_or_else(<[u8]>::len, Kept::len)
+    }
+
+    /// Whether the buffer holds no byte.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The bytes at `range` (see [`Kept::get`]).
+    pub(crate) fn get(&self, range: Range<usize>) -> Option<Cow<'_, [u8]>> {
+        match self.kept() {
+            Ok(kept) => kept.get(range),
+            Err(bytes) => bytes.get(range).map(Cow::Borrowed),
+        }
+    }
+
+    /// The whole buffer when it is in memory in one piece.
+    pub(crate) fn in_memory(&self) -> Option<&[u8]> {
+        match self.kept() {
+            Ok(kept) => kept.in_memory(),
+            Err(bytes) => Some(bytes),
+        }
+    }
 }
 
 impl<R> Document<R> {
@@ -68,9 +117,9 @@ impl<R> Document<R> {
     }
 
     /// The GLB BIN chunk's data, in memory or still in the file.
-    pub fn bin_data(&self) -> Option<BufferData<'_>> {
+    pub(crate) fn bin_data(&self) -> Option<BufferData<'_>> {
         match &self.bin_elsewhere {
-            Some(elsewhere) => Some(BufferData::Elsewhere(elsewhere)),
+            Some(kept) => Some(BufferData::Bin(kept)),
             None => self.bin().map(BufferData::Glb),
         }
     }
@@ -143,7 +192,7 @@ pub(crate) fn read_path(
         Err(opened) => return Ok(read(file::read_opened(opened)?, &name, diagnostics)),
     };
     let start = split.bin.offset() as usize;
-    let chunk = Elsewhere::File(split.bin);
+    let chunk = Kept::File(Arc::new(split.bin));
     Ok(read_holed(
         Arc::new(split.before.into()),
         start,
@@ -162,7 +211,13 @@ pub(crate) fn read_glb_pieces(
     diagnostics: &mut dyn Sink,
 ) -> Document {
     let start = head.len();
-    read_holed(head, start, Elsewhere::Pieces(pieces), &[], diagnostics)
+    read_holed(
+        head,
+        start,
+        Kept::Pieces(Arc::new(pieces)),
+        &[],
+        diagnostics,
+    )
 }
 
 /// A GLB of the bytes `before`, then (from `start`) the BIN chunk's data `elsewhere`, then
@@ -170,7 +225,7 @@ pub(crate) fn read_glb_pieces(
 fn read_holed(
     before: Arc<Bytes>,
     start: usize,
-    elsewhere: Elsewhere,
+    elsewhere: Kept,
     after: &[u8],
     diagnostics: &mut dyn Sink,
 ) -> Document {
@@ -250,7 +305,7 @@ mod tests {
         let mut findings = Vec::new();
         let document = read_path(&path, &mut findings).unwrap();
         assert!(findings.is_empty(), "{findings:?}");
-        assert!(matches!(document.bin_elsewhere, Some(Elsewhere::File(_))));
+        assert!(matches!(document.bin_elsewhere, Some(Kept::File(_))));
         assert!(
             document.bytes.len() < 1 << 20,
             "{} bytes held",

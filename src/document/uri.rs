@@ -1,8 +1,9 @@
 //! URIs in glTF: data URIs decoded in memory, relative references read from the asset's own
 //! folder only. Nothing is ever fetched from a network, and no path may leave the folder.
 
+use super::file::FileChunk;
 use super::file::{read_opened_with_id, FileError, FileId, Kept};
-use super::{Bytes, Elsewhere};
+use super::{Bytes, Pieces};
 use base64::Engine;
 use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
@@ -240,21 +241,24 @@ type Whole = bool;
 /// A file's bytes as long as someone holds them.
 enum Held {
     Read(Weak<Bytes>),
-    Elsewhere(Weak<Elsewhere>),
+    File(Weak<FileChunk>),
+    Pieces(Weak<Pieces>),
 }
 
 impl Held {
     fn of(kept: &Kept) -> Held {
         match kept {
             Kept::Read(bytes) => Held::Read(Arc::downgrade(bytes)),
-            Kept::Elsewhere(elsewhere) => Held::Elsewhere(Arc::downgrade(elsewhere)),
+            Kept::File(chunk) => Held::File(Arc::downgrade(chunk)),
+            Kept::Pieces(pieces) => Held::Pieces(Arc::downgrade(pieces)),
         }
     }
 
     fn get(&self) -> Option<Kept> {
         match self {
             Held::Read(bytes) => bytes.upgrade().map(Kept::Read),
-            Held::Elsewhere(elsewhere) => elsewhere.upgrade().map(Kept::Elsewhere),
+            Held::File(chunk) => chunk.upgrade().map(Kept::File),
+            Held::Pieces(pieces) => pieces.upgrade().map(Kept::Pieces),
         }
     }
 }
@@ -393,7 +397,9 @@ impl ResourceLoader for FolderResources {
         // A whole read (and what the cache holds of one) is never left in its file.
         match self.read_with(relative, true, read_whole)? {
             Kept::Read(bytes) => Ok(bytes),
-            Kept::Elsewhere(_) => Err(LoadError::Io(format!("{relative}: not read whole"))),
+            Kept::File(_) | Kept::Pieces(_) => {
+                Err(LoadError::Io(format!("{relative}: not read whole")))
+            }
         }
     }
 

@@ -194,7 +194,7 @@ pub(crate) fn check_buffers(ctx: &mut Context) {
                     }
                 }
                 let uri = (storage == "external").then(|| uri.to_string());
-                (data.map(BufferData::from), storage, uri)
+                (data.map(BufferData::Loaded), storage, uri)
             }
             // A buffer whose byteLength is not a valid length is not resolved at all (the
             // validator ignores it), so it cannot miss its chunk.
@@ -519,7 +519,7 @@ fn image_source(
         let (kept, media_type, storage) = load_uri(ctx, uri, &uri_pointer, false);
         let bytes = kept.and_then(|kept| match kept {
             Kept::Read(bytes) => Some(bytes),
-            Kept::Elsewhere(_) => None,
+            Kept::File(_) | Kept::Pieces(_) => None,
         });
         let uri = (storage == "external").then(|| uri.to_string());
         return Some(ImageSource {

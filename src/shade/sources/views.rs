@@ -1,6 +1,7 @@
 //! An asset's buffer views with the buffers they read, for the readers of mesh data (the
 //! images stored in views, the surface points).
 
+use crate::document::file::Kept;
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::{self, BufferData, Container, Node};
 use serde_json::Value;
@@ -26,7 +27,8 @@ impl<'d> Views<'d> {
         let buffers = (list("buffers").iter().enumerate())
             .map(
                 |(i, buffer)| match buffer.get("uri").and_then(Value::as_str) {
-                    Some(uri) => load_uri(uri, loader).ok().map(BufferData::Loaded),
+                    Some(uri) => (load_uri(uri, loader).ok())
+                        .map(|bytes| BufferData::Loaded(Kept::Read(bytes))),
                     None if i == 0 && doc.container == Container::Glb => {
                         doc.bin().map(BufferData::Glb)
                     }

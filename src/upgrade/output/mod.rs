@@ -6,7 +6,7 @@ use super::Upgraded;
 use crate::check::{check_glb_pieces, check_shared_bytes, CheckOptions, Report};
 use crate::document::file::{FileId, Kept};
 use crate::document::uri::{LoadError, ResourceLoader};
-use crate::document::{Bytes, Elsewhere, Piece, Pieces};
+use crate::document::{Bytes, Piece, Pieces};
 use serde_json::json;
 use std::path::Path;
 use std::sync::Arc;
@@ -271,9 +271,7 @@ impl ResourceLoader for SideFiles<'_> {
     fn load_buffer(&self, path: &str) -> Result<Kept, LoadError> {
         // Side files are data only (`File::data`): their pieces are the whole file.
         let file = self.find(path)?;
-        Ok(Kept::Elsewhere(Arc::new(Elsewhere::Pieces(
-            file.data.clone(),
-        ))))
+        Ok(Kept::Pieces(Arc::new(file.data.clone())))
     }
 }
 
