@@ -491,36 +491,8 @@ fn map_failure(failure: &Failure) -> Vec<Diagnostic> {
     let instance = *instance;
     let pointer = pointer.as_str();
     let one = |code: Code, at: String, message: String| vec![Diagnostic::at(code, at, message)];
-    let index_message = || "Index must be a non-negative integer.".to_string();
     match kind {
-        // An element of a property's array, by what the array holds (as the Khronos
-        // validator reads them): a wrong index is reported where it is and the others kept;
-        // each wrong number or object is reported at the array, which is then unreadable;
-        // each wrong name of a string list is reported, and the list is unreadable.
-        Kind::Type(expected) if array_holding(pointer).is_some() => {
-            let array = array_holding(pointer).unwrap_or_default().to_string();
-            let mismatch = format!(
-                "Type mismatch. Array element {} is not a '{expected}'.",
-                show(instance)
-            );
-            match expected.as_str() {
-                "integer" => one(khronos::INVALID_INDEX, pointer.to_string(), index_message()),
-                "string" => one(khronos::ARRAY_TYPE_MISMATCH, pointer.to_string(), mismatch),
-                _ => one(khronos::ARRAY_TYPE_MISMATCH, array, mismatch),
-            }
-        }
-        // A wrong index in a map of indices, likewise, where it is; the map is kept.
-        Kind::Type(expected) if is_index_map_value(pointer) && expected == "integer" => {
-            one(khronos::INVALID_INDEX, pointer.to_string(), index_message())
-        }
-        Kind::Type(expected) => one(
-            khronos::TYPE_MISMATCH,
-            pointer.to_string(),
-            format!(
-                "Type mismatch. Property value {} is not a '{expected}'.",
-                show(instance)
-            ),
-        ),
+        Kind::Type(expected) => vec![type_mismatch(expected, instance, pointer)],
         Kind::AdditionalProperties(unexpected) => unexpected
             .iter()
             .map(|key| {
@@ -547,7 +519,11 @@ fn map_failure(failure: &Failure) -> Vec<Diagnostic> {
         Kind::Minimum | Kind::Maximum | Kind::ExclusiveMinimum | Kind::ExclusiveMaximum
             if *definition == Some("glTFid") =>
         {
-            one(khronos::INVALID_INDEX, pointer.to_string(), index_message())
+            one(
+                khronos::INVALID_INDEX,
+                pointer.to_string(),
+                INDEX_MESSAGE.into(),
+            )
         }
         Kind::Minimum
         | Kind::Maximum
@@ -622,6 +598,37 @@ fn map_failure(failure: &Failure) -> Vec<Diagnostic> {
             format!("Schema violation: {kind:?}"),
         ),
     }
+}
+
+/// What a wrong index is told.
+const INDEX_MESSAGE: &str = "Index must be a non-negative integer.";
+
+/// A value of another type than the schema's `expected`, reported as the Khronos validator
+/// reports it: an element of a property's array by what the array holds (a wrong index where
+/// it is, the others kept; a wrong number or object at the array, which is then unreadable;
+/// a wrong name of a string list where it is, the list unreadable); a wrong index in a map of
+/// indices where it is, the map kept; any other value where it is.
+fn type_mismatch(expected: &str, instance: Node, pointer: &str) -> Diagnostic {
+    let at = |code, at: &str, message: String| Diagnostic::at(code, at.to_string(), message);
+    if let Some(array) = array_holding(pointer) {
+        let mismatch = format!(
+            "Type mismatch. Array element {} is not a '{expected}'.",
+            show(instance)
+        );
+        return match expected {
+            "integer" => at(khronos::INVALID_INDEX, pointer, INDEX_MESSAGE.into()),
+            "string" => at(khronos::ARRAY_TYPE_MISMATCH, pointer, mismatch),
+            _ => at(khronos::ARRAY_TYPE_MISMATCH, array, mismatch),
+        };
+    }
+    if is_index_map_value(pointer) && expected == "integer" {
+        return at(khronos::INVALID_INDEX, pointer, INDEX_MESSAGE.into());
+    }
+    let message = format!(
+        "Type mismatch. Property value {} is not a '{expected}'.",
+        show(instance)
+    );
+    at(khronos::TYPE_MISMATCH, pointer, message)
 }
 
 /// Indices of array elements equal to an earlier element.
