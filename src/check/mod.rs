@@ -105,7 +105,7 @@ pub struct Report {
     /// The name the asset was checked under (its path, or `-`).
     pub uri: String,
     /// The document as read (bytes, container, JSON), for locating findings.
-    pub document: Document,
+    pub(crate) document: Document,
     /// The findings, in pass order (or, cut by `max_issues`, in report order).
     pub diagnostics: Findings,
     /// True when `max_issues` cut the list.

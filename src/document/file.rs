@@ -127,7 +127,7 @@ pub(crate) fn read_or_keep(file: File) -> Result<(Kept, Option<FileId>), FileErr
 
 /// The bytes of an input file, or of a buffer, as gltfmat holds them, shared (every URI
 /// naming the same file gets the same bytes): read whole into memory, left in the opened file
-/// (a file from [`LARGE_FILE_BYTES`] up, a large GLB's BIN chunk) and read a range at a time,
+/// (a file from 32 MiB up, a large GLB's BIN chunk) and read a range at a time,
 /// or in pieces (an upgrade's output, checked without being joined first).
 #[derive(Debug, Clone)]
 pub enum Kept {

@@ -19,7 +19,7 @@ pub(crate) use tree::{Array, Node, Object, StringId, Tree};
 
 /// How the asset is stored.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Container {
+pub(crate) enum Container {
     /// JSON text (`.gltf`).
     Gltf,
     /// Binary container (`.glb`).
@@ -28,7 +28,7 @@ pub enum Container {
 
 impl Container {
     /// The media type of the container.
-    pub fn mime_type(self) -> &'static str {
+    pub(crate) fn mime_type(self) -> &'static str {
         match self {
             Container::Gltf => "model/gltf+json",
             Container::Glb => "model/gltf-binary",
@@ -39,7 +39,7 @@ impl Container {
 /// A parsed asset. The bytes are kept so that diagnostics can be located and BIN data read
 /// without copies.
 #[derive(Debug)]
-pub struct Document<R = Tree> {
+pub(crate) struct Document<R = Tree> {
     /// The whole file (shared: a check of an upgrade's output reads the bytes being
     /// written, without a copy).
     pub bytes: Arc<Bytes>,
@@ -106,13 +106,13 @@ impl BufferData<'_> {
 
 impl<R> Document<R> {
     /// The JSON text.
-    pub fn json_text(&self) -> &[u8] {
+    pub(crate) fn json_text(&self) -> &[u8] {
         // Empty when the bytes were handed back to their owner (see `upgrade::output::verify`).
         self.bytes.get(self.json_range.clone()).unwrap_or_default()
     }
 
     /// The GLB BIN chunk's data, when it is in memory.
-    pub fn bin(&self) -> Option<&[u8]> {
+    pub(crate) fn bin(&self) -> Option<&[u8]> {
         self.bin.clone().and_then(|r| self.bytes.get(r))
     }
 
@@ -129,7 +129,7 @@ impl Document<Tree> {
     /// Major version declared by `asset.version`, if readable. 1.0 exporters also wrote it as
     /// a number (`"version": 1`), and 1.0 objects are keyed by id, which gives them away when
     /// the version is missing.
-    pub fn major_version(&self) -> Option<u64> {
+    pub(crate) fn major_version(&self) -> Option<u64> {
         let root = self.root.as_ref()?.root();
         match root.get("asset").and_then(|a| a.get("version")) {
             Some(v) if v.is_string() => v.as_str()?.split('.').next()?.parse().ok(),

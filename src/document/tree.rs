@@ -29,7 +29,7 @@ use std::hash::BuildHasher;
 pub(crate) const MAX_VALUES: usize = 1 << 24;
 
 /// A parsed JSON document.
-pub struct Tree {
+pub(crate) struct Tree {
     slots: Vec<Slot>,
     /// Numbers that do not fit a slot: integers from 2^60 up, negative integers, and floats
     /// whose low four bits are set, as their bits.
@@ -146,14 +146,14 @@ impl Slot {
 
 impl Tree {
     /// Parses JSON text into a tree of at most [`MAX_VALUES`] values.
-    pub fn parse(text: &[u8]) -> serde_json::Result<Tree> {
+    pub(crate) fn parse(text: &[u8]) -> serde_json::Result<Tree> {
         Self::parse_within(text, MAX_VALUES, None)
     }
 
     /// [`Tree::parse`] keeping only the root object's members named in `keep`: the others
     /// are read past (their syntax still checked) and left out. A proof reads a 1.0 asset's
     /// materials this way, without the 10^5 meshes beside them.
-    pub fn parse_members(text: &[u8], keep: &[&str]) -> serde_json::Result<Tree> {
+    pub(crate) fn parse_members(text: &[u8], keep: &[&str]) -> serde_json::Result<Tree> {
         Self::parse_within(text, MAX_VALUES, Some(keep))
     }
 
@@ -195,7 +195,7 @@ impl Tree {
     }
 
     /// The document's root value.
-    pub fn root(&self) -> Node<'_> {
+    pub(crate) fn root(&self) -> Node<'_> {
         self.node(self.root)
     }
 
@@ -208,7 +208,7 @@ impl Tree {
     }
 
     /// The string `id` names (ids are of this tree; one taken out with its member stays).
-    pub fn text(&self, id: StringId) -> &str {
+    pub(crate) fn text(&self, id: StringId) -> &str {
         self.string(id.0)
     }
 
@@ -263,13 +263,13 @@ impl Tree {
     }
 
     /// Whether some object of the text repeats a key (the last value was kept).
-    pub fn repeats_keys(&self) -> bool {
+    pub(crate) fn repeats_keys(&self) -> bool {
         self.repeats_keys
     }
 
     /// Takes the member a pointer names out of its object, as if it had never been there.
     /// Returns whether it was `null`, or `None` when the pointer names no object member.
-    pub fn remove(&mut self, pointer: &str) -> Option<bool> {
+    pub(crate) fn remove(&mut self, pointer: &str) -> Option<bool> {
         let (parent, token) = pointer.rsplit_once('/')?;
         let key = self.find(&super::json::unescape_token(token))?;
         let object = self.root().pointer(parent)?.object_range()?;
@@ -280,7 +280,7 @@ impl Tree {
     /// [`Tree::remove`] for the members named `keys` of the object at `parent` (a pointer),
     /// each when its value is one `taken` accepts: the names are not looked up again, nor
     /// the pointer once for each. Gives how many were taken out.
-    pub fn remove_members(
+    pub(crate) fn remove_members(
         &mut self,
         parent: &str,
         keys: impl IntoIterator<Item = StringId>,
@@ -356,13 +356,13 @@ fn arena_string<'a>(arena: &'a str, ends: &[u32], id: u32) -> &'a str {
 
 /// A value of a [`Tree`]: a handle as cheap to copy as a reference.
 #[derive(Clone, Copy)]
-pub struct Node<'t> {
+pub(crate) struct Node<'t> {
     tree: &'t Tree,
     slot: Slot,
 }
 
 /// What [`Node::get`] accepts: a member name or an element index.
-pub trait Index {
+pub(crate) trait Index {
     /// The value this index names in `node`.
     fn index_into<'t>(&self, node: Node<'t>) -> Option<Node<'t>>;
 }
@@ -394,21 +394,21 @@ impl<T: Index + ?Sized> Index for &T {
 /// A string of a tree, by its place in the tree's store: four bytes, where a copy of a
 /// name 10^6 members share would cost a string each.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct StringId(u32);
+pub(crate) struct StringId(u32);
 
 impl<'t> Node<'t> {
     /// The tree this value is in.
-    pub fn tree(self) -> &'t Tree {
+    pub(crate) fn tree(self) -> &'t Tree {
         self.tree
     }
 
     /// A member of an object or an element of an array.
-    pub fn get(self, index: impl Index) -> Option<Node<'t>> {
+    pub(crate) fn get(self, index: impl Index) -> Option<Node<'t>> {
         index.index_into(self)
     }
 
     /// A `null` of the same tree (what a missing member reads as).
-    pub fn null(self) -> Node<'t> {
+    pub(crate) fn null(self) -> Node<'t> {
         Node {
             tree: self.tree,
             slot: Slot::NULL,
@@ -416,7 +416,7 @@ impl<'t> Node<'t> {
     }
 
     /// The value an RFC 6901 pointer names below this one.
-    pub fn pointer(self, pointer: &str) -> Option<Node<'t>> {
+    pub(crate) fn pointer(self, pointer: &str) -> Option<Node<'t>> {
         if pointer.is_empty() {
             return Some(self);
         }
@@ -431,7 +431,7 @@ impl<'t> Node<'t> {
     }
 
     /// The members, when it is an object.
-    pub fn as_object(self) -> Option<Object<'t>> {
+    pub(crate) fn as_object(self) -> Option<Object<'t>> {
         let (start, len) = self.object_range()?;
         Some(Object {
             tree: self.tree,
@@ -441,7 +441,7 @@ impl<'t> Node<'t> {
     }
 
     /// The elements, when it is an array.
-    pub fn as_array(self) -> Option<Array<'t>> {
+    pub(crate) fn as_array(self) -> Option<Array<'t>> {
         (self.slot.tag() == Tag::Array).then(|| {
             let (start, len) = self.slot.range();
             Array {
@@ -453,7 +453,7 @@ impl<'t> Node<'t> {
     }
 
     /// The text, when it is a string.
-    pub fn as_str(self) -> Option<&'t str> {
+    pub(crate) fn as_str(self) -> Option<&'t str> {
         match self.slot.tag() {
             Tag::String => Some(self.tree.string(self.slot.payload() as u32)),
             Tag::Text => {
@@ -465,7 +465,7 @@ impl<'t> Node<'t> {
     }
 
     /// The truth value, when it is a boolean.
-    pub fn as_bool(self) -> Option<bool> {
+    pub(crate) fn as_bool(self) -> Option<bool> {
         match self.slot.tag() {
             Tag::True => Some(true),
             Tag::False => Some(false),
@@ -474,7 +474,7 @@ impl<'t> Node<'t> {
     }
 
     /// The number, when it is an integer from 0 to `u64::MAX` as written (not `1.0`).
-    pub fn as_u64(self) -> Option<u64> {
+    pub(crate) fn as_u64(self) -> Option<u64> {
         match self.slot.tag() {
             Tag::Small => Some(self.slot.payload()),
             Tag::Large => Some(self.wide()),
@@ -483,7 +483,7 @@ impl<'t> Node<'t> {
     }
 
     /// The number, when it is an integer within `i64` as written (not `1.0`).
-    pub fn as_i64(self) -> Option<i64> {
+    pub(crate) fn as_i64(self) -> Option<i64> {
         match self.slot.tag() {
             Tag::Negative => Some(self.wide() as i64),
             _ => self.as_u64().and_then(|v| i64::try_from(v).ok()),
@@ -491,7 +491,7 @@ impl<'t> Node<'t> {
     }
 
     /// Any number, as the nearest f64.
-    pub fn as_f64(self) -> Option<f64> {
+    pub(crate) fn as_f64(self) -> Option<f64> {
         match self.slot.tag() {
             Tag::Small => Some(self.slot.payload() as f64),
             Tag::Large => Some(self.wide() as f64),
@@ -503,42 +503,37 @@ impl<'t> Node<'t> {
     }
 
     /// Whether it is `null`.
-    pub fn is_null(self) -> bool {
+    pub(crate) fn is_null(self) -> bool {
         self.slot.tag() == Tag::Null
     }
 
     /// Whether it is an object.
-    pub fn is_object(self) -> bool {
+    pub(crate) fn is_object(self) -> bool {
         self.slot.tag() == Tag::Object
     }
 
     /// Whether it is an array.
-    pub fn is_array(self) -> bool {
+    pub(crate) fn is_array(self) -> bool {
         self.slot.tag() == Tag::Array
     }
 
     /// Whether it is a string.
-    pub fn is_string(self) -> bool {
+    pub(crate) fn is_string(self) -> bool {
         matches!(self.slot.tag(), Tag::String | Tag::Text)
     }
 
     /// Whether it is `true` or `false`.
-    pub fn is_boolean(self) -> bool {
+    pub(crate) fn is_boolean(self) -> bool {
         self.as_bool().is_some()
     }
 
     /// Whether it is a number.
-    pub fn is_number(self) -> bool {
+    pub(crate) fn is_number(self) -> bool {
         self.as_f64().is_some()
     }
 
-    /// Whether the number was written as an integer (`1`, not `1.0`), as serde_json reads it.
-    pub fn is_integer(self) -> bool {
-        matches!(self.slot.tag(), Tag::Small | Tag::Large | Tag::Negative)
-    }
-
     /// The value as a `serde_json::Value` (for code that builds on serde's tree).
-    pub fn to_value(self) -> serde_json::Value {
+    pub(crate) fn to_value(self) -> serde_json::Value {
         serde_json::to_value(self).unwrap_or_default()
     }
 
@@ -591,7 +586,7 @@ fn array_index(token: &str) -> Option<usize> {
 
 /// The elements of an array value.
 #[derive(Clone, Copy)]
-pub struct Array<'t> {
+pub(crate) struct Array<'t> {
     tree: &'t Tree,
     start: usize,
     len: usize,
@@ -599,7 +594,7 @@ pub struct Array<'t> {
 
 impl<'t> Array<'t> {
     /// An array of no elements (what a missing list reads as).
-    pub fn empty(of: Node<'t>) -> Array<'t> {
+    pub(crate) fn empty(of: Node<'t>) -> Array<'t> {
         Array {
             tree: of.tree,
             start: 0,
@@ -608,22 +603,22 @@ impl<'t> Array<'t> {
     }
 
     /// How many elements it has.
-    pub fn len(self) -> usize {
+    pub(crate) fn len(self) -> usize {
         self.len
     }
 
     /// Whether it has no element.
-    pub fn is_empty(self) -> bool {
+    pub(crate) fn is_empty(self) -> bool {
         self.len == 0
     }
 
     /// The element at `index`.
-    pub fn get(self, index: usize) -> Option<Node<'t>> {
+    pub(crate) fn get(self, index: usize) -> Option<Node<'t>> {
         (index < self.len).then(|| self.tree.node(self.tree.slots[self.start + index]))
     }
 
     /// The element at an index known to be in range (a null value past the end).
-    pub fn at(self, index: usize) -> Node<'t> {
+    pub(crate) fn at(self, index: usize) -> Node<'t> {
         self.get(index).unwrap_or(Node {
             tree: self.tree,
             slot: Slot::NULL,
@@ -631,12 +626,12 @@ impl<'t> Array<'t> {
     }
 
     /// The first element.
-    pub fn first(self) -> Option<Node<'t>> {
+    pub(crate) fn first(self) -> Option<Node<'t>> {
         self.get(0)
     }
 
     /// The elements in order.
-    pub fn iter(self) -> impl DoubleEndedIterator<Item = Node<'t>> + ExactSizeIterator + 't {
+    pub(crate) fn iter(self) -> impl DoubleEndedIterator<Item = Node<'t>> + ExactSizeIterator + 't {
         let tree = self.tree;
         tree.slots[self.start..self.start + self.len]
             .iter()
@@ -655,7 +650,7 @@ impl<'t> IntoIterator for Array<'t> {
 
 /// The members of an object value, in the order they were written.
 #[derive(Clone, Copy)]
-pub struct Object<'t> {
+pub(crate) struct Object<'t> {
     tree: &'t Tree,
     start: usize,
     /// Members written (some may have been taken out since).
@@ -664,7 +659,7 @@ pub struct Object<'t> {
 
 impl<'t> Object<'t> {
     /// The member named `key`.
-    pub fn get(self, key: &str) -> Option<Node<'t>> {
+    pub(crate) fn get(self, key: &str) -> Option<Node<'t>> {
         let id = self.tree.find(key)?;
         let at = self.tree.member_slot((self.start, self.len), id)?;
         Some(self.tree.node(self.tree.slots[at + 1]))
@@ -672,19 +667,19 @@ impl<'t> Object<'t> {
 
     /// The place of the member named `key` among the members as written (members taken
     /// out since still count): a 1.0 dictionary's ids become 2.0 indices by it.
-    pub fn position(self, key: &str) -> Option<usize> {
+    pub(crate) fn position(self, key: &str) -> Option<usize> {
         let id = self.tree.find(key)?;
         let at = self.tree.member_slot((self.start, self.len), id)?;
         Some((at - self.start) / 2)
     }
 
     /// Whether a member is named `key`.
-    pub fn contains_key(self, key: &str) -> bool {
+    pub(crate) fn contains_key(self, key: &str) -> bool {
         self.get(key).is_some()
     }
 
     /// The members in the order they were written: (key, value).
-    pub fn iter(self) -> impl Iterator<Item = (&'t str, Node<'t>)> + 't {
+    pub(crate) fn iter(self) -> impl Iterator<Item = (&'t str, Node<'t>)> + 't {
         let tree = self.tree;
         tree.slots[self.start..self.start + 2 * self.len]
             .chunks_exact(2)
@@ -696,7 +691,7 @@ impl<'t> Object<'t> {
     }
 
     /// The member names in order, each with its id in the tree (see [`Tree::text`]).
-    pub fn keys_with_ids(self) -> impl Iterator<Item = (StringId, &'t str)> + 't {
+    pub(crate) fn keys_with_ids(self) -> impl Iterator<Item = (StringId, &'t str)> + 't {
         let tree = self.tree;
         tree.slots[self.start..self.start + 2 * self.len]
             .chunks_exact(2)
@@ -708,22 +703,22 @@ impl<'t> Object<'t> {
     }
 
     /// The member names in order.
-    pub fn keys(self) -> impl Iterator<Item = &'t str> + 't {
+    pub(crate) fn keys(self) -> impl Iterator<Item = &'t str> + 't {
         self.iter().map(|(key, _)| key)
     }
 
     /// The member values in order.
-    pub fn values(self) -> impl Iterator<Item = Node<'t>> + 't {
+    pub(crate) fn values(self) -> impl Iterator<Item = Node<'t>> + 't {
         self.iter().map(|(_, value)| value)
     }
 
     /// The members still in the tree.
-    pub fn len(self) -> usize {
+    pub(crate) fn len(self) -> usize {
         self.iter().count()
     }
 
     /// Whether no member is left.
-    pub fn is_empty(self) -> bool {
+    pub(crate) fn is_empty(self) -> bool {
         self.iter().next().is_none()
     }
 }
@@ -1339,7 +1334,6 @@ mod tests {
             assert_eq!(node.as_u64(), expected.as_u64(), "as_u64 of {expected}");
             assert_eq!(node.as_i64(), expected.as_i64(), "as_i64 of {expected}");
             assert_eq!(node.as_f64(), expected.as_f64(), "as_f64 of {expected}");
-            assert_eq!(node.is_integer(), !expected.is_f64(), "integer {expected}");
         }
     }
 
