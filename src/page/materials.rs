@@ -89,29 +89,7 @@ fn card(
         .get("name")
         .and_then(Value::as_str)
         .map_or_else(|| index.to_string(), str::to_string);
-    let picture = match ball {
-        Some(Ball {
-            image: Some(image),
-            not_drawn,
-            ..
-        }) => {
-            let missing = match not_drawn.is_empty() {
-                true => String::new(),
-                false => format!("<br>not drawn: {}", escape(&not_drawn.join("; "))),
-            };
-            format!(
-                "<figure><img src=\"{}\" width=\"{w}\" height=\"{w}\" alt=\"material {index} ({}) rendered as a ball\"><figcaption>rendered{missing}</figcaption></figure>",
-                png_data_uri(image),
-                escape(&name),
-                w = image.width()
-            )
-        }
-        Some(Ball { not_drawn, .. }) => format!(
-            "<figure><figcaption>not drawn: {}</figcaption></figure>",
-            escape(&not_drawn.join("; "))
-        ),
-        None => String::new(),
-    };
+    let picture = ball_figure(index, &name, ball);
     let group = format!("materials/{index}");
     let said = groups.get(&group).map_or(0, Vec::len);
     let findings_link = match said {
@@ -121,15 +99,7 @@ fn card(
             anchor_of(uri, &group)
         ),
     };
-    let mut parameters = serde_json::to_string_pretty(material).unwrap_or_default();
-    if parameters.len() > PARAMETERS_SHOWN {
-        let cut = (0..=PARAMETERS_SHOWN)
-            .rev()
-            .find(|&i| parameters.is_char_boundary(i))
-            .unwrap_or(0);
-        parameters.truncate(cut);
-        parameters += "\n…";
-    }
+    let parameters = shown_parameters(material);
     let mut slots = String::new();
     for slot in TEXTURE_SLOTS {
         let Some(info) = slot.lookup(material) else {
@@ -151,38 +121,7 @@ fn card(
             ),
         };
         let slot_pointer = format!("/materials/{index}{}", slot.pointer());
-        let mut concerns: Vec<String> = Vec::new();
-        let pointers_of =
-            |key: String| -> Vec<usize> { groups.get(&key).cloned().unwrap_or_default() };
-        for i in pointers_of(group.clone()) {
-            let finding = images.report.diagnostics.get(i);
-            if let Some(p) = finding.and_then(|f| f.pointer()) {
-                if p.starts_with(&slot_pointer) {
-                    concerns.extend(finding.map(|f| f.code.name().to_string()));
-                }
-            }
-        }
-        for key in [
-            texture.map(|t| format!("textures/{t}")),
-            image.map(|i| format!("images/{i}")),
-        ]
-        .into_iter()
-        .flatten()
-        {
-            concerns.extend(
-                pointers_of(key)
-                    .iter()
-                    .filter_map(|&i| images.report.diagnostics.get(i))
-                    .map(|f| f.code.name().to_string()),
-            );
-        }
-        concerns.sort();
-        concerns.dedup();
-        let concerns = concerns
-            .iter()
-            .map(|c| format!("<a class=\"code\" href=\"#code-{c}\">{c}</a>"))
-            .collect::<Vec<_>>()
-            .join(" ");
+        let concerns = slot_concerns(images.report, groups, &group, &slot_pointer, texture, image);
         let thumb = match image {
             Some(i) => images.of(i as usize, slot.key),
             None => "no image".into(),
@@ -206,6 +145,86 @@ fn card(
         escape(&name),
         escape(&parameters)
     )
+}
+
+/// The material's ball, or why it is not drawn (nothing without a ball).
+fn ball_figure(index: usize, name: &str, ball: Option<&Ball>) -> String {
+    match ball {
+        Some(Ball {
+            image: Some(image),
+            not_drawn,
+            ..
+        }) => {
+            let missing = match not_drawn.is_empty() {
+                true => String::new(),
+                false => format!("<br>not drawn: {}", escape(&not_drawn.join("; "))),
+            };
+            format!(
+                "<figure><img src=\"{}\" width=\"{w}\" height=\"{w}\" alt=\"material {index} ({}) rendered as a ball\"><figcaption>rendered{missing}</figcaption></figure>",
+                png_data_uri(image),
+                escape(name),
+                w = image.width()
+            )
+        }
+        Some(Ball { not_drawn, .. }) => format!(
+            "<figure><figcaption>not drawn: {}</figcaption></figure>",
+            escape(&not_drawn.join("; "))
+        ),
+        None => String::new(),
+    }
+}
+
+/// The material's JSON, pretty-printed, cut at [`PARAMETERS_SHOWN`] characters.
+fn shown_parameters(material: &Value) -> String {
+    let mut parameters = serde_json::to_string_pretty(material).unwrap_or_default();
+    if parameters.len() > PARAMETERS_SHOWN {
+        let cut = (0..=PARAMETERS_SHOWN)
+            .rev()
+            .find(|&i| parameters.is_char_boundary(i))
+            .unwrap_or(0);
+        parameters.truncate(cut);
+        parameters += "\n…";
+    }
+    parameters
+}
+
+/// Links to the codes of the findings that concern a texture slot: those of the material
+/// (`group`) at the slot's pointer or under it, and those of its texture and image.
+fn slot_concerns(
+    report: &Report,
+    groups: &BTreeMap<String, Vec<usize>>,
+    group: &str,
+    slot_pointer: &str,
+    texture: Option<u64>,
+    image: Option<u64>,
+) -> String {
+    let mut concerns: Vec<String> = Vec::new();
+    let findings_of = |key: &str| -> Vec<usize> { groups.get(key).cloned().unwrap_or_default() };
+    for i in findings_of(group) {
+        let finding = report.diagnostics.get(i);
+        if let Some(p) = finding.and_then(|f| f.pointer()) {
+            if p.starts_with(slot_pointer) {
+                concerns.extend(finding.map(|f| f.code.name().to_string()));
+            }
+        }
+    }
+    let keys = [
+        texture.map(|t| format!("textures/{t}")),
+        image.map(|i| format!("images/{i}")),
+    ];
+    for key in keys.into_iter().flatten() {
+        concerns.extend(
+            (findings_of(&key).iter())
+                .filter_map(|&i| report.diagnostics.get(i))
+                .map(|f| f.code.name().to_string()),
+        );
+    }
+    concerns.sort();
+    concerns.dedup();
+    (concerns.iter())
+        .map(|c| format!("<a class=\"code\" href=\"#code-{c}\">{c}</a>"))
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 fn channel_names(channels: Channels) -> String {
