@@ -340,13 +340,13 @@ impl Plan {
         }
         let (report, glb, written) = match &target {
             None => {
-                let files = output::layout_releasing_json(&mut upgraded, "asset.glb");
-                output::fits_glb(&files.main).map_err(|bytes| {
-                    GltfmatError::new_err(
-                        gltfmat::WriteError::GlbTooLarge("asset.glb".into(), bytes).to_string(),
-                    )
-                })?;
-                (output::verify(&files), Some(files.main.bytes()), Vec::new())
+                let (glb, report) =
+                    output::checked_glb(&mut upgraded, "asset.glb").map_err(|bytes| {
+                        GltfmatError::new_err(
+                            gltfmat::WriteError::GlbTooLarge("asset.glb".into(), bytes).to_string(),
+                        )
+                    })?;
+                (report, Some(glb.bytes()), Vec::new())
             }
             Some((folder, file)) => {
                 let files = output::layout_releasing_json(&mut upgraded, file);

@@ -320,18 +320,14 @@ fn write_to_stdout(
     tolerated: &output::Tolerated,
     inherited: usize,
 ) -> Outcome {
-    let files = output::layout_releasing_json(upgraded, "-.glb");
-    output::fits_glb(&files.main).map_err(|bytes| {
+    let (glb, report) = output::checked_glb(upgraded, "-.glb").map_err(|bytes| {
         Failure::usage(gltfmat::WriteError::GlbTooLarge("stdout".into(), bytes).to_string())
     })?;
-    let report = output::verify(&files);
     if !tolerated.accepts(&report) {
         return Err(refuse_failed_check(report, upgraded, input, inherited));
     }
     let mut stdout = std::io::stdout().lock();
-    files
-        .main
-        .write_to(&mut stdout)
+    glb.write_to(&mut stdout)
         .and_then(|()| stdout.flush())
         .map_err(|e| Failure::usage(format!("stdout: {e}")))?;
     Ok(ExitCode::SUCCESS)

@@ -278,13 +278,23 @@ impl ResourceLoader for SideFiles<'_> {
 /// `Err(length)` when `main` is a GLB longer than its 32-bit length field can say: the
 /// header would name another length, and writing gigabytes only for the check to refuse
 /// them is not done.
-pub fn fits_glb(main: &File) -> Result<(), u64> {
+fn fits_glb(main: &File) -> Result<(), u64> {
     let length = (main.head.len() + main.data.len()) as u64;
     let glb = main.head.starts_with(b"glTF");
     match glb && length > u64::from(u32::MAX) {
         true => Err(length),
         false => Ok(()),
     }
+}
+
+/// The asset as one GLB in memory named `name` (`x.glb`), laid out as
+/// [`layout_releasing_json`] lays it out, and [`verify`]'s report of those bytes; `Err(length)`
+/// when the GLB is longer than its 32-bit length field can say.
+pub fn checked_glb(upgraded: &mut Upgraded, name: &str) -> Result<(File, Report), u64> {
+    let files = layout_releasing_json(upgraded, name);
+    fits_glb(&files.main)?;
+    let report = verify(&files);
+    Ok((files.main, report))
 }
 
 /// The errors an output may have and still be written: those of the input it was made
