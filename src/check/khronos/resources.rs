@@ -87,38 +87,45 @@ fn load_uri(
             );
             (None, None, "external")
         }
-        Ok(UriKind::Relative(path)) => match read_relative(ctx.loader, &path, keep_large) {
-            Ok(kept) => (Some(kept), None, "external"),
-            Err(LoadError::OutsideFolder(_)) => {
-                refuse_outside(ctx, pointer, uri);
-                (None, None, "external")
-            }
-            Err(LoadError::NoFolder) => {
-                ctx.emit(
-                    pass_codes::EXTERNAL_RESOURCE_NOT_READ,
-                    pointer,
-                    format!("'{uri}' was not read (no folder to resolve it in): what depends on it was not checked."),
-                );
-                (None, None, "external")
-            }
-            Err(LoadError::NotFound(p)) => {
-                ctx.emit(
-                    khronos::IO_ERROR,
-                    pointer,
-                    format!("Resource not found ({p})."),
-                );
-                (None, None, "external")
-            }
-            Err(unreadable) => {
-                ctx.emit(
-                    khronos::IO_ERROR,
-                    pointer,
-                    format!("Could not read resource: {unreadable}."),
-                );
-                (None, None, "external")
-            }
-        },
+        Ok(UriKind::Relative(path)) => {
+            let kept = load_relative(ctx, pointer, uri, &path, keep_large);
+            (kept, None, "external")
+        }
     }
+}
+
+/// A file named by a relative `uri` (at `path` in the asset's folder), with a diagnostic for
+/// whatever stops it being read.
+fn load_relative(
+    ctx: &mut Context,
+    pointer: &str,
+    uri: &str,
+    path: &str,
+    keep_large: bool,
+) -> Option<Kept> {
+    let error = match read_relative(ctx.loader, path, keep_large) {
+        Ok(kept) => return Some(kept),
+        Err(error) => error,
+    };
+    match error {
+        LoadError::OutsideFolder(_) => refuse_outside(ctx, pointer, uri),
+        LoadError::NoFolder => ctx.emit(
+            pass_codes::EXTERNAL_RESOURCE_NOT_READ,
+            pointer,
+            format!("'{uri}' was not read (no folder to resolve it in): what depends on it was not checked."),
+        ),
+        LoadError::NotFound(p) => ctx.emit(
+            khronos::IO_ERROR,
+            pointer,
+            format!("Resource not found ({p})."),
+        ),
+        unreadable => ctx.emit(
+            khronos::IO_ERROR,
+            pointer,
+            format!("Could not read resource: {unreadable}."),
+        ),
+    }
+    None
 }
 
 fn read_relative(
