@@ -497,7 +497,8 @@ fn render_does_not_replace_a_file_without_force() {
 }
 
 /// Past 32 MiB (the size from which gltfmat leaves a file's data in the file and reads it in
-/// parts; `document`'s unit tests hold that it does) of float VEC3 data with a few NaNs and non-unit normals in it
+/// parts; `document`'s unit tests hold that it does) of float VEC3 data with a few NaNs and
+/// non-unit normals in it
 /// (data findings only a walk over it finds), and the JSON of an asset drawing it from
 /// buffer 0 (`uri`: its file, or none for a GLB's BIN chunk).
 fn large_data_with_findings(uri: Option<&str>) -> (String, Vec<u8>) {

@@ -10,8 +10,8 @@ use std::ops::Range;
 const MAGIC: &[u8; 4] = b"glTF";
 const HEADER_LEN: usize = 12;
 const CHUNK_HEADER_LEN: usize = 8;
-const CHUNK_JSON: u32 = 0x4E4F_534A;
-const CHUNK_BIN: u32 = 0x004E_4942;
+pub(super) const CHUNK_JSON: u32 = 0x4E4F_534A;
+pub(super) const CHUNK_BIN: u32 = 0x004E_4942;
 
 /// What a GLB holds: where its JSON and BIN chunks are, and what was wrong on the way.
 #[derive(Debug, Default)]
@@ -300,10 +300,11 @@ fn check_chunk_header(chunk: &Chunk, declared: usize, diags: &mut dyn Sink) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn glb(chunks: &[(u32, &[u8])], declared: Option<u32>) -> Vec<u8> {
+    /// A GLB of `chunks` (type, data), its header declaring `declared` bytes or its length.
+    pub(in crate::document) fn glb(chunks: &[(u32, &[u8])], declared: Option<u32>) -> Vec<u8> {
         let mut body = Vec::new();
         for (kind, data) in chunks {
             body.extend_from_slice(&(data.len() as u32).to_le_bytes());

@@ -285,14 +285,11 @@ mod tests {
         while json.len() % 4 != 0 {
             json.push(' ');
         }
-        let mut glb = b"glTF\x02\0\0\0".to_vec();
-        glb.extend(((12 + 8 + json.len() + 8 + length) as u32).to_le_bytes());
-        glb.extend((json.len() as u32).to_le_bytes());
-        glb.extend(b"JSON");
-        glb.extend(json.as_bytes());
-        glb.extend((length as u32).to_le_bytes());
-        glb.extend(b"BIN\0");
-        glb.resize(glb.len() + length, 0);
+        let chunks = [
+            (glb::CHUNK_JSON, json.as_bytes()),
+            (glb::CHUNK_BIN, &vec![0; length][..]),
+        ];
+        let glb = glb::tests::glb(&chunks, None);
         let path = folder.join("large.glb");
         std::fs::write(&path, glb).unwrap();
         path

@@ -32,12 +32,6 @@ pub(super) struct Findings {
     dropped: Vec<(Code, String, u64)>,
 }
 
-impl Default for Findings {
-    fn default() -> Self {
-        Findings::listing(usize::MAX)
-    }
-}
-
 impl Findings {
     /// Findings that list at most `limit` and count the rest.
     pub(super) fn listing(limit: usize) -> Findings {
@@ -577,18 +571,12 @@ mod tests {
     fn findings_recorded_in_parts_and_absorbed_equal_those_recorded_in_one_walk() {
         let all = walk(40);
         for limit in [0, 1, 7, 39, 40, 100] {
-            let mut one = Findings {
-                limit,
-                ..Findings::default()
-            };
+            let mut one = Findings::listing(limit);
             all.iter().cloned().for_each(|f| one.push(f));
             // Parts made as the influences pass makes them: each with the room the merged
             // findings had when the batch started, then absorbed in order.
             for cuts in [vec![0, 40], vec![0, 5, 40], vec![0, 3, 8, 20, 21, 40]] {
-                let mut merged = Findings {
-                    limit,
-                    ..Findings::default()
-                };
+                let mut merged = Findings::listing(limit);
                 for part in cuts.windows(2) {
                     let mut found = merged.room();
                     all[part[0]..part[1]]

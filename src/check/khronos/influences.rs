@@ -421,7 +421,7 @@ mod tests {
     }
 
     fn found_by_walk(joints: &[f64], weights: &[f64]) -> bool {
-        let mut found = Findings::default();
+        let mut found = Findings::listing(usize::MAX);
         let decoded = [(joints.to_vec(), weights.to_vec())];
         let limit = JointLimit {
             max_joint: 3.0,

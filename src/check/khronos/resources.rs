@@ -545,6 +545,7 @@ fn image_source(
             "Buffer view used by an image must not have byteStride.",
         );
     }
+    // Read once however many images share the view.
     let bytes = match read_views.get(&view) {
         Some(bytes) => Some(Arc::clone(bytes)),
         None => view_bytes(ctx, view).map(|bytes| Arc::new(bytes.into_owned().into())),
