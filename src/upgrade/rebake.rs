@@ -6,9 +6,9 @@ use crate::document::image_header::{self, Channels};
 use crate::gltf::color::{linear_to_srgb, linear_to_srgb8};
 use crate::shade::sample::{self, TextureImage};
 use crate::upgrade::fit::{self, Factors, TexelFits, TexelValue};
+use hashbrown::hash_map::{Entry, HashMap};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{DynamicImage, ExtendedColorType, ImageEncoder, Rgba32FImage};
-use std::collections::hash_map::{Entry, HashMap};
 use std::io::Cursor;
 
 pub(super) fn decode(bytes: &[u8]) -> Result<DynamicImage, String> {
@@ -379,42 +379,58 @@ fn in_parallel_rows(
 
 /// Each output texel's index into the distinct values, and the base colour `fits` chose for
 /// each value (`None`: the closed form, unchecked). At most [`fit::MAX_SCREENED_TEXELS`]
-/// values are listed, so that memory stays bounded whatever the texture holds.
+/// values are listed, in the order they first appear row by row, so that memory stays
+/// bounded whatever the texture holds.
 fn judged(
     source: &SpecGlossTexels,
     fits: &mut TexelFits,
     levels: f64,
 ) -> (Vec<u32>, Vec<Option<[f64; 3]>>) {
+    use rayon::prelude::*;
+    let width = source.width as usize;
+    let texels = width * source.height as usize;
+    let value_at = |at: usize| source.at((at % width) as u32, (at / width) as u32).0;
+    let mut index = vec![0u32; texels];
     let mut distinct: HashMap<[u64; 7], u32> = HashMap::new();
     let mut values = Vec::new();
-    let unlisted = u32::MAX;
-    // A texel equal to the one before it (a flat region) takes its index without hashing.
-    let mut previous: Option<(TexelValue, u32)> = None;
-    let index: Vec<u32> = (0..source.height)
-        .flat_map(|y| (0..source.width).map(move |x| (x, y)))
-        .map(|(x, y)| {
-            let value = source.at(x, y).0;
-            if let Some((_, i)) = previous.filter(|(before, _)| *before == value) {
-                return i;
+    // Texels whose value is already listed are found on every core; the others are listed
+    // in order afterwards, so the list is the one a single pass would make. Group by group,
+    // so that a value listed early is found, not listed again, in later groups.
+    for (g, group) in index.chunks_mut(LISTED_GROUP).enumerate() {
+        let first = g * LISTED_GROUP;
+        let full = values.len() >= fit::MAX_SCREENED_TEXELS;
+        (group.par_iter_mut().enumerate()).for_each(|(k, slot)| {
+            *slot = match distinct.get(&value_at(first + k).key()) {
+                Some(&i) => i,
+                None if full => UNLISTED,
+                None => NEW,
             }
-            let listed = distinct.len() < fit::MAX_SCREENED_TEXELS;
-            let i = match distinct.entry(value.key()) {
+        });
+        for (k, slot) in group.iter_mut().enumerate().filter(|(_, s)| **s == NEW) {
+            let value = value_at(first + k);
+            *slot = match distinct.entry(value.key()) {
                 Entry::Occupied(known) => *known.get(),
-                Entry::Vacant(new) if listed => {
+                Entry::Vacant(new) if values.len() < fit::MAX_SCREENED_TEXELS => {
                     values.push(value);
                     *new.insert(values.len() as u32 - 1)
                 }
-                Entry::Vacant(_) => unlisted,
+                Entry::Vacant(_) => UNLISTED,
             };
-            previous = Some((value, i));
-            i
-        })
-        .collect();
+        }
+    }
     let bases = fits.resolve(&values, levels);
     let unchecked = |&i: &u32| bases.get(i as usize).is_none_or(Option::is_none);
     fits.unchecked(index.iter().filter(|i| unchecked(i)).count());
     (index, bases)
 }
+
+/// Texels [`judged`] looks up in parallel before it lists the new values among them.
+const LISTED_GROUP: usize = 1 << 16;
+
+/// The index of a texel whose value is not listed, and (while [`judged`] runs) of one whose
+/// value is yet to be listed.
+const UNLISTED: u32 = u32::MAX;
+const NEW: u32 = u32::MAX - 1;
 
 /// A spec-gloss material's two textures sampled on the rebake's grid.
 struct SpecGlossTexels<'t> {
