@@ -150,6 +150,12 @@ impl Tree {
         Self::parse_within(text, MAX_VALUES, None)
     }
 
+    /// A tree of `value` (tests write their JSON with `serde_json::json!`).
+    #[cfg(test)]
+    pub(crate) fn of(value: &serde_json::Value) -> Tree {
+        Tree::parse(value.to_string().as_bytes()).expect("JSON a test wrote")
+    }
+
     /// [`Tree::parse`] keeping only the root object's members named in `keep`: the others
     /// are read past (their syntax still checked) and left out. A proof reads a 1.0 asset's
     /// materials this way, without the 10^5 meshes beside them.

@@ -198,7 +198,7 @@ mod tests {
     use serde_json::json;
 
     fn tree(value: serde_json::Value) -> Tree {
-        Tree::parse(value.to_string().as_bytes()).unwrap()
+        Tree::of(&value)
     }
 
     #[test]

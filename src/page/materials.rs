@@ -9,7 +9,6 @@ use crate::document::{Container, Node};
 use crate::gltf::material::{drawn_image, Channels, TEXTURE_SLOTS};
 use crate::shade::pairing::{render_each, Ball};
 use crate::shade::sample::{decode_each_at_most, Wanted};
-use serde_json::Value;
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -54,10 +53,9 @@ pub(super) fn cards(
     };
     let mut out = String::from("<h3>Materials</h3>");
     for (index, material) in materials.iter().enumerate().take(MATERIALS_SHOWN) {
-        let material = material.to_value();
         out += &card(
             index,
-            &material,
+            material,
             balls.get(index),
             groups,
             &report.uri,
@@ -78,7 +76,7 @@ pub(super) fn cards(
 #[allow(clippy::too_many_arguments)]
 fn card(
     index: usize,
-    material: &Value,
+    material: Node,
     ball: Option<&Ball>,
     groups: &BTreeMap<String, Vec<usize>>,
     uri: &str,
@@ -87,7 +85,7 @@ fn card(
 ) -> String {
     let name = material
         .get("name")
-        .and_then(Value::as_str)
+        .and_then(Node::as_str)
         .map_or_else(|| index.to_string(), str::to_string);
     let picture = ball_figure(index, &name, ball);
     let group = format!("materials/{index}");
@@ -105,11 +103,9 @@ fn card(
         let Some(info) = slot.lookup(material) else {
             continue;
         };
-        let texture = info.get("index").and_then(Value::as_u64);
-        let texture_node = texture
-            .and_then(|t| root.get("textures")?.as_array()?.get(t as usize))
-            .map(Node::to_value);
-        let image = texture_node.as_ref().and_then(drawn_image);
+        let texture = info.get("index").and_then(Node::as_u64);
+        let texture_node = texture.and_then(|t| root.get("textures")?.as_array()?.get(t as usize));
+        let image = texture_node.and_then(drawn_image);
         let (srgb, linear) = slot.reads(material);
         let space = match (srgb, linear) {
             (0, _) => format!("{} as data (linear)", channel_names(linear)),
@@ -175,8 +171,8 @@ fn ball_figure(index: usize, name: &str, ball: Option<&Ball>) -> String {
 }
 
 /// The material's JSON, pretty-printed, cut at [`PARAMETERS_SHOWN`] characters.
-fn shown_parameters(material: &Value) -> String {
-    let mut parameters = serde_json::to_string_pretty(material).unwrap_or_default();
+fn shown_parameters(material: Node) -> String {
+    let mut parameters = serde_json::to_string_pretty(&material).unwrap_or_default();
     if parameters.len() > PARAMETERS_SHOWN {
         let cut = (0..=PARAMETERS_SHOWN)
             .rev()

@@ -566,8 +566,13 @@ mod tests {
         // Textures 0 and 1 read image 0; texture 2 reads image 1.
         let textures = [&textures[0], &textures[0], &textures[1]].map(Clone::clone);
         let reading = |index: usize| json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": index}}, "name": index});
-        let prepared =
-            crate::shade::load::prepare_materials((0..3).map(reading), &textures, &[], &[]);
+        let materials = crate::document::Tree::of(&(0..3).map(reading).collect());
+        let materials = materials
+            .root()
+            .as_array()
+            .into_iter()
+            .flat_map(|a| a.iter());
+        let prepared = crate::shade::load::prepare_materials(materials, &textures, &[], &[]);
         let [first, second, other] = &prepared[..] else {
             panic!("three materials")
         };

@@ -47,6 +47,11 @@ impl Items {
         self.0.iter().map(|text| value_of(text))
     }
 
+    /// The elements as this module wrote them (compact JSON text).
+    pub(crate) fn texts(&self) -> impl ExactSizeIterator<Item = &str> + '_ {
+        self.0.iter().map(|text| &**text)
+    }
+
     /// Appends `value`; returns its index.
     pub fn push(&mut self, value: &impl Serialize) -> usize {
         self.0.push(text_of(value));

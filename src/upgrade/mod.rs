@@ -25,12 +25,12 @@ mod references;
 mod spec_gloss;
 
 use crate::document::uri::ResourceLoader;
+use crate::document::{Node, Tree};
 use crate::legacy::source::{self, NotGltf1};
 use crate::shade::sample::{self, MaterialSource, Texture};
 pub(crate) use binary::Binary;
 pub use json::{Items, Json};
 pub use proof::{proof_holds, prove, ProofError};
-use serde_json::Value;
 use std::borrow::Cow;
 use std::collections::HashSet;
 use std::sync::Arc;
@@ -335,15 +335,34 @@ pub fn upgrade<'b>(
 /// The materials of an upgraded asset as the shading evaluator samples them (an error when
 /// one of its textures cannot be decoded).
 pub(crate) fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, String> {
-    let materials = || (upgraded.json.items("materials").into_iter()).flat_map(Items::iter);
-    let textures: Vec<Value> = (upgraded.json.items("textures").into_iter())
-        .flat_map(Items::iter)
-        .collect();
-    let samplers: Vec<Value> = (upgraded.json.items("samplers").into_iter())
-        .flat_map(Items::iter)
-        .collect();
-    let samplers = crate::shade::load::samplers_of(&textures, &samplers);
-    let needed = crate::shade::load::used_images(materials(), &textures);
+    use crate::shade::load::{prepare_materials, samplers_of, texture_source, used_images};
+    // The three lists the evaluator reads, parsed into the tree every reader of glTF uses.
+    let mut text = String::from("{");
+    for key in ["materials", "textures", "samplers"] {
+        text += &format!("\"{key}\":[");
+        for (i, item) in (upgraded.json.items(key).into_iter())
+            .flat_map(Items::texts)
+            .enumerate()
+        {
+            if i > 0 {
+                text.push(',');
+            }
+            text += item;
+        }
+        text += "],";
+    }
+    text.pop();
+    text.push('}');
+    let tree = Tree::parse(text.as_bytes()).map_err(|e| e.to_string())?;
+    drop(text);
+    let list = |key: &str| -> Vec<Node> {
+        (tree.root().get(key).and_then(Node::as_array).into_iter())
+            .flat_map(|a| a.iter())
+            .collect()
+    };
+    let (materials, textures) = (list("materials"), list("textures"));
+    let samplers = samplers_of(&textures, &list("samplers"));
+    let needed = used_images(materials.iter().copied(), &textures);
     let encoded: Vec<sample::Wanted<&[u8]>> = upgraded
         .images
         .iter()
@@ -352,16 +371,7 @@ pub(crate) fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSou
         .collect();
     let images = sample::decode_all(&encoded)?;
     let textures: Vec<Option<Texture>> = (textures.iter())
-        .map(|t| {
-            images
-                .get(crate::shade::load::texture_source(t)? as usize)?
-                .clone()
-        })
+        .map(|&t| images.get(texture_source(t)? as usize)?.clone())
         .collect();
-    Ok(crate::shade::load::prepare_materials(
-        materials(),
-        &textures,
-        &samplers,
-        &[],
-    ))
+    Ok(prepare_materials(materials, &textures, &samplers, &[]))
 }

@@ -364,7 +364,8 @@ fn smooth_lobes_of_different_widths_are_told_apart_and_equal_ones_are_not() {
 
 /// A sharp 2² base colour read through `sampler` (a glTF sampler object).
 fn sampled(sampler: Value) -> MaterialSource {
-    use crate::shade::sample::Sampler;
+    use crate::document::Tree;
+    use crate::shade::sample::{Sampler, TextureSet};
     let image = image::RgbImage::from_fn(2, 2, |x, y| match (x + y) % 2 {
         0 => image::Rgb([240, 230, 220]),
         _ => image::Rgb([20, 30, 40]),
@@ -372,7 +373,13 @@ fn sampled(sampler: Value) -> MaterialSource {
     let textures = [Some(crate::shade::sample::texture_of(image))];
     let mut m = pbr([1.0; 3], 0.0, 0.5);
     m["pbrMetallicRoughness"]["baseColorTexture"] = json!({"index": 0});
-    MaterialSource::gltf2_sampled(&m, &textures, &[Sampler::of(Some(&sampler))], &[])
+    let (m, sampler) = (Tree::of(&m), Tree::of(&sampler));
+    let textures = TextureSet {
+        images: &textures,
+        samplers: &[Sampler::of(Some(sampler.root()))],
+        ..TextureSet::default()
+    };
+    MaterialSource::gltf2_sampled(m.root(), &textures)
 }
 
 #[test]

@@ -65,9 +65,8 @@ pub(crate) fn legacy_materials(
     let sampler = |id: &Option<String>| {
         let sampler = (id.as_deref())
             .and_then(|id| source.object("textures", id)?.get("sampler")?.as_str())
-            .and_then(|sampler| source.object("samplers", sampler))
-            .map(|sampler| sampler.to_value());
-        sample::Sampler::of(sampler.as_ref())
+            .and_then(|sampler| source.object("samplers", sampler));
+        sample::Sampler::of(sampler)
     };
     // A lit material's textures may fail alone, the decoding budget included: that
     // material is then not evaluated, the others are.
@@ -148,19 +147,15 @@ fn lit_text(source: &source::Source, material: Node) -> Option<LitText> {
     let common = (material.get("extensions")).and_then(|e| e.get("KHR_materials_common"));
     let technique = (material.get("technique").and_then(Node::as_str))
         .and_then(|t| source.object("techniques", t));
-    let mut values: HashMap<&str, serde_json::Value> = HashMap::new();
+    let mut values: HashMap<&str, Node> = HashMap::new();
     let blend = match (common, technique) {
         (Some(common), _) => {
             let own = common.get("values").and_then(Node::as_object);
-            values.extend(
-                own.into_iter()
-                    .flat_map(|o| o.iter())
-                    .map(|(k, v)| (k, v.to_value())),
-            );
+            values.extend(own.into_iter().flat_map(|o| o.iter()));
             // The early form {type, value} holds its value one level down.
             for value in values.values_mut() {
                 if let Some(inner) = value.get("value").filter(|_| value.get("type").is_some()) {
-                    *value = inner.clone();
+                    *value = inner;
                 }
             }
             // "Applies To": the constant model reads no diffuse.
@@ -168,9 +163,7 @@ fn lit_text(source: &source::Source, material: Node) -> Option<LitText> {
                 values.remove("diffuse");
             }
             let transparent = common.get("transparent").and_then(Node::as_bool) == Some(true);
-            let opacity = values
-                .get("transparency")
-                .and_then(serde_json::Value::as_f64);
+            let opacity = values.get("transparency").and_then(|o| o.as_f64());
             // "transparent … corresponds to enabling the BLEND render state", with the
             // implementation note's functions ONE, ONE_MINUS_SRC_ALPHA; an opacity below 1 is
             // read as asking for the same.
@@ -180,15 +173,11 @@ fn lit_text(source: &source::Source, material: Node) -> Option<LitText> {
             let parameters = technique.get("parameters").and_then(Node::as_object);
             for (name, parameter) in parameters.into_iter().flat_map(|p| p.iter()) {
                 if let Some(value) = parameter.get("value") {
-                    values.insert(name, value.to_value());
+                    values.insert(name, value);
                 }
             }
             let own = material.get("values").and_then(Node::as_object);
-            values.extend(
-                own.into_iter()
-                    .flat_map(|o| o.iter())
-                    .map(|(k, v)| (k, v.to_value())),
-            );
+            values.extend(own.into_iter().flat_map(|o| o.iter()));
             technique_blend(technique)
         }
         (None, None) if material.get("technique").is_none() => {
@@ -203,25 +192,21 @@ fn lit_text(source: &source::Source, material: Node) -> Option<LitText> {
         // A technique id that names nothing: nothing says what it draws.
         (None, None) => return None,
     };
-    let colour = |name: &str| match values.get(name) {
-        Some(serde_json::Value::String(texture)) => (None, Some(texture.clone())),
-        Some(serde_json::Value::Array(c)) => {
-            let at = |i: usize, default: f64| {
-                c.get(i)
-                    .and_then(serde_json::Value::as_f64)
-                    .unwrap_or(default)
-            };
-            let linear = [0, 1, 2].map(|i| srgb_to_linear(at(i, 0.0)));
-            (Some((linear, at(3, 1.0))), None)
+    let colour = |name: &str| {
+        let value = values.get(name)?;
+        if let Some(texture) = value.as_str() {
+            return Some((None, Some(texture.to_string())));
         }
-        _ => (None, None),
+        let c = value.as_array()?;
+        let at = |i: usize, default: f64| c.get(i).and_then(Node::as_f64).unwrap_or(default);
+        let linear = [0, 1, 2].map(|i| srgb_to_linear(at(i, 0.0)));
+        Some((Some((linear, at(3, 1.0))), None))
     };
+    let colour = |name: &str| colour(name).unwrap_or((None, None));
     let (emission, emission_texture) = colour("emission");
     let (diffuse, diffuse_texture) = colour("diffuse");
-    let opacity = values
-        .get("transparency")
-        .and_then(serde_json::Value::as_f64)
-        .unwrap_or(1.0);
+    let opacity = values.get("transparency").and_then(|o| o.as_f64());
+    let opacity = opacity.unwrap_or(1.0);
     let diffuse_alpha = diffuse.map_or(1.0, |(_, alpha)| alpha);
     let emission = match (emission, &emission_texture) {
         (Some((colour, _)), _) => colour,

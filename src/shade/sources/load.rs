@@ -1,12 +1,11 @@
 //! Reading the materials of a glTF 2.0 file (`.gltf` or `.glb`) for the evaluator.
 
-use super::sample::{self, MaterialSource, Texture};
+use super::sample::{self, MaterialSource, Texture, TextureSet};
 use super::surface;
 use super::views::Views;
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::{self, Bytes, Node};
 use crate::gltf::material::drawn_image;
-use serde_json::Value;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -30,32 +29,30 @@ impl std::ops::Deref for Encoded<'_> {
 /// The images the materials sample (through their textureInfo objects, the only objects
 /// in a material with an `index`): the others, such as originals a converter kept, are not
 /// decoded.
-pub(crate) fn used_images(
-    materials: impl IntoIterator<Item = Value>,
-    textures: &[Value],
+pub(crate) fn used_images<'t>(
+    materials: impl IntoIterator<Item = Node<'t>>,
+    textures: &[Node],
 ) -> std::collections::BTreeSet<usize> {
-    fn texture_indices(value: &Value, out: &mut Vec<u64>) {
-        match value {
-            Value::Object(object) => {
-                out.extend(object.get("index").and_then(Value::as_u64));
-                object.values().for_each(|v| texture_indices(v, out));
-            }
-            Value::Array(items) => items.iter().for_each(|v| texture_indices(v, out)),
-            _ => {}
+    fn texture_indices(value: Node, out: &mut Vec<u64>) {
+        if let Some(object) = value.as_object() {
+            out.extend(object.get("index").and_then(Node::as_u64));
+            object.values().for_each(|v| texture_indices(v, out));
+        } else if let Some(items) = value.as_array() {
+            items.iter().for_each(|v| texture_indices(v, out));
         }
     }
     let mut indices = Vec::new();
-    (materials.into_iter()).for_each(|m| texture_indices(&m, &mut indices));
+    (materials.into_iter()).for_each(|m| texture_indices(m, &mut indices));
     indices
         .into_iter()
         .filter_map(|t| textures.get(t as usize))
-        .filter_map(texture_source)
+        .filter_map(|&texture| texture_source(texture))
         .map(|source| source as usize)
         .collect()
 }
 
 /// A texture's image: the one a viewer draws (see [`drawn_image`]).
-pub(crate) fn texture_source(texture: &Value) -> Option<u64> {
+pub(crate) fn texture_source(texture: Node) -> Option<u64> {
     drawn_image(texture)
 }
 
@@ -79,25 +76,23 @@ pub(crate) fn gltf2_materials(
         .as_ref()
         .ok_or("not a readable glTF document")?
         .root();
-    // Each material is made a `Value` when it is prepared, never all at once: an asset may
-    // hold 10^5 of them.
     let nodes =
         |key: &str| (root.get(key).and_then(Node::as_array).into_iter()).flat_map(|a| a.iter());
-    let list = |key: &str| -> Vec<Value> { nodes(key).map(Node::to_value).collect() };
+    let list = |key: &str| -> Vec<Node> { nodes(key).collect() };
     let views = Views::of(&doc, loader);
     let images = list("images");
     let view_bytes = |index: u64| views.bytes(index);
     let textures = list("textures");
-    let needed = used_images(nodes("materials").map(Node::to_value), &textures);
+    let needed = used_images(nodes("materials"), &textures);
     let encoded: Vec<sample::Wanted<Encoded>> = images
         .iter()
         .enumerate()
-        .map(|(i, image)| (i, image.get("uri").and_then(Value::as_str)))
+        .map(|(i, image)| (i, image.get("uri").and_then(Node::as_str)))
         .map(|(i, uri)| match (needed.contains(&i), uri) {
             (false, _) => None,
             (true, Some(uri)) => Some(load_uri(uri, loader).map(Encoded::Loaded)),
             (true, None) => Some(
-                (images[i].get("bufferView").and_then(Value::as_u64))
+                (images[i].get("bufferView").and_then(Node::as_u64))
                     .and_then(view_bytes)
                     .map(Encoded::View)
                     .ok_or_else(|| "its bufferView cannot be read".to_string()),
@@ -109,7 +104,7 @@ pub(crate) fn gltf2_materials(
     let decoded = sample::decode_each_at_most(&encoded, finest)?;
     let each: Vec<Result<Option<Texture>, String>> = (textures.iter())
         .map(|texture| {
-            let image = texture_source(texture).and_then(|i| decoded.get(i as usize));
+            let image = texture_source(*texture).and_then(|i| decoded.get(i as usize));
             image.cloned().unwrap_or(Ok(None))
         })
         .collect();
@@ -119,12 +114,7 @@ pub(crate) fn gltf2_materials(
         (material.get("name").and_then(Node::as_str)).map_or_else(|| i.to_string(), str::to_string)
     });
     let samplers = samplers_of(&list("textures"), &list("samplers"));
-    let prepared = prepare_materials(
-        nodes("materials").map(Node::to_value),
-        &textures,
-        &samplers,
-        &unreadable,
-    );
+    let prepared = prepare_materials(nodes("materials"), &textures, &samplers, &unreadable);
     let points = if surfaces {
         surface::surface_points(root, &views)
     } else {
@@ -134,11 +124,12 @@ pub(crate) fn gltf2_materials(
 }
 
 /// The sampler each texture (by index) reads its image through.
-pub(crate) fn samplers_of(textures: &[Value], samplers: &[Value]) -> Vec<sample::Sampler> {
+pub(crate) fn samplers_of(textures: &[Node], samplers: &[Node]) -> Vec<sample::Sampler> {
     (textures.iter())
         .map(|texture| {
-            let index = texture.get("sampler").and_then(Value::as_u64);
-            sample::Sampler::of(index.and_then(|i| samplers.get(usize::try_from(i).ok()?)))
+            let index = texture.get("sampler").and_then(Node::as_u64);
+            let sampler = index.and_then(|i| samplers.get(usize::try_from(i).ok()?));
+            sample::Sampler::of(sampler.copied())
         })
         .collect()
 }
@@ -148,21 +139,24 @@ pub(crate) fn samplers_of(textures: &[Value], samplers: &[Value]) -> Vec<sample:
 /// alike materials are prepared, held and compared once; copies that name different textures
 /// of the same image and sampler are copies too (the evaluator reads the image, not the
 /// texture object).
-pub(crate) fn prepare_materials(
-    materials: impl IntoIterator<Item = Value>,
+pub(crate) fn prepare_materials<'t>(
+    materials: impl IntoIterator<Item = Node<'t>>,
     textures: &[Option<Texture>],
     samplers: &[sample::Sampler],
     unreadable: &[Option<String>],
 ) -> Vec<MaterialSource> {
     let first_alike = first_alike_textures(textures, samplers);
+    let set = TextureSet {
+        images: textures,
+        samplers,
+        unreadable,
+        first_alike: &first_alike,
+    };
     let mut prepared: HashMap<String, MaterialSource> = HashMap::new();
     (materials.into_iter())
-        .map(|mut material| {
-            reindex_textures(&mut material, &first_alike);
-            (prepared.entry(sample::shading_text(&material)))
-                .or_insert_with(|| {
-                    MaterialSource::gltf2_sampled(&material, textures, samplers, unreadable)
-                })
+        .map(|material| {
+            (prepared.entry(sample::shading_text(material, &first_alike)))
+                .or_insert_with(|| MaterialSource::gltf2_sampled(material, &set))
                 .clone()
         })
         .collect()
@@ -182,28 +176,4 @@ fn first_alike_textures(textures: &[Option<Texture>], samplers: &[sample::Sample
             None => i,
         })
         .collect()
-}
-
-/// Points every textureInfo of `value` (a member named `…Texture` holding an `index`) at the
-/// first texture of the same image.
-fn reindex_textures(value: &mut Value, first_alike: &[usize]) {
-    match value {
-        Value::Object(members) => {
-            for (key, member) in members.iter_mut() {
-                let index = (member.get("index").and_then(Value::as_u64))
-                    .filter(|_| key.ends_with("Texture"))
-                    .and_then(|i| first_alike.get(usize::try_from(i).ok()?));
-                match index {
-                    Some(&first) => member["index"] = first.into(),
-                    None => reindex_textures(member, first_alike),
-                }
-            }
-        }
-        Value::Array(elements) => {
-            for element in elements {
-                reindex_textures(element, first_alike);
-            }
-        }
-        _ => {}
-    }
 }

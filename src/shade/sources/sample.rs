@@ -4,6 +4,7 @@
 //! PBR-draft materials (their own model) are sampled.
 
 use crate::document::image_header::Channels;
+use crate::document::Node;
 use crate::gltf::color::srgb_texel_to_linear;
 use crate::gltf::material::{effective_texcoord, uv_transform};
 use crate::legacy::blend::Blend;
@@ -12,7 +13,6 @@ use crate::shade::brdf::V3;
 use crate::shade::iridescence::Film;
 use crate::shade::lanes::channels;
 use crate::shade::material::{Inputs, SpecGlossReading};
-use serde_json::Value;
 use std::ops::Deref;
 use std::sync::Arc;
 
@@ -698,8 +698,8 @@ pub(crate) struct Sampler {
 
 impl Sampler {
     /// A glTF 2.0 sampler object (absent members at their defaults: LINEAR, REPEAT).
-    pub(crate) fn of(sampler: Option<&Value>) -> Sampler {
-        let gl = |key: &str| sampler.and_then(|s| s.get(key)).and_then(Value::as_u64);
+    pub(crate) fn of(sampler: Option<Node>) -> Sampler {
+        let gl = |key: &str| sampler.and_then(|s| s.get(key)).and_then(Node::as_u64);
         Sampler {
             nearest: gl("magFilter") == Some(9728),
             wrap: [Wrap::from_gl(gl("wrapS")), Wrap::from_gl(gl("wrapT"))],
@@ -1030,44 +1030,38 @@ impl MaterialSource {
         MaterialSource::Gltf2(Arc::new(prepared))
     }
 
-    /// Prepares a glTF 2.0 material; `textures` are the document's, by texture index.
+    /// Prepares a glTF 2.0 material written as a `serde_json::Value` (read as the tree a
+    /// document's is); `textures` are the document's, by texture index.
     #[cfg(test)]
-    pub(crate) fn gltf2(material: &Value, textures: &[Option<Texture>]) -> MaterialSource {
-        MaterialSource::gltf2_sampled(material, textures, &[], &[])
+    pub(crate) fn gltf2(material: &serde_json::Value, textures: &[Option<Texture>]) -> Self {
+        let tree = crate::document::Tree::of(material);
+        let textures = TextureSet {
+            images: textures,
+            ..TextureSet::default()
+        };
+        MaterialSource::gltf2_sampled(tree.root(), &textures)
     }
 
-    /// Prepares a glTF 2.0 material whose textures are read through `samplers` (by texture
-    /// index; a texture without one has the default sampler); `unreadable` says why a
-    /// texture has no image (by texture index), for what the material cannot show.
-    pub(crate) fn gltf2_sampled(
-        material: &Value,
-        textures: &[Option<Texture>],
-        samplers: &[Sampler],
-        unreadable: &[Option<String>],
-    ) -> MaterialSource {
-        let set = TextureSet {
-            images: textures,
-            samplers,
-            unreadable,
-        };
-        MaterialSource::Gltf2(Arc::new(prepare(material, &set)))
+    /// Prepares a glTF 2.0 material whose textures are `textures`.
+    pub(crate) fn gltf2_sampled(material: Node, textures: &TextureSet) -> MaterialSource {
+        MaterialSource::Gltf2(Arc::new(prepare(material, textures)))
     }
 }
 
-fn colour3(value: Option<&Value>, default: V3) -> V3 {
-    value.and_then(Value::as_array).map_or(default, |a| {
-        [0, 1, 2].map(|i| a.get(i).and_then(Value::as_f64).unwrap_or(default[i]))
+fn colour3(value: Option<Node>, default: V3) -> V3 {
+    value.and_then(Node::as_array).map_or(default, |a| {
+        [0, 1, 2].map(|i| a.get(i).and_then(Node::as_f64).unwrap_or(default[i]))
     })
 }
 
-fn member<'v>(object: Option<&'v Value>, key: &str) -> Option<&'v Value> {
+fn member<'t>(object: Option<Node<'t>>, key: &str) -> Option<Node<'t>> {
     object.and_then(|o| o.get(key))
 }
 
-fn number(object: Option<&Value>, key: &str, default: f64) -> f64 {
+fn number(object: Option<Node>, key: &str, default: f64) -> f64 {
     object
         .and_then(|o| o.get(key))
-        .and_then(Value::as_f64)
+        .and_then(Node::as_f64)
         .unwrap_or(default)
 }
 
@@ -1310,17 +1304,22 @@ impl MaterialSource {
 
 /// A document's textures by index: their decoded images, their samplers, and why an image
 /// could not be had.
-struct TextureSet<'t> {
-    images: &'t [Option<Texture>],
-    samplers: &'t [Sampler],
-    unreadable: &'t [Option<String>],
+/// A document's textures as its materials bind them, each by texture index: the decoded
+/// image, the sampler it is read through (default when missing), why it has no image, and
+/// the first texture alike (the same image and sampler; empty: each its own).
+#[derive(Default)]
+pub(crate) struct TextureSet<'t> {
+    pub images: &'t [Option<Texture>],
+    pub samplers: &'t [Sampler],
+    pub unreadable: &'t [Option<String>],
+    pub first_alike: &'t [usize],
 }
 
-fn prepare(material: &Value, textures: &TextureSet) -> Prepared {
+fn prepare(material: Node, textures: &TextureSet) -> Prepared {
     let mut unmodelled = Vec::new();
-    let mut bind = |info: Option<&Value>, slot: &str| -> Option<Binding> {
+    let mut bind = |info: Option<Node>, slot: &str| -> Option<Binding> {
         let info = info?;
-        let index = (info.get("index").and_then(Value::as_u64)).map(|i| i as usize);
+        let index = (info.get("index").and_then(Node::as_u64)).map(|i| i as usize);
         let texture = index.and_then(|i| textures.images.get(i)?.clone());
         let sampler = (index.and_then(|i| textures.samplers.get(i)).copied()).unwrap_or_default();
         if texture.is_none() {
@@ -1380,19 +1379,19 @@ fn prepare(material: &Value, textures: &TextureSet) -> Prepared {
         ..Inputs::default()
     };
     let sg = extension("KHR_materials_pbrSpecularGlossiness");
-    let alpha_of = |colour: Option<&Value>| {
-        (colour.and_then(|c| c.get(3)).and_then(Value::as_f64)).unwrap_or(1.0)
+    let alpha_of = |colour: Option<Node>| {
+        (colour.and_then(|c| c.get(3)).and_then(Node::as_f64)).unwrap_or(1.0)
     };
     let alpha = match sg {
         Some(sg) => alpha_of(sg.get("diffuseFactor")),
         None => alpha_of(in_pbr("baseColorFactor")),
     };
-    let alpha_mode = match material.get("alphaMode").and_then(Value::as_str) {
+    let alpha_mode = match material.get("alphaMode").and_then(Node::as_str) {
         Some("MASK") => AlphaMode::Mask(number(Some(material), "alphaCutoff", 0.5)),
         Some("BLEND") => AlphaMode::Blend,
         _ => AlphaMode::Opaque,
     };
-    let with_scale = |binding: Option<Binding>, info: Option<&Value>, key: &str| {
+    let with_scale = |binding: Option<Binding>, info: Option<Node>, key: &str| {
         binding.map(|b| (b, number(info, key, 1.0)))
     };
     let normal_info = material.get("normalTexture");
@@ -1483,20 +1482,20 @@ fn prepare(material: &Value, textures: &TextureSet) -> Prepared {
         .bindings()
         .map(|b| (Arc::as_ptr(&b.texture), b.sampler))
         .collect();
-    prepared.fingerprint = format!("{}|{bound:?}", shading_text(material));
+    prepared.fingerprint = format!("{}|{bound:?}", shading_text(material, textures.first_alike));
     prepared
 }
 
 /// The material's extensions the evaluator does not draw, each with what it would change.
 /// An extension whose factors leave it switched off changes nothing and is not listed.
-fn unmodelled_extensions(material: &Value) -> Vec<String> {
-    let Some(extensions) = material.get("extensions").and_then(Value::as_object) else {
+fn unmodelled_extensions(material: Node) -> Vec<String> {
+    let Some(extensions) = material.get("extensions").and_then(Node::as_object) else {
         return Vec::new();
     };
     let factor = |name: &str, key: &str| number(extensions.get(name), key, 0.0);
     let mut list = Vec::new();
     for name in extensions.keys() {
-        match name.as_str() {
+        match name {
             known if MODELLED_EXTENSIONS.contains(&known) => {}
             "KHR_materials_dispersion" if factor(name, "dispersion") == 0.0 => {}
             "KHR_materials_dispersion" => list.push(format!(
@@ -1509,19 +1508,70 @@ fn unmodelled_extensions(material: &Value) -> Vec<String> {
 }
 
 /// A material's JSON without the members that do not change how it shades (`name`,
-/// `extras`): equal for two materials that evaluate the same way with the same textures.
-pub(crate) fn shading_text(material: &Value) -> String {
+/// `extras`), each textureInfo's `index` read as the first texture alike (`first_alike`, by
+/// texture index; empty: as written): equal for two materials that evaluate the same way
+/// with the same textures.
+pub(crate) fn shading_text(material: Node, first_alike: &[usize]) -> String {
     let Some(members) = material.as_object() else {
         return material.to_string();
     };
-    let shading = members
-        .iter()
-        .filter(|(key, _)| !matches!(key.as_str(), "name" | "extras"));
     let mut text = String::from("{");
-    for (key, value) in shading {
-        text += &format!("{}:{value},", Value::from(key.as_str()));
+    for (key, member) in members.iter() {
+        if !matches!(key, "name" | "extras") {
+            write_member(key, member, first_alike, &mut text);
+        }
     }
     text + "}"
+}
+
+/// `value` as JSON text, with every textureInfo (a member named `…Texture` holding an
+/// `index`) pointing at the first texture alike.
+fn write_reindexed(value: Node, first_alike: &[usize], text: &mut String) {
+    if let Some(members) = value.as_object() {
+        text.push('{');
+        for (key, member) in members.iter() {
+            write_member(key, member, first_alike, text);
+        }
+        text.push('}');
+    } else if let Some(elements) = value.as_array() {
+        text.push('[');
+        for element in elements.iter() {
+            write_reindexed(element, first_alike, text);
+            text.push(',');
+        }
+        text.push(']');
+    } else {
+        *text += &value.to_string();
+    }
+}
+
+/// `"key":value,` (see [`write_reindexed`]).
+fn write_member(key: &str, member: Node, first_alike: &[usize], text: &mut String) {
+    *text += &serde_json::Value::from(key).to_string();
+    text.push(':');
+    let index = (member.get("index").and_then(Node::as_u64))
+        .filter(|_| key.ends_with("Texture"))
+        .and_then(|i| first_alike.get(usize::try_from(i).ok()?));
+    match index {
+        Some(&first) => write_with_index(member, first, text),
+        None => write_reindexed(member, first_alike, text),
+    }
+    text.push(',');
+}
+
+/// A textureInfo as JSON text with its `index` replaced by `index`.
+fn write_with_index(info: Node, index: usize, text: &mut String) {
+    text.push('{');
+    for (key, member) in info.as_object().into_iter().flat_map(|o| o.iter()) {
+        *text += &serde_json::Value::from(key).to_string();
+        text.push(':');
+        match key {
+            "index" => *text += &index.to_string(),
+            _ => *text += &member.to_string(),
+        }
+        text.push(',');
+    }
+    text.push('}');
 }
 
 #[inline(always)]
