@@ -2,8 +2,7 @@
 //! defect at a time, each reported with its Khronos code at the pointer that uses the data.
 
 use base64::Engine;
-use gltfmat::NoResources;
-use gltfmat::{check_bytes, CheckOptions, Place, Profile};
+use gltfmat::{check_bytes, CheckOptions, NoResources, Place, Profile};
 use serde_json::Value;
 
 const FIXTURE: &str = "fixtures/valid/skinned-animated.gltf";

@@ -10,8 +10,7 @@ mod common;
 use common::shared;
 
 use gltfmat::registry::{self, Origin};
-use gltfmat::FolderResources;
-use gltfmat::{check_bytes, CheckOptions, Place, Profile};
+use gltfmat::{check_bytes, CheckOptions, FolderResources, Place, Profile};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

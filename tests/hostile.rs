@@ -5,9 +5,9 @@
 mod common;
 
 use base64::Engine;
-use gltfmat::{check_bytes, CheckOptions, Report};
-use gltfmat::{upgrade, UpgradeOptions};
-use gltfmat::{FolderResources, NoResources};
+use gltfmat::{
+    check_bytes, upgrade, CheckOptions, FolderResources, NoResources, Report, UpgradeOptions,
+};
 use serde_json::json;
 
 fn codes(report: &Report) -> Vec<&'static str> {

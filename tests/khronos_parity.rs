@@ -5,8 +5,7 @@
 
 mod common;
 
-use gltfmat::NoResources;
-use gltfmat::{check_bytes, CheckOptions, Profile};
+use gltfmat::{check_bytes, CheckOptions, NoResources, Profile};
 use serde_json::{json, Value};
 
 /// Every finding of the Khronos profile, as (code, pointer), sorted.

@@ -7,8 +7,7 @@
 mod common;
 use common::shared;
 
-use gltfmat::FolderResources;
-use gltfmat::{check_bytes, CheckOptions, Place};
+use gltfmat::{check_bytes, CheckOptions, FolderResources, Place};
 use std::collections::BTreeMap;
 use std::path::Path;
 

@@ -12,8 +12,7 @@ mod common;
 use common::shared;
 
 use gltfmat::upgrade_output as output;
-use gltfmat::FolderResources;
-use gltfmat::{upgrade, UpgradeOptions};
+use gltfmat::{upgrade, FolderResources, UpgradeOptions};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -7,8 +7,7 @@ mod common;
 use common::{linear_to_srgb, srgb_to_linear};
 
 use gltfmat::upgrade_output as output;
-use gltfmat::{prove, upgrade, UpgradeOptions, Upgraded};
-use gltfmat::{FolderResources, NoResources};
+use gltfmat::{prove, upgrade, FolderResources, NoResources, UpgradeOptions, Upgraded};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 

@@ -5,9 +5,10 @@ mod common;
 use common::{linear_to_srgb, shared, srgb_to_linear};
 
 use gltfmat::upgrade_output as output;
-use gltfmat::Severity;
-use gltfmat::{upgrade, SpecGlossReading, SpecularGlossiness, UpgradeOptions, Upgraded};
-use gltfmat::{FolderResources, NoResources};
+use gltfmat::{
+    upgrade, FolderResources, NoResources, Severity, SpecGlossReading, SpecularGlossiness,
+    UpgradeOptions, Upgraded,
+};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;

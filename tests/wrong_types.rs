@@ -2,8 +2,7 @@
 //! with a message, never a panic: a stranger's file can put a number where an object belongs
 //! anywhere, and 1.0 assets are read member by member, each with its own expectation.
 
-use gltfmat::NoResources;
-use gltfmat::{upgrade, UpgradeOptions};
+use gltfmat::{upgrade, NoResources, UpgradeOptions};
 use rayon::prelude::*;
 use serde_json::{json, Value};
 use std::panic::{catch_unwind, AssertUnwindSafe};
