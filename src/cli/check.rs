@@ -182,37 +182,10 @@ pub fn run(args: CheckArgs) -> Outcome {
     if let Some(shard) = args.shard {
         files.retain(|file| shard.contains(file));
     }
-    // Files are checked in parallel; reports keep the input order. The progress bar goes to
-    // stderr, only on a terminal, without --quiet, never in CI, and only when the report does
-    // not go to that terminal too (its lines would be broken by the bar's redraws; they show
-    // the progress themselves).
-    let bar_wanted = std::io::stderr().is_terminal()
-        && !std::io::stdout().is_terminal()
-        && std::env::var_os("CI").is_none();
-    let progress = if args.quiet || !bar_wanted || files.len() < 2 {
-        indicatif::ProgressBar::hidden()
-    } else {
-        indicatif::ProgressBar::new(files.len() as u64)
-    };
+    // Files are checked in parallel; reports keep the input order.
+    let progress = progress_bar(&args, files.len());
     let stdin_name = args.stdin_filename.as_deref();
-    let options: Vec<Arc<CheckOptions>> = (files.iter())
-        .map(|file| {
-            let named = (file.as_os_str() == "-").then_some(stdin_name).flatten();
-            settings
-                .for_file(named.unwrap_or(file))
-                .map(|(options, _)| options)
-        })
-        .collect::<Result<_, _>>()?;
-    // Infos and hints that the report will not list are only counted: 10^5 of them cost no
-    // memory.
-    let lists_all = args.format != FormatArg::Human || all_findings;
-    let options: Vec<Arc<CheckOptions>> = if lists_all {
-        options
-    } else {
-        let lean =
-            |o: &Arc<CheckOptions>| Arc::new((**o).clone().with_lowest_kept(Severity::Warning));
-        options.iter().map(lean).collect()
-    };
+    let options = options_per_file(&args, &mut settings, &files, all_findings)?;
     let colour = args.format == FormatArg::Human && args.color.wanted();
     let style = Style::new(colour)
         .with_all_findings(all_findings)
@@ -254,6 +227,43 @@ pub fn run(args: CheckArgs) -> Outcome {
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// The progress bar: on stderr, only on a terminal, without --quiet, never in CI, and only
+/// when the report does not go to that terminal too (its lines would be broken by the bar's
+/// redraws; they show the progress themselves).
+fn progress_bar(args: &CheckArgs, files: usize) -> indicatif::ProgressBar {
+    let bar_wanted = std::io::stderr().is_terminal()
+        && !std::io::stdout().is_terminal()
+        && std::env::var_os("CI").is_none();
+    if args.quiet || !bar_wanted || files < 2 {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::new(files as u64)
+    }
+}
+
+/// Each file's options, from the configuration that applies to it (stdin's by its
+/// --stdin-filename). Infos and hints that the report will not list are only counted:
+/// 10^5 of them cost no memory.
+fn options_per_file(
+    args: &CheckArgs,
+    settings: &mut Settings,
+    files: &[PathBuf],
+    all_findings: bool,
+) -> Result<Vec<Arc<CheckOptions>>, Failure> {
+    let stdin_name = args.stdin_filename.as_deref();
+    let lists_all = args.format != FormatArg::Human || all_findings;
+    (files.iter())
+        .map(|file| {
+            let named = (file.as_os_str() == "-").then_some(stdin_name).flatten();
+            let (options, _) = settings.for_file(named.unwrap_or(file))?;
+            Ok(match lists_all {
+                true => options,
+                false => Arc::new((*options).clone().with_lowest_kept(Severity::Warning)),
+            })
+        })
+        .collect()
 }
 
 /// `work` done on every item, in parallel a window at a time, the results given in the

@@ -103,33 +103,14 @@ enum SpecGlossArg {
 
 pub fn run(args: UpgradeArgs) -> Outcome {
     let destination = Destination::of(&args.output)?;
-    if let Some(report) = &args.report {
-        if matches!(destination, Destination::Stdout) {
-            return Err(Failure::usage(
-                "--report needs the output in a file, not on stdout",
-            ));
-        }
-        gltfmat::may_write(report, &[], args.force).map_err(|e| Failure::usage(e.to_string()))?;
-    }
     let input_id = FileId::of_path(&args.input);
-    // Refused before converting: a conversion can take minutes.
-    if let Destination::File { folder, name } = &destination {
-        let protected: Vec<FileId> = input_id.into_iter().collect();
-        gltfmat::may_write(&folder.join(name), &protected, args.force)
-            .map_err(|e| Failure::usage(e.to_string()))?;
-    }
+    refuse_unwritable(&args, &destination, input_id)?;
     let bytes = gltfmat::read_file(&args.input)
         .map_err(|e| Failure::usage(format!("{}: {e}", args.input.display())))?;
     let inherited = input_errors(&args.input);
     let tolerated = tolerated_errors(&args, inherited.as_ref());
     let inherited = inherited.map_or(0, |errors| errors.count());
-    let options = UpgradeOptions::default()
-        .with_specular_glossiness(match args.specular_glossiness {
-            SpecGlossArg::MetalRough => SpecularGlossiness::MetalRough,
-            SpecGlossArg::Extension => SpecularGlossiness::Extension,
-        })
-        .with_double_sided_default(args.double_sided)
-        .with_draft_reading(args.draft_reading.reading());
+    let options = args.options();
     let loader = FolderResources::beside(&args.input);
     // The bytes go to the upgrade, which lets a `.gltf`'s text go once its tree is built;
     // the proof reads the file again, and proves nothing if it changed in between.
@@ -177,6 +158,51 @@ pub fn run(args: UpgradeArgs) -> Outcome {
             inherited,
         ));
     }
+    print_written(&args.output, 1 + files.side.len(), &report);
+    if let Some(page) = &args.report {
+        write_report(&args, page)?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Refuses, before converting (a conversion can take minutes), an output or report file that
+/// could not be written: one that exists (without --force) or is the input, or a report
+/// asked for beside an output on stdout.
+fn refuse_unwritable(
+    args: &UpgradeArgs,
+    destination: &Destination,
+    input_id: Option<FileId>,
+) -> Result<(), Failure> {
+    if let Some(report) = &args.report {
+        if matches!(destination, Destination::Stdout) {
+            return Err(Failure::usage(
+                "--report needs the output in a file, not on stdout",
+            ));
+        }
+        gltfmat::may_write(report, &[], args.force).map_err(|e| Failure::usage(e.to_string()))?;
+    }
+    if let Destination::File { folder, name } = destination {
+        let protected: Vec<FileId> = input_id.into_iter().collect();
+        gltfmat::may_write(&folder.join(name), &protected, args.force)
+            .map_err(|e| Failure::usage(e.to_string()))?;
+    }
+    Ok(())
+}
+
+impl UpgradeArgs {
+    fn options(&self) -> UpgradeOptions {
+        UpgradeOptions::default()
+            .with_specular_glossiness(match self.specular_glossiness {
+                SpecGlossArg::MetalRough => SpecularGlossiness::MetalRough,
+                SpecGlossArg::Extension => SpecularGlossiness::Extension,
+            })
+            .with_double_sided_default(self.double_sided)
+            .with_draft_reading(self.draft_reading.reading())
+    }
+}
+
+/// The line saying what was written and what its check found.
+fn print_written(output: &std::path::Path, files: usize, report: &gltfmat::Report) {
     let (errors, warnings) = (
         report.count(Severity::Error),
         report.count(Severity::Warning),
@@ -187,14 +213,9 @@ pub fn run(args: UpgradeArgs) -> Outcome {
         ""
     };
     outln!(
-        "wrote {} ({} file(s)); check: {errors} error(s){passed}, {warnings} warning(s)",
-        args.output.display(),
-        1 + files.side.len()
+        "wrote {} ({files} file(s)); check: {errors} error(s){passed}, {warnings} warning(s)",
+        output.display()
     );
-    if let Some(page) = &args.report {
-        write_report(&args, page)?;
-    }
-    Ok(ExitCode::SUCCESS)
 }
 
 /// What the upgrade read: its length and hash, to tell whether the proof reads the same.

@@ -1315,6 +1315,113 @@ pub(crate) struct TextureSet<'t> {
     pub first_alike: &'t [usize],
 }
 
+/// The objects of a 2.0 material the evaluator reads: the material, its
+/// pbrMetallicRoughness and each extension's block it models (`None` where absent).
+#[derive(Clone, Copy)]
+struct Blocks<'t> {
+    material: Node<'t>,
+    pbr: Option<Node<'t>>,
+    specular: Option<Node<'t>>,
+    sheen: Option<Node<'t>>,
+    anisotropy: Option<Node<'t>>,
+    clearcoat: Option<Node<'t>>,
+    transmission: Option<Node<'t>>,
+    volume: Option<Node<'t>>,
+    diffuse_transmission: Option<Node<'t>>,
+    iridescence: Option<Node<'t>>,
+    spec_gloss: Option<Node<'t>>,
+}
+
+impl<'t> Blocks<'t> {
+    fn of(material: Node<'t>) -> Self {
+        let extension = |name: &str| material.get("extensions").and_then(|e| e.get(name));
+        Blocks {
+            material,
+            pbr: material.get("pbrMetallicRoughness"),
+            specular: extension("KHR_materials_specular"),
+            sheen: extension("KHR_materials_sheen"),
+            anisotropy: extension("KHR_materials_anisotropy"),
+            clearcoat: extension("KHR_materials_clearcoat"),
+            transmission: extension("KHR_materials_transmission"),
+            volume: extension("KHR_materials_volume"),
+            diffuse_transmission: extension("KHR_materials_diffuse_transmission"),
+            iridescence: extension("KHR_materials_iridescence"),
+            spec_gloss: extension("KHR_materials_pbrSpecularGlossiness"),
+        }
+    }
+
+    fn extension(self, name: &str) -> Option<Node<'t>> {
+        self.material.get("extensions").and_then(|e| e.get(name))
+    }
+
+    /// The inputs its factors give, before any texture is read.
+    fn factors(self) -> Inputs {
+        let Blocks {
+            material,
+            pbr,
+            specular,
+            sheen,
+            anisotropy,
+            clearcoat,
+            transmission,
+            diffuse_transmission,
+            iridescence,
+            ..
+        } = self;
+        let strength = number(
+            self.extension("KHR_materials_emissive_strength"),
+            "emissiveStrength",
+            1.0,
+        );
+        Inputs {
+            base_color: colour3(member(pbr, "baseColorFactor"), [1.0; 3]),
+            metallic: number(pbr, "metallicFactor", 1.0),
+            roughness: number(pbr, "roughnessFactor", 1.0),
+            ior: number(self.extension("KHR_materials_ior"), "ior", 1.5),
+            specular: number(specular, "specularFactor", 1.0),
+            specular_color: colour3(member(specular, "specularColorFactor"), [1.0; 3]),
+            sheen_color: colour3(member(sheen, "sheenColorFactor"), [0.0; 3]),
+            sheen_roughness: number(sheen, "sheenRoughnessFactor", 0.0),
+            anisotropy_strength: number(anisotropy, "anisotropyStrength", 0.0),
+            anisotropy_angle: number(anisotropy, "anisotropyRotation", 0.0),
+            unlit: self.extension("KHR_materials_unlit").is_some(),
+            emission: colour3(material.get("emissiveFactor"), [0.0; 3]).map(|e| e * strength),
+            clearcoat: number(clearcoat, "clearcoatFactor", 0.0),
+            clearcoat_roughness: number(clearcoat, "clearcoatRoughnessFactor", 0.0),
+            transmission: number(transmission, "transmissionFactor", 0.0),
+            diffuse_transmission: number(diffuse_transmission, "diffuseTransmissionFactor", 0.0),
+            diffuse_transmission_color: colour3(
+                member(diffuse_transmission, "diffuseTransmissionColorFactor"),
+                [1.0; 3],
+            ),
+            iridescence: number(iridescence, "iridescenceFactor", 0.0),
+            iridescence_film: Film {
+                ior: number(iridescence, "iridescenceIor", 1.3),
+                thickness: number(iridescence, "iridescenceThicknessMaximum", 400.0),
+            },
+            ..Inputs::default()
+        }
+    }
+
+    /// Its alpha factor (the spec-gloss diffuse's where it has one) and its alpha mode.
+    fn coverage(self) -> (f64, AlphaMode) {
+        let alpha_of = |colour: Option<Node>| {
+            (colour.and_then(|c| c.get(3)).and_then(Node::as_f64)).unwrap_or(1.0)
+        };
+        let alpha = match self.spec_gloss {
+            Some(sg) => alpha_of(sg.get("diffuseFactor")),
+            None => alpha_of(member(self.pbr, "baseColorFactor")),
+        };
+        let material = self.material;
+        let mode = match material.get("alphaMode").and_then(Node::as_str) {
+            Some("MASK") => AlphaMode::Mask(number(Some(material), "alphaCutoff", 0.5)),
+            Some("BLEND") => AlphaMode::Blend,
+            _ => AlphaMode::Opaque,
+        };
+        (alpha, mode)
+    }
+}
+
 fn prepare(material: Node, textures: &TextureSet) -> Prepared {
     let mut unmodelled = Vec::new();
     let mut bind = |info: Option<Node>, slot: &str| -> Option<Binding> {
@@ -1334,63 +1441,22 @@ fn prepare(material: Node, textures: &TextureSet) -> Prepared {
             transform: uv_transform(info),
         })
     };
-    let extension = |name: &str| material.get("extensions").and_then(|e| e.get(name));
-    let pbr = material.get("pbrMetallicRoughness");
+    let blocks = Blocks::of(material);
+    let Blocks {
+        pbr,
+        specular,
+        sheen,
+        anisotropy,
+        clearcoat,
+        transmission,
+        volume,
+        diffuse_transmission,
+        iridescence,
+        spec_gloss: sg,
+        ..
+    } = blocks;
     let in_pbr = |key: &str| member(pbr, key);
-    let specular = extension("KHR_materials_specular");
-    let sheen = extension("KHR_materials_sheen");
-    let anisotropy = extension("KHR_materials_anisotropy");
-    let clearcoat = extension("KHR_materials_clearcoat");
-    let transmission = extension("KHR_materials_transmission");
-    let volume = extension("KHR_materials_volume");
-    let diffuse_transmission = extension("KHR_materials_diffuse_transmission");
-    let iridescence = extension("KHR_materials_iridescence");
-    let strength = number(
-        extension("KHR_materials_emissive_strength"),
-        "emissiveStrength",
-        1.0,
-    );
-    let factors = Inputs {
-        base_color: colour3(in_pbr("baseColorFactor"), [1.0; 3]),
-        metallic: number(pbr, "metallicFactor", 1.0),
-        roughness: number(pbr, "roughnessFactor", 1.0),
-        ior: number(extension("KHR_materials_ior"), "ior", 1.5),
-        specular: number(specular, "specularFactor", 1.0),
-        specular_color: colour3(member(specular, "specularColorFactor"), [1.0; 3]),
-        sheen_color: colour3(member(sheen, "sheenColorFactor"), [0.0; 3]),
-        sheen_roughness: number(sheen, "sheenRoughnessFactor", 0.0),
-        anisotropy_strength: number(anisotropy, "anisotropyStrength", 0.0),
-        anisotropy_angle: number(anisotropy, "anisotropyRotation", 0.0),
-        unlit: extension("KHR_materials_unlit").is_some(),
-        emission: colour3(material.get("emissiveFactor"), [0.0; 3]).map(|e| e * strength),
-        clearcoat: number(clearcoat, "clearcoatFactor", 0.0),
-        clearcoat_roughness: number(clearcoat, "clearcoatRoughnessFactor", 0.0),
-        transmission: number(transmission, "transmissionFactor", 0.0),
-        diffuse_transmission: number(diffuse_transmission, "diffuseTransmissionFactor", 0.0),
-        diffuse_transmission_color: colour3(
-            member(diffuse_transmission, "diffuseTransmissionColorFactor"),
-            [1.0; 3],
-        ),
-        iridescence: number(iridescence, "iridescenceFactor", 0.0),
-        iridescence_film: Film {
-            ior: number(iridescence, "iridescenceIor", 1.3),
-            thickness: number(iridescence, "iridescenceThicknessMaximum", 400.0),
-        },
-        ..Inputs::default()
-    };
-    let sg = extension("KHR_materials_pbrSpecularGlossiness");
-    let alpha_of = |colour: Option<Node>| {
-        (colour.and_then(|c| c.get(3)).and_then(Node::as_f64)).unwrap_or(1.0)
-    };
-    let alpha = match sg {
-        Some(sg) => alpha_of(sg.get("diffuseFactor")),
-        None => alpha_of(in_pbr("baseColorFactor")),
-    };
-    let alpha_mode = match material.get("alphaMode").and_then(Node::as_str) {
-        Some("MASK") => AlphaMode::Mask(number(Some(material), "alphaCutoff", 0.5)),
-        Some("BLEND") => AlphaMode::Blend,
-        _ => AlphaMode::Opaque,
-    };
+    let (alpha, alpha_mode) = blocks.coverage();
     let with_scale = |binding: Option<Binding>, info: Option<Node>, key: &str| {
         binding.map(|b| (b, number(info, key, 1.0)))
     };
@@ -1411,7 +1477,7 @@ fn prepare(material: Node, textures: &TextureSet) -> Prepared {
     let occlusion = bind(occlusion_info, "occlusionTexture");
     let coat_normal = bind(coat_normal_info, "clearcoatNormalTexture");
     let mut prepared = Prepared {
-        factors,
+        factors: blocks.factors(),
         alpha,
         alpha_mode,
         spec_gloss,
