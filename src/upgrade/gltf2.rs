@@ -14,12 +14,13 @@ use super::{Binary, EncodedImage, NoteKind, Notes, SpecularGlossiness, UpgradeEr
 use super::{UpgradeOptions, Upgraded};
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::{self, image_header, Bytes, Container};
+use crate::document::{Node, Object};
 use crate::gltf::material::{
     combination, drawn_image, effective_texcoord, texture_images, texture_transform,
 };
 use crate::gltf::material::{Combination, SPEC_GLOSS, UNLIT};
 use crate::gltf::unsigned;
-use serde_json::{json, Map, Value};
+use serde_json::{json, Value};
 use std::collections::{BTreeSet, HashMap};
 use std::ops::Range;
 use std::sync::Arc;
@@ -36,14 +37,17 @@ pub(super) fn upgrade(
         "input.gltf"
     };
     let mut doc = document::read(bytes, name, &mut Vec::new());
-    let root = match doc.root.take() {
-        Some(tree) if tree.root().is_object() => Json::from_node(tree.root()),
+    // The input is read from its tree; the output's JSON starts as a copy of it.
+    let tree = match doc.root.take() {
+        Some(tree) if tree.root().is_object() => tree,
         _ => {
             return Err(UpgradeError::Unreadable(
                 "the glTF 2.0 JSON cannot be read (`gltfmat check` says why)".into(),
             ))
         }
     };
+    let input = tree.root();
+    let root = Json::from_node(input);
     let bytes = Arc::clone(&doc.bytes);
     let glb_bin = (doc.container == Container::Glb)
         .then_some(doc.bin.clone())
@@ -58,13 +62,13 @@ pub(super) fn upgrade(
         rebakes: Default::default(),
         texel_fits: super::fit::TexelFits::for_exact_form(),
     };
-    asset.refuse_buffers_named_inside_extensions()?;
-    let buffers = asset.read_buffers(glb_bin, loader)?;
-    asset.take_images(&buffers, loader)?;
-    asset.join_buffers(&buffers);
-    let mut passed_through: BTreeSet<usize> = (0..asset.count("materials")).collect();
+    refuse_buffers_named_inside_extensions(input)?;
+    let buffers = read_buffers(input, glb_bin, loader)?;
+    asset.take_images(input, &buffers, loader)?;
+    asset.join_buffers(input, &buffers);
+    let mut passed_through: BTreeSet<usize> = (0..list(input, "materials").count()).collect();
     if options.specular_glossiness == SpecularGlossiness::MetalRough {
-        for converted in asset.convert_materials()? {
+        for converted in asset.convert_materials(input)? {
             passed_through.remove(&converted);
         }
     } else {
@@ -118,13 +122,10 @@ impl Asset {
         self.report.push(pointer.into(), kind, text.into());
     }
 
-    /// The elements of root array `key`, each parsed as it is reached.
-    fn list(&self, key: &str) -> impl Iterator<Item = Value> + '_ {
+    /// The elements of the output's root array `key`, each parsed as it is reached: what
+    /// the conversion wrote, read back to find what it no longer uses.
+    fn written(&self, key: &str) -> impl Iterator<Item = Value> + '_ {
         self.root.items(key).into_iter().flat_map(Items::iter)
-    }
-
-    fn item(&self, key: &str, index: usize) -> Option<Value> {
-        self.root.items(key)?.get(index)
     }
 
     fn count(&self, key: &str) -> usize {
@@ -138,71 +139,10 @@ impl Asset {
         }
     }
 
-    /// The output holds one buffer, made by joining the input's; meshopt compression names
-    /// its compressed buffer (and an offset in it) inside each bufferView's extension, and its
-    /// fallback buffer holds no bytes, so such an asset of several buffers cannot be joined
-    /// without rewriting what the extension means. Refused, saying what to do instead.
-    fn refuse_buffers_named_inside_extensions(&self) -> Result<(), UpgradeError> {
-        const NAMING_BUFFERS: [&str; 2] = ["EXT_meshopt_compression", "KHR_meshopt_compression"];
-        let used = self.list("extensionsUsed");
-        let meshopt = used
-            .filter_map(|name| Some(name.as_str()?.to_string()))
-            .find(|name| NAMING_BUFFERS.contains(&name.as_str()));
-        match meshopt {
-            Some(name) if self.count("buffers") > 1 => Err(UpgradeError::Invalid {
-                pointer: "/extensionsUsed".into(),
-                reason: format!(
-                    "{name} names buffers inside each bufferView's extension, and the upgrade joins the asset's {} buffers into one; decompress the asset first (for example with gltfpack without -c, or glTF-Transform), then upgrade it",
-                    self.count("buffers")
-                ),
-            }),
-            _ => Ok(()),
-        }
-    }
-
-    /// Every buffer's declared bytes: read from its file or data URI, or the GLB's BIN chunk.
-    fn read_buffers(
-        &self,
-        glb_bin: Option<(&Arc<Bytes>, Range<usize>)>,
-        loader: &dyn ResourceLoader,
-    ) -> Result<Vec<Buffer>, UpgradeError> {
-        let mut buffers = Vec::new();
-        for (i, buffer) in self.list("buffers").enumerate() {
-            let at = format!("/buffers/{i}");
-            let length = unsigned(&buffer, "byteLength")
-                .ok_or_else(|| resource_error(&at, "byteLength is missing"))?
-                as usize;
-            let (bytes, start) = match (buffer.get("uri").and_then(Value::as_str), &glb_bin) {
-                (Some(uri), _) => {
-                    let bytes = load_uri(uri, loader).map_err(|e| resource_error(&at, e))?;
-                    (bytes, 0)
-                }
-                (None, Some((bytes, bin))) if i == 0 => (Arc::clone(bytes), bin.start),
-                (None, _) => {
-                    let why = "it has no uri and is not the GLB's BIN chunk";
-                    return Err(resource_error(&at, why));
-                }
-            };
-            let available = match &glb_bin {
-                Some((_, bin)) if buffer.get("uri").is_none() => bin.len(),
-                _ => bytes.len(),
-            };
-            if length > available {
-                let why = format!("byteLength is {length}, but it holds {available} bytes");
-                return Err(resource_error(&at, why));
-            }
-            buffers.push(Buffer {
-                bytes,
-                range: start..start + length,
-            });
-        }
-        Ok(buffers)
-    }
-
     /// Lays the buffers end to end in the output buffer. A lone buffer starts at 0, so no
     /// bufferView changes; later buffers start 4-byte aligned and their views move to
     /// buffer 0 with their offsets shifted.
-    fn join_buffers(&mut self, buffers: &[Buffer]) {
+    fn join_buffers(&mut self, input: Node, buffers: &[Buffer]) {
         let mut starts = Vec::with_capacity(buffers.len());
         for buffer in buffers {
             starts.push(self.binary.align());
@@ -226,7 +166,7 @@ impl Asset {
             );
             self.note("/buffers", NoteKind::Decision, joined);
         }
-        match self.item("buffers", 0) {
+        match list(input, "buffers").next().map(Node::to_value) {
             Some(Value::Object(mut kept)) => {
                 kept.remove("uri");
                 kept.insert("byteLength".into(), json!(self.binary.len()));
@@ -242,30 +182,30 @@ impl Asset {
     /// are read, to be written beside the output or into its BIN chunk.
     fn take_images(
         &mut self,
+        input: Node,
         buffers: &[Buffer],
         loader: &dyn ResourceLoader,
     ) -> Result<(), UpgradeError> {
-        for i in 0..self.count("images") {
-            let image = self.item("images", i).unwrap_or_default();
+        for (i, image) in list(input, "images").enumerate() {
             let at = format!("/images/{i}");
-            let uri = image.get("uri").and_then(Value::as_str);
+            let uri = image.get("uri").and_then(Node::as_str);
             let (bytes, in_binary) = match uri {
                 Some(uri) => (
                     load_uri(uri, loader).map_err(|e| resource_error(&at, e))?,
                     false,
                 ),
                 None => {
-                    let view = unsigned(&image, "bufferView")
-                        .and_then(|v| self.view_bytes(v as usize, buffers))
+                    let view = unsigned(image, "bufferView")
+                        .and_then(|v| view_bytes(input, v as usize, buffers))
                         .ok_or_else(|| resource_error(&at, "its bufferView cannot be read"))?;
                     (Arc::new(view.to_vec().into()), true)
                 }
             };
-            let declared = image.get("mimeType").and_then(Value::as_str);
+            let declared = image.get("mimeType").and_then(Node::as_str);
             let mime_type = (declared.map(str::to_string))
                 .or_else(|| Some(image_header::read(&bytes).ok()?.format.mime_type().into()))
                 .unwrap_or_else(|| "application/octet-stream".into());
-            let name = image.get("name").and_then(Value::as_str).unwrap_or("image");
+            let name = image.get("name").and_then(Node::as_str).unwrap_or("image");
             let stem = uri.map_or_else(|| name.to_string(), file_stem);
             let encoded = EncodedImage::new(bytes, mime_type, i, &stem, in_binary);
             self.images.push(encoded);
@@ -278,21 +218,12 @@ impl Asset {
         Ok(())
     }
 
-    /// The bytes of bufferView `index` of the input (before the buffers are joined).
-    fn view_bytes<'b>(&self, index: usize, buffers: &'b [Buffer]) -> Option<&'b [u8]> {
-        let view = self.item("bufferViews", index)?;
-        let buffer = buffers.get(unsigned(&view, "buffer")? as usize)?;
-        let start = unsigned(&view, "byteOffset").unwrap_or(0) as usize;
-        let end = start.checked_add(unsigned(&view, "byteLength")? as usize)?;
-        buffer.bytes.get(buffer.range.clone())?.get(start..end)
-    }
-
     /// Converts every spec-gloss material that can be; returns their indices.
-    fn convert_materials(&mut self) -> Result<Vec<usize>, UpgradeError> {
+    fn convert_materials(&mut self, input: Node) -> Result<Vec<usize>, UpgradeError> {
         let used_before = self.used_textures();
         let mut converted = Vec::new();
-        for i in 0..self.count("materials") {
-            if self.convert_material(i)? {
+        for (i, material) in list(input, "materials").enumerate() {
+            if self.convert_material(input, i, material)? {
                 converted.push(i);
             }
         }
@@ -308,10 +239,14 @@ impl Asset {
     }
 
     /// Converts material `i` if it is a spec-gloss material that can be; true when it was.
-    fn convert_material(&mut self, i: usize) -> Result<bool, UpgradeError> {
+    fn convert_material(
+        &mut self,
+        input: Node,
+        i: usize,
+        material: Node,
+    ) -> Result<bool, UpgradeError> {
         let at = format!("/materials/{i}/extensions/{SPEC_GLOSS}");
-        let material = self.item("materials", i).unwrap_or_default();
-        let Some(extensions) = material.get("extensions").and_then(Value::as_object) else {
+        let Some(extensions) = material.get("extensions").and_then(Node::as_object) else {
             return Ok(false);
         };
         let Some(block) = extensions.get(SPEC_GLOSS) else {
@@ -331,13 +266,14 @@ impl Asset {
             specular: numbers(block.get("specularFactor"), [1.0; 3]),
             glossiness: block
                 .get("glossinessFactor")
-                .and_then(Value::as_f64)
+                .and_then(Node::as_f64)
                 .unwrap_or(1.0),
         };
         let mut textures = MaterialTextures {
             asset: self,
-            diffuse: block.get("diffuseTexture").cloned(),
-            specular_glossiness: block.get("specularGlossinessTexture").cloned(),
+            input,
+            diffuse: block.get("diffuseTexture").map(Node::to_value),
+            specular_glossiness: block.get("specularGlossinessTexture").map(Node::to_value),
             material: i,
         };
         let converted = match spec_gloss::to_metal_rough(&factors, &mut textures) {
@@ -370,12 +306,12 @@ impl Asset {
     /// extensionsUsed gains what the conversions wrote and loses the spec-gloss extension
     /// when no material has it any more (extensionsRequired too).
     fn update_extension_lists(&mut self) {
-        let still_used = self.list("materials").any(|m| {
+        let still_used = self.written("materials").any(|m| {
             m.get("extensions")
                 .and_then(|e| e.get(SPEC_GLOSS))
                 .is_some()
         });
-        let mut used: Vec<Value> = self.list("extensionsUsed").collect();
+        let mut used: Vec<Value> = self.written("extensionsUsed").collect();
         for added in spec_gloss::EXTENSIONS_ADDED {
             if !used.iter().any(|u| u == added) {
                 used.push(json!(added));
@@ -398,7 +334,7 @@ impl Asset {
     /// The textures the materials read (through any `…Texture` member's `index`).
     fn used_textures(&self) -> BTreeSet<usize> {
         let mut used = BTreeSet::new();
-        for material in self.list("materials") {
+        for material in self.written("materials") {
             used.extend(texture_indices(&material));
         }
         used
@@ -438,7 +374,7 @@ impl Asset {
 
     /// The image (`source`, including extensions' sources) or sampler indices textures name.
     fn referenced_by_textures(&self, key: &str) -> BTreeSet<usize> {
-        let textures = self.list("textures");
+        let textures = self.written("textures");
         if key == "source" {
             textures
                 .flat_map(|t| texture_images(&t).collect::<Vec<_>>())
@@ -486,13 +422,86 @@ impl Asset {
     }
 }
 
+/// The output holds one buffer, made by joining the input's; meshopt compression names
+/// its compressed buffer (and an offset in it) inside each bufferView's extension, and its
+/// fallback buffer holds no bytes, so such an asset of several buffers cannot be joined
+/// without rewriting what the extension means. Refused, saying what to do instead.
+fn refuse_buffers_named_inside_extensions(input: Node) -> Result<(), UpgradeError> {
+    const NAMING_BUFFERS: [&str; 2] = ["EXT_meshopt_compression", "KHR_meshopt_compression"];
+    let used = list(input, "extensionsUsed").filter_map(Node::as_str);
+    let meshopt = used.into_iter().find(|name| NAMING_BUFFERS.contains(name));
+    let buffers = list(input, "buffers").count();
+    match meshopt {
+        Some(name) if buffers > 1 => Err(UpgradeError::Invalid {
+            pointer: "/extensionsUsed".into(),
+            reason: format!(
+                "{name} names buffers inside each bufferView's extension, and the upgrade joins the asset's {} buffers into one; decompress the asset first (for example with gltfpack without -c, or glTF-Transform), then upgrade it",
+                buffers
+            ),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Every buffer's declared bytes: read from its file or data URI, or the GLB's BIN chunk.
+fn read_buffers(
+    input: Node,
+    glb_bin: Option<(&Arc<Bytes>, Range<usize>)>,
+    loader: &dyn ResourceLoader,
+) -> Result<Vec<Buffer>, UpgradeError> {
+    let mut buffers = Vec::new();
+    for (i, buffer) in list(input, "buffers").enumerate() {
+        let at = format!("/buffers/{i}");
+        let length = unsigned(buffer, "byteLength")
+            .ok_or_else(|| resource_error(&at, "byteLength is missing"))?
+            as usize;
+        let (bytes, start) = match (buffer.get("uri").and_then(Node::as_str), &glb_bin) {
+            (Some(uri), _) => {
+                let bytes = load_uri(uri, loader).map_err(|e| resource_error(&at, e))?;
+                (bytes, 0)
+            }
+            (None, Some((bytes, bin))) if i == 0 => (Arc::clone(bytes), bin.start),
+            (None, _) => {
+                let why = "it has no uri and is not the GLB's BIN chunk";
+                return Err(resource_error(&at, why));
+            }
+        };
+        let available = match &glb_bin {
+            Some((_, bin)) if buffer.get("uri").is_none() => bin.len(),
+            _ => bytes.len(),
+        };
+        if length > available {
+            let why = format!("byteLength is {length}, but it holds {available} bytes");
+            return Err(resource_error(&at, why));
+        }
+        buffers.push(Buffer {
+            bytes,
+            range: start..start + length,
+        });
+    }
+    Ok(buffers)
+}
+
+/// The bytes of bufferView `index` of the input.
+fn view_bytes<'b>(input: Node, index: usize, buffers: &'b [Buffer]) -> Option<&'b [u8]> {
+    let view = input.get("bufferViews")?.as_array()?.get(index)?;
+    let buffer = buffers.get(unsigned(view, "buffer")? as usize)?;
+    let start = unsigned(view, "byteOffset").unwrap_or(0) as usize;
+    let end = start.checked_add(unsigned(view, "byteLength")? as usize)?;
+    buffer.bytes.get(buffer.range.clone())?.get(start..end)
+}
+
+/// The elements of the input's root array `key`.
+fn list<'t>(input: Node<'t>, key: &str) -> impl Iterator<Item = Node<'t>> + 't {
+    (input.get(key).and_then(Node::as_array).into_iter()).flat_map(|a| a.iter())
+}
+
 /// Why a spec-gloss material is not converted, if it is not: extensions its spec excludes
 /// (reported, not guessed at), unlit (which shows the fallback base colour, not the
 /// spec-gloss model), or two textures a per-texel rebake cannot join.
-fn why_not_converted(extensions: &Map<String, Value>, block: &Value) -> Option<String> {
+fn why_not_converted(extensions: Object, block: Node) -> Option<String> {
     let excluded: Vec<&str> = (extensions.keys())
         .filter(|other| combination(SPEC_GLOSS, other) == Combination::Excluded)
-        .map(String::as_str)
         .collect();
     if !excluded.is_empty() {
         return Some(format!(
@@ -511,18 +520,23 @@ fn why_not_converted(extensions: &Map<String, Value>, block: &Value) -> Option<S
     ) else {
         return None;
     };
-    let mapping = |info: &Value| (effective_texcoord(info), texture_transform(info).cloned());
+    let mapping = |info: Node| {
+        (
+            effective_texcoord(info),
+            texture_transform(info).map(Node::to_value),
+        )
+    };
     (mapping(diffuse) != mapping(specular)).then(|| {
         "its diffuse and specular-glossiness textures use different texture coordinates or transforms, so no texture can hold diffuse · (1 − specular).".to_string()
     })
 }
 
 /// A JSON array of numbers, each missing or non-numeric entry taken from `default`.
-fn numbers<const N: usize>(value: Option<&Value>, default: [f64; N]) -> [f64; N] {
+fn numbers<const N: usize>(value: Option<Node>, default: [f64; N]) -> [f64; N] {
     std::array::from_fn(|i| {
         value
             .and_then(|v| v.get(i))
-            .and_then(Value::as_f64)
+            .and_then(Node::as_f64)
             .unwrap_or(default[i])
     })
 }
@@ -541,6 +555,7 @@ fn file_stem(uri: &str) -> String {
 /// A spec-gloss material's two textureInfos, read from and added to the 2.0 asset.
 struct MaterialTextures<'a> {
     asset: &'a mut Asset,
+    input: Node<'a>,
     diffuse: Option<Value>,
     specular_glossiness: Option<Value>,
     material: usize,
@@ -554,9 +569,13 @@ impl MaterialTextures<'_> {
         }
     }
 
-    fn texture(&self, slot: Slot) -> Option<Value> {
+    /// The input's texture the slot names.
+    fn texture(&self, slot: Slot) -> Option<Node<'_>> {
         let index = unsigned(self.slot(slot)?, "index")?;
-        self.asset.item("textures", index as usize)
+        self.input
+            .get("textures")?
+            .as_array()?
+            .get(usize::try_from(index).ok()?)
     }
 }
 
@@ -566,7 +585,7 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
     }
 
     fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>> {
-        let image = drawn_image(&self.texture(slot)?)?;
+        let image = drawn_image(self.texture(slot)?)?;
         Some(self.asset.images.get(image as usize)?.bytes.clone())
     }
 
@@ -580,7 +599,7 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
     }
 
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value {
-        let sampler = self.texture(like).and_then(|t| unsigned(&t, "sampler"));
+        let sampler = self.texture(like).and_then(|t| unsigned(t, "sampler"));
         let mut info = self.slot(like).cloned().unwrap_or_else(|| json!({}));
         let key = (bytes, sampler);
         if let Some(&texture) = self.asset.rebaked.get(&key) {
