@@ -1302,8 +1302,6 @@ impl MaterialSource {
     }
 }
 
-/// A document's textures by index: their decoded images, their samplers, and why an image
-/// could not be had.
 /// A document's textures as its materials bind them, each by texture index: the decoded
 /// image, the sampler it is read through (default when missing), why it has no image, and
 /// the first texture alike (the same image and sampler; empty: each its own).
@@ -1334,7 +1332,7 @@ struct Blocks<'t> {
 
 impl<'t> Blocks<'t> {
     fn of(material: Node<'t>) -> Self {
-        let extension = |name: &str| material.get("extensions").and_then(|e| e.get(name));
+        let extension = |name: &str| Blocks::extension_of(material, name);
         Blocks {
             material,
             pbr: material.get("pbrMetallicRoughness"),
@@ -1351,7 +1349,11 @@ impl<'t> Blocks<'t> {
     }
 
     fn extension(self, name: &str) -> Option<Node<'t>> {
-        self.material.get("extensions").and_then(|e| e.get(name))
+        Blocks::extension_of(self.material, name)
+    }
+
+    fn extension_of(material: Node<'t>, name: &str) -> Option<Node<'t>> {
+        material.get("extensions").and_then(|e| e.get(name))
     }
 
     /// The inputs its factors give, before any texture is read.
