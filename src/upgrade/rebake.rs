@@ -399,22 +399,43 @@ fn judged(
     for (g, group) in index.chunks_mut(LISTED_GROUP).enumerate() {
         let first = g * LISTED_GROUP;
         let full = values.len() >= fit::MAX_SCREENED_TEXELS;
-        (group.par_iter_mut().enumerate()).for_each(|(k, slot)| {
-            *slot = match distinct.get(&value_at(first + k).key()) {
-                Some(&i) => i,
-                None if full => UNLISTED,
-                None => NEW,
+        // A texel equal to the one before it (a flat region) takes its index unhashed, or
+        // once that is listed.
+        let lookup = |(r, run): (usize, &mut [u32])| {
+            let mut previous: Option<(TexelValue, u32)> = None;
+            for (k, slot) in run.iter_mut().enumerate() {
+                let value = value_at(first + r * LOOKUP_RUN + k);
+                *slot = match previous.filter(|(before, _)| *before == value) {
+                    Some((_, NEW | AS_BEFORE)) => AS_BEFORE,
+                    Some((_, i)) => i,
+                    None => match distinct.get(&value.key()) {
+                        Some(&i) => i,
+                        None if full => UNLISTED,
+                        None => NEW,
+                    },
+                };
+                previous = Some((value, *slot));
             }
-        });
-        for (k, slot) in group.iter_mut().enumerate().filter(|(_, s)| **s == NEW) {
-            let value = value_at(first + k);
-            *slot = match distinct.entry(value.key()) {
-                Entry::Occupied(known) => *known.get(),
-                Entry::Vacant(new) if values.len() < fit::MAX_SCREENED_TEXELS => {
-                    values.push(value);
-                    *new.insert(values.len() as u32 - 1)
+        };
+        group
+            .par_chunks_mut(LOOKUP_RUN)
+            .enumerate()
+            .for_each(lookup);
+        for k in 0..group.len() {
+            group[k] = match group[k] {
+                NEW => {
+                    let value = value_at(first + k);
+                    match distinct.entry(value.key()) {
+                        Entry::Occupied(known) => *known.get(),
+                        Entry::Vacant(new) if values.len() < fit::MAX_SCREENED_TEXELS => {
+                            values.push(value);
+                            *new.insert(values.len() as u32 - 1)
+                        }
+                        Entry::Vacant(_) => UNLISTED,
+                    }
                 }
-                Entry::Vacant(_) => UNLISTED,
+                AS_BEFORE => group[k - 1],
+                listed => listed,
             };
         }
     }
@@ -424,13 +445,16 @@ fn judged(
     (index, bases)
 }
 
-/// Texels [`judged`] looks up in parallel before it lists the new values among them.
+/// Texels [`judged`] looks up in parallel before it lists the new values among them, and
+/// texels each core looks up in a row.
 const LISTED_GROUP: usize = 1 << 16;
+const LOOKUP_RUN: usize = 1 << 10;
 
 /// The index of a texel whose value is not listed, and (while [`judged`] runs) of one whose
-/// value is yet to be listed.
+/// value is yet to be listed, and of one that equals the texel before it.
 const UNLISTED: u32 = u32::MAX;
 const NEW: u32 = u32::MAX - 1;
+const AS_BEFORE: u32 = u32::MAX - 2;
 
 /// A spec-gloss material's two textures sampled on the rebake's grid.
 struct SpecGlossTexels<'t> {
