@@ -1854,6 +1854,29 @@ fn legacy_inputs(
 mod tests {
     use super::*;
 
+    #[test]
+    fn the_shading_key_reads_every_texture_info_as_its_first_alike_and_ignores_names() {
+        use crate::document::Tree;
+        use serde_json::json;
+        let key =
+            |material: serde_json::Value| shading_text(Tree::of(&material).root(), &[0, 0, 2]);
+        let coat = |index: u64, name: &str| {
+            json!({"name": name, "extras": {"by": name},
+                   "normalTexture": {"index": index, "scale": 0.5},
+                   "extensions": {"KHR_materials_clearcoat": {
+                       "clearcoatFactor": 1.0, "clearcoatTexture": {"index": index}}}})
+        };
+        // Textures 0 and 1 are alike (one image, one sampler); 2 is another.
+        assert_eq!(key(coat(0, "a")), key(coat(1, "b")));
+        assert_ne!(key(coat(0, "a")), key(coat(2, "a")));
+        let mut brighter = coat(0, "a");
+        brighter["extensions"]["KHR_materials_clearcoat"]["clearcoatFactor"] = json!(0.5);
+        assert_ne!(key(coat(0, "a")), key(brighter));
+        // An `index` outside a `…Texture` member is a value like any other.
+        let indexed = |index: u64| key(json!({"extras": {}, "other": {"index": index}}));
+        assert_ne!(indexed(0), indexed(1));
+    }
+
     /// A lit 1.0 material's stand-in emits its emission and reflects nothing: over black it
     /// shows its emission exactly, in every direction, whatever it is lit by; blended with
     /// ONE, ONE_MINUS_SRC_ALPHA the emission is added whole, straight it is weighed by alpha.
