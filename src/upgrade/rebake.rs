@@ -622,6 +622,49 @@ mod tests {
         }
     }
 
+    /// The distinct texel values are listed on every core, yet exactly as one pass in row
+    /// order lists them: each texel's index is its value's first appearance, across the
+    /// parallel groups, through flat runs (rows of one value, runs of equal texels), and past
+    /// the listing's cap every new value is unlisted.
+    #[test]
+    fn texel_values_are_listed_in_the_order_one_pass_meets_them() {
+        let (width, height) = (600, 250);
+        let key = |x: u32, y: u32| match y % 3 {
+            0 => 7,
+            _ => x / (1 + y % 2) + y * 1000,
+        };
+        let diffuse = hashed(width, height, key);
+        let specular = hashed(width, height, |x, y| key(x, y) % 5);
+        let factors = chromatic();
+        let source = both(&diffuse, &specular, &factors);
+        let reading = crate::shade::material::SpecGlossReading::ArchivedExtension;
+        let (index, _) = judged(&source, &mut TexelFits::with_budgets(reading, 0, 0), 255.0);
+        let mut first_seen: HashMap<[u64; 7], u32> = HashMap::new();
+        let expected: Vec<u32> = (0..height)
+            .flat_map(|y| (0..width).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let (listed, full) = (
+                    first_seen.len(),
+                    first_seen.len() >= fit::MAX_SCREENED_TEXELS,
+                );
+                match first_seen.entry(source.at(x, y).0.key()) {
+                    Entry::Occupied(known) => *known.get(),
+                    Entry::Vacant(_) if full => UNLISTED,
+                    Entry::Vacant(new) => *new.insert(listed as u32),
+                }
+            })
+            .collect();
+        // The case covers what it is about: values first met in a later group, and the cap.
+        let first_group = expected[..LISTED_GROUP]
+            .iter()
+            .filter(|&&i| i != UNLISTED)
+            .max();
+        let later = |&i: &u32| i != UNLISTED && Some(&i) > first_group;
+        assert!(expected[LISTED_GROUP..].iter().any(later));
+        assert!(expected.contains(&UNLISTED));
+        assert_eq!(index, expected);
+    }
+
     /// The between-centres check skips a corner whose four centres equal those of the corner
     /// before it; its maximum is still every corner's, measured one by one through bilinear
     /// reads. Rows alternate flat and split in two, so that a corner under a flat row and

@@ -205,8 +205,7 @@ fn lit_text(source: &source::Source, material: Node) -> Option<LitText> {
     let colour = |name: &str| colour(name).unwrap_or((None, None));
     let (emission, emission_texture) = colour("emission");
     let (diffuse, diffuse_texture) = colour("diffuse");
-    let opacity = values.get("transparency").and_then(|o| o.as_f64());
-    let opacity = opacity.unwrap_or(1.0);
+    let opacity = (values.get("transparency").and_then(|o| o.as_f64())).unwrap_or(1.0);
     let diffuse_alpha = diffuse.map_or(1.0, |(_, alpha)| alpha);
     let emission = match (emission, &emission_texture) {
         (Some((colour, _)), _) => colour,

@@ -83,6 +83,7 @@ pub(crate) fn gltf2_materials(
     let images = list("images");
     let view_bytes = |index: u64| views.bytes(index);
     let textures = list("textures");
+    let samplers = samplers_of(&textures, &list("samplers"));
     let needed = used_images(nodes("materials"), &textures);
     let encoded: Vec<sample::Wanted<Encoded>> = images
         .iter()
@@ -113,7 +114,6 @@ pub(crate) fn gltf2_materials(
     let names = nodes("materials").enumerate().map(|(i, material)| {
         (material.get("name").and_then(Node::as_str)).map_or_else(|| i.to_string(), str::to_string)
     });
-    let samplers = samplers_of(&list("textures"), &list("samplers"));
     let prepared = prepare_materials(nodes("materials"), &textures, &samplers, &unreadable);
     let points = if surfaces {
         surface::surface_points(root, &views)

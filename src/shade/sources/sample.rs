@@ -1358,48 +1358,40 @@ impl<'t> Blocks<'t> {
 
     /// The inputs its factors give, before any texture is read.
     fn factors(self) -> Inputs {
-        let Blocks {
-            material,
-            pbr,
-            specular,
-            sheen,
-            anisotropy,
-            clearcoat,
-            transmission,
-            diffuse_transmission,
-            iridescence,
-            ..
-        } = self;
         let strength = number(
             self.extension("KHR_materials_emissive_strength"),
             "emissiveStrength",
             1.0,
         );
         Inputs {
-            base_color: colour3(member(pbr, "baseColorFactor"), [1.0; 3]),
-            metallic: number(pbr, "metallicFactor", 1.0),
-            roughness: number(pbr, "roughnessFactor", 1.0),
+            base_color: colour3(member(self.pbr, "baseColorFactor"), [1.0; 3]),
+            metallic: number(self.pbr, "metallicFactor", 1.0),
+            roughness: number(self.pbr, "roughnessFactor", 1.0),
             ior: number(self.extension("KHR_materials_ior"), "ior", 1.5),
-            specular: number(specular, "specularFactor", 1.0),
-            specular_color: colour3(member(specular, "specularColorFactor"), [1.0; 3]),
-            sheen_color: colour3(member(sheen, "sheenColorFactor"), [0.0; 3]),
-            sheen_roughness: number(sheen, "sheenRoughnessFactor", 0.0),
-            anisotropy_strength: number(anisotropy, "anisotropyStrength", 0.0),
-            anisotropy_angle: number(anisotropy, "anisotropyRotation", 0.0),
+            specular: number(self.specular, "specularFactor", 1.0),
+            specular_color: colour3(member(self.specular, "specularColorFactor"), [1.0; 3]),
+            sheen_color: colour3(member(self.sheen, "sheenColorFactor"), [0.0; 3]),
+            sheen_roughness: number(self.sheen, "sheenRoughnessFactor", 0.0),
+            anisotropy_strength: number(self.anisotropy, "anisotropyStrength", 0.0),
+            anisotropy_angle: number(self.anisotropy, "anisotropyRotation", 0.0),
             unlit: self.extension("KHR_materials_unlit").is_some(),
-            emission: colour3(material.get("emissiveFactor"), [0.0; 3]).map(|e| e * strength),
-            clearcoat: number(clearcoat, "clearcoatFactor", 0.0),
-            clearcoat_roughness: number(clearcoat, "clearcoatRoughnessFactor", 0.0),
-            transmission: number(transmission, "transmissionFactor", 0.0),
-            diffuse_transmission: number(diffuse_transmission, "diffuseTransmissionFactor", 0.0),
+            emission: colour3(self.material.get("emissiveFactor"), [0.0; 3]).map(|e| e * strength),
+            clearcoat: number(self.clearcoat, "clearcoatFactor", 0.0),
+            clearcoat_roughness: number(self.clearcoat, "clearcoatRoughnessFactor", 0.0),
+            transmission: number(self.transmission, "transmissionFactor", 0.0),
+            diffuse_transmission: number(
+                self.diffuse_transmission,
+                "diffuseTransmissionFactor",
+                0.0,
+            ),
             diffuse_transmission_color: colour3(
-                member(diffuse_transmission, "diffuseTransmissionColorFactor"),
+                member(self.diffuse_transmission, "diffuseTransmissionColorFactor"),
                 [1.0; 3],
             ),
-            iridescence: number(iridescence, "iridescenceFactor", 0.0),
+            iridescence: number(self.iridescence, "iridescenceFactor", 0.0),
             iridescence_film: Film {
-                ior: number(iridescence, "iridescenceIor", 1.3),
-                thickness: number(iridescence, "iridescenceThicknessMaximum", 400.0),
+                ior: number(self.iridescence, "iridescenceIor", 1.3),
+                thickness: number(self.iridescence, "iridescenceThicknessMaximum", 400.0),
             },
             ..Inputs::default()
         }
