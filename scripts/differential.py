@@ -182,8 +182,13 @@ def main():
         if not isinstance(document, dict) or str(document.get('asset', {}).get('version')) != '2.0':
             continue
         path = os.path.join(os.path.dirname(seed), f'mutant-{i}.gltf')
+        try:
+            mutant = mutate_edges(document, os.path.dirname(seed)) if EDGES else mutate(document)
+            text = json.dumps(mutant)
+        except RecursionError:
+            continue  # a seed nested deeper than Python recurses (the corpus has some): not mutated
         with open(path, 'w') as f:
-            json.dump(mutate_edges(document, os.path.dirname(seed)) if EDGES else mutate(document), f)
+            f.write(text)
         mutants.append(path)
     khronos = json.loads(subprocess.run(['node', '-e', KHRONOS], input=json.dumps(mutants), capture_output=True,
                                         text=True, env={**os.environ, 'NODE_PATH': NODE_MODULES}).stdout)

@@ -700,8 +700,10 @@ fn render_compare_and_lut_never_write_through_a_symlink() {
     }
 }
 
+/// Every writer but `lut` (which reads no asset) is refused a file the asset reads — its
+/// buffer, a texture — with or without --force, and writes nothing else either.
 #[test]
-fn a_heat_map_or_render_never_replaces_a_file_the_asset_reads_even_with_force() {
+fn no_page_picture_or_heat_map_replaces_a_file_the_asset_reads_even_with_force() {
     let folder = tempfile::tempdir().unwrap();
     let folder = folder.path();
     let textured = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/spec-gloss");
@@ -735,6 +737,16 @@ fn a_heat_map_or_render_never_replaces_a_file_the_asset_reads_even_with_force() 
             "specgloss16.png",
             "--force",
         ],
+        vec!["report", "textured.gltf", "-o", "quad.bin", "--force"],
+        vec![
+            "upgrade",
+            "textured.gltf",
+            "-o",
+            "upgraded.glb",
+            "--report",
+            "normal.png",
+            "--force",
+        ],
     ] {
         let run = gltfmat(folder, &args);
         assert_eq!(run.status.code(), Some(2), "{args:?}: {}", stderr(&run));
@@ -744,6 +756,40 @@ fn a_heat_map_or_render_never_replaces_a_file_the_asset_reads_even_with_force() 
             stderr(&run)
         );
         assert_eq!(snapshot(folder), before, "{args:?}");
+    }
+}
+
+#[test]
+fn an_upgrade_report_naming_a_file_of_the_output_is_refused_before_anything_is_written() {
+    let folder = tempfile::tempdir().unwrap();
+    let folder = folder.path();
+    write_gltf1(folder, "scene.gltf", 4);
+    let before = snapshot(folder);
+    // The GLB itself, by another spelling, and the `.bin` a `.gltf` output writes beside it.
+    for (output, page) in [
+        ("out.glb", "out.glb"),
+        ("out.glb", "./out.glb"),
+        ("out.gltf", "out.bin"),
+    ] {
+        let run = gltfmat(
+            folder,
+            &[
+                "upgrade",
+                "scene.gltf",
+                "-o",
+                output,
+                "--report",
+                page,
+                "--force",
+            ],
+        );
+        assert_eq!(run.status.code(), Some(2), "{page}: {}", stderr(&run));
+        assert!(
+            stderr(&run).contains("would replace"),
+            "{page}: {}",
+            stderr(&run)
+        );
+        assert_eq!(snapshot(folder), before, "{output} with --report {page}");
     }
 }
 

@@ -246,6 +246,44 @@ fn an_undeclared_extension_is_reported_and_nothing_in_it_is_read() {
 }
 
 #[test]
+fn an_undeclared_extension_still_counts_among_its_objects_extensions() {
+    // Beside a declared standalone extension it makes several: MULTIPLE_EXTENSIONS, as when
+    // it is declared. An undeclared standalone one is not read, so it warns of nothing.
+    let beside = |other: Value| {
+        khronos_findings(json!({"asset": {"version": "2.0"},
+            "extensionsUsed": ["KHR_materials_unlit"],
+            "materials": [{"extensions": {"KHR_materials_unlit": {}, "EXT_other": other}}]}))
+    };
+    for other in [json!({}), json!(4)] {
+        let mut wanted = vec![
+            (
+                "MULTIPLE_EXTENSIONS",
+                "/materials/0/extensions/KHR_materials_unlit",
+            ),
+            ("UNDECLARED_EXTENSION", "/materials/0/extensions/EXT_other"),
+            ("UNUSED_OBJECT", "/materials/0"),
+        ];
+        if other.is_number() {
+            wanted.push(("TYPE_MISMATCH", "/materials/0/extensions/EXT_other"));
+        }
+        assert_eq!(beside(other), expected(&wanted));
+    }
+    let standalone_undeclared = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_materials_emissive_strength"],
+        "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {},
+            "KHR_materials_emissive_strength": {}}}]}));
+    assert_eq!(
+        standalone_undeclared,
+        expected(&[
+            (
+                "UNDECLARED_EXTENSION",
+                "/materials/0/extensions/KHR_materials_pbrSpecularGlossiness"
+            ),
+            ("UNUSED_OBJECT", "/materials/0"),
+        ])
+    );
+}
+#[test]
 fn a_member_of_the_wrong_type_is_read_as_absent() {
     // `min` that is no array: the accessor has no bounds for its POSITION use.
     let found = khronos_findings(json!({"asset": {"version": "2.0"},

@@ -18,6 +18,7 @@ pub(crate) use context::Context;
 pub use context::{AssetInfo, ResourceInfo};
 
 use crate::diagnostic::Sink;
+use crate::document::file::FileId;
 use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::document::{self, Container, Document, Node, Tree};
 use collector::Collector;
@@ -115,6 +116,9 @@ pub struct Report {
     counts: [usize; 4],
     /// The report's `info` section (version, extensions, resources, counts).
     pub info: AssetInfo,
+    /// Every file the asset was read from, by identity (the asset's own and the files its
+    /// URIs name; none for [`check_bytes`]): what an output must not replace.
+    pub inputs: Vec<FileId>,
 }
 
 impl Report {
@@ -151,13 +155,10 @@ pub fn check_path(
         })?;
     let loader = FolderResources::beside(path);
     let uri = path.display().to_string();
-    Ok(check_document(
-        &uri,
-        document,
-        &loader,
-        options,
-        diagnostics,
-    ))
+    let mut report = check_document(&uri, document, &loader, options, diagnostics);
+    report.inputs = FileId::of_path(path).into_iter().collect();
+    report.inputs.extend(loader.files_read());
+    Ok(report)
 }
 
 /// Checks an asset given as bytes. `uri` names it in reports; external files come from `loader`.
@@ -251,6 +252,7 @@ fn check_document(
         truncated,
         counts,
         info,
+        inputs: Vec::new(),
     }
 }
 

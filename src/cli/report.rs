@@ -69,17 +69,23 @@ pub fn run(args: ReportArgs) -> Outcome {
     };
     let mut page = Page::new("gltfmat report");
     let mut unreadable = walked.unreadable;
+    // Every file the assets were read from (their buffers and images too): the page never
+    // replaces one, --force or not.
+    let mut read: Vec<FileId> = files.iter().filter_map(|f| FileId::of_path(f)).collect();
     // A window of files at a time: each asset's document is dropped once its part is made.
     for window in files.chunks(4 * rayon::current_num_threads()) {
-        let parts: Vec<Result<Part, String>> = (window.par_iter())
+        let parts: Vec<Result<(Part, Vec<FileId>), String>> = (window.par_iter())
             .map(|file| {
                 let report = check_path(file, &options).map_err(|e| e.to_string())?;
-                Ok(Part::of_check(&report, Some(file), renders))
+                Ok((Part::of_check(&report, Some(file), renders), report.inputs))
             })
             .collect();
         for (part, file) in parts.into_iter().zip(window) {
             match part {
-                Ok(part) => page.add(part),
+                Ok((part, inputs)) => {
+                    page.add(part);
+                    read.extend(inputs);
+                }
                 Err(why) => {
                     errln!("gltfmat: {why}");
                     page.add_failure(&file.display().to_string(), &why);
@@ -88,7 +94,6 @@ pub fn run(args: ReportArgs) -> Outcome {
             }
         }
     }
-    let read: Vec<FileId> = files.iter().filter_map(|f| FileId::of_path(f)).collect();
     gltfmat::write_file(&args.output, page.html().as_bytes(), &read, args.force)
         .map_err(|e| Failure::usage(e.to_string()))?;
     outln!("wrote {} ({} file(s))", args.output.display(), files.len());

@@ -145,6 +145,15 @@ pub fn run(args: UpgradeArgs) -> Outcome {
     };
     let files = output::layout_releasing_json(&mut upgraded, &name);
     let protected: Vec<FileId> = input_id.into_iter().chain(loader.files_read()).collect();
+    if let Some(page) = &args.report {
+        // Refused before the asset is written, not after: its side files and the files the
+        // input read are known only now.
+        for file in std::iter::once(&files.main).chain(&files.side) {
+            refuse_report_over_output(page, &folder, &file.name)?;
+        }
+        gltfmat::may_write(page, &protected, args.force)
+            .map_err(|e| Failure::usage(e.to_string()))?;
+    }
     let checked = output::write_checked(&files, &folder, &protected, args.force, &tolerated)
         .map_err(|e| Failure::usage(e.to_string()))?;
     timings.stage("output check and write");
@@ -180,11 +189,32 @@ fn refuse_unwritable(
             ));
         }
         gltfmat::may_write(report, &[], args.force).map_err(|e| Failure::usage(e.to_string()))?;
+        if let Destination::File { folder, name } = destination {
+            refuse_report_over_output(report, folder, name)?;
+        }
     }
     if let Destination::File { folder, name } = destination {
         let protected: Vec<FileId> = input_id.into_iter().collect();
         gltfmat::may_write(&folder.join(name), &protected, args.force)
             .map_err(|e| Failure::usage(e.to_string()))?;
+    }
+    Ok(())
+}
+
+/// Refuses a `--report` page that names file `name` of the output's `folder`: one would
+/// replace the other.
+fn refuse_report_over_output(report: &Path, folder: &Path, name: &str) -> Result<(), Failure> {
+    let place = |folder: &Path, name: &std::ffi::OsStr| {
+        folder.canonicalize().ok().map(|folder| folder.join(name))
+    };
+    let report_place = report
+        .file_name()
+        .and_then(|file| place(&folder_of(report), file));
+    if report_place.is_some() && report_place == place(folder, name.as_ref()) {
+        return Err(Failure::usage(format!(
+            "{}: the --report page would replace {name}, a file of the upgraded asset",
+            report.display()
+        )));
     }
     Ok(())
 }

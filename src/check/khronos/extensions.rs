@@ -5,7 +5,7 @@ use crate::check::context::{member, Context};
 use crate::diagnostic::khronos;
 use crate::document::{Node, StringId, Tree};
 use crate::gltf::material::TEXTURE_SLOTS;
-use hashbrown::HashSet;
+use hashbrown::{HashMap, HashSet};
 
 /// Extensions the Khronos validator implements, with the objects that may carry them.
 const KHRONOS_SUPPORTED: &[(&str, &[Host])] = &[
@@ -94,6 +94,8 @@ pub(super) fn check(ctx: &mut Context) {
     for pointer in found.pointers(ctx.root.tree()) {
         undeclared(ctx, &pointer);
     }
+    // Still members of their objects for the rules that count an object's extensions.
+    ctx.undeclared_extensions = found;
     let root = ctx.root;
     walk(root, "", Host::Root, &mut |object, pointer, host| {
         visit(ctx, object, pointer, host)
@@ -148,6 +150,15 @@ impl Undeclared {
             let names = run.iter().map(|&(_, name)| name);
             tree.remove_members(&self.hosts[run[0].0], names, &mut taken);
         }
+    }
+
+    /// How many each `extensions` object holding some holds, by its pointer.
+    pub(crate) fn counts(&self) -> HashMap<&str, usize> {
+        let mut counts = HashMap::new();
+        for &(host, _) in &self.members {
+            *counts.entry(self.hosts[host].as_str()).or_insert(0) += 1;
+        }
+        counts
     }
 
     /// Their pointers, made one at a time.

@@ -57,14 +57,20 @@ fn check_texture_source_mime(ctx: &mut Context, image: usize, pointer: &str, val
 
 pub(crate) fn check_materials(ctx: &mut Context) {
     ctx.material_needs.clear();
+    let undeclared = std::mem::take(&mut ctx.undeclared_extensions);
+    let undeclared_in = undeclared.counts();
     for (i, pointer, material) in ctx.objects("materials") {
         let needs = texture_needs(ctx, material, &pointer);
         if needs != MaterialNeeds::default() {
             ctx.material_needs.insert(i, needs);
         }
         check_alpha_cutoff(ctx, material, &pointer);
-        check_extension_rules(ctx, material, &pointer);
+        let extensions = format!("{pointer}/extensions");
+        let undeclared = undeclared_in.get(extensions.as_str()).copied();
+        check_extension_rules(ctx, material, &pointer, undeclared.unwrap_or(0));
     }
+    drop(undeclared_in);
+    ctx.undeclared_extensions = undeclared;
 }
 
 fn texture_needs(ctx: &mut Context, material: Node, pointer: &str) -> MaterialNeeds {
@@ -111,13 +117,15 @@ fn check_alpha_cutoff(ctx: &mut Context, material: Node, pointer: &str) {
     }
 }
 
-fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str) {
+/// `undeclared`: how many extension objects `extensionsUsed` does not declare the material
+/// held (taken out of the document, but counted as its extensions by the validator).
+fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str, undeclared: usize) {
     let ext_pointer = |name: &str| format!("{pointer}/extensions/{name}");
     let Some(extensions) = material.get("extensions").and_then(Node::as_object) else {
         return;
     };
     for standalone in ["KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit"] {
-        if extensions.contains_key(standalone) && extensions.len() > 1 {
+        if extensions.contains_key(standalone) && extensions.len() + undeclared > 1 {
             ctx.emit(
                 khronos::MULTIPLE_EXTENSIONS,
                 ext_pointer(standalone),
