@@ -268,6 +268,21 @@ fn an_undeclared_extension_still_counts_among_its_objects_extensions() {
         }
         assert_eq!(beside(other), expected(&wanted));
     }
+    // Undeclared, it still transmits for the volume beside it.
+    let volume = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_materials_volume"],
+        "materials": [{"extensions": {"KHR_materials_volume": {"thicknessFactor": 1},
+            "KHR_materials_transmission": {}}}]}));
+    assert_eq!(
+        volume,
+        expected(&[
+            (
+                "UNDECLARED_EXTENSION",
+                "/materials/0/extensions/KHR_materials_transmission"
+            ),
+            ("UNUSED_OBJECT", "/materials/0"),
+        ])
+    );
     let standalone_undeclared = khronos_findings(json!({"asset": {"version": "2.0"},
         "extensionsUsed": ["KHR_materials_emissive_strength"],
         "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {},
@@ -1989,4 +2004,187 @@ fn a_node_matrix_is_trs_decomposable_as_the_validators_single_precision_makes_it
         let flagged = found.iter().any(|(code, _)| code == "NODE_MATRIX_NON_TRS");
         assert_eq!(flagged, non_trs, "{matrix:?}");
     }
+}
+
+#[test]
+fn a_sparse_block_missing_a_part_is_dropped_whole_and_its_views_are_unused() {
+    // Base data all zero, the sparse values all one, bounds of one: with the block dropped
+    // the data is read without it, so the bounds no longer hold, and both views are unused.
+    let data: Vec<u8> = [0.0f32; 9]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .chain([0u8, 0, 1, 0, 2, 0, 0, 0])
+        .chain([1.0f32; 9].iter().flat_map(|v| v.to_le_bytes()))
+        .collect();
+    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &data);
+    let uri = format!("data:application/octet-stream;base64,{encoded}");
+    let with_sparse = |sparse: Value| {
+        khronos_findings(json!({"asset": {"version": "2.0"},
+            "buffers": [{"byteLength": data.len(), "uri": uri}],
+            "bufferViews": [{"buffer": 0, "byteLength": 36},
+                {"buffer": 0, "byteOffset": 36, "byteLength": 6},
+                {"buffer": 0, "byteOffset": 44, "byteLength": 36}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [1, 1, 1], "max": [1, 1, 1], "sparse": sparse}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+            "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]}))
+    };
+    let target = (
+        "BUFFER_VIEW_TARGET_MISSING",
+        "/meshes/0/primitives/0/attributes/POSITION",
+    );
+    let (indices, values) = (
+        json!({"bufferView": 1, "componentType": 5123}),
+        json!({"bufferView": 2}),
+    );
+    assert_eq!(
+        with_sparse(json!({"count": 3, "indices": indices, "values": values})),
+        expected(&[target])
+    );
+    let dropped_with = |finding: (&str, &str)| {
+        let mut all = vec![target, finding];
+        all.extend([
+            ("UNUSED_OBJECT", "/bufferViews/1"),
+            ("UNUSED_OBJECT", "/bufferViews/2"),
+        ]);
+        let mut all = expected(&all);
+        for c in 0..3 {
+            let (min, max) = (
+                format!("/accessors/0/min/{c}"),
+                format!("/accessors/0/max/{c}"),
+            );
+            all.push(("ACCESSOR_MIN_MISMATCH".into(), min.clone()));
+            all.push(("ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND".into(), min));
+            all.push(("ACCESSOR_MAX_MISMATCH".into(), max));
+        }
+        all.sort();
+        all
+    };
+    assert_eq!(
+        with_sparse(json!({"count": 0, "indices": indices, "values": values})),
+        dropped_with(("VALUE_NOT_IN_RANGE", "/accessors/0/sparse/count"))
+    );
+    assert_eq!(
+        with_sparse(json!({"count": 3, "indices": 5, "values": values})),
+        dropped_with(("TYPE_MISMATCH", "/accessors/0/sparse/indices"))
+    );
+    assert_eq!(
+        with_sparse(json!({"count": 3, "values": values})),
+        dropped_with(("UNDEFINED_PROPERTY", "/accessors/0/sparse"))
+    );
+}
+
+#[test]
+fn a_camera_is_read_through_the_projection_its_type_names_only() {
+    let camera = |camera: Value| {
+        khronos_findings(json!({"asset": {"version": "2.0"}, "cameras": [camera],
+            "nodes": [{"camera": 0}], "scenes": [{"nodes": [0]}]}))
+    };
+    let perspective = json!({"yfov": -1, "znear": 0.1});
+    let orthographic = json!({"xmag": 0, "ymag": 1, "zfar": 1, "znear": 5});
+    // A projection of the wrong type is there, unreadable: not missing as well.
+    assert_eq!(
+        camera(json!({"type": "perspective", "perspective": -0.0})),
+        expected(&[("TYPE_MISMATCH", "/cameras/0/perspective")])
+    );
+    // The other projection is not read at all, with or without the named one beside it.
+    assert_eq!(
+        camera(json!({"type": "perspective", "orthographic": orthographic})),
+        expected(&[("UNDEFINED_PROPERTY", "/cameras/0")])
+    );
+    assert_eq!(
+        camera(
+            json!({"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "zfar": 10, "znear": 0}, "perspective": 5})
+        ),
+        expected(&[("ONE_OF_MISMATCH", "/cameras/0")])
+    );
+    assert_eq!(
+        camera(
+            json!({"type": "perspective", "perspective": perspective, "orthographic": orthographic})
+        ),
+        expected(&[
+            ("ONE_OF_MISMATCH", "/cameras/0"),
+            ("VALUE_NOT_IN_RANGE", "/cameras/0/perspective/yfov"),
+        ])
+    );
+}
+
+#[test]
+fn an_invalid_mode_or_interpolation_is_no_default_and_matches_no_count() {
+    // Four vertices: not a TRIANGLES count, but an invalid mode is not TRIANGLES.
+    let positions: Vec<u8> = [0.0f32; 12].iter().flat_map(|v| v.to_le_bytes()).collect();
+    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &positions);
+    let with_mode = |mode: Value| {
+        let mut primitive = json!({"attributes": {"POSITION": 0}});
+        if !mode.is_null() {
+            primitive["mode"] = mode;
+        }
+        khronos_findings(json!({"asset": {"version": "2.0"},
+            "buffers": [{"byteLength": 48, "uri": format!("data:application/octet-stream;base64,{encoded}")}],
+            "bufferViews": [{"buffer": 0, "byteLength": 48, "target": 34962}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                "min": [0, 0, 0], "max": [0, 0, 0]}],
+            "meshes": [{"primitives": [primitive]}], "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]}))
+    };
+    let incompatible = ("MESH_PRIMITIVE_INCOMPATIBLE_MODE", "/meshes/0/primitives/0");
+    assert_eq!(with_mode(Value::Null), expected(&[incompatible]));
+    let mode = "/meshes/0/primitives/0/mode";
+    assert_eq!(
+        with_mode(json!(7)),
+        expected(&[("VALUE_NOT_IN_RANGE", mode)])
+    );
+    assert_eq!(with_mode(json!("x")), expected(&[("TYPE_MISMATCH", mode)]));
+    // Two key frames, four outputs: a count for no interpolation.
+    let times: Vec<u8> = [0.0f32, 1.0].iter().flat_map(|v| v.to_le_bytes()).collect();
+    let values: Vec<u8> = [0.0f32; 12].iter().flat_map(|v| v.to_le_bytes()).collect();
+    let data = [times, values].concat();
+    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &data);
+    let with_interpolation = |interpolation: Value| {
+        let mut sampler = json!({"input": 0, "output": 1});
+        if !interpolation.is_null() {
+            sampler["interpolation"] = interpolation;
+        }
+        khronos_findings(json!({"asset": {"version": "2.0"},
+            "buffers": [{"byteLength": data.len(), "uri": format!("data:application/octet-stream;base64,{encoded}")}],
+            "bufferViews": [{"buffer": 0, "byteLength": 8}, {"buffer": 0, "byteOffset": 8, "byteLength": 48}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+                {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"}],
+            "animations": [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+                "samplers": [sampler]}],
+            "nodes": [{}], "scenes": [{"nodes": [0]}]}))
+    };
+    let count = (
+        "ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_COUNT",
+        "/animations/0/channels/0/sampler",
+    );
+    let interpolation = "/animations/0/samplers/0/interpolation";
+    let empty = ("NODE_EMPTY", "/nodes/0");
+    assert_eq!(with_interpolation(Value::Null), expected(&[count, empty]));
+    assert_eq!(
+        with_interpolation(json!({})),
+        expected(&[("TYPE_MISMATCH", interpolation), empty])
+    );
+}
+
+#[test]
+fn an_animation_naming_an_element_that_is_no_object_reads_nothing_through_it() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [[1, "a"], [2]],
+        "animations": [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}}],
+            "samplers": [{"input": 0, "output": 1, "interpolation": "CUBICSPLINE"}]}],
+        "nodes": [5]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("TYPE_MISMATCH", "/accessors/0"),
+            ("TYPE_MISMATCH", "/accessors/1"),
+            ("TYPE_MISMATCH", "/nodes/0"),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/animations/0/channels/0/target/node"
+            ),
+            ("UNRESOLVED_REFERENCE", "/animations/0/samplers/0/input"),
+            ("UNRESOLVED_REFERENCE", "/animations/0/samplers/0/output"),
+        ])
+    );
 }

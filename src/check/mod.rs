@@ -281,6 +281,7 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::
         return Default::default();
     }
     khronos::take_unread_bounds(tree, sink);
+    khronos::take_unread_projections(tree, sink);
     let root = tree.root();
     let undeclared = khronos::undeclared_extensions(root, &declared_extensions(root));
     // Out before the schema pass, which then finds nothing in them. One that is no object
@@ -290,6 +291,7 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::
     let nulls = remove_all(tree, absent);
     undeclared.remove_where(tree, |_| true);
     schema::required_nulls(tree.root(), khronos, &nulls, sink);
+    khronos::take_unread_sparse(tree);
     undeclared
 }
 
@@ -308,11 +310,19 @@ fn declared_extensions(root: Node<'_>) -> hashbrown::HashSet<&str> {
 fn remove_all(tree: &mut Tree, pointers: HashSet<String>) -> HashSet<String> {
     let mut nulls = HashSet::new();
     for pointer in pointers {
-        // A byteOffset of a wrong type other than null stays, unreadable: the Khronos
-        // validator reads it as invalid, not as the default 0, and reads no data through it
-        // (`gltf::byte_offset`).
-        let kept = pointer.ends_with("/byteOffset")
-            && (tree.root().pointer(&pointer)).is_some_and(|v| !v.is_null());
+        // A byteOffset, a primitive's mode, an animation sampler's interpolation or a
+        // camera's projection that is invalid (other than null) stays, unreadable: the
+        // Khronos validator reads it as invalid, not as absent (the default 0, TRIANGLES or
+        // LINEAR, a missing projection): it reads no data through such an offset
+        // (`gltf::byte_offset`), matches no count to such a mode and counts no keys for such
+        // an interpolation.
+        let invalid_not_absent = pointer.ends_with("/byteOffset")
+            || (pointer.starts_with("/meshes/") && pointer.ends_with("/mode"))
+            || (pointer.starts_with("/animations/") && pointer.ends_with("/interpolation"))
+            || (pointer.starts_with("/cameras/")
+                && (pointer.ends_with("/perspective") || pointer.ends_with("/orthographic")));
+        let kept =
+            invalid_not_absent && (tree.root().pointer(&pointer)).is_some_and(|v| !v.is_null());
         if !kept && tree.remove(&pointer) == Some(true) {
             nulls.insert(pointer);
         }

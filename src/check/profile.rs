@@ -56,6 +56,13 @@ impl Profile {
         self == Profile::Default
     }
 
+    /// Whether a material's extension objects that `extensionsUsed` does not declare count
+    /// among its extensions (as several extensions, or as one that transmits light), as the
+    /// Khronos validator counts them; the default profile reads them as absent.
+    pub(crate) fn counts_undeclared_extensions(self) -> bool {
+        self == Profile::Khronos
+    }
+
     /// Whether a glTF 1.0 document gets the 1.0 checks instead of the 2.0 passes.
     pub(crate) fn checks_gltf1(self) -> bool {
         self == Profile::Default
@@ -92,6 +99,10 @@ pub(crate) static READINGS: &[(Code, &str)] = &[
     (
         khronos::UNEXPECTED_EXTENSION_OBJECT,
         "An extension the default profile knows (KHR_node_visibility, KHR_materials_diffuse_transmission, KHR_texture_basisu) is also checked for the objects it may extend; the released validator knows none of them.",
+    ),
+    (
+        khronos::KHR_MATERIALS_VOLUME_NO_TRANSMISSION,
+        "An extension object extensionsUsed does not declare is absent (UNDECLARED_EXTENSION reports it): it does not stand in for the transmission the volume needs, as it does for the Khronos validator.",
     ),
     (
         super::rules::gltf1::RULE.code(),

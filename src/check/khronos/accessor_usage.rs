@@ -504,7 +504,7 @@ impl Uses<'_> {
         let kind = Kind::Indices {
             max_vertex: vertex_count - 1,
             restart,
-            triangles: unsigned(primitive, "mode").unwrap_or(4) == 4,
+            triangles: super::primitives::mode_of(primitive) == Some(4),
         };
         self.add(index, format!("{pointer}/indices"), kind);
     }

@@ -137,14 +137,16 @@ fn target_key(channel: Node<'_>) -> Option<(u64, &str)> {
 }
 
 fn accessor<'a>(ctx: &Context<'a>, object: Node, key: &str) -> Option<Node<'a>> {
-    ctx.items("accessors").get(unsigned(object, key)? as usize)
+    ctx.element("accessors", unsigned(object, key)?)
 }
 
-fn interpolation(sampler: Node<'_>) -> &str {
-    sampler
-        .get("interpolation")
-        .and_then(Node::as_str)
-        .unwrap_or("LINEAR")
+/// A sampler's interpolation: LINEAR when absent, none when it is not a string (the
+/// validator then neither takes the default nor counts keys).
+fn interpolation(sampler: Node<'_>) -> Option<&str> {
+    match sampler.get("interpolation") {
+        None => Some("LINEAR"),
+        Some(given) => given.as_str(),
+    }
 }
 
 fn sampler_accessors(ctx: &mut Context, sampler: Node, at: &str) {
@@ -179,7 +181,8 @@ fn sampler_accessors(ctx: &mut Context, sampler: Node, at: &str) {
         );
     }
     // A count that is missing or invalid reads as none at all, as the validator reads it.
-    if interpolation(sampler) == "CUBICSPLINE" && unsigned(input, "count").is_none_or(|n| n < 2) {
+    let cubic = interpolation(sampler) == Some("CUBICSPLINE");
+    if cubic && unsigned(input, "count").is_none_or(|n| n < 2) {
         ctx.emit(
             khronos::ANIMATION_SAMPLER_INPUT_ACCESSOR_TOO_FEW_ELEMENTS,
             at,
@@ -190,15 +193,14 @@ fn sampler_accessors(ctx: &mut Context, sampler: Node, at: &str) {
 
 /// The morph target count of the mesh a channel's node draws.
 fn morph_target_count(ctx: &Context, node: Node) -> Option<usize> {
-    mesh_morph_targets(ctx.items("meshes").get(unsigned(node, "mesh")? as usize)?)
+    mesh_morph_targets(ctx.element("meshes", unsigned(node, "mesh")?)?)
 }
 
 fn target(ctx: &mut Context, channel: Node, at: &str) {
     let Some(target) = channel.get("target") else {
         return;
     };
-    let Some(node) = unsigned(target, "node").and_then(|n| ctx.items("nodes").get(n as usize))
-    else {
+    let Some(node) = unsigned(target, "node").and_then(|n| ctx.element("nodes", n)) else {
         return;
     };
     match target.get("path").and_then(Node::as_str) {
@@ -250,12 +252,12 @@ fn output(ctx: &mut Context, channel: Node, sampler: Node, at: &str) {
     let (Some(keys), Some(count)) = (unsigned(input, "count"), unsigned(output, "count")) else {
         return;
     };
-    let per_key = if interpolation(sampler) == "CUBICSPLINE" {
-        3
-    } else {
-        1
+    let per_key = match interpolation(sampler) {
+        Some("CUBICSPLINE") => 3,
+        Some(_) => 1,
+        None => return,
     };
-    let node = unsigned(target, "node").and_then(|n| ctx.items("nodes").get(n as usize));
+    let node = unsigned(target, "node").and_then(|n| ctx.element("nodes", n));
     let values = match path {
         "weights" => node.and_then(|n| morph_target_count(ctx, n)).unwrap_or(0) as u64,
         "translation" | "rotation" | "scale" => 1,

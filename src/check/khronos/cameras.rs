@@ -1,6 +1,6 @@
 //! Cameras as the Khronos validator checks them beyond the schema: the projection object
-//! the `type` names, one projection only, clip planes in order, positive magnifications and
-//! a field of view below π.
+//! the `type` names (the only one it reads, see `objects::take_unread_projections`), clip
+//! planes in order, positive magnifications and a field of view below π.
 
 use crate::check::context::{member, Context};
 use crate::diagnostic::khronos;
@@ -8,14 +8,9 @@ use crate::document::Node;
 
 pub(super) fn check(ctx: &mut Context) {
     for (_, pointer, camera) in ctx.objects("cameras") {
+        // A camera holding both projections was reported before the schema pass, which took
+        // out the one `type` does not name.
         let kind = camera.get("type").and_then(Node::as_str);
-        if camera.get("perspective").is_some() && camera.get("orthographic").is_some() {
-            ctx.emit(
-                khronos::ONE_OF_MISMATCH,
-                pointer.clone(),
-                "Exactly one of ('orthographic', 'perspective') properties must be defined.",
-            );
-        }
         for projection in ["perspective", "orthographic"] {
             if kind == Some(projection) && camera.get(projection).is_none() {
                 ctx.emit(

@@ -152,13 +152,17 @@ impl Undeclared {
         }
     }
 
-    /// How many each `extensions` object holding some holds, by its pointer.
-    pub(crate) fn counts(&self) -> HashMap<&str, usize> {
-        let mut counts = HashMap::new();
-        for &(host, _) in &self.members {
-            *counts.entry(self.hosts[host].as_str()).or_insert(0) += 1;
+    /// The names each `extensions` object holding some holds, by its pointer (`tree` is the
+    /// one they were found in).
+    pub(crate) fn names<'t>(&'t self, tree: &'t Tree) -> HashMap<&'t str, Vec<&'t str>> {
+        let mut names: HashMap<&str, Vec<&str>> = HashMap::new();
+        for &(host, name) in &self.members {
+            names
+                .entry(&self.hosts[host])
+                .or_default()
+                .push(tree.text(name));
         }
-        counts
+        names
     }
 
     /// Their pointers, made one at a time.

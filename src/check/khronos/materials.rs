@@ -58,7 +58,11 @@ fn check_texture_source_mime(ctx: &mut Context, image: usize, pointer: &str, val
 pub(crate) fn check_materials(ctx: &mut Context) {
     ctx.material_needs.clear();
     let undeclared = std::mem::take(&mut ctx.undeclared_extensions);
-    let undeclared_in = undeclared.counts();
+    let tree = ctx.root.tree();
+    let undeclared_in = match ctx.options.profile.counts_undeclared_extensions() {
+        true => undeclared.names(tree),
+        false => Default::default(),
+    };
     for (i, pointer, material) in ctx.objects("materials") {
         let needs = texture_needs(ctx, material, &pointer);
         if needs != MaterialNeeds::default() {
@@ -66,8 +70,13 @@ pub(crate) fn check_materials(ctx: &mut Context) {
         }
         check_alpha_cutoff(ctx, material, &pointer);
         let extensions = format!("{pointer}/extensions");
-        let undeclared = undeclared_in.get(extensions.as_str()).copied();
-        check_extension_rules(ctx, material, &pointer, undeclared.unwrap_or(0));
+        let undeclared = undeclared_in.get(extensions.as_str());
+        check_extension_rules(
+            ctx,
+            material,
+            &pointer,
+            undeclared.map_or(&[], Vec::as_slice),
+        );
     }
     drop(undeclared_in);
     ctx.undeclared_extensions = undeclared;
@@ -117,15 +126,16 @@ fn check_alpha_cutoff(ctx: &mut Context, material: Node, pointer: &str) {
     }
 }
 
-/// `undeclared`: how many extension objects `extensionsUsed` does not declare the material
-/// held (taken out of the document, but counted as its extensions by the validator).
-fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str, undeclared: usize) {
+/// `undeclared`: the names of the material's extension objects `extensionsUsed` does not
+/// declare, where the profile counts them among its extensions as the Khronos validator does
+/// (they are out of the document by now).
+fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str, undeclared: &[&str]) {
     let ext_pointer = |name: &str| format!("{pointer}/extensions/{name}");
     let Some(extensions) = material.get("extensions").and_then(Node::as_object) else {
         return;
     };
     for standalone in ["KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit"] {
-        if extensions.contains_key(standalone) && extensions.len() + undeclared > 1 {
+        if extensions.contains_key(standalone) && extensions.len() + undeclared.len() > 1 {
             ctx.emit(
                 khronos::MULTIPLE_EXTENSIONS,
                 ext_pointer(standalone),
@@ -148,12 +158,15 @@ fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str, undec
     }
     if let Some(volume) = extension(material, "KHR_materials_volume") {
         // An extension this validator does not know may well be the one that transmits.
-        let transmits = extensions.keys().any(|name| {
-            matches!(
-                name,
-                "KHR_materials_transmission" | "KHR_materials_diffuse_transmission"
-            ) || !name.starts_with("KHR_materials_")
-        });
+        let transmits = extensions
+            .keys()
+            .chain(undeclared.iter().copied())
+            .any(|name| {
+                matches!(
+                    name,
+                    "KHR_materials_transmission" | "KHR_materials_diffuse_transmission"
+                ) || !name.starts_with("KHR_materials_")
+            });
         if !transmits {
             ctx.emit(
                 khronos::KHR_MATERIALS_VOLUME_NO_TRANSMISSION,

@@ -28,7 +28,9 @@ pub(crate) use extensions::{
 };
 pub(crate) use objects::{
     check_asset, has_supported_version, read_before_asset, take_unread_bounds,
+    take_unread_projections, take_unread_sparse,
 };
+pub(crate) use primitives::mode_of;
 
 /// One pass over the document, recording findings and what later passes need in the context.
 pub(crate) type Pass = fn(&mut Context);

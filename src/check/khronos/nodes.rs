@@ -352,7 +352,7 @@ fn dependencies(ctx: &mut Context, node: Node, pointer: &str) {
         }
         return;
     }
-    let mesh = unsigned(node, "mesh").and_then(|m| ctx.items("meshes").get(m as usize));
+    let mesh = unsigned(node, "mesh").and_then(|m| ctx.element("meshes", m));
     let Some(primitives) = mesh.and_then(|m| m.get("primitives")?.as_array()) else {
         return;
     };

@@ -166,6 +166,55 @@ pub(crate) fn take_unread_bounds(tree: &mut Tree, sink: &mut dyn Sink) {
     }
 }
 
+/// Takes out of the tree the camera projections the Khronos validator does not read: it
+/// reads only the one `type` names (and reports a camera holding both, reported here as the
+/// only finding about the other one).
+pub(crate) fn take_unread_projections(tree: &mut Tree, sink: &mut dyn Sink) {
+    let mut unread = Vec::new();
+    let cameras = tree.root().get("cameras").and_then(Node::as_array);
+    for (i, camera) in cameras.into_iter().flatten().enumerate() {
+        let kind = camera.get("type").and_then(Node::as_str);
+        let keys = ["perspective", "orthographic"];
+        if keys.iter().all(|key| camera.get(key).is_some()) {
+            sink.push(Diagnostic::at(
+                khronos::ONE_OF_MISMATCH,
+                format!("/cameras/{i}"),
+                "Exactly one of ('orthographic', 'perspective') properties must be defined.",
+            ));
+        }
+        for key in keys {
+            if camera.get(key).is_some() && kind != Some(key) {
+                unread.push(format!("/cameras/{i}/{key}"));
+            }
+        }
+    }
+    for pointer in unread {
+        tree.remove(&pointer);
+    }
+}
+
+/// Takes out of the tree each accessor's `sparse` that the Khronos validator drops after
+/// reporting what is wrong in it: one without a `count` of at least 1 or without `indices`
+/// and `values` objects. Its views are then not used by it, and the accessor's data is read
+/// without it.
+pub(crate) fn take_unread_sparse(tree: &mut Tree) {
+    let accessors = tree.root().get("accessors").and_then(Node::as_array);
+    let unread: Vec<String> = (accessors.into_iter().flatten().enumerate())
+        .filter(|(_, accessor)| {
+            accessor.get("sparse").is_some_and(|sparse| {
+                let object = |key| sparse.get(key).is_some_and(Node::is_object);
+                !(unsigned(sparse, "count").is_some_and(|n| n >= 1)
+                    && object("indices")
+                    && object("values"))
+            })
+        })
+        .map(|(i, _)| format!("/accessors/{i}/sparse"))
+        .collect();
+    for pointer in unread {
+        tree.remove(&pointer);
+    }
+}
+
 /// Whether every number of an integer accessor's bounds (`key`, `bounds`) is an integer its
 /// component type (`range`: name, lowest, highest) can hold; each that is not is reported
 /// (ARRAY_TYPE_MISMATCH, INVALID_GL_VALUE) and the Khronos validator then does not read the

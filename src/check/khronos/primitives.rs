@@ -420,7 +420,10 @@ impl<'a> Walk<'_, 'a> {
     /// The vertex or index count must suit the draw mode.
     fn mode(&mut self, primitive: Node, pointer: &str, count: Option<u64>) {
         let Some(count) = count else { return };
-        let mode = unsigned(primitive, "mode").unwrap_or(4);
+        // An invalid mode (reported by the schema pass) suits no count.
+        let Some(mode) = mode_of(primitive) else {
+            return;
+        };
         let incompatible = match mode {
             1 => count % 2 != 0,
             2 | 3 => count < 2,
@@ -493,4 +496,13 @@ pub(super) fn vertex_count(attributes: Node, accessors: Array) -> Option<u64> {
     (attributes.as_object().into_iter().flat_map(|a| a.values()))
         .filter_map(|v| accessors.get(usize::try_from(as_index(v)?).ok()?))
         .find_map(|accessor| unsigned(accessor, "count"))
+}
+
+/// A primitive's drawing mode: TRIANGLES (4) when absent, none when invalid (the schema
+/// pass reports it; the Khronos validator then draws nothing it could check).
+pub(crate) fn mode_of(primitive: Node) -> Option<u64> {
+    match primitive.get("mode") {
+        None => Some(4),
+        Some(mode) => mode.as_u64().filter(|&mode| mode <= 6),
+    }
 }

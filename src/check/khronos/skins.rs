@@ -112,7 +112,7 @@ impl<'p> Roots<'p> {
 
 fn inverse_binds(ctx: &mut Context, skin: Node, pointer: &str) {
     let Some(accessor) =
-        unsigned(skin, "inverseBindMatrices").and_then(|a| ctx.items("accessors").get(a as usize))
+        unsigned(skin, "inverseBindMatrices").and_then(|a| ctx.element("accessors", a))
     else {
         return;
     };

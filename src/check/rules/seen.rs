@@ -103,7 +103,7 @@ impl<'a> Sight<'a> {
 }
 
 fn wraps(ctx: &Context, texture: Node) -> [u64; 2] {
-    let sampler = unsigned(texture, "sampler").and_then(|i| ctx.items("samplers").get(i as usize));
+    let sampler = unsigned(texture, "sampler").and_then(|i| ctx.element("samplers", i));
     ["wrapS", "wrapT"].map(|key| sampler.and_then(|s| unsigned(s, key)).unwrap_or(10497))
 }
 
@@ -137,7 +137,7 @@ impl Mesh {
                 Some(values.into_iter().filter_map(fits).collect())
             }
         };
-        let mode = unsigned(primitive, "mode").unwrap_or(4);
+        let mode = crate::check::khronos::mode_of(primitive)?;
         Some(Mesh { uvs, indices, mode })
     }
 
