@@ -246,9 +246,10 @@ fn an_undeclared_extension_is_reported_and_nothing_in_it_is_read() {
 }
 
 #[test]
-fn an_undeclared_extension_still_counts_among_its_objects_extensions() {
-    // Beside a declared standalone extension it makes several: MULTIPLE_EXTENSIONS, as when
-    // it is declared. An undeclared standalone one is not read, so it warns of nothing.
+fn every_extension_object_written_counts_among_its_objects_extensions() {
+    // An undeclared or mistyped one beside a declared standalone extension makes several:
+    // MULTIPLE_EXTENSIONS, as a valid one does. An undeclared standalone one is not read, so
+    // it warns of nothing.
     let beside = |other: Value| {
         khronos_findings(json!({"asset": {"version": "2.0"},
             "extensionsUsed": ["KHR_materials_unlit"],
@@ -268,6 +269,24 @@ fn an_undeclared_extension_still_counts_among_its_objects_extensions() {
         }
         assert_eq!(beside(other), expected(&wanted));
     }
+    let mistyped = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_materials_pbrSpecularGlossiness", "KHR_materials_emissive_strength"],
+        "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {},
+            "KHR_materials_emissive_strength": -1}}]}));
+    assert_eq!(
+        mistyped,
+        expected(&[
+            (
+                "MULTIPLE_EXTENSIONS",
+                "/materials/0/extensions/KHR_materials_pbrSpecularGlossiness"
+            ),
+            (
+                "TYPE_MISMATCH",
+                "/materials/0/extensions/KHR_materials_emissive_strength"
+            ),
+            ("UNUSED_OBJECT", "/materials/0"),
+        ])
+    );
     // Undeclared, it still transmits for the volume beside it.
     let volume = khronos_findings(json!({"asset": {"version": "2.0"},
         "extensionsUsed": ["KHR_materials_volume"],
@@ -2018,17 +2037,18 @@ fn a_sparse_block_missing_a_part_is_dropped_whole_and_its_views_are_unused() {
         .collect();
     let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &data);
     let uri = format!("data:application/octet-stream;base64,{encoded}");
-    let with_sparse = |sparse: Value| {
+    let with_sparse_on = |view: Value, sparse: Value| {
         khronos_findings(json!({"asset": {"version": "2.0"},
             "buffers": [{"byteLength": data.len(), "uri": uri}],
             "bufferViews": [{"buffer": 0, "byteLength": 36},
                 {"buffer": 0, "byteOffset": 36, "byteLength": 6},
                 {"buffer": 0, "byteOffset": 44, "byteLength": 36}],
-            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+            "accessors": [{"bufferView": view, "componentType": 5126, "count": 3, "type": "VEC3",
                 "min": [1, 1, 1], "max": [1, 1, 1], "sparse": sparse}],
             "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
             "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]}))
     };
+    let with_sparse = |sparse: Value| with_sparse_on(json!(0), sparse);
     let target = (
         "BUFFER_VIEW_TARGET_MISSING",
         "/meshes/0/primitives/0/attributes/POSITION",
@@ -2072,6 +2092,23 @@ fn a_sparse_block_missing_a_part_is_dropped_whole_and_its_views_are_unused() {
         with_sparse(json!({"count": 3, "values": values})),
         dropped_with(("UNDEFINED_PROPERTY", "/accessors/0/sparse"))
     );
+    // A bufferView that names no view leaves zeros under the sparse values: two of the
+    // three elements set to one, the third below the bounds.
+    let unresolved = with_sparse_on(
+        json!(7),
+        json!({"count": 2, "indices": indices, "values": values}),
+    );
+    let mut wanted = expected(&[
+        ("UNRESOLVED_REFERENCE", "/accessors/0/bufferView"),
+        ("UNUSED_OBJECT", "/bufferViews/0"),
+    ]);
+    for c in 0..3 {
+        let min = format!("/accessors/0/min/{c}");
+        wanted.push(("ACCESSOR_MIN_MISMATCH".into(), min.clone()));
+        wanted.push(("ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND".into(), min));
+    }
+    wanted.sort();
+    assert_eq!(unresolved, wanted);
 }
 
 #[test]
@@ -2185,6 +2222,86 @@ fn an_animation_naming_an_element_that_is_no_object_reads_nothing_through_it() {
             ),
             ("UNRESOLVED_REFERENCE", "/animations/0/samplers/0/input"),
             ("UNRESOLVED_REFERENCE", "/animations/0/samplers/0/output"),
+        ])
+    );
+}
+
+#[test]
+fn numbers_are_read_as_the_validator_reads_them_javascript_doubles() {
+    // −0 is 0: a duplicate node of a scene.
+    let duplicate = khronos_findings(json!({"asset": {"version": "2.0"},
+        "nodes": [{"extras": 1}, {"extras": 2}], "scenes": [{"nodes": [0, -0.0, 1]}]}));
+    assert_eq!(
+        duplicate,
+        expected(&[
+            ("DUPLICATE_ELEMENTS", "/scenes/0/nodes/1"),
+            ("NON_OBJECT_EXTRAS", "/nodes/0/extras"),
+            ("NON_OBJECT_EXTRAS", "/nodes/1/extras"),
+        ])
+    );
+    // A vertex count of 1e308 is a count (too long for its view), and no index is past it.
+    let data: Vec<u8> = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .chain([0, 0, 1, 0, 2, 0, 0, 0])
+        .collect();
+    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &data);
+    let huge_count = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": data.len(), "uri": format!("data:application/octet-stream;base64,{encoded}")}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962},
+            {"buffer": 0, "byteOffset": 36, "byteLength": 6, "target": 34963}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 1e308, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]}));
+    assert_eq!(
+        huge_count,
+        expected(&[("ACCESSOR_TOO_LONG", "/accessors/0")])
+    );
+}
+
+#[test]
+fn what_a_reference_does_not_resolve_to_is_read_as_absent() {
+    // An extension object of the wrong type is an empty one: its required members missing.
+    let extension = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_lights_punctual"], "extensions": {"KHR_lights_punctual": 5}}));
+    assert_eq!(
+        extension,
+        expected(&[
+            ("TYPE_MISMATCH", "/extensions/KHR_lights_punctual"),
+            ("UNDEFINED_PROPERTY", "/extensions/KHR_lights_punctual"),
+        ])
+    );
+    // A skin index that names no skin leaves the skinned mesh without one.
+    let data: Vec<u8> = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .chain([0u8; 12])
+        .chain(
+            [1.0f32, 0.0, 0.0, 0.0]
+                .repeat(3)
+                .iter()
+                .flat_map(|v| v.to_le_bytes()),
+        )
+        .collect();
+    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &data);
+    let skin = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": data.len(), "uri": format!("data:application/octet-stream;base64,{encoded}")}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962},
+            {"buffer": 0, "byteOffset": 36, "byteLength": 12, "target": 34962},
+            {"buffer": 0, "byteOffset": 48, "byteLength": 48, "target": 34962}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5121, "count": 3, "type": "VEC4"},
+            {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC4"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2}}]}],
+        "nodes": [{"mesh": 0, "skin": 3}], "scenes": [{"nodes": [0]}]}));
+    assert_eq!(
+        skin,
+        expected(&[
+            ("NODE_SKINNED_MESH_WITHOUT_SKIN", "/nodes/0"),
+            ("UNRESOLVED_REFERENCE", "/nodes/0/skin"),
         ])
     );
 }

@@ -120,6 +120,9 @@ pub(crate) struct Context<'a> {
     /// Extension objects no `extensionsUsed` declares, taken out of the document before the
     /// passes (the Khronos validator reads nothing of them); the extensions pass reports them.
     pub undeclared_extensions: super::khronos::Undeclared,
+    /// Each material's extension names as written, where the profile counts them so (see
+    /// `khronos::extensions_as_written`), by material index.
+    pub extensions_as_written: HashMap<usize, Vec<String>>,
     extensions_used: std::sync::OnceLock<HashSet<&'a str>>,
 }
 
@@ -147,6 +150,7 @@ impl<'a> Context<'a> {
             slot_uses: std::sync::OnceLock::new(),
             resources: Vec::new(),
             undeclared_extensions: Default::default(),
+            extensions_as_written: Default::default(),
             extensions_used: std::sync::OnceLock::new(),
         }
     }

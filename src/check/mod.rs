@@ -226,6 +226,10 @@ fn check_document(
             ));
         }
         Some(tree) => {
+            let as_written = match options.profile.counts_extensions_as_written() && !gltf1 {
+                true => khronos::extensions_as_written(tree.root()),
+                false => Default::default(),
+            };
             let undeclared = if gltf1 {
                 Default::default()
             } else {
@@ -234,6 +238,7 @@ fn check_document(
             let root = document.root.as_ref().expect("matched above").root();
             let mut ctx = Context::new(root, &document, loader, options, diagnostics, &filters);
             ctx.undeclared_extensions = undeclared;
+            ctx.extensions_as_written = as_written;
             if gltf1 {
                 rules::gltf1::check(&mut ctx);
             } else {
@@ -274,10 +279,16 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::
     if !khronos::has_supported_version(tree.root()) {
         let read = khronos::read_before_asset(tree.root());
         let absent = schema::validate(tree.root(), khronos, &mut Only(sink, read));
-        let nulls = remove_all(tree, absent);
+        let (nulls, emptied) = remove_all(tree, absent);
         // Read anew: an `asset` that was null is now missing.
         let read = khronos::read_before_asset(tree.root());
-        schema::required_nulls(tree.root(), khronos, &nulls, &mut Only(sink, read));
+        schema::required_members(
+            tree.root(),
+            khronos,
+            &nulls,
+            &emptied,
+            &mut Only(sink, read),
+        );
         return Default::default();
     }
     khronos::take_unread_bounds(tree, sink);
@@ -288,9 +299,9 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::
     // stays for the schema pass to say so, and goes after it.
     undeclared.remove_where(tree, |value| value.is_object());
     let absent = schema::validate(tree.root(), khronos, sink);
-    let nulls = remove_all(tree, absent);
+    let (nulls, emptied) = remove_all(tree, absent);
     undeclared.remove_where(tree, |_| true);
-    schema::required_nulls(tree.root(), khronos, &nulls, sink);
+    schema::required_members(tree.root(), khronos, &nulls, &emptied, sink);
     khronos::take_unread_sparse(tree);
     undeclared
 }
@@ -307,9 +318,23 @@ fn declared_extensions(root: Node<'_>) -> hashbrown::HashSet<&str> {
 
 /// Removes the members at `pointers` from the tree (those inside arrays stay: only members
 /// of objects are ever unread); returns those of them that were `null`.
-fn remove_all(tree: &mut Tree, pointers: HashSet<String>) -> HashSet<String> {
+/// Takes the members at `pointers` out of the tree, but for those the Khronos validator reads
+/// otherwise (below). Returns those that were null, and the extension objects made empty.
+fn remove_all(tree: &mut Tree, pointers: HashSet<String>) -> (HashSet<String>, HashSet<String>) {
     let mut nulls = HashSet::new();
+    let mut emptied = HashSet::new();
     for pointer in pointers {
+        // An extension object that is no object is read as an empty one: its required
+        // members are then missing (reported by `schema::required_members`).
+        let extension = pointer
+            .rsplit_once('/')
+            .is_some_and(|(parent, _)| parent.ends_with("/extensions"));
+        if extension {
+            if tree.empty(&pointer) {
+                emptied.insert(pointer);
+            }
+            continue;
+        }
         // A byteOffset, a primitive's mode, an animation sampler's interpolation or a
         // camera's projection that is invalid (other than null) stays, unreadable: the
         // Khronos validator reads it as invalid, not as absent (the default 0, TRIANGLES or
@@ -327,7 +352,7 @@ fn remove_all(tree: &mut Tree, pointers: HashSet<String>) -> HashSet<String> {
             nulls.insert(pointer);
         }
     }
-    nulls
+    (nulls, emptied)
 }
 
 fn run_passes(ctx: &mut Context) {

@@ -56,10 +56,11 @@ impl Profile {
         self == Profile::Default
     }
 
-    /// Whether a material's extension objects that `extensionsUsed` does not declare count
-    /// among its extensions (as several extensions, or as one that transmits light), as the
-    /// Khronos validator counts them; the default profile reads them as absent.
-    pub(crate) fn counts_undeclared_extensions(self) -> bool {
+    /// Whether a material's extension objects count among its extensions (as several
+    /// extensions, or as one that transmits light) as the document writes them, undeclared
+    /// or mistyped ones too, as the Khronos validator counts them; the default profile reads
+    /// those as absent.
+    pub(crate) fn counts_extensions_as_written(self) -> bool {
         self == Profile::Khronos
     }
 
@@ -102,7 +103,7 @@ pub(crate) static READINGS: &[(Code, &str)] = &[
     ),
     (
         khronos::KHR_MATERIALS_VOLUME_NO_TRANSMISSION,
-        "An extension object extensionsUsed does not declare is absent (UNDECLARED_EXTENSION reports it): it does not stand in for the transmission the volume needs, as it does for the Khronos validator.",
+        "An extension object extensionsUsed does not declare, or one that is no object, is absent (UNDECLARED_EXTENSION or TYPE_MISMATCH reports it): it does not stand in for the transmission the volume needs, as it does for the Khronos validator.",
     ),
     (
         super::rules::gltf1::RULE.code(),

@@ -283,6 +283,24 @@ impl Tree {
         self.take_member(at, key, |_| true)
     }
 
+    /// Makes the member a pointer names an empty object, whatever it held. Returns whether
+    /// there was such a member.
+    pub(crate) fn empty(&mut self, pointer: &str) -> bool {
+        let Some((parent, token)) = pointer.rsplit_once('/') else {
+            return false;
+        };
+        let key = self.find(&super::json::unescape_token(token));
+        let object = self.root().pointer(parent).and_then(Node::object_range);
+        let Some(at) = key
+            .zip(object)
+            .and_then(|(key, object)| self.member_slot(object, key))
+        else {
+            return false;
+        };
+        self.slots[at + 1] = Slot::container(Tag::Object, 0, 0);
+        true
+    }
+
     /// [`Tree::remove`] for the members named `keys` of the object at `parent` (a pointer),
     /// each when its value is one `taken` accepts: the names are not looked up again, nor
     /// the pointer once for each. Gives how many were taken out.

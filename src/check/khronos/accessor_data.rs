@@ -169,7 +169,10 @@ fn substituted(ctx: &Context, accessor: Node) -> Option<(Layout, Vec<u8>)> {
     let sparse = accessor.get("sparse")?;
     let layout = packed_layout(accessor)?;
     let element = layout.size.checked_mul(layout.components)?;
-    let mut dense = match accessor.get("bufferView") {
+    // A bufferView that names no view is none: the base elements are zeros, as the Khronos
+    // validator reads an unresolved view.
+    let view = unsigned(accessor, "bufferView").and_then(|v| ctx.element("bufferViews", v));
+    let mut dense = match view {
         Some(_) => {
             let (base, view) = in_view(ctx, accessor)?;
             let bytes = view.read()?;

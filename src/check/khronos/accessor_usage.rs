@@ -500,7 +500,10 @@ impl Uses<'_> {
             return;
         }
         let vertex_count =
-            super::primitives::vertex_count(attributes, self.accessors).map_or(0, |n| n as i64);
+            super::primitives::vertex_count(attributes, self.accessors).map_or(0, |n| {
+                // A count past i64 (2^64 and beyond, `1e308`) leaves no index out of range.
+                i64::try_from(n).unwrap_or(i64::MAX)
+            });
         let kind = Kind::Indices {
             max_vertex: vertex_count - 1,
             restart,

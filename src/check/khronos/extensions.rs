@@ -5,7 +5,7 @@ use crate::check::context::{member, Context};
 use crate::diagnostic::khronos;
 use crate::document::{Node, StringId, Tree};
 use crate::gltf::material::TEXTURE_SLOTS;
-use hashbrown::{HashMap, HashSet};
+use hashbrown::HashSet;
 
 /// Extensions the Khronos validator implements, with the objects that may carry them.
 const KHRONOS_SUPPORTED: &[(&str, &[Host])] = &[
@@ -94,8 +94,6 @@ pub(super) fn check(ctx: &mut Context) {
     for pointer in found.pointers(ctx.root.tree()) {
         undeclared(ctx, &pointer);
     }
-    // Still members of their objects for the rules that count an object's extensions.
-    ctx.undeclared_extensions = found;
     let root = ctx.root;
     walk(root, "", Host::Root, &mut |object, pointer, host| {
         visit(ctx, object, pointer, host)
@@ -150,19 +148,6 @@ impl Undeclared {
             let names = run.iter().map(|&(_, name)| name);
             tree.remove_members(&self.hosts[run[0].0], names, &mut taken);
         }
-    }
-
-    /// The names each `extensions` object holding some holds, by its pointer (`tree` is the
-    /// one they were found in).
-    pub(crate) fn names<'t>(&'t self, tree: &'t Tree) -> HashMap<&'t str, Vec<&'t str>> {
-        let mut names: HashMap<&str, Vec<&str>> = HashMap::new();
-        for &(host, name) in &self.members {
-            names
-                .entry(&self.hosts[host])
-                .or_default()
-                .push(tree.text(name));
-        }
-        names
     }
 
     /// Their pointers, made one at a time.

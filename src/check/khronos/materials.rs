@@ -9,6 +9,7 @@ use crate::diagnostic::khronos;
 use crate::document::Node;
 use crate::gltf::material::TEXTURE_SLOTS;
 use crate::gltf::material::{effective_texcoord, texture_transform};
+use std::collections::HashMap;
 use std::sync::Arc;
 
 pub(crate) fn check_textures(ctx: &mut Context) {
@@ -57,29 +58,37 @@ fn check_texture_source_mime(ctx: &mut Context, image: usize, pointer: &str, val
 
 pub(crate) fn check_materials(ctx: &mut Context) {
     ctx.material_needs.clear();
-    let undeclared = std::mem::take(&mut ctx.undeclared_extensions);
-    let tree = ctx.root.tree();
-    let undeclared_in = match ctx.options.profile.counts_undeclared_extensions() {
-        true => undeclared.names(tree),
-        false => Default::default(),
-    };
+    let as_written = std::mem::take(&mut ctx.extensions_as_written);
     for (i, pointer, material) in ctx.objects("materials") {
         let needs = texture_needs(ctx, material, &pointer);
         if needs != MaterialNeeds::default() {
             ctx.material_needs.insert(i, needs);
         }
         check_alpha_cutoff(ctx, material, &pointer);
-        let extensions = format!("{pointer}/extensions");
-        let undeclared = undeclared_in.get(extensions.as_str());
-        check_extension_rules(
-            ctx,
-            material,
-            &pointer,
-            undeclared.map_or(&[], Vec::as_slice),
-        );
+        let written = as_written.get(&i).map_or(&[][..], Vec::as_slice);
+        check_extension_rules(ctx, material, &pointer, written);
     }
-    drop(undeclared_in);
-    ctx.undeclared_extensions = undeclared;
+}
+
+/// The names in each material's `extensions` as the document writes them, for the materials
+/// whose rules count their neighbours (a standalone extension, a volume): before undeclared
+/// and mistyped ones are taken out, as the Khronos validator counts every member.
+pub(crate) fn extensions_as_written(root: Node) -> HashMap<usize, Vec<String>> {
+    let counted = [
+        "KHR_materials_pbrSpecularGlossiness",
+        "KHR_materials_unlit",
+        "KHR_materials_volume",
+    ];
+    let materials = root.get("materials").and_then(Node::as_array);
+    (materials.into_iter().flatten().enumerate())
+        .filter_map(|(i, material)| {
+            let extensions = material.get("extensions")?.as_object()?;
+            counted
+                .iter()
+                .any(|name| extensions.contains_key(name))
+                .then(|| (i, extensions.keys().map(str::to_string).collect()))
+        })
+        .collect()
 }
 
 fn texture_needs(ctx: &mut Context, material: Node, pointer: &str) -> MaterialNeeds {
@@ -126,16 +135,17 @@ fn check_alpha_cutoff(ctx: &mut Context, material: Node, pointer: &str) {
     }
 }
 
-/// `undeclared`: the names of the material's extension objects `extensionsUsed` does not
-/// declare, where the profile counts them among its extensions as the Khronos validator does
-/// (they are out of the document by now).
-fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str, undeclared: &[&str]) {
+/// `written`: the names of the material's extension objects as the document wrote them, where
+/// the profile counts them all as the Khronos validator does (an undeclared or mistyped one is
+/// out of the document by now); empty otherwise.
+fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str, written: &[String]) {
     let ext_pointer = |name: &str| format!("{pointer}/extensions/{name}");
     let Some(extensions) = material.get("extensions").and_then(Node::as_object) else {
         return;
     };
     for standalone in ["KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit"] {
-        if extensions.contains_key(standalone) && extensions.len() + undeclared.len() > 1 {
+        let count = extensions.len().max(written.len());
+        if extensions.contains_key(standalone) && count > 1 {
             ctx.emit(
                 khronos::MULTIPLE_EXTENSIONS,
                 ext_pointer(standalone),
@@ -160,7 +170,7 @@ fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str, undec
         // An extension this validator does not know may well be the one that transmits.
         let transmits = extensions
             .keys()
-            .chain(undeclared.iter().copied())
+            .chain(written.iter().map(String::as_str))
             .any(|name| {
                 matches!(
                     name,

@@ -26,6 +26,7 @@ use super::context::Context;
 pub(crate) use extensions::{
     check_declarations as check_extension_lists, undeclared_extensions, Undeclared,
 };
+pub(crate) use materials::extensions_as_written;
 pub(crate) use objects::{
     check_asset, has_supported_version, read_before_asset, take_unread_bounds,
     take_unread_projections, take_unread_sparse,

@@ -371,7 +371,10 @@ fn dependencies(ctx: &mut Context, node: Node, pointer: &str) {
             .and_then(Node::as_object)
             .is_some_and(|a| joint_sets(a) > 0)
     };
-    let has_skin = unsigned(node, "skin").is_some_and(|s| (s as usize) < ctx.items("skins").len());
+    // An unresolved skin is none, as the validator links it.
+    let has_skin = unsigned(node, "skin")
+        .and_then(|s| ctx.element("skins", s))
+        .is_some();
     if has_skin && !primitives.iter().any(skinned) {
         ctx.emit(
             khronos::NODE_SKIN_WITH_NON_SKINNED_MESH,
@@ -379,7 +382,7 @@ fn dependencies(ctx: &mut Context, node: Node, pointer: &str) {
             "Node has skin defined, but mesh has no joints data.",
         );
     }
-    if node.get("skin").is_none() && primitives.iter().any(skinned) {
+    if !has_skin && primitives.iter().any(skinned) {
         ctx.emit(
             khronos::NODE_SKINNED_MESH_WITHOUT_SKIN,
             pointer,

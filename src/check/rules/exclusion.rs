@@ -16,7 +16,7 @@ pub(crate) const RULE: Rule = Rule::new(
 )
 .superseding(&[Supersession {
     code: khronos::MULTIPLE_EXTENSIONS,
-    why: "Replaced by MATERIAL_EXTENSION_EXCLUDED for real exclusions and dropped for combinations the specs allow; an extension object extensionsUsed does not declare is absent (UNDECLARED_EXTENSION reports it), where the Khronos validator counts it.",
+    why: "Replaced by MATERIAL_EXTENSION_EXCLUDED for real exclusions and dropped for combinations the specs allow; an extension object extensionsUsed does not declare, or one that is no object, is absent (UNDECLARED_EXTENSION or TYPE_MISMATCH reports it), where the Khronos validator counts it.",
     keeps: doubtful_combination,
 }]);
 

@@ -413,18 +413,23 @@ fn equal(instance: Node, expected: &Value) -> bool {
     }
 }
 
-/// Whether two elements of an array are equal as JSON Schema compares them: numbers by value
-/// (`1` and `1.0` are one), anything else by its JSON text (every uniqueItems array of glTF
-/// holds strings or integers).
+/// Whether two elements of an array are equal as JSON Schema compares them (see
+/// [`unique_key`]).
 fn has_duplicates(array: crate::document::Array) -> bool {
     let mut seen = HashSet::new();
-    array.iter().any(|element| {
-        let key = match element.as_f64() {
-            Some(number) => format!("{}", number + 0.0),
-            None => element.to_string(),
-        };
-        !seen.insert(key)
-    })
+    array
+        .iter()
+        .any(|element| !seen.insert(unique_key(element)))
+}
+
+/// What makes two array elements one for `uniqueItems`: numbers by value (`1`, `1.0` and
+/// `-0.0`… `0` are one), anything else by its JSON text (every uniqueItems array of glTF
+/// holds strings or integers; two objects that differ only in key order are two).
+pub(super) fn unique_key(element: Node) -> String {
+    match element.as_f64() {
+        Some(number) => format!("{}", number + 0.0),
+        None => element.to_string(),
+    }
 }
 
 struct Compiler {

@@ -159,21 +159,25 @@ pub(crate) fn validate(doc: Node, khronos: bool, found: &mut dyn Sink) -> HashSe
     absent.finish()
 }
 
-/// The Khronos validator reads a `null` member as both of the wrong type and missing: once
-/// such members are out of the tree (`nulls`), the findings of those that are required.
-/// Validates again only when there are any.
-pub(crate) fn required_nulls(
+/// What the Khronos validator finds missing besides what the schema pass reported: a `null`
+/// member is both of the wrong type and missing, and an extension object of the wrong type
+/// is read as an empty one. Once such members are out of the tree (`nulls`) or empty
+/// (`emptied`), the findings of the required members they leave missing. Validates again
+/// only when there are any.
+pub(crate) fn required_members(
     doc: Node,
     khronos: bool,
     nulls: &HashSet<String>,
+    emptied: &HashSet<String>,
     sink: &mut dyn Sink,
 ) {
-    if nulls.is_empty() {
+    if nulls.is_empty() && emptied.is_empty() {
         return;
     }
     validator(khronos).evaluate(doc, "", &mut |failure| {
         if let Kind::Required(name) = &failure.kind {
-            if nulls.contains(&member(&failure.pointer, name)) {
+            if emptied.contains(&failure.pointer) || nulls.contains(&member(&failure.pointer, name))
+            {
                 map_failure(&failure).into_iter().for_each(|d| sink.push(d));
             }
         }
@@ -636,12 +640,9 @@ fn duplicate_positions(instance: Node) -> Vec<usize> {
     let Some(items) = instance.as_array() else {
         return Vec::new();
     };
-    // Compared through a hash set of their JSON text, which is equal exactly when scalars
-    // are (every uniqueItems array of glTF holds strings or integers); two objects that
-    // differ only in key order are not taken for duplicates.
     let mut seen = HashSet::new();
     (items.iter().enumerate())
-        .filter(|(_, item)| !seen.insert(item.to_string()))
+        .filter(|(_, item)| !seen.insert(evaluator::unique_key(*item)))
         .map(|(i, _)| i)
         .collect()
 }
