@@ -185,8 +185,10 @@ def main():
         try:
             mutant = mutate_edges(document, os.path.dirname(seed)) if EDGES else mutate(document)
             text = json.dumps(mutant)
-        except RecursionError:
-            continue  # a seed nested deeper than Python recurses (the corpus has some): not mutated
+        except (RecursionError, ValueError):
+            # A seed nested deeper than Python recurses (the corpus has some), or a mutation
+            # that put a value inside itself: not written.
+            continue
         with open(path, 'w') as f:
             f.write(text)
         mutants.append(path)

@@ -30,24 +30,12 @@ const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
         "Khronos reports an unused sampler at a pointer that does not exist",
     ),
     (
-        "base/data/skin/no_joints_in_scene.gltf",
-        "NODE_SKIN_NO_SCENE is not checked yet",
-    ),
-    (
-        "base/data/skin/skeleton_invalid.gltf",
-        "nodes used only as skin joints outside scenes are not reported unused yet",
-    ),
-    (
         "base/data/skin/ignored_parent_transform.gltf",
         "release skew: the corpus comes from the build after 2.0.0-dev.3.10, where NODE_SKINNED_MESH_NON_ROOT is info and NODE_SKINNED_MESH_PARENT_TRANSFORMS new; --profile khronos follows the released validator users compare with",
     ),
     (
         "ext/KHR_node_visibility",
         "release skew: the corpus comes from the build after 2.0.0-dev.3.10, which knows KHR_node_visibility; the released validator reports it UNSUPPORTED_EXTENSION, and --profile khronos follows the release",
-    ),
-    (
-        "base/data/skin/valid.gltf",
-        "nodes used only as skin joints outside scenes are not reported unused yet",
     ),
 ];
 

@@ -220,13 +220,34 @@ impl<'a> Context<'a> {
         self.reference_value(value, &member(pointer, key), collection)
     }
 
-    /// Resolves an index value at `pointer` into `collection`.
+    /// Resolves an index value at `pointer` into `collection`, marking the target used.
     pub(crate) fn reference_value(
         &mut self,
         value: Node,
         pointer: &str,
         collection: &'static str,
     ) -> Option<usize> {
+        let index = self.resolve(value, pointer, collection)?;
+        self.used.insert((collection, index));
+        Some(index)
+    }
+
+    /// Resolves `object[key]` as an index into `collection` without marking the target used
+    /// (a skin's skeleton: the Khronos validator counts no node used for being one).
+    pub(crate) fn reference_unused(
+        &mut self,
+        object: Node,
+        key: &str,
+        pointer: &str,
+        collection: &'static str,
+    ) -> Option<usize> {
+        let value = object.get(key)?;
+        self.resolve(value, &member(pointer, key), collection)
+    }
+
+    /// Resolves an index value at `pointer` into `collection`, reporting one that names
+    /// nothing.
+    fn resolve(&mut self, value: Node, pointer: &str, collection: &'static str) -> Option<usize> {
         // A whole number too large for an index (1e29) resolves to nothing, like any other
         // index past the end, and so does an element that is no object (the schema pass
         // reported it; the Khronos validator reads it as missing); other values are the
@@ -244,7 +265,6 @@ impl<'a> Context<'a> {
             }
             return None;
         };
-        self.used.insert((collection, index as usize));
         Some(index as usize)
     }
 

@@ -13,7 +13,9 @@ use std::collections::HashMap;
 pub(super) fn check(ctx: &mut Context) {
     let nodes = ctx.items("nodes");
     let parents = parent_map(nodes);
-    for (_, pointer, skin) in ctx.objects("skins") {
+    // Each skin's topmost common root (a node without a parent), where its joints have one.
+    let mut tops = HashMap::new();
+    for (s, pointer, skin) in ctx.objects("skins") {
         let joints: Vec<usize> = elements(skin, "joints")
             .filter_map(|(_, j)| as_index(j).map(|j| j as usize).filter(|j| *j < nodes.len()))
             .collect();
@@ -32,6 +34,9 @@ pub(super) fn check(ctx: &mut Context) {
             &joints[..]
         };
         let roots = common_roots(&parents, counted);
+        if let Some(&top) = roots.iter().find(|&&r| parents[r].is_none()) {
+            tops.insert(s, top);
+        }
         if roots.is_empty() {
             ctx.emit(
                 khronos::SKIN_NO_COMMON_ROOT,
@@ -48,7 +53,62 @@ pub(super) fn check(ctx: &mut Context) {
             );
         }
     }
+    skinned_nodes_in_scenes(ctx, &parents, &tops);
 }
+
+/// A skinned node shown by a scene that does not show its joints' topmost common root
+/// (NODE_SKIN_NO_SCENE): the scenes that show a node are those listing it or an ancestor.
+fn skinned_nodes_in_scenes(
+    ctx: &mut Context,
+    parents: &[Option<usize>],
+    tops: &HashMap<usize, usize>,
+) {
+    if tops.is_empty() {
+        return;
+    }
+    let mut listing: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (s, _, scene) in ctx.objects("scenes") {
+        for (_, node) in elements(scene, "nodes") {
+            if let Some(node) = as_index(node).and_then(|n| usize::try_from(n).ok()) {
+                listing.entry(node).or_default().push(s);
+            }
+        }
+    }
+    let skinned: Vec<(usize, usize)> = (ctx.objects("nodes"))
+        .filter_map(|(i, _, node)| {
+            let skin = unsigned(node, "skin").filter(|&s| ctx.element("skins", s).is_some())?;
+            Some((i, *tops.get(&(skin as usize))?))
+        })
+        .collect();
+    // Each skinned node climbs its line once; a hostile tree of 10^5 skinned nodes in a
+    // line of 10^5 is bounded by the budget (what is left unclimbed is not reported).
+    let mut budget = CLIMB_BUDGET;
+    for (i, top) in skinned {
+        let empty = Vec::new();
+        let shows_top = listing.get(&top).unwrap_or(&empty);
+        let mut at = Some(i);
+        let mut climbed = 0;
+        let mut unshown = false;
+        while let Some(node) = at.filter(|_| climbed <= parents.len() && budget > 0) {
+            let scenes = listing.get(&node).map_or(&[][..], Vec::as_slice);
+            if scenes.iter().any(|scene| !shows_top.contains(scene)) {
+                unshown = true;
+                break;
+            }
+            (at, climbed, budget) = (parents[node], climbed + 1, budget - 1);
+        }
+        if unshown {
+            ctx.emit(
+                khronos::NODE_SKIN_NO_SCENE,
+                format!("/nodes/{i}"),
+                "A node with a skinned mesh is used in a scene that does not contain joint nodes.",
+            );
+        }
+    }
+}
+
+/// How many steps up their lines [`skinned_nodes_in_scenes`] takes in all.
+const CLIMB_BUDGET: usize = 10_000_000;
 
 /// The joints whose lines the Khronos validator intersects in the end. It refills an emptied
 /// intersection with the next joint's line, so only the joints after the last one that
