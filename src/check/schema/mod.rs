@@ -244,6 +244,9 @@ struct AbsentMembers<'s> {
     /// Integer members outside their range or list of values, absent too once the findings
     /// are in (a mistyped value is absent for its type, not for its value).
     out_of_range: HashSet<String>,
+    /// Arrays absent for an element of the wrong type: their other elements are still read,
+    /// each against its range, as the validator reads a list of numbers.
+    element_mistyped: HashSet<String>,
 }
 
 /// An empty array where the schema wants a fixed length above 1 (read as absent, as an array
@@ -344,6 +347,7 @@ impl<'s> AbsentMembers<'s> {
             absent: Default::default(),
             elements_unread: Default::default(),
             out_of_range: Default::default(),
+            element_mistyped: Default::default(),
         }
     }
 
@@ -379,11 +383,24 @@ impl<'s> AbsentMembers<'s> {
                 .is_some_and(|(parent, _)| self.at_or_inside_absent(parent));
             return inside || self.elements_unread.contains(array);
         }
+        // A member demands the others it depends on whatever it holds: the validator asks
+        // only whether it is there.
         if matches!(
             diagnostic.code,
-            khronos::TYPE_MISMATCH | khronos::ARRAY_LENGTH_NOT_IN_LIST
+            khronos::TYPE_MISMATCH
+                | khronos::ARRAY_LENGTH_NOT_IN_LIST
+                | khronos::UNSATISFIED_DEPENDENCY
         ) {
             return false;
+        }
+        // An element outside its range in an array read element by element stays (unless
+        // the array's own parent is not read).
+        let read_elements = array_holding(pointer)
+            .filter(|array| self.element_mistyped.contains(*array))
+            .filter(|array| !self.elements_unread.contains(*array));
+        if let Some(array) = read_elements.filter(|_| is_value_finding(diagnostic)) {
+            let parent = array.rsplit_once('/').map_or("", |(parent, _)| parent);
+            return !parent.is_empty() && self.at_or_inside_absent(parent);
         }
         // The finding that made an integer or an empty fixed-length array absent stays
         // (unless its parent is not read).
@@ -393,8 +410,8 @@ impl<'s> AbsentMembers<'s> {
             let parent = pointer.rsplit_once('/').map_or("", |(parent, _)| parent);
             return !parent.is_empty() && self.at_or_inside_absent(parent);
         }
-        // At the member itself (a mistyped value is not also outside its list of values; an
-        // unreadable array demands no other member) or inside it.
+        // At the member itself (a mistyped value is not also outside its list of values) or
+        // inside it.
         self.at_or_inside_absent(pointer)
     }
 
@@ -455,6 +472,7 @@ impl Sink for AbsentMembers<'_> {
                     .any(|name| array.ends_with(name))
                 {
                     self.absent.insert(array.to_string());
+                    self.element_mistyped.insert(array.to_string());
                 }
             }
         }
