@@ -2305,3 +2305,77 @@ fn what_a_reference_does_not_resolve_to_is_read_as_absent() {
         ])
     );
 }
+
+/// A GLB of `json` with `bin` as its BIN chunk (padded).
+fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
+    let mut text = serde_json::to_vec(json).unwrap();
+    text.resize(text.len().next_multiple_of(4), b' ');
+    let mut data = bin.to_vec();
+    data.resize(data.len().next_multiple_of(4), 0);
+    let total = 12 + 8 + text.len() + 8 + data.len();
+    let mut out = b"glTF".to_vec();
+    for word in [2, total as u32, text.len() as u32] {
+        out.extend(word.to_le_bytes());
+    }
+    out.extend(b"JSON");
+    out.extend(&text);
+    out.extend((data.len() as u32).to_le_bytes());
+    out.extend(b"BIN\0");
+    out.extend(&data);
+    out
+}
+
+#[test]
+fn a_buffer_shorter_than_it_says_is_read_only_from_a_data_uri() {
+    // Indices of three degenerate triangles: reported only where the data is read.
+    let indices = [0u8, 0, 1, 0, 1, 2, 1, 2, 2];
+    let asset = |buffer: Value| {
+        json!({"asset": {"version": "2.0"}, "buffers": [buffer],
+            "bufferViews": [{"buffer": 0, "byteLength": 9, "target": 34963}],
+            "accessors": [{"bufferView": 0, "componentType": 5121, "count": 9, "type": "SCALAR"},
+                {"componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0]}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 1}, "indices": 0}]}],
+            "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]})
+    };
+    let mismatch = ("BUFFER_BYTE_LENGTH_MISMATCH", "/buffers/0");
+    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, indices);
+    let data_uri = khronos_findings(asset(json!({"byteLength": 100,
+        "uri": format!("data:application/octet-stream;base64,{encoded}")})));
+    assert_eq!(
+        data_uri,
+        expected(&[
+            mismatch,
+            (
+                "ACCESSOR_INDEX_TRIANGLE_DEGENERATE",
+                "/meshes/0/primitives/0/indices"
+            )
+        ])
+    );
+    let options = CheckOptions::default().with_profile(Profile::Khronos);
+    let bytes = glb(&asset(json!({"byteLength": 100})), &indices);
+    let chunk = sorted_findings(&check_bytes("case.glb", bytes, &NoResources, &options));
+    assert_eq!(chunk, expected(&[mismatch]));
+}
+
+#[test]
+fn an_empty_container_is_none_and_an_undeclared_extension_is_one() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "nodes": [{"extensions": {"EXT_x": {}}}, {"extensions": {}},
+            {"weights": [0.5], "mesh": 0}, {"children": [4]}, 5],
+        "meshes": [{"primitives": []}], "skins": [{"joints": [4, 3]}],
+        "scenes": [{"nodes": [0, 1, 2, 3]}]}));
+    // Node 1 is empty, node 0 is not; mesh 0 has no primitives to hold morph targets; the
+    // skin's one resolved joint is its own common root.
+    assert_eq!(
+        found,
+        expected(&[
+            ("EMPTY_ENTITY", "/meshes/0/primitives"),
+            ("NODE_EMPTY", "/nodes/1"),
+            ("TYPE_MISMATCH", "/nodes/4"),
+            ("UNDECLARED_EXTENSION", "/nodes/0/extensions/EXT_x"),
+            ("UNRESOLVED_REFERENCE", "/nodes/3/children/0"),
+            ("UNRESOLVED_REFERENCE", "/skins/0/joints/0"),
+            ("UNUSED_OBJECT", "/skins/0"),
+        ])
+    );
+}

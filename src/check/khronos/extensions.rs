@@ -94,6 +94,8 @@ pub(super) fn check(ctx: &mut Context) {
     for pointer in found.pointers(ctx.root.tree()) {
         undeclared(ctx, &pointer);
     }
+    // Still members of their objects for the passes that ask whether an object has any.
+    ctx.undeclared_extensions = found;
     let root = ctx.root;
     walk(root, "", Host::Root, &mut |object, pointer, host| {
         visit(ctx, object, pointer, host)
@@ -148,6 +150,11 @@ impl Undeclared {
             let names = run.iter().map(|&(_, name)| name);
             tree.remove_members(&self.hosts[run[0].0], names, &mut taken);
         }
+    }
+
+    /// The pointers of the `extensions` objects holding some.
+    pub(crate) fn hosts(&self) -> impl Iterator<Item = &str> {
+        self.hosts.iter().map(String::as_str)
     }
 
     /// Their pointers, made one at a time.

@@ -353,7 +353,9 @@ fn dependencies(ctx: &mut Context, node: Node, pointer: &str) {
         return;
     }
     let mesh = unsigned(node, "mesh").and_then(|m| ctx.element("meshes", m));
-    let Some(primitives) = mesh.and_then(|m| m.get("primitives")?.as_array()) else {
+    // An empty list of primitives (EMPTY_ENTITY) is none, as the validator reads it.
+    let primitives = mesh.and_then(|m| m.get("primitives")?.as_array());
+    let Some(primitives) = primitives.filter(|p| !p.is_empty()) else {
         return;
     };
     if let Some(weights) = node.get("weights").and_then(Node::as_array) {

@@ -540,6 +540,11 @@ pub(super) fn check_nodes_and_scenes(ctx: &mut Context) {
         .flat_map(|skin| elements(skin, "joints"))
         .filter_map(|(_, joint)| as_index(joint))
         .collect();
+    // The nodes' `extensions` objects that held undeclared extensions.
+    let hosting: HashSet<String> = (ctx.undeclared_extensions.hosts())
+        .filter(|host| host.starts_with("/nodes/"))
+        .map(str::to_string)
+        .collect();
     for (index, pointer, node) in ctx.objects("nodes") {
         let mesh = ctx.reference(node, "mesh", &pointer, "meshes");
         let camera = ctx.reference(node, "camera", &pointer, "cameras");
@@ -555,12 +560,18 @@ pub(super) fn check_nodes_and_scenes(ctx: &mut Context) {
             .and_then(Node::as_array)
             .is_some_and(|c| !c.is_empty());
         let extras = node.get("extras").is_some_and(|e| !e.is_null());
+        // Extensions as written: an empty object is none, an undeclared one (out of the
+        // document by now) is one.
+        let extensions = node.get("extensions").is_some_and(|e| {
+            e.as_object().is_none_or(|e| !e.is_empty())
+                || hosting.contains(member(&pointer, "extensions").as_str())
+        });
         // A joint is not empty: skinning reads its transform.
         let empty = !joints.contains(&(index as u64))
             && mesh.is_none()
             && camera.is_none()
             && !has_children
-            && node.get("extensions").is_none()
+            && !extensions
             && !extras;
         if empty {
             ctx.emit(

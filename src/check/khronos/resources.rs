@@ -240,6 +240,7 @@ pub(crate) fn check_buffers(ctx: &mut Context) {
             }
             None => (None, "buffer", None),
         };
+        let mut short = false;
         if let (Some(bytes), Some(length)) = (&data, declared) {
             if (bytes.len() as u64) < length {
                 ctx.emit(
@@ -247,6 +248,7 @@ pub(crate) fn check_buffers(ctx: &mut Context) {
                     pointer.clone(),
                     format!("Actual data byte length ({}) is less than the declared buffer byte length ({length}).", bytes.len()),
                 );
+                short = true;
             }
         }
         ctx.resources.push(ResourceInfo {
@@ -257,7 +259,9 @@ pub(crate) fn check_buffers(ctx: &mut Context) {
             uri,
             image: None,
         });
-        ctx.buffers[i] = data;
+        // Shorter than it says, a file or a GLB chunk holds no data to read, as for the
+        // Khronos validator (which still reads a data URI's).
+        ctx.buffers[i] = data.filter(|_| !short || storage == "data-uri");
     }
 }
 

@@ -16,8 +16,10 @@ pub(super) fn check(ctx: &mut Context) {
     // Each skin's topmost common root (a node without a parent), where its joints have one.
     let mut tops = HashMap::new();
     for (s, pointer, skin) in ctx.objects("skins") {
+        // Joints that resolve (to a node that is an object), as the validator links them.
         let joints: Vec<usize> = elements(skin, "joints")
-            .filter_map(|(_, j)| as_index(j).map(|j| j as usize).filter(|j| *j < nodes.len()))
+            .filter_map(|(_, j)| as_index(j).filter(|&j| ctx.element("nodes", j).is_some()))
+            .map(|j| j as usize)
             .collect();
         inverse_binds(ctx, skin, &pointer);
         // An empty list is a schema error; the hierarchy is then not checked.
