@@ -26,10 +26,6 @@ const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
         "numbers beyond f64 (1e400) are INVALID_JSON here, VALUE_NOT_IN_RANGE in Khronos",
     ),
     (
-        "base/data/animation/empty_objects.gltf",
-        "Khronos reports an unused sampler at a pointer that does not exist",
-    ),
-    (
         "base/data/skin/ignored_parent_transform.gltf",
         "release skew: the corpus comes from the build after 2.0.0-dev.3.10, where NODE_SKINNED_MESH_NON_ROOT is info and NODE_SKINNED_MESH_PARENT_TRANSFORMS new; --profile khronos follows the released validator users compare with",
     ),

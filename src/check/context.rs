@@ -123,6 +123,9 @@ pub(crate) struct Context<'a> {
     /// Each material's extension names as written, where the profile counts them so (see
     /// `khronos::extensions_as_written`), by material index.
     pub extensions_as_written: HashMap<usize, Vec<String>>,
+    /// Where the profile reports link findings the validator names by a path it did not
+    /// unwind (see `khronos::LinkPath`); none when they are at their own pointers.
+    pub link_path: Option<super::khronos::LinkPath>,
     extensions_used: std::sync::OnceLock<HashSet<&'a str>>,
 }
 
@@ -151,6 +154,7 @@ impl<'a> Context<'a> {
             resources: Vec::new(),
             undeclared_extensions: Default::default(),
             extensions_as_written: Default::default(),
+            link_path: None,
             extensions_used: std::sync::OnceLock::new(),
         }
     }
@@ -162,16 +166,23 @@ impl<'a> Context<'a> {
         pointer: impl Into<String>,
         message: impl Into<std::borrow::Cow<'static, str>>,
     ) {
-        let found = Diagnostic::at(code, pointer, message);
+        let found = Diagnostic::at(code, self.link_pointer(code, pointer.into()), message);
         if let Some(reported) = self.reporting.report(self, found) {
             self.diagnostics.push(reported);
         }
     }
 
+    /// The pointer a finding of `code` found at `pointer` is reported at.
+    fn link_pointer(&self, code: Code, pointer: String) -> String {
+        (self.link_path.as_ref())
+            .and_then(|path| path.rewrite(code, &pointer))
+            .unwrap_or(pointer)
+    }
+
     /// Counts `n` findings of `code` at `pointer` that a pass does not list (it keeps a
     /// bounded number of one walk's findings): the report's counts stay complete.
     pub(crate) fn count_unlisted(&mut self, code: Code, pointer: impl Into<String>, n: u64) {
-        let found = Diagnostic::at(code, pointer, String::new());
+        let found = Diagnostic::at(code, self.link_pointer(code, pointer.into()), String::new());
         if let Some(reported) = self.reporting.report(self, found) {
             self.diagnostics.count_unlisted(&reported, n);
         }

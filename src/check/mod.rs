@@ -239,6 +239,9 @@ fn check_document(
             let mut ctx = Context::new(root, &document, loader, options, diagnostics, &filters);
             ctx.undeclared_extensions = undeclared;
             ctx.extensions_as_written = as_written;
+            if options.profile.names_link_findings_as_the_validator() && !gltf1 {
+                ctx.link_path = khronos::LinkPath::of(root);
+            }
             if gltf1 {
                 rules::gltf1::check(&mut ctx);
             } else {

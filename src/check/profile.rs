@@ -64,15 +64,45 @@ impl Profile {
         self == Profile::Khronos
     }
 
+    /// Whether link findings after an animation channel without a sampler index are named
+    /// by the path the Khronos validator leaves unwound (see `khronos::LinkPath`); the
+    /// default profile names each at its own pointer.
+    pub(crate) fn names_link_findings_as_the_validator(self) -> bool {
+        self == Profile::Khronos
+    }
+
     /// Whether a glTF 1.0 document gets the 1.0 checks instead of the 2.0 passes.
     pub(crate) fn checks_gltf1(self) -> bool {
         self == Profile::Default
     }
 }
 
+/// Why link findings after an animation channel without a sampler index are at their own
+/// pointers in the default profile (see `khronos::LinkPath`).
+const OWN_POINTERS: &str = "Reported at its own pointer. After an animation channel without a sampler index, the Khronos validator names what it links next (the animation's unused samplers, later channels and animations, scenes, the node checks) by a path it did not unwind, such as /animations/2/channels/0/samplers/0 or /animations/nodes/0.";
+
 /// The Khronos codes whose findings differ in the default profile because it reads the
 /// document differently, and why.
 pub(crate) static READINGS: &[(Code, &str)] = &[
+    (khronos::UNUSED_OBJECT, OWN_POINTERS),
+    (khronos::UNRESOLVED_REFERENCE, OWN_POINTERS),
+    (khronos::NODE_EMPTY, OWN_POINTERS),
+    (khronos::NODE_LOOP, OWN_POINTERS),
+    (khronos::SCENE_NON_ROOT_NODE, OWN_POINTERS),
+    (khronos::ANIMATION_CHANNEL_TARGET_NODE_SKIN, OWN_POINTERS),
+    (khronos::ANIMATION_CHANNEL_TARGET_NODE_MATRIX, OWN_POINTERS),
+    (khronos::ANIMATION_CHANNEL_TARGET_NODE_WEIGHTS_NO_MORPHS, OWN_POINTERS),
+    (khronos::ANIMATION_DUPLICATE_TARGETS, OWN_POINTERS),
+    (khronos::ANIMATION_SAMPLER_ACCESSOR_WITH_BYTESTRIDE, OWN_POINTERS),
+    (khronos::ANIMATION_SAMPLER_INPUT_ACCESSOR_INVALID_FORMAT, OWN_POINTERS),
+    (khronos::ANIMATION_SAMPLER_INPUT_ACCESSOR_TOO_FEW_ELEMENTS, OWN_POINTERS),
+    (khronos::ANIMATION_SAMPLER_INPUT_ACCESSOR_WITHOUT_BOUNDS, OWN_POINTERS),
+    (khronos::ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_COUNT, OWN_POINTERS),
+    (khronos::ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_FORMAT, OWN_POINTERS),
+    (khronos::ACCESSOR_ANIMATION_INPUT_NEGATIVE, OWN_POINTERS),
+    (khronos::ACCESSOR_ANIMATION_INPUT_NON_INCREASING, OWN_POINTERS),
+    (khronos::ACCESSOR_ANIMATION_SAMPLER_OUTPUT_NON_NORMALIZED_QUATERNION, OWN_POINTERS),
+
     (
         khronos::KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD,
         "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",

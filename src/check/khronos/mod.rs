@@ -11,6 +11,7 @@ mod cameras;
 pub(crate) mod ext;
 mod extensions;
 mod influences;
+mod link_path;
 pub(crate) mod materials;
 mod nodes;
 pub(crate) use nodes::is_trs_decomposable;
@@ -26,6 +27,7 @@ use super::context::Context;
 pub(crate) use extensions::{
     check_declarations as check_extension_lists, undeclared_extensions, Undeclared,
 };
+pub(crate) use link_path::LinkPath;
 pub(crate) use materials::extensions_as_written;
 pub(crate) use objects::{
     check_asset, has_supported_version, read_before_asset, take_unread_bounds,
