@@ -128,6 +128,10 @@ pub(crate) static READINGS: &[(Code, &str)] = &[
         "The default profile validates extensions the released Khronos validator (2.0.0-dev.3.10) does not know: KHR_materials_diffuse_transmission, KHR_node_visibility and KHR_texture_basisu.",
     ),
     (
+        khronos::UNEXPECTED_PROPERTY,
+        "The objects of the extensions the default profile knows beyond the released Khronos validator (KHR_materials_diffuse_transmission, KHR_node_visibility, KHR_texture_basisu) are read member by member; the released validator reads nothing in them.",
+    ),
+    (
         khronos::UNEXPECTED_EXTENSION_OBJECT,
         "An extension the default profile knows (KHR_node_visibility, KHR_materials_diffuse_transmission, KHR_texture_basisu) is also checked for the objects it may extend; the released validator knows none of them.",
     ),
