@@ -2379,3 +2379,82 @@ fn an_empty_container_is_none_and_an_undeclared_extension_is_one() {
         ])
     );
 }
+
+#[test]
+fn after_a_channel_without_a_sampler_the_khronos_profile_names_findings_as_the_validator_does() {
+    // Channels 0 and 2 of animation 0 have no sampler index: the validator pushes their
+    // indices and never pops them, so what it links after them (later channels, unused
+    // samplers, the next animation, the scene, the node checks, unused objects) is named by
+    // the leftover path. What it reads before linking (the schema's findings) is not.
+    let document = json!({"asset": {"version": "2.0"},
+        "animations": [
+            {"channels": [{"target": {"path": "rotation", "node": 9}},
+                    {"sampler": 0, "target": {"node": 8, "path": "scale"}},
+                    {"target": {"path": "scale"}}],
+                "samplers": [{"input": 99, "output": 98}, {"input": 97, "output": 96}]},
+            {"channels": [{"target": {"node": 5, "path": "scale"}}],
+                "samplers": [{"input": 91, "output": 90}]}],
+        "nodes": [{}, {"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "scenes": [{"nodes": [0, 55]}]});
+    assert_eq!(
+        khronos_findings(document.clone()),
+        expected(&[
+            ("NODE_EMPTY", "/animations/0/channels/nodes/0"),
+            ("UNDEFINED_PROPERTY", "/animations/0/channels/0"),
+            ("UNDEFINED_PROPERTY", "/animations/0/channels/2"),
+            ("UNDEFINED_PROPERTY", "/animations/1/channels/0"),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/animations/0/channels/0/1/target/node"
+            ),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/animations/0/channels/0/target/node"
+            ),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/animations/0/channels/1/channels/0/target/node"
+            ),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/animations/0/channels/1/samplers/0/input"
+            ),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/animations/0/channels/1/samplers/0/output"
+            ),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/animations/0/channels/scenes/0/nodes/1"
+            ),
+            ("UNRESOLVED_REFERENCE", "/animations/0/samplers/0/input"),
+            ("UNRESOLVED_REFERENCE", "/animations/0/samplers/0/output"),
+            ("UNRESOLVED_REFERENCE", "/animations/0/samplers/1/input"),
+            ("UNRESOLVED_REFERENCE", "/animations/0/samplers/1/output"),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/meshes/0/primitives/0/attributes/POSITION"
+            ),
+            ("UNUSED_OBJECT", "/animations/0/channels/0/samplers/1"),
+            (
+                "UNUSED_OBJECT",
+                "/animations/0/channels/1/channels/samplers/0"
+            ),
+            ("UNUSED_OBJECT", "/animations/0/channels/nodes/1"),
+        ])
+    );
+    // The default profile names each where it is.
+    let bytes = serde_json::to_vec(&document).unwrap();
+    let report = check_bytes("case.gltf", bytes, &NoResources, &CheckOptions::default());
+    let pointers: Vec<(String, String)> = sorted_findings(&report);
+    for (code, pointer) in [
+        ("NODE_EMPTY", "/nodes/0"),
+        ("UNUSED_OBJECT", "/animations/1/samplers/0"),
+        ("UNUSED_OBJECT", "/nodes/1"),
+        ("UNRESOLVED_REFERENCE", "/scenes/0/nodes/1"),
+    ] {
+        let found = (code.to_string(), pointer.to_string());
+        assert!(pointers.contains(&found), "{found:?} in {pointers:?}");
+    }
+}

@@ -6,8 +6,8 @@
 //! channel has a sampler index; the pop meant for `channels` then takes a channel index
 //! instead, and so on outwards. What it reports later carries the leftover: the animation's
 //! unused samplers (`/animations/2/channels/0/samplers/0`), the channels and animations after
-//! it, the scenes it links next and the node checks that end the linking
-//! (`/animations/nodes/0`). Findings made while reading the document (the schema's) have
+//! it, the scenes it links next, the node checks that end the linking and the unused objects
+//! after them (`/animations/nodes/0`). Findings made while reading the document (the schema's) have
 //! their own, right, paths. The default profile reports every finding at its own pointer.
 
 use crate::check::context::unsigned;
@@ -93,7 +93,8 @@ impl LinkPath {
         let after = pointer.starts_with("/scenes/")
             && (code == khronos::UNRESOLVED_REFERENCE || code == khronos::SCENE_NON_ROOT_NODE)
             || pointer.starts_with("/nodes/")
-                && (code == khronos::NODE_EMPTY || code == khronos::NODE_LOOP);
+                && (code == khronos::NODE_EMPTY || code == khronos::NODE_LOOP)
+            || code == khronos::UNUSED_OBJECT && is_collection_element(pointer);
         (after && !self.residue.is_empty()).then(|| format!("/{}{pointer}", self.residue.join("/")))
     }
 
@@ -128,4 +129,14 @@ impl LinkPath {
         let rewritten = format!("/{}", tokens.join("/"));
         (rewritten != format!("/animations/{rest}")).then_some(rewritten)
     }
+}
+
+/// Whether `pointer` names an element of a top-level array (`/nodes/3`).
+fn is_collection_element(pointer: &str) -> bool {
+    let mut tokens = pointer.split('/').skip(1);
+    matches!(
+        (tokens.next(), tokens.next(), tokens.next()),
+        (Some(collection), Some(index), None)
+            if crate::gltf::COLLECTIONS.contains(&collection) && index.parse::<usize>().is_ok()
+    )
 }
