@@ -2458,3 +2458,34 @@ fn after_a_channel_without_a_sampler_the_khronos_profile_names_findings_as_the_v
         assert!(pointers.contains(&found), "{found:?} in {pointers:?}");
     }
 }
+
+#[test]
+fn an_invalid_emissive_factor_is_no_black() {
+    let with_factor = |factor: Value| {
+        let mut material =
+            json!({"extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2}}});
+        if !factor.is_null() {
+            material["emissiveFactor"] = factor;
+        }
+        khronos_findings(json!({"asset": {"version": "2.0"},
+            "extensionsUsed": ["KHR_materials_emissive_strength"], "materials": [material]}))
+    };
+    let zero = (
+        "KHR_MATERIALS_EMISSIVE_STRENGTH_ZERO_FACTOR",
+        "/materials/0/extensions/KHR_materials_emissive_strength",
+    );
+    let unused = ("UNUSED_OBJECT", "/materials/0");
+    assert_eq!(with_factor(Value::Null), expected(&[zero, unused]));
+    assert_eq!(with_factor(json!([0, 0, 0])), expected(&[zero, unused]));
+    assert_eq!(
+        with_factor(json!(5)),
+        expected(&[("TYPE_MISMATCH", "/materials/0/emissiveFactor"), unused])
+    );
+    assert_eq!(
+        with_factor(json!([0, 0])),
+        expected(&[
+            ("ARRAY_LENGTH_NOT_IN_LIST", "/materials/0/emissiveFactor"),
+            unused
+        ])
+    );
+}

@@ -156,8 +156,12 @@ fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str, writt
     let strength = extension(material, "KHR_materials_emissive_strength")
         .and_then(|e| e.get("emissiveStrength"));
     if strength.and_then(Node::as_f64).is_some_and(|s| s >= 0.0) {
-        let emissive = material.get("emissiveFactor").and_then(Node::as_array);
-        let zero = emissive.is_none_or(|f| f.iter().all(|c| c.as_f64() == Some(0.0)));
+        // Absent is black; an invalid factor (reported by the schema pass) is no colour.
+        let zero = material.get("emissiveFactor").is_none_or(|factor| {
+            factor
+                .as_array()
+                .is_some_and(|f| f.len() == 3 && f.iter().all(|c| c.as_f64() == Some(0.0)))
+        });
         if zero {
             ctx.emit(
                 khronos::KHR_MATERIALS_EMISSIVE_STRENGTH_ZERO_FACTOR,
