@@ -2489,3 +2489,50 @@ fn an_invalid_emissive_factor_is_no_black() {
         ])
     );
 }
+
+#[test]
+fn an_invalid_texcoord_needs_no_set() {
+    // Primitive 0 has TEXCOORD_0, primitive 1 none: set 0 is needed only by a valid texCoord.
+    let data: Vec<u8> = [
+        0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0,
+    ]
+    .iter()
+    .flat_map(|v| v.to_le_bytes())
+    .collect();
+    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &data);
+    let png = "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVQYV2P4z/AfAAQAAf+I0P3MAAAAAElFTkSuQmCC";
+    let with_texcoord = |texcoord: Value| {
+        khronos_findings(json!({"asset": {"version": "2.0"},
+            "buffers": [{"byteLength": data.len(), "uri": format!("data:application/octet-stream;base64,{encoded}")}],
+            "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962},
+                {"buffer": 0, "byteOffset": 36, "byteLength": 24, "target": 34962}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                    "min": [0, 0, 0], "max": [1, 1, 0]},
+                {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}],
+            "images": [{"uri": png}], "textures": [{"source": 0}],
+            "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": texcoord}}}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0},
+                {"attributes": {"POSITION": 0}, "material": 0}]}],
+            "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]}))
+    };
+    let at = "/materials/0/pbrMetallicRoughness/baseColorTexture/texCoord";
+    let unused = (
+        "UNUSED_OBJECT",
+        "/meshes/0/primitives/0/attributes/TEXCOORD_0",
+    );
+    assert_eq!(
+        with_texcoord(json!(0)),
+        expected(&[(
+            "MESH_PRIMITIVE_TOO_FEW_TEXCOORDS",
+            "/meshes/0/primitives/1/material"
+        )])
+    );
+    assert_eq!(
+        with_texcoord(json!(true)),
+        expected(&[("TYPE_MISMATCH", at), unused])
+    );
+    assert_eq!(
+        with_texcoord(json!(-1)),
+        expected(&[("VALUE_NOT_IN_RANGE", at), unused])
+    );
+}

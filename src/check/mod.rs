@@ -338,15 +338,17 @@ fn remove_all(tree: &mut Tree, pointers: HashSet<String>) -> (HashSet<String>, H
             }
             continue;
         }
-        // A byteOffset, a primitive's mode, a material's emissiveFactor, an animation
-        // sampler's interpolation or a camera's projection that is invalid (other than null)
-        // stays, unreadable: the Khronos validator reads it as invalid, not as absent (the
-        // default 0, TRIANGLES, black or LINEAR, a missing projection): it reads no data
-        // through such an offset (`gltf::byte_offset`), matches no count to such a mode,
-        // finds no black in such a factor and counts no keys for such an interpolation.
+        // A byteOffset, a primitive's mode, a material's emissiveFactor or texCoord, an
+        // animation sampler's interpolation or a camera's projection that is invalid (other
+        // than null) stays, unreadable: the Khronos validator reads it as invalid, not as
+        // absent (the default 0, TRIANGLES, black, set 0 or LINEAR, a missing projection): it
+        // reads no data through such an offset (`gltf::byte_offset`), matches no count to such
+        // a mode, finds no black in such a factor, needs no set for such a texCoord and counts
+        // no keys for such an interpolation.
         let invalid_not_absent = pointer.ends_with("/byteOffset")
             || (pointer.starts_with("/meshes/") && pointer.ends_with("/mode"))
-            || (pointer.starts_with("/materials/") && pointer.ends_with("/emissiveFactor"))
+            || (pointer.starts_with("/materials/")
+                && (pointer.ends_with("/emissiveFactor") || pointer.ends_with("/texCoord")))
             || (pointer.starts_with("/animations/") && pointer.ends_with("/interpolation"))
             || (pointer.starts_with("/cameras/")
                 && (pointer.ends_with("/perspective") || pointer.ends_with("/orthographic")));

@@ -7,6 +7,7 @@ use crate::check::context::{member, number, unsigned, Context, MaterialNeeds, Te
 pub(crate) use crate::check::context::{extension, SlotUse};
 use crate::diagnostic::khronos;
 use crate::document::Node;
+use crate::gltf::as_index;
 use crate::gltf::material::TEXTURE_SLOTS;
 use crate::gltf::material::{effective_texcoord, texture_transform};
 use std::collections::HashMap;
@@ -106,9 +107,9 @@ fn texture_needs(ctx: &mut Context, material: Node, pointer: &str) -> MaterialNe
             from_transform,
             set,
         };
-        needs
-            .texcoords
-            .push(need(unsigned(info, "texCoord").unwrap_or(0), false));
+        // An invalid texCoord (reported by the schema pass) needs no set.
+        let set = info.get("texCoord").map_or(Some(0), as_index);
+        needs.texcoords.extend(set.map(|set| need(set, false)));
         if let Some(set) = texture_transform(info).and_then(|t| unsigned(t, "texCoord")) {
             needs.texcoords.push(need(set, true));
         }
