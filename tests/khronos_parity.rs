@@ -2536,3 +2536,32 @@ fn an_invalid_texcoord_needs_no_set() {
         expected(&[("VALUE_NOT_IN_RANGE", at), unused])
     );
 }
+
+#[test]
+fn a_missing_or_invalid_ibm_count_is_fewer_than_any_joints() {
+    let with_count = |count: Option<Value>, joints: Value| {
+        let mut accessor = json!({"type": "MAT4", "componentType": 5126});
+        if let Some(count) = count {
+            accessor["count"] = count;
+        }
+        khronos_findings(json!({"asset": {"version": "2.0"}, "accessors": [accessor],
+            "skins": [{"inverseBindMatrices": 0, "joints": joints}],
+            "nodes": [{"children": [1]}, {}], "scenes": [{"nodes": [0]}]}))
+    };
+    let ibm = ("INVALID_IBM_ACCESSOR_COUNT", "/skins/0/inverseBindMatrices");
+    for count in [None, Some(json!([])), Some(json!(1))] {
+        let found = with_count(count.clone(), json!([0, 1]));
+        assert!(
+            found.contains(&(ibm.0.into(), ibm.1.into())),
+            "{count:?}: {found:?}"
+        );
+    }
+    let enough = with_count(Some(json!(2)), json!([0, 1]));
+    assert!(
+        !enough.contains(&(ibm.0.into(), ibm.1.into())),
+        "{enough:?}"
+    );
+    // No joints listed (an empty list is none): no count expected.
+    let none = with_count(None, json!([]));
+    assert!(!none.contains(&(ibm.0.into(), ibm.1.into())), "{none:?}");
+}

@@ -197,14 +197,15 @@ fn inverse_binds(ctx: &mut Context, skin: Node, pointer: &str) {
         .get("joints")
         .and_then(Node::as_array)
         .map_or(0, Array::len) as u64;
-    if unsigned(accessor, "count").is_some_and(|n| skin.get("joints").is_some() && n < joints) {
+    // A missing or invalid count is the validator's -1: fewer than any joints.
+    let count = unsigned(accessor, "count");
+    // An empty list of joints (EMPTY_ENTITY) is none: no count is expected.
+    if joints > 0 && count.is_none_or(|n| n < joints) {
+        let found = count.map_or("-1".to_string(), |n| n.to_string());
         ctx.emit(
             khronos::INVALID_IBM_ACCESSOR_COUNT,
             at,
-            format!(
-                "Accessor of count {joints} expected. Found {}.",
-                unsigned(accessor, "count").unwrap_or(0)
-            ),
+            format!("Accessor of count {joints} expected. Found {found}."),
         );
     }
 }
