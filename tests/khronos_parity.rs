@@ -2565,3 +2565,50 @@ fn a_missing_or_invalid_ibm_count_is_fewer_than_any_joints() {
     let none = with_count(None, json!([]));
     assert!(!none.contains(&(ibm.0.into(), ibm.1.into())), "{none:?}");
 }
+
+#[test]
+fn a_matrix_offset_is_aligned_only_into_a_buffer_view_and_an_invalid_texcoord_is_a_set_of_its_own()
+{
+    let matrix = |view: Option<Value>| {
+        let mut accessor =
+            json!({"type": "MAT4", "componentType": 5123, "count": 2, "byteOffset": 2});
+        if let Some(view) = view {
+            accessor["bufferView"] = view;
+        }
+        khronos_findings(
+            json!({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 200}],
+            "bufferViews": [{"buffer": 0, "byteLength": 200}], "accessors": [accessor]}),
+        )
+    };
+    let alignment = (
+        "ACCESSOR_MATRIX_ALIGNMENT".to_string(),
+        "/accessors/0/byteOffset".to_string(),
+    );
+    assert!(matrix(Some(json!(0))).contains(&alignment));
+    assert!(
+        matrix(Some(json!(5))).contains(&alignment),
+        "unresolved, still a view"
+    );
+    assert!(!matrix(None).contains(&alignment));
+    assert!(
+        !matrix(Some(json!(""))).contains(&alignment),
+        "mistyped: no view"
+    );
+    let png = "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVQYV2P4z/AfAAQAAf+I0P3MAAAAAElFTkSuQmCC";
+    let pair = |normal: Value, coat: Value| {
+        khronos_findings(json!({"asset": {"version": "2.0"},
+            "extensionsUsed": ["KHR_materials_clearcoat"], "images": [{"uri": png}],
+            "textures": [{"source": 0}],
+            "materials": [{"normalTexture": {"index": 0, "texCoord": normal},
+                "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1,
+                    "clearcoatNormalTexture": {"index": 0, "texCoord": coat}}}}]}))
+    };
+    let differ = (
+        "KHR_MATERIALS_CLEARCOAT_CLEARCOAT_NORMAL_TEXTURE_TEXCOORD".to_string(),
+        "/materials/0/extensions/KHR_materials_clearcoat/clearcoatNormalTexture".to_string(),
+    );
+    assert!(pair(json!(0), json!(true)).contains(&differ));
+    assert!(pair(json!(-1), json!(0)).contains(&differ));
+    assert!(!pair(json!(true), json!(true)).contains(&differ));
+    assert!(!pair(json!(0), json!(0)).contains(&differ));
+}

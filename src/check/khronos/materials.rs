@@ -238,11 +238,12 @@ fn check_texcoord_pairs(ctx: &mut Context, material: Node, pointer: &str) {
         return;
     };
     let transformed = ctx.options.profile.reads_texcoord_override();
+    // An invalid texCoord (none here) is a set of its own, as the validator's -1.
     let texcoord = |info: Node| {
         if transformed {
-            effective_texcoord(info)
+            Some(effective_texcoord(info))
         } else {
-            unsigned(info, "texCoord").unwrap_or(0)
+            info.get("texCoord").map_or(Some(0), as_index)
         }
     };
     let pairs = [

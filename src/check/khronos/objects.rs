@@ -274,7 +274,9 @@ fn check_accessor_format(ctx: &mut Context, accessor: Node, pointer: &str) {
         .get("type")
         .and_then(Node::as_str)
         .is_some_and(|t| t.starts_with("MAT"));
-    if is_matrix && unsigned(accessor, "byteOffset").is_some_and(|o| o % 4 != 0) {
+    // Only an offset into a bufferView (resolved or not) is checked, as the validator does.
+    let viewed = accessor.get("bufferView").is_some();
+    if is_matrix && viewed && unsigned(accessor, "byteOffset").is_some_and(|o| o % 4 != 0) {
         ctx.emit(
             khronos::ACCESSOR_MATRIX_ALIGNMENT,
             member(pointer, "byteOffset"),
