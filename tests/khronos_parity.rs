@@ -1546,17 +1546,13 @@ fn data_uris_are_read_without_padding_and_refused_for_media_types_the_validator_
 
 #[test]
 fn the_khronos_profile_lists_every_data_finding_and_the_default_profile_caps_them() {
-    use base64::Engine;
     let n = 12_000;
     let mut bytes: Vec<u8> = [0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
         .iter()
         .flat_map(|v| v.to_le_bytes())
         .collect();
     bytes.extend((0..n).flat_map(|_| 7u16.to_le_bytes()));
-    let uri = format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(&bytes)
-    );
+    let uri = bytes_uri(&bytes);
     let document = json!({"asset": {"version": "2.0"},
         "buffers": [{"uri": uri, "byteLength": bytes.len()}],
         "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962},
@@ -2035,8 +2031,7 @@ fn a_sparse_block_missing_a_part_is_dropped_whole_and_its_views_are_unused() {
         .chain([0u8, 0, 1, 0, 2, 0, 0, 0])
         .chain([1.0f32; 9].iter().flat_map(|v| v.to_le_bytes()))
         .collect();
-    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &data);
-    let uri = format!("data:application/octet-stream;base64,{encoded}");
+    let uri = bytes_uri(&data);
     let with_sparse_on = |view: Value, sparse: Value| {
         khronos_findings(json!({"asset": {"version": "2.0"},
             "buffers": [{"byteLength": data.len(), "uri": uri}],
@@ -2150,14 +2145,13 @@ fn a_camera_is_read_through_the_projection_its_type_names_only() {
 fn an_invalid_mode_or_interpolation_is_no_default_and_matches_no_count() {
     // Four vertices: not a TRIANGLES count, but an invalid mode is not TRIANGLES.
     let positions: Vec<u8> = [0.0f32; 12].iter().flat_map(|v| v.to_le_bytes()).collect();
-    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &positions);
     let with_mode = |mode: Value| {
         let mut primitive = json!({"attributes": {"POSITION": 0}});
         if !mode.is_null() {
             primitive["mode"] = mode;
         }
         khronos_findings(json!({"asset": {"version": "2.0"},
-            "buffers": [{"byteLength": 48, "uri": format!("data:application/octet-stream;base64,{encoded}")}],
+            "buffers": [{"byteLength": 48, "uri": bytes_uri(&positions)}],
             "bufferViews": [{"buffer": 0, "byteLength": 48, "target": 34962}],
             "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
                 "min": [0, 0, 0], "max": [0, 0, 0]}],
@@ -2175,14 +2169,13 @@ fn an_invalid_mode_or_interpolation_is_no_default_and_matches_no_count() {
     let times: Vec<u8> = [0.0f32, 1.0].iter().flat_map(|v| v.to_le_bytes()).collect();
     let values: Vec<u8> = [0.0f32; 12].iter().flat_map(|v| v.to_le_bytes()).collect();
     let data = [times, values].concat();
-    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &data);
     let with_interpolation = |interpolation: Value| {
         let mut sampler = json!({"input": 0, "output": 1});
         if !interpolation.is_null() {
             sampler["interpolation"] = interpolation;
         }
         khronos_findings(json!({"asset": {"version": "2.0"},
-            "buffers": [{"byteLength": data.len(), "uri": format!("data:application/octet-stream;base64,{encoded}")}],
+            "buffers": [{"byteLength": data.len(), "uri": bytes_uri(&data)}],
             "bufferViews": [{"buffer": 0, "byteLength": 8}, {"buffer": 0, "byteOffset": 8, "byteLength": 48}],
             "accessors": [{"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
                 {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"}],
@@ -2245,9 +2238,8 @@ fn numbers_are_read_as_the_validator_reads_them_javascript_doubles() {
         .flat_map(|v| v.to_le_bytes())
         .chain([0, 0, 1, 0, 2, 0, 0, 0])
         .collect();
-    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &data);
     let huge_count = khronos_findings(json!({"asset": {"version": "2.0"},
-        "buffers": [{"byteLength": data.len(), "uri": format!("data:application/octet-stream;base64,{encoded}")}],
+        "buffers": [{"byteLength": data.len(), "uri": bytes_uri(&data)}],
         "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962},
             {"buffer": 0, "byteOffset": 36, "byteLength": 6, "target": 34963}],
         "accessors": [{"bufferView": 0, "componentType": 5126, "count": 1e308, "type": "VEC3",
@@ -2285,9 +2277,8 @@ fn what_a_reference_does_not_resolve_to_is_read_as_absent() {
                 .flat_map(|v| v.to_le_bytes()),
         )
         .collect();
-    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &data);
     let skin = khronos_findings(json!({"asset": {"version": "2.0"},
-        "buffers": [{"byteLength": data.len(), "uri": format!("data:application/octet-stream;base64,{encoded}")}],
+        "buffers": [{"byteLength": data.len(), "uri": bytes_uri(&data)}],
         "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962},
             {"buffer": 0, "byteOffset": 36, "byteLength": 12, "target": 34962},
             {"buffer": 0, "byteOffset": 48, "byteLength": 48, "target": 34962}],
@@ -2338,9 +2329,8 @@ fn a_buffer_shorter_than_it_says_is_read_only_from_a_data_uri() {
             "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]})
     };
     let mismatch = ("BUFFER_BYTE_LENGTH_MISMATCH", "/buffers/0");
-    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, indices);
     let data_uri = khronos_findings(asset(json!({"byteLength": 100,
-        "uri": format!("data:application/octet-stream;base64,{encoded}")})));
+        "uri": bytes_uri(&indices)})));
     assert_eq!(
         data_uri,
         expected(&[
@@ -2499,11 +2489,10 @@ fn an_invalid_texcoord_needs_no_set() {
     .iter()
     .flat_map(|v| v.to_le_bytes())
     .collect();
-    let encoded = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &data);
     let png = "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVQYV2P4z/AfAAQAAf+I0P3MAAAAAElFTkSuQmCC";
     let with_texcoord = |texcoord: Value| {
         khronos_findings(json!({"asset": {"version": "2.0"},
-            "buffers": [{"byteLength": data.len(), "uri": format!("data:application/octet-stream;base64,{encoded}")}],
+            "buffers": [{"byteLength": data.len(), "uri": bytes_uri(&data)}],
             "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962},
                 {"buffer": 0, "byteOffset": 36, "byteLength": 24, "target": 34962}],
             "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
@@ -2611,4 +2600,18 @@ fn a_matrix_offset_is_aligned_only_into_a_buffer_view_and_an_invalid_texcoord_is
     assert!(pair(json!(-1), json!(0)).contains(&differ));
     assert!(!pair(json!(true), json!(true)).contains(&differ));
     assert!(!pair(json!(0), json!(0)).contains(&differ));
+}
+
+#[test]
+fn an_extension_the_released_validator_does_not_know_is_not_read() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_node_visibility"],
+        "nodes": [{"extensions": {"KHR_node_visibility": {"customProperty": true}}}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("UNSUPPORTED_EXTENSION", "/extensionsUsed/0"),
+            ("UNUSED_OBJECT", "/nodes/0"),
+        ])
+    );
 }

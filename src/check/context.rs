@@ -243,22 +243,15 @@ impl<'a> Context<'a> {
         Some(index)
     }
 
-    /// Resolves `object[key]` as an index into `collection` without marking the target used
-    /// (a skin's skeleton: the Khronos validator counts no node used for being one).
-    pub(crate) fn reference_unused(
+    /// Resolves an index value at `pointer` into `collection`, reporting one that names
+    /// nothing, without marking the target used (as for a skin's skeleton: the Khronos
+    /// validator counts no node used for being one).
+    pub(crate) fn resolve(
         &mut self,
-        object: Node,
-        key: &str,
+        value: Node,
         pointer: &str,
         collection: &'static str,
     ) -> Option<usize> {
-        let value = object.get(key)?;
-        self.resolve(value, &member(pointer, key), collection)
-    }
-
-    /// Resolves an index value at `pointer` into `collection`, reporting one that names
-    /// nothing.
-    fn resolve(&mut self, value: Node, pointer: &str, collection: &'static str) -> Option<usize> {
         // A whole number too large for an index (1e29) resolves to nothing, like any other
         // index past the end, and so does an element that is no object (the schema pass
         // reported it; the Khronos validator reads it as missing); other values are the

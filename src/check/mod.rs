@@ -319,10 +319,9 @@ fn declared_extensions(root: Node<'_>) -> hashbrown::HashSet<&str> {
         .unwrap_or_default()
 }
 
-/// Removes the members at `pointers` from the tree (those inside arrays stay: only members
-/// of objects are ever unread); returns those of them that were `null`.
-/// Takes the members at `pointers` out of the tree, but for those the Khronos validator reads
-/// otherwise (below). Returns those that were null, and the extension objects made empty.
+/// Takes the members at `pointers` out of the tree (those inside arrays stay: only members of
+/// objects are ever unread), but for those the Khronos validator reads otherwise (below).
+/// Returns those that were `null`, and the extension objects made empty.
 fn remove_all(tree: &mut Tree, pointers: HashSet<String>) -> (HashSet<String>, HashSet<String>) {
     let mut nulls = HashSet::new();
     let mut emptied = HashSet::new();

@@ -102,7 +102,6 @@ pub(crate) static READINGS: &[(Code, &str)] = &[
     (khronos::ACCESSOR_ANIMATION_INPUT_NEGATIVE, OWN_POINTERS),
     (khronos::ACCESSOR_ANIMATION_INPUT_NON_INCREASING, OWN_POINTERS),
     (khronos::ACCESSOR_ANIMATION_SAMPLER_OUTPUT_NON_NORMALIZED_QUATERNION, OWN_POINTERS),
-
     (
         khronos::KHR_MATERIALS_ANISOTROPY_ANISOTROPY_TEXTURE_TEXCOORD,
         "Compares the texCoord a renderer samples, i.e. with KHR_texture_transform's texCoord override applied.",

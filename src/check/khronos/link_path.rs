@@ -11,6 +11,7 @@
 //! their own, right, paths. The default profile reports every finding at its own pointer.
 
 use crate::check::context::unsigned;
+use crate::check::schema::is_collection_element;
 use crate::diagnostic::{khronos, Code};
 use crate::document::Node;
 
@@ -129,14 +130,4 @@ impl LinkPath {
         let rewritten = format!("/{}", tokens.join("/"));
         (rewritten != format!("/animations/{rest}")).then_some(rewritten)
     }
-}
-
-/// Whether `pointer` names an element of a top-level array (`/nodes/3`).
-fn is_collection_element(pointer: &str) -> bool {
-    let mut tokens = pointer.split('/').skip(1);
-    matches!(
-        (tokens.next(), tokens.next(), tokens.next()),
-        (Some(collection), Some(index), None)
-            if crate::gltf::COLLECTIONS.contains(&collection) && index.parse::<usize>().is_ok()
-    )
 }

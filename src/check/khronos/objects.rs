@@ -596,7 +596,9 @@ pub(super) fn check_nodes_and_scenes(ctx: &mut Context) {
 pub(super) fn check_skins_animations_cameras(ctx: &mut Context) {
     for (_, pointer, skin) in ctx.objects("skins") {
         ctx.reference(skin, "inverseBindMatrices", &pointer, "accessors");
-        ctx.reference_unused(skin, "skeleton", &pointer, "nodes");
+        if let Some(skeleton) = skin.get("skeleton") {
+            ctx.resolve(skeleton, &member(&pointer, "skeleton"), "nodes");
+        }
         for (j, joint) in elements(skin, "joints") {
             ctx.reference_value(joint, &format!("{pointer}/joints/{j}"), "nodes");
         }

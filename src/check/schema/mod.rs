@@ -284,7 +284,7 @@ fn at_or_inside(members: &HashSet<String>, pointer: &str) -> bool {
 }
 
 /// Whether `pointer` is an element of a top-level collection (`/nodes/3`).
-fn is_collection_element(pointer: &str) -> bool {
+pub(crate) fn is_collection_element(pointer: &str) -> bool {
     let mut tokens = pointer.split('/').skip(1);
     match (tokens.next(), tokens.next(), tokens.next()) {
         (Some(collection), Some(_), None) => crate::gltf::COLLECTIONS.contains(&collection),
