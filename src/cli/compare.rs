@@ -91,6 +91,10 @@ pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
         true => ", over white",
         false => "",
     };
+    let behind = match w.behind {
+        true => ", seen from behind (one material draws its back face, the other culls it)",
+        false => "",
+    };
     let dominated = r
         .dominant
         .map(|input| format!(" (mostly {input})"))
@@ -113,7 +117,7 @@ pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
         }
     };
     let mut line = format!(
-        "{verdict}: ΔE2000 max {:.4}{dominated}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}){on_mesh}, view θ {tv:.2}° φ {pv:.2}°, light θ {tl:.2}° φ {pl:.2}°{over}; {}² texel centres and corners{blends} × {} directions = {} samples, and a dense search of directions where they differ most",
+        "{verdict}: ΔE2000 max {:.4}{dominated}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}){on_mesh}, view θ {tv:.2}° φ {pv:.2}°, light θ {tl:.2}° φ {pl:.2}°{over}{behind}; {}² texel centres and corners{blends} × {} directions = {} samples, and a dense search of directions where they differ most",
         r.max, r.p99, r.mean, w.uv[0], w.uv[1], r.grid, DIRECTIONS.len(), r.samples
     );
     if let Some(a) = &o.ambiguity {

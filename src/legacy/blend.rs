@@ -1,7 +1,7 @@
-//! How a glTF 1.0 technique blends, read from its states.
+//! How a glTF 1.0 technique blends and culls, read from its states.
 
 use crate::document::tree::Node;
-use crate::gltf::gl::BLEND;
+use crate::gltf::gl::{BLEND, CULL_FACE};
 
 /// How a 1.0 material's colour meets what is behind it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -32,6 +32,16 @@ pub(crate) fn technique_blend(technique: Node) -> Option<Blend> {
         Some(SRC_ALPHA) => Some(Blend::Straight),
         _ => None,
     }
+}
+
+/// Whether `technique` culls back faces: its states enable CULL_FACE (1.0 states default to
+/// nothing enabled, so a technique that does not enable it draws both sides).
+pub(crate) fn technique_culls(technique: Node) -> bool {
+    let states = technique.get("states");
+    let enabled = states
+        .and_then(|s| s.get("enable"))
+        .and_then(Node::as_array);
+    enabled.is_some_and(|e| e.iter().any(|e| e.as_u64() == Some(CULL_FACE)))
 }
 
 #[cfg(test)]
@@ -68,5 +78,15 @@ mod tests {
             "functions without BLEND enabled"
         );
         assert_eq!(blend_of(r#"{"states": "none"}"#), None);
+    }
+
+    #[test]
+    fn a_technique_culls_only_when_its_states_enable_cull_face() {
+        let culls =
+            |technique: &str| technique_culls(Tree::parse(technique.as_bytes()).unwrap().root());
+        assert!(culls(r#"{"states": {"enable": [2929, 2884]}}"#));
+        assert!(!culls(r#"{"states": {"enable": [2929]}}"#));
+        assert!(!culls(r#"{"states": {}}"#), "nothing enabled by default");
+        assert!(!culls(r#"{}"#));
     }
 }

@@ -100,6 +100,9 @@ pub struct Worst {
     pub directions: Angles,
     /// The radiance of the background it was seen over (see [`BACKGROUNDS`]).
     pub background: f64,
+    /// Whether it was seen from behind the surface, where one material draws its back face
+    /// and the other culls it.
+    pub behind: bool,
 }
 
 /// The ΔE2000 figures of one material pair.
@@ -154,6 +157,7 @@ impl Worst {
         Worst {
             delta_e: 0.0,
             sets: Vec::new(),
+            behind: false,
             uv: [0.0, 0.0],
             directions: Angles::coarse(DIRECTIONS[0]),
             background: BACKGROUNDS[0],
@@ -338,6 +342,7 @@ pub(crate) fn on_surface(
         delta_e,
         uv: points[i][0],
         sets: points[i].clone(),
+        behind: false,
         directions,
         background,
     };
@@ -1092,6 +1097,7 @@ impl Partial {
             worst: Worst {
                 delta_e: -1.0,
                 sets: Vec::new(),
+                behind: false,
                 uv: [0.0, 0.0],
                 directions: Angles::coarse(DIRECTIONS[0]),
                 background: BACKGROUNDS[0],
@@ -1111,6 +1117,7 @@ impl Partial {
             self.worst = Worst {
                 delta_e: 0.0,
                 sets: Vec::new(),
+                behind: false,
                 uv: at.uv,
                 directions: angles[0],
                 background: BACKGROUNDS[0],
@@ -1158,6 +1165,7 @@ impl Partial {
             self.worst = Worst {
                 delta_e: point_max,
                 sets: Vec::new(),
+                behind: false,
                 uv: at.uv,
                 directions: angles[arg],
                 background: BACKGROUNDS[0],

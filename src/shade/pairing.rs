@@ -111,7 +111,8 @@ impl Outcome {
         serde_json::json!({"a": self.a.0, "aName": self.a.1, "b": self.b.0, "bName": self.b.1,
             "max": result.max, "p99": result.p99, "mean": result.mean,
             "worst": {"uv": worst.uv, "texcoords": worst.sets, "view": worst.directions.view,
-                      "light": worst.directions.light, "background": worst.background},
+                      "light": worst.directions.light, "background": worst.background,
+                      "behind": worst.behind},
             "dominant": result.dominant, "evaluated": self.is_evaluated(),
             "notEvaluated": self.not_evaluated,
             "grid": result.grid, "samples": result.samples, "blendedCorners": result.blended_corners,
@@ -238,10 +239,13 @@ fn compare_as_read(
     grid: u32,
     map: TexelMap,
 ) -> PairResult {
-    let result =
-        evaluate::compare_readings(shader, std::slice::from_ref(source), target, grid, map)
-            .pop()
-            .unwrap_or_else(|| evaluate::compare(shader, source, target, grid));
+    let front = evaluate::compare_readings(shader, std::slice::from_ref(source), target, grid, map)
+        .pop()
+        .unwrap_or_else(|| evaluate::compare(shader, source, target, grid));
+    let result = match seen_from_behind(shader, source, target, grid, map) {
+        Some(back) => front_or_back(front, back),
+        None => front,
+    };
 
     let others = source.other_readings();
     // The readings' spread is a statement about the source beside the figure, not part of
@@ -262,6 +266,49 @@ fn compare_as_read(
             })
         });
     PairResult { result, ambiguity }
+}
+
+/// Where one material of a pair draws its back face and the other culls it (both say which):
+/// what a viewer sees from behind, the two-sided one shaded as from the front (glTF flips a
+/// back face's normal) against the background the culled one leaves.
+fn seen_from_behind(
+    shader: &Shader,
+    source: &MaterialSource,
+    target: &MaterialSource,
+    grid: u32,
+    map: TexelMap,
+) -> Option<Comparison> {
+    let (Some(first), Some(second)) = (source.double_sided(), target.double_sided()) else {
+        return None;
+    };
+    if first == second {
+        return None;
+    }
+    let culled = MaterialSource::invisible();
+    let (source, target) = match first {
+        true => (source, &culled),
+        false => (&culled, target),
+    };
+    evaluate::compare_readings(shader, std::slice::from_ref(source), target, grid, map).pop()
+}
+
+/// A pair seen from the front and from behind: the figures of the view that differs most,
+/// with the samples of both.
+fn front_or_back(front: Comparison, back: Comparison) -> Comparison {
+    let samples = front.samples + back.samples;
+    let mut seen = match back.max > front.max {
+        true => Comparison {
+            worst: evaluate::Worst {
+                behind: true,
+                ..back.worst
+            },
+            dominant: Some("doubleSided"),
+            ..back
+        },
+        false => front,
+    };
+    seen.samples = samples;
+    seen
 }
 
 /// Which materials [`compare`] pairs, and how finely it samples them.
@@ -578,5 +625,42 @@ mod tests {
         };
         assert_eq!(first.fingerprint(), second.fingerprint());
         assert_ne!(first.fingerprint(), other.fingerprint());
+    }
+
+    /// A back face drawn against one culled shows the material against the background: a
+    /// difference from behind, which the front cannot show. Both drawn, or both culled, the
+    /// back adds nothing; nor does a material that hides nothing.
+    #[test]
+    fn a_pair_of_which_one_culls_its_back_face_differs_from_behind() {
+        let of = |material: serde_json::Value| {
+            ("m".to_string(), Some(MaterialSource::gltf2(&material, &[])))
+        };
+        let red = json!({"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.1, 0.1, 1.0]}});
+        let mut two_sided = red.clone();
+        two_sided["doubleSided"] = json!(true);
+        let clear = json!({"alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 0.0]}});
+        let mut clear_two_sided = clear.clone();
+        clear_two_sided["doubleSided"] = json!(true);
+        let a = [&red, &two_sided, &two_sided, &clear].map(|m| of(m.clone()));
+        let b = [&two_sided, &red, &two_sided, &clear_two_sided].map(|m| of(m.clone()));
+        let pairs = [(0, 0), (1, 1), (2, 2), (3, 3)];
+        let outcomes = compare_pairs(&a, &b, &pairs, &[], 4, TexelMap::Dropped);
+        for (culled_first, outcome) in [true, false].into_iter().zip(&outcomes) {
+            assert!(!outcome.same(1.0), "culled first: {culled_first}");
+            assert!(outcome.result.worst.behind);
+            assert_eq!(outcome.result.dominant, Some("doubleSided"));
+        }
+        assert!(
+            outcomes[2].same(1.0) && !outcomes[2].result.worst.behind,
+            "both drawn"
+        );
+        assert!(
+            outcomes[3].same(1.0),
+            "a material that hides nothing looks the same culled"
+        );
+        assert!(
+            outcomes[0].result.samples > outcomes[2].result.samples,
+            "front and back sampled"
+        );
     }
 }

@@ -305,6 +305,7 @@ pub(super) fn search(
         worst: Worst {
             delta_e,
             sets: Vec::new(),
+            behind: false,
             uv: candidate.uv,
             directions: angles,
             background,

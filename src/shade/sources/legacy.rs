@@ -4,7 +4,7 @@ use super::sample::{self, LitLegacy, MaterialSource, Texture};
 use crate::document::tree::Node;
 use crate::document::uri::ResourceLoader;
 use crate::gltf::color::srgb_to_linear;
-use crate::legacy::blend::{technique_blend, Blend};
+use crate::legacy::blend::{technique_blend, technique_culls, Blend};
 use crate::legacy::pbr;
 use crate::legacy::source::{self, NotGltf1};
 use crate::shade::material::SpecGlossReading;
@@ -32,7 +32,7 @@ pub(crate) fn legacy_materials(
 ) -> Result<Vec<Named>, LegacyMaterialsError> {
     let source = source::read_for_materials(bytes.into(), loader)?;
     // Each material's PBR block, or what a lit one says of its emission and coverage.
-    let parsed: Vec<(&str, Option<pbr::LegacyPbr>, Option<LitText>)> = source
+    let parsed: Vec<(&str, Option<pbr::LegacyPbr>, Option<LitText>, Option<bool>)> = source
         .dictionary("materials")
         .into_iter()
         .map(|(id, material)| {
@@ -41,7 +41,7 @@ pub(crate) fn legacy_materials(
                 Some(_) => None,
                 None => lit_text(&source, material),
             };
-            (id, pbr, lit)
+            (id, pbr, lit, technique_double_sided(&source, material))
         })
         .collect();
     let image_of = |id: &str| {
@@ -52,7 +52,7 @@ pub(crate) fn legacy_materials(
         image.and_then(|image| source.image_bytes(image))
     };
     // Every texture the PBR materials use, decoded once and all together.
-    let pbr_ids = (parsed.iter().filter_map(|(_, pbr, _)| pbr.as_ref()))
+    let pbr_ids = (parsed.iter().filter_map(|(_, pbr, _, _)| pbr.as_ref()))
         .flat_map(|pbr| [&pbr.colour_texture, &pbr.data_texture]);
     let (ids, position) = distinct(pbr_ids);
     let encoded: Vec<sample::Wanted<_>> = (ids.iter()).map(|id| Some(image_of(id))).collect();
@@ -70,7 +70,7 @@ pub(crate) fn legacy_materials(
     };
     // A lit material's textures may fail alone, the decoding budget included: that
     // material is then not evaluated, the others are.
-    let lit_ids = (parsed.iter().filter_map(|(_, _, lit)| lit.as_ref()))
+    let lit_ids = (parsed.iter().filter_map(|(_, _, lit, _)| lit.as_ref()))
         .flat_map(|lit| [&lit.emission_texture, &lit.alpha_texture]);
     let (lit_ids, lit_position) = distinct(lit_ids);
     let lit_encoded: Vec<sample::Wanted<_>> =
@@ -87,18 +87,19 @@ pub(crate) fn legacy_materials(
             _ => None,
         }
     };
-    let lit_source = |text: &LitText| -> Option<MaterialSource> {
+    let lit_source = |text: &LitText, double_sided| -> Option<MaterialSource> {
         Some(MaterialSource::lit_legacy(LitLegacy {
             emission: text.emission,
             emission_texture: lit_texture(&text.emission_texture)?,
             alpha: text.alpha,
             alpha_texture: lit_texture(&text.alpha_texture)?,
             blend: text.blend,
+            double_sided,
         }))
     };
     Ok(parsed
         .into_iter()
-        .map(|(id, pbr, lit)| {
+        .map(|(id, pbr, lit, double_sided)| {
             let sampled = match pbr {
                 Some(pbr) => Some(MaterialSource::Legacy {
                     colour: texture(&pbr.colour_texture),
@@ -106,12 +107,25 @@ pub(crate) fn legacy_materials(
                     samplers: [sampler(&pbr.colour_texture), sampler(&pbr.data_texture)],
                     pbr: Box::new(pbr),
                     reading: SpecGlossReading::DraftAppendix,
+                    double_sided,
                 }),
-                None => lit.as_ref().and_then(lit_source),
+                None => lit.as_ref().and_then(|text| lit_source(text, double_sided)),
             };
             (id.to_string(), sampled)
         })
         .collect())
+}
+
+/// Whether a 1.0 material draws both sides, where it says: its technique's states (without
+/// CULL_FACE both are drawn), KHR_materials_common's `doubleSided` (false by default).
+/// `None` where nothing says (no technique, or one that names nothing).
+fn technique_double_sided(source: &source::Source, material: Node) -> Option<bool> {
+    let common = (material.get("extensions")).and_then(|e| e.get("KHR_materials_common"));
+    if let Some(common) = common {
+        return Some(common.get("doubleSided").and_then(Node::as_bool) == Some(true));
+    }
+    let technique = material.get("technique").and_then(Node::as_str)?;
+    Some(!technique_culls(source.object("techniques", technique)?))
 }
 
 /// The distinct texture ids among `ids` (in order), and the position of each.

@@ -759,6 +759,8 @@ pub(crate) enum MaterialSource {
         samplers: [Sampler; 2],
         /// How a specular-glossiness draft is read (see [`SpecGlossReading::DRAFTS`]).
         reading: SpecGlossReading,
+        /// Whether both sides are drawn, where the 1.0 material says (its technique).
+        double_sided: Option<bool>,
     },
 }
 
@@ -790,6 +792,8 @@ pub(crate) struct Prepared {
     /// KHR_materials_iridescence's thickness range (nanometres) and texture (G).
     film_thickness: ([f64; 2], Option<Binding>),
     pub has_sheen: bool,
+    /// Whether both sides are drawn (`doubleSided`; for a 1.0 material, where it says).
+    double_sided: Option<bool>,
     /// Only its emission and coverage are read (see [`MaterialSource::lit_legacy`]).
     lighting_unread: bool,
     /// What the evaluator cannot show of this material (see [`MaterialSource::unmodelled`]).
@@ -814,6 +818,8 @@ pub(crate) struct LitLegacy {
     pub alpha_texture: Option<(Texture, Sampler)>,
     /// How it is blended; `None` when it is not (opaque).
     pub blend: Option<Blend>,
+    /// Whether both sides are drawn, where the material says.
+    pub double_sided: Option<bool>,
 }
 
 /// What a [`LitLegacy`] material leaves out, as [`MaterialSource::unmodelled`] says it.
@@ -944,6 +950,7 @@ impl Prepared {
             iridescence: None,
             film_thickness: ([100.0, 400.0], None),
             has_sheen: false,
+            double_sided: None,
             lighting_unread: false,
             unmodelled: Vec::new(),
             fingerprint: String::new(),
@@ -976,8 +983,9 @@ impl MaterialSource {
         );
         prepared.factors.premultiplied = lit.blend == Some(Blend::Premultiplied);
         prepared.lighting_unread = true;
+        prepared.double_sided = lit.double_sided;
         prepared.unmodelled.push(LIGHTING_UNREAD.into());
-        prepared.fingerprint += &format!("|{:?}", lit.blend);
+        prepared.fingerprint += &format!("|{:?}|{:?}", lit.blend, lit.double_sided);
         MaterialSource::Gltf2(Arc::new(prepared))
     }
 
@@ -1103,8 +1111,9 @@ impl MaterialSource {
                 data,
                 samplers,
                 reading,
+                double_sided,
             } => format!(
-                "{pbr:?}|{:?}|{:?}|{samplers:?}|{reading:?}",
+                "{pbr:?}|{:?}|{:?}|{samplers:?}|{reading:?}|{double_sided:?}",
                 colour.as_ref().map(Arc::as_ptr),
                 data.as_ref().map(Arc::as_ptr)
             ),
@@ -1120,6 +1129,7 @@ impl MaterialSource {
                 colour,
                 data,
                 samplers,
+                double_sided,
                 ..
             } if pbr.model == Model::SpecularGlossiness => MaterialSource::Legacy {
                 pbr: pbr.clone(),
@@ -1127,9 +1137,26 @@ impl MaterialSource {
                 data: data.clone(),
                 samplers: *samplers,
                 reading: wanted,
+                double_sided: *double_sided,
             },
             _ => self.clone(),
         }
+    }
+
+    /// Whether both of its sides are drawn; `None` for a 1.0 material that does not say (no
+    /// technique), whose back is then not compared.
+    pub(crate) fn double_sided(&self) -> Option<bool> {
+        match self {
+            MaterialSource::Gltf2(prepared) => prepared.double_sided,
+            MaterialSource::Legacy { double_sided, .. } => *double_sided,
+        }
+    }
+
+    /// What a culled back face shows: nothing, the background whole.
+    pub(crate) fn invisible() -> MaterialSource {
+        let mut prepared = Prepared::emitting_only([0.0; 3], None, 0.0, None, AlphaMode::Blend);
+        prepared.fingerprint = "invisible".into();
+        MaterialSource::Gltf2(Arc::new(prepared))
     }
 
     /// The readings of its text other than the one it is read as: the other draft
@@ -1293,6 +1320,7 @@ impl MaterialSource {
                 data,
                 samplers: [colour_sampler, data_sampler],
                 reading,
+                ..
             } => {
                 let colour = colour.as_deref().map(|t| (t, *colour_sampler));
                 let data = data.as_deref().map(|t| (t, *data_sampler));
@@ -1533,6 +1561,7 @@ fn prepare(material: Node, textures: &TextureSet) -> Prepared {
             ),
         ),
         has_sheen: sheen.is_some(),
+        double_sided: Some(material.get("doubleSided").and_then(Node::as_bool) == Some(true)),
         lighting_unread: false,
         unmodelled,
         fingerprint: String::new(),
@@ -1886,6 +1915,7 @@ mod tests {
                 alpha: 0.25,
                 alpha_texture: None,
                 blend,
+                double_sided: None,
             })
         };
         let direction = |theta: f64| [theta.sin(), 0.0, theta.cos()];

@@ -3,8 +3,7 @@
 
 use crate::document::Node;
 use crate::gltf::color::srgb_to_linear;
-use crate::gltf::gl::CULL_FACE;
-use crate::legacy::blend::{technique_blend, Blend};
+use crate::legacy::blend::{technique_blend, technique_culls, Blend};
 use crate::legacy::pbr::{self, LegacyPbr, Model};
 use crate::upgrade::builder::{pointer, Builder};
 use crate::upgrade::fit;
@@ -80,18 +79,11 @@ fn apply_technique_states(
         .and_then(|t| builder.source.object("techniques", t));
     let double_sided = match technique {
         Some(technique) => {
-            let enabled: Vec<u64> = technique
-                .get("states")
-                .and_then(|s| s.get("enable"))
-                .and_then(Node::as_array)
-                .map(|a| a.iter().filter_map(Node::as_u64).collect())
-                .unwrap_or_default();
             // BLEND enabled with GL's default functions (ONE, ZERO) replaces what is behind.
             if technique_blend(technique).is_some() {
                 out.insert("alphaMode".into(), json!("BLEND"));
             }
-            // 1.0 states default to nothing enabled: no CULL_FACE means no culling.
-            !enabled.contains(&CULL_FACE)
+            !technique_culls(technique)
         }
         None => builder.options.double_sided_default,
     };
