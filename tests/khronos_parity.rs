@@ -2615,3 +2615,82 @@ fn an_extension_the_released_validator_does_not_know_is_not_read() {
         ])
     );
 }
+
+/// Findings of `document` in `profile`, its external files read from an empty folder.
+fn findings_without_files(document: &Value, profile: Profile) -> Vec<(String, String)> {
+    let options = CheckOptions::default().with_profile(profile);
+    let bytes = serde_json::to_vec(document).unwrap();
+    let nothing = gltfmat::MemoryResources::default();
+    sorted_findings(&check_bytes("case.gltf", bytes, &nothing, &options))
+}
+
+#[test]
+fn an_image_with_any_extension_object_is_neither_fetched_nor_parsed() {
+    // The validator leaves such an image to its extension: a missing file is no IO_ERROR
+    // and a buffer view that holds no image is not read, whatever the extension object
+    // holds; a URI's and a view's own links are still checked.
+    let zeros = format!("data:application/octet-stream;base64,{}", "A".repeat(24));
+    let document = json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 16, "uri": zeros}],
+        "bufferViews": [{"buffer": 0, "byteLength": 16, "byteStride": 4}],
+        "images": [
+            {"uri": "missing.png", "extensions": {"X_meta": 5}},
+            {"bufferView": 0, "mimeType": "image/png", "extensions": {"X_meta": {}}},
+            {"uri": "missing.png", "extensions": {}},
+        ],
+        "textures": [{"source": 1}]});
+    assert_eq!(
+        findings_without_files(&document, Profile::Khronos),
+        expected(&[
+            ("IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE", "/images/1/bufferView"),
+            ("IO_ERROR", "/images/2/uri"),
+            ("TYPE_MISMATCH", "/images/0/extensions/X_meta"),
+            ("UNDECLARED_EXTENSION", "/images/0/extensions/X_meta"),
+            ("UNDECLARED_EXTENSION", "/images/1/extensions/X_meta"),
+            ("UNUSED_OBJECT", "/images/0"),
+            ("UNUSED_OBJECT", "/images/2"),
+            ("UNUSED_OBJECT", "/textures/0"),
+        ])
+    );
+    // The default profile reads them, as any image: the missing file is reported.
+    let default = findings_without_files(&document, Profile::Default);
+    let missing = ("IO_ERROR".to_string(), "/images/0/uri".to_string());
+    assert!(default.contains(&missing), "{default:?}");
+}
+
+#[test]
+fn a_data_uri_whose_content_is_not_its_declared_image_type_is_invalid_and_not_read() {
+    // The validator names the codec by the first bytes (at least 14) and drops data that
+    // does not match the declared type, case aside: no header is then read.
+    let data = |media: &str, bytes: &[u8]| {
+        use base64::Engine;
+        let encoded = base64::engine::general_purpose::STANDARD.encode(bytes);
+        format!("data:{media};base64,{encoded}")
+    };
+    let png_start = b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR";
+    let textures: Vec<Value> = (0..5).map(|i| json!({"source": i})).collect();
+    let document = json!({"asset": {"version": "2.0"},
+        "images": [
+            {"uri": data("image/png", &[0; 16])},
+            {"uri": data("image/png", &[0xFF, 0xD8, 0xFF, 0xE0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0])},
+            {"uri": data("image/webp", b"RIFF\x10\0\0\0WAVEfmt \0\0\0\0")},
+            {"uri": data("IMAGE/PNG", png_start)},
+            {"uri": data("image/png", &png_start[..10])},
+        ],
+        "textures": textures});
+    assert_eq!(
+        findings_without_files(&document, Profile::Khronos),
+        expected(&[
+            ("IMAGE_UNEXPECTED_EOS", "/images/3"),
+            ("INVALID_URI", "/images/0/uri"),
+            ("INVALID_URI", "/images/1/uri"),
+            ("INVALID_URI", "/images/2/uri"),
+            ("INVALID_URI", "/images/4/uri"),
+            ("UNUSED_OBJECT", "/textures/0"),
+            ("UNUSED_OBJECT", "/textures/1"),
+            ("UNUSED_OBJECT", "/textures/2"),
+            ("UNUSED_OBJECT", "/textures/3"),
+            ("UNUSED_OBJECT", "/textures/4"),
+        ])
+    );
+}

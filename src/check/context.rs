@@ -123,6 +123,9 @@ pub(crate) struct Context<'a> {
     /// Each material's extension names as written, where the profile counts them so (see
     /// `khronos::extensions_as_written`), by material index.
     pub extensions_as_written: HashMap<usize, Vec<String>>,
+    /// The images with an extension object as written, where the profile leaves them unread
+    /// (see `khronos::images_with_extensions`).
+    pub images_left_to_extensions: HashSet<usize>,
     /// Where the profile reports link findings the validator names by a path it did not
     /// unwind (see `khronos::LinkPath`); none when they are at their own pointers.
     pub link_path: Option<super::khronos::LinkPath>,
@@ -154,6 +157,7 @@ impl<'a> Context<'a> {
             resources: Vec::new(),
             undeclared_extensions: Default::default(),
             extensions_as_written: Default::default(),
+            images_left_to_extensions: Default::default(),
             link_path: None,
             extensions_used: std::sync::OnceLock::new(),
         }

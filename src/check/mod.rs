@@ -230,6 +230,10 @@ fn check_document(
                 true => khronos::extensions_as_written(tree.root()),
                 false => Default::default(),
             };
+            let left_to_extensions = match options.profile.reads_images_with_extensions() {
+                false => khronos::images_with_extensions(tree.root()),
+                true => Default::default(),
+            };
             let undeclared = if gltf1 {
                 Default::default()
             } else {
@@ -239,6 +243,7 @@ fn check_document(
             let mut ctx = Context::new(root, &document, loader, options, diagnostics, &filters);
             ctx.undeclared_extensions = undeclared;
             ctx.extensions_as_written = as_written;
+            ctx.images_left_to_extensions = left_to_extensions;
             if options.profile.names_link_findings_as_the_validator() && !gltf1 {
                 ctx.link_path = khronos::LinkPath::of(root);
             }

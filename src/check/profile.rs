@@ -71,6 +71,12 @@ impl Profile {
         self == Profile::Khronos
     }
 
+    /// Whether an image with any extension object, as written, is read: the Khronos
+    /// validator leaves such an image to its extension and neither fetches nor parses it.
+    pub(crate) fn reads_images_with_extensions(self) -> bool {
+        self == Profile::Default
+    }
+
     /// Whether a glTF 1.0 document gets the 1.0 checks instead of the 2.0 passes.
     pub(crate) fn checks_gltf1(self) -> bool {
         self == Profile::Default
@@ -137,6 +143,10 @@ pub(crate) static READINGS: &[(Code, &str)] = &[
     (
         khronos::KHR_MATERIALS_VOLUME_NO_TRANSMISSION,
         "An extension object extensionsUsed does not declare, or one that is no object, is absent (UNDECLARED_EXTENSION or TYPE_MISMATCH reports it): it does not stand in for the transmission the volume needs, as it does for the Khronos validator.",
+    ),
+    (
+        khronos::IMAGE_DATA_INVALID,
+        "An image with an extension object (KHR_xmp_json_ld metadata, say) is read and its data checked like any other's (a missing file is an IO_ERROR, a broken one IMAGE_DATA_INVALID); the Khronos validator leaves such an image to its extension and neither fetches nor parses it.",
     ),
     (
         super::rules::gltf1::RULE.code(),

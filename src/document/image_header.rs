@@ -158,6 +158,24 @@ pub(crate) enum HeaderError {
 /// The identifier a KTX 2.0 file starts with.
 pub(crate) const KTX2_MAGIC: &[u8] = b"\xABKTX 20\xBB\r\n\x1A\n";
 
+/// The format a file's first bytes name, as the Khronos validator detects a data URI's codec
+/// (at least 14 bytes; JPEG by its first marker, WebP by its RIFF form and VP8 chunk); no
+/// header is read.
+pub(crate) fn codec_of(bytes: &[u8]) -> Option<ImageFormat> {
+    let b = bytes.get(..14)?;
+    if b.starts_with(&[0xFF, 0xD8, 0xFF]) {
+        Some(ImageFormat::Jpeg)
+    } else if b.starts_with(b"\x89PNG\r\n\x1a\n") {
+        Some(ImageFormat::Png)
+    } else if &b[..4] == b"RIFF" && &b[8..14] == b"WEBPVP" {
+        Some(ImageFormat::Webp)
+    } else if b.starts_with(KTX2_MAGIC) {
+        Some(ImageFormat::Ktx2)
+    } else {
+        None
+    }
+}
+
 pub(crate) fn read(bytes: &[u8]) -> Result<ImageInfo, HeaderError> {
     if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
         png(bytes)

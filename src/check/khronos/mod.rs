@@ -34,6 +34,7 @@ pub(crate) use objects::{
     take_unread_projections, take_unread_sparse,
 };
 pub(crate) use primitives::mode_of;
+pub(crate) use resources::images_with_extensions;
 
 /// One pass over the document, recording findings and what later passes need in the context.
 pub(crate) type Pass = fn(&mut Context);

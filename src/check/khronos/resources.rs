@@ -14,14 +14,24 @@ use std::borrow::Cow;
 use std::collections::HashMap;
 use std::sync::Arc;
 
+/// How [`load_uri`] treats a URI naming a file.
+#[derive(Clone, Copy, PartialEq)]
+enum Files {
+    /// Read it whole.
+    Read,
+    /// Read it, a large one left in the file to be read by ranges.
+    KeepLarge,
+    /// Not fetched (what the URI says is still checked, as the validator parses it).
+    Unfetched,
+}
+
 /// Bytes behind a `uri`, with diagnostics for everything that stops us reading them.
-/// Returns the bytes (a large buffer file left in the file when `keep_large`) and, for data
-/// URIs, the declared media type.
+/// Returns the bytes (a file as `files` says) and, for data URIs, the declared media type.
 fn load_uri(
     ctx: &mut Context,
     uri: &str,
     pointer: &str,
-    keep_large: bool,
+    files: Files,
 ) -> (Option<Kept>, Option<String>, &'static str) {
     let glb = crate::check::is_glb(ctx.document);
     if glb {
@@ -67,7 +77,15 @@ fn load_uri(
         // gltfmat refuses to, as it leaves the asset's folder.
         Ok(UriKind::AbsolutePath) => {
             non_relative(ctx, pointer, uri);
-            refuse_outside(ctx, pointer, uri);
+            if files != Files::Unfetched {
+                refuse_outside(ctx, pointer, uri);
+            }
+            (None, None, "external")
+        }
+        Ok(_) if files == Files::Unfetched => {
+            if let Ok(UriKind::QueryOrFragment) = classify(uri) {
+                non_relative(ctx, pointer, uri);
+            }
             (None, None, "external")
         }
         Ok(UriKind::QueryOrFragment) => {
@@ -88,7 +106,7 @@ fn load_uri(
             (None, None, "external")
         }
         Ok(UriKind::Relative(path)) => {
-            let kept = load_relative(ctx, pointer, uri, &path, keep_large);
+            let kept = load_relative(ctx, pointer, uri, &path, files == Files::KeepLarge);
             (kept, None, "external")
         }
     }
@@ -189,7 +207,8 @@ pub(crate) fn check_buffers(ctx: &mut Context) {
             }
             Some(uri) => {
                 let uri_pointer = member(&pointer, "uri");
-                let (data, media_type, storage) = load_uri(ctx, uri, &uri_pointer, true);
+                let (data, media_type, storage) =
+                    load_uri(ctx, uri, &uri_pointer, Files::KeepLarge);
                 if let Some(media) = media_type {
                     let lower = media.to_ascii_lowercase();
                     if lower != "application/octet-stream" && lower != "application/gltf-buffer" {
@@ -432,7 +451,8 @@ pub(crate) fn check_images(ctx: &mut Context) {
     let mut read_views = HashMap::new();
     for (i, pointer, image) in ctx.objects("images") {
         let mime_type = check_image_members(ctx, &pointer, image, enabled);
-        let Some(source) = image_source(ctx, &pointer, image, &mut read_views) else {
+        let read = !ctx.images_left_to_extensions.contains(&i);
+        let Some(source) = image_source(ctx, &pointer, image, read, &mut read_views) else {
             continue;
         };
         let mut resource = ResourceInfo {
@@ -508,8 +528,6 @@ fn check_image_members<'t>(
 /// Where an image's bytes come from, and the bytes when they could be read.
 struct ImageSource {
     bytes: Option<Arc<Bytes>>,
-    /// A `data:` URI's media type.
-    media_type: Option<String>,
     storage: &'static str,
     /// An external file's URI.
     uri: Option<String>,
@@ -518,24 +536,31 @@ struct ImageSource {
 }
 
 /// Reads an image from its URI or its buffer view (a view shared by several images is read
-/// once); `None` when it has neither.
+/// once); `None` when it has neither. Without `read`, what the image names is checked as
+/// the validator parses it, and nothing is fetched: the source has no bytes.
 fn image_source(
     ctx: &mut Context,
     pointer: &str,
     image: Node,
+    read: bool,
     read_views: &mut HashMap<usize, Arc<Bytes>>,
 ) -> Option<ImageSource> {
     if let Some(uri) = image.get("uri").and_then(Node::as_str) {
         let uri_pointer = member(pointer, "uri");
-        let (kept, media_type, storage) = load_uri(ctx, uri, &uri_pointer, false);
+        let files = if read { Files::Read } else { Files::Unfetched };
+        let (kept, media_type, storage) = load_uri(ctx, uri, &uri_pointer, files);
         let bytes = kept.and_then(|kept| match kept {
             Kept::Read(bytes) => Some(bytes),
             Kept::File(_) | Kept::Pieces(_) => None,
         });
+        let bytes = bytes.filter(|bytes| match &media_type {
+            Some(media) => data_matches_media_type(ctx, &uri_pointer, bytes, media),
+            None => true,
+        });
+        let bytes = bytes.filter(|_| read);
         let uri = (storage == "external").then(|| uri.to_string());
         return Some(ImageSource {
             bytes,
-            media_type,
             storage,
             uri,
             mime_pointer: uri_pointer,
@@ -551,6 +576,7 @@ fn image_source(
     }
     // Read once however many images share the view.
     let bytes = match read_views.get(&view) {
+        _ if !read => None,
         Some(bytes) => Some(Arc::clone(bytes)),
         None => view_bytes(ctx, view).map(|bytes| Arc::new(bytes.into_owned().into())),
     };
@@ -559,11 +585,27 @@ fn image_source(
     }
     Some(ImageSource {
         bytes,
-        media_type: None,
         storage: "buffer-view",
         uri: None,
         mime_pointer: member(pointer, "mimeType"),
     })
+}
+
+/// Whether a data URI's content is of the media type it declares, by the codec its first
+/// bytes name, as the validator checks it when it parses the URI (case aside); where not,
+/// the URI is invalid and its data is not read as an image.
+fn data_matches_media_type(ctx: &mut Context, pointer: &str, data: &[u8], media: &str) -> bool {
+    let found = image_header::codec_of(data).map(ImageFormat::mime_type);
+    if found == Some(media.to_ascii_lowercase().as_str()) {
+        return true;
+    }
+    let found = found.unwrap_or("no image format");
+    ctx.emit(
+        khronos::INVALID_URI,
+        pointer,
+        format!("Invalid URI. Parser output: the declared media type '{media}' does not match the embedded content ({found})."),
+    );
+    false
 }
 
 /// Reads an image's header and checks its format against what the asset declares and
@@ -603,13 +645,6 @@ fn check_image_header(
         }
     };
     let found = info.format.mime_type();
-    if let Some(media) = source.media_type.as_deref().filter(|m| *m != found) {
-        ctx.emit(
-            khronos::INVALID_URI,
-            source.mime_pointer.clone(),
-            format!("Invalid URI. Parser output: the declared media type '{media}' does not match the embedded content ({found})."),
-        );
-    }
     if let Some(declared) = mime_type.filter(|m| *m != found) {
         ctx.emit(
             khronos::IMAGE_MIME_TYPE_INVALID,
@@ -644,4 +679,18 @@ fn check_image_header(
         );
     }
     Some(info)
+}
+
+/// The images whose `extensions` object, as written, has any member (mistyped and
+/// undeclared ones too): the Khronos validator leaves them to their extensions and neither
+/// fetches nor parses their data.
+pub(crate) fn images_with_extensions(root: Node) -> std::collections::HashSet<usize> {
+    let images = root.get("images").and_then(Node::as_array);
+    (images.into_iter().flatten().enumerate())
+        .filter(|(_, image)| {
+            let extensions = image.get("extensions").and_then(Node::as_object);
+            extensions.is_some_and(|e| !e.is_empty())
+        })
+        .map(|(i, _)| i)
+        .collect()
 }
