@@ -2694,3 +2694,69 @@ fn a_data_uri_whose_content_is_not_its_declared_image_type_is_invalid_and_not_re
         ])
     );
 }
+
+#[test]
+fn elements_inside_the_buffer_are_read_through_a_view_that_runs_past_it() {
+    // Both views claim 100 bytes of an 8-byte buffer. The first accessor's three indices
+    // lie inside the buffer and are read (each out of range of no vertices); the second's
+    // run past its end and are not.
+    let buffer = format!("data:application/octet-stream;base64,{}", "AAABAAIAAAA=");
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 8, "uri": buffer}],
+        "bufferViews": [
+            {"buffer": 0, "byteLength": 100, "target": 34963},
+            {"buffer": 0, "byteOffset": 2, "byteLength": 100, "target": 34963}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5123, "count": 3, "type": "SCALAR"},
+            {"bufferView": 1, "componentType": 5123, "count": 4, "type": "SCALAR"}],
+        "meshes": [{"primitives": [
+            {"attributes": {"POSITION": "x"}, "indices": 0},
+            {"attributes": {"POSITION": "x"}, "indices": 1}]}]}));
+    let oob = ("ACCESSOR_INDEX_OOB", "/meshes/0/primitives/0/indices");
+    assert_eq!(
+        found,
+        expected(&[
+            oob,
+            oob,
+            oob,
+            ("BUFFER_VIEW_TOO_LONG", "/bufferViews/0/byteLength"),
+            ("BUFFER_VIEW_TOO_LONG", "/bufferViews/1/byteLength"),
+            (
+                "INVALID_INDEX",
+                "/meshes/0/primitives/0/attributes/POSITION"
+            ),
+            (
+                "INVALID_INDEX",
+                "/meshes/0/primitives/1/attributes/POSITION"
+            ),
+            ("MESH_PRIMITIVE_INCOMPATIBLE_MODE", "/meshes/0/primitives/1"),
+            ("UNUSED_OBJECT", "/meshes/0"),
+        ])
+    );
+}
+
+#[test]
+fn an_invalid_byte_offset_places_its_accessor_nowhere_and_an_unread_array_hides_its_elements() {
+    // Accessors whose byteOffset is mistyped or negative are checked neither for alignment
+    // nor for length; primitives one of which is no object are not read at all, so the
+    // others' mistyped members go unreported.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 64}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 2, "byteLength": 8}],
+        "accessors": [
+            {"bufferView": 0, "byteOffset": "x", "componentType": 5126, "count": 16, "type": "SCALAR"},
+            {"bufferView": 0, "byteOffset": -1, "componentType": 5126, "count": 16, "type": "SCALAR"}],
+        "meshes": [{"primitives": [
+            {"attributes": -1, "mode": 99}, [null], {"attributes": {"POSITION": "x"}}]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_TYPE_MISMATCH", "/meshes/0/primitives"),
+            ("TYPE_MISMATCH", "/accessors/0/byteOffset"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("UNUSED_OBJECT", "/accessors/1"),
+            ("UNUSED_OBJECT", "/meshes/0"),
+            ("VALUE_NOT_IN_RANGE", "/accessors/1/byteOffset"),
+        ])
+    );
+}

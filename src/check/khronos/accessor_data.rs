@@ -4,7 +4,7 @@
 
 use super::accessor_fast;
 use super::accessor_usage::{self, Checker, Findings};
-use super::resources::{view_bytes, view_data, ViewData};
+use super::resources::{view_bytes, view_data_in_buffer, ViewData};
 use crate::check::context::{unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::Node;
@@ -132,7 +132,7 @@ fn in_view<'c>(ctx: &'c Context, accessor: Node) -> Option<(Layout, ViewData<'c>
         return None;
     }
     let layout = layout(ctx, accessor, view)?;
-    let bytes = view_data(ctx, view)?;
+    let bytes = view_data_in_buffer(ctx, view)?;
     // Every offset the walk computes is below `needed`, so once it fits, none can overflow.
     // Elements that overlap (a stride below the element size) are not walked: other passes
     // report that layout.

@@ -171,6 +171,12 @@ fn undeclared(ctx: &mut Context, pointer: &str) {
     );
 }
 
+/// Whether the released Khronos validator implements extension `name` (none of which it
+/// lets an image carry).
+pub(crate) fn khronos_knows(name: &str) -> bool {
+    KHRONOS_SUPPORTED.iter().any(|(n, _)| *n == name)
+}
+
 fn supported(ctx: &Context, name: &str) -> Option<&'static [Host]> {
     let gltfmat = if ctx.options.profile.knows_extensions_beyond_khronos() {
         GLTFMAT_SUPPORTED

@@ -326,7 +326,15 @@ fn check_accessor_fits(ctx: &mut Context, accessor: Node, view: usize, pointer: 
         );
     }
     let stride = declared_stride.unwrap_or(element);
-    let offset = unsigned(accessor, "byteOffset").unwrap_or(0);
+    // An invalid byteOffset (not an absent one) places the accessor nowhere: the validator
+    // checks neither its alignment nor its length.
+    let offset = match accessor.get("byteOffset") {
+        None => 0,
+        Some(_) => match unsigned(accessor, "byteOffset") {
+            Some(offset) => offset,
+            None => return,
+        },
+    };
     let length = (count - 1)
         .checked_mul(stride)
         .and_then(|n| n.checked_add(last));

@@ -357,18 +357,33 @@ impl<'c> ViewData<'c> {
     }
 }
 
-/// A buffer view's bytes, unread (see [`ViewData`]).
+/// A buffer view's bytes, unread (see [`ViewData`]), when the view fits its buffer.
 pub(crate) fn view_data<'c>(ctx: &'c Context, view_index: usize) -> Option<ViewData<'c>> {
+    let data = view_data_in_buffer(ctx, view_index)?;
+    let view = ctx.items("bufferViews").get(view_index)?;
+    let declared = usize::try_from(unsigned(view, "byteLength")?).ok()?;
+    (data.len() == declared).then_some(data)
+}
+
+/// A buffer view's bytes as far as its buffer holds them: the Khronos validator reads an
+/// accessor's elements wherever they lie in the buffer, even through a view whose byteLength
+/// runs past it (BUFFER_VIEW_TOO_LONG).
+pub(crate) fn view_data_in_buffer<'c>(ctx: &'c Context, view_index: usize) -> Option<ViewData<'c>> {
     let view = ctx.items("bufferViews").get(view_index)?;
     let buffer = ctx
         .buffers
         .get(unsigned(view, "buffer")? as usize)?
         .as_ref()?;
     let start = usize::try_from(crate::gltf::byte_offset(view)?).ok()?;
-    let end = start.checked_add(usize::try_from(unsigned(view, "byteLength")?).ok()?)?;
-    (end <= buffer.len()).then_some(ViewData {
+    // A length past 2^64 (a valid integer to the schema) runs past any buffer.
+    let length = unsigned(view, "byteLength").or_else(|| {
+        let length = view.get("byteLength")?.as_f64()?;
+        (length >= u64::MAX as f64).then_some(u64::MAX)
+    })?;
+    let end = start.saturating_add(usize::try_from(length).unwrap_or(usize::MAX));
+    (start <= buffer.len()).then_some(ViewData {
         buffer,
-        range: start..end,
+        range: start..end.min(buffer.len()),
     })
 }
 
@@ -681,15 +696,21 @@ fn check_image_header(
     Some(info)
 }
 
-/// The images whose `extensions` object, as written, has any member (mistyped and
-/// undeclared ones too): the Khronos validator leaves them to their extensions and neither
-/// fetches nor parses their data.
+/// The images whose `extensions` object, as written, has a member the Khronos validator
+/// keeps (mistyped, undeclared and unknown ones too; not a declared extension it knows,
+/// which it reports as unexpected on an image and drops): it leaves those images to their
+/// extensions and neither fetches nor parses their data.
 pub(crate) fn images_with_extensions(root: Node) -> std::collections::HashSet<usize> {
+    let used = root.get("extensionsUsed").and_then(Node::as_array);
+    let declared: Vec<&str> = (used.into_iter().flatten())
+        .filter_map(Node::as_str)
+        .collect();
+    let kept = |name: &str| !(declared.contains(&name) && super::extensions::khronos_knows(name));
     let images = root.get("images").and_then(Node::as_array);
     (images.into_iter().flatten().enumerate())
         .filter(|(_, image)| {
             let extensions = image.get("extensions").and_then(Node::as_object);
-            extensions.is_some_and(|e| !e.is_empty())
+            extensions.is_some_and(|e| e.keys().any(kept))
         })
         .map(|(i, _)| i)
         .collect()

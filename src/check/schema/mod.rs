@@ -386,15 +386,18 @@ impl<'s> AbsentMembers<'s> {
                 .is_some_and(|(parent, _)| self.at_or_inside_absent(parent));
             return inside || self.elements_unread.contains(array);
         }
-        // A member demands the others it depends on whatever it holds: the validator asks
-        // only whether it is there.
+        // The finding that made a member absent stays, and a member demands the others it
+        // depends on whatever it holds (the validator asks only whether it is there): unless
+        // it lies inside a member that is not read (an element of an array of objects one of
+        // whose elements is no object, say).
         if matches!(
             diagnostic.code,
             khronos::TYPE_MISMATCH
                 | khronos::ARRAY_LENGTH_NOT_IN_LIST
                 | khronos::UNSATISFIED_DEPENDENCY
         ) {
-            return false;
+            let parent = pointer.rsplit_once('/').map_or("", |(parent, _)| parent);
+            return !parent.is_empty() && self.at_or_inside_absent(parent);
         }
         // An element outside its range in an array read element by element stays (unless
         // the array's own parent is not read).
