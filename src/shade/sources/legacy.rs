@@ -32,7 +32,7 @@ pub(crate) fn legacy_materials(
 ) -> Result<Vec<Named>, LegacyMaterialsError> {
     let source = source::read_for_materials(bytes.into(), loader)?;
     // Each material's PBR block, or what a lit one says of its emission and coverage.
-    let parsed: Vec<(&str, Option<pbr::LegacyPbr>, Option<LitText>, Option<bool>)> = source
+    let parsed: Vec<Parsed> = source
         .dictionary("materials")
         .into_iter()
         .map(|(id, material)| {
@@ -41,7 +41,13 @@ pub(crate) fn legacy_materials(
                 Some(_) => None,
                 None => lit_text(&source, material),
             };
-            (id, pbr, lit, technique_double_sided(&source, material))
+            let double_sided = technique_double_sided(&source, material);
+            Parsed {
+                id,
+                pbr,
+                lit,
+                double_sided,
+            }
         })
         .collect();
     let image_of = |id: &str| {
@@ -52,7 +58,7 @@ pub(crate) fn legacy_materials(
         image.and_then(|image| source.image_bytes(image))
     };
     // Every texture the PBR materials use, decoded once and all together.
-    let pbr_ids = (parsed.iter().filter_map(|(_, pbr, _, _)| pbr.as_ref()))
+    let pbr_ids = (parsed.iter().filter_map(|p| p.pbr.as_ref()))
         .flat_map(|pbr| [&pbr.colour_texture, &pbr.data_texture]);
     let (ids, position) = distinct(pbr_ids);
     let encoded: Vec<sample::Wanted<_>> = (ids.iter()).map(|id| Some(image_of(id))).collect();
@@ -70,7 +76,7 @@ pub(crate) fn legacy_materials(
     };
     // A lit material's textures may fail alone, the decoding budget included: that
     // material is then not evaluated, the others are.
-    let lit_ids = (parsed.iter().filter_map(|(_, _, lit, _)| lit.as_ref()))
+    let lit_ids = (parsed.iter().filter_map(|p| p.lit.as_ref()))
         .flat_map(|lit| [&lit.emission_texture, &lit.alpha_texture]);
     let (lit_ids, lit_position) = distinct(lit_ids);
     let lit_encoded: Vec<sample::Wanted<_>> =
@@ -99,21 +105,37 @@ pub(crate) fn legacy_materials(
     };
     Ok(parsed
         .into_iter()
-        .map(|(id, pbr, lit, double_sided)| {
-            let sampled = match pbr {
-                Some(pbr) => Some(MaterialSource::Legacy {
-                    colour: texture(&pbr.colour_texture),
-                    data: texture(&pbr.data_texture),
-                    samplers: [sampler(&pbr.colour_texture), sampler(&pbr.data_texture)],
-                    pbr: Box::new(pbr),
-                    reading: SpecGlossReading::DraftAppendix,
-                    double_sided,
-                }),
-                None => lit.as_ref().and_then(|text| lit_source(text, double_sided)),
-            };
-            (id.to_string(), sampled)
-        })
+        .map(
+            |Parsed {
+                 id,
+                 pbr,
+                 lit,
+                 double_sided,
+             }| {
+                let sampled = match pbr {
+                    Some(pbr) => Some(MaterialSource::Legacy {
+                        colour: texture(&pbr.colour_texture),
+                        data: texture(&pbr.data_texture),
+                        samplers: [sampler(&pbr.colour_texture), sampler(&pbr.data_texture)],
+                        pbr: Box::new(pbr),
+                        reading: SpecGlossReading::DraftAppendix,
+                        double_sided,
+                    }),
+                    None => lit.as_ref().and_then(|text| lit_source(text, double_sided)),
+                };
+                (id.to_string(), sampled)
+            },
+        )
         .collect())
+}
+
+/// A 1.0 material as read: its PBR block, or what a lit one says of its emission and
+/// coverage, and whether it draws both sides.
+struct Parsed<'s> {
+    id: &'s str,
+    pbr: Option<pbr::LegacyPbr>,
+    lit: Option<LitText>,
+    double_sided: Option<bool>,
 }
 
 /// Whether a 1.0 material draws both sides, where it says: its technique's states (without
