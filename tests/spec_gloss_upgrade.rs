@@ -691,3 +691,50 @@ fn a_material_the_evaluator_cannot_show_is_not_evaluated_and_verify_refuses_it()
     assert!(!out.exists(), "nothing is written");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// mixed.glb (8×8 diffuse over 4×4 spec-gloss, and the reverse) with its one sampler, or
+/// its textures' samplers, replaced.
+fn mixed_with(samplers: Value, texture_samplers: [u64; 4]) -> Vec<u8> {
+    let glb = std::fs::read(fixture("mixed.glb")).unwrap();
+    let length = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    let mut json: Value = serde_json::from_slice(&glb[20..20 + length]).unwrap();
+    let bin = &glb[20 + length + 8..];
+    json["samplers"] = samplers;
+    for (texture, sampler) in texture_samplers.into_iter().enumerate() {
+        json["textures"][texture]["sampler"] = json!(sampler);
+    }
+    common::glb(json.to_string().as_bytes(), Some(bin))
+}
+
+#[test]
+fn textures_are_rebaked_as_their_samplers_read_them() {
+    // The coarser texture of each material is read at the finer one's texel centres: through
+    // NEAREST it is its nearest texel, not a blend of four; by a texture's edge CLAMP and
+    // MIRRORED_REPEAT read the edge texel, not the opposite side's.
+    for sampler in [
+        json!({"magFilter": 9728}),
+        json!({"wrapS": 33071, "wrapT": 33071}),
+        json!({"magFilter": 9728, "wrapS": 33648, "wrapT": 33071}),
+    ] {
+        let bytes = mixed_with(json!([sampler]), [0; 4]);
+        let upgraded = upgrade(&bytes, &NoResources, &UpgradeOptions::default()).unwrap();
+        let proof = prove(bytes, "mixed.glb", &NoResources, &upgraded).unwrap();
+        assert_eq!(proof.len(), 2);
+        for outcome in proof {
+            assert!(outcome.result.max < 1.0, "{sampler}: {outcome:?}");
+        }
+    }
+}
+
+#[test]
+fn a_material_whose_two_textures_are_read_through_different_samplers_is_left() {
+    // Material 0 reads NEAREST and LINEAR; material 1 two samplers that say the same.
+    let samplers = json!([{"magFilter": 9728}, {}, {"magFilter": 9729, "wrapS": 10497}]);
+    let bytes = mixed_with(samplers, [0, 1, 1, 2]);
+    let upgraded = upgrade(&bytes, &NoResources, &UpgradeOptions::default()).unwrap();
+    let materials = &upgraded.json.to_value()["materials"];
+    assert!(materials[0]["extensions"].get(SPEC_GLOSS).is_some());
+    assert!(materials[1]["extensions"].get(SPEC_GLOSS).is_none());
+    let left = notes_saying(&upgraded, "samplers that filter or wrap differently");
+    assert_eq!(left.len(), 1, "{:?}", upgraded.report);
+}

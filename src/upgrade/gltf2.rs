@@ -20,6 +20,7 @@ use crate::gltf::material::{
 };
 use crate::gltf::material::{Combination, SPEC_GLOSS, UNLIT};
 use crate::gltf::unsigned;
+use crate::shade::sample::Sampler;
 use serde_json::{json, Value};
 use std::collections::{BTreeSet, HashMap};
 use std::ops::Range;
@@ -252,7 +253,7 @@ impl Asset {
         let Some(block) = extensions.get(SPEC_GLOSS) else {
             return Ok(false);
         };
-        if let Some(why) = why_not_converted(extensions, block) {
+        if let Some(why) = why_not_converted(input, extensions, block) {
             self.note(
                 &at,
                 NoteKind::Decision,
@@ -498,8 +499,9 @@ fn list<'t>(input: Node<'t>, key: &str) -> impl Iterator<Item = Node<'t>> + 't {
 
 /// Why a spec-gloss material is not converted, if it is not: extensions its spec excludes
 /// (reported, not guessed at), unlit (which shows the fallback base colour, not the
-/// spec-gloss model), or two textures a per-texel rebake cannot join.
-fn why_not_converted(extensions: Object, block: Node) -> Option<String> {
+/// spec-gloss model), or two textures a per-texel rebake cannot join (read through different
+/// texture coordinates, transforms or samplers).
+fn why_not_converted(input: Node, extensions: Object, block: Node) -> Option<String> {
     let excluded: Vec<&str> = (extensions.keys())
         .filter(|other| combination(SPEC_GLOSS, other) == Combination::Excluded)
         .collect();
@@ -526,8 +528,18 @@ fn why_not_converted(extensions: Object, block: Node) -> Option<String> {
             texture_transform(info).map(Node::to_value),
         )
     };
-    (mapping(diffuse) != mapping(specular)).then(|| {
-        "its diffuse and specular-glossiness textures use different texture coordinates or transforms, so no texture can hold diffuse · (1 − specular).".to_string()
+    if mapping(diffuse) != mapping(specular) {
+        return Some("its diffuse and specular-glossiness textures use different texture coordinates or transforms, so no texture can hold diffuse · (1 − specular).".to_string());
+    }
+    // One texture is read through one sampler: two textures filtered or wrapped differently
+    // (NEAREST beside LINEAR, CLAMP beside REPEAT) make a product no single sampler shows.
+    let sampler = |info: Node| {
+        let texture = unsigned(info, "index").and_then(|i| list(input, "textures").nth(i as usize));
+        let index = texture.and_then(|t| unsigned(t, "sampler"));
+        Sampler::of(index.and_then(|i| list(input, "samplers").nth(i as usize)))
+    };
+    (sampler(diffuse) != sampler(specular)).then(|| {
+        "its diffuse and specular-glossiness textures are read through samplers that filter or wrap differently, so no texture read through one sampler can hold diffuse · (1 − specular).".to_string()
     })
 }
 
@@ -582,6 +594,13 @@ impl MaterialTextures<'_> {
 impl spec_gloss::Textures for MaterialTextures<'_> {
     fn info(&self, slot: Slot) -> Option<Value> {
         self.slot(slot).cloned()
+    }
+
+    fn sampler(&self, slot: Slot) -> Sampler {
+        let index = self.texture(slot).and_then(|t| unsigned(t, "sampler"));
+        let samplers = self.input.get("samplers").and_then(Node::as_array);
+        let sampler = index.and_then(|i| samplers?.get(usize::try_from(i).ok()?));
+        Sampler::of(sampler)
     }
 
     fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>> {

@@ -4,7 +4,7 @@
 use crate::document::image_decode;
 use crate::document::image_header::{self, Channels};
 use crate::gltf::color::{linear_to_srgb, linear_to_srgb8};
-use crate::shade::sample::{self, TextureImage};
+use crate::shade::sample::{self, Sampler, TextureImage, Wrap};
 use crate::upgrade::fit::{self, Factors, TexelFits, TexelValue};
 use hashbrown::hash_map::{Entry, HashMap};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
@@ -125,14 +125,16 @@ pub(super) fn gloss_to_roughness(
 /// (see `spec_gloss`), or with `fits` its per-texel fit where that is above the proof's
 /// threshold; alpha from the diffuse. Either texture may be missing (its factor alone is
 /// used). The output has the finest grid of the two (the larger width and the larger
-/// height), and each input is sampled bilinearly (repeat wrapping, as the evaluator and
-/// viewers sample it) at the output's texel centres: the rebake is then exact at every
+/// height), and each input is sampled through its sampler (bilinearly, or its nearest texel
+/// under NEAREST, wrapped as its wrap modes say, as the evaluator and viewers sample it) at
+/// the output's texel centres: the rebake is then exact at every
 /// output texel centre whatever the two resolutions, where sampling the smaller texture at
 /// its nearest texel was not. The grid is held to [`rebake_grid`]. Returns the PNG, whether
 /// it has an alpha channel, and the decision when the grid was held.
 pub(super) fn spec_gloss_base_colour(
     diffuse: Option<&[u8]>,
     specular: Option<&[u8]>,
+    samplers: [Sampler; 2],
     factors: &Factors,
     fits: Option<&mut TexelFits>,
 ) -> Result<(Vec<u8>, bool, Option<String>), String> {
@@ -155,6 +157,7 @@ pub(super) fn spec_gloss_base_colour(
     let at_grid = |width, height| SpecGlossTexels {
         diffuse: diffuse.as_deref(),
         specular: specular.as_deref(),
+        samplers,
         factors,
         width,
         height,
@@ -163,7 +166,10 @@ pub(super) fn spec_gloss_base_colour(
     // grid: its fit is made for each stored texel, not for what lies between them. One
     // with an exact form may refine its grid first; its texels' 8-bit levels are settled
     // only on the inputs' grid.
-    let (source, finer) = match fits.as_ref().is_some_and(|f| f.keeps_grid()) {
+    // Read NEAREST, the rebake is shown texel by texel, never mixed between centres: its
+    // inputs' grid is exact.
+    let shown_nearest = at_grid(width, height).shown_through().nearest;
+    let (source, finer) = match fits.as_ref().is_some_and(|f| f.keeps_grid()) || shown_nearest {
         true => (at_grid(width, height), None),
         false => finest_needed(at_grid(width, height), at_grid),
     };
@@ -286,12 +292,17 @@ fn corners_error(texels: &SpecGlossTexels, rows: std::ops::Range<u32>) -> f64 {
             })
             .collect()
     };
+    // The texel beyond each centre is the one the rebake's sampler wraps to (itself at a
+    // clamped edge, where nothing is mixed).
+    let [wrap_s, wrap_t] = texels.shown_through().wrap;
+    let beyond =
+        |i: u32, size: u32, wrap: Wrap| wrap.texel(i64::from(i) + 1, i64::from(size)) as u32;
     let mut below = row(rows.start);
     let mut worst = 0f64;
     for y in rows {
-        let above = std::mem::replace(&mut below, row(y + 1));
+        let above = std::mem::replace(&mut below, row(beyond(y, height, wrap_t)));
         for x in 0..width as usize {
-            let next = (x + 1) % width as usize;
+            let next = beyond(x as u32, width, wrap_s) as usize;
             // On the inputs' grid a corner is a function of its four centres' values: one
             // whose four equal those of the corner before it (a flat run) has that corner's
             // ΔE, which was measured, and cannot raise the maximum.
@@ -460,6 +471,8 @@ const AS_BEFORE: u32 = u32::MAX - 2;
 struct SpecGlossTexels<'t> {
     diffuse: Option<&'t TextureImage>,
     specular: Option<&'t TextureImage>,
+    /// The samplers the diffuse and the specular-glossiness textures are read through.
+    samplers: [Sampler; 2],
     factors: &'t Factors,
     width: u32,
     height: u32,
@@ -471,13 +484,22 @@ impl SpecGlossTexels<'_> {
         self.diffuse.into_iter().chain(self.specular)
     }
 
+    /// The sampler the rebake is read through: the diffuse texture's where there is one
+    /// (its texture takes that one's place), else the specular-glossiness texture's.
+    fn shown_through(&self) -> Sampler {
+        self.samplers[usize::from(self.diffuse.is_none())]
+    }
+
     fn centre(&self, x: u32, y: u32) -> [f64; 2] {
         centre(x, y, self.width, self.height)
     }
 
     /// The diffuse alpha (factor applied) at the centre of output texel (x, y).
     fn alpha(&self, x: u32, y: u32) -> f32 {
-        let a = (self.diffuse).map_or(1.0, |t| sample::bilinear(t, self.centre(x, y))[3]);
+        let centre = self.centre(x, y);
+        let a = (self.diffuse).map_or(1.0, |t| {
+            sample::sampled_srgb(t, centre, self.samplers[0])[3]
+        });
         (a * self.factors.diffuse[3]) as f32
     }
 
@@ -495,9 +517,14 @@ impl SpecGlossTexels<'_> {
     /// The value and the diffuse alpha at texture coordinates `centre`.
     fn sampled(&self, centre: [f64; 2]) -> (TexelValue, f32) {
         // Colours decoded before they are mixed, as the evaluator and viewers sample them.
-        let sample =
-            |t: Option<&TextureImage>| t.map_or([1.0; 4], |t| sample::bilinear_srgb(t, centre));
-        let (d, s) = (sample(self.diffuse), sample(self.specular));
+        let sample = |t: Option<&TextureImage>, sampler| {
+            t.map_or([1.0; 4], |t| sample::sampled_srgb(t, centre, sampler))
+        };
+        let [diffuse_sampler, specular_sampler] = self.samplers;
+        let (d, s) = (
+            sample(self.diffuse, diffuse_sampler),
+            sample(self.specular, specular_sampler),
+        );
         let linear =
             |texel: [f64; 4], factor: &[f64]| std::array::from_fn(|c| texel[c] * factor[c]);
         let value = TexelValue {
@@ -571,8 +598,14 @@ mod tests {
             glossiness: 1.0,
             reading: crate::shade::material::SpecGlossReading::ArchivedExtension,
         };
-        let (bytes, alpha, held) =
-            spec_gloss_base_colour(Some(&png(diffuse)), None, &factors, None).unwrap();
+        let (bytes, alpha, held) = spec_gloss_base_colour(
+            Some(&png(diffuse)),
+            None,
+            Default::default(),
+            &factors,
+            None,
+        )
+        .unwrap();
         assert_eq!(held, None);
         let texel = decode(&bytes).unwrap().to_rgb8().get_pixel(0, 0).0;
         let expected =
@@ -616,6 +649,7 @@ mod tests {
         SpecGlossTexels {
             diffuse: Some(diffuse),
             specular: Some(specular),
+            samplers: Default::default(),
             factors,
             width: diffuse.width(),
             height: diffuse.height(),

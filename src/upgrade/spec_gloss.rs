@@ -17,6 +17,7 @@ pub(super) use super::fit::Factors;
 use super::fit::{TexelFits, TexelReport};
 use super::rebake;
 use crate::shade::material::SpecGlossReading;
+use crate::shade::sample::Sampler;
 use serde_json::{json, Map, Value};
 use std::sync::Arc;
 
@@ -35,6 +36,8 @@ pub(super) trait Textures {
     fn info(&self, slot: Slot) -> Option<Value>;
     /// The encoded image of the slot's texture.
     fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>>;
+    /// The sampler the slot's texture is read through (LINEAR, REPEAT when it names none).
+    fn sampler(&self, slot: Slot) -> Sampler;
     /// Adds a rebaked image as a new texture sampled like the slot's texture (its sampler,
     /// texture coordinates and transform); returns the textureInfo that reads it.
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value;
@@ -51,8 +54,8 @@ pub(super) trait Textures {
 #[derive(Default)]
 pub(super) struct Rebakes(std::collections::HashMap<RebakeKey, Rebaked>);
 
-/// The images' addresses (0 for none), the factors' bits and the reading.
-type RebakeKey = (usize, usize, [u64; 8], SpecGlossReading);
+/// The images' addresses (0 for none), their samplers, the factors' bits and the reading.
+type RebakeKey = (usize, usize, [Sampler; 2], [u64; 8], SpecGlossReading);
 
 /// A rebake's two PNGs and its decisions (a held grid, the per-texel fits), and the images it
 /// was made from, held so that their addresses (the key) cannot be taken by other images.
@@ -73,6 +76,7 @@ fn rebake_key(
     factors: &Factors,
     diffuse: Option<&Arc<crate::document::Bytes>>,
     specular: &Arc<crate::document::Bytes>,
+    samplers: [Sampler; 2],
 ) -> RebakeKey {
     let [d0, d1, d2, d3] = factors.diffuse;
     let [s0, s1, s2] = factors.specular;
@@ -81,6 +85,7 @@ fn rebake_key(
     (
         address,
         Arc::as_ptr(specular) as usize,
+        samplers,
         bits,
         factors.reading,
     )
@@ -104,11 +109,12 @@ pub(super) fn to_metal_rough(
     let mut core = json!({"metallicFactor": 0.0, "roughnessFactor": 1.0 - factors.glossiness});
     if let Some(specular) = &specular_texture {
         let diffuse = textures.bytes(Slot::Diffuse);
-        let key = rebake_key(factors, diffuse.as_ref(), specular);
+        let samplers = [Slot::Diffuse, Slot::SpecularGlossiness].map(|s| textures.sampler(s));
+        let key = rebake_key(factors, diffuse.as_ref(), specular, samplers);
         let made = match textures.rebakes().0.get(&key) {
             Some(made) => made.clone(),
             None => {
-                let made = rebake(factors, diffuse.as_ref(), specular, textures)?;
+                let made = rebake(factors, diffuse.as_ref(), specular, samplers, textures)?;
                 textures.rebakes().0.insert(key, made.clone());
                 made
             }
@@ -123,7 +129,7 @@ pub(super) fn to_metal_rough(
         core["metallicRoughnessTexture"] =
             textures.add_rebaked(made.roughness, Slot::SpecularGlossiness, "roughness");
         core["roughnessFactor"] = json!(made.roughness_factor);
-        decisions.push(format!("baseColor = {} and roughness = 1 − glossiness rebaked per texel into new textures (on the finer grid of the two, each sampled bilinearly).", formula(factors.reading)));
+        decisions.push(format!("baseColor = {} and roughness = 1 − glossiness rebaked per texel into new textures (on the finer grid of the two, each read through its sampler).", formula(factors.reading)));
         decisions.extend(made.lines);
     } else {
         let [r, g, b, a] = factors.diffuse;
@@ -163,6 +169,7 @@ fn rebake(
     factors: &Factors,
     diffuse: Option<&Arc<crate::document::Bytes>>,
     specular: &Arc<crate::document::Bytes>,
+    samplers: [Sampler; 2],
     textures: &mut dyn Textures,
 ) -> Result<Rebaked, String> {
     let fits = textures.texel_fits();
@@ -173,6 +180,7 @@ fn rebake(
         let base_colour = rebake::spec_gloss_base_colour(
             diffuse.map(|bytes| &bytes[..]),
             Some(&specular[..]),
+            samplers,
             factors,
             fits,
         );

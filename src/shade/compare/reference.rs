@@ -133,7 +133,7 @@ fn the_fast_maximum_is_the_dense_references_on_materials_made_to_hide_it() {
                 (f64::from(x) + 0.5) / f64::from(side),
                 (f64::from(y) + 0.5) / f64::from(side),
             ];
-            crate::shade::sample::bilinear_srgb(t, uv)
+            crate::shade::sample::sampled_srgb(t, uv, Default::default())
         };
         let base = texture(side, |x, y| {
             let (d, s) = (at(diffuse, x, y), at(specular, x, y));

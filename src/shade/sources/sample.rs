@@ -581,12 +581,11 @@ pub(crate) fn bilinear(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
     sample_of::<false>(texture, uv, Sampler::default())
 }
 
-/// Bilinear sample of an sRGB-encoded colour texture: RGB decoded to linear texel by texel
-/// before the texels are mixed, as a GPU samples an sRGB texture format ("the conversion
-/// … is performed before filtering"), alpha as stored.
-#[inline(always)]
-pub(crate) fn bilinear_srgb(texture: &TextureImage, uv: [f64; 2]) -> [f64; 4] {
-    sample_of::<true>(texture, uv, Sampler::default())
+/// A sample of an sRGB-encoded colour texture as `sampler` filters and wraps it: RGB decoded
+/// to linear texel by texel before the texels are mixed, as a GPU samples an sRGB texture
+/// format ("the conversion … is performed before filtering"), alpha as stored.
+pub(crate) fn sampled_srgb(texture: &TextureImage, uv: [f64; 2], sampler: Sampler) -> [f64; 4] {
+    sample_of::<true>(texture, uv, sampler)
 }
 
 /// A sample as `sampler` filters and wraps it, colours decoded from sRGB when `SRGB`.
@@ -670,7 +669,7 @@ impl Wrap {
     }
 
     #[inline(always)]
-    fn texel(self, i: i64, size: i64) -> i64 {
+    pub(crate) fn texel(self, i: i64, size: i64) -> i64 {
         match self {
             Wrap::Repeat => wrap(i, size),
             Wrap::Clamp => i.clamp(0, size - 1),

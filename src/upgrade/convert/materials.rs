@@ -5,6 +5,7 @@ use crate::document::Node;
 use crate::gltf::color::srgb_to_linear;
 use crate::legacy::blend::{technique_blend, technique_culls, Blend};
 use crate::legacy::pbr::{self, LegacyPbr, Model};
+use crate::shade::sample::Sampler;
 use crate::upgrade::builder::{pointer, Builder};
 use crate::upgrade::fit;
 use crate::upgrade::json::Items;
@@ -302,6 +303,13 @@ impl spec_gloss::Textures for DraftTextures<'_, '_, '_, '_> {
 
     fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>> {
         texture_bytes(self.builder, self.id(slot))
+    }
+
+    fn sampler(&self, slot: Slot) -> Sampler {
+        let source = &self.builder.source;
+        let texture = self.id(slot).and_then(|id| source.object("textures", id));
+        let sampler = texture.and_then(|t| t.get("sampler")?.as_str());
+        Sampler::of(sampler.and_then(|id| source.object("samplers", id)))
     }
 
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value {
