@@ -189,7 +189,12 @@ fn rebake(
         (base_colour, roughness)
     });
     let ((base_colour, _, held), (roughness, roughness_factor)) = (base_colour?, roughness?);
-    let fit_line = (textures.texel_fits()).map(|fits| texel_fit_decision(&fits.take_report()));
+    // A rebake on a refined grid checks no texel value (each is a blend, not a stored one):
+    // nothing is said of a check not made.
+    let fit_line = (textures.texel_fits())
+        .map(|fits| fits.take_report())
+        .filter(|report| report.screened + report.unscreened > 0)
+        .map(|report| texel_fit_decision(&report));
     let scaled = (roughness_factor != 1.0).then(|| format!("Roughness is stored divided by its largest value, {roughness_factor}, which the roughnessFactor multiplies back: steps of {roughness_factor}/255, not 1/255, store it nearer (a smooth surface's specular peak shows the coarser step)."));
     Ok(Rebaked {
         base_colour,
