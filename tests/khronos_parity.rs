@@ -2760,3 +2760,44 @@ fn an_invalid_byte_offset_places_its_accessor_nowhere_and_an_unread_array_hides_
         ])
     );
 }
+
+#[test]
+fn a_bin_chunk_cut_short_is_there_but_holds_nothing() {
+    // The chunk claims 100 bytes and 8 follow: the buffer does not miss its chunk, and the
+    // 8 bytes (values outside the accessor's bounds) are not read.
+    let document = json!({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 8}],
+        "bufferViews": [{"buffer": 0, "byteLength": 8}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR",
+            "min": [0], "max": [0]}]});
+    let mut json = serde_json::to_vec(&document).unwrap();
+    json.resize(json.len().div_ceil(4) * 4, b' ');
+    let mut body = (json.len() as u32).to_le_bytes().to_vec();
+    body.extend(b"JSON");
+    body.extend(&json);
+    body.extend(100u32.to_le_bytes());
+    body.extend(b"BIN\0");
+    body.extend([5.0f32, 7.0].iter().flat_map(|v| v.to_le_bytes()));
+    let mut glb = b"glTF\x02\0\0\0".to_vec();
+    glb.extend(((12 + body.len()) as u32).to_le_bytes());
+    glb.extend(body);
+    let options = CheckOptions::default().with_profile(Profile::Khronos);
+    let report = check_bytes("case.glb", glb, &NoResources, &options);
+    let found: Vec<(String, String)> = (report.diagnostics.iter())
+        .map(|d| {
+            (
+                d.code.name().to_string(),
+                d.pointer().unwrap_or_default().to_string(),
+            )
+        })
+        .collect();
+    let codes: Vec<&str> = found.iter().map(|(code, _)| code.as_str()).collect();
+    assert_eq!(
+        codes,
+        [
+            "GLB_CHUNK_TOO_BIG",
+            "GLB_UNEXPECTED_END_OF_CHUNK_DATA",
+            "UNUSED_OBJECT"
+        ],
+        "{found:?}"
+    );
+}

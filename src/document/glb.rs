@@ -236,8 +236,9 @@ impl Chunk {
         }
     }
 
-    /// Takes a BIN chunk's data `range` (`None`: cut short) as the binary buffer, unless
-    /// one came before.
+    /// Takes a BIN chunk's data `range` as the binary buffer, unless one came before. A chunk
+    /// cut short holds no data, but is there: the buffer it stands for does not miss it (no
+    /// BUFFER_MISSING_GLB_DATA), and nothing is read of it, as the Khronos validator reads it.
     fn take_bin(&self, range: Option<Range<usize>>, parts: &mut GlbParts, diags: &mut dyn Sink) {
         if self.index > 1 && parts.bin.is_none() {
             diags.push(at(
@@ -253,10 +254,11 @@ impl Chunk {
                 "Empty BIN chunk should be omitted.",
             ));
         }
+        let data_start = self.start + CHUNK_HEADER_LEN;
         if parts.bin.is_some() {
             self.duplicate("BIN", diags);
         } else {
-            parts.bin = range;
+            parts.bin = Some(range.unwrap_or(data_start..data_start));
         }
     }
 
