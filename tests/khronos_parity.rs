@@ -2761,42 +2761,142 @@ fn an_invalid_byte_offset_places_its_accessor_nowhere_and_an_unread_array_hides_
     );
 }
 
-#[test]
-fn a_bin_chunk_cut_short_is_there_but_holds_nothing() {
-    // The chunk claims 100 bytes and 8 follow: the buffer does not miss its chunk, and the
-    // 8 bytes (values outside the accessor's bounds) are not read.
-    let document = json!({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 8}],
-        "bufferViews": [{"buffer": 0, "byteLength": 8}],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR",
-            "min": [0], "max": [0]}]});
-    let mut json = serde_json::to_vec(&document).unwrap();
+/// A GLB of `document`'s JSON and `after` (chunk headers and data as given).
+fn glb_with(document: &Value, after: &[u8]) -> Vec<u8> {
+    let mut json = serde_json::to_vec(document).unwrap();
     json.resize(json.len().div_ceil(4) * 4, b' ');
     let mut body = (json.len() as u32).to_le_bytes().to_vec();
     body.extend(b"JSON");
     body.extend(&json);
-    body.extend(100u32.to_le_bytes());
-    body.extend(b"BIN\0");
-    body.extend([5.0f32, 7.0].iter().flat_map(|v| v.to_le_bytes()));
+    body.extend(after);
     let mut glb = b"glTF\x02\0\0\0".to_vec();
     glb.extend(((12 + body.len()) as u32).to_le_bytes());
     glb.extend(body);
+    glb
+}
+
+fn chunk_header(length: u32, kind: &[u8; 4]) -> Vec<u8> {
+    let mut header = length.to_le_bytes().to_vec();
+    header.extend(kind);
+    header
+}
+
+fn khronos_findings_of_glb(glb: Vec<u8>) -> Vec<(String, String)> {
     let options = CheckOptions::default().with_profile(Profile::Khronos);
-    let report = check_bytes("case.glb", glb, &NoResources, &options);
-    let found: Vec<(String, String)> = (report.diagnostics.iter())
+    let report = check_bytes(
+        "case.glb",
+        glb,
+        &gltfmat::MemoryResources::default(),
+        &options,
+    );
+    let mut found: Vec<(String, String)> = (report.diagnostics.iter())
         .map(|d| {
-            (
-                d.code.name().to_string(),
-                d.pointer().unwrap_or_default().to_string(),
-            )
+            let at = match d.location {
+                gltfmat::Place::Pointer(pointer) => pointer.to_string(),
+                gltfmat::Place::Offset(offset) => format!("@{offset}"),
+            };
+            (d.code.name().to_string(), at)
         })
         .collect();
-    let codes: Vec<&str> = found.iter().map(|(code, _)| code.as_str()).collect();
+    found.sort();
+    found
+}
+
+#[test]
+fn a_glb_whose_bytes_end_inside_a_chunk_loads_no_resource_and_reads_no_data() {
+    // The validator's reader gives up its document there: what its JSON reader said stays
+    // (a URI in a GLB, unused objects), nothing is loaded (no IO_ERROR for the missing
+    // image, nothing of the buffers) and no data is read (the accessor's values lie outside
+    // its bounds). An empty BIN chunk that ends the file cuts it short too.
+    let document = json!({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 8}],
+        "bufferViews": [{"buffer": 0, "byteLength": 8}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR",
+            "min": [0], "max": [0]}],
+        "images": [{"uri": "missing.png"}], "textures": [{"source": 0}]});
+    let values: Vec<u8> = [5.0f32, 7.0].iter().flat_map(|v| v.to_le_bytes()).collect();
+    let json_findings = [
+        ("UNUSED_OBJECT", "/accessors/0"),
+        ("UNUSED_OBJECT", "/textures/0"),
+        ("URI_GLB", "/images/0/uri"),
+    ];
+    let cut = glb_with(
+        &document,
+        &[chunk_header(100, b"BIN\0"), values.clone()].concat(),
+    );
+    let end = cut.len();
+    let found = khronos_findings_of_glb(cut);
+    let codes: Vec<&str> = found.iter().map(|(c, _)| c.as_str()).collect();
     assert_eq!(
         codes,
         [
             "GLB_CHUNK_TOO_BIG",
             "GLB_UNEXPECTED_END_OF_CHUNK_DATA",
-            "UNUSED_OBJECT"
+            "UNUSED_OBJECT",
+            "UNUSED_OBJECT",
+            "URI_GLB"
+        ],
+        "{found:?}"
+    );
+    assert!(found.contains(&("GLB_UNEXPECTED_END_OF_CHUNK_DATA".into(), format!("@{end}"))));
+    let empty_last = glb_with(&document, &chunk_header(0, b"BIN\0"));
+    let found = khronos_findings_of_glb(empty_last);
+    let mut wanted = expected(&json_findings);
+    wanted.push((
+        "GLB_EMPTY_BIN_CHUNK".into(),
+        format!("@{}", found_offset(&found, "GLB_EMPTY_BIN_CHUNK")),
+    ));
+    wanted.sort();
+    assert_eq!(found, wanted);
+    // Whole, the same file loads its resources and reads its data.
+    let whole = glb_with(&document, &[chunk_header(8, b"BIN\0"), values].concat());
+    let codes: Vec<String> = khronos_findings_of_glb(whole)
+        .into_iter()
+        .map(|(c, _)| c)
+        .collect();
+    assert!(
+        codes.contains(&"IO_ERROR".to_string())
+            && codes.contains(&"ACCESSOR_MAX_MISMATCH".to_string()),
+        "{codes:?}"
+    );
+}
+
+fn found_offset(found: &[(String, String)], code: &str) -> String {
+    let at = found
+        .iter()
+        .find(|(c, _)| c == code)
+        .map(|(_, at)| at.as_str());
+    at.unwrap_or_default().trim_start_matches('@').to_string()
+}
+
+#[test]
+fn an_empty_bin_chunk_followed_by_another_holds_no_byte_and_a_mistyped_data_uri_none() {
+    // The empty chunk is the buffer's: 0 bytes, fewer than 8. A data URI of another media
+    // type than a buffer's is not read (the values outside the bounds are not seen).
+    let data = "data:text/plain;base64,AACgQAAA4EA=";
+    let document = json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 8}, {"byteLength": 8, "uri": data}],
+        "bufferViews": [{"buffer": 0, "byteLength": 8}, {"buffer": 1, "byteLength": 8}],
+        "accessors": [{"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR",
+            "min": [0], "max": [0]}]});
+    let after = [
+        chunk_header(0, b"BIN\0"),
+        chunk_header(4, b"XTRA"),
+        b"abcd".to_vec(),
+    ]
+    .concat();
+    let found = khronos_findings_of_glb(glb_with(&document, &after));
+    let codes: Vec<&str> = found.iter().map(|(c, _)| c.as_str()).collect();
+    assert_eq!(
+        codes,
+        [
+            "BUFFER_BYTE_LENGTH_MISMATCH",
+            "BUFFER_DATA_URI_MIME_TYPE_INVALID",
+            "DATA_URI_GLB",
+            "GLB_EMPTY_BIN_CHUNK",
+            "GLB_UNKNOWN_CHUNK_TYPE",
+            "UNUSED_OBJECT",
+            "UNUSED_OBJECT",
+            "URI_GLB",
         ],
         "{found:?}"
     );

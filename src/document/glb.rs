@@ -13,6 +13,9 @@ const CHUNK_HEADER_LEN: usize = 8;
 pub(super) const CHUNK_JSON: u32 = 0x4E4F_534A;
 pub(super) const CHUNK_BIN: u32 = 0x004E_4942;
 
+/// The UTF-8 byte order mark.
+const BOM: [u8; 3] = [0xEF, 0xBB, 0xBF];
+
 /// What a GLB holds: where its JSON and BIN chunks are, and what was wrong on the way.
 #[derive(Debug, Default)]
 pub(crate) struct GlbParts {
@@ -21,6 +24,10 @@ pub(crate) struct GlbParts {
     /// the Khronos validator then parses an empty document, which is INVALID_JSON).
     pub json: Option<Range<usize>>,
     pub bin: Option<Range<usize>>,
+    /// Whether the bytes end inside a chunk (its header or its data, or right after the
+    /// header of an empty one): the Khronos validator then keeps what its JSON reader found
+    /// but loads no resource and reads no data.
+    pub cut_short: bool,
 }
 
 fn at(code: Code, offset: usize, message: impl Into<std::borrow::Cow<'static, str>>) -> Diagnostic {
@@ -102,6 +109,7 @@ pub(crate) fn read(bytes: &(impl GlbBytes + ?Sized), diags: &mut dyn Sink) -> Gl
                 bytes.len(),
                 "Unexpected end of chunk header.",
             ));
+            parts.cut_short = true;
             return parts;
         }
         let chunk = Chunk {
@@ -119,6 +127,12 @@ pub(crate) fn read(bytes: &(impl GlbBytes + ?Sized), diags: &mut dyn Sink) -> Gl
         match chunk.kind {
             CHUNK_JSON => {
                 let more_follows = data_end < bytes.len();
+                // Cut short, the JSON is never whole, and the validator's streaming parser
+                // says nothing of it but of a byte order mark, which it rejects at once: the
+                // bytes held are then parsed, to be rejected the same way.
+                let bom = (0..3)
+                    .all(|i| data_start + i < bytes.len() && bytes.byte(data_start + i) == BOM[i]);
+                let range = range.or((bom).then_some(data_start..bytes.len()));
                 chunk.take_json(range, more_follows, &mut parts, &mut saw_empty_json, diags);
             }
             CHUNK_BIN => chunk.take_bin(range, &mut parts, diags),
@@ -134,6 +148,13 @@ pub(crate) fn read(bytes: &(impl GlbBytes + ?Sized), diags: &mut dyn Sink) -> Gl
                 bytes.len(),
                 "Unexpected end of chunk data.",
             ));
+            parts.cut_short = true;
+            return parts;
+        }
+        // An empty chunk that ends the bytes leaves the validator's reader waiting for its
+        // (no) data: cut short, though nothing is said.
+        if chunk.length == 0 && data_end == bytes.len() {
+            parts.cut_short = true;
             return parts;
         }
         pos = data_end;
@@ -236,9 +257,8 @@ impl Chunk {
         }
     }
 
-    /// Takes a BIN chunk's data `range` as the binary buffer, unless one came before. A chunk
-    /// cut short holds no data, but is there: the buffer it stands for does not miss it (no
-    /// BUFFER_MISSING_GLB_DATA), and nothing is read of it, as the Khronos validator reads it.
+    /// Takes a BIN chunk's data `range` (`None`: cut short) as the binary buffer, unless
+    /// one came before.
     fn take_bin(&self, range: Option<Range<usize>>, parts: &mut GlbParts, diags: &mut dyn Sink) {
         if self.index > 1 && parts.bin.is_none() {
             diags.push(at(
@@ -254,11 +274,10 @@ impl Chunk {
                 "Empty BIN chunk should be omitted.",
             ));
         }
-        let data_start = self.start + CHUNK_HEADER_LEN;
         if parts.bin.is_some() {
             self.duplicate("BIN", diags);
         } else {
-            parts.bin = Some(range.unwrap_or(data_start..data_start));
+            parts.bin = range;
         }
     }
 

@@ -55,6 +55,8 @@ pub(crate) struct Document<R = Tree> {
     /// before it: left in the file (a large GLB read by [`read_path`]), or in pieces (an
     /// upgrade's output, see [`read_glb_pieces`]).
     pub bin_elsewhere: Option<Kept>,
+    /// A GLB whose bytes end inside a chunk (see [`glb::GlbParts::cut_short`]).
+    pub cut_short: bool,
 }
 
 /// A buffer's bytes: borrowed from the document (a GLB's BIN chunk in memory, or left in its
@@ -80,11 +82,6 @@ impl BufferData<'_> {
     /// How many bytes the buffer holds.
     pub(crate) fn len(&self) -> usize {
         self.kept().map_or_else(<[u8]>::len, Kept::len)
-    }
-
-    /// Whether the buffer holds no byte.
-    pub(crate) fn is_empty(&self) -> bool {
-        self.len() == 0
     }
 
     /// The bytes at `range` (see [`Kept::get`]).
@@ -159,11 +156,11 @@ fn read_with<R>(
     parse: fn(&[u8]) -> Result<R, json::SyntaxError>,
 ) -> Document<R> {
     let named_glb = name.to_ascii_lowercase().ends_with(".glb");
-    let (container, json_range, bin) = if glb::looks_like_glb(&bytes) || named_glb {
+    let (container, json_range, bin, cut_short) = if glb::looks_like_glb(&bytes) || named_glb {
         let parts = glb::read(&bytes[..], diagnostics);
-        (Container::Glb, parts.json, parts.bin)
+        (Container::Glb, parts.json, parts.bin, parts.cut_short)
     } else {
-        (Container::Gltf, Some(0..bytes.len()), None)
+        (Container::Gltf, Some(0..bytes.len()), None, false)
     };
     let root = match &json_range {
         Some(range) => parse_json(&bytes[range.clone()], diagnostics, parse),
@@ -176,6 +173,7 @@ fn read_with<R>(
         root,
         bin,
         bin_elsewhere: None,
+        cut_short,
     }
 }
 
@@ -246,6 +244,7 @@ fn read_holed(
         root,
         bin: None,
         bin_elsewhere: (parts.bin == Some(hole)).then_some(elsewhere),
+        cut_short: parts.cut_short,
     }
 }
 

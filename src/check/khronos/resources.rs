@@ -194,10 +194,36 @@ fn align4(n: u64) -> u64 {
     n.div_ceil(4) * 4
 }
 
+/// Whether a buffer's data URI declares a binary media type; reported where it does not.
+fn buffer_media_type_valid(ctx: &mut Context, media: &str, pointer: &str) -> bool {
+    let lower = media.to_ascii_lowercase();
+    if lower == "application/octet-stream" || lower == "application/gltf-buffer" {
+        return true;
+    }
+    ctx.emit(
+        khronos::BUFFER_DATA_URI_MIME_TYPE_INVALID,
+        pointer,
+        format!("Data URI media type must be 'application/octet-stream' or 'application/gltf-buffer'. Found '{media}' instead."),
+    );
+    false
+}
+
 pub(crate) fn check_buffers(ctx: &mut Context) {
     let buffers = ctx.items("buffers");
     ctx.buffers = buffers.iter().map(|_| None).collect();
     for (i, pointer, buffer) in ctx.objects("buffers") {
+        // A GLB whose bytes end inside a chunk: what its JSON says of a URI is checked, and
+        // nothing is loaded, as the validator's reader gives up its document there.
+        if ctx.document.cut_short {
+            if let Some(uri) = buffer.get("uri").and_then(Node::as_str) {
+                let uri_pointer = member(&pointer, "uri");
+                let (_, media_type, _) = load_uri(ctx, uri, &uri_pointer, Files::Unfetched);
+                if let Some(media) = media_type {
+                    buffer_media_type_valid(ctx, &media, &uri_pointer);
+                }
+            }
+            continue;
+        }
         let declared = unsigned(buffer, "byteLength");
         let (data, storage, uri) = match buffer.get("uri").and_then(Node::as_str) {
             // Without a declared length an external file is not read and the GLB chunk not
@@ -207,18 +233,16 @@ pub(crate) fn check_buffers(ctx: &mut Context) {
             }
             Some(uri) => {
                 let uri_pointer = member(&pointer, "uri");
-                let (data, media_type, storage) =
-                    load_uri(ctx, uri, &uri_pointer, Files::KeepLarge);
-                if let Some(media) = media_type {
-                    let lower = media.to_ascii_lowercase();
-                    if lower != "application/octet-stream" && lower != "application/gltf-buffer" {
-                        ctx.emit(
-                            khronos::BUFFER_DATA_URI_MIME_TYPE_INVALID,
-                            uri_pointer,
-                            format!("Data URI media type must be 'application/octet-stream' or 'application/gltf-buffer'. Found '{media}' instead."),
-                        );
-                    }
-                }
+                let files = match ctx.document.cut_short {
+                    true => Files::Unfetched,
+                    false => Files::KeepLarge,
+                };
+                let (data, media_type, storage) = load_uri(ctx, uri, &uri_pointer, files);
+                // Data under another media type is not read.
+                let data = data.filter(|_| match &media_type {
+                    Some(media) => buffer_media_type_valid(ctx, media, &uri_pointer),
+                    None => true,
+                });
                 let uri = (storage == "external").then(|| uri.to_string());
                 (data.map(BufferData::Loaded), storage, uri)
             }
@@ -236,26 +260,22 @@ pub(crate) fn check_buffers(ctx: &mut Context) {
                     );
                     continue;
                 };
-                // An empty BIN chunk (GLB_EMPTY_BIN_CHUNK) is read as no data, and nothing
-                // more is said of the buffer, as the validator reads it.
-                if bin.is_empty() {
-                    (None, "glb", None)
-                } else {
-                    if let Some(length) = declared {
-                        let padded = align4(length);
-                        if bin.len() as u64 > padded {
-                            ctx.emit(
-                                khronos::BUFFER_GLB_CHUNK_TOO_BIG,
-                                pointer.clone(),
-                                format!(
-                                    "GLB-stored BIN chunk contains {} extra padding byte(s).",
-                                    bin.len() as u64 - padded
-                                ),
-                            );
-                        }
+                // An empty BIN chunk (GLB_EMPTY_BIN_CHUNK) holds 0 bytes: fewer than the
+                // buffer declares. (One that ends the file cuts it short: see above.)
+                if let Some(length) = declared {
+                    let padded = align4(length);
+                    if bin.len() as u64 > padded {
+                        ctx.emit(
+                            khronos::BUFFER_GLB_CHUNK_TOO_BIG,
+                            pointer.clone(),
+                            format!(
+                                "GLB-stored BIN chunk contains {} extra padding byte(s).",
+                                bin.len() as u64 - padded
+                            ),
+                        );
                     }
-                    (declared.map(|_| bin), "glb", None)
                 }
+                (declared.map(|_| bin), "glb", None)
             }
             None => (None, "buffer", None),
         };
@@ -466,7 +486,7 @@ pub(crate) fn check_images(ctx: &mut Context) {
     let mut read_views = HashMap::new();
     for (i, pointer, image) in ctx.objects("images") {
         let mime_type = check_image_members(ctx, &pointer, image, enabled);
-        let read = !ctx.images_left_to_extensions.contains(&i);
+        let read = !ctx.images_left_to_extensions.contains(&i) && !ctx.document.cut_short;
         let Some(source) = image_source(ctx, &pointer, image, read, &mut read_views) else {
             continue;
         };
