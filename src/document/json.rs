@@ -32,7 +32,23 @@ fn parse_with<R>(
             offset: 0,
         });
     }
-    parse(bytes).map_err(|e| {
+    let parsed = match parse(bytes) {
+        // A string escaping half a UTF-16 surrogate pair is valid JSON to the Khronos
+        // validator (a string of UTF-16 units); serde_json refuses it. Each such escape is
+        // read as U+FFFD, six characters for six, so every offset stays where it was.
+        Err(e)
+            if ["surrogate", "unicode", "hex escape"]
+                .iter()
+                .any(|m| e.to_string().contains(m)) =>
+        {
+            match lone_surrogates_replaced(bytes) {
+                Some(patched) => parse(&patched),
+                None => Err(e),
+            }
+        }
+        parsed => parsed,
+    };
+    parsed.map_err(|e| {
         let offset = offset_of(bytes, e.line(), e.column());
         // The place is the offset's, printed once by whoever reports it.
         let message = e.to_string();
@@ -45,6 +61,43 @@ fn parse_with<R>(
             offset,
         }
     })
+}
+
+/// `text` with every `\uXXXX` escape of a UTF-16 surrogate that is not half of a pair
+/// replaced by `\ufffd`; `None` when there is none.
+fn lone_surrogates_replaced(text: &[u8]) -> Option<Vec<u8>> {
+    let unit = |at: usize| -> Option<u16> {
+        let digits = text.get(at..at + 6).filter(|e| e.starts_with(b"\\u"))?;
+        u16::from_str_radix(std::str::from_utf8(&digits[2..]).ok()?, 16).ok()
+    };
+    let (mut patched, mut changed) = (text.to_vec(), false);
+    let (mut at, mut in_string) = (0, false);
+    while at < text.len() {
+        match text[at] {
+            b'"' => in_string = !in_string,
+            b'\\' if in_string => {
+                let low_follows = unit(at + 6).is_some_and(|u| (0xDC00..=0xDFFF).contains(&u));
+                match unit(at) {
+                    // A whole pair: both escapes are kept.
+                    Some(0xD800..=0xDBFF) if low_follows => {
+                        at += 12;
+                        continue;
+                    }
+                    Some(0xD800..=0xDFFF) => {
+                        patched[at..at + 6].copy_from_slice(b"\\ufffd");
+                        changed = true;
+                    }
+                    _ => {}
+                }
+                // The escaped character is skipped with its backslash.
+                at += 2;
+                continue;
+            }
+            _ => {}
+        }
+        at += 1;
+    }
+    changed.then_some(patched)
 }
 
 fn offset_of(bytes: &[u8], line: usize, column: usize) -> usize {
@@ -798,6 +851,28 @@ mod tests {
             .map(|d| (d.pointer.as_str(), d.occurrences))
             .collect();
         assert_eq!(summary, [("/k", 100_000), ("/j", 2), ("/o/k", 2)]);
+    }
+
+    #[test]
+    fn half_a_surrogate_pair_is_read_as_the_replacement_character_and_pairs_stay_whole() {
+        let text = br#"{"a": "\ud800", "b": "x\udc00y", "c": "\ud83d\ude00", "d": "\\ud800"}"#;
+        let tree = parse(text).unwrap();
+        let member = |key: &str| {
+            tree.root()
+                .get(key)
+                .and_then(|v| v.as_str())
+                .map(str::to_string)
+        };
+        assert_eq!(member("a").as_deref(), Some("\u{fffd}"));
+        assert_eq!(member("b").as_deref(), Some("x\u{fffd}y"));
+        assert_eq!(member("c").as_deref(), Some("\u{1f600}"));
+        assert_eq!(
+            member("d").as_deref(),
+            Some("\\ud800"),
+            "an escaped backslash, no escape"
+        );
+        // Anything else wrong in an escape is still an error.
+        assert!(parse(br#"{"a": "\uzzzz"}"#).is_err());
     }
 
     #[test]
