@@ -2739,7 +2739,7 @@ fn elements_inside_the_buffer_are_read_through_a_view_that_runs_past_it() {
 fn an_invalid_byte_offset_places_its_accessor_nowhere_and_an_unread_array_hides_its_elements() {
     // Accessors whose byteOffset is mistyped or negative are checked neither for alignment
     // nor for length; primitives one of which is no object are not read at all, so the
-    // others' mistyped members go unreported.
+    // others' mistyped members and undeclared extensions go unreported.
     let found = khronos_findings(json!({"asset": {"version": "2.0"},
         "buffers": [{"byteLength": 64}],
         "bufferViews": [{"buffer": 0, "byteOffset": 2, "byteLength": 8}],
@@ -2747,7 +2747,8 @@ fn an_invalid_byte_offset_places_its_accessor_nowhere_and_an_unread_array_hides_
             {"bufferView": 0, "byteOffset": "x", "componentType": 5126, "count": 16, "type": "SCALAR"},
             {"bufferView": 0, "byteOffset": -1, "componentType": 5126, "count": 16, "type": "SCALAR"}],
         "meshes": [{"primitives": [
-            {"attributes": -1, "mode": 99}, [null], {"attributes": {"POSITION": "x"}}]}]}));
+            {"attributes": -1, "mode": 99, "extensions": {"X_y": {}}}, [null],
+            {"attributes": {"POSITION": "x"}}]}]}));
     assert_eq!(
         found,
         expected(&[

@@ -302,11 +302,13 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::
     khronos::take_unread_bounds(tree, sink);
     khronos::take_unread_projections(tree, sink);
     let root = tree.root();
-    let undeclared = khronos::undeclared_extensions(root, &declared_extensions(root));
+    let mut undeclared = khronos::undeclared_extensions(root, &declared_extensions(root));
     // Out before the schema pass, which then finds nothing in them. One that is no object
     // stays for the schema pass to say so, and goes after it.
     undeclared.remove_where(tree, |value| value.is_object());
     let absent = schema::validate(tree.root(), khronos, sink);
+    // One inside a member the validator does not read is not seen either.
+    undeclared.retain_hosts(|host| !schema::at_or_inside(&absent, host));
     let (nulls, emptied) = remove_all(tree, absent);
     undeclared.remove_where(tree, |_| true);
     schema::required_members(tree.root(), khronos, &nulls, &emptied, sink);

@@ -143,6 +143,12 @@ impl Undeclared {
         member(&self.hosts[host], tree.text(name))
     }
 
+    /// Keeps only those whose `extensions` object `kept` accepts (by its pointer).
+    pub(crate) fn retain_hosts(&mut self, kept: impl Fn(&str) -> bool) {
+        let hosts = &self.hosts;
+        self.members.retain(|&(host, _)| kept(&hosts[host]));
+    }
+
     /// Takes out of `tree` those whose value `taken` accepts.
     pub(crate) fn remove_where(&self, tree: &mut Tree, mut taken: impl FnMut(Node) -> bool) {
         // Found host by host: each host's members are one run.

@@ -270,7 +270,7 @@ fn is_value_finding(diagnostic: &Diagnostic) -> bool {
 }
 
 /// Whether `pointer` is one of `members` or inside one.
-fn at_or_inside(members: &HashSet<String>, pointer: &str) -> bool {
+pub(crate) fn at_or_inside(members: &HashSet<String>, pointer: &str) -> bool {
     let mut at = pointer;
     loop {
         if members.contains(at) {
