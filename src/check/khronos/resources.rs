@@ -233,11 +233,8 @@ pub(crate) fn check_buffers(ctx: &mut Context) {
             }
             Some(uri) => {
                 let uri_pointer = member(&pointer, "uri");
-                let files = match ctx.document.cut_short {
-                    true => Files::Unfetched,
-                    false => Files::KeepLarge,
-                };
-                let (data, media_type, storage) = load_uri(ctx, uri, &uri_pointer, files);
+                let (data, media_type, storage) =
+                    load_uri(ctx, uri, &uri_pointer, Files::KeepLarge);
                 // Data under another media type is not read.
                 let data = data.filter(|_| match &media_type {
                     Some(media) => buffer_media_type_valid(ctx, media, &uri_pointer),
