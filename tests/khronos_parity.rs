@@ -2902,3 +2902,32 @@ fn an_empty_bin_chunk_followed_by_another_holds_no_byte_and_a_mistyped_data_uri_
         "{found:?}"
     );
 }
+
+#[test]
+fn an_empty_list_is_none_and_a_list_of_names_keeps_its_repeats() {
+    // Empty weights (EMPTY_ENTITY) are no weights: no count to compare with the targets. A
+    // skeleton naming an element that is no object is unresolved, nothing more. A list of
+    // names with a mistyped element still says which name repeats.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_materials_unlit", "KHR_materials_unlit", 5],
+        "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3",
+            "min": [0, 0, 0], "max": [0, 0, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0},
+            "targets": [{"POSITION": 0}, {"POSITION": 0}]}], "weights": []}],
+        "nodes": [{"mesh": 0, "weights": []}, {"children": [2]}, 5, {"skin": 0, "mesh": 0}],
+        "skins": [{"joints": [1], "skeleton": 2}],
+        "scenes": [{"nodes": [0, 1, 3]}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_TYPE_MISMATCH", "/extensionsUsed/2"),
+            ("DUPLICATE_ELEMENTS", "/extensionsUsed/1"),
+            ("EMPTY_ENTITY", "/meshes/0/weights"),
+            ("EMPTY_ENTITY", "/nodes/0/weights"),
+            ("NODE_SKIN_WITH_NON_SKINNED_MESH", "/nodes/3"),
+            ("TYPE_MISMATCH", "/nodes/2"),
+            ("UNRESOLVED_REFERENCE", "/nodes/1/children/0"),
+            ("UNRESOLVED_REFERENCE", "/skins/0/skeleton"),
+        ])
+    );
+}

@@ -358,7 +358,9 @@ fn dependencies(ctx: &mut Context, node: Node, pointer: &str) {
     let Some(primitives) = primitives.filter(|p| !p.is_empty()) else {
         return;
     };
-    if let Some(weights) = node.get("weights").and_then(Node::as_array) {
+    // An empty list of weights (EMPTY_ENTITY) is none too.
+    let weights = node.get("weights").and_then(Node::as_array);
+    if let Some(weights) = weights.filter(|w| !w.is_empty()) {
         let targets = mesh.and_then(mesh_morph_targets);
         if targets != Some(weights.len()) {
             ctx.emit(

@@ -225,7 +225,9 @@ impl<'a> Walk<'_, 'a> {
             }
             self.primitive(*primitive, &at);
         }
-        if let Some(weights) = mesh.get("weights").and_then(Node::as_array) {
+        // An empty list of weights (EMPTY_ENTITY) is none, as the validator reads it.
+        let weights = mesh.get("weights").and_then(Node::as_array);
+        if let Some(weights) = weights.filter(|w| !w.is_empty()) {
             if !primitives.is_empty() && weights.len() != first_count {
                 self.ctx.emit(
                     khronos::MESH_INVALID_WEIGHTS_COUNT,

@@ -46,8 +46,10 @@ pub(super) fn check(ctx: &mut Context) {
                 "Joints do not have a common root.",
             );
         }
-        let skeleton = unsigned(skin, "skeleton").map(|s| s as usize);
-        if skeleton.is_some_and(|s| s < nodes.len() && !roots.contains(&s)) {
+        // A skeleton that names no node (or an element that is no object) is unresolved,
+        // nothing more.
+        let skeleton = unsigned(skin, "skeleton").filter(|&s| ctx.element("nodes", s).is_some());
+        if skeleton.is_some_and(|s| !roots.contains(&(s as usize))) {
             ctx.emit(
                 khronos::SKIN_SKELETON_INVALID,
                 member(&pointer, "skeleton"),

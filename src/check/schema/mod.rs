@@ -399,12 +399,14 @@ impl<'s> AbsentMembers<'s> {
             let parent = pointer.rsplit_once('/').map_or("", |(parent, _)| parent);
             return !parent.is_empty() && self.at_or_inside_absent(parent);
         }
-        // An element outside its range in an array read element by element stays (unless
-        // the array's own parent is not read).
+        // An element outside its range, or repeated, in an array read element by element
+        // stays (unless the array's own parent is not read).
         let read_elements = array_holding(pointer)
             .filter(|array| self.element_mistyped.contains(*array))
             .filter(|array| !self.elements_unread.contains(*array));
-        if let Some(array) = read_elements.filter(|_| is_value_finding(diagnostic)) {
+        let element_finding =
+            is_value_finding(diagnostic) || diagnostic.code == khronos::DUPLICATE_ELEMENTS;
+        if let Some(array) = read_elements.filter(|_| element_finding) {
             let parent = array.rsplit_once('/').map_or("", |(parent, _)| parent);
             return !parent.is_empty() && self.at_or_inside_absent(parent);
         }
