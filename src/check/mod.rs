@@ -231,7 +231,9 @@ fn check_document(
                 false => Default::default(),
             };
             let left_to_extensions = match options.profile.reads_images_with_extensions() {
-                false => khronos::images_with_extensions(tree.root()),
+                false => {
+                    khronos::images_with_extensions(tree.root(), &declared_extensions(tree.root()))
+                }
                 true => Default::default(),
             };
             let undeclared = if gltf1 {

@@ -155,6 +155,9 @@ pub(crate) enum HeaderError {
     Invalid(String),
 }
 
+/// The signature a PNG file starts with.
+const PNG_MAGIC: &[u8] = b"\x89PNG\r\n\x1a\n";
+
 /// The identifier a KTX 2.0 file starts with.
 pub(crate) const KTX2_MAGIC: &[u8] = b"\xABKTX 20\xBB\r\n\x1A\n";
 
@@ -165,7 +168,7 @@ pub(crate) fn codec_of(bytes: &[u8]) -> Option<ImageFormat> {
     let b = bytes.get(..14)?;
     if b.starts_with(&[0xFF, 0xD8, 0xFF]) {
         Some(ImageFormat::Jpeg)
-    } else if b.starts_with(b"\x89PNG\r\n\x1a\n") {
+    } else if b.starts_with(PNG_MAGIC) {
         Some(ImageFormat::Png)
     } else if &b[..4] == b"RIFF" && &b[8..14] == b"WEBPVP" {
         Some(ImageFormat::Webp)
@@ -177,7 +180,7 @@ pub(crate) fn codec_of(bytes: &[u8]) -> Option<ImageFormat> {
 }
 
 pub(crate) fn read(bytes: &[u8]) -> Result<ImageInfo, HeaderError> {
-    if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+    if bytes.starts_with(PNG_MAGIC) {
         png(bytes)
     } else if bytes.starts_with(&[0xFF, 0xD8]) {
         jpeg(bytes)
@@ -483,7 +486,7 @@ mod tests {
     use super::*;
 
     fn png_bytes(colour_type: u8, extra: &[(&[u8; 4], &[u8])]) -> Vec<u8> {
-        let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
+        let mut out = PNG_MAGIC.to_vec();
         let mut chunk = |kind: &[u8; 4], data: &[u8]| {
             out.extend_from_slice(&(data.len() as u32).to_be_bytes());
             out.extend_from_slice(kind);

@@ -281,6 +281,12 @@ impl Source<'_> {
         self.root().get(collection)?.get(id)
     }
 
+    /// The sampler object texture `texture` names, if it names one that exists.
+    pub(crate) fn texture_sampler(&self, texture: &str) -> Option<Node<'_>> {
+        let sampler = self.object("textures", texture)?.get("sampler")?.as_str()?;
+        self.object("samplers", sampler)
+    }
+
     /// The bytes of a bufferView.
     pub(crate) fn view(&self, id: &str) -> Result<&[u8], String> {
         let view = self

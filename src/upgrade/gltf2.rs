@@ -533,14 +533,21 @@ fn why_not_converted(input: Node, extensions: Object, block: Node) -> Option<Str
     }
     // One texture is read through one sampler: two textures filtered or wrapped differently
     // (NEAREST beside LINEAR, CLAMP beside REPEAT) make a product no single sampler shows.
-    let sampler = |info: Node| {
-        let texture = unsigned(info, "index").and_then(|i| list(input, "textures").nth(i as usize));
-        let index = texture.and_then(|t| unsigned(t, "sampler"));
-        Sampler::of(index.and_then(|i| list(input, "samplers").nth(i as usize)))
-    };
+    let sampler = |info: Node| sampler_of(input, texture_of(input, info));
     (sampler(diffuse) != sampler(specular)).then(|| {
         "its diffuse and specular-glossiness textures are read through samplers that filter or wrap differently, so no texture read through one sampler can hold diffuse · (1 − specular).".to_string()
     })
+}
+
+/// The input's texture a textureInfo names.
+fn texture_of<'t>(input: Node<'t>, info: Node) -> Option<Node<'t>> {
+    list(input, "textures").nth(usize::try_from(unsigned(info, "index")?).ok()?)
+}
+
+/// The sampler `texture` is read through (LINEAR, REPEAT when it names none).
+fn sampler_of(input: Node, texture: Option<Node>) -> Sampler {
+    let index = texture.and_then(|t| unsigned(t, "sampler"));
+    Sampler::of(index.and_then(|i| list(input, "samplers").nth(usize::try_from(i).ok()?)))
 }
 
 /// A JSON array of numbers, each missing or non-numeric entry taken from `default`.
@@ -584,10 +591,7 @@ impl MaterialTextures<'_> {
     /// The input's texture the slot names.
     fn texture(&self, slot: Slot) -> Option<Node<'_>> {
         let index = unsigned(self.slot(slot)?, "index")?;
-        self.input
-            .get("textures")?
-            .as_array()?
-            .get(usize::try_from(index).ok()?)
+        list(self.input, "textures").nth(usize::try_from(index).ok()?)
     }
 }
 
@@ -597,10 +601,7 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
     }
 
     fn sampler(&self, slot: Slot) -> Sampler {
-        let index = self.texture(slot).and_then(|t| unsigned(t, "sampler"));
-        let samplers = self.input.get("samplers").and_then(Node::as_array);
-        let sampler = index.and_then(|i| samplers?.get(usize::try_from(i).ok()?));
-        Sampler::of(sampler)
+        sampler_of(self.input, self.texture(slot))
     }
 
     fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>> {

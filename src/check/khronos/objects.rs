@@ -328,12 +328,11 @@ fn check_accessor_fits(ctx: &mut Context, accessor: Node, view: usize, pointer: 
     let stride = declared_stride.unwrap_or(element);
     // An invalid byteOffset (not an absent one) places the accessor nowhere: the validator
     // checks neither its alignment nor its length.
-    let offset = match accessor.get("byteOffset") {
-        None => 0,
-        Some(_) => match unsigned(accessor, "byteOffset") {
-            Some(offset) => offset,
-            None => return,
-        },
+    let written = accessor
+        .get("byteOffset")
+        .map(|_| unsigned(accessor, "byteOffset"));
+    let Some(offset) = written.unwrap_or(Some(0)) else {
+        return;
     };
     let length = (count - 1)
         .checked_mul(stride)

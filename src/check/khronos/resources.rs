@@ -82,8 +82,8 @@ fn load_uri(
             }
             (None, None, "external")
         }
-        Ok(_) if files == Files::Unfetched => {
-            if let Ok(UriKind::QueryOrFragment) = classify(uri) {
+        Ok(kind) if files == Files::Unfetched => {
+            if matches!(kind, UriKind::QueryOrFragment) {
                 non_relative(ctx, pointer, uri);
             }
             (None, None, "external")
@@ -717,11 +717,10 @@ fn check_image_header(
 /// keeps (mistyped, undeclared and unknown ones too; not a declared extension it knows,
 /// which it reports as unexpected on an image and drops): it leaves those images to their
 /// extensions and neither fetches nor parses their data.
-pub(crate) fn images_with_extensions(root: Node) -> std::collections::HashSet<usize> {
-    let used = root.get("extensionsUsed").and_then(Node::as_array);
-    let declared: Vec<&str> = (used.into_iter().flatten())
-        .filter_map(Node::as_str)
-        .collect();
+pub(crate) fn images_with_extensions(
+    root: Node,
+    declared: &hashbrown::HashSet<&str>,
+) -> std::collections::HashSet<usize> {
     let kept = |name: &str| !(declared.contains(&name) && super::extensions::khronos_knows(name));
     let images = root.get("images").and_then(Node::as_array);
     (images.into_iter().flatten().enumerate())

@@ -396,8 +396,7 @@ impl<'s> AbsentMembers<'s> {
                 | khronos::ARRAY_LENGTH_NOT_IN_LIST
                 | khronos::UNSATISFIED_DEPENDENCY
         ) {
-            let parent = pointer.rsplit_once('/').map_or("", |(parent, _)| parent);
-            return !parent.is_empty() && self.at_or_inside_absent(parent);
+            return self.parent_unread(pointer);
         }
         // An element outside its range, or repeated, in an array read element by element
         // stays (unless the array's own parent is not read).
@@ -407,16 +406,14 @@ impl<'s> AbsentMembers<'s> {
         let element_finding =
             is_value_finding(diagnostic) || diagnostic.code == khronos::DUPLICATE_ELEMENTS;
         if let Some(array) = read_elements.filter(|_| element_finding) {
-            let parent = array.rsplit_once('/').map_or("", |(parent, _)| parent);
-            return !parent.is_empty() && self.at_or_inside_absent(parent);
+            return self.parent_unread(array);
         }
         // The finding that made an integer or an empty fixed-length array absent stays
         // (unless its parent is not read).
         let made_absent = (self.out_of_range.contains(pointer) && is_value_finding(diagnostic))
             || is_empty_fixed_length(diagnostic);
         if made_absent {
-            let parent = pointer.rsplit_once('/').map_or("", |(parent, _)| parent);
-            return !parent.is_empty() && self.at_or_inside_absent(parent);
+            return self.parent_unread(pointer);
         }
         // At the member itself (a mistyped value is not also outside its list of values) or
         // inside it.
@@ -425,6 +422,12 @@ impl<'s> AbsentMembers<'s> {
 
     fn at_or_inside_absent(&self, pointer: &str) -> bool {
         at_or_inside(&self.absent, pointer)
+    }
+
+    /// Whether the member holding `pointer` is not read (the root always is).
+    fn parent_unread(&self, pointer: &str) -> bool {
+        let parent = pointer.rsplit_once('/').map_or("", |(parent, _)| parent);
+        !parent.is_empty() && self.at_or_inside_absent(parent)
     }
 }
 

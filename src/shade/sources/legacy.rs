@@ -69,10 +69,7 @@ pub(crate) fn legacy_materials(
     };
     // 1.0 samplers use the GL enums and defaults of 2.0's (LINEAR, REPEAT).
     let sampler = |id: &Option<String>| {
-        let sampler = (id.as_deref())
-            .and_then(|id| source.object("textures", id)?.get("sampler")?.as_str())
-            .and_then(|sampler| source.object("samplers", sampler));
-        sample::Sampler::of(sampler)
+        sample::Sampler::of(id.as_deref().and_then(|id| source.texture_sampler(id)))
     };
     // A lit material's textures may fail alone, the decoding budget included: that
     // material is then not evaluated, the others are.

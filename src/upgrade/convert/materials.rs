@@ -306,10 +306,10 @@ impl spec_gloss::Textures for DraftTextures<'_, '_, '_, '_> {
     }
 
     fn sampler(&self, slot: Slot) -> Sampler {
-        let source = &self.builder.source;
-        let texture = self.id(slot).and_then(|id| source.object("textures", id));
-        let sampler = texture.and_then(|t| t.get("sampler")?.as_str());
-        Sampler::of(sampler.and_then(|id| source.object("samplers", id)))
+        Sampler::of(
+            self.id(slot)
+                .and_then(|id| self.builder.source.texture_sampler(id)),
+        )
     }
 
     fn add_rebaked(&mut self, bytes: Vec<u8>, like: Slot, name: &str) -> Value {
