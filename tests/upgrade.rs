@@ -837,6 +837,41 @@ mod structure {
         let up = upgrade(&bytes, &NoResources, &options).unwrap();
         assert_eq!(up.json.to_value()["materials"][1]["doubleSided"], true);
     }
+
+    /// KHR_materials_common is used "in favor of the supplied technique": beside a technique
+    /// that blends and does not cull, the extension's own `transparent` and `doubleSided`
+    /// (false by default, which the option does not override) decide, in the output as in
+    /// the proof.
+    #[test]
+    fn a_common_material_is_drawn_as_its_extension_says_not_as_its_fallback_technique() {
+        let mut source = asset();
+        let flat = &mut source["materials"]["flat"];
+        flat["technique"] = json!("t");
+        let common = |double_sided: Option<bool>| {
+            let mut source = source.clone();
+            if let Some(value) = double_sided {
+                source["materials"]["flat"]["extensions"]["KHR_materials_common"]["doubleSided"] =
+                    json!(value);
+            }
+            serde_json::to_vec(&source).unwrap()
+        };
+        let options = UpgradeOptions::default().with_double_sided_default(true);
+        for (double_sided, expected) in
+            [(None, None), (Some(false), None), (Some(true), Some(true))]
+        {
+            let bytes = common(double_sided);
+            let up = upgrade(&bytes, &NoResources, &options).unwrap();
+            let flat = &up.json.to_value()["materials"][1];
+            assert_eq!(flat.get("alphaMode"), None, "{double_sided:?}: {flat}");
+            assert_eq!(
+                flat.get("doubleSided").and_then(Value::as_bool),
+                expected,
+                "{double_sided:?}"
+            );
+            let proof = gltfmat::prove(&bytes, "asset.gltf", &NoResources, &up).unwrap();
+            assert!(gltfmat::proof_holds(&proof, 1.0), "{double_sided:?}");
+        }
+    }
 }
 
 #[test]

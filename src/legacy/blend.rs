@@ -1,7 +1,9 @@
-//! How a glTF 1.0 technique blends and culls, read from its states.
+//! How a glTF 1.0 material blends and culls, read from its technique's states and
+//! KHR_materials_common.
 
 use crate::document::tree::Node;
 use crate::gltf::gl::{BLEND, CULL_FACE};
+use crate::legacy::source::Source;
 
 /// How a 1.0 material's colour meets what is behind it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -34,9 +36,22 @@ pub(crate) fn technique_blend(technique: Node) -> Option<Blend> {
     }
 }
 
+/// Whether a 1.0 material draws both sides, where it says: KHR_materials_common's
+/// `doubleSided` (false by default; a runtime may use the extension "in favor of the supplied
+/// technique"), else its technique's states. `None` where nothing says (no technique, or one
+/// that names nothing).
+pub(crate) fn double_sided(source: &Source, material: Node) -> Option<bool> {
+    let common = (material.get("extensions")).and_then(|e| e.get("KHR_materials_common"));
+    if let Some(common) = common {
+        return Some(common.get("doubleSided").and_then(Node::as_bool) == Some(true));
+    }
+    let technique = material.get("technique").and_then(Node::as_str)?;
+    Some(!technique_culls(source.object("techniques", technique)?))
+}
+
 /// Whether `technique` culls back faces: its states enable CULL_FACE (1.0 states default to
 /// nothing enabled, so a technique that does not enable it draws both sides).
-pub(crate) fn technique_culls(technique: Node) -> bool {
+fn technique_culls(technique: Node) -> bool {
     let states = technique.get("states");
     let enabled = states
         .and_then(|s| s.get("enable"))

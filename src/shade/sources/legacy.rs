@@ -4,7 +4,7 @@ use super::sample::{self, LitLegacy, MaterialSource, Texture};
 use crate::document::tree::Node;
 use crate::document::uri::ResourceLoader;
 use crate::gltf::color::srgb_to_linear;
-use crate::legacy::blend::{technique_blend, technique_culls, Blend};
+use crate::legacy::blend::{self, technique_blend, Blend};
 use crate::legacy::pbr;
 use crate::legacy::source::{self, NotGltf1};
 use crate::shade::material::SpecGlossReading;
@@ -41,7 +41,7 @@ pub(crate) fn legacy_materials(
                 Some(_) => None,
                 None => lit_text(&source, material),
             };
-            let double_sided = technique_double_sided(&source, material);
+            let double_sided = blend::double_sided(&source, material);
             Parsed {
                 id,
                 pbr,
@@ -133,18 +133,6 @@ struct Parsed<'s> {
     pbr: Option<pbr::LegacyPbr>,
     lit: Option<LitText>,
     double_sided: Option<bool>,
-}
-
-/// Whether a 1.0 material draws both sides, where it says: its technique's states (without
-/// CULL_FACE both are drawn), KHR_materials_common's `doubleSided` (false by default).
-/// `None` where nothing says (no technique, or one that names nothing).
-fn technique_double_sided(source: &source::Source, material: Node) -> Option<bool> {
-    let common = (material.get("extensions")).and_then(|e| e.get("KHR_materials_common"));
-    if let Some(common) = common {
-        return Some(common.get("doubleSided").and_then(Node::as_bool) == Some(true));
-    }
-    let technique = material.get("technique").and_then(Node::as_str)?;
-    Some(!technique_culls(source.object("techniques", technique)?))
 }
 
 /// The distinct texture ids among `ids` (in order), and the position of each.

@@ -3,7 +3,7 @@
 
 use crate::document::Node;
 use crate::gltf::color::srgb_to_linear;
-use crate::legacy::blend::{technique_blend, technique_culls, Blend};
+use crate::legacy::blend::{self, technique_blend, Blend};
 use crate::legacy::pbr::{self, LegacyPbr, Model};
 use crate::shade::sample::Sampler;
 use crate::upgrade::builder::{pointer, Builder};
@@ -67,27 +67,25 @@ pub(crate) fn convert(
     Ok(Value::Object(out))
 }
 
-/// A technique's states decide blending and culling; with no technique the option decides.
+/// A technique's states decide blending, unless KHR_materials_common (used "in favor of the
+/// supplied technique") says how it blends; culling is decided as the evaluator reads it
+/// ([`blend::double_sided`]), and where the material says nothing, by the option.
 fn apply_technique_states(
     builder: &mut Builder,
     material: Node,
     at: &str,
     out: &mut Map<String, Value>,
 ) {
-    let technique = material
-        .get("technique")
-        .and_then(Node::as_str)
-        .and_then(|t| builder.source.object("techniques", t));
-    let double_sided = match technique {
-        Some(technique) => {
-            // BLEND enabled with GL's default functions (ONE, ZERO) replaces what is behind.
-            if technique_blend(technique).is_some() {
-                out.insert("alphaMode".into(), json!("BLEND"));
-            }
-            !technique_culls(technique)
-        }
-        None => builder.options.double_sided_default,
-    };
+    let common = (material.get("extensions")).and_then(|e| e.get("KHR_materials_common"));
+    let technique = (material.get("technique").and_then(Node::as_str))
+        .and_then(|t| builder.source.object("techniques", t))
+        .filter(|_| common.is_none());
+    // BLEND enabled with GL's default functions (ONE, ZERO) replaces what is behind.
+    if technique.is_some_and(|t| technique_blend(t).is_some()) {
+        out.insert("alphaMode".into(), json!("BLEND"));
+    }
+    let double_sided = blend::double_sided(builder.source, material)
+        .unwrap_or(builder.options.double_sided_default);
     if double_sided {
         out.insert("doubleSided".into(), json!(true));
         builder.note(
@@ -444,9 +442,6 @@ fn convert_common(builder: &mut Builder, common: Node, at: &str, out: &mut Map<S
         scale_alpha(out, transparency);
         // The implementation note's blend functions: ONE, ONE_MINUS_SRC_ALPHA.
         keep_emission_whole(builder, at, out);
-    }
-    if common.get("doubleSided").and_then(Node::as_bool) == Some(true) {
-        out.insert("doubleSided".into(), json!(true));
     }
 }
 
