@@ -831,11 +831,21 @@ mod structure {
     }
 
     #[test]
-    fn the_double_sided_option_applies_to_materials_without_a_technique() {
-        let bytes = serde_json::to_vec(&asset()).unwrap();
+    fn the_double_sided_option_applies_to_materials_that_say_nothing_of_culling() {
+        let mut source = asset();
+        // Neither a technique nor KHR_materials_common: the 1.0 default material.
+        source["materials"]["plain"] = json!({});
+        let bytes = serde_json::to_vec(&source).unwrap();
         let options = UpgradeOptions::default().with_double_sided_default(true);
         let up = upgrade(&bytes, &NoResources, &options).unwrap();
-        assert_eq!(up.json.to_value()["materials"][1]["doubleSided"], true);
+        let materials = &up.json.to_value()["materials"];
+        assert_eq!(materials[2]["name"], "plain");
+        assert_eq!(materials[2]["doubleSided"], true);
+        let by_default = upgrade(&bytes, &NoResources, &UpgradeOptions::default()).unwrap();
+        assert_eq!(
+            by_default.json.to_value()["materials"][2].get("doubleSided"),
+            None
+        );
     }
 
     /// KHR_materials_common is used "in favor of the supplied technique": beside a technique

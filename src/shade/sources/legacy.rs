@@ -31,99 +31,115 @@ pub(crate) fn legacy_materials(
     finest: u32,
 ) -> Result<Vec<Named>, LegacyMaterialsError> {
     let source = source::read_for_materials(bytes.into(), loader)?;
-    // Each material's PBR block, or what a lit one says of its emission and coverage.
-    let parsed: Vec<Parsed> = source
-        .dictionary("materials")
-        .into_iter()
-        .map(|(id, material)| {
-            let pbr = pbr::find(material).and_then(|(name, block)| pbr::parse(name, block));
-            let lit = match pbr {
-                Some(_) => None,
-                None => lit_text(&source, material),
-            };
-            let double_sided = blend::double_sided(&source, material);
-            Parsed {
-                id,
-                pbr,
-                lit,
-                double_sided,
-            }
-        })
+    let parsed: Vec<Parsed> = (source.dictionary("materials").into_iter())
+        .map(|(id, material)| Parsed::read(&source, id, material))
         .collect();
-    let image_of = |id: &str| {
-        let image = (source.object("textures", id))
-            .and_then(|texture| texture.get("source")?.as_str())
-            .and_then(|image| source.object("images", image))
-            .ok_or_else(|| format!("texture '{id}' names no image"));
-        image.and_then(|image| source.image_bytes(image))
-    };
-    // Every texture the PBR materials use, decoded once and all together.
-    let pbr_ids = (parsed.iter().filter_map(|p| p.pbr.as_ref()))
-        .flat_map(|pbr| [&pbr.colour_texture, &pbr.data_texture]);
-    let (ids, position) = distinct(pbr_ids);
-    let encoded: Vec<sample::Wanted<_>> = (ids.iter()).map(|id| Some(image_of(id))).collect();
-    let decoded =
-        sample::decode_all_at_most(&encoded, finest).map_err(LegacyMaterialsError::Textures)?;
-    let texture = |id: &Option<String>| -> Option<Texture> {
-        decoded[*position.get(id.as_deref()?)?].clone()
-    };
-    // 1.0 samplers use the GL enums and defaults of 2.0's (LINEAR, REPEAT).
-    let sampler = |id: &Option<String>| {
-        sample::Sampler::of(id.as_deref().and_then(|id| source.texture_sampler(id)))
-    };
-    // A lit material's textures may fail alone, the decoding budget included: that
-    // material is then not evaluated, the others are.
-    let lit_ids = (parsed.iter().filter_map(|p| p.lit.as_ref()))
-        .flat_map(|lit| [&lit.emission_texture, &lit.alpha_texture]);
-    let (lit_ids, lit_position) = distinct(lit_ids);
-    let lit_encoded: Vec<sample::Wanted<_>> =
-        (lit_ids.iter()).map(|id| Some(image_of(id))).collect();
-    let lit_decoded = sample::decode_each_at_most(&lit_encoded, finest)
-        .unwrap_or_else(|why| vec![Err(why); lit_ids.len()]);
-    // `None`: the texture could not be had.
-    let lit_texture = |id: &Option<String>| -> Option<Option<(Texture, sample::Sampler)>> {
-        let Some(at) = id.as_deref().map(|id| lit_position.get(id)) else {
+    let textures = DecodedTextures::of(&source, &parsed, finest)?;
+    Ok(parsed
+        .into_iter()
+        .map(|parsed| (parsed.id.to_string(), textures.sampled(parsed)))
+        .collect())
+}
+
+/// The textures a 1.0 asset's materials use, each decoded once: the PBR materials' all
+/// together (one that cannot be read fails them all), the lit materials' each alone (a
+/// lit material whose texture cannot be had is not evaluated; the others are).
+struct DecodedTextures<'s> {
+    source: &'s source::Source<'s>,
+    pbr: Vec<Option<Texture>>,
+    pbr_position: HashMap<String, usize>,
+    lit: Vec<Result<Option<Texture>, String>>,
+    lit_position: HashMap<String, usize>,
+}
+
+impl<'s> DecodedTextures<'s> {
+    fn of(
+        source: &'s source::Source<'s>,
+        parsed: &[Parsed],
+        finest: u32,
+    ) -> Result<Self, LegacyMaterialsError> {
+        let image_of = |id: &String| {
+            let image = (source.object("textures", id))
+                .and_then(|texture| texture.get("source")?.as_str())
+                .and_then(|image| source.object("images", image))
+                .ok_or_else(|| format!("texture '{id}' names no image"));
+            Some(image.and_then(|image| source.image_bytes(image)))
+        };
+        let pbr_ids = (parsed.iter().filter_map(|p| p.pbr.as_ref()))
+            .flat_map(|pbr| [&pbr.colour_texture, &pbr.data_texture]);
+        let (ids, pbr_position) = distinct(pbr_ids);
+        let encoded: Vec<sample::Wanted<_>> = ids.iter().map(image_of).collect();
+        let pbr =
+            sample::decode_all_at_most(&encoded, finest).map_err(LegacyMaterialsError::Textures)?;
+        let lit_ids = (parsed.iter().filter_map(|p| p.lit.as_ref()))
+            .flat_map(|lit| [&lit.emission_texture, &lit.alpha_texture]);
+        let (lit_ids, lit_position) = distinct(lit_ids);
+        let encoded: Vec<sample::Wanted<_>> = lit_ids.iter().map(image_of).collect();
+        // The decoding budget, passed, fails each lit material's textures alone.
+        let lit = sample::decode_each_at_most(&encoded, finest)
+            .unwrap_or_else(|why| vec![Err(why); lit_ids.len()]);
+        Ok(DecodedTextures {
+            source,
+            pbr,
+            pbr_position,
+            lit,
+            lit_position,
+        })
+    }
+
+    /// The sampler texture `id` is read through: 1.0 samplers use the GL enums and
+    /// defaults of 2.0's (LINEAR, REPEAT).
+    fn sampler(&self, id: &Option<String>) -> sample::Sampler {
+        sample::Sampler::of(id.as_deref().and_then(|id| self.source.texture_sampler(id)))
+    }
+
+    fn pbr_texture(&self, id: &Option<String>) -> Option<Texture> {
+        self.pbr[*self.pbr_position.get(id.as_deref()?)?].clone()
+    }
+
+    /// A lit material's texture `id` with its sampler (`Some(None)`: no texture named;
+    /// `None`: the texture could not be had).
+    fn lit_texture(&self, id: &Option<String>) -> Option<Option<(Texture, sample::Sampler)>> {
+        let Some(at) = id.as_deref().map(|id| self.lit_position.get(id)) else {
             return Some(None);
         };
-        match lit_decoded.get(*at?) {
-            Some(Ok(Some(texture))) => Some(Some((texture.clone(), sampler(id)))),
+        match self.lit.get(*at?) {
+            Some(Ok(Some(texture))) => Some(Some((texture.clone(), self.sampler(id)))),
             _ => None,
         }
-    };
-    let lit_source = |text: &LitText, double_sided| -> Option<MaterialSource> {
+    }
+
+    /// The material as the evaluator samples it (`None`: nothing of it can be).
+    fn sampled(&self, parsed: Parsed) -> Option<MaterialSource> {
+        let Parsed {
+            pbr,
+            lit,
+            double_sided,
+            ..
+        } = parsed;
+        if let Some(pbr) = pbr {
+            return Some(MaterialSource::Legacy {
+                colour: self.pbr_texture(&pbr.colour_texture),
+                data: self.pbr_texture(&pbr.data_texture),
+                samplers: [
+                    self.sampler(&pbr.colour_texture),
+                    self.sampler(&pbr.data_texture),
+                ],
+                pbr: Box::new(pbr),
+                reading: SpecGlossReading::DraftAppendix,
+                double_sided,
+            });
+        }
+        let text = lit?;
         Some(MaterialSource::lit_legacy(LitLegacy {
             emission: text.emission,
-            emission_texture: lit_texture(&text.emission_texture)?,
+            emission_texture: self.lit_texture(&text.emission_texture)?,
             alpha: text.alpha,
-            alpha_texture: lit_texture(&text.alpha_texture)?,
+            alpha_texture: self.lit_texture(&text.alpha_texture)?,
             blend: text.blend,
             double_sided,
         }))
-    };
-    Ok(parsed
-        .into_iter()
-        .map(
-            |Parsed {
-                 id,
-                 pbr,
-                 lit,
-                 double_sided,
-             }| {
-                let sampled = match pbr {
-                    Some(pbr) => Some(MaterialSource::Legacy {
-                        colour: texture(&pbr.colour_texture),
-                        data: texture(&pbr.data_texture),
-                        samplers: [sampler(&pbr.colour_texture), sampler(&pbr.data_texture)],
-                        pbr: Box::new(pbr),
-                        reading: SpecGlossReading::DraftAppendix,
-                        double_sided,
-                    }),
-                    None => lit.as_ref().and_then(|text| lit_source(text, double_sided)),
-                };
-                (id.to_string(), sampled)
-            },
-        )
-        .collect())
+    }
 }
 
 /// A 1.0 material as read: its PBR block, or what a lit one says of its emission and
@@ -133,6 +149,22 @@ struct Parsed<'s> {
     pbr: Option<pbr::LegacyPbr>,
     lit: Option<LitText>,
     double_sided: Option<bool>,
+}
+
+impl<'s> Parsed<'s> {
+    fn read(source: &source::Source, id: &'s str, material: Node) -> Self {
+        let pbr = pbr::find(material).and_then(|(name, block)| pbr::parse(name, block));
+        let lit = match pbr {
+            Some(_) => None,
+            None => lit_text(source, material),
+        };
+        Parsed {
+            id,
+            pbr,
+            lit,
+            double_sided: blend::double_sided(source, material),
+        }
+    }
 }
 
 /// The distinct texture ids among `ids` (in order), and the position of each.
