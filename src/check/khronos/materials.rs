@@ -6,7 +6,7 @@ use crate::check::context::{member, number, unsigned, Context, MaterialNeeds, Te
 // Defined beside the context, which caches the slot uses; named here, where they are made.
 pub(crate) use crate::check::context::{extension, SlotUse};
 use crate::diagnostic::khronos;
-use crate::document::Node;
+use crate::document::{Node, Object};
 use crate::gltf::as_index;
 use crate::gltf::material::TEXTURE_SLOTS;
 use crate::gltf::material::{effective_texcoord, texture_transform};
@@ -140,94 +140,125 @@ fn check_alpha_cutoff(ctx: &mut Context, material: Node, pointer: &str) {
 /// the profile counts them all as the Khronos validator does (an undeclared or mistyped one is
 /// out of the document by now); empty otherwise.
 fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str, written: &[String]) {
-    let ext_pointer = |name: &str| format!("{pointer}/extensions/{name}");
     let Some(extensions) = material.get("extensions").and_then(Node::as_object) else {
         return;
     };
-    for standalone in ["KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit"] {
-        let count = extensions.len().max(written.len());
-        if extensions.contains_key(standalone) && count > 1 {
-            ctx.emit(
-                khronos::MULTIPLE_EXTENSIONS,
-                ext_pointer(standalone),
-                "This extension may be incompatible with other extensions for the object.",
-            );
-        }
-    }
-    let strength = extension(material, "KHR_materials_emissive_strength")
-        .and_then(|e| e.get("emissiveStrength"));
-    if strength.and_then(Node::as_f64).is_some_and(|s| s >= 0.0) {
-        // Absent is black; an invalid factor (reported by the schema pass) is no colour.
-        let zero = material.get("emissiveFactor").is_none_or(|factor| {
-            factor
-                .as_array()
-                .is_some_and(|f| f.len() == 3 && f.iter().all(|c| c.as_f64() == Some(0.0)))
-        });
-        if zero {
-            ctx.emit(
-                khronos::KHR_MATERIALS_EMISSIVE_STRENGTH_ZERO_FACTOR,
-                ext_pointer("KHR_materials_emissive_strength"),
-                "Emissive strength has no effect when the emissive factor is zero or undefined.",
-            );
-        }
-    }
-    if let Some(volume) = extension(material, "KHR_materials_volume") {
-        // An extension this validator does not know may well be the one that transmits.
-        let transmits = extensions
-            .keys()
-            .chain(written.iter().map(String::as_str))
-            .any(|name| {
-                matches!(
-                    name,
-                    "KHR_materials_transmission" | "KHR_materials_diffuse_transmission"
-                ) || !name.starts_with("KHR_materials_")
-            });
-        if !transmits {
-            ctx.emit(
-                khronos::KHR_MATERIALS_VOLUME_NO_TRANSMISSION,
-                ext_pointer("KHR_materials_volume"),
-                "The volume extension needs to be combined with an extension that allows light to transmit through the surface.",
-            );
-        }
-        let thick = number(volume, "thicknessFactor", 0.0) > 0.0;
-        if thick && material.get("doubleSided").and_then(Node::as_bool) == Some(true) {
-            ctx.emit(
-                khronos::KHR_MATERIALS_VOLUME_DOUBLE_SIDED,
-                ext_pointer("KHR_materials_volume"),
-                "The volume extension should not be used with double-sided materials.",
-            );
-        }
-    }
+    let at = |name: &str| format!("{pointer}/extensions/{name}");
+    check_standalone_extensions(ctx, extensions, written, &at);
+    check_emissive_strength(ctx, material, &at);
+    check_volume(ctx, material, extensions, written, &at);
     if extension(material, "KHR_materials_dispersion").is_some()
         && !extensions.contains_key("KHR_materials_volume")
     {
         ctx.emit(
             khronos::KHR_MATERIALS_DISPERSION_NO_VOLUME,
-            ext_pointer("KHR_materials_dispersion"),
+            at("KHR_materials_dispersion"),
             "The dispersion extension needs to be combined with the volume extension.",
         );
     }
-    if let Some(iridescence) = extension(material, "KHR_materials_iridescence") {
-        let p = ext_pointer("KHR_materials_iridescence");
-        let has_texture = iridescence.get("iridescenceThicknessTexture").is_some();
-        if iridescence.get("iridescenceThicknessMinimum").is_some() && !has_texture {
+    check_iridescence(ctx, material, &at);
+    check_texcoord_pairs(ctx, material, pointer);
+}
+
+/// Spec-gloss and unlit replace the material's model: beside any other extension object.
+fn check_standalone_extensions(
+    ctx: &mut Context,
+    extensions: Object,
+    written: &[String],
+    at: impl Fn(&str) -> String,
+) {
+    for standalone in ["KHR_materials_pbrSpecularGlossiness", "KHR_materials_unlit"] {
+        let count = extensions.len().max(written.len());
+        if extensions.contains_key(standalone) && count > 1 {
             ctx.emit(
-                khronos::KHR_MATERIALS_IRIDESCENCE_THICKNESS_RANGE_WITHOUT_TEXTURE,
-                member(&p, "iridescenceThicknessMinimum"),
-                "Thickness minimum has no effect when a thickness texture is not defined.",
-            );
-        }
-        let min = number(iridescence, "iridescenceThicknessMinimum", 100.0);
-        let max = number(iridescence, "iridescenceThicknessMaximum", 400.0);
-        if has_texture && min == max {
-            ctx.emit(
-                khronos::KHR_MATERIALS_IRIDESCENCE_THICKNESS_TEXTURE_UNUSED,
-                member(&p, "iridescenceThicknessTexture"),
-                "Thickness texture has no effect when the thickness minimum is equal to the thickness maximum.",
+                khronos::MULTIPLE_EXTENSIONS,
+                at(standalone),
+                "This extension may be incompatible with other extensions for the object.",
             );
         }
     }
-    check_texcoord_pairs(ctx, material, pointer);
+}
+
+fn check_emissive_strength(ctx: &mut Context, material: Node, at: impl Fn(&str) -> String) {
+    let strength = extension(material, "KHR_materials_emissive_strength")
+        .and_then(|e| e.get("emissiveStrength"));
+    if !strength.and_then(Node::as_f64).is_some_and(|s| s >= 0.0) {
+        return;
+    }
+    // Absent is black; an invalid factor (reported by the schema pass) is no colour.
+    let zero = material.get("emissiveFactor").is_none_or(|factor| {
+        factor
+            .as_array()
+            .is_some_and(|f| f.len() == 3 && f.iter().all(|c| c.as_f64() == Some(0.0)))
+    });
+    if zero {
+        ctx.emit(
+            khronos::KHR_MATERIALS_EMISSIVE_STRENGTH_ZERO_FACTOR,
+            at("KHR_materials_emissive_strength"),
+            "Emissive strength has no effect when the emissive factor is zero or undefined.",
+        );
+    }
+}
+
+fn check_volume(
+    ctx: &mut Context,
+    material: Node,
+    extensions: Object,
+    written: &[String],
+    at: impl Fn(&str) -> String,
+) {
+    let Some(volume) = extension(material, "KHR_materials_volume") else {
+        return;
+    };
+    // An extension this validator does not know may well be the one that transmits.
+    let transmits = extensions
+        .keys()
+        .chain(written.iter().map(String::as_str))
+        .any(|name| {
+            matches!(
+                name,
+                "KHR_materials_transmission" | "KHR_materials_diffuse_transmission"
+            ) || !name.starts_with("KHR_materials_")
+        });
+    if !transmits {
+        ctx.emit(
+            khronos::KHR_MATERIALS_VOLUME_NO_TRANSMISSION,
+            at("KHR_materials_volume"),
+            "The volume extension needs to be combined with an extension that allows light to transmit through the surface.",
+        );
+    }
+    let thick = number(volume, "thicknessFactor", 0.0) > 0.0;
+    if thick && material.get("doubleSided").and_then(Node::as_bool) == Some(true) {
+        ctx.emit(
+            khronos::KHR_MATERIALS_VOLUME_DOUBLE_SIDED,
+            at("KHR_materials_volume"),
+            "The volume extension should not be used with double-sided materials.",
+        );
+    }
+}
+
+fn check_iridescence(ctx: &mut Context, material: Node, at: impl Fn(&str) -> String) {
+    let Some(iridescence) = extension(material, "KHR_materials_iridescence") else {
+        return;
+    };
+    let p = at("KHR_materials_iridescence");
+    let has_texture = iridescence.get("iridescenceThicknessTexture").is_some();
+    if iridescence.get("iridescenceThicknessMinimum").is_some() && !has_texture {
+        ctx.emit(
+            khronos::KHR_MATERIALS_IRIDESCENCE_THICKNESS_RANGE_WITHOUT_TEXTURE,
+            member(&p, "iridescenceThicknessMinimum"),
+            "Thickness minimum has no effect when a thickness texture is not defined.",
+        );
+    }
+    let min = number(iridescence, "iridescenceThicknessMinimum", 100.0);
+    let max = number(iridescence, "iridescenceThicknessMaximum", 400.0);
+    if has_texture && min == max {
+        ctx.emit(
+            khronos::KHR_MATERIALS_IRIDESCENCE_THICKNESS_TEXTURE_UNUSED,
+            member(&p, "iridescenceThicknessTexture"),
+            "Thickness texture has no effect when the thickness minimum is equal to the thickness maximum.",
+        );
+    }
 }
 
 /// Normal and anisotropy / clearcoat-normal textures should share texCoords. The Khronos

@@ -5,7 +5,7 @@ use super::primitives::indexed_sets;
 use super::resources::fits_in_view;
 use crate::check::context::{elements, member, unsigned, Context, MaterialNeeds};
 use crate::diagnostic::{khronos, Diagnostic, Sink};
-use crate::document::{Array, Node, Tree};
+use crate::document::{Array, Node, Object, Tree};
 use crate::gltf::accessor::{component_count, component_size};
 use crate::gltf::as_index;
 use crate::gltf::gl;
@@ -361,77 +361,46 @@ pub(super) fn check_meshes(ctx: &mut Context) {
 
 fn check_primitive(ctx: &mut Context, primitive: Node, pointer: &str, variant_count: usize) {
     let attributes = primitive.get("attributes").and_then(Node::as_object);
-    if let Some(attributes) = attributes {
-        for (name, value) in attributes {
-            ctx.reference_value(
-                value,
-                &member(&member(pointer, "attributes"), name),
-                "accessors",
-            );
-        }
-    }
-    if let Some(targets) = super::primitives::morph_targets(primitive) {
-        for (t, target) in targets.iter().enumerate() {
-            for (name, value) in target.as_object().into_iter().flatten() {
-                ctx.reference_value(value, &format!("{pointer}/targets/{t}/{name}"), "accessors");
-            }
-        }
-    }
-    ctx.reference(primitive, "indices", pointer, "accessors");
+    reference_accessors(ctx, primitive, attributes, pointer);
     let has = |name: &str| attributes.is_some_and(|a| a.contains_key(name));
     let texcoord_sets = attributes.map_or(0, |a| indexed_sets(a, "TEXCOORD"));
     let mut texcoords_used = BTreeSet::new();
-    if let Some(material) = ctx.reference(primitive, "material", pointer, "materials") {
+    let mut read_by = |ctx: &mut Context, material: usize, at: &str| {
         let needs = ctx
             .material_needs
             .get(&material)
             .cloned()
             .unwrap_or_default();
-        let material_pointer = member(pointer, "material");
         read_texcoords(
             ctx,
             (material, &needs),
-            &material_pointer,
+            at,
             texcoord_sets,
             &mut texcoords_used,
         );
-        let has_tangent_space = has("NORMAL") && has("TANGENT");
-        if needs.needs_tangent && !has_tangent_space {
-            if needs.can_generate_tangent {
-                ctx.emit(
-                    khronos::MESH_PRIMITIVE_GENERATED_TANGENT_SPACE,
-                    material_pointer,
-                    "Material requires a tangent space but the mesh primitive does not provide it. Runtime-generated tangent space may be non-portable across implementations.",
-                );
-            } else {
-                ctx.emit(
-                    khronos::MESH_PRIMITIVE_NO_TANGENT_SPACE,
-                    material_pointer,
-                    "Material requires a tangent space but the mesh primitive does not provide it and the material does not contain a normal map to generate it.",
-                );
+        needs
+    };
+    match ctx.reference(primitive, "material", pointer, "materials") {
+        Some(material) => {
+            let material_pointer = member(pointer, "material");
+            let needs = read_by(ctx, material, &material_pointer);
+            check_tangent_space(
+                ctx,
+                &needs,
+                &material_pointer,
+                has("NORMAL"),
+                has("TANGENT"),
+            );
+            if has("TANGENT") && !needs.needs_tangent {
+                unused_tangent(ctx, pointer);
             }
         }
-        if has("TANGENT") && !needs.needs_tangent {
-            unused_tangent(ctx, pointer);
-        }
-    } else if has("TANGENT") {
         // No material, or one that does not resolve: nothing reads the tangents.
-        unused_tangent(ctx, pointer);
+        None if has("TANGENT") => unused_tangent(ctx, pointer),
+        None => {}
     }
-    let mapped = check_variant_mappings(ctx, primitive, pointer, variant_count);
-    for (material, at) in mapped {
-        let needs = ctx
-            .material_needs
-            .get(&material)
-            .cloned()
-            .unwrap_or_default();
-        read_texcoords(
-            ctx,
-            (material, &needs),
-            &at,
-            texcoord_sets,
-            &mut texcoords_used,
-        );
+    for (material, at) in check_variant_mappings(ctx, primitive, pointer, variant_count) {
+        read_by(ctx, material, &at);
     }
     for set in (0..texcoord_sets).filter(|s| !texcoords_used.contains(s)) {
         ctx.emit(
@@ -445,6 +414,53 @@ fn check_primitive(ctx: &mut Context, primitive: Node, pointer: &str, variant_co
             khronos::MESH_PRIMITIVE_TANGENT_WITHOUT_NORMAL,
             format!("{pointer}/attributes/TANGENT"),
             "TANGENT attribute without NORMAL found.",
+        );
+    }
+}
+
+/// The accessors a primitive names: its attributes', its morph targets' and its indices.
+fn reference_accessors(
+    ctx: &mut Context,
+    primitive: Node,
+    attributes: Option<Object>,
+    pointer: &str,
+) {
+    for (name, value) in attributes.into_iter().flatten() {
+        let at = member(&member(pointer, "attributes"), name);
+        ctx.reference_value(value, &at, "accessors");
+    }
+    if let Some(targets) = super::primitives::morph_targets(primitive) {
+        for (t, target) in targets.iter().enumerate() {
+            for (name, value) in target.as_object().into_iter().flatten() {
+                ctx.reference_value(value, &format!("{pointer}/targets/{t}/{name}"), "accessors");
+            }
+        }
+    }
+    ctx.reference(primitive, "indices", pointer, "accessors");
+}
+
+/// A material that needs a tangent space on a primitive without both NORMAL and TANGENT.
+fn check_tangent_space(
+    ctx: &mut Context,
+    needs: &MaterialNeeds,
+    material_pointer: &str,
+    has_normal: bool,
+    has_tangent: bool,
+) {
+    if !needs.needs_tangent || (has_normal && has_tangent) {
+        return;
+    }
+    if needs.can_generate_tangent {
+        ctx.emit(
+            khronos::MESH_PRIMITIVE_GENERATED_TANGENT_SPACE,
+            material_pointer,
+            "Material requires a tangent space but the mesh primitive does not provide it. Runtime-generated tangent space may be non-portable across implementations.",
+        );
+    } else {
+        ctx.emit(
+            khronos::MESH_PRIMITIVE_NO_TANGENT_SPACE,
+            material_pointer,
+            "Material requires a tangent space but the mesh primitive does not provide it and the material does not contain a normal map to generate it.",
         );
     }
 }

@@ -225,68 +225,20 @@ pub(crate) fn check_buffers(ctx: &mut Context) {
             continue;
         }
         let declared = unsigned(buffer, "byteLength");
-        let (data, storage, uri) = match buffer.get("uri").and_then(Node::as_str) {
-            // Without a declared length an external file is not read and the GLB chunk not
-            // attached (a data URI is still decoded and used), as the Khronos validator reads it.
-            Some(uri) if declared.is_none() && !uri.starts_with("data:") => {
-                (None, "external", Some(uri.to_string()))
-            }
-            Some(uri) => {
-                let uri_pointer = member(&pointer, "uri");
-                let (data, media_type, storage) =
-                    load_uri(ctx, uri, &uri_pointer, Files::KeepLarge);
-                // Data under another media type is not read.
-                let data = data.filter(|_| match &media_type {
-                    Some(media) => buffer_media_type_valid(ctx, media, &uri_pointer),
-                    None => true,
-                });
-                let uri = (storage == "external").then(|| uri.to_string());
-                (data.map(BufferData::Loaded), storage, uri)
-            }
-            // A buffer whose byteLength is not a valid length is not resolved at all (the
-            // validator ignores it), so it cannot miss its chunk.
-            None if i == 0
-                && crate::check::is_glb(ctx.document)
-                && declared.is_some_and(|n| n >= 1) =>
-            {
-                let Some(bin) = ctx.document.bin_data() else {
-                    ctx.emit(
-                        khronos::BUFFER_MISSING_GLB_DATA,
-                        pointer.clone(),
-                        "Buffer refers to an unresolved GLB binary chunk.",
-                    );
-                    continue;
-                };
-                // An empty BIN chunk (GLB_EMPTY_BIN_CHUNK) holds 0 bytes: fewer than the
-                // buffer declares. (One that ends the file cuts it short: see above.)
-                if let Some(length) = declared {
-                    let padded = align4(length);
-                    if bin.len() as u64 > padded {
-                        ctx.emit(
-                            khronos::BUFFER_GLB_CHUNK_TOO_BIG,
-                            pointer.clone(),
-                            format!(
-                                "GLB-stored BIN chunk contains {} extra padding byte(s).",
-                                bin.len() as u64 - padded
-                            ),
-                        );
-                    }
-                }
-                (declared.map(|_| bin), "glb", None)
-            }
-            None => (None, "buffer", None),
+        let Some((data, storage, uri)) = buffer_data(ctx, i, buffer, &pointer, declared) else {
+            continue;
         };
-        let mut short = false;
-        if let (Some(bytes), Some(length)) = (&data, declared) {
-            if (bytes.len() as u64) < length {
+        let short = match (&data, declared) {
+            (Some(bytes), Some(length)) if (bytes.len() as u64) < length => {
                 ctx.emit(
                     khronos::BUFFER_BYTE_LENGTH_MISMATCH,
                     pointer.clone(),
                     format!("Actual data byte length ({}) is less than the declared buffer byte length ({length}).", bytes.len()),
                 );
-                short = true;
+                true
             }
-        }
+            _ => false,
+        };
         ctx.resources.push(ResourceInfo {
             pointer: pointer.clone(),
             storage,
@@ -299,6 +251,75 @@ pub(crate) fn check_buffers(ctx: &mut Context) {
         // Khronos validator (which still reads a data URI's).
         ctx.buffers[i] = data.filter(|_| !short || storage == "data-uri");
     }
+}
+
+/// Buffer `i`'s bytes as the validator resolves them, its storage and its external URI;
+/// `None` where it names a GLB chunk the file does not have (reported).
+fn buffer_data<'a>(
+    ctx: &mut Context<'a>,
+    i: usize,
+    buffer: Node,
+    pointer: &str,
+    declared: Option<u64>,
+) -> Option<(Option<BufferData<'a>>, &'static str, Option<String>)> {
+    Some(match buffer.get("uri").and_then(Node::as_str) {
+        // Without a declared length an external file is not read and the GLB chunk not
+        // attached (a data URI is still decoded and used), as the Khronos validator reads it.
+        Some(uri) if declared.is_none() && !uri.starts_with("data:") => {
+            (None, "external", Some(uri.to_string()))
+        }
+        Some(uri) => {
+            let uri_pointer = member(pointer, "uri");
+            let (data, media_type, storage) = load_uri(ctx, uri, &uri_pointer, Files::KeepLarge);
+            // Data under another media type is not read.
+            let data = data.filter(|_| match &media_type {
+                Some(media) => buffer_media_type_valid(ctx, media, &uri_pointer),
+                None => true,
+            });
+            let uri = (storage == "external").then(|| uri.to_string());
+            (data.map(BufferData::Loaded), storage, uri)
+        }
+        // A buffer whose byteLength is not a valid length is not resolved at all (the
+        // validator ignores it), so it cannot miss its chunk.
+        None if i == 0
+            && crate::check::is_glb(ctx.document)
+            && declared.is_some_and(|n| n >= 1) =>
+        {
+            (Some(glb_chunk(ctx, pointer, declared)?), "glb", None)
+        }
+        None => (None, "buffer", None),
+    })
+}
+
+/// The GLB's BIN chunk for the first buffer, its padding beyond `declared` reported; `None`
+/// where the file has none (reported).
+fn glb_chunk<'a>(
+    ctx: &mut Context<'a>,
+    pointer: &str,
+    declared: Option<u64>,
+) -> Option<BufferData<'a>> {
+    let Some(bin) = ctx.document.bin_data() else {
+        ctx.emit(
+            khronos::BUFFER_MISSING_GLB_DATA,
+            pointer,
+            "Buffer refers to an unresolved GLB binary chunk.",
+        );
+        return None;
+    };
+    // An empty BIN chunk (GLB_EMPTY_BIN_CHUNK) holds 0 bytes: fewer than the buffer
+    // declares. (One that ends the file cuts it short: see above.)
+    let padded = align4(declared?);
+    if bin.len() as u64 > padded {
+        ctx.emit(
+            khronos::BUFFER_GLB_CHUNK_TOO_BIG,
+            pointer,
+            format!(
+                "GLB-stored BIN chunk contains {} extra padding byte(s).",
+                bin.len() as u64 - padded
+            ),
+        );
+    }
+    Some(bin)
 }
 
 pub(crate) fn check_buffer_views(ctx: &mut Context) {
