@@ -123,25 +123,13 @@ pub(crate) fn read(bytes: &(impl GlbBytes + ?Sized), diags: &mut dyn Sink) -> Gl
         let data_start = pos + CHUNK_HEADER_LEN;
         let data_end = data_start.saturating_add(chunk.length);
         let complete = data_end <= bytes.len();
-        let range = complete.then_some(data_start..data_end);
-        match chunk.kind {
-            CHUNK_JSON => {
-                let more_follows = data_end < bytes.len();
-                // Cut short, the JSON is never whole, and the validator's streaming parser
-                // says nothing of it but of a byte order mark, which it rejects at once: the
-                // bytes held are then parsed, to be rejected the same way.
-                let bom = (0..3)
-                    .all(|i| data_start + i < bytes.len() && bytes.byte(data_start + i) == BOM[i]);
-                let range = range.or((bom).then_some(data_start..bytes.len()));
-                chunk.take_json(range, more_follows, &mut parts, &mut saw_empty_json, diags);
-            }
-            CHUNK_BIN => chunk.take_bin(range, &mut parts, diags),
-            _ => diags.push(at(
-                khronos::GLB_UNKNOWN_CHUNK_TYPE,
-                chunk.start,
-                format!("Unknown GLB chunk type: 0x{:08x}.", chunk.kind),
-            )),
-        }
+        chunk.take(
+            bytes,
+            data_start..data_end,
+            &mut parts,
+            &mut saw_empty_json,
+            diags,
+        );
         if !complete {
             diags.push(at(
                 khronos::GLB_UNEXPECTED_END_OF_CHUNK_DATA,
@@ -228,6 +216,38 @@ struct Chunk {
 }
 
 impl Chunk {
+    /// Takes the chunk's data (at `data` in `bytes`, which may end before it) by its type.
+    fn take(
+        &self,
+        bytes: &(impl GlbBytes + ?Sized),
+        data: std::ops::Range<usize>,
+        parts: &mut GlbParts,
+        saw_empty_json: &mut bool,
+        diags: &mut dyn Sink,
+    ) {
+        let complete = data.end <= bytes.len();
+        let range = complete.then_some(data.clone());
+        match self.kind {
+            CHUNK_JSON => {
+                let more_follows = data.end < bytes.len();
+                // Cut short, the JSON is never whole, and the validator's streaming parser
+                // says nothing of it but of a byte order mark, which it rejects at once: the
+                // bytes held are then parsed, to be rejected the same way.
+                let start = data.start;
+                let bom =
+                    (0..3).all(|i| start + i < bytes.len() && bytes.byte(start + i) == BOM[i]);
+                let range = range.or(bom.then_some(start..bytes.len()));
+                self.take_json(range, more_follows, parts, saw_empty_json, diags);
+            }
+            CHUNK_BIN => self.take_bin(range, parts, diags),
+            _ => diags.push(at(
+                khronos::GLB_UNKNOWN_CHUNK_TYPE,
+                self.start,
+                format!("Unknown GLB chunk type: 0x{:08x}.", self.kind),
+            )),
+        }
+    }
+
     /// Takes a JSON chunk's data `range` (`None`: cut short) as the asset's JSON, unless
     /// one came before.
     fn take_json(

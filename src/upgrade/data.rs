@@ -612,8 +612,29 @@ fn copy_elements(
             &binary.owned()[start..]
         }
     };
+    let (mut min, mut max) = copied_bounds(accessor, bytes, stride);
+    if accessor.count == 0 {
+        min.clear();
+        max.clear();
+    }
+    Packed {
+        offset,
+        length: binary.len() - offset,
+        component_type: accessor.component_type,
+        normalized,
+        byte_stride: (stride != element).then_some(stride),
+        min,
+        max,
+        converted_from: None,
+        renormalised: None,
+    }
+}
+
+/// min/max per component of the elements `copy_elements` wrote (`stride` apart in
+/// `bytes`): the common layouts read at memory speed, the others element by element.
+fn copied_bounds(accessor: &Accessor, bytes: &[u8], stride: usize) -> (Vec<f64>, Vec<f64>) {
     let n = accessor.components;
-    let (mut min, mut max) = match accessor.component_type {
+    match accessor.component_type {
         FLOAT if stride == 4 * n && n <= 4 => match n {
             1 => FloatBounds::<1>::of(bytes, |_| true).min_max(),
             2 => FloatBounds::<2>::of(bytes, |_| true).min_max(),
@@ -643,21 +664,6 @@ fn copy_elements(
             }
             (min, max)
         }
-    };
-    if accessor.count == 0 {
-        min.clear();
-        max.clear();
-    }
-    Packed {
-        offset,
-        length: binary.len() - offset,
-        component_type: accessor.component_type,
-        normalized,
-        byte_stride: (stride != element).then_some(stride),
-        min,
-        max,
-        converted_from: None,
-        renormalised: None,
     }
 }
 

@@ -310,8 +310,21 @@ fn scan(work: &mut Work, reading: &Reading, mut findings: Findings) -> Findings 
         }
         return findings;
     }
+    walk_decoded(layout, bytes, *accessor, checkers, pointer, findings)
+}
+
+/// [`scan`]'s general walk: every element decoded to doubles, fed to each checker, its
+/// actual bounds taken and compared with the declared ones.
+fn walk_decoded(
+    layout: &Layout,
+    bytes: &[u8],
+    accessor: Node,
+    checkers: &mut [Checker],
+    pointer: &str,
+    mut findings: Findings,
+) -> Findings {
     let n = layout.components;
-    let unit = unit_scale(layout.component_type, *accessor).unwrap_or(|v| v);
+    let unit = unit_scale(layout.component_type, accessor).unwrap_or(|v| v);
     let mut actual_min = [f64::INFINITY; MAX_COMPONENTS];
     let mut actual_max = [f64::NEG_INFINITY; MAX_COMPONENTS];
     let mut non_finite = false;
@@ -346,7 +359,7 @@ fn scan(work: &mut Work, reading: &Reading, mut findings: Findings) -> Findings 
         pointer,
         findings: &mut findings,
     };
-    bounds.compare(*accessor, &actual_min[..n], &actual_max[..n]);
+    bounds.compare(accessor, &actual_min[..n], &actual_max[..n]);
     for checker in checkers.iter() {
         checker.finish(layout.count * n, &mut findings);
     }

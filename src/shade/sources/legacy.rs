@@ -200,39 +200,9 @@ fn lit_text(source: &source::Source, material: Node) -> Option<LitText> {
     let common = (material.get("extensions")).and_then(|e| e.get("KHR_materials_common"));
     let technique = (material.get("technique").and_then(Node::as_str))
         .and_then(|t| source.object("techniques", t));
-    let mut values: HashMap<&str, Node> = HashMap::new();
-    let blend = match (common, technique) {
-        (Some(common), _) => {
-            let own = common.get("values").and_then(Node::as_object);
-            values.extend(own.into_iter().flat_map(|o| o.iter()));
-            // The early form {type, value} holds its value one level down.
-            for value in values.values_mut() {
-                if let Some(inner) = value.get("value").filter(|_| value.get("type").is_some()) {
-                    *value = inner;
-                }
-            }
-            // "Applies To": the constant model reads no diffuse.
-            if common.get("technique").and_then(Node::as_str) == Some("CONSTANT") {
-                values.remove("diffuse");
-            }
-            let transparent = common.get("transparent").and_then(Node::as_bool) == Some(true);
-            let opacity = values.get("transparency").and_then(|o| o.as_f64());
-            // "transparent … corresponds to enabling the BLEND render state", with the
-            // implementation note's functions ONE, ONE_MINUS_SRC_ALPHA; an opacity below 1 is
-            // read as asking for the same.
-            (transparent || opacity.is_some_and(|o| o < 1.0)).then_some(Blend::Premultiplied)
-        }
-        (None, Some(technique)) => {
-            let parameters = technique.get("parameters").and_then(Node::as_object);
-            for (name, parameter) in parameters.into_iter().flat_map(|p| p.iter()) {
-                if let Some(value) = parameter.get("value") {
-                    values.insert(name, value);
-                }
-            }
-            let own = material.get("values").and_then(Node::as_object);
-            values.extend(own.into_iter().flat_map(|o| o.iter()));
-            technique_blend(technique)
-        }
+    let (values, blend) = match (common, technique) {
+        (Some(common), _) => common_values(common),
+        (None, Some(technique)) => technique_values(technique, material),
         (None, None) if material.get("technique").is_none() => {
             return Some(LitText {
                 emission: [srgb_to_linear(0.5); 3],
@@ -277,4 +247,45 @@ fn lit_text(source: &source::Source, material: Node) -> Option<LitText> {
         alpha_texture: diffuse_texture.filter(|_| blend.is_some()),
         blend,
     })
+}
+
+/// KHR_materials_common's values (the early form {type, value} read by its value) and how
+/// it blends.
+fn common_values(common: Node<'_>) -> (HashMap<&str, Node<'_>>, Option<Blend>) {
+    let own = common.get("values").and_then(Node::as_object);
+    let mut values: HashMap<&str, Node> = own.into_iter().flat_map(|o| o.iter()).collect();
+    for value in values.values_mut() {
+        if let Some(inner) = value.get("value").filter(|_| value.get("type").is_some()) {
+            *value = inner;
+        }
+    }
+    // "Applies To": the constant model reads no diffuse.
+    if common.get("technique").and_then(Node::as_str) == Some("CONSTANT") {
+        values.remove("diffuse");
+    }
+    let transparent = common.get("transparent").and_then(Node::as_bool) == Some(true);
+    let opacity = values.get("transparency").and_then(|o| o.as_f64());
+    // "transparent … corresponds to enabling the BLEND render state", with the
+    // implementation note's functions ONE, ONE_MINUS_SRC_ALPHA; an opacity below 1 is read
+    // as asking for the same.
+    let blend = (transparent || opacity.is_some_and(|o| o < 1.0)).then_some(Blend::Premultiplied);
+    (values, blend)
+}
+
+/// A technique material's values over its technique's parameter defaults, and how the
+/// technique blends.
+fn technique_values<'t>(
+    technique: Node<'t>,
+    material: Node<'t>,
+) -> (HashMap<&'t str, Node<'t>>, Option<Blend>) {
+    let parameters = technique.get("parameters").and_then(Node::as_object);
+    let mut values = HashMap::new();
+    for (name, parameter) in parameters.into_iter().flat_map(|p| p.iter()) {
+        if let Some(value) = parameter.get("value") {
+            values.insert(name, value);
+        }
+    }
+    let own = material.get("values").and_then(Node::as_object);
+    values.extend(own.into_iter().flat_map(|o| o.iter()));
+    (values, technique_blend(technique))
 }
