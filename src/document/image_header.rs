@@ -219,29 +219,8 @@ fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
             .get(data_start..data_start.saturating_add(length))
             .ok_or(HeaderError::UnexpectedEnd)?;
         match kind {
-            b"IHDR" => {
-                if length != 13 || info.is_some() {
-                    return Err(HeaderError::Invalid("invalid IHDR chunk".into()));
-                }
-                let channels = match data[9] {
-                    0 => Channels::Luminance,
-                    2 | 3 => Channels::Rgb,
-                    4 => Channels::LuminanceAlpha,
-                    6 => Channels::Rgba,
-                    other => {
-                        return Err(HeaderError::Invalid(format!(
-                            "invalid PNG colour type {other}"
-                        )))
-                    }
-                };
-                info = Some(ImageInfo::plain(
-                    ImageFormat::Png,
-                    be32(data, 0)?,
-                    be32(data, 4)?,
-                    channels,
-                    data[8],
-                ));
-            }
+            b"IHDR" if info.is_none() => info = Some(png_header(data)?),
+            b"IHDR" => return Err(HeaderError::Invalid("invalid IHDR chunk".into())),
             _ if info.is_none() => {
                 return Err(HeaderError::Invalid("first PNG chunk is not IHDR".into()))
             }
@@ -269,14 +248,12 @@ fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
                 }
             }
             b"gAMA" if length == 4 => {
-                let gamma = be32(data, 0)?;
-                let already = info.as_ref().is_some_and(|i| i.transfer.is_some());
-                if !already {
-                    let transfer = match gamma {
-                        45455 => Transfer::Srgb,
-                        100000 => Transfer::Linear,
-                        _ => Transfer::Custom,
-                    };
+                let transfer = match be32(data, 0)? {
+                    45455 => Transfer::Srgb,
+                    100000 => Transfer::Linear,
+                    _ => Transfer::Custom,
+                };
+                if info.as_ref().is_some_and(|i| i.transfer.is_none()) {
                     set_transfer(&mut info, transfer);
                 }
             }
@@ -294,6 +271,32 @@ fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
         };
     }
     Ok(info)
+}
+
+/// A PNG's IHDR chunk: its size, channels and bit depth.
+fn png_header(data: &[u8]) -> Result<ImageInfo, HeaderError> {
+    if data.len() != 13 {
+        return Err(HeaderError::Invalid("invalid IHDR chunk".into()));
+    }
+    let channels = match data[9] {
+        0 => Channels::Luminance,
+        2 | 3 => Channels::Rgb,
+        4 => Channels::LuminanceAlpha,
+        6 => Channels::Rgba,
+        other => {
+            return Err(HeaderError::Invalid(format!(
+                "invalid PNG colour type {other}"
+            )))
+        }
+    };
+    let (width, height) = (be32(data, 0)?, be32(data, 4)?);
+    Ok(ImageInfo::plain(
+        ImageFormat::Png,
+        width,
+        height,
+        channels,
+        data[8],
+    ))
 }
 
 fn set_colour(info: &mut Option<ImageInfo>, transfer: Transfer, custom: bool, decided: &mut bool) {

@@ -323,6 +323,38 @@ pub(crate) struct DuplicateKey {
     pub occurrences: usize,
 }
 
+/// An open container of [`duplicate_keys`]'s walk.
+struct Frame<'t> {
+    /// The token naming this container inside its parent.
+    token: Cow<'t, str>,
+    /// Keys seen so far (objects), or `None` for arrays.
+    keys: Option<KeysSeen>,
+    /// Next element index (arrays).
+    next_index: usize,
+}
+
+/// The JSON pointer of the innermost open container.
+fn pointer_of(stack: &[Frame]) -> String {
+    stack
+        .iter()
+        .skip(1)
+        .map(|f| format!("/{}", escape_token(&f.token)))
+        .collect()
+}
+
+/// The token naming the next value in the innermost open container (the key read before
+/// it, or its index), counting it.
+fn child_token<'t>(stack: &mut [Frame<'t>], pending: &mut Option<Cow<'t, str>>) -> Cow<'t, str> {
+    match stack.last_mut() {
+        Some(Frame { keys: Some(_), .. }) => pending.take().unwrap_or_default(),
+        Some(frame) => {
+            frame.next_index += 1;
+            Cow::Owned((frame.next_index - 1).to_string())
+        }
+        None => Cow::Borrowed(""),
+    }
+}
+
 /// Object keys that occur more than once in their object, one entry per key and object
 /// however often it repeats (an object of 10^6 copies of one key is one finding, not 10^6),
 /// in the order of their first repeats.
@@ -330,34 +362,6 @@ pub(crate) struct DuplicateKey {
 /// Each open container keeps only its own token, so memory stays linear in the nesting depth;
 /// a pointer is built only for a duplicate.
 pub(crate) fn duplicate_keys(text: &[u8]) -> Vec<DuplicateKey> {
-    struct Frame<'t> {
-        /// The token naming this container inside its parent.
-        token: Cow<'t, str>,
-        /// Keys seen so far (objects), or `None` for arrays.
-        keys: Option<KeysSeen>,
-        /// Next element index (arrays).
-        next_index: usize,
-    }
-    fn pointer(stack: &[Frame]) -> String {
-        stack
-            .iter()
-            .skip(1)
-            .map(|f| format!("/{}", escape_token(&f.token)))
-            .collect()
-    }
-    fn child_token<'t>(
-        stack: &mut [Frame<'t>],
-        pending: &mut Option<Cow<'t, str>>,
-    ) -> Cow<'t, str> {
-        match stack.last_mut() {
-            Some(Frame { keys: Some(_), .. }) => pending.take().unwrap_or_default(),
-            Some(frame) => {
-                frame.next_index += 1;
-                Cow::Owned((frame.next_index - 1).to_string())
-            }
-            None => Cow::Borrowed(""),
-        }
-    }
     let mut found = Vec::new();
     let mut stack: Vec<Frame> = Vec::new();
     let mut scanner = Scanner { text, pos: 0 };
@@ -394,7 +398,7 @@ pub(crate) fn duplicate_keys(text: &[u8]) -> Vec<DuplicateKey> {
                     let keys = stack.last_mut().and_then(|f| f.keys.as_mut());
                     match keys.map(|keys| keys.insert(text, &s, start, next)) {
                         Some(Seen::FirstRepeat) => found.push(DuplicateKey {
-                            pointer: format!("{}/{}", pointer(&stack), escape_token(&s)),
+                            pointer: format!("{}/{}", pointer_of(&stack), escape_token(&s)),
                             offset: start,
                             occurrences: 2,
                         }),
