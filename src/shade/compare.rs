@@ -658,162 +658,271 @@ enum Points {
 
 #[inline(always)]
 fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
-    let Job {
-        shader,
-        readings,
-        b,
-        grid,
-        ref directions,
-        map,
-    } = *job;
-    let mut partials: Vec<Partial> = readings
-        .iter()
-        .map(|_| Partial::new(rows.len() * grid as usize, map))
-        .collect();
-    let mut batches: Vec<Batch> = readings.iter().map(|_| Batch::new()).collect();
-    let size = f64::from(grid);
-    // Where both materials are linear in texels of this grid, a corner between four
-    // centres whose inputs agree has agreeing inputs too: it is not sampled.
-    let linear = readings.iter().all(|a| a.linear_on(grid)) && b.linear_on(grid);
-    // Where every texture is read as stored, a point whose texels equal its left
-    // neighbour's (a flat region) has that point's inputs: it is not sampled again.
-    let as_stored = readings.iter().all(|a| a.texels_on(grid)) && b.texels_on(grid);
-    let mut centres = Centres::new(readings, b, grid, as_stored, rows.start);
-    // The other material's texels at the centre at hand (part of every reading's key).
-    let mut key_b = Vec::new();
-    let (mut above, mut here): (Option<Vec<bool>>, Vec<bool>) = (None, Vec::new());
+    let mut pass = Pass::new(job, &rows);
     for y in rows {
-        here.clear();
-        centres.next_row();
-        for points in [Points::Centres, Points::Corners] {
-            let offset = if points == Points::Centres { 0.5 } else { 0.0 };
-            let uv_of = |x: u32| {
-                [
-                    (f64::from(x) + offset) / size,
-                    (f64::from(y) + offset) / size,
-                ]
-            };
-            // Centres add their texel to the map, corners raise it.
-            let map_length = partials
-                .first()
-                .and_then(|p| p.per_texel.as_ref())
-                .map(Vec::len);
-            let row_start = map_length.map_or(0, |length| match points {
-                Points::Centres => length,
-                Points::Corners => length - grid as usize,
-            });
-            let place = |x: u32| Place {
-                uv: uv_of(x),
-                texel: (points == Points::Corners).then_some(row_start + x as usize),
-            };
-            let mut row_of: Vec<Row> = readings.iter().map(|_| Row::default()).collect();
-            // Whether the corner before was a blend: a corner that reads the texels its left
-            // neighbour reads lies between the same centres, and is one too.
-            let mut left_blended = false;
-            for x in 0..grid {
-                let uv = uv_of(x);
-                if points == Points::Corners {
-                    let as_left = || as_stored && reads_as_left(readings, b, x, y, true);
-                    left_blended = centres.skips(x, uv, left_blended, as_left);
-                    if left_blended {
-                        for (row, partial) in row_of.iter_mut().zip(&mut partials) {
-                            row.forget_last();
-                            partial.blended += 1;
-                        }
-                        continue;
-                    }
-                }
-                if points == Points::Corners && linear {
-                    let left = (x + grid - 1) % grid;
-                    let agree = |row: &[bool]| row[x as usize] && row[left as usize];
-                    if above.as_deref().is_some_and(agree) && agree(&here) {
-                        let each = row_of.iter_mut().zip(&mut partials);
-                        for (row, partial) in each {
-                            row.add_equal(partial, x, place, &directions.angles);
-                        }
-                        continue;
-                    }
-                }
-                let corner = points == Points::Corners;
-                if as_stored
-                    && x > 0
-                    && row_of.iter().all(|row| row.last().is_some())
-                    && reads_as_left(readings, b, x, y, corner)
-                {
-                    if points == Points::Centres {
-                        here.push(here[x as usize - 1]);
-                        centres.repeat_left();
-                    }
-                    for (row, partial) in row_of.iter_mut().zip(&mut partials) {
-                        match row.last() {
-                            Some(Source::Zero) | None => {
-                                row.add_equal(partial, x, place, &directions.angles)
-                            }
-                            Some(source) => row.pending.push((x, source)),
-                        }
-                    }
-                    continue;
-                }
-                let centre = points == Points::Centres;
-                let mut target = None;
-                if centre {
-                    here.push(true);
-                    key_b.clear();
-                    if as_stored {
-                        b.centre_texels(x, y, &mut |w| key_b.push(w));
-                    }
-                }
-                let each = (readings.iter()).zip(&mut row_of).zip(&mut batches);
-                for (r, (((a, row), batch), partial)) in each.zip(&mut partials).enumerate() {
-                    let keyed = centre && as_stored;
-                    if let Some(known) = keyed.then(|| batch.known(a, x, y, &key_b)).flatten() {
-                        // Known texels: no input is read but what a corner needs.
-                        here[x as usize] = false;
-                        centres.keep_with(r, || a.inputs_at(&[uv]));
-                        row.take_known(x, known);
-                        continue;
-                    }
-                    let target = &*target.get_or_insert_with(|| b.inputs_at(&[uv]));
-                    let source = a.inputs_at(&[uv]);
-                    if centre {
-                        centres.keep(r, &source);
-                    }
-                    let equal = source == *target;
-                    if !equal && points == Points::Centres {
-                        here[x as usize] = false;
-                    }
-                    if equal {
-                        // Identical inputs give identical colours, whose ΔE is exactly 0.
-                        // (The previous point is left as it was: no point with differing
-                        // inputs equals this.)
-                        row.add_equal(partial, x, place, &directions.angles);
-                        continue;
-                    }
-                    row.last_equal = false;
-                    // A point like the one before (a flat region of a texture) has its ΔE;
-                    // nothing is copied.
-                    let source = match row.repeat_of(&source, target) {
-                        Some(same) => same,
-                        None => batch.shade(row, shader, directions, source, target, keyed),
-                    };
-                    row.pending.push((x, source));
-                    if row.unique == BATCH_TEXELS {
-                        row.flush(batch, partial, place, &directions.angles);
-                    }
-                }
-                if centre {
-                    let side = readings.len();
-                    centres.keep_with(side, || target.unwrap_or_else(|| b.inputs_at(&[uv])));
-                }
+        pass.here.clear();
+        pass.centres.next_row();
+        pass.row(y, Points::Centres);
+        pass.row(y, Points::Corners);
+        pass.above = Some(std::mem::take(&mut pass.here));
+    }
+    pass.partials
+}
+
+/// One thread's pass over its rows: each reading's figures and batch, the corner screen, and
+/// which centres of this row and the row above have equal inputs on both sides.
+struct Pass<'j, 'a> {
+    job: &'j Job<'a>,
+    partials: Vec<Partial>,
+    batches: Vec<Batch>,
+    centres: Centres<'a>,
+    /// Where both materials are linear in texels of this grid, a corner between four
+    /// centres whose inputs agree has agreeing inputs too: it is not sampled.
+    linear: bool,
+    /// Where every texture is read as stored, a point whose texels equal its left
+    /// neighbour's (a flat region) has that point's inputs: it is not sampled again.
+    as_stored: bool,
+    /// The other material's texels at the centre at hand (part of every reading's key).
+    key_b: Vec<u64>,
+    above: Option<Vec<bool>>,
+    here: Vec<bool>,
+}
+
+impl<'j, 'a> Pass<'j, 'a> {
+    #[inline(always)]
+    fn new(job: &'j Job<'a>, rows: &std::ops::Range<u32>) -> Self {
+        let Job {
+            readings,
+            b,
+            grid,
+            map,
+            ..
+        } = *job;
+        let as_stored = readings.iter().all(|a| a.texels_on(grid)) && b.texels_on(grid);
+        Pass {
+            job,
+            partials: (readings.iter())
+                .map(|_| Partial::new(rows.len() * grid as usize, map))
+                .collect(),
+            batches: readings.iter().map(|_| Batch::new()).collect(),
+            centres: Centres::new(readings, b, grid, as_stored, rows.start),
+            linear: readings.iter().all(|a| a.linear_on(grid)) && b.linear_on(grid),
+            as_stored,
+            key_b: Vec::new(),
+            above: None,
+            here: Vec::new(),
+        }
+    }
+
+    /// Row `y`'s centres, or its top-left corners.
+    #[inline(always)]
+    fn row(&mut self, y: u32, points: Points) {
+        let Job {
+            readings,
+            grid,
+            ref directions,
+            ..
+        } = *self.job;
+        let size = f64::from(grid);
+        let offset = if points == Points::Centres { 0.5 } else { 0.0 };
+        let uv_of = |x: u32| {
+            [
+                (f64::from(x) + offset) / size,
+                (f64::from(y) + offset) / size,
+            ]
+        };
+        // Centres add their texel to the map, corners raise it.
+        let map_length = (self.partials.first())
+            .and_then(|p| p.per_texel.as_ref())
+            .map(Vec::len);
+        let row_start = map_length.map_or(0, |length| match points {
+            Points::Centres => length,
+            Points::Corners => length - grid as usize,
+        });
+        let place = |x: u32| Place {
+            uv: uv_of(x),
+            texel: (points == Points::Corners).then_some(row_start + x as usize),
+        };
+        let mut row_of: Vec<Row> = readings.iter().map(|_| Row::default()).collect();
+        // Whether the corner before was a blend: a corner that reads the texels its left
+        // neighbour reads lies between the same centres, and is one too.
+        let mut left_blended = false;
+        for x in 0..grid {
+            let uv = uv_of(x);
+            if points == Points::Corners
+                && self.corner_unsampled(x, y, uv, &mut left_blended, &mut row_of, place)
+            {
+                continue;
             }
-            let each = (row_of.iter_mut()).zip(&mut batches).zip(&mut partials);
-            for ((row, batch), partial) in each {
+            if self.repeats_left(x, y, points, &mut row_of, place) {
+                continue;
+            }
+            self.sample(x, y, uv, points, &mut row_of, place);
+        }
+        let each = (row_of.iter_mut())
+            .zip(&mut self.batches)
+            .zip(&mut self.partials);
+        for ((row, batch), partial) in each {
+            row.flush(batch, partial, place, &directions.angles);
+        }
+    }
+
+    /// Whether the corner at column `x` is left unsampled: a blend of the four centres
+    /// around it on every side, or (both materials linear) between four centres whose
+    /// inputs agree, which it then adds with ΔE 0.
+    #[inline(always)]
+    fn corner_unsampled(
+        &mut self,
+        x: u32,
+        y: u32,
+        uv: [f64; 2],
+        left_blended: &mut bool,
+        row_of: &mut [Row],
+        place: impl Fn(u32) -> Place + Copy,
+    ) -> bool {
+        let Job {
+            readings,
+            b,
+            grid,
+            ref directions,
+            ..
+        } = *self.job;
+        let as_left = || self.as_stored && reads_as_left(readings, b, x, y, true);
+        *left_blended = self.centres.skips(x, uv, *left_blended, as_left);
+        if *left_blended {
+            for (row, partial) in row_of.iter_mut().zip(&mut self.partials) {
+                row.forget_last();
+                partial.blended += 1;
+            }
+            return true;
+        }
+        if !self.linear {
+            return false;
+        }
+        let left = (x + grid - 1) % grid;
+        let agree = |row: &[bool]| row[x as usize] && row[left as usize];
+        if !(self.above.as_deref().is_some_and(agree) && agree(&self.here)) {
+            return false;
+        }
+        for (row, partial) in row_of.iter_mut().zip(&mut self.partials) {
+            row.add_equal(partial, x, place, &directions.angles);
+        }
+        true
+    }
+
+    /// Whether the point at column `x` reads on every side the texels its left neighbour
+    /// reads (every texture read as stored): it then takes that point's samples.
+    #[inline(always)]
+    fn repeats_left(
+        &mut self,
+        x: u32,
+        y: u32,
+        points: Points,
+        row_of: &mut [Row],
+        place: impl Fn(u32) -> Place + Copy,
+    ) -> bool {
+        let Job {
+            readings,
+            b,
+            ref directions,
+            ..
+        } = *self.job;
+        let corner = points == Points::Corners;
+        if !(self.as_stored
+            && x > 0
+            && row_of.iter().all(|row| row.last().is_some())
+            && reads_as_left(readings, b, x, y, corner))
+        {
+            return false;
+        }
+        if points == Points::Centres {
+            self.here.push(self.here[x as usize - 1]);
+            self.centres.repeat_left();
+        }
+        for (row, partial) in row_of.iter_mut().zip(&mut self.partials) {
+            match row.last() {
+                Some(Source::Zero) | None => row.add_equal(partial, x, place, &directions.angles),
+                Some(source) => row.pending.push((x, source)),
+            }
+        }
+        true
+    }
+
+    /// Samples the point at column `x` (texture coordinates `uv`) for every reading: by its
+    /// texels where those were sampled before (a centre read as stored), else by its inputs.
+    #[inline(always)]
+    fn sample(
+        &mut self,
+        x: u32,
+        y: u32,
+        uv: [f64; 2],
+        points: Points,
+        row_of: &mut [Row],
+        place: impl Fn(u32) -> Place + Copy,
+    ) {
+        let Job {
+            shader,
+            readings,
+            b,
+            ref directions,
+            ..
+        } = *self.job;
+        let centre = points == Points::Centres;
+        let mut target = None;
+        if centre {
+            self.here.push(true);
+            self.key_b.clear();
+            if self.as_stored {
+                let key_b = &mut self.key_b;
+                b.centre_texels(x, y, &mut |w| key_b.push(w));
+            }
+        }
+        let keyed = centre && self.as_stored;
+        let each = (readings.iter())
+            .zip(row_of.iter_mut())
+            .zip(&mut self.batches);
+        for (r, (((a, row), batch), partial)) in each.zip(&mut self.partials).enumerate() {
+            if let Some(known) = keyed.then(|| batch.known(a, x, y, &self.key_b)).flatten() {
+                // Known texels: no input is read but what a corner needs.
+                self.here[x as usize] = false;
+                self.centres.keep_with(r, || a.inputs_at(&[uv]));
+                row.take_known(x, known);
+                continue;
+            }
+            let target = &*target.get_or_insert_with(|| b.inputs_at(&[uv]));
+            let source = a.inputs_at(&[uv]);
+            if centre {
+                self.centres.keep(r, &source);
+            }
+            let equal = source == *target;
+            if !equal && centre {
+                self.here[x as usize] = false;
+            }
+            if equal {
+                // Identical inputs give identical colours, whose ΔE is exactly 0. (The
+                // previous point is left as it was: no point with differing inputs equals
+                // this.)
+                row.add_equal(partial, x, place, &directions.angles);
+                continue;
+            }
+            row.last_equal = false;
+            // A point like the one before (a flat region of a texture) has its ΔE; nothing
+            // is copied.
+            let source = match row.repeat_of(&source, target) {
+                Some(same) => same,
+                None => batch.shade(row, shader, directions, source, target, keyed),
+            };
+            row.pending.push((x, source));
+            if row.unique == BATCH_TEXELS {
                 row.flush(batch, partial, place, &directions.angles);
             }
         }
-        above = Some(std::mem::take(&mut here));
+        if centre {
+            let side = readings.len();
+            let centres = &mut self.centres;
+            centres.keep_with(side, || target.unwrap_or_else(|| b.inputs_at(&[uv])));
+        }
     }
-    partials
 }
 
 /// How far (relative to each number's size, at least 1) a corner's inputs may be from the

@@ -144,9 +144,9 @@ fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str, writt
         return;
     };
     let at = |name: &str| format!("{pointer}/extensions/{name}");
-    check_standalone_extensions(ctx, extensions, written, &at);
-    check_emissive_strength(ctx, material, &at);
-    check_volume(ctx, material, extensions, written, &at);
+    check_standalone_extensions(ctx, extensions, written, at);
+    check_emissive_strength(ctx, material, at);
+    check_volume(ctx, material, extensions, written, at);
     if extension(material, "KHR_materials_dispersion").is_some()
         && !extensions.contains_key("KHR_materials_volume")
     {
@@ -156,7 +156,7 @@ fn check_extension_rules(ctx: &mut Context, material: Node, pointer: &str, writt
             "The dispersion extension needs to be combined with the volume extension.",
         );
     }
-    check_iridescence(ctx, material, &at);
+    check_iridescence(ctx, material, at);
     check_texcoord_pairs(ctx, material, pointer);
 }
 
