@@ -595,6 +595,28 @@ fn cases() -> Vec<Case> {
             json!({"sheenColorFactor": [1.0, 1.0, 1.0], "sheenRoughnessFactor": 0.0}))), vec![])
             .expect("SHEEN_ZERO_ROUGHNESS", &at("/extensions/KHR_materials_sheen/sheenRoughnessFactor")),
         near_miss("SHEEN_ZERO_ROUGHNESS", "invisible sheen with roughness 0", material(ext("KHR_materials_sheen", json!({"sheenRoughnessFactor": 0.0}))), vec![]),
+        // A factor an animation raises (KHR_animation_pointer) is not zero throughout.
+        near_miss("SHEEN_TEXTURE_DISABLED", "sheen texture whose zero colour is animated", material(ext("KHR_materials_sheen",
+            json!({"sheenRoughnessFactor": 0.5, "sheenColorTexture": {"index": 0}}))), vec![rgb([200, 200, 200])])
+            .animated("/materials/0/extensions/KHR_materials_sheen/sheenColorFactor")
+            .expect("INCOMPLETE_EXTENSION_SUPPORT", "/animations/0/channels/0/target/extensions/KHR_animation_pointer"),
+        near_miss("SHEEN_ZERO_ROUGHNESS", "visible sheen whose zero roughness is animated", material(ext("KHR_materials_sheen",
+            json!({"sheenColorFactor": [1.0, 1.0, 1.0]}))), vec![])
+            .animated("/materials/0/extensions/KHR_materials_sheen/sheenRoughnessFactor")
+            .expect("INCOMPLETE_EXTENSION_SUPPORT", "/animations/0/channels/0/target/extensions/KHR_animation_pointer"),
+        near_miss("ANISOTROPY_TEXTURE_ZERO_STRENGTH", "anisotropy texture whose zero strength is animated", material(ext("KHR_materials_anisotropy",
+            json!({"anisotropyTexture": {"index": 0}}))), vec![rgb([255, 128, 255])]).patch(with_tangents())
+            .animated("/materials/0/extensions/KHR_materials_anisotropy/anisotropyStrength")
+            .expect("INCOMPLETE_EXTENSION_SUPPORT", "/animations/0/channels/0/target/extensions/KHR_animation_pointer"),
+        near_miss("LAYER_TEXTURE_DISABLED", "clearcoat texture whose zero factor is animated", material(ext("KHR_materials_clearcoat",
+            json!({"clearcoatTexture": {"index": 0}}))), vec![rgb([200, 0, 0])])
+            .animated("/materials/0/extensions/KHR_materials_clearcoat/clearcoatFactor")
+            .expect("INCOMPLETE_EXTENSION_SUPPORT", "/animations/0/channels/0/target/extensions/KHR_animation_pointer"),
+        near_miss("DISPERSION_THIN_WALLED", "dispersion through a volume whose zero thickness is animated", material(json!({"extensions": {
+            "KHR_materials_transmission": {"transmissionFactor": 1.0},
+            "KHR_materials_volume": {}, "KHR_materials_dispersion": {"dispersion": 0.3}}})), vec![])
+            .animated("/materials/0/extensions/KHR_materials_volume/thicknessFactor")
+            .expect("INCOMPLETE_EXTENSION_SUPPORT", "/animations/0/channels/0/target/extensions/KHR_animation_pointer"),
         case("anisotropy texture with the default zero strength", material(ext("KHR_materials_anisotropy",
             json!({"anisotropyTexture": {"index": 0}}))), vec![rgb([255, 128, 255])]).patch(with_tangents())
             .expect("ANISOTROPY_TEXTURE_ZERO_STRENGTH", &at("/extensions/KHR_materials_anisotropy/anisotropyTexture")),

@@ -2,6 +2,7 @@
 
 use super::{Rule, Run};
 use crate::check::context::Context;
+use crate::check::khronos::animations::animated_pointers;
 use crate::check::khronos::materials::slot_uses;
 use crate::diagnostic::Severity;
 
@@ -17,7 +18,8 @@ pub(super) const RULE: Rule = Rule::new(
 const DOC: &str = "\
 ## What it does
 Reports an `anisotropyTexture` on a material whose `anisotropyStrength` is 0, which is also its
-default when the member is missing.
+default when the member is missing, unless an animation channel (KHR_animation_pointer)
+targets the strength.
 
 ## Why
 The anisotropy strength is `anisotropyStrength` times the texture's blue channel, so a zero
@@ -33,9 +35,15 @@ Spec: KHR_materials_anisotropy, \"anisotropyStrength … default 0\".
 ";
 
 fn check(ctx: &mut Context) {
+    let animated = animated_pointers(ctx.root);
     for slot_use in slot_uses(ctx).iter() {
+        let strength = format!(
+            "/materials/{}/extensions/KHR_materials_anisotropy/anisotropyStrength",
+            slot_use.material_index
+        );
         if slot_use.slot.key == "anisotropyTexture"
             && slot_use.extension_number("anisotropyStrength", 0.0) == 0.0
+            && !animated.contains(strength.as_str())
         {
             ctx.emit(
                 RULE.code(),

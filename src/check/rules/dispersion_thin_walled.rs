@@ -2,6 +2,7 @@
 
 use super::{Rule, Run};
 use crate::check::context::{number, Context};
+use crate::check::khronos::animations::animated_pointers;
 use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
 
@@ -17,7 +18,8 @@ pub(super) const RULE: Rule = Rule::new(
 const DOC: &str = "\
 ## What it does
 Reports `KHR_materials_dispersion` on a material whose `KHR_materials_volume` has a
-`thicknessFactor` of 0, its default when missing. (Dispersion without any volume is the
+`thicknessFactor` of 0, its default when missing, unless an animation channel
+(KHR_animation_pointer) targets the thickness. (Dispersion without any volume is the
 Khronos warning KHR_MATERIALS_DISPERSION_NO_VOLUME.)
 
 ## Why
@@ -34,9 +36,12 @@ refracting, so the dispersion does nothing. The author usually forgot the thickn
 ";
 
 fn check(ctx: &mut Context) {
+    let animated = animated_pointers(ctx.root);
     for (_, pointer, material) in ctx.objects("materials") {
+        let thickness = format!("{pointer}/extensions/KHR_materials_volume/thicknessFactor");
         let thin = extension(material, "KHR_materials_volume")
-            .is_some_and(|volume| number(volume, "thicknessFactor", 0.0) == 0.0);
+            .is_some_and(|volume| number(volume, "thicknessFactor", 0.0) == 0.0)
+            && !animated.contains(thickness.as_str());
         if thin && extension(material, "KHR_materials_dispersion").is_some() {
             ctx.emit(
                 RULE.code(),

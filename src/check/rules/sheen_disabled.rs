@@ -2,6 +2,7 @@
 
 use super::{Rule, Run};
 use crate::check::context::Context;
+use crate::check::khronos::animations::animated_pointers;
 use crate::check::khronos::materials::{extension, slot_uses};
 use crate::diagnostic::Severity;
 use crate::document::Node;
@@ -21,7 +22,8 @@ Reports `sheenColorTexture` and `sheenRoughnessTexture` on a material whose
 `sheenColorFactor` is [0, 0, 0] — which is also its default when the member is missing.
 
 A sheen object that holds textures and no factor at all is reported too: it is exactly the
-mistake this rule exists for (the textures are multiplied by the default factor 0).
+mistake this rule exists for (the textures are multiplied by the default factor 0). A factor an
+animation channel targets (KHR_animation_pointer) is not zero throughout: it is not reported.
 
 ## Why
 The sheen colour is the factor times the texture, so a zero factor turns the whole sheen layer
@@ -46,12 +48,17 @@ pub(super) fn sheen_colour_is_zero(sheen: Node) -> bool {
 }
 
 fn check(ctx: &mut Context) {
+    let animated = animated_pointers(ctx.root);
     for slot_use in slot_uses(ctx).iter() {
         if slot_use.slot.extension != Some("KHR_materials_sheen") {
             continue;
         }
         let sheen = extension(slot_use.material, "KHR_materials_sheen");
-        if sheen.is_some_and(sheen_colour_is_zero) {
+        let factor = format!(
+            "/materials/{}/extensions/KHR_materials_sheen/sheenColorFactor",
+            slot_use.material_index
+        );
+        if sheen.is_some_and(sheen_colour_is_zero) && !animated.contains(factor.as_str()) {
             ctx.emit(
                 RULE.code(),
                 slot_use.pointer(),

@@ -3,6 +3,7 @@
 use super::sheen_disabled::sheen_colour_is_zero;
 use super::{Rule, Run};
 use crate::check::context::{number, Context};
+use crate::check::khronos::animations::animated_pointers;
 use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
 
@@ -18,7 +19,8 @@ pub(super) const RULE: Rule = Rule::new(
 const DOC: &str = "\
 ## What it does
 Reports a `KHR_materials_sheen` object with a non-zero `sheenColorFactor` and a
-`sheenRoughnessFactor` of 0, which is its default when the member is missing.
+`sheenRoughnessFactor` of 0, which is its default when the member is missing, unless an
+animation channel (KHR_animation_pointer) targets the roughness factor.
 
 ## Why
 The Charlie sheen distribution D(h) = (2 + 1/r) sin(θ)^(1/r) / 2π with r = roughness² has no
@@ -36,11 +38,16 @@ its BRDF section; Conty & Kulla 2017.
 ";
 
 fn check(ctx: &mut Context) {
+    let animated = animated_pointers(ctx.root);
     for (_, pointer, material) in ctx.objects("materials") {
         let Some(sheen) = extension(material, "KHR_materials_sheen") else {
             continue;
         };
-        if !sheen_colour_is_zero(sheen) && number(sheen, "sheenRoughnessFactor", 0.0) == 0.0 {
+        let factor = format!("{pointer}/extensions/KHR_materials_sheen/sheenRoughnessFactor");
+        if !sheen_colour_is_zero(sheen)
+            && number(sheen, "sheenRoughnessFactor", 0.0) == 0.0
+            && !animated.contains(factor.as_str())
+        {
             let at = if sheen.get("sheenRoughnessFactor").is_some() {
                 "/sheenRoughnessFactor"
             } else {
