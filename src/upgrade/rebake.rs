@@ -229,11 +229,16 @@ fn finest_needed<'t>(
     start: SpecGlossTexels<'t>,
     at_grid: impl Fn(u32, u32) -> SpecGlossTexels<'t>,
 ) -> (SpecGlossTexels<'t>, Option<String>) {
+    let refinable =
+        |t: &SpecGlossTexels| u64::from(t.width) * u64::from(t.height) * 9 <= REBAKE_FLOOR;
+    // A grid that cannot be refined is kept whatever its error, which is then not measured:
+    // the proof measures what the viewer sees.
+    if !refinable(&start) {
+        return (start, None);
+    }
     let first = between_centres_error(&start);
     let (mut texels, mut error, mut scale) = (start, first, 1);
-    while error > BETWEEN_CENTRES
-        && u64::from(texels.width) * u64::from(texels.height) * 9 <= REBAKE_FLOOR
-    {
+    while error > BETWEEN_CENTRES && refinable(&texels) {
         texels = at_grid(texels.width * 3, texels.height * 3);
         error = between_centres_error(&texels);
         scale *= 3;
