@@ -368,8 +368,9 @@ struct Memo {
     table: hashbrown::HashTable<u32>,
     /// Words per key (a material's keys all have one length).
     width: usize,
-    words: Vec<u64>,
-    samples: Vec<[f64; DIRECTION_COUNT]>,
+    /// Each entry's key words and then its samples' bits, side by side: a lookup that finds
+    /// its key has its samples in the same cache lines.
+    entries: Vec<u64>,
 }
 
 impl Memo {
@@ -377,8 +378,7 @@ impl Memo {
         Memo {
             table: hashbrown::HashTable::new(),
             width: 0,
-            words: Vec::new(),
-            samples: Vec::new(),
+            entries: Vec::new(),
         }
     }
 
@@ -391,9 +391,13 @@ impl Memo {
         mixed ^ mixed >> 29
     }
 
-    fn key(&self, entry: u32) -> &[u64] {
-        let at = entry as usize * self.width;
-        &self.words[at..at + self.width]
+    fn stride(&self) -> usize {
+        self.width + DIRECTION_COUNT
+    }
+
+    fn entry(&self, entry: u32) -> &[u64] {
+        let at = entry as usize * self.stride();
+        &self.entries[at..at + self.stride()]
     }
 
     fn same(a: &[u64], b: &[u64]) -> bool {
@@ -401,10 +405,12 @@ impl Memo {
     }
 
     fn get(&self, key: &[u64]) -> Option<[f64; DIRECTION_COUNT]> {
-        let found = self
-            .table
-            .find(Memo::hash(key), |&e| Memo::same(self.key(e), key))?;
-        Some(self.samples[*found as usize])
+        let width = self.width;
+        let found = (self.table).find(Memo::hash(key), |&e| {
+            Memo::same(&self.entry(e)[..width], key)
+        })?;
+        let samples = &self.entry(*found)[width..];
+        Some(std::array::from_fn(|i| f64::from_bits(samples[i])))
     }
 
     fn put(&mut self, key: &[u64], samples: [f64; DIRECTION_COUNT]) {
@@ -414,17 +420,16 @@ impl Memo {
         if key.len() != self.width || key.is_empty() || self.get(key).is_some() {
             return;
         }
-        if (self.samples.len() + 1) * (self.width + DIRECTION_COUNT) > MEMO_WORDS {
+        if self.entries.len() + self.stride() > MEMO_WORDS {
             self.table.clear();
-            self.words.clear();
-            self.samples.clear();
+            self.entries.clear();
         }
-        let (words, width) = (&self.words, self.width);
-        let rehash = |&e: &u32| Memo::hash(&words[e as usize * width..][..width]);
-        self.table
-            .insert_unique(Memo::hash(key), self.samples.len() as u32, rehash);
-        self.words.extend_from_slice(key);
-        self.samples.push(samples);
+        let (entries, width, stride) = (&self.entries, self.width, self.stride());
+        let rehash = |&e: &u32| Memo::hash(&entries[e as usize * stride..][..width]);
+        let entry = (self.entries.len() / stride) as u32;
+        self.table.insert_unique(Memo::hash(key), entry, rehash);
+        self.entries.extend_from_slice(key);
+        self.entries.extend(samples.map(f64::to_bits));
     }
 }
 
@@ -1661,7 +1666,7 @@ mod tests {
         for i in 0..100_000u64 {
             // Wide keys: a point that reads many float textures.
             memo.put(&[i; 60], samples(i));
-            let held = memo.words.len() + memo.samples.len() * DIRECTION_COUNT;
+            let held = memo.entries.len();
             assert!(held <= MEMO_WORDS, "{held} words after {i} points");
         }
         assert_eq!(memo.get(&[99_999; 60]), Some(samples(99_999)));
