@@ -126,9 +126,12 @@ impl Fits {
         glossiness: f64,
         closed: Target,
     ) -> Option<Fit> {
-        let [d0, d1, d2] = diffuse;
-        let [s0, s1, s2] = specular;
-        let key = [d0, d1, d2, s0, s1, s2, glossiness].map(f64::to_bits);
+        let key = TexelValue {
+            diffuse,
+            specular,
+            glossiness,
+        }
+        .key();
         if let Some(done) = self.done.get(&key) {
             return Some(done.clone());
         }
