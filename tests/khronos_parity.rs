@@ -2931,3 +2931,101 @@ fn an_empty_list_is_none_and_a_list_of_names_keeps_its_repeats() {
         ])
     );
 }
+
+/// A channel whose target KHR_animation_pointer owns must name the path `pointer`: one that
+/// names none, or names it by something other than a string, does not either.
+#[test]
+fn an_animation_pointer_target_without_a_path_string_has_the_wrong_path() {
+    let target = |path: Option<Value>| {
+        let mut target = json!({"extensions": {"KHR_animation_pointer": {"pointer": "/materials/0/alphaCutoff"}}});
+        if let Some(path) = path {
+            target["path"] = path;
+        }
+        khronos_findings(json!({
+            "asset": {"version": "2.0"}, "extensionsUsed": ["KHR_animation_pointer"],
+            "buffers": [{"byteLength": 16, "uri": "data:application/octet-stream;base64,AAAAAAAAgD8AAAAAAACAPw=="}],
+            "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 8}, {"buffer": 0, "byteOffset": 8, "byteLength": 8}],
+            "accessors": [
+                {"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+                {"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR"}],
+            "materials": [{}],
+            "animations": [{"samplers": [{"input": 0, "output": 1}], "channels": [{"sampler": 0, "target": target}]}]
+        }))
+    };
+    let at = "/animations/0/channels/0/target/extensions/KHR_animation_pointer";
+    let common = [
+        ("INCOMPLETE_EXTENSION_SUPPORT", at),
+        ("KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_PATH", at),
+        ("UNUSED_OBJECT", "/materials/0"),
+    ];
+    let with = |extra: (&'static str, &'static str)| {
+        expected(&common.iter().copied().chain([extra]).collect::<Vec<_>>())
+    };
+    assert_eq!(
+        target(None),
+        with(("UNDEFINED_PROPERTY", "/animations/0/channels/0/target"))
+    );
+    assert_eq!(
+        target(Some(json!(5))),
+        with(("TYPE_MISMATCH", "/animations/0/channels/0/target/path"))
+    );
+}
+
+/// After a channel without a sampler index, the validator's node checks that end its linking
+/// (empty nodes, loops, skinned meshes off the root, with local transforms or in a scene
+/// without their joints) are named by the path it did not unwind.
+#[test]
+fn every_node_check_after_a_channel_without_a_sampler_carries_the_leftover_path() {
+    let document = json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 240, "uri": "data:application/octet-stream;base64,AAAAAAAAgD8AAAAAAACAPwAAgD8AAAAAAAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAAAAAAAAAAAAgD8AAIA/AAAAAAAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAEAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAAAA"}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": 8}, {"buffer": 0, "byteOffset": 8, "byteLength": 8},
+            {"buffer": 0, "byteOffset": 16, "byteLength": 128}, {"buffer": 0, "byteOffset": 144, "byteLength": 36},
+            {"buffer": 0, "byteOffset": 180, "byteLength": 12}, {"buffer": 0, "byteOffset": 192, "byteLength": 48}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+            {"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR"},
+            {"bufferView": 2, "componentType": 5126, "count": 2, "type": "MAT4"},
+            {"bufferView": 3, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 4, "componentType": 5121, "count": 3, "type": "VEC4"},
+            {"bufferView": 5, "componentType": 5126, "count": 3, "type": "VEC4"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 3, "JOINTS_0": 4, "WEIGHTS_0": 5}}]}],
+        "skins": [{"inverseBindMatrices": 2, "joints": [1, 2], "skeleton": 1}],
+        "nodes": [
+            {"children": [3]}, {"children": [2]}, {"translation": [1, 0, 0]},
+            {"mesh": 0, "skin": 0, "translation": [0, 1, 0]}, {}, {"mesh": 0, "skin": 0}, {"children": [6]}],
+        "scenes": [{"nodes": [0, 1, 4]}, {"nodes": [5]}], "scene": 0,
+        "animations": [{
+            "samplers": [{"input": 0, "output": 1}, {"input": 0, "output": 1}],
+            "channels": [{"target": {"node": 2, "path": "translation"}}, {"sampler": 1, "target": {"node": 2, "path": "scale"}}]}]
+    });
+    assert_eq!(
+        khronos_findings(document),
+        expected(&[
+            (
+                "ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_FORMAT",
+                "/animations/0/channels/0/1/sampler"
+            ),
+            (
+                "BUFFER_VIEW_TARGET_MISSING",
+                "/meshes/0/primitives/0/attributes/JOINTS_0"
+            ),
+            (
+                "BUFFER_VIEW_TARGET_MISSING",
+                "/meshes/0/primitives/0/attributes/POSITION"
+            ),
+            (
+                "BUFFER_VIEW_TARGET_MISSING",
+                "/meshes/0/primitives/0/attributes/WEIGHTS_0"
+            ),
+            ("NODE_EMPTY", "/animations/nodes/4"),
+            ("NODE_LOOP", "/animations/nodes/6"),
+            ("NODE_SKINNED_MESH_LOCAL_TRANSFORMS", "/animations/nodes/3"),
+            ("NODE_SKINNED_MESH_NON_ROOT", "/animations/nodes/3"),
+            ("NODE_SKIN_NO_SCENE", "/animations/nodes/5"),
+            ("UNDEFINED_PROPERTY", "/animations/0/channels/0"),
+            ("UNUSED_OBJECT", "/animations/0/channels/samplers/0"),
+        ])
+    );
+}

@@ -109,11 +109,13 @@ fn animation_pointer(ctx: &mut Context, channel: Node, at: &str, declared: bool)
             "This extension requires the animation channel target node to be undefined.",
         );
     }
-    if let Some(other) = path.filter(|p| *p != "pointer") {
+    // An absent or mistyped path is not 'pointer' either (the validator reads it as null).
+    if path != Some("pointer") {
+        let found = path.unwrap_or("null");
         ctx.emit(
             khronos::KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_PATH,
             here,
-            format!("This extension requires the animation channel target path to be 'pointer'. Found '{other}' instead."),
+            format!("This extension requires the animation channel target path to be 'pointer'. Found '{found}' instead."),
         );
     }
 }

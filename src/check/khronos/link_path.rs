@@ -15,6 +15,15 @@ use crate::check::schema::is_collection_element;
 use crate::diagnostic::{khronos, Code};
 use crate::document::Node;
 
+/// What the validator's node checks, which end its linking, report.
+const NODE_CHECKS: [Code; 5] = [
+    khronos::NODE_EMPTY,
+    khronos::NODE_LOOP,
+    khronos::NODE_SKINNED_MESH_NON_ROOT,
+    khronos::NODE_SKINNED_MESH_LOCAL_TRANSFORMS,
+    khronos::NODE_SKIN_NO_SCENE,
+];
+
 /// The validator's path at each animation, and what is left of it after the animations.
 #[derive(Debug, Default)]
 pub(crate) struct LinkPath {
@@ -93,8 +102,7 @@ impl LinkPath {
         }
         let after = pointer.starts_with("/scenes/")
             && (code == khronos::UNRESOLVED_REFERENCE || code == khronos::SCENE_NON_ROOT_NODE)
-            || pointer.starts_with("/nodes/")
-                && (code == khronos::NODE_EMPTY || code == khronos::NODE_LOOP)
+            || pointer.starts_with("/nodes/") && NODE_CHECKS.contains(&code)
             || code == khronos::UNUSED_OBJECT && is_collection_element(pointer);
         (after && !self.residue.is_empty()).then(|| format!("/{}{pointer}", self.residue.join("/")))
     }
