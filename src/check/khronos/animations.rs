@@ -53,8 +53,25 @@ pub(crate) fn linked(animation: Node) -> Option<(Array, Array)> {
     Some((list("samplers")?, list("channels")?))
 }
 
+/// The members animation channels target through KHR_animation_pointer: what a document
+/// writes of them is not their value throughout.
+pub(crate) struct Animated<'t>(std::collections::HashSet<&'t str>);
+
+impl<'t> Animated<'t> {
+    pub(crate) fn of(root: Node<'t>) -> Self {
+        Animated(animated_pointers(root))
+    }
+
+    /// Whether a channel targets `member` (its path below the material) of material
+    /// `material`.
+    pub(crate) fn material_member(&self, material: usize, member: &str) -> bool {
+        self.0
+            .contains(format!("/materials/{material}/{member}").as_str())
+    }
+}
+
 /// Every JSON pointer an animation channel targets through KHR_animation_pointer.
-pub(crate) fn animated_pointers(root: Node<'_>) -> std::collections::HashSet<&str> {
+fn animated_pointers(root: Node<'_>) -> std::collections::HashSet<&str> {
     let channels = root
         .get("animations")
         .and_then(Node::as_array)

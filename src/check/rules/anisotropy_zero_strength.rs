@@ -2,7 +2,7 @@
 
 use super::{Rule, Run};
 use crate::check::context::Context;
-use crate::check::khronos::animations::animated_pointers;
+use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::slot_uses;
 use crate::diagnostic::Severity;
 
@@ -35,15 +35,12 @@ Spec: KHR_materials_anisotropy, \"anisotropyStrength … default 0\".
 ";
 
 fn check(ctx: &mut Context) {
-    let animated = animated_pointers(ctx.root);
+    let animated = Animated::of(ctx.root);
     for slot_use in slot_uses(ctx).iter() {
-        let strength = format!(
-            "/materials/{}/extensions/KHR_materials_anisotropy/anisotropyStrength",
-            slot_use.material_index
-        );
+        let strength = "extensions/KHR_materials_anisotropy/anisotropyStrength";
         if slot_use.slot.key == "anisotropyTexture"
             && slot_use.extension_number("anisotropyStrength", 0.0) == 0.0
-            && !animated.contains(strength.as_str())
+            && !animated.material_member(slot_use.material_index, strength)
         {
             ctx.emit(
                 RULE.code(),

@@ -2,7 +2,7 @@
 
 use super::{Rule, Run};
 use crate::check::context::{number, Context};
-use crate::check::khronos::animations::animated_pointers;
+use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
 
@@ -36,12 +36,12 @@ refracting, so the dispersion does nothing. The author usually forgot the thickn
 ";
 
 fn check(ctx: &mut Context) {
-    let animated = animated_pointers(ctx.root);
-    for (_, pointer, material) in ctx.objects("materials") {
-        let thickness = format!("{pointer}/extensions/KHR_materials_volume/thicknessFactor");
+    let animated = Animated::of(ctx.root);
+    for (i, pointer, material) in ctx.objects("materials") {
+        let thickness = "extensions/KHR_materials_volume/thicknessFactor";
         let thin = extension(material, "KHR_materials_volume")
             .is_some_and(|volume| number(volume, "thicknessFactor", 0.0) == 0.0)
-            && !animated.contains(thickness.as_str());
+            && !animated.material_member(i, thickness);
         if thin && extension(material, "KHR_materials_dispersion").is_some() {
             ctx.emit(
                 RULE.code(),

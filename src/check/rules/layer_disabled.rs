@@ -2,7 +2,7 @@
 
 use super::{Rule, Run};
 use crate::check::context::{number, Context};
-use crate::check::khronos::animations::animated_pointers;
+use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::{extension, slot_uses};
 use crate::diagnostic::Severity;
 
@@ -59,7 +59,7 @@ fn factor_of(extension: &str, key: &str) -> Option<&'static str> {
 }
 
 fn check(ctx: &mut Context) {
-    let animated = animated_pointers(ctx.root);
+    let animated = Animated::of(ctx.root);
     for slot_use in slot_uses(ctx).iter() {
         let Some(name) = slot_use.slot.extension else {
             continue;
@@ -70,11 +70,10 @@ fn check(ctx: &mut Context) {
         let Some(layer) = extension(slot_use.material, name) else {
             continue;
         };
-        let at = format!(
-            "/materials/{}/extensions/{name}/{factor}",
-            slot_use.material_index
-        );
-        if number(layer, factor, 0.0) == 0.0 && !animated.contains(at.as_str()) {
+        let member = format!("extensions/{name}/{factor}");
+        if number(layer, factor, 0.0) == 0.0
+            && !animated.material_member(slot_use.material_index, &member)
+        {
             ctx.emit(
                 RULE.code(),
                 slot_use.pointer(),

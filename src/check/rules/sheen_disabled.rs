@@ -2,7 +2,7 @@
 
 use super::{Rule, Run};
 use crate::check::context::Context;
-use crate::check::khronos::animations::animated_pointers;
+use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::{extension, slot_uses};
 use crate::diagnostic::Severity;
 use crate::document::Node;
@@ -48,17 +48,16 @@ pub(super) fn sheen_colour_is_zero(sheen: Node) -> bool {
 }
 
 fn check(ctx: &mut Context) {
-    let animated = animated_pointers(ctx.root);
+    let animated = Animated::of(ctx.root);
     for slot_use in slot_uses(ctx).iter() {
         if slot_use.slot.extension != Some("KHR_materials_sheen") {
             continue;
         }
         let sheen = extension(slot_use.material, "KHR_materials_sheen");
-        let factor = format!(
-            "/materials/{}/extensions/KHR_materials_sheen/sheenColorFactor",
-            slot_use.material_index
-        );
-        if sheen.is_some_and(sheen_colour_is_zero) && !animated.contains(factor.as_str()) {
+        let factor = "extensions/KHR_materials_sheen/sheenColorFactor";
+        if sheen.is_some_and(sheen_colour_is_zero)
+            && !animated.material_member(slot_use.material_index, factor)
+        {
             ctx.emit(
                 RULE.code(),
                 slot_use.pointer(),

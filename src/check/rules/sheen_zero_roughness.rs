@@ -3,7 +3,7 @@
 use super::sheen_disabled::sheen_colour_is_zero;
 use super::{Rule, Run};
 use crate::check::context::{number, Context};
-use crate::check::khronos::animations::animated_pointers;
+use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
 
@@ -38,15 +38,15 @@ its BRDF section; Conty & Kulla 2017.
 ";
 
 fn check(ctx: &mut Context) {
-    let animated = animated_pointers(ctx.root);
-    for (_, pointer, material) in ctx.objects("materials") {
+    let animated = Animated::of(ctx.root);
+    for (i, pointer, material) in ctx.objects("materials") {
         let Some(sheen) = extension(material, "KHR_materials_sheen") else {
             continue;
         };
-        let factor = format!("{pointer}/extensions/KHR_materials_sheen/sheenRoughnessFactor");
+        let factor = "extensions/KHR_materials_sheen/sheenRoughnessFactor";
         if !sheen_colour_is_zero(sheen)
             && number(sheen, "sheenRoughnessFactor", 0.0) == 0.0
-            && !animated.contains(factor.as_str())
+            && !animated.material_member(i, factor)
         {
             let at = if sheen.get("sheenRoughnessFactor").is_some() {
                 "/sheenRoughnessFactor"

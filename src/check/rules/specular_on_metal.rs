@@ -2,7 +2,7 @@
 
 use super::{Rule, Run};
 use crate::check::context::{number, Context};
-use crate::check::khronos::animations::animated_pointers;
+use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
 use crate::document::Node;
@@ -56,15 +56,14 @@ fn check(ctx: &mut Context) {
 /// default when missing), no `metallicRoughnessTexture` that could lower it, and no animation
 /// channel (KHR_animation_pointer) targeting the factor.
 pub(super) fn fully_metallic<'a>(ctx: &Context<'a>) -> Vec<(String, Node<'a>)> {
-    let animated = animated_pointers(ctx.root);
+    let animated = Animated::of(ctx.root);
     (ctx.objects("materials"))
-        .filter(|(_, pointer, material)| {
+        .filter(|(i, _, material)| {
             let pbr = material.get("pbrMetallicRoughness");
             let metallic = pbr.map_or(1.0, |p| number(p, "metallicFactor", 1.0));
-            let factor_pointer = format!("{pointer}/pbrMetallicRoughness/metallicFactor");
             metallic >= 1.0
                 && pbr.is_none_or(|p| p.get("metallicRoughnessTexture").is_none())
-                && !animated.contains(factor_pointer.as_str())
+                && !animated.material_member(*i, "pbrMetallicRoughness/metallicFactor")
         })
         .map(|(_, pointer, material)| (pointer, material))
         .collect()
