@@ -23,7 +23,7 @@ use super::appearance::{seen, transmits, Seen, BACKGROUNDS};
 use super::brdf::{Geometry, V3};
 use super::delta_e::{ciede2000, lab_from_linear_srgb};
 use super::lanes::{Lanes, Real};
-use super::material::{Inputs, Shader};
+use super::material::{is_mean_of, Bent, Inputs, Shader};
 use super::sample::MaterialSource;
 use super::tone::displayed;
 use std::sync::Arc;
@@ -940,7 +940,8 @@ const BLEND_TOLERANCE: f64 = 1.0 / 4096.0;
 /// it in every texture, so a side whose inputs are affine in its texels
 /// ([`MaterialSource::linear_on`]) has at the corner the mean of its four centres' inputs,
 /// and a side that bends them (spec-gloss's diffuse · (1 − max specular), a normalised
-/// normal) is checked against the centres of this row and the row above. Where every side
+/// normal) has the inputs it can bend ([`Inputs::bent`]) checked against the centres of this
+/// row and the row above. Where every side
 /// has its centres' mean, the viewer's interpolation of one material's texels shows what the
 /// other's shows: the corner is a blend of the pairs its four centres compared, and is not
 /// sampled. Where a side bends, the corner is where a conversion that is not linear differs
@@ -952,9 +953,10 @@ struct Centres<'a> {
     /// material) its place among them.
     bending: Vec<&'a MaterialSource>,
     slot: Vec<Option<usize>>,
-    /// Each bending side's inputs at the centres of the row above and of this row.
-    above: Option<Vec<Vec<Inputs>>>,
-    here: Vec<Vec<Inputs>>,
+    /// Each bending side's bent inputs (see [`Inputs::bent`]) at the centres of the row above
+    /// and of this row.
+    above: Option<Vec<Vec<Bent>>>,
+    here: Vec<Vec<Bent>>,
     started: bool,
 }
 
@@ -982,7 +984,7 @@ impl<'a> Centres<'a> {
         let size = f64::from(grid);
         let row_above = |side: &&MaterialSource| {
             let v = (f64::from(first) - 0.5) / size;
-            let at = |x: u32| side.inputs_at(&[[(f64::from(x) + 0.5) / size, v]]);
+            let at = |x: u32| side.inputs_at(&[[(f64::from(x) + 0.5) / size, v]]).bent();
             (0..grid).map(at).collect()
         };
         let here = bending.iter().map(|_| Vec::new()).collect();
@@ -1012,15 +1014,15 @@ impl<'a> Centres<'a> {
     /// As [`Centres::keep`], the inputs read only if the side bends.
     fn keep_with(&mut self, side: usize, inputs: impl FnOnce() -> Inputs) {
         if let Some(Some(k)) = self.slot.get(side) {
-            self.here[*k].push(inputs());
+            self.here[*k].push(inputs().bent());
         }
     }
 
     /// This row's next centre reads what the one before it read.
     fn repeat_left(&mut self) {
         for centres in &mut self.here {
-            if let Some(last) = centres.last() {
-                centres.push(last.clone());
+            if let Some(&last) = centres.last() {
+                centres.push(last);
             }
         }
     }
@@ -1053,7 +1055,7 @@ impl<'a> Centres<'a> {
         let x = x as usize;
         (self.bending.iter().zip(above).zip(&self.here)).all(|((side, above), here)| {
             let four = [&above[x - 1], &above[x], &here[x - 1], &here[x]];
-            side.inputs_at(&[uv]).is_mean_of(four, BLEND_TOLERANCE)
+            is_mean_of(&side.inputs_at(&[uv]).bent(), four, BLEND_TOLERANCE)
         })
     }
 }
@@ -1768,7 +1770,7 @@ mod tests {
             .filter(|&(x, y)| {
                 let around = [(x - 1, y - 1), (x, y - 1), (x - 1, y), (x, y)];
                 let around = around.map(|(x, y)| inputs(x, y, 0.5));
-                inputs(x, y, 0.0).is_mean_of(around.each_ref(), BLEND_TOLERANCE)
+                inputs(x, y, 0.0).all_mean_of(around.each_ref(), BLEND_TOLERANCE)
             })
             .count() as u64;
         assert_eq!(result.blended_corners, blends);
@@ -1777,5 +1779,78 @@ mod tests {
             blends > corners / 2 && blends < corners - 2 * 16,
             "most corners are blends, not all: {blends} of {corners}"
         );
+    }
+
+    /// The corner screen compares only the inputs a texture can bend; it is right only if
+    /// every other input is affine in its texels. Each texture slot alone on noise: at every
+    /// corner, the bent inputs are their centres' mean exactly where all inputs are.
+    #[test]
+    fn every_input_left_out_of_the_bent_ones_is_affine_in_its_texels() {
+        let size = 8;
+        let mut random = crate::test_random::Sequence::new(0x5eed_ba5e);
+        let noise = image::RgbaImage::from_fn(size, size, |_, _| {
+            image::Rgba(std::array::from_fn(|_| random.below(256) as u8))
+        });
+        let t = || json!({"index": 0});
+        let slots = [
+            json!({"pbrMetallicRoughness": {"baseColorTexture": t()}}),
+            json!({"pbrMetallicRoughness": {"baseColorTexture": t()}, "alphaMode": "BLEND"}),
+            json!({"pbrMetallicRoughness": {"baseColorTexture": t()}, "alphaMode": "MASK"}),
+            json!({"pbrMetallicRoughness": {"metallicRoughnessTexture": t()}}),
+            json!({"normalTexture": t()}),
+            json!({"occlusionTexture": t()}),
+            json!({"emissiveTexture": t(), "emissiveFactor": [1, 1, 1]}),
+            json!({"extensions": {"KHR_materials_specular": {
+                "specularTexture": t(), "specularColorTexture": t()}}}),
+            json!({"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1],
+                "sheenColorTexture": t(), "sheenRoughnessFactor": 1, "sheenRoughnessTexture": t()}}}),
+            json!({"extensions": {"KHR_materials_anisotropy": {
+                "anisotropyStrength": 1, "anisotropyTexture": t()}}}),
+            json!({"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1,
+                "clearcoatTexture": t(), "clearcoatRoughnessFactor": 1,
+                "clearcoatRoughnessTexture": t()}}}),
+            json!({"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1,
+                "clearcoatNormalTexture": t()}}}),
+            json!({"extensions": {"KHR_materials_transmission": {
+                "transmissionFactor": 1, "transmissionTexture": t()}}}),
+            json!({"extensions": {"KHR_materials_diffuse_transmission": {
+                "diffuseTransmissionFactor": 1, "diffuseTransmissionTexture": t(),
+                "diffuseTransmissionColorTexture": t()}}}),
+            json!({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+                "KHR_materials_volume": {"thicknessFactor": 1, "thicknessTexture": t(),
+                "attenuationColor": [0.5, 0.7, 0.9], "attenuationDistance": 0.5}}}),
+            json!({"extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 1,
+                "iridescenceTexture": t(), "iridescenceThicknessTexture": t()}}}),
+            json!({"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+                "diffuseTexture": t()}}}),
+            json!({"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+                "specularGlossinessTexture": t()}}}),
+        ];
+        let n = f64::from(size);
+        let (mut blends, mut bent) = (0, 0);
+        for slot in slots {
+            let material = MaterialSource::gltf2(
+                &slot,
+                &[Some(crate::shade::sample::texture_of(noise.clone()))],
+            );
+            let inputs = |x: u32, y: u32, offset: f64| {
+                material.inputs_at(&[[(f64::from(x) + offset) / n, (f64::from(y) + offset) / n]])
+            };
+            for (x, y) in (1..size).flat_map(|y| (1..size).map(move |x| (x, y))) {
+                let around = [(x - 1, y - 1), (x, y - 1), (x - 1, y), (x, y)];
+                let around = around.map(|(x, y)| inputs(x, y, 0.5));
+                let corner = inputs(x, y, 0.0);
+                let all = corner.all_mean_of(around.each_ref(), BLEND_TOLERANCE);
+                let screened = is_mean_of(
+                    &corner.bent(),
+                    around.each_ref().map(|m| m.bent()).each_ref(),
+                    BLEND_TOLERANCE,
+                );
+                assert_eq!(all, screened, "{slot} at corner ({x}, {y})");
+                (blends, bent) = (blends + usize::from(all), bent + usize::from(!all));
+            }
+        }
+        // Both kinds occur: affine slots blend, bending ones do not.
+        assert!(blends > 0 && bent > 0, "{blends} blends, {bent} bent");
     }
 }

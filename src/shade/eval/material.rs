@@ -239,12 +239,63 @@ impl Default for Inputs {
     }
 }
 
+/// How many inputs a texture can bend (see [`Inputs::bent`]).
+pub(crate) const BENT: usize = 15;
+
+/// The inputs a texture can bend (see [`Inputs::bent`]), in a fixed order.
+pub(crate) type Bent = [f64; BENT];
+
+/// Whether `corner` is the mean of `four`, each number to within `tolerance` of its size (at
+/// least 1): what a material has at the corner between four texel centres where the inputs
+/// its textures bend are, there too, the mean of the centres' (every other input is).
+#[inline(always)]
+pub(crate) fn is_mean_of(corner: &Bent, four: [&Bent; 4], tolerance: f64) -> bool {
+    // Every number is checked, none skipped on the first failure: the loop is then plain
+    // vector arithmetic.
+    (0..BENT).fold(true, |all, i| {
+        let mean = (four[0][i] + four[1][i] + four[2][i] + four[3][i]) / 4.0;
+        all & ((corner[i] - mean).abs() <= tolerance * mean.abs().max(1.0))
+    })
+}
+
 impl Inputs {
-    /// Whether these inputs are the mean of `four`'s, each number to within `tolerance` of
-    /// its size (at least 1), with the same switches: what a material whose inputs are
-    /// affine in its texels has at the corner between four texel centres.
+    /// The inputs a texture can bend, which are not affine in the texels they are read
+    /// from: the base colour (spec-gloss's diffuse · (1 − max specular)), the coverage (a
+    /// MASK threshold, a 1.0 alpha clamped), the normals (normalised), the anisotropy
+    /// (a direction's angle) and the volume's transmittance (a power). Every other input is
+    /// a constant times one texel channel plus a constant (the test
+    /// `every_input_left_out_of_the_bent_ones_is_affine_in_its_texels` holds it), and the
+    /// switches are the material's own: at a texel corner those are the mean of the four
+    /// centres' around it.
     #[inline(always)]
-    pub(crate) fn is_mean_of(&self, four: [&Inputs; 4], tolerance: f64) -> bool {
+    pub(crate) fn bent(&self) -> Bent {
+        let ([r, g, b], [nx, ny, nz]) = (self.base_color, self.normal);
+        let ([cx, cy, cz], [vr, vg, vb]) = (self.clearcoat_normal, self.volume_transmittance);
+        let (strength, angle) = (self.anisotropy_strength, self.anisotropy_angle);
+        [
+            r,
+            g,
+            b,
+            self.coverage,
+            nx,
+            ny,
+            nz,
+            cx,
+            cy,
+            cz,
+            strength,
+            angle,
+            vr,
+            vg,
+            vb,
+        ]
+    }
+
+    /// Whether these inputs are the mean of `four`'s, each number to within `tolerance` of
+    /// its size (at least 1), with the same switches: the whole of what [`is_mean_of`]
+    /// checks of the bent inputs, for the test that holds the others affine.
+    #[cfg(test)]
+    pub(crate) fn all_mean_of(&self, four: [&Inputs; 4], tolerance: f64) -> bool {
         // Every field, named: a field added to the inputs must be added below.
         let Inputs {
             base_color: _,
