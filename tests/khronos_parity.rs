@@ -3029,3 +3029,35 @@ fn every_node_check_after_a_channel_without_a_sampler_carries_the_leftover_path(
         ])
     );
 }
+
+#[test]
+fn an_accessor_on_a_view_whose_byte_offset_is_unreadable_is_not_measured_against_it() {
+    let zeros = "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAA=";
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 32, "uri": zeros}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": "x", "byteLength": 8},
+            {"buffer": 0, "byteOffset": -4, "byteLength": 8},
+            {"buffer": 0, "byteLength": []}],
+        "accessors": [
+            {"bufferView": 0, "byteOffset": 2, "componentType": 5126, "count": 100, "type": "VEC3"},
+            {"bufferView": 1, "componentType": 5126, "count": 100, "type": "VEC3"},
+            {"bufferView": 2, "byteOffset": 2, "componentType": 5126, "count": 1, "type": "VEC3"}]}));
+    // The validator reads such a byteOffset as -1 and then checks neither the accessor's total
+    // offset nor its length; a view with no readable byteLength is measured (length -1).
+    assert_eq!(
+        found,
+        expected(&[
+            ("ACCESSOR_OFFSET_ALIGNMENT", "/accessors/0/byteOffset"),
+            ("ACCESSOR_OFFSET_ALIGNMENT", "/accessors/2/byteOffset"),
+            ("ACCESSOR_TOO_LONG", "/accessors/2/byteOffset"),
+            ("ACCESSOR_TOTAL_OFFSET_ALIGNMENT", "/accessors/2"),
+            ("TYPE_MISMATCH", "/bufferViews/0/byteOffset"),
+            ("TYPE_MISMATCH", "/bufferViews/2/byteLength"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("UNUSED_OBJECT", "/accessors/1"),
+            ("UNUSED_OBJECT", "/accessors/2"),
+            ("VALUE_NOT_IN_RANGE", "/bufferViews/1/byteOffset"),
+        ])
+    );
+}

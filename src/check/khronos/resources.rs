@@ -453,9 +453,16 @@ pub(super) fn fits_in_view(
             format!("Offset {offset} is not a multiple of componentType length {size}."),
         );
     }
-    let total = unsigned(view_object, "byteOffset")
-        .unwrap_or(0)
-        .saturating_add(offset);
+    // A view's byteOffset that is there but no unsigned integer is read as -1, and the
+    // validator then checks neither the total offset nor the length.
+    let view_offset = match view_object.get("byteOffset") {
+        None => 0,
+        Some(_) => match unsigned(view_object, "byteOffset") {
+            Some(view_offset) => view_offset,
+            None => return,
+        },
+    };
+    let total = view_offset.saturating_add(offset);
     if !total.is_multiple_of(size) {
         ctx.emit(
             khronos::ACCESSOR_TOTAL_OFFSET_ALIGNMENT,
