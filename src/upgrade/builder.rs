@@ -4,7 +4,6 @@
 
 use super::binary::Binary;
 use super::data::{self, Role};
-use super::edited::{Array, Edited};
 use super::json::{Items, Json};
 use super::origins::Origins;
 use super::{EncodedImage, NoteKind, Notes, UpgradeError, UpgradeOptions, Upgraded};
@@ -32,15 +31,7 @@ const MAPPED: &[&str] = &[
 pub(super) struct Builder<'s, 'a> {
     pub(in crate::upgrade) source: &'s Source<'a>,
     pub(in crate::upgrade) options: &'s UpgradeOptions,
-    /// Every other collection, as text written once (accessors, meshes, nodes, …).
     pub(in crate::upgrade) arrays: HashMap<&'static str, Items>,
-    /// The materials and what they read, as values: renumbered once unused textures are
-    /// dropped.
-    pub(in crate::upgrade) edited: Edited,
-    /// The KHR_lights_punctual lights made, in order.
-    pub(in crate::upgrade) punctual_lights: Vec<Value>,
-    /// The bufferView each accessor was written with (its origin is the view's too).
-    accessor_views: Vec<usize>,
     pub(in crate::upgrade) images: Vec<EncodedImage>,
     pub(in crate::upgrade) binary: Binary,
     pub(in crate::upgrade) packed_accessors: HashMap<(&'s str, Role), usize>,
@@ -116,9 +107,6 @@ impl<'s, 'a> Builder<'s, 'a> {
             source,
             options,
             arrays: HashMap::new(),
-            edited: Edited::default(),
-            punctual_lights: Vec::new(),
-            accessor_views: Vec::new(),
             images: Vec::new(),
             binary: Binary::default(),
             packed_accessors: HashMap::new(),
@@ -157,13 +145,6 @@ impl<'s, 'a> Builder<'s, 'a> {
     }
 
     pub(in crate::upgrade) fn push(&mut self, collection: &'static str, value: Value) -> usize {
-        if let Some(array) = Array::of(collection) {
-            return self.edited.push(array, value);
-        }
-        if collection == "lights" {
-            self.punctual_lights.push(value);
-            return self.punctual_lights.len() - 1;
-        }
         self.arrays.entry(collection).or_default().push(&value)
     }
 
@@ -187,10 +168,16 @@ impl<'s, 'a> Builder<'s, 'a> {
     ) {
         // An accessor's bufferView is its own: it comes from the same 1.0 accessor.
         let view = (collection == "accessors")
-            .then(|| self.accessor_views.get(index))
+            .then(|| {
+                self.arrays
+                    .get("accessors")?
+                    .get(index)?
+                    .get("bufferView")?
+                    .as_u64()
+            })
             .flatten();
-        if let Some(&view) = view {
-            self.origins.record("bufferViews", view, &origin);
+        if let Some(view) = view {
+            self.origins.record("bufferViews", view as usize, &origin);
         }
         self.origins.record(collection, index, &origin);
     }
@@ -223,7 +210,7 @@ impl<'s, 'a> Builder<'s, 'a> {
         let mut out = Map::new();
         out.insert("name".into(), json!(name));
         let sampler =
-            like.and_then(|t| self.edited.get(Array::Textures, t)?.get("sampler").cloned());
+            like.and_then(|t| self.arrays.get("textures")?.get(t)?.get("sampler").cloned());
         if let Some(sampler) = sampler {
             out.insert("sampler".into(), sampler);
         }
@@ -233,7 +220,10 @@ impl<'s, 'a> Builder<'s, 'a> {
 
     /// The image a 2.0 texture reads.
     pub(super) fn texture_image(&self, texture: usize) -> Option<&EncodedImage> {
-        let source = (self.edited.get(Array::Textures, texture))?
+        let source = self
+            .arrays
+            .get("textures")?
+            .get(texture)?
             .get("source")?
             .as_u64()?;
         self.images.get(source as usize)
@@ -433,7 +423,6 @@ impl<'s, 'a> Builder<'s, 'a> {
             accessor["min"] = json!(packed.min);
             accessor["max"] = json!(packed.max);
         }
-        self.accessor_views.push(view);
         self.push("accessors", accessor)
     }
 
@@ -454,8 +443,8 @@ impl<'s, 'a> Builder<'s, 'a> {
         if !extensions_used.is_empty() {
             root.insert("extensionsUsed", &json!(extensions_used));
         }
-        if !self.punctual_lights.is_empty() {
-            let lights = Value::Array(std::mem::take(&mut self.punctual_lights));
+        if let Some(lights) = self.arrays.remove("lights") {
+            let lights = Value::Array(lights.iter().collect());
             extensions.insert("KHR_lights_punctual".into(), json!({"lights": lights}));
         }
         if !extensions.is_empty() {
@@ -482,11 +471,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             "bufferViews",
             "buffers",
         ] {
-            if let Some(array) = Array::of(collection) {
-                if let Some(values) = self.edited.take(array).filter(|v| !v.is_empty()) {
-                    root.insert(collection, &Value::Array(values));
-                }
-            } else if let Some(items) = self.arrays.remove(collection).filter(|a| !a.is_empty()) {
+            if let Some(items) = self.arrays.remove(collection).filter(|a| !a.is_empty()) {
                 root.insert_items(collection, items);
             }
         }

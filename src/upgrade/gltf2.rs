@@ -7,7 +7,6 @@
 //! samplers that only the converted materials used, and no longer do, are not written;
 //! images stored in a bufferView stay, so that no buffer byte moves.
 
-use super::edited::{Array, Edited};
 use super::json::Json;
 use super::references::{renumber_texture_members, renumber_textures, texture_indices};
 use super::spec_gloss::{self, Factors, Slot};
@@ -116,6 +115,93 @@ struct Asset {
     rebakes: spec_gloss::Rebakes,
     /// The 8-bit levels of rebaked texels, settled by the evaluator.
     texel_fits: super::fit::TexelFits,
+}
+
+/// A root array the conversion changes: the materials and what they read.
+#[derive(Clone, Copy)]
+enum Array {
+    Materials,
+    Images,
+    Textures,
+    Samplers,
+}
+
+impl Array {
+    /// In the order an array the input lacks is appended to the output's members.
+    const ALL: [Array; 4] = [
+        Array::Materials,
+        Array::Images,
+        Array::Textures,
+        Array::Samplers,
+    ];
+
+    fn key(self) -> &'static str {
+        match self {
+            Array::Materials => "materials",
+            Array::Images => "images",
+            Array::Textures => "textures",
+            Array::Samplers => "samplers",
+        }
+    }
+}
+
+/// The arrays the conversion changes, as values: read from the input, changed here, and
+/// written to the output's JSON once, at the end. Each is `None` where the input has no
+/// such array (or all of it was dropped).
+#[derive(Default)]
+struct Edited {
+    lists: [Option<Vec<Value>>; 4],
+}
+
+impl Edited {
+    fn of(input: Node) -> Edited {
+        let values = |array: Array| {
+            let list = input.get(array.key()).and_then(Node::as_array);
+            list.map(|list| list.iter().map(Node::to_value).collect())
+        };
+        Edited {
+            lists: Array::ALL.map(values),
+        }
+    }
+
+    fn list_mut(&mut self, array: Array) -> &mut Option<Vec<Value>> {
+        &mut self.lists[array as usize]
+    }
+
+    fn all(&self, array: Array) -> impl Iterator<Item = &Value> + '_ {
+        self.lists[array as usize].iter().flatten()
+    }
+
+    fn all_mut(&mut self, array: Array) -> impl Iterator<Item = &mut Value> + '_ {
+        self.list_mut(array).iter_mut().flatten()
+    }
+
+    /// Element `index` of `array`, to change.
+    fn at(&mut self, array: Array, index: usize) -> Option<&mut Value> {
+        self.list_mut(array).as_mut()?.get_mut(index)
+    }
+
+    /// Appends `value` to `array` (made if the input has none); returns its index.
+    fn push(&mut self, array: Array, value: Value) -> usize {
+        let list = self.list_mut(array).get_or_insert_with(Vec::new);
+        list.push(value);
+        list.len() - 1
+    }
+
+    /// Writes every array to `root`: one the input has is replaced where it stands (removed
+    /// if all of it was dropped), one it lacks appended.
+    fn write(self, input: Node, root: &mut Json) {
+        for (array, list) in Array::ALL.into_iter().zip(self.lists) {
+            let key = array.key();
+            match list {
+                Some(list) => root.insert(key, &Value::Array(list)),
+                None if input.get(key).and_then(Node::as_array).is_some() => {
+                    root.remove(key);
+                }
+                None => {}
+            }
+        }
+    }
 }
 
 /// An input buffer's bytes: the shared file (or GLB) and the buffer's range in it.

@@ -2,10 +2,8 @@
 //! root member, as its own compact text.
 //!
 //! A `serde_json::Value` costs 80 bytes a value and a map per object, ten times or more the
-//! text it stands for. Held as text, the output costs about its own size. The upgrade writes
-//! it and does not read it back (what it changes after making it is held as values until the
-//! end, `edited.rs`); an element is parsed again only where its writer completes it (a
-//! bufferView's stride, an image's place in the output) and where the proof reads the result.
+//! text it stands for. Held as text, the output costs about its own size, and a step that
+//! reads or changes one object parses just that object.
 
 use crate::document::Node;
 use serde::Serialize;
@@ -67,6 +65,22 @@ impl Items {
             change(&mut value);
             *text = text_of(&value);
         }
+    }
+
+    /// Changes every element through `change`.
+    pub fn update_all(&mut self, mut change: impl FnMut(&mut Value)) {
+        for index in 0..self.0.len() {
+            self.update(index, &mut change);
+        }
+    }
+
+    /// Keeps the elements `keep` (given each one's old index and value) says to keep.
+    pub fn retain(&mut self, mut keep: impl FnMut(usize, &Value) -> bool) {
+        let mut index = 0;
+        self.0.retain(|text| {
+            index += 1;
+            keep(index - 1, &value_of(text))
+        });
     }
 
     fn write(&self, out: &mut Vec<u8>, pretty: Option<usize>) {

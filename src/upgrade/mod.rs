@@ -14,7 +14,6 @@ pub(crate) mod binary;
 mod builder;
 mod convert;
 mod data;
-mod edited;
 mod fit;
 mod gltf2;
 pub(crate) mod json;

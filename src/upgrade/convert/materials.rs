@@ -8,6 +8,7 @@ use crate::legacy::pbr::{self, LegacyPbr, Model};
 use crate::shade::sample::Sampler;
 use crate::upgrade::builder::{pointer, Builder};
 use crate::upgrade::fit;
+use crate::upgrade::json::Items;
 use crate::upgrade::rebake;
 use crate::upgrade::spec_gloss::{self, Slot};
 use crate::upgrade::{NoteKind, SpecularGlossiness, UpgradeError};
@@ -607,8 +608,8 @@ fn scale_alpha(out: &mut Map<String, Value>, opacity: f64) {
 }
 
 /// The KHR extensions the converted materials use.
-pub(crate) fn extensions_used<'v>(materials: impl Iterator<Item = &'v Value>) -> Vec<String> {
-    let mut used: Vec<String> = materials
+pub(crate) fn extensions_used(materials: Option<&Items>) -> Vec<String> {
+    let mut used: Vec<String> = (materials.into_iter().flat_map(Items::iter))
         .flat_map(|material| match material.get("extensions") {
             Some(Value::Object(extensions)) => extensions.keys().cloned().collect(),
             _ => Vec::new(),

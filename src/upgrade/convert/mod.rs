@@ -13,7 +13,6 @@ mod nodes;
 mod unused;
 
 use super::builder::{self, Builder};
-use super::edited::Array;
 use super::{UpgradeError, Upgraded};
 
 /// An `asset.version` other than 1.0 (0.x, a 1.1 draft) is converted by the 1.0 text: what a
@@ -52,8 +51,8 @@ pub(super) fn run(mut builder: Builder) -> Result<Upgraded, UpgradeError> {
     builder.dropped_collections();
     builder.unconverted_extensions();
     builder.drop_unused_textures();
-    let mut used = materials::extensions_used(builder.edited.all(Array::Materials));
-    if !builder.punctual_lights.is_empty() {
+    let mut used = materials::extensions_used(builder.arrays.get("materials"));
+    if builder.arrays.contains_key("lights") {
         used.push(lights::PUNCTUAL.to_string());
     }
     let mut root_extensions = serde_json::Map::new();
