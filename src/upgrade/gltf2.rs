@@ -7,7 +7,7 @@
 //! samplers that only the converted materials used, and no longer do, are not written;
 //! images stored in a bufferView stay, so that no buffer byte moves.
 
-use super::json::Json;
+use super::json::{Items, Json};
 use super::references::{renumber_texture_members, renumber_textures, texture_indices};
 use super::spec_gloss::{self, Factors, Slot};
 use super::{Binary, EncodedImage, NoteKind, Notes, SpecularGlossiness, UpgradeError};
@@ -49,7 +49,6 @@ pub(super) fn upgrade(
     };
     let input = tree.root();
     let root = Json::from_node(input);
-    let edited = Edited::of(input);
     let bytes = Arc::clone(&doc.bytes);
     let glb_bin = (doc.container == Container::Glb)
         .then_some(doc.bin.clone())
@@ -57,7 +56,6 @@ pub(super) fn upgrade(
         .map(|bin| (&bytes, bin));
     let mut asset = Asset {
         root,
-        edited,
         binary: Binary::default(),
         images: Vec::new(),
         report: Notes::default(),
@@ -70,11 +68,9 @@ pub(super) fn upgrade(
     asset.take_images(input, &buffers, loader)?;
     asset.join_buffers(input, &buffers);
     let mut passed_through: BTreeSet<usize> = (0..list(input, "materials").count()).collect();
-    let mut converted = Vec::new();
     if options.specular_glossiness == SpecularGlossiness::MetalRough {
-        converted = asset.convert_materials(input)?;
-        for converted in &converted {
-            passed_through.remove(converted);
+        for converted in asset.convert_materials(input)? {
+            passed_through.remove(&converted);
         }
     } else {
         asset.note(
@@ -82,11 +78,6 @@ pub(super) fn upgrade(
             NoteKind::Decision,
             "--specular-glossiness extension: spec-gloss materials are left as they are.",
         );
-    }
-    let edited = std::mem::take(&mut asset.edited);
-    edited.write(input, &mut asset.root);
-    if !converted.is_empty() {
-        asset.update_extension_lists(input, &converted);
     }
     Ok(Upgraded {
         json: asset.root,
@@ -101,10 +92,7 @@ pub(super) fn upgrade(
 
 /// The 2.0 asset being rewritten.
 struct Asset {
-    /// The output's JSON: the input's members as text, written to, never read back.
     root: Json,
-    /// The arrays the conversion changes, as values until they are written to `root`.
-    edited: Edited,
     binary: Binary,
     images: Vec<EncodedImage>,
     report: Notes,
@@ -115,93 +103,6 @@ struct Asset {
     rebakes: spec_gloss::Rebakes,
     /// The 8-bit levels of rebaked texels, settled by the evaluator.
     texel_fits: super::fit::TexelFits,
-}
-
-/// A root array the conversion changes: the materials and what they read.
-#[derive(Clone, Copy)]
-enum Array {
-    Materials,
-    Images,
-    Textures,
-    Samplers,
-}
-
-impl Array {
-    /// In the order an array the input lacks is appended to the output's members.
-    const ALL: [Array; 4] = [
-        Array::Materials,
-        Array::Images,
-        Array::Textures,
-        Array::Samplers,
-    ];
-
-    fn key(self) -> &'static str {
-        match self {
-            Array::Materials => "materials",
-            Array::Images => "images",
-            Array::Textures => "textures",
-            Array::Samplers => "samplers",
-        }
-    }
-}
-
-/// The arrays the conversion changes, as values: read from the input, changed here, and
-/// written to the output's JSON once, at the end. Each is `None` where the input has no
-/// such array (or all of it was dropped).
-#[derive(Default)]
-struct Edited {
-    lists: [Option<Vec<Value>>; 4],
-}
-
-impl Edited {
-    fn of(input: Node) -> Edited {
-        let values = |array: Array| {
-            let list = input.get(array.key()).and_then(Node::as_array);
-            list.map(|list| list.iter().map(Node::to_value).collect())
-        };
-        Edited {
-            lists: Array::ALL.map(values),
-        }
-    }
-
-    fn list_mut(&mut self, array: Array) -> &mut Option<Vec<Value>> {
-        &mut self.lists[array as usize]
-    }
-
-    fn all(&self, array: Array) -> impl Iterator<Item = &Value> + '_ {
-        self.lists[array as usize].iter().flatten()
-    }
-
-    fn all_mut(&mut self, array: Array) -> impl Iterator<Item = &mut Value> + '_ {
-        self.list_mut(array).iter_mut().flatten()
-    }
-
-    /// Element `index` of `array`, to change.
-    fn at(&mut self, array: Array, index: usize) -> Option<&mut Value> {
-        self.list_mut(array).as_mut()?.get_mut(index)
-    }
-
-    /// Appends `value` to `array` (made if the input has none); returns its index.
-    fn push(&mut self, array: Array, value: Value) -> usize {
-        let list = self.list_mut(array).get_or_insert_with(Vec::new);
-        list.push(value);
-        list.len() - 1
-    }
-
-    /// Writes every array to `root`: one the input has is replaced where it stands (removed
-    /// if all of it was dropped), one it lacks appended.
-    fn write(self, input: Node, root: &mut Json) {
-        for (array, list) in Array::ALL.into_iter().zip(self.lists) {
-            let key = array.key();
-            match list {
-                Some(list) => root.insert(key, &Value::Array(list)),
-                None if input.get(key).and_then(Node::as_array).is_some() => {
-                    root.remove(key);
-                }
-                None => {}
-            }
-        }
-    }
 }
 
 /// An input buffer's bytes: the shared file (or GLB) and the buffer's range in it.
@@ -222,6 +123,23 @@ impl Asset {
         self.report.push(pointer.into(), kind, text.into());
     }
 
+    /// The elements of the output's root array `key`, each parsed as it is reached: what
+    /// the conversion wrote, read back to find what it no longer uses.
+    fn written(&self, key: &str) -> impl Iterator<Item = Value> + '_ {
+        self.root.items(key).into_iter().flat_map(Items::iter)
+    }
+
+    fn count(&self, key: &str) -> usize {
+        self.root.items(key).map_or(0, Items::len)
+    }
+
+    /// Changes every element of root array `key` through `change`.
+    fn update_all(&mut self, key: &str, change: impl FnMut(&mut Value)) {
+        if let Some(items) = self.root.items_mut_if_array(key) {
+            items.update_all(change);
+        }
+    }
+
     /// Lays the buffers end to end in the output buffer. A lone buffer starts at 0, so no
     /// bufferView changes; later buffers start 4-byte aligned and their views move to
     /// buffer 0 with their offsets shifted.
@@ -231,20 +149,18 @@ impl Asset {
             starts.push(self.binary.align());
             self.binary.share(&buffer.bytes, buffer.range.clone());
         }
-        let views = input.get("bufferViews").and_then(Node::as_array);
-        if let Some(views) = views.filter(|_| buffers.len() > 1) {
-            let moved = views.iter().map(|view| {
-                let mut view = view.to_value();
-                let buffer = unsigned(&view, "buffer").and_then(|b| starts.get(b as usize));
-                if let Some(&start) = buffer {
-                    let offset = unsigned(&view, "byteOffset").unwrap_or(0);
-                    view["buffer"] = json!(0);
-                    view["byteOffset"] = json!(offset + start as u64);
-                }
-                view
+        if buffers.len() > 1 {
+            self.update_all("bufferViews", |view| {
+                let Some(buffer) = unsigned(&*view, "buffer") else {
+                    return;
+                };
+                let Some(&start) = starts.get(buffer as usize) else {
+                    return;
+                };
+                let offset = unsigned(&*view, "byteOffset").unwrap_or(0);
+                view["buffer"] = json!(0);
+                view["byteOffset"] = json!(offset + start as u64);
             });
-            self.root
-                .insert("bufferViews", &Value::Array(moved.collect()));
             let joined = format!(
                 "{} buffers joined into one (bufferViews moved with their bytes; no byte changed).",
                 buffers.len()
@@ -294,9 +210,10 @@ impl Asset {
             let stem = uri.map_or_else(|| name.to_string(), file_stem);
             let encoded = EncodedImage::new(bytes, mime_type, i, &stem, in_binary);
             self.images.push(encoded);
-            let image = self.edited.at(Array::Images, i);
-            if let Some(image) = image.and_then(Value::as_object_mut) {
-                image.remove("uri");
+            if let Some(images) = self.root.items_mut_if_array("images") {
+                images.update(i, |image| {
+                    image.as_object_mut().map(|image| image.remove("uri"));
+                });
             }
         }
         Ok(())
@@ -315,6 +232,7 @@ impl Asset {
             self.note("/materials", NoteKind::Decision, "no KHR_materials_pbrSpecularGlossiness material was converted: the asset passes through unchanged.");
             return Ok(converted);
         }
+        self.update_extension_lists();
         let now_used = self.used_textures();
         let unused: BTreeSet<usize> = used_before.difference(&now_used).copied().collect();
         self.drop_textures(&unused);
@@ -375,25 +293,26 @@ impl Asset {
         for decision in converted.decisions {
             self.note(&at, NoteKind::Decision, decision);
         }
-        if let Some(out) = self.edited.at(Array::Materials, i) {
+        let materials = self.root.items_mut("materials");
+        materials.update(i, |out| {
             out["pbrMetallicRoughness"] = converted.pbr_metallic_roughness;
             if let Some(extensions) = out.get_mut("extensions").and_then(Value::as_object_mut) {
                 extensions.remove(SPEC_GLOSS);
                 extensions.extend(converted.extensions);
             }
-        }
+        });
         Ok(true)
     }
 
     /// extensionsUsed gains what the conversions wrote and loses the spec-gloss extension
-    /// when no material has it any more, none but the `converted` ones having lost it
-    /// (extensionsRequired too).
-    fn update_extension_lists(&mut self, input: Node, converted: &[usize]) {
-        let still_used = list(input, "materials").enumerate().any(|(i, m)| {
-            let extension = m.get("extensions").and_then(|e| e.get(SPEC_GLOSS));
-            extension.is_some() && !converted.contains(&i)
+    /// when no material has it any more (extensionsRequired too).
+    fn update_extension_lists(&mut self) {
+        let still_used = self.written("materials").any(|m| {
+            m.get("extensions")
+                .and_then(|e| e.get(SPEC_GLOSS))
+                .is_some()
         });
-        let mut used: Vec<Value> = list(input, "extensionsUsed").map(Node::to_value).collect();
+        let mut used: Vec<Value> = self.written("extensionsUsed").collect();
         for added in spec_gloss::EXTENSIONS_ADDED {
             if !used.iter().any(|u| u == added) {
                 used.push(json!(added));
@@ -401,15 +320,12 @@ impl Asset {
         }
         if !still_used {
             used.retain(|u| u != SPEC_GLOSS);
-            if let Some(required) = input.get("extensionsRequired").and_then(Node::as_array) {
-                let required: Vec<Value> = (required.iter().map(Node::to_value))
-                    .filter(|r| r != SPEC_GLOSS)
-                    .collect();
+            if let Some(mut required) = self.root.items("extensionsRequired").cloned() {
+                required.retain(|_, r| r != SPEC_GLOSS);
                 if required.is_empty() {
                     self.root.remove("extensionsRequired");
                 } else {
-                    self.root
-                        .insert("extensionsRequired", &Value::Array(required));
+                    self.root.insert_items("extensionsRequired", required);
                 }
             }
         }
@@ -419,8 +335,8 @@ impl Asset {
     /// The textures the materials read (through any `…Texture` member's `index`).
     fn used_textures(&self) -> BTreeSet<usize> {
         let mut used = BTreeSet::new();
-        for material in self.edited.all(Array::Materials) {
-            used.extend(texture_indices(material));
+        for material in self.written("materials") {
+            used.extend(texture_indices(&material));
         }
         used
     }
@@ -431,10 +347,10 @@ impl Asset {
     fn drop_textures(&mut self, textures: &BTreeSet<usize>) {
         let images_before = self.referenced_by_textures("source");
         let samplers_before = self.referenced_by_textures("sampler");
-        let texture_map = self.remove(Array::Textures, textures);
-        for material in self.edited.all_mut(Array::Materials) {
-            renumber_textures(material, &texture_map);
-        }
+        let texture_map = self.remove("textures", textures);
+        self.update_all("materials", |material| {
+            renumber_textures(material, &texture_map)
+        });
         let images_after = self.referenced_by_textures("source");
         let removable_images: BTreeSet<usize> = (images_before.difference(&images_after))
             .copied()
@@ -445,29 +361,29 @@ impl Asset {
             .difference(&samplers_after)
             .copied()
             .collect();
-        let image_map = self.remove(Array::Images, &removable_images);
+        let image_map = self.remove("images", &removable_images);
         let mut index = 0;
         self.images.retain(|_| {
             index += 1;
             image_map[index - 1].is_some()
         });
-        let sampler_map = self.remove(Array::Samplers, &removable_samplers);
-        for texture in self.edited.all_mut(Array::Textures) {
-            renumber_texture_members(texture, &image_map, &sampler_map);
-        }
+        let sampler_map = self.remove("samplers", &removable_samplers);
+        self.update_all("textures", |texture| {
+            renumber_texture_members(texture, &image_map, &sampler_map)
+        });
     }
 
     /// The image (`source`, including extensions' sources) or sampler indices textures name.
     fn referenced_by_textures(&self, key: &str) -> BTreeSet<usize> {
-        let textures = self.edited.all(Array::Textures);
+        let textures = self.written("textures");
         if key == "source" {
             textures
-                .flat_map(|t| texture_images(t).collect::<Vec<_>>())
+                .flat_map(|t| texture_images(&t).collect::<Vec<_>>())
                 .map(|i| i as usize)
                 .collect()
         } else {
             textures
-                .filter_map(|t| unsigned(t, key))
+                .filter_map(|t| unsigned(&t, key))
                 .map(|i| i as usize)
                 .collect()
         }
@@ -475,31 +391,30 @@ impl Asset {
 
     /// Removes the listed objects of a collection, noting each; returns every old index's
     /// new one (None: removed).
-    fn remove(&mut self, array: Array, removed: &BTreeSet<usize>) -> Vec<Option<usize>> {
-        let list = self.edited.list_mut(array);
-        let Some(items) = list.as_mut() else {
+    fn remove(&mut self, collection: &str, removed: &BTreeSet<usize>) -> Vec<Option<usize>> {
+        let Some(items) = self.root.items_mut_if_array(collection) else {
             return Vec::new();
         };
         let mut map = Vec::with_capacity(items.len());
         let mut kept = 0;
         let mut dropped = Vec::new();
-        for (i, item) in std::mem::take(items).into_iter().enumerate() {
+        items.retain(|i, item| {
             if removed.contains(&i) {
                 map.push(None);
                 let name = item.get("name").and_then(Value::as_str).unwrap_or("");
                 dropped.push((i, name.to_string()));
-                continue;
+                return false;
             }
             map.push(Some(kept));
             kept += 1;
-            items.push(item);
-        }
+            true
+        });
         if kept == 0 {
-            *list = None;
+            self.root.remove(collection);
         }
         for (i, name) in dropped {
             self.note(
-                format!("/{}/{i}", array.key()),
+                format!("/{collection}/{i}"),
                 NoteKind::Dropped,
                 format!("not written: only the converted spec-gloss materials used it ('{name}')."),
             );
@@ -712,7 +627,7 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
             return info;
         }
         let name = format!("material {} {name}", self.material);
-        let index = self.asset.edited.all(Array::Images).count();
+        let index = self.asset.count("images");
         let image = EncodedImage::new(
             Arc::new(key.0.clone().into()),
             "image/png".into(),
@@ -721,12 +636,15 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
             false,
         );
         self.asset.images.push(image);
-        self.asset.edited.push(Array::Images, json!({"name": name}));
+        self.asset
+            .root
+            .items_mut("images")
+            .push(&json!({"name": name}));
         let mut texture = json!({"name": name, "source": index});
         if let Some(sampler) = sampler {
             texture["sampler"] = json!(sampler);
         }
-        let texture = self.asset.edited.push(Array::Textures, texture);
+        let texture = self.asset.root.items_mut("textures").push(&texture);
         self.asset.rebaked.insert(key, texture);
         info["index"] = json!(texture);
         info
