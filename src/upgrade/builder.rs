@@ -32,6 +32,8 @@ pub(super) struct Builder<'s, 'a> {
     pub(in crate::upgrade) source: &'s Source<'a>,
     pub(in crate::upgrade) options: &'s UpgradeOptions,
     pub(in crate::upgrade) arrays: HashMap<&'static str, Items>,
+    /// The bufferView each accessor was written with (its origin is the view's too).
+    accessor_views: Vec<usize>,
     pub(in crate::upgrade) images: Vec<EncodedImage>,
     pub(in crate::upgrade) binary: Binary,
     pub(in crate::upgrade) packed_accessors: HashMap<(&'s str, Role), usize>,
@@ -107,6 +109,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             source,
             options,
             arrays: HashMap::new(),
+            accessor_views: Vec::new(),
             images: Vec::new(),
             binary: Binary::default(),
             packed_accessors: HashMap::new(),
@@ -168,16 +171,10 @@ impl<'s, 'a> Builder<'s, 'a> {
     ) {
         // An accessor's bufferView is its own: it comes from the same 1.0 accessor.
         let view = (collection == "accessors")
-            .then(|| {
-                self.arrays
-                    .get("accessors")?
-                    .get(index)?
-                    .get("bufferView")?
-                    .as_u64()
-            })
+            .then(|| self.accessor_views.get(index))
             .flatten();
-        if let Some(view) = view {
-            self.origins.record("bufferViews", view as usize, &origin);
+        if let Some(&view) = view {
+            self.origins.record("bufferViews", view, &origin);
         }
         self.origins.record(collection, index, &origin);
     }
@@ -423,6 +420,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             accessor["min"] = json!(packed.min);
             accessor["max"] = json!(packed.max);
         }
+        self.accessor_views.push(view);
         self.push("accessors", accessor)
     }
 
