@@ -1754,3 +1754,47 @@ fn a_smooth_rebaked_roughness_is_stored_on_its_own_scale() {
     let max = only_proof_max(&asset, &upgraded);
     assert!(max < 0.5, "{max}");
 }
+
+#[test]
+fn a_common_materials_transparency_is_written_as_blend_and_said() {
+    let common = |transparent: bool, values: Value| {
+        serde_json::json!({"extensions": {"KHR_materials_common": {
+            "technique": "LAMBERT", "transparent": transparent, "values": values}}})
+    };
+    let upgraded = upgrade_json(serde_json::json!({
+        "asset": {"version": "1.0"},
+        "extensionsUsed": ["KHR_materials_common"],
+        "materials": {
+            "glass": common(true, serde_json::json!({"diffuse": [1, 0, 0, 0.5], "transparency": 0.5})),
+            "veil": common(false, serde_json::json!({"diffuse": [1, 1, 1, 1], "transparency": 0.25})),
+            "solid": common(false, serde_json::json!({"diffuse": [1, 1, 1, 0.5]})),
+            "ghost": common(true, serde_json::json!({"diffuse": [1, 1, 1, 1], "transparency": 0}))
+        },
+        "scenes": {"s": {"nodes": []}}, "scene": "s"
+    }));
+    let json = upgraded.json.to_value();
+    let alpha =
+        |i: usize| json["materials"][i]["pbrMetallicRoughness"]["baseColorFactor"][3].as_f64();
+    assert_eq!(json["materials"][0]["alphaMode"], "BLEND");
+    assert_eq!(alpha(0), Some(0.25), "diffuse alpha times transparency");
+    assert_eq!(json["materials"][1]["alphaMode"], "BLEND");
+    assert_eq!(alpha(1), Some(0.25));
+    assert_eq!(
+        json["materials"][2]["alphaMode"],
+        Value::Null,
+        "opaque unless it says"
+    );
+    let notes = notes(&upgraded).join("\n");
+    for expected in [
+        "Decision /materials/glass KHR_materials_common transparent, transparency 0.5 → alphaMode BLEND, the base colour's alpha the diffuse alpha times the transparency (0.25).",
+        "Decision /materials/veil KHR_materials_common transparency 0.25 → alphaMode BLEND, the base colour's alpha the diffuse alpha times the transparency (0.25).",
+        "Decision /materials/ghost KHR_materials_common transparent, transparency 0 → alphaMode BLEND, the base colour's alpha the diffuse alpha times the transparency (0): the surface is not seen.",
+    ] {
+        assert!(notes.contains(expected), "{expected}\n in\n{notes}");
+    }
+    assert!(
+        !notes.contains("/materials/solid KHR_materials_common"),
+        "{notes}"
+    );
+    assert_passes_its_check(&upgraded);
+}

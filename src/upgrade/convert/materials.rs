@@ -440,6 +440,22 @@ fn convert_common(builder: &mut Builder, common: Node, at: &str, out: &mut Map<S
     if transparent || transparency < 1.0 {
         out.insert("alphaMode".into(), json!("BLEND"));
         scale_alpha(out, transparency);
+        let why = match (transparent, transparency < 1.0) {
+            (true, true) => format!("transparent, transparency {transparency}"),
+            (true, false) => "transparent".to_string(),
+            (false, _) => format!("transparency {transparency}"),
+        };
+        let alpha = out
+            .get("pbrMetallicRoughness")
+            .map(|c| &c["baseColorFactor"][3]);
+        let alpha = alpha.and_then(Value::as_f64).unwrap_or(transparency);
+        let unseen = if alpha <= 0.0 {
+            ": the surface is not seen"
+        } else {
+            ""
+        };
+        let text = format!("KHR_materials_common {why} → alphaMode BLEND, the base colour's alpha the diffuse alpha times the transparency ({alpha}){unseen}.");
+        builder.note(at, NoteKind::Decision, text);
         // The implementation note's blend functions: ONE, ONE_MINUS_SRC_ALPHA.
         keep_emission_whole(builder, at, out);
     }
