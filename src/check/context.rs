@@ -116,6 +116,9 @@ pub(crate) struct Context<'a> {
     pub material_needs: HashMap<usize, MaterialNeeds>,
     /// Every texture binding, computed on first use (see `materials::slot_uses`).
     pub slot_uses: std::sync::OnceLock<std::sync::Arc<[SlotUse<'a>]>>,
+    /// The members animation channels target, computed on first use (see
+    /// `animations::Animated::of`).
+    pub animated: std::sync::OnceLock<std::sync::Arc<super::khronos::animations::Animated<'a>>>,
     pub resources: Vec<ResourceInfo>,
     /// Extension objects no `extensionsUsed` declares, taken out of the document before the
     /// passes (the Khronos validator reads nothing of them); the extensions pass reports them.
@@ -154,6 +157,7 @@ impl<'a> Context<'a> {
             image_bytes: Vec::new(),
             material_needs: HashMap::new(),
             slot_uses: std::sync::OnceLock::new(),
+            animated: std::sync::OnceLock::new(),
             resources: Vec::new(),
             undeclared_extensions: Default::default(),
             extensions_as_written: Default::default(),

@@ -890,7 +890,7 @@ impl<'j, 'a> Pass<'j, 'a> {
             if let Some(known) = keyed.then(|| batch.known(a, x, y, &self.key_b)).flatten() {
                 // Known texels: no input is read but what a corner needs.
                 self.here[x as usize] = false;
-                self.centres.keep_with(r, || a.inputs_at(&[uv]));
+                self.centres.keep_with(r, || a.inputs_at(&[uv]).bent());
                 row.take_known(x, known);
                 continue;
             }
@@ -925,7 +925,7 @@ impl<'j, 'a> Pass<'j, 'a> {
         if centre {
             let side = readings.len();
             let centres = &mut self.centres;
-            centres.keep_with(side, || target.unwrap_or_else(|| b.inputs_at(&[uv])));
+            centres.keep_with(side, || target.unwrap_or_else(|| b.inputs_at(&[uv])).bent());
         }
     }
 }
@@ -941,10 +941,9 @@ const BLEND_TOLERANCE: f64 = 1.0 / 4096.0;
 /// ([`MaterialSource::linear_on`]) has at the corner the mean of its four centres' inputs,
 /// and a side that bends them (spec-gloss's diffuse · (1 − max specular), a normalised
 /// normal) has the inputs it can bend ([`Inputs::bent`]) checked against the centres of this
-/// row and the row above. Where every side
-/// has its centres' mean, the viewer's interpolation of one material's texels shows what the
-/// other's shows: the corner is a blend of the pairs its four centres compared, and is not
-/// sampled. Where a side bends, the corner is where a conversion that is not linear differs
+/// row and the row above. Where every side has its centres' mean, the viewer's interpolation
+/// of one material's texels shows what the other's shows: the corner is a blend of the pairs
+/// its four centres compared, and is not sampled. Where a side bends, the corner is where a conversion that is not linear differs
 /// most, and it is sampled.
 struct Centres<'a> {
     /// Whether corners are screened at all (every texture read as stored).
@@ -1006,15 +1005,15 @@ impl<'a> Centres<'a> {
         self.started = true;
     }
 
-    /// Keeps side `side`'s inputs at this row's next centre (if it bends).
+    /// Keeps side `side`'s bent inputs at this row's next centre (if it bends).
     fn keep(&mut self, side: usize, inputs: &Inputs) {
-        self.keep_with(side, || inputs.clone());
+        self.keep_with(side, || inputs.bent());
     }
 
     /// As [`Centres::keep`], the inputs read only if the side bends.
-    fn keep_with(&mut self, side: usize, inputs: impl FnOnce() -> Inputs) {
+    fn keep_with(&mut self, side: usize, inputs: impl FnOnce() -> Bent) {
         if let Some(Some(k)) = self.slot.get(side) {
-            self.here[*k].push(inputs().bent());
+            self.here[*k].push(inputs());
         }
     }
 

@@ -58,15 +58,18 @@ pub(crate) fn linked(animation: Node) -> Option<(Array, Array)> {
 pub(crate) struct Animated<'t>(std::collections::HashSet<&'t str>);
 
 impl<'t> Animated<'t> {
-    pub(crate) fn of(root: Node<'t>) -> Self {
-        Animated(animated_pointers(root))
+    /// The document's animated members, computed once per document (the rules share them).
+    pub(crate) fn of(ctx: &Context<'t>) -> std::sync::Arc<Animated<'t>> {
+        let root = ctx.root;
+        (ctx.animated)
+            .get_or_init(|| std::sync::Arc::new(Animated(animated_pointers(root))))
+            .clone()
     }
 
     /// Whether a channel targets `member` (its path below the material) of material
     /// `material`.
     pub(crate) fn material_member(&self, material: usize, member: &str) -> bool {
-        self.0
-            .contains(format!("/materials/{material}/{member}").as_str())
+        !self.0.is_empty() && (self.0).contains(format!("/materials/{material}/{member}").as_str())
     }
 }
 

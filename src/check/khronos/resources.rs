@@ -455,12 +455,13 @@ pub(super) fn fits_in_view(
     }
     // A view's byteOffset that is there but no unsigned integer is read as -1, and the
     // validator then checks neither the total offset nor the length.
-    let view_offset = match view_object.get("byteOffset") {
-        None => 0,
-        Some(_) => match unsigned(view_object, "byteOffset") {
-            Some(view_offset) => view_offset,
-            None => return,
-        },
+    let view_offset = match (
+        view_object.get("byteOffset"),
+        unsigned(view_object, "byteOffset"),
+    ) {
+        (None, _) => 0,
+        (Some(_), Some(view_offset)) => view_offset,
+        (Some(_), None) => return,
     };
     let total = view_offset.saturating_add(offset);
     if !total.is_multiple_of(size) {

@@ -35,7 +35,7 @@ Spec: KHR_materials_anisotropy, \"anisotropyStrength … default 0\".
 ";
 
 fn check(ctx: &mut Context) {
-    let animated = Animated::of(ctx.root);
+    let animated = Animated::of(ctx);
     for slot_use in slot_uses(ctx).iter() {
         let strength = "extensions/KHR_materials_anisotropy/anisotropyStrength";
         if slot_use.slot.key == "anisotropyTexture"

@@ -36,7 +36,7 @@ refracting, so the dispersion does nothing. The author usually forgot the thickn
 ";
 
 fn check(ctx: &mut Context) {
-    let animated = Animated::of(ctx.root);
+    let animated = Animated::of(ctx);
     for (i, pointer, material) in ctx.objects("materials") {
         let thickness = "extensions/KHR_materials_volume/thicknessFactor";
         let thin = extension(material, "KHR_materials_volume")

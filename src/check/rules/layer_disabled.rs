@@ -59,7 +59,7 @@ fn factor_of(extension: &str, key: &str) -> Option<&'static str> {
 }
 
 fn check(ctx: &mut Context) {
-    let animated = Animated::of(ctx.root);
+    let animated = Animated::of(ctx);
     for slot_use in slot_uses(ctx).iter() {
         let Some(name) = slot_use.slot.extension else {
             continue;

@@ -48,7 +48,7 @@ pub(super) fn sheen_colour_is_zero(sheen: Node) -> bool {
 }
 
 fn check(ctx: &mut Context) {
-    let animated = Animated::of(ctx.root);
+    let animated = Animated::of(ctx);
     for slot_use in slot_uses(ctx).iter() {
         if slot_use.slot.extension != Some("KHR_materials_sheen") {
             continue;

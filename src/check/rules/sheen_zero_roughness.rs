@@ -38,7 +38,7 @@ its BRDF section; Conty & Kulla 2017.
 ";
 
 fn check(ctx: &mut Context) {
-    let animated = Animated::of(ctx.root);
+    let animated = Animated::of(ctx);
     for (i, pointer, material) in ctx.objects("materials") {
         let Some(sheen) = extension(material, "KHR_materials_sheen") else {
             continue;

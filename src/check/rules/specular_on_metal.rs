@@ -56,7 +56,7 @@ fn check(ctx: &mut Context) {
 /// default when missing), no `metallicRoughnessTexture` that could lower it, and no animation
 /// channel (KHR_animation_pointer) targeting the factor.
 pub(super) fn fully_metallic<'a>(ctx: &Context<'a>) -> Vec<(String, Node<'a>)> {
-    let animated = Animated::of(ctx.root);
+    let animated = Animated::of(ctx);
     (ctx.objects("materials"))
         .filter(|(i, _, material)| {
             let pbr = material.get("pbrMetallicRoughness");
