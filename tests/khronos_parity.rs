@@ -3061,3 +3061,82 @@ fn an_accessor_on_a_view_whose_byte_offset_is_unreadable_is_not_measured_against
         ])
     );
 }
+
+#[test]
+fn an_image_in_a_buffer_view_needs_a_mime_type_as_the_validator_reads_both() {
+    // A 1×1 PNG in the buffer, so that the declared formats are checked against the data.
+    let png = "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mNk+M9QDwADhgGAWjR9awAAAABJRU5ErkJgggAA";
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 72, "uri": format!("data:application/octet-stream;base64,{png}")}],
+        "bufferViews": [{"buffer": 0, "byteLength": 70}],
+        "images": [
+            {"bufferView": 0, "mimeType": 5},
+            {"bufferView": 0, "mimeType": null},
+            {"bufferView": "x"},
+            {"bufferView": -1},
+            {"bufferView": 0, "mimeType": "image/jpeg"},
+            {"bufferView": 0, "mimeType": "image/gif"}]}));
+    // A mimeType that is not a string is not there; a bufferView that is not an index asks
+    // for nothing. A declared format the data does not have is reported on the buffer view.
+    assert_eq!(
+        found,
+        expected(&[
+            ("IMAGE_MIME_TYPE_INVALID", "/images/4/bufferView"),
+            ("IMAGE_MIME_TYPE_INVALID", "/images/5/bufferView"),
+            ("INVALID_INDEX", "/images/3/bufferView"),
+            ("ONE_OF_MISMATCH", "/images/2"),
+            ("ONE_OF_MISMATCH", "/images/3"),
+            ("TYPE_MISMATCH", "/images/0/mimeType"),
+            ("TYPE_MISMATCH", "/images/1/mimeType"),
+            ("TYPE_MISMATCH", "/images/2/bufferView"),
+            ("UNSATISFIED_DEPENDENCY", "/images/0/bufferView"),
+            ("UNSATISFIED_DEPENDENCY", "/images/1/bufferView"),
+            ("UNUSED_OBJECT", "/images/0"),
+            ("UNUSED_OBJECT", "/images/1"),
+            ("UNUSED_OBJECT", "/images/2"),
+            ("UNUSED_OBJECT", "/images/3"),
+            ("UNUSED_OBJECT", "/images/4"),
+            ("UNUSED_OBJECT", "/images/5"),
+            ("VALUE_NOT_IN_LIST", "/images/5/mimeType"),
+        ])
+    );
+}
+
+#[test]
+fn a_count_past_two_to_the_64_keeps_its_remainders_against_the_drawing_mode() {
+    let vec3 =
+        |count: serde_json::Value| json!({"componentType": 5126, "count": count, "type": "VEC3"});
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [vec3(json!(1e308)), vec3(json!(1e300)),
+            vec3(json!(18446744073709551612u64)), vec3(json!(1e308))],
+        "meshes": [{"primitives": [
+            {"attributes": {"POSITION": 0}},
+            {"attributes": {"POSITION": 0, "NORMAL": 1}},
+            {"attributes": {"POSITION": 2}},
+            {"attributes": {"POSITION": 3}, "mode": 1},
+            {"attributes": {"POSITION": 0, "NORMAL": 3}, "mode": 0}]}]}));
+    // The validator computes with the double written: 1e308 leaves 2 after threes and none
+    // after twos, 2^64 − 4 is read as 2^64 (1 after threes), and 1e300 is not 1e308.
+    let position = |p: usize| format!("/meshes/0/primitives/{p}/attributes/POSITION");
+    let mut wanted: Vec<(&str, String)> = (0..3)
+        .map(|p| {
+            (
+                "MESH_PRIMITIVE_INCOMPATIBLE_MODE",
+                format!("/meshes/0/primitives/{p}"),
+            )
+        })
+        .collect();
+    wanted.extend((0..5).map(|p| {
+        (
+            "MESH_PRIMITIVE_POSITION_ACCESSOR_WITHOUT_BOUNDS",
+            position(p),
+        )
+    }));
+    wanted.push((
+        "MESH_PRIMITIVE_UNEQUAL_ACCESSOR_COUNT",
+        "/meshes/0/primitives/1/attributes/NORMAL".into(),
+    ));
+    wanted.push(("UNUSED_OBJECT", "/meshes/0".into()));
+    let wanted: Vec<(&str, &str)> = wanted.iter().map(|(c, p)| (*c, p.as_str())).collect();
+    assert_eq!(found, expected(&wanted));
+}

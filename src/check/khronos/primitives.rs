@@ -306,7 +306,7 @@ impl<'a> Walk<'_, 'a> {
     }
 
     /// The attributes' accessors; returns the vertex count (see [`vertex_count`]).
-    fn attributes(&mut self, attributes: Option<Object<'a>>, pointer: &str) -> Option<u64> {
+    fn attributes(&mut self, attributes: Option<Object<'a>>, pointer: &str) -> Option<f64> {
         let mut vertex_count = None;
         for (semantic, value) in attributes.into_iter().flatten() {
             let at = format!(
@@ -318,7 +318,7 @@ impl<'a> Walk<'_, 'a> {
             };
             // A missing or unreadable count (the validator's -1) differs from any count
             // before it, and leaves the vertex count to the next attribute.
-            let count = unsigned(accessor, "count");
+            let count = count_of(accessor);
             match vertex_count {
                 None => vertex_count = count,
                 Some(n) if count != Some(n) => self.ctx.emit(
@@ -391,7 +391,7 @@ impl<'a> Walk<'_, 'a> {
     }
 
     /// Returns the index accessor's count, when `indices` resolves to one.
-    fn indices(&mut self, primitive: Node<'a>, pointer: &str) -> Option<Option<u64>> {
+    fn indices(&mut self, primitive: Node<'a>, pointer: &str) -> Option<Option<f64>> {
         let value = primitive.get("indices")?;
         let accessor = self.accessor(value)?;
         let at = member(pointer, "indices");
@@ -416,21 +416,21 @@ impl<'a> Walk<'_, 'a> {
                 "Invalid indices accessor format. Must be one of SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT.",
             );
         }
-        Some(unsigned(accessor, "count"))
+        Some(count_of(accessor))
     }
 
     /// The vertex or index count must suit the draw mode.
-    fn mode(&mut self, primitive: Node, pointer: &str, count: Option<u64>) {
+    fn mode(&mut self, primitive: Node, pointer: &str, count: Option<f64>) {
         let Some(count) = count else { return };
         // An invalid mode (reported by the schema pass) suits no count.
         let Some(mode) = mode_of(primitive) else {
             return;
         };
         let incompatible = match mode {
-            1 => count % 2 != 0,
-            2 | 3 => count < 2,
-            4 => count % 3 != 0,
-            5 | 6 => count < 3,
+            1 => count % 2.0 != 0.0,
+            2 | 3 => count < 2.0,
+            4 => count % 3.0 != 0.0,
+            5 | 6 => count < 3.0,
             _ => false,
         };
         if incompatible {
@@ -446,7 +446,7 @@ impl<'a> Walk<'_, 'a> {
             self.ctx.emit(
                 khronos::MESH_PRIMITIVE_INCOMPATIBLE_MODE,
                 pointer,
-                format!("Number of vertices or indices ({count}) is not compatible with used drawing mode ('{}').", names[mode as usize]),
+                format!("Number of vertices or indices ({}) is not compatible with used drawing mode ('{}').", written(count), names[mode as usize]),
             );
         }
     }
@@ -494,6 +494,21 @@ impl<'a> Walk<'_, 'a> {
 
 /// A primitive's vertex count as the Khronos validator takes it: the first readable count of
 /// an attribute that names an accessor (an unreadable count leaves it to the next one).
+/// An accessor's count as the validator computes with it: the double written, so that a
+/// count past 2^64 (`1e308`) keeps its remainders and differs from another such count.
+fn count_of(accessor: Node) -> Option<f64> {
+    unsigned(accessor, "count")?;
+    accessor.get("count")?.as_f64()
+}
+
+/// A count as a message shows it: whole below 2^53, in exponent form past it.
+fn written(count: f64) -> String {
+    match count < 9_007_199_254_740_992.0 {
+        true => format!("{}", count as u64),
+        false => format!("{count:e}"),
+    }
+}
+
 pub(super) fn vertex_count(attributes: Node, accessors: Array) -> Option<u64> {
     (attributes.as_object().into_iter().flat_map(|a| a.values()))
         .filter_map(|v| accessors.get(usize::try_from(as_index(v)?).ok()?))

@@ -571,6 +571,13 @@ fn check_image_members<'t>(
         );
     }
     let mime_type = image.get("mimeType").and_then(Node::as_str);
+    if image.get("bufferView").is_some() && mime_type.is_none() {
+        ctx.emit(
+            khronos::UNSATISFIED_DEPENDENCY,
+            member(pointer, "bufferView"),
+            "Dependency failed. 'mimeType' must be defined.",
+        );
+    }
     if let Some(m) = mime_type {
         let allowed = matches!(m, "image/png" | "image/jpeg")
             || (m == "image/webp" && enabled.webp)
@@ -592,7 +599,7 @@ struct ImageSource {
     storage: &'static str,
     /// An external file's URI.
     uri: Option<String>,
-    /// Where a format that does not match is reported: the URI, or the `mimeType`.
+    /// Where a format that does not match is reported: the URI, or the buffer view.
     mime_pointer: String,
 }
 
@@ -648,7 +655,7 @@ fn image_source(
         bytes,
         storage: "buffer-view",
         uri: None,
-        mime_pointer: member(pointer, "mimeType"),
+        mime_pointer: member(pointer, "bufferView"),
     })
 }
 
