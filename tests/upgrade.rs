@@ -1798,3 +1798,102 @@ fn a_common_materials_transparency_is_written_as_blend_and_said() {
     );
     assert_passes_its_check(&upgraded);
 }
+
+#[test]
+fn a_gltf_0_8_asset_is_read_as_the_1_0_it_became() {
+    use base64::Engine;
+    let floats = |values: &[f32]| {
+        values
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect::<Vec<u8>>()
+    };
+    // A line (two vertices), two keyframe times, and two keyframes turning about z by 0 and π.
+    let mut stored = floats(&[0., 0., 0., 1., 0., 0.]);
+    stored.extend(floats(&[0., 1.]));
+    stored.extend(floats(&[0., 0., 1., 0., 0., 0., 2., std::f32::consts::PI]));
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&stored)
+    );
+    let gltf08 = serde_json::json!({
+        "asset": {"version": 0.8, "profile": "WebGL 1.0.2"},
+        "buffers": {"b": {"uri": uri, "byteLength": 64, "type": "arraybuffer"}},
+        "bufferViews": {"v": {"buffer": "b", "byteOffset": 0, "byteLength": 24, "target": 34962},
+                        "k": {"buffer": "b", "byteOffset": 24, "byteLength": 40}},
+        "accessors": {
+            "p": {"bufferView": "v", "byteOffset": 0, "byteStride": 12, "componentType": 5126, "count": 2,
+                  "type": "VEC3", "min": [0, 0, 0], "max": [1, 0, 0]},
+            "t": {"bufferView": "k", "byteOffset": 0, "componentType": 5126, "count": 2, "type": "SCALAR"},
+            "r": {"bufferView": "k", "byteOffset": 8, "componentType": 5126, "count": 2, "type": "VEC4"}},
+        "materials": {"red": {"instanceTechnique": {"technique": "phong",
+            "values": {"diffuse": [0.8, 0, 0, 1], "shininess": 256}}}},
+        "techniques": {"phong": {"parameters": {"diffuse": {"type": 35666}, "shininess": {"type": 5126}},
+            "pass": "defaultPass", "passes": {"defaultPass": {
+                "instanceProgram": {"program": "prog"}, "states": {"enable": [2884, 2929]}}}}},
+        "meshes": {"m": {"primitives": [{"attributes": {"POSITION": "p"}, "material": "red", "primitive": 1}]}},
+        "nodes": {"n": {"meshes": ["m"], "rotation": [0, 2, 0, std::f64::consts::FRAC_PI_2]}},
+        "animations": {"spin": {"channels": [{"sampler": "s", "target": {"id": "n", "path": "rotation"}}],
+            "parameters": {"TIME": "t", "rotation": "r"},
+            "samplers": {"s": {"input": "TIME", "output": "rotation", "interpolation": "LINEAR"}}}},
+        "scenes": {"s": {"nodes": ["n"]}}, "scene": "s"
+    });
+    let upgraded = upgrade_json(gltf08);
+    let json = upgraded.json.to_value();
+    let material = &json["materials"][0];
+    let red = material["pbrMetallicRoughness"]["baseColorFactor"][0]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (red - 0.6038).abs() < 1e-3,
+        "the instanceTechnique's diffuse, linearised: {red}"
+    );
+    assert_eq!(
+        material["doubleSided"],
+        Value::Null,
+        "the pass's states cull back faces"
+    );
+    assert_eq!(
+        json["meshes"][0]["primitives"][0]["mode"], 1,
+        "`primitive` is the mode"
+    );
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    let rotation = numbers(&json["nodes"][0]["rotation"]);
+    assert!(
+        rotation
+            .iter()
+            .zip([0., half, 0., half])
+            .all(|(a, b)| (a - b).abs() < 1e-12),
+        "{rotation:?}"
+    );
+    // The keyframes, read back from the output buffer: (0, 0, 0, 1) and (0, 0, 1, ~0).
+    let output = &json["accessors"][json["animations"][0]["samplers"][0]["output"]
+        .as_u64()
+        .unwrap() as usize];
+    let view = &json["bufferViews"][output["bufferView"].as_u64().unwrap() as usize];
+    let start = (view["byteOffset"].as_u64().unwrap_or(0)
+        + output["byteOffset"].as_u64().unwrap_or(0)) as usize;
+    let binary = upgraded.binary.to_vec();
+    let keyframes: Vec<f32> = (binary[start..start + 32].chunks_exact(4))
+        .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
+        .collect();
+    let expected = [0., 0., 0., 1., 0., 0., 1., 0.];
+    assert!(
+        keyframes
+            .iter()
+            .zip(expected)
+            .all(|(a, b)| (a - b).abs() < 1e-6),
+        "{keyframes:?}"
+    );
+    let notes = notes(&upgraded).join("\n");
+    for read in [
+        "instanceTechnique",
+        "`primitive` as its mode",
+        "node rotations",
+        "a technique's pass",
+        "rotation keyframes",
+    ] {
+        assert!(notes.contains(read), "{read} not said in\n{notes}");
+    }
+    assert_passes_its_check(&upgraded);
+}

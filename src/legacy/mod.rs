@@ -2,5 +2,6 @@
 //! of the 1.0 PBR drafts, shared by check, upgrade and shade.
 
 pub(crate) mod blend;
+pub(crate) mod draft08;
 pub(crate) mod pbr;
 pub(crate) mod source;

@@ -1,6 +1,7 @@
 //! Reading a glTF 1.0 asset: JSON text or a KHR_binary_glTF GLB (version 1), its buffers, and
 //! its images on demand.
 
+use super::draft08;
 use crate::document::uri::{load_uri, ResourceLoader};
 use crate::document::Bytes;
 use crate::document::{Node, Tree};
@@ -23,6 +24,9 @@ pub(crate) struct Source<'a> {
     /// The JSON, as the compact tree the checker reads (a `serde_json::Value` costs about ten
     /// times as much per value, and a stranger's 1.0 asset may hold millions of them).
     json: Tree,
+    /// For a glTF 0.8 asset, what was read the 0.8 way (see [`draft08`]): the tree holds its
+    /// 1.0 reading.
+    read_as_draft_08: Option<Vec<&'static str>>,
     /// The GLB v1 body: the input's bytes, held (and shared with the output) only for a GLB;
     /// a `.gltf`'s text is let go once its tree is built.
     body: Option<Body>,
@@ -133,6 +137,16 @@ fn read_members<'a>(
         return Err(NotGltf1("the root is not a JSON object".into()));
     }
     check_version(root)?;
+    let (json, read_as_draft_08) = match draft08::declares(root) {
+        false => (json, None),
+        true => {
+            let (value, read) = draft08::as_1_0(root);
+            let text = serde_json::to_vec(&value).map_err(|e| NotGltf1(e.to_string()))?;
+            let json = Tree::parse(&text).map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
+            (json, Some(read))
+        }
+    };
+    let root = json.root();
     let buffers = (root.get("buffers").and_then(Node::as_object))
         .map(|b| {
             b.keys()
@@ -142,6 +156,7 @@ fn read_members<'a>(
         .unwrap_or_default();
     Ok(Source {
         json,
+        read_as_draft_08,
         body,
         buffers,
         loaded: RefCell::default(),
@@ -208,6 +223,11 @@ impl Source<'_> {
     /// The asset's JSON root.
     pub(crate) fn root(&self) -> Node<'_> {
         self.json.root()
+    }
+
+    /// For a glTF 0.8 asset, what was read the 0.8 way, in words; `None` for any other.
+    pub(crate) fn read_as_draft_08(&self) -> Option<&[&'static str]> {
+        self.read_as_draft_08.as_deref()
     }
 
     /// A buffer's bytes: the GLB body for KHR_binary_glTF's buffer, otherwise its `uri`, read

@@ -1,11 +1,12 @@
 //! Animations: channels and samplers re-indexed, accessors repacked.
 
 use crate::document::Node;
+use crate::legacy::draft08;
 use crate::upgrade::builder::{pointer, Builder};
-use crate::upgrade::data::Role;
+use crate::upgrade::data::{self, Role};
 use crate::upgrade::{NoteKind, UpgradeError};
 use serde_json::{json, Value};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// 1.0 allows an animation without channels; 2.0 requires one, and such an animation moves
 /// nothing, so it is dropped with this note.
@@ -23,6 +24,7 @@ impl Builder<'_, '_> {
             }
             let mut out = Self::named(id, animation);
             let parameters = animation.get("parameters");
+            let turned_by_axis_and_angle = self.axis_and_angle_samplers(animation);
             let mut sampler_index = HashMap::new();
             let mut samplers = Vec::new();
             let source_samplers = animation.get("samplers").and_then(Node::as_object);
@@ -44,10 +46,11 @@ impl Builder<'_, '_> {
                     .get("interpolation")
                     .map(Node::to_value)
                     .unwrap_or(json!("LINEAR"));
-                let (input, output) = (
-                    self.accessor(input, Role::Data)?,
-                    self.accessor(output, Role::Data)?,
-                );
+                let input = self.accessor(input, Role::Data)?;
+                let output = match turned_by_axis_and_angle.contains(sampler_id) {
+                    true => self.quaternion_keyframes(output)?,
+                    false => self.accessor(output, Role::Data)?,
+                };
                 sampler_index.insert(sampler_id, samplers.len());
                 samplers.push(
                     json!({"input": input, "output": output, "interpolation": interpolation}),
@@ -87,5 +90,44 @@ impl Builder<'_, '_> {
             self.push_from("animations", Value::Object(out), pointer("animations", id));
         }
         Ok(())
+    }
+
+    /// The samplers whose keyframes turn a node by axis and angle: those of a glTF 0.8
+    /// asset's rotation channels (1.0 writes quaternions).
+    fn axis_and_angle_samplers<'n>(&self, animation: Node<'n>) -> HashSet<&'n str> {
+        if self.source.read_as_draft_08().is_none() {
+            return HashSet::new();
+        }
+        let channels = animation.get("channels").and_then(Node::as_array);
+        (channels.into_iter().flat_map(|c| c.iter()))
+            .filter(|c| c.pointer("/target/path").and_then(Node::as_str) == Some("rotation"))
+            .filter_map(|c| c.get("sampler")?.as_str())
+            .collect()
+    }
+
+    /// A 0.8 rotation sampler's keyframes (axis and angle) as the quaternions 2.0 reads.
+    fn quaternion_keyframes(&mut self, id: &str) -> Result<usize, UpgradeError> {
+        let at = pointer("accessors", id);
+        let input = data::read(self.source, id).map_err(|reason| UpgradeError::Resource {
+            pointer: at.clone(),
+            reason,
+        })?;
+        if input.components != 4 {
+            return Err(UpgradeError::Resource {
+                pointer: at,
+                reason: format!(
+                    "a glTF 0.8 rotation keyframe has 4 components (axis and angle), not {}",
+                    input.components
+                ),
+            });
+        }
+        let turned: Vec<f64> = (input.values().chunks_exact(4))
+            .flat_map(|k| draft08::quaternion([k[0], k[1], k[2], k[3]]))
+            .collect();
+        let count = turned.len() / 4;
+        let packed = data::pack_values(&turned, 4, data::FLOAT, false, false, &mut self.binary);
+        let index = self.add_accessor(packed, "VEC4", count, Role::Data, Some(id));
+        self.record_origin("accessors", index, at);
+        Ok(index)
     }
 }

@@ -15,9 +15,22 @@ mod unused;
 use super::builder::{self, Builder};
 use super::{UpgradeError, Upgraded};
 
-/// An `asset.version` other than 1.0 (0.x, a 1.1 draft) is converted by the 1.0 text: what a
-/// draft changed is not read, and the report says so rather than convert it silently.
+/// An `asset.version` other than 1.0: a 0.8 asset is read as the 1.0 it became (see
+/// [`draft08`](crate::legacy::draft08)), and the report names what was read the 0.8 way; any
+/// other (0.x, a 1.1 draft) is converted by the 1.0 text, and the report says that what the
+/// draft changed is not read rather than convert it silently.
 fn note_version(builder: &mut Builder) {
+    if let Some(read) = builder.source.read_as_draft_08() {
+        let read = match read.is_empty() {
+            true => "nothing in it is written the 0.8 way".to_string(),
+            false => read.join("; "),
+        };
+        let why = format!(
+            "asset.version is 0.8: read as the glTF 1.0 it became ({read}), then converted as 1.0."
+        );
+        builder.note("/asset/version", super::NoteKind::Decision, why);
+        return;
+    }
     let root = builder.source.root();
     let version = (root.get("asset").and_then(|a| a.get("version"))).map(|v| {
         v.as_str()
