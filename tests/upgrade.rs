@@ -1897,3 +1897,32 @@ fn a_gltf_0_8_asset_is_read_as_the_1_0_it_became() {
     }
     assert_passes_its_check(&upgraded);
 }
+
+#[test]
+fn an_image_in_a_format_2_0_does_not_carry_is_named_and_left_out_only_when_nothing_samples_it() {
+    use base64::Engine;
+    let ktx1 = b"\xABKTX 11\xBB\r\n\x1A\n\x01\x02\x03\x04";
+    let uri = format!(
+        "data:image/ktx;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(ktx1)
+    );
+    let asset = |sampled: bool| {
+        let textures = match sampled {
+            true => serde_json::json!({"t": {"source": "i"}}),
+            false => serde_json::json!({}),
+        };
+        serde_json::json!({"asset": {"version": "1.0"}, "images": {"i": {"uri": uri}},
+            "textures": textures, "scenes": {"s": {"nodes": []}}, "scene": "s"})
+    };
+    let bytes = serde_json::to_vec(&asset(true)).unwrap();
+    let refused = upgrade(&bytes, &NoResources, &UpgradeOptions::default()).unwrap_err();
+    let refusal = refused.to_string();
+    assert!(
+        refusal.starts_with("/images/i: a KTX (version 1) image, which glTF 2.0 does not carry"),
+        "{refusal}"
+    );
+    let upgraded = upgrade_json(asset(false));
+    assert_eq!(upgraded.json.to_value().get("images"), None);
+    let notes = notes(&upgraded).join("\n");
+    assert!(notes.contains("Dropped /images/i a KTX (version 1) image, which glTF 2.0 does not carry and sampled by no texture: left out."), "{notes}");
+}

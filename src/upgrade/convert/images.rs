@@ -59,10 +59,27 @@ impl Builder<'_, '_> {
                     })
                 }
             };
-            let format = image_header::read(&bytes).map_err(|e| UpgradeError::Resource {
-                pointer: at.clone(),
-                reason: format!("not a readable image ({e:?})"),
-            })?;
+            let format = match image_header::read(&bytes) {
+                Ok(format) => format,
+                Err(e) if !sampled.contains(id) => {
+                    let text = format!(
+                        "{} and sampled by no texture: left out.",
+                        unreadable(&bytes, &e)
+                    );
+                    self.note(&at, NoteKind::Dropped, text);
+                    continue;
+                }
+                Err(e) => {
+                    let reason = format!(
+                        "{}: convert it to PNG or JPEG (or KTX2) first.",
+                        unreadable(&bytes, &e)
+                    );
+                    return Err(UpgradeError::Resource {
+                        pointer: at,
+                        reason,
+                    });
+                }
+            };
             let mime_type = format.format.mime_type().to_string();
             let index = self.add_image(Self::named(id, image), bytes, mime_type, id);
             self.record_origin("images", index, pointer("images", id));
@@ -89,5 +106,28 @@ impl Builder<'_, '_> {
             }
             self.push_from("textures", Value::Object(out), pointer("textures", id));
         }
+    }
+}
+
+/// Why an image's bytes are no image glTF 2.0 carries, naming the formats 1.0 assets were
+/// written with that 2.0 has no place for (Cesium's models used KTX and Crunch).
+fn unreadable(bytes: &[u8], error: &image_header::HeaderError) -> String {
+    const OTHERS: &[(&[u8], &str)] = &[
+        (b"\xABKTX 11\xBB", "KTX (version 1)"),
+        (b"Hx", "Crunch (.crn)"),
+        (b"DDS ", "DDS"),
+        (b"GIF8", "GIF"),
+        (b"BM", "BMP"),
+        (b"II*\0", "TIFF"),
+        (b"MM\0*", "TIFF"),
+        (b"PVR\x03", "PVR"),
+    ];
+    match OTHERS.iter().find(|(magic, _)| bytes.starts_with(magic)) {
+        Some((_, name)) => format!("a {name} image, which glTF 2.0 does not carry"),
+        None => match error {
+            image_header::HeaderError::Unrecognized => "not an image format glTF 2.0 carries (PNG, JPEG; KTX2 and WebP through their extensions)".to_string(),
+            image_header::HeaderError::UnexpectedEnd => "an image cut short".to_string(),
+            image_header::HeaderError::Invalid(why) => format!("an image that cannot be read ({why})"),
+        },
     }
 }
