@@ -3140,3 +3140,26 @@ fn a_count_past_two_to_the_64_keeps_its_remainders_against_the_drawing_mode() {
     let wanted: Vec<(&str, &str)> = wanted.iter().map(|(c, p)| (*c, p.as_str())).collect();
     assert_eq!(found, expected(&wanted));
 }
+
+#[test]
+fn a_buffer_view_beside_an_images_uri_is_resolved_and_checked_though_the_uri_is_read() {
+    let png = "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mNk+M9QDwADhgGAWjR9awAAAABJRU5ErkJggg==";
+    let uri = format!("data:image/png;base64,{png}");
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 8, "uri": "data:application/octet-stream;base64,AAAAAAAAAAA="}],
+        "bufferViews": [{"buffer": 0, "byteLength": 8, "byteStride": 4}],
+        "images": [
+            {"uri": uri, "bufferView": 9, "mimeType": "image/png"},
+            {"uri": uri, "bufferView": 0, "mimeType": "image/png"}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE", "/images/1/bufferView"),
+            ("ONE_OF_MISMATCH", "/images/0"),
+            ("ONE_OF_MISMATCH", "/images/1"),
+            ("UNRESOLVED_REFERENCE", "/images/0/bufferView"),
+            ("UNUSED_OBJECT", "/images/0"),
+            ("UNUSED_OBJECT", "/images/1"),
+        ])
+    );
+}

@@ -613,6 +613,21 @@ fn image_source(
     read: bool,
     read_views: &mut HashMap<usize, Arc<Bytes>>,
 ) -> Option<ImageSource> {
+    // The validator resolves a bufferView beside a uri too (ONE_OF_MISMATCH says the pair
+    // is wrong), and reads the uri.
+    let view = match image.get("bufferView") {
+        Some(_) => ctx.reference(image, "bufferView", pointer, "bufferViews"),
+        None => None,
+    };
+    if let Some(view) = view {
+        if (ctx.items("bufferViews").at(view).get("byteStride")).is_some() {
+            ctx.emit(
+                khronos::IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE,
+                member(pointer, "bufferView"),
+                "Buffer view used by an image must not have byteStride.",
+            );
+        }
+    }
     if let Some(uri) = image.get("uri").and_then(Node::as_str) {
         let uri_pointer = member(pointer, "uri");
         let files = if read { Files::Read } else { Files::Unfetched };
@@ -634,14 +649,7 @@ fn image_source(
             mime_pointer: uri_pointer,
         });
     }
-    let view = ctx.reference(image, "bufferView", pointer, "bufferViews")?;
-    if (ctx.items("bufferViews").at(view).get("byteStride")).is_some() {
-        ctx.emit(
-            khronos::IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE,
-            member(pointer, "bufferView"),
-            "Buffer view used by an image must not have byteStride.",
-        );
-    }
+    let view = view?;
     // Read once however many images share the view.
     let bytes = match read_views.get(&view) {
         _ if !read => None,
