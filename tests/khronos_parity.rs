@@ -3163,3 +3163,30 @@ fn a_buffer_view_beside_an_images_uri_is_resolved_and_checked_though_the_uri_is_
         ])
     );
 }
+
+#[test]
+fn a_sparse_accessors_indices_and_values_carry_their_own_extras_and_extensions() {
+    let found = khronos_findings(
+        json!({"asset": {"version": "2.0"}, "extensionsUsed": ["EXT_x"],
+        "buffers": [{"byteLength": 8, "uri": "data:application/octet-stream;base64,AAAAAAAAAAA="}],
+        "bufferViews": [{"buffer": 0, "byteLength": 8}],
+        "accessors": [{"componentType": 5126, "count": 2, "type": "SCALAR", "sparse": {
+            "count": 1, "extras": 1,
+            "indices": {"bufferView": 0, "componentType": 5125, "extras": [1], "extensions": {"EXT_x": {}}},
+            "values": {"bufferView": 0, "extras": "s", "extensions": {"EXT_y": {}}}}}]}),
+    );
+    assert_eq!(
+        found,
+        expected(&[
+            ("NON_OBJECT_EXTRAS", "/accessors/0/sparse/extras"),
+            ("NON_OBJECT_EXTRAS", "/accessors/0/sparse/indices/extras"),
+            ("NON_OBJECT_EXTRAS", "/accessors/0/sparse/values/extras"),
+            (
+                "UNDECLARED_EXTENSION",
+                "/accessors/0/sparse/values/extensions/EXT_y"
+            ),
+            ("UNSUPPORTED_EXTENSION", "/extensionsUsed/0"),
+            ("UNUSED_OBJECT", "/accessors/0"),
+        ])
+    );
+}

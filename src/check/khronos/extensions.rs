@@ -339,11 +339,21 @@ fn walk_nested(
                     }
                 }
             }
-            Some(child) => walk(child, &child_pointer, Host::Other, each),
+            Some(child) => {
+                walk(child, &child_pointer, Host::Other, each);
+                // A sparse accessor's indices and values are objects of their own.
+                for part in SPARSE_PARTS.iter().filter(|_| *key == "sparse") {
+                    if let Some(object) = child.get(part) {
+                        walk(object, &member(&child_pointer, part), Host::Other, each);
+                    }
+                }
+            }
             None => {}
         }
     }
 }
+
+const SPARSE_PARTS: [&str; 2] = ["indices", "values"];
 
 fn visit_extension(ctx: &mut Context, name: &str, value: Node, pointer: &str, host: Host) {
     if !ctx.uses_extension(name) {
