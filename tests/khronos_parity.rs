@@ -3190,3 +3190,50 @@ fn a_sparse_accessors_indices_and_values_carry_their_own_extras_and_extensions()
         ])
     );
 }
+
+#[test]
+fn integer_bounds_the_validator_cannot_read_report_every_element_it_could_not_take() {
+    let accessor = |min: serde_json::Value| {
+        json!({"type": "VEC3", "componentType": 5121,
+        "normalized": true, "count": 3, "min": min, "max": [255, 255, 255]})
+    };
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [accessor(json!([null, null, 300])), accessor(json!([null, "x", 0]))]}));
+    // With a number it cannot hold, the validator reads none of the array and reports each
+    // element it could not take; without one, the schema reports the elements of no type.
+    let mut wanted = vec![("ARRAY_TYPE_MISMATCH", "/accessors/0/min"); 2];
+    wanted.push(("INVALID_GL_VALUE", "/accessors/0/min"));
+    wanted.extend([("ARRAY_TYPE_MISMATCH", "/accessors/1/min"); 2]);
+    wanted.extend([
+        ("UNUSED_OBJECT", "/accessors/0"),
+        ("UNUSED_OBJECT", "/accessors/1"),
+    ]);
+    assert_eq!(found, expected(&wanted));
+}
+
+#[test]
+fn an_animation_pointer_targets_node_is_asked_of_linked_animations_only() {
+    let animation = |samplers: serde_json::Value| {
+        json!({"samplers": samplers, "channels": [
+        {"sampler": 0, "target": {"node": 0, "path": "pointer",
+            "extensions": {"KHR_animation_pointer": {"pointer": "/nodes/0/rotation"}}}}]})
+    };
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_animation_pointer"],
+        "accessors": [
+            {"count": 2, "type": "SCALAR", "componentType": 5126, "min": [0], "max": [1]},
+            {"count": 2, "type": "VEC4", "componentType": 5126}],
+        "nodes": [{}],
+        "animations": [animation(json!({})), animation(json!([])),
+            animation(json!([{"input": 0, "output": 1}]))]}));
+    let node = "KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_NODE";
+    let asked: Vec<&str> = (found.iter())
+        .filter(|(code, _)| code == node)
+        .map(|(_, pointer)| pointer.as_str())
+        .collect();
+    assert_eq!(
+        asked,
+        ["/animations/2/channels/0/target/extensions/KHR_animation_pointer"],
+        "{found:?}"
+    );
+}

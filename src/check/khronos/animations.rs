@@ -12,9 +12,10 @@ use std::collections::HashMap;
 pub(crate) fn check(ctx: &mut Context) {
     let pointer_paths = ctx.uses_extension("KHR_animation_pointer");
     for (_, pointer, animation) in ctx.objects("animations") {
+        let links = linked(animation).is_some();
         for (c, channel) in elements(animation, "channels") {
             let at = format!("{pointer}/channels/{c}/target");
-            animation_pointer(ctx, channel, &at, pointer_paths);
+            animation_pointer(ctx, channel, &at, pointer_paths, links);
         }
         let Some((samplers, channels)) = linked(animation) else {
             continue;
@@ -94,8 +95,9 @@ fn animated_pointers(root: Node<'_>) -> std::collections::HashSet<&str> {
 }
 
 /// The target path `pointer` exists only with KHR_animation_pointer, which then owns the
-/// target: no node, and that path.
-fn animation_pointer(ctx: &mut Context, channel: Node, at: &str, declared: bool) {
+/// target: no node (asked, as the validator asks, only of an animation it links: see
+/// [`linked`]), and that path.
+fn animation_pointer(ctx: &mut Context, channel: Node, at: &str, declared: bool, links: bool) {
     let Some(target) = channel.get("target") else {
         return;
     };
@@ -122,7 +124,7 @@ fn animation_pointer(ctx: &mut Context, channel: Node, at: &str, declared: bool)
         here.clone(),
         "Validation support for this extension is incomplete; the asset may have undetected issues.",
     );
-    if target.get("node").is_some() {
+    if links && target.get("node").is_some() {
         ctx.emit(
             khronos::KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_NODE,
             here.clone(),

@@ -216,9 +216,10 @@ pub(crate) fn take_unread_sparse(tree: &mut Tree) {
 }
 
 /// Whether every number of an integer accessor's bounds (`key`, `bounds`) is an integer its
-/// component type (`range`: name, lowest, highest) can hold; each that is not is reported
-/// (ARRAY_TYPE_MISMATCH, INVALID_GL_VALUE) and the Khronos validator then does not read the
-/// array. Elements that are no number are the schema's to report.
+/// component type (`range`: name, lowest, highest) can hold. Where one is not, the Khronos
+/// validator does not read the array, and every element it could not take is reported here
+/// in order (ARRAY_TYPE_MISMATCH for one that is no integer, INVALID_GL_VALUE for one out of
+/// range); where all can, elements that are no number are the schema's to report.
 fn holds(
     (name, lowest, highest): (&str, f64, f64),
     bounds: Node,
@@ -226,30 +227,30 @@ fn holds(
     i: usize,
     sink: &mut dyn Sink,
 ) -> bool {
-    let numbers = (bounds.as_array().into_iter().flatten()).filter_map(|v| Some((v, v.as_f64()?)));
-    let mut holds = true;
-    for (value, number) in numbers {
-        let (code, message) = if number.fract() != 0.0 {
-            (
-                khronos::ARRAY_TYPE_MISMATCH,
-                format!("Type mismatch. Array element {value} is not a 'integer'."),
-            )
-        } else if !(lowest..=highest).contains(&number) {
-            (
-                khronos::INVALID_GL_VALUE,
-                format!("Invalid value {value} for GL type '{name}'."),
-            )
-        } else {
-            continue;
-        };
+    let elements = || bounds.as_array().into_iter().flatten();
+    let finding = |value: Node| match value.as_f64() {
+        Some(number) if number.fract() == 0.0 && (lowest..=highest).contains(&number) => None,
+        Some(number) if number.fract() == 0.0 => Some((
+            khronos::INVALID_GL_VALUE,
+            format!("Invalid value {value} for GL type '{name}'."),
+        )),
+        _ => Some((
+            khronos::ARRAY_TYPE_MISMATCH,
+            format!("Type mismatch. Array element {value} is not a 'integer'."),
+        )),
+    };
+    let unread = elements().any(|v| v.as_f64().is_some() && finding(v).is_some());
+    if !unread {
+        return true;
+    }
+    for (code, message) in elements().filter_map(finding) {
         sink.push(Diagnostic::at(
             code,
             format!("/accessors/{i}/{key}"),
             message,
         ));
-        holds = false;
     }
-    holds
+    false
 }
 
 /// What an accessor's own members must agree on, whatever its bufferView.
