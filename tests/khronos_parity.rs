@@ -3237,3 +3237,111 @@ fn an_animation_pointer_targets_node_is_asked_of_linked_animations_only() {
         "{found:?}"
     );
 }
+
+#[test]
+fn a_spot_is_read_only_on_a_spot_light_and_its_angles_compared_only_when_readable() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"type": 5, "spot": -1},
+            {"spot": {"innerConeAngle": 0.2, "outerConeAngle": 1.0}},
+            {"type": "point", "spot": {"innerConeAngle": "x"}},
+            {"type": "spot", "spot": {"innerConeAngle": 4294967296u64, "outerConeAngle": 0.1}},
+            {"type": "spot", "spot": {"innerConeAngle": 0.9, "outerConeAngle": "x"}},
+            {"type": "spot", "spot": {"innerConeAngle": 0.9}}]}}}));
+    let lights = "/extensions/KHR_lights_punctual/lights";
+    let mut wanted: Vec<(&str, String)> = (0..3)
+        .map(|i| ("EXTRA_PROPERTY", format!("{lights}/{i}/spot")))
+        .collect();
+    wanted.push((
+        "KHR_LIGHTS_PUNCTUAL_LIGHT_SPOT_ANGLES",
+        format!("{lights}/5/spot/outerConeAngle"),
+    ));
+    wanted.push(("TYPE_MISMATCH", format!("{lights}/0/type")));
+    wanted.push(("TYPE_MISMATCH", format!("{lights}/4/spot/outerConeAngle")));
+    wanted.push(("UNDEFINED_PROPERTY", format!("{lights}/1")));
+    wanted.extend((0..6).map(|i| ("UNUSED_OBJECT", format!("{lights}/{i}"))));
+    wanted.push((
+        "VALUE_NOT_IN_RANGE",
+        format!("{lights}/3/spot/innerConeAngle"),
+    ));
+    let wanted: Vec<(&str, &str)> = wanted.iter().map(|(c, p)| (*c, p.as_str())).collect();
+    assert_eq!(found, expected(&wanted));
+}
+
+#[test]
+fn an_alpha_cutoff_is_there_for_its_mode_whatever_it_holds() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"}, "materials": [
+        {"alphaMode": "BLEND", "alphaCutoff": true},
+        {"alphaMode": "BLEND", "alphaCutoff": null},
+        {"alphaMode": "MASK", "alphaCutoff": "x"}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "MATERIAL_ALPHA_CUTOFF_INVALID_MODE",
+                "/materials/0/alphaCutoff"
+            ),
+            (
+                "MATERIAL_ALPHA_CUTOFF_INVALID_MODE",
+                "/materials/1/alphaCutoff"
+            ),
+            ("TYPE_MISMATCH", "/materials/0/alphaCutoff"),
+            ("TYPE_MISMATCH", "/materials/1/alphaCutoff"),
+            ("TYPE_MISMATCH", "/materials/2/alphaCutoff"),
+            ("UNUSED_OBJECT", "/materials/0"),
+            ("UNUSED_OBJECT", "/materials/1"),
+            ("UNUSED_OBJECT", "/materials/2"),
+        ])
+    );
+}
+
+#[test]
+fn node_weights_count_no_morph_targets_where_the_validator_ignores_the_list() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [
+            {"componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]},
+            {"componentType": 5126, "count": 3, "type": "VEC3"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "targets": [{"POSITION": 1}, {}]}]}],
+        "nodes": [{"mesh": 0, "weights": [0.5, 0.5]}],
+        "scenes": [{"nodes": [0]}], "scene": 0}));
+    // One target is an empty object: the validator reads no targets at all, so two weights
+    // are two too many.
+    assert!(
+        found.contains(&(
+            "NODE_WEIGHTS_INVALID".to_string(),
+            "/nodes/0/weights".to_string()
+        )),
+        "{found:?}"
+    );
+}
+
+#[test]
+fn a_sparse_part_on_a_view_that_is_no_object_is_not_measured() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 8, "uri": "data:application/octet-stream;base64,AAAAAAAAAAA="}],
+        "bufferViews": [5],
+        "accessors": [{"type": "SCALAR", "componentType": 5126, "count": 1, "sparse": {"count": 2,
+            "indices": {"componentType": 5123, "bufferView": 0, "byteOffset": 4},
+            "values": {"bufferView": 0}}}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            (
+                "ACCESSOR_SPARSE_COUNT_OUT_OF_RANGE",
+                "/accessors/0/sparse/count"
+            ),
+            ("TYPE_MISMATCH", "/bufferViews/0"),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/accessors/0/sparse/indices/bufferView"
+            ),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/accessors/0/sparse/values/bufferView"
+            ),
+            ("UNUSED_OBJECT", "/accessors/0"),
+            ("UNUSED_OBJECT", "/buffers/0"),
+        ])
+    );
+}

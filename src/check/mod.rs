@@ -308,6 +308,7 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::
     // Out before the schema pass, which then finds nothing in them. One that is no object
     // stays for the schema pass to say so, and goes after it.
     undeclared.remove_where(tree, |value| value.is_object());
+    khronos::ext::lights::take_unread_spots(tree, sink);
     let absent = schema::validate(tree.root(), khronos, sink);
     // One inside a member the validator does not read is not seen either.
     undeclared.retain_hosts(|host| !schema::at_or_inside(&absent, host));
@@ -346,22 +347,32 @@ fn remove_all(tree: &mut Tree, pointers: HashSet<String>) -> (HashSet<String>, H
             }
             continue;
         }
-        // A byteOffset, a primitive's mode, a material's emissiveFactor or texCoord, an
-        // animation sampler's interpolation or a camera's projection that is invalid (other
-        // than null) stays, unreadable: the Khronos validator reads it as invalid, not as
-        // absent (the default 0, TRIANGLES, black, set 0 or LINEAR, a missing projection): it
-        // reads no data through such an offset (`gltf::byte_offset`), matches no count to such
-        // a mode, finds no black in such a factor, needs no set for such a texCoord and counts
-        // no keys for such an interpolation.
+        // A byteOffset, a primitive's mode, a material's emissiveFactor, texCoord or
+        // alphaCutoff, an animation sampler's interpolation, a camera's projection or a spot
+        // light's cone angle that is invalid (other than null) stays, unreadable: the Khronos validator
+        // reads it as invalid, not as absent (the default 0, TRIANGLES, black, set 0, LINEAR,
+        // a missing projection or the default angle): it reads no data through such an
+        // offset (`gltf::byte_offset`), matches no count to such a mode, finds no black in
+        // such a factor, needs no set for such a texCoord, counts no keys for such an
+        // interpolation and compares no such angle; an alphaCutoff is there, whatever it
+        // holds, for the mode it needs.
         let invalid_not_absent = pointer.ends_with("/byteOffset")
             || (pointer.starts_with("/meshes/") && pointer.ends_with("/mode"))
             || (pointer.starts_with("/materials/")
-                && (pointer.ends_with("/emissiveFactor") || pointer.ends_with("/texCoord")))
+                && (pointer.ends_with("/emissiveFactor")
+                    || pointer.ends_with("/texCoord")
+                    || pointer.ends_with("/alphaCutoff")))
             || (pointer.starts_with("/animations/") && pointer.ends_with("/interpolation"))
             || (pointer.starts_with("/cameras/")
-                && (pointer.ends_with("/perspective") || pointer.ends_with("/orthographic")));
-        let kept =
-            invalid_not_absent && (tree.root().pointer(&pointer)).is_some_and(|v| !v.is_null());
+                && (pointer.ends_with("/perspective") || pointer.ends_with("/orthographic")))
+            || (pointer.starts_with("/extensions/KHR_lights_punctual/lights/")
+                && (pointer.ends_with("/spot/innerConeAngle")
+                    || pointer.ends_with("/spot/outerConeAngle")));
+        // An alphaCutoff is there even as null: the validator asks whether the key is.
+        let there_even_null =
+            pointer.starts_with("/materials/") && pointer.ends_with("/alphaCutoff");
+        let kept = there_even_null
+            || invalid_not_absent && (tree.root().pointer(&pointer)).is_some_and(|v| !v.is_null());
         if !kept && tree.remove(&pointer) == Some(true) {
             nulls.insert(pointer);
         }

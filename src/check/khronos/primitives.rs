@@ -107,10 +107,11 @@ impl<'a> Format<'a> {
 }
 
 /// How many morph targets a mesh has, as its first primitive lists them (None when it lists
-/// none): what node weights and weight animations are counted against.
+/// none, or a list the validator ignores: see [`morph_targets`]): what node weights and
+/// weight animations are counted against.
 pub(super) fn mesh_morph_targets(mesh: Node) -> Option<usize> {
     let first = mesh.get("primitives")?.as_array()?.first()?;
-    Some(first.get("targets")?.as_array()?.len())
+    Some(morph_targets(first)?.len())
 }
 
 /// A primitive's morph targets when they are a non-empty list of non-empty objects; any

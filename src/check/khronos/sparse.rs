@@ -43,8 +43,11 @@ pub(super) fn check_structure(ctx: &mut Context, accessor: Node, pointer: &str) 
         ("indices", indices, index_size.map(|size| (size, size))),
         ("values", values, values_element),
     ] {
+        // A view that is no object resolves to nothing (UNRESOLVED_REFERENCE), as one past
+        // the end.
         let view = unsigned(part, "bufferView").map(|v| v as usize);
-        let Some(view) = view.filter(|&v| v < ctx.items("bufferViews").len()) else {
+        let views = ctx.items("bufferViews");
+        let Some(view) = view.filter(|&v| v < views.len() && views.at(v).is_object()) else {
             continue;
         };
         let part_at = member(&at, key);
