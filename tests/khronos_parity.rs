@@ -3345,3 +3345,54 @@ fn a_sparse_part_on_a_view_that_is_no_object_is_not_measured() {
         ])
     );
 }
+
+#[test]
+fn a_buffers_uri_is_parsed_though_its_byte_length_is_unreadable() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": ":", "byteLength": ""}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("INVALID_URI", "/buffers/0/uri"),
+            ("TYPE_MISMATCH", "/buffers/0/byteLength"),
+            ("UNUSED_OBJECT", "/buffers/0"),
+        ])
+    );
+}
+
+#[test]
+fn morph_target_names_are_read_in_a_list_the_validator_does_not_link() {
+    let vec3 = json!({"componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]});
+    let found = khronos_findings(json!({"asset": {"version": "2.0"}, "accessors": [vec3],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0},
+            "targets": [{"UNKNOWN": 0, "POSITION": 9, "NORMAL": 0}, null]}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}));
+    // The names of every target object are checked; nothing is resolved or compared.
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_TYPE_MISMATCH", "/meshes/0/primitives/0/targets"),
+            (
+                "MESH_PRIMITIVE_INVALID_ATTRIBUTE",
+                "/meshes/0/primitives/0/targets/0/UNKNOWN"
+            ),
+        ])
+    );
+}
+
+#[test]
+fn a_meshs_weights_are_unused_where_it_has_no_primitives_to_weigh() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "meshes": [{"weights": [0.2]}, {"primitives": [], "weights": [0.2]}, {"weights": [0.2]}],
+        "nodes": [{"mesh": 0}, {"mesh": 1}], "scenes": [{"nodes": [0, 1]}], "scene": 0}));
+    // Mesh 2 is drawn by no node: nothing says its weights are overridden.
+    let unused: Vec<&str> = (found.iter())
+        .filter(|(code, _)| code == "UNUSED_MESH_WEIGHTS")
+        .map(|(_, pointer)| pointer.as_str())
+        .collect();
+    assert_eq!(
+        unused,
+        ["/meshes/0/weights", "/meshes/1/weights"],
+        "{found:?}"
+    );
+}

@@ -557,7 +557,8 @@ impl LostTransforms {
     }
 }
 
-/// A mesh's own morph weights do nothing when every node that draws it has weights.
+/// A mesh's own morph weights do nothing when every node that draws it has weights, or when
+/// it has no primitives (the validator reads no weights for a node on such a mesh).
 fn unused_mesh_weights(ctx: &mut Context, nodes: Array) {
     // Per mesh: the nodes that draw it, and how many of them have their own weights.
     let mut drawn_by: HashMap<usize, (usize, usize)> = HashMap::new();
@@ -573,7 +574,9 @@ fn unused_mesh_weights(ctx: &mut Context, nodes: Array) {
             continue;
         }
         let (users, overriding) = drawn_by.get(&m).copied().unwrap_or((0, 0));
-        if users > 0 && users == overriding {
+        let primitives = mesh.get("primitives").and_then(Node::as_array);
+        let drawn = primitives.is_some_and(|p| !p.is_empty());
+        if users > 0 && (users == overriding || !drawn) {
             ctx.emit(
                 khronos::UNUSED_MESH_WEIGHTS,
                 member(&pointer, "weights"),

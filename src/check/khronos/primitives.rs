@@ -252,10 +252,13 @@ impl<'a> Walk<'_, 'a> {
         // checked against the mode, as the Khronos validator does not), else by its vertices.
         let drawn_count = self.indices(primitive, pointer).unwrap_or(vertex_count);
         self.mode(primitive, pointer, drawn_count);
-        for (t, target) in morph_targets(primitive).into_iter().flatten().enumerate() {
+        // Every target's names are read; its accessors only when the whole list is one the
+        // validator links (see [`morph_targets`]).
+        let linked = morph_targets(primitive).is_some();
+        for (t, target) in elements(primitive, "targets") {
             let at = format!("{pointer}/targets/{t}");
             if let Some(target) = target.as_object() {
-                self.target(target, attributes, &at);
+                self.target(target, attributes, &at, linked);
             }
         }
     }
@@ -452,13 +455,19 @@ impl<'a> Walk<'_, 'a> {
         }
     }
 
-    fn target(&mut self, target: Object<'a>, attributes: Option<Object<'a>>, at: &str) {
+    fn target(
+        &mut self,
+        target: Object<'a>,
+        attributes: Option<Object<'a>>,
+        at: &str,
+        linked: bool,
+    ) {
         for (semantic, value) in target {
             let semantic_at = member(at, semantic);
             if classify(semantic, true).is_err() {
                 self.invalid_name(&semantic_at);
             }
-            let Some(accessor) = self.accessor(value) else {
+            let Some(accessor) = self.accessor(value).filter(|_| linked) else {
                 continue;
             };
             let base = attributes

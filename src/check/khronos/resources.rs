@@ -264,8 +264,10 @@ fn buffer_data<'a>(
 ) -> Option<(Option<BufferData<'a>>, &'static str, Option<String>)> {
     Some(match buffer.get("uri").and_then(Node::as_str) {
         // Without a declared length an external file is not read and the GLB chunk not
-        // attached (a data URI is still decoded and used), as the Khronos validator reads it.
+        // attached (a data URI is still decoded and used), as the Khronos validator reads it;
+        // the URI is still parsed.
         Some(uri) if declared.is_none() && !uri.starts_with("data:") => {
+            load_uri(ctx, uri, &member(pointer, "uri"), Files::Unfetched);
             (None, "external", Some(uri.to_string()))
         }
         Some(uri) => {
