@@ -6,7 +6,8 @@
 # extension's own model), and both tools timed in the same run, best of five each; gltfmat's
 # time includes its own proof (every converted material evaluated) and its output check.
 #   scripts/bench/vs-gltf-transform.sh [ASSET…]
-#   scripts/bench/vs-gltf-transform.sh --generated [SIZE]   (a quad with SIZE² textures, 2048 by default)
+#   scripts/bench/vs-gltf-transform.sh --generated [SIZE] [noise]   (a quad with SIZE² textures,
+#     2048 by default; with `noise` their texels are random, so that nothing repeats)
 source "$(dirname "$0")/common.sh"
 if [ ! -d "$bench_dir/node_modules/@gltf-transform/functions" ] || [ ! -d "$bench_dir/node_modules/ndarray-pixels" ]; then
   npm install --prefix "$bench_dir" --no-save --silent gltf-validator gltf-pipeline \
@@ -16,9 +17,9 @@ assets=("$@")
 if [ "${1:-}" = "--generated" ]; then
   # A quad whose diffuse and specular-glossiness textures vary in every texel (smooth waves
   # and sharp steps), so that neither tool's work shrinks to flat runs.
-  python3 - "$work" "${2:-2048}" <<'PY'
-import base64, json, math, struct, sys, zlib
-work, n = sys.argv[1], int(sys.argv[2])
+  python3 - "$work" "${2:-2048}" "${3:-}" <<'PY'
+import base64, json, math, random, struct, sys, zlib
+work, n, noise = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "noise"
 def png(path, channels, pixel):
     def chunk(kind, data):
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
@@ -29,6 +30,10 @@ def png(path, channels, pixel):
         + chunk(b"IDAT", zlib.compress(rows, 1)) + chunk(b"IEND", b""))
 wave = lambda x, y: int(127 + 120 * math.sin(x / 37.0) * math.cos(y / 23.0))
 step = lambda x, y: 60 * (((x >> 4) + (y >> 4)) & 1)
+if noise:
+    texels = random.Random(1).randbytes(2 * n * n)
+    wave = lambda x, y: texels[2 * (y * n + x)]
+    step = lambda x, y: 20 * (texels[2 * (y * n + x) + 1] & 3)
 png("diffuse.png", 3, lambda x, y: (wave(x, y), 80 + step(x, y), 200 - wave(x, y) // 2))
 png("specgloss.png", 4, lambda x, y: (30 + step(x, y) // 2, 40 + wave(x, y) // 8, 40, 255 - wave(y, x) // 2))
 quad = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0) + struct.pack("<12f", *[0, 0, 1] * 4) \
