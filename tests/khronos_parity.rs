@@ -3396,3 +3396,56 @@ fn a_meshs_weights_are_unused_where_it_has_no_primitives_to_weigh() {
         "{found:?}"
     );
 }
+
+#[test]
+fn an_accessor_of_an_unknown_type_has_elements_of_no_length_but_its_offsets_are_checked() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 32, "uri": format!("data:application/octet-stream;base64,{}", "A".repeat(44))}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 2, "byteLength": 16, "byteStride": 4}],
+        "accessors": [
+            {"type": "x", "componentType": 5126, "count": 1, "bufferView": 0, "byteOffset": 4},
+            {"type": "x", "componentType": 5126, "count": 1, "bufferView": 0, "byteOffset": 64},
+            {"type": "x", "componentType": 5126, "count": 1, "bufferView": 0, "byteOffset": 3},
+            {"type": "x", "componentType": 5126, "count": 100, "bufferView": 0, "byteOffset": 2}]}));
+    let mut wanted = vec![
+        ("ACCESSOR_OFFSET_ALIGNMENT", "/accessors/2/byteOffset"),
+        ("ACCESSOR_OFFSET_ALIGNMENT", "/accessors/3/byteOffset"),
+        ("ACCESSOR_TOO_LONG", "/accessors/1/byteOffset"),
+        ("ACCESSOR_TOO_LONG", "/accessors/3"),
+        ("ACCESSOR_TOTAL_OFFSET_ALIGNMENT", "/accessors/0"),
+        ("ACCESSOR_TOTAL_OFFSET_ALIGNMENT", "/accessors/1"),
+        ("ACCESSOR_TOTAL_OFFSET_ALIGNMENT", "/accessors/2"),
+    ];
+    let unused = [
+        "/accessors/0",
+        "/accessors/1",
+        "/accessors/2",
+        "/accessors/3",
+    ];
+    wanted.extend(unused.iter().map(|p| ("UNUSED_OBJECT", *p)));
+    let types = [
+        "/accessors/0/type",
+        "/accessors/1/type",
+        "/accessors/2/type",
+        "/accessors/3/type",
+    ];
+    wanted.extend(types.iter().map(|p| ("VALUE_NOT_IN_LIST", *p)));
+    assert_eq!(found, expected(&wanted));
+}
+
+#[test]
+fn a_node_whose_skin_resolves_to_no_object_is_not_skinned() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]},
+            {"componentType": 5121, "count": 3, "type": "VEC4"},
+            {"componentType": 5126, "count": 3, "type": "VEC4"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2}}]}],
+        "skins": [true],
+        "nodes": [{"translation": [1, 2, 3], "children": [1]}, {"skin": 0, "mesh": 0, "translation": [1, 2, 3]}],
+        "scenes": [{"nodes": [0]}], "scene": 0}));
+    let codes: Vec<&str> = (found.iter())
+        .map(|(code, _)| code.as_str())
+        .filter(|code| code.starts_with("NODE_"))
+        .collect();
+    assert_eq!(codes, ["NODE_SKINNED_MESH_WITHOUT_SKIN"], "{found:?}");
+}

@@ -30,7 +30,8 @@ pub(super) fn check(ctx: &mut Context) {
                 "Node is a part of a node loop.",
             );
         }
-        if unsigned(node, "skin").is_some_and(|s| (s as usize) < ctx.items("skins").len()) {
+        // A skin that resolves to no object (UNRESOLVED_REFERENCE) skins nothing.
+        if unsigned(node, "skin").is_some_and(|s| ctx.element("skins", s).is_some()) {
             skinned_placement(ctx, nodes, &parents, &hierarchy, &mut lost, i, &pointer);
         }
     }

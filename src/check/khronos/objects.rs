@@ -293,13 +293,12 @@ fn check_accessor_fits(ctx: &mut Context, accessor: Node, view: usize, pointer: 
     let Some(component_size) = unsigned(accessor, "componentType").and_then(component_size) else {
         return;
     };
-    let Some(components) = accessor
-        .get("type")
-        .and_then(Node::as_str)
-        .and_then(component_count)
-    else {
+    // A type the validator does not know (VALUE_NOT_IN_LIST) has no components: its
+    // elements are 0 bytes long, and only the offsets and a stride can place it past the end.
+    let Some(kind) = accessor.get("type").and_then(Node::as_str) else {
         return;
     };
+    let components = component_count(kind).unwrap_or(0);
     // A view without its byteLength (a schema error) is judged as holding nothing, as the
     // Khronos validator judges it (see `fits_in_view`).
     let Some(count) = unsigned(accessor, "count").filter(|c| *c > 0) else {
