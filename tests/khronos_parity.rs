@@ -3449,3 +3449,31 @@ fn a_node_whose_skin_resolves_to_no_object_is_not_skinned() {
         .collect();
     assert_eq!(codes, ["NODE_SKINNED_MESH_WITHOUT_SKIN"], "{found:?}");
 }
+
+#[test]
+fn a_child_or_a_skin_that_resolves_to_no_object_links_nothing() {
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "accessors": [
+            {"componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+            {"componentType": 5126, "count": 2, "type": "VEC3"}],
+        "skins": -1,
+        "animations": [{"samplers": [{"input": 0, "output": 1}],
+            "channels": [{"sampler": 0, "target": {"node": 2, "path": "scale"}}]}],
+        "nodes": [{"children": [3]}, {"children": [3]}, {"skin": 0}, 2147483648u64]}));
+    // Node 3 is no object: neither node 0 nor node 1 is its parent (no NODE_PARENT_OVERRIDE),
+    // and node 2's skin resolves to nothing (no ANIMATION_CHANNEL_TARGET_NODE_SKIN).
+    assert_eq!(
+        found,
+        expected(&[
+            ("NODE_EMPTY", "/nodes/2"),
+            ("TYPE_MISMATCH", "/nodes/3"),
+            ("TYPE_MISMATCH", "/skins"),
+            ("UNRESOLVED_REFERENCE", "/nodes/0/children/0"),
+            ("UNRESOLVED_REFERENCE", "/nodes/1/children/0"),
+            ("UNRESOLVED_REFERENCE", "/nodes/2/skin"),
+            ("UNSATISFIED_DEPENDENCY", "/nodes/2/skin"),
+            ("UNUSED_OBJECT", "/nodes/0"),
+            ("UNUSED_OBJECT", "/nodes/1"),
+        ])
+    );
+}

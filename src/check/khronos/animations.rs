@@ -236,7 +236,8 @@ fn target(ctx: &mut Context, channel: Node, at: &str) {
                     "Animation channel cannot target TRS properties of a node with defined matrix.",
                 );
             }
-            if node.get("skin").is_some() {
+            // A skin that resolves to no object skins nothing.
+            if unsigned(node, "skin").is_some_and(|s| ctx.element("skins", s).is_some()) {
                 ctx.emit(
                     khronos::ANIMATION_CHANNEL_TARGET_NODE_SKIN,
                     format!("{at}/target/path"),

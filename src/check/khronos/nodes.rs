@@ -58,9 +58,10 @@ fn walk_parents(nodes: Array, mut relisted: impl FnMut(usize, usize, usize)) -> 
     let mut parent = Vec::new();
     for (i, node) in nodes.iter().enumerate() {
         for (k, child) in elements(node, "children") {
+            // A child that resolves to no object (UNRESOLVED_REFERENCE) has no parent.
             let Some(c) = as_index(child)
                 .map(|c| c as usize)
-                .filter(|c| *c < nodes.len())
+                .filter(|c| *c < nodes.len() && nodes.at(*c).is_object())
             else {
                 continue;
             };
