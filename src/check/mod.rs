@@ -349,12 +349,12 @@ fn remove_all(tree: &mut Tree, pointers: HashSet<String>) -> (HashSet<String>, H
         }
         // A byteOffset, a primitive's mode, a material's emissiveFactor, texCoord or
         // alphaCutoff, an animation sampler's interpolation, a camera's projection or a spot
-        // light's cone angle that is invalid (other than null) stays, unreadable: the Khronos validator
-        // reads it as invalid, not as absent (the default 0, TRIANGLES, black, set 0, LINEAR,
-        // a missing projection or the default angle): it reads no data through such an
-        // offset (`gltf::byte_offset`), matches no count to such a mode, finds no black in
-        // such a factor, needs no set for such a texCoord, counts no keys for such an
-        // interpolation and compares no such angle; an alphaCutoff is there, whatever it
+        // light's cone angle that is invalid (other than null) stays, unreadable: the Khronos
+        // validator reads it as invalid, not as absent (the default 0, TRIANGLES, black, set
+        // 0, LINEAR, a missing projection or the default angle): it reads no data through
+        // such an offset (`gltf::byte_offset`), matches no count to such a mode, finds no
+        // black in such a factor, needs no set for such a texCoord, counts no keys for such
+        // an interpolation and compares no such angle; an alphaCutoff is there, whatever it
         // holds, for the mode it needs.
         let invalid_not_absent = pointer.ends_with("/byteOffset")
             || (pointer.starts_with("/meshes/") && pointer.ends_with("/mode"))
