@@ -3477,3 +3477,83 @@ fn a_child_or_a_skin_that_resolves_to_no_object_links_nothing() {
         ])
     );
 }
+
+#[test]
+fn a_skeleton_of_a_skin_without_readable_joints_is_no_common_root() {
+    let nodes = json!([{"children": [1]}, {"children": [2, 3]}, {}, {}]);
+    let found = khronos_findings(json!({"asset": {"version": "2.0"}, "nodes": nodes,
+        "skins": [{"skeleton": 0}, {"skeleton": 0, "joints": []}, {"skeleton": 0, "joints": "x"}, {"joints": []}]}));
+    let invalid: Vec<&str> = (found.iter())
+        .filter(|(code, _)| code.starts_with("SKIN_"))
+        .map(|(_, pointer)| pointer.as_str())
+        .collect();
+    assert_eq!(
+        invalid,
+        [
+            "/skins/0/skeleton",
+            "/skins/1/skeleton",
+            "/skins/2/skeleton"
+        ],
+        "{found:?}"
+    );
+}
+
+#[test]
+fn a_view_with_no_valid_length_is_too_long_only_where_it_starts_past_the_buffer() {
+    let views: Vec<serde_json::Value> = [
+        (3, json!(1.5)),
+        (4, json!(1.5)),
+        (4, json!(0)),
+        (3, json!(0)),
+    ]
+    .into_iter()
+    .map(|(offset, length)| json!({"buffer": 0, "byteOffset": offset, "byteLength": length}))
+    .chain([json!({"buffer": 0, "byteOffset": 4})])
+    .collect();
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"uri": "data:application/octet-stream;base64,AAAAAA==", "byteLength": 4}],
+        "bufferViews": views}));
+    let too_long: Vec<&str> = (found.iter())
+        .filter(|(code, _)| code == "BUFFER_VIEW_TOO_LONG")
+        .map(|(_, pointer)| pointer.as_str())
+        .collect();
+    let expected = [
+        "/bufferViews/1/byteOffset",
+        "/bufferViews/2/byteOffset",
+        "/bufferViews/4/byteOffset",
+    ];
+    assert_eq!(too_long, expected, "{found:?}");
+}
+
+#[test]
+fn a_channel_whose_sampler_is_no_index_counts_as_a_target_but_is_not_reported() {
+    // Each pair of channels alone: after a channel without a sampler index the validator's
+    // pointers carry a leftover path (see above), which would blur what this holds.
+    let duplicates = |first: serde_json::Value, second: serde_json::Value| {
+        let found = khronos_findings(json!({"asset": {"version": "2.0"},
+            "accessors": [{"componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+                {"componentType": 5126, "count": 2, "type": "VEC3"}],
+            "nodes": [{}],
+            "animations": [{"samplers": [{"input": 0, "output": 1}],
+                "channels": [{"target": {"node": 0, "path": "scale"}, "sampler": first},
+                             {"target": {"node": 0, "path": "scale"}, "sampler": second}]}]}));
+        (found.iter())
+            .filter(|(code, _)| code == "ANIMATION_DUPLICATE_TARGETS")
+            .count()
+    };
+    assert_eq!(
+        duplicates(json!(true), json!(0)),
+        0,
+        "the first has no sampler index"
+    );
+    assert_eq!(
+        duplicates(json!(0), json!(true)),
+        1,
+        "the second still counts"
+    );
+    assert_eq!(
+        duplicates(json!(9), json!(0)),
+        1,
+        "an unresolved index is an index"
+    );
+}

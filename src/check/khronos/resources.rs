@@ -329,9 +329,15 @@ pub(crate) fn check_buffer_views(ctx: &mut Context) {
         let buffer = ctx.reference(view, "buffer", &pointer, "buffers");
         let offset = unsigned(view, "byteOffset").unwrap_or(0);
         let length = unsigned(view, "byteLength");
-        if let (Some(b), Some(length)) = (buffer, length) {
+        if let Some(b) = buffer {
             if let Some(buffer_length) = unsigned(ctx.items("buffers").at(b), "byteLength") {
-                if offset.saturating_add(length) > buffer_length {
+                // A length that is no valid one (below 1, or unreadable) is the validator's
+                // -1: the view is then too long only where it starts past the buffer's end.
+                let end = match length.filter(|&l| l >= 1) {
+                    Some(length) => offset.saturating_add(length),
+                    None => offset.saturating_add(1),
+                };
+                if end > buffer_length {
                     let key = if offset >= buffer_length {
                         "byteOffset"
                     } else {

@@ -22,24 +22,25 @@ pub(super) fn check(ctx: &mut Context) {
             .map(|j| j as usize)
             .collect();
         inverse_binds(ctx, skin, &pointer);
-        // An empty list is a schema error; the hierarchy is then not checked.
+        // A missing, empty or mistyped list is a schema error; the joints then have no
+        // common root, which is not said again (a skeleton is still not one).
         let listed = skin
             .get("joints")
             .and_then(Node::as_array)
             .is_some_and(|j| !j.is_empty());
-        if !listed {
-            continue;
-        }
         let counted = if ctx.options.profile.refills_emptied_common_roots() {
             after_last_reset(&parents, &joints)
         } else {
             &joints[..]
         };
-        let roots = common_roots(&parents, counted);
+        let roots = match listed {
+            true => common_roots(&parents, counted),
+            false => Default::default(),
+        };
         if let Some(&top) = roots.iter().find(|&&r| parents[r].is_none()) {
             tops.insert(s, top);
         }
-        if roots.is_empty() {
+        if listed && roots.is_empty() {
             ctx.emit(
                 khronos::SKIN_NO_COMMON_ROOT,
                 member(&pointer, "joints"),
