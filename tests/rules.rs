@@ -6,8 +6,7 @@
 
 mod common;
 
-use base64::Engine;
-use common::chunk;
+use common::{chunk, data_uri};
 use gltfmat::registry::{self, Origin};
 use gltfmat::{check_bytes, CheckOptions, FolderResources, NoResources, Place};
 use image::{DynamicImage, GrayImage, ImageFormat, RgbImage, RgbaImage};
@@ -30,10 +29,7 @@ fn asset(tangents: bool) -> Value {
     put(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0]); // NORMAL, 36
     put(&[1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0]); // TANGENT, 72
     put(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0]); // TEXCOORD, 120
-    let uri = format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(&data)
-    );
+    let uri = data_uri("application/octet-stream", &data);
     // One bufferView per accessor: tightly packed attributes may not share a view.
     // (offset, length) of POSITION, NORMAL, TEXCOORD and TANGENT, which only some cases use.
     let spans = [(0, 36), (36, 36), (120, 24), (72, 48)];
@@ -153,14 +149,6 @@ fn merge(target: &mut Value, patch: &Value) {
         }
         (target, patch) => *target = patch.clone(),
     }
-}
-
-/// Image bytes as a PNG data URI.
-fn data_uri(mime: &str, bytes: &[u8]) -> String {
-    format!(
-        "data:{mime};base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(bytes)
-    )
 }
 
 fn encode(image: DynamicImage, format: ImageFormat) -> Vec<u8> {

@@ -2,7 +2,7 @@
 //! passes gltfmat's check, materials convert as documented, and files are handled safely.
 
 mod common;
-use common::{linear_to_srgb, shared, srgb_to_linear};
+use common::{data_uri, linear_to_srgb, shared, srgb_to_linear};
 
 use gltfmat::upgrade_output as output;
 use gltfmat::{
@@ -651,7 +651,6 @@ mod verify {
 
 mod structure {
     use super::*;
-    use base64::Engine;
     use gltfmat::NoResources;
     use serde_json::json;
 
@@ -680,10 +679,7 @@ mod structure {
             1.0f32, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
         ];
         identity.iter().for_each(|v| data.extend(v.to_le_bytes())); // inverse bind matrix
-        let uri = format!(
-            "data:application/octet-stream;base64,{}",
-            base64::engine::general_purpose::STANDARD.encode(&data)
-        );
+        let uri = data_uri("application/octet-stream", &data);
         let accessor = |offset: usize, count: usize, kind: &str| json!({"bufferView": "v", "byteOffset": offset, "componentType": 5126, "count": count, "type": kind, "min": [0], "max": [0]});
         json!({
             "asset": {"version": "1.0"},
@@ -937,7 +933,6 @@ fn a_gltf_output_is_indented_for_reading_unless_its_json_is_larger_than_a_person
 /// A one-triangle 1.0 asset whose vertex attributes are the given VEC3 arrays (3 vertices
 /// each), plus an animation with no channels.
 fn gltf1_triangle(attributes: &[(&str, [[f32; 3]; 3])]) -> Vec<u8> {
-    use base64::Engine;
     let mut bin = Vec::new();
     let mut accessors = serde_json::Map::new();
     let mut semantics = serde_json::Map::new();
@@ -958,10 +953,7 @@ fn gltf1_triangle(attributes: &[(&str, [[f32; 3]; 3])]) -> Vec<u8> {
         );
         semantics.insert(semantic.to_string(), serde_json::json!(format!("a{k}")));
     }
-    let uri = format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(&bin)
-    );
+    let uri = data_uri("application/octet-stream", &bin);
     serde_json::to_vec(&serde_json::json!({
         "asset": {"version": "1.0"},
         "buffers": {"b": {"uri": uri, "byteLength": bin.len()}},
@@ -1012,7 +1004,6 @@ fn vec3_tangents_get_the_handedness_of_their_binormal_and_empty_animations_are_d
 
 #[test]
 fn quantized_positions_are_decoded_with_their_decode_matrix() {
-    use base64::Engine;
     // Two unsigned-short positions; the matrix scales by 1/65535 and moves by (−0.5, 0, 2).
     let stored: Vec<u8> = [0u16, 0, 0, 65535, 65535, 65535]
         .iter()
@@ -1022,10 +1013,7 @@ fn quantized_positions_are_decoded_with_their_decode_matrix() {
     let matrix = [
         s, 0., 0., 0., 0., s, 0., 0., 0., 0., s, 0., -0.5, 0., 2., 1.,
     ];
-    let uri = format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(&stored)
-    );
+    let uri = data_uri("application/octet-stream", &stored);
     let gltf1 = serde_json::json!({
         "asset": {"version": "1.0"},
         "extensionsUsed": ["WEB3D_quantized_attributes"],
@@ -1328,15 +1316,11 @@ fn gltf1_aliases(
     offset: impl Fn(usize) -> usize,
     count: impl Fn(usize) -> usize,
 ) -> Vec<u8> {
-    use base64::Engine;
     let bin: Vec<u8> = (0..vertices)
         .flat_map(|i| [(i % 7) as f32, (i % 5) as f32, 0.0])
         .flat_map(f32::to_le_bytes)
         .collect();
-    let uri = format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(&bin)
-    );
+    let uri = data_uri("application/octet-stream", &bin);
     let accessors: serde_json::Map<String, Value> = (0..meshes)
         .map(|i| {
             let accessor = serde_json::json!({"bufferView": "v", "byteOffset": offset(i),
@@ -1592,7 +1576,6 @@ fn khr_materials_common_values_in_the_early_type_value_form_are_read() {
 /// encoding, decoded to unit floats; CESIUM_RTC is kept, so positions stay offsets from it.
 #[test]
 fn cesium_oct_encoded_normals_are_decoded_and_cesium_rtc_is_kept() {
-    use base64::Engine;
     let positions: [[f32; 3]; 4] = [
         [0.0, 0.0, 0.0],
         [1.0, 0.0, 0.0],
@@ -1608,10 +1591,7 @@ fn cesium_oct_encoded_normals_are_decoded_and_cesium_rtc_is_kept() {
         .flat_map(|v| v.to_le_bytes())
         .collect();
     bin.extend(encoded.iter().flatten().map(|&v| v as u8));
-    let uri = format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(&bin)
-    );
+    let uri = data_uri("application/octet-stream", &bin);
     let center = [
         1_214_939.908_552_622_4,
         -4_736_421.803_714_806,
@@ -1723,15 +1703,13 @@ fn only_proof_max(asset: &[u8], upgraded: &Upgraded) -> f64 {
 
 /// An image entry holding `image` as a PNG data URI.
 fn embedded_png(image: image::DynamicImage) -> serde_json::Value {
-    use base64::Engine;
     let mut bytes = Vec::new();
     (image.write_to(
         &mut std::io::Cursor::new(&mut bytes),
         image::ImageFormat::Png,
     ))
     .unwrap();
-    let encoded = base64::engine::general_purpose::STANDARD.encode(&bytes);
-    serde_json::json!({"uri": format!("data:image/png;base64,{encoded}")})
+    serde_json::json!({"uri": data_uri("image/png", &bytes)})
 }
 
 /// A smooth surface's roughness (glossiness 0.95 → 0.05) lies between two 8-bit levels, and
@@ -1801,7 +1779,6 @@ fn a_common_materials_transparency_is_written_as_blend_and_said() {
 
 #[test]
 fn a_gltf_0_8_asset_is_read_as_the_1_0_it_became() {
-    use base64::Engine;
     let floats = |values: &[f32]| {
         values
             .iter()
@@ -1812,10 +1789,7 @@ fn a_gltf_0_8_asset_is_read_as_the_1_0_it_became() {
     let mut stored = floats(&[0., 0., 0., 1., 0., 0.]);
     stored.extend(floats(&[0., 1.]));
     stored.extend(floats(&[0., 0., 1., 0., 0., 0., 2., std::f32::consts::PI]));
-    let uri = format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(&stored)
-    );
+    let uri = data_uri("application/octet-stream", &stored);
     let gltf08 = serde_json::json!({
         "asset": {"version": 0.8, "profile": "WebGL 1.0.2"},
         "buffers": {"b": {"uri": uri, "byteLength": 64, "type": "arraybuffer"}},
@@ -1900,12 +1874,8 @@ fn a_gltf_0_8_asset_is_read_as_the_1_0_it_became() {
 
 #[test]
 fn an_image_in_a_format_2_0_does_not_carry_is_named_and_left_out_only_when_nothing_samples_it() {
-    use base64::Engine;
     let ktx1 = b"\xABKTX 11\xBB\r\n\x1A\n\x01\x02\x03\x04";
-    let uri = format!(
-        "data:image/ktx;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(ktx1)
-    );
+    let uri = data_uri("image/ktx", ktx1);
     let asset = |sampled: bool| {
         let textures = match sampled {
             true => serde_json::json!({"t": {"source": "i"}}),

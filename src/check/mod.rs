@@ -308,7 +308,7 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::
     // Out before the schema pass, which then finds nothing in them. One that is no object
     // stays for the schema pass to say so, and goes after it.
     undeclared.remove_where(tree, |value| value.is_object());
-    khronos::ext::lights::take_unread_spots(tree, sink);
+    khronos::take_unread_spots(tree, sink);
     let absent = schema::validate(tree.root(), khronos, sink);
     // One inside a member the validator does not read is not seen either.
     undeclared.retain_hosts(|host| !schema::at_or_inside(&absent, host));

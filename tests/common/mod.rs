@@ -3,6 +3,13 @@
 
 use std::path::{Path, PathBuf};
 
+/// `bytes` as a data URI of media type `mime`.
+pub fn data_uri(mime: &str, bytes: &[u8]) -> String {
+    use base64::Engine;
+    let encoded = base64::engine::general_purpose::STANDARD.encode(bytes);
+    format!("data:{mime};base64,{encoded}")
+}
+
 /// Runs the gltfmat binary from the repository root (no colour): its exit code and stdout.
 pub fn gltfmat(args: &[&str]) -> (i32, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_gltfmat"))

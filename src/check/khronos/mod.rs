@@ -24,6 +24,7 @@ mod unused;
 mod view_usage;
 
 use super::context::Context;
+pub(crate) use ext::lights::take_unread_spots;
 pub(crate) use extensions::{
     check_declarations as check_extension_lists, undeclared_extensions, Undeclared,
 };
