@@ -347,6 +347,20 @@ impl Case {
         self
     }
 
+    /// Adds a KHR_interactivity graph whose one `op` node writes through `template` with
+    /// the input `values`. The Khronos validator does not know the extension (first of the
+    /// sorted declared names).
+    fn in_graph(mut self, op: &str, template: &str, values: Value) -> Case {
+        self.document["extensions"] = json!({"KHR_interactivity": {"graph": 0, "graphs": [{
+            "types": [{"signature": "float"}, {"signature": "int"}],
+            "declarations": [{"op": "event/onStart"}, {"op": op}],
+            "nodes": [
+                {"declaration": 0, "flows": {"out": {"node": 1, "socket": "in"}}},
+                {"declaration": 1, "configuration": {"pointer": {"value": [template]}, "type": {"value": [0]}},
+                 "values": values}]}]}});
+        self.expect("UNSUPPORTED_EXTENSION", "/extensionsUsed/0")
+    }
+
     fn expect(mut self, code: &'static str, pointer: &str) -> Case {
         self.expected.push((code, pointer.to_string()));
         self
@@ -605,6 +619,25 @@ fn cases() -> Vec<Case> {
             "KHR_materials_volume": {}, "KHR_materials_dispersion": {"dispersion": 0.3}}})), vec![])
             .animated("/materials/0/extensions/KHR_materials_volume/thicknessFactor")
             .expect("INCOMPLETE_EXTENSION_SUPPORT", "/animations/0/channels/0/target/extensions/KHR_animation_pointer"),
+        // A factor an interactivity graph sets (KHR_interactivity) is not zero throughout,
+        // whichever material its template's parameter names at runtime.
+        near_miss("LAYER_TEXTURE_DISABLED", "clearcoat texture whose zero factor a graph sets", material(ext("KHR_materials_clearcoat",
+            json!({"clearcoatTexture": {"index": 0}}))), vec![rgb([200, 0, 0])])
+            .in_graph("pointer/set", "/materials/[m]/extensions/KHR_materials_clearcoat/clearcoatFactor",
+                json!({"m": {"type": 1, "value": [0]}, "value": {"type": 0, "value": [1.0]}})),
+        near_miss("LAYER_TEXTURE_DISABLED", "clearcoat texture whose zero factor a graph moves, on a material chosen at runtime",
+            material(ext("KHR_materials_clearcoat", json!({"clearcoatTexture": {"index": 0}}))), vec![rgb([200, 0, 0])])
+            .in_graph("pointer/interpolate", "/materials/{m}/extensions/KHR_materials_clearcoat/clearcoatFactor",
+                json!({"m": {"node": 0, "socket": "index"}, "value": {"type": 0, "value": [1.0]}})),
+        case("clearcoat texture whose zero factor a graph sets on another material", material(ext("KHR_materials_clearcoat",
+            json!({"clearcoatTexture": {"index": 0}}))), vec![rgb([200, 0, 0])])
+            .in_graph("pointer/set", "/materials/[m]/extensions/KHR_materials_clearcoat/clearcoatFactor",
+                json!({"m": {"type": 1, "value": [1]}, "value": {"type": 0, "value": [1.0]}}))
+            .expect("LAYER_TEXTURE_DISABLED", &at("/extensions/KHR_materials_clearcoat/clearcoatTexture")),
+        case("clearcoat texture whose zero factor a graph only reads", material(ext("KHR_materials_clearcoat",
+            json!({"clearcoatTexture": {"index": 0}}))), vec![rgb([200, 0, 0])])
+            .in_graph("pointer/get", "/materials/0/extensions/KHR_materials_clearcoat/clearcoatFactor", json!({}))
+            .expect("LAYER_TEXTURE_DISABLED", &at("/extensions/KHR_materials_clearcoat/clearcoatTexture")),
         case("anisotropy texture with the default zero strength", material(ext("KHR_materials_anisotropy",
             json!({"anisotropyTexture": {"index": 0}}))), vec![rgb([255, 128, 255])]).patch(with_tangents())
             .expect("ANISOTROPY_TEXTURE_ZERO_STRENGTH", &at("/extensions/KHR_materials_anisotropy/anisotropyTexture")),

@@ -116,9 +116,8 @@ pub(crate) struct Context<'a> {
     pub material_needs: HashMap<usize, MaterialNeeds>,
     /// Every texture binding, computed on first use (see `materials::slot_uses`).
     pub slot_uses: std::sync::OnceLock<std::sync::Arc<[SlotUse<'a>]>>,
-    /// The members animation channels target, computed on first use (see
-    /// `animations::Animated::of`).
-    pub animated: std::sync::OnceLock<std::sync::Arc<super::khronos::animations::Animated<'a>>>,
+    /// The members changed at runtime, computed on first use (see `Animated::of`).
+    pub animated: std::sync::OnceLock<std::sync::Arc<super::animated::Animated<'a>>>,
     pub resources: Vec<ResourceInfo>,
     /// Extension objects no `extensionsUsed` declares, taken out of the document before the
     /// passes (the Khronos validator reads nothing of them); the extensions pass reports them.

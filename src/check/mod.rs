@@ -6,6 +6,7 @@ pub mod registry;
 pub(crate) mod rules;
 pub(crate) mod schema;
 
+pub(crate) mod animated;
 mod collector;
 pub(crate) mod context;
 mod khronos;

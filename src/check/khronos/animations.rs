@@ -56,46 +56,6 @@ pub(crate) fn linked(animation: Node) -> Option<(Array, Array)> {
     Some((list("samplers")?, list("channels")?))
 }
 
-/// The members animation channels target through KHR_animation_pointer: what a document
-/// writes of them is not their value throughout.
-pub(crate) struct Animated<'t>(std::collections::HashSet<&'t str>);
-
-impl<'t> Animated<'t> {
-    /// The document's animated members, computed once per document (the rules share them).
-    pub(crate) fn of(ctx: &Context<'t>) -> std::sync::Arc<Animated<'t>> {
-        let root = ctx.root;
-        (ctx.animated)
-            .get_or_init(|| std::sync::Arc::new(Animated(animated_pointers(root))))
-            .clone()
-    }
-
-    /// Whether a channel targets `member` (its path below the material) of material
-    /// `material`.
-    pub(crate) fn material_member(&self, material: usize, member: &str) -> bool {
-        !self.0.is_empty() && (self.0).contains(format!("/materials/{material}/{member}").as_str())
-    }
-}
-
-/// Every JSON pointer an animation channel targets through KHR_animation_pointer.
-fn animated_pointers(root: Node<'_>) -> std::collections::HashSet<&str> {
-    let channels = root
-        .get("animations")
-        .and_then(Node::as_array)
-        .into_iter()
-        .flatten()
-        .filter_map(|animation| animation.get("channels")?.as_array())
-        .flatten();
-    channels
-        .filter_map(|channel| {
-            let extension = channel.get("target")?.get("extensions")?;
-            extension
-                .get("KHR_animation_pointer")?
-                .get("pointer")?
-                .as_str()
-        })
-        .collect()
-}
-
 /// The target path `pointer` exists only with KHR_animation_pointer, which then owns the
 /// target: no node (asked, as the validator asks, only of an animation it links: see
 /// [`linked`]), and that path.

@@ -1,8 +1,8 @@
 //! An anisotropy texture with anisotropyStrength zero.
 
 use super::{Rule, Run};
+use crate::check::animated::Animated;
 use crate::check::context::Context;
-use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::slot_uses;
 use crate::diagnostic::Severity;
 
@@ -18,8 +18,9 @@ pub(super) const RULE: Rule = Rule::new(
 const DOC: &str = "\
 ## What it does
 Reports an `anisotropyTexture` on a material whose `anisotropyStrength` is 0, which is also its
-default when the member is missing, unless an animation channel (KHR_animation_pointer)
-targets the strength.
+default when the member is missing, unless
+the asset changes it at runtime (an animation channel through
+KHR_animation_pointer, or a KHR_interactivity graph's `pointer/set` or `pointer/interpolate`).
 
 ## Why
 The anisotropy strength is `anisotropyStrength` times the texture's blue channel, so a zero

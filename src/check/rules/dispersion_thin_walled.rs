@@ -1,8 +1,8 @@
 //! KHR_materials_dispersion on a thin-walled volume.
 
 use super::{Rule, Run};
+use crate::check::animated::Animated;
 use crate::check::context::{number, Context};
-use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
 
@@ -18,8 +18,9 @@ pub(super) const RULE: Rule = Rule::new(
 const DOC: &str = "\
 ## What it does
 Reports `KHR_materials_dispersion` on a material whose `KHR_materials_volume` has a
-`thicknessFactor` of 0, its default when missing, unless an animation channel
-(KHR_animation_pointer) targets the thickness. (Dispersion without any volume is the
+`thicknessFactor` of 0, its default when missing, unless
+the asset changes it at runtime (an animation channel through
+KHR_animation_pointer, or a KHR_interactivity graph's `pointer/set` or `pointer/interpolate`). (Dispersion without any volume is the
 Khronos warning KHR_MATERIALS_DISPERSION_NO_VOLUME.)
 
 ## Why

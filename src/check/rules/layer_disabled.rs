@@ -1,8 +1,8 @@
 //! Textures of a material layer whose factor switches the layer off.
 
 use super::{Rule, Run};
+use crate::check::animated::Animated;
 use crate::check::context::{number, Context};
-use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::{extension, slot_uses};
 use crate::diagnostic::Severity;
 
@@ -19,8 +19,9 @@ const DOC: &str = "\
 ## What it does
 Reports a texture of KHR_materials_clearcoat, _iridescence, _transmission,
 _diffuse_transmission or _volume whose layer is off because its factor is 0 — the default of
-each of these factors when the member is missing — unless an animation channel
-(KHR_animation_pointer) targets the factor:
+each of these factors when the member is missing — unless
+the asset changes it at runtime (an animation channel through
+KHR_animation_pointer, or a KHR_interactivity graph's `pointer/set` or `pointer/interpolate`):
 
 | extension | factor | textures that then do nothing |
 |---|---|---|

@@ -1,8 +1,8 @@
 //! Sheen textures on a material whose sheen colour is zero.
 
 use super::{Rule, Run};
+use crate::check::animated::Animated;
 use crate::check::context::Context;
-use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::{extension, slot_uses};
 use crate::diagnostic::Severity;
 use crate::document::Node;
@@ -22,8 +22,10 @@ Reports `sheenColorTexture` and `sheenRoughnessTexture` on a material whose
 `sheenColorFactor` is [0, 0, 0] — which is also its default when the member is missing.
 
 A sheen object that holds textures and no factor at all is reported too: it is exactly the
-mistake this rule exists for (the textures are multiplied by the default factor 0). A factor an
-animation channel targets (KHR_animation_pointer) is not zero throughout: it is not reported.
+mistake this rule exists for (the textures are multiplied by the default factor 0). A factor
+the asset changes at runtime (an animation channel through
+KHR_animation_pointer, or a KHR_interactivity graph's `pointer/set` or `pointer/interpolate`) is not
+zero throughout: it is not reported.
 
 ## Why
 The sheen colour is the factor times the texture, so a zero factor turns the whole sheen layer

@@ -2,8 +2,8 @@
 
 use super::sheen_disabled::sheen_colour_is_zero;
 use super::{Rule, Run};
+use crate::check::animated::Animated;
 use crate::check::context::{number, Context};
-use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
 
@@ -19,8 +19,9 @@ pub(super) const RULE: Rule = Rule::new(
 const DOC: &str = "\
 ## What it does
 Reports a `KHR_materials_sheen` object with a non-zero `sheenColorFactor` and a
-`sheenRoughnessFactor` of 0, which is its default when the member is missing, unless an
-animation channel (KHR_animation_pointer) targets the roughness factor.
+`sheenRoughnessFactor` of 0, which is its default when the member is missing, unless
+the asset changes it at runtime (an animation channel through
+KHR_animation_pointer, or a KHR_interactivity graph's `pointer/set` or `pointer/interpolate`).
 
 ## Why
 The Charlie sheen distribution D(h) = (2 + 1/r) sin(θ)^(1/r) / 2π with r = roughness² has no

@@ -1,8 +1,8 @@
 //! KHR_materials_ior / KHR_materials_specular on a fully metallic material.
 
 use super::{Rule, Run};
+use crate::check::animated::Animated;
 use crate::check::context::{number, Context};
-use crate::check::khronos::animations::Animated;
 use crate::check::khronos::materials::extension;
 use crate::diagnostic::Severity;
 use crate::document::Node;
@@ -20,9 +20,10 @@ const DOC: &str = "\
 ## What it does
 Reports `KHR_materials_ior` and `KHR_materials_specular` on a material whose metallic value
 is 1 everywhere: `metallicFactor` is 1 (its default when missing, also when the whole
-`pbrMetallicRoughness` object is), there is no `metallicRoughnessTexture` that could lower it, and no
-animation channel (KHR_animation_pointer) targets `metallicFactor`: an animated factor is
-not 1 all the time.
+`pbrMetallicRoughness` object is), there is no `metallicRoughnessTexture` that could lower it, and
+the asset does not change it at runtime (an animation channel through
+KHR_animation_pointer, or a KHR_interactivity graph's `pointer/set` or `pointer/interpolate`):
+a factor that changes is not 1 all the time.
 
 ## Why
 Both extensions change only the dielectric Fresnel term; a metal's reflectance is its base
@@ -53,8 +54,8 @@ fn check(ctx: &mut Context) {
 }
 
 /// The materials whose metallic value is 1 everywhere and always: `metallicFactor` 1 (its
-/// default when missing), no `metallicRoughnessTexture` that could lower it, and no animation
-/// channel (KHR_animation_pointer) targeting the factor.
+/// default when missing), no `metallicRoughnessTexture` that could lower it, and no change at
+/// runtime (see [`Animated`]).
 pub(super) fn fully_metallic<'a>(ctx: &Context<'a>) -> Vec<(String, Node<'a>)> {
     let animated = Animated::of(ctx);
     (ctx.objects("materials"))

@@ -19,7 +19,9 @@ const DOC: &str = "\
 ## What it does
 Reports `KHR_materials_transmission` with a `transmissionFactor` above 0 on a material whose
 metallic value is 1 everywhere: `metallicFactor` is 1 (its default when missing), no
-`metallicRoughnessTexture` could lower it, and no animation channel targets it.
+`metallicRoughnessTexture` could lower it, and
+the asset does not change it at runtime (an animation channel through
+KHR_animation_pointer, or a KHR_interactivity graph's `pointer/set` or `pointer/interpolate`).
 
 ## Why
 KHR_materials_transmission: \"Metals effectively absorb all refracted light […]. Therefore,
