@@ -173,3 +173,47 @@ fn resolved(template: &str, values: Option<Node>) -> Vec<Option<String>> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::document::Tree;
+
+    fn segments(template: &str, values: &str) -> Vec<Option<String>> {
+        let tree = Tree::parse(values.as_bytes()).expect("valid JSON");
+        resolved(template, Some(tree.root()))
+    }
+
+    #[test]
+    fn a_template_takes_its_literal_parameters_and_unescapes_its_brackets() {
+        let known = |s: &[&str]| s.iter().map(|s| Some(s.to_string())).collect::<Vec<_>>();
+        assert_eq!(
+            segments("/materials/[m]/extras/{{x}}", r#"{"m": {"value": [3]}}"#),
+            known(&["materials", "3", "extras", "{x}"])
+        );
+        assert_eq!(
+            segments("/nodes/{n}/[[w]]", r#"{"n": {"type": 1, "value": [0]}}"#),
+            known(&["nodes", "0", "[w]"])
+        );
+    }
+
+    #[test]
+    fn a_parameter_wired_to_another_node_or_not_a_count_stands_for_any_value() {
+        let any = vec![
+            Some("materials".to_string()),
+            None,
+            Some("alphaCutoff".to_string()),
+        ];
+        for values in [
+            r#"{"m": {"node": 2, "socket": "out"}}"#,
+            r#"{"m": {"value": [-1]}}"#,
+            "{}",
+        ] {
+            assert_eq!(
+                segments("/materials/{m}/alphaCutoff", values),
+                any,
+                "{values}"
+            );
+        }
+    }
+}
