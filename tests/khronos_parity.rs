@@ -3557,3 +3557,102 @@ fn a_channel_whose_sampler_is_no_index_counts_as_a_target_but_is_not_reported() 
         "an unresolved index is an index"
     );
 }
+
+#[test]
+fn only_elements_of_the_items_type_are_compared_for_repeats() {
+    // A mistyped element is a mismatch, not an element: two of them repeat nothing.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["a", -1, "a", true, -1],
+        "nodes": [{"children": [true, true, -1, -1]}, {}]}));
+    assert_eq!(
+        found,
+        expected(&[
+            ("ARRAY_TYPE_MISMATCH", "/extensionsUsed/1"),
+            ("ARRAY_TYPE_MISMATCH", "/extensionsUsed/3"),
+            ("ARRAY_TYPE_MISMATCH", "/extensionsUsed/4"),
+            ("DUPLICATE_ELEMENTS", "/extensionsUsed/2"),
+            ("INVALID_INDEX", "/nodes/0/children/0"),
+            ("INVALID_INDEX", "/nodes/0/children/1"),
+            ("INVALID_INDEX", "/nodes/0/children/2"),
+            ("INVALID_INDEX", "/nodes/0/children/3"),
+            ("NODE_EMPTY", "/nodes/1"),
+            ("UNUSED_OBJECT", "/nodes/0"),
+            ("UNUSED_OBJECT", "/nodes/1"),
+        ])
+    );
+}
+
+#[test]
+fn influences_are_checked_against_the_first_readable_attribute_count() {
+    // POSITION names an accessor without a count: the vertex count is the next attribute's,
+    // and the weights (0.5, 0, 0, 0) are still read.
+    let data: Vec<u8> = [0u8; 4]
+        .into_iter()
+        .chain([0.5f32, 0.0, 0.0, 0.0].iter().flat_map(|w| w.to_le_bytes()))
+        .collect();
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 20, "uri": common::data_uri("application/octet-stream", &data)}],
+        "bufferViews": [{"buffer": 0, "byteLength": 4}, {"buffer": 0, "byteOffset": 4, "byteLength": 16}],
+        "accessors": [{}, {"bufferView": 0, "componentType": 5121, "count": 1, "type": "VEC4"},
+            {"bufferView": 1, "componentType": 5126, "count": 1, "type": "VEC4"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2}}]}],
+        "nodes": [{"mesh": 0, "skin": 0}, {}], "skins": [{"joints": [1]}],
+        "scenes": [{"nodes": [0, 1]}], "scene": 0}));
+    let attribute = |name: &str| format!("/meshes/0/primitives/0/attributes/{name}");
+    let (joints, weights, position) = (
+        attribute("JOINTS_0"),
+        attribute("WEIGHTS_0"),
+        attribute("POSITION"),
+    );
+    assert_eq!(
+        found,
+        expected(&[
+            ("ACCESSOR_WEIGHTS_NON_NORMALIZED", &weights),
+            ("BUFFER_VIEW_TARGET_MISSING", &joints),
+            ("BUFFER_VIEW_TARGET_MISSING", &weights),
+            (
+                "MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT",
+                &position
+            ),
+            ("MESH_PRIMITIVE_INCOMPATIBLE_MODE", "/meshes/0/primitives/0"),
+            ("MESH_PRIMITIVE_POSITION_ACCESSOR_WITHOUT_BOUNDS", &position),
+            ("UNDEFINED_PROPERTY", "/accessors/0"),
+            ("UNDEFINED_PROPERTY", "/accessors/0"),
+            ("UNDEFINED_PROPERTY", "/accessors/0"),
+        ])
+    );
+}
+
+#[test]
+fn objects_inside_extensions_have_their_extras_and_extensions_checked() {
+    // A light and its spot, a variant and a primitive's mapping are glTF properties too.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_variants"],
+        "extensions": {
+            "KHR_lights_punctual": {"lights": [{"type": "spot", "spot": {"extras": 1}, "extras": 1,
+                "extensions": {"FOO_x": {}}}]},
+            "KHR_materials_variants": {"variants": [{"name": "a", "extras": 1}]}},
+        "materials": [{}],
+        "meshes": [{"primitives": [{"attributes": {}, "extensions": {"KHR_materials_variants": {
+            "mappings": [{"material": 0, "variants": [0], "extras": 1}]}}}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}));
+    let light = "/extensions/KHR_lights_punctual/lights/0";
+    assert_eq!(
+        found,
+        expected(&[
+            ("EMPTY_ENTITY", "/meshes/0/primitives/0/attributes"),
+            ("NON_OBJECT_EXTRAS", &format!("{light}/extras")),
+            ("NON_OBJECT_EXTRAS", &format!("{light}/spot/extras")),
+            (
+                "NON_OBJECT_EXTRAS",
+                "/extensions/KHR_materials_variants/variants/0/extras"
+            ),
+            (
+                "NON_OBJECT_EXTRAS",
+                "/meshes/0/primitives/0/extensions/KHR_materials_variants/mappings/0/extras"
+            ),
+            ("UNDECLARED_EXTENSION", &format!("{light}/extensions/FOO_x")),
+            ("UNUSED_OBJECT", light),
+        ])
+    );
+}

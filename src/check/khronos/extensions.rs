@@ -355,6 +355,15 @@ fn walk_nested(
 
 const SPARSE_PARTS: [&str; 2] = ["indices", "values"];
 
+/// The objects inside an extension object that the validator reads as glTF properties,
+/// their extras and extensions checked: (extension, its host, the array holding them, a
+/// member of each that is an object of its own).
+const INNER_OBJECTS: &[(&str, Host, &str, Option<&str>)] = &[
+    ("KHR_lights_punctual", Host::Root, "lights", Some("spot")),
+    ("KHR_materials_variants", Host::Root, "variants", None),
+    ("KHR_materials_variants", Host::Primitive, "mappings", None),
+];
+
 fn visit_extension(ctx: &mut Context, name: &str, value: Node, pointer: &str, host: Host) {
     if !ctx.uses_extension(name) {
         undeclared(ctx, pointer);
@@ -376,6 +385,19 @@ fn visit_extension(ctx: &mut Context, name: &str, value: Node, pointer: &str, ho
             member(pointer, "extras"),
             "Prefer JSON Objects for extras.",
         );
+    }
+    let inner = INNER_OBJECTS
+        .iter()
+        .filter(|(n, h, ..)| *n == name && *h == host);
+    for &(_, _, list, part) in inner {
+        let objects = value.get(list).and_then(Node::as_array);
+        for (i, object) in objects.into_iter().flatten().enumerate() {
+            let at = member(&member(pointer, list), &i.to_string());
+            if let Some((key, part)) = part.and_then(|key| Some((key, object.get(key)?))) {
+                visit(ctx, part, &member(&at, key), Host::Other);
+            }
+            visit(ctx, object, &at, Host::Other);
+        }
     }
     for slot in TEXTURE_SLOTS.iter().filter(|s| s.extension == Some(name)) {
         if let Some(info) = value.get(slot.key) {

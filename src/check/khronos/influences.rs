@@ -136,12 +136,7 @@ impl Attribute<'_> {
 fn influence_sets<'c>(ctx: &'c Context, primitive: Node) -> Option<Vec<Set<'c>>> {
     let attributes = primitive.get("attributes")?;
     let accessors = ctx.items("accessors");
-    let vertex_count = attributes
-        .as_object()?
-        .values()
-        .next()
-        .and_then(|a| accessors.get(usize::try_from(as_index(a)?).ok()?))
-        .and_then(|a| unsigned(a, "count"))?;
+    let vertex_count = super::primitives::vertex_count(attributes, accessors)?;
     let mut sets = Vec::new();
     for n in 0.. {
         let Some(joints) = attributes.get(format!("JOINTS_{n}")) else {

@@ -502,8 +502,6 @@ impl<'a> Walk<'_, 'a> {
     }
 }
 
-/// A primitive's vertex count as the Khronos validator takes it: the first readable count of
-/// an attribute that names an accessor (an unreadable count leaves it to the next one).
 /// An accessor's count as the validator computes with it: the double written, so that a
 /// count past 2^64 (`1e308`) keeps its remainders and differs from another such count.
 fn count_of(accessor: Node) -> Option<f64> {
@@ -519,6 +517,8 @@ fn written(count: f64) -> String {
     }
 }
 
+/// A primitive's vertex count as the Khronos validator takes it: the first readable count of
+/// an attribute that names an accessor (an unreadable count leaves it to the next one).
 pub(super) fn vertex_count(attributes: Node, accessors: Array) -> Option<u64> {
     (attributes.as_object().into_iter().flat_map(|a| a.values()))
         .filter_map(|v| accessors.get(usize::try_from(as_index(v)?).ok()?))

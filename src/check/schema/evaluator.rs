@@ -40,7 +40,10 @@ pub(super) enum Kind {
     MinProperties,
     MinItems(u64),
     MaxItems(u64),
-    UniqueItems,
+    /// Repeats elements: the positions of the repeats. Only elements valid against the
+    /// items' schema are compared: the validator reads the others as mismatched, not as
+    /// elements.
+    UniqueItems(Vec<usize>),
     Minimum,
     Maximum,
     ExclusiveMinimum,
@@ -327,8 +330,12 @@ impl Compiled {
         if let Some(limit) = schema.max_items.filter(|&limit| length > limit) {
             fail(Kind::MaxItems(limit));
         }
-        if schema.unique_items && has_duplicates(array) {
-            fail(Kind::UniqueItems);
+        if schema.unique_items {
+            let valid = |element: Node| schema.items.is_none_or(|i| self.is_valid(i, element));
+            let repeats = repeated_positions(array, valid);
+            if !repeats.is_empty() {
+                fail(Kind::UniqueItems(repeats));
+            }
         }
         if let Some(items) = schema.items {
             for (i, element) in array.iter().enumerate() {
@@ -415,17 +422,22 @@ fn equal(instance: Node, expected: &Value) -> bool {
 
 /// Whether two elements of an array are equal as JSON Schema compares them (see
 /// [`unique_key`]).
-fn has_duplicates(array: crate::document::Array) -> bool {
+/// The positions of the elements that repeat an earlier one, among those `compared`.
+fn repeated_positions(
+    array: crate::document::Array,
+    compared: impl Fn(Node) -> bool,
+) -> Vec<usize> {
     let mut seen = HashSet::new();
-    array
-        .iter()
-        .any(|element| !seen.insert(unique_key(element)))
+    (array.iter().enumerate())
+        .filter(|&(_, element)| compared(element) && !seen.insert(unique_key(element)))
+        .map(|(i, _)| i)
+        .collect()
 }
 
 /// What makes two array elements one for `uniqueItems`: numbers by value (`1`, `1.0` and
 /// `-0.0`… `0` are one), anything else by its JSON text (every uniqueItems array of glTF
 /// holds strings or integers; two objects that differ only in key order are two).
-pub(super) fn unique_key(element: Node) -> String {
+fn unique_key(element: Node) -> String {
     match element.as_f64() {
         Some(number) => format!("{}", number + 0.0),
         None => element.to_string(),

@@ -601,8 +601,7 @@ fn map_failure(failure: &Failure) -> Vec<Diagnostic> {
                 instance.as_array().map_or(0, Array::len)
             ),
         ),
-        Kind::UniqueItems => duplicate_positions(instance)
-            .into_iter()
+        Kind::UniqueItems(repeats) => (repeats.iter())
             .map(|i| {
                 Diagnostic::at(
                     khronos::DUPLICATE_ELEMENTS,
@@ -671,17 +670,6 @@ fn type_mismatch(expected: &str, instance: Node, pointer: &str) -> Diagnostic {
 }
 
 /// Indices of array elements equal to an earlier element.
-fn duplicate_positions(instance: Node) -> Vec<usize> {
-    let Some(items) = instance.as_array() else {
-        return Vec::new();
-    };
-    let mut seen = HashSet::new();
-    (items.iter().enumerate())
-        .filter(|(_, item)| !seen.insert(evaluator::unique_key(*item)))
-        .map(|(i, _)| i)
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
