@@ -3656,3 +3656,33 @@ fn objects_inside_extensions_have_their_extras_and_extensions_checked() {
         ])
     );
 }
+
+#[test]
+fn a_webp_is_recognised_by_its_vp_chunk_and_its_chunk_read_on_thirty_bytes() {
+    let finding = |bytes: &[u8]| {
+        let found = khronos_findings(json!({"asset": {"version": "2.0"},
+            "extensionsUsed": ["EXT_texture_webp"],
+            "buffers": [{"byteLength": bytes.len(), "uri": common::data_uri("application/octet-stream", bytes)}],
+            "bufferViews": [{"buffer": 0, "byteLength": bytes.len()}],
+            "images": [{"bufferView": 0, "mimeType": "image/webp"}]}));
+        let image = expected(&[("UNUSED_OBJECT", "/images/0")]);
+        let rest: Vec<String> = (found.iter())
+            .filter(|f| !image.contains(f))
+            .map(|(code, pointer)| format!("{code} {pointer}"))
+            .collect();
+        rest.join(", ")
+    };
+    let riff = |body: &[u8]| [b"RIFF\x08\0\0\0WEBP", body].concat();
+    let unknown = [b"VP8Q".as_slice(), &[0; 26]].concat();
+    for (bytes, code) in [
+        (
+            riff(b"ABCD\x08\0\0\0\0\0\0\0\0\0\0\0"),
+            "IMAGE_UNRECOGNIZED_FORMAT",
+        ),
+        (riff(b"V"), "IMAGE_UNRECOGNIZED_FORMAT"),
+        (riff(&unknown[..8]), "IMAGE_UNEXPECTED_EOS"),
+        (riff(&unknown), "IMAGE_DATA_INVALID"),
+    ] {
+        assert_eq!(finding(&bytes), format!("{code} /images/0"), "{bytes:?}");
+    }
+}

@@ -184,7 +184,7 @@ pub(crate) fn read(bytes: &[u8]) -> Result<ImageInfo, HeaderError> {
         png(bytes)
     } else if bytes.starts_with(&[0xFF, 0xD8]) {
         jpeg(bytes)
-    } else if bytes.len() >= 12 && &bytes[..4] == b"RIFF" && &bytes[8..12] == b"WEBP" {
+    } else if codec_of(bytes) == Some(ImageFormat::Webp) {
         webp(bytes)
     } else if bytes.starts_with(KTX2_MAGIC) {
         ktx2(bytes)
@@ -387,6 +387,9 @@ fn webp(b: &[u8]) -> Result<ImageInfo, HeaderError> {
                 flags & 0x20 != 0,
             )
         }
+        // The validator reads the longest chunk header (VP8X's, 30 bytes) before it calls
+        // a chunk unknown.
+        _ if b.len() < 30 => return Err(HeaderError::UnexpectedEnd),
         _ => return Err(HeaderError::Invalid("unknown WebP chunk".into())),
     };
     let channels = if alpha { Channels::Rgba } else { Channels::Rgb };
