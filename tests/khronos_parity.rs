@@ -3686,3 +3686,64 @@ fn a_webp_is_recognised_by_its_vp_chunk_and_its_chunk_read_on_thirty_bytes() {
         assert_eq!(finding(&bytes), format!("{code} /images/0"), "{bytes:?}");
     }
 }
+
+#[test]
+fn a_png_is_read_chunk_by_chunk_up_to_its_first_idat() {
+    let chunk = |kind: &[u8; 4], data: &[u8]| {
+        let length = (data.len() as u32).to_be_bytes();
+        [&length[..], kind, data, &[0; 4]].concat()
+    };
+    let header = |size: u32, colour: u8| {
+        let mut data = [size.to_be_bytes(), size.to_be_bytes()].concat();
+        data.extend([8, colour, 0, 0, 0]);
+        chunk(b"IHDR", &data)
+    };
+    let png = |chunks: &[Vec<u8>]| [b"\x89PNG\r\n\x1a\n".to_vec(), chunks.concat()].concat();
+    let idat = chunk(b"IDAT", &[0; 16]);
+    let image_codes = |bytes: Vec<u8>| -> Vec<String> {
+        let found = khronos_findings(json!({"asset": {"version": "2.0"},
+            "buffers": [{"byteLength": bytes.len(), "uri": common::data_uri("application/octet-stream", &bytes)}],
+            "bufferViews": [{"buffer": 0, "byteLength": bytes.len()}],
+            "images": [{"bufferView": 0, "mimeType": "image/png"}]}));
+        (found.into_iter())
+            .filter(|(code, _)| code.starts_with("IMAGE_"))
+            .map(|(code, _)| code)
+            .collect()
+    };
+    let truncated_in_idat = png(&[header(4, 2), idat.clone()])[..45].to_vec();
+    let cases: [(&str, Vec<u8>, &[&str]); 6] = [
+        ("cut inside IDAT", truncated_in_idat, &[]),
+        (
+            "IHDR after another chunk",
+            png(&[chunk(b"tEXt", b"a\0b"), header(4, 2), idat.clone()]),
+            &[],
+        ),
+        (
+            "the last IHDR wins",
+            png(&[header(4, 2), header(3, 2), idat.clone()]),
+            &["IMAGE_NPOT_DIMENSIONS"],
+        ),
+        (
+            "an unknown colour type",
+            png(&[header(4, 7), idat.clone()]),
+            &[],
+        ),
+        (
+            "an animation chunk",
+            png(&[
+                header(4, 2),
+                chunk(b"acTL", &[0, 0, 0, 1, 0, 0, 0, 0]),
+                idat.clone(),
+            ]),
+            &[],
+        ),
+        (
+            "an sRGB chunk of two bytes",
+            png(&[header(4, 2), chunk(b"sRGB", &[0, 0]), idat.clone()]),
+            &["IMAGE_DATA_INVALID"],
+        ),
+    ];
+    for (name, bytes, codes) in cases {
+        assert_eq!(image_codes(bytes), codes, "{name}");
+    }
+}

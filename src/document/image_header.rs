@@ -74,7 +74,7 @@ pub struct ImageInfo {
     pub bits: u8,
     /// The transfer function the file declares, if any.
     pub transfer: Option<Transfer>,
-    /// An animated image (APNG, animated WebP).
+    /// An animated WebP (the Khronos validator does not read APNG's animation chunk).
     pub animated: bool,
     /// Colour primaries other than sRGB's (PNG cHRM or iCCP, WebP ICC profile).
     pub custom_primaries: bool,
@@ -179,17 +179,14 @@ pub(crate) fn codec_of(bytes: &[u8]) -> Option<ImageFormat> {
     }
 }
 
+/// The header of an image in a format [`codec_of`] recognises.
 pub(crate) fn read(bytes: &[u8]) -> Result<ImageInfo, HeaderError> {
-    if bytes.starts_with(PNG_MAGIC) {
-        png(bytes)
-    } else if bytes.starts_with(&[0xFF, 0xD8]) {
-        jpeg(bytes)
-    } else if codec_of(bytes) == Some(ImageFormat::Webp) {
-        webp(bytes)
-    } else if bytes.starts_with(KTX2_MAGIC) {
-        ktx2(bytes)
-    } else {
-        Err(HeaderError::Unrecognized)
+    match codec_of(bytes) {
+        Some(ImageFormat::Png) => png(bytes),
+        Some(ImageFormat::Jpeg) => jpeg(bytes),
+        Some(ImageFormat::Webp) => webp(bytes),
+        Some(ImageFormat::Ktx2) => ktx2(bytes),
+        None => Err(HeaderError::Unrecognized),
     }
 }
 
@@ -205,152 +202,123 @@ fn le32(b: &[u8], at: usize) -> Result<u32, HeaderError> {
         .ok_or(HeaderError::UnexpectedEnd)
 }
 
+/// A PNG's header chunks, read as the Khronos validator reads them: chunk after chunk up to
+/// the first IDAT, in any order (the last IHDR wins), each colour chunk of a wrong length
+/// invalid as soon as its type is read, an unknown colour type an unknown format.
 fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
     let mut pos = 8;
-    let mut info: Option<ImageInfo> = None;
+    let mut header: Option<&[u8]> = None;
     let mut has_trns = false;
-    let mut colour_decided = false;
-    let mut chromaticities_seen = false;
+    let mut transfer: Option<Transfer> = None;
+    let mut custom_primaries: Option<bool> = None;
+    let mut non_square_pixels = false;
     loop {
         let length = be32(b, pos)? as usize;
         let kind = b.get(pos + 4..pos + 8).ok_or(HeaderError::UnexpectedEnd)?;
+        let required = match kind {
+            b"IHDR" => Some(13),
+            b"cHRM" => Some(32),
+            b"sRGB" => Some(1),
+            b"pHYs" => Some(9),
+            b"gAMA" => Some(4),
+            _ => None,
+        };
+        if required.is_some_and(|r| r != length) {
+            return Err(HeaderError::Invalid("wrong PNG chunk length".into()));
+        }
+        match kind {
+            b"IDAT" => break,
+            b"tRNS" => has_trns = true,
+            b"iCCP" => (transfer, custom_primaries) = (Some(Transfer::Custom), Some(true)),
+            _ => {}
+        }
         let data_start = pos + 8;
-        let data = b
-            .get(data_start..data_start.saturating_add(length))
+        let data = (b.get(data_start..data_start.saturating_add(length)))
             .ok_or(HeaderError::UnexpectedEnd)?;
         match kind {
-            b"IHDR" if info.is_none() => info = Some(png_header(data)?),
-            b"IHDR" => return Err(HeaderError::Invalid("invalid IHDR chunk".into())),
-            _ if info.is_none() => {
-                return Err(HeaderError::Invalid("first PNG chunk is not IHDR".into()))
+            b"IHDR" => header = Some(data),
+            b"sRGB" => (transfer, custom_primaries) = (Some(Transfer::Srgb), Some(false)),
+            b"cHRM" if custom_primaries.is_none() => {
+                let values: Vec<u32> = (0..8)
+                    .map(|i| be32(data, i * 4))
+                    .collect::<Result<_, _>>()?;
+                custom_primaries = Some(values != SRGB_CHROMATICITIES);
             }
-            b"tRNS" => has_trns = true,
-            // sRGB and iCCP decide both primaries and transfer; the last one seen wins, and
-            // either makes later cHRM / gAMA chunks irrelevant.
-            b"sRGB" => set_colour(&mut info, Transfer::Srgb, false, &mut colour_decided),
-            b"iCCP" => set_colour(&mut info, Transfer::Custom, true, &mut colour_decided),
-            b"cHRM" if length == 32 && !colour_decided && !chromaticities_seen => {
-                chromaticities_seen = true;
-                let values: Result<Vec<u32>, _> = (0..8).map(|i| be32(data, i * 4)).collect();
-                if let Some(i) = info.as_mut() {
-                    i.custom_primaries = values? != SRGB_CHROMATICITIES;
-                }
-            }
-            b"pHYs" if length == 9 => {
-                let (x, y) = (be32(data, 0)?, be32(data, 4)?);
-                if let Some(i) = info.as_mut() {
-                    i.non_square_pixels = x != y;
-                }
-            }
-            b"acTL" => {
-                if let Some(i) = info.as_mut() {
-                    i.animated = true;
-                }
-            }
-            b"gAMA" if length == 4 => {
-                let transfer = match be32(data, 0)? {
+            b"gAMA" if transfer.is_none() => {
+                transfer = Some(match be32(data, 0)? {
                     45455 => Transfer::Srgb,
                     100000 => Transfer::Linear,
                     _ => Transfer::Custom,
-                };
-                if info.as_ref().is_some_and(|i| i.transfer.is_none()) {
-                    set_transfer(&mut info, transfer);
-                }
+                });
             }
-            b"IDAT" | b"IEND" => break,
+            b"pHYs" => non_square_pixels = be32(data, 0)? != be32(data, 4)?,
             _ => {}
         }
         pos = data_start + length + 4;
     }
-    let mut info = info.ok_or(HeaderError::UnexpectedEnd)?;
-    if has_trns {
-        info.channels = match info.channels {
-            Channels::Luminance => Channels::LuminanceAlpha,
-            Channels::Rgb => Channels::Rgba,
-            other => other,
-        };
-    }
+    let header = header.ok_or_else(|| HeaderError::Invalid("PNG header not found".into()))?;
+    let channels = match (header[9], has_trns) {
+        (0, false) => Channels::Luminance,
+        (0, true) | (4, _) => Channels::LuminanceAlpha,
+        (2 | 3, false) => Channels::Rgb,
+        (2 | 3, true) | (6, _) => Channels::Rgba,
+        _ => Channels::Unknown,
+    };
+    let (width, height) = (be32(header, 0)?, be32(header, 4)?);
+    let mut info = ImageInfo::plain(ImageFormat::Png, width, height, channels, header[8]);
+    info.transfer = transfer;
+    info.custom_primaries = custom_primaries.unwrap_or(false);
+    info.non_square_pixels = non_square_pixels;
     Ok(info)
 }
 
-/// A PNG's IHDR chunk: its size, channels and bit depth.
-fn png_header(data: &[u8]) -> Result<ImageInfo, HeaderError> {
-    if data.len() != 13 {
-        return Err(HeaderError::Invalid("invalid IHDR chunk".into()));
-    }
-    let channels = match data[9] {
-        0 => Channels::Luminance,
-        2 | 3 => Channels::Rgb,
-        4 => Channels::LuminanceAlpha,
-        6 => Channels::Rgba,
-        other => {
-            return Err(HeaderError::Invalid(format!(
-                "invalid PNG colour type {other}"
-            )))
-        }
-    };
-    let (width, height) = (be32(data, 0)?, be32(data, 4)?);
-    Ok(ImageInfo::plain(
-        ImageFormat::Png,
-        width,
-        height,
-        channels,
-        data[8],
-    ))
-}
-
-fn set_colour(info: &mut Option<ImageInfo>, transfer: Transfer, custom: bool, decided: &mut bool) {
-    *decided = true;
-    if let Some(i) = info.as_mut() {
-        i.transfer = Some(transfer);
-        i.custom_primaries = custom;
-    }
-}
-
-fn set_transfer(info: &mut Option<ImageInfo>, transfer: Transfer) {
-    if let Some(i) = info.as_mut() {
-        i.transfer = Some(transfer);
-    }
-}
-
+/// A JPEG's frame header, read as the Khronos validator reads it: after the first 0xFF,
+/// each byte where a marker may stand is one (fill bytes and markers without a segment are
+/// passed over), each segment skipped by its length, until a start-of-frame segment
+/// (C0–CF but C4, C8 and CC, or DE), whose component count must be 1 or 3.
 fn jpeg(b: &[u8]) -> Result<ImageInfo, HeaderError> {
-    let mut pos = 2;
+    if b.first() != Some(&0xFF) {
+        return Err(HeaderError::Invalid("invalid start of JPEG file".into()));
+    }
+    let has_segment = |m: u8| !matches!(m, 0x01 | 0xD0..=0xD9 | 0xFF);
+    let is_frame = |m: u8| (m & 0xF0 == 0xC0 && !matches!(m, 0xC4 | 0xC8 | 0xCC)) || m == 0xDE;
+    let mut pos = 1;
     loop {
-        while b.get(pos) == Some(&0xFF) && b.get(pos + 1) == Some(&0xFF) {
-            pos += 1;
-        }
-        let marker = *b.get(pos + 1).ok_or(HeaderError::UnexpectedEnd)?;
-        if *b.get(pos).ok_or(HeaderError::UnexpectedEnd)? != 0xFF {
-            return Err(HeaderError::Invalid("invalid JPEG marker".into()));
-        }
-        if matches!(marker, 0xD0..=0xD9 | 0x01) {
-            pos += 2;
+        let marker = *b.get(pos).ok_or(HeaderError::UnexpectedEnd)?;
+        pos += 1;
+        if !has_segment(marker) {
             continue;
         }
-        let len_bytes = b.get(pos + 2..pos + 4).ok_or(HeaderError::UnexpectedEnd)?;
-        let length = u16::from_be_bytes([len_bytes[0], len_bytes[1]]) as usize;
-        let is_sof = matches!(marker, 0xC0..=0xCF) && !matches!(marker, 0xC4 | 0xC8 | 0xCC);
-        if is_sof {
-            let s = b.get(pos + 4..pos + 10).ok_or(HeaderError::UnexpectedEnd)?;
-            let channels = match s[5] {
-                1 => Channels::Luminance,
-                3 => Channels::Rgb,
-                _ => Channels::Unknown,
+        let length = usize::from(u16::from_be_bytes([
+            *b.get(pos).ok_or(HeaderError::UnexpectedEnd)?,
+            *b.get(pos + 1).ok_or(HeaderError::UnexpectedEnd)?,
+        ]));
+        if length < 2 {
+            return Err(HeaderError::Invalid(
+                "invalid JPEG marker segment length".into(),
+            ));
+        }
+        let segment = pos + 2..pos + length;
+        if is_frame(marker) {
+            let s = b.get(segment).ok_or(HeaderError::UnexpectedEnd)?;
+            let channels = match s.get(5) {
+                Some(3) => Channels::Rgb,
+                Some(1) => Channels::Luminance,
+                _ => {
+                    return Err(HeaderError::Invalid(
+                        "invalid number of JPEG colour channels".into(),
+                    ))
+                }
             };
             return Ok(ImageInfo::plain(
                 ImageFormat::Jpeg,
-                u16::from_be_bytes([s[3], s[4]]) as u32,
-                u16::from_be_bytes([s[1], s[2]]) as u32,
+                u32::from(u16::from_be_bytes([s[3], s[4]])),
+                u32::from(u16::from_be_bytes([s[1], s[2]])),
                 channels,
                 s[0],
             ));
         }
-        if marker == 0xDA {
-            return Err(HeaderError::Invalid(
-                "no SOF marker before scan data".into(),
-            ));
-        }
-        pos += 2 + length;
+        pos = segment.end;
     }
 }
 
@@ -387,9 +355,11 @@ fn webp(b: &[u8]) -> Result<ImageInfo, HeaderError> {
                 flags & 0x20 != 0,
             )
         }
-        // The validator reads the longest chunk header (VP8X's, 30 bytes) before it calls
-        // a chunk unknown.
-        _ if b.len() < 30 => return Err(HeaderError::UnexpectedEnd),
+        // The validator reads 30 bytes (VP8 and VP8X need them; 25 where the chunk's fourth
+        // letter is VP8L's) before it calls a chunk unknown.
+        _ if b.len() < 25 || (b.len() < 30 && b[15] != b'L') => {
+            return Err(HeaderError::UnexpectedEnd)
+        }
         _ => return Err(HeaderError::Invalid("unknown WebP chunk".into())),
     };
     let channels = if alpha { Channels::Rgba } else { Channels::Rgb };
@@ -507,6 +477,7 @@ mod tests {
         for (k, d) in extra {
             chunk(k, d);
         }
+        chunk(b"IDAT", &[]);
         chunk(b"IEND", &[]);
         out
     }
@@ -523,6 +494,52 @@ mod tests {
             read(&png_bytes(0, &[(b"tRNS", &[0, 0])])).unwrap().channels,
             Channels::LuminanceAlpha
         );
+    }
+
+    #[test]
+    fn a_png_is_read_up_to_its_first_idat_as_the_validator_reads_it() {
+        let bytes = png_bytes(2, &[]);
+        let idat = bytes.windows(4).position(|w| w == b"IDAT").unwrap();
+        assert!(
+            read(&bytes[..idat + 4]).is_ok(),
+            "nothing after IDAT's type is read"
+        );
+        assert_eq!(read(&bytes[..idat + 3]), Err(HeaderError::UnexpectedEnd));
+        let invalid = |extra: &[(&[u8; 4], &[u8])]| {
+            matches!(read(&png_bytes(2, extra)), Err(HeaderError::Invalid(_)))
+        };
+        assert!(
+            invalid(&[(b"sRGB", &[0, 0])]),
+            "a colour chunk of a wrong length"
+        );
+        assert!(invalid(&[(b"cHRM", &[0; 8])]));
+        assert!(!invalid(&[(b"acTL", &[0; 8])]));
+        assert!(!read(&png_bytes(2, &[(b"acTL", &[0; 8])])).unwrap().animated);
+        assert_eq!(
+            read(&png_bytes(7, &[])).unwrap().channels,
+            Channels::Unknown
+        );
+    }
+
+    #[test]
+    fn a_jpeg_is_read_marker_after_segment_to_its_frame_header() {
+        let frame = |marker: u8, components: u8| {
+            let mut b = vec![0xFF, 0xD8, 0xFF, 0xE0, 0, 4, 1, 2];
+            // The byte after a segment is taken as a marker, with or without 0xFF before it.
+            b.extend([marker, 0, 8, 8, 0, 2, 0, 3, components]);
+            b
+        };
+        let info = read(&frame(0xC0, 3)).unwrap();
+        assert_eq!(
+            (info.width, info.height, info.channels),
+            (3, 2, Channels::Rgb)
+        );
+        assert!(read(&frame(0xDE, 1)).is_ok(), "DHP carries a frame header");
+        assert!(matches!(
+            read(&frame(0xC2, 2)),
+            Err(HeaderError::Invalid(_))
+        ));
+        assert_eq!(read(&frame(0xC4, 3)), Err(HeaderError::UnexpectedEnd));
     }
 
     #[test]

@@ -702,10 +702,11 @@ fn check_image_header(
     source: &ImageSource,
     enabled: EnabledFormats,
 ) -> Option<ImageInfo> {
-    let header = image_header::read(bytes).and_then(|info| {
-        let known = info.format != ImageFormat::Ktx2 || ctx.options.profile.recognises_ktx2();
-        known.then_some(info).ok_or(HeaderError::Unrecognized)
-    });
+    let known = |format| format != ImageFormat::Ktx2 || ctx.options.profile.recognises_ktx2();
+    let header = match image_header::codec_of(bytes).is_some_and(known) {
+        true => image_header::read(bytes),
+        false => Err(HeaderError::Unrecognized),
+    };
     let info = match header {
         Ok(info) => info,
         Err(HeaderError::Unrecognized) => {
