@@ -6,20 +6,24 @@ and `gltfmat check --profile khronos` on every mutant, and prints how many repor
 and the differences by kind, each with one example. Not a test: a way to find where the
 Khronos profile departs from the validator on input nobody wrote by hand.
 
-    python3 scripts/differential.py SEEDS_FOLDER [COUNT] [SEED] [target/release/gltfmat] [--edges]
+    python3 scripts/differential.py SEEDS_FOLDER [COUNT] [SEED] [target/release/gltfmat] [--edges | --images]
 
 SEEDS_FOLDER is copied to a scratch folder (mutants sit beside their seed, so relative URIs
 still resolve); e.g. ../shared/conformance/khronos-glTF-Validator. With --edges the mutations
 go where hand-written edge cases and strangers' uploads probe: URIs of every form, data-URI
 media types and padding, NaN and infinities in buffer data, animation samplers of 0-2 keys,
-strides and offsets, sparse blocks, unknown members and extras on any object.
+strides and offsets, sparse blocks, unknown members and extras on any object. With --images
+the seeds are the folder's images (PNG, JPEG, WebP, KTX2) and each mutant is one of them cut
+short or with bytes of its header changed, embedded in a buffer view: what a truncated
+download or a broken exporter makes, read by each tool's image header reader.
 """
 import base64, collections, json, math, os, random, shutil, struct, subprocess, sys, tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 NODE_MODULES = os.path.join(HERE, 'bench', 'node_modules')
 EDGES = '--edges' in sys.argv
-ARGS = [a for a in sys.argv if a != '--edges']
+IMAGES = '--images' in sys.argv
+ARGS = [a for a in sys.argv if a not in ('--edges', '--images')]
 SEEDS = ARGS[1]
 COUNT = int(ARGS[2]) if len(ARGS) > 2 else 300
 RNG = random.Random(int(ARGS[3]) if len(ARGS) > 3 else 1)
@@ -165,35 +169,94 @@ def mutate_edges(document, seed_dir):
     return document
 
 
+IMAGE_TYPES = {'.png': 'image/png', '.jpg': 'image/jpeg', '.jpeg': 'image/jpeg', '.webp': 'image/webp',
+               '.ktx2': 'image/ktx2'}
+IMAGE_EXTENSIONS = {'image/webp': 'EXT_texture_webp', 'image/ktx2': 'KHR_texture_basisu'}
+
+
+def mutate_image(data):
+    """The image cut short, a few of its first bytes changed, or a run of them replaced or removed."""
+    data = bytearray(data)
+    head = max(1, min(len(data), 120))
+    kind = RNG.random()
+    if kind < 0.4:
+        return bytes(data[:RNG.randrange(0, min(len(data), 400))])
+    if kind < 0.8:
+        for _ in range(RNG.randrange(1, 4)):
+            data[RNG.randrange(0, min(head, 80))] = RNG.randrange(256)
+        return bytes(data)
+    at, n = RNG.randrange(0, head), RNG.randrange(1, 8)
+    data[at:at + n] = bytes(RNG.randrange(256) for _ in range(n)) if RNG.random() < 0.5 else b''
+    return bytes(data)
+
+
+def image_document(data, media):
+    """A glTF whose one image is `data` in a buffer view, its format's extension declared."""
+    document = {'asset': {'version': '2.0'},
+                'buffers': [{'byteLength': len(data), 'uri': data_uri(data, 'application/octet-stream', 'keep')}],
+                'bufferViews': [{'buffer': 0, 'byteLength': len(data)}],
+                'images': [{'bufferView': 0, 'mimeType': media}]}
+    if not data:
+        document = {'asset': {'version': '2.0'}, 'images': [{'uri': f'data:{media};base64,'}]}
+    if media in IMAGE_EXTENSIONS:
+        document['extensionsUsed'] = [IMAGE_EXTENSIONS[media]]
+    return document
+
+
+def make_mutant(seed, i):
+    """Mutant `i` of `seed` (a glTF, or an image with --images) beside it, or None."""
+    path = os.path.join(os.path.dirname(seed), f'mutant-{i}.gltf')
+    if IMAGES:
+        media = IMAGE_TYPES[os.path.splitext(seed)[1].lower()]
+        mutant = image_document(mutate_image(open(seed, 'rb').read()), media)
+    else:
+        try:
+            document = json.load(open(seed))
+        except (ValueError, UnicodeDecodeError):
+            return None
+        if not isinstance(document, dict) or str(document.get('asset', {}).get('version')) != '2.0':
+            return None
+        try:
+            mutant = mutate_edges(document, os.path.dirname(seed)) if EDGES else mutate(document)
+        except (RecursionError, ValueError):
+            # A seed nested deeper than Python recurses (the corpus has some), or a mutation
+            # that put a value inside itself: not written.
+            return None
+    try:
+        text = json.dumps(mutant)
+    except (RecursionError, ValueError):
+        return None
+    with open(path, 'w') as f:
+        f.write(text)
+    return path
+
+
+def validator_reports(mutants):
+    """The validator's findings of each mutant. Its image readers crash the whole process on
+    some broken images, so with --images each mutant gets a process of its own."""
+    batches = [[m] for m in mutants] if IMAGES else [mutants]
+    reports = {}
+    for batch in batches:
+        run = subprocess.run(['node', '-e', KHRONOS], input=json.dumps(batch), capture_output=True, text=True,
+                             env={**os.environ, 'NODE_PATH': NODE_MODULES})
+        try:
+            reports.update(json.loads(run.stdout))
+        except ValueError:
+            pass
+    return reports
+
+
 def main():
     if not os.path.isdir(os.path.join(NODE_MODULES, 'gltf-validator')):
         subprocess.run(['npm', 'install', '--prefix', os.path.join(HERE, 'bench'), '--no-save', '--silent',
                         'gltf-validator', 'gltf-pipeline'], check=True, stdout=subprocess.DEVNULL)
     work = tempfile.mkdtemp(prefix='gltfmat-differential-')
     shutil.copytree(SEEDS, work, dirs_exist_ok=True)
-    seeds = sorted(os.path.join(d, f) for d, _, names in os.walk(work) for f in names if f.endswith('.gltf'))
-    mutants = []
-    for i in range(COUNT):
-        seed = RNG.choice(seeds)
-        try:
-            document = json.load(open(seed))
-        except (ValueError, UnicodeDecodeError):
-            continue
-        if not isinstance(document, dict) or str(document.get('asset', {}).get('version')) != '2.0':
-            continue
-        path = os.path.join(os.path.dirname(seed), f'mutant-{i}.gltf')
-        try:
-            mutant = mutate_edges(document, os.path.dirname(seed)) if EDGES else mutate(document)
-            text = json.dumps(mutant)
-        except (RecursionError, ValueError):
-            # A seed nested deeper than Python recurses (the corpus has some), or a mutation
-            # that put a value inside itself: not written.
-            continue
-        with open(path, 'w') as f:
-            f.write(text)
-        mutants.append(path)
-    khronos = json.loads(subprocess.run(['node', '-e', KHRONOS], input=json.dumps(mutants), capture_output=True,
-                                        text=True, env={**os.environ, 'NODE_PATH': NODE_MODULES}).stdout)
+    wanted = tuple(IMAGE_TYPES) if IMAGES else ('.gltf',)
+    seeds = sorted(os.path.join(d, f) for d, _, names in os.walk(work) for f in names
+                   if f.lower().endswith(wanted) and not f.startswith('mutant-'))
+    mutants = [m for m in (make_mutant(RNG.choice(seeds), i) for i in range(COUNT)) if m]
+    khronos = validator_reports(mutants)
     kinds, examples, equal, unchecked = collections.Counter(), {}, 0, 0
     for path in mutants:
         run = subprocess.run([EXE, 'check', path, '--profile', 'khronos', '--format', 'json', '--max-issues', '0'],
