@@ -3747,3 +3747,26 @@ fn a_png_is_read_chunk_by_chunk_up_to_its_first_idat() {
         assert_eq!(image_codes(bytes), codes, "{name}");
     }
 }
+
+#[test]
+fn a_matrix_stride_is_measured_against_the_end_of_its_last_column() {
+    // MAT2 of bytes ends at 6 (columns at 0 and 4), MAT3 of bytes at 11, of shorts at 22.
+    let found = |stride: u32| {
+        let data = [0u8; 64];
+        khronos_findings(json!({"asset": {"version": "2.0"},
+            "buffers": [{"byteLength": 64, "uri": common::data_uri("application/octet-stream", &data)}],
+            "bufferViews": [{"buffer": 0, "byteLength": 64, "byteStride": stride}],
+            "accessors": [{"type": "MAT2", "componentType": 5120, "count": 2, "bufferView": 0},
+                {"type": "MAT3", "componentType": 5120, "count": 2, "bufferView": 0},
+                {"type": "MAT3", "componentType": 5122, "count": 2, "bufferView": 0}]}))
+        .into_iter()
+        .filter(|(code, _)| code == "ACCESSOR_SMALL_BYTESTRIDE")
+        .map(|(_, pointer)| pointer)
+        .collect::<Vec<_>>()
+    };
+    assert_eq!(found(5), ["/accessors/0", "/accessors/1", "/accessors/2"]);
+    assert_eq!(found(6), ["/accessors/1", "/accessors/2"]);
+    assert_eq!(found(8), ["/accessors/1", "/accessors/2"]);
+    assert_eq!(found(12), ["/accessors/2"]);
+    assert!(found(22).is_empty());
+}

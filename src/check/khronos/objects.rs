@@ -318,11 +318,13 @@ fn check_accessor_fits(ctx: &mut Context, accessor: Node, view: usize, pointer: 
     };
     let view_object = ctx.items("bufferViews").at(view);
     let declared_stride = unsigned(view_object, "byteStride");
-    if declared_stride.is_some_and(|s| s < element) {
+    // An element's data ends after its last column (the padding after it is never read): a
+    // stride that reaches that far holds it, as the validator measures.
+    if declared_stride.is_some_and(|s| s < last) {
         ctx.emit(
             khronos::ACCESSOR_SMALL_BYTESTRIDE,
             pointer,
-            format!("Referenced bufferView's byteStride value {} is less than accessor element's length {element}.", declared_stride.unwrap_or_default()),
+            format!("Referenced bufferView's byteStride value {} is less than accessor element's length {last}.", declared_stride.unwrap_or_default()),
         );
     }
     let stride = declared_stride.unwrap_or(element);
