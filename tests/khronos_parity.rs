@@ -3770,3 +3770,26 @@ fn a_matrix_stride_is_measured_against_the_end_of_its_last_column() {
     assert_eq!(found(12), ["/accessors/2"]);
     assert!(found(22).is_empty());
 }
+
+#[test]
+fn a_byte_offset_beside_no_buffer_view_index_is_not_read() {
+    // The validator reads no byteOffset where the bufferView is no index: it reports the
+    // dependency alone, whatever the byteOffset holds.
+    for view in [json!(null), json!("x"), json!(-1)] {
+        let mut accessor =
+            json!({"byteOffset": [1, {"a": 2}], "type": "VEC3", "componentType": 5126, "count": 4});
+        if !view.is_null() {
+            accessor["bufferView"] = view.clone();
+        }
+        let found: Vec<(String, String)> = khronos_findings(json!({"asset": {"version": "2.0"},
+            "accessors": [accessor]}))
+        .into_iter()
+        .filter(|(_, pointer)| pointer == "/accessors/0/byteOffset")
+        .collect();
+        assert_eq!(
+            found,
+            expected(&[("UNSATISFIED_DEPENDENCY", "/accessors/0/byteOffset")]),
+            "{view}"
+        );
+    }
+}

@@ -303,6 +303,7 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::
         return Default::default();
     }
     khronos::take_unread_bounds(tree, sink);
+    khronos::take_unread_offsets(tree, sink);
     khronos::take_unread_projections(tree, sink);
     let root = tree.root();
     let mut undeclared = khronos::undeclared_extensions(root, &declared_extensions(root));

@@ -31,7 +31,7 @@ pub(crate) use extensions::{
 pub(crate) use link_path::LinkPath;
 pub(crate) use materials::extensions_as_written;
 pub(crate) use objects::{
-    check_asset, has_supported_version, read_before_asset, take_unread_bounds,
+    check_asset, has_supported_version, read_before_asset, take_unread_bounds, take_unread_offsets,
     take_unread_projections, take_unread_sparse,
 };
 pub(crate) use primitives::mode_of;

@@ -166,6 +166,30 @@ pub(crate) fn take_unread_bounds(tree: &mut Tree, sink: &mut dyn Sink) {
     }
 }
 
+/// Takes out of the tree each accessor's `byteOffset` whose `bufferView` is no index (absent,
+/// mistyped or negative): the Khronos validator then reads no byteOffset and reports only that
+/// it needs a bufferView (reported here, as the only finding about it).
+pub(crate) fn take_unread_offsets(tree: &mut Tree, sink: &mut dyn Sink) {
+    let mut unread = Vec::new();
+    let accessors = tree.root().get("accessors").and_then(Node::as_array);
+    for (i, accessor) in accessors.into_iter().flatten().enumerate() {
+        let view = accessor.get("bufferView").and_then(as_index);
+        if accessor.get("byteOffset").is_none() || view.is_some() {
+            continue;
+        }
+        let pointer = format!("/accessors/{i}/byteOffset");
+        sink.push(Diagnostic::at(
+            khronos::UNSATISFIED_DEPENDENCY,
+            pointer.clone(),
+            "Dependency failed. 'bufferView' must be defined.",
+        ));
+        unread.push(pointer);
+    }
+    for pointer in unread {
+        tree.remove(&pointer);
+    }
+}
+
 /// Takes out of the tree the camera projections the Khronos validator does not read: it
 /// reads only the one `type` names (and reports a camera holding both, reported here as the
 /// only finding about the other one).
