@@ -272,14 +272,11 @@ fn png(b: &[u8]) -> Result<ImageInfo, HeaderError> {
     Ok(info)
 }
 
-/// A JPEG's frame header, read as the Khronos validator reads it: after the first 0xFF,
-/// each byte where a marker may stand is one (fill bytes and markers without a segment are
+/// A JPEG's frame header, read as the Khronos validator reads it: after the first 0xFF (which
+/// [`codec_of`] has seen), each byte where a marker may stand is one (fill bytes and markers without a segment are
 /// passed over), each segment skipped by its length, until a start-of-frame segment
 /// (C0–CF but C4, C8 and CC, or DE), whose component count must be 1 or 3.
 fn jpeg(b: &[u8]) -> Result<ImageInfo, HeaderError> {
-    if b.first() != Some(&0xFF) {
-        return Err(HeaderError::Invalid("invalid start of JPEG file".into()));
-    }
     let has_segment = |m: u8| !matches!(m, 0x01 | 0xD0..=0xD9 | 0xFF);
     let is_frame = |m: u8| (m & 0xF0 == 0xC0 && !matches!(m, 0xC4 | 0xC8 | 0xCC)) || m == 0xDE;
     let mut pos = 1;
