@@ -279,13 +279,8 @@ fn holds(
 
 /// What an accessor's own members must agree on, whatever its bufferView.
 fn check_accessor_format(ctx: &mut Context, accessor: Node, pointer: &str) {
-    if accessor.get("bufferView").is_none() && accessor.get("byteOffset").is_some() {
-        ctx.emit(
-            khronos::UNSATISFIED_DEPENDENCY,
-            member(pointer, "byteOffset"),
-            "Dependency failed. 'bufferView' must be defined.",
-        );
-    }
+    // A byteOffset without a bufferView index was reported and taken out before the passes
+    // (see `take_unread_offsets`).
     let component_type = unsigned(accessor, "componentType");
     let normalized = accessor.get("normalized").and_then(Node::as_bool) == Some(true);
     if normalized && matches!(component_type, Some(gl::FLOAT | gl::UNSIGNED_INT)) {
