@@ -371,7 +371,25 @@ struct Memo {
     /// Each entry's key words and then its samples' bits, side by side: a lookup that finds
     /// its key has its samples in the same cache lines.
     entries: Vec<u64>,
+    /// Lookups and hits since the hit rate was last looked at.
+    lookups: u32,
+    hits: u32,
+    /// Centres left before the memo is consulted again (see [`Memo::consulted`]), and the
+    /// length of the last rest.
+    resting: u32,
+    rest: u32,
 }
+
+/// Lookups between two looks at a [`Memo`]'s hit rate.
+const MEMO_WINDOW: u32 = 1 << 12;
+/// A window that hits fewer than one lookup in this many rests the memo: a lookup that
+/// misses (a cache miss into a large table, and the entry put) costs about what sampling a
+/// point saves, so texels that rarely repeat (a photograph's) are sampled without it.
+const MEMO_MISS_RATIO: u32 = 4;
+/// The longest rest, in centres: each window of few hits in a row doubles the rest from
+/// one window's length, so a memo still filling with a texture's first values is looked
+/// at again soon, and one that never pays costs a window in seventeen.
+const MEMO_REST: u32 = 1 << 16;
 
 impl Memo {
     fn new() -> Memo {
@@ -379,6 +397,35 @@ impl Memo {
             table: hashbrown::HashTable::new(),
             width: 0,
             entries: Vec::new(),
+            lookups: 0,
+            hits: 0,
+            resting: 0,
+            rest: 0,
+        }
+    }
+
+    /// Whether the next centre is looked up (and, if not found, remembered): not while the
+    /// memo rests after a window of few hits. Either way a centre's samples are the same
+    /// (a repeat's are exactly its first's): only the time differs.
+    fn consulted(&mut self) -> bool {
+        if self.resting > 0 {
+            self.resting -= 1;
+            return false;
+        }
+        true
+    }
+
+    /// Counts a lookup; after a window of few hits the memo rests.
+    fn count(&mut self, hit: bool) {
+        self.lookups += 1;
+        self.hits += u32::from(hit);
+        if self.lookups == MEMO_WINDOW {
+            self.rest = match self.hits * MEMO_MISS_RATIO < MEMO_WINDOW {
+                true => (self.rest * 2).clamp(MEMO_WINDOW, MEMO_REST),
+                false => 0,
+            };
+            self.resting = self.rest;
+            (self.lookups, self.hits) = (0, 0);
         }
     }
 
@@ -483,7 +530,9 @@ impl Batch {
         key.clear();
         a.centre_texels(x, y, &mut |w| key.push(w));
         key.extend_from_slice(key_b);
-        self.memo.get(key)
+        let found = self.memo.get(key);
+        self.memo.count(found.is_some());
+        found
     }
 
     /// Shades a pair of inputs in the next slot of `row`: both sides' colours in every
@@ -598,6 +647,20 @@ pub(crate) fn compare_readings(
     if readings.is_empty() {
         return Vec::new();
     }
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u32;
+    compare_on_threads(shader, readings, b, grid, map, threads)
+}
+
+/// [`compare_readings`] with the grid's rows shared among `threads`: the figures are the
+/// same for any number (see `refine::Candidates`).
+fn compare_on_threads(
+    shader: &Shader,
+    readings: &[MaterialSource],
+    b: &MaterialSource,
+    grid: u32,
+    map: TexelMap,
+    threads: u32,
+) -> Vec<Comparison> {
     let grid = chosen_grid(readings, b, grid);
     let job = Job {
         shader,
@@ -607,8 +670,7 @@ pub(crate) fn compare_readings(
         directions: Directions::new(),
         map,
     };
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u32;
-    let rows_per_thread = grid.div_ceil(threads);
+    let rows_per_thread = grid.div_ceil(threads.max(1));
     let by_thread: Vec<Vec<Partial>> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
@@ -744,9 +806,11 @@ impl<'j, 'a> Pass<'j, 'a> {
             Points::Centres => length,
             Points::Corners => length - grid as usize,
         });
+        let corner = points == Points::Corners;
         let place = |x: u32| Place {
             uv: uv_of(x),
-            texel: (points == Points::Corners).then_some(row_start + x as usize),
+            texel: corner.then_some(row_start + x as usize),
+            order: (u64::from(y) * 2 + u64::from(corner)) * u64::from(grid) + u64::from(x),
         };
         let mut row_of: Vec<Row> = readings.iter().map(|_| Row::default()).collect();
         // Whether the corner before was a blend: a corner that reads the texels its left
@@ -876,18 +940,24 @@ impl<'j, 'a> Pass<'j, 'a> {
         let mut target = None;
         if centre {
             self.here.push(true);
-            self.key_b.clear();
-            if self.as_stored {
-                let key_b = &mut self.key_b;
-                b.centre_texels(x, y, &mut |w| key_b.push(w));
-            }
         }
         let keyed = centre && self.as_stored;
+        // The other material's texels, read for the first reading whose memo is consulted.
+        let mut key_b_read = false;
         let each = (readings.iter())
             .zip(row_of.iter_mut())
             .zip(&mut self.batches);
         for (r, (((a, row), batch), partial)) in each.zip(&mut self.partials).enumerate() {
-            if let Some(known) = keyed.then(|| batch.known(a, x, y, &self.key_b)).flatten() {
+            let consulted = keyed && batch.memo.consulted();
+            if consulted && !key_b_read {
+                self.key_b.clear();
+                let key_b = &mut self.key_b;
+                b.centre_texels(x, y, &mut |w| key_b.push(w));
+                key_b_read = true;
+            }
+            batch.key.clear();
+            let known = consulted.then(|| batch.known(a, x, y, &self.key_b));
+            if let Some(known) = known.flatten() {
                 // Known texels: no input is read but what a corner needs.
                 self.here[x as usize] = false;
                 self.centres.keep_with(r, || a.inputs_at(&[uv]).bent());
@@ -1072,11 +1142,13 @@ fn reads_as_left(
     b.reads_as_left(x, y, corner) && readings.iter().all(|a| a.reads_as_left(x, y, corner))
 }
 
-/// Where a point lies: its texture coordinates, and the texel of the map it raises (a
-/// corner) or `None` (a centre, which adds its texel).
+/// Where a point lies: its texture coordinates, the texel of the map it raises (a corner)
+/// or `None` (a centre, which adds its texel), and its place in one pass over the grid (row
+/// by row, each row's centres then its corners).
 struct Place {
     uv: [f64; 2],
     texel: Option<usize>,
+    order: u64,
 }
 
 /// Where a point's ΔE samples come from.
@@ -1286,7 +1358,7 @@ impl Partial {
                 background: BACKGROUNDS[0],
             };
         }
-        self.candidates.offer(point_max, at.uv, pair);
+        self.candidates.offer(point_max, at.uv, at.order, pair);
     }
 }
 
@@ -1498,6 +1570,66 @@ mod tests {
     }
 
     #[test]
+    fn the_figures_are_the_same_however_many_threads_share_the_grid() {
+        // Five colours and normals scattered without a pattern, against the same with
+        // another roughness: each texel's ΔE repeats in every thread's rows, with other
+        // neighbours each time, each thread knows its own repeats by their texels, and the
+        // normals bend, so that what lies between the centres is searched.
+        let png = |texel: fn(usize) -> [u8; 3]| {
+            let image = image::RgbImage::from_fn(64, 64, |x, y| {
+                image::Rgb(texel(
+                    ((x * 7919 + y * 104_729) ^ (x * y * 31)) as usize % 5,
+                ))
+            });
+            let mut png = Vec::new();
+            image::DynamicImage::ImageRgb8(image)
+                .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+                .unwrap();
+            Some(Ok(png))
+        };
+        let colours = png(|i| {
+            [
+                [200, 40, 40],
+                [40, 200, 40],
+                [40, 40, 200],
+                [128; 3],
+                [10; 3],
+            ][i]
+        });
+        let normals = png(|i| {
+            [
+                [128, 128, 255],
+                [200, 128, 200],
+                [60, 180, 220],
+                [128, 60, 230],
+                [160, 160, 210],
+            ][i]
+        });
+        let textures = crate::shade::sample::decode_all(&[colours, normals]).unwrap();
+        let material = |roughness| {
+            MaterialSource::gltf2(
+                &json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                    "metallicFactor": 0.0, "roughnessFactor": roughness},
+                    "normalTexture": {"index": 1}}),
+                &textures,
+            )
+        };
+        let (a, b) = (material(0.3), material(0.45));
+        let on = |threads| {
+            let readings = std::slice::from_ref(&a);
+            let mut each =
+                compare_on_threads(&shader(), readings, &b, 64, TexelMap::Dropped, threads);
+            let c = each.pop().unwrap();
+            (c.max, c.worst.uv, c.worst.directions, c.p99, c.samples)
+        };
+        let one = on(1);
+        assert!(one.0 > 1.0, "the roughness change shows: {one:?}");
+        for threads in [2, 3, 5, 8] {
+            assert_eq!(on(threads), one, "{threads} threads");
+        }
+    }
+
+    #[test]
     fn flat_regions_read_from_stored_texels_keep_equal_and_differing_points_apart() {
         // Every third row of the second texture differs: rows of equal inputs, rows that
         // differ, and corners between them, each run read once.
@@ -1673,6 +1805,41 @@ mod tests {
         assert_eq!(memo.get(&[99_999; 60]), Some(samples(99_999)));
         assert_eq!(memo.get(&[12; 60]), None, "started again when full");
         assert_eq!(memo.get(&[99_999; 59]), None, "another width");
+    }
+
+    /// Centres consulted in turn, each looked up; returns how many were consulted.
+    fn consult(memo: &mut Memo, centres: u32, hit: bool) -> u32 {
+        let mut consulted = 0;
+        for _ in 0..centres {
+            if memo.consulted() {
+                memo.count(hit);
+                consulted += 1;
+            }
+        }
+        consulted
+    }
+
+    #[test]
+    fn a_memo_whose_lookups_rarely_hit_rests_longer_each_time_up_to_its_longest() {
+        let mut memo = Memo::new();
+        assert_eq!(
+            consult(&mut memo, MEMO_WINDOW, true),
+            MEMO_WINDOW,
+            "hits: no rest"
+        );
+        // Misses: a window, then a rest as long as a window, then twice as long, ...
+        let mut rest = MEMO_WINDOW;
+        assert_eq!(consult(&mut memo, MEMO_WINDOW + rest, false), MEMO_WINDOW);
+        while rest < MEMO_REST {
+            rest *= 2;
+            assert_eq!(consult(&mut memo, MEMO_WINDOW + rest, false), MEMO_WINDOW);
+        }
+        assert_eq!(
+            consult(&mut memo, MEMO_WINDOW + MEMO_REST, false),
+            MEMO_WINDOW
+        );
+        // A window of hits ends the rests.
+        assert_eq!(consult(&mut memo, 2 * MEMO_WINDOW, true), 2 * MEMO_WINDOW);
     }
 
     /// A spec-gloss material (its base colour, diffuse times a function of specular, bends its texels)

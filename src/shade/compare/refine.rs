@@ -36,11 +36,18 @@ const SHARPEST_POINTS: usize = 2;
 struct Candidate {
     delta_e: f64,
     uv: [f64; 2],
+    /// The point's place in the grid's one pass (see [`Candidates`]).
+    order: u64,
     sharpness: f64,
     pair: Box<Pair>,
 }
 
-/// The points worth a dense search, gathered as the grid is compared.
+/// The points worth a dense search, gathered as the grid is compared: the distinct pairs
+/// of inputs whose fixed directions found the largest ΔE, and those with the sharpest
+/// lobes, each pair at the first point (in the order one pass over the grid meets them)
+/// that has it, ties going to the earlier point. Neither depends on how the grid's rows
+/// are shared among threads, nor on which points a thread knew by their texels: a repeat
+/// of a listed pair adds nothing, and lists made apart merge into the list one pass makes.
 #[derive(Clone, Default)]
 pub(super) struct Candidates {
     worst: Vec<Candidate>,
@@ -57,50 +64,67 @@ fn lobe_roughness(m: &Inputs) -> f64 {
     m.roughness.min(coat)
 }
 
-/// Inserts `candidate` into `list` ordered by `key` (smallest first), keeping `keep`.
+/// Whether rank `a` comes before rank `b`: (a key, smallest first; the order).
+fn ranks_before(a: (f64, u64), b: (f64, u64)) -> bool {
+    (a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))).is_lt()
+}
+
+/// Inserts `candidate` into `list` ranked by `key` then order, keeping `keep`; a pair
+/// already listed keeps its earlier point.
 fn keep_best(
     list: &mut Vec<Candidate>,
     candidate: Candidate,
     keep: usize,
     key: fn(&Candidate) -> f64,
 ) {
-    let at = list.partition_point(|c| key(c) <= key(&candidate));
+    if let Some(i) = list.iter().position(|c| c.pair == candidate.pair) {
+        if list[i].order <= candidate.order {
+            return;
+        }
+        list.remove(i);
+    }
+    let rank = |c: &Candidate| (key(c), c.order);
+    let at = list.partition_point(|c| ranks_before(rank(c), rank(&candidate)));
     if at < keep {
         list.insert(at, candidate);
         list.truncate(keep);
     }
 }
 
+fn by_delta_e(c: &Candidate) -> f64 {
+    -c.delta_e
+}
+
+fn by_sharpness(c: &Candidate) -> f64 {
+    c.sharpness
+}
+
 impl Candidates {
-    /// Offers a point whose fixed directions found `delta_e` at most.
-    pub(super) fn offer(&mut self, delta_e: f64, uv: [f64; 2], pair: &Pair) {
+    /// Offers the point `order` (at `uv`) whose fixed directions found `delta_e` at most.
+    pub(super) fn offer(&mut self, delta_e: f64, uv: [f64; 2], order: u64, pair: &Pair) {
         let sharpness = lobe_roughness(&pair.0).min(lobe_roughness(&pair.1));
-        let better_than =
-            |list: &Vec<Candidate>, keep: usize, wins: &dyn Fn(&Candidate) -> bool| {
-                list.len() < keep || list.last().is_some_and(wins)
-            };
-        let wanted_worst = better_than(&self.worst, WORST_POINTS, &|c| delta_e > c.delta_e);
-        let wanted_sharp = better_than(&self.sharpest, SHARPEST_POINTS, &|c| {
-            sharpness < c.sharpness
-        });
+        // Ranked against each list's last before the pair is copied: most points are not.
+        let wanted = |list: &Vec<Candidate>, keep: usize, key: fn(&Candidate) -> f64, own| {
+            list.len() < keep
+                || (list.last()).is_some_and(|c| ranks_before((own, order), (key(c), c.order)))
+        };
+        let wanted_worst = wanted(&self.worst, WORST_POINTS, by_delta_e, -delta_e);
+        let wanted_sharp = wanted(&self.sharpest, SHARPEST_POINTS, by_sharpness, sharpness);
         if !(wanted_worst || wanted_sharp) {
             return;
         }
         let candidate = Candidate {
             delta_e,
             uv,
+            order,
             sharpness,
             pair: Box::new(pair.clone()),
         };
         if wanted_worst {
-            keep_best(&mut self.worst, candidate.clone(), WORST_POINTS, |c| {
-                -c.delta_e
-            });
+            keep_best(&mut self.worst, candidate.clone(), WORST_POINTS, by_delta_e);
         }
         if wanted_sharp {
-            keep_best(&mut self.sharpest, candidate, SHARPEST_POINTS, |c| {
-                c.sharpness
-            });
+            keep_best(&mut self.sharpest, candidate, SHARPEST_POINTS, by_sharpness);
         }
     }
 
@@ -112,7 +136,7 @@ impl Candidates {
     /// Takes in another part's candidates.
     pub(super) fn absorb(&mut self, other: &Candidates) {
         for c in other.worst.iter().chain(&other.sharpest) {
-            self.offer(c.delta_e, c.uv, &c.pair);
+            self.offer(c.delta_e, c.uv, c.order, &c.pair);
         }
     }
 }
@@ -248,8 +272,8 @@ fn nearby_worst(
                 best = Candidate {
                     delta_e,
                     uv,
-                    sharpness: candidate.sharpness,
                     pair: Box::new(pair),
+                    ..*candidate
                 };
             }
         }
@@ -420,4 +444,59 @@ pub(crate) fn dominant_input(
         }
     }
     best.map(|(name, _)| name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Points of three pairs (ΔE 3, 2 and 1, the first pair twice), in one pass's order.
+    fn points() -> Vec<(f64, u64, Pair)> {
+        let pair = |roughness: f64| {
+            let inputs = Inputs {
+                roughness,
+                ..Inputs::default()
+            };
+            (inputs.clone(), inputs)
+        };
+        vec![
+            (3.0, 0, pair(0.5)),
+            (2.0, 1, pair(0.4)),
+            (3.0, 2, pair(0.5)),
+            (1.0, 3, pair(0.3)),
+        ]
+    }
+
+    /// Each list's points, by their order.
+    fn listed(c: &Candidates) -> [Vec<u64>; 2] {
+        [&c.worst, &c.sharpest].map(|list| list.iter().map(|c| c.order).collect())
+    }
+
+    fn offered(points: &[(f64, u64, Pair)]) -> Candidates {
+        let mut c = Candidates::default();
+        for (delta_e, order, pair) in points {
+            c.offer(*delta_e, [0.0; 2], *order, pair);
+        }
+        c
+    }
+
+    #[test]
+    fn a_repeat_of_a_listed_pair_adds_nothing() {
+        let [worst, sharpest] = listed(&offered(&points()));
+        assert_eq!(worst, [0, 1, 3], "the repeat at 2 is the pair listed at 0");
+        assert_eq!(sharpest, [3, 1]);
+    }
+
+    #[test]
+    fn lists_made_apart_merge_into_the_list_one_pass_makes_in_any_order() {
+        let all = points();
+        let whole = offered(&all);
+        for split in 0..=all.len() {
+            let (first, second) = (offered(&all[..split]), offered(&all[split..]));
+            for (mut into, from) in [(first.clone(), &second), (second.clone(), &first)] {
+                into.absorb(from);
+                assert_eq!(listed(&into), listed(&whole), "split at {split}");
+            }
+        }
+    }
 }
