@@ -61,6 +61,8 @@ pub const DIRECTIONS: [(f64, f64, f64); DIRECTION_COUNT] = [
 const BINS: usize = 100_000;
 /// Bins per unit of ΔE: a multiplication per sample where a width of 0.001 would divide.
 const BINS_PER_UNIT: f64 = 1000.0;
+/// The mean's resolution: samples are summed as whole steps of 2⁻³² ΔE (each at most 10⁶).
+const SUM_STEPS_PER_UNIT: f64 = (1u64 << 32) as f64;
 
 /// A view and a light direction, each as (θ from the normal, φ from the tangent), degrees.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -609,7 +611,9 @@ struct Job<'a> {
 struct Partial {
     /// `None` when the map is [`TexelMap::Dropped`].
     per_texel: Option<Vec<f32>>,
-    sum: f64,
+    /// The samples' sum in steps of 1 / [`SUM_STEPS_PER_UNIT`]: integers add up to the same total
+    /// however the grid's rows are shared among threads, floating-point numbers do not.
+    sum: u128,
     count: u64,
     blended: u64,
     worst: Worst,
@@ -1278,7 +1282,7 @@ impl Partial {
     fn new(texels: usize, map: TexelMap) -> Partial {
         Partial {
             per_texel: (map == TexelMap::Kept).then(|| Vec::with_capacity(texels)),
-            sum: 0.0,
+            sum: 0,
             count: 0,
             blended: 0,
             worst: Worst {
@@ -1330,7 +1334,7 @@ impl Partial {
             if delta > point_max {
                 (point_max, arg) = (delta, k);
             }
-            self.sum += delta.min(1e6);
+            self.sum += (delta.min(1e6) * SUM_STEPS_PER_UNIT) as u128;
             self.count += 1;
             let bin = ((delta * BINS_PER_UNIT) as usize).min(BINS - 1);
             self.histogram[bin] += 1;
@@ -1372,7 +1376,7 @@ fn merge<'p>(
 ) -> Comparison {
     let mut histogram = vec![0u64; BINS];
     let mut per_texel = Vec::new();
-    let (mut sum, mut count, mut blended) = (0.0, 0u64, 0u64);
+    let (mut sum, mut count, mut blended) = (0u128, 0u64, 0u64);
     // The first worst sample seen (in row order) wins ties, so a comparison with ΔE 0
     // everywhere names a real point.
     let mut worst: Option<Worst> = None;
@@ -1420,7 +1424,7 @@ fn merge<'p>(
     Comparison {
         max: worst.delta_e,
         p99: p99.min(worst.delta_e),
-        mean: sum / count.max(1) as f64,
+        mean: sum as f64 / SUM_STEPS_PER_UNIT / count.max(1) as f64,
         worst,
         dominant,
         grid,
@@ -1620,7 +1624,14 @@ mod tests {
             let mut each =
                 compare_on_threads(&shader(), readings, &b, 64, TexelMap::Dropped, threads);
             let c = each.pop().unwrap();
-            (c.max, c.worst.uv, c.worst.directions, c.p99, c.samples)
+            (
+                c.max,
+                c.worst.uv,
+                c.worst.directions,
+                c.p99,
+                c.mean,
+                c.samples,
+            )
         };
         let one = on(1);
         assert!(one.0 > 1.0, "the roughness change shows: {one:?}");
@@ -1712,7 +1723,8 @@ mod tests {
             let [portable] = &compare_rows_inline(&job, 0..3)[..] else {
                 panic!("one reading, one partial");
             };
-            assert!(portable.sum > 1.0, "the materials differ: {}", portable.sum);
+            let one = SUM_STEPS_PER_UNIT as u128;
+            assert!(portable.sum > one, "the materials differ: {}", portable.sum);
             let vector: Vec<Partial> = (Vectors::ALL.into_iter())
                 .filter_map(|vectors| {
                     compiled_for(
@@ -1724,7 +1736,7 @@ mod tests {
                 .flatten()
                 .collect();
             for v in &vector {
-                assert_eq!(portable.sum.to_bits(), v.sum.to_bits());
+                assert_eq!(portable.sum, v.sum);
                 assert_eq!(portable.per_texel, v.per_texel);
                 assert_eq!(portable.histogram, v.histogram);
                 assert_eq!(portable.worst, v.worst);
