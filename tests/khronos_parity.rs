@@ -2971,6 +2971,49 @@ fn an_animation_pointer_target_without_a_path_string_has_the_wrong_path() {
     );
 }
 
+/// A pointer target must not name a node: the validator says so of a node the target
+/// resolves to; an index that resolves to nothing is reported unresolved, and only that.
+#[test]
+fn an_animation_pointer_target_naming_a_node_is_reported_only_where_the_node_exists() {
+    let naming = |node: u64| {
+        khronos_findings(json!({
+            "asset": {"version": "2.0"}, "extensionsUsed": ["KHR_animation_pointer"],
+            "buffers": [{"byteLength": 16, "uri": "data:application/octet-stream;base64,AAAAAAAAgD8AAAAAAACAPw=="}],
+            "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 8}, {"buffer": 0, "byteOffset": 8, "byteLength": 8}],
+            "accessors": [
+                {"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+                {"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR"}],
+            "materials": [{}], "nodes": [{}],
+            "animations": [{"samplers": [{"input": 0, "output": 1}], "channels": [{"sampler": 0,
+                "target": {"node": node, "path": "pointer",
+                    "extensions": {"KHR_animation_pointer": {"pointer": "/materials/0/alphaCutoff"}}}}]}]
+        }))
+    };
+    let at = "/animations/0/channels/0/target/extensions/KHR_animation_pointer";
+    assert_eq!(
+        naming(0),
+        expected(&[
+            ("INCOMPLETE_EXTENSION_SUPPORT", at),
+            ("KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_NODE", at),
+            ("NODE_EMPTY", "/nodes/0"),
+            ("UNUSED_OBJECT", "/materials/0"),
+        ])
+    );
+    assert_eq!(
+        naming(3),
+        expected(&[
+            ("INCOMPLETE_EXTENSION_SUPPORT", at),
+            ("NODE_EMPTY", "/nodes/0"),
+            (
+                "UNRESOLVED_REFERENCE",
+                "/animations/0/channels/0/target/node"
+            ),
+            ("UNUSED_OBJECT", "/materials/0"),
+            ("UNUSED_OBJECT", "/nodes/0"),
+        ])
+    );
+}
+
 /// After a channel without a sampler index, the validator's node checks that end its linking
 /// (empty nodes, loops, skinned meshes off the root, with local transforms or in a scene
 /// without their joints) are named by the path it did not unwind.

@@ -57,8 +57,8 @@ pub(crate) fn linked(animation: Node) -> Option<(Array, Array)> {
 }
 
 /// The target path `pointer` exists only with KHR_animation_pointer, which then owns the
-/// target: no node (asked, as the validator asks, only of an animation it links: see
-/// [`linked`]), and that path.
+/// target: no node (asked, as the validator asks, only of an animation it links, see
+/// [`linked`], and of a node the target resolves to), and that path.
 fn animation_pointer(ctx: &mut Context, channel: Node, at: &str, declared: bool, links: bool) {
     let Some(target) = channel.get("target") else {
         return;
@@ -86,7 +86,10 @@ fn animation_pointer(ctx: &mut Context, channel: Node, at: &str, declared: bool,
         here.clone(),
         "Validation support for this extension is incomplete; the asset may have undetected issues.",
     );
-    if links && target.get("node").is_some() {
+    // Asked of the node the target links to: an index that resolves to nothing is
+    // reported unresolved, and not again here.
+    let node = target.get("node").and_then(Node::as_u64);
+    if links && node.is_some_and(|n| ctx.element("nodes", n).is_some()) {
         ctx.emit(
             khronos::KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_NODE,
             here.clone(),
