@@ -2971,6 +2971,35 @@ fn an_animation_pointer_target_without_a_path_string_has_the_wrong_path() {
     );
 }
 
+/// A colour's NaN is an invalid float, and no value outside 0..1 (no comparison holds for it);
+/// infinities and values past 1 are both.
+#[test]
+fn a_nan_colour_is_an_invalid_float_and_not_unclamped() {
+    // inf, 1e38, 1 | NaN, 0, 0.5 | -0.5, 1, 0
+    let colours = "AACAf5l2ln4AAIA/AADAfwAAAAAAAAA/AAAAvwAAgD8AAAAA";
+    let findings = khronos_findings(json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 36, "uri": format!("data:application/octet-stream;base64,{colours}")}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36, "target": 34962}],
+        "accessors": [
+            {"type": "VEC3", "componentType": 5126, "count": 3, "min": [-1, -1, -1], "max": [1, 1, 1]},
+            {"type": "VEC3", "componentType": 5126, "count": 3, "bufferView": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "COLOR_0": 1}}]}]
+    }));
+    let colour = "/meshes/0/primitives/0/attributes/COLOR_0";
+    assert_eq!(
+        findings,
+        expected(&[
+            ("ACCESSOR_INVALID_FLOAT", "/accessors/1"),
+            ("ACCESSOR_INVALID_FLOAT", "/accessors/1"),
+            ("ACCESSOR_NON_CLAMPED", colour),
+            ("ACCESSOR_NON_CLAMPED", colour),
+            ("ACCESSOR_NON_CLAMPED", colour),
+            ("UNUSED_OBJECT", "/meshes/0"),
+        ])
+    );
+}
+
 /// A pointer target must not name a node: the validator says so of a node the target
 /// resolves to; an index that resolves to nothing is reported unresolved, and only that.
 #[test]

@@ -49,10 +49,8 @@ fn packed_layout(accessor: Node) -> Option<Layout> {
 }
 
 fn show(component_type: u64, v: f64) -> String {
-    if v.is_infinite() {
-        (if v > 0.0 { "Infinity" } else { "-Infinity" }).to_string()
-    } else if component_type == gl::FLOAT {
-        format!("{v:?}")
+    if component_type == gl::FLOAT || !v.is_finite() {
+        super::Dart(v).to_string()
     } else {
         format!("{v}")
     }

@@ -6,6 +6,7 @@
 //! the same single walk over the accessor's elements that computes min/max.
 
 use super::primitives::Format;
+use super::Dart;
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::{khronos, Code};
 use crate::document::Array;
@@ -179,13 +180,15 @@ impl Checker {
             }
             Kind::Clamped => {
                 for (at, v) in values.iter().enumerate() {
-                    if !(0.0..=1.0).contains(v) {
+                    // NaN is no number outside the range (it is an invalid float).
+                    if *v < 0.0 || *v > 1.0 {
                         self.report(
                             out,
                             khronos::ACCESSOR_NON_CLAMPED,
                             format!(
-                                "Accessor element at index {} is not clamped to 0..1 range: {v:?}.",
-                                first + at
+                                "Accessor element at index {} is not clamped to 0..1 range: {}.",
+                                first + at,
+                                Dart(*v)
                             ),
                         );
                     }
@@ -226,7 +229,7 @@ impl Checker {
     fn sign(&self, at: usize, element: &[f64], unit: fn(f64) -> f64, out: &mut Findings) {
         let w = element.get(3).map_or(1.0, |w| unit(*w));
         if w != 1.0 && w != -1.0 {
-            self.report(out, khronos::ACCESSOR_INVALID_SIGN, format!("Vector3 with sign at accessor indices {at}..{} has invalid w component: {w:?}. Must be 1.0 or -1.0.", at + 3));
+            self.report(out, khronos::ACCESSOR_INVALID_SIGN, format!("Vector3 with sign at accessor indices {at}..{} has invalid w component: {}. Must be 1.0 or -1.0.", at + 3, Dart(w)));
         }
     }
 
@@ -244,7 +247,7 @@ impl Checker {
         self.slot = (self.slot + 1) % 3;
         let length = element.iter().map(|v| unit(*v).powi(2)).sum::<f64>().sqrt();
         if is_value && (length - 1.0).abs() > UNIT_TOLERANCE_VEC4 {
-            self.report(out, khronos::ACCESSOR_ANIMATION_SAMPLER_OUTPUT_NON_NORMALIZED_QUATERNION, format!("Animation sampler output accessor element at indices {at}..{} is not of unit length: {length:?}.", at + 3));
+            self.report(out, khronos::ACCESSOR_ANIMATION_SAMPLER_OUTPUT_NON_NORMALIZED_QUATERNION, format!("Animation sampler output accessor element at indices {at}..{} is not of unit length: {}.", at + 3, Dart(length)));
         }
     }
 
@@ -253,7 +256,7 @@ impl Checker {
             let expected = if c == 15 { 1.0 } else { 0.0 };
             let v = element.get(c).copied().unwrap_or(expected);
             if v != expected {
-                self.report(out, khronos::ACCESSOR_INVALID_IBM, format!("Matrix element at index {} (component index {c}) contains invalid value: {v:?}.", at + c));
+                self.report(out, khronos::ACCESSOR_INVALID_IBM, format!("Matrix element at index {} (component index {c}) contains invalid value: {}.", at + c, Dart(v)));
             }
         }
     }
@@ -275,8 +278,9 @@ impl Checker {
                 out,
                 khronos::ACCESSOR_VECTOR3_NON_UNIT,
                 format!(
-                    "Vector3 at accessor indices {first}..{} is not of unit length: {length:?}.",
-                    first + 2
+                    "Vector3 at accessor indices {first}..{} is not of unit length: {}.",
+                    first + 2,
+                    Dart(length)
                 ),
             );
         }
@@ -331,13 +335,14 @@ impl Checker {
                 out,
                 khronos::ACCESSOR_ANIMATION_INPUT_NEGATIVE,
                 format!(
-                    "Animation input accessor element at index {index} is negative: {value:?}."
+                    "Animation input accessor element at index {index} is negative: {}.",
+                    Dart(value)
                 ),
             );
             return;
         }
         if index != 0 && value <= self.last {
-            self.report(out, khronos::ACCESSOR_ANIMATION_INPUT_NON_INCREASING, format!("Animation input accessor element at index {index} is less than or equal to previous: {value:?} <= {:?}.", self.last));
+            self.report(out, khronos::ACCESSOR_ANIMATION_INPUT_NON_INCREASING, format!("Animation input accessor element at index {index} is less than or equal to previous: {} <= {}.", Dart(value), Dart(self.last)));
         }
         self.last = value;
     }

@@ -4,6 +4,7 @@
 use super::accessor_data::{scannable, unit_scale};
 use super::accessor_usage::Findings;
 use super::resources::ViewData;
+use super::Dart;
 use crate::check::context::{elements, unsigned, Context};
 use crate::diagnostic::khronos;
 use crate::document::{Array, Node};
@@ -311,7 +312,7 @@ fn walk(
                     out.record(khronos::ACCESSOR_JOINTS_INDEX_DUPLICATE, || joints_at(n), || format!("Joints accessor element at index {index} (component index {c}) has value {joint} that is already in use for the vertex."));
                 }
                 if weight < 0.0 {
-                    out.record(khronos::ACCESSOR_WEIGHTS_NEGATIVE, || weights_at(n), || format!("Weights accessor element at index {index} (component index {c}) has negative value {weight:?}."));
+                    out.record(khronos::ACCESSOR_WEIGHTS_NEGATIVE, || weights_at(n), || format!("Weights accessor element at index {index} (component index {c}) has negative value {}.", Dart(weight)));
                 } else if unique {
                     sum = (f64::from(sum) + weight) as f32;
                     allowance += 2e-7;
@@ -321,7 +322,7 @@ fn walk(
         if (f64::from(sum) - 1.0).abs() > allowance {
             let first = vertex * 4;
             for n in 0..decoded.len() {
-                out.record(khronos::ACCESSOR_WEIGHTS_NON_NORMALIZED, || weights_at(n), || format!("Weights accessor elements (at indices {first}..{}) have non-normalized sum: {:?}.", first + 3, f64::from(sum)));
+                out.record(khronos::ACCESSOR_WEIGHTS_NON_NORMALIZED, || weights_at(n), || format!("Weights accessor elements (at indices {first}..{}) have non-normalized sum: {}.", first + 3, Dart(f64::from(sum))));
             }
         }
     }

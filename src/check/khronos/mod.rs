@@ -37,6 +37,33 @@ pub(crate) use objects::{
 pub(crate) use primitives::mode_of;
 pub(crate) use resources::images_with_extensions;
 
+/// A double as the validator's messages print it (Dart's `double.toString`): the shortest
+/// digits that read back to it, in decimal from 10⁻⁶ up to 10²¹ with at least one digit
+/// after the point, otherwise as an exponent with its sign (`1e+21`, `1e-7`).
+pub(crate) struct Dart(pub f64);
+
+impl std::fmt::Display for Dart {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        let v = self.0;
+        if v.is_nan() {
+            return f.write_str("NaN");
+        }
+        if v.is_infinite() {
+            return f.write_str(if v > 0.0 { "Infinity" } else { "-Infinity" });
+        }
+        if v == 0.0 || (1e-6..1e21).contains(&v.abs()) {
+            let decimal = v.to_string();
+            let point = if decimal.contains('.') { "" } else { ".0" };
+            return write!(f, "{decimal}{point}");
+        }
+        let exponential = format!("{v:e}");
+        match exponential.split_once('e') {
+            Some((digits, power)) if !power.starts_with('-') => write!(f, "{digits}e+{power}"),
+            _ => f.write_str(&exponential),
+        }
+    }
+}
+
 /// One pass over the document, recording findings and what later passes need in the context.
 pub(crate) type Pass = fn(&mut Context);
 
@@ -69,3 +96,28 @@ pub(crate) const PASSES: &[(&str, Pass)] = &[
     ),
     ("unused objects", unused::check),
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::Dart;
+
+    #[test]
+    fn doubles_read_as_the_validator_prints_them() {
+        let cases = [
+            (2.0, "2.0"),
+            (-0.5, "-0.5"),
+            (0.0, "0.0"),
+            (-0.0, "-0.0"),
+            (1e-6, "0.000001"),
+            (1.0000000116860974e-7, "1.0000000116860974e-7"),
+            (10000000272564224.0, "10000000272564224.0"),
+            (1e21, "1e+21"),
+            (9.999999680285692e37, "9.999999680285692e+37"),
+            (f64::NAN, "NaN"),
+            (f64::NEG_INFINITY, "-Infinity"),
+        ];
+        for (v, text) in cases {
+            assert_eq!(Dart(v).to_string(), text);
+        }
+    }
+}
