@@ -968,16 +968,8 @@ impl<'j, 'a> Pass<'j, 'a> {
                 row.take_known(x, known);
                 continue;
             }
-            // A corner's inputs the screen read (a centre's never are).
-            let mut screened = |side| {
-                (!centre)
-                    .then(|| self.centres.corner_inputs(side))
-                    .flatten()
-            };
-            let target = &*target.get_or_insert_with(|| {
-                screened(readings.len()).unwrap_or_else(|| b.inputs_at(&[uv]))
-            });
-            let source = screened(r).unwrap_or_else(|| a.inputs_at(&[uv]));
+            let target = &*target.get_or_insert_with(|| b.inputs_at(&[uv]));
+            let source = a.inputs_at(&[uv]);
             if centre {
                 self.centres.keep(r, &source);
             }
@@ -1039,9 +1031,6 @@ struct Centres<'a> {
     above: Option<Vec<Vec<Bent>>>,
     here: Vec<Vec<Bent>>,
     started: bool,
-    /// Each bending side's inputs at the corner the screen last read, which sampling that
-    /// corner then takes rather than reading them again.
-    corner: Vec<Option<Inputs>>,
 }
 
 impl<'a> Centres<'a> {
@@ -1072,9 +1061,7 @@ impl<'a> Centres<'a> {
             (0..grid).map(at).collect()
         };
         let here = bending.iter().map(|_| Vec::new()).collect();
-        let corner = bending.iter().map(|_| None).collect();
         Centres {
-            corner,
             active,
             above: (first > 0).then(|| bending.iter().map(row_above).collect()),
             bending,
@@ -1118,7 +1105,7 @@ impl<'a> Centres<'a> {
     /// (`as_left`, asked only where a side bends: otherwise the screen reads nothing).
     #[inline(always)]
     fn skips(
-        &mut self,
+        &self,
         x: u32,
         uv: [f64; 2],
         left_blended: bool,
@@ -1134,24 +1121,15 @@ impl<'a> Centres<'a> {
     /// the four centres around it on every side. Corners on the grid's first row and column
     /// read texels across the texture's edge, as its wrap mode says: they are sampled.
     #[inline(always)]
-    fn blend_at(&mut self, x: u32, uv: [f64; 2]) -> bool {
-        self.corner.fill(None);
+    fn blend_at(&self, x: u32, uv: [f64; 2]) -> bool {
         let Some(above) = self.above.as_ref().filter(|_| self.active && x >= 1) else {
             return false;
         };
         let x = x as usize;
-        let sides = self.bending.iter().zip(above).zip(&self.here);
-        (sides.zip(&mut self.corner)).all(|(((side, above), here), corner)| {
+        (self.bending.iter().zip(above).zip(&self.here)).all(|((side, above), here)| {
             let four = [&above[x - 1], &above[x], &here[x - 1], &here[x]];
-            let inputs = corner.insert(side.inputs_at(&[uv]));
-            is_mean_of(&inputs.bent(), four, BLEND_TOLERANCE)
+            is_mean_of(&side.inputs_at(&[uv]).bent(), four, BLEND_TOLERANCE)
         })
-    }
-
-    /// Side `side`'s inputs at the corner at hand, if the screen read them.
-    fn corner_inputs(&mut self, side: usize) -> Option<Inputs> {
-        let k = (*self.slot.get(side)?)?;
-        self.corner.get_mut(k)?.take()
     }
 }
 
