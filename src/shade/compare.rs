@@ -1334,7 +1334,9 @@ impl Partial {
             if delta > point_max {
                 (point_max, arg) = (delta, k);
             }
-            self.sum += (delta.min(1e6) * SUM_STEPS_PER_UNIT) as u128;
+            // At most 10⁶ · 2³² < 2⁶³: one conversion instruction, where a float to a
+            // 128-bit integer is a library call per sample.
+            self.sum += ((delta.min(1e6) * SUM_STEPS_PER_UNIT) as i64) as u128;
             self.count += 1;
             let bin = ((delta * BINS_PER_UNIT) as usize).min(BINS - 1);
             self.histogram[bin] += 1;
