@@ -389,9 +389,12 @@ const MEMO_WINDOW: u32 = 1 << 12;
 /// point saves, so texels that rarely repeat (a photograph's) are sampled without it.
 const MEMO_MISS_RATIO: u32 = 4;
 /// The longest rest, in centres: each window of few hits in a row doubles the rest from
-/// one window's length, so a memo still filling with a texture's first values is looked
-/// at again soon, and one that never pays costs a window in seventeen.
+/// one window's length, and one that never pays costs a window in seventeen.
 const MEMO_REST: u32 = 1 << 16;
+/// Entries a memo holds before its hit rate is judged: one still filling with a texture's
+/// first values (each thread's first rows) misses most lookups however much the texture
+/// repeats later.
+const MEMO_WARM: usize = 8 * MEMO_WINDOW as usize;
 
 impl Memo {
     fn new() -> Memo {
@@ -422,7 +425,8 @@ impl Memo {
         self.lookups += 1;
         self.hits += u32::from(hit);
         if self.lookups == MEMO_WINDOW {
-            self.rest = match self.hits * MEMO_MISS_RATIO < MEMO_WINDOW {
+            let cold = self.table.len() < MEMO_WARM;
+            self.rest = match !cold && self.hits * MEMO_MISS_RATIO < MEMO_WINDOW {
                 true => (self.rest * 2).clamp(MEMO_WINDOW, MEMO_REST),
                 false => 0,
             };
@@ -1836,6 +1840,11 @@ mod tests {
     #[test]
     fn a_memo_whose_lookups_rarely_hit_rests_longer_each_time_up_to_its_longest() {
         let mut memo = Memo::new();
+        let cold = consult(&mut memo, 2 * MEMO_WINDOW, false);
+        assert_eq!(cold, 2 * MEMO_WINDOW, "filling: no rest");
+        for key in 0..MEMO_WARM as u64 {
+            memo.put(&[key], [0.0; DIRECTION_COUNT]);
+        }
         assert_eq!(
             consult(&mut memo, MEMO_WINDOW, true),
             MEMO_WINDOW,
