@@ -2932,6 +2932,25 @@ fn an_empty_list_is_none_and_a_list_of_names_keeps_its_repeats() {
     );
 }
 
+/// The findings of a material animated through KHR_animation_pointer by one channel with
+/// `target`, the document's root taking `more`'s members too.
+fn pointer_animated(target: Value, more: Value) -> Vec<(String, String)> {
+    let mut document = json!({
+        "asset": {"version": "2.0"}, "extensionsUsed": ["KHR_animation_pointer"],
+        "buffers": [{"byteLength": 16, "uri": "data:application/octet-stream;base64,AAAAAAAAgD8AAAAAAACAPw=="}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 8}, {"buffer": 0, "byteOffset": 8, "byteLength": 8}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+            {"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR"}],
+        "materials": [{}],
+        "animations": [{"samplers": [{"input": 0, "output": 1}], "channels": [{"sampler": 0, "target": target}]}]
+    });
+    for (key, value) in more.as_object().into_iter().flatten() {
+        document[key] = value.clone();
+    }
+    khronos_findings(document)
+}
+
 /// A channel whose target KHR_animation_pointer owns must name the path `pointer`: one that
 /// names none, or names it by something other than a string, does not either.
 #[test]
@@ -2941,16 +2960,7 @@ fn an_animation_pointer_target_without_a_path_string_has_the_wrong_path() {
         if let Some(path) = path {
             target["path"] = path;
         }
-        khronos_findings(json!({
-            "asset": {"version": "2.0"}, "extensionsUsed": ["KHR_animation_pointer"],
-            "buffers": [{"byteLength": 16, "uri": "data:application/octet-stream;base64,AAAAAAAAgD8AAAAAAACAPw=="}],
-            "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 8}, {"buffer": 0, "byteOffset": 8, "byteLength": 8}],
-            "accessors": [
-                {"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
-                {"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR"}],
-            "materials": [{}],
-            "animations": [{"samplers": [{"input": 0, "output": 1}], "channels": [{"sampler": 0, "target": target}]}]
-        }))
+        pointer_animated(target, json!({}))
     };
     let at = "/animations/0/channels/0/target/extensions/KHR_animation_pointer";
     let common = [
@@ -3005,18 +3015,9 @@ fn a_nan_colour_is_an_invalid_float_and_not_unclamped() {
 #[test]
 fn an_animation_pointer_target_naming_a_node_is_reported_only_where_the_node_exists() {
     let naming = |node: u64| {
-        khronos_findings(json!({
-            "asset": {"version": "2.0"}, "extensionsUsed": ["KHR_animation_pointer"],
-            "buffers": [{"byteLength": 16, "uri": "data:application/octet-stream;base64,AAAAAAAAgD8AAAAAAACAPw=="}],
-            "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 8}, {"buffer": 0, "byteOffset": 8, "byteLength": 8}],
-            "accessors": [
-                {"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
-                {"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR"}],
-            "materials": [{}], "nodes": [{}],
-            "animations": [{"samplers": [{"input": 0, "output": 1}], "channels": [{"sampler": 0,
-                "target": {"node": node, "path": "pointer",
-                    "extensions": {"KHR_animation_pointer": {"pointer": "/materials/0/alphaCutoff"}}}}]}]
-        }))
+        let target = json!({"node": node, "path": "pointer",
+            "extensions": {"KHR_animation_pointer": {"pointer": "/materials/0/alphaCutoff"}}});
+        pointer_animated(target, json!({"nodes": [{}]}))
     };
     let at = "/animations/0/channels/0/target/extensions/KHR_animation_pointer";
     assert_eq!(
