@@ -255,6 +255,10 @@ def main():
     wanted = tuple(IMAGE_TYPES) if IMAGES else ('.gltf',)
     seeds = sorted(os.path.join(d, f) for d, _, names in os.walk(work) for f in names
                    if f.lower().endswith(wanted) and not f.startswith('mutant-'))
+    if not seeds:
+        shutil.rmtree(work)
+        what = 'images (' + ', '.join(IMAGE_TYPES) + ')' if IMAGES else '.gltf files'
+        sys.exit(f'differential.py: no {what} to mutate under {SEEDS}')
     mutants = [m for m in (make_mutant(RNG.choice(seeds), i) for i in range(COUNT)) if m]
     khronos = validator_reports(mutants)
     kinds, examples, equal, unchecked = collections.Counter(), {}, 0, 0
