@@ -963,9 +963,15 @@ impl<'j, 'a> Pass<'j, 'a> {
                 b.centre_texels(x, y, &mut |w| key_b.push(w));
                 key_b_read = true;
             }
-            batch.key.clear();
-            let known = consulted.then(|| batch.known(a, x, y, &self.key_b));
-            if let Some(known) = known.flatten() {
+            let known = match consulted {
+                true => batch.known(a, x, y, &self.key_b),
+                // No key: a point sampled while the memo rests is not remembered.
+                false => {
+                    batch.key.clear();
+                    None
+                }
+            };
+            if let Some(known) = known {
                 // Known texels: no input is read but what a corner needs.
                 self.here[x as usize] = false;
                 self.centres.keep_with(r, || a.inputs_at(&[uv]).bent());
