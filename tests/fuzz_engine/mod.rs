@@ -1,7 +1,8 @@
 //! The mutation fuzzer behind `examples/fuzz.rs` (long runs) and `tests/fuzz.rs` (a short
 //! bounded run in `cargo test`). It runs on the stable toolchain.
 //!
-//! Seeds are every file under `fixtures/` (glTF, GLB, 1.0 assets, PNG images). Each iteration
+//! Seeds are every file under `fixtures/` (glTF, GLB, 1.0 assets, PNG images), or under the
+//! folders given. Each iteration
 //! picks a seed, applies a few random mutations (bit flips, byte overwrites with interesting
 //! values, range deletion/duplication, splices from another seed, JSON number swaps), or,
 //! for a glTF text seed, structural ones on its parsed JSON (numeric extremes into any
@@ -12,8 +13,11 @@
 //! converter on the result. Images are also embedded into a glTF as data URIs so the image
 //! decoders are reached. One input in eight is also written to a folder where each file it
 //! names is, at random, a seed's bytes (whole or cut), a FIFO, a folder, a symlink to
-//! `/dev/zero`, to a file outside the folder or to itself, or missing, and is then checked
-//! and upgraded from there: the file-system tricks a stranger's upload can hold.
+//! `/dev/zero`, to a file outside the folder or to itself, or missing, and is then checked,
+//! upgraded, compared with itself (points on its meshes) and drawn from there: the
+//! file-system tricks a stranger's upload can hold, through every reader of the evaluator.
+//! The slowest input of each thread is saved to `target/fuzz-slowest/` with its time in its
+//! name, so that a long run shows what the bounds let through.
 //! A panic is a failure: the input is saved to `target/fuzz-crashes/`
 //! and the process exits 1.
 
@@ -384,7 +388,13 @@ fn exercise_on_disk(rng: &mut Rng, input: &[u8], corpus: &[Vec<u8>], scratch: &P
     let _ = gltfmat::check_path(&path, &CheckOptions::default().with_deep(true));
     let resources = gltfmat::FolderResources::beside(&path);
     let _ = upgrade(&asset, &resources, &UpgradeOptions::default());
-    2
+    // The evaluator's readers: every material with itself (points on its meshes), and drawn.
+    let _ = gltfmat::compare(&path, &path, &gltfmat::CompareOptions::default());
+    let mut drawn = gltfmat::RenderOptions::default();
+    drawn.size = 16;
+    let _ = gltfmat::render(&path, &drawn);
+    let _ = gltfmat::render_each(&path, 16, 4);
+    4
 }
 
 #[cfg(not(unix))]
@@ -393,14 +403,27 @@ fn exercise_on_disk(_: &mut Rng, _: &[u8], _: &[Vec<u8>], _: &Path) -> u64 {
 }
 
 /// Runs `iterations` mutated inputs on `threads` threads, each with its own share of the
-/// iterations and its own seed derived from `seed`; `Ok` is the number of seeds and of
-/// executions of check or upgrade (summed), `Err` names the saved input of a panic.
-pub fn run_parallel(iterations: u64, seed: u64, threads: u64) -> Result<(usize, u64), String> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+/// iterations and its own seed derived from `seed`, the seeds being the files under
+/// `folders` (`fixtures/` when empty); `Ok` is the number of seeds and of executions of
+/// check, upgrade, compare or render (summed), `Err` names the saved input of a panic.
+pub fn run_parallel(
+    iterations: u64,
+    seed: u64,
+    threads: u64,
+    folders: &[PathBuf],
+) -> Result<(usize, u64), String> {
+    let fixtures = [PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures")];
+    let folders = if folders.is_empty() {
+        &fixtures[..]
+    } else {
+        folders
+    };
     let mut corpus = Vec::new();
-    seeds(&root.join("fixtures"), &mut corpus);
+    for folder in folders {
+        seeds(folder, &mut corpus);
+    }
     if corpus.is_empty() {
-        return Err("no seeds under fixtures/".into());
+        return Err(format!("no seeds under {folders:?}"));
     }
     // Panics are caught and reported by input: the default hook's message would only
     // interleave with the progress lines.
@@ -439,6 +462,7 @@ fn run_one(iterations: u64, seed: u64, corpus: &[Vec<u8>]) -> Result<u64, String
     let mut rng = Rng(seed | 1);
     let mut failure = None;
     let mut executions = 0;
+    let mut slowest = (0.0, Vec::new());
     let scratch =
         std::env::temp_dir().join(format!("gltfmat-fuzz-{}-{seed:x}", std::process::id()));
     let _ = std::fs::create_dir_all(&scratch);
@@ -453,6 +477,7 @@ fn run_one(iterations: u64, seed: u64, corpus: &[Vec<u8>]) -> Result<u64, String
             },
         }
         let on_disk = rng.below(8) == 0;
+        let started = std::time::Instant::now();
         let ran = catch_unwind(AssertUnwindSafe(|| {
             exercise(&input);
             match on_disk {
@@ -460,6 +485,10 @@ fn run_one(iterations: u64, seed: u64, corpus: &[Vec<u8>]) -> Result<u64, String
                 false => 4,
             }
         }));
+        let took = started.elapsed().as_secs_f64();
+        if took > slowest.0 {
+            slowest = (took, input.clone());
+        }
         if let Ok(count) = ran {
             executions += count;
             if (i + 1) % 100_000 == 0 {
@@ -481,5 +510,9 @@ fn run_one(iterations: u64, seed: u64, corpus: &[Vec<u8>]) -> Result<u64, String
         }
     }
     let _ = std::fs::remove_dir_all(&scratch);
+    let folder = root.join("target/fuzz-slowest");
+    let _ = std::fs::create_dir_all(&folder);
+    let name = format!("slowest-{seed:x}-{:.2}s.bin", slowest.0);
+    let _ = std::fs::write(folder.join(name), &slowest.1);
     failure.map_or(Ok(executions), Err)
 }
