@@ -701,20 +701,27 @@ fn render_compare_and_lut_never_write_through_a_symlink() {
 }
 
 /// Every writer but `lut` (which reads no asset) is refused a file the asset reads — its
-/// buffer, a texture — with or without --force, and writes nothing else either.
+/// buffer, a texture — with or without --force, and writes nothing else either; so is a file
+/// the asset names that the run has no need to read (a 1.0 asset's buffer, when only its
+/// materials are drawn or compared).
 #[test]
 fn no_page_picture_or_heat_map_replaces_a_file_the_asset_reads_even_with_force() {
     let folder = tempfile::tempdir().unwrap();
     let folder = folder.path();
-    let textured = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/spec-gloss");
+    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures");
     for name in [
-        "textured.gltf",
-        "quad.bin",
-        "diffuse16.png",
-        "specgloss16.png",
-        "normal.png",
+        "spec-gloss/textured.gltf",
+        "spec-gloss/quad.bin",
+        "spec-gloss/diffuse16.png",
+        "spec-gloss/specgloss16.png",
+        "spec-gloss/normal.png",
+        "gltf1/pbr-sg-textured-ext.gltf",
+        "gltf1/box.bin",
+        "gltf1/diffuse.png",
+        "gltf1/spec_gloss.png",
     ] {
-        std::fs::copy(Path::new(textured).join(name), folder.join(name)).unwrap();
+        let file = Path::new(name).file_name().unwrap();
+        std::fs::copy(fixtures.join(name), folder.join(file)).unwrap();
     }
     let before = snapshot(folder);
     for args in [
@@ -738,6 +745,25 @@ fn no_page_picture_or_heat_map_replaces_a_file_the_asset_reads_even_with_force()
             "--force",
         ],
         vec!["report", "textured.gltf", "-o", "quad.bin", "--force"],
+        vec![
+            "render",
+            "pbr-sg-textured-ext.gltf",
+            "--size",
+            "8",
+            "-o",
+            "box.bin",
+            "--force",
+        ],
+        vec![
+            "compare",
+            "pbr-sg-textured-ext.gltf",
+            "pbr-sg-textured-ext.gltf",
+            "--grid",
+            "4",
+            "--report",
+            "box.bin",
+            "--force",
+        ],
         vec![
             "upgrade",
             "textured.gltf",

@@ -172,6 +172,38 @@ pub trait ResourceLoader: Sync {
     fn load_buffer(&self, relative_path: &str) -> Result<Kept, LoadError> {
         self.load(relative_path).map(Kept::Read)
     }
+
+    /// Notes a file the asset names that this run may not read (a buffer when only the
+    /// materials are wanted, a 1.0 shader): it is the asset's all the same, and an output
+    /// must not replace it. A loader that keeps no such list ignores it.
+    fn named(&self, _relative_path: &str) {}
+}
+
+/// Notes every file the asset at `root` names (its buffers', images' and 1.0 shaders' URIs)
+/// with `loader` (see [`ResourceLoader::named`]).
+pub(crate) fn note_named_files(root: super::Node, loader: &dyn ResourceLoader) {
+    let elements = |key| {
+        let member = root.get(key);
+        let listed = member
+            .and_then(super::Node::as_array)
+            .into_iter()
+            .flat_map(|a| a.iter());
+        let keyed = member
+            .and_then(super::Node::as_object)
+            .into_iter()
+            .flat_map(|o| o.values());
+        listed.chain(keyed)
+    };
+    let mut noted = std::collections::HashSet::new();
+    for element in ["buffers", "images", "shaders"]
+        .into_iter()
+        .flat_map(elements)
+    {
+        let uri = element.get("uri").and_then(super::Node::as_str);
+        if let Some(Ok(UriKind::Relative(path))) = uri.filter(|u| noted.insert(*u)).map(classify) {
+            loader.named(&path);
+        }
+    }
 }
 
 /// The bytes a `uri` names: a data URI's own, or a file read through `loader`. Non-relative
@@ -226,6 +258,10 @@ pub fn folder_of(path: &Path) -> PathBuf {
 /// it is swapped in while the asset is being read.
 pub struct FolderResources {
     folder: Result<cap_std::fs::Dir, String>,
+    /// The folder's absolute path as given (its links not followed, as a viewer resolves a
+    /// URI against the asset's address), against which a URI that climbs out of the folder
+    /// and names its way back in is read (see [`inside`]).
+    address: Option<PathBuf>,
     /// Every file read so far, so that a writer can leave them alone.
     read: Mutex<Vec<FileId>>,
     /// What was made of each file still in use, by its identity and whether it was read
@@ -275,12 +311,18 @@ impl FolderResources {
         FolderResources {
             folder: cap_std::fs::Dir::open_ambient_dir(folder, cap_std::ambient_authority())
                 .map_err(|e| format!("{}: {e}", folder.display())),
+            address: std::path::absolute(match folder.as_os_str().is_empty() {
+                true => Path::new("."),
+                false => folder,
+            })
+            .ok(),
             read: Default::default(),
             shared: Default::default(),
         }
     }
 
-    /// The files read so far, by identity.
+    /// The files read so far, and those the asset names that were not read (see
+    /// [`ResourceLoader::named`]), by identity.
     pub fn files_read(&self) -> Vec<FileId> {
         self.read
             .lock()
@@ -288,23 +330,23 @@ impl FolderResources {
             .unwrap_or_default()
     }
 
-    fn open(&self, relative: &str) -> Result<std::fs::File, LoadError> {
-        if leaves_folder(relative) {
-            return Err(LoadError::OutsideFolder(relative.to_string()));
-        }
+    fn open(&self, uri_path: &str) -> Result<std::fs::File, LoadError> {
+        let Some(relative) = inside(uri_path, self.address.as_deref()) else {
+            return Err(LoadError::OutsideFolder(uri_path.to_string()));
+        };
         let folder = self.folder.as_ref().map_err(|e| LoadError::Io(e.clone()))?;
         let mut options = cap_std::fs::OpenOptions::new();
         options.read(true);
         super::file::non_blocking(&mut options);
-        match folder.open_with(relative, &options) {
+        match folder.open_with(&relative, &options) {
             Ok(file) => Ok(file.into_std()),
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                Err(match differing_in_case(folder, relative) {
+                Err(match differing_in_case(folder, &relative) {
                     Some(found) => LoadError::CaseMismatch {
-                        uri: relative.to_string(),
+                        uri: uri_path.to_string(),
                         found,
                     },
-                    None => LoadError::NotFound(relative.to_string()),
+                    None => LoadError::NotFound(uri_path.to_string()),
                 })
             }
             // cap-std refuses an escape with PermissionDenied and no OS error code; the
@@ -313,7 +355,7 @@ impl FolderResources {
                 if e.kind() == std::io::ErrorKind::PermissionDenied
                     && e.raw_os_error().is_none() =>
             {
-                Err(LoadError::OutsideFolder(relative.to_string()))
+                Err(LoadError::OutsideFolder(uri_path.to_string()))
             }
             Err(e) => Err(LoadError::Io(e.to_string())),
         }
@@ -321,8 +363,7 @@ impl FolderResources {
 }
 
 /// The name of a file beside `relative`'s that differs from it only in letter case.
-fn differing_in_case(folder: &cap_std::fs::Dir, relative: &str) -> Option<String> {
-    let path = Path::new(relative);
+fn differing_in_case(folder: &cap_std::fs::Dir, path: &Path) -> Option<String> {
     let name = path.file_name()?.to_str()?;
     let parent = path.parent().filter(|p| !p.as_os_str().is_empty());
     let listing = match parent {
@@ -335,11 +376,39 @@ fn differing_in_case(folder: &cap_std::fs::Dir, relative: &str) -> Option<String
         .find(|candidate| candidate.eq_ignore_ascii_case(name))
 }
 
+/// A URI's path as a path below the folder at `address`: the path itself when it never
+/// climbs above the folder, or, when it starts by climbing out and names its way back in
+/// along the folder's own address (`../SubFolder/a.png` read from `SubFolder`, which is where
+/// a viewer resolving the URI against the asset's address reads it), the rest after that
+/// round trip. `None` when it leads out, or climbs out anywhere else. What is left is opened
+/// through the folder's handle, so no spelling of a path can lead out of it.
+fn inside(path: &str, address: Option<&Path>) -> Option<PathBuf> {
+    let mut components = (Path::new(path).components())
+        .filter(|c| *c != Component::CurDir)
+        .peekable();
+    let mut climbed = 0;
+    while components.next_if_eq(&Component::ParentDir).is_some() {
+        climbed += 1;
+    }
+    if climbed > 0 {
+        let folder: Vec<Component> = address?.components().collect();
+        let way_back = &folder[folder.len().checked_sub(climbed)?..];
+        for step in way_back {
+            let named = matches!(step, Component::Normal(_));
+            if !named || components.next() != Some(*step) {
+                return None;
+            }
+        }
+    }
+    let rest: PathBuf = components.collect();
+    (!leaves_folder(&rest)).then_some(rest)
+}
+
 /// Whether a relative path names something outside its folder by its words alone (`..`
 /// past the top, a root or a drive).
-fn leaves_folder(relative: &str) -> bool {
+fn leaves_folder(relative: &Path) -> bool {
     let mut depth = 0i32;
-    for component in Path::new(relative).components() {
+    for component in relative.components() {
         match component {
             Component::ParentDir => depth -= 1,
             Component::Normal(_) => depth += 1,
@@ -406,6 +475,16 @@ impl ResourceLoader for FolderResources {
     fn load_buffer(&self, relative: &str) -> Result<Kept, LoadError> {
         self.read_with(relative, false, super::file::read_or_keep)
     }
+
+    fn named(&self, relative: &str) {
+        let opened = self
+            .open(relative)
+            .ok()
+            .and_then(|file| file.metadata().ok());
+        if let (Some(id), Ok(mut read)) = (opened.as_ref().and_then(FileId::of), self.read.lock()) {
+            read.push(id);
+        }
+    }
 }
 
 #[cfg(test)]
@@ -452,15 +531,22 @@ mod tests {
 
     #[test]
     fn paths_cannot_leave_the_folder() {
-        let dir = std::env::temp_dir().join(format!("gltfmat-uri-{}", std::process::id()));
+        let dir = tempfile::tempdir().unwrap();
+        let dir = dir.path();
         std::fs::create_dir_all(dir.join("sub")).unwrap();
         std::fs::write(dir.join("sub/a.bin"), b"x").unwrap();
+        std::fs::write(dir.join("b.bin"), b"outside").unwrap();
         let loader = FolderResources::new(dir.join("sub"));
         assert_eq!(&loader.load("a.bin").unwrap()[..], b"x");
-        assert!(matches!(
-            loader.load("../sub/a.bin"),
-            Err(LoadError::OutsideFolder(_))
-        ));
+        for out in [
+            "../b.bin",
+            "../other/a.bin",
+            "../sub/../b.bin",
+            "/etc/passwd",
+        ] {
+            let refused = loader.load(out);
+            assert!(matches!(refused, Err(LoadError::OutsideFolder(_))), "{out}");
+        }
         assert!(matches!(
             loader.load("missing.bin"),
             Err(LoadError::NotFound(_))
@@ -481,7 +567,30 @@ mod tests {
                 Err(LoadError::OutsideFolder(_))
             ));
         }
-        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A viewer resolves a URI against the asset's address: climbing out of the folder and
+    /// naming one's way back in along its own path stays in it.
+    #[test]
+    fn a_path_that_climbs_out_and_names_its_way_back_in_is_read_from_the_folder() {
+        let dir = tempfile::tempdir().unwrap();
+        let top = dir.path().join("top");
+        std::fs::create_dir_all(top.join("sub/textures")).unwrap();
+        std::fs::write(top.join("sub/textures/a.png"), b"x").unwrap();
+        let loader = FolderResources::new(top.join("sub"));
+        for back in [
+            "../sub/textures/a.png",
+            "./../sub/./textures/a.png",
+            "../../top/sub/textures/a.png",
+            "../sub/textures/../textures/a.png",
+        ] {
+            assert_eq!(&loader.load(back).unwrap()[..], b"x", "{back}");
+        }
+        // The way back must be the folder's own: a sibling of another name is outside.
+        std::fs::create_dir_all(top.join("other/textures")).unwrap();
+        std::fs::write(top.join("other/textures/a.png"), b"y").unwrap();
+        let refused = loader.load("../other/textures/a.png");
+        assert!(matches!(refused, Err(LoadError::OutsideFolder(_))));
     }
 
     /// 10^3 buffers naming one file must not hold 10^3 copies of it.

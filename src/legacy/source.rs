@@ -97,6 +97,7 @@ const MATERIAL_MEMBERS: &[&str] = &[
     "samplers",
     "bufferViews",
     "buffers",
+    "shaders",
 ];
 
 /// [`read`] for reading materials only: the root members their reading needs, not the
@@ -147,6 +148,7 @@ fn read_members<'a>(
         }
     };
     let root = json.root();
+    crate::document::uri::note_named_files(root, loader);
     let buffers = (root.get("buffers").and_then(Node::as_object))
         .map(|b| {
             b.keys()

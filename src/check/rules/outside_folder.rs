@@ -20,7 +20,9 @@ const DOC: &str = "\
 ## What it does
 Reports a buffer or image `uri` that is an absolute path, climbs out of the asset's folder with
 `..`, or reaches outside it through a symbolic link. The file is not read. (A URI of another
-scheme, `http:` or `file:`, is NON_RELATIVE_URI and is not fetched either.)
+scheme, `http:` or `file:`, is NON_RELATIVE_URI and is not fetched either.) A path that climbs
+out and names its way back in along the folder's own path (`../Textures/a.png` in an asset whose
+folder is `Textures`) is where a viewer reads it, inside the folder, and is read from there.
 
 ## Why
 Assets come from strangers. A validator that follows `../../etc/passwd` or `/home/ci/.ssh/id_rsa`

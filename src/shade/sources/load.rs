@@ -76,6 +76,7 @@ pub(crate) fn gltf2_materials(
         .as_ref()
         .ok_or("not a readable glTF document")?
         .root();
+    crate::document::uri::note_named_files(root, loader);
     let nodes =
         |key: &str| (root.get(key).and_then(Node::as_array).into_iter()).flat_map(|a| a.iter());
     let list = |key: &str| -> Vec<Node> { nodes(key).collect() };
