@@ -7,7 +7,7 @@ use super::compare::{self as evaluate, Comparison};
 use super::legacy::{legacy_materials, LegacyMaterialsError};
 use super::load::gltf2_materials;
 use super::material::{Shader, SpecGlossReading};
-use super::render::{contact_sheet, material_ball, SheetLayout, MAX_PIXELS, MAX_SIZE};
+use super::render::{contact_sheet, material_ball, Balls, SheetLayout, MAX_PIXELS, MAX_SIZE};
 pub(crate) use super::sample::AS_STORED;
 use super::sample::{MaterialSource, LIGHTING_UNREAD};
 use super::sheen_table::SheenTable;
@@ -479,12 +479,8 @@ pub fn render_each(path: impl AsRef<Path>, size: u32, at_most: usize) -> Result<
     let ((materials, _), _) = materials_of(path.as_ref(), finest_for_preview(size), false)?;
     let materials = &materials[..materials.len().min(at_most)];
     let shader = shader_for(materials.iter().filter_map(|(_, m)| m.as_ref()));
-    let mut drawn: std::collections::HashMap<_, RgbImage> = std::collections::HashMap::new();
-    let mut ball = |m: &MaterialSource| {
-        (drawn.entry(m.fingerprint()))
-            .or_insert_with(|| material_ball(&shader, m, size))
-            .clone()
-    };
+    let mut balls = Balls::new(&shader, size);
+    let mut ball = |m: &MaterialSource| balls.of(m).clone();
     Ok((materials.iter().enumerate())
         .map(|(index, (name, material))| {
             let drawable = drawable(material);

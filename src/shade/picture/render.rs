@@ -350,6 +350,31 @@ impl SheetLayout {
     }
 }
 
+/// Balls of one size drawn so far, by material ([`MaterialSource::fingerprint`]): materials
+/// alike (an exporter's copies, one per mesh) are drawn once.
+pub(crate) struct Balls<'s> {
+    shader: &'s Shader,
+    size: u32,
+    drawn: std::collections::HashMap<String, RgbImage>,
+}
+
+impl<'s> Balls<'s> {
+    pub(crate) fn new(shader: &'s Shader, size: u32) -> Self {
+        Balls {
+            shader,
+            size,
+            drawn: Default::default(),
+        }
+    }
+
+    /// The ball of `material`, drawn unless one alike was.
+    pub(crate) fn of(&mut self, material: &MaterialSource) -> &RgbImage {
+        let (shader, size) = (self.shader, self.size);
+        (self.drawn.entry(material.fingerprint()))
+            .or_insert_with(|| material_ball(shader, material, size))
+    }
+}
+
 /// Every material's ball on one sheet laid out by `layout`, in material order, each with its
 /// name written under it.
 pub(crate) fn contact_sheet(
@@ -361,8 +386,9 @@ pub(crate) fn contact_sheet(
     let (width, height) = (layout.columns * cell, layout.rows * cell);
     let mut sheet = RgbImage::from_pixel(width, height, Rgb(SHEET_BACKGROUND));
     let scale = (cell / 96).max(1);
+    let mut balls = Balls::new(shader, cell);
     for (i, (name, material)) in materials.iter().enumerate() {
-        let ball = material_ball(shader, material, cell);
+        let ball = balls.of(material);
         let (row, column) = layout.place(i);
         let (cx, cy) = (column * cell, row * cell);
         for (x, y, p) in ball.enumerate_pixels() {
@@ -413,6 +439,23 @@ mod tests {
     use super::*;
     use crate::shade::brdf::SheenVisibility;
     use crate::shade::sheen_table::SheenTable;
+
+    /// An exporter's copies of one material (the same JSON under other names) are one ball.
+    #[test]
+    fn materials_alike_are_drawn_once_and_others_apart() {
+        let shader = Shader::new(SheenTable::compute(2, SheenVisibility::Charlie));
+        let material = |name: &str, roughness: f64| {
+            let json = serde_json::json!({"name": name,
+                "pbrMetallicRoughness": {"roughnessFactor": roughness}});
+            MaterialSource::gltf2(&json, &[])
+        };
+        let mut balls = Balls::new(&shader, 8);
+        let first = balls.of(&material("a", 0.5)).clone();
+        assert_eq!(balls.of(&material("copy of a", 0.5)), &first);
+        assert_eq!(balls.drawn.len(), 1);
+        assert_ne!(balls.of(&material("b", 0.1)), &first);
+        assert_eq!(balls.drawn.len(), 2);
+    }
 
     #[test]
     fn a_sheet_of_up_to_sixteen_has_four_to_a_row_then_grows_square() {
