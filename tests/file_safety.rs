@@ -421,6 +421,45 @@ fn outputs_that_are_not_an_asset_file_are_refused_before_converting() {
     assert!(!folder.join("-").exists() && !folder.join("-.bin").exists());
 }
 
+/// A link a stranger planted in a checked folder (`scene.gltf` → a credentials file) does not
+/// put that file into the report or its snippets; a link within the folder is followed, and a
+/// link named on the command line is the user's to follow.
+#[cfg(unix)]
+#[test]
+fn a_folder_walk_never_follows_a_link_out_of_the_folder() {
+    let root = tempfile::tempdir().unwrap();
+    let root = root.path();
+    std::fs::create_dir_all(root.join("outside")).unwrap();
+    std::fs::create_dir_all(root.join("assets")).unwrap();
+    let secret = br#"{"asset": {"version": "2.0"}, "auths": {"registry": "s3cr3t-t0ken"}}"#;
+    std::fs::write(root.join("outside/config.json"), secret).unwrap();
+    std::fs::copy(
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/fixtures/valid/sheen-triangle.gltf"
+        ),
+        root.join("assets/real.gltf"),
+    )
+    .unwrap();
+    let link = std::os::unix::fs::symlink;
+    link("../outside/config.json", root.join("assets/scene.gltf")).unwrap();
+    link("real.gltf", root.join("assets/alias.gltf")).unwrap();
+    let run = gltfmat(root, &["check", "assets", "--all-findings"]);
+    let printed = format!("{}{}", String::from_utf8_lossy(&run.stdout), stderr(&run));
+    assert!(!printed.contains("s3cr3t"), "{printed}");
+    assert!(
+        printed.contains("skipped assets/scene.gltf: a symbolic link leading out of assets"),
+        "{printed}"
+    );
+    assert!(printed.contains("2 file(s) checked"), "{printed}");
+    let named = gltfmat(root, &["check", "assets/scene.gltf", "--all-findings"]);
+    assert!(
+        String::from_utf8_lossy(&named.stdout).contains("auths"),
+        "{}",
+        stderr(&named)
+    );
+}
+
 #[test]
 fn a_folder_walk_finds_assets_in_any_case_and_leaves_out_what_the_user_excludes() {
     let folder = tempfile::tempdir().unwrap();

@@ -56,11 +56,6 @@ pub fn assets(inputs: &[PathBuf], exclude: &[String]) -> Result<Walked, Failure>
     })
 }
 
-/// Every .gltf/.glb (in any letter case) below a folder, sorted, as a walk in the style of
-/// ripgrep finds them: `.gitignore`d and hidden entries are left out and symlinked folders
-/// are not followed. An entry that is not a regular file (a FIFO, a device, or a symlink to
-/// one) is skipped with a note; false when a folder could not be read (reported). `exclude`
-/// globs (gitignore syntax) leave matching paths out.
 /// How many asset files under `folder` the walk leaves out (hidden, ignored or excluded): the
 /// same walk with no filter, counted.
 fn skipped_assets(folder: &Path) -> usize {
@@ -72,6 +67,11 @@ fn skipped_assets(folder: &Path) -> usize {
     .count()
 }
 
+/// Every .gltf/.glb (in any letter case) below a folder, sorted, as a walk in the style of
+/// ripgrep finds them: `.gitignore`d and hidden entries are left out and symlinked folders
+/// are not followed. An entry that is not a regular file (a FIFO, a device, or a symlink to
+/// one) or a symlink leading out of the folder is skipped with a note; false when a folder
+/// could not be read (reported). `exclude` globs (gitignore syntax) leave matching paths out.
 fn collect_assets(
     folder: &Path,
     exclude: &[String],
@@ -109,6 +109,11 @@ fn collect_assets(
             continue;
         }
         match std::fs::metadata(entry.path()) {
+            Ok(_) if entry.path_is_symlink() && !leads_inside(entry.path(), folder) => errln!(
+                "gltfmat: note: skipped {}: a symbolic link leading out of {} (name it to check it)",
+                entry.path().display(),
+                folder.display()
+            ),
             Ok(metadata) if metadata.is_file() => found.push(entry.into_path()),
             Ok(metadata) if metadata.is_dir() => {}
             Ok(_) => errln!(
@@ -121,6 +126,18 @@ fn collect_assets(
     found.sort();
     out.extend(found);
     Ok(complete)
+}
+
+/// Whether the symbolic link `link` resolves to a file inside `folder`: a walk checks what
+/// the folder holds, and a link a stranger planted there (`scene.gltf` →
+/// `~/.docker/config.json`) must not put a file from elsewhere into the report and its
+/// snippets.
+fn leads_inside(link: &Path, folder: &Path) -> bool {
+    let (Ok(target), Ok(folder)) = (std::fs::canonicalize(link), std::fs::canonicalize(folder))
+    else {
+        return false;
+    };
+    target.starts_with(folder)
 }
 
 fn is_asset_name(path: &Path) -> bool {
