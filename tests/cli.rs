@@ -442,6 +442,36 @@ fn each_file_is_checked_with_the_nearest_gltfmat_toml_above_it() {
         "quiet/gltfmat.toml applies to quiet/a.gltf"
     );
     assert_eq!(duplicate_keys(&reports[1]), 1, "and not to loud/a.gltf");
+
+    // A gate over uploads reads none: the upload's own gltfmat.toml silences nothing.
+    let isolated = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(["check", "quiet", "--format", "jsonl", "--isolated"])
+        .current_dir(root.path())
+        .output()
+        .unwrap();
+    let report: serde_json::Value = serde_json::from_slice(&isolated.stdout).unwrap();
+    assert_eq!(
+        duplicate_keys(&report),
+        1,
+        "--isolated reads no gltfmat.toml"
+    );
+
+    // A config that is not TOML (a planted link to a secret, say) is named by line and
+    // column, its text never printed.
+    std::fs::write(
+        root.path().join("loud/gltfmat.toml"),
+        "ignore = []\ntoken s3cr3t\n",
+    )
+    .unwrap();
+    let refused = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+        .args(["check", "loud"])
+        .current_dir(root.path())
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(2), "{said}");
+    assert!(said.contains("gltfmat.toml: line 2, column 7"), "{said}");
+    assert!(!said.contains("s3cr3t"), "{said}");
 }
 
 #[test]

@@ -43,6 +43,10 @@ pub struct CheckArgs {
     /// A gltfmat.toml for every file, instead of the nearest one above each file.
     #[arg(long)]
     config: Option<PathBuf>,
+    /// Read no gltfmat.toml: the command line's options alone. For gates over files strangers
+    /// upload, whose folders may hold a gltfmat.toml that silences the checks.
+    #[arg(long, conflicts_with = "config")]
+    isolated: bool,
     /// Decode textures for the pixel rules.
     #[arg(long)]
     deep: bool,
@@ -333,6 +337,7 @@ impl<'a> Settings<'a> {
     fn for_folder(&mut self, folder: &Path) -> Result<(Arc<CheckOptions>, bool), Failure> {
         let path = match &self.args.config {
             Some(path) => Some(path.clone()),
+            None if self.args.isolated => None,
             None => config::find_upward(folder),
         };
         if let Some(known) = self.resolved.get(&path) {

@@ -1,6 +1,7 @@
 //! `gltfmat.toml`: the same keys as the command-line options. Each file is checked with the
 //! nearest gltfmat.toml in its folder or a parent (input from stdin: from the current
-//! folder), unless `--config` names one for all; command-line options add to it.
+//! folder), unless `--config` names one for all or `--isolated` reads none; command-line
+//! options add to it.
 //!
 //! ```toml
 //! profile = "default"      # or "khronos"
@@ -57,9 +58,35 @@ pub fn find_upward(dir: &Path) -> Option<PathBuf> {
     }
 }
 
+/// The largest gltfmat.toml read: a config is a few lines, and one found by the upward search
+/// may be a stranger's (a link to a large file).
+const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
+/// Reads a config: a regular file of at most [`MAX_CONFIG_BYTES`]. A parse error names its
+/// line, column and reason, never the file's text: the file may be a link a stranger planted
+/// beside an asset, leading to a credentials file whose lines must not reach a CI log.
 pub fn load(path: &Path) -> Result<Config, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+    let failed = |why: String| format!("{}: {why}", path.display());
+    let size = std::fs::metadata(path)
+        .map_err(|e| failed(e.to_string()))?
+        .len();
+    if size > MAX_CONFIG_BYTES {
+        return Err(failed(format!(
+            "{size} bytes; a gltfmat.toml is at most {MAX_CONFIG_BYTES}"
+        )));
+    }
+    let bytes = gltfmat::read_file(path).map_err(|e| failed(e.to_string()))?;
+    let text = std::str::from_utf8(&bytes).map_err(|_| failed("not UTF-8 text".into()))?;
+    toml::from_str(text).map_err(|e| {
+        let at = e.span().map_or(0, |span| span.start).min(text.len());
+        let before = &text.as_bytes()[..at];
+        let line = 1 + before.iter().filter(|&&b| b == b'\n').count();
+        let column = 1 + before.iter().rev().take_while(|&&b| b != b'\n').count();
+        failed(format!(
+            "line {line}, column {column}: {}",
+            e.message().trim_end()
+        ))
+    })
 }
 
 pub fn parse_severity(pair: &str) -> Result<(String, Severity), String> {
