@@ -109,11 +109,17 @@ fn collect_assets(
             continue;
         }
         match std::fs::metadata(entry.path()) {
-            Ok(_) if entry.path_is_symlink() && !leads_inside(entry.path(), folder) => errln!(
+            Ok(metadata)
+                if metadata.is_file()
+                    && entry.path_is_symlink()
+                    && !leads_inside(entry.path(), folder) =>
+            {
+                errln!(
                 "gltfmat: note: skipped {}: a symbolic link leading out of {} (name it to check it)",
-                entry.path().display(),
-                folder.display()
-            ),
+                    entry.path().display(),
+                    folder.display()
+                )
+            }
             Ok(metadata) if metadata.is_file() => found.push(entry.into_path()),
             Ok(metadata) if metadata.is_dir() => {}
             Ok(_) => errln!(
