@@ -621,8 +621,26 @@ struct Partial {
     count: u64,
     blended: u64,
     worst: Worst,
-    histogram: Vec<u32>,
+    histogram: Histogram,
     candidates: refine::Candidates,
+}
+
+/// Samples counted by ΔE in bins of 1 / [`BINS_PER_UNIT`], the last bin holding everything
+/// from ΔE 100 on. Held only as far as the largest bin used: a comparison whose ΔE stays small
+/// (a material with itself, each of an asset's 10⁴ materials) neither clears nor merges all
+/// [`BINS`] of them.
+#[derive(Debug, Default, PartialEq)]
+struct Histogram(Vec<u32>);
+
+impl Histogram {
+    #[inline(always)]
+    fn add(&mut self, delta: f64, samples: u32) {
+        let bin = ((delta * BINS_PER_UNIT) as usize).min(BINS - 1);
+        if bin >= self.0.len() {
+            self.0.resize(bin + 1, 0);
+        }
+        self.0[bin] += samples;
+    }
 }
 
 /// The finest UV grid compared: 4096² texels (each its centre and a corner) × every
@@ -1303,7 +1321,7 @@ impl Partial {
                 directions: Angles::coarse(DIRECTIONS[0]),
                 background: BACKGROUNDS[0],
             },
-            histogram: vec![0; BINS],
+            histogram: Histogram::default(),
             candidates: refine::Candidates::default(),
         }
     }
@@ -1313,7 +1331,7 @@ impl Partial {
     /// sample at a time.)
     fn add_equal_point(&mut self, at: &Place, angles: &[Angles; DIRECTION_COUNT]) {
         self.count += DIRECTION_COUNT as u64;
-        self.histogram[0] += DIRECTION_COUNT as u32;
+        self.histogram.add(0.0, DIRECTION_COUNT as u32);
         if self.worst.delta_e < 0.0 {
             self.worst = Worst {
                 delta_e: 0.0,
@@ -1348,8 +1366,7 @@ impl Partial {
             // 128-bit integer is a library call per sample.
             self.sum += ((delta.min(1e6) * SUM_STEPS_PER_UNIT) as i64) as u128;
             self.count += 1;
-            let bin = ((delta * BINS_PER_UNIT) as usize).min(BINS - 1);
-            self.histogram[bin] += 1;
+            self.histogram.add(delta, 1);
         }
         self.note_point(at, point_max as f32);
         (point_max, arg)
@@ -1386,7 +1403,7 @@ fn merge<'p>(
     grid: u32,
     at: &dyn Fn([f64; 2]) -> Option<Pair>,
 ) -> Comparison {
-    let mut histogram = vec![0u64; BINS];
+    let mut histogram: Vec<u64> = Vec::new();
     let mut per_texel = Vec::new();
     let (mut sum, mut count, mut blended) = (0u128, 0u64, 0u64);
     // The first worst sample seen (in row order) wins ties, so a comparison with ΔE 0
@@ -1399,7 +1416,10 @@ fn merge<'p>(
         sum += p.sum;
         count += p.count;
         blended += p.blended;
-        for (total, n) in histogram.iter_mut().zip(&p.histogram) {
+        if histogram.len() < p.histogram.0.len() {
+            histogram.resize(p.histogram.0.len(), 0);
+        }
+        for (total, n) in histogram.iter_mut().zip(&p.histogram.0) {
             *total += u64::from(*n);
         }
         if worst.as_ref().is_none_or(|w| p.worst.delta_e > w.delta_e) {
@@ -1814,6 +1834,22 @@ mod tests {
         let b = MaterialSource::gltf2(&normal, &fine);
         let result = compare(&shader(), &a, &b, 4);
         assert!(result.max > 1.0, "between the centres: {}", result.max);
+    }
+
+    /// A comparison of 10⁴ materials each with itself must not clear and merge 10⁵ bins a
+    /// pair: the histogram grows to its largest sample only.
+    #[test]
+    fn the_histogram_holds_bins_up_to_its_largest_sample_and_the_rest_in_the_last() {
+        let mut histogram = Histogram::default();
+        histogram.add(0.0, 8);
+        assert_eq!(histogram.0, [8]);
+        histogram.add(0.0025, 1);
+        assert_eq!(histogram.0, [8, 0, 1]);
+        histogram.add(1e9, 1);
+        histogram.add(f64::MAX, 1);
+        assert_eq!(histogram.0.len(), BINS);
+        assert_eq!(histogram.0[BINS - 1], 2);
+        assert_eq!(histogram.0.iter().sum::<u32>(), 11);
     }
 
     #[test]
