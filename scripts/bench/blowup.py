@@ -110,6 +110,13 @@ def spec_gloss_materials(n):
     return write(f'spec-gloss-{n}.gltf', asset(materials=materials, extensionsUsed=[sg]))
 
 
+def distinct_materials(n):
+    # N materials, each its own roughness and colour, for `compare` of the asset with itself.
+    materials = [{'pbrMetallicRoughness': {'roughnessFactor': (i % 997) / 997,
+                                           'baseColorFactor': [(i % 101) / 101, 0.5, 0.5, 1]}} for i in range(n)]
+    return write(f'distinct-materials-{n}.gltf', asset(materials=materials))
+
+
 def joint_names(n):
     nodes = {f'j{i}': ({'jointName': f'J{i}', 'children': [f'j{i + 1}']} if i + 1 < n else {'jointName': f'J{i}'})
              for i in range(n)}
@@ -383,6 +390,7 @@ CLASSES = [
     ('crossed strips rebake, N wide (49)', crossed_strips, 1638, ['upgrade', '-o', os.path.join(WORK, 'strips.glb'), '--force']),
     ('1.0 draft, shared textures, N texels (49)', gltf1_draft_shared_textures, 1 << 18, ['upgrade', '-o', os.path.join(WORK, 'shared.glb'), '--force']),
     ('N spec-gloss sharing one 1024² (49)', spec_gloss_sharing_texture, 20, ['upgrade', '-o', os.path.join(WORK, 'sharing.glb'), '--force']),
+    ('N materials, compare with itself', distinct_materials, 1_000, ['compare', '{input}', '--format', 'json']),
 ]
 
 
@@ -393,7 +401,8 @@ def size_of(path):
 
 
 def run(command, path):
-    args = [EXE, command[0], path, '--quiet'] + command[1:] if command[0] == 'check' else [EXE, command[0], path] + command[1:]
+    rest = [path if arg == '{input}' else arg for arg in command[1:]]
+    args = [EXE, command[0], path, '--quiet'] + rest if command[0] == 'check' else [EXE, command[0], path] + rest
     best = None
     for _ in range(3):
         started = time.perf_counter()
