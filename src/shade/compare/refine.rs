@@ -267,6 +267,11 @@ fn nearby_worst(
             let Some(pair) = at(uv) else {
                 return best;
             };
+            // The candidate's own inputs (a flat region, a material of factors) give its own
+            // figure: nothing to evaluate.
+            if pair == *candidate.pair {
+                continue;
+            }
             let delta_e = worst_of(&pair);
             if delta_e > best.delta_e {
                 best = Candidate {
@@ -290,7 +295,11 @@ pub(super) fn search(
     texel: f64,
     at: &dyn Fn([f64; 2]) -> Option<Pair>,
 ) -> Option<Found> {
-    let moved: Vec<Candidate> = (candidates.worst.iter().chain(&candidates.sharpest))
+    // A point both among the worst and the sharpest is searched once.
+    let listed: Vec<&Candidate> = candidates.worst.iter().collect();
+    let again = |c: &Candidate| listed.iter().any(|w| w.uv == c.uv && w.pair == c.pair);
+    let sharpest = (candidates.sharpest.iter()).filter(|c| !again(c));
+    let moved: Vec<Candidate> = (listed.iter().copied().chain(sharpest))
         .map(|c| nearby_worst(shader, c, texel, at))
         .collect();
     let mut best: Option<(f64, Angles, &Candidate)> = None;
