@@ -421,11 +421,14 @@ fn each_file_is_checked_with_the_nearest_gltfmat_toml_above_it() {
         "ignore = [\"JSON_DUPLICATE_KEY\"]\n",
     )
     .unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
-        .args(["check", "quiet", "loud", "--format", "jsonl"])
-        .current_dir(root.path())
-        .output()
-        .unwrap();
+    let gltfmat = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(args)
+            .current_dir(root.path())
+            .output()
+            .unwrap()
+    };
+    let out = gltfmat(&["check", "quiet", "loud", "--format", "jsonl"]);
     let reports: Vec<serde_json::Value> = String::from_utf8_lossy(&out.stdout)
         .lines()
         .map(|l| serde_json::from_str(l).unwrap())
@@ -444,11 +447,7 @@ fn each_file_is_checked_with_the_nearest_gltfmat_toml_above_it() {
     assert_eq!(duplicate_keys(&reports[1]), 1, "and not to loud/a.gltf");
 
     // A gate over uploads reads none: the upload's own gltfmat.toml silences nothing.
-    let isolated = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
-        .args(["check", "quiet", "--format", "jsonl", "--isolated"])
-        .current_dir(root.path())
-        .output()
-        .unwrap();
+    let isolated = gltfmat(&["check", "quiet", "--format", "jsonl", "--isolated"]);
     let report: serde_json::Value = serde_json::from_slice(&isolated.stdout).unwrap();
     assert_eq!(
         duplicate_keys(&report),
@@ -463,11 +462,7 @@ fn each_file_is_checked_with_the_nearest_gltfmat_toml_above_it() {
         "ignore = []\ntoken s3cr3t\n",
     )
     .unwrap();
-    let refused = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
-        .args(["check", "loud"])
-        .current_dir(root.path())
-        .output()
-        .unwrap();
+    let refused = gltfmat(&["check", "loud"]);
     let said = String::from_utf8_lossy(&refused.stderr);
     assert_eq!(refused.status.code(), Some(2), "{said}");
     assert!(said.contains("gltfmat.toml: line 2, column 7"), "{said}");
