@@ -199,8 +199,11 @@ pub(crate) fn note_named_files(root: super::Node, loader: &dyn ResourceLoader) {
         .into_iter()
         .flat_map(elements)
     {
+        // A data URI names no file (and is not decoded here only to be dropped).
+        let is_data = |u: &str| u.get(..5).is_some_and(|s| s.eq_ignore_ascii_case("data:"));
         let uri = element.get("uri").and_then(super::Node::as_str);
-        if let Some(Ok(UriKind::Relative(path))) = uri.filter(|u| noted.insert(*u)).map(classify) {
+        let file = uri.filter(|u| !is_data(u) && noted.insert(*u));
+        if let Some(Ok(UriKind::Relative(path))) = file.map(classify) {
             loader.named(&path);
         }
     }
