@@ -108,8 +108,17 @@ impl Candidates {
             list.len() < keep
                 || (list.last()).is_some_and(|c| ranks_before((own, order), (key(c), c.order)))
         };
-        let wanted_worst = wanted(&self.worst, WORST_POINTS, by_delta_e, -delta_e);
-        let wanted_sharp = wanted(&self.sharpest, SHARPEST_POINTS, by_sharpness, sharpness);
+        // A pair listed at an earlier point stays there (see `keep_best`): with few distinct
+        // pairs a list never fills, and every point would be copied only to be found listed.
+        // Equal inputs give equal figures, so a listed point of another figure is another pair
+        // and its inputs need no comparing.
+        let listed = |list: &Vec<Candidate>| {
+            (list.iter()).any(|c| c.delta_e == delta_e && c.order <= order && *c.pair == *pair)
+        };
+        let wanted_worst =
+            wanted(&self.worst, WORST_POINTS, by_delta_e, -delta_e) && !listed(&self.worst);
+        let wanted_sharp = wanted(&self.sharpest, SHARPEST_POINTS, by_sharpness, sharpness)
+            && !listed(&self.sharpest);
         if !(wanted_worst || wanted_sharp) {
             return;
         }
