@@ -92,6 +92,8 @@ fn collect_assets(
         .map_err(|e| Failure::usage(format!("--exclude: {e}")))?;
     let mut found = Vec::new();
     let mut complete = true;
+    // Where the folder itself resolves, against which each link found in it is judged.
+    let resolved = std::fs::canonicalize(folder).ok();
     let walk = ignore::WalkBuilder::new(folder)
         .require_git(false)
         .overrides(overrides)
@@ -112,7 +114,7 @@ fn collect_assets(
             Ok(metadata)
                 if metadata.is_file()
                     && entry.path_is_symlink()
-                    && !leads_inside(entry.path(), folder) =>
+                    && !leads_inside(entry.path(), resolved.as_deref()) =>
             {
                 errln!(
                 "gltfmat: note: skipped {}: a symbolic link leading out of {} (name it to check it)",
@@ -134,16 +136,15 @@ fn collect_assets(
     Ok(complete)
 }
 
-/// Whether the symbolic link `link` resolves to a file inside `folder`: a walk checks what
-/// the folder holds, and a link a stranger planted there (`scene.gltf` →
-/// `~/.docker/config.json`) must not put a file from elsewhere into the report and its
-/// snippets.
-fn leads_inside(link: &Path, folder: &Path) -> bool {
-    let (Ok(target), Ok(folder)) = (std::fs::canonicalize(link), std::fs::canonicalize(folder))
-    else {
-        return false;
-    };
-    target.starts_with(folder)
+/// Whether the symbolic link `link` resolves to a file inside the folder resolved to
+/// `folder`: a walk checks what the folder holds, and a link a stranger planted there
+/// (`scene.gltf` → `~/.docker/config.json`) must not put a file from elsewhere into the report
+/// and its snippets.
+fn leads_inside(link: &Path, folder: Option<&Path>) -> bool {
+    let target = std::fs::canonicalize(link);
+    folder
+        .zip(target.ok())
+        .is_some_and(|(folder, target)| target.starts_with(folder))
 }
 
 fn is_asset_name(path: &Path) -> bool {
