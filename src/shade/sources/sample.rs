@@ -797,6 +797,9 @@ pub(crate) struct Prepared {
     lighting_unread: bool,
     /// What the evaluator cannot show of this material (see [`MaterialSource::unmodelled`]).
     unmodelled: Vec<String>,
+    /// Every binding's texture, in [`Prepared::bindings`]' order: the per-point screens read
+    /// the textures alone, and walking the slots for them costs more than what they read.
+    textures: Vec<Texture>,
     /// The material's JSON and the identities of its decoded textures (see
     /// [`MaterialSource::fingerprint`]).
     fingerprint: String,
@@ -953,12 +956,14 @@ impl Prepared {
             lighting_unread: false,
             unmodelled: Vec::new(),
             fingerprint: String::new(),
+            textures: Vec::new(),
         };
         let bound: Vec<_> = (prepared.bindings())
             .map(|b| (Arc::as_ptr(&b.texture), b.sampler, b.texcoord, b.transform))
             .collect();
         prepared.fingerprint =
             format!("emitting only|{emission:?}|{alpha}|{alpha_mode:?}|{bound:?}");
+        prepared.textures = prepared.bindings().map(|b| b.texture.clone()).collect();
         prepared
     }
 }
@@ -1085,14 +1090,19 @@ fn rgb(t: [f64; 4]) -> V3 {
 }
 
 impl MaterialSource {
+    /// Every texture the material reads (a glTF 2.0 material's in its bindings' order).
+    #[inline(always)]
+    fn textures(&self) -> impl Iterator<Item = &Texture> {
+        let (bound, legacy) = match self {
+            MaterialSource::Gltf2(p) => (&p.textures[..], None),
+            MaterialSource::Legacy { colour, data, .. } => (&[][..], Some([colour, data])),
+        };
+        bound.iter().chain(legacy.into_iter().flatten().flatten())
+    }
+
     /// The highest texture resolution involved (for the comparison grid).
     pub(crate) fn max_resolution(&self) -> u32 {
-        let textures: Vec<&Texture> = match self {
-            MaterialSource::Gltf2(p) => p.bindings().map(|b| &b.texture).collect(),
-            MaterialSource::Legacy { colour, data, .. } => colour.iter().chain(data).collect(),
-        };
-        textures
-            .iter()
+        (self.textures())
             .map(|t| t.width().max(t.height()))
             .max()
             .unwrap_or(1)
@@ -1262,12 +1272,7 @@ impl MaterialSource {
                 x >= 1 && t.same_as_left(x, y)
             }
         };
-        match self {
-            MaterialSource::Gltf2(p) => p.bindings().all(|b| same(&b.texture)),
-            MaterialSource::Legacy { colour, data, .. } => {
-                colour.iter().chain(data).all(|t| same(t))
-            }
-        }
+        self.textures().all(|t| same(t))
     }
 
     /// For a material whose textures are [`MaterialSource::texels_on`] the grid: the stored
@@ -1275,14 +1280,7 @@ impl MaterialSource {
     /// 64-bit words. Two centres whose words are equal have equal inputs.
     #[inline(always)]
     pub(crate) fn centre_texels(&self, x: u32, y: u32, push: &mut impl FnMut(u64)) {
-        match self {
-            MaterialSource::Gltf2(p) => {
-                (p.bindings()).for_each(|b| b.texture.stored_words(x, y, push))
-            }
-            MaterialSource::Legacy { colour, data, .. } => {
-                (colour.iter().chain(data)).for_each(|t| t.stored_words(x, y, push))
-            }
-        }
+        self.textures().for_each(|t| t.stored_words(x, y, push))
     }
 
     /// What the evaluator cannot show of this material, each with the reason: extensions it
@@ -1564,6 +1562,7 @@ fn prepare(material: Node, textures: &TextureSet) -> Prepared {
         lighting_unread: false,
         unmodelled,
         fingerprint: String::new(),
+        textures: Vec::new(),
     };
     prepared.unmodelled.extend(unmodelled_extensions(material));
     let bound: Vec<_> = prepared
@@ -1571,6 +1570,7 @@ fn prepare(material: Node, textures: &TextureSet) -> Prepared {
         .map(|b| (Arc::as_ptr(&b.texture), b.sampler))
         .collect();
     prepared.fingerprint = format!("{}|{bound:?}", shading_text(material, textures.first_alike));
+    prepared.textures = prepared.bindings().map(|b| b.texture.clone()).collect();
     prepared
 }
 
