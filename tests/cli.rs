@@ -183,6 +183,31 @@ fn options_filter_and_override() {
 }
 
 #[test]
+fn an_asset_without_materials_is_said_to_have_none_when_drawn_or_compared() {
+    let folder = tempfile::tempdir().unwrap();
+    let asset = folder.path().join("bare.gltf");
+    std::fs::write(&asset, r#"{"asset":{"version":"2.0"},"meshes":[]}"#).unwrap();
+    let asset = asset.to_str().unwrap();
+    let run = |args: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(args)
+            .current_dir(folder.path())
+            .output()
+            .unwrap();
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let (code, stderr) = run(&["render", asset, "--all"]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("has no materials to render"), "{stderr}");
+    let (code, stderr) = run(&["compare", asset, asset]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("an asset without materials"), "{stderr}");
+}
+
+#[test]
 fn usage_errors_exit_2() {
     assert_eq!(gltfmat(&["check", "fixtures/no-such-file.gltf"]).0, 2);
     assert_eq!(

@@ -207,7 +207,9 @@ pub fn run(args: CompareArgs) -> Outcome {
         print_human(&outcomes, args.threshold);
     }
     if outcomes.is_empty() {
-        return Err(Failure::usage("no material pairs to compare"));
+        return Err(Failure::usage(
+            "no material pairs to compare: an asset without materials has none (its primitives draw glTF's default material, which is not compared)",
+        ));
     }
     Ok(if outcomes.iter().all(|o| o.same(args.threshold)) {
         ExitCode::SUCCESS

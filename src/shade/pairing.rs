@@ -531,6 +531,10 @@ pub fn render(path: impl AsRef<Path>, options: &RenderOptions) -> Result<Picture
     let Some(first) = chosen.first() else {
         return Err(unusable(match skipped.first() {
             Some((i, name)) => format!("material {i} ({name}) cannot be drawn: {NO_MODEL}"),
+            None if materials.is_empty() => {
+                "the asset has no materials to render (its primitives draw glTF's default material)"
+                    .into()
+            }
             None => "no such material to render".into(),
         }));
     };
