@@ -402,12 +402,31 @@ fn judged(
     fits: &mut TexelFits,
     levels: f64,
 ) -> (Vec<u32>, Vec<Option<[f64; 3]>>) {
+    let width = source.width as usize;
+    let (x, y) = (
+        |at: usize| (at % width) as u32,
+        |at: usize| (at / width) as u32,
+    );
+    match source.stored_key() {
+        Some(stored) => judged_by(source, fits, levels, |at| stored(x(at), y(at))),
+        None => judged_by(source, fits, levels, |at| source.at(x(at), y(at)).0.key()),
+    }
+}
+
+/// [`judged`], texels told apart by `key_at` (the texel at an index, row by row): equal keys
+/// must mean equal values.
+fn judged_by<K: Copy + Eq + std::hash::Hash + Sync>(
+    source: &SpecGlossTexels,
+    fits: &mut TexelFits,
+    levels: f64,
+    key_at: impl Fn(usize) -> K + Sync,
+) -> (Vec<u32>, Vec<Option<[f64; 3]>>) {
     use rayon::prelude::*;
     let width = source.width as usize;
     let texels = width * source.height as usize;
     let value_at = |at: usize| source.at((at % width) as u32, (at / width) as u32).0;
     let mut index = vec![0u32; texels];
-    let mut distinct: HashMap<[u64; 7], u32> = HashMap::new();
+    let mut distinct: HashMap<K, u32> = HashMap::new();
     let mut values = Vec::new();
     // Texels whose value is already listed are found on every core; the others are listed
     // in order afterwards, so the list is the one a single pass would make. Group by group,
@@ -418,19 +437,19 @@ fn judged(
         // A texel equal to the one before it (a flat region) takes its index unhashed, or
         // once that is listed.
         let lookup = |(r, run): (usize, &mut [u32])| {
-            let mut previous: Option<(TexelValue, u32)> = None;
+            let mut previous: Option<(K, u32)> = None;
             for (k, slot) in run.iter_mut().enumerate() {
-                let value = value_at(first + r * LOOKUP_RUN + k);
-                *slot = match previous.filter(|(before, _)| *before == value) {
+                let key = key_at(first + r * LOOKUP_RUN + k);
+                *slot = match previous.filter(|(before, _)| *before == key) {
                     Some((_, NEW | AS_BEFORE)) => AS_BEFORE,
                     Some((_, i)) => i,
-                    None => match distinct.get(&value.key()) {
+                    None => match distinct.get(&key) {
                         Some(&i) => i,
                         None if full => UNLISTED,
                         None => NEW,
                     },
                 };
-                previous = Some((value, *slot));
+                previous = Some((key, *slot));
             }
         };
         group
@@ -439,17 +458,14 @@ fn judged(
             .for_each(lookup);
         for k in 0..group.len() {
             group[k] = match group[k] {
-                NEW => {
-                    let value = value_at(first + k);
-                    match distinct.entry(value.key()) {
-                        Entry::Occupied(known) => *known.get(),
-                        Entry::Vacant(new) if values.len() < fit::MAX_SCREENED_TEXELS => {
-                            values.push(value);
-                            *new.insert(values.len() as u32 - 1)
-                        }
-                        Entry::Vacant(_) => UNLISTED,
+                NEW => match distinct.entry(key_at(first + k)) {
+                    Entry::Occupied(known) => *known.get(),
+                    Entry::Vacant(new) if values.len() < fit::MAX_SCREENED_TEXELS => {
+                        values.push(value_at(first + k));
+                        *new.insert(values.len() as u32 - 1)
                     }
-                }
+                    Entry::Vacant(_) => UNLISTED,
+                },
                 AS_BEFORE => group[k - 1],
                 listed => listed,
             };
@@ -497,6 +513,39 @@ impl SpecGlossTexels<'_> {
 
     fn centre(&self, x: u32, y: u32) -> [f64; 2] {
         centre(x, y, self.width, self.height)
+    }
+
+    /// Where every texture is stored at the grid's size, a power of two each way (so that a
+    /// texel centre's coordinates are exact and read one stored texel), with every texel
+    /// held in 8-bit channels, and every factor a value reads is a normal number (so that
+    /// distinct levels stay distinct): the stored channels output texel (x, y)'s value reads,
+    /// packed into one word. Equal words are then exactly equal values, and a word is
+    /// cheaper to hash and compare than the value's seven numbers.
+    fn stored_key(&self) -> Option<impl Fn(u32, u32) -> u64 + Sync + '_> {
+        let (width, height) = (self.width, self.height);
+        let stored = |t: &TextureImage| {
+            t.width() == width && t.height() == height && t.narrow_texel(0, 0).is_some()
+        };
+        let Factors {
+            diffuse,
+            specular,
+            glossiness,
+            ..
+        } = self.factors;
+        let mut factors = diffuse[..3].iter().chain(specular).chain([glossiness]);
+        let exact = width.is_power_of_two() && height.is_power_of_two();
+        let keyed = exact && factors.all(|f| f.is_normal()) && self.inputs().all(stored);
+        keyed.then_some(move |x, y| {
+            let word = |t: Option<&TextureImage>| {
+                t.and_then(|t| t.narrow_texel(x, y)).map_or(0, u64::from)
+            };
+            // The diffuse alpha is not part of the value (the rebake writes it apart).
+            let colour = |w: u64| match self.diffuse.is_some_and(TextureImage::has_alpha) {
+                true => w >> 8,
+                false => w,
+            };
+            colour(word(self.diffuse)) << 32 | word(self.specular)
+        })
     }
 
     /// The diffuse alpha (factor applied) at the centre of output texel (x, y).
@@ -628,11 +677,15 @@ mod tests {
     /// A `width` × `height` RGBA texture, decoded from its PNG, whose texel (x, y) holds the
     /// bytes of a multiplicative hash of `key(x, y)`: noise, equal where the keys are.
     fn hashed(width: u32, height: u32, key: impl Fn(u32, u32) -> u32) -> sample::Texture {
-        let image = image::RgbaImage::from_fn(width, height, |x, y| {
+        sample::decode(&png(hashed_image(width, height, key))).unwrap()
+    }
+
+    /// An RGBA image whose texels are a hash of `key` (equal keys, equal texels).
+    fn hashed_image(width: u32, height: u32, key: impl Fn(u32, u32) -> u32) -> image::RgbaImage {
+        image::RgbaImage::from_fn(width, height, |x, y| {
             let h = key(x, y).wrapping_mul(2_654_435_761);
             image::Rgba([(h >> 8) as u8, (h >> 16) as u8, (h >> 24) as u8, h as u8])
-        });
-        sample::decode(&png(image)).unwrap()
+        })
     }
 
     /// Factors that scale every channel differently, read as the archived extension.
@@ -664,44 +717,60 @@ mod tests {
     /// The distinct texel values are listed on every core, yet exactly as one pass in row
     /// order lists them: each texel's index is its value's first appearance, across the
     /// parallel groups, through flat runs (rows of one value, runs of equal texels), and past
-    /// the listing's cap every new value is unlisted.
+    /// the listing's cap every new value is unlisted. So whether texels are told apart by
+    /// their stored channels (textures stored at the grid's power-of-two size, normal
+    /// factors: the diffuse alpha, which varies here, is no part of a value) or by their
+    /// values (any other size, or a factor of 0 that merges levels).
     #[test]
     fn texel_values_are_listed_in_the_order_one_pass_meets_them() {
-        let (width, height) = (600, 250);
-        let key = |x: u32, y: u32| match y % 3 {
-            0 => 7,
-            _ => x / (1 + y % 2) + y * 1000,
+        let zero_red = Factors {
+            specular: [0.0, 0.7, 0.2],
+            ..chromatic()
         };
-        let diffuse = hashed(width, height, key);
-        let specular = hashed(width, height, |x, y| key(x, y) % 5);
-        let factors = chromatic();
-        let source = both(&diffuse, &specular, &factors);
-        let reading = crate::shade::material::SpecGlossReading::ArchivedExtension;
-        let (index, _) = judged(&source, &mut TexelFits::with_budgets(reading, 0, 0), 255.0);
-        let mut first_seen: HashMap<[u64; 7], u32> = HashMap::new();
-        let expected: Vec<u32> = (0..height)
-            .flat_map(|y| (0..width).map(move |x| (x, y)))
-            .map(|(x, y)| {
-                let (listed, full) = (
-                    first_seen.len(),
-                    first_seen.len() >= fit::MAX_SCREENED_TEXELS,
-                );
-                match first_seen.entry(source.at(x, y).0.key()) {
-                    Entry::Occupied(known) => *known.get(),
-                    Entry::Vacant(_) if full => UNLISTED,
-                    Entry::Vacant(new) => *new.insert(listed as u32),
-                }
-            })
-            .collect();
-        // The case covers what it is about: values first met in a later group, and the cap.
-        let first_group = expected[..LISTED_GROUP]
-            .iter()
-            .filter(|&&i| i != UNLISTED)
-            .max();
-        let later = |&i: &u32| i != UNLISTED && Some(&i) > first_group;
-        assert!(expected[LISTED_GROUP..].iter().any(later));
-        assert!(expected.contains(&UNLISTED));
-        assert_eq!(index, expected);
+        for (width, height, factors, by_stored_channels) in [
+            (600, 250, chromatic(), false),
+            (512, 512, chromatic(), true),
+            (512, 512, zero_red, false),
+        ] {
+            let key = |x: u32, y: u32| match y % 3 {
+                0 => 7,
+                _ => x / (1 + y % 2) + y * 1000,
+            };
+            // The alpha varies along every run of equal colours.
+            let mut diffuse = hashed_image(width, height, key);
+            (diffuse.enumerate_pixels_mut()).for_each(|(x, _, p)| p[3] = (x % 7 * 40) as u8);
+            let diffuse = sample::decode(&png(diffuse)).unwrap();
+            let specular = hashed(width, height, |x, y| key(x, y) % 5);
+            let source = both(&diffuse, &specular, &factors);
+            assert_eq!(source.stored_key().is_some(), by_stored_channels);
+            let reading = crate::shade::material::SpecGlossReading::ArchivedExtension;
+            let mut fits = TexelFits::with_budgets(reading, 0, 0);
+            let (index, _) = judged(&source, &mut fits, 255.0);
+            let mut first_seen: HashMap<[u64; 7], u32> = HashMap::new();
+            let expected: Vec<u32> = (0..height)
+                .flat_map(|y| (0..width).map(move |x| (x, y)))
+                .map(|(x, y)| {
+                    let (listed, full) = (
+                        first_seen.len(),
+                        first_seen.len() >= fit::MAX_SCREENED_TEXELS,
+                    );
+                    match first_seen.entry(source.at(x, y).0.key()) {
+                        Entry::Occupied(known) => *known.get(),
+                        Entry::Vacant(_) if full => UNLISTED,
+                        Entry::Vacant(new) => *new.insert(listed as u32),
+                    }
+                })
+                .collect();
+            // The case covers what it is about: values first met in a later group, and the cap.
+            let first_group = expected[..LISTED_GROUP]
+                .iter()
+                .filter(|&&i| i != UNLISTED)
+                .max();
+            let later = |&i: &u32| i != UNLISTED && Some(&i) > first_group;
+            assert!(expected[LISTED_GROUP..].iter().any(later));
+            assert!(expected.contains(&UNLISTED), "{width}×{height}");
+            assert_eq!(index, expected, "{width}×{height}");
+        }
     }
 
     /// The between-centres check skips a corner whose four centres equal those of the corner

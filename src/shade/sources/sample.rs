@@ -102,6 +102,25 @@ impl TextureImage {
         }
     }
 
+    /// Texel (x, y) as stored, its channels packed into one word, for an image of 8-bit
+    /// channels with every texel held; `None` for any other.
+    #[inline(always)]
+    pub(crate) fn narrow_texel(&self, x: u32, y: u32) -> Option<u32> {
+        let Texels::Unorm8(raw) = &self.texels else {
+            return None;
+        };
+        let at = (y as usize * self.width as usize + x as usize) * self.channels;
+        let texel = raw
+            .get(at..at + self.channels)
+            .filter(|_| self.complete())?;
+        Some(texel.iter().fold(0, |w, &c| w << 8 | u32::from(c)))
+    }
+
+    /// Whether its texels have an alpha channel (luminance-alpha or RGBA), stored last.
+    pub(crate) fn has_alpha(&self) -> bool {
+        self.channels % 2 == 0
+    }
+
     /// Whether its texels have more than 8 bits (a rebake from it keeps 16 bits).
     pub(crate) fn is_wide(&self) -> bool {
         !matches!(self.texels, Texels::Unorm8(_))
