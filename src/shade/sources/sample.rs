@@ -118,7 +118,7 @@ impl TextureImage {
 
     /// Whether its texels have an alpha channel (luminance-alpha or RGBA), stored last.
     pub(crate) fn has_alpha(&self) -> bool {
-        self.channels % 2 == 0
+        matches!(self.channels, 2 | 4)
     }
 
     /// Whether its texels have more than 8 bits (a rebake from it keeps 16 bits).
