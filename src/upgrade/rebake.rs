@@ -62,7 +62,9 @@ fn encode(image: &Rgba32FImage, alpha: bool, wide: bool) -> Vec<u8> {
 /// truncation, in f64 so that no value just below a half rounds up; `f32::round` is a library
 /// call per sample).
 fn level(value: f64, max: f64) -> f64 {
-    (value.clamp(0.0, 1.0) * max + 0.5).floor()
+    // Non-negative: truncation is the floor, and NaN (clamped to itself) becomes 0, as the
+    // image crate stores it.
+    ((value.clamp(0.0, 1.0) * max + 0.5) as u32).into()
 }
 
 /// Each texel of the image in `bytes` (values 0..1 as stored) mapped by `f`, computed on
