@@ -641,6 +641,16 @@ impl Histogram {
         }
         self.0[bin] += samples;
     }
+
+    /// Adds its counts to `totals`, bin by bin (growing it to its length).
+    fn add_to(&self, totals: &mut Vec<u64>) {
+        if totals.len() < self.0.len() {
+            totals.resize(self.0.len(), 0);
+        }
+        for (total, n) in totals.iter_mut().zip(&self.0) {
+            *total += u64::from(*n);
+        }
+    }
 }
 
 /// The finest UV grid compared: 4096² texels (each its centre and a corner) × every
@@ -1416,12 +1426,7 @@ fn merge<'p>(
         sum += p.sum;
         count += p.count;
         blended += p.blended;
-        if histogram.len() < p.histogram.0.len() {
-            histogram.resize(p.histogram.0.len(), 0);
-        }
-        for (total, n) in histogram.iter_mut().zip(&p.histogram.0) {
-            *total += u64::from(*n);
-        }
+        p.histogram.add_to(&mut histogram);
         if worst.as_ref().is_none_or(|w| p.worst.delta_e > w.delta_e) {
             worst = Some(p.worst.clone());
         }

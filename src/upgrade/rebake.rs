@@ -537,16 +537,17 @@ impl SpecGlossTexels<'_> {
         let mut factors = diffuse[..3].iter().chain(specular).chain([glossiness]);
         let exact = width.is_power_of_two() && height.is_power_of_two();
         let keyed = exact && factors.all(|f| f.is_normal()) && self.inputs().all(stored);
+        // The diffuse alpha is not part of the value (the rebake writes it apart).
+        let alpha_bits = if self.diffuse.is_some_and(TextureImage::has_alpha) {
+            8
+        } else {
+            0
+        };
         keyed.then_some(move |x, y| {
             let word = |t: Option<&TextureImage>| {
                 t.and_then(|t| t.narrow_texel(x, y)).map_or(0, u64::from)
             };
-            // The diffuse alpha is not part of the value (the rebake writes it apart).
-            let colour = |w: u64| match self.diffuse.is_some_and(TextureImage::has_alpha) {
-                true => w >> 8,
-                false => w,
-            };
-            colour(word(self.diffuse)) << 32 | word(self.specular)
+            (word(self.diffuse) >> alpha_bits) << 32 | word(self.specular)
         })
     }
 
