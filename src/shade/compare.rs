@@ -765,6 +765,7 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
     for y in rows {
         pass.here.clear();
         pass.centres.next_row();
+        pass.next_row(y);
         pass.row(y, Points::Centres);
         pass.row(y, Points::Corners);
         pass.above = Some(std::mem::take(&mut pass.here));
@@ -787,6 +788,11 @@ struct Pass<'j, 'a> {
     as_stored: bool,
     /// The other material's texels at the centre at hand (part of every reading's key).
     key_b: Vec<u64>,
+    /// Where every texture is read as stored: for each centre of this row and of the row
+    /// above (empty above the grid's first row), whether every side reads there what it
+    /// reads at the centre to its left.
+    like_left: Vec<bool>,
+    like_left_above: Vec<bool>,
     above: Option<Vec<bool>>,
     here: Vec<bool>,
 }
@@ -812,8 +818,55 @@ impl<'j, 'a> Pass<'j, 'a> {
             linear: readings.iter().all(|a| a.linear_on(grid)) && b.linear_on(grid),
             as_stored,
             key_b: Vec::new(),
+            like_left: Vec::new(),
+            like_left_above: Vec::new(),
             above: None,
             here: Vec::new(),
+        }
+    }
+
+    /// Readies the flags of row `y` (and, at the first row of the pass, of the row above)
+    /// that say which centres read what their left neighbours read.
+    fn next_row(&mut self, y: u32) {
+        if !self.as_stored {
+            return;
+        }
+        if self.like_left.is_empty() && y > 0 {
+            self.like_left = self.reading_as_left(y - 1);
+        }
+        let here = self.reading_as_left(y);
+        self.like_left_above = std::mem::replace(&mut self.like_left, here);
+    }
+
+    /// Row `y`'s flags: whether each centre reads on every side what the one to its left
+    /// reads.
+    fn reading_as_left(&self, y: u32) -> Vec<bool> {
+        let Job { readings, b, grid, .. } = *self.job;
+        let mut row = vec![true; grid as usize];
+        for side in readings.iter().chain([b]) {
+            side.clear_unlike_left(y, &mut row);
+        }
+        row
+    }
+
+    /// Whether the point at column `x` of this row (a centre, or a corner) reads on every
+    /// side the texels the point to its left reads: a corner reads the texels left and right
+    /// of it in this row and the row above. Never where a read wraps around an edge.
+    #[inline(always)]
+    fn reads_as_left(&self, x: u32, points: Points) -> bool {
+        let x = x as usize;
+        let (here, above) = (&self.like_left, &self.like_left_above);
+        match points {
+            Points::Centres => here.get(x) == Some(&true),
+            Points::Corners => {
+                x >= 1
+                    && above.len() > x
+                    && here.len() > x
+                    && here[x]
+                    && here[x - 1]
+                    && above[x]
+                    && above[x - 1]
+            }
         }
     }
 
@@ -855,11 +908,11 @@ impl<'j, 'a> Pass<'j, 'a> {
         for x in 0..grid {
             let uv = uv_of(x);
             if points == Points::Corners
-                && self.corner_unsampled(x, y, uv, &mut left_blended, &mut row_of, place)
+                && self.corner_unsampled(x, uv, &mut left_blended, &mut row_of, place)
             {
                 continue;
             }
-            if self.repeats_left(x, y, points, &mut row_of, place) {
+            if self.repeats_left(x, points, &mut row_of, place) {
                 continue;
             }
             self.sample(x, y, uv, points, &mut row_of, place);
@@ -879,20 +932,17 @@ impl<'j, 'a> Pass<'j, 'a> {
     fn corner_unsampled(
         &mut self,
         x: u32,
-        y: u32,
         uv: [f64; 2],
         left_blended: &mut bool,
         row_of: &mut [Row],
         place: impl Fn(u32) -> Place + Copy,
     ) -> bool {
         let Job {
-            readings,
-            b,
             grid,
             ref directions,
             ..
         } = *self.job;
-        let as_left = || self.as_stored && reads_as_left(readings, b, x, y, true);
+        let as_left = || self.reads_as_left(x, Points::Corners);
         *left_blended = self.centres.skips(x, uv, *left_blended, as_left);
         if *left_blended {
             for (row, partial) in row_of.iter_mut().zip(&mut self.partials) {
@@ -921,22 +971,15 @@ impl<'j, 'a> Pass<'j, 'a> {
     fn repeats_left(
         &mut self,
         x: u32,
-        y: u32,
         points: Points,
         row_of: &mut [Row],
         place: impl Fn(u32) -> Place + Copy,
     ) -> bool {
-        let Job {
-            readings,
-            b,
-            ref directions,
-            ..
-        } = *self.job;
-        let corner = points == Points::Corners;
+        let directions = &self.job.directions;
         if !(self.as_stored
             && x > 0
             && row_of.iter().all(|row| row.last().is_some())
-            && reads_as_left(readings, b, x, y, corner))
+            && self.reads_as_left(x, points))
         {
             return false;
         }
@@ -1169,19 +1212,6 @@ impl<'a> Centres<'a> {
             is_mean_of(&side.inputs_at(&[uv]).bent(), four, BLEND_TOLERANCE)
         })
     }
-}
-
-/// Whether the point at column `x` of row `y` (a centre, or with `corner` a corner) reads on
-/// every side the texels its left neighbour reads (see [`MaterialSource::reads_as_left`]).
-#[inline(always)]
-fn reads_as_left(
-    readings: &[MaterialSource],
-    b: &MaterialSource,
-    x: u32,
-    y: u32,
-    corner: bool,
-) -> bool {
-    b.reads_as_left(x, y, corner) && readings.iter().all(|a| a.reads_as_left(x, y, corner))
 }
 
 /// Where a point lies: its texture coordinates, the texel of the map it raises (a corner)

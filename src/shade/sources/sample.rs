@@ -58,21 +58,27 @@ impl TextureImage {
         })
     }
 
-    /// Whether texel (x, y) holds what texel (x − 1, y) holds, as stored (`x` ≥ 1).
-    #[inline(always)]
-    fn same_as_left(&self, x: u32, y: u32) -> bool {
-        let n = self.channels;
-        let at = (y as usize * self.width as usize + x as usize) * n;
-        // Channel by channel: a texel is a few values, too short for a call to memcmp.
-        fn same<T: PartialEq>(raw: &[T], at: usize, n: usize) -> bool {
-            at >= n
-                && at + n <= raw.len()
-                && (raw[at - n..at].iter().zip(&raw[at..at + n])).all(|(a, b)| a == b)
+    /// Clears `row[x]` wherever texel (x, y) does not hold what texel (x − 1, y) holds, as
+    /// stored, and at x = 0 (no texel to its left); a row not held whole is cleared.
+    fn clear_unlike_left(&self, y: u32, row: &mut [bool]) {
+        fn clear<T: PartialEq>(raw: &[T], n: usize, row: &mut [bool]) {
+            let texels = raw.chunks_exact(n.max(1));
+            let pairs = texels.clone().zip(texels.skip(1));
+            row[0] = false;
+            for (flag, (left, texel)) in row[1..].iter_mut().zip(pairs) {
+                *flag &= left == texel;
+            }
         }
-        match &self.texels {
-            Texels::Unorm8(raw) => same(raw, at, n),
-            Texels::Unorm16(raw) => same(raw, at, n),
-            Texels::Float(raw) => same(raw, at, n),
+        let (n, width) = (self.channels, self.width as usize);
+        let start = y as usize * width * n;
+        let span = start..start + width * n;
+        let held = match &self.texels {
+            Texels::Unorm8(raw) => raw.get(span).map(|r| clear(r, n, row)),
+            Texels::Unorm16(raw) => raw.get(span).map(|r| clear(r, n, row)),
+            Texels::Float(raw) => raw.get(span).map(|r| clear(r, n, row)),
+        };
+        if held.is_none() || row.len() > width {
+            row.fill(false);
         }
     }
 
@@ -1248,7 +1254,7 @@ impl MaterialSource {
     /// Whether each of its textures is read on the `grid`² comparison grid as stored: every
     /// texture is `grid`² (every texel held), read without a transform and filtered linearly, and `grid` is a
     /// power of two (so a texel centre and a corner are exact coordinates: a centre reads one
-    /// texel, a corner the mean of four). Then [`MaterialSource::reads_as_left`] can tell,
+    /// texel, a corner the mean of four). Then [`MaterialSource::clear_unlike_left`] can tell,
     /// from the stored texels alone, that a point's inputs are its left neighbour's.
     pub(crate) fn texels_on(&self, grid: u32) -> bool {
         let as_stored = |t: &TextureImage, sampler: Sampler| {
@@ -1273,25 +1279,13 @@ impl MaterialSource {
             }
     }
 
-    /// For a material whose textures are [`MaterialSource::texels_on`] the grid: whether the
-    /// grid point at column `x` of row `y` (a texel centre, or with `corner` the texel's
-    /// top-left corner) reads texels equal to those the point at `x − 1` reads, so that its
-    /// inputs are that point's. Points whose reads wrap around an edge are never said to.
-    #[inline(always)]
-    pub(crate) fn reads_as_left(&self, x: u32, y: u32, corner: bool) -> bool {
-        let same = |t: &TextureImage| {
-            if corner {
-                // A corner reads the texels left and right of it in the rows above and below.
-                x >= 2
-                    && y >= 1
-                    && [(x, y), (x - 1, y), (x, y - 1), (x - 1, y - 1)]
-                        .into_iter()
-                        .all(|(x, y)| t.same_as_left(x, y))
-            } else {
-                x >= 1 && t.same_as_left(x, y)
-            }
-        };
-        self.textures().all(|t| same(t))
+    /// For a material whose textures are [`MaterialSource::texels_on`] the grid: clears
+    /// `row[x]` wherever some texture's texel (x, y) differs from texel (x − 1, y), as stored,
+    /// and at x = 0. A centre whose flag stays set reads what its left neighbour reads, and so
+    /// does a corner whose four texels' flags do (the two around it in its row and in the row
+    /// above): its inputs are that point's.
+    pub(crate) fn clear_unlike_left(&self, y: u32, row: &mut [bool]) {
+        self.textures().for_each(|t| t.clear_unlike_left(y, row));
     }
 
     /// For a material whose textures are [`MaterialSource::texels_on`] the grid: the stored
