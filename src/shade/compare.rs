@@ -841,7 +841,9 @@ impl<'j, 'a> Pass<'j, 'a> {
     /// Row `y`'s flags: whether each centre reads on every side what the one to its left
     /// reads.
     fn reading_as_left(&self, y: u32) -> Vec<bool> {
-        let Job { readings, b, grid, .. } = *self.job;
+        let Job {
+            readings, b, grid, ..
+        } = *self.job;
         let mut row = vec![true; grid as usize];
         for side in readings.iter().chain([b]) {
             side.clear_unlike_left(y, &mut row);
@@ -990,7 +992,7 @@ impl<'j, 'a> Pass<'j, 'a> {
         for (row, partial) in row_of.iter_mut().zip(&mut self.partials) {
             match row.last() {
                 Some(Source::Zero) | None => row.add_equal(partial, x, place, &directions.angles),
-                Some(source) => row.pending.push((x, source)),
+                Some(source) => row.repeat(x, source),
             }
         }
         true
@@ -1072,7 +1074,7 @@ impl<'j, 'a> Pass<'j, 'a> {
                 Some(same) => same,
                 None => batch.shade(row, shader, directions, source, target, keyed),
             };
-            row.pending.push((x, source));
+            row.pending.push(Pending::at(x, source));
             if row.unique == BATCH_TEXELS {
                 row.flush(batch, partial, place, &directions.angles);
             }
@@ -1234,11 +1236,29 @@ enum Source {
     Known([f64; DIRECTION_COUNT]),
 }
 
+/// Points of a grid row waiting for their batch's ΔE: the one at column `x`, and the
+/// `repeats` after it that read what it reads.
+struct Pending {
+    x: u32,
+    source: Source,
+    repeats: u32,
+}
+
+impl Pending {
+    fn at(x: u32, source: Source) -> Pending {
+        Pending {
+            x,
+            source,
+            repeats: 0,
+        }
+    }
+}
+
 /// The points of one grid row waiting for their batch's ΔE, in order.
 #[derive(Default)]
 struct Row {
-    /// (x, where its samples come from), in row order.
-    pending: Vec<(u32, Source)>,
+    /// Where their samples come from, in row order.
+    pending: Vec<Pending>,
     /// Points put into the batch so far.
     unique: usize,
     /// The last point with differing inputs: its inputs (unless it was known by its texels)
@@ -1261,7 +1281,7 @@ impl Row {
         self.last_equal = true;
         match self.pending.is_empty() {
             true => partial.add_equal_point(&place(x), angles),
-            false => self.pending.push((x, Source::Zero)),
+            false => self.pending.push(Pending::at(x, Source::Zero)),
         }
     }
 
@@ -1278,7 +1298,20 @@ impl Row {
         let known = Source::Known(samples);
         self.last_equal = false;
         self.previous = Some((None, known));
-        self.pending.push((x, known));
+        self.pending.push(Pending::at(x, known));
+    }
+
+    /// The point at column `x` reads what the point before it read (whose samples come from
+    /// `source`): a run of such points is handed on at once.
+    fn repeat(&mut self, x: u32, source: Source) {
+        match self.pending.last_mut() {
+            Some(last)
+                if last.x + last.repeats + 1 == x && !matches!(last.source, Source::Zero) =>
+            {
+                last.repeats += 1
+            }
+            _ => self.pending.push(Pending::at(x, source)),
+        }
     }
 
     /// The point before was not sampled: the next one cannot take its samples.
@@ -1314,17 +1347,24 @@ impl Row {
             Source::Slot(k) => std::array::from_fn(|i| deltas[k * DIRECTION_COUNT + i]),
             Source::Known(known) => known,
         };
-        for (x, source) in self.pending.drain(..) {
+        for Pending { x, source, repeats } in self.pending.drain(..) {
             let at = place(x);
+            let deltas = samples(source);
             match source {
                 Source::Zero => partial.add_equal_point(&at, angles),
-                Source::Slot(k) => {
-                    partial.add_point(&at, &samples(source), angles, &batch.pairs[k])
-                }
-                // A repeat of the point before: its figures count, and it cannot be a new
-                // worst (the point it repeats was offered).
+                Source::Slot(k) => partial.add_point(&at, &deltas, angles, &batch.pairs[k]),
+                // A repeat of a point sampled before: its figures count, and it cannot be a
+                // new worst (the point it repeats was offered).
                 Source::Known(_) => {
-                    partial.add_samples(&at, &samples(source));
+                    partial.add_samples(&at, &deltas, 1);
+                }
+            }
+            // Points that read what the one before read: the same, counted again. (None is
+            // a new worst, nor a new candidate: each is a repeat of a point offered.)
+            if repeats > 0 {
+                partial.add_samples(&place(x + 1), &deltas, repeats);
+                for more in x + 2..=x + repeats {
+                    partial.note_point(&place(more), &deltas);
                 }
             }
         }
@@ -1382,10 +1422,17 @@ impl Partial {
                 background: BACKGROUNDS[0],
             };
         }
-        self.note_point(at, 0.0);
+        self.note_max(at, 0.0);
     }
 
-    fn note_point(&mut self, at: &Place, max: f32) {
+    /// Puts a point's largest sample into the map of texels, if one is kept.
+    fn note_point(&mut self, at: &Place, deltas: &[f64]) {
+        if self.per_texel.is_some() {
+            self.note_max(at, largest(deltas).0 as f32);
+        }
+    }
+
+    fn note_max(&mut self, at: &Place, max: f32) {
         if let Some(map) = &mut self.per_texel {
             match at.texel.and_then(|i| map.get_mut(i)) {
                 Some(texel) => *texel = texel.max(max),
@@ -1394,21 +1441,20 @@ impl Partial {
         }
     }
 
-    /// Adds a point's samples to the figures; returns its largest.
-    fn add_samples(&mut self, at: &Place, deltas: &[f64]) -> (f64, usize) {
-        let (mut point_max, mut arg) = (0f64, 0);
-        for (k, &delta) in deltas.iter().enumerate() {
+    /// Adds the samples of `times` points alike (the first at `at`) to the figures; returns
+    /// their largest and its direction.
+    fn add_samples(&mut self, at: &Place, deltas: &[f64], times: u32) -> (f64, usize) {
+        for &delta in deltas {
             let delta = if delta.is_finite() { delta } else { f64::MAX };
-            if delta > point_max {
-                (point_max, arg) = (delta, k);
-            }
             // At most 10⁶ · 2³² < 2⁶³: one conversion instruction, where a float to a
             // 128-bit integer is a library call per sample.
-            self.sum += ((delta.min(1e6) * SUM_STEPS_PER_UNIT) as i64) as u128;
-            self.count += 1;
-            self.histogram.add(delta, 1);
+            let steps = ((delta.min(1e6) * SUM_STEPS_PER_UNIT) as i64) as u128;
+            self.sum += steps * u128::from(times);
+            self.count += u64::from(times);
+            self.histogram.add(delta, times);
         }
-        self.note_point(at, point_max as f32);
+        let (point_max, arg) = largest(deltas);
+        self.note_max(at, point_max as f32);
         (point_max, arg)
     }
 
@@ -1419,7 +1465,7 @@ impl Partial {
         angles: &[Angles; DIRECTION_COUNT],
         pair: &Pair,
     ) {
-        let (point_max, arg) = self.add_samples(at, deltas);
+        let (point_max, arg) = self.add_samples(at, deltas, 1);
         if point_max > self.worst.delta_e {
             // Which background it was found over is settled once, for the final worst.
             self.worst = Worst {
@@ -1433,6 +1479,19 @@ impl Partial {
         }
         self.candidates.offer(point_max, at.uv, at.order, pair);
     }
+}
+
+/// A point's largest sample (a sample that is not a number counting as the largest there
+/// is) and its direction.
+fn largest(deltas: &[f64]) -> (f64, usize) {
+    let (mut point_max, mut arg) = (0f64, 0);
+    for (k, &delta) in deltas.iter().enumerate() {
+        let delta = if delta.is_finite() { delta } else { f64::MAX };
+        if delta > point_max {
+            (point_max, arg) = (delta, k);
+        }
+    }
+    (point_max, arg)
 }
 
 /// The partials' figures together, and the search of [`refine`] around their worst points
