@@ -66,7 +66,8 @@ impl TextureImage {
             let pairs = texels.clone().zip(texels.skip(1));
             row[0] = false;
             for (flag, (left, texel)) in row[1..].iter_mut().zip(pairs) {
-                *flag &= left == texel;
+                // Channel by channel: a texel is a few values, too short for a call to memcmp.
+                *flag &= left.iter().zip(texel).all(|(a, b)| a == b);
             }
         }
         let (n, width) = (self.channels, self.width as usize);
