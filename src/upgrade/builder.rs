@@ -481,6 +481,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             origins: self.origins,
             passed_through: Default::default(),
             draft_reading: self.options.draft_reading,
+            _decoded: self.rebakes.decoded(),
         }
     }
 }

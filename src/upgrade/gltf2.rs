@@ -87,6 +87,7 @@ pub(super) fn upgrade(
         origins: Default::default(),
         passed_through,
         draft_reading: options.draft_reading,
+        _decoded: asset.rebakes.decoded(),
     })
 }
 

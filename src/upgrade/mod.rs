@@ -170,6 +170,9 @@ pub struct Upgraded {
     passed_through: std::collections::BTreeSet<usize>,
     /// The reading 1.0 spec-gloss drafts were converted under: the proof judges by it.
     draft_reading: SpecGlossReading,
+    /// The input images the conversion decoded, held while the asset is: its proof reads
+    /// the same images and shares these decodes (see `shade::sample::decode`).
+    _decoded: Vec<crate::shade::sample::Texture>,
 }
 
 impl Upgraded {

@@ -17,7 +17,7 @@ pub(super) use super::fit::Factors;
 use super::fit::{TexelFits, TexelReport};
 use super::rebake;
 use crate::shade::material::SpecGlossReading;
-use crate::shade::sample::Sampler;
+use crate::shade::sample::{self, Sampler, Texture};
 use serde_json::{json, Map, Value};
 use std::sync::Arc;
 
@@ -54,6 +54,15 @@ pub(super) trait Textures {
 #[derive(Default)]
 pub(super) struct Rebakes(std::collections::HashMap<RebakeKey, Rebaked>);
 
+impl Rebakes {
+    /// The images the rebakes decoded (see [`Rebaked::decoded`]).
+    pub(super) fn decoded(&self) -> Vec<Texture> {
+        (self.0.values())
+            .flat_map(|rebaked| rebaked.decoded.iter().cloned())
+            .collect()
+    }
+}
+
 /// The images' addresses (0 for none), their samplers, the factors' bits and the reading.
 type RebakeKey = (usize, usize, [Sampler; 2], [u64; 8], SpecGlossReading);
 
@@ -70,6 +79,9 @@ struct Rebaked {
         Option<Arc<crate::document::Bytes>>,
         Arc<crate::document::Bytes>,
     ),
+    /// The images decoded: held until the upgrade is done with, so that its proof, which
+    /// reads the same images, shares them rather than decoding them again.
+    decoded: Vec<Texture>,
 }
 
 fn rebake_key(
@@ -172,6 +184,18 @@ fn rebake(
     samplers: [Sampler; 2],
     textures: &mut dyn Textures,
 ) -> Result<Rebaked, String> {
+    // Each image is decoded once, both at a time; the rebakes below share the decodes. A
+    // decode that fails here fails there too, and says why.
+    let decoded: Vec<Texture> = std::thread::scope(|scope| {
+        let specular = scope.spawn(|| sample::decode(specular));
+        let diffuse = diffuse.map(|bytes| sample::decode(bytes));
+        let specular = specular.join().ok();
+        [diffuse, specular]
+            .into_iter()
+            .flatten()
+            .flatten()
+            .collect()
+    });
     let fits = textures.texel_fits();
     // The two rebakes are independent: the roughness one runs on a second thread.
     let (base_colour, roughness) = std::thread::scope(|scope| {
@@ -202,6 +226,7 @@ fn rebake(
         roughness_factor,
         lines: held.into_iter().chain(fit_line).chain(scaled).collect(),
         _made_from: (diffuse.cloned(), Arc::clone(specular)),
+        decoded,
     })
 }
 

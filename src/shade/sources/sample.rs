@@ -37,6 +37,17 @@ enum Texels {
     Float(Vec<f32>),
 }
 
+/// Its size and channels; the texels are too many to print.
+impl std::fmt::Debug for TextureImage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        (f.debug_struct("TextureImage"))
+            .field("width", &self.width)
+            .field("height", &self.height)
+            .field("channels", &self.channels)
+            .finish_non_exhaustive()
+    }
+}
+
 impl TextureImage {
     pub(crate) fn width(&self) -> u32 {
         self.width
@@ -305,10 +316,15 @@ fn decode_png_reduced(bytes: &[u8], finest: u32) -> Option<Result<TextureImage, 
 }
 
 /// Decodes one image (see [`decode_all`] for a set of them), within [`decode_budget`] of its
-/// bytes.
+/// bytes; an image another decode of this process still holds is shared, not decoded again.
 pub(crate) fn decode(bytes: &[u8]) -> Result<Texture, String> {
     within_budget(&[Some(bytes)], AS_STORED)?;
-    decode_whole(bytes)
+    if let Some(held) = Live::get(bytes, AS_STORED) {
+        return Ok(held);
+    }
+    let texture = decode_whole(bytes)?;
+    Live::put(bytes, AS_STORED, &texture);
+    Ok(texture)
 }
 
 /// Decodes one image as stored, its size already judged.
