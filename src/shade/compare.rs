@@ -24,7 +24,7 @@ use super::brdf::{Geometry, V3};
 use super::delta_e::{ciede2000, lab_from_linear_srgb};
 use super::lanes::{Lanes, Real};
 use super::material::{is_mean_of, Bent, Inputs, Shader};
-use super::sample::MaterialSource;
+use super::sample::{self, MaterialSource, Read};
 use super::tone::displayed;
 use std::sync::Arc;
 
@@ -1047,15 +1047,21 @@ impl<'j, 'a> Pass<'j, 'a> {
             if let Some(known) = known {
                 // Known texels: no input is read but what a corner needs.
                 self.here[x as usize] = false;
-                self.centres.keep_with(r, || a.inputs_at(&[uv]).bent());
+                self.centres.keep(r, a, uv);
                 row.take_known(x, known);
                 continue;
             }
-            let target = &*target.get_or_insert_with(|| b.inputs_at(&[uv]));
-            let source = a.inputs_at(&[uv]);
-            if centre {
-                self.centres.keep(r, &source);
-            }
+            // A centre's inputs are made through the corner screen, which keeps what a
+            // corner needs of them.
+            let centres = &mut self.centres;
+            let target = &*target.get_or_insert_with(|| match centre {
+                true => centres.inputs(readings.len(), b, uv),
+                false => b.inputs_at(&[uv]),
+            });
+            let source = match centre {
+                true => centres.inputs(r, a, uv),
+                false => a.inputs_at(&[uv]),
+            };
             let equal = source == *target;
             if !equal && centre {
                 self.here[x as usize] = false;
@@ -1079,10 +1085,8 @@ impl<'j, 'a> Pass<'j, 'a> {
                 row.flush(batch, partial, place, &directions.angles);
             }
         }
-        if centre {
-            let side = readings.len();
-            let centres = &mut self.centres;
-            centres.keep_with(side, || target.unwrap_or_else(|| b.inputs_at(&[uv])).bent());
+        if centre && target.is_none() {
+            self.centres.keep(readings.len(), b, uv);
         }
     }
 }
@@ -1100,8 +1104,11 @@ const BLEND_TOLERANCE: f64 = 1.0 / 4096.0;
 /// normal) has the inputs it can bend ([`Inputs::bent`]) checked against the centres of this
 /// row and the row above. Where every side has its centres' mean, the viewer's interpolation
 /// of one material's texels shows what the other's shows: the corner is a blend of the pairs
-/// its four centres compared, and is not sampled. Where a side bends, the corner is where a conversion that is not linear differs
-/// most, and it is sampled.
+/// its four centres compared, and is not sampled. Where a side bends, the corner is where a
+/// conversion that is not linear differs most, and it is sampled.
+///
+/// A bending side's texture reads at each centre are kept with its bent inputs: the reads
+/// at a corner are made from the four centres' ([`sample::corner_of`]), not sampled again.
 struct Centres<'a> {
     /// Whether corners are screened at all (every texture read as stored).
     active: bool,
@@ -1109,11 +1116,50 @@ struct Centres<'a> {
     /// material) its place among them.
     bending: Vec<&'a MaterialSource>,
     slot: Vec<Option<usize>>,
-    /// Each bending side's bent inputs (see [`Inputs::bent`]) at the centres of the row above
-    /// and of this row.
-    above: Option<Vec<Vec<Bent>>>,
-    here: Vec<Vec<Bent>>,
+    /// Each bending side's centres of the row above and of this row.
+    above: Option<Vec<Kept>>,
+    here: Vec<Kept>,
     started: bool,
+}
+
+/// One bending side's centres of one row: each one's bent inputs, and its texture reads (the
+/// same number at every centre, see [`MaterialSource::inputs_with`]), side by side.
+#[derive(Default)]
+struct Kept {
+    bent: Vec<Bent>,
+    reads: Vec<[f64; 4]>,
+}
+
+impl Kept {
+    /// Makes `side`'s inputs at `uv` (a centre of this row), keeping what a corner needs.
+    #[inline(always)]
+    fn inputs(&mut self, side: &MaterialSource, uv: [f64; 2]) -> Inputs {
+        let reads = &mut self.reads;
+        let inputs = side.inputs_with(&[uv], |read: Read<'_>| {
+            let texels = read.sampled();
+            reads.push(texels);
+            texels
+        });
+        self.bent.push(inputs.bent());
+        inputs
+    }
+
+    /// The next centre repeats the one before.
+    fn repeat_last(&mut self) {
+        let (Some(&last), centres) = (self.bent.last(), self.bent.len()) else {
+            return;
+        };
+        let per_centre = self.reads.len() / centres;
+        self.reads
+            .extend_from_within(self.reads.len() - per_centre..);
+        self.bent.push(last);
+    }
+
+    /// Centre `x`'s bent inputs and texture reads.
+    fn centre(&self, x: usize) -> (&Bent, &[[f64; 4]]) {
+        let per_centre = self.reads.len() / self.bent.len().max(1);
+        (&self.bent[x], &self.reads[x * per_centre..][..per_centre])
+    }
 }
 
 impl<'a> Centres<'a> {
@@ -1140,10 +1186,13 @@ impl<'a> Centres<'a> {
         let size = f64::from(grid);
         let row_above = |side: &&MaterialSource| {
             let v = (f64::from(first) - 0.5) / size;
-            let at = |x: u32| side.inputs_at(&[[(f64::from(x) + 0.5) / size, v]]).bent();
-            (0..grid).map(at).collect()
+            let mut kept = Kept::default();
+            for x in 0..grid {
+                kept.inputs(side, [(f64::from(x) + 0.5) / size, v]);
+            }
+            kept
         };
-        let here = bending.iter().map(|_| Vec::new()).collect();
+        let here = bending.iter().map(|_| Kept::default()).collect();
         Centres {
             active,
             above: (first > 0).then(|| bending.iter().map(row_above).collect()),
@@ -1156,31 +1205,32 @@ impl<'a> Centres<'a> {
 
     fn next_row(&mut self) {
         if self.started {
-            let empty = self.bending.iter().map(|_| Vec::new()).collect();
+            let empty = self.bending.iter().map(|_| Kept::default()).collect();
             self.above = Some(std::mem::replace(&mut self.here, empty));
         }
         self.started = true;
     }
 
-    /// Keeps side `side`'s bent inputs at this row's next centre (if it bends).
-    fn keep(&mut self, side: usize, inputs: &Inputs) {
-        self.keep_with(side, || inputs.bent());
+    /// Side `side`'s inputs at this row's next centre (`material` at `uv`), kept if it bends.
+    #[inline(always)]
+    fn inputs(&mut self, side: usize, material: &MaterialSource, uv: [f64; 2]) -> Inputs {
+        match self.slot.get(side) {
+            Some(Some(k)) => self.here[*k].inputs(material, uv),
+            _ => material.inputs_at(&[uv]),
+        }
     }
 
-    /// As [`Centres::keep`], the inputs read only if the side bends.
-    fn keep_with(&mut self, side: usize, inputs: impl FnOnce() -> Bent) {
+    /// Keeps side `side`'s inputs at this row's next centre, if it bends.
+    #[inline(always)]
+    fn keep(&mut self, side: usize, material: &MaterialSource, uv: [f64; 2]) {
         if let Some(Some(k)) = self.slot.get(side) {
-            self.here[*k].push(inputs());
+            self.here[*k].inputs(material, uv);
         }
     }
 
     /// This row's next centre reads what the one before it read.
     fn repeat_left(&mut self) {
-        for centres in &mut self.here {
-            if let Some(&last) = centres.last() {
-                centres.push(last);
-            }
-        }
+        self.here.iter_mut().for_each(Kept::repeat_last);
     }
 
     /// Whether the corner at column `x` (texture coordinates `uv`) is not sampled, given
@@ -1210,8 +1260,19 @@ impl<'a> Centres<'a> {
         };
         let x = x as usize;
         (self.bending.iter().zip(above).zip(&self.here)).all(|((side, above), here)| {
-            let four = [&above[x - 1], &above[x], &here[x - 1], &here[x]];
-            is_mean_of(&side.inputs_at(&[uv]).bent(), four, BLEND_TOLERANCE)
+            let four = [
+                above.centre(x - 1),
+                above.centre(x),
+                here.centre(x - 1),
+                here.centre(x),
+            ];
+            let mut next = 0;
+            let corner = side.inputs_with(&[uv], |_: Read<'_>| {
+                let reads = four.map(|(_, reads)| &reads[next]);
+                next += 1;
+                sample::corner_of(reads)
+            });
+            is_mean_of(&corner.bent(), four.map(|(bent, _)| bent), BLEND_TOLERANCE)
         })
     }
 }

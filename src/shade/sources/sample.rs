@@ -667,6 +667,20 @@ fn sample_of<const SRGB: bool>(
     })
 }
 
+/// What a bilinear sample gives at the corner between four texels (`four`: the texel above
+/// left, above right, below left, below right, each as [`sample_of`] gives it at its centre),
+/// computed as [`sample_of`] computes it there (both weights ½): the same number, bit for bit.
+#[inline(always)]
+pub(crate) fn corner_of(four: [&[f64; 4]; 4]) -> [f64; 4] {
+    let [a, b, c, d] = four;
+    let half = 0.5;
+    std::array::from_fn(|k| {
+        let top = a[k] * (1.0 - half) + b[k] * half;
+        let bottom = c[k] * (1.0 - half) + d[k] * half;
+        top * (1.0 - half) + bottom * half
+    })
+}
+
 /// ⌊x⌋ as an integer (saturating), by a cast: `f64::floor` is a library call on baseline
 /// x86-64, and sampling floors two coordinates per texture per texel.
 #[inline(always)]
@@ -759,15 +773,16 @@ struct Binding {
 }
 
 impl Binding {
-    /// A colour slot's sample: linear RGB and alpha (see [`bilinear_srgb`]).
+    /// Its read at a point whose coordinates per set are `uvs`; a colour slot's (`srgb`)
+    /// decoded to linear RGB.
     #[inline(always)]
-    fn sample_srgb(&self, uvs: &[[f64; 2]]) -> [f64; 4] {
-        sample_of::<true>(&self.texture, self.coordinates(uvs), self.sampler)
-    }
-
-    #[inline(always)]
-    fn sample(&self, uvs: &[[f64; 2]]) -> [f64; 4] {
-        sample_of::<false>(&self.texture, self.coordinates(uvs), self.sampler)
+    fn read(&self, uvs: &[[f64; 2]], srgb: bool) -> Read<'_> {
+        Read {
+            texture: &self.texture,
+            at: self.coordinates(uvs),
+            sampler: self.sampler,
+            srgb,
+        }
     }
 
     /// Where this binding reads a point whose coordinates per set are `uvs`.
@@ -779,6 +794,56 @@ impl Binding {
             .unwrap_or([0.0, 0.0]);
         let t = self.transform;
         [t[0] * u + t[1] * v + t[2], t[3] * u + t[4] * v + t[5]]
+    }
+}
+
+/// One texture read that a material's inputs are made of: the texture, where and how it is
+/// read, and whether it holds colours (RGB decoded from sRGB before filtering).
+pub(crate) struct Read<'t> {
+    texture: &'t TextureImage,
+    at: [f64; 2],
+    sampler: Sampler,
+    srgb: bool,
+}
+
+impl Read<'_> {
+    /// The texels as a viewer samples them there.
+    #[inline(always)]
+    pub(crate) fn sampled(&self) -> [f64; 4] {
+        match self.srgb {
+            true => sample_of::<true>(self.texture, self.at, self.sampler),
+            false => sample_of::<false>(self.texture, self.at, self.sampler),
+        }
+    }
+}
+
+/// What a texture read gives, when a material's inputs are made: sampled
+/// ([`Read::sampled`]), or known beforehand (see [`MaterialSource::inputs_with`]).
+pub(crate) trait Reader: FnMut(Read<'_>) -> [f64; 4] {}
+impl<F: FnMut(Read<'_>) -> [f64; 4]> Reader for F {}
+
+/// A 2.0 material's texture reads at one point, each through `read`.
+struct Reads<'u, R> {
+    uvs: &'u [[f64; 2]],
+    read: R,
+}
+
+impl<R: Reader> Reads<'_, R> {
+    #[inline(always)]
+    fn colour(&mut self, binding: &Option<Binding>) -> Option<[f64; 4]> {
+        let uvs = self.uvs;
+        binding.as_ref().map(|b| (self.read)(b.read(uvs, true)))
+    }
+
+    #[inline(always)]
+    fn data(&mut self, binding: &Option<Binding>) -> Option<[f64; 4]> {
+        let uvs = self.uvs;
+        binding.as_ref().map(|b| (self.read)(b.read(uvs, false)))
+    }
+
+    #[inline(always)]
+    fn data_of(&mut self, binding: &Binding) -> [f64; 4] {
+        (self.read)(binding.read(self.uvs, false))
     }
 }
 
@@ -1339,8 +1404,17 @@ impl MaterialSource {
     /// into the comparison's texel loop, which is compiled for the CPU's vector width.
     #[inline(always)]
     pub(crate) fn inputs_at(&self, uvs: &[[f64; 2]]) -> Inputs {
+        self.inputs_with(uvs, |read: Read<'_>| read.sampled())
+    }
+
+    /// Its BRDF inputs at `uvs`, each texture read given by `read`: a material makes the
+    /// same reads in the same order at every point. [`MaterialSource::inputs_at`] samples
+    /// them; a caller that knows them already (a texel corner's, from the centres around
+    /// it: see [`corner_of`]) hands them over.
+    #[inline(always)]
+    pub(crate) fn inputs_with(&self, uvs: &[[f64; 2]], read: impl Reader) -> Inputs {
         match self {
-            MaterialSource::Gltf2(prepared) => prepared.inputs_at(uvs),
+            MaterialSource::Gltf2(prepared) => prepared.inputs_with(&mut Reads { uvs, read }),
             MaterialSource::Legacy {
                 pbr,
                 colour,
@@ -1351,7 +1425,7 @@ impl MaterialSource {
             } => {
                 let colour = colour.as_deref().map(|t| (t, *colour_sampler));
                 let data = data.as_deref().map(|t| (t, *data_sampler));
-                legacy_inputs(pbr, colour, data, uvs[0], *reading)
+                legacy_inputs(pbr, colour, data, uvs[0], *reading, read)
             }
         }
     }
@@ -1732,18 +1806,19 @@ impl Prepared {
         )
     }
 
+    /// Its inputs, each texture read through `reads` (the same reads in the same order at
+    /// every point).
     #[inline(always)]
-    fn inputs_at(&self, uvs: &[[f64; 2]]) -> Inputs {
-        let colour = |b: &Option<Binding>| b.as_ref().map(|b| b.sample_srgb(uvs));
+    fn inputs_with(&self, reads: &mut Reads<impl Reader>) -> Inputs {
         let mut alpha = self.alpha;
         let mut m = if let Some(sg) = &self.spec_gloss {
             let mut diffuse = sg.diffuse;
-            if let Some(t) = colour(&sg.diffuse_texture) {
+            if let Some(t) = reads.colour(&sg.diffuse_texture) {
                 diffuse = times(diffuse, rgb(t));
                 alpha *= t[3];
             }
             let (mut specular, mut glossiness) = (sg.specular, sg.glossiness);
-            if let Some(t) = colour(&sg.specular_glossiness_texture) {
+            if let Some(t) = reads.colour(&sg.specular_glossiness_texture) {
                 specular = times(specular, rgb(t));
                 glossiness *= t[3];
             }
@@ -1753,81 +1828,80 @@ impl Prepared {
                 ..Inputs::specular_glossiness(diffuse, specular, glossiness, reading)
             }
         } else {
-            self.metal_rough_at(uvs, &mut alpha)
+            self.metal_rough_with(reads, &mut alpha)
         };
         m.coverage = self.alpha_mode.coverage(alpha);
-        if let Some(t) = colour(&self.emissive) {
+        if let Some(t) = reads.colour(&self.emissive) {
             m.emission = times(m.emission, rgb(t));
         }
         if let Some((binding, strength)) = &self.occlusion {
-            m.occlusion = 1.0 + strength * (binding.sample(uvs)[0] - 1.0);
+            m.occlusion = 1.0 + strength * (reads.data_of(binding)[0] - 1.0);
         }
         if let Some((binding, scale)) = &self.normal {
-            m.normal = tangent_normal(binding.sample(uvs), *scale);
+            m.normal = tangent_normal(reads.data_of(binding), *scale);
         }
         m
     }
 
-    /// The metal-roughness inputs and its layers at `uvs`; `alpha` is multiplied by the base
-    /// colour texture's.
+    /// The metal-roughness inputs and its layers, each texture read through `reads`;
+    /// `alpha` is multiplied by the base colour texture's.
     #[inline(always)]
-    fn metal_rough_at(&self, uvs: &[[f64; 2]], alpha: &mut f64) -> Inputs {
-        let sample = |b: &Option<Binding>| b.as_ref().map(|b| b.sample(uvs));
-        let colour = |b: &Option<Binding>| b.as_ref().map(|b| b.sample_srgb(uvs));
+    fn metal_rough_with(&self, reads: &mut Reads<impl Reader>, alpha: &mut f64) -> Inputs {
         let mut m = self.factors.clone();
-        if let Some(t) = colour(&self.base_colour) {
+        if let Some(t) = reads.colour(&self.base_colour) {
             m.base_color = times(m.base_color, rgb(t));
             *alpha *= t[3];
         }
-        if let Some(t) = sample(&self.metallic_roughness) {
+        if let Some(t) = reads.data(&self.metallic_roughness) {
             m.roughness *= t[1];
             m.metallic *= t[2];
         }
-        if let Some(t) = sample(&self.specular) {
+        if let Some(t) = reads.data(&self.specular) {
             m.specular *= t[3];
         }
-        if let Some(t) = colour(&self.specular_colour) {
+        if let Some(t) = reads.colour(&self.specular_colour) {
             m.specular_color = times(m.specular_color, rgb(t));
         }
-        if let Some(t) = colour(&self.sheen_colour) {
+        if let Some(t) = reads.colour(&self.sheen_colour) {
             m.sheen_color = times(m.sheen_color, rgb(t));
         }
-        if let Some(t) = sample(&self.sheen_roughness) {
+        if let Some(t) = reads.data(&self.sheen_roughness) {
             m.sheen_roughness *= t[3];
         }
-        if let Some(t) = sample(&self.anisotropy) {
+        if let Some(t) = reads.data(&self.anisotropy) {
             let (x, y) = (2.0 * t[0] - 1.0, 2.0 * t[1] - 1.0);
             m.anisotropy_angle += y.atan2(x);
             m.anisotropy_strength *= t[2];
         }
-        if let Some(t) = sample(&self.clearcoat) {
+        if let Some(t) = reads.data(&self.clearcoat) {
             m.clearcoat *= t[0];
         }
-        if let Some(t) = sample(&self.clearcoat_roughness) {
+        if let Some(t) = reads.data(&self.clearcoat_roughness) {
             m.clearcoat_roughness *= t[1];
         }
         if let Some((binding, scale)) = &self.clearcoat_normal {
-            m.clearcoat_normal = tangent_normal(binding.sample(uvs), *scale);
+            m.clearcoat_normal = tangent_normal(reads.data_of(binding), *scale);
         }
-        if let Some(t) = sample(&self.transmission) {
+        if let Some(t) = reads.data(&self.transmission) {
             m.transmission *= t[0];
         }
-        if let Some(t) = sample(&self.diffuse_transmission) {
+        if let Some(t) = reads.data(&self.diffuse_transmission) {
             m.diffuse_transmission *= t[3];
         }
-        if let Some(t) = colour(&self.diffuse_transmission_colour) {
+        if let Some(t) = reads.colour(&self.diffuse_transmission_colour) {
             m.diffuse_transmission_color = times(m.diffuse_transmission_color, rgb(t));
         }
-        if let Some(t) = sample(&self.iridescence) {
+        if let Some(t) = reads.data(&self.iridescence) {
             m.iridescence *= t[0];
         }
-        if let Some(t) = sample(&self.film_thickness.1) {
+        if let Some(t) = reads.data(&self.film_thickness.1) {
             // "thickness = mix(iridescenceThicknessMinimum, iridescenceThicknessMaximum,
             // iridescenceThicknessTexture.g)"; without the texture, the maximum.
             let [least, most] = self.film_thickness.0;
             m.iridescence_film.thickness = least + (most - least) * t[1];
         }
-        let thickness = self.volume.thickness * sample(&self.volume.texture).map_or(1.0, |t| t[1]);
+        let thickness =
+            self.volume.thickness * reads.data(&self.volume.texture).map_or(1.0, |t| t[1]);
         m.volume_transmittance = self.volume.transmittance(thickness);
         m
     }
@@ -1862,8 +1936,17 @@ fn legacy_inputs(
     data: Option<(&TextureImage, Sampler)>,
     uv: [f64; 2],
     reading: SpecGlossReading,
+    mut read: impl Reader,
 ) -> Inputs {
-    let colour_texel = colour.map(|(t, sampler)| sample_of::<true>(t, uv, sampler));
+    let mut read = |(texture, sampler), srgb| {
+        read(Read {
+            texture,
+            at: uv,
+            sampler,
+            srgb,
+        })
+    };
+    let colour_texel = colour.map(|texture| read(texture, true));
     let mut rgb = [pbr.colour[0], pbr.colour[1], pbr.colour[2]];
     // The drafts blend by the colour's alpha (the upgrade writes BLEND where it is below 1).
     let mut alpha = pbr.colour[3];
@@ -1874,7 +1957,7 @@ fn legacy_inputs(
     let inputs = match pbr.model {
         Model::MetalRoughness => {
             let (mut metallic, mut roughness) = (pbr.metallic, pbr.roughness);
-            if let Some(t) = data.map(|(t, sampler)| sample_of::<false>(t, uv, sampler)) {
+            if let Some(t) = data.map(|texture| read(texture, false)) {
                 metallic *= t[0];
                 roughness *= t[1];
             }
@@ -1887,7 +1970,7 @@ fn legacy_inputs(
         }
         Model::SpecularGlossiness => {
             let (mut specular, mut gloss) = (pbr.specular, pbr.glossiness);
-            if let Some(t) = data.map(|(t, sampler)| sample_of::<true>(t, uv, sampler)) {
+            if let Some(t) = data.map(|texture| read(texture, true)) {
                 specular = times(specular, self::rgb(t));
                 gloss *= t[3];
             }
@@ -2114,6 +2197,62 @@ mod tests {
                     "{:?} texel {x}: {read:?} against {expected:?}",
                     image.color()
                 );
+            }
+        }
+    }
+
+    /// A texel corner's reads made from the four centres around it are, bit for bit, what
+    /// sampling the corner gives: colour and data reads, of 8-bit, 16-bit and float texels.
+    #[test]
+    fn a_corner_made_from_its_four_centres_is_the_corner_sampled() {
+        let mut random = crate::test_random::Sequence::new(52);
+        let n = 8u32;
+        let mut texels = |count: usize| (0..count).map(|_| random.unit()).collect::<Vec<f32>>();
+        let stored = [
+            (
+                4,
+                Texels::Unorm8(texels(4 * 64).iter().map(|&v| (v * 255.0) as u8).collect()),
+            ),
+            (
+                3,
+                Texels::Unorm16(
+                    texels(3 * 64)
+                        .iter()
+                        .map(|&v| (v * 65535.0) as u16)
+                        .collect(),
+                ),
+            ),
+            (4, Texels::Float(texels(4 * 64))),
+        ];
+        for (channels, texels) in stored {
+            let texture = TextureImage {
+                width: n,
+                height: n,
+                channels,
+                texels,
+            };
+            for srgb in [false, true] {
+                let read = |x: u32, y: u32, offset: f64| {
+                    let at = [(f64::from(x) + offset) / 8.0, (f64::from(y) + offset) / 8.0];
+                    let read = Read {
+                        texture: &texture,
+                        at,
+                        sampler: Sampler::default(),
+                        srgb,
+                    };
+                    read.sampled()
+                };
+                for (x, y) in (1..n).flat_map(|x| (1..n).map(move |y| (x, y))) {
+                    let four = [(x - 1, y - 1), (x, y - 1), (x - 1, y), (x, y)];
+                    let centres = four.map(|(x, y)| read(x, y, 0.5));
+                    let made = corner_of(centres.each_ref());
+                    let sampled = read(x, y, 0.0);
+                    assert_eq!(
+                        made.map(f64::to_bits),
+                        sampled.map(f64::to_bits),
+                        "{x}, {y}"
+                    );
+                }
             }
         }
     }
