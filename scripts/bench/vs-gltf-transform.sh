@@ -8,17 +8,48 @@
 #   scripts/bench/vs-gltf-transform.sh [ASSET…]
 #   scripts/bench/vs-gltf-transform.sh --generated [SIZE] [noise]   (a quad with SIZE² textures,
 #     2048 by default; with `noise` their texels are random, so that nothing repeats)
+#   scripts/bench/vs-gltf-transform.sh --real   (two quads, each reading one real 2048² image of
+#     ../shared as its diffuse and its specular-glossiness texture: Cesium's milk truck atlas,
+#     flat regions and detail; and a JPEG, whose texels all differ)
 source "$(dirname "$0")/common.sh"
 if [ ! -d "$bench_dir/node_modules/@gltf-transform/functions" ] || [ ! -d "$bench_dir/node_modules/ndarray-pixels" ]; then
   npm install --prefix "$bench_dir" --no-save --silent gltf-validator gltf-pipeline \
     @gltf-transform/core @gltf-transform/extensions @gltf-transform/functions ndarray-pixels >/dev/null
 fi
 assets=("$@")
+# `quad OUT DIFFUSE SPECGLOSS FACTORS`: a spec-gloss quad reading the two images (files beside
+# OUT), with FACTORS (JSON members) in its extension.
+quad() {
+  python3 - "$@" <<'PY'
+import base64, json, struct, sys
+out, diffuse, specgloss, factors = sys.argv[1:]
+quad = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0) + struct.pack("<12f", *[0, 0, 1] * 4) \
+    + struct.pack("<8f", 0, 1, 1, 1, 1, 0, 0, 0) + struct.pack("<6H", 0, 1, 2, 0, 2, 3)
+views = [(0, 48, 34962), (48, 48, 34962), (96, 32, 34962), (128, 12, 34963)]
+asset = {
+  "asset": {"version": "2.0"}, "extensionsUsed": ["KHR_materials_pbrSpecularGlossiness"],
+  "buffers": [{"byteLength": len(quad), "uri": "data:application/octet-stream;base64," + base64.b64encode(quad).decode()}],
+  "bufferViews": [{"buffer": 0, "byteOffset": o, "byteLength": l, "target": t} for o, l, t in views],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+    {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
+    {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": 0}]}],
+  "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0,
+  "images": [{"uri": diffuse}, {"uri": specgloss}], "textures": [{"source": 0}, {"source": 1}],
+  "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+    "diffuseTexture": {"index": 0}, "specularGlossinessTexture": {"index": 1},
+    **json.loads("{" + factors + "}")}}}],
+}
+json.dump(asset, open(out, "w"))
+PY
+}
 if [ "${1:-}" = "--generated" ]; then
   # A quad whose diffuse and specular-glossiness textures vary in every texel (smooth waves
   # and sharp steps), so that neither tool's work shrinks to flat runs.
   python3 - "$work" "${2:-2048}" "${3:-}" <<'PY'
-import base64, json, math, random, struct, sys, zlib
+import math, random, struct, sys, zlib
 work, n, noise = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "noise"
 def png(path, channels, pixel):
     def chunk(kind, data):
@@ -36,27 +67,17 @@ if noise:
     step = lambda x, y: 20 * (texels[2 * (y * n + x) + 1] & 3)
 png("diffuse.png", 3, lambda x, y: (wave(x, y), 80 + step(x, y), 200 - wave(x, y) // 2))
 png("specgloss.png", 4, lambda x, y: (30 + step(x, y) // 2, 40 + wave(x, y) // 8, 40, 255 - wave(y, x) // 2))
-quad = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0) + struct.pack("<12f", *[0, 0, 1] * 4) \
-    + struct.pack("<8f", 0, 1, 1, 1, 1, 0, 0, 0) + struct.pack("<6H", 0, 1, 2, 0, 2, 3)
-views = [(0, 48, 34962), (48, 48, 34962), (96, 32, 34962), (128, 12, 34963)]
-asset = {
-  "asset": {"version": "2.0"}, "extensionsUsed": ["KHR_materials_pbrSpecularGlossiness"],
-  "buffers": [{"byteLength": len(quad), "uri": "data:application/octet-stream;base64," + base64.b64encode(quad).decode()}],
-  "bufferViews": [{"buffer": 0, "byteOffset": o, "byteLength": l, "target": t} for o, l, t in views],
-  "accessors": [
-    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
-    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
-    {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
-    {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": 0}]}],
-  "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0,
-  "images": [{"uri": "diffuse.png"}, {"uri": "specgloss.png"}], "textures": [{"source": 0}, {"source": 1}],
-  "materials": [{"extensions": {"KHR_materials_pbrSpecularGlossiness": {
-    "diffuseTexture": {"index": 0}, "specularGlossinessTexture": {"index": 1}, "glossinessFactor": 0.9}}}],
-}
-json.dump(asset, open(f"{work}/specgloss-{n}.gltf", "w"))
 PY
+  quad "$work/specgloss-${2:-2048}.gltf" diffuse.png specgloss.png '"glossinessFactor": 0.9'
   assets=("$work/specgloss-${2:-2048}.gltf")
+fi
+if [ "${1:-}" = "--real" ]; then
+  cp ../shared/real-world/gltf1/sample-models/CesiumMilkTruck/glTF/CesiumMilkTruck.png "$work/atlas.png"
+  cp ../shared/real-world/gltf2/blender-io/24_animation_pointer/Normal_map_example.jpg "$work/jpeg.jpg"
+  for image in atlas.png jpeg.jpg; do
+    quad "$work/${image%.*}-2048.gltf" "$image" "$image" '"specularFactor": [0.25, 0.25, 0.25], "glossinessFactor": 0.8'
+  done
+  assets=("$work/atlas-2048.gltf" "$work/jpeg-2048.gltf")
 fi
 if [ ${#assets[@]} -eq 0 ]; then
   assets=(fixtures/spec-gloss/*.gltf fixtures/spec-gloss/*.glb)
