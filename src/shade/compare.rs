@@ -1122,10 +1122,13 @@ struct Centres<'a> {
     started: bool,
 }
 
-/// One bending side's centres of one row: each one's bent inputs, and its texture reads (the
-/// same number at every centre, see [`MaterialSource::inputs_with`]), side by side.
+/// One bending side's centres of one row: each one's bent inputs and texture reads (the same
+/// number at every centre, see [`MaterialSource::inputs_with`]), held once for a run of
+/// centres that read alike.
 #[derive(Default)]
 struct Kept {
+    /// Each centre's place in `bent` (and its reads' in `reads`).
+    index: Vec<u32>,
     bent: Vec<Bent>,
     reads: Vec<[f64; 4]>,
 }
@@ -1140,25 +1143,23 @@ impl Kept {
             reads.push(texels);
             texels
         });
+        self.index.push(self.bent.len() as u32);
         self.bent.push(inputs.bent());
         inputs
     }
 
     /// The next centre repeats the one before.
     fn repeat_last(&mut self) {
-        let (Some(&last), centres) = (self.bent.last(), self.bent.len()) else {
-            return;
-        };
-        let per_centre = self.reads.len() / centres;
-        self.reads
-            .extend_from_within(self.reads.len() - per_centre..);
-        self.bent.push(last);
+        if let Some(&last) = self.index.last() {
+            self.index.push(last);
+        }
     }
 
     /// Centre `x`'s bent inputs and texture reads.
     fn centre(&self, x: usize) -> (&Bent, &[[f64; 4]]) {
+        let at = self.index[x] as usize;
         let per_centre = self.reads.len() / self.bent.len().max(1);
-        (&self.bent[x], &self.reads[x * per_centre..][..per_centre])
+        (&self.bent[at], &self.reads[at * per_centre..][..per_centre])
     }
 }
 

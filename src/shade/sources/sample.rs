@@ -72,13 +72,22 @@ impl TextureImage {
     /// Clears `row[x]` wherever texel (x, y) does not hold what texel (x − 1, y) holds, as
     /// stored, and at x = 0 (no texel to its left); a row not held whole is cleared.
     fn clear_unlike_left(&self, y: u32, row: &mut [bool]) {
-        fn clear<T: PartialEq>(raw: &[T], n: usize, row: &mut [bool]) {
-            let texels = raw.chunks_exact(n.max(1));
-            let pairs = texels.clone().zip(texels.skip(1));
+        // Texels as arrays of their `N` channels: compared as one value, not by a loop.
+        fn clear_as<T: PartialEq, const N: usize>(raw: &[T], row: &mut [bool]) {
+            let (texels, _) = raw.as_chunks::<N>();
             row[0] = false;
-            for (flag, (left, texel)) in row[1..].iter_mut().zip(pairs) {
-                // Channel by channel: a texel is a few values, too short for a call to memcmp.
-                *flag &= left.iter().zip(texel).all(|(a, b)| a == b);
+            for (flag, pair) in row[1..].iter_mut().zip(texels.windows(2)) {
+                *flag &= pair[0] == pair[1];
+            }
+        }
+        fn clear<T: PartialEq>(raw: &[T], n: usize, row: &mut [bool]) {
+            match n {
+                1 => clear_as::<T, 1>(raw, row),
+                2 => clear_as::<T, 2>(raw, row),
+                3 => clear_as::<T, 3>(raw, row),
+                4 => clear_as::<T, 4>(raw, row),
+                // No image has more channels; none would be said to repeat.
+                _ => row.fill(false),
             }
         }
         let (n, width) = (self.channels, self.width as usize);
