@@ -1267,11 +1267,16 @@ impl<'a> Centres<'a> {
                 here.centre(x - 1),
                 here.centre(x),
             ];
+            // A material makes the same reads at every point; were one missing, it would be
+            // sampled, never guessed.
             let mut next = 0;
-            let corner = side.inputs_with(&[uv], |_: Read<'_>| {
-                let reads = four.map(|(_, reads)| &reads[next]);
+            let corner = side.inputs_with(&[uv], |read: Read<'_>| {
+                let kept = four.map(|(_, reads)| reads.get(next));
                 next += 1;
-                sample::corner_of(reads)
+                match kept {
+                    [Some(a), Some(b), Some(c), Some(d)] => sample::corner_of([a, b, c, d]),
+                    _ => read.sampled(),
+                }
             });
             is_mean_of(&corner.bent(), four.map(|(bent, _)| bent), BLEND_TOLERANCE)
         })
