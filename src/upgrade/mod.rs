@@ -153,6 +153,8 @@ pub enum NoteKind {
 
 /// A glTF 2.0 asset in memory: the JSON, the binary buffer, and the images (parallel to
 /// `json.images`, which carry neither `uri` nor `bufferView` until [`output`] places them).
+/// It also holds the input images its spec-gloss rebakes decoded, which [`crate::prove`]
+/// shares: a caller keeping many upgrades keeps those texels too.
 #[derive(Debug, Clone)]
 pub struct Upgraded {
     /// The glTF 2.0 JSON.
