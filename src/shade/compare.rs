@@ -857,17 +857,16 @@ impl<'j, 'a> Pass<'j, 'a> {
     #[inline(always)]
     fn reads_as_left(&self, x: u32, points: Points) -> bool {
         let x = x as usize;
-        let (here, above) = (&self.like_left, &self.like_left_above);
+        let alike = |row: &[bool], columns: std::ops::RangeInclusive<usize>| {
+            row.get(columns)
+                .is_some_and(|flags| flags.iter().all(|&f| f))
+        };
         match points {
-            Points::Centres => here.get(x) == Some(&true),
+            Points::Centres => alike(&self.like_left, x..=x),
             Points::Corners => {
                 x >= 1
-                    && above.len() > x
-                    && here.len() > x
-                    && here[x]
-                    && here[x - 1]
-                    && above[x]
-                    && above[x - 1]
+                    && alike(&self.like_left, x - 1..=x)
+                    && alike(&self.like_left_above, x - 1..=x)
             }
         }
     }
@@ -1764,6 +1763,41 @@ mod tests {
                 result.max
             );
         }
+    }
+
+    /// Texels in runs of eight alike along each row: every point of a run counts, each with
+    /// its samples, though a run's repeats are handed on together.
+    #[test]
+    fn every_point_of_a_run_of_texels_alike_counts() {
+        let image = image::RgbImage::from_fn(32, 32, |x, y| {
+            let level = ((x / 8 * 53 + y * 31) % 200) as u8 + 30;
+            image::Rgb([level, 255 - level, 90])
+        });
+        let mut png = Vec::new();
+        image::DynamicImage::ImageRgb8(image)
+            .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+            .unwrap();
+        let textures = crate::shade::sample::decode_all(&[Some(Ok(png))]).unwrap();
+        let material = |roughness| {
+            MaterialSource::gltf2(
+                &json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                    "metallicFactor": 0.0, "roughnessFactor": roughness}}),
+                &textures,
+            )
+        };
+        let (a, b) = (material(0.3), material(0.45));
+        let readings = std::slice::from_ref(&a);
+        let c = compare_on_threads(&shader(), readings, &b, 32, TexelMap::Kept, 1).remove(0);
+        let points = 2 * 32 * 32 - c.blended_corners;
+        assert_eq!(c.samples, DIRECTION_COUNT as u64 * points);
+        assert_eq!(c.per_texel.len(), 32 * 32);
+        // Within a run, past its first two texels, every centre and corner reads alike.
+        for (y, row) in c.per_texel.chunks(32).enumerate().skip(1) {
+            for run in row.chunks(8) {
+                assert!(run[2..].iter().all(|&t| t == run[2]), "row {y}: {run:?}");
+            }
+        }
+        assert!(c.max > 0.0 && c.mean > 0.0);
     }
 
     #[test]
