@@ -365,14 +365,21 @@ const MEMO_WORDS: usize = 1 << 21;
 /// Texel centres already sampled, by the stored texels both materials read there: a
 /// texture's repeated values (its flat regions, a palette, a pattern's rows) are sampled
 /// once. Equal texels give equal inputs, so a repeat's samples are exactly its first's.
+///
+/// A repeat is only counted where it is found; its samples join the figures, times the
+/// count, when the memo is full or the pass ends (the figures are sums and counts, so the
+/// order does not matter). Lookups so touch the keys, a few words per entry, and not the
+/// samples: on a texture whose values repeat all over it they stay in the core's cache.
 struct Memo {
     /// Entry numbers, by their key's hash.
     table: hashbrown::HashTable<u32>,
     /// Words per key (a material's keys all have one length).
     width: usize,
-    /// Each entry's key words and then its samples' bits, side by side: a lookup that finds
-    /// its key has its samples in the same cache lines.
-    entries: Vec<u64>,
+    /// Each entry's key words and then how many repeats found it since its samples were
+    /// last counted.
+    keys: Vec<u64>,
+    /// Each entry's samples.
+    samples: Vec<[f64; DIRECTION_COUNT]>,
     /// Lookups and hits since the hit rate was last looked at.
     lookups: u32,
     hits: u32,
@@ -401,7 +408,8 @@ impl Memo {
         Memo {
             table: hashbrown::HashTable::new(),
             width: 0,
-            entries: Vec::new(),
+            keys: Vec::new(),
+            samples: Vec::new(),
             lookups: 0,
             hits: 0,
             resting: 0,
@@ -444,46 +452,86 @@ impl Memo {
         mixed ^ mixed >> 29
     }
 
-    fn stride(&self) -> usize {
-        self.width + DIRECTION_COUNT
-    }
-
+    /// An entry's key words and its count of repeats.
     fn entry(&self, entry: u32) -> &[u64] {
-        let at = entry as usize * self.stride();
-        &self.entries[at..at + self.stride()]
+        let at = entry as usize * (self.width + 1);
+        &self.keys[at..at + self.width + 1]
     }
 
-    fn same(a: &[u64], b: &[u64]) -> bool {
-        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x == y)
+    /// The entry of `key`, if it is held.
+    fn find(&self, key: &[u64]) -> Option<u32> {
+        if key.len() != self.width {
+            return None;
+        }
+        let found = (self.table).find(Memo::hash(key), |&e| self.entry(e)[..key.len()] == *key);
+        found.copied()
     }
 
-    fn get(&self, key: &[u64]) -> Option<[f64; DIRECTION_COUNT]> {
-        let width = self.width;
-        let found = (self.table).find(Memo::hash(key), |&e| {
-            Memo::same(&self.entry(e)[..width], key)
-        })?;
-        let samples = &self.entry(*found)[width..];
-        Some(std::array::from_fn(|i| f64::from_bits(samples[i])))
+    /// Counts `times` more repeats of `entry`.
+    fn repeated(&mut self, entry: u32, times: u32) {
+        self.keys[(entry as usize + 1) * (self.width + 1) - 1] += u64::from(times);
     }
 
-    fn put(&mut self, key: &[u64], samples: [f64; DIRECTION_COUNT]) {
+    fn samples(&self, entry: u32) -> [f64; DIRECTION_COUNT] {
+        self.samples[entry as usize]
+    }
+
+    /// Adds every entry's counted repeats to `partial`'s figures, and starts their counts
+    /// again.
+    fn count_into(&mut self, partial: &mut Partial) {
+        let stride = self.width + 1;
+        for (entry, samples) in self.keys.chunks_exact_mut(stride).zip(&self.samples) {
+            let repeats = &mut entry[stride - 1];
+            if *repeats > 0 {
+                // At most one per centre of a grid of 4096², well within 32 bits.
+                partial.count(samples, *repeats as u32);
+                *repeats = 0;
+            }
+        }
+    }
+
+    /// Holds `key`'s samples (unless it is held, or has another width). A full memo adds its
+    /// repeats to `partial` and starts again.
+    fn put(&mut self, key: &[u64], samples: [f64; DIRECTION_COUNT], partial: &mut Partial) {
         if self.width == 0 {
             self.width = key.len();
         }
-        if key.len() != self.width || key.is_empty() || self.get(key).is_some() {
+        if key.len() != self.width || key.is_empty() || self.find(key).is_some() {
             return;
         }
-        if self.entries.len() + self.stride() > MEMO_WORDS {
+        let stride = self.width + 1;
+        if self.keys.len() + stride + (self.samples.len() + 1) * DIRECTION_COUNT > MEMO_WORDS {
+            self.count_into(partial);
             self.table.clear();
-            self.entries.clear();
+            self.keys.clear();
+            self.samples.clear();
         }
-        let (entries, width, stride) = (&self.entries, self.width, self.stride());
-        let rehash = |&e: &u32| Memo::hash(&entries[e as usize * stride..][..width]);
-        let entry = (self.entries.len() / stride) as u32;
+        let keys = &self.keys;
+        let rehash = |&e: &u32| Memo::hash(&keys[e as usize * stride..][..stride - 1]);
+        let entry = self.samples.len() as u32;
         self.table.insert_unique(Memo::hash(key), entry, rehash);
-        self.entries.extend_from_slice(key);
-        self.entries.extend(samples.map(f64::to_bits));
+        self.keys.extend_from_slice(key);
+        self.keys.push(0);
+        self.samples.push(samples);
     }
+}
+
+/// The stored texels `material` reads at the centre of texel (x, y), packed into `words`:
+/// its centres all have fields of the same widths in the same order, so two centres have
+/// equal words exactly when they read equal texels.
+#[inline(always)]
+fn texel_words(material: &MaterialSource, x: u32, y: u32, words: &mut Vec<u64>) {
+    let mut free = 0;
+    material.centre_texels(x, y, &mut |field, bits| {
+        if bits > free {
+            words.push(0);
+            free = 64;
+        }
+        if let Some(word) = words.last_mut() {
+            *word |= field << (64 - free);
+        }
+        free -= bits;
+    });
 }
 
 /// A batch's colours, channel by channel, sample by sample (point-major), the points'
@@ -524,19 +572,12 @@ impl Batch {
     }
 
     /// Makes the key of the centre of texel (x, y) as reading `a` reads it (`key_b`: the
-    /// other material's words), and gives its samples if they are known.
-    fn known(
-        &mut self,
-        a: &MaterialSource,
-        x: u32,
-        y: u32,
-        key_b: &[u64],
-    ) -> Option<[f64; DIRECTION_COUNT]> {
-        let key = &mut self.key;
-        key.clear();
-        a.centre_texels(x, y, &mut |w| key.push(w));
-        key.extend_from_slice(key_b);
-        let found = self.memo.get(key);
+    /// other material's words), and gives its memo entry if it has one.
+    fn known(&mut self, a: &MaterialSource, x: u32, y: u32, key_b: &[u64]) -> Option<u32> {
+        self.key.clear();
+        texel_words(a, x, y, &mut self.key);
+        self.key.extend_from_slice(key_b);
+        let found = self.memo.find(&self.key);
         self.memo.count(found.is_some());
         found
     }
@@ -769,6 +810,9 @@ fn compare_rows_inline(job: &Job, rows: std::ops::Range<u32>) -> Vec<Partial> {
         pass.row(y, Points::Centres);
         pass.row(y, Points::Corners);
         pass.above = Some(std::mem::take(&mut pass.here));
+    }
+    for (batch, partial) in pass.batches.iter_mut().zip(&mut pass.partials) {
+        batch.memo.count_into(partial);
     }
     pass.partials
 }
@@ -1031,8 +1075,7 @@ impl<'j, 'a> Pass<'j, 'a> {
             let consulted = keyed && batch.memo.consulted();
             if consulted && !key_b_read {
                 self.key_b.clear();
-                let key_b = &mut self.key_b;
-                b.centre_texels(x, y, &mut |w| key_b.push(w));
+                texel_words(b, x, y, &mut self.key_b);
                 key_b_read = true;
             }
             let known = match consulted {
@@ -1300,6 +1343,8 @@ enum Source {
     Slot(usize),
     /// Already computed (a repeat of a point of an earlier batch).
     Known([f64; DIRECTION_COUNT]),
+    /// A centre found in the batch's memo by its texels: counted there.
+    Memo(u32),
 }
 
 /// Points of a grid row waiting for their batch's ΔE: the one at column `x`, and the
@@ -1359,9 +1404,9 @@ impl Row {
         }
     }
 
-    /// A point whose samples are known (by its texels), not by its inputs.
-    fn take_known(&mut self, x: u32, samples: [f64; DIRECTION_COUNT]) {
-        let known = Source::Known(samples);
+    /// A point found in the memo by its texels (its inputs are not compared).
+    fn take_known(&mut self, x: u32, entry: u32) {
+        let known = Source::Memo(entry);
         self.last_equal = false;
         self.previous = Some((None, known));
         self.pending.push(Pending::at(x, known));
@@ -1408,20 +1453,30 @@ impl Row {
         } else {
             [0.0; BATCH]
         };
-        let samples = |source: Source| match source {
+        let samples = |source: Source, memo: &Memo| match source {
             Source::Zero => [0.0; DIRECTION_COUNT],
             Source::Slot(k) => std::array::from_fn(|i| deltas[k * DIRECTION_COUNT + i]),
             Source::Known(known) => known,
+            Source::Memo(entry) => memo.samples(entry),
         };
         for Pending { x, source, repeats } in self.pending.drain(..) {
+            if let Source::Memo(entry) = source {
+                // Counted in the memo; only a map of texels needs each point's samples.
+                batch.memo.repeated(entry, 1 + repeats);
+                if partial.per_texel.is_some() {
+                    let deltas = samples(source, &batch.memo);
+                    (x..=x + repeats).for_each(|x| partial.note_point(&place(x), &deltas));
+                }
+                continue;
+            }
             let at = place(x);
-            let deltas = samples(source);
+            let deltas = samples(source, &batch.memo);
             match source {
                 Source::Zero => partial.add_equal_point(&at, angles),
                 Source::Slot(k) => partial.add_point(&at, &deltas, angles, &batch.pairs[k]),
                 // A repeat of a point sampled before: its figures count, and it cannot be a
                 // new worst (the point it repeats was offered).
-                Source::Known(_) => {
+                Source::Known(_) | Source::Memo(_) => {
                     partial.add_samples(&at, &deltas, 1);
                 }
             }
@@ -1435,14 +1490,15 @@ impl Row {
             }
         }
         if let Some((_, source)) = &mut self.previous {
-            *source = Source::Known(samples(*source));
+            *source = Source::Known(samples(*source, &batch.memo));
         }
         self.unique = 0;
         for (k, key) in batch.keys.iter().enumerate() {
             if let Some(key) = key {
+                let samples = std::array::from_fn(|i| deltas[k * DIRECTION_COUNT + i]);
                 batch
                     .memo
-                    .put(&batch.key_words[key.clone()], samples(Source::Slot(k)));
+                    .put(&batch.key_words[key.clone()], samples, partial);
             }
         }
         batch.pairs.clear();
@@ -1510,6 +1566,14 @@ impl Partial {
     /// Adds the samples of `times` points alike (the first at `at`) to the figures; returns
     /// their largest and its direction.
     fn add_samples(&mut self, at: &Place, deltas: &[f64], times: u32) -> (f64, usize) {
+        self.count(deltas, times);
+        let (point_max, arg) = largest(deltas);
+        self.note_max(at, point_max as f32);
+        (point_max, arg)
+    }
+
+    /// Adds the samples of `times` points alike to the sum, the count and the histogram.
+    fn count(&mut self, deltas: &[f64], times: u32) {
         for &delta in deltas {
             let delta = if delta.is_finite() { delta } else { f64::MAX };
             // At most 10⁶ · 2³² < 2⁶³: one conversion instruction, where a float to a
@@ -1519,9 +1583,6 @@ impl Partial {
             self.count += u64::from(times);
             self.histogram.add(delta, times);
         }
-        let (point_max, arg) = largest(deltas);
-        self.note_max(at, point_max as f32);
-        (point_max, arg)
     }
 
     fn add_point(
@@ -2050,16 +2111,47 @@ mod tests {
     #[test]
     fn the_memo_of_sampled_centres_stays_within_its_words_and_keeps_what_it_holds() {
         let mut memo = Memo::new();
+        let mut partial = Partial::new(0, TexelMap::Dropped);
         let samples = |i: u64| std::array::from_fn(|k| (i * 8 + k as u64) as f64);
         for i in 0..100_000u64 {
             // Wide keys: a point that reads many float textures.
-            memo.put(&[i; 60], samples(i));
-            let held = memo.entries.len();
+            memo.put(&[i; 60], samples(i), &mut partial);
+            let held = memo.keys.len() + memo.samples.len() * DIRECTION_COUNT;
             assert!(held <= MEMO_WORDS, "{held} words after {i} points");
         }
-        assert_eq!(memo.get(&[99_999; 60]), Some(samples(99_999)));
-        assert_eq!(memo.get(&[12; 60]), None, "started again when full");
-        assert_eq!(memo.get(&[99_999; 59]), None, "another width");
+        let last = memo.find(&[99_999; 60]).map(|entry| memo.samples(entry));
+        assert_eq!(last, Some(samples(99_999)));
+        assert_eq!(memo.find(&[12; 60]), None, "started again when full");
+        assert_eq!(memo.find(&[99_999; 59]), None, "another width");
+    }
+
+    /// Repeats are counted where they are found and join the figures when the memo starts
+    /// again or the pass ends, each counted once.
+    #[test]
+    fn the_memo_counts_each_repeat_once_when_full_and_when_emptied() {
+        let mut memo = Memo::new();
+        let mut partial = Partial::new(0, TexelMap::Dropped);
+        let wide = [7u64; 60];
+        memo.put(&wide, [0.5; DIRECTION_COUNT], &mut partial);
+        let entry = memo.find(&wide).expect("held");
+        memo.repeated(entry, 3);
+        assert_eq!(
+            partial.count, 0,
+            "counted in the memo while it holds the entry"
+        );
+        // Filling the memo until it starts again counts the repeats in.
+        let mut i = 0u64;
+        while memo.find(&wide).is_some() {
+            i += 1;
+            memo.put(&[1_000_000 + i; 60], [0.0; DIRECTION_COUNT], &mut partial);
+        }
+        assert_eq!(partial.count, 3 * DIRECTION_COUNT as u64);
+        assert_eq!(partial.histogram.0[500], 3 * DIRECTION_COUNT as u32);
+        let entry = memo.find(&[1_000_000 + i; 60]).expect("the last one put");
+        memo.repeated(entry, 2);
+        memo.count_into(&mut partial);
+        memo.count_into(&mut partial);
+        assert_eq!(partial.count, 5 * DIRECTION_COUNT as u64, "emptied once");
     }
 
     /// Centres consulted in turn, each looked up; returns how many were consulted.
@@ -2077,10 +2169,11 @@ mod tests {
     #[test]
     fn a_memo_whose_lookups_rarely_hit_rests_longer_each_time_up_to_its_longest() {
         let mut memo = Memo::new();
+        let mut partial = Partial::new(0, TexelMap::Dropped);
         let cold = consult(&mut memo, 2 * MEMO_WINDOW, false);
         assert_eq!(cold, 2 * MEMO_WINDOW, "filling: no rest");
         for key in 0..MEMO_WARM as u64 {
-            memo.put(&[key], [0.0; DIRECTION_COUNT]);
+            memo.put(&[key], [0.0; DIRECTION_COUNT], &mut partial);
         }
         assert_eq!(
             consult(&mut memo, MEMO_WINDOW, true),

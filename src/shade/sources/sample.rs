@@ -114,18 +114,20 @@ impl TextureImage {
     }
 
     /// Texel (x, y) of a [`complete`](Self::complete) image as stored, its channels' bits
-    /// packed into 64-bit words, handed to `push`.
+    /// packed into fields of at most 64 bits, handed to `push` with their widths (the same
+    /// at every texel).
     #[inline(always)]
-    fn stored_words(&self, x: u32, y: u32, push: &mut impl FnMut(u64)) {
+    fn stored_fields(&self, x: u32, y: u32, push: &mut impl FnMut(u64, u32)) {
         let n = self.channels;
         let at = (y as usize * self.width as usize + x as usize) * n;
+        let bits = |per_channel: usize| (per_channel * n) as u32;
         match &self.texels {
             Texels::Unorm8(raw) => (raw.get(at..at + n).into_iter())
-                .for_each(|t| push(t.iter().fold(0, |w, &c| w << 8 | u64::from(c)))),
+                .for_each(|t| push(t.iter().fold(0, |w, &c| w << 8 | u64::from(c)), bits(8))),
             Texels::Unorm16(raw) => (raw.get(at..at + n).into_iter())
-                .for_each(|t| push(t.iter().fold(0, |w, &c| w << 16 | u64::from(c)))),
+                .for_each(|t| push(t.iter().fold(0, |w, &c| w << 16 | u64::from(c)), bits(16))),
             Texels::Float(raw) => (raw.get(at..at + n).into_iter().flatten())
-                .for_each(|c| push(u64::from(c.to_bits()))),
+                .for_each(|c| push(u64::from(c.to_bits()), 32)),
         }
     }
 
@@ -1381,10 +1383,11 @@ impl MaterialSource {
 
     /// For a material whose textures are [`MaterialSource::texels_on`] the grid: the stored
     /// texels the centre of texel (x, y) reads, every texture's in turn, handed to `push` as
-    /// 64-bit words. Two centres whose words are equal have equal inputs.
+    /// fields with their widths in bits (the same widths, in the same order, at every
+    /// centre). Two centres whose fields are equal have equal inputs.
     #[inline(always)]
-    pub(crate) fn centre_texels(&self, x: u32, y: u32, push: &mut impl FnMut(u64)) {
-        self.textures().for_each(|t| t.stored_words(x, y, push))
+    pub(crate) fn centre_texels(&self, x: u32, y: u32, push: &mut impl FnMut(u64, u32)) {
+        self.textures().for_each(|t| t.stored_fields(x, y, push))
     }
 
     /// What the evaluator cannot show of this material, each with the reason: extensions it
