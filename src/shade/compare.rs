@@ -542,8 +542,9 @@ struct Batch {
     /// Whether a point of the batch lets the background show.
     translucent: bool,
     pairs: Vec<Pair>,
-    /// Each slot's texel key (a centre read as stored), as a range of `key_words`.
-    keys: Vec<Option<std::ops::Range<usize>>>,
+    /// Each slot's texel key (empty but for a centre whose memo was consulted), as a range
+    /// of `key_words`.
+    keys: Vec<std::ops::Range<usize>>,
     key_words: Vec<u64>,
     memo: Memo,
     /// The key of the point at hand.
@@ -593,7 +594,6 @@ impl Batch {
         directions: &Directions,
         source: Inputs,
         target: &Inputs,
-        keyed: bool,
     ) -> Source {
         let slot = row.unique;
         Batch::put(&mut self.a, slot, directions.colours(shader, &source));
@@ -603,7 +603,7 @@ impl Batch {
         self.pairs.push(inputs.clone());
         let start = self.key_words.len();
         self.key_words.extend_from_slice(&self.key);
-        self.keys.push(keyed.then_some(start..self.key_words.len()));
+        self.keys.push(start..self.key_words.len());
         row.unique += 1;
         row.previous = Some((Some(inputs), Source::Slot(slot)));
         Source::Slot(slot)
@@ -1053,13 +1053,7 @@ impl<'j, 'a> Pass<'j, 'a> {
         row_of: &mut [Row],
         place: impl Fn(u32) -> Place + Copy,
     ) {
-        let Job {
-            shader,
-            readings,
-            b,
-            ref directions,
-            ..
-        } = *self.job;
+        let Job { readings, b, .. } = *self.job;
         let centre = points == Points::Centres;
         let mut target = None;
         if centre {
@@ -1104,27 +1098,9 @@ impl<'j, 'a> Pass<'j, 'a> {
                 true => centres.inputs(r, a, uv),
                 false => a.inputs_at(&[uv]),
             };
-            let equal = source == *target;
+            let equal = row.add_pair(batch, partial, self.job, x, (source, target), place);
             if !equal && centre {
                 self.here[x as usize] = false;
-            }
-            if equal {
-                // Identical inputs give identical colours, whose ΔE is exactly 0. (The
-                // previous point is left as it was: no point with differing inputs equals
-                // this.)
-                row.add_equal(partial, x, place, &directions.angles);
-                continue;
-            }
-            row.last_equal = false;
-            // A point like the one before (a flat region of a texture) has its ΔE; nothing
-            // is copied.
-            let source = match row.repeat_of(&source, target) {
-                Some(same) => same,
-                None => batch.shade(row, shader, directions, source, target, keyed),
-            };
-            row.pending.push(Pending::at(x, source));
-            if row.unique == BATCH_TEXELS {
-                row.flush(batch, partial, place, &directions.angles);
             }
         }
         if centre && target.is_none() {
@@ -1396,6 +1372,39 @@ impl Row {
         }
     }
 
+    /// Adds the point at column `x` with inputs `source` and `target`; returns whether they
+    /// are equal. Identical inputs give identical colours, whose ΔE is exactly 0; a point
+    /// like the one before (a flat region of a texture) has its ΔE, nothing is copied; any
+    /// other is shaded in the batch.
+    #[inline(always)]
+    fn add_pair(
+        &mut self,
+        batch: &mut Batch,
+        partial: &mut Partial,
+        job: &Job,
+        x: u32,
+        (source, target): (Inputs, &Inputs),
+        place: impl Fn(u32) -> Place,
+    ) -> bool {
+        let angles = &job.directions.angles;
+        if source == *target {
+            // The previous point is left as it was: no point with differing inputs equals
+            // this.
+            self.add_equal(partial, x, place, angles);
+            return true;
+        }
+        self.last_equal = false;
+        let source = match self.repeat_of(&source, target) {
+            Some(same) => same,
+            None => batch.shade(self, job.shader, &job.directions, source, target),
+        };
+        self.pending.push(Pending::at(x, source));
+        if self.unique == BATCH_TEXELS {
+            self.flush(batch, partial, place, angles);
+        }
+        false
+    }
+
     /// Where the row's last point's samples come from (`None` before its first point).
     fn last(&self) -> Option<Source> {
         match self.last_equal {
@@ -1494,12 +1503,10 @@ impl Row {
         }
         self.unique = 0;
         for (k, key) in batch.keys.iter().enumerate() {
-            if let Some(key) = key {
-                let samples = std::array::from_fn(|i| deltas[k * DIRECTION_COUNT + i]);
-                batch
-                    .memo
-                    .put(&batch.key_words[key.clone()], samples, partial);
-            }
+            let samples = std::array::from_fn(|i| deltas[k * DIRECTION_COUNT + i]);
+            batch
+                .memo
+                .put(&batch.key_words[key.clone()], samples, partial);
         }
         batch.pairs.clear();
         batch.keys.clear();

@@ -60,55 +60,56 @@ fn load_uri(
                 "data-uri",
             )
         }
-        // Another scheme is not fetched, and nothing more is said (as the validator's own
-        // harness, which fetches only files, reports it).
-        Ok(UriKind::NonRelative) => {
-            ctx.emit(
-                khronos::NON_RELATIVE_URI,
-                pointer,
-                format!(
-                    "Non-relative URI found: '{}'. It is not fetched.",
-                    shorten(uri)
-                ),
-            );
-            (None, None, "external")
-        }
-        // An absolute path is non-relative to the validator, which then fails to read it;
-        // gltfmat refuses to, as it leaves the asset's folder.
-        Ok(UriKind::AbsolutePath) => {
-            non_relative(ctx, pointer, uri);
-            if files != Files::Unfetched {
-                refuse_outside(ctx, pointer, uri);
-            }
-            (None, None, "external")
-        }
-        Ok(kind) if files == Files::Unfetched => {
-            if matches!(kind, UriKind::QueryOrFragment) {
-                non_relative(ctx, pointer, uri);
-            }
-            (None, None, "external")
-        }
-        Ok(UriKind::QueryOrFragment) => {
-            non_relative(ctx, pointer, uri);
-            ctx.emit(
-                khronos::IO_ERROR,
-                pointer,
-                "Could not read resource: a URI with a query or fragment names no file.",
-            );
-            (None, None, "external")
-        }
-        Ok(UriKind::Undecodable(why)) => {
-            ctx.emit(
-                khronos::IO_ERROR,
-                pointer,
-                format!("Could not read resource '{}': {why}.", shorten(uri)),
-            );
-            (None, None, "external")
-        }
-        Ok(UriKind::Relative(path)) => {
+        Ok(UriKind::Relative(path)) if files != Files::Unfetched => {
             let kept = load_relative(ctx, pointer, uri, &path, files == Files::KeepLarge);
             (kept, None, "external")
         }
+        Ok(kind) => {
+            unread_external(ctx, pointer, uri, kind, files);
+            (None, None, "external")
+        }
+    }
+}
+
+/// What a URI naming no file that is read is told: another scheme, an absolute path, a query
+/// or fragment, an undecodable path, or any file when `files` is [`Files::Unfetched`].
+fn unread_external(ctx: &mut Context, pointer: &str, uri: &str, kind: UriKind, files: Files) {
+    let fetched = files != Files::Unfetched;
+    match kind {
+        // Another scheme is not fetched, and nothing more is said (as the validator's own
+        // harness, which fetches only files, reports it).
+        UriKind::NonRelative => ctx.emit(
+            khronos::NON_RELATIVE_URI,
+            pointer,
+            format!(
+                "Non-relative URI found: '{}'. It is not fetched.",
+                shorten(uri)
+            ),
+        ),
+        // An absolute path is non-relative to the validator, which then fails to read it;
+        // gltfmat refuses to, as it leaves the asset's folder.
+        UriKind::AbsolutePath => {
+            non_relative(ctx, pointer, uri);
+            if fetched {
+                refuse_outside(ctx, pointer, uri);
+            }
+        }
+        UriKind::QueryOrFragment => {
+            non_relative(ctx, pointer, uri);
+            if fetched {
+                ctx.emit(
+                    khronos::IO_ERROR,
+                    pointer,
+                    "Could not read resource: a URI with a query or fragment names no file.",
+                );
+            }
+        }
+        UriKind::Undecodable(why) if fetched => ctx.emit(
+            khronos::IO_ERROR,
+            pointer,
+            format!("Could not read resource '{}': {why}.", shorten(uri)),
+        ),
+        UriKind::Undecodable(_) | UriKind::Relative(_) | UriKind::Data { .. } => {}
     }
 }
 

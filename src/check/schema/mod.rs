@@ -521,19 +521,10 @@ fn show(value: impl std::fmt::Display) -> String {
 }
 
 fn map_failure(failure: &Failure) -> Vec<Diagnostic> {
-    let Failure {
-        kind,
-        instance,
-        pointer,
-        definition,
-    } = failure;
-    let instance = *instance;
-    let pointer = pointer.as_str();
-    let one = |code: Code, at: String, message: String| vec![Diagnostic::at(code, at, message)];
-    match kind {
-        Kind::Type(expected) => vec![type_mismatch(expected, instance, pointer)],
-        Kind::AdditionalProperties(unexpected) => unexpected
-            .iter()
+    let pointer = failure.pointer.as_str();
+    match &failure.kind {
+        Kind::Type(expected) => vec![type_mismatch(expected, failure.instance, pointer)],
+        Kind::AdditionalProperties(unexpected) => (unexpected.iter())
             .map(|key| {
                 Diagnostic::at(
                     khronos::UNEXPECTED_PROPERTY,
@@ -542,65 +533,6 @@ fn map_failure(failure: &Failure) -> Vec<Diagnostic> {
                 )
             })
             .collect(),
-        Kind::DependentRequired { key, missing } => one(
-            khronos::UNSATISFIED_DEPENDENCY,
-            member(pointer, key),
-            format!("Dependency failed. '{missing}' must be defined."),
-        ),
-        Kind::Required(name) => {
-            let at = if pointer.is_empty() { "/" } else { pointer };
-            one(
-                khronos::UNDEFINED_PROPERTY,
-                at.to_string(),
-                format!("Property '{name}' must be defined."),
-            )
-        }
-        Kind::Minimum | Kind::Maximum | Kind::ExclusiveMinimum | Kind::ExclusiveMaximum
-            if *definition == Some("glTFid") =>
-        {
-            one(
-                khronos::INVALID_INDEX,
-                pointer.to_string(),
-                INDEX_MESSAGE.into(),
-            )
-        }
-        Kind::Minimum
-        | Kind::Maximum
-        | Kind::ExclusiveMinimum
-        | Kind::ExclusiveMaximum
-        | Kind::AnyOf => one(
-            khronos::VALUE_NOT_IN_RANGE,
-            pointer.to_string(),
-            format!("Value {} is out of range.", show(instance)),
-        ),
-        Kind::Enum(options) => one(
-            khronos::VALUE_NOT_IN_LIST,
-            pointer.to_string(),
-            format!(
-                "Invalid value {}. Valid values are {}.",
-                show(instance),
-                show(options)
-            ),
-        ),
-        Kind::MinItems(1) | Kind::MinProperties => one(
-            khronos::EMPTY_ENTITY,
-            pointer.to_string(),
-            "Entity cannot be empty.".into(),
-        ),
-        // An empty array of a fixed length is empty to the validator, not of a wrong length.
-        Kind::MinItems(_) if instance.as_array().is_some_and(Array::is_empty) => one(
-            khronos::EMPTY_ENTITY,
-            pointer.to_string(),
-            "Entity cannot be empty.".into(),
-        ),
-        Kind::MinItems(limit) | Kind::MaxItems(limit) => one(
-            khronos::ARRAY_LENGTH_NOT_IN_LIST,
-            pointer.to_string(),
-            format!(
-                "Invalid array length {}. Valid lengths are: {limit}.",
-                instance.as_array().map_or(0, Array::len)
-            ),
-        ),
         Kind::UniqueItems(repeats) => (repeats.iter())
             .map(|i| {
                 Diagnostic::at(
@@ -610,33 +542,101 @@ fn map_failure(failure: &Failure) -> Vec<Diagnostic> {
                 )
             })
             .collect(),
-        Kind::MultipleOf(multiple_of) => one(
+        _ => (one_finding(failure).into_iter())
+            .map(|(code, at, message)| Diagnostic::at(code, at, message))
+            .collect(),
+    }
+}
+
+/// The finding of a failure that makes at most one: its code, pointer and message.
+fn one_finding(failure: &Failure) -> Option<(Code, String, String)> {
+    let Failure {
+        kind,
+        instance,
+        pointer,
+        definition,
+    } = failure;
+    let instance = *instance;
+    let at = pointer.to_string();
+    Some(match kind {
+        Kind::DependentRequired { key, missing } => (
+            khronos::UNSATISFIED_DEPENDENCY,
+            member(pointer, key),
+            format!("Dependency failed. '{missing}' must be defined."),
+        ),
+        Kind::Required(name) => (
+            khronos::UNDEFINED_PROPERTY,
+            if pointer.is_empty() { "/".into() } else { at },
+            format!("Property '{name}' must be defined."),
+        ),
+        Kind::Minimum | Kind::Maximum | Kind::ExclusiveMinimum | Kind::ExclusiveMaximum
+            if *definition == Some("glTFid") =>
+        {
+            (khronos::INVALID_INDEX, at, INDEX_MESSAGE.into())
+        }
+        Kind::Minimum
+        | Kind::Maximum
+        | Kind::ExclusiveMinimum
+        | Kind::ExclusiveMaximum
+        | Kind::AnyOf => (
+            khronos::VALUE_NOT_IN_RANGE,
+            at,
+            format!("Value {} is out of range.", show(instance)),
+        ),
+        Kind::Enum(options) => (
+            khronos::VALUE_NOT_IN_LIST,
+            at,
+            format!(
+                "Invalid value {}. Valid values are {}.",
+                show(instance),
+                show(options)
+            ),
+        ),
+        // An empty array of a fixed length is empty to the validator, not of a wrong length.
+        Kind::MinItems(1) | Kind::MinProperties => (khronos::EMPTY_ENTITY, at, EMPTY.into()),
+        Kind::MinItems(_) if instance.as_array().is_some_and(Array::is_empty) => {
+            (khronos::EMPTY_ENTITY, at, EMPTY.into())
+        }
+        Kind::MinItems(limit) | Kind::MaxItems(limit) => (
+            khronos::ARRAY_LENGTH_NOT_IN_LIST,
+            at,
+            format!(
+                "Invalid array length {}. Valid lengths are: {limit}.",
+                instance.as_array().map_or(0, Array::len)
+            ),
+        ),
+        Kind::MultipleOf(multiple_of) => (
             khronos::VALUE_MULTIPLE_OF,
-            pointer.to_string(),
+            at,
             format!(
                 "Value {} is not a multiple of {multiple_of}.",
                 show(instance)
             ),
         ),
-        Kind::Pattern(pattern) => one(
+        Kind::Pattern(pattern) => (
             khronos::PATTERN_MISMATCH,
-            pointer.to_string(),
+            at,
             format!(
                 "Value {} does not match regexp pattern '{pattern}'.",
                 show(instance)
             ),
         ),
+        Kind::MinLength { .. } | Kind::Const => (
+            khronos::TYPE_MISMATCH,
+            at,
+            format!("Schema violation: {kind:?}"),
+        ),
         // An image's `uri` / `bufferView` choice is counted by the images pass on the members
         // as read (one of the wrong type is absent); a number's (KHR_materials_ior's 0 or ≥ 1)
         // is reported as its range.
-        Kind::OneOf => Vec::new(),
-        Kind::MinLength { .. } | Kind::Const => one(
-            khronos::TYPE_MISMATCH,
-            pointer.to_string(),
-            format!("Schema violation: {kind:?}"),
-        ),
-    }
+        Kind::OneOf => return None,
+        // Made by `map_failure`: a type's finding, or one per member or element.
+        Kind::Type(_) | Kind::AdditionalProperties(_) | Kind::UniqueItems(_) => return None,
+    })
 }
+
+/// What an empty array or object is told.
+const EMPTY: &str = "Entity cannot be empty.";
 
 /// What a wrong index is told.
 const INDEX_MESSAGE: &str = "Index must be a non-negative integer.";
