@@ -516,13 +516,13 @@ impl Memo {
     }
 }
 
-/// The stored texels `material` reads at the centre of texel (x, y), packed into `words`:
-/// its centres all have fields of the same widths in the same order, so two centres have
-/// equal words exactly when they read equal texels.
+/// The stored texels `material` reads at the centre of texel (x, y), but for the textures
+/// `left_out` marks, packed into `words`: its centres all have fields of the same widths in
+/// the same order, so two centres have equal words exactly when they read equal texels.
 #[inline(always)]
-fn texel_words(material: &MaterialSource, x: u32, y: u32, words: &mut Vec<u64>) {
+fn texel_words(material: &MaterialSource, x: u32, y: u32, left_out: &[bool], words: &mut Vec<u64>) {
     let mut free = 0;
-    material.centre_texels(x, y, &mut |field, bits| {
+    material.centre_texels(x, y, left_out, &mut |field, bits| {
         if bits > free {
             words.push(0);
             free = 64;
@@ -576,7 +576,7 @@ impl Batch {
     /// other material's words), and gives its memo entry if it has one.
     fn known(&mut self, a: &MaterialSource, x: u32, y: u32, key_b: &[u64]) -> Option<u32> {
         self.key.clear();
-        texel_words(a, x, y, &mut self.key);
+        texel_words(a, x, y, &[], &mut self.key);
         self.key.extend_from_slice(key_b);
         let found = self.memo.find(&self.key);
         self.memo.count(found.is_some());
@@ -830,8 +830,11 @@ struct Pass<'j, 'a> {
     /// Where every texture is read as stored, a point whose texels equal its left
     /// neighbour's (a flat region) has that point's inputs: it is not sampled again.
     as_stored: bool,
-    /// The other material's texels at the centre at hand (part of every reading's key).
+    /// The other material's texels at the centre at hand (part of every reading's key), but
+    /// for its textures that every reading reads too (`shared_b`): their texels are in each
+    /// reading's part of the key already (an upgrade keeps most images as they are).
     key_b: Vec<u64>,
+    shared_b: Vec<bool>,
     /// Where every texture is read as stored: for each centre of this row and of the row
     /// above (empty above the grid's first row), whether every side reads there what it
     /// reads at the centre to its left.
@@ -862,6 +865,7 @@ impl<'j, 'a> Pass<'j, 'a> {
             linear: readings.iter().all(|a| a.linear_on(grid)) && b.linear_on(grid),
             as_stored,
             key_b: Vec::new(),
+            shared_b: b.textures_read_by_all(readings),
             like_left: Vec::new(),
             like_left_above: Vec::new(),
             above: None,
@@ -1069,7 +1073,7 @@ impl<'j, 'a> Pass<'j, 'a> {
             let consulted = keyed && batch.memo.consulted();
             if consulted && !key_b_read {
                 self.key_b.clear();
-                texel_words(b, x, y, &mut self.key_b);
+                texel_words(b, x, y, &self.shared_b, &mut self.key_b);
                 key_b_read = true;
             }
             let known = match consulted {
@@ -1813,6 +1817,47 @@ mod tests {
                 "metallicFactor": 0.0, "roughnessFactor": roughness}}),
             &textures,
         )
+    }
+
+    /// An image both sides read (an upgrade keeps most images as they are) is left out of
+    /// the other material's part of a centre's key only where every reading reads it too:
+    /// each reading's part then holds its texel already.
+    #[test]
+    fn an_image_every_reading_reads_is_left_out_of_the_other_sides_key() {
+        let shared = runs_png(8, 2, |_| false);
+        let own = runs_png(8, 3, |_| true);
+        let textures = crate::shade::sample::decode_all(&[Some(Ok(shared)), Some(Ok(own))]);
+        let textures = textures.unwrap();
+        let reading = |slots: serde_json::Value| {
+            MaterialSource::gltf2(&json!({ "pbrMetallicRoughness": slots }), &textures)
+        };
+        let b = reading(json!({"baseColorTexture": {"index": 1},
+            "metallicRoughnessTexture": {"index": 0}}));
+        let shares = reading(json!({"baseColorTexture": {"index": 0}}));
+        let does_not = reading(json!({"baseColorTexture": {"index": 1}}));
+        let left_out = b.textures_read_by_all(std::slice::from_ref(&shares));
+        assert_eq!(
+            left_out.iter().filter(|&&out| out).count(),
+            1,
+            "{left_out:?}"
+        );
+        // What is left of b's texels is the other image's texel.
+        let words = |material: &MaterialSource, left_out: &[bool]| {
+            let mut words = Vec::new();
+            texel_words(material, 3, 5, left_out, &mut words);
+            words
+        };
+        assert_eq!(words(&b, &left_out), words(&does_not, &[]));
+        assert_ne!(words(&b, &left_out), words(&b, &[]));
+        let none_left_out = |readings: &[MaterialSource]| {
+            let marks = b.textures_read_by_all(readings);
+            marks.len() == 2 && marks.iter().all(|&out| !out)
+        };
+        assert!(
+            none_left_out(&[shares, does_not]),
+            "one reading does not read it"
+        );
+        assert!(none_left_out(&[]));
     }
 
     #[test]

@@ -1382,12 +1382,33 @@ impl MaterialSource {
     }
 
     /// For a material whose textures are [`MaterialSource::texels_on`] the grid: the stored
-    /// texels the centre of texel (x, y) reads, every texture's in turn, handed to `push` as
-    /// fields with their widths in bits (the same widths, in the same order, at every
-    /// centre). Two centres whose fields are equal have equal inputs.
+    /// texels the centre of texel (x, y) reads, every texture's in turn but those `left_out`
+    /// marks (by their place in that order), handed to `push` as fields with their widths in
+    /// bits (the same widths, in the same order, at every centre). Two centres whose fields
+    /// are equal have equal inputs but for the textures left out.
     #[inline(always)]
-    pub(crate) fn centre_texels(&self, x: u32, y: u32, push: &mut impl FnMut(u64, u32)) {
-        self.textures().for_each(|t| t.stored_fields(x, y, push))
+    pub(crate) fn centre_texels(
+        &self,
+        x: u32,
+        y: u32,
+        left_out: &[bool],
+        push: &mut impl FnMut(u64, u32),
+    ) {
+        let left_out = left_out.iter().chain(std::iter::repeat(&false));
+        (self.textures().zip(left_out))
+            .filter(|(_, &out)| !out)
+            .for_each(|(t, _)| t.stored_fields(x, y, push))
+    }
+
+    /// For each of this material's textures (in [`MaterialSource::centre_texels`]'s order),
+    /// whether every one of `others` reads the same decoded image: where all read textures as
+    /// stored, its texel at a centre is then part of each of theirs.
+    pub(crate) fn textures_read_by_all(&self, others: &[MaterialSource]) -> Vec<bool> {
+        let read_by =
+            |t: &Texture, other: &MaterialSource| other.textures().any(|o| Arc::ptr_eq(t, o));
+        (self.textures())
+            .map(|t| !others.is_empty() && others.iter().all(|other| read_by(t, other)))
+            .collect()
     }
 
     /// What the evaluator cannot show of this material, each with the reason: extensions it
