@@ -1473,26 +1473,33 @@ impl Row {
             Source::Memo(entry) => memo.samples(entry),
         };
         for Pending { x, source, repeats } in self.pending.drain(..) {
-            if let Source::Memo(entry) = source {
-                // Counted in the memo; only a map of texels needs each point's samples.
-                batch.memo.repeated(entry, 1 + repeats);
-                if partial.per_texel.is_some() {
-                    let deltas = samples(source, &batch.memo);
-                    (x..=x + repeats).for_each(|x| partial.note_point(&place(x), &deltas));
-                }
-                continue;
-            }
             let at = place(x);
-            let deltas = samples(source, &batch.memo);
-            match source {
-                Source::Zero => partial.add_equal_point(&at, angles),
-                Source::Slot(k) => partial.add_point(&at, &deltas, angles, &batch.pairs[k]),
+            let deltas = match source {
+                Source::Zero => {
+                    partial.add_equal_point(&at, angles);
+                    continue;
+                }
+                Source::Slot(k) => {
+                    let deltas = samples(source, &batch.memo);
+                    partial.add_point(&at, &deltas, angles, &batch.pairs[k]);
+                    deltas
+                }
                 // A repeat of a point sampled before: its figures count, and it cannot be a
                 // new worst (the point it repeats was offered).
-                Source::Known(_) | Source::Memo(_) => {
-                    partial.add_samples(&at, &deltas, 1);
+                Source::Known(known) => {
+                    partial.add_samples(&at, &known, 1);
+                    known
                 }
-            }
+                // Counted in the memo; only a map of texels needs each point's samples.
+                Source::Memo(entry) => {
+                    batch.memo.repeated(entry, 1 + repeats);
+                    if partial.per_texel.is_some() {
+                        let deltas = samples(source, &batch.memo);
+                        (x..=x + repeats).for_each(|x| partial.note_point(&place(x), &deltas));
+                    }
+                    continue;
+                }
+            };
             // Points that read what the one before read: the same, counted again. (None is
             // a new worst, nor a new candidate: each is a repeat of a point offered.)
             if repeats > 0 {
