@@ -140,8 +140,13 @@ pub(super) fn spec_gloss_base_colour(
     factors: &Factors,
     fits: Option<&mut TexelFits>,
 ) -> Result<(Vec<u8>, bool, Option<String>), String> {
-    let alpha = diffuse.is_some_and(has_translucent_texels) || factors.diffuse[3] < 1.0;
-    let diffuse = diffuse.map(sample::decode).transpose()?;
+    let decoded = diffuse.map(sample::decode).transpose()?;
+    // The decode at hand answers for 8-bit texels; wider ones are judged as 8-bit values are.
+    let translucent = |(bytes, texture): (&[u8], &sample::Texture)| {
+        (texture.has_translucent_texels()).unwrap_or_else(|| has_translucent_texels(bytes))
+    };
+    let alpha = diffuse.zip(decoded.as_ref()).is_some_and(translucent) || factors.diffuse[3] < 1.0;
+    let diffuse = decoded;
     let specular = specular.map(sample::decode).transpose()?;
     let inputs: Vec<&TextureImage> = diffuse.iter().chain(&specular).map(|t| &**t).collect();
     let width = inputs
@@ -859,12 +864,30 @@ mod tests {
                 image::Rgba([9, 9, 9, a]),
             ))
         };
-        assert!(has_translucent_texels(&with_alpha(128)));
-        assert!(!has_translucent_texels(&with_alpha(255)));
         let mut rgb = Vec::new();
         DynamicImage::ImageRgb8(image::RgbImage::new(2, 2))
             .write_to(&mut Cursor::new(&mut rgb), image::ImageFormat::Png)
             .unwrap();
-        assert!(!has_translucent_texels(&rgb));
+        // Judged from the bytes, and from their decode (as a rebake judges them).
+        for (bytes, translucent) in [
+            (with_alpha(128), true),
+            (with_alpha(255), false),
+            (rgb, false),
+        ] {
+            assert_eq!(has_translucent_texels(&bytes), translucent);
+            let decoded = sample::decode(&bytes).unwrap();
+            assert_eq!(decoded.has_translucent_texels(), Some(translucent));
+        }
+        // 16-bit texels are left to the bytes' judgement.
+        let mut wide = Vec::new();
+        let texel = image::Rgba([9u16, 9, 9, 40_000]);
+        DynamicImage::ImageRgba16(image::ImageBuffer::from_pixel(2, 2, texel))
+            .write_to(&mut Cursor::new(&mut wide), image::ImageFormat::Png)
+            .unwrap();
+        assert_eq!(
+            sample::decode(&wide).unwrap().has_translucent_texels(),
+            None
+        );
+        assert!(has_translucent_texels(&wide));
     }
 }

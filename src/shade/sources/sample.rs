@@ -150,6 +150,19 @@ impl TextureImage {
         matches!(self.channels, 2 | 4)
     }
 
+    /// Whether some 8-bit texel's alpha is below 1 (`false` without an alpha channel);
+    /// `None` for texels of more than 8 bits, which this does not judge.
+    pub(crate) fn has_translucent_texels(&self) -> Option<bool> {
+        match &self.texels {
+            _ if !self.has_alpha() => Some(false),
+            Texels::Unorm8(raw) => Some(
+                raw.chunks_exact(self.channels)
+                    .any(|t| t[t.len() - 1] < 255),
+            ),
+            Texels::Unorm16(_) | Texels::Float(_) => None,
+        }
+    }
+
     /// Whether its texels have more than 8 bits (a rebake from it keeps 16 bits).
     pub(crate) fn is_wide(&self) -> bool {
         !matches!(self.texels, Texels::Unorm8(_))
