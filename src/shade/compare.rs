@@ -369,7 +369,7 @@ const MEMO_WORDS: usize = 1 << 21;
 /// A repeat is only counted where it is found; its samples join the figures, times the
 /// count, when the memo is full or the pass ends (the figures are sums and counts, so the
 /// order does not matter). Lookups so touch the keys, a few words per entry, and not the
-/// samples: on a texture whose values repeat all over it they stay in the core's cache.
+/// samples.
 struct Memo {
     /// Entry numbers, by their key's hash.
     table: hashbrown::HashTable<u32>,
@@ -452,10 +452,15 @@ impl Memo {
         mixed ^ mixed >> 29
     }
 
+    /// Words per entry in `keys`: its key's, then its count of repeats.
+    fn stride(&self) -> usize {
+        self.width + 1
+    }
+
     /// An entry's key words and its count of repeats.
     fn entry(&self, entry: u32) -> &[u64] {
-        let at = entry as usize * (self.width + 1);
-        &self.keys[at..at + self.width + 1]
+        let at = entry as usize * self.stride();
+        &self.keys[at..at + self.stride()]
     }
 
     /// The entry of `key`, if it is held.
@@ -469,7 +474,8 @@ impl Memo {
 
     /// Counts `times` more repeats of `entry`.
     fn repeated(&mut self, entry: u32, times: u32) {
-        self.keys[(entry as usize + 1) * (self.width + 1) - 1] += u64::from(times);
+        let count = (entry as usize + 1) * self.stride() - 1;
+        self.keys[count] += u64::from(times);
     }
 
     fn samples(&self, entry: u32) -> [f64; DIRECTION_COUNT] {
@@ -479,7 +485,7 @@ impl Memo {
     /// Adds every entry's counted repeats to `partial`'s figures, and starts their counts
     /// again.
     fn count_into(&mut self, partial: &mut Partial) {
-        let stride = self.width + 1;
+        let stride = self.stride();
         for (entry, samples) in self.keys.chunks_exact_mut(stride).zip(&self.samples) {
             let repeats = &mut entry[stride - 1];
             if *repeats > 0 {
@@ -499,7 +505,7 @@ impl Memo {
         if key.len() != self.width || key.is_empty() || self.find(key).is_some() {
             return;
         }
-        let stride = self.width + 1;
+        let stride = self.stride();
         if self.keys.len() + stride + (self.samples.len() + 1) * DIRECTION_COUNT > MEMO_WORDS {
             self.count_into(partial);
             self.table.clear();

@@ -140,13 +140,15 @@ pub(super) fn spec_gloss_base_colour(
     factors: &Factors,
     fits: Option<&mut TexelFits>,
 ) -> Result<(Vec<u8>, bool, Option<String>), String> {
-    let decoded = diffuse.map(sample::decode).transpose()?;
-    // The decode at hand answers for 8-bit texels; wider ones are judged as 8-bit values are.
+    let diffuse_bytes = diffuse;
+    let diffuse = diffuse_bytes.map(sample::decode).transpose()?;
+    // The decode answers for 8-bit texels; wider ones are judged from the bytes (by their
+    // 8-bit conversion, as before the decode was at hand).
     let translucent = |(bytes, texture): (&[u8], &sample::Texture)| {
         (texture.has_translucent_texels()).unwrap_or_else(|| has_translucent_texels(bytes))
     };
-    let alpha = diffuse.zip(decoded.as_ref()).is_some_and(translucent) || factors.diffuse[3] < 1.0;
-    let diffuse = decoded;
+    let alpha =
+        diffuse_bytes.zip(diffuse.as_ref()).is_some_and(translucent) || factors.diffuse[3] < 1.0;
     let specular = specular.map(sample::decode).transpose()?;
     let inputs: Vec<&TextureImage> = diffuse.iter().chain(&specular).map(|t| &**t).collect();
     let width = inputs
