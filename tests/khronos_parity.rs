@@ -3859,3 +3859,76 @@ fn a_byte_offset_beside_no_buffer_view_index_is_not_read() {
         );
     }
 }
+
+#[test]
+fn a_directional_range_that_is_no_positive_number_is_read_as_none_and_is_not_extra() {
+    let node = |light: usize| json!({"extensions": {"KHR_lights_punctual": {"light": light}}});
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"type": "directional", "range": 0}, {"type": "directional", "range": -1},
+            {"type": "directional", "range": 2}, {"type": "directional", "range": "far"},
+            {"type": "point", "range": 0}]}},
+        "nodes": (0..5).map(node).collect::<Vec<_>>(),
+        "scenes": [{"nodes": [0, 1, 2, 3, 4]}], "scene": 0}));
+    let lights = "/extensions/KHR_lights_punctual/lights";
+    let wanted: Vec<(&str, String)> = vec![
+        ("VALUE_NOT_IN_RANGE", format!("{lights}/0/range")),
+        ("VALUE_NOT_IN_RANGE", format!("{lights}/1/range")),
+        ("EXTRA_PROPERTY", format!("{lights}/2/range")),
+        ("TYPE_MISMATCH", format!("{lights}/3/range")),
+        ("VALUE_NOT_IN_RANGE", format!("{lights}/4/range")),
+    ];
+    let wanted: Vec<(&str, &str)> = wanted.iter().map(|(c, p)| (*c, p.as_str())).collect();
+    assert_eq!(found, expected(&wanted));
+}
+
+#[test]
+fn a_matrix_of_bytes_or_a_mat3_of_shorts_is_an_unaligned_attribute_unless_strided() {
+    let zeros = format!("data:application/octet-stream;base64,{}", "A".repeat(128));
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 96, "uri": zeros}],
+        "bufferViews": [{"buffer": 0, "byteLength": 24},
+            {"buffer": 0, "byteOffset": 24, "byteLength": 24},
+            {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+            {"buffer": 0, "byteOffset": 48, "byteLength": 48, "byteStride": 12}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5120, "count": 1, "type": "MAT2"},
+            {"bufferView": 1, "componentType": 5121, "count": 1, "type": "MAT3"},
+            {"bufferView": 2, "componentType": 5122, "count": 1, "type": "MAT3"},
+            {"bufferView": 3, "componentType": 5121, "count": 1, "type": "MAT3"}],
+        "meshes": [{"primitives": [{"attributes": {"_A": 0, "_B": 1, "_C": 2, "_D": 3}, "mode": 0}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}));
+    let attributes = "/meshes/0/primitives/0/attributes";
+    let mut wanted: Vec<(&str, String)> =
+        vec![("MESH_PRIMITIVE_NO_POSITION", attributes.to_string())];
+    for name in ["_A", "_B", "_C"] {
+        wanted.push((
+            "MESH_PRIMITIVE_ACCESSOR_UNALIGNED",
+            format!("{attributes}/{name}"),
+        ));
+    }
+    for name in ["_A", "_B", "_C", "_D"] {
+        wanted.push(("BUFFER_VIEW_TARGET_MISSING", format!("{attributes}/{name}")));
+    }
+    let wanted: Vec<(&str, &str)> = wanted.iter().map(|(c, p)| (*c, p.as_str())).collect();
+    assert_eq!(found, expected(&wanted));
+}
+
+#[test]
+fn a_data_uri_is_base64_with_escapes_url_safe_letters_and_whole_padding_or_none() {
+    let data = |payload: &str| format!("data:application/octet-stream;base64,{payload}");
+    let found = khronos_findings(json!({"asset": {"version": "2.0"}, "buffers": [
+        {"byteLength": 1, "uri": data("RQ=")},
+        {"byteLength": 2, "uri": data("-_8=")},
+        {"byteLength": 1, "uri": data("RQ%3d%3D")},
+        {"byteLength": 1, "uri": data("RQ== ")},
+        {"byteLength": 1, "uri": data("%52Q")},
+        {"byteLength": 1, "uri": data("R%zz==")}]}));
+    let mut wanted: Vec<(&str, String)> = [0, 3, 5]
+        .map(|i| ("INVALID_URI", format!("/buffers/{i}/uri")))
+        .into();
+    wanted.extend((0..6).map(|i| ("UNUSED_OBJECT", format!("/buffers/{i}"))));
+    let wanted: Vec<(&str, &str)> = wanted.iter().map(|(c, p)| (*c, p.as_str())).collect();
+    assert_eq!(found, expected(&wanted));
+}

@@ -74,7 +74,7 @@ pub(crate) fn classify(uri: &str) -> Result<UriKind, String> {
 }
 
 /// Standard base64 whose padding may be left out, as the Khronos validator (and browsers)
-/// read data URIs; padding that is written must be right.
+/// read data URIs; padding that is written must be right (see [`normalized_base64`]).
 const BASE64: base64::engine::GeneralPurpose = base64::engine::GeneralPurpose::new(
     &base64::alphabet::STANDARD,
     base64::engine::GeneralPurposeConfig::new()
@@ -97,12 +97,68 @@ fn parse_data(rest: &str) -> Result<UriKind, String> {
     }
     let bytes = if base64 {
         BASE64
-            .decode(payload.trim_end())
+            .decode(&*normalized_base64(payload)?)
             .map_err(|e| format!("Invalid base64: {e}"))?
     } else {
         percent_decode(payload)?.into_bytes()
     };
     Ok(UriKind::Data { media_type, bytes })
+}
+
+/// A data URI's base64 as the Khronos validator reads it (and a URI parser normalises it):
+/// a character may be percent-escaped, the URL-safe `-` and `_` stand for `+` and `/`, and
+/// padding, when written, is at most two `=` that end a multiple of four characters. The
+/// payload itself when it needs no rewriting (a data URI may be hundreds of megabytes).
+fn normalized_base64(payload: &str) -> Result<std::borrow::Cow<'_, str>, String> {
+    let invalid = |at: usize| format!("Invalid base64 data (at character {})", at + 1);
+    if !payload.contains(['%', '-', '_']) {
+        check_base64_text(payload.as_bytes(), invalid)?;
+        return Ok(payload.into());
+    }
+    let bytes = payload.as_bytes();
+    let mut out = Vec::with_capacity(payload.len());
+    let mut at = 0;
+    while at < bytes.len() {
+        let (byte, width) = match bytes[at] {
+            b'%' => {
+                let hex = payload.get(at + 1..at + 3).ok_or_else(|| invalid(at))?;
+                (u8::from_str_radix(hex, 16).map_err(|_| invalid(at))?, 3)
+            }
+            byte => (byte, 1),
+        };
+        out.push(match byte {
+            b'-' => b'+',
+            b'_' => b'/',
+            byte => byte,
+        });
+        at += width;
+    }
+    check_base64_text(&out, invalid)?;
+    // Only ASCII letters, digits, `+`, `/` and `=` pass the check.
+    Ok(String::from_utf8(out).map_err(|_| invalid(0))?.into())
+}
+
+/// Whether `text` is base64 whose padding, if any, is whole (see [`normalized_base64`]).
+fn check_base64_text(text: &[u8], invalid: impl Fn(usize) -> String) -> Result<(), String> {
+    let data = text.iter().position(|&b| b == b'=').unwrap_or(text.len());
+    let alphabet = |b: &u8| b.is_ascii_alphanumeric() || matches!(b, b'+' | b'/');
+    if let Some(at) = text[..data].iter().position(|b| !alphabet(b)) {
+        return Err(invalid(at));
+    }
+    let padding = &text[data..];
+    if padding.iter().any(|&b| b != b'=') {
+        return Err("Invalid base64 padding, '=' not at the end".into());
+    }
+    if padding.len() > 2 {
+        return Err("Invalid base64 padding, more than two '=' characters".into());
+    }
+    if !padding.is_empty() && text.len() % 4 != 0 {
+        return Err(format!(
+            "Invalid base64 padding, padded length must be multiple of four, is {}",
+            text.len()
+        ));
+    }
+    Ok(())
 }
 
 fn percent_decode(text: &str) -> Result<String, String> {
@@ -505,6 +561,25 @@ mod tests {
         );
         assert!(classify("data:application/octet-stream;;base64,AA==").is_err());
         assert!(classify("data:").is_err());
+    }
+
+    #[test]
+    fn base64_is_read_with_escapes_url_safe_letters_and_only_whole_padding() {
+        let bytes = |payload: &str| match classify(&format!("data:a/b;base64,{payload}")) {
+            Ok(UriKind::Data { bytes, .. }) => Ok(bytes),
+            Ok(other) => panic!("{other:?}"),
+            Err(why) => Err(why),
+        };
+        assert_eq!(bytes("RQ==").unwrap(), b"E");
+        assert_eq!(bytes("RQ").unwrap(), b"E");
+        assert_eq!(bytes("RQ%3d%3D").unwrap(), b"E");
+        assert_eq!(bytes("%52Q==").unwrap(), b"E");
+        assert_eq!(bytes("-_8=").unwrap(), [0xfb, 0xff]);
+        for wrong in [
+            "RQ=", "R===", "RQ=x", "R%2", "R%zz==", "RQ==%20", "RQ== ", "@@@@",
+        ] {
+            assert!(bytes(wrong).is_err(), "{wrong}");
+        }
     }
 
     #[test]

@@ -5,6 +5,22 @@ use std::ops::Range;
 
 pub(crate) use super::gl::{BYTE, FLOAT, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT};
 
+/// An element's length when packed and the length of its data, in bytes, for a `type` of
+/// components `component_size` bytes long (an unknown `type` has none). Matrix columns
+/// start on 4-byte boundaries (glTF 2.0 §3.6.2.4): a matrix of 1- or 2-byte components is
+/// padded after each column, and its data ends with its last column, before the padding.
+pub(crate) fn element_lengths(kind: &str, component_size: usize) -> (u64, u64) {
+    match (kind, component_size) {
+        ("MAT2", 1) => (8, 6),
+        ("MAT3", 1) => (12, 11),
+        ("MAT3", 2) => (24, 22),
+        _ => {
+            let size = (component_count(kind).unwrap_or(0) * component_size) as u64;
+            (size, size)
+        }
+    }
+}
+
 /// Bytes per component of a `componentType`.
 pub(crate) fn component_size(component_type: u64) -> Option<usize> {
     match component_type {

@@ -6,7 +6,7 @@ use super::resources::fits_in_view;
 use crate::check::context::{elements, member, unsigned, Context, MaterialNeeds};
 use crate::diagnostic::{khronos, Diagnostic, Sink};
 use crate::document::{Array, Node, Object, Tree};
-use crate::gltf::accessor::{component_count, component_size};
+use crate::gltf::accessor::{component_count, component_size, element_lengths};
 use crate::gltf::as_index;
 use crate::gltf::gl;
 use std::collections::{BTreeSet, HashSet};
@@ -317,24 +317,12 @@ fn check_accessor_fits(ctx: &mut Context, accessor: Node, view: usize, pointer: 
     let Some(kind) = accessor.get("type").and_then(Node::as_str) else {
         return;
     };
-    let components = component_count(kind).unwrap_or(0);
     // A view without its byteLength (a schema error) is judged as holding nothing, as the
     // Khronos validator judges it (see `fits_in_view`).
     let Some(count) = unsigned(accessor, "count").filter(|c| *c > 0) else {
         return;
     };
-    // Matrix columns start on 4-byte boundaries (glTF 2.0 §3.6.2.4): elements are padded,
-    // but the last element ends after its last column's data.
-    let is_mat2 = accessor.get("type").and_then(Node::as_str) == Some("MAT2");
-    let (element, last): (u64, u64) = match (components, component_size) {
-        (4, 1) if is_mat2 => (8, 6),
-        (9, 1) => (12, 11),
-        (9, 2) => (24, 22),
-        _ => {
-            let size = (components * component_size) as u64;
-            (size, size)
-        }
-    };
+    let (element, last) = element_lengths(kind, component_size);
     let view_object = ctx.items("bufferViews").at(view);
     let declared_stride = unsigned(view_object, "byteStride");
     // An element's data ends after its last column (the padding after it is never read): a

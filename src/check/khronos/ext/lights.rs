@@ -81,7 +81,9 @@ pub(crate) fn take_unread_spots(tree: &mut Tree, sink: &mut dyn Sink) {
 fn light_properties(ctx: &mut Context, light: Node, at: &str) {
     let kind = light.get("type").and_then(Node::as_str);
     let extra = |key: &str| member(at, key);
-    if kind == Some("directional") && light.get("range").is_some() {
+    // A range that is no number above zero is read as none, and is not there to be extra.
+    let range = light.get("range").and_then(Node::as_f64);
+    if kind == Some("directional") && range.is_some_and(|r| r > 0.0) {
         ctx.emit(
             khronos::EXTRA_PROPERTY,
             extra("range"),
