@@ -152,7 +152,7 @@ fn check_base64_text(text: &[u8], invalid: impl Fn(usize) -> String) -> Result<(
     if padding.len() > 2 {
         return Err("Invalid base64 padding, more than two '=' characters".into());
     }
-    if !padding.is_empty() && text.len() % 4 != 0 {
+    if !padding.is_empty() && !text.len().is_multiple_of(4) {
         return Err(format!(
             "Invalid base64 padding, padded length must be multiple of four, is {}",
             text.len()
