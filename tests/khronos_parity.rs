@@ -3932,3 +3932,82 @@ fn a_data_uri_is_base64_with_escapes_url_safe_letters_and_whole_padding_or_none(
     let wanted: Vec<(&str, &str)> = wanted.iter().map(|(c, p)| (*c, p.as_str())).collect();
     assert_eq!(found, expected(&wanted));
 }
+
+/// A document whose `/buffers/1/uri` (or image, with `in_images`) has base64 ending in bits
+/// past its data, with findings in what the Khronos validator reads before it and after.
+fn stopped_at_a_data_uri(in_images: bool) -> Value {
+    let data = |payload: &str| format!("data:application/octet-stream;base64,{payload}");
+    let stray =
+        json!({"name": 5, "byteLength": -2, "uri": data("RUV="), "foo": 1, "extensions": 3});
+    let mut document = json!({"aaa": 1, "asset": {"version": "2.0", "foo": 1},
+        "extensionsUsed": ["X_a"], "extensions": {"X_a": {}},
+        "accessors": [{"componentType": 1, "count": 1, "type": "SCALAR"}],
+        "buffers": [{"byteLength": 1, "uri": data("RQ=")}, stray, {"byteLength": -3}],
+        "bufferViews": [{"buffer": 0, "byteLength": -1}],
+        "materials": [{"alphaMode": "x"}], "nodes": [{"mesh": 4}]});
+    if in_images {
+        document["buffers"][1] = json!({"byteLength": 1, "uri": data("RQ==")});
+        document["images"] = json!([{"mimeType": "x", "uri": data("RQ=")}, {"bufferView": 0},
+            {"mimeType": "image/gif", "bufferView": 0, "uri": data("Ra")}, {"uri": 5}]);
+    }
+    document
+}
+
+#[test]
+fn a_data_uri_with_bits_past_its_data_stops_the_validator_where_it_reads_it() {
+    let found = khronos_findings(stopped_at_a_data_uri(false));
+    let before_buffers = [
+        ("UNEXPECTED_PROPERTY", "/aaa"),
+        ("UNSUPPORTED_EXTENSION", "/extensionsUsed/0"),
+        ("UNEXPECTED_PROPERTY", "/asset/foo"),
+        ("VALUE_NOT_IN_LIST", "/accessors/0/componentType"),
+        ("INVALID_URI", "/buffers/0/uri"),
+    ];
+    let mut wanted = before_buffers.to_vec();
+    wanted.extend([
+        ("UNEXPECTED_PROPERTY", "/buffers/1/foo"),
+        ("VALUE_NOT_IN_RANGE", "/buffers/1/byteLength"),
+        ("INVALID_JSON", ""),
+    ]);
+    assert_eq!(found, expected(&wanted));
+
+    let found = khronos_findings(stopped_at_a_data_uri(true));
+    let mut wanted = before_buffers.to_vec();
+    wanted.extend([
+        ("VALUE_NOT_IN_RANGE", "/buffers/2/byteLength"),
+        ("VALUE_NOT_IN_RANGE", "/bufferViews/0/byteLength"),
+        ("VALUE_NOT_IN_LIST", "/images/0/mimeType"),
+        ("INVALID_URI", "/images/0/uri"),
+        ("UNSATISFIED_DEPENDENCY", "/images/1/bufferView"),
+        ("VALUE_NOT_IN_LIST", "/images/2/mimeType"),
+        ("ONE_OF_MISMATCH", "/images/2"),
+        ("INVALID_JSON", ""),
+    ]);
+    assert_eq!(found, expected(&wanted));
+}
+
+#[test]
+fn the_default_profile_reports_bits_past_a_data_uris_data_there_and_reads_on() {
+    let mut document = stopped_at_a_data_uri(false);
+    document["buffers"][1]["byteLength"] = json!(3);
+    let bytes = serde_json::to_vec(&document).unwrap();
+    let report = check_bytes("case.gltf", bytes, &NoResources, &CheckOptions::default());
+    let found = sorted_findings(&report);
+    let has = |code: &str, pointer: &str| found.contains(&(code.into(), pointer.into()));
+    assert!(has("INVALID_URI", "/buffers/1/uri"), "{found:?}");
+    // Decoded as browsers decode it: two bytes, one fewer than declared.
+    assert!(
+        has("BUFFER_BYTE_LENGTH_MISMATCH", "/buffers/1"),
+        "{found:?}"
+    );
+    assert!(
+        !found.iter().any(|(code, _)| code == "INVALID_JSON"),
+        "{found:?}"
+    );
+    // Read on: what lies after the URI is checked.
+    assert!(
+        has("VALUE_NOT_IN_LIST", "/materials/0/alphaMode"),
+        "{found:?}"
+    );
+    assert!(has("UNRESOLVED_REFERENCE", "/nodes/0/mesh"), "{found:?}");
+}

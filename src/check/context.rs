@@ -131,6 +131,9 @@ pub(crate) struct Context<'a> {
     /// Where the profile reports link findings the validator names by a path it did not
     /// unwind (see `khronos::LinkPath`); none when they are at their own pointers.
     pub link_path: Option<super::khronos::LinkPath>,
+    /// The buffer or image data URI where the profile stops reading the document, as the
+    /// Khronos validator stops (see `khronos::stops_at_data_uri`).
+    pub stopped_at: Option<(&'static str, usize)>,
     extensions_used: std::sync::OnceLock<HashSet<&'a str>>,
 }
 
@@ -161,6 +164,7 @@ impl<'a> Context<'a> {
             undeclared_extensions: Default::default(),
             extensions_as_written: Default::default(),
             images_left_to_extensions: Default::default(),
+            stopped_at: None,
             link_path: None,
             extensions_used: std::sync::OnceLock::new(),
         }

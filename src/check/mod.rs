@@ -237,16 +237,20 @@ fn check_document(
                 }
                 true => Default::default(),
             };
+            let stopped_at = (options.profile.stops_where_the_validator_stops() && !gltf1)
+                .then(|| khronos::stops_at_data_uri(tree.root()))
+                .flatten();
             let undeclared = if gltf1 {
                 Default::default()
             } else {
-                schema_pass(tree, khronos_extensions_only, &mut diagnostics)
+                schema_pass(tree, khronos_extensions_only, stopped_at, &mut diagnostics)
             };
             let root = document.root.as_ref().expect("matched above").root();
             let mut ctx = Context::new(root, &document, loader, options, diagnostics, &filters);
             ctx.undeclared_extensions = undeclared;
             ctx.extensions_as_written = as_written;
             ctx.images_left_to_extensions = left_to_extensions;
+            ctx.stopped_at = stopped_at;
             if options.profile.names_link_findings_as_the_validator() && !gltf1 {
                 ctx.link_path = khronos::LinkPath::of(root);
             }
@@ -284,22 +288,25 @@ fn short(value: Node) -> String {
 /// type, taken out before the schema pass) and the
 /// extension objects `extensionsUsed` does not declare (returned, for the extensions pass
 /// to report). Of a document that does not claim
-/// glTF 2.x, only what the Khronos validator reads before it stops (see
-/// [`khronos::read_before_asset`]).
-fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::Undeclared {
+/// glTF 2.x, or one whose data URI `stopped_at` stops the Khronos profile, only what the
+/// Khronos validator reads before it stops (see [`khronos::read_before_asset`] and
+/// [`khronos::read_before_data_uri`]).
+fn schema_pass(
+    tree: &mut Tree,
+    khronos: bool,
+    stopped_at: Option<(&'static str, usize)>,
+    sink: &mut dyn Sink,
+) -> khronos::Undeclared {
     if !khronos::has_supported_version(tree.root()) {
-        let read = khronos::read_before_asset(tree.root());
-        let absent = schema::validate(tree.root(), khronos, &mut Only(sink, read));
-        let (nulls, emptied) = remove_all(tree, absent);
-        // Read anew: an `asset` that was null is now missing.
-        let read = khronos::read_before_asset(tree.root());
-        schema::required_members(
-            tree.root(),
-            khronos,
-            &nulls,
-            &emptied,
-            &mut Only(sink, read),
-        );
+        schema_pass_until(tree, khronos, sink, |root, d| {
+            khronos::read_before_asset(root)(d)
+        });
+        return Default::default();
+    }
+    if let Some(at) = stopped_at {
+        schema_pass_until(tree, khronos, sink, |_, d| {
+            khronos::read_before_data_uri(at, d)
+        });
         return Default::default();
     }
     khronos::take_unread_bounds(tree, sink);
@@ -319,6 +326,27 @@ fn schema_pass(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::
     schema::required_members(tree.root(), khronos, &nulls, &emptied, sink);
     khronos::take_unread_sparse(tree);
     undeclared
+}
+
+/// The schema pass of a document the Khronos validator stops reading part-way: only the
+/// findings `read` keeps (asked of the tree as it is then: an `asset` that was null is
+/// missing once the pass takes it out).
+fn schema_pass_until(
+    tree: &mut Tree,
+    khronos: bool,
+    sink: &mut dyn Sink,
+    read: impl Fn(Node, &Diagnostic) -> bool,
+) {
+    let root = tree.root();
+    let absent = schema::validate(
+        root,
+        khronos,
+        &mut Only(sink, |d: &Diagnostic| read(root, d)),
+    );
+    let (nulls, emptied) = remove_all(tree, absent);
+    let root = tree.root();
+    let mut sink = Only(sink, |d: &Diagnostic| read(root, d));
+    schema::required_members(root, khronos, &nulls, &emptied, &mut sink);
 }
 
 /// The names `extensionsUsed` declares; none when it is not a list of names (the schema
@@ -389,6 +417,18 @@ fn run_passes(ctx: &mut Context) {
         // does not claim.
         khronos::check_extension_lists(ctx);
         khronos::check_asset(ctx);
+        return;
+    }
+    if let Some((collection, index)) = ctx.stopped_at {
+        // What the validator says of the rest assumes data it could not decode.
+        khronos::check_extension_lists(ctx);
+        khronos::check_asset(ctx);
+        khronos::resources::check_parsed_before_stop(ctx, (collection, index));
+        ctx.emit(
+            crate::diagnostic::khronos::INVALID_JSON,
+            "",
+            format!("Invalid JSON data. Parser output: the base64 of /{collection}/{index}/uri ends in bits past its data, which the Khronos validator's decoder refuses; it reads the file no further."),
+        );
         return;
     }
     for (_, pass) in khronos::PASSES {

@@ -77,6 +77,13 @@ impl Profile {
         self == Profile::Default
     }
 
+    /// Whether the document is read no further than the Khronos validator reads it when a
+    /// data URI's base64 ends in bits past its data (see `khronos::stops_at_data_uri`); the
+    /// default profile reports that URI and reads on.
+    pub(crate) fn stops_where_the_validator_stops(self) -> bool {
+        self == Profile::Khronos
+    }
+
     /// Whether a glTF 1.0 document gets the 1.0 checks instead of the 2.0 passes.
     pub(crate) fn checks_gltf1(self) -> bool {
         self == Profile::Default
@@ -123,6 +130,10 @@ pub(crate) static READINGS: &[(Code, &str)] = &[
     (
         khronos::VALUE_NOT_IN_LIST,
         "An image's mimeType 'image/ktx2' is valid where KHR_texture_basisu is used, as that extension's schema adds it; the released Khronos validator knows only PNG, JPEG and (with EXT_texture_webp) WebP.",
+    ),
+    (
+        khronos::INVALID_URI,
+        "A data URI whose base64 ends in bits past its data (its last character is not the one that encodes the data, as in 'Ra==' for 'E') is reported here, decoded as browsers decode it, and the rest of the document is checked. The Khronos validator's decoder refuses it and stops reading the file there: its report is INVALID_JSON and what it found before.",
     ),
     (
         khronos::SKIN_NO_COMMON_ROOT,

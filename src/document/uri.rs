@@ -18,6 +18,9 @@ pub(crate) enum UriKind {
         media_type: String,
         /// The decoded data.
         bytes: Vec<u8>,
+        /// Whether the base64's last character holds bits past the data (see
+        /// [`has_stray_bits`]); they are dropped, as browsers drop them.
+        stray_bits: bool,
     },
     /// A relative reference, `\` read as `/`, then percent-decoded.
     Relative(String),
@@ -74,19 +77,23 @@ pub(crate) fn classify(uri: &str) -> Result<UriKind, String> {
 }
 
 /// Standard base64 whose padding may be left out, as the Khronos validator (and browsers)
-/// read data URIs; padding that is written must be right (see [`normalized_base64`]).
+/// read data URIs; padding that is written must be right (see [`normalized_base64`]). Bits
+/// past the data in the last character are dropped, as browsers drop them (the Khronos
+/// validator refuses them: see [`has_stray_bits`]).
 const BASE64: base64::engine::GeneralPurpose = base64::engine::GeneralPurpose::new(
     &base64::alphabet::STANDARD,
     base64::engine::GeneralPurposeConfig::new()
-        .with_decode_padding_mode(base64::engine::DecodePaddingMode::Indifferent),
+        .with_decode_padding_mode(base64::engine::DecodePaddingMode::Indifferent)
+        .with_decode_allow_trailing_bits(true),
 );
 
-fn parse_data(rest: &str) -> Result<UriKind, String> {
+/// A data URI's media type and payload, and whether the payload is base64.
+fn split_data(rest: &str) -> Result<(&str, &str, bool), String> {
     let Some((header, payload)) = rest.split_once(',') else {
         return Err("Expecting ','".into());
     };
     let mut params = header.split(';');
-    let media_type = params.next().unwrap_or_default().to_string();
+    let media_type = params.next().unwrap_or_default();
     let mut base64 = false;
     for param in params {
         if param == "base64" {
@@ -95,14 +102,52 @@ fn parse_data(rest: &str) -> Result<UriKind, String> {
             return Err("Expecting '='".into());
         }
     }
-    let bytes = if base64 {
-        BASE64
-            .decode(&*normalized_base64(payload)?)
-            .map_err(|e| format!("Invalid base64: {e}"))?
+    Ok((media_type, payload, base64))
+}
+
+fn parse_data(rest: &str) -> Result<UriKind, String> {
+    let (media_type, payload, base64) = split_data(rest)?;
+    let (bytes, stray_bits) = if base64 {
+        let text = normalized_base64(payload)?;
+        let bytes = (BASE64.decode(&*text)).map_err(|e| format!("Invalid base64: {e}"))?;
+        (bytes, stray_bits(&text))
     } else {
-        percent_decode(payload)?.into_bytes()
+        (percent_decode(payload)?.into_bytes(), false)
     };
-    Ok(UriKind::Data { media_type, bytes })
+    Ok(UriKind::Data {
+        media_type: media_type.to_string(),
+        bytes,
+        stray_bits,
+    })
+}
+
+/// Whether `uri` is a valid base64 data URI whose last character holds bits past the data
+/// (`RUV=` for the two bytes `EE`, which `RUU=` writes). RFC 4648 lets a decoder refuse
+/// them; browsers drop them; the Khronos validator stops reading the whole file there.
+pub(crate) fn has_stray_bits(uri: &str) -> bool {
+    let Some(Ok((_, payload, true))) = uri.strip_prefix("data:").map(split_data) else {
+        return false;
+    };
+    normalized_base64(payload).is_ok_and(|text| stray_bits(&text))
+}
+
+/// Whether normalised base64 `text` ends in a character with bits past its data.
+fn stray_bits(text: &str) -> bool {
+    let data = text.trim_end_matches('=').as_bytes();
+    let value = |c: u8| match c {
+        b'A'..=b'Z' => c - b'A',
+        b'a'..=b'z' => c - b'a' + 26,
+        b'0'..=b'9' => c - b'0' + 52,
+        b'+' => 62,
+        _ => 63,
+    };
+    // Two characters carry a byte and four bits more; three carry two bytes and two bits.
+    let unused = match data.len() % 4 {
+        2 => 0b1111,
+        3 => 0b11,
+        _ => return false,
+    };
+    data.last().is_some_and(|&c| value(c) & unused != 0)
 }
 
 /// A data URI's base64 as the Khronos validator reads it (and a URI parser normalises it):
@@ -556,7 +601,8 @@ mod tests {
             classify("data:application/octet-stream;base64,AAEC").unwrap(),
             UriKind::Data {
                 media_type: "application/octet-stream".into(),
-                bytes: vec![0, 1, 2]
+                bytes: vec![0, 1, 2],
+                stray_bits: false,
             }
         );
         assert!(classify("data:application/octet-stream;;base64,AA==").is_err());
@@ -580,6 +626,30 @@ mod tests {
         ] {
             assert!(bytes(wrong).is_err(), "{wrong}");
         }
+    }
+
+    #[test]
+    fn bits_past_the_data_are_dropped_and_told() {
+        let data = |payload: &str| format!("data:a/b;base64,{payload}");
+        for (payload, decoded, stray) in [
+            ("RUU=", &b"EE"[..], false),
+            ("RUV=", b"EE", true),
+            ("RU%56", b"EE", true),
+            ("RQ==", b"E", false),
+            ("Ra", b"E", true),
+            ("RUVF", b"EEE", false),
+        ] {
+            let Ok(UriKind::Data {
+                bytes, stray_bits, ..
+            }) = classify(&data(payload))
+            else {
+                panic!("{payload}");
+            };
+            assert_eq!((&bytes[..], stray_bits), (decoded, stray), "{payload}");
+            assert_eq!(has_stray_bits(&data(payload)), stray, "{payload}");
+        }
+        assert!(!has_stray_bits("data:a/b,Ra"));
+        assert!(!has_stray_bits("data:a/b;base64,Ra="));
     }
 
     #[test]

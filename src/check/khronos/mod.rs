@@ -31,8 +31,8 @@ pub(crate) use extensions::{
 pub(crate) use link_path::LinkPath;
 pub(crate) use materials::extensions_as_written;
 pub(crate) use objects::{
-    check_asset, has_supported_version, read_before_asset, take_unread_bounds, take_unread_offsets,
-    take_unread_projections, take_unread_sparse,
+    check_asset, has_supported_version, read_before_asset, read_before_data_uri, stops_at_data_uri,
+    take_unread_bounds, take_unread_offsets, take_unread_projections, take_unread_sparse,
 };
 pub(crate) use primitives::mode_of;
 pub(crate) use resources::images_with_extensions;

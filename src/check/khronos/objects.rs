@@ -5,6 +5,7 @@ use super::primitives::indexed_sets;
 use super::resources::fits_in_view;
 use crate::check::context::{elements, member, unsigned, Context, MaterialNeeds};
 use crate::diagnostic::{khronos, Diagnostic, Sink};
+use crate::document::uri::has_stray_bits;
 use crate::document::{Array, Node, Object, Tree};
 use crate::gltf::accessor::{component_count, component_size, element_lengths};
 use crate::gltf::as_index;
@@ -51,6 +52,74 @@ pub(crate) fn read_before_asset(root: Node) -> impl Fn(&Diagnostic) -> bool {
             khronos::UNDEFINED_PROPERTY => missing && matches!(pointer, "" | "/"),
             _ => false,
         }
+    }
+}
+
+/// Where the Khronos validator stops reading a glTF 2.x document: at the first buffer, then
+/// image, whose data URI ends in bits past its data ([`has_stray_bits`]), which its base64
+/// decoder refuses as a failure of the whole file (INVALID_JSON).
+pub(crate) fn stops_at_data_uri(root: Node) -> Option<(&'static str, usize)> {
+    ["buffers", "images"].into_iter().find_map(|collection| {
+        let elements = root.get(collection)?.as_array()?;
+        let stray = |e: Node| {
+            e.get("uri")
+                .and_then(Node::as_str)
+                .is_some_and(has_stray_bits)
+        };
+        let index = elements.iter().position(stray)?;
+        Some((collection, index))
+    })
+}
+
+/// The root collections the Khronos validator reads, in its order, as far as the images.
+const READ_UP_TO_IMAGES: [&str; 6] = [
+    "accessors",
+    "animations",
+    "buffers",
+    "bufferViews",
+    "cameras",
+    "images",
+];
+
+/// Whether the Khronos validator gives a schema finding before it stops at the data URI of
+/// `/collection/index` ([`stops_at_data_uri`]): unexpected root members, the extension
+/// lists and `asset`, the collections it reads first ([`READ_UP_TO_IMAGES`]) and the
+/// elements before; of that element, its unexpected members, a missing byteLength and the
+/// members read before the uri (a buffer's byteLength, an image's bufferView and mimeType).
+pub(crate) fn read_before_data_uri(
+    (collection, index): (&'static str, usize),
+    diagnostic: &Diagnostic,
+) -> bool {
+    let Some(pointer) = diagnostic.pointer() else {
+        return false;
+    };
+    let mut segments = pointer.split('/').skip(1);
+    let member = segments.next().unwrap_or_default();
+    let before = READ_UP_TO_IMAGES.iter().take_while(|c| **c != collection);
+    if matches!(member, "asset" | "extensionsUsed" | "extensionsRequired")
+        || before.into_iter().any(|c| *c == member)
+    {
+        return true;
+    }
+    let Some(element) = segments.next() else {
+        return diagnostic.code == khronos::UNEXPECTED_PROPERTY;
+    };
+    if member != collection {
+        return false;
+    }
+    let read_first: &[&str] = match collection {
+        "buffers" => &["byteLength"],
+        _ => &["bufferView", "mimeType"],
+    };
+    let inside = segments.next();
+    match (element.parse::<usize>().map(|i| i.cmp(&index)), inside) {
+        (Ok(std::cmp::Ordering::Less), _) => true,
+        (Ok(std::cmp::Ordering::Equal), None) => diagnostic.code == khronos::UNDEFINED_PROPERTY,
+        (Ok(std::cmp::Ordering::Equal), Some(inside)) => {
+            read_first.contains(&inside)
+                || (segments.next().is_none() && diagnostic.code == khronos::UNEXPECTED_PROPERTY)
+        }
+        _ => false,
     }
 }
 

@@ -39,19 +39,28 @@ fn load_uri(
     }
     match classify(uri) {
         Err(reason) => {
-            ctx.emit(
-                khronos::INVALID_URI,
-                pointer,
-                format!("Invalid URI '{}'. Parser output: {reason}", shorten(uri)),
-            );
+            invalid_uri(ctx, pointer, uri, &reason);
             (None, None, "data-uri")
         }
-        Ok(UriKind::Data { media_type, bytes }) => {
+        Ok(UriKind::Data {
+            media_type,
+            bytes,
+            stray_bits,
+        }) => {
             if glb {
                 ctx.emit(
                     khronos::DATA_URI_GLB,
                     pointer,
                     "Data URI is used in GLB container.",
+                );
+            }
+            // The Khronos profile never gets here: the validator stops reading the file
+            // at such a URI (see `khronos::stops_at_data_uri`).
+            if stray_bits {
+                ctx.emit(
+                    khronos::INVALID_URI,
+                    pointer,
+                    format!("Invalid URI '{}'. Parser output: its base64 ends in bits past the data (its last character is not the one that encodes them). Browsers drop those bits and read the data, as this check does; the Khronos validator stops reading the whole file here.", shorten(uri)),
                 );
             }
             (
@@ -68,6 +77,42 @@ fn load_uri(
             unread_external(ctx, pointer, uri, kind, files);
             (None, None, "external")
         }
+    }
+}
+
+fn invalid_uri(ctx: &mut Context, pointer: &str, uri: &str, reason: &str) {
+    let message = format!("Invalid URI '{}'. Parser output: {reason}", shorten(uri));
+    ctx.emit(khronos::INVALID_URI, pointer, message);
+}
+
+/// What the Khronos validator says of the buffers and images it parses before it stops at
+/// the data URI of `/collection/index` (see `khronos::stops_at_data_uri`): each URI it
+/// cannot parse and each image's members, those of the image it stops at included.
+pub(crate) fn check_parsed_before_stop(ctx: &mut Context, (collection, index): (&str, usize)) {
+    let unparsed = |ctx: &mut Context, pointer: &str, object: Node| {
+        let uri = object.get("uri").and_then(Node::as_str);
+        if let Some((uri, Err(reason))) = uri.map(|uri| (uri, classify(uri))) {
+            invalid_uri(ctx, &member(pointer, "uri"), uri, &reason);
+        }
+    };
+    let buffers = if collection == "buffers" {
+        index
+    } else {
+        usize::MAX
+    };
+    for (_, pointer, buffer) in ctx.objects("buffers").take_while(|(i, ..)| *i < buffers) {
+        unparsed(ctx, &pointer, buffer);
+    }
+    if collection != "images" {
+        return;
+    }
+    let enabled = EnabledFormats {
+        webp: ctx.uses_extension("EXT_texture_webp"),
+        ktx2: false,
+    };
+    for (_, pointer, image) in ctx.objects("images").take_while(|(i, ..)| *i <= index) {
+        check_image_members(ctx, &pointer, image, enabled);
+        unparsed(ctx, &pointer, image);
     }
 }
 
