@@ -89,6 +89,15 @@ fn ktx2_fixtures(files: &[&str]) -> Value {
     ktx2_images(&bytes)
 }
 
+/// A patch of [`ktx2_images`]'s asset: its first texture reads its KTX2 through an extension
+/// other than KHR_texture_basisu (Magnum's KHR_texture_ktx draft), whose layout rules do not
+/// bind it. gltfmat does not know that extension (UNSUPPORTED_EXTENSION), so the image counts
+/// as unused, and its mimeType as one core glTF does not list.
+fn through_another_extension() -> Value {
+    json!({"extensionsUsed": ["KHR_texture_ktx"],
+        "textures": [{"sampler": 0, "extensions": {"KHR_texture_ktx": {"source": 0}}}]})
+}
+
 /// The base asset with TANGENT, whose images are KTX2 `files` in one buffer (a data URI), each
 /// sampled through KHR_texture_basisu by the texture of the same index.
 fn ktx2_images(files: &[Vec<u8>]) -> Value {
@@ -762,6 +771,16 @@ fn cases() -> Vec<Case> {
             .expect("KTX2_DIMENSIONS_NOT_MULTIPLE_OF_4", "/images/0"),
         near_miss("KTX2_DIMENSIONS_NOT_MULTIPLE_OF_4", "a KTX2 of 8 texels' width", material(json!({"normalTexture": {"index": 0}})), vec![])
             .patch(ktx2_images(&[fixture_claiming("normal-uastc.ktx2", 20, 8)])),
+        near_miss("KTX2_DIMENSIONS_NOT_MULTIPLE_OF_4", "a KTX2 of 6 texels' width read through another extension than KHR_texture_basisu",
+            material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_images(&[fixture_claiming("normal-uastc.ktx2", 20, 6)])).patch(through_another_extension())
+            .expect("UNSUPPORTED_EXTENSION", "/extensionsUsed/0").expect("UNUSED_OBJECT", "/images/0")
+            .expect("VALUE_NOT_IN_LIST", "/images/0/mimeType"),
+        near_miss("KTX2_LAYOUT_INVALID", "a KTX2 in a plain Vulkan format read through another extension than KHR_texture_basisu",
+            material(json!({"normalTexture": {"index": 0}})), vec![])
+            .patch(ktx2_image()).patch(through_another_extension())
+            .expect("UNSUPPORTED_EXTENSION", "/extensionsUsed/0").expect("UNUSED_OBJECT", "/images/0")
+            .expect("VALUE_NOT_IN_LIST", "/images/0/mimeType"),
         near_miss("KTX2_TRANSFER_MISMATCH", "an sRGB KTX2 base colour and a linear KTX2 normal map",
             material(json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "normalTexture": {"index": 1}})), vec![])
             .patch(ktx2_fixtures(&["base-uastc.ktx2", "normal-uastc.ktx2"])),

@@ -16,7 +16,8 @@ pub(super) const RULE: Rule = Rule::new(
 
 const DOC: &str = "\
 ## What it does
-Reports a KTX2 image whose `pixelWidth` or `pixelHeight` is not a multiple of 4.
+Reports a KTX2 image a texture reads through KHR_texture_basisu whose `pixelWidth` or
+`pixelHeight` is not a multiple of 4.
 
 ## Why
 KHR_texture_basisu: \"`pixelWidth` and `pixelHeight` MUST be multiples of 4.\" Basis Universal
@@ -29,7 +30,9 @@ A 250×250 KTX2 image bound through KHR_texture_basisu.
 ";
 
 fn check(ctx: &mut Context) {
+    let basisu = super::basisu_images(ctx);
     let sizes: Vec<(usize, u32, u32)> = (ctx.images.iter().enumerate())
+        .filter(|(i, _)| basisu.contains(i))
         .filter_map(|(i, info)| Some((i, info.as_ref()?)))
         .filter(|(_, info)| info.format == ImageFormat::Ktx2)
         .filter(|(_, info)| info.width % 4 != 0 || info.height % 4 != 0)

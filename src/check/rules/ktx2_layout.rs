@@ -18,8 +18,8 @@ pub(super) const RULE: Rule = Rule::new(
 
 const DOC: &str = "\
 ## What it does
-Reports a KTX2 image whose header or data format descriptor breaks KHR_texture_basisu's
-layout: a `vkFormat` other than 0 (not Basis Universal), a colour model other than ETC1S or
+Reports a KTX2 image a texture reads through KHR_texture_basisu whose header or data format
+descriptor breaks that extension's layout: a `vkFormat` other than 0 (not Basis Universal), a colour model other than ETC1S or
 UASTC, ETC1S without BasisLZ supercompression or UASTC with a scheme other than none or
 Zstandard, a channel layout other than RGB, RGBA, Red or Red-Green, a Red or Red-Green texture
 encoded sRGB, or a texture that is not 2D (depth, array layers, cube faces). One finding per
@@ -37,7 +37,9 @@ A texture's KHR_texture_basisu `source` naming a KTX2 in `VK_FORMAT_R8G8B8A8_SRG
 ";
 
 fn check(ctx: &mut Context) {
+    let basisu = super::basisu_images(ctx);
     let found: Vec<(usize, Vec<String>)> = (ctx.images.iter().enumerate())
+        .filter(|(i, _)| basisu.contains(i))
         .filter_map(|(i, info)| {
             let reasons = info.as_ref().map(reasons).unwrap_or_default();
             (!reasons.is_empty()).then_some((i, reasons))

@@ -302,5 +302,16 @@ fn bound_images<'a>(ctx: &Context<'a>) -> BoundImages<'a> {
     BoundImages { uses, bound }
 }
 
+/// The images a texture reads through KHR_texture_basisu (its `source`), whose layout that
+/// extension constrains; a KTX2 read otherwise (another extension's, or none) is not bound
+/// by it.
+fn basisu_images(ctx: &Context) -> std::collections::BTreeSet<usize> {
+    let source = |texture: crate::document::Node| {
+        let basisu = texture.get("extensions")?.get("KHR_texture_basisu")?;
+        crate::gltf::unsigned(basisu, "source").map(|i| i as usize)
+    };
+    ctx.items("textures").iter().filter_map(source).collect()
+}
+
 /// The share of texels above which a plausibility rule reports a texture ("large areas").
 const LARGE_AREA: f64 = 0.1;
