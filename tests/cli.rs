@@ -1688,3 +1688,45 @@ fn compare_counts_the_corners_it_does_not_sample_in_both_formats() {
         "{human}"
     );
 }
+
+#[test]
+fn an_assets_text_never_reaches_the_terminal_as_control_characters() {
+    let folder = tempfile::tempdir().unwrap();
+    // A name, a key and a URI holding an escape sequence and a line break, and a raw escape
+    // in the file's own bytes (invalid JSON, shown in its snippet).
+    let named = r#"{"asset": {"version": "2.0"}, "extras": {"k\u001b[2J": 1},
+        "materials": [{"name": "evil\u001b[31m\nfake: 0 error(s)"}, {"name": "\u202Eright"}],
+        "images": [{"uri": "x\u001b[31m.png"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+        "accessors": [{"componentType": 5126, "count": 1, "type": "VEC3"}]}"#;
+    std::fs::write(folder.path().join("named.gltf"), named).unwrap();
+    std::fs::write(folder.path().join("raw.gltf"), b"{\"asset\": \x1b[31m 1}").unwrap();
+    let named = folder.path().join("named.gltf");
+    let named = named.to_str().unwrap();
+    let raw = folder.path().join("raw.gltf");
+    let raw = raw.to_str().unwrap();
+    for args in [
+        &["check", named, "--all-findings"][..],
+        &["check", named, "--format", "github"],
+        &["check", raw],
+        &["compare", named, named],
+        &["render", named, "--all", "-o", "sheet.png"],
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(args)
+            .current_dir(folder.path())
+            .output()
+            .unwrap();
+        let (stdout, stderr) = (&out.stdout, &out.stderr);
+        let text = String::from_utf8_lossy(stdout) + String::from_utf8_lossy(stderr);
+        assert!(!text.contains(['\u{1b}', '\u{202E}']), "{args:?}: {text}");
+        assert!(
+            !text.lines().any(|l| l.starts_with("fake")),
+            "{args:?}: {text}"
+        );
+        assert!(
+            text.contains("\\u{1b}"),
+            "{args:?} shows the escape: {text}"
+        );
+    }
+}

@@ -212,7 +212,9 @@ pub fn run(args: CheckArgs) -> Outcome {
                 Some(report)
             }
             Err(message) => {
-                progress.suspend(|| errln!("gltfmat: {}: {message}", file.display()));
+                let message = gltfmat::report::printable(&message).into_owned();
+                let file = crate::walk::shown(file);
+                progress.suspend(|| errln!("gltfmat: {file}: {message}"));
                 unreadable.set(true);
                 None
             }

@@ -27,7 +27,7 @@ impl Failure {
 
     /// Prints the message and returns the exit status.
     pub fn report(self) -> ExitCode {
-        errln!("gltfmat: {}", self.message);
+        errln!("gltfmat: {}", printable_lines(&self.message));
         ExitCode::from(self.status)
     }
 }
@@ -42,6 +42,13 @@ impl From<gltfmat::Error> for Failure {
 pub type Outcome = Result<ExitCode, Failure>;
 
 /// A ΔE threshold: a finite number ≥ 0 (NaN would make every comparison fail).
+/// Text of gltfmat's own lines that may quote an asset or a path: each line as a terminal may
+/// show it (see [`gltfmat::report::printable`]).
+pub fn printable_lines(text: &str) -> String {
+    let lines: Vec<_> = text.split('\n').map(gltfmat::report::printable).collect();
+    lines.join("\n")
+}
+
 pub fn threshold(text: &str) -> Result<f64, String> {
     let value: f64 = text
         .parse()

@@ -50,7 +50,7 @@ enum CompareFormat {
 
 pub fn print_human(outcomes: &[gltfmat::Outcome], threshold: f64) {
     for line in human_lines(outcomes, threshold) {
-        outln!("{line}");
+        outln!("{}", gltfmat::report::printable(&line));
     }
 }
 

@@ -34,14 +34,17 @@ pub fn run(args: RenderArgs) -> Outcome {
     options.all = args.all;
     options.size = args.size;
     let picture = gltfmat::render(&args.asset, &options)?;
+    use gltfmat::report::printable;
     for (k, ((i, name), missing)) in picture.drawn.iter().zip(&picture.not_drawn).enumerate() {
         let (row, column) = picture.layout.place(k);
+        let name = printable(name);
         outln!("cell {k} (row {row}, column {column}): material {i} '{name}'");
         for what in missing {
-            outln!("  not drawn: {what}");
+            outln!("  not drawn: {}", printable(what));
         }
     }
     for (i, name) in &picture.skipped {
+        let name = printable(name);
         outln!("material {i} '{name}': not drawn: {}", gltfmat::NO_MODEL);
     }
     if picture.layout.cell < args.size {

@@ -87,7 +87,7 @@ pub fn run(args: ReportArgs) -> Outcome {
                     read.extend(inputs);
                 }
                 Err(why) => {
-                    errln!("gltfmat: {why}");
+                    errln!("gltfmat: {}", gltfmat::report::printable(&why));
                     page.add_failure(&file.display().to_string(), &why);
                     unreadable = true;
                 }

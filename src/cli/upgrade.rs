@@ -312,6 +312,7 @@ impl Log {
     }
 
     fn line(&mut self, line: std::fmt::Arguments) {
+        let line = gltfmat::report::printable(&line.to_string()).into_owned();
         if self.to_stderr {
             errln!("{line}");
         } else {
@@ -409,7 +410,7 @@ fn refuse_failed_check(
     if !origins.is_empty() {
         errln!(
             "where the errors come from in the input:\n{}",
-            origins.join("\n")
+            crate::common::printable_lines(&origins.join("\n"))
         );
     }
     if inherited > 0 {

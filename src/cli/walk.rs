@@ -1,6 +1,7 @@
 //! The files a run reads: each file named, and every .gltf/.glb below each folder named.
 
 use crate::common::Failure;
+use gltfmat::report::printable;
 use std::path::{Path, PathBuf};
 
 /// What a walk found.
@@ -36,7 +37,7 @@ pub fn assets(inputs: &[PathBuf], exclude: &[String]) -> Result<Walked, Failure>
                     };
                     errln!(
                         "gltfmat: {}: no .gltf or .glb file found{skipped}",
-                        input.display()
+                        shown(input)
                     );
                     unreadable = true;
                 }
@@ -44,7 +45,7 @@ pub fn assets(inputs: &[PathBuf], exclude: &[String]) -> Result<Walked, Failure>
             // Anything else named is checked, or refused as not a regular file.
             Ok(_) => files.push(input.clone()),
             Err(e) => {
-                errln!("gltfmat: {}: {e}", input.display());
+                errln!("gltfmat: {}: {}", shown(input), printable(&e.to_string()));
                 unreadable = true;
             }
         }
@@ -58,6 +59,11 @@ pub fn assets(inputs: &[PathBuf], exclude: &[String]) -> Result<Walked, Failure>
 
 /// How many asset files under `folder` the walk leaves out (hidden, ignored or excluded): the
 /// same walk with no filter, counted.
+/// A path as a terminal may show it: a file name is a stranger's text too.
+pub fn shown(path: &Path) -> String {
+    printable(&path.display().to_string()).into_owned()
+}
+
 fn skipped_assets(folder: &Path) -> usize {
     (ignore::WalkBuilder::new(folder)
         .standard_filters(false)
@@ -118,17 +124,21 @@ fn collect_assets(
             {
                 errln!(
                 "gltfmat: note: skipped {}: a symbolic link leading out of {} (name it to check it)",
-                    entry.path().display(),
-                    folder.display()
+                    shown(entry.path()),
+                    shown(folder)
                 )
             }
             Ok(metadata) if metadata.is_file() => found.push(entry.into_path()),
             Ok(metadata) if metadata.is_dir() => {}
             Ok(_) => errln!(
                 "gltfmat: note: skipped {}: not a regular file",
-                entry.path().display()
+                shown(entry.path())
             ),
-            Err(e) => errln!("gltfmat: note: skipped {}: {e}", entry.path().display()),
+            Err(e) => errln!(
+                "gltfmat: note: skipped {}: {}",
+                shown(entry.path()),
+                printable(&e.to_string())
+            ),
         }
     }
     found.sort();

@@ -2,7 +2,7 @@
 //! Errors come first, then warnings, each in file order; infos and hints, which real
 //! exporters' files carry by the dozen, are counted in the summary unless asked for.
 
-use super::{location_suffix, Positions, Style};
+use super::{location_suffix, printable, Positions, Style};
 use crate::check::{Finding, Place, Report, Severity};
 use crate::document::json::LineIndex;
 use crate::document::Container;
@@ -103,7 +103,7 @@ fn write_one(report: &Report, style: &Style, out: &mut dyn Write) -> std::io::Re
         writeln!(
             out,
             "{}: {} more {} finding(s), at {}{more} (--all-findings lists them)",
-            report.uri,
+            printable(&report.uri),
             group.hidden,
             group.code,
             named.join(", "),
@@ -126,7 +126,7 @@ struct Grouped<'r> {
 fn place(report: &Report, positions: &Positions, d: &Finding) -> String {
     match (positions.line_col(d), d.location) {
         (Some((l, c)), _) if report.document.container != Container::Glb => format!("{l}:{c}"),
-        (_, Place::Pointer(p)) => p.to_string(),
+        (_, Place::Pointer(p)) => printable(p).into_owned(),
         (_, Place::Offset(o)) => format!("byte {o}"),
     }
 }
@@ -158,20 +158,21 @@ fn finding(report: &Report, positions: &Positions, d: &Finding, colour: bool) ->
     let span = positions.span(d);
     let line_col = span.as_ref().map(|s| positions.lines.line_col(s.start));
     let position = match line_col {
-        Some((l, c)) => format!("{}:{l}:{c}", report.uri),
-        None => report.uri.clone(),
+        Some((l, c)) => format!("{}:{l}:{c}", printable(&report.uri)),
+        None => printable(&report.uri).into_owned(),
     };
     let label = paint(
         &format!("{}[{}]", d.severity.name(), d.code),
         severity_colour(d.severity),
         colour,
     );
-    let mut out = format!(
-        "{position}: {label}: {}{}{}\n",
+    let told = format!(
+        "{}{}{}",
         d.message,
         location_suffix(d),
         image_named(report, d)
     );
+    let mut out = format!("{position}: {label}: {}\n", printable(&told));
     if let (Some(range), Some((line, _))) = (span, line_col) {
         let byte = (report.document.container == Container::Glb
             && matches!(d.location, Place::Pointer(_)))
@@ -294,9 +295,19 @@ fn snippet(lines: &LineIndex, line_no: usize, offset: usize, colour: bool) -> St
     } else {
         ""
     };
-    let shown: String = shown_before.iter().chain(shown_after).collect();
+    // The file's own bytes, shown as text may be shown (see `printable`); the caret's pad is
+    // as wide as what is shown before it.
+    let shown_char = |&c: &char| printable(c.encode_utf8(&mut [0; 4])).into_owned();
+    let shown: String = shown_before
+        .iter()
+        .chain(shown_after)
+        .map(shown_char)
+        .collect();
     let pad: String = (shown_before.iter())
-        .map(|&c| if c == '\t' { '\t' } else { ' ' })
+        .map(|c| match c {
+            '\t' => "\t".to_string(),
+            _ => " ".repeat(shown_char(c).chars().count()),
+        })
         .collect();
     let gutter = format!("{line_no:>5} | ");
     let blank = " ".repeat(gutter.len() - 2);
@@ -321,7 +332,7 @@ fn summary(report: &Report, style: &Style) -> String {
         .any(|&s| !listed(s, style) && report.count(s) > 0);
     format!(
         "{}: {} error(s), {} warning(s), {} info(s), {} hint(s){}{}\n",
-        report.uri,
+        printable(&report.uri),
         report.count(Severity::Error),
         report.count(Severity::Warning),
         report.count(Severity::Info),

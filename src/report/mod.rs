@@ -13,6 +13,29 @@ use std::cell::RefCell;
 use std::io::Write;
 use std::ops::Range;
 
+/// `text` as a terminal or a CI log may show it: every control character but the tab (line
+/// breaks, escape sequences, C1 controls) and every bidirectional override is written as its
+/// `\u{…}` escape. Text from an asset (a name, a key, a URI, the file's own bytes) can then
+/// neither move the cursor, colour or clear the screen, nor start a line that reads as
+/// gltfmat's own (or as a CI log's command).
+pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
+    let shown_raw = |c: char| {
+        c == '\t'
+            || !(c.is_control() || matches!(c, '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}'))
+    };
+    if text.chars().all(shown_raw) {
+        return text.into();
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        match shown_raw(c) {
+            true => out.push(c),
+            false => out.push_str(&format!("\\u{{{:x}}}", u32::from(c))),
+        }
+    }
+    out.into()
+}
+
 /// An output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
@@ -328,7 +351,8 @@ fn github(report: &Report, options: &Style, out: &mut dyn Write) -> std::io::Res
 
 /// A file name as a workflow command's property.
 fn github_file(uri: &str) -> String {
-    uri.replace('%', "%25")
+    printable(uri)
+        .replace('%', "%25")
         .replace('\r', "%0D")
         .replace('\n', "%0A")
         .replace(',', "%2C")
@@ -346,17 +370,13 @@ fn github_line(report: &Report, positions: &Positions, d: &Finding) -> String {
     let position = (positions.line_col(d))
         .filter(|_| !glb)
         .map_or(String::new(), |(l, c)| format!(",line={l},col={c}"));
-    let escape = |s: &str| {
-        s.replace('%', "%25")
-            .replace('\r', "%0D")
-            .replace('\n', "%0A")
-    };
+    // The pointer too: an asset's key may hold a line break, which would end the command.
+    let message = format!("{}{}", d.message, location_suffix(d));
     format!(
-        "::{level} file={}{position},title={}::{}{}\n",
+        "::{level} file={}{position},title={}::{}\n",
         github_file(&report.uri),
         d.code,
-        escape(d.message),
-        location_suffix(d)
+        printable(&message).replace('%', "%25")
     )
 }
 
