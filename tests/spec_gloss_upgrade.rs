@@ -526,7 +526,9 @@ fn every_upgrade_proves_itself_and_verify_makes_a_failed_proof_refuse() {
         stdout.contains("proof: material 1 (fine spec-gloss)") && stdout.contains("DIFFERENT"),
         "{stdout}"
     );
-    assert!(stdout.contains("warning: a converted material does not render like its source"));
+    assert!(stdout.contains(
+        "warning: the proof does not show that every converted material renders like its source"
+    ));
 
     // --verify refuses it; nothing is written.
     let (code, stdout, _) = gltfmat(
@@ -737,4 +739,26 @@ fn a_material_whose_two_textures_are_read_through_different_samplers_is_left() {
     assert!(materials[1]["extensions"].get(SPEC_GLOSS).is_none());
     let left = notes_saying(&upgraded, "samplers that filter or wrap differently");
     assert_eq!(left.len(), 1, "{:?}", upgraded.report);
+}
+
+#[test]
+fn an_image_the_evaluator_cannot_decode_leaves_only_its_materials_unproved() {
+    use base64::Engine;
+    // Material 0 converts; material 1, passed through, reads an image that decodes to
+    // nothing (a PNG cut short after its signature).
+    let broken = base64::engine::general_purpose::STANDARD.encode(b"\x89PNG\r\n\x1a\n");
+    let asset = json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_materials_pbrSpecularGlossiness"],
+        "images": [{"uri": format!("data:image/png;base64,{broken}")}],
+        "textures": [{"source": 0}],
+        "materials": [
+            {"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+                "diffuseFactor": [0.5, 0.4, 0.3, 1.0], "glossinessFactor": 0.4}}},
+            {"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]});
+    let bytes = serde_json::to_vec(&asset).unwrap();
+    let upgraded = upgrade(&bytes[..], &NoResources, &UpgradeOptions::default()).unwrap();
+    let proof = prove(&bytes[..], "asset.gltf", &NoResources, &upgraded).unwrap();
+    assert_eq!(proof.len(), 1, "the converted material only");
+    assert!(proof[0].is_evaluated(), "{:?}", proof[0].result);
+    assert!(gltfmat::proof_holds(&proof, 1.0));
 }

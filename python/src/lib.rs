@@ -334,7 +334,7 @@ impl Plan {
         };
         if self.verify && !gltfmat::proof_holds(&proof, self.threshold) {
             return Err(refused(format!(
-                "a converted material does not render like its source within ΔE2000 {}; nothing was written",
+                "the proof does not show that every converted material renders like its source within ΔE2000 {}; nothing was written",
                 self.threshold
             )));
         }

@@ -129,10 +129,10 @@ pub fn run(args: UpgradeArgs) -> Outcome {
     if disproved {
         if args.verify {
             return Err(Failure::refused(
-                "a converted material does not render like its source; nothing was written.",
+                "the proof does not show that every converted material renders like its source (the proof lines say which does not, or was not evaluated); nothing was written.",
             ));
         }
-        log.line(format_args!("warning: a converted material does not render like its source within ΔE2000 {} (the output is written; --verify refuses it)", args.threshold));
+        log.line(format_args!("warning: the proof does not show that every converted material renders like its source within ΔE2000 {} (the proof lines say which does not, or was not evaluated; the output is written; --verify refuses it)", args.threshold));
     }
     let (folder, name) = match destination {
         Destination::Stdout => {

@@ -27,7 +27,7 @@ mod spec_gloss;
 use crate::document::uri::ResourceLoader;
 use crate::document::{Node, Tree};
 use crate::legacy::source::{self, NotGltf1};
-use crate::shade::sample::{self, MaterialSource, Texture};
+use crate::shade::sample::{self, MaterialSource};
 pub(crate) use binary::Binary;
 pub use json::{Items, Json};
 pub use proof::{proof_holds, prove, ProofError};
@@ -340,7 +340,7 @@ pub fn upgrade<'b>(
 /// The materials of an upgraded asset as the shading evaluator samples them (an error when
 /// one of its textures cannot be decoded).
 pub(crate) fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, String> {
-    use crate::shade::load::{prepare_materials, samplers_of, texture_source, used_images};
+    use crate::shade::load::{prepare_materials, samplers_of, textures_of, used_images};
     // The three lists the evaluator reads, parsed into the tree every reader of glTF uses.
     let mut text = String::from("{");
     for key in ["materials", "textures", "samplers"] {
@@ -374,9 +374,14 @@ pub(crate) fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSou
         .enumerate()
         .map(|(i, image)| needed.contains(&i).then_some(Ok(&image.bytes[..])))
         .collect();
-    let images = sample::decode_all(&encoded)?;
-    let textures: Vec<Option<Texture>> = (textures.iter())
-        .map(|&t| images.get(texture_source(t)? as usize)?.clone())
-        .collect();
-    Ok(prepare_materials(materials, &textures, &samplers, &[]))
+    // An image the evaluator cannot decode leaves the materials that use it not evaluated,
+    // as on the source's side, not the whole proof.
+    let decoded = sample::decode_each_at_most(&encoded, sample::AS_STORED)?;
+    let (textures, unreadable) = textures_of(&textures, &decoded);
+    Ok(prepare_materials(
+        materials,
+        &textures,
+        &samplers,
+        &unreadable,
+    ))
 }

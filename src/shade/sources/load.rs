@@ -104,14 +104,7 @@ pub(crate) fn gltf2_materials(
     // An image that cannot be read or decoded (a format the evaluator does not decode, a
     // broken file) leaves the materials that use it not evaluated, not the whole asset.
     let decoded = sample::decode_each_at_most(&encoded, finest)?;
-    let each: Vec<Result<Option<Texture>, String>> = (textures.iter())
-        .map(|texture| {
-            let image = texture_source(*texture).and_then(|i| decoded.get(i as usize));
-            image.cloned().unwrap_or(Ok(None))
-        })
-        .collect();
-    let unreadable: Vec<Option<String>> = each.iter().map(|t| t.clone().err()).collect();
-    let textures: Vec<Option<Texture>> = each.into_iter().map(|t| t.ok().flatten()).collect();
+    let (textures, unreadable) = textures_of(&textures, &decoded);
     let names = nodes("materials").enumerate().map(|(i, material)| {
         (material.get("name").and_then(Node::as_str)).map_or_else(|| i.to_string(), str::to_string)
     });
@@ -122,6 +115,25 @@ pub(crate) fn gltf2_materials(
         Vec::new()
     };
     Ok((names.zip(prepared).collect(), points))
+}
+
+/// Each texture's decoded image (by texture index), and why its image could not be had, from
+/// the images decoded each on its own (see [`sample::decode_each_at_most`]).
+pub(crate) fn textures_of(
+    textures: &[Node],
+    decoded: &[Result<Option<Texture>, String>],
+) -> (Vec<Option<Texture>>, Vec<Option<String>>) {
+    let each: Vec<Result<Option<Texture>, String>> = (textures.iter())
+        .map(|texture| {
+            let image = texture_source(*texture).and_then(|i| decoded.get(i as usize));
+            image.cloned().unwrap_or(Ok(None))
+        })
+        .collect();
+    let unreadable = each.iter().map(|t| t.clone().err()).collect();
+    (
+        each.into_iter().map(|t| t.ok().flatten()).collect(),
+        unreadable,
+    )
 }
 
 /// The sampler each texture (by index) reads its image through.

@@ -339,7 +339,7 @@ fn decode_png_reduced(bytes: &[u8], finest: u32) -> Option<Result<TextureImage, 
     }))
 }
 
-/// Decodes one image (see [`decode_all`] for a set of them), within [`decode_budget`] of its
+/// Decodes one image (see [`decode_all_at_most`] for a set of them), within [`decode_budget`] of its
 /// bytes; an image another decode of this process still holds is shared, not decoded again.
 pub(crate) fn decode(bytes: &[u8]) -> Result<Texture, String> {
     within_budget(&[Some(bytes)], AS_STORED)?;
@@ -401,12 +401,9 @@ pub(crate) fn decode_budget(encoded: u64) -> u64 {
 /// but its bytes could not be read.
 pub(crate) type Wanted<B> = Option<Result<B, String>>;
 
-/// Decodes every wanted image, one per available core (decoding a 2048² PNG takes tens of
-/// milliseconds, and a comparison decodes every texture of both assets first). Images with
-/// the same bytes are decoded once and shared, and the decoded size of all of them together
-/// is held to [`decode_budget`] from their headers before anything is decoded. A wanted image
-/// that cannot be read or decoded is an error: a material evaluated without its texture
-/// would be a different material.
+/// Decodes every wanted image as stored, for tests: an image that cannot be read or decoded
+/// is an error (see [`decode_all_at_most`]).
+#[cfg(test)]
 pub(crate) fn decode_all<B: Deref<Target: AsRef<[u8]>> + Sync>(
     sources: &[Wanted<B>],
 ) -> Result<Vec<Option<Texture>>, String> {
@@ -417,8 +414,13 @@ pub(crate) fn decode_all<B: Deref<Target: AsRef<[u8]>> + Sync>(
 /// as stored.
 pub(crate) const AS_STORED: u32 = u32::MAX;
 
-/// [`decode_all`] for a use that shows no detail finer than `finest` texels a side (a
-/// preview): larger images may be decoded reduced to it (see [`decode_png_reduced`]).
+/// Decodes every wanted image, one per available core (decoding a 2048² PNG takes tens of
+/// milliseconds, and a comparison decodes every texture of both assets first), no finer than
+/// `finest` texels a side (a preview): larger images may be decoded reduced to it (see
+/// [`decode_png_reduced`]). Images with the same bytes are decoded once and shared, and the
+/// decoded size of all of them together is held to [`decode_budget`] from their headers
+/// before anything is decoded. A wanted image that cannot be read or decoded is an error: a
+/// material evaluated without its texture would be a different material.
 pub(crate) fn decode_all_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
     sources: &[Wanted<B>],
     finest: u32,
