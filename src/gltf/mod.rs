@@ -9,7 +9,8 @@ pub(crate) mod mesh;
 
 use serde_json::Value;
 
-/// The top-level arrays of a glTF 2.0 document whose elements are objects of their own.
+/// The top-level arrays of a glTF 2.0 document whose elements are objects of their own, in
+/// the order the Khronos validator reads them.
 pub(crate) const COLLECTIONS: &[&str] = &[
     "accessors",
     "animations",

@@ -8,8 +8,8 @@ use crate::diagnostic::{khronos, Diagnostic, Sink};
 use crate::document::uri::has_stray_bits;
 use crate::document::{Array, Node, Object, Tree};
 use crate::gltf::accessor::{component_count, component_size, element_lengths};
-use crate::gltf::as_index;
 use crate::gltf::gl;
+use crate::gltf::{as_index, COLLECTIONS};
 use std::collections::{BTreeSet, HashSet};
 
 fn version(text: &str) -> Option<(u64, u64)> {
@@ -71,19 +71,9 @@ pub(crate) fn stops_at_data_uri(root: Node) -> Option<(&'static str, usize)> {
     })
 }
 
-/// The root collections the Khronos validator reads, in its order, as far as the images.
-const READ_UP_TO_IMAGES: [&str; 6] = [
-    "accessors",
-    "animations",
-    "buffers",
-    "bufferViews",
-    "cameras",
-    "images",
-];
-
 /// Whether the Khronos validator gives a schema finding before it stops at the data URI of
 /// `/collection/index` ([`stops_at_data_uri`]): unexpected root members, the extension
-/// lists and `asset`, the collections it reads first ([`READ_UP_TO_IMAGES`]) and the
+/// lists and `asset`, the collections it reads first (see [`COLLECTIONS`]) and the
 /// elements before; of that element, its unexpected members, a missing byteLength and the
 /// members read before the uri (a buffer's byteLength, an image's bufferView and mimeType).
 pub(crate) fn read_before_data_uri(
@@ -95,7 +85,7 @@ pub(crate) fn read_before_data_uri(
     };
     let mut segments = pointer.split('/').skip(1);
     let member = segments.next().unwrap_or_default();
-    let before = READ_UP_TO_IMAGES.iter().take_while(|c| **c != collection);
+    let before = COLLECTIONS.iter().take_while(|c| **c != collection);
     if matches!(member, "asset" | "extensionsUsed" | "extensionsRequired")
         || before.into_iter().any(|c| *c == member)
     {
