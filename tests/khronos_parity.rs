@@ -3984,6 +3984,21 @@ fn a_data_uri_with_bits_past_its_data_stops_the_validator_where_it_reads_it() {
         ("INVALID_JSON", ""),
     ]);
     assert_eq!(found, expected(&wanted));
+
+    // Undeclared extension objects are reported where it reads them, before the stop only.
+    let found = khronos_findings(json!({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_materials_unlit"],
+        "accessors": [{"componentType": 5126, "count": 1, "type": "SCALAR",
+            "extensions": {"X_y": {}}, "min": [1, 2]}],
+        "buffers": [{"byteLength": 1, "extensions": {"X_z": {}},
+            "uri": "data:application/octet-stream;base64,Ra=="}],
+        "materials": [{"extensions": {"X_q": {}}}]}));
+    let wanted = [
+        ("ARRAY_LENGTH_NOT_IN_LIST", "/accessors/0/min"),
+        ("UNDECLARED_EXTENSION", "/accessors/0/extensions/X_y"),
+        ("INVALID_JSON", ""),
+    ];
+    assert_eq!(found, expected(&wanted));
 }
 
 #[test]

@@ -298,17 +298,32 @@ fn schema_pass(
     sink: &mut dyn Sink,
 ) -> khronos::Undeclared {
     if !khronos::has_supported_version(tree.root()) {
-        schema_pass_until(tree, khronos, sink, |root, d| {
-            khronos::read_before_asset(root)(d)
-        });
+        let read = khronos::read_before_asset(tree.root());
+        let absent = schema::validate(tree.root(), khronos, &mut Only(sink, read));
+        let (nulls, emptied) = remove_all(tree, absent);
+        // Read anew: an `asset` that was null is now missing.
+        let read = khronos::read_before_asset(tree.root());
+        schema::required_members(
+            tree.root(),
+            khronos,
+            &nulls,
+            &emptied,
+            &mut Only(sink, read),
+        );
         return Default::default();
     }
     if let Some(at) = stopped_at {
-        schema_pass_until(tree, khronos, sink, |_, d| {
-            khronos::read_before_data_uri(at, d)
-        });
-        return Default::default();
+        let read = |d: &Diagnostic| {
+            (d.pointer()).is_some_and(|p| khronos::read_before_data_uri(at, d.code, p))
+        };
+        let mut read = Only(sink, read);
+        return schema_pass_of_2x(tree, khronos, &mut read);
     }
+    schema_pass_of_2x(tree, khronos, sink)
+}
+
+/// [`schema_pass`] of a document that claims glTF 2.x.
+fn schema_pass_of_2x(tree: &mut Tree, khronos: bool, sink: &mut dyn Sink) -> khronos::Undeclared {
     khronos::take_unread_bounds(tree, sink);
     khronos::take_unread_offsets(tree, sink);
     khronos::take_unread_projections(tree, sink);
@@ -326,27 +341,6 @@ fn schema_pass(
     schema::required_members(tree.root(), khronos, &nulls, &emptied, sink);
     khronos::take_unread_sparse(tree);
     undeclared
-}
-
-/// The schema pass of a document the Khronos validator stops reading part-way: only the
-/// findings `read` keeps (asked of the tree as it is then: an `asset` that was null is
-/// missing once the pass takes it out).
-fn schema_pass_until(
-    tree: &mut Tree,
-    khronos: bool,
-    sink: &mut dyn Sink,
-    read: impl Fn(Node, &Diagnostic) -> bool,
-) {
-    let root = tree.root();
-    let absent = schema::validate(
-        root,
-        khronos,
-        &mut Only(sink, |d: &Diagnostic| read(root, d)),
-    );
-    let (nulls, emptied) = remove_all(tree, absent);
-    let root = tree.root();
-    let mut sink = Only(sink, |d: &Diagnostic| read(root, d));
-    schema::required_members(root, khronos, &nulls, &emptied, &mut sink);
 }
 
 /// The names `extensionsUsed` declares; none when it is not a list of names (the schema
@@ -423,7 +417,10 @@ fn run_passes(ctx: &mut Context) {
         // What the validator says of the rest assumes data it could not decode.
         khronos::check_extension_lists(ctx);
         khronos::check_asset(ctx);
-        khronos::resources::check_parsed_before_stop(ctx, (collection, index));
+        let undeclared = crate::diagnostic::khronos::UNDECLARED_EXTENSION;
+        let at = (collection, index);
+        khronos::report_undeclared(ctx, |p| khronos::read_before_data_uri(at, undeclared, p));
+        khronos::resources::check_parsed_before_stop(ctx, at);
         ctx.emit(
             crate::diagnostic::khronos::INVALID_JSON,
             "",

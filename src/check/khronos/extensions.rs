@@ -88,14 +88,7 @@ fn nested(collection: &str) -> &'static [&'static str] {
 
 pub(super) fn check(ctx: &mut Context) {
     check_declarations(ctx);
-    // Taken out of the document before the passes, as the Khronos validator reads nothing
-    // of them; said here, where it says it.
-    let found = std::mem::take(&mut ctx.undeclared_extensions);
-    for pointer in found.pointers(ctx.root.tree()) {
-        undeclared(ctx, &pointer);
-    }
-    // Still members of their objects for the passes that ask whether an object has any.
-    ctx.undeclared_extensions = found;
+    report_undeclared(ctx, |_| true);
     let root = ctx.root;
     walk(root, "", Host::Root, &mut |object, pointer, host| {
         visit(ctx, object, pointer, host)
@@ -167,6 +160,18 @@ impl Undeclared {
     pub(crate) fn pointers<'a>(&'a self, tree: &'a Tree) -> impl Iterator<Item = String> + 'a {
         (0..self.len()).map(|i| self.pointer(i, tree))
     }
+}
+
+/// Reports the extension objects no `extensionsUsed` declares, at the pointers `reported`
+/// keeps. They were taken out of the document before the passes, as the Khronos validator
+/// reads nothing of them; said here, where it says it.
+pub(crate) fn report_undeclared(ctx: &mut Context, reported: impl Fn(&str) -> bool) {
+    let found = std::mem::take(&mut ctx.undeclared_extensions);
+    for pointer in found.pointers(ctx.root.tree()).filter(|p| reported(p)) {
+        undeclared(ctx, &pointer);
+    }
+    // Still members of their objects for the passes that ask whether an object has any.
+    ctx.undeclared_extensions = found;
 }
 
 fn undeclared(ctx: &mut Context, pointer: &str) {

@@ -26,7 +26,8 @@ mod view_usage;
 use super::context::Context;
 pub(crate) use ext::lights::take_unread_spots;
 pub(crate) use extensions::{
-    check_declarations as check_extension_lists, undeclared_extensions, Undeclared,
+    check_declarations as check_extension_lists, report_undeclared, undeclared_extensions,
+    Undeclared,
 };
 pub(crate) use link_path::LinkPath;
 pub(crate) use materials::extensions_as_written;

@@ -4,7 +4,7 @@
 use super::primitives::indexed_sets;
 use super::resources::fits_in_view;
 use crate::check::context::{elements, member, unsigned, Context, MaterialNeeds};
-use crate::diagnostic::{khronos, Diagnostic, Sink};
+use crate::diagnostic::{khronos, Code, Diagnostic, Sink};
 use crate::document::uri::has_stray_bits;
 use crate::document::{Array, Node, Object, Tree};
 use crate::gltf::accessor::{component_count, component_size, element_lengths};
@@ -71,18 +71,17 @@ pub(crate) fn stops_at_data_uri(root: Node) -> Option<(&'static str, usize)> {
     })
 }
 
-/// Whether the Khronos validator gives a schema finding before it stops at the data URI of
+/// Whether the Khronos validator gives a finding of `code` at `pointer` (the schema's, an
+/// undeclared extension's) before it stops at the data URI of
 /// `/collection/index` ([`stops_at_data_uri`]): unexpected root members, the extension
 /// lists and `asset`, the collections it reads first (see [`COLLECTIONS`]) and the
 /// elements before; of that element, its unexpected members, a missing byteLength and the
 /// members read before the uri (a buffer's byteLength, an image's bufferView and mimeType).
 pub(crate) fn read_before_data_uri(
     (collection, index): (&'static str, usize),
-    diagnostic: &Diagnostic,
+    code: Code,
+    pointer: &str,
 ) -> bool {
-    let Some(pointer) = diagnostic.pointer() else {
-        return false;
-    };
     let mut segments = pointer.split('/').skip(1);
     let member = segments.next().unwrap_or_default();
     let before = COLLECTIONS.iter().take_while(|c| **c != collection);
@@ -92,7 +91,7 @@ pub(crate) fn read_before_data_uri(
         return true;
     }
     let Some(element) = segments.next() else {
-        return diagnostic.code == khronos::UNEXPECTED_PROPERTY;
+        return code == khronos::UNEXPECTED_PROPERTY;
     };
     if member != collection {
         return false;
@@ -104,10 +103,10 @@ pub(crate) fn read_before_data_uri(
     let inside = segments.next();
     match (element.parse::<usize>().map(|i| i.cmp(&index)), inside) {
         (Ok(std::cmp::Ordering::Less), _) => true,
-        (Ok(std::cmp::Ordering::Equal), None) => diagnostic.code == khronos::UNDEFINED_PROPERTY,
+        (Ok(std::cmp::Ordering::Equal), None) => code == khronos::UNDEFINED_PROPERTY,
         (Ok(std::cmp::Ordering::Equal), Some(inside)) => {
             read_first.contains(&inside)
-                || (segments.next().is_none() && diagnostic.code == khronos::UNEXPECTED_PROPERTY)
+                || (segments.next().is_none() && code == khronos::UNEXPECTED_PROPERTY)
         }
         _ => false,
     }
