@@ -337,8 +337,9 @@ pub fn upgrade<'b>(
     convert::run(builder::Builder::new(&source, options))
 }
 
-/// The materials of an upgraded asset as the shading evaluator samples them (an error when
-/// one of its textures cannot be decoded).
+/// The materials of an upgraded asset as the shading evaluator samples them: one whose
+/// texture cannot be decoded is not evaluated there; an error when the images together pass
+/// the decoding budget.
 pub(crate) fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSource>, String> {
     use crate::shade::load::{prepare_materials, samplers_of, textures_of, used_images};
     // The three lists the evaluator reads, parsed into the tree every reader of glTF uses.
