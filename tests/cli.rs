@@ -1694,7 +1694,10 @@ fn an_assets_text_never_reaches_the_terminal_as_control_characters() {
     let folder = tempfile::tempdir().unwrap();
     // A name, a key and a URI holding an escape sequence and a line break, and a raw escape
     // in the file's own bytes (invalid JSON, shown in its snippet).
+    // A key's line break, in the pointer of the finding on it, must not start a workflow
+    // command of its own.
     let named = r#"{"asset": {"version": "2.0"}, "extras": {"k\u001b[2J": 1},
+        "k\n::error::fake": 1,
         "materials": [{"name": "evil\u001b[31m\nfake: 0 error(s)"}, {"name": "\u202Eright"}],
         "images": [{"uri": "x\u001b[31m.png"}],
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
@@ -1720,10 +1723,8 @@ fn an_assets_text_never_reaches_the_terminal_as_control_characters() {
         let (stdout, stderr) = (&out.stdout, &out.stderr);
         let text = String::from_utf8_lossy(stdout) + String::from_utf8_lossy(stderr);
         assert!(!text.contains(['\u{1b}', '\u{202E}']), "{args:?}: {text}");
-        assert!(
-            !text.lines().any(|l| l.starts_with("fake")),
-            "{args:?}: {text}"
-        );
+        let forged = |l: &str| l.starts_with("fake") || l.starts_with("::error::fake");
+        assert!(!text.lines().any(forged), "{args:?}: {text}");
         assert!(
             text.contains("\\u{1b}"),
             "{args:?} shows the escape: {text}"

@@ -41,7 +41,6 @@ impl From<gltfmat::Error> for Failure {
 /// What a subcommand returns.
 pub type Outcome = Result<ExitCode, Failure>;
 
-/// A ΔE threshold: a finite number ≥ 0 (NaN would make every comparison fail).
 /// Text of gltfmat's own lines that may quote an asset or a path: each line as a terminal may
 /// show it (see [`gltfmat::report::printable`]).
 pub fn printable_lines(text: &str) -> String {
@@ -49,6 +48,7 @@ pub fn printable_lines(text: &str) -> String {
     lines.join("\n")
 }
 
+/// A ΔE threshold: a finite number ≥ 0 (NaN would make every comparison fail).
 pub fn threshold(text: &str) -> Result<f64, String> {
     let value: f64 = text
         .parse()

@@ -57,13 +57,13 @@ pub fn assets(inputs: &[PathBuf], exclude: &[String]) -> Result<Walked, Failure>
     })
 }
 
-/// How many asset files under `folder` the walk leaves out (hidden, ignored or excluded): the
-/// same walk with no filter, counted.
 /// A path as a terminal may show it: a file name is a stranger's text too.
 pub fn shown(path: &Path) -> String {
     printable(&path.display().to_string()).into_owned()
 }
 
+/// How many asset files under `folder` the walk leaves out (hidden, ignored or excluded): the
+/// same walk with no filter, counted.
 fn skipped_assets(folder: &Path) -> usize {
     (ignore::WalkBuilder::new(folder)
         .standard_filters(false)

@@ -349,12 +349,10 @@ fn github(report: &Report, options: &Style, out: &mut dyn Write) -> std::io::Res
     Ok(())
 }
 
-/// A file name as a workflow command's property.
+/// A file name as a workflow command's property (its line breaks escaped by `printable`).
 fn github_file(uri: &str) -> String {
     printable(uri)
         .replace('%', "%25")
-        .replace('\r', "%0D")
-        .replace('\n', "%0A")
         .replace(',', "%2C")
         .replace(':', "%3A")
 }

@@ -95,12 +95,11 @@ pub(crate) fn check_parsed_before_stop(ctx: &mut Context, (collection, index): (
             invalid_uri(ctx, &member(pointer, "uri"), uri, &reason);
         }
     };
-    let buffers = if collection == "buffers" {
-        index
-    } else {
-        usize::MAX
-    };
-    for (_, pointer, buffer) in ctx.objects("buffers").take_while(|(i, ..)| *i < buffers) {
+    let buffers_read = |i: usize| collection != "buffers" || i < index;
+    for (_, pointer, buffer) in ctx
+        .objects("buffers")
+        .take_while(|(i, ..)| buffers_read(*i))
+    {
         unparsed(ctx, &pointer, buffer);
     }
     if collection != "images" {
