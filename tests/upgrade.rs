@@ -1896,3 +1896,153 @@ fn an_image_in_a_format_2_0_does_not_carry_is_named_and_left_out_only_when_nothi
     let notes = notes(&upgraded).join("\n");
     assert!(notes.contains("Dropped /images/i a KTX (version 1) image, which glTF 2.0 does not carry and sampled by no texture: left out."), "{notes}");
 }
+
+/// A file with nothing to read says why and where, in each command that reads it: the
+/// first error its reading found (a GLB chunk's byte, a JSON line and column), never a bare
+/// "cannot be read".
+#[test]
+fn an_unreadable_file_is_refused_with_why_and_where_by_every_command() {
+    let dir = scratch("unreadable");
+    let mut empty_json_chunk = common::glb(b"{}", None);
+    empty_json_chunk.truncate(20);
+    empty_json_chunk[8..12].copy_from_slice(&20u32.to_le_bytes());
+    empty_json_chunk[12..16].copy_from_slice(&0u32.to_le_bytes());
+    let mut v1_past_its_end = b"glTF".to_vec();
+    for word in [1u32, 22, 80, 0] {
+        v1_past_its_end.extend_from_slice(&word.to_le_bytes());
+    }
+    v1_past_its_end.extend_from_slice(b"{}");
+    let cases: [(&str, &[u8], &str); 4] = [
+        (
+            "empty.glb",
+            &empty_json_chunk,
+            "(GLB_EMPTY_CHUNK at byte 12)",
+        ),
+        (
+            "v1.glb",
+            &v1_past_its_end,
+            "content length 80 (byte 12) runs past the end",
+        ),
+        (
+            "broken.gltf",
+            br#"{"asset": {"version": "2.0"}, "materials": [}"#,
+            "line 1 column 45",
+        ),
+        ("array.gltf", b"[1, 2]", "its JSON root is not an object"),
+    ];
+    for (name, bytes, why) in cases {
+        let input = dir.join(name);
+        std::fs::write(&input, bytes).unwrap();
+        let input = input.to_str().unwrap();
+        let out = dir.join("out.glb");
+        let picture = dir.join("out.png");
+        for args in [
+            vec!["upgrade", input, "-o", out.to_str().unwrap()],
+            vec!["compare", input, input],
+            vec!["render", input, "-o", picture.to_str().unwrap()],
+        ] {
+            let (code, text) = gltfmat(&args);
+            assert_ne!(code, 0, "{args:?}: {text}");
+            assert!(text.contains(why), "{args:?}: {text}");
+            assert!(!text.contains("not a glTF 1.0 asset"), "{args:?}: {text}");
+        }
+        assert!(!out.exists() && !picture.exists());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A 1.0 PBR-draft material whose texture cannot be had (here a texture with no image, as
+/// KHR_compressed_texture writes them) is not evaluated, named with the texture and why;
+/// the asset's other materials still are.
+#[test]
+fn a_draft_material_whose_texture_cannot_be_had_alone_is_not_evaluated() {
+    let dir = scratch("draft-texture");
+    let fixtures = repo("fixtures/gltf1");
+    for file in [
+        "pbr-sg-textured-ext.gltf",
+        "diffuse.png",
+        "spec_gloss.png",
+        "box.bin",
+    ] {
+        std::fs::copy(fixtures.join(file), dir.join(file)).unwrap();
+    }
+    let input = dir.join("pbr-sg-textured-ext.gltf");
+    let mut asset: Value = serde_json::from_slice(&std::fs::read(&input).unwrap()).unwrap();
+    let mut compressed = asset["materials"]["Effect-Texture"].clone();
+    compressed["extensions"]["EXT_materials_pbr"]["values"]["diffuseTexture"] = "packed".into();
+    asset["materials"]["Packed"] = compressed;
+    asset["textures"]["packed"] = serde_json::json!({"sampler": "sampler_0"});
+    std::fs::write(&input, serde_json::to_vec(&asset).unwrap()).unwrap();
+    let input = input.to_str().unwrap();
+    let (code, text) = gltfmat(&["compare", input, input, "--format", "json"]);
+    assert_eq!(code, 1, "{text}");
+    let pairs: Value = serde_json::from_str(&text).unwrap();
+    let by_name = |name: &str| {
+        let pairs = pairs.as_array().unwrap().iter();
+        pairs
+            .clone()
+            .find(|p| p["aName"] == name)
+            .cloned()
+            .unwrap_or_else(|| panic!("{text}"))
+    };
+    let (whole, packed) = (by_name("Effect-Texture"), by_name("Packed"));
+    assert_eq!(
+        (whole["evaluated"].clone(), whole["pass"].clone()),
+        (true.into(), true.into()),
+        "{text}"
+    );
+    assert_eq!(packed["evaluated"], true, "{text}");
+    assert_eq!(packed["pass"], false, "{text}");
+    let unread = packed["notEvaluated"].to_string();
+    assert!(
+        unread.contains("texture 'packed'") && unread.contains("names no image"),
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Bounds JSON cannot hold are not written: a 1.0 accessor holding an infinite texture
+/// coordinate is refused for that value, traced to its source accessor, not for bounds
+/// the converter wrote as `null`.
+#[test]
+fn an_infinite_value_in_a_1_0_accessor_is_refused_for_itself_not_for_null_bounds() {
+    let dir = scratch("infinite");
+    let floats: Vec<f32> = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+        .into_iter()
+        .chain([0.0, 0.0, f32::INFINITY, 0.0, 0.0, 1.0])
+        .collect();
+    let bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+    let asset = serde_json::json!({
+        "asset": {"version": "1.0"},
+        "buffers": {"b": {"uri": data_uri("application/octet-stream", &bytes), "byteLength": bytes.len()}},
+        "bufferViews": {"v": {"buffer": "b", "byteLength": bytes.len(), "target": 34962}},
+        "accessors": {
+            "position": {"bufferView": "v", "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]},
+            "uv": {"bufferView": "v", "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC2"}},
+        "materials": {"m": {"extensions": {"KHR_materials_pbr": {"technique": "PBR_metal_roughness",
+            "values": {"baseColorFactor": [0.5, 0.5, 0.5, 1]}}}}},
+        "meshes": {"mesh": {"primitives": [{"attributes": {"POSITION": "position", "TEXCOORD_0": "uv"},
+            "material": "m", "mode": 4}]}},
+        "nodes": {"n": {"meshes": ["mesh"]}},
+        "scenes": {"s": {"nodes": ["n"]}}, "scene": "s"
+    });
+    let input = dir.join("in.gltf");
+    std::fs::write(&input, serde_json::to_vec(&asset).unwrap()).unwrap();
+    let out = dir.join("out.glb");
+    let (code, text) = gltfmat(&[
+        "upgrade",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("ACCESSOR_INVALID_FLOAT"), "{text}");
+    assert!(text.contains("was made from 1.0 /accessors/uv"), "{text}");
+    assert!(
+        !text.contains("ARRAY_TYPE_MISMATCH") && !text.contains("null"),
+        "{text}"
+    );
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -9,7 +9,7 @@ pub(crate) mod json;
 pub(crate) mod tree;
 pub(crate) mod uri;
 
-use crate::diagnostic::{khronos, Diagnostic, Sink};
+use crate::diagnostic::{khronos, Diagnostic, Location, Severity, Sink};
 pub(crate) use bytes::{Bytes, Piece, Pieces};
 use file::Kept;
 use std::borrow::Cow;
@@ -147,6 +147,20 @@ pub(crate) fn read(bytes: impl Into<Bytes>, name: &str, diagnostics: &mut dyn Si
 /// written).
 pub(crate) fn read_shared(bytes: Arc<Bytes>, name: &str, diagnostics: &mut dyn Sink) -> Document {
     read_with(bytes, name, diagnostics, json::parse)
+}
+
+/// Why a document read without reporting (a comparison's, an upgrade's) has no JSON tree:
+/// the first error its reading found, with where it lies (`check` lists every finding).
+pub(crate) fn why_unreadable(diagnostics: &[Diagnostic]) -> String {
+    let first = diagnostics.iter().find(|d| d.severity == Severity::Error);
+    match first {
+        // A syntax error's message gives its line and column; its pointer is the root.
+        Some(d) if d.location == Location::Pointer(String::new()) => {
+            format!("{} ({})", d.message, d.code.name())
+        }
+        Some(d) => format!("{} ({} at {})", d.message, d.code.name(), d.location),
+        None => "its JSON root is not an object".into(),
+    }
 }
 
 fn read_with<R>(

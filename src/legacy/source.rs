@@ -15,10 +15,17 @@ use std::sync::Arc;
 /// The buffer id KHR_binary_glTF gives the GLB body (and the older spelling some writers used).
 const BINARY_BUFFER_IDS: &[&str] = &["binary_glTF", "KHR_binary_glTF"];
 
-/// Why bytes are not a glTF 1.0 asset (a 2.0 asset, not JSON, a broken GLB v1).
+/// Why bytes are not read as a glTF 1.0 asset.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("not a glTF 1.0 asset: {0}")]
-pub struct NotGltf1(pub String);
+pub(crate) enum NotGltf1 {
+    /// Another version: 2.x, or one this reader does not know.
+    #[error("not a glTF 1.0 asset: {0}")]
+    Version(String),
+    /// Bytes that are no glTF document of any version: not JSON, a JSON root that is not an
+    /// object, a GLB v1 header that cannot be read.
+    #[error("{0}")]
+    Unreadable(String),
+}
 
 pub(crate) struct Source<'a> {
     /// The JSON, as the compact tree the checker reads (a `serde_json::Value` costs about ten
@@ -115,7 +122,7 @@ fn read_members<'a>(
     keep: Option<&[&str]>,
 ) -> Result<Source<'a>, NotGltf1> {
     if declares_gltf2(&bytes) {
-        return Err(NotGltf1(IS_GLTF2.into()));
+        return Err(NotGltf1::Version(IS_GLTF2.into()));
     }
     let (json_range, body) = if bytes.starts_with(b"glTF") {
         let (json, body) = split_glb_v1(&bytes)?;
@@ -127,7 +134,7 @@ fn read_members<'a>(
         Some(keep) => Tree::parse_members(&bytes[json_range], keep),
         None => Tree::parse(&bytes[json_range]),
     };
-    let json = json.map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
+    let json = json.map_err(|e| NotGltf1::Unreadable(format!("invalid JSON: {e}")))?;
     let body = body.map(|(range, cut_short)| Body {
         file: Arc::new(bytes.into_owned().into()),
         range,
@@ -135,15 +142,19 @@ fn read_members<'a>(
     });
     let root = json.root();
     if !root.is_object() {
-        return Err(NotGltf1("the root is not a JSON object".into()));
+        return Err(NotGltf1::Unreadable(
+            "its JSON root is not an object".into(),
+        ));
     }
     check_version(root)?;
     let (json, read_as_draft_08) = match draft08::declares(root) {
         false => (json, None),
         true => {
             let (value, read) = draft08::as_1_0(root);
-            let text = serde_json::to_vec(&value).map_err(|e| NotGltf1(e.to_string()))?;
-            let json = Tree::parse(&text).map_err(|e| NotGltf1(format!("invalid JSON: {e}")))?;
+            let text =
+                serde_json::to_vec(&value).map_err(|e| NotGltf1::Unreadable(e.to_string()))?;
+            let json = Tree::parse(&text)
+                .map_err(|e| NotGltf1::Unreadable(format!("invalid JSON: {e}")))?;
             (json, Some(read))
         }
     };
@@ -175,27 +186,39 @@ fn split_glb_v1(bytes: &[u8]) -> Result<(Range<usize>, BodyPlace), NotGltf1> {
     let word = |at: usize| -> Option<u32> {
         Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
     };
-    let broken = |why: &str| NotGltf1(format!("GLB: {why}"));
-    let version = word(4).ok_or_else(|| broken("truncated header"))?;
+    let broken = |why: String| NotGltf1::Unreadable(format!("GLB v1: {why}"));
+    let cut = || {
+        broken(format!(
+            "its 20-byte header is cut short ({} bytes)",
+            bytes.len()
+        ))
+    };
+    let version = word(4).ok_or_else(cut)?;
     if version != 1 {
-        return Err(broken(&format!(
-            "version {version}; only version 1 (KHR_binary_glTF) is upgraded"
+        return Err(NotGltf1::Version(format!(
+            "GLB version {version} (byte 4); only version 1 (KHR_binary_glTF) is upgraded"
         )));
     }
     let (length, content_length, format) = (
-        word(8).ok_or_else(|| broken("truncated header"))? as usize,
-        word(12).ok_or_else(|| broken("truncated header"))? as usize,
-        word(16).ok_or_else(|| broken("truncated header"))?,
+        word(8).ok_or_else(cut)? as usize,
+        word(12).ok_or_else(cut)? as usize,
+        word(16).ok_or_else(cut)?,
     );
     if format != 0 {
-        return Err(broken(&format!("content format {format} is not JSON (0)")));
+        return Err(broken(format!(
+            "content format {format} (byte 16) is not JSON (0)"
+        )));
     }
     let cut_short = (length > bytes.len()).then_some((length, bytes.len()));
     let length = length.min(bytes.len());
     let content_end = 20usize
         .checked_add(content_length)
         .filter(|end| *end <= length)
-        .ok_or_else(|| broken("content length runs past the end of the file"))?;
+        .ok_or_else(|| {
+            broken(format!(
+                "content length {content_length} (byte 12) runs past the end of the file ({length} bytes)"
+            ))
+        })?;
     Ok((20..content_end, (content_end..length, cut_short)))
 }
 
@@ -216,8 +239,10 @@ fn check_version(root: Node) -> Result<(), NotGltf1> {
     };
     match major.as_str() {
         "0" | "1" => Ok(()),
-        "2" => Err(NotGltf1(IS_GLTF2.into())),
-        other => Err(NotGltf1(format!("unknown asset.version '{other}'"))),
+        "2" => Err(NotGltf1::Version(IS_GLTF2.into())),
+        other => Err(NotGltf1::Version(format!(
+            "unknown asset.version '{other}'"
+        ))),
     }
 }
 

@@ -15,6 +15,7 @@ use super::surface::Surface;
 use crate::document::file::FileId;
 use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::error::Error;
+use crate::legacy::source::NotGltf1;
 use image::RgbImage;
 use std::path::Path;
 
@@ -36,7 +37,10 @@ pub(crate) fn load_materials(
 ) -> Result<(Vec<Named>, Vec<Surface>), String> {
     match legacy_materials(&bytes, loader, finest) {
         Ok(materials) => Ok((materials, Vec::new())),
-        Err(LegacyMaterialsError::NotGltf1(_)) => {
+        Err(LegacyMaterialsError::NotGltf1(NotGltf1::Unreadable(why))) => {
+            Err(format!("not a readable glTF document: {why}"))
+        }
+        Err(LegacyMaterialsError::NotGltf1(NotGltf1::Version(_))) => {
             let (materials, points) = gltf2_materials(bytes, name, loader, finest, surfaces)?;
             let named = materials.into_iter().map(|(n, m)| (n, Some(m))).collect();
             Ok((named, points))

@@ -401,10 +401,7 @@ fn pack_elements(
     let (mut min, mut max) = binary.append_made(count * stride, |target| {
         packing.encode(component_type, target)
     });
-    if count == 0 {
-        min.clear();
-        max.clear();
-    }
+    keep_writable_bounds(count, &mut min, &mut max);
     Packed {
         offset,
         length: binary.len() - offset,
@@ -613,10 +610,7 @@ fn copy_elements(
         }
     };
     let (mut min, mut max) = copied_bounds(accessor, bytes, stride);
-    if accessor.count == 0 {
-        min.clear();
-        max.clear();
-    }
+    keep_writable_bounds(accessor.count, &mut min, &mut max);
     Packed {
         offset,
         length: binary.len() - offset,
@@ -627,6 +621,16 @@ fn copy_elements(
         max,
         converted_from: None,
         renormalised: None,
+    }
+}
+
+/// Leaves out bounds JSON cannot hold: none for no elements, and none where an element is
+/// infinite or NaN (JSON has no such number; the output's check then reports the values
+/// themselves, traced to the source's accessor, rather than bounds written as `null`).
+fn keep_writable_bounds(count: usize, min: &mut Vec<f64>, max: &mut Vec<f64>) {
+    if count == 0 || !min.iter().chain(max.iter()).all(|v| v.is_finite()) {
+        min.clear();
+        max.clear();
     }
 }
 

@@ -37,14 +37,16 @@ pub(super) fn upgrade(
     } else {
         "input.gltf"
     };
-    let mut doc = document::read(bytes, name, &mut Vec::new());
+    let mut problems = Vec::new();
+    let mut doc = document::read(bytes, name, &mut problems);
     // The input is read from its tree; the output's JSON starts as a copy of it.
     let tree = match doc.root.take() {
         Some(tree) if tree.root().is_object() => tree,
         _ => {
-            return Err(UpgradeError::Unreadable(
-                "the glTF 2.0 JSON cannot be read (`gltfmat check` says why)".into(),
-            ))
+            let why = document::why_unreadable(&problems);
+            return Err(UpgradeError::Unreadable(format!(
+                "the glTF 2.0 document cannot be read: {why}"
+            )));
         }
     };
     let input = tree.root();

@@ -255,10 +255,11 @@ impl EncodedImage {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum UpgradeError {
-    /// Not a glTF 1.0 asset (a 2.0 asset, not JSON, a broken GLB).
+    /// Not a glTF 1.0 asset: a 2.x asset with nothing to upgrade, or a version unknown.
     #[error("not a glTF 1.0 asset: {0}")]
     NotGltf1(String),
-    /// A glTF 2.0 asset whose JSON cannot be read.
+    /// Bytes that cannot be read as a glTF document (not JSON, a broken GLB), or a glTF 2.0
+    /// asset whose JSON cannot be read: why, and where.
     #[error("{0}")]
     Unreadable(String),
     /// A resource the asset needs could not be read or decoded.
@@ -280,8 +281,11 @@ pub enum UpgradeError {
 }
 
 impl From<NotGltf1> for UpgradeError {
-    fn from(NotGltf1(reason): NotGltf1) -> Self {
-        UpgradeError::NotGltf1(reason)
+    fn from(not: NotGltf1) -> Self {
+        match not {
+            NotGltf1::Version(reason) => UpgradeError::NotGltf1(reason),
+            NotGltf1::Unreadable(reason) => UpgradeError::Unreadable(reason),
+        }
     }
 }
 

@@ -24,7 +24,7 @@ pub(crate) enum LegacyMaterialsError {
 
 /// The PBR-draft materials of a glTF 1.0 asset as the shading evaluator samples them (their
 /// own model), in material order, with their ids; `None` for materials without a PBR block.
-/// Textures no finer than `finest` (see [`sample::decode_all_at_most`]).
+/// Textures no finer than `finest` (see [`sample::decode_each_at_most`]).
 pub(crate) fn legacy_materials(
     bytes: &[u8],
     loader: &dyn ResourceLoader,
@@ -41,12 +41,12 @@ pub(crate) fn legacy_materials(
         .collect())
 }
 
-/// The textures a 1.0 asset's materials use, each decoded once: the PBR materials' all
-/// together (one that cannot be read fails them all), the lit materials' each alone (a
-/// lit material whose texture cannot be had is not evaluated; the others are).
+/// The textures a 1.0 asset's materials use, each decoded once and on its own: a PBR
+/// material whose texture cannot be had is not evaluated (its pair is named so, never the
+/// same), nor is a lit one; the others are.
 struct DecodedTextures<'s> {
     source: &'s source::Source<'s>,
-    pbr: Vec<Option<Texture>>,
+    pbr: Vec<Result<Option<Texture>, String>>,
     pbr_position: HashMap<String, usize>,
     lit: Vec<Result<Option<Texture>, String>>,
     lit_position: HashMap<String, usize>,
@@ -62,15 +62,15 @@ impl<'s> DecodedTextures<'s> {
             let image = (source.object("textures", id))
                 .and_then(|texture| texture.get("source")?.as_str())
                 .and_then(|image| source.object("images", image))
-                .ok_or_else(|| format!("texture '{id}' names no image"));
+                .ok_or_else(|| "it names no image".to_string());
             Some(image.and_then(|image| source.image_bytes(image)))
         };
         let pbr_ids = (parsed.iter().filter_map(|p| p.pbr.as_ref()))
             .flat_map(|pbr| [&pbr.colour_texture, &pbr.data_texture]);
         let (ids, pbr_position) = distinct(pbr_ids);
         let encoded: Vec<sample::Wanted<_>> = ids.iter().map(image_of).collect();
-        let pbr =
-            sample::decode_all_at_most(&encoded, finest).map_err(LegacyMaterialsError::Textures)?;
+        let pbr = sample::decode_each_at_most(&encoded, finest)
+            .map_err(LegacyMaterialsError::Textures)?;
         let lit_ids = (parsed.iter().filter_map(|p| p.lit.as_ref()))
             .flat_map(|lit| [&lit.emission_texture, &lit.alpha_texture]);
         let (lit_ids, lit_position) = distinct(lit_ids);
@@ -93,8 +93,16 @@ impl<'s> DecodedTextures<'s> {
         sample::Sampler::of(id.as_deref().and_then(|id| self.source.texture_sampler(id)))
     }
 
-    fn pbr_texture(&self, id: &Option<String>) -> Option<Texture> {
-        self.pbr[*self.pbr_position.get(id.as_deref()?)?].clone()
+    /// A PBR material's texture `id` (`Ok(None)`: none named), or why it cannot be had.
+    fn pbr_texture(&self, id: &Option<String>) -> Result<Option<Texture>, String> {
+        let Some(id) = id.as_deref() else {
+            return Ok(None);
+        };
+        match self.pbr_position.get(id).map(|&at| &self.pbr[at]) {
+            Some(Err(why)) => Err(format!("texture '{id}' ({why})")),
+            Some(Ok(texture)) => Ok(texture.clone()),
+            None => Ok(None),
+        }
     }
 
     /// A lit material's texture `id` with its sampler (`Some(None)`: no texture named;
@@ -118,9 +126,15 @@ impl<'s> DecodedTextures<'s> {
             ..
         } = parsed;
         if let Some(pbr) = pbr {
+            let (colour, data) = (
+                self.pbr_texture(&pbr.colour_texture),
+                self.pbr_texture(&pbr.data_texture),
+            );
+            let unread = [&colour, &data].into_iter().filter_map(|t| t.clone().err());
             return Some(MaterialSource::Legacy {
-                colour: self.pbr_texture(&pbr.colour_texture),
-                data: self.pbr_texture(&pbr.data_texture),
+                unread: unread.collect(),
+                colour: colour.ok().flatten(),
+                data: data.ok().flatten(),
                 samplers: [
                     self.sampler(&pbr.colour_texture),
                     self.sampler(&pbr.data_texture),

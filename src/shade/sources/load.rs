@@ -60,7 +60,7 @@ pub(crate) fn texture_source(texture: Node) -> Option<u64> {
 pub(crate) type MaterialsOn = (Vec<(String, MaterialSource)>, Vec<surface::Surface>);
 
 /// Every material of a glTF 2.0 asset with its decoded textures (no finer than `finest`, see
-/// [`sample::decode_all_at_most`]), and the material names; with `surfaces`, also the points
+/// [`sample::decode_each_at_most`]), and the material names; with `surfaces`, also the points
 /// on its meshes where each material's texCoord sets differ (see [`surface::surface_points`]).
 pub(crate) fn gltf2_materials(
     bytes: Vec<u8>,
@@ -69,20 +69,24 @@ pub(crate) fn gltf2_materials(
     finest: u32,
     surfaces: bool,
 ) -> Result<MaterialsOn, String> {
-    // Only the materials are read here; problems with the file are `check`'s to report.
-    let doc = document::read(bytes, name, &mut Vec::new());
-    let root = doc
-        .root
-        .as_ref()
-        .ok_or("not a readable glTF document")?
-        .root();
+    // Only the materials are read here; problems with the file are `check`'s to report,
+    // but one that leaves nothing to read is said.
+    let mut problems = Vec::new();
+    let doc = document::read(bytes, name, &mut problems);
+    let root = match doc.root.as_ref().map(|tree| tree.root()) {
+        Some(root) if root.is_object() => root,
+        _ => {
+            let why = document::why_unreadable(&problems);
+            return Err(format!("not a readable glTF document: {why}"));
+        }
+    };
     crate::document::uri::note_named_files(root, loader);
     let nodes =
         |key: &str| (root.get(key).and_then(Node::as_array).into_iter()).flat_map(|a| a.iter());
     let list = |key: &str| -> Vec<Node> { nodes(key).collect() };
     let views = Views::of(&doc, loader);
     let images = list("images");
-    let view_bytes = |index: u64| views.bytes(index);
+    let view_bytes = |index: u64| views.read(index);
     let textures = list("textures");
     let samplers = samplers_of(&textures, &list("samplers"));
     let needed = used_images(nodes("materials"), &textures);
@@ -95,9 +99,9 @@ pub(crate) fn gltf2_materials(
             (true, Some(uri)) => Some(load_uri(uri, loader).map(Encoded::Loaded)),
             (true, None) => Some(
                 (images[i].get("bufferView").and_then(Node::as_u64))
+                    .ok_or_else(|| "it has neither a uri nor a bufferView".to_string())
                     .and_then(view_bytes)
-                    .map(Encoded::View)
-                    .ok_or_else(|| "its bufferView cannot be read".to_string()),
+                    .map(Encoded::View),
             ),
         })
         .collect();
@@ -125,8 +129,14 @@ pub(crate) fn textures_of(
 ) -> (Vec<Option<Texture>>, Vec<Option<String>>) {
     let each: Vec<Result<Option<Texture>, String>> = (textures.iter())
         .map(|texture| {
-            let image = texture_source(*texture).and_then(|i| decoded.get(i as usize));
-            image.cloned().unwrap_or(Ok(None))
+            let Some(image) = texture_source(*texture) else {
+                return Ok(None);
+            };
+            match decoded.get(image as usize) {
+                Some(Err(why)) => Err(format!("image {image}: {why}")),
+                Some(Ok(texture)) => Ok(texture.clone()),
+                None => Ok(None),
+            }
         })
         .collect();
     let unreadable = each.iter().map(|t| t.clone().err()).collect();

@@ -339,7 +339,7 @@ fn decode_png_reduced(bytes: &[u8], finest: u32) -> Option<Result<TextureImage, 
     }))
 }
 
-/// Decodes one image (see [`decode_all_at_most`] for a set of them), within [`decode_budget`] of its
+/// Decodes one image (see [`decode_each_at_most`] for a set of them), within [`decode_budget`] of its
 /// bytes; an image another decode of this process still holds is shared, not decoded again.
 pub(crate) fn decode(bytes: &[u8]) -> Result<Texture, String> {
     within_budget(&[Some(bytes)], AS_STORED)?;
@@ -402,12 +402,14 @@ pub(crate) fn decode_budget(encoded: u64) -> u64 {
 pub(crate) type Wanted<B> = Option<Result<B, String>>;
 
 /// Decodes every wanted image as stored, for tests: an image that cannot be read or decoded
-/// is an error (see [`decode_all_at_most`]).
+/// is an error (see [`decode_each_at_most`]).
 #[cfg(test)]
 pub(crate) fn decode_all<B: Deref<Target: AsRef<[u8]>> + Sync>(
     sources: &[Wanted<B>],
 ) -> Result<Vec<Option<Texture>>, String> {
-    decode_all_at_most(sources, AS_STORED)
+    decode_each_at_most(sources, AS_STORED)?
+        .into_iter()
+        .collect()
 }
 
 /// The finest detail wanted when every texel counts (comparisons, proofs): images decoded
@@ -419,25 +421,16 @@ pub(crate) const AS_STORED: u32 = u32::MAX;
 /// `finest` texels a side (a preview): larger images may be decoded reduced to it (see
 /// [`decode_png_reduced`]). Images with the same bytes are decoded once and shared, and the
 /// decoded size of all of them together is held to [`decode_budget`] from their headers
-/// before anything is decoded. A wanted image that cannot be read or decoded is an error: a
-/// material evaluated without its texture would be a different material.
-pub(crate) fn decode_all_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
-    sources: &[Wanted<B>],
-    finest: u32,
-) -> Result<Vec<Option<Texture>>, String> {
-    decode_each_at_most(sources, finest)?.into_iter().collect()
-}
-
-/// [`decode_all_at_most`] with each image's failure its own (`Err` in its place), for uses
-/// that can go on without it; the outer error is the decoding budget's, which no image may
-/// pass.
+/// before anything is decoded. Each image's failure is its own (`Err(why)` in its place,
+/// for the caller to name the image): the materials that read it are not evaluated, the
+/// others are. The outer error is the decoding budget's, which no set of images may pass.
 pub(crate) fn decode_each_at_most<B: Deref<Target: AsRef<[u8]>> + Sync>(
     sources: &[Wanted<B>],
     finest: u32,
 ) -> Result<Vec<Result<Option<Texture>, String>>, String> {
-    let unread: Vec<Option<String>> = (sources.iter().enumerate())
-        .map(|(i, source)| match source {
-            Some(Err(why)) => Some(format!("image {i}: {why}")),
+    let unread: Vec<Option<String>> = (sources.iter())
+        .map(|source| match source {
+            Some(Err(why)) => Some(why.clone()),
             _ => None,
         })
         .collect();
@@ -630,7 +623,7 @@ fn decode_in_parallel(
     outcomes.sort_by_key(|(i, _)| *i);
     let mut decoded: Vec<Result<Option<Texture>, String>> = vec![Ok(None); sources.len()];
     for (i, outcome) in outcomes {
-        decoded[i] = outcome.map(Some).map_err(|why| format!("image {i}: {why}"));
+        decoded[i] = outcome.map(Some);
     }
     decoded
 }
@@ -893,6 +886,8 @@ pub(crate) enum MaterialSource {
         reading: SpecGlossReading,
         /// Whether both sides are drawn, where the 1.0 material says (its technique).
         double_sided: Option<bool>,
+        /// Its textures that cannot be had, each with why (see [`MaterialSource::unmodelled`]).
+        unread: Vec<String>,
     },
 }
 
@@ -1254,8 +1249,9 @@ impl MaterialSource {
                 samplers,
                 reading,
                 double_sided,
+                unread,
             } => format!(
-                "{pbr:?}|{:?}|{:?}|{samplers:?}|{reading:?}|{double_sided:?}",
+                "{pbr:?}|{:?}|{:?}|{samplers:?}|{reading:?}|{double_sided:?}|{unread:?}",
                 colour.as_ref().map(Arc::as_ptr),
                 data.as_ref().map(Arc::as_ptr)
             ),
@@ -1272,6 +1268,7 @@ impl MaterialSource {
                 data,
                 samplers,
                 double_sided,
+                unread,
                 ..
             } if pbr.model == Model::SpecularGlossiness => MaterialSource::Legacy {
                 pbr: pbr.clone(),
@@ -1280,6 +1277,7 @@ impl MaterialSource {
                 samplers: *samplers,
                 reading: wanted,
                 double_sided: *double_sided,
+                unread: unread.clone(),
             },
             _ => self.clone(),
         }
@@ -1432,7 +1430,7 @@ impl MaterialSource {
     pub(crate) fn unmodelled(&self) -> &[String] {
         match self {
             MaterialSource::Gltf2(prepared) => &prepared.unmodelled,
-            MaterialSource::Legacy { .. } => &[],
+            MaterialSource::Legacy { unread, .. } => unread,
         }
     }
 
