@@ -762,3 +762,77 @@ fn an_image_the_evaluator_cannot_decode_leaves_only_its_materials_unproved() {
     assert!(proof[0].is_evaluated(), "{:?}", proof[0].result);
     assert!(gltfmat::proof_holds(&proof, 1.0));
 }
+
+/// An image file that cannot be read (here missing) is an error of the input's own: the
+/// upgrade leaves it as the input has it (its `uri` kept, no file written), converts every
+/// material that does not read its texels, and leaves as spec-gloss, with the reason, one
+/// that does; the output is written with that error passed through.
+#[test]
+fn a_missing_image_is_left_as_it_was_and_only_a_conversion_reading_it_is_left() {
+    let folder = tempfile::tempdir().unwrap();
+    for file in [
+        "textured.gltf",
+        "diffuse16.png",
+        "specgloss16.png",
+        "normal.png",
+        "quad.bin",
+    ] {
+        std::fs::copy(fixture(file), folder.path().join(file)).unwrap();
+    }
+    let mut asset = input_json(&fixture("textured.gltf"));
+    asset["images"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"uri": "missing.png"}));
+    asset["textures"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"source": 3}));
+    let plain =
+        json!({"name": "plain", "pbrMetallicRoughness": {"baseColorTexture": {"index": 3}}});
+    asset["materials"].as_array_mut().unwrap().push(plain);
+    let run = |asset: &Value| {
+        std::fs::write(folder.path().join("in.gltf"), asset.to_string()).unwrap();
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_gltfmat"))
+            .args(["upgrade", "in.gltf", "-o", "out.gltf", "--force"])
+            .current_dir(folder.path())
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout).into_owned()
+            + &String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{text}");
+        let written = std::fs::read(folder.path().join("out.gltf")).unwrap();
+        (serde_json::from_slice::<Value>(&written).unwrap(), text)
+    };
+    let (written, text) = run(&asset);
+    assert!(
+        text.contains("decision /images/3 missing.png: no such file"),
+        "{text}"
+    );
+    assert!(
+        written["materials"][0]["extensions"]
+            .get(SPEC_GLOSS)
+            .is_none(),
+        "{text}"
+    );
+    let kept = written["images"].as_array().unwrap().iter();
+    assert_eq!(
+        kept.filter(|image| image["uri"] == "missing.png").count(),
+        1,
+        "{text}"
+    );
+    assert!(!folder.path().join("missing.png").exists());
+    // The spec-gloss material's diffuse texture reads the missing image: it is left.
+    asset["textures"][0]["source"] = json!(3);
+    let (written, text) = run(&asset);
+    assert!(
+        written["materials"][0]["extensions"]
+            .get(SPEC_GLOSS)
+            .is_some(),
+        "{text}"
+    );
+    assert!(
+        text.contains("left as spec-gloss: its textures cannot be rebaked: /images/3: missing.png: no such file"),
+        "{text}"
+    );
+}

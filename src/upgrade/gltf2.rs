@@ -194,10 +194,13 @@ impl Asset {
             let at = format!("/images/{i}");
             let uri = image.get("uri").and_then(Node::as_str);
             let (bytes, in_binary) = match uri {
-                Some(uri) => (
-                    load_uri(uri, loader).map_err(|e| resource_error(&at, e))?,
-                    false,
-                ),
+                Some(uri) => match load_uri(uri, loader) {
+                    Ok(bytes) => (bytes, false),
+                    Err(why) => {
+                        self.leave_unread(i, image, why);
+                        continue;
+                    }
+                },
                 None => {
                     let view = unsigned(image, "bufferView")
                         .and_then(|v| view_bytes(input, v as usize, buffers))
@@ -220,6 +223,19 @@ impl Asset {
             }
         }
         Ok(())
+    }
+
+    /// An image whose file cannot be read (missing, say) is left as the input has it: its
+    /// `uri` kept, no file written for it. Only a conversion that reads its texels needs it,
+    /// and that material is then left as spec-gloss (see [`EncodedImage::unread`]).
+    fn leave_unread(&mut self, i: usize, image: Node, why: String) {
+        let declared = image.get("mimeType").and_then(Node::as_str);
+        let mime_type = declared.unwrap_or("application/octet-stream").to_string();
+        let mut kept = EncodedImage::new(Arc::new(Vec::new().into()), mime_type, i, "", false);
+        kept.unread = Some(why.clone());
+        self.images.push(kept);
+        let text = format!("{why}: the image is left as the input has it (its uri kept, no file written for it); a conversion that reads its texels leaves its material as spec-gloss.");
+        self.note(format!("/images/{i}"), NoteKind::Decision, text);
     }
 
     /// Converts every spec-gloss material that can be; returns their indices.
@@ -416,10 +432,14 @@ impl Asset {
             self.root.remove(collection);
         }
         for (i, name) in dropped {
+            let named = match name.is_empty() {
+                true => String::new(),
+                false => format!(" ('{name}')"),
+            };
             self.note(
                 format!("/{collection}/{i}"),
                 NoteKind::Dropped,
-                format!("not written: only the converted spec-gloss materials used it ('{name}')."),
+                format!("not written: only the converted spec-gloss materials used it{named}."),
             );
         }
         map
@@ -607,9 +627,17 @@ impl spec_gloss::Textures for MaterialTextures<'_> {
         sampler_of(self.input, self.texture(slot))
     }
 
-    fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>> {
-        let image = drawn_image(self.texture(slot)?)?;
-        Some(self.asset.images.get(image as usize)?.bytes.clone())
+    fn bytes(&self, slot: Slot) -> Result<Option<Arc<crate::document::Bytes>>, String> {
+        let Some(image) = self.texture(slot).and_then(drawn_image) else {
+            return Ok(None);
+        };
+        match self.asset.images.get(image as usize) {
+            Some(EncodedImage {
+                unread: Some(why), ..
+            }) => Err(format!("/images/{image}: {why}")),
+            Some(encoded) => Ok(Some(encoded.bytes.clone())),
+            None => Ok(None),
+        }
     }
 
     /// The archived extension has one reading, which the closed form reproduces exactly.

@@ -218,6 +218,10 @@ pub struct EncodedImage {
     /// The image already lies in a bufferView of the output buffer (a 2.0 input's embedded
     /// image, passed through): [`output`] leaves it there and writes no file for it.
     pub in_binary: bool,
+    /// Why a 2.0 input's image file could not be read (missing, say), when it could not:
+    /// its `uri` is left as the input wrote it, so the output refers to it as the input
+    /// does; `bytes` is empty and no file is written for it.
+    pub unread: Option<String>,
 }
 
 impl EncodedImage {
@@ -247,6 +251,7 @@ impl EncodedImage {
             file_name: format!("{index}-{safe}.{extension}"),
             mime_type,
             in_binary,
+            unread: None,
         }
     }
 }
@@ -377,7 +382,13 @@ pub(crate) fn converted_materials(upgraded: &Upgraded) -> Result<Vec<MaterialSou
         .images
         .iter()
         .enumerate()
-        .map(|(i, image)| needed.contains(&i).then_some(Ok(&image.bytes[..])))
+        .map(|(i, image)| {
+            let bytes = match &image.unread {
+                Some(why) => Err(why.clone()),
+                None => Ok(&image.bytes[..]),
+            };
+            needed.contains(&i).then_some(bytes)
+        })
         .collect();
     // An image the evaluator cannot decode leaves the materials that use it not evaluated,
     // as on the source's side, not the whole proof.

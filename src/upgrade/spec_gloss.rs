@@ -34,8 +34,9 @@ pub(super) enum Slot {
 pub(super) trait Textures {
     /// The textureInfo that reads the slot's texture as it is, if the material has one.
     fn info(&self, slot: Slot) -> Option<Value>;
-    /// The encoded image of the slot's texture.
-    fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>>;
+    /// The encoded image of the slot's texture (`None`: the slot has none), or why it
+    /// cannot be had.
+    fn bytes(&self, slot: Slot) -> Result<Option<Arc<crate::document::Bytes>>, String>;
     /// The sampler the slot's texture is read through (LINEAR, REPEAT when it names none).
     fn sampler(&self, slot: Slot) -> Sampler;
     /// Adds a rebaked image as a new texture sampled like the slot's texture (its sampler,
@@ -117,10 +118,10 @@ pub(super) fn to_metal_rough(
     textures: &mut dyn Textures,
 ) -> Result<Converted, String> {
     let mut decisions = Vec::new();
-    let specular_texture = textures.bytes(Slot::SpecularGlossiness);
+    let specular_texture = textures.bytes(Slot::SpecularGlossiness)?;
     let mut core = json!({"metallicFactor": 0.0, "roughnessFactor": 1.0 - factors.glossiness});
     if let Some(specular) = &specular_texture {
-        let diffuse = textures.bytes(Slot::Diffuse);
+        let diffuse = textures.bytes(Slot::Diffuse)?;
         let samplers = [Slot::Diffuse, Slot::SpecularGlossiness].map(|s| textures.sampler(s));
         let key = rebake_key(factors, diffuse.as_ref(), specular, samplers);
         let made = match textures.rebakes().0.get(&key) {

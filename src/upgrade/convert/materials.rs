@@ -299,8 +299,8 @@ impl spec_gloss::Textures for DraftTextures<'_, '_, '_, '_> {
         texture_info(self.builder, self.id(slot))
     }
 
-    fn bytes(&self, slot: Slot) -> Option<Arc<crate::document::Bytes>> {
-        texture_bytes(self.builder, self.id(slot))
+    fn bytes(&self, slot: Slot) -> Result<Option<Arc<crate::document::Bytes>>, String> {
+        Ok(texture_bytes(self.builder, self.id(slot)))
     }
 
     fn sampler(&self, slot: Slot) -> Sampler {

@@ -205,10 +205,11 @@ fn separate(mut json: Json, upgraded: &Upgraded, main_name: &str) -> Files {
 /// The largest JSON (compact) a `.gltf` output is indented for reading.
 const PRETTY_UP_TO: usize = 4 << 20;
 
-/// The images that need a place in the output (those already in a bufferView have one),
-/// with their indices.
+/// The images that need a place in the output (those already in a bufferView have one,
+/// and one that could not be read keeps the input's `uri`), with their indices.
 fn images_to_place(upgraded: &Upgraded) -> impl Iterator<Item = (usize, &super::EncodedImage)> {
-    (upgraded.images.iter().enumerate()).filter(|(_, image)| !image.in_binary)
+    (upgraded.images.iter().enumerate())
+        .filter(|(_, image)| !image.in_binary && image.unread.is_none())
 }
 
 /// The one buffer's byteLength, keeping its other members (a 2.0 input's name, extras).
