@@ -763,10 +763,11 @@ fn an_image_the_evaluator_cannot_decode_leaves_only_its_materials_unproved() {
     assert!(gltfmat::proof_holds(&proof, 1.0));
 }
 
-/// An image file that cannot be read (here missing) is an error of the input's own: the
-/// upgrade leaves it as the input has it (its `uri` kept, no file written), converts every
-/// material that does not read its texels, and leaves as spec-gloss, with the reason, one
-/// that does; the output is written with that error passed through.
+/// An image file that cannot be read (here missing), or a data URI holding no image, is an
+/// error of the input's own: the upgrade leaves it as the input has it (its `uri` kept, no
+/// file written), converts every material that does not read its texels, and leaves as
+/// spec-gloss, with the reason, one that does; the output is written with that error passed
+/// through.
 #[test]
 fn a_missing_image_is_left_as_it_was_and_only_a_conversion_reading_it_is_left() {
     let folder = tempfile::tempdir().unwrap();
@@ -822,6 +823,22 @@ fn a_missing_image_is_left_as_it_was_and_only_a_conversion_reading_it_is_left() 
         "{text}"
     );
     assert!(!folder.path().join("missing.png").exists());
+    // A data URI that holds no image is the same wherever the output lies: it stays as it
+    // is, rather than be written with a media type it does not have.
+    let garbage = "data:application/octet-stream;base64,Z2FyYmFnZQ==";
+    let mut with_garbage = asset.clone();
+    with_garbage["images"][3]["uri"] = json!(garbage);
+    let (written, text) = run(&with_garbage);
+    assert!(
+        text.contains("decision /images/3 its data URI holds no image"),
+        "{text}"
+    );
+    let kept = written["images"].as_array().unwrap().iter();
+    assert_eq!(
+        kept.filter(|image| image["uri"] == garbage).count(),
+        1,
+        "{text}"
+    );
     // The spec-gloss material's diffuse texture reads the missing image: it is left.
     asset["textures"][0]["source"] = json!(3);
     let (written, text) = run(&asset);

@@ -195,6 +195,14 @@ impl Asset {
             let uri = image.get("uri").and_then(Node::as_str);
             let (bytes, in_binary) = match uri {
                 Some(uri) => match load_uri(uri, loader) {
+                    // A data URI is the same wherever the output lies: one holding no image
+                    // stays as it is, rather than be given a media type it does not have.
+                    Ok(bytes)
+                        if uri.starts_with("data:") && image_header::read(&bytes).is_err() =>
+                    {
+                        self.leave_unread(i, image, "its data URI holds no image".into());
+                        continue;
+                    }
                     Ok(bytes) => (bytes, false),
                     Err(why) => {
                         self.leave_unread(i, image, why);
@@ -225,9 +233,10 @@ impl Asset {
         Ok(())
     }
 
-    /// An image whose file cannot be read (missing, say) is left as the input has it: its
-    /// `uri` kept, no file written for it. Only a conversion that reads its texels needs it,
-    /// and that material is then left as spec-gloss (see [`EncodedImage::unread`]).
+    /// An image whose file cannot be read (missing, say), or whose data URI holds no image,
+    /// is left as the input has it: its `uri` kept, no file written for it. Only a
+    /// conversion that reads its texels needs it, and that material is then left as
+    /// spec-gloss (see [`EncodedImage::unread`]).
     fn leave_unread(&mut self, i: usize, image: Node, why: String) {
         let declared = image.get("mimeType").and_then(Node::as_str);
         let mime_type = declared.unwrap_or("application/octet-stream").to_string();

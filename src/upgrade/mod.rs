@@ -218,9 +218,9 @@ pub struct EncodedImage {
     /// The image already lies in a bufferView of the output buffer (a 2.0 input's embedded
     /// image, passed through): [`output`] leaves it there and writes no file for it.
     pub in_binary: bool,
-    /// Why a 2.0 input's image file could not be read (missing, say), when it could not:
-    /// its `uri` is left as the input wrote it, so the output refers to it as the input
-    /// does; `bytes` is empty and no file is written for it.
+    /// Why a 2.0 input's image could not be read (a missing file, a data URI holding no
+    /// image), when it could not: its `uri` is left as the input wrote it, so the output
+    /// refers to it as the input does; `bytes` is empty and no file is written for it.
     pub unread: Option<String>,
 }
 
