@@ -124,6 +124,9 @@ fn read_members<'a>(
     if declares_gltf2(&bytes) {
         return Err(NotGltf1::Version(IS_GLTF2.into()));
     }
+    if bytes.is_empty() {
+        return Err(NotGltf1::Unreadable("the file is empty".into()));
+    }
     let (json_range, body) = if bytes.starts_with(b"glTF") {
         let (json, body) = split_glb_v1(&bytes)?;
         (json, Some(body))
