@@ -2056,3 +2056,55 @@ fn an_infinite_value_in_a_1_0_accessor_is_refused_for_itself_not_for_null_bounds
     assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// An asset made on a case-insensitive system names its buffer `box.bin` beside a file
+/// `Box.bin`: the upgrade reads that one file, as the author's system did, and says so in
+/// a decision line; `check` still reports the name, which finds nothing where names are
+/// case-sensitive.
+#[test]
+fn a_file_named_in_another_letter_case_is_read_by_the_upgrade_and_reported_by_the_check() {
+    let dir = scratch("letter-case");
+    let fixtures = repo("fixtures/gltf1");
+    std::fs::copy(
+        fixtures.join("pbr-sg-textured-ext.gltf"),
+        dir.join("in.gltf"),
+    )
+    .unwrap();
+    for image in ["diffuse.png", "spec_gloss.png"] {
+        std::fs::copy(fixtures.join(image), dir.join(image)).unwrap();
+    }
+    std::fs::copy(fixtures.join("box.bin"), dir.join("Box.bin")).unwrap();
+    if dir.join("box.bin").exists() {
+        return; // a case-insensitive file system finds the name itself
+    }
+    let input = dir.join("in.gltf");
+    let input = input.to_str().unwrap();
+    let out = dir.join("out.glb");
+    let (code, text) = gltfmat(&["upgrade", input, "-o", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("decision / 'box.bin' names no file; 'Box.bin', whose name differs only in letter case, is read for it"),
+        "{text}"
+    );
+    assert!(out.exists());
+    // A glTF 2.0 input the same: read by the upgrade, reported by the check.
+    let spec_gloss = repo("fixtures/spec-gloss");
+    std::fs::copy(spec_gloss.join("factors.gltf"), dir.join("in2.gltf")).unwrap();
+    std::fs::copy(spec_gloss.join("quad.bin"), dir.join("Quad.bin")).unwrap();
+    let input = dir.join("in2.gltf");
+    let input = input.to_str().unwrap();
+    let out = dir.join("out2.glb");
+    let (code, text) = gltfmat(&["upgrade", input, "-o", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("'quad.bin' names no file; 'Quad.bin'"),
+        "{text}"
+    );
+    let (code, text) = gltfmat(&["check", input]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("quad.bin: no such file; Quad.bin differs only in letter case"),
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

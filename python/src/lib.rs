@@ -267,7 +267,11 @@ fn upgrade(
     };
     let (json, glb) = py.detach(move || -> PyResult<UpgradeResult> {
         let (bytes, name, path) = source.read(name)?;
-        let loader = Loader::of(resources, path.as_deref());
+        // As the CLI converts: a name differing from its file only in letter case reads it.
+        let loader = match Loader::of(resources, path.as_deref()) {
+            Loader::Folder(folder) => Loader::Folder(folder.repairing_letter_case()),
+            other => other,
+        };
         plan.run(bytes, &name, path.as_deref(), &loader, &options)
     })?;
     Ok((json, glb.map(|glb| PyBytes::new(py, &glb).unbind())))

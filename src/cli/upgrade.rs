@@ -111,7 +111,7 @@ pub fn run(args: UpgradeArgs) -> Outcome {
     let tolerated = tolerated_errors(&args, inherited.as_ref());
     let inherited = inherited.map_or(0, |errors| errors.count());
     let options = args.options();
-    let loader = FolderResources::beside(&args.input);
+    let loader = FolderResources::beside(&args.input).repairing_letter_case();
     // The bytes go to the upgrade, which lets a `.gltf`'s text go once its tree is built;
     // the proof reads the file again, and proves nothing if it changed in between.
     let read = (!args.no_verify).then(|| Fingerprint::of(&bytes));
@@ -352,11 +352,13 @@ fn grouped<K: Clone + Eq + Hash, P>(items: impl IntoIterator<Item = (K, P)>) -> 
 }
 
 /// The first few places, then how many more: a line for 10^5 alike materials stays a line.
+/// The whole asset (pointer "") is shown as `/`, as the check's findings show it.
 fn places<P: AsRef<str>>(places: &[P]) -> String {
-    let shown: Vec<&str> = places
-        .iter()
-        .take(PLACES_SHOWN)
-        .map(AsRef::as_ref)
+    let shown: Vec<&str> = (places.iter().take(PLACES_SHOWN))
+        .map(|place| match place.as_ref() {
+            "" => "/",
+            place => place,
+        })
         .collect();
     let mut text = shown.join(", ");
     if places.len() > PLACES_SHOWN {
@@ -470,7 +472,7 @@ fn proved(read: Fingerprint, args: &UpgradeArgs, upgraded: &Upgraded, log: &mut 
             return false;
         }
     };
-    let loader = FolderResources::beside(&args.input);
+    let loader = FolderResources::beside(&args.input).repairing_letter_case();
     let name = args.input.to_string_lossy();
     let outcomes = match gltfmat::prove(bytes, &name, &loader, upgraded) {
         Ok(outcomes) => outcomes,

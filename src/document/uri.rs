@@ -278,6 +278,13 @@ pub trait ResourceLoader: Sync {
     /// materials are wanted, a 1.0 shader): it is the asset's all the same, and an output
     /// must not replace it. A loader that keeps no such list ignores it.
     fn named(&self, _relative_path: &str) {}
+
+    /// The files read under a name differing only in letter case from the one asked for
+    /// (asked, read), for a loader that repairs such names (see
+    /// [`FolderResources::repairing_letter_case`]); none for the others.
+    fn letter_case_repairs(&self) -> Vec<(String, String)> {
+        Vec::new()
+    }
 }
 
 /// Notes every file the asset at `root` names (its buffers', images' and 1.0 shaders' URIs)
@@ -372,6 +379,9 @@ pub struct FolderResources {
     /// whole: a file many URIs name (under any spelling or link) is read once, not once
     /// for each (10^3 buffers naming one 1 MB file held 1 GB).
     shared: Mutex<HashMap<(FileId, Whole), Held>>,
+    /// Whether a name that finds no file reads the one file beside it that differs only in
+    /// letter case, and the names so read (asked, read).
+    letter_case: Option<Mutex<Vec<(String, String)>>>,
 }
 
 /// Whether a file was read whole ([`ResourceLoader::load`]) or as a buffer, perhaps left
@@ -422,7 +432,18 @@ impl FolderResources {
             .ok(),
             read: Default::default(),
             shared: Default::default(),
+            letter_case: None,
         }
+    }
+
+    /// These resources, reading for a name that finds no file the one file beside it whose
+    /// name differs only in letter case (as Windows and macOS read it), and keeping a list
+    /// of such reads. For a conversion: an asset made on a case-insensitive system reads
+    /// there as its author saw it. A check does not repair: the name is wrong where names
+    /// are case-sensitive (a web server), and `check` says so.
+    pub fn repairing_letter_case(mut self) -> Self {
+        self.letter_case = Some(Mutex::default());
+        self
     }
 
     /// The files read so far, and those the asset names that were not read (see
@@ -445,7 +466,19 @@ impl FolderResources {
         match folder.open_with(&relative, &options) {
             Ok(file) => Ok(file.into_std()),
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                Err(match differing_in_case(folder, &relative) {
+                let alike = differing_in_case(folder, &relative);
+                // Only one such file is read for it: of two, neither is surely the one meant.
+                if let ([found], Some(repairs)) = (&alike[..], &self.letter_case) {
+                    let alike = relative.with_file_name(found);
+                    if let Ok(file) = folder.open_with(&alike, &options) {
+                        let read = alike.to_string_lossy().into_owned();
+                        if let Ok(mut repairs) = repairs.lock() {
+                            repairs.push((uri_path.to_string(), read));
+                        }
+                        return Ok(file.into_std());
+                    }
+                }
+                Err(match alike.into_iter().next() {
                     Some(found) => LoadError::CaseMismatch {
                         uri: uri_path.to_string(),
                         found,
@@ -466,18 +499,20 @@ impl FolderResources {
     }
 }
 
-/// The name of a file beside `relative`'s that differs from it only in letter case.
-fn differing_in_case(folder: &cap_std::fs::Dir, path: &Path) -> Option<String> {
-    let name = path.file_name()?.to_str()?;
+/// The names of the files beside `relative`'s that differ from it only in letter case.
+fn differing_in_case(folder: &cap_std::fs::Dir, path: &Path) -> Vec<String> {
+    let Some(name) = path.file_name().and_then(|n| n.to_str()) else {
+        return Vec::new();
+    };
     let parent = path.parent().filter(|p| !p.as_os_str().is_empty());
     let listing = match parent {
-        Some(parent) => folder.read_dir(parent).ok()?,
-        None => folder.entries().ok()?,
+        Some(parent) => folder.read_dir(parent),
+        None => folder.entries(),
     };
-    listing
-        .flatten()
+    (listing.into_iter().flatten().flatten())
         .filter_map(|entry| entry.file_name().into_string().ok())
-        .find(|candidate| candidate.eq_ignore_ascii_case(name))
+        .filter(|candidate| candidate.eq_ignore_ascii_case(name))
+        .collect()
 }
 
 /// A URI's path as a path below the folder at `address`: the path itself when it never
@@ -580,6 +615,14 @@ impl ResourceLoader for FolderResources {
         self.read_with(relative, false, super::file::read_or_keep)
     }
 
+    fn letter_case_repairs(&self) -> Vec<(String, String)> {
+        let repairs = self.letter_case.as_ref().and_then(|r| r.lock().ok());
+        let mut repairs = repairs.map(|r| r.clone()).unwrap_or_default();
+        repairs.sort();
+        repairs.dedup();
+        repairs
+    }
+
     fn named(&self, relative: &str) {
         let opened = self
             .open(relative)
@@ -675,6 +718,38 @@ mod tests {
             "an escaped one is part of the name"
         );
         assert!(classify(":").is_err());
+    }
+
+    /// A converter's loader reads, for a name that finds no file, the one file whose name
+    /// differs only in letter case, and lists it; of two such files it reads neither, and a
+    /// checker's loader reads none.
+    #[test]
+    fn a_name_in_another_letter_case_reads_its_one_file_only_when_repairing() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(dir.path().join("tex")).unwrap();
+        std::fs::write(dir.path().join("tex/Wood.png"), b"w").unwrap();
+        if dir.path().join("tex/wood.PNG").exists() {
+            return; // a case-insensitive file system finds the name itself
+        }
+        let repairing = FolderResources::new(dir.path()).repairing_letter_case();
+        assert_eq!(&repairing.load("tex/wood.PNG").unwrap()[..], b"w");
+        assert_eq!(
+            repairing.letter_case_repairs(),
+            [("tex/wood.PNG".to_string(), "tex/Wood.png".to_string())]
+        );
+        let checking = FolderResources::new(dir.path());
+        assert!(matches!(
+            checking.load("tex/wood.PNG"),
+            Err(LoadError::CaseMismatch { .. })
+        ));
+        assert!(checking.letter_case_repairs().is_empty());
+        std::fs::write(dir.path().join("tex/WOOD.png"), b"W").unwrap();
+        let two = FolderResources::new(dir.path()).repairing_letter_case();
+        assert!(matches!(
+            two.load("tex/wood.PNG"),
+            Err(LoadError::CaseMismatch { .. })
+        ));
+        assert!(two.letter_case_repairs().is_empty());
     }
 
     #[test]

@@ -339,11 +339,21 @@ pub fn upgrade<'b>(
     // Bytes handed over (a `Vec`) are let go as soon as the conversion no longer needs them;
     // borrowed ones are copied only where the output shares them (a GLB's body).
     let bytes = bytes.into();
-    if source::declares_gltf2(&bytes) {
-        return gltf2::upgrade(bytes.into_owned(), loader, options);
+    let mut upgraded = if source::declares_gltf2(&bytes) {
+        gltf2::upgrade(bytes.into_owned(), loader, options)?
+    } else {
+        let source = source::read(bytes, loader)?;
+        convert::run(builder::Builder::new(&source, options))?
+    };
+    for (asked, read) in loader.letter_case_repairs() {
+        let text = format!("'{asked}' names no file; '{read}', whose name differs only in letter case, is read for it, as Windows and macOS read the name (where names are case-sensitive, as on most web servers, the input's name finds nothing: `gltfmat check` reports it).");
+        upgraded.report.push(Note {
+            pointer: String::new(),
+            kind: NoteKind::Decision,
+            text: text.into(),
+        });
     }
-    let source = source::read(bytes, loader)?;
-    convert::run(builder::Builder::new(&source, options))
+    Ok(upgraded)
 }
 
 /// The materials of an upgraded asset as the shading evaluator samples them: one whose
