@@ -386,15 +386,27 @@ fn decode_whole(bytes: &[u8]) -> Result<Texture, String> {
 }
 
 /// The margin of the decode budget: decoded texels (as stored: the file's channels, 1 or 2
-/// bytes each) may take twice the images' own bytes plus this. However compressible a
-/// stranger makes an image (a flat 16384² PNG of half a megabyte decodes to 512 MiB), a run
-/// holds in proportion to what it was given; past the budget an image is refused from its
-/// header, before anything is decoded.
+/// bytes each) may take [`DECODE_RATIO`] times the images' own bytes plus this, and never
+/// more than [`DECODE_CEILING`]. However compressible a stranger makes an image (a flat
+/// 16384² PNG of half a megabyte decodes to 1 GiB), a run holds in proportion to what it was
+/// given; past the budget an image is refused from its header, before anything is decoded.
 pub(crate) const DECODE_MARGIN: u64 = 96 << 20;
+
+/// How many times their own bytes the images may take decoded. Real textures compress that
+/// well: Khronos's ABeautifulGame holds 18 MiB of PNGs that decode to 396 MiB (22×), its
+/// Sponza 40 MiB of JPEGs and PNGs that decode to 207 MiB; a flat image compresses a
+/// thousandfold.
+pub(crate) const DECODE_RATIO: u64 = 32;
+
+/// The most decoded texels one set of images may take, however large its files.
+pub(crate) const DECODE_CEILING: u64 = 4 << 30;
 
 /// The decoded bytes allowed for images of `encoded` bytes in all (see [`DECODE_MARGIN`]).
 pub(crate) fn decode_budget(encoded: u64) -> u64 {
-    encoded.saturating_mul(2).saturating_add(DECODE_MARGIN)
+    (encoded
+        .saturating_mul(DECODE_RATIO)
+        .saturating_add(DECODE_MARGIN))
+    .min(DECODE_CEILING)
 }
 
 /// An image to decode: `None` when nothing samples it, `Some(Err(why))` when something does
@@ -504,10 +516,11 @@ fn within_budget(unique: &[Option<&[u8]>], finest: u32) -> Result<(), String> {
                 .map(|info| format!(" ({}×{})", info.width, info.height))
                 .unwrap_or_default();
             return Err(format!(
-                "image {i}{size} would take the decoded textures past {} MiB, this input's budget (twice its images' {} KiB plus {} MiB)",
+                "image {i}{size} would take the decoded textures past {} MiB, this input's budget ({DECODE_RATIO} times its images' {} KiB plus {} MiB, at most {} MiB)",
                 budget >> 20,
                 encoded >> 10,
-                DECODE_MARGIN >> 20
+                DECODE_MARGIN >> 20,
+                DECODE_CEILING >> 20
             ));
         }
     }
@@ -2099,6 +2112,33 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The decode budget admits what real textures decode to (Khronos's ABeautifulGame: PNGs
+    /// decoding to 22 times their bytes) and refuses what only a made-up image does (a
+    /// header announcing 1 GiB in half a megabyte), from the headers alone.
+    #[test]
+    fn the_decode_budget_admits_real_compression_and_refuses_a_bomb() {
+        // A PNG's signature, an RGBA IHDR of `side`², an empty IDAT, then `bytes` of filler.
+        let png = |side: u32, bytes: usize| {
+            let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+            png.extend(13u32.to_be_bytes());
+            png.extend(b"IHDR");
+            png.extend(side.to_be_bytes());
+            png.extend(side.to_be_bytes());
+            png.extend([8, 6, 0, 0, 0, 0, 0, 0, 0]);
+            png.extend([0, 0, 0, 0]);
+            png.extend(b"IDAT");
+            png.resize(bytes, 0);
+            png
+        };
+        // 24 textures of 2048² RGBA (16 MiB each decoded) in 750 KiB each: 384 MiB of 18 MiB.
+        let real: Vec<Vec<u8>> = (0..24).map(|_| png(2048, 750 << 10)).collect();
+        let real: Vec<Option<&[u8]>> = real.iter().map(|b| Some(&b[..])).collect();
+        assert_eq!(within_budget(&real, AS_STORED), Ok(()));
+        let bomb = png(16384, 512 << 10);
+        let refused = within_budget(&[Some(&bomb[..])], AS_STORED).unwrap_err();
+        assert!(refused.contains("image 0 (16384×16384)"), "{refused}");
     }
 
     /// The decode budget counts a KTX2 as what it is transcoded to (8-bit RGBA), not as the
