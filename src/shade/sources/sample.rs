@@ -399,7 +399,7 @@ pub(crate) const DECODE_MARGIN: u64 = 96 << 20;
 pub(crate) const DECODE_RATIO: u64 = 32;
 
 /// The most decoded texels one set of images may take, however large its files.
-pub(crate) const DECODE_CEILING: u64 = 4 << 30;
+pub(crate) const DECODE_CEILING: u64 = 2 << 30;
 
 /// The decoded bytes allowed for images of `encoded` bytes in all (see [`DECODE_MARGIN`]).
 pub(crate) fn decode_budget(encoded: u64) -> u64 {
@@ -2139,6 +2139,12 @@ mod tests {
         let bomb = png(16384, 512 << 10);
         let refused = within_budget(&[Some(&bomb[..])], AS_STORED).unwrap_err();
         assert!(refused.contains("image 0 (16384×16384)"), "{refused}");
+        // However large the files, the set stops at the ceiling: nine 8192² RGBA images of
+        // 9 MiB each (2.25 GiB decoded, within 32 times their bytes) pass 2 GiB at the ninth.
+        let large = png(8192, 9 << 20);
+        let refused = within_budget(&[Some(&large[..]); 9], AS_STORED).unwrap_err();
+        assert!(refused.starts_with("image 8 (8192×8192)"), "{refused}");
+        assert!(refused.contains("past 2048 MiB"), "{refused}");
     }
 
     /// The decode budget counts a KTX2 as what it is transcoded to (8-bit RGBA), not as the
