@@ -2108,3 +2108,30 @@ fn a_file_named_in_another_letter_case_is_read_by_the_upgrade_and_reported_by_th
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// An image stored in a bufferView whose buffer cannot be read leaves its material not
+/// evaluated, and says which buffer and why, not only that the view cannot be read.
+#[test]
+fn an_image_in_a_buffer_that_cannot_be_read_names_the_buffer_and_why() {
+    let dir = scratch("image-buffer");
+    let asset = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": "gone.bin", "byteLength": 64}],
+        "bufferViews": [{"buffer": 0, "byteLength": 64}],
+        "images": [{"bufferView": 0, "mimeType": "image/png"}],
+        "textures": [{"source": 0}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    });
+    let input = dir.join("in.gltf");
+    std::fs::write(&input, serde_json::to_vec(&asset).unwrap()).unwrap();
+    let input = input.to_str().unwrap();
+    let (code, text) = gltfmat(&["compare", input, input, "--format", "json"]);
+    assert_eq!(code, 1, "{text}");
+    let pairs: Value = serde_json::from_str(&text).unwrap();
+    let unread = pairs[0]["notEvaluated"].to_string();
+    assert!(
+        unread.contains("image 0: buffer 0: gone.bin: no such file"),
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

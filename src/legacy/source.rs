@@ -21,10 +21,14 @@ pub(crate) enum NotGltf1 {
     /// Another version: 2.x, or one this reader does not know.
     #[error("not a glTF 1.0 asset: {0}")]
     Version(String),
-    /// Bytes that are no glTF document of any version: not JSON, a JSON root that is not an
-    /// object, a GLB v1 header that cannot be read.
+    /// Bytes that are no glTF document of any version: empty, not JSON, a JSON root that is
+    /// not an object.
     #[error("{0}")]
     Unreadable(String),
+    /// A GLB of version 1 (KHR_binary_glTF) whose header cannot be read: no other reader
+    /// would read it.
+    #[error("{0}")]
+    BrokenGlb(String),
 }
 
 pub(crate) struct Source<'a> {
@@ -189,7 +193,7 @@ fn split_glb_v1(bytes: &[u8]) -> Result<(Range<usize>, BodyPlace), NotGltf1> {
     let word = |at: usize| -> Option<u32> {
         Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
     };
-    let broken = |why: String| NotGltf1::Unreadable(format!("GLB v1: {why}"));
+    let broken = |why: String| NotGltf1::BrokenGlb(format!("GLB v1: {why}"));
     let cut = || {
         broken(format!(
             "its 20-byte header is cut short ({} bytes)",

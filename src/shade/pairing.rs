@@ -39,7 +39,7 @@ pub(crate) fn load_materials(
         Ok(materials) => Ok((materials, Vec::new())),
         // A GLB v1 is read as 1.0 or not at all; other bytes the 2.0 reader reads again, to
         // say why as a `.gltf` or `.glb` of that name.
-        Err(LegacyMaterialsError::NotGltf1(NotGltf1::Unreadable(why))) if is_glb_v1(&bytes) => {
+        Err(LegacyMaterialsError::NotGltf1(NotGltf1::BrokenGlb(why))) => {
             Err(format!("not a readable glTF document: {why}"))
         }
         Err(LegacyMaterialsError::NotGltf1(_)) => {
@@ -49,11 +49,6 @@ pub(crate) fn load_materials(
         }
         Err(e) => Err(e.to_string()),
     }
-}
-
-/// Whether `bytes` begin a GLB of version 1 (KHR_binary_glTF).
-fn is_glb_v1(bytes: &[u8]) -> bool {
-    bytes.starts_with(b"glTF") && bytes.get(4..8) == Some(&1u32.to_le_bytes()[..])
 }
 
 /// A shader whose sheen table covers the materials (the standard table only when one has

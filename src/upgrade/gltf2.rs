@@ -240,11 +240,11 @@ impl Asset {
     fn leave_unread(&mut self, i: usize, image: Node, why: String) {
         let declared = image.get("mimeType").and_then(Node::as_str);
         let mime_type = declared.unwrap_or("application/octet-stream").to_string();
-        let mut kept = EncodedImage::new(Arc::new(Vec::new().into()), mime_type, i, "", false);
-        kept.unread = Some(why.clone());
-        self.images.push(kept);
         let text = format!("{why}: the image is left as the input has it (its uri kept, no file written for it); a conversion that reads its texels leaves its material as spec-gloss.");
         self.note(format!("/images/{i}"), NoteKind::Decision, text);
+        let mut kept = EncodedImage::new(Arc::new(Vec::new().into()), mime_type, i, "", false);
+        kept.unread = Some(why);
+        self.images.push(kept);
     }
 
     /// Converts every spec-gloss material that can be; returns their indices.

@@ -289,7 +289,9 @@ impl From<NotGltf1> for UpgradeError {
     fn from(not: NotGltf1) -> Self {
         match not {
             NotGltf1::Version(reason) => UpgradeError::NotGltf1(reason),
-            NotGltf1::Unreadable(reason) => UpgradeError::Unreadable(reason),
+            NotGltf1::Unreadable(reason) | NotGltf1::BrokenGlb(reason) => {
+                UpgradeError::Unreadable(reason)
+            }
         }
     }
 }

@@ -130,7 +130,9 @@ impl<'s> DecodedTextures<'s> {
                 self.pbr_texture(&pbr.colour_texture),
                 self.pbr_texture(&pbr.data_texture),
             );
-            let unread = [&colour, &data].into_iter().filter_map(|t| t.clone().err());
+            let unread = [&colour, &data]
+                .into_iter()
+                .filter_map(|t| t.as_ref().err().cloned());
             return Some(MaterialSource::Legacy {
                 unread: unread.collect(),
                 colour: colour.ok().flatten(),

@@ -339,8 +339,9 @@ fn decode_png_reduced(bytes: &[u8], finest: u32) -> Option<Result<TextureImage, 
     }))
 }
 
-/// Decodes one image (see [`decode_each_at_most`] for a set of them), within [`decode_budget`] of its
-/// bytes; an image another decode of this process still holds is shared, not decoded again.
+/// Decodes one image (see [`decode_each_at_most`] for a set of them), within
+/// [`decode_budget`] of its bytes; an image another decode of this process still holds is
+/// shared, not decoded again.
 pub(crate) fn decode(bytes: &[u8]) -> Result<Texture, String> {
     within_budget(&[Some(bytes)], AS_STORED)?;
     if let Some(held) = Live::get(bytes, AS_STORED) {
