@@ -82,7 +82,7 @@ pub use upgrade::{
 
 // Comparing and drawing materials with the reference evaluator.
 pub use shade::brdf::SheenVisibility;
-pub use shade::compare::{DEFAULT_THRESHOLD, DIRECTIONS};
+pub use shade::compare::{Area, DEFAULT_THRESHOLD, DIRECTIONS};
 pub use shade::pairing::{
     compare, render, render_each, Ball, CompareOptions, Compared, Outcome, Picture, RenderOptions,
     NO_MODEL,

@@ -1425,6 +1425,102 @@ fn compare_reads_each_texture_through_its_own_texcoord_set_on_the_mesh() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A triangle at `uvs` (TEXCOORD_0) drawn with a base colour texture whose lower half is red
+/// or, `changed`, blue; without a mesh when `uvs` is None.
+fn half_changed_asset(dir: &Path, name: &str, uvs: Option<[f32; 6]>, changed: bool) {
+    use base64::Engine;
+    let base64 = |bytes: &[u8]| base64::engine::general_purpose::STANDARD.encode(bytes);
+    let texture = image::RgbImage::from_fn(16, 16, |_, y| match (y < 8, changed) {
+        (true, _) => image::Rgb([200, 200, 40]),
+        (false, false) => image::Rgb([200, 30, 30]),
+        (false, true) => image::Rgb([30, 60, 220]),
+    });
+    let mut png = Vec::new();
+    (image::DynamicImage::ImageRgb8(texture))
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    let mut asset = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "images": [{"uri": format!("data:image/png;base64,{}", base64(&png))}],
+        "textures": [{"source": 0}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+            "metallicFactor": 0.0, "roughnessFactor": 0.5}}]
+    });
+    if let Some(uvs) = uvs {
+        let mut data = Vec::new();
+        let position = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+        for v in position.iter().chain(&uvs) {
+            data.extend(v.to_le_bytes());
+        }
+        let more = serde_json::json!({
+            "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+            "accessors": [
+                {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 0.0]},
+                {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}],
+            "bufferViews": [
+                {"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+            "buffers": [{"byteLength": data.len(), "uri": format!("data:application/octet-stream;base64,{}", base64(&data))}]
+        });
+        asset
+            .as_object_mut()
+            .unwrap()
+            .extend(more.as_object().unwrap().clone());
+    }
+    std::fs::write(dir.join(name), asset.to_string()).unwrap();
+}
+
+/// `compare` looks where a viewer can look: on the second asset's mesh. A texture changed only
+/// where no triangle reads it renders the same; changed under the triangles, DIFFERENT; with
+/// no mesh, the whole UV square is compared, and each says which it sampled.
+#[test]
+fn compare_samples_the_grid_where_the_second_assets_mesh_lies() {
+    let folder = tempfile::tempdir().unwrap();
+    let dir = folder.path();
+    let upper = [0.1, 0.05, 0.9, 0.05, 0.5, 0.4];
+    let lower = [0.1, 0.7, 0.9, 0.7, 0.5, 0.95];
+    half_changed_asset(dir, "lower.gltf", Some(lower), false);
+    half_changed_asset(dir, "upper-changed.gltf", Some(upper), true);
+    half_changed_asset(dir, "lower-changed.gltf", Some(lower), true);
+    half_changed_asset(dir, "no-mesh-changed.gltf", None, true);
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let compare = |b: &str| gltfmat(&["compare", &path("lower.gltf"), &path(b)]);
+    // The first asset's mesh lies on the changed half: the second's is the one looked at.
+    let (code, text) = compare("upper-changed.gltf");
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("same: ΔE2000 max 0.0000")
+            && text.contains("texel centres and corners on the mesh's triangles ("),
+        "{text}"
+    );
+    let (code, text) = compare("lower-changed.gltf");
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("DIFFERENT") && text.contains("on the mesh's triangles"),
+        "{text}"
+    );
+    let (code, text) = compare("no-mesh-changed.gltf");
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("DIFFERENT") && text.contains("over the whole UV square (no mesh draws it)"),
+        "{text}"
+    );
+    let (_, json) = gltfmat(&[
+        "compare",
+        &path("lower.gltf"),
+        &path("upper-changed.gltf"),
+        "--format",
+        "json",
+    ]);
+    let json: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let outcome = &json[0];
+    assert_eq!(outcome["area"]["on"], "mesh", "{json}");
+    let texels = outcome["area"]["texels"].as_u64().unwrap();
+    assert!(texels > 0 && texels < 16 * 8, "{texels}");
+    assert!(outcome["offMesh"].as_u64().unwrap() > 16 * 8, "{json}");
+}
+
 /// A 1.0 material drawn by KHR_materials_common's lighting is proved by what can be read of
 /// it, its emission and coverage: its lighting is said not to be evaluated (so `compare`
 /// never calls the pair the same, exit 1), and a faithful upgrade holds under `--verify`.

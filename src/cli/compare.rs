@@ -2,8 +2,8 @@
 
 use crate::common::{Failure, Outcome};
 use gltfmat::heatmap;
-use gltfmat::DIRECTIONS;
 use gltfmat::{compare, CompareOptions};
+use gltfmat::{Area, DIRECTIONS};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -116,8 +116,15 @@ pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
             format!(" ({n} corners, where both are blends of the centres around them, not sampled)")
         }
     };
+    let area = match r.area {
+        Area::Mesh { texels } => {
+            let share = 100.0 * texels as f64 / (f64::from(r.grid) * f64::from(r.grid)).max(1.0);
+            format!(" on the mesh's triangles ({share:.0} % of the UV square)")
+        }
+        Area::Whole(why) => format!(" over the whole UV square ({why})"),
+    };
     let mut line = format!(
-        "{verdict}: ΔE2000 max {:.4}{dominated}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}){on_mesh}, view θ {tv:.2}° φ {pv:.2}°, light θ {tl:.2}° φ {pl:.2}°{over}{behind}; {}² texel centres and corners{blends} × {} directions = {} samples, and a dense search of directions where they differ most",
+        "{verdict}: ΔE2000 max {:.4}{dominated}, p99 {:.4}, mean {:.4}; worst at uv ({:.4}, {:.4}){on_mesh}, view θ {tv:.2}° φ {pv:.2}°, light θ {tl:.2}° φ {pl:.2}°{over}{behind}; {}² texel centres and corners{area}{blends} × {} directions = {} samples, and a dense search of directions where they differ most",
         r.max, r.p99, r.mean, w.uv[0], w.uv[1], r.grid, DIRECTIONS.len(), r.samples
     );
     if let Some(a) = &o.ambiguity {

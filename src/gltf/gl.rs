@@ -29,6 +29,8 @@ pub(crate) const ELEMENT_ARRAY_BUFFER: u64 = 34963;
 pub(crate) const LINEAR: u64 = 9729;
 pub(crate) const NEAREST_MIPMAP_LINEAR: u64 = 9986;
 pub(crate) const REPEAT: u64 = 10497;
+pub(crate) const CLAMP_TO_EDGE: u64 = 33071;
+pub(crate) const MIRRORED_REPEAT: u64 = 33648;
 
 /// glTF 1.0 technique states (`technique.states.enable`).
 pub(crate) const BLEND: u64 = 3042;

@@ -3,6 +3,7 @@
 
 pub(crate) mod accessor;
 pub(crate) mod color;
+pub(crate) mod coverage;
 pub(crate) mod gl;
 pub(crate) mod material;
 pub(crate) mod mesh;

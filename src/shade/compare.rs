@@ -1,5 +1,6 @@
 //! Do two materials render the same? Both are evaluated at points of a UV grid (at least as
-//! fine as their finest texture): every texel centre and every texel corner, where a
+//! fine as their finest texture) where their mesh's triangles lie (the whole UV square when
+//! that cannot be told): every texel centre and every texel corner, where a
 //! bilinear filter mixes four texels and a conversion that is not linear differs most (a
 //! corner where both materials' inputs are the mean of the four centres' is a blend of what
 //! those centres compared, and is not sampled: see `Centres`). At
@@ -25,7 +26,9 @@ use super::delta_e::{ciede2000, lab_from_linear_srgb};
 use super::lanes::{Lanes, Real};
 use super::material::{is_mean_of, Bent, Inputs, Shader};
 use super::sample::{self, MaterialSource, Read};
+use super::surface::Meshes;
 use super::tone::displayed;
+use crate::gltf::coverage::Seen as OnMesh;
 use std::sync::Arc;
 
 mod refine;
@@ -130,8 +133,13 @@ pub struct Comparison {
     /// Texel corners not sampled because every side's inputs there are the mean of its four
     /// centres' (a blend of pairs the centres compared; see the module's documentation).
     pub blended_corners: u64,
+    /// Where on the UV square the grid was sampled.
+    pub area: Area,
+    /// Points of the grid (centres and corners) off the mesh's triangles: not sampled.
+    pub off_mesh: u64,
     /// The largest ΔE over the directions, per texel (row-major; a texel's centre and its
-    /// top-left corner), for heat maps; empty unless [`TexelMap::Kept`]. Shared: the outcomes
+    /// top-left corner; not a number off the mesh), for heat maps; empty unless
+    /// [`TexelMap::Kept`]. Shared: the outcomes
     /// of an asset's many identical pairs hold one map.
     pub per_texel: Arc<[f32]>,
 }
@@ -148,9 +156,25 @@ impl Comparison {
             grid: 0,
             samples: 0,
             blended_corners: 0,
+            area: Area::Whole(""),
+            off_mesh: 0,
             per_texel: Arc::new([]),
         }
     }
+}
+
+/// Where on the UV square a comparison's grid is sampled.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Area {
+    /// Where the mesh's triangles lie: the texels of the grid a bilinear sample on them reads
+    /// (in every texCoord set either material reads), this many.
+    Mesh {
+        /// Texels of the grid seen.
+        texels: u64,
+    },
+    /// The whole square, and why (no mesh draws the material, its texture coordinates
+    /// cannot be read, …).
+    Whole(&'static str),
 }
 
 impl Worst {
@@ -657,6 +681,8 @@ struct Job<'a> {
     grid: u32,
     directions: Directions,
     map: TexelMap,
+    /// The texels on the mesh (None: the whole square).
+    on_mesh: Option<OnMesh>,
 }
 
 struct Partial {
@@ -667,6 +693,7 @@ struct Partial {
     sum: u128,
     count: u64,
     blended: u64,
+    off_mesh: u64,
     worst: Worst,
     histogram: Histogram,
     candidates: refine::Candidates,
@@ -704,34 +731,46 @@ impl Histogram {
 /// direction is already minutes.
 pub(crate) const MAX_GRID: u32 = 4096;
 
-/// Compares `a` with `b` on a `grid`² UV grid (texel centres and corners, at most
-/// [`MAX_GRID`]); `grid` 0 picks the finest texture resolution of either (at least 16).
+/// Compares `a` with `b` over the whole UV square on a `grid`² UV grid (texel centres and
+/// corners, at most [`MAX_GRID`]); `grid` 0 picks the finest texture resolution of either (at
+/// least 16).
+#[cfg(test)]
 pub(crate) fn compare(
     shader: &Shader,
     a: &MaterialSource,
     b: &MaterialSource,
     grid: u32,
 ) -> Comparison {
-    let mut each = compare_readings(shader, std::slice::from_ref(a), b, grid, TexelMap::Kept);
-    each.pop()
-        .unwrap_or_else(|| merge(shader, Vec::new(), 0, &|_| None))
+    let whole = Meshes::default();
+    let mut each = compare_readings(
+        shader,
+        std::slice::from_ref(a),
+        b,
+        grid,
+        TexelMap::Kept,
+        &whole,
+    );
+    each.pop().unwrap_or_else(Comparison::nothing)
 }
 
 /// Compares each of `readings` (one material read several ways: the same textures and
 /// texture coordinates) with `b`, in one pass over the grid: `b` is sampled once per point
-/// for all of them. One comparison per reading, in order; the grid is as in [`compare`].
+/// for all of them, where `meshes`' triangles lie. One comparison per reading, in order; the
+/// grid is `grid`² (0: the finest texture resolution of either side, at least 16; at most
+/// [`MAX_GRID`]).
 pub(crate) fn compare_readings(
     shader: &Shader,
     readings: &[MaterialSource],
     b: &MaterialSource,
     grid: u32,
     map: TexelMap,
+    meshes: &Meshes,
 ) -> Vec<Comparison> {
     if readings.is_empty() {
         return Vec::new();
     }
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u32;
-    compare_on_threads(shader, readings, b, grid, map, threads)
+    compare_on_threads(shader, readings, b, (grid, meshes), map, threads)
 }
 
 /// [`compare_readings`] with the grid's rows shared among `threads`: the figures are the
@@ -740,11 +779,23 @@ fn compare_on_threads(
     shader: &Shader,
     readings: &[MaterialSource],
     b: &MaterialSource,
-    grid: u32,
+    (grid, meshes): (u32, &Meshes),
     map: TexelMap,
     threads: u32,
 ) -> Vec<Comparison> {
     let grid = chosen_grid(readings, b, grid);
+    let mut sets: Vec<usize> = (readings.iter().chain([b]))
+        .flat_map(MaterialSource::texcoord_sets)
+        .collect();
+    sets.sort_unstable();
+    sets.dedup();
+    let (on_mesh, area) = match meshes.seen(&sets, grid) {
+        Ok(seen) => {
+            let texels = seen.count() as u64;
+            (Some(seen), Area::Mesh { texels })
+        }
+        Err(why) => (None, Area::Whole(why)),
+    };
     let job = Job {
         shader,
         readings,
@@ -752,6 +803,7 @@ fn compare_on_threads(
         grid,
         directions: Directions::new(),
         map,
+        on_mesh,
     };
     let rows_per_thread = grid.div_ceil(threads.max(1));
     let by_thread: Vec<Vec<Partial>> = std::thread::scope(|scope| {
@@ -773,7 +825,7 @@ fn compare_on_threads(
             let partials = by_thread.iter().filter_map(|each| each.get(r));
             let reading = &readings[r];
             let at = |uv: [f64; 2]| Some((reading.inputs_at(&[uv]), b.inputs_at(&[uv])));
-            merge(shader, partials, grid, &at)
+            merge(shader, partials, (grid, area.clone()), &at)
         })
         .collect()
 }
@@ -962,6 +1014,11 @@ impl<'j, 'a> Pass<'j, 'a> {
         let mut left_blended = false;
         for x in 0..grid {
             let uv = uv_of(x);
+            if !self.on_mesh(x, y, points) {
+                self.off_mesh(x, points, &mut row_of, place);
+                left_blended = false;
+                continue;
+            }
             if points == Points::Corners
                 && self.corner_unsampled(x, uv, &mut left_blended, &mut row_of, place)
             {
@@ -977,6 +1034,42 @@ impl<'j, 'a> Pass<'j, 'a> {
             .zip(&mut self.partials);
         for ((row, batch), partial) in each {
             row.flush(batch, partial, place, &directions.angles);
+        }
+    }
+
+    /// Whether the point at column `x` of row `y` is on the mesh: a centre whose texel a
+    /// bilinear sample on a triangle reads, a corner whose four texels around it are all read
+    /// (as they are where a triangle holds the corner).
+    #[inline(always)]
+    fn on_mesh(&self, x: u32, y: u32, points: Points) -> bool {
+        let Some(seen) = &self.job.on_mesh else {
+            return true;
+        };
+        let grid = self.job.grid;
+        let (left, up) = ((x + grid - 1) % grid, (y + grid - 1) % grid);
+        match points {
+            Points::Centres => seen.contains(x, y),
+            Points::Corners => [(left, up), (x, up), (left, y), (x, y)]
+                .iter()
+                .all(|&(x, y)| seen.contains(x, y)),
+        }
+    }
+
+    /// Passes over the point at column `x`, off the mesh: a centre keeps its place in the
+    /// row's flags and kept inputs, which no corner on the mesh reads.
+    fn off_mesh(
+        &mut self,
+        x: u32,
+        points: Points,
+        row_of: &mut [Row],
+        place: impl Fn(u32) -> Place + Copy,
+    ) {
+        if points == Points::Centres {
+            self.here.push(false);
+            self.centres.pass_over();
+        }
+        for (row, partial) in row_of.iter_mut().zip(&mut self.partials) {
+            row.add_off_mesh(partial, x, place);
         }
     }
 
@@ -1150,6 +1243,9 @@ struct Centres<'a> {
     started: bool,
 }
 
+/// A centre off the mesh in [`Kept::index`].
+const OFF_MESH: u32 = u32::MAX;
+
 /// One bending side's centres of one row: each one's bent inputs and texture reads (the same
 /// number at every centre, see [`MaterialSource::inputs_with`]), held once for a run of
 /// centres that read alike.
@@ -1183,11 +1279,16 @@ impl Kept {
         }
     }
 
-    /// Centre `x`'s bent inputs and texture reads.
-    fn centre(&self, x: usize) -> (&Bent, &[[f64; 4]]) {
-        let at = self.index[x] as usize;
+    /// The next centre is off the mesh: nothing is kept of it.
+    fn pass_over(&mut self) {
+        self.index.push(OFF_MESH);
+    }
+
+    /// Centre `x`'s bent inputs and texture reads (None off the mesh).
+    fn centre(&self, x: usize) -> Option<(&Bent, &[[f64; 4]])> {
+        let at = *self.index.get(x).filter(|&&at| at != OFF_MESH)? as usize;
         let per_centre = self.reads.len() / self.bent.len().max(1);
-        (&self.bent[at], &self.reads[at * per_centre..][..per_centre])
+        Some((&self.bent[at], &self.reads[at * per_centre..][..per_centre]))
     }
 }
 
@@ -1257,6 +1358,11 @@ impl<'a> Centres<'a> {
         }
     }
 
+    /// This row's next centre is off the mesh.
+    fn pass_over(&mut self) {
+        self.here.iter_mut().for_each(Kept::pass_over);
+    }
+
     /// This row's next centre reads what the one before it read.
     fn repeat_left(&mut self) {
         self.here.iter_mut().for_each(Kept::repeat_last);
@@ -1295,6 +1401,11 @@ impl<'a> Centres<'a> {
                 here.centre(x - 1),
                 here.centre(x),
             ];
+            // A corner on the mesh has its centres on it; were one off, it would be sampled.
+            let [Some(a), Some(b), Some(c), Some(d)] = four else {
+                return false;
+            };
+            let four = [a, b, c, d];
             // A material makes the same reads at every point; were one missing, it would be
             // sampled, never guessed.
             let mut next = 0;
@@ -1331,6 +1442,8 @@ enum Source {
     Known([f64; DIRECTION_COUNT]),
     /// A centre found in the batch's memo by its texels: counted there.
     Memo(u32),
+    /// Off the mesh: not sampled.
+    OffMesh,
 }
 
 /// Points of a grid row waiting for their batch's ΔE: the one at column `x`, and the
@@ -1436,11 +1549,22 @@ impl Row {
     fn repeat(&mut self, x: u32, source: Source) {
         match self.pending.last_mut() {
             Some(last)
-                if last.x + last.repeats + 1 == x && !matches!(last.source, Source::Zero) =>
+                if last.x + last.repeats + 1 == x
+                    && !matches!(last.source, Source::Zero | Source::OffMesh) =>
             {
                 last.repeats += 1
             }
             _ => self.pending.push(Pending::at(x, source)),
+        }
+    }
+
+    /// A point off the mesh, added at once unless points before it wait for their batch;
+    /// the next point cannot take its samples.
+    fn add_off_mesh(&mut self, partial: &mut Partial, x: u32, place: impl Fn(u32) -> Place) {
+        self.forget_last();
+        match self.pending.is_empty() {
+            true => partial.add_off_mesh_point(&place(x)),
+            false => self.pending.push(Pending::at(x, Source::OffMesh)),
         }
     }
 
@@ -1473,7 +1597,7 @@ impl Row {
             [0.0; BATCH]
         };
         let samples = |source: Source, memo: &Memo| match source {
-            Source::Zero => [0.0; DIRECTION_COUNT],
+            Source::Zero | Source::OffMesh => [0.0; DIRECTION_COUNT],
             Source::Slot(k) => std::array::from_fn(|i| deltas[k * DIRECTION_COUNT + i]),
             Source::Known(known) => known,
             Source::Memo(entry) => memo.samples(entry),
@@ -1483,6 +1607,10 @@ impl Row {
             let deltas = match source {
                 Source::Zero => {
                     partial.add_equal_point(&at, angles);
+                    continue;
+                }
+                Source::OffMesh => {
+                    partial.add_off_mesh_point(&at);
                     continue;
                 }
                 Source::Slot(k) => {
@@ -1539,6 +1667,7 @@ impl Partial {
             sum: 0,
             count: 0,
             blended: 0,
+            off_mesh: 0,
             worst: Worst {
                 delta_e: -1.0,
                 sets: Vec::new(),
@@ -1569,6 +1698,13 @@ impl Partial {
             };
         }
         self.note_max(at, 0.0);
+    }
+
+    /// A point off the mesh: not sampled, and marked so in the map of texels (a centre
+    /// adds its texel as not a number; a corner leaves its texel as it was).
+    fn add_off_mesh_point(&mut self, at: &Place) {
+        self.off_mesh += 1;
+        self.note_max(at, f32::NAN);
     }
 
     /// Puts a point's largest sample into the map of texels, if one is kept.
@@ -1650,12 +1786,12 @@ fn largest(deltas: &[f64]) -> (f64, usize) {
 fn merge<'p>(
     shader: &Shader,
     partials: impl IntoIterator<Item = &'p Partial>,
-    grid: u32,
+    (grid, area): (u32, Area),
     at: &dyn Fn([f64; 2]) -> Option<Pair>,
 ) -> Comparison {
     let mut histogram: Vec<u64> = Vec::new();
     let mut per_texel = Vec::new();
-    let (mut sum, mut count, mut blended) = (0u128, 0u64, 0u64);
+    let (mut sum, mut count, mut blended, mut off_mesh) = (0u128, 0u64, 0u64, 0u64);
     // The first worst sample seen (in row order) wins ties, so a comparison with ΔE 0
     // everywhere names a real point.
     let mut worst: Option<Worst> = None;
@@ -1666,6 +1802,7 @@ fn merge<'p>(
         sum += p.sum;
         count += p.count;
         blended += p.blended;
+        off_mesh += p.off_mesh;
         p.histogram.add_to(&mut histogram);
         if worst.as_ref().is_none_or(|w| p.worst.delta_e > w.delta_e) {
             worst = Some(p.worst.clone());
@@ -1707,6 +1844,8 @@ fn merge<'p>(
         grid,
         samples: count,
         blended_corners: blended,
+        area,
+        off_mesh,
         per_texel: per_texel.into(),
     }
 }
@@ -1722,6 +1861,10 @@ mod tests {
     use crate::shade::brdf::SheenVisibility;
     use crate::shade::sheen_table::SheenTable;
     use serde_json::json;
+
+    fn whole() -> Meshes {
+        Meshes::default()
+    }
 
     fn shader() -> Shader {
         Shader::new(SheenTable::compute(4, SheenVisibility::Charlie))
@@ -1913,7 +2056,8 @@ mod tests {
         };
         let (a, b) = (material(0.3), material(0.45));
         let readings = std::slice::from_ref(&a);
-        let c = compare_on_threads(&shader(), readings, &b, 32, TexelMap::Kept, 1).remove(0);
+        let c = compare_on_threads(&shader(), readings, &b, (32, &whole()), TexelMap::Kept, 1)
+            .remove(0);
         let points = 2 * 32 * 32 - c.blended_corners;
         assert_eq!(c.samples, DIRECTION_COUNT as u64 * points);
         assert_eq!(c.per_texel.len(), 32 * 32);
@@ -1972,10 +2116,16 @@ mod tests {
             )
         };
         let (a, b) = (material(0.3), material(0.45));
-        let on = |threads| {
+        let on = |threads, meshes: &Meshes| {
             let readings = std::slice::from_ref(&a);
-            let mut each =
-                compare_on_threads(&shader(), readings, &b, 64, TexelMap::Dropped, threads);
+            let mut each = compare_on_threads(
+                &shader(),
+                readings,
+                &b,
+                (64, meshes),
+                TexelMap::Dropped,
+                threads,
+            );
             let c = each.pop().unwrap();
             (
                 c.max,
@@ -1984,13 +2134,64 @@ mod tests {
                 c.p99,
                 c.mean,
                 c.samples,
+                c.off_mesh,
             )
         };
-        let one = on(1);
-        assert!(one.0 > 1.0, "the roughness change shows: {one:?}");
-        for threads in [2, 3, 5, 8] {
-            assert_eq!(on(threads), one, "{threads} threads");
+        // The whole square, and a mesh on part of it: a triangle, and one across the
+        // texture's edges (its UVs wrap), so that rows start and end off the mesh.
+        let part = Meshes::of_triangles(&[
+            [[0.1, 0.1], [0.6, 0.2], [0.3, 0.7]],
+            [[0.9, 0.8], [1.2, 0.8], [0.9, 1.1]],
+        ]);
+        let mut samples = Vec::new();
+        for meshes in [whole(), part] {
+            let one = on(1, &meshes);
+            assert!(one.0 > 1.0, "the roughness change shows: {one:?}");
+            for threads in [2, 3, 5, 8] {
+                assert_eq!(on(threads, &meshes), one, "{threads} threads");
+            }
+            samples.push((one.5, one.6));
         }
+        assert_eq!(samples[0].1, 0, "nothing is off the whole square");
+        assert!(
+            samples[1].0 < samples[0].0 / 2 && samples[1].1 > 64 * 64,
+            "{samples:?}"
+        );
+    }
+
+    /// Where the mesh lies, the grid is sampled; off it, a difference is not seen (a
+    /// viewer never shows it), and the heat map greys those texels.
+    #[test]
+    fn only_the_grid_on_the_mesh_is_sampled() {
+        // The texture's lower rows differ, its upper rows are alike.
+        let a = base_coloured(runs_png(16, 2, |_| false), 0.5);
+        let b = base_coloured(runs_png(16, 2, |y| y >= 10), 0.5);
+        let compared = |meshes: &Meshes| {
+            let one = std::slice::from_ref(&a);
+            compare_readings(&shader(), one, &b, 16, TexelMap::Kept, meshes).remove(0)
+        };
+        let upper = Meshes::of_triangles(&[[[0.1, 0.05], [0.9, 0.05], [0.5, 0.4]]]);
+        let lower = Meshes::of_triangles(&[[[0.1, 0.75], [0.9, 0.75], [0.5, 0.95]]]);
+        let (on_upper, on_lower, whole) = (compared(&upper), compared(&lower), compared(&whole()));
+        assert_eq!(on_upper.max, 0.0, "{on_upper:?}");
+        assert!(on_lower.max > 1.0 && whole.max >= on_lower.max);
+        assert!(matches!(on_upper.area, Area::Mesh { texels } if texels > 0 && texels < 16 * 8));
+        assert_eq!(whole.area, Area::Whole(crate::shade::surface::NOT_DRAWN));
+        let off = |c: &Comparison| c.per_texel.iter().filter(|t| t.is_nan()).count();
+        assert_eq!(on_upper.per_texel.len(), 16 * 16);
+        assert!(off(&on_upper) > 16 * 8 && off(&whole) == 0);
+        assert!(on_upper.samples < whole.samples / 2);
+        // Off the mesh means what the filter of a point inside a triangle never reads: the
+        // texel rows a bilinear sample between v = 0.05 and 0.4 (0.3 and 5.9 in texel rows)
+        // and between 0.75 and 0.95 (11.5 and 14.7) reads.
+        let sampled_rows = |c: &Comparison| {
+            (c.per_texel.chunks(16).enumerate())
+                .filter(|(_, row)| row.iter().any(|t| !t.is_nan()))
+                .map(|(y, _)| y)
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(sampled_rows(&on_upper), (0..=6).collect::<Vec<_>>());
+        assert_eq!(sampled_rows(&on_lower), (11..=15).collect::<Vec<_>>());
     }
 
     #[test]
@@ -2038,13 +2239,13 @@ mod tests {
         };
         let target = source(0.5);
         let readings = [source(0.52), source(0.5), source(0.8)];
-        let together = compare_readings(&shader(), &readings, &target, 8, TexelMap::Kept);
+        let together = compare_readings(&shader(), &readings, &target, 8, TexelMap::Kept, &whole());
         assert_eq!(together.len(), readings.len());
         for (reading, result) in readings.iter().zip(&together) {
             assert_eq!(result, &compare(&shader(), reading, &target, 8));
         }
         assert_eq!(together[1].max, 0.0);
-        let none = compare_readings(&shader(), &[], &target, 8, TexelMap::Kept);
+        let none = compare_readings(&shader(), &[], &target, 8, TexelMap::Kept, &whole());
         assert!(none.is_empty(), "no reading, no comparison");
         assert!(together[2].max > together[0].max && together[0].max > 0.0);
     }
@@ -2071,6 +2272,7 @@ mod tests {
                 grid: 20,
                 directions: Directions::new(),
                 map: TexelMap::Kept,
+                on_mesh: None,
             };
             // 20 texels per row: two full batches and a partial one.
             let [portable] = &compare_rows_inline(&job, 0..3)[..] else {

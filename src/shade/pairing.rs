@@ -3,7 +3,7 @@
 
 use super::brdf::SheenVisibility;
 pub(crate) use super::compare::TexelMap;
-use super::compare::{self as evaluate, Comparison};
+use super::compare::{self as evaluate, Area, Comparison};
 use super::legacy::{legacy_materials, LegacyMaterialsError};
 use super::load::gltf2_materials;
 use super::material::{Shader, SpecGlossReading};
@@ -11,12 +11,14 @@ use super::render::{contact_sheet, material_ball, Balls, SheetLayout, MAX_PIXELS
 pub(crate) use super::sample::AS_STORED;
 use super::sample::{MaterialSource, LIGHTING_UNREAD};
 use super::sheen_table::SheenTable;
-use super::surface::Surface;
+use super::surface::{Meshes, Surface};
 use crate::document::file::FileId;
 use crate::document::uri::{FolderResources, ResourceLoader};
 use crate::error::Error;
 use crate::legacy::source::NotGltf1;
 use image::RgbImage;
+use std::borrow::Cow;
+use std::collections::HashMap;
 use std::path::Path;
 
 /// A material's name with what the evaluator samples (`None`: a 1.0 material that is not a
@@ -122,6 +124,11 @@ impl Outcome {
             "dominant": result.dominant, "evaluated": self.is_evaluated(),
             "notEvaluated": self.not_evaluated,
             "grid": result.grid, "samples": result.samples, "blendedCorners": result.blended_corners,
+            "area": match result.area {
+                Area::Mesh { texels } => serde_json::json!({"on": "mesh", "texels": texels}),
+                Area::Whole(why) => serde_json::json!({"on": "whole UV square", "why": why}),
+            },
+            "offMesh": result.off_mesh,
             "ambiguity": self.ambiguity.as_ref().map(|a| serde_json::json!({"readAs": a.read_as, "furthest": a.furthest, "max": a.max, "grid": a.grid})),
             "pass": self.same(threshold)})
     }
@@ -162,43 +169,34 @@ pub(crate) fn compare_pairs(
     map: TexelMap,
 ) -> Vec<Outcome> {
     let shader = shader_for(a.iter().chain(b).filter_map(|(_, m)| m.as_ref()));
+    let evaluated: Vec<Evaluated> = (pairs.iter())
+        .filter_map(|&(i, j)| Some(Evaluated::of((i, a.get(i)?), (j, b.get(j)?))))
+        .collect();
     // Materials that evaluate the same way are compared once (an asset's thousand copies of
-    // one material are one comparison).
-    let mut done: std::collections::HashMap<(String, String), PairResult> = Default::default();
+    // one material are one comparison), over the meshes that draw any of them.
+    let meshes_of = |j: usize| surfaces.get(j).map_or(&UNREAD_MESHES, |s| &s.meshes);
+    let mut drawn: HashMap<&(String, String), Vec<&Meshes>> = HashMap::new();
+    for e in &evaluated {
+        if let Some((_, key)) = &e.models {
+            drawn.entry(key).or_default().push(meshes_of(e.b.0));
+        }
+    }
+    let mut done: HashMap<&(String, String), PairResult> = HashMap::new();
     let mut points_left = SURFACE_POINTS;
-    pairs
-        .iter()
-        .filter_map(|&(i, j)| {
-            let ((name_a, ma), (name_b, mb)) = (a.get(i)?, b.get(j)?);
-            let (Some(ma), Some(mb)) = (ma, mb) else {
-                // Said, never skipped: a pair without a model on a side is not evaluated.
-                let sides = [("first", ma.is_none()), ("second", mb.is_none())];
-                return Some(Outcome {
-                    a: (i, name_a.clone()),
-                    b: (j, name_b.clone()),
-                    result: Comparison::nothing(),
-                    ambiguity: None,
-                    not_evaluated: (sides.iter().filter(|(_, none)| *none))
-                        .map(|(side, _)| format!("{side}: {NO_MODEL}"))
-                        .collect(),
-                });
+    (evaluated.iter())
+        .map(|e| {
+            let Some(((ma, mb), key)) = &e.models else {
+                return e.without_model();
             };
-            // A 1.0 material whose lighting is not read is compared by its emission and
-            // coverage, and the other material is seen the same way.
-            let masked;
-            let (ma, mb) = if ma.lighting_unread() || mb.lighting_unread() {
-                masked = (ma.emission_and_coverage(), mb.emission_and_coverage());
-                (&masked.0, &masked.1)
-            } else {
-                (ma, mb)
-            };
-            let key = (ma.fingerprint(), mb.fingerprint());
             let mut compared = (done.entry(key))
-                .or_insert_with(|| compare_as_read(&shader, ma, mb, grid, map))
+                .or_insert_with(|| {
+                    let meshes = Meshes::union(drawn[key].iter().copied());
+                    compare_as_read(&shader, ma, mb, (grid, &meshes), map)
+                })
                 .clone();
             // Only a material that reads a set other than 0 can differ where the sets do.
             let surface = surfaces
-                .get(j)
+                .get(e.b.0)
                 .filter(|_| ma.reads_other_sets() || mb.reads_other_sets());
             let mut unseen = surface.and_then(|s| s.unread.clone());
             if let Some(points) = surface.map(|s| &s.points).filter(|_| unseen.is_none()) {
@@ -218,15 +216,70 @@ pub(crate) fn compare_pairs(
                 .chain(mb.unmodelled().iter().map(|u| format!("second: {u}")))
                 .chain(unseen.map(|why| format!("texCoord sets on the mesh: {why}")))
                 .collect();
-            Some(Outcome {
-                a: (i, name_a.clone()),
-                b: (j, name_b.clone()),
+            Outcome {
+                a: e.a.clone(),
+                b: e.b.clone(),
                 result: compared.result,
                 ambiguity: compared.ambiguity,
                 not_evaluated,
-            })
+            }
         })
         .collect()
+}
+
+/// Where the second asset's meshes were not read (a glTF 1.0 asset's).
+static UNREAD_MESHES: Meshes = Meshes::Unknown("a glTF 1.0 asset's meshes are not read");
+
+/// A pair as it is evaluated: each side's index and name, and, when both have a model, the
+/// two materials as compared and what makes them evaluate alike.
+struct Evaluated<'m> {
+    a: (usize, String),
+    b: (usize, String),
+    models: Option<(Models<'m>, (String, String))>,
+    /// The sides without a model ("first", "second").
+    no_model: Vec<&'static str>,
+}
+
+type Models<'m> = (Cow<'m, MaterialSource>, Cow<'m, MaterialSource>);
+
+impl<'m> Evaluated<'m> {
+    fn of((i, (name_a, ma)): (usize, &'m Named), (j, (name_b, mb)): (usize, &'m Named)) -> Self {
+        let models = match (ma, mb) {
+            // A 1.0 material whose lighting is not read is compared by its emission and
+            // coverage, and the other material is seen the same way.
+            (Some(ma), Some(mb)) if ma.lighting_unread() || mb.lighting_unread() => Some((
+                Cow::Owned(ma.emission_and_coverage()),
+                Cow::Owned(mb.emission_and_coverage()),
+            )),
+            (Some(ma), Some(mb)) => Some((Cow::Borrowed(ma), Cow::Borrowed(mb))),
+            _ => None,
+        };
+        let sides = [("first", ma.is_none()), ("second", mb.is_none())];
+        Evaluated {
+            a: (i, name_a.clone()),
+            b: (j, name_b.clone()),
+            models: models.map(|(ma, mb)| {
+                let key = (ma.fingerprint(), mb.fingerprint());
+                ((ma, mb), key)
+            }),
+            no_model: (sides.iter().filter(|(_, none)| *none))
+                .map(|(side, _)| *side)
+                .collect(),
+        }
+    }
+
+    /// Said, never skipped: a pair without a model on a side is not evaluated.
+    fn without_model(&self) -> Outcome {
+        Outcome {
+            a: self.a.clone(),
+            b: self.b.clone(),
+            result: Comparison::nothing(),
+            ambiguity: None,
+            not_evaluated: (self.no_model.iter())
+                .map(|side| format!("{side}: {NO_MODEL}"))
+                .collect(),
+        }
+    }
 }
 
 /// One pair's comparison and its source's ambiguity.
@@ -242,13 +295,14 @@ fn compare_as_read(
     shader: &Shader,
     source: &MaterialSource,
     target: &MaterialSource,
-    grid: u32,
+    (grid, meshes): (u32, &Meshes),
     map: TexelMap,
 ) -> PairResult {
-    let front = evaluate::compare_readings(shader, std::slice::from_ref(source), target, grid, map)
+    let one = std::slice::from_ref(source);
+    let front = evaluate::compare_readings(shader, one, target, grid, map, meshes)
         .pop()
-        .unwrap_or_else(|| evaluate::compare(shader, source, target, grid));
-    let result = match seen_from_behind(shader, source, target, grid, map) {
+        .unwrap_or_else(Comparison::nothing);
+    let result = match seen_from_behind(shader, source, target, (grid, meshes), map) {
         Some(back) => front_or_back(front, back),
         None => front,
     };
@@ -258,8 +312,14 @@ fn compare_as_read(
     // the verdict: it is sampled no finer than AMBIGUITY_GRID, which bounds its cost to a
     // fraction of the comparison's on large textures.
     let spread_grid = evaluate::chosen_grid(&others, source, grid).min(AMBIGUITY_GRID);
-    let spreads =
-        evaluate::compare_readings(shader, &others, source, spread_grid, TexelMap::Dropped);
+    let spreads = evaluate::compare_readings(
+        shader,
+        &others,
+        source,
+        spread_grid,
+        TexelMap::Dropped,
+        meshes,
+    );
     let ambiguity = (others.iter().zip(spreads))
         .filter_map(|(other, spread)| Some((other.reading_name()?, spread.max)))
         .max_by(|a, b| a.1.total_cmp(&b.1))
@@ -281,7 +341,7 @@ fn seen_from_behind(
     shader: &Shader,
     source: &MaterialSource,
     target: &MaterialSource,
-    grid: u32,
+    (grid, meshes): (u32, &Meshes),
     map: TexelMap,
 ) -> Option<Comparison> {
     let (Some(first), Some(second)) = (source.double_sided(), target.double_sided()) else {
@@ -295,7 +355,15 @@ fn seen_from_behind(
         true => (source, &culled),
         false => (&culled, target),
     };
-    evaluate::compare_readings(shader, std::slice::from_ref(source), target, grid, map).pop()
+    evaluate::compare_readings(
+        shader,
+        std::slice::from_ref(source),
+        target,
+        grid,
+        map,
+        meshes,
+    )
+    .pop()
 }
 
 /// A pair seen from the front and from behind: the figures of the view that differs most,

@@ -1,9 +1,9 @@
 //! Decoding textures for the pixel rules (`--deep`), within fixed limits, and the counting
 //! helper those rules share.
 
-use super::seen::Seen;
 use crate::check::context::Context;
 use crate::document::image_decode::{self, DecodeError};
+use crate::gltf::coverage::Seen;
 use image::DynamicImage;
 
 /// A decoded image.

@@ -413,12 +413,16 @@ pub fn png(image: &RgbImage) -> Vec<u8> {
     bytes.into_inner()
 }
 
-/// A ΔE heat map: black at 0, through blue and yellow, red at `threshold` and above.
+/// A ΔE heat map: black at 0, through blue and yellow, red at `threshold` and above; grey
+/// off the mesh (a texel not a number), where nothing was sampled.
 pub fn heatmap(per_texel: &[f32], grid: u32, threshold: f64) -> RgbImage {
     RgbImage::from_fn(grid, grid, |x, y| {
         let value = per_texel
             .get((y * grid + x) as usize)
             .map_or(0.0, |v| f64::from(*v));
+        if value.is_nan() {
+            return Rgb([96, 96, 96]);
+        }
         let t = (value / threshold.max(1e-9)).clamp(0.0, 1.0);
         let stops = [
             [0.0, 0.0, 0.0],

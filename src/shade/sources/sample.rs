@@ -1329,6 +1329,18 @@ impl MaterialSource {
         }
     }
 
+    /// The texCoord sets its textures are read through, each once, in order (none for a
+    /// material without textures, or a 1.0 one: the PBR drafts bind one set).
+    pub(crate) fn texcoord_sets(&self) -> Vec<usize> {
+        let mut sets: Vec<usize> = match self {
+            MaterialSource::Gltf2(p) => p.bindings().map(|b| b.texcoord as usize).collect(),
+            MaterialSource::Legacy { .. } => Vec::new(),
+        };
+        sets.sort_unstable();
+        sets.dedup();
+        sets
+    }
+
     /// Whether a texture is read through a texCoord set other than 0 (a 1.0 draft's never is).
     pub(crate) fn reads_other_sets(&self) -> bool {
         match self {

@@ -1,23 +1,90 @@
-//! Points on an asset's meshes for the comparison: each point carries its texture coordinates
-//! in every TEXCOORD_n set, so that each slot is read through its own set, as a viewer reads
-//! it. Only points whose sets differ are kept: where every set agrees, the comparison's UV
-//! grid already holds the point.
+//! An asset's meshes as the comparison reads them: the triangles of each material in UV
+//! space, where its UV grid is sampled (a viewer never sees the gutters between UV islands),
+//! and points on them carrying their texture coordinates in every TEXCOORD_n set, so that
+//! each slot is read through its own set, as a viewer reads it. Only points whose sets differ
+//! are kept: where every set agrees, the comparison's UV grid already holds the point.
 
 use super::views::Views;
 use crate::document::Node;
 use crate::gltf::accessor::{component_count, component_size, decode, normalise, Layout};
+use crate::gltf::coverage::{Grid, Painter, Seen};
 use crate::gltf::mesh::{drawn_materials, triangle_count, triangles};
 use crate::gltf::{as_index, unsigned};
+use std::sync::Arc;
 
 /// A point's UV in each texCoord set, set 0 first.
 pub(crate) type Point = Vec<[f64; 2]>;
 
 /// The points of one material, and why some of its primitives gave none (their texture
-/// coordinates could not be read as plain accessors).
+/// coordinates could not be read as plain accessors); and the triangles of the primitives
+/// drawing it.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Surface {
     pub points: Vec<Point>,
     pub unread: Option<String>,
+    pub meshes: Meshes,
+}
+
+/// The primitives drawing a material, as far as the comparison's UV grid needs them: their
+/// triangles in each texCoord set.
+#[derive(Clone, Debug)]
+pub(crate) enum Meshes {
+    /// Why the whole UV square stands for them.
+    Unknown(&'static str),
+    Read(Vec<Arc<Sets>>),
+}
+
+impl Default for Meshes {
+    fn default() -> Self {
+        Meshes::Unknown(NOT_DRAWN)
+    }
+}
+
+/// Why the UV grid is sampled whole.
+pub(crate) const NOT_DRAWN: &str = "no mesh draws it";
+const UNREAD: &str = "its meshes' texture coordinates cannot be read as plain accessors";
+const NO_SUCH_SET: &str = "a texture is read through a texCoord set its mesh does not have";
+const TOO_MANY: &str = "its triangles tile the texture too many times to tell";
+const NO_TRIANGLE: &str = "its meshes have no triangle with finite texture coordinates";
+
+impl Meshes {
+    /// Every mesh of `all`: the whole square when any stands for it.
+    pub(crate) fn union<'m>(all: impl IntoIterator<Item = &'m Meshes>) -> Meshes {
+        let mut union = Vec::new();
+        for meshes in all {
+            match meshes {
+                Meshes::Unknown(why) => return Meshes::Unknown(why),
+                Meshes::Read(read) => union.extend(read.iter().cloned()),
+            }
+        }
+        Meshes::Read(union)
+    }
+
+    /// The texels of a `grid`² grid over the UV square that a bilinear sample inside one of
+    /// the triangles reads through texCoord sets `sets`, the UVs wrapping as REPEAT wraps
+    /// them (the grid's coordinates are the mesh's, before any texture transform). Err: why
+    /// the whole square stands for them.
+    pub(crate) fn seen(&self, sets: &[usize], grid: u32) -> Result<Seen, &'static str> {
+        let primitives = match self {
+            Meshes::Unknown(why) => return Err(why),
+            Meshes::Read(primitives) if primitives.is_empty() => return Err(NOT_DRAWN),
+            Meshes::Read(primitives) => primitives,
+        };
+        let mut painter = Painter::new(Grid::plain(grid as usize));
+        for primitive in primitives {
+            for &set in sets {
+                let uvs = primitive.uvs.get(set).ok_or(NO_SUCH_SET)?;
+                for [a, b, c] in primitive.triangles() {
+                    painter.triangle([uvs[a], uvs[b], uvs[c]]).ok_or(TOO_MANY)?;
+                }
+            }
+        }
+        let seen = painter.seen();
+        match seen.count() {
+            0 => Err(NO_TRIANGLE),
+            _ => Ok(seen),
+        }
+    }
 }
 
 /// Texture coordinate sets read per primitive (the spec's minimum a viewer supports is 2).
@@ -35,9 +102,9 @@ const WEIGHTS: [[f64; 3]; 4] = [
     [0.15, 0.15, 0.7],
 ];
 
-/// For each material of a glTF 2.0 document, points on the triangles of the primitives that
-/// draw it whose texCoord sets differ. Empty for a material no mesh draws, meshes with one set,
-/// or what cannot be read.
+/// For each material of a glTF 2.0 document, the primitives that draw it, and points on their
+/// triangles whose texCoord sets differ (none for a material no mesh draws, meshes with one
+/// set, or what cannot be read).
 pub(super) fn surface_points(root: Node, views: &Views) -> Vec<Surface> {
     let items = |key: &str| root.get(key).and_then(Node::as_array);
     let material_count = items("materials").map_or(0, |a| a.len());
@@ -64,7 +131,7 @@ pub(super) fn surface_points(root: Node, views: &Views) -> Vec<Surface> {
         let mut meshes = Vec::new();
         for primitive in primitives {
             match reader.sets(*primitive, &mut budget) {
-                Some(sets) => meshes.push(sets),
+                Some(sets) => meshes.push(Arc::new(sets)),
                 None => {
                     surfaces[material].unread = Some(format!(
                         "the texture coordinates of {} primitive(s) drawing it cannot be read as plain accessors (compressed, sparse, invalid or past the read budget)",
@@ -74,10 +141,14 @@ pub(super) fn surface_points(root: Node, views: &Views) -> Vec<Surface> {
                 }
             }
         }
+        surfaces[material].meshes = match surfaces[material].unread {
+            Some(_) => Meshes::Unknown(UNREAD),
+            None => Meshes::Read(meshes.clone()),
+        };
         if surfaces[material].unread.is_some() || !meshes.iter().any(|s| s.uvs.len() > 1) {
             continue;
         }
-        let total: usize = meshes.iter().map(Sets::triangle_count).sum();
+        let total: usize = meshes.iter().map(|sets| sets.triangle_count()).sum();
         let step = total.div_ceil(TRIANGLES_PER_MATERIAL).max(1);
         for mesh in &meshes {
             for [a, b, c] in mesh.triangles().step_by(step) {
@@ -100,8 +171,23 @@ pub(super) fn surface_points(root: Node, views: &Views) -> Vec<Surface> {
     surfaces
 }
 
+#[cfg(test)]
+impl Meshes {
+    /// One primitive of `triangles`, in texCoord set 0.
+    pub(crate) fn of_triangles(triangles: &[[[f64; 2]; 3]]) -> Meshes {
+        let uvs = triangles.iter().flatten().copied().collect();
+        let sets = Sets {
+            uvs: vec![uvs],
+            indices: None,
+            mode: 4,
+        };
+        Meshes::Read(vec![Arc::new(sets)])
+    }
+}
+
 /// A primitive's texture coordinate sets and how its vertices make triangles.
-struct Sets {
+#[derive(Debug)]
+pub(crate) struct Sets {
     uvs: Vec<Vec<[f64; 2]>>,
     indices: Option<Vec<usize>>,
     mode: u64,
