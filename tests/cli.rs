@@ -1506,6 +1506,39 @@ fn compare_samples_the_grid_where_the_second_assets_mesh_lies() {
         text.contains("DIFFERENT") && text.contains("over the whole UV square (no mesh draws it)"),
         "{text}"
     );
+    // A mesh without texture coordinates places nothing; a material without textures has
+    // nothing to place.
+    let edit = |from: &str, to: &str, change: &dyn Fn(&mut serde_json::Value)| {
+        let mut asset: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join(from)).unwrap()).unwrap();
+        change(&mut asset);
+        std::fs::write(dir.join(to), asset.to_string()).unwrap();
+    };
+    edit("lower-changed.gltf", "no-uvs.gltf", &|asset| {
+        let attributes = &mut asset["meshes"][0]["primitives"][0]["attributes"];
+        attributes.as_object_mut().unwrap().remove("TEXCOORD_0");
+    });
+    let (_, text) = compare("no-uvs.gltf");
+    assert!(
+        text.contains("over the whole UV square (a texture is read through a texCoord set its mesh does not have)"),
+        "{text}"
+    );
+    edit("no-uvs.gltf", "untextured.gltf", &|asset| {
+        asset["materials"][0]["pbrMetallicRoughness"]
+            .as_object_mut()
+            .unwrap()
+            .remove("baseColorTexture");
+    });
+    let (code, text) = gltfmat(&[
+        "compare",
+        &path("untextured.gltf"),
+        &path("untextured.gltf"),
+    ]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("over the whole UV square (neither material reads a texture)"),
+        "{text}"
+    );
     let (_, json) = gltfmat(&[
         "compare",
         &path("lower.gltf"),

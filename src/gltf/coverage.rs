@@ -27,8 +27,13 @@ impl Seen {
 }
 
 /// Texel writes per texel of the image at most (triangles that tile the texture many times
-/// cost a row each); past it the painter gives up, and every texel counts as seen.
+/// cost a row each), beyond [`WRITES_PER_TRIANGLE`] each triangle brings; past it the painter
+/// gives up, and every texel counts as seen.
 const MAX_WRITES_PER_TEXEL: usize = 16;
+/// Writes each triangle may make without drawing on the texels' allowance: a dense mesh on a
+/// small texture (thousands of triangles a few texels wide) is painted, not given up on. The
+/// triangles themselves are bounded by what their readers read.
+const WRITES_PER_TRIANGLE: usize = 16;
 
 /// Where UVs land on an image: its size in texels, the texture transform (a 2×3 matrix, row
 /// by row) and the sampler's `wrapS`, `wrapT`.
@@ -127,6 +132,7 @@ impl Painter {
     /// when the triangles would cost more than [`MAX_WRITES_PER_TEXEL`] writes a texel, or
     /// one spans the texture more than a few times: then every texel counts as seen.
     pub(crate) fn triangle(&mut self, uvs: [[f64; 2]; 3]) -> Option<()> {
+        self.writes_left = self.writes_left.saturating_add(WRITES_PER_TRIANGLE);
         let corners = uvs.map(|uv| self.grid.texel_space(uv));
         self.paint(corners)
     }
@@ -163,20 +169,22 @@ impl Painter {
 
 /// The x extent of a triangle between two horizontal lines, if it reaches between them.
 fn extent(corners: [[f64; 2]; 3], y0: f64, y1: f64) -> Option<(f64, f64)> {
-    let mut xs = Vec::with_capacity(9);
+    let (mut left, mut right) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut include = |x: f64| {
+        left = left.min(x);
+        right = right.max(x);
+    };
     for (i, &[x, y]) in corners.iter().enumerate() {
         if (y0..=y1).contains(&y) {
-            xs.push(x);
+            include(x);
         }
         let [x2, y2] = corners[(i + 1) % 3];
         for line in [y0, y1] {
             if (y - line) * (y2 - line) < 0.0 {
-                xs.push(x + (x2 - x) * (line - y) / (y2 - y));
+                include(x + (x2 - x) * (line - y) / (y2 - y));
             }
         }
     }
-    let left = xs.iter().copied().fold(f64::INFINITY, f64::min);
-    let right = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     (left <= right).then_some((left, right))
 }
 
@@ -229,6 +237,20 @@ mod tests {
         assert!(column(&mirror, 15) && !column(&mirror, 8));
         let clamp = painted(grid(16, CLAMP_TO_EDGE), &strip).unwrap();
         assert!(column(&clamp, 15) && !column(&clamp, 0) && !column(&clamp, 8));
+    }
+
+    #[test]
+    fn a_dense_mesh_on_a_small_texture_is_painted() {
+        // 20,000 triangles of a tenth of a texel each, in one texel's corner of a 4² image:
+        // more writes than the texels' allowance, each triangle's own few.
+        let triangles: Vec<_> = (0..20_000)
+            .map(|i| {
+                let u = 0.05 + f64::from(i % 100) * 1e-4;
+                [[u, 0.05], [u + 0.02, 0.05], [u, 0.07]]
+            })
+            .collect();
+        let mask = painted(grid(4, CLAMP_TO_EDGE), &triangles).expect("painted");
+        assert!(mask[0] && !mask[15], "{mask:?}");
     }
 
     #[test]

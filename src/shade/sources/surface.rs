@@ -42,6 +42,7 @@ impl Default for Meshes {
 
 /// Why the UV grid is sampled whole.
 pub(crate) const NOT_DRAWN: &str = "no mesh draws it";
+const NO_TEXTURE: &str = "neither material reads a texture";
 const UNREAD: &str = "its meshes' texture coordinates cannot be read as plain accessors";
 const NO_SUCH_SET: &str = "a texture is read through a texCoord set its mesh does not have";
 const TOO_MANY: &str = "its triangles tile the texture too many times to tell";
@@ -70,6 +71,9 @@ impl Meshes {
             Meshes::Read(primitives) if primitives.is_empty() => return Err(NOT_DRAWN),
             Meshes::Read(primitives) => primitives,
         };
+        if sets.is_empty() {
+            return Err(NO_TEXTURE);
+        }
         let mut painter = Painter::new(Grid::plain(grid as usize));
         for primitive in primitives {
             for &set in sets {
@@ -194,8 +198,12 @@ pub(crate) struct Sets {
 }
 
 impl Sets {
+    /// Vertices drawn (none without texture coordinates: there is nothing to place).
     fn vertex_count(&self) -> usize {
-        self.indices.as_ref().map_or(self.uvs[0].len(), Vec::len)
+        match self.uvs.first() {
+            None => 0,
+            Some(set) => self.indices.as_ref().map_or(set.len(), Vec::len),
+        }
     }
 
     fn triangle_count(&self) -> usize {
@@ -214,8 +222,8 @@ struct Reader<'d, 't> {
 }
 
 impl Reader<'_, '_> {
-    /// The primitive's sets TEXCOORD_0, TEXCOORD_1 … (as many as it has, up to [`SETS`]),
-    /// or None when one cannot be read.
+    /// The primitive's sets TEXCOORD_0, TEXCOORD_1 … (as many as it has, up to [`SETS`]; none
+    /// for a primitive without texture coordinates), or None when one cannot be read.
     fn sets(&self, primitive: Node, budget: &mut usize) -> Option<Sets> {
         let attributes = primitive.get("attributes")?;
         let mut uvs = Vec::new();
@@ -231,7 +239,15 @@ impl Reader<'_, '_> {
                     .collect::<Vec<_>>(),
             );
         }
-        let vertices = uvs.first()?.len();
+        let mode = unsigned(primitive, "mode").unwrap_or(4);
+        let Some(vertices) = uvs.first().map(Vec::len) else {
+            // Nothing to place on the UV square: no triangle is read.
+            return Some(Sets {
+                uvs,
+                indices: None,
+                mode,
+            });
+        };
         if uvs.iter().any(|set| set.len() != vertices) {
             return None;
         }
@@ -243,7 +259,6 @@ impl Reader<'_, '_> {
                 Some(values.into_iter().map(fits).collect::<Option<Vec<_>>>()?)
             }
         };
-        let mode = unsigned(primitive, "mode").unwrap_or(4);
         Some(Sets { uvs, indices, mode })
     }
 
