@@ -119,7 +119,12 @@ pub fn figures(o: &gltfmat::Outcome, threshold: f64) -> String {
     let area = match r.area {
         Area::Mesh { texels } => {
             let share = 100.0 * texels as f64 / (f64::from(r.grid) * f64::from(r.grid)).max(1.0);
-            format!(" on the mesh's triangles ({share:.0} % of the UV square)")
+            // A mesh on a few texels of a large texture is not "0 %".
+            let share = match share < 1.0 {
+                true => format!("{share:.2}"),
+                false => format!("{share:.0}"),
+            };
+            format!(" on the mesh ({share} % of the UV square)")
         }
         Area::Whole(why) => format!(" over the whole UV square ({why})"),
     };

@@ -45,7 +45,7 @@ pub(crate) const NOT_DRAWN: &str = "no mesh draws it";
 const NO_TEXTURE: &str = "neither material reads a texture";
 const UNREAD: &str = "its meshes' texture coordinates cannot be read as plain accessors";
 const NO_SUCH_SET: &str = "a texture is read through a texCoord set its mesh does not have";
-const TOO_MANY: &str = "its triangles tile the texture too many times to tell";
+const TOO_MANY: &str = "its triangles cover the texture too many times over to tell";
 const NO_TRIANGLE: &str = "its meshes have no triangle with finite texture coordinates";
 
 impl Meshes {
