@@ -2135,3 +2135,71 @@ fn an_image_in_a_buffer_that_cannot_be_read_names_the_buffer_and_why() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The textured Fraunhofer box with its 24 texture coordinates replaced by `uvs` (a data-URI
+/// buffer of its own) and its diffuse image by `diffuse`, in `dir`.
+fn box_1_0_with(dir: &Path, name: &str, uvs: [f32; 2], diffuse: &image::RgbImage) {
+    use base64::Engine;
+    let mut asset: Value = serde_json::from_slice(
+        &std::fs::read(repo("fixtures/gltf1/pbr-mr-textured-fraunhofer.gltf")).unwrap(),
+    )
+    .unwrap();
+    // Every vertex in a small square at `uvs`, 0.15 a side: the three texture corners
+    // around it never read.
+    let corners = [[0.0, 0.0], [0.15, 0.0], [0.15, 0.15], [0.0, 0.15]];
+    let data: Vec<u8> = (0..24)
+        .flat_map(|i| {
+            let [du, dv] = corners[i % 4];
+            [uvs[0] + du, uvs[1] + dv]
+        })
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&data)
+    );
+    asset["buffers"]["uvs"] = serde_json::json!({"byteLength": data.len(), "uri": uri});
+    asset["bufferViews"]["uvs"] =
+        serde_json::json!({"buffer": "uvs", "byteOffset": 0, "byteLength": data.len()});
+    asset["accessors"]["accessor_27"] = serde_json::json!({"bufferView": "uvs", "byteOffset": 0,
+        "componentType": 5126, "count": 24, "type": "VEC2"});
+    for file in ["box.bin", "metal_rough.png"] {
+        std::fs::copy(repo(&format!("fixtures/gltf1/{file}")), dir.join(file)).unwrap();
+    }
+    let image = format!("{name}.png");
+    diffuse.save(dir.join(&image)).unwrap();
+    asset["images"]["diffuse"]["uri"] = serde_json::json!(image);
+    std::fs::write(dir.join(name), asset.to_string()).unwrap();
+}
+
+/// A glTF 1.0 asset's meshes are read as a 2.0 asset's: the comparison samples the texels its
+/// triangles read, through TEXCOORD_0.
+#[test]
+fn a_1_0_asset_is_compared_where_its_mesh_lies() {
+    let folder = tempfile::tempdir().unwrap();
+    let dir = folder.path();
+    let plain = image::RgbImage::from_pixel(16, 16, image::Rgb([200, 150, 90]));
+    // The same image, but for the texture's lower right quarter.
+    let changed = image::RgbImage::from_fn(16, 16, |x, y| match x >= 8 && y >= 8 {
+        true => image::Rgb([30, 60, 220]),
+        false => image::Rgb([200, 150, 90]),
+    });
+    box_1_0_with(dir, "source.gltf", [0.1, 0.1], &plain);
+    box_1_0_with(dir, "off.gltf", [0.1, 0.1], &changed);
+    box_1_0_with(dir, "on.gltf", [0.7, 0.7], &changed);
+    let compared = |b: &str| {
+        let options = gltfmat::CompareOptions::default();
+        let mut outcomes = gltfmat::compare(dir.join("source.gltf"), dir.join(b), &options)
+            .unwrap()
+            .outcomes;
+        outcomes.remove(0).result
+    };
+    let off = compared("off.gltf");
+    assert_eq!(off.max, 0.0, "{off:?}");
+    assert!(
+        matches!(off.area, gltfmat::Area::Mesh { texels } if texels < 16 * 16 / 4),
+        "{:?}",
+        off.area
+    );
+    assert!(compared("on.gltf").max > 1.0);
+}

@@ -111,13 +111,22 @@ const MATERIAL_MEMBERS: &[&str] = &[
     "shaders",
 ];
 
-/// [`read`] for reading materials only: the root members their reading needs, not the
-/// geometry, nodes and animations (10^5 meshes cost a proof nothing).
+/// What the meshes add to [`MATERIAL_MEMBERS`], for the texels they read.
+const MESH_MEMBERS: &[&str] = &["meshes", "accessors"];
+
+/// [`read`] for reading materials only: the root members their reading needs (with `meshes`,
+/// the meshes and accessors too), not the nodes and animations (10^5 of them cost a proof
+/// nothing).
 pub(crate) fn read_for_materials<'a>(
     bytes: Cow<'_, [u8]>,
     loader: &'a dyn ResourceLoader,
+    meshes: bool,
 ) -> Result<Source<'a>, NotGltf1> {
-    read_members(bytes, loader, Some(MATERIAL_MEMBERS))
+    let mut keep = MATERIAL_MEMBERS.to_vec();
+    if meshes {
+        keep.extend(MESH_MEMBERS);
+    }
+    read_members(bytes, loader, Some(&keep))
 }
 
 fn read_members<'a>(

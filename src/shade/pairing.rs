@@ -37,8 +37,8 @@ pub(crate) fn load_materials(
     finest: u32,
     surfaces: bool,
 ) -> Result<(Vec<Named>, Vec<Surface>), String> {
-    match legacy_materials(&bytes, loader, finest) {
-        Ok(materials) => Ok((materials, Vec::new())),
+    match legacy_materials(&bytes, loader, finest, surfaces) {
+        Ok(materials) => Ok(materials),
         // A GLB v1 is read as 1.0 or not at all; other bytes the 2.0 reader reads again, to
         // say why as a `.gltf` or `.glb` of that name.
         Err(LegacyMaterialsError::NotGltf1(NotGltf1::BrokenGlb(why))) => {
@@ -227,8 +227,8 @@ pub(crate) fn compare_pairs(
         .collect()
 }
 
-/// Where the second asset's meshes were not read (a glTF 1.0 asset's).
-static UNREAD_MESHES: Meshes = Meshes::Unknown("a glTF 1.0 asset's meshes are not read");
+/// Where the second asset's meshes were not read.
+static UNREAD_MESHES: Meshes = Meshes::Unknown("the asset's meshes were not read");
 
 /// A pair as it is evaluated: each side's index and name, and, when both have a model, the
 /// two materials as compared and what makes them evaluate alike.

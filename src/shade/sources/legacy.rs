@@ -1,6 +1,7 @@
 //! A glTF 1.0 asset's PBR-draft materials, sampled by their own model.
 
 use super::sample::{self, LitLegacy, MaterialSource, Texture};
+use super::surface::{surface_points, MeshData, Surface};
 use crate::document::tree::Node;
 use crate::document::uri::ResourceLoader;
 use crate::gltf::color::srgb_to_linear;
@@ -25,20 +26,61 @@ pub(crate) enum LegacyMaterialsError {
 /// The PBR-draft materials of a glTF 1.0 asset as the shading evaluator samples them (their
 /// own model), in material order, with their ids; `None` for materials without a PBR block.
 /// Textures no finer than `finest` (see [`sample::decode_each_at_most`]).
+/// With `surfaces`, also each material's meshes (see [`surface_points`]).
 pub(crate) fn legacy_materials(
     bytes: &[u8],
     loader: &dyn ResourceLoader,
     finest: u32,
-) -> Result<Vec<Named>, LegacyMaterialsError> {
-    let source = source::read_for_materials(bytes.into(), loader)?;
+    surfaces: bool,
+) -> Result<(Vec<Named>, Vec<Surface>), LegacyMaterialsError> {
+    let source = source::read_for_materials(bytes.into(), loader, surfaces)?;
     let parsed: Vec<Parsed> = (source.dictionary("materials").into_iter())
         .map(|(id, material)| Parsed::read(&source, id, material))
         .collect();
     let textures = DecodedTextures::of(&source, &parsed, finest)?;
-    Ok(parsed
-        .into_iter()
+    let meshes = match surfaces {
+        true => surface_points(&Gltf1Meshes { source: &source }),
+        false => Vec::new(),
+    };
+    let materials = (parsed.into_iter())
         .map(|parsed| (parsed.id.to_string(), textures.sampled(parsed)))
-        .collect())
+        .collect();
+    Ok((materials, meshes))
+}
+
+/// A glTF 1.0 asset's meshes: its materials in document order, its accessors and views by id.
+struct Gltf1Meshes<'s, 'a> {
+    source: &'s source::Source<'a>,
+}
+
+impl<'s> MeshData<'s> for Gltf1Meshes<'s, '_> {
+    fn drawing(&self) -> Vec<Vec<Node<'s>>> {
+        let materials: HashMap<&str, usize> = (self.source.dictionary("materials").iter())
+            .enumerate()
+            .map(|(i, (id, _))| (*id, i))
+            .collect();
+        let mut drawn = vec![Vec::new(); materials.len()];
+        let primitives = (self.source.dictionary("meshes").into_iter())
+            .filter_map(|(_, mesh)| mesh.get("primitives")?.as_array())
+            .flat_map(|primitives| primitives.iter());
+        for primitive in primitives {
+            let material = primitive.get("material").and_then(Node::as_str);
+            if let Some(&i) = material.and_then(|id| materials.get(id)) {
+                drawn[i].push(primitive);
+            }
+        }
+        drawn
+    }
+
+    fn accessor(&self, reference: Node<'s>) -> Option<Node<'s>> {
+        self.source.object("accessors", reference.as_str()?)
+    }
+
+    fn bytes(&self, accessor: Node<'s>) -> Option<(&[u8], Option<usize>)> {
+        let view = accessor.get("bufferView")?.as_str()?;
+        let stride = accessor.get("byteStride").and_then(Node::as_u64);
+        Some((self.source.view(view).ok()?, stride.map(|s| s as usize)))
+    }
 }
 
 /// The textures a 1.0 asset's materials use, each decoded once and on its own: a PBR

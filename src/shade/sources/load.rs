@@ -114,7 +114,7 @@ pub(crate) fn gltf2_materials(
     });
     let prepared = prepare_materials(nodes("materials"), &textures, &samplers, &unreadable);
     let points = if surfaces {
-        surface::surface_points(root, &views)
+        surface::surface_points(&surface::Gltf2Meshes::of(root, &views))
     } else {
         Vec::new()
     };

@@ -1330,11 +1330,11 @@ impl MaterialSource {
     }
 
     /// The texCoord sets its textures are read through, each once, in order (none for a
-    /// material without textures, or a 1.0 one: the PBR drafts bind one set).
+    /// material without textures; set 0 for a 1.0 one: the PBR drafts bind one set).
     pub(crate) fn texcoord_sets(&self) -> Vec<usize> {
         let mut sets: Vec<usize> = match self {
             MaterialSource::Gltf2(p) => p.bindings().map(|b| b.texcoord as usize).collect(),
-            MaterialSource::Legacy { .. } => Vec::new(),
+            MaterialSource::Legacy { .. } => vec![0],
         };
         sets.sort_unstable();
         sets.dedup();

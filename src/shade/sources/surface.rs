@@ -106,31 +106,74 @@ const WEIGHTS: [[f64; 3]; 4] = [
     [0.15, 0.15, 0.7],
 ];
 
-/// For each material of a glTF 2.0 document, the primitives that draw it, and points on their
-/// triangles whose texCoord sets differ (none for a material no mesh draws, meshes with one
-/// set, or what cannot be read).
-pub(super) fn surface_points(root: Node, views: &Views) -> Vec<Surface> {
-    let items = |key: &str| root.get(key).and_then(Node::as_array);
-    let material_count = items("materials").map_or(0, |a| a.len());
-    let mut surfaces = vec![Surface::default(); material_count];
-    let reader = Reader {
-        accessors: items("accessors")
+/// Where a document's mesh data lies: glTF 2.0's arrays, or glTF 1.0's dictionaries.
+pub(super) trait MeshData<'t> {
+    /// For each material, in material order, the primitives that draw it.
+    fn drawing(&self) -> Vec<Vec<Node<'t>>>;
+    /// The accessor a primitive's attribute or `indices` names.
+    fn accessor(&self, reference: Node<'t>) -> Option<Node<'t>>;
+    /// The bytes an accessor's buffer view holds, and the stride its elements lie at when
+    /// one is given.
+    fn bytes(&self, accessor: Node<'t>) -> Option<(&[u8], Option<usize>)>;
+}
+
+/// A glTF 2.0 document's meshes.
+pub(super) struct Gltf2Meshes<'t, 'd> {
+    root: Node<'t>,
+    accessors: Vec<Node<'t>>,
+    views: &'d Views<'d>,
+}
+
+impl<'t, 'd> Gltf2Meshes<'t, 'd> {
+    pub(super) fn of(root: Node<'t>, views: &'d Views<'d>) -> Self {
+        let accessors = (root.get("accessors").and_then(Node::as_array))
             .map(|a| a.iter().collect())
-            .unwrap_or_default(),
-        views,
-    };
-    let mut budget = MAX_ELEMENTS;
-    let primitives = (items("meshes").into_iter().flat_map(|a| a.iter()))
-        .filter_map(|mesh| mesh.get("primitives")?.as_array())
-        .flat_map(|primitives| primitives.iter());
-    let mut drawn: Vec<Vec<Node>> = vec![Vec::new(); material_count];
-    for primitive in primitives {
-        for material in drawn_materials(primitive) {
-            if let Some(list) = drawn.get_mut(material as usize) {
-                list.push(primitive);
-            }
+            .unwrap_or_default();
+        Gltf2Meshes {
+            root,
+            accessors,
+            views,
         }
     }
+}
+
+impl<'t> MeshData<'t> for Gltf2Meshes<'t, '_> {
+    fn drawing(&self) -> Vec<Vec<Node<'t>>> {
+        let items = |key: &str| self.root.get(key).and_then(Node::as_array);
+        let material_count = items("materials").map_or(0, |a| a.len());
+        let primitives = (items("meshes").into_iter().flat_map(|a| a.iter()))
+            .filter_map(|mesh| mesh.get("primitives")?.as_array())
+            .flat_map(|primitives| primitives.iter());
+        let mut drawn: Vec<Vec<Node>> = vec![Vec::new(); material_count];
+        for primitive in primitives {
+            for material in drawn_materials(primitive) {
+                if let Some(list) = drawn.get_mut(material as usize) {
+                    list.push(primitive);
+                }
+            }
+        }
+        drawn
+    }
+
+    fn accessor(&self, reference: Node<'t>) -> Option<Node<'t>> {
+        let index = usize::try_from(as_index(reference)?).ok()?;
+        self.accessors.get(index).copied()
+    }
+
+    fn bytes(&self, accessor: Node<'t>) -> Option<(&[u8], Option<usize>)> {
+        let view = unsigned(accessor, "bufferView")?;
+        Some((self.views.bytes(view)?, self.views.stride(view)))
+    }
+}
+
+/// For each material of a document, the primitives that draw it, and points on their
+/// triangles whose texCoord sets differ (none for a material no mesh draws, meshes with one
+/// set, or what cannot be read).
+pub(super) fn surface_points<'t>(data: &impl MeshData<'t>) -> Vec<Surface> {
+    let drawn = data.drawing();
+    let mut surfaces = vec![Surface::default(); drawn.len()];
+    let reader = Reader { data };
+    let mut budget = MAX_ELEMENTS;
     for (material, primitives) in drawn.iter().enumerate() {
         let mut meshes = Vec::new();
         for primitive in primitives {
@@ -216,15 +259,14 @@ impl Sets {
     }
 }
 
-struct Reader<'d, 't> {
-    accessors: Vec<Node<'t>>,
-    views: &'d Views<'d>,
+struct Reader<'r, D> {
+    data: &'r D,
 }
 
-impl Reader<'_, '_> {
+impl<'t, D: MeshData<'t>> Reader<'_, D> {
     /// The primitive's sets TEXCOORD_0, TEXCOORD_1 … (as many as it has, up to [`SETS`]; none
     /// for a primitive without texture coordinates), or None when one cannot be read.
-    fn sets(&self, primitive: Node, budget: &mut usize) -> Option<Sets> {
+    fn sets(&self, primitive: Node<'t>, budget: &mut usize) -> Option<Sets> {
         let attributes = primitive.get("attributes")?;
         let mut uvs = Vec::new();
         for set in 0..SETS {
@@ -263,29 +305,28 @@ impl Reader<'_, '_> {
     }
 
     /// Every component of a plain (not sparse) accessor, normalised as a shader reads it.
-    fn read(&self, index: Node, budget: &mut usize) -> Option<Vec<f64>> {
-        let accessor = *self
-            .accessors
-            .get(usize::try_from(as_index(index)?).ok()?)?;
+    fn read(&self, reference: Node<'t>, budget: &mut usize) -> Option<Vec<f64>> {
+        let accessor = self.data.accessor(reference)?;
         if accessor.get("sparse").is_some() {
             return None;
         }
-        let view = unsigned(accessor, "bufferView")?;
         let component_type = unsigned(accessor, "componentType")?;
         let size = component_size(component_type)?;
         let components = component_count(accessor.get("type")?.as_str()?)?;
         let count = usize::try_from(unsigned(accessor, "count")?).ok()?;
         *budget = budget.checked_sub(count.checked_mul(components)?)?;
+        let (bytes, stride) = self.data.bytes(accessor)?;
         let layout = Layout {
             component_type,
             size,
             components,
-            stride: self.views.stride(view).unwrap_or(size * components),
+            // 0: packed, as glTF 1.0 writes it.
+            stride: stride.filter(|&s| s > 0).unwrap_or(size * components),
             offset: usize::try_from(unsigned(accessor, "byteOffset").unwrap_or(0)).ok()?,
             count,
         };
         let mut values = vec![0.0; count * components];
-        if !decode(&layout, self.views.bytes(view)?, 0, &mut values) {
+        if !decode(&layout, bytes, 0, &mut values) {
             return None;
         }
         let normalized = accessor.get("normalized").and_then(Node::as_bool) == Some(true);
