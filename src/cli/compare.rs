@@ -26,8 +26,8 @@ pub struct CompareArgs {
     /// `human` for people, `json` for scripts.
     #[arg(long, value_enum, default_value = "human")]
     format: CompareFormat,
-    /// Write a ΔE heat map per pair (black 0 → red at the threshold); `-N` is added before
-    /// the extension when several pairs are compared.
+    /// Write a ΔE heat map per pair (black 0 → red at the threshold, grey off the mesh); `-N`
+    /// is added before the extension when several pairs are compared.
     #[arg(long)]
     heatmap: Option<PathBuf>,
     /// How the first asset's glTF 1.0 spec-gloss draft materials are read; the other

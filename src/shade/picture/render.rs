@@ -441,6 +441,19 @@ pub fn heatmap(per_texel: &[f32], grid: u32, threshold: f64) -> RgbImage {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_heat_map_runs_from_black_to_red_and_greys_what_was_not_sampled() {
+        let map = heatmap(&[0.0, 1.0, 5.0, f32::NAN], 2, 1.0);
+        assert_eq!(map.get_pixel(0, 0).0, [0, 0, 0]);
+        assert_eq!(
+            map.get_pixel(1, 0),
+            map.get_pixel(0, 1),
+            "red from the threshold on"
+        );
+        assert_eq!(map.get_pixel(1, 0).0, [230, 13, 13]);
+        assert_eq!(map.get_pixel(1, 1).0, [96, 96, 96]);
+    }
     use crate::shade::brdf::SheenVisibility;
     use crate::shade::sheen_table::SheenTable;
 
