@@ -1860,3 +1860,48 @@ fn an_assets_text_never_reaches_the_terminal_as_control_characters() {
         );
     }
 }
+
+/// Meshes that share their vertex data (one accessor of 2^20 texture coordinates, drawn by
+/// three meshes) are read once: three reads would pass the run's read budget and leave the
+/// material's mesh unread, compared over the whole UV square.
+#[test]
+fn meshes_sharing_their_vertex_data_are_read_once() {
+    let folder = tempfile::tempdir().unwrap();
+    let dir = folder.path();
+    let count = 1usize << 20;
+    // Tiny triangles in the square's first tenth.
+    let uvs: Vec<u8> = (0..count)
+        .flat_map(|i| {
+            let corner = (i % 3) as f32 * 1e-4;
+            let cell = (i / 3 % 1000) as f32 * 1e-4;
+            [0.01 + cell + corner, 0.01 + corner]
+        })
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    std::fs::write(dir.join("uvs.bin"), &uvs).unwrap();
+    let primitive =
+        serde_json::json!({"primitives": [{"attributes": {"TEXCOORD_0": 0}, "material": 0}]});
+    let png = dir.join("texture.png");
+    image::RgbImage::from_pixel(64, 64, image::Rgb([90, 120, 200]))
+        .save(&png)
+        .unwrap();
+    let asset = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "meshes": [primitive, primitive, primitive],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": count, "type": "VEC2"}],
+        "bufferViews": [{"buffer": 0, "byteLength": uvs.len()}],
+        "buffers": [{"byteLength": uvs.len(), "uri": "uvs.bin"}],
+        "images": [{"uri": "texture.png"}],
+        "textures": [{"source": 0}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    });
+    let path = dir.join("shared.gltf");
+    std::fs::write(&path, asset.to_string()).unwrap();
+    let path = path.to_str().unwrap();
+    let (code, text) = gltfmat(&["compare", path, path]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("texel centres and corners on the mesh ("),
+        "{text}"
+    );
+}

@@ -10,6 +10,7 @@ use crate::gltf::accessor::{component_count, component_size, decode, normalise, 
 use crate::gltf::coverage::{Grid, Painter, Seen};
 use crate::gltf::mesh::{drawn_materials, triangle_count, triangles};
 use crate::gltf::{as_index, unsigned};
+use std::collections::HashMap;
 use std::sync::Arc;
 
 /// A point's UV in each texCoord set, set 0 first.
@@ -51,13 +52,16 @@ const NO_TRIANGLE: &str = "its meshes have no triangle with finite texture coord
 impl Meshes {
     /// Every mesh of `all`: the whole square when any stands for it.
     pub(crate) fn union<'m>(all: impl IntoIterator<Item = &'m Meshes>) -> Meshes {
-        let mut union = Vec::new();
+        let mut union: Vec<Arc<Sets>> = Vec::new();
         for meshes in all {
             match meshes {
                 Meshes::Unknown(why) => return Meshes::Unknown(why),
                 Meshes::Read(read) => union.extend(read.iter().cloned()),
             }
         }
+        // Alike materials on one mesh bring it once.
+        union.sort_by_key(|sets| Arc::as_ptr(sets) as usize);
+        union.dedup_by(|a, b| Arc::ptr_eq(a, b));
         Meshes::Read(union)
     }
 
@@ -174,15 +178,22 @@ pub(super) fn surface_points<'t>(data: &impl MeshData<'t>) -> Vec<Surface> {
     let mut surfaces = vec![Surface::default(); drawn.len()];
     let reader = Reader { data };
     let mut budget = MAX_ELEMENTS;
+    // Primitives that share their accessors (meshes made of one set of vertex data) are read
+    // once, within the budget once.
+    let mut read: HashMap<String, Option<Arc<Sets>>> = HashMap::new();
     for (material, primitives) in drawn.iter().enumerate() {
-        let mut meshes = Vec::new();
-        for primitive in primitives {
-            match reader.sets(*primitive, &mut budget) {
-                Some(sets) => meshes.push(Arc::new(sets)),
+        let mut meshes: Vec<Arc<Sets>> = Vec::new();
+        for (i, primitive) in primitives.iter().enumerate() {
+            let sets = read
+                .entry(read_key(*primitive))
+                .or_insert_with(|| reader.sets(*primitive, &mut budget).map(Arc::new));
+            match sets {
+                Some(sets) if meshes.iter().any(|m| Arc::ptr_eq(m, sets)) => {}
+                Some(sets) => meshes.push(Arc::clone(sets)),
                 None => {
                     surfaces[material].unread = Some(format!(
                         "the texture coordinates of {} primitive(s) drawing it cannot be read as plain accessors (compressed, sparse, invalid or past the read budget)",
-                        primitives.len() - meshes.len()
+                        primitives.len() - i
                     ));
                     break;
                 }
@@ -230,6 +241,19 @@ impl Meshes {
         };
         Meshes::Read(vec![Arc::new(sets)])
     }
+}
+
+/// What makes two primitives' reads the same: their texture coordinate accessors, their
+/// indices and their mode.
+fn read_key(primitive: Node) -> String {
+    let attributes = primitive.get("attributes");
+    let texcoords =
+        (0..SETS).map(|set| attributes.and_then(|a| a.get(format!("TEXCOORD_{set}").as_str())));
+    let members = texcoords.chain([primitive.get("indices"), primitive.get("mode")]);
+    let texts: Vec<String> = members
+        .map(|member| member.map_or_else(String::new, |m| m.to_value().to_string()))
+        .collect();
+    texts.join(";")
 }
 
 /// A primitive's texture coordinate sets and how its vertices make triangles.
