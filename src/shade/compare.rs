@@ -156,7 +156,7 @@ impl Comparison {
             grid: 0,
             samples: 0,
             blended_corners: 0,
-            area: Area::Whole(""),
+            area: Area::Whole("nothing was compared"),
             off_mesh: 0,
             per_texel: Arc::new([]),
         }
