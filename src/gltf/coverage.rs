@@ -158,12 +158,37 @@ impl Painter {
             let y = Grid::wrapped(row, grid.height, grid.wrap[1]);
             let (first, last) = grid.columns(left, right);
             self.writes_left = self.writes_left.checked_sub((last - first + 1) as usize)?;
-            for x in first..=last {
-                let x = Grid::wrapped(x, grid.width, grid.wrap[0]);
-                self.seen.mask[y * grid.width + x] = true;
-            }
+            let row = &mut self.seen.mask[y * grid.width..][..grid.width];
+            mark_columns(row, (first, last), grid.wrap[0]);
         }
         Some(())
+    }
+}
+
+/// Marks columns `first..=last` of one row as a sampler wrapped as `wrap` reads them: a run at
+/// a time (the painter's texels are mostly such runs), texel by texel only when mirrored.
+fn mark_columns(row: &mut [bool], (first, last): (i64, i64), wrap: u64) {
+    let width = row.len() as i64;
+    match wrap {
+        MIRRORED_REPEAT => {
+            for x in first..=last {
+                row[Grid::wrapped(x, row.len(), wrap)] = true;
+            }
+        }
+        // `Grid::columns` has clamped them already.
+        CLAMP_TO_EDGE => row[first as usize..=last as usize].fill(true),
+        _ if last - first + 1 >= width => row.fill(true),
+        _ => {
+            let (start, length) = (first.rem_euclid(width) as usize, row.len());
+            let end = start + (last - first) as usize;
+            match end < length {
+                true => row[start..=end].fill(true),
+                false => {
+                    row[start..].fill(true);
+                    row[..=end - length].fill(true);
+                }
+            }
+        }
     }
 }
 
@@ -237,6 +262,25 @@ mod tests {
         assert!(column(&mirror, 15) && !column(&mirror, 8));
         let clamp = painted(grid(16, CLAMP_TO_EDGE), &strip).unwrap();
         assert!(column(&clamp, 15) && !column(&clamp, 0) && !column(&clamp, 8));
+    }
+
+    #[test]
+    fn runs_of_columns_are_marked_as_each_texel_wraps() {
+        for wrap in [REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT] {
+            for first in -20i64..20 {
+                for length in 1..20 {
+                    let (mut first, mut last) = (first, first + length - 1);
+                    if wrap == CLAMP_TO_EDGE {
+                        (first, last) = (first.clamp(0, 6), last.clamp(0, 6));
+                    }
+                    let mut runs = vec![false; 7];
+                    mark_columns(&mut runs, (first, last), wrap);
+                    let mut each = vec![false; 7];
+                    (first..=last).for_each(|x| each[Grid::wrapped(x, 7, wrap)] = true);
+                    assert_eq!(runs, each, "wrap {wrap}, columns {first}..={last}");
+                }
+            }
+        }
     }
 
     #[test]
