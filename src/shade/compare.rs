@@ -792,7 +792,9 @@ fn compare_on_threads(
     let (on_mesh, area) = match meshes.seen(&sets, grid) {
         Ok(seen) => {
             let texels = seen.count() as u64;
-            (Some(seen), Area::Mesh { texels })
+            // A mesh over every texel leaves nothing to pass over: no point asks the mask.
+            let partial = texels < u64::from(grid) * u64::from(grid);
+            (partial.then_some(seen), Area::Mesh { texels })
         }
         Err(why) => (None, Area::Whole(why)),
     };
