@@ -25,7 +25,7 @@ use super::brdf::{Geometry, V3};
 use super::delta_e::{ciede2000, lab_from_linear_srgb};
 use super::lanes::{Lanes, Real};
 use super::material::{is_mean_of, Bent, Inputs, Shader};
-use super::sample::{self, MaterialSource, Read};
+use super::sample::{self, MaterialSource, Read, TextureImage};
 use super::surface::Meshes;
 use super::tone::displayed;
 use crate::gltf::coverage::Seen as OnMesh;
@@ -492,7 +492,9 @@ impl Memo {
         if key.len() != self.width {
             return None;
         }
-        let found = (self.table).find(Memo::hash(key), |&e| self.entry(e)[..key.len()] == *key);
+        // Word by word: keys are a few words, and a slice comparison calls `memcmp`.
+        let equal = |&e: &u32| self.entry(e).iter().zip(key).all(|(a, b)| a == b);
+        let found = (self.table).find(Memo::hash(key), equal);
         found.copied()
     }
 
@@ -546,22 +548,35 @@ impl Memo {
     }
 }
 
-/// The stored texels `material` reads at the centre of texel (x, y), but for the textures
-/// `left_out` marks, packed into `words`: its centres all have fields of the same widths in
-/// the same order, so two centres have equal words exactly when they read equal texels.
-#[inline(always)]
-fn texel_words(material: &MaterialSource, x: u32, y: u32, left_out: &[bool], words: &mut Vec<u64>) {
-    let mut free = 0;
-    material.centre_texels(x, y, left_out, &mut |field, bits| {
-        if bits > free {
-            words.push(0);
-            free = 64;
+/// The textures whose stored texels make one side's part of a centre's key, listed once
+/// for a pass (see [`MaterialSource::keyed_textures`]).
+struct Keyed<'a>(Vec<&'a TextureImage>);
+
+impl<'a> Keyed<'a> {
+    fn of(material: &'a MaterialSource, left_out: &[bool]) -> Keyed<'a> {
+        Keyed(material.keyed_textures(left_out))
+    }
+
+    /// The stored texels read at the centre of texel (x, y), packed into `words`: every
+    /// centre has fields of the same widths in the same order, so two centres have equal
+    /// words exactly when they read equal texels.
+    #[inline(always)]
+    fn words(&self, x: u32, y: u32, words: &mut Vec<u64>) {
+        let mut free = 0;
+        let mut push = |field: u64, bits: u32| {
+            if bits > free {
+                words.push(0);
+                free = 64;
+            }
+            if let Some(word) = words.last_mut() {
+                *word |= field << (64 - free);
+            }
+            free -= bits;
+        };
+        for texture in &self.0 {
+            texture.stored_fields(x, y, &mut push);
         }
-        if let Some(word) = words.last_mut() {
-            *word |= field << (64 - free);
-        }
-        free -= bits;
-    });
+    }
 }
 
 /// A batch's colours, channel by channel, sample by sample (point-major), the points'
@@ -604,9 +619,9 @@ impl Batch {
 
     /// Makes the key of the centre of texel (x, y) as reading `a` reads it (`key_b`: the
     /// other material's words), and gives its memo entry if it has one.
-    fn known(&mut self, a: &MaterialSource, x: u32, y: u32, key_b: &[u64]) -> Option<u32> {
+    fn known(&mut self, a: &Keyed, x: u32, y: u32, key_b: &[u64]) -> Option<u32> {
         self.key.clear();
-        texel_words(a, x, y, &[], &mut self.key);
+        a.words(x, y, &mut self.key);
         self.key.extend_from_slice(key_b);
         let found = self.memo.find(&self.key);
         self.memo.count(found.is_some());
@@ -890,11 +905,13 @@ struct Pass<'j, 'a> {
     /// Where every texture is read as stored, a point whose texels equal its left
     /// neighbour's (a flat region) has that point's inputs: it is not sampled again.
     as_stored: bool,
-    /// The other material's texels at the centre at hand (part of every reading's key), but
-    /// for its textures that every reading reads too (`shared_b`): their texels are in each
-    /// reading's part of the key already (an upgrade keeps most images as they are).
+    /// The textures keyed on each reading's side, and on the other material's but for those
+    /// every reading reads too: their texels are in each reading's part of the key already
+    /// (an upgrade keeps most images as they are).
+    keyed: Vec<Keyed<'a>>,
+    keyed_b: Keyed<'a>,
+    /// The other material's part of the key of the centre at hand.
     key_b: Vec<u64>,
-    shared_b: Vec<bool>,
     /// Where every texture is read as stored: for each centre of this row and of the row
     /// above (empty above the grid's first row), whether every side reads there what it
     /// reads at the centre to its left.
@@ -924,8 +941,9 @@ impl<'j, 'a> Pass<'j, 'a> {
             centres: Centres::new(readings, b, grid, as_stored, rows.start),
             linear: readings.iter().all(|a| a.linear_on(grid)) && b.linear_on(grid),
             as_stored,
+            keyed: readings.iter().map(|a| Keyed::of(a, &[])).collect(),
+            keyed_b: Keyed::of(b, &b.textures_read_by_all(readings)),
             key_b: Vec::new(),
-            shared_b: b.textures_read_by_all(readings),
             like_left: Vec::new(),
             like_left_above: Vec::new(),
             above: None,
@@ -1174,11 +1192,11 @@ impl<'j, 'a> Pass<'j, 'a> {
             let consulted = keyed && batch.memo.consulted();
             if consulted && !key_b_read {
                 self.key_b.clear();
-                texel_words(b, x, y, &self.shared_b, &mut self.key_b);
+                self.keyed_b.words(x, y, &mut self.key_b);
                 key_b_read = true;
             }
             let known = match consulted {
-                true => batch.known(a, x, y, &self.key_b),
+                true => batch.known(&self.keyed[r], x, y, &self.key_b),
                 // No key: a point sampled while the memo rests is not remembered.
                 false => {
                     batch.key.clear();
@@ -2002,7 +2020,7 @@ mod tests {
         // What is left of b's texels is the other image's texel.
         let words = |material: &MaterialSource, left_out: &[bool]| {
             let mut words = Vec::new();
-            texel_words(material, 3, 5, left_out, &mut words);
+            Keyed::of(material, left_out).words(3, 5, &mut words);
             words
         };
         assert_eq!(words(&b, &left_out), words(&does_not, &[]));

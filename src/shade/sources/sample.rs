@@ -117,7 +117,7 @@ impl TextureImage {
     /// packed into fields of at most 64 bits, handed to `push` with their widths (the same
     /// at every texel).
     #[inline(always)]
-    fn stored_fields(&self, x: u32, y: u32, push: &mut impl FnMut(u64, u32)) {
+    pub(crate) fn stored_fields(&self, x: u32, y: u32, push: &mut impl FnMut(u64, u32)) {
         let n = self.channels;
         let at = (y as usize * self.width as usize + x as usize) * n;
         let bits = |per_channel: usize| (per_channel * n) as u32;
@@ -1420,26 +1420,19 @@ impl MaterialSource {
         self.textures().for_each(|t| t.clear_unlike_left(y, row));
     }
 
-    /// For a material whose textures are [`MaterialSource::texels_on`] the grid: the stored
-    /// texels the centre of texel (x, y) reads, every texture's in turn but those `left_out`
-    /// marks (by their place in that order), handed to `push` as fields with their widths in
-    /// bits (the same widths, in the same order, at every centre). Two centres whose fields
-    /// are equal have equal inputs but for the textures left out.
-    #[inline(always)]
-    pub(crate) fn centre_texels(
-        &self,
-        x: u32,
-        y: u32,
-        left_out: &[bool],
-        push: &mut impl FnMut(u64, u32),
-    ) {
+    /// For a material whose textures are [`MaterialSource::texels_on`] the grid: the
+    /// textures whose stored texels a centre reads, in turn, but those `left_out` marks (by
+    /// their place in that order). Two centres where each of them stores the same texel
+    /// ([`TextureImage::stored_fields`]) have equal inputs but for the textures left out.
+    pub(crate) fn keyed_textures(&self, left_out: &[bool]) -> Vec<&TextureImage> {
         let left_out = left_out.iter().chain(std::iter::repeat(&false));
         (self.textures().zip(left_out))
             .filter(|(_, &out)| !out)
-            .for_each(|(t, _)| t.stored_fields(x, y, push))
+            .map(|(t, _)| &**t)
+            .collect()
     }
 
-    /// For each of this material's textures (in [`MaterialSource::centre_texels`]'s order),
+    /// For each of this material's textures (in [`MaterialSource::keyed_textures`]' order),
     /// whether every one of `others` reads the same decoded image: where all read textures as
     /// stored, its texel at a centre is then part of each of theirs.
     pub(crate) fn textures_read_by_all(&self, others: &[MaterialSource]) -> Vec<bool> {
