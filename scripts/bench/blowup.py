@@ -174,6 +174,23 @@ def gltf1_meshes(n):
     return write(f'gltf1-meshes-{n}.gltf', doc)
 
 
+def primitives_of_one_material(n):
+    """One textured material drawn by n primitives, each with its own texture coordinates: the
+    comparison's mesh reader once looked through the primitives read so far for each one."""
+    uvs = b''.join(struct.pack('<6f', 0.1 + i * 1e-7, 0.1, 0.2, 0.1, 0.1, 0.2) for i in range(n))
+    data = struct.pack('<9f', 0, 0, 0, 1, 0, 0, 0, 1, 0) + uvs
+    uri = 'data:application/octet-stream;base64,' + base64.b64encode(data).decode()
+    accessors = [{'bufferView': 0, 'componentType': 5126, 'count': 3, 'type': 'VEC3', 'min': [0, 0, 0], 'max': [1, 1, 0]}]
+    accessors += [{'bufferView': 1, 'byteOffset': 24 * i, 'componentType': 5126, 'count': 3, 'type': 'VEC2'} for i in range(n)]
+    primitives = [{'attributes': {'POSITION': 0, 'TEXCOORD_0': i + 1}, 'material': 0} for i in range(n)]
+    return write(f'primitives-{n}.gltf', asset(
+        buffers=[{'uri': uri, 'byteLength': len(data)}],
+        bufferViews=[{'buffer': 0, 'byteLength': 36}, {'buffer': 0, 'byteOffset': 36, 'byteLength': len(uvs)}],
+        accessors=accessors, images=[{'uri': 'data:image/png;base64,' + base64.b64encode(tiny_png()).decode()}], textures=[{'source': 0}],
+        materials=[{'pbrMetallicRoughness': {'baseColorTexture': {'index': 0}}}],
+        meshes=[{'primitives': primitives}], nodes=[{'mesh': 0}], scenes=[{'nodes': [0]}], scene=0))
+
+
 def aliasing_accessors(n):
     """n NORMAL accessors over the same 10^4 zero vectors: n·10^4 findings from a small file."""
     count = 10_000
@@ -391,6 +408,7 @@ CLASSES = [
     ('1.0 draft, shared textures, N texels (49)', gltf1_draft_shared_textures, 1 << 18, ['upgrade', '-o', os.path.join(WORK, 'shared.glb'), '--force']),
     ('N spec-gloss sharing one 1024² (49)', spec_gloss_sharing_texture, 20, ['upgrade', '-o', os.path.join(WORK, 'sharing.glb'), '--force']),
     ('N materials, compare with itself', distinct_materials, 1_000, ['compare', '{input}', '--format', 'json']),
+    ('one material, N primitives, compare with itself', primitives_of_one_material, 20_000, ['compare', '{input}', '--format', 'json']),
 ]
 
 

@@ -441,6 +441,8 @@ pub fn heatmap(per_texel: &[f32], grid: u32, threshold: f64) -> RgbImage {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::shade::brdf::SheenVisibility;
+    use crate::shade::sheen_table::SheenTable;
 
     #[test]
     fn a_heat_map_runs_from_black_to_red_and_greys_what_was_not_sampled() {
@@ -454,8 +456,6 @@ mod tests {
         assert_eq!(map.get_pixel(1, 0).0, [230, 13, 13]);
         assert_eq!(map.get_pixel(1, 1).0, [96, 96, 96]);
     }
-    use crate::shade::brdf::SheenVisibility;
-    use crate::shade::sheen_table::SheenTable;
 
     /// An exporter's copies of one material (the same JSON under other names) are one ball.
     #[test]

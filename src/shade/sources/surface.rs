@@ -60,9 +60,7 @@ impl Meshes {
             }
         }
         // Alike materials on one mesh bring it once.
-        union.sort_by_key(|sets| Arc::as_ptr(sets) as usize);
-        union.dedup_by(|a, b| Arc::ptr_eq(a, b));
-        Meshes::Read(union)
+        Meshes::Read(first_of_each(union))
     }
 
     /// The texels of a `grid`² grid over the UV square that a bilinear sample inside one of
@@ -188,7 +186,6 @@ pub(super) fn surface_points<'t>(data: &impl MeshData<'t>) -> Vec<Surface> {
                 .entry(read_key(*primitive))
                 .or_insert_with(|| reader.sets(*primitive, &mut budget).map(Arc::new));
             match sets {
-                Some(sets) if meshes.iter().any(|m| Arc::ptr_eq(m, sets)) => {}
                 Some(sets) => meshes.push(Arc::clone(sets)),
                 None => {
                     surfaces[material].unread = Some(format!(
@@ -199,6 +196,7 @@ pub(super) fn surface_points<'t>(data: &impl MeshData<'t>) -> Vec<Surface> {
                 }
             }
         }
+        let meshes = first_of_each(meshes);
         surfaces[material].meshes = match surfaces[material].unread {
             Some(_) => Meshes::Unknown(UNREAD),
             None => Meshes::Read(meshes.clone()),
@@ -241,6 +239,15 @@ impl Meshes {
         };
         Meshes::Read(vec![Arc::new(sets)])
     }
+}
+
+/// Each primitive's read once, in the order first met (a hash of where each lies: one
+/// material may be drawn by 10^5 primitives, and a scan for each is quadratic).
+fn first_of_each(meshes: Vec<Arc<Sets>>) -> Vec<Arc<Sets>> {
+    let mut met = std::collections::HashSet::new();
+    (meshes.into_iter())
+        .filter(|sets| met.insert(Arc::as_ptr(sets)))
+        .collect()
 }
 
 /// What makes two primitives' reads the same: their texture coordinate accessors, their
