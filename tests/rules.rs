@@ -531,6 +531,15 @@ fn cases() -> Vec<Case> {
             .expect("MULTIPLE_EXTENSIONS", &at("/extensions/KHR_materials_unlit"))
             .expect("UNSUPPORTED_EXTENSION", "/extensionsUsed/1"),
         // -- tangent space
+        case("a tangent no material extension reads is unused", material(json!({})), vec![]).patch(with_tangents())
+            .expect("UNUSED_MESH_TANGENT", "/meshes/0/primitives/0/attributes/TANGENT"),
+        case("a tangent and a texture an unknown extension may read are not called unused", material(ext("KHR_materials_coat",
+            json!({"coatFactor": 1.0, "coatNormalTexture": {"index": 0}}))), vec![rgb([128, 128, 255])]).patch(with_tangents())
+            .expect("UNSUPPORTED_EXTENSION", "/extensionsUsed/0"),
+        case("an unknown extension's member not named as a binding uses no texture", material(ext("KHR_materials_coat",
+            json!({"coatFactor": 1.0, "coatMap": {"index": 0}}))), vec![rgb([128, 128, 255])])
+            .expect("UNSUPPORTED_EXTENSION", "/extensionsUsed/0")
+            .expect("UNUSED_OBJECT", "/textures/0"),
         case("anisotropy without texture or tangents", material(ext("KHR_materials_anisotropy", json!({"anisotropyStrength": 0.5}))), vec![])
             .expect("ANISOTROPY_NO_TANGENT_SPACE", "/meshes/0/primitives/0/material"),
         near_miss("ANISOTROPY_NO_TANGENT_SPACE", "anisotropy with tangents (they are used)", material(ext("KHR_materials_anisotropy", json!({"anisotropyStrength": 0.5}))), vec![]).patch(with_tangents()),
@@ -818,6 +827,39 @@ fn the_base_fixture_is_clean() {
         .map(|g| g.to_string())
         .collect();
     assert_eq!(issues("base", text, true, every_group, None), Vec::new());
+}
+
+/// A texture bound inside an extension gltfmat does not read (KHR_materials_coat, a draft)
+/// reads its texCoord set: the default profile does not call that set unused; the Khronos
+/// profile, which reads nothing in the extension, does, as the validator does.
+#[test]
+fn a_uv_set_read_inside_an_unknown_extension_is_used_in_the_default_profile_only() {
+    let coat = json!({"coatFactor": 1.0, "coatTexture": {"index": 0, "texCoord": 1}});
+    let case = case(
+        "coat on TEXCOORD_1",
+        material(json!({"extensions": {"KHR_materials_coat": coat}})),
+        vec![rgb([200, 200, 200])],
+    );
+    let text = serde_json::to_vec(&case.declared()).unwrap();
+    let unused_sets = |profile: gltfmat::Profile| -> Vec<String> {
+        let options = CheckOptions::default().with_profile(profile);
+        let report = check_bytes("coat.gltf", text.clone(), &NoResources, &options);
+        let mut unused: Vec<String> = (report.diagnostics.iter())
+            .filter(|d| d.code == "UNUSED_OBJECT")
+            .filter_map(|d| match d.location {
+                Place::Pointer(p) => Some(p.to_string()),
+                Place::Offset(_) => None,
+            })
+            .collect();
+        unused.sort();
+        unused
+    };
+    let set = |n: u32| format!("/meshes/0/primitives/0/attributes/TEXCOORD_{n}");
+    assert_eq!(unused_sets(gltfmat::Profile::Default), vec![set(0)]);
+    assert_eq!(
+        unused_sets(gltfmat::Profile::Khronos),
+        vec![set(0), set(1), "/textures/0".to_string()]
+    );
 }
 
 /// Diffuse 1 and specular 1 (the defaults) cannot reflect more than they receive: the

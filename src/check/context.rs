@@ -62,6 +62,12 @@ pub(crate) struct MaterialNeeds {
     pub can_generate_tangent: bool,
     /// gltfmat: the material uses KHR_materials_anisotropy (with or without a texture).
     pub anisotropy: bool,
+    /// Default profile: the material carries an extension the profile does not read, whose
+    /// need of a tangent space is unknown.
+    pub unread_extension: bool,
+    /// Default profile: the texCoord sets the texture bindings inside such extensions read
+    /// (counted as used, never required of a primitive).
+    pub unread_sets: Vec<u64>,
 }
 
 /// A texture binding's texCoord set. Its pointer is made only for a finding: 10^5

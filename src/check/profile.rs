@@ -84,6 +84,14 @@ impl Profile {
         self == Profile::Khronos
     }
 
+    /// Whether the texture bindings inside a material extension the profile does not read
+    /// count: each member named `…Texture` that holds an `index` (as every glTF binding is
+    /// named) marks its texture and texCoord sets used, and such a material's tangent need is
+    /// left unjudged. The Khronos validator reads nothing in an extension it does not know.
+    pub(crate) fn reads_bindings_in_unknown_extensions(self) -> bool {
+        self == Profile::Default
+    }
+
     /// Whether a glTF 1.0 document gets the 1.0 checks instead of the 2.0 passes.
     pub(crate) fn checks_gltf1(self) -> bool {
         self == Profile::Default
@@ -94,10 +102,15 @@ impl Profile {
 /// pointers in the default profile (see `khronos::LinkPath`).
 const OWN_POINTERS: &str = "Reported at its own pointer. After an animation channel without a sampler index, the Khronos validator names what it links next (the animation's unused samplers, later channels and animations, scenes, the node checks) by a path it did not unwind, such as /animations/2/channels/0/samplers/0 or /animations/nodes/0.";
 
+/// Why an object is unused differently in the default profile: where link findings are
+/// named (see `khronos::LinkPath`) and what an unknown extension binds (see
+/// [`Profile::reads_bindings_in_unknown_extensions`]).
+const UNUSED: &str = "Reported at its own pointer after an animation channel without a sampler index, where the Khronos validator names an unused sampler by a path it did not unwind (/animations/2/channels/0/samplers/0). A texture bound inside a material extension gltfmat does not read (a member named …Texture holding an index, as KHR_materials_coat's coatNormalTexture) is used, and so are the texCoord sets it reads; the Khronos validator reads nothing in an extension it does not know.";
+
 /// The Khronos codes whose findings differ in the default profile because it reads the
 /// document differently, and why.
 pub(crate) static READINGS: &[(Code, &str)] = &[
-    (khronos::UNUSED_OBJECT, OWN_POINTERS),
+    (khronos::UNUSED_OBJECT, UNUSED),
     (khronos::UNRESOLVED_REFERENCE, OWN_POINTERS),
     (khronos::NODE_EMPTY, OWN_POINTERS),
     (khronos::NODE_LOOP, OWN_POINTERS),

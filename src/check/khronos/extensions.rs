@@ -188,6 +188,11 @@ pub(crate) fn khronos_knows(name: &str) -> bool {
     KHRONOS_SUPPORTED.iter().any(|(n, _)| *n == name)
 }
 
+/// Whether the profile validates extension `name`.
+pub(crate) fn knows(ctx: &Context, name: &str) -> bool {
+    supported(ctx, name).is_some()
+}
+
 fn supported(ctx: &Context, name: &str) -> Option<&'static [Host]> {
     let gltfmat = if ctx.options.profile.knows_extensions_beyond_khronos() {
         GLTFMAT_SUPPORTED

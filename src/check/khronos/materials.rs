@@ -119,7 +119,41 @@ fn texture_needs(ctx: &mut Context, material: Node, pointer: &str) -> MaterialNe
     }
     needs.can_generate_tangent = material.get("normalTexture").is_some_and(Node::is_object);
     needs.anisotropy = extension(material, "KHR_materials_anisotropy").is_some();
+    if ctx.options.profile.reads_bindings_in_unknown_extensions() {
+        read_unknown_bindings(ctx, material, &mut needs);
+    }
     needs
+}
+
+/// The texture bindings inside the material's declared extensions that the profile does not
+/// read: a member named `…Texture` holding an `index`, at any depth, as glTF names every
+/// binding. Each marks its texture used and its texCoord sets read; an index that names
+/// nothing is not reported, since the extension's own rules are unknown.
+fn read_unknown_bindings(ctx: &mut Context, material: Node, needs: &mut MaterialNeeds) {
+    let extensions = material.get("extensions").and_then(Node::as_object);
+    let mut pending: Vec<Node> = (extensions.into_iter().flat_map(|e| e.iter()))
+        .filter(|&(name, _)| ctx.uses_extension(name) && !super::extensions::knows(ctx, name))
+        .map(|(_, object)| object)
+        .collect();
+    needs.unread_extension = !pending.is_empty();
+    while let Some(node) = pending.pop() {
+        if let Some(array) = node.as_array() {
+            pending.extend(array.iter());
+        }
+        for (key, value) in node.as_object().into_iter().flat_map(|o| o.iter()) {
+            let texture = (value.get("index").and_then(as_index))
+                .filter(|&i| key.ends_with("Texture") && ctx.element("textures", i).is_some());
+            if let Some(texture) = texture {
+                ctx.mark_used("textures", texture as usize);
+                needs
+                    .unread_sets
+                    .push(unsigned(value, "texCoord").unwrap_or(0));
+                let transform = texture_transform(value).and_then(|t| unsigned(t, "texCoord"));
+                needs.unread_sets.extend(transform);
+            }
+            pending.push(value);
+        }
+    }
 }
 
 fn check_alpha_cutoff(ctx: &mut Context, material: Node, pointer: &str) {

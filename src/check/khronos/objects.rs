@@ -445,6 +445,7 @@ fn check_primitive(ctx: &mut Context, primitive: Node, pointer: &str, variant_co
             texcoord_sets,
             &mut texcoords_used,
         );
+        texcoords_used.extend(needs.unread_sets.iter().copied());
         needs
     };
     match ctx.reference(primitive, "material", pointer, "materials") {

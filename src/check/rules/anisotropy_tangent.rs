@@ -15,8 +15,8 @@ pub(super) const RULE: Rule = Rule::new(
 )
 .superseding(&[Supersession {
     code: khronos::UNUSED_MESH_TANGENT,
-    why: "Not reported on anisotropy materials: KHR_materials_anisotropy reads the tangent even without an anisotropyTexture.",
-    keeps: not_anisotropic,
+    why: "Not reported on anisotropy materials: KHR_materials_anisotropy reads the tangent even without an anisotropyTexture. Nor where the material carries an extension gltfmat does not read, which may need the tangent (KHR_materials_coat's coatNormalTexture and coat anisotropy do).",
+    keeps: surely_unused,
 }]);
 
 const DOC: &str = "\
@@ -43,15 +43,16 @@ Spec: KHR_materials_anisotropy, \"Anisotropy\" (tangent space MUST be defined).
 ```
 ";
 
-/// Whether the primitive of an unused TANGENT has a material without KHR_materials_anisotropy.
-fn not_anisotropic(ctx: &Context, finding: &Diagnostic) -> bool {
+/// Whether the primitive of an unused TANGENT has a material that surely does not read it:
+/// without KHR_materials_anisotropy and without an extension the profile does not read.
+fn surely_unused(ctx: &Context, finding: &Diagnostic) -> bool {
     let primitive = (finding.pointer())
         .and_then(|p| p.strip_suffix("/attributes/TANGENT"))
         .and_then(|p| ctx.root.pointer(p));
     let material = primitive.and_then(|p| unsigned(p, "material"));
     !material
         .and_then(|m| ctx.material_needs.get(&(m as usize)))
-        .is_some_and(|needs| needs.anisotropy)
+        .is_some_and(|needs| needs.anisotropy || needs.unread_extension)
 }
 
 fn check(ctx: &mut Context) {
