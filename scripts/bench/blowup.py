@@ -191,6 +191,24 @@ def primitives_of_one_material(n):
         meshes=[{'primitives': primitives}], nodes=[{'mesh': 0}], scenes=[{'nodes': [0]}], scene=0))
 
 
+def unknown_extension_bindings(n):
+    """One material whose extension the checker does not read holds n texture bindings, each
+    on its own texCoord set, and n primitives draw it: the sets they read are copied to every
+    primitive."""
+    bindings = {f'layer{i}Texture': {'index': 0, 'texCoord': i} for i in range(n)}
+    data = struct.pack('<9f', 0, 0, 0, 1, 0, 0, 0, 1, 0)
+    uri = 'data:application/octet-stream;base64,' + base64.b64encode(data).decode()
+    primitives = [{'attributes': {'POSITION': 0, 'TEXCOORD_0': 1}, 'material': 0} for _ in range(n)]
+    return write(f'unknown-bindings-{n}.gltf', asset(
+        extensionsUsed=['VENDOR_materials_layers'],
+        buffers=[{'uri': uri, 'byteLength': len(data)}], bufferViews=[{'buffer': 0, 'byteLength': 36}],
+        accessors=[{'bufferView': 0, 'componentType': 5126, 'count': 3, 'type': 'VEC3', 'min': [0, 0, 0], 'max': [1, 1, 0]},
+                   {'bufferView': 0, 'componentType': 5126, 'count': 3, 'type': 'VEC2'}],
+        images=[{'uri': 'data:image/png;base64,' + base64.b64encode(tiny_png()).decode()}], textures=[{'source': 0}],
+        materials=[{'extensions': {'VENDOR_materials_layers': bindings}}],
+        meshes=[{'primitives': primitives}], nodes=[{'mesh': 0}], scenes=[{'nodes': [0]}], scene=0))
+
+
 def aliasing_accessors(n):
     """n NORMAL accessors over the same 10^4 zero vectors: n·10^4 findings from a small file."""
     count = 10_000
@@ -409,6 +427,7 @@ CLASSES = [
     ('N spec-gloss sharing one 1024² (49)', spec_gloss_sharing_texture, 20, ['upgrade', '-o', os.path.join(WORK, 'sharing.glb'), '--force']),
     ('N materials, compare with itself', distinct_materials, 1_000, ['compare', '{input}', '--format', 'json']),
     ('one material, N primitives, compare with itself', primitives_of_one_material, 20_000, ['compare', '{input}', '--format', 'json']),
+    ('N bindings in an unknown extension, N primitives', unknown_extension_bindings, 10_000, ['check', '--max-issues', '10']),
 ]
 
 

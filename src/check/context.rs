@@ -65,9 +65,11 @@ pub(crate) struct MaterialNeeds {
     /// Default profile: the material carries an extension the profile does not read, whose
     /// need of a tangent space is unknown.
     pub unread_extension: bool,
-    /// Default profile: the texCoord sets the texture bindings inside such extensions read
-    /// (counted as used, never required of a primitive).
-    pub unread_sets: Vec<u64>,
+    /// Default profile: the texCoord sets below 64 that the texture bindings inside such
+    /// extensions read, a bit each (counted as used, never required of a primitive). A mask,
+    /// not a list: the needs are copied for every primitive drawing the material, and an
+    /// extension may hold any number of bindings.
+    pub unread_sets: u64,
 }
 
 /// A texture binding's texCoord set. Its pointer is made only for a finding: 10^5

@@ -145,11 +145,11 @@ fn read_unknown_bindings(ctx: &mut Context, material: Node, needs: &mut Material
                 .filter(|&i| key.ends_with("Texture") && ctx.element("textures", i).is_some());
             if let Some(texture) = texture {
                 ctx.mark_used("textures", texture as usize);
-                needs
-                    .unread_sets
-                    .push(unsigned(value, "texCoord").unwrap_or(0));
+                let own = unsigned(value, "texCoord").or(Some(0));
                 let transform = texture_transform(value).and_then(|t| unsigned(t, "texCoord"));
-                needs.unread_sets.extend(transform);
+                for set in own.into_iter().chain(transform).filter(|&s| s < 64) {
+                    needs.unread_sets |= 1 << set;
+                }
             }
             pending.push(value);
         }

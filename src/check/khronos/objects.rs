@@ -445,7 +445,7 @@ fn check_primitive(ctx: &mut Context, primitive: Node, pointer: &str, variant_co
             texcoord_sets,
             &mut texcoords_used,
         );
-        texcoords_used.extend(needs.unread_sets.iter().copied());
+        texcoords_used.extend((0..64).filter(|set| needs.unread_sets >> set & 1 == 1));
         needs
     };
     match ctx.reference(primitive, "material", pointer, "materials") {
