@@ -536,6 +536,10 @@ fn cases() -> Vec<Case> {
         case("a tangent and a texture an unknown extension may read are not called unused", material(ext("KHR_materials_coat",
             json!({"coatFactor": 1.0, "coatNormalTexture": {"index": 0}}))), vec![rgb([128, 128, 255])]).patch(with_tangents())
             .expect("UNSUPPORTED_EXTENSION", "/extensionsUsed/0"),
+        case("an unknown extension's binding that names no texture is not reported", material(ext("KHR_materials_coat",
+            json!({"coatFactor": 1.0, "coatNormalTexture": {"index": 5}}))), vec![rgb([128, 128, 255])])
+            .expect("UNSUPPORTED_EXTENSION", "/extensionsUsed/0")
+            .expect("UNUSED_OBJECT", "/textures/0"),
         case("an unknown extension's member not named as a binding uses no texture", material(ext("KHR_materials_coat",
             json!({"coatFactor": 1.0, "coatMap": {"index": 0}}))), vec![rgb([128, 128, 255])])
             .expect("UNSUPPORTED_EXTENSION", "/extensionsUsed/0")

@@ -105,7 +105,7 @@ const OWN_POINTERS: &str = "Reported at its own pointer. After an animation chan
 /// Why an object is unused differently in the default profile: where link findings are
 /// named (see `khronos::LinkPath`) and what an unknown extension binds (see
 /// [`Profile::reads_bindings_in_unknown_extensions`]).
-const UNUSED: &str = "Reported at its own pointer after an animation channel without a sampler index, where the Khronos validator names an unused sampler by a path it did not unwind (/animations/2/channels/0/samplers/0). A texture bound inside a material extension gltfmat does not read (a member named …Texture holding an index, as KHR_materials_coat's coatNormalTexture) is used, and so are the texCoord sets it reads; the Khronos validator reads nothing in an extension it does not know.";
+const UNUSED: &str = "Reported at its own pointer after an animation channel without a sampler index, where the Khronos validator names an unused sampler by a path it did not unwind (/animations/2/channels/0/samplers/0). A texture bound inside a material extension gltfmat does not read (a member named …Texture holding an index, as KHR_materials_coat's coatNormalTexture) is used, and so are the texCoord sets below 64 it reads; an index there that names nothing is not reported. The Khronos validator reads nothing in an extension it does not know.";
 
 /// The Khronos codes whose findings differ in the default profile because it reads the
 /// document differently, and why.

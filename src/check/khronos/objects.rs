@@ -445,7 +445,11 @@ fn check_primitive(ctx: &mut Context, primitive: Node, pointer: &str, variant_co
             texcoord_sets,
             &mut texcoords_used,
         );
-        texcoords_used.extend((0..64).filter(|set| needs.unread_sets >> set & 1 == 1));
+        let mut unread = needs.unread_sets;
+        while unread != 0 {
+            texcoords_used.insert(u64::from(unread.trailing_zeros()));
+            unread &= unread - 1;
+        }
         needs
     };
     match ctx.reference(primitive, "material", pointer, "materials") {
