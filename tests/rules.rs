@@ -866,6 +866,56 @@ fn a_uv_set_read_inside_an_unknown_extension_is_used_in_the_default_profile_only
     );
 }
 
+/// An attribute semantic named after a declared extension, `<extension>:<name>`, is that
+/// extension's (KHR_gaussian_splatting names its attributes so) in the default profile, in
+/// attributes and morph targets alike; the Khronos profile calls it invalid, as the released
+/// validator does. An undeclared prefix, an empty name and a bare name stay invalid.
+#[test]
+fn attribute_semantics_named_after_a_declared_extension_are_its_own_in_the_default_profile() {
+    let mut asset = base();
+    asset["extensionsUsed"] = json!(["KHR_gaussian_splatting"]);
+    let primitive = &mut asset["meshes"][0]["primitives"][0];
+    for name in [
+        "KHR_gaussian_splatting:SCALE",
+        "KHR_gaussian_splatting:",
+        "EXT_undeclared:SCALE",
+        "SCALE",
+    ] {
+        primitive["attributes"][name] = json!(0);
+    }
+    primitive["targets"] = json!([{"KHR_gaussian_splatting:SCALE": 0, "EXT_undeclared:SCALE": 0}]);
+    let text = serde_json::to_vec(&asset).unwrap();
+    let invalid = |profile: gltfmat::Profile| -> Vec<String> {
+        let options = CheckOptions::default().with_profile(profile);
+        let report = check_bytes("splat.gltf", text.clone(), &NoResources, &options);
+        let mut names: Vec<String> = (report.diagnostics.iter())
+            .filter(|d| d.code == "MESH_PRIMITIVE_INVALID_ATTRIBUTE")
+            .filter_map(|d| match d.location {
+                Place::Pointer(p) => {
+                    Some(p.trim_start_matches("/meshes/0/primitives/0/").to_string())
+                }
+                Place::Offset(_) => None,
+            })
+            .collect();
+        names.sort();
+        names
+    };
+    let undeclared = [
+        "attributes/EXT_undeclared:SCALE",
+        "attributes/KHR_gaussian_splatting:",
+        "attributes/SCALE",
+        "targets/0/EXT_undeclared:SCALE",
+    ];
+    assert_eq!(invalid(gltfmat::Profile::Default), undeclared);
+    let mut every = undeclared.to_vec();
+    every.extend([
+        "attributes/KHR_gaussian_splatting:SCALE",
+        "targets/0/KHR_gaussian_splatting:SCALE",
+    ]);
+    every.sort();
+    assert_eq!(invalid(gltfmat::Profile::Khronos), every);
+}
+
 /// Diffuse 1 and specular 1 (the defaults) cannot reflect more than they receive: the
 /// extension scales diffuse by (1 − max specular). No rule, opt-in ones included, says so.
 #[test]

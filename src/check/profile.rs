@@ -92,6 +92,14 @@ impl Profile {
         self == Profile::Default
     }
 
+    /// Whether an attribute semantic named after an extension `extensionsUsed` declares,
+    /// `<extension>:<name>` (KHR_gaussian_splatting's `KHR_gaussian_splatting:SCALE`), is
+    /// that extension's. The released Khronos validator knows only the core semantics and
+    /// application-specific ones starting with `_`.
+    pub(crate) fn reads_extension_attribute_semantics(self) -> bool {
+        self == Profile::Default
+    }
+
     /// Whether a glTF 1.0 document gets the 1.0 checks instead of the 2.0 passes.
     pub(crate) fn checks_gltf1(self) -> bool {
         self == Profile::Default
@@ -147,6 +155,10 @@ pub(crate) static READINGS: &[(Code, &str)] = &[
     (
         khronos::INVALID_URI,
         "A data URI whose base64 ends in bits past its data (its last character is not the one that encodes the data, as in 'Ra==' for 'E') is reported here, decoded as browsers decode it, and the rest of the document is checked. The Khronos validator's decoder refuses it and stops reading the file there: its report is INVALID_JSON and what it found before.",
+    ),
+    (
+        khronos::MESH_PRIMITIVE_INVALID_ATTRIBUTE,
+        "An attribute semantic named after an extension extensionsUsed declares, <extension>:<name> (KHR_gaussian_splatting:SCALE, KHR_gaussian_splatting:SH_DEGREE_0_COEF_0), is that extension's, as KHR_gaussian_splatting defines them. The released Khronos validator (2.0.0-dev.3.10) knows only the core semantics and application-specific ones starting with '_', and reports these as invalid.",
     ),
     (
         khronos::SKIN_NO_COMMON_ROOT,

@@ -266,7 +266,7 @@ impl<'a> Walk<'_, 'a> {
     /// Semantic names, their numbering, and the sets every primitive needs.
     fn names(&mut self, attributes: Object, at: &str) {
         for semantic in attributes.keys() {
-            if classify(semantic, false).is_err() {
+            if classify(semantic, false).is_err() && !self.extension_semantic(semantic) {
                 self.invalid_name(&member(at, semantic));
             }
         }
@@ -299,6 +299,19 @@ impl<'a> Walk<'_, 'a> {
                 format!("Number of JOINTS attribute semantics ({joints}) does not match the number of WEIGHTS ({weights})."),
             );
         }
+    }
+
+    /// Whether `semantic` is `<extension>:<name>` after an extension `extensionsUsed`
+    /// declares, read so where the profile reads extension semantics.
+    fn extension_semantic(&self, semantic: &str) -> bool {
+        let named = semantic
+            .split_once(':')
+            .filter(|(_, name)| !name.is_empty());
+        self.ctx
+            .options
+            .profile
+            .reads_extension_attribute_semantics()
+            && named.is_some_and(|(extension, _)| self.ctx.uses_extension(extension))
     }
 
     fn invalid_name(&mut self, at: &str) {
@@ -466,7 +479,7 @@ impl<'a> Walk<'_, 'a> {
     ) {
         for (semantic, value) in target {
             let semantic_at = member(at, semantic);
-            if classify(semantic, true).is_err() {
+            if classify(semantic, true).is_err() && !self.extension_semantic(semantic) {
                 self.invalid_name(&semantic_at);
             }
             let Some(accessor) = self.accessor(value).filter(|_| linked) else {
