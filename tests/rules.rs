@@ -833,6 +833,21 @@ fn the_base_fixture_is_clean() {
     assert_eq!(issues("base", text, true, every_group, None), Vec::new());
 }
 
+/// The pointers, sorted, of the findings of `code` when `text` is checked in `profile`.
+fn pointers_of(code: &str, text: &[u8], profile: gltfmat::Profile) -> Vec<String> {
+    let options = CheckOptions::default().with_profile(profile);
+    let report = check_bytes("asset.gltf", text.to_vec(), &NoResources, &options);
+    let mut pointers: Vec<String> = (report.diagnostics.iter())
+        .filter(|d| d.code == code)
+        .filter_map(|d| match d.location {
+            Place::Pointer(p) => Some(p.to_string()),
+            Place::Offset(_) => None,
+        })
+        .collect();
+    pointers.sort();
+    pointers
+}
+
 /// A texture bound inside an extension gltfmat does not read (KHR_materials_coat, a draft)
 /// reads its texCoord set: the default profile does not call that set unused; the Khronos
 /// profile, which reads nothing in the extension, does, as the validator does.
@@ -845,19 +860,7 @@ fn a_uv_set_read_inside_an_unknown_extension_is_used_in_the_default_profile_only
         vec![rgb([200, 200, 200])],
     );
     let text = serde_json::to_vec(&case.declared()).unwrap();
-    let unused_sets = |profile: gltfmat::Profile| -> Vec<String> {
-        let options = CheckOptions::default().with_profile(profile);
-        let report = check_bytes("coat.gltf", text.clone(), &NoResources, &options);
-        let mut unused: Vec<String> = (report.diagnostics.iter())
-            .filter(|d| d.code == "UNUSED_OBJECT")
-            .filter_map(|d| match d.location {
-                Place::Pointer(p) => Some(p.to_string()),
-                Place::Offset(_) => None,
-            })
-            .collect();
-        unused.sort();
-        unused
-    };
+    let unused_sets = |profile| pointers_of("UNUSED_OBJECT", &text, profile);
     let set = |n: u32| format!("/meshes/0/primitives/0/attributes/TEXCOORD_{n}");
     assert_eq!(unused_sets(gltfmat::Profile::Default), vec![set(0)]);
     assert_eq!(
@@ -885,20 +888,10 @@ fn attribute_semantics_named_after_a_declared_extension_are_its_own_in_the_defau
     }
     primitive["targets"] = json!([{"KHR_gaussian_splatting:SCALE": 0, "EXT_undeclared:SCALE": 0}]);
     let text = serde_json::to_vec(&asset).unwrap();
-    let invalid = |profile: gltfmat::Profile| -> Vec<String> {
-        let options = CheckOptions::default().with_profile(profile);
-        let report = check_bytes("splat.gltf", text.clone(), &NoResources, &options);
-        let mut names: Vec<String> = (report.diagnostics.iter())
-            .filter(|d| d.code == "MESH_PRIMITIVE_INVALID_ATTRIBUTE")
-            .filter_map(|d| match d.location {
-                Place::Pointer(p) => {
-                    Some(p.trim_start_matches("/meshes/0/primitives/0/").to_string())
-                }
-                Place::Offset(_) => None,
-            })
-            .collect();
-        names.sort();
-        names
+    let invalid = |profile| -> Vec<String> {
+        (pointers_of("MESH_PRIMITIVE_INVALID_ATTRIBUTE", &text, profile).iter())
+            .map(|p| p.trim_start_matches("/meshes/0/primitives/0/").to_string())
+            .collect()
     };
     let undeclared = [
         "attributes/EXT_undeclared:SCALE",
