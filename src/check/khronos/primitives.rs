@@ -302,7 +302,7 @@ impl<'a> Walk<'_, 'a> {
     }
 
     /// Whether `semantic` is `<extension>:<name>` after an extension `extensionsUsed`
-    /// declares, read so where the profile reads extension semantics.
+    /// declares, in a profile that reads such names as the extension's semantics.
     fn extension_semantic(&self, semantic: &str) -> bool {
         let named = semantic
             .split_once(':')
