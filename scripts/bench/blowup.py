@@ -193,7 +193,7 @@ def primitives_of_one_material(n):
 
 def unknown_extension_bindings(n):
     """One material whose extension the checker does not read holds n texture bindings, each
-    on its own texCoord set, and n primitives draw it: the sets they read are copied to every
+    on its own texCoord set, and n primitives draw it: the sets they read reach every
     primitive."""
     bindings = {f'layer{i}Texture': {'index': 0, 'texCoord': i} for i in range(n)}
     data = struct.pack('<9f', 0, 0, 0, 1, 0, 0, 0, 1, 0)

@@ -266,7 +266,7 @@ impl<'a> Walk<'_, 'a> {
     /// Semantic names, their numbering, and the sets every primitive needs.
     fn names(&mut self, attributes: Object, at: &str) {
         for semantic in attributes.keys() {
-            if classify(semantic, false).is_err() && !self.extension_semantic(semantic) {
+            if !self.valid_name(semantic, false) {
                 self.invalid_name(&member(at, semantic));
             }
         }
@@ -301,17 +301,19 @@ impl<'a> Walk<'_, 'a> {
         }
     }
 
-    /// Whether `semantic` is `<extension>:<name>` after an extension `extensionsUsed`
-    /// declares, in a profile that reads such names as the extension's semantics.
-    fn extension_semantic(&self, semantic: &str) -> bool {
-        let named = semantic
-            .split_once(':')
-            .filter(|(_, name)| !name.is_empty());
-        self.ctx
-            .options
-            .profile
-            .reads_extension_attribute_semantics()
-            && named.is_some_and(|(extension, _)| self.ctx.uses_extension(extension))
+    /// Whether `semantic` is a valid attribute name (in a morph target when `morph`): a
+    /// core or `_` one, or, in a profile that reads them, `<extension>:<name>` after an
+    /// extension `extensionsUsed` declares.
+    fn valid_name(&self, semantic: &str, morph: bool) -> bool {
+        let extension = || {
+            let named = semantic
+                .split_once(':')
+                .filter(|(_, name)| !name.is_empty());
+            named.is_some_and(|(extension, _)| self.ctx.uses_extension(extension))
+        };
+        let profile = self.ctx.options.profile;
+        classify(semantic, morph).is_ok()
+            || (profile.reads_extension_attribute_semantics() && extension())
     }
 
     fn invalid_name(&mut self, at: &str) {
@@ -479,7 +481,7 @@ impl<'a> Walk<'_, 'a> {
     ) {
         for (semantic, value) in target {
             let semantic_at = member(at, semantic);
-            if classify(semantic, true).is_err() && !self.extension_semantic(semantic) {
+            if !self.valid_name(semantic, true) {
                 self.invalid_name(&semantic_at);
             }
             let Some(accessor) = self.accessor(value).filter(|_| linked) else {
