@@ -1625,7 +1625,14 @@ fn a_uri_with_a_query_or_fragment_is_non_relative_and_one_that_does_not_decode_i
             vec![not_read, non_relative, unused],
         ),
         (
-            &["%zz.bin", "a%2", "%ff.bin", "%e2%82.bin"][..],
+            &[
+                "%zz.bin",
+                "a%2",
+                "%ff.bin",
+                "%e2%82.bin",
+                "a%00b.bin",
+                "%00",
+            ][..],
             vec![not_read, unused],
         ),
     ];

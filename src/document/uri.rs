@@ -32,7 +32,7 @@ pub(crate) enum UriKind {
     /// never read (the Khronos validator calls it non-relative).
     QueryOrFragment,
     /// A relative reference whose percent escapes do not decode (`%zz`, or bytes that are
-    /// no UTF-8): it names no file that can be read.
+    /// no UTF-8) or decode to a NUL byte (`%00`): it names no file that can be read.
     Undecodable(String),
 }
 
@@ -71,6 +71,10 @@ pub(crate) fn classify(uri: &str) -> Result<UriKind, String> {
     // validator read it: assets written on Windows name `Textures\a.png`. An escaped one
     // (`%5C`) stays a character of the name.
     Ok(match percent_decode(&uri.replace('\\', "/")) {
+        // The operating system would refuse it, saying only "invalid argument".
+        Ok(path) if path.contains('\0') => {
+            UriKind::Undecodable("it decodes to a NUL byte (%00), which no file name holds".into())
+        }
         Ok(path) => UriKind::Relative(path),
         Err(why) => UriKind::Undecodable(why),
     })
@@ -717,6 +721,11 @@ mod tests {
             UriKind::Relative("Textures\\a.png".into()),
             "an escaped one is part of the name"
         );
+        // Which the operating system refuses as an "invalid argument", naming nothing.
+        assert!(matches!(
+            classify("a%00b.bin").unwrap(),
+            UriKind::Undecodable(why) if why.contains("NUL byte")
+        ));
         assert!(classify(":").is_err());
     }
 
