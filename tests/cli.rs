@@ -1,6 +1,6 @@
 //! The `gltfmat` binary, end to end, on the bundled fixtures.
 
-use crate::common;
+mod common;
 use common::gltfmat;
 
 use std::path::Path;

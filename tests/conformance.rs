@@ -6,7 +6,7 @@
 //! each case listed by name must still differ, so that the list shrinks as gltfmat catches
 //! up (in a listed folder, cases that already match are counted as passing).
 
-use crate::common;
+mod common;
 use common::shared;
 
 use gltfmat::registry::{self, Origin};

@@ -4,7 +4,7 @@
 //! promise each test states: a diagnostic or a clean refusal (exit 0, 1 or 2, never a
 //! signal), nothing outside the output folder touched, the input's files byte-identical.
 
-use crate::common;
+mod common;
 
 use gltfmat::{check_path, CheckOptions};
 use serde_json::json;

@@ -1,7 +1,7 @@
 //! A short, bounded fuzz run in every `cargo test`: mutated fixtures through check,
 //! upgrade, compare and render must never panic. Long runs: `cargo run --release --example fuzz`.
 
-use crate::fuzz_engine;
+mod fuzz_engine;
 
 #[test]
 fn mutated_fixtures_never_panic() {

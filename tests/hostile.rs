@@ -2,7 +2,7 @@
 //! bounded memory, and never a panic. Cases built from bytes here; the file fixtures are in
 //! tests/cli.rs (truncated GLB, 4 GiB claims, 100 000-deep JSON, `..` and absolute URIs).
 
-use crate::common;
+mod common;
 
 use base64::Engine;
 use gltfmat::{

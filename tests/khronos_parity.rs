@@ -3,7 +3,7 @@
 //! cover. Each expected list is the validator's own report of the same document (code and
 //! pointer, every finding), recorded when the case was written.
 
-use crate::common;
+mod common;
 
 use gltfmat::{check_bytes, CheckOptions, NoResources, Profile};
 use serde_json::{json, Value};

@@ -3,7 +3,7 @@
 //! were encoded by Binomial's `basisu`, and each `*.basisu.png` is that tool's own (C++)
 //! transcoding of a KTX2 to RGBA32: the reference gltfmat's transcoding is held to.
 
-use crate::common;
+mod common;
 use common::gltfmat;
 use serde_json::Value;
 use std::path::{Path, PathBuf};

@@ -4,7 +4,7 @@
 //! listed fails the test, and so does a listed one no longer found: the list is the complete
 //! expectation, not an allowance.
 
-use crate::common;
+mod common;
 use common::shared;
 
 use gltfmat::{check_bytes, CheckOptions, FolderResources, Place};

@@ -8,7 +8,7 @@
 //! bounding box, the animation channels (node, path, key count, time range), each skin's joint
 //! count, the cameras and the image bytes, to 1e-4 relative.
 
-use crate::common;
+mod common;
 use common::shared;
 
 use gltfmat::upgrade_output as output;

@@ -4,7 +4,7 @@
 //! not trigger their rule (they list nothing else either, but for a Khronos info the setting
 //! they need brings). Every rule has at least one firing case and one near-miss.
 
-use crate::common;
+mod common;
 
 use common::{chunk, data_uri};
 use gltfmat::registry::{self, Origin};

@@ -2,7 +2,7 @@
 //! every spec-gloss material becomes metal-rough + KHR_materials_specular +
 //! KHR_materials_ior, everything else passes through, and the proof can fail.
 
-use crate::common;
+mod common;
 
 use common::{linear_to_srgb, srgb_to_linear};
 

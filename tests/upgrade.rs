@@ -1,7 +1,7 @@
 //! `gltfmat upgrade` and `gltfmat::upgrade`: every 1.0 asset converts to a 2.0 asset that
 //! passes gltfmat's check, materials convert as documented, and files are handled safely.
 
-use crate::common;
+mod common;
 use common::{data_uri, linear_to_srgb, shared, srgb_to_linear};
 
 use gltfmat::upgrade_output as output;
