@@ -182,6 +182,28 @@ fn options_filter_and_override() {
     assert_eq!(report["issues"]["messages"].as_array().unwrap().len(), 1);
 }
 
+/// A resource that cannot be read is named in its IO_ERROR, with the reason: a folder the
+/// operating system refuses to read as a file, a name no file can hold.
+#[test]
+fn an_unreadable_resource_is_named_with_the_reason() {
+    let folder = tempfile::tempdir().unwrap();
+    std::fs::create_dir(folder.path().join("data")).unwrap();
+    let asset = folder.path().join("a.gltf");
+    let text = r#"{"asset":{"version":"2.0"},"buffers":[{"uri":"data","byteLength":4}],
+        "images":[{"uri":"x%00.png"}]}"#;
+    std::fs::write(&asset, text).unwrap();
+    let (code, out) = gltfmat(&["check", asset.to_str().unwrap()]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("Could not read resource: data: not a regular file (a folder)."),
+        "{out}"
+    );
+    assert!(
+        out.contains("Could not read resource 'x%00.png': it decodes to a NUL byte"),
+        "{out}"
+    );
+}
+
 #[test]
 fn an_asset_without_materials_is_said_to_have_none_when_drawn_or_compared() {
     let folder = tempfile::tempdir().unwrap();

@@ -185,7 +185,7 @@ fn load_relative(
         unreadable => ctx.emit(
             khronos::IO_ERROR,
             pointer,
-            format!("Could not read resource '{}': {unreadable}.", shorten(uri)),
+            format!("Could not read resource: {unreadable}."),
         ),
     }
     None
