@@ -307,6 +307,65 @@ fn rules_lists_every_code_once_and_explain_shows_docs() {
     );
 }
 
+/// Names in capitals joined by underscores that the docs use and that are not codes: GL enums,
+/// vertex attributes, environment variables, a 1.0 extension named in capitals and one table of
+/// the source.
+const DOC_NAMES_NOT_CODES: &[&str] = &[
+    "CLAMP_TO_EDGE",
+    "MIRRORED_REPEAT",
+    "CULL_FACE",
+    "SRC_ALPHA",
+    "ONE_MINUS_SRC_ALPHA",
+    "COLOR_0",
+    "TEXCOORD_0",
+    "TEXCOORD_1",
+    "NO_COLOR",
+    "CLICOLOR_FORCE",
+    "FORCE_COLOR",
+    "CARGO_INCREMENTAL",
+    "GLTFMAT_SHARED",
+    "CESIUM_RTC",
+    "TEXTURE_SLOTS",
+];
+
+#[test]
+fn the_docs_name_only_codes_that_exist() {
+    let (code, out) = gltfmat(&["rules", "--format", "json"]);
+    assert_eq!(code, 0, "{out}");
+    let rules: Vec<serde_json::Value> = serde_json::from_str(&out).unwrap();
+    let codes: std::collections::HashSet<&str> =
+        rules.iter().map(|r| r["code"].as_str().unwrap()).collect();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut pages = vec![root.join("README.md"), root.join("ARCHITECTURE.md")];
+    for entry in std::fs::read_dir(root.join("docs")).unwrap() {
+        pages.push(entry.unwrap().path());
+    }
+    let mut unknown = Vec::new();
+    for page in pages
+        .iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+    {
+        let text = std::fs::read_to_string(page).unwrap();
+        let words = text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'));
+        for word in words {
+            let code_shaped = word.contains('_')
+                && word.starts_with(|c: char| c.is_ascii_uppercase())
+                && !word.ends_with('_')
+                && word
+                    .chars()
+                    .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_');
+            if code_shaped && !codes.contains(word) && !DOC_NAMES_NOT_CODES.contains(&word) {
+                unknown.push(format!("{}: {word}", page.display()));
+            }
+        }
+    }
+    assert!(
+        unknown.is_empty(),
+        "names in the docs that are no code of `gltfmat rules` (rename them, or list a \
+         non-code name in DOC_NAMES_NOT_CODES): {unknown:?}"
+    );
+}
+
 #[test]
 fn lut_sheen_writes_the_table_the_evaluator_uses() {
     let (code, out) = gltfmat(&["lut", "sheen", "--size", "4", "--visibility", "ashikhmin"]);

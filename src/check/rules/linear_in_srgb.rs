@@ -7,7 +7,7 @@ use crate::document::image_header::{ImageFormat, Transfer};
 
 pub(super) const RULE: Rule = Rule::new(
     "IMAGE_LINEAR_IN_SRGB_SLOT",
-    Severity::Warning,
+    Severity::Hint,
     "colour-space",
     "An image tagged as linear (PNG gAMA 1.0) is bound to a slot that decodes it as sRGB.",
     DOC,
@@ -21,11 +21,14 @@ diffuse-transmission colour, specular-glossiness RGB) bound to a PNG whose `gAMA
 its values are linear (gamma 1.0).
 
 ## Why
-glTF decodes colour textures with the sRGB transfer function whatever the file says. A file
-tagged linear was most likely written from linear values (a bake or a render), and will look
-too dark and too saturated in every engine. Either re-encode the image as sRGB or remove the
-tag if it is wrong. Images with a custom ICC profile or an unusual gamma are the Khronos
-`IMAGE_FEATURES_UNSUPPORTED` concern and are not repeated here.
+glTF decodes colour textures with the sRGB transfer function whatever the file says. If the
+texels were written from linear values (a bake or a render), the colour renders too dark and
+too saturated in every engine: re-encode the image as sRGB. If the tag is wrong, glTF engines
+are unaffected but tools that honour it (browsers, resizers, texture compressors) brighten the
+image: remove the tag. The tag alone cannot tell the two apart, and some exporters stamp
+gamma 1.0 on every PNG they write whatever it holds (Microsoft's glTF exporter does, on sRGB
+colour textures), which is why this is only a hint. Images with a custom ICC profile or an
+unusual gamma are the Khronos `IMAGE_FEATURES_UNSUPPORTED` concern and are not repeated here.
 
 Spec: glTF 2.0 §3.9.2 (\"baseColorTexture … MUST be encoded with the sRGB transfer function\").
 
@@ -43,7 +46,7 @@ fn check(ctx: &mut Context) {
                 RULE.code(),
                 slot_use.pointer(),
                 format!(
-                    "{} decodes image {image} as sRGB, but the image is tagged linear (gAMA 1.0).",
+                    "{} decodes image {image} as sRGB, but the image is tagged linear (gAMA 1.0): linear texels render too dark, and a wrong tag makes tools that honour it brighten the image.",
                     slot_use.slot.key
                 ),
             );
