@@ -20,8 +20,8 @@ const DOC: &str = "\
 With `--deep`, decodes each `anisotropyTexture` and counts texels whose strength (B) is not
 zero while their direction, (R, G) mapped to [-1, 1], is shorter than 1/64 — for 8-bit data,
 the texels at or next to (128, 128). As for NORMAL_TEXEL_BELOW_SURFACE, only the texels the
-material's meshes sample are counted, and it reports when they are at least 0.1% of those.
-Reports the count and the first such texel.
+material's meshes sample are counted (every texel where their UVs cannot be read), and it
+reports when they are at least 0.1% of those. Reports the count and the first such texel.
 
 ## Why
 The spec normalises the direction vector; a zero vector has no direction, so engines divide

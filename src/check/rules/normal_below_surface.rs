@@ -21,7 +21,10 @@ With `--deep`, decodes each `normalTexture` and `clearcoatNormalTexture` and cou
 whose blue value is 0.5 or less, which maps to Z ≤ 0: a tangent-space normal that points into
 the surface or lies in it. Only the texels the material's meshes sample are counted (their
 UVs through the binding's texCoord set, texture transform and wrap modes, with the bilinear
-filter's neighbours); the black gutters between UV islands are never seen. It reports when
+filter's neighbours); the black gutters between UV islands are never seen. Where those UVs
+cannot be read (compressed by Draco or meshopt, or in a buffer that could not be read) every
+texel is counted, and the message says \"of N texels\" rather than \"of N texels the meshes
+sample\": gutters may then be among them. It reports when
 such texels are at least 0.1% of those sampled: fewer are isolated texels (seams, compression
 noise) that filtering and mipmaps average away. Reports the count and the first one. The length of the
 vectors is not judged: renderers normalise every normal before lighting, so a map whose
