@@ -1003,6 +1003,51 @@ fn vec3_tangents_get_the_handedness_of_their_binormal_and_empty_animations_are_d
 }
 
 #[test]
+fn an_attribute_or_keyframes_naming_no_accessor_are_left_out_not_the_whole_asset() {
+    let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let mut asset: Value =
+        serde_json::from_slice(&gltf1_triangle(&[("POSITION", positions)])).unwrap();
+    asset["meshes"]["m"]["primitives"][0]["attributes"]["NORMAL"] = "ghost".into();
+    asset["animations"]["idle"] = serde_json::json!({
+        "channels": [{"sampler": "s", "target": {"id": "n", "path": "translation"}}],
+        "samplers": {"s": {"input": "TIME", "output": "moves"}},
+        "parameters": {"TIME": "ghost", "moves": "a0"}
+    });
+    let upgraded = upgrade(
+        &serde_json::to_vec(&asset).unwrap(),
+        &NoResources,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    let json = upgraded.json.to_value();
+    let attributes = &json["meshes"][0]["primitives"][0]["attributes"];
+    assert!(attributes.get("POSITION").is_some() && attributes.get("NORMAL").is_none());
+    assert!(json.get("animations").is_none(), "{json}");
+    let said = |pointer: &str, words: &str| {
+        (upgraded.report.iter()).any(|n| n.pointer == pointer && n.text.contains(words))
+    };
+    assert!(said(
+        "/meshes/m/primitives/0/attributes/NORMAL",
+        "names accessor 'ghost', which does not exist"
+    ));
+    assert!(said(
+        "/animations/idle/samplers/s",
+        "do not resolve to accessors"
+    ));
+    let report = output::verify(&output::layout(&upgraded, "out.glb"));
+    assert!(!report.has_errors(), "{:?}", report.diagnostics);
+
+    // Without POSITION the primitive draws nothing: that is refused, naming the accessor.
+    asset["meshes"]["m"]["primitives"][0]["attributes"]["POSITION"] = "ghost".into();
+    let refused = upgrade(
+        &serde_json::to_vec(&asset).unwrap(),
+        &NoResources,
+        &UpgradeOptions::default(),
+    );
+    assert!(refused.is_err_and(|e| e.to_string().contains("accessor 'ghost' does not exist")));
+}
+
+#[test]
 fn quantized_positions_are_decoded_with_their_decode_matrix() {
     // Two unsigned-short positions; the matrix scales by 1/65535 and moves by (−0.5, 0, 2).
     let stored: Vec<u8> = [0u16, 0, 0, 65535, 65535, 65535]

@@ -31,14 +31,15 @@ impl Builder<'_, '_> {
             for (sampler_id, sampler) in source_samplers.into_iter().flat_map(|s| s.iter()) {
                 let accessor_of = |key: &str| {
                     let parameter = sampler.get(key).and_then(Node::as_str)?;
-                    parameters?.get(parameter)?.as_str()
+                    let accessor = parameters?.get(parameter)?.as_str()?;
+                    self.source.object("accessors", accessor).map(|_| accessor)
                 };
                 let (Some(input), Some(output)) = (accessor_of("input"), accessor_of("output"))
                 else {
                     self.note(
                         format!("{at}/samplers/{sampler_id}"),
                         NoteKind::Dropped,
-                        "sampler whose parameters do not resolve dropped.",
+                        "sampler whose parameters do not resolve to accessors dropped.",
                     );
                     continue;
                 };

@@ -55,6 +55,16 @@ impl<'s> Builder<'s, '_> {
                 continue;
             }
             let renamed = rename_semantic(semantic);
+            // An attribute naming no accessor has no data to convert: it is left out and said.
+            // A primitive without POSITION draws nothing, so that one is refused with its reason.
+            if renamed != "POSITION" && self.source.object("accessors", accessor).is_none() {
+                self.note(
+                    format!("{at}/attributes/{semantic}"),
+                    NoteKind::Dropped,
+                    format!("attribute {semantic} names accessor '{accessor}', which does not exist: left out of the primitive."),
+                );
+                continue;
+            }
             if renamed != semantic {
                 self.note(
                     format!("{at}/attributes/{semantic}"),
