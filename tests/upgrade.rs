@@ -1014,7 +1014,7 @@ fn an_attribute_or_keyframes_naming_no_accessor_are_left_out_not_the_whole_asset
         "parameters": {"TIME": "ghost", "moves": "a0"}
     });
     let upgraded = upgrade(
-        &serde_json::to_vec(&asset).unwrap(),
+        serde_json::to_vec(&asset).unwrap(),
         &NoResources,
         &UpgradeOptions::default(),
     )
@@ -1040,7 +1040,7 @@ fn an_attribute_or_keyframes_naming_no_accessor_are_left_out_not_the_whole_asset
     // Without POSITION the primitive draws nothing: that is refused, naming the accessor.
     asset["meshes"]["m"]["primitives"][0]["attributes"]["POSITION"] = "ghost".into();
     let refused = upgrade(
-        &serde_json::to_vec(&asset).unwrap(),
+        serde_json::to_vec(&asset).unwrap(),
         &NoResources,
         &UpgradeOptions::default(),
     );
