@@ -1048,6 +1048,53 @@ fn an_attribute_or_keyframes_naming_no_accessor_are_left_out_not_the_whole_asset
 }
 
 #[test]
+fn meshes_and_primitives_that_draw_nothing_are_dropped_and_the_nodes_keep_the_others() {
+    let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let mut asset: Value =
+        serde_json::from_slice(&gltf1_triangle(&[("POSITION", positions)])).unwrap();
+    // 1.0 defaults both lists to empty; the empty meshes come first so that the kept one moves.
+    let triangle = asset["meshes"]["m"].clone();
+    asset["meshes"] = serde_json::json!({
+        "none": {"primitives": []},
+        "bare": {"primitives": [{"attributes": {}}]},
+        "m": triangle,
+    });
+    asset["nodes"] = serde_json::json!({
+        "n": {"meshes": ["none", "m", "bare"]},
+        "hollow": {"meshes": ["bare"]},
+    });
+    asset["scenes"]["s"]["nodes"] = serde_json::json!(["n", "hollow"]);
+    let upgraded = upgrade(
+        serde_json::to_vec(&asset).unwrap(),
+        &NoResources,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    let json = upgraded.json.to_value();
+    assert_eq!(json["meshes"].as_array().unwrap().len(), 1, "{json}");
+    assert_eq!(json["nodes"][0]["mesh"], 0, "{json}");
+    assert!(json["nodes"][0].get("children").is_none(), "{json}");
+    assert!(json["nodes"][1].get("mesh").is_none(), "{json}");
+    let said = |pointer: &str, words: &str| {
+        (upgraded.report.iter()).any(|n| n.pointer == pointer && n.text.contains(words))
+    };
+    assert!(said(
+        "/meshes/none",
+        "mesh without (drawable) primitives dropped"
+    ));
+    assert!(said(
+        "/meshes/bare/primitives/0",
+        "primitive without attributes dropped"
+    ));
+    assert!(said(
+        "/meshes/bare",
+        "mesh without (drawable) primitives dropped"
+    ));
+    let report = output::verify(&output::layout(&upgraded, "out.glb"));
+    assert!(!report.has_errors(), "{:?}", report.diagnostics);
+}
+
+#[test]
 fn quantized_positions_are_decoded_with_their_decode_matrix() {
     // Two unsigned-short positions; the matrix scales by 1/65535 and moves by (−0.5, 0, 2).
     let stored: Vec<u8> = [0u16, 0, 0, 65535, 65535, 65535]

@@ -56,6 +56,8 @@ pub(super) struct Builder<'s, 'a> {
     /// The textures rebakes were added as, by their PNG and the 1.0 texture they are
     /// sampled like: an image rebaked alike for several materials is written once.
     pub(in crate::upgrade) rebaked: HashMap<(Vec<u8>, Option<String>), usize>,
+    /// Dictionary places, ascending, of the 1.0 meshes left out as drawing nothing.
+    pub(in crate::upgrade) dropped_meshes: Vec<usize>,
 }
 
 /// How much the converted binary may outgrow the data read: `.0` times it plus `.1` bytes.
@@ -122,6 +124,7 @@ impl<'s, 'a> Builder<'s, 'a> {
             rebakes: Default::default(),
             rebaked: HashMap::new(),
             origins: Origins::default(),
+            dropped_meshes: Vec::new(),
         }
     }
 

@@ -6,20 +6,48 @@ use crate::upgrade::data::{self, Role};
 use crate::upgrade::{NoteKind, UpgradeError};
 use serde_json::{json, Map, Value};
 
+const NO_ATTRIBUTES: &str = "primitive without attributes dropped: it draws nothing, and glTF 2.0 requires at least one attribute.";
+const NO_PRIMITIVES: &str = "mesh without (drawable) primitives dropped, and with it the nodes' reference to it: it draws nothing, and glTF 2.0 requires at least one primitive.";
+
 impl<'s> Builder<'s, '_> {
+    /// 1.0 allows a mesh without primitives and a primitive without attributes (both default
+    /// to empty); 2.0 requires at least one of each. Such a primitive draws nothing and is
+    /// dropped with a note, and so is a mesh left without primitives, the nodes holding it
+    /// then holding no mesh (see [`Builder::mesh_index`]).
     pub(in crate::upgrade) fn meshes(&mut self) -> Result<(), UpgradeError> {
-        for (id, mesh) in self.source.dictionary("meshes") {
+        for (position, (id, mesh)) in self.source.dictionary("meshes").into_iter().enumerate() {
             let mut out = Self::named(id, mesh);
             let mut primitives = Vec::new();
             let list = mesh.get("primitives").and_then(Node::as_array);
             for (p, primitive) in list.into_iter().flatten().enumerate() {
                 let at = format!("{}/primitives/{p}", pointer("meshes", id));
+                let has_attributes = (primitive.get("attributes").and_then(Node::as_object))
+                    .is_some_and(|attributes| attributes.iter().next().is_some());
+                if !has_attributes {
+                    self.note(at, NoteKind::Dropped, NO_ATTRIBUTES);
+                    continue;
+                }
                 primitives.push(self.primitive(primitive, &at)?);
+            }
+            if primitives.is_empty() {
+                self.note(pointer("meshes", id), NoteKind::Dropped, NO_PRIMITIVES);
+                self.dropped_meshes.push(position);
+                continue;
             }
             out.insert("primitives".into(), json!(primitives));
             self.push_from("meshes", Value::Object(out), pointer("meshes", id));
         }
         Ok(())
+    }
+
+    /// The 2.0 index of 1.0 mesh `id`: its place in the dictionary less the meshes dropped
+    /// before it; None for a mesh that was dropped or does not exist.
+    pub(in crate::upgrade) fn mesh_index(&self, id: &str) -> Option<usize> {
+        let position = self.index_of_id("meshes", id)?;
+        match self.dropped_meshes.binary_search(&position) {
+            Ok(_) => None,
+            Err(dropped_before) => Some(position - dropped_before),
+        }
     }
 
     pub(in crate::upgrade) fn primitive(

@@ -32,7 +32,7 @@ impl Builder<'_, '_> {
             let skin = self.skin_instance(id, node)?;
             let meshes: Vec<usize> = id_list(node.get("meshes"))
                 .iter()
-                .filter_map(|m| self.index_of_id("meshes", m))
+                .filter_map(|m| self.mesh_index(m))
                 .collect();
             for (k, mesh) in meshes.iter().enumerate() {
                 if k == 0 {
