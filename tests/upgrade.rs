@@ -1095,6 +1095,42 @@ fn meshes_and_primitives_that_draw_nothing_are_dropped_and_the_nodes_keep_the_ot
 }
 
 #[test]
+fn a_node_hidden_or_flattened_by_a_zero_scale_matrix_gets_a_zero_scale() {
+    let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let mut asset: Value =
+        serde_json::from_slice(&gltf1_triangle(&[("POSITION", positions)])).unwrap();
+    for (columns, scale) in [
+        ([0.0; 9], [0.0, 0.0, 0.0]),
+        (
+            [0.0, 2.0, 0.0, -3.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            [2.0, 3.0, 0.0],
+        ),
+    ] {
+        let [a, b, c, d, e, f, g, h, i] = columns;
+        asset["nodes"]["n"]["matrix"] =
+            serde_json::json!([a, b, c, 0, d, e, f, 0, g, h, i, 0, 5, 6, 7, 1]);
+        let upgraded = upgrade(
+            serde_json::to_vec(&asset).unwrap(),
+            &NoResources,
+            &UpgradeOptions::default(),
+        )
+        .unwrap();
+        let node = &upgraded.json.to_value()["nodes"][0];
+        assert!(node.get("matrix").is_none(), "{node}");
+        assert_eq!(node["translation"], serde_json::json!([5.0, 6.0, 7.0]));
+        let written: Vec<f64> = (node["scale"].as_array().unwrap().iter())
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        assert!(
+            (0..3).all(|k| (written[k] - scale[k]).abs() < 1e-12),
+            "{node}"
+        );
+        let report = output::verify(&output::layout(&upgraded, "out.glb"));
+        assert!(!report.has_errors(), "{:?}", report.diagnostics);
+    }
+}
+
+#[test]
 fn quantized_positions_are_decoded_with_their_decode_matrix() {
     // Two unsigned-short positions; the matrix scales by 1/65535 and moves by (−0.5, 0, 2).
     let stored: Vec<u8> = [0u16, 0, 0, 65535, 65535, 65535]

@@ -19,7 +19,7 @@
 use crate::gltf::color::linear_to_srgb8;
 use crate::shade::appearance::{self, Seen};
 use crate::shade::brdf::{
-    anisotropic_alphas, dot, ggx_aniso_d, into_anisotropy_frame, normalize, Geometry, V3,
+    anisotropic_alphas, cross, dot, ggx_aniso_d, into_anisotropy_frame, normalize, Geometry, V3,
 };
 use crate::shade::material::{Inputs, Shader};
 use crate::shade::sample::MaterialSource;
@@ -46,14 +46,6 @@ const CHECKER_SQUARES: f64 = 8.0;
 fn backdrop(x: f64, y: f64) -> f64 {
     let square = |c: f64| ((c + 1.0) * CHECKER_SQUARES / 2.0).floor() as i64;
     CHECKER[(square(x) + square(y)).rem_euclid(2) as usize]
-}
-
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// Stratified points of the unit square (`n`² of them), shared by both sky sampling strategies.

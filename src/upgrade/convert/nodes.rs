@@ -1,6 +1,7 @@
 //! Nodes and skins: per-instance skins, bindShapeMatrix folded into the inverse bind matrices, transforms copied.
 
 use crate::document::Node;
+use crate::shade::brdf::{cross, dot, normalize};
 use crate::upgrade::builder::{id_list, pointer, Builder};
 use crate::upgrade::data;
 use crate::upgrade::data::Role;
@@ -280,34 +281,69 @@ fn copy_transform(node: Node, out: &mut Map<String, Value>) -> Transform {
 
 /// A column-major affine matrix as translation, unit rotation quaternion (x, y, z, w) and
 /// scale, when its 3×3 part is a rotation times a scale (columns orthogonal to within 10⁻⁹
-/// of their lengths); `None` for a shear, a projection or a singular matrix.
+/// of their lengths); `None` for a shear or a projection. A column of length zero (a node
+/// flattened or hidden by a zero scale, which 1.0 writes as a matrix and 2.0 cannot decompose)
+/// gets scale 0 along an axis completing the others to a rotation.
 #[allow(clippy::type_complexity)]
 fn decomposed(m: &[f64; 16]) -> Option<([f64; 3], [f64; 4], [f64; 3])> {
     if m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0 {
         return None;
     }
     let column = |c: usize| [m[4 * c], m[4 * c + 1], m[4 * c + 2]];
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let columns = [column(0), column(1), column(2)];
     let mut scale = columns.map(|c| dot(c, c).sqrt());
-    if scale.iter().any(|&s| s == 0.0 || !s.is_finite()) {
+    if scale.iter().any(|s| !s.is_finite()) {
         return None;
     }
-    let unit = [0, 1, 2].map(|c| columns[c].map(|v| v / scale[c]));
-    let orthogonal = (0..3).all(|a| ((a + 1)..3).all(|b| dot(unit[a], unit[b]).abs() < 1e-9));
+    let unit = [0, 1, 2].map(|c| (scale[c] > 0.0).then(|| columns[c].map(|v| v / scale[c])));
+    let orthogonal = (0..3).all(|a| {
+        ((a + 1)..3).all(|b| match (unit[a], unit[b]) {
+            (Some(u), Some(v)) => dot(u, v).abs() < 1e-9,
+            _ => true,
+        })
+    });
     if !orthogonal {
         return None;
     }
-    let [x, y, z] = unit;
-    let det = x[0] * (y[1] * z[2] - z[1] * y[2]) - y[0] * (x[1] * z[2] - z[1] * x[2])
-        + z[0] * (x[1] * y[2] - y[1] * x[2]);
-    let mut r = unit;
-    if det < 0.0 {
+    let mut r = completed(unit);
+    if dot(cross(r[0], r[1]), r[2]) < 0.0 {
         // A mirror: the negative scale goes on x, as readers decompose it.
         scale[0] = -scale[0];
         r[0] = r[0].map(|v| -v);
     }
     Some(([m[12], m[13], m[14]], quaternion_of(r), scale))
+}
+
+/// Orthonormal columns with the missing ones (None) filled in to make a right-handed basis:
+/// each as the cross product of the next two, or any unit vector orthogonal to the one given.
+fn completed(unit: [Option<[f64; 3]>; 3]) -> [[f64; 3]; 3] {
+    let given: Vec<usize> = (0..3).filter(|&c| unit[c].is_some()).collect();
+    match given.as_slice() {
+        [_, _, _] => unit.map(|c| c.unwrap_or_default()),
+        [] => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        [only] => {
+            let u = unit[*only].unwrap_or_default();
+            // The axis u is least along is never parallel to it.
+            let least = (0..3)
+                .min_by(|&a, &b| u[a].abs().total_cmp(&u[b].abs()))
+                .unwrap_or(0);
+            let mut axis = [0.0; 3];
+            axis[least] = 1.0;
+            let v = normalize(cross(u, axis));
+            let mut r = [[0.0; 3]; 3];
+            r[*only] = u;
+            r[(only + 1) % 3] = v;
+            r[(only + 2) % 3] = cross(u, v);
+            r
+        }
+        [_, _] => {
+            let missing = (0..3).find(|&c| unit[c].is_none()).unwrap_or(2);
+            let mut r = unit.map(|c| c.unwrap_or_default());
+            r[missing] = cross(r[(missing + 1) % 3], r[(missing + 2) % 3]);
+            r
+        }
+        _ => unreachable!("at most three columns"),
+    }
 }
 
 /// The unit quaternion (x, y, z, w) of a rotation given by its columns.
@@ -385,7 +421,8 @@ mod tests {
     }
 
     #[test]
-    fn a_rotation_and_scale_matrix_decomposes_to_the_same_transform_and_a_shear_does_not() {
+    fn a_rotation_and_scale_matrix_decomposes_to_the_same_transform_zero_scales_included_and_a_shear_does_not(
+    ) {
         let (c, s) = (0.3f64.cos(), 0.3f64.sin());
         for (scale, mirror) in [(1.0, 1.0), (1000.0, 1.0), (2500.0, -1.0), (0.001, 1.0)] {
             let m = [
@@ -410,6 +447,31 @@ mod tests {
             let back = recomposed(parts);
             let error = (0..16).map(|i| (back[i] - m[i]).abs()).fold(0.0, f64::max);
             assert!(error < 1e-9 * scale.max(1.0), "{scale} {mirror}: {error}");
+        }
+        // A zero scale on every axis, on one, and on two (a node hidden, flattened, squashed
+        // to a line along a turned axis).
+        let zero_scaled = |columns: [[f64; 3]; 3]| {
+            let mut m = IDENTITY;
+            for (c, column) in columns.iter().enumerate() {
+                m[4 * c..4 * c + 3].copy_from_slice(column);
+            }
+            m[12] = 4.0;
+            m
+        };
+        for m in [
+            zero_scaled([[0.0; 3]; 3]),
+            zero_scaled([[c, s, 0.0], [-s, c, 0.0], [0.0; 3]]),
+            zero_scaled([[0.0; 3], [-2.0 * s, 2.0 * c, 0.0], [0.0; 3]]),
+        ] {
+            let parts = decomposed(&m).expect("a rotation and a zero scale");
+            let back = recomposed(parts);
+            let error = (0..16).map(|i| (back[i] - m[i]).abs()).fold(0.0, f64::max);
+            assert!(error < 1e-12, "{m:?} → {parts:?}: {error}");
+            let [x, y, z, w] = parts.1;
+            assert!(
+                (x * x + y * y + z * z + w * w - 1.0).abs() < 1e-12,
+                "{parts:?}"
+            );
         }
         let mut shear = IDENTITY;
         shear[4] = 0.5;
