@@ -1130,6 +1130,100 @@ fn a_node_hidden_or_flattened_by_a_zero_scale_matrix_gets_a_zero_scale() {
     }
 }
 
+/// Column-major T · R · S of a 2.0 node (a missing part is the identity's).
+fn node_matrix(node: &Value) -> [f64; 16] {
+    let list = |key: &str, default: &[f64]| -> Vec<f64> {
+        (node.get(key).and_then(Value::as_array)).map_or(default.to_vec(), |a| {
+            a.iter().map(|v| v.as_f64().unwrap()).collect()
+        })
+    };
+    let (t, q, s) = (
+        list("translation", &[0.0; 3]),
+        list("rotation", &[0.0, 0.0, 0.0, 1.0]),
+        list("scale", &[1.0; 3]),
+    );
+    let [x, y, z, w] = [q[0], q[1], q[2], q[3]];
+    let r = [
+        [
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y + z * w),
+            2.0 * (x * z - y * w),
+        ],
+        [
+            2.0 * (x * y - z * w),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z + x * w),
+        ],
+        [
+            2.0 * (x * z + y * w),
+            2.0 * (y * z - x * w),
+            1.0 - 2.0 * (x * x + y * y),
+        ],
+    ];
+    let mut m = [0.0; 16];
+    for c in 0..3 {
+        for row in 0..3 {
+            m[4 * c + row] = r[c][row] * s[c];
+        }
+        m[12 + c] = t[c];
+    }
+    m[15] = 1.0;
+    m
+}
+
+#[test]
+fn a_sheared_node_matrix_becomes_a_node_and_a_child_whose_product_is_that_matrix() {
+    let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let mut asset: Value =
+        serde_json::from_slice(&gltf1_triangle(&[("POSITION", positions)])).unwrap();
+    // A shear the Khronos validator's recomposition rejects (NODE_MATRIX_NON_TRS); one it lets
+    // through passes the output's check and is kept as written.
+    let sheared = [
+        1.0, 0.0, 0.0, 0.0, 0.5, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+    ];
+    asset["nodes"]["n"]["matrix"] = serde_json::json!(sheared);
+    asset["nodes"]["n"]["children"] = serde_json::json!(["leaf"]);
+    asset["nodes"]["leaf"] = serde_json::json!({"meshes": ["m"]});
+    let upgraded = upgrade(
+        serde_json::to_vec(&asset).unwrap(),
+        &NoResources,
+        &UpgradeOptions::default(),
+    )
+    .unwrap();
+    let json = upgraded.json.to_value();
+    let (outer, inner) = (&json["nodes"][0], &json["nodes"][2]);
+    assert_eq!(outer["children"], serde_json::json!([2]), "{json}");
+    assert!(
+        outer.get("matrix").is_none() && outer.get("mesh").is_none(),
+        "{json}"
+    );
+    assert_eq!(inner["mesh"], 0, "{json}");
+    assert_eq!(
+        inner["children"],
+        serde_json::json!([1]),
+        "the node's own child: {json}"
+    );
+    let (a, b) = (node_matrix(outer), node_matrix(inner));
+    for column in 0..4 {
+        for row in 0..4 {
+            let product: f64 = (0..4).map(|k| a[4 * k + row] * b[4 * column + k]).sum();
+            let error = (product - sheared[4 * column + row]).abs();
+            assert!(
+                error < 1e-9,
+                "{column},{row}: {product} against {}",
+                sheared[4 * column + row]
+            );
+        }
+    }
+    assert!(
+        (upgraded.report.iter())
+            .any(|n| n.pointer == "/nodes/n"
+                && n.text.contains("sheared matrix written as two nodes"))
+    );
+    let report = output::verify(&output::layout(&upgraded, "out.glb"));
+    assert!(!report.has_errors(), "{:?}", report.diagnostics);
+}
+
 #[test]
 fn quantized_positions_are_decoded_with_their_decode_matrix() {
     // Two unsigned-short positions; the matrix scales by 1/65535 and moves by (−0.5, 0, 2).

@@ -20,7 +20,8 @@ impl Builder<'_, '_> {
                 .filter_map(|c| self.index_of_id("nodes", c))
                 .map(|i| json!(i))
                 .collect();
-            if copy_transform(node, &mut out) == Transform::Decomposed {
+            let transform = copy_transform(node, &mut out);
+            if transform == Transform::Decomposed {
                 self.note(
                     pointer("nodes", id),
                     NoteKind::Decision,
@@ -65,6 +66,16 @@ impl Builder<'_, '_> {
             if let Some(light) = self.node_light(&pointer("nodes", id), node) {
                 let placed = json!({super::lights::PUNCTUAL: {"light": light}});
                 out.insert("extensions".into(), placed);
+            }
+            if let Transform::Sheared(inner_rotation) = transform {
+                let inner = sheared_content(&mut out, id, inner_rotation);
+                out.insert("children".into(), json!([nodes.len() + extra_nodes.len()]));
+                extra_nodes.push((inner, format!("{}/matrix", pointer("nodes", id))));
+                self.note(
+                    pointer("nodes", id),
+                    NoteKind::Decision,
+                    format!("sheared matrix written as two nodes (2.0 node transforms cannot shear): this one's translation, rotation and scale, then a child \"{id}-unsheared\" turning by a second rotation and holding what the node held; together the same transform."),
+                );
             }
             // Pushed as made (a node's index is its place in the dictionary): 10^5 nodes
             // are never all held as values at once.
@@ -246,6 +257,9 @@ enum Transform {
     AsWritten,
     /// Its matrix as translation, rotation and scale.
     Decomposed,
+    /// Its sheared matrix as translation, rotation and scale, and a child turning by this
+    /// rotation (x, y, z, w), which is to hold the node's content.
+    Sheared([f64; 4]),
 }
 
 /// The matrix, or translation/rotation/scale, of a 1.0 node. A matrix that is a rotation and
@@ -263,6 +277,17 @@ fn copy_transform(node: Node, out: &mut Map<String, Value>) -> Transform {
                     out.insert("scale".into(), json!(scale));
                     return Transform::Decomposed;
                 }
+                (false, None) if node.get("jointName").is_none() => match unsheared(&m) {
+                    Some((translation, rotation, scale, inner)) => {
+                        out.insert("translation".into(), json!(translation));
+                        out.insert("rotation".into(), json!(rotation));
+                        out.insert("scale".into(), json!(scale));
+                        return Transform::Sheared(inner);
+                    }
+                    None => {
+                        out.insert("matrix".into(), json!(m));
+                    }
+                },
                 _ => {
                     out.insert("matrix".into(), json!(m));
                 }
@@ -344,6 +369,110 @@ fn completed(unit: [Option<[f64; 3]>; 3]) -> [[f64; 3]; 3] {
         }
         _ => unreachable!("at most three columns"),
     }
+}
+
+/// What a sheared node held (mesh, camera, skin, children, extensions, extras), moved out of
+/// `out` into the child node that turns by `rotation` beneath it.
+fn sheared_content(out: &mut Map<String, Value>, id: &str, rotation: [f64; 4]) -> Value {
+    let mut inner = Map::new();
+    inner.insert("name".into(), json!(format!("{id}-unsheared")));
+    inner.insert("rotation".into(), json!(rotation));
+    let moved: Vec<String> = (out.keys())
+        .filter(|k| !matches!(k.as_str(), "name" | "translation" | "rotation" | "scale"))
+        .cloned()
+        .collect();
+    for key in moved {
+        if let Some(value) = out.remove(&key) {
+            inner.insert(key, value);
+        }
+    }
+    Value::Object(inner)
+}
+
+/// A column-major affine matrix whose 3×3 part shears, as T · R₁ · S · R₂: translation, the
+/// outer rotation and the scale (one node's), and the inner rotation (its child's), all
+/// quaternions (x, y, z, w). This is the singular value decomposition of the 3×3 part, with
+/// both rotations proper (a mirror is a negative scale on x). None for a projection, or when
+/// the parts do not recompose the matrix to within 10⁻⁹ of its largest entry.
+#[allow(clippy::type_complexity)]
+fn unsheared(m: &[f64; 16]) -> Option<([f64; 3], [f64; 4], [f64; 3], [f64; 4])> {
+    if m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0 {
+        return None;
+    }
+    let a = [0, 1, 2].map(|c| [m[4 * c], m[4 * c + 1], m[4 * c + 2]]);
+    let largest = a.iter().flatten().fold(0.0f64, |l, v| l.max(v.abs()));
+    if !largest.is_finite() || largest == 0.0 {
+        return None;
+    }
+    let gram = [0, 1, 2].map(|i| [0, 1, 2].map(|j| dot(a[i], a[j])));
+    let (squares, mut v) = symmetric_eigen(gram);
+    if dot(cross(v[0], v[1]), v[2]) < 0.0 {
+        v[2] = v[2].map(|x| -x);
+    }
+    let mut scale = squares.map(|s| s.max(0.0).sqrt());
+    let smallest = scale.iter().fold(0.0f64, |l, &s| l.max(s)) * 1e-12;
+    // Uᵢ = A·Vᵢ / σᵢ; a zero σ leaves its column to complete the rotation.
+    let u = [0, 1, 2].map(|i| {
+        let image = [0, 1, 2].map(|row| (0..3).map(|c| a[c][row] * v[i][c]).sum::<f64>());
+        (scale[i] > smallest).then(|| image.map(|x| x / scale[i]))
+    });
+    let mut outer = completed(u);
+    if dot(cross(outer[0], outer[1]), outer[2]) < 0.0 {
+        scale[0] = -scale[0];
+        outer[0] = outer[0].map(|x| -x);
+    }
+    let transposed = [0, 1, 2].map(|c| [v[0][c], v[1][c], v[2][c]]);
+    let error = (0..3)
+        .flat_map(|c| (0..3).map(move |row| (c, row)))
+        .map(|(c, row)| {
+            let back: f64 = (0..3)
+                .map(|i| outer[i][row] * scale[i] * transposed[c][i])
+                .sum();
+            (back - a[c][row]).abs()
+        })
+        .fold(0.0, f64::max);
+    (error <= 1e-9 * largest).then(|| {
+        let translation = [m[12], m[13], m[14]];
+        (
+            translation,
+            quaternion_of(outer),
+            scale,
+            quaternion_of(transposed),
+        )
+    })
+}
+
+/// The eigenvalues of a symmetric 3×3 matrix (rows of columns; it is its own transpose) and
+/// their unit eigenvectors (columns), by cyclic Jacobi rotations until the off-diagonal part
+/// vanishes against the diagonal.
+fn symmetric_eigen(mut s: [[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _ in 0..64 {
+        let off = s[0][1] * s[0][1] + s[0][2] * s[0][2] + s[1][2] * s[1][2];
+        let diagonal = s[0][0] * s[0][0] + s[1][1] * s[1][1] + s[2][2] * s[2][2];
+        if off <= f64::EPSILON * f64::EPSILON * diagonal {
+            break;
+        }
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if s[p][q] == 0.0 {
+                continue;
+            }
+            let theta = (s[q][q] - s[p][p]) / (2.0 * s[p][q]);
+            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+            let c = 1.0 / (t * t + 1.0).sqrt();
+            let sine = t * c;
+            let turn = |x: f64, y: f64| (c * x - sine * y, sine * x + c * y);
+            for row in s.iter_mut() {
+                (row[p], row[q]) = turn(row[p], row[q]);
+            }
+            for m in [&mut s, &mut v] {
+                let (row_p, row_q) = (m[p], m[q]);
+                m[p] = [0, 1, 2].map(|k| turn(row_p[k], row_q[k]).0);
+                m[q] = [0, 1, 2].map(|k| turn(row_p[k], row_q[k]).1);
+            }
+        }
+    }
+    ([s[0][0], s[1][1], s[2][2]], v)
 }
 
 /// The unit quaternion (x, y, z, w) of a rotation given by its columns.
@@ -476,9 +605,51 @@ mod tests {
         let mut shear = IDENTITY;
         shear[4] = 0.5;
         assert!(decomposed(&shear).is_none());
+        assert!(unsheared(&shear).is_some());
         let mut projection = IDENTITY;
         projection[3] = 0.1;
         assert!(decomposed(&projection).is_none());
+    }
+
+    #[test]
+    fn a_sheared_matrix_is_two_rotations_and_a_scale_that_recompose_it() {
+        let (c, s) = (0.7f64.cos(), 0.7f64.sin());
+        let turned = [
+            c, s, 0.0, 0.0, -s, c, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+        ];
+        let mut shear = IDENTITY;
+        (shear[4], shear[8], shear[9]) = (0.5, -0.25, 2.0);
+        let mut mirrored = IDENTITY;
+        mirrored[5] = -3.0;
+        let mut flattened_shear = shear;
+        flattened_shear[10] = 0.0;
+        flattened_shear[8] = 0.0;
+        flattened_shear[9] = 0.0;
+        for (name, mut m) in [
+            ("shear", shear),
+            ("turned shear", multiply(&turned, &shear)),
+            (
+                "mirrored shear",
+                multiply(&mirrored, &multiply(&shear, &turned)),
+            ),
+            ("flattened shear", flattened_shear),
+        ] {
+            (m[12], m[13], m[14]) = (1.0, -2.0, 3.0);
+            let (t, outer, scale, inner) = unsheared(&m).expect(name);
+            let back = multiply(
+                &recomposed((t, outer, scale)),
+                &recomposed(([0.0; 3], inner, [1.0; 3])),
+            );
+            let error = (0..16).map(|i| (back[i] - m[i]).abs()).fold(0.0, f64::max);
+            assert!(error < 1e-12, "{name}: {m:?} → {back:?}: {error}");
+            for q in [outer, inner] {
+                let length: f64 = q.iter().map(|x| x * x).sum();
+                assert!((length - 1.0).abs() < 1e-12, "{name}: {q:?}");
+            }
+        }
+        let mut projection = shear;
+        projection[3] = 0.1;
+        assert!(unsheared(&projection).is_none());
     }
 
     #[test]
