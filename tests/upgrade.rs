@@ -1200,6 +1200,20 @@ fn a_sheared_node_matrix_becomes_a_node_and_a_child_whose_product_is_that_matrix
     let note = "sheared matrix written as two nodes";
     assert!(said(&upgraded, "/nodes/n", note));
     assert_output_checks_clean(&upgraded);
+
+    // A joint's skin reads the joint node itself, so its shear is not moved to a child.
+    let joint = upgraded_triangle(|asset| {
+        asset["nodes"]["n"]["matrix"] = serde_json::json!(sheared);
+        asset["nodes"]["n"]["jointName"] = "j".into();
+    })
+    .unwrap();
+    let json = joint.json.to_value();
+    assert_eq!(
+        json["nodes"][0]["matrix"],
+        serde_json::json!(sheared),
+        "{json}"
+    );
+    assert_eq!(json["nodes"].as_array().unwrap().len(), 1, "{json}");
 }
 
 #[test]

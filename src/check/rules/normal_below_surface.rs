@@ -24,11 +24,11 @@ UVs through the binding's texCoord set, texture transform and wrap modes, with t
 filter's neighbours); the black gutters between UV islands are never seen. Where those UVs
 cannot be read (compressed by Draco or meshopt, or in a buffer that could not be read) every
 texel is counted, and the message says \"of N texels\" rather than \"of N texels the meshes
-sample\": gutters may then be among them. It reports when
-such texels are at least 0.1% of those sampled: fewer are isolated texels (seams, compression
-noise) that filtering and mipmaps average away. Reports the count and the first one. The length of the
-vectors is not judged: renderers normalise every normal before lighting, so a map whose
-texels are longer or shorter than 1 shades as its directions say.
+sample\": gutters may then be among them. It reports when such texels are at least 0.1% of
+those sampled: fewer are isolated texels (seams, compression noise) that filtering and mipmaps
+average away. Reports the count and the first one. The length of the vectors is not judged:
+renderers normalise every normal before lighting, so a map whose texels are longer or shorter
+than 1 shades as its directions say.
 
 ## Why
 A shading normal below the surface lights the surface from behind: black or inverted spots.

@@ -270,25 +270,22 @@ fn copy_transform(node: Node, out: &mut Map<String, Value>) -> Transform {
     match matrix(node.get("matrix")) {
         Some(m) if m != IDENTITY => {
             let single: Vec<f64> = m.iter().map(|&v| f64::from(v as f32)).collect();
-            match (crate::check::is_trs_decomposable(&single), decomposed(&m)) {
-                (false, Some((translation, rotation, scale))) => {
+            // A joint's skin reads the node itself: its shear cannot move to a child.
+            let parts = match (crate::check::is_trs_decomposable(&single), decomposed(&m)) {
+                (false, Some(parts)) => Some((parts, None)),
+                (false, None) if node.get("jointName").is_none() => {
+                    unsheared(&m).map(|(t, r, s, inner)| ((t, r, s), Some(inner)))
+                }
+                _ => None,
+            };
+            match parts {
+                Some(((translation, rotation, scale), inner)) => {
                     out.insert("translation".into(), json!(translation));
                     out.insert("rotation".into(), json!(rotation));
                     out.insert("scale".into(), json!(scale));
-                    return Transform::Decomposed;
+                    return inner.map_or(Transform::Decomposed, Transform::Sheared);
                 }
-                (false, None) if node.get("jointName").is_none() => match unsheared(&m) {
-                    Some((translation, rotation, scale, inner)) => {
-                        out.insert("translation".into(), json!(translation));
-                        out.insert("rotation".into(), json!(rotation));
-                        out.insert("scale".into(), json!(scale));
-                        return Transform::Sheared(inner);
-                    }
-                    None => {
-                        out.insert("matrix".into(), json!(m));
-                    }
-                },
-                _ => {
+                None => {
                     out.insert("matrix".into(), json!(m));
                 }
             }
@@ -311,11 +308,7 @@ fn copy_transform(node: Node, out: &mut Map<String, Value>) -> Transform {
 /// gets scale 0 along an axis completing the others to a rotation.
 #[allow(clippy::type_complexity)]
 fn decomposed(m: &[f64; 16]) -> Option<([f64; 3], [f64; 4], [f64; 3])> {
-    if m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0 {
-        return None;
-    }
-    let column = |c: usize| [m[4 * c], m[4 * c + 1], m[4 * c + 2]];
-    let columns = [column(0), column(1), column(2)];
+    let columns = linear_part(m)?;
     let mut scale = columns.map(|c| dot(c, c).sqrt());
     if scale.iter().any(|s| !s.is_finite()) {
         return None;
@@ -337,6 +330,12 @@ fn decomposed(m: &[f64; 16]) -> Option<([f64; 3], [f64; 4], [f64; 3])> {
         r[0] = r[0].map(|v| -v);
     }
     Some(([m[12], m[13], m[14]], quaternion_of(r), scale))
+}
+
+/// The 3×3 part's columns of a column-major affine matrix; None for a projection.
+fn linear_part(m: &[f64; 16]) -> Option<[[f64; 3]; 3]> {
+    let affine = m[3] == 0.0 && m[7] == 0.0 && m[11] == 0.0 && m[15] == 1.0;
+    affine.then(|| [0, 1, 2].map(|c| [m[4 * c], m[4 * c + 1], m[4 * c + 2]]))
 }
 
 /// Orthonormal columns with the missing ones (None) filled in to make a right-handed basis:
@@ -396,10 +395,7 @@ fn sheared_content(out: &mut Map<String, Value>, id: &str, rotation: [f64; 4]) -
 /// the parts do not recompose the matrix to within 10⁻⁹ of its largest entry.
 #[allow(clippy::type_complexity)]
 fn unsheared(m: &[f64; 16]) -> Option<([f64; 3], [f64; 4], [f64; 3], [f64; 4])> {
-    if m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0 {
-        return None;
-    }
-    let a = [0, 1, 2].map(|c| [m[4 * c], m[4 * c + 1], m[4 * c + 2]]);
+    let a = linear_part(m)?;
     let largest = a.iter().flatten().fold(0.0f64, |l, v| l.max(v.abs()));
     if !largest.is_finite() || largest == 0.0 {
         return None;
